@@ -1,0 +1,1 @@
+"""The ``springdyn`` command line: a thin layer over the Python API (no physics here)."""
