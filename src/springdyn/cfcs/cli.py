@@ -1,0 +1,272 @@
+"""``springdyn cfcs ...``: the command line of the CFCS model (no physics here)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import numpy as np
+
+from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from ..errors import InputError
+from ..plotting import plt
+from ..units import format_quantity
+from .design import design
+from .model import CFCS, DEFAULT_AMPLITUDE
+from .motion import SinusoidMotion, amplitude_to_si
+from .params import EXAMPLES, CFCSParams
+
+__all__ = ["register"]
+
+_CFG_HELP = f"mechanism TOML file with a [cfcs] table, or a built-in example ({', '.join(EXAMPLES)})"
+_TOGGLE_NOTE = ("Inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) the Jacobian dx/dtheta2 is "
+                "frozen at its cut-off value; every output states the cut-off.")
+
+
+def register(subparsers) -> None:
+    """Add ``cfcs`` and its sub-commands to the ``springdyn`` parser."""
+    p = subparsers.add_parser("cfcs", help="constant-force compression springs (pseudo-rigid-body model)",
+                              description="Constant-force compression spring: statics, dynamics, sweeps, design. "
+                              + _TOGGLE_NOTE)
+    sub = p.add_subparsers(dest="cfcs_command", metavar="ACTION", required=True)
+
+    s = sub.add_parser("static", help="force-deflection curve, PCF and pivot stress")
+    s.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    s.add_argument("--stroke", help="stroke from the toggle (default 40%% of r2 + r3), e.g. 72mm")
+    s.add_argument("--points", type=int, default=721, help="samples of the curve (default 721)")
+    add_output_options(s)
+    s.set_defaults(func=_static)
+
+    d = sub.add_parser("dynamic", help="slider force along a prescribed periodic motion (inverse dynamics)",
+                       description="Force needed to drive the slider along x(t) = offset + amplitude (1 - cos wt)/2 "
+                       "or a periodic motion from a CSV (columns time_s, deflection_m). " + _TOGGLE_NOTE)
+    d.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    _motion_options(d, omega_help="circular frequency [rad/s] of the input (required without --motion)")
+    d.add_argument("--motion", metavar="X.csv", help="periodic x(t) from a CSV (time_s, deflection_m); with "
+                   "--omega its period is rescaled to 2 pi/omega")
+    d.add_argument("--cycles", type=int, default=2, help="cycles to output (default 2)")
+    d.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
+    d.add_argument("--no-dissipation", action="store_true", help="switch off tau_CF, tau_AF and slider friction")
+    add_output_options(d)
+    d.set_defaults(func=_dynamic)
+
+    w = sub.add_parser("sweep", help="mean/median/peak-to-peak force and PCF vs omega (Figs. 5-7)")
+    w.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    _motion_options(w, omega_help="frequencies START:STOP:STEP or a comma list [rad/s], e.g. 1:50:100",
+                    required=True)
+    w.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
+    w.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_output_options(w)
+    w.set_defaults(func=_sweep)
+
+    f = sub.add_parser("forward", help="response of the slider to a force or to a spring from a moving base")
+    f.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    f.add_argument("--t-end", required=True, help="simulated time, e.g. 2s")
+    f.add_argument("--force", help="constant slider force (positive in compression), e.g. 13N")
+    f.add_argument("--base-stiffness", help="stiffness of the drive spring, e.g. 2000N/m")
+    f.add_argument("--base-damping", default="0", help="damping of the drive spring, e.g. 1N*s/m")
+    _motion_options(f, omega_help="circular frequency of the base motion [rad/s]", prefix="base-")
+    f.add_argument("--x0", default="1mm", help="initial deflection (default 1mm; the toggle itself is an equilibrium)")
+    f.add_argument("--v0", default="0", help="initial slider velocity [m/s] (default 0)")
+    f.add_argument("--points", type=int, default=2001, help="output samples (default 2001)")
+    f.add_argument("--sign-smoothing", default="0.01", help="velocity scale of the smoothed Coulomb sign [rad/s]")
+    add_output_options(f)
+    f.set_defaults(func=_forward)
+
+    g = sub.add_parser("design", help="choose r2/r3, K3 and the flexure for a target force and stroke",
+                       description="Exit status 1 when no design meets the stress limit (the reason is printed).")
+    g.add_argument("--force", required=True, help="target constant force, e.g. 12.8N")
+    g.add_argument("--stroke", required=True, help="working stroke from the toggle, e.g. 40mm")
+    g.add_argument("--material-modulus", required=True, help="Young's modulus of the flexure, e.g. 207GPa")
+    g.add_argument("--allowable-stress", required=True, help="allowable bending stress, e.g. 1.5GPa")
+    g.add_argument("--stroke-fraction", default="0.4", help="stroke / (r2 + r3) (default 0.4)")
+    g.add_argument("--length", help="r2 + r3 (overrides --stroke-fraction), e.g. 180mm")
+    g.add_argument("--pivot-length-ratio", default="0.1", help="flexure length / r3 (default 0.1)")
+    g.add_argument("--max-width", help="largest flexure width (default r3)")
+    g.add_argument("--safety-factor", default="1", help="design stress = allowable / this (default 1)")
+    g.add_argument("--toml", metavar="OUT.toml", help="write the design as a [cfcs] table")
+    add_output_options(g)
+    g.set_defaults(func=_design)
+
+
+def _motion_options(p, *, omega_help, required=False, prefix=""):
+    p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
+    p.add_argument(f"--{prefix}amplitude", default=str(DEFAULT_AMPLITUDE),
+                   help="stroke of the sinusoid: a fraction of r2 + r3 (default 0.4) or a length such as 72mm")
+    p.add_argument(f"--{prefix}offset", default="0", help="deflection at t = 0 (default 0, the toggle), e.g. 5mm")
+
+
+def _q(text, unit: str, option: str) -> float:
+    """A CLI quantity; a bare number is SI (also for units pint treats as dimensionless-like, rad/s)."""
+    return quantity(text, unit, option, bare_unit=unit)
+
+
+def _load(config: str) -> CFCSParams:
+    path = Path(config)
+    if path.is_file():
+        return CFCSParams.from_toml(path)
+    if config in EXAMPLES:
+        return CFCSParams.example(config)
+    raise InputError(f"{config}: no such file (and not a built-in example: {', '.join(EXAMPLES)})")
+
+
+def _fmt(value, unit="", display=None, digits=5):
+    if value is None:
+        return "n/a"
+    if isinstance(value, str):
+        return value
+    return format_quantity(float(value), unit, display, digits)
+
+
+def _write_outputs(args, result) -> None:
+    if args.csv:
+        result.to_csv(args.csv)
+    if args.plot:
+        plt.close(result.plot(args.plot))
+
+
+def _cutoff_row(summary):
+    cut = summary.get("toggle_cutoff_rad")
+    return ("toggle cut-off", _fmt(cut, "rad", "deg", 4) if cut is not None else "none (forward problem)", "")
+
+
+def _static(args) -> int:
+    model = CFCS(_load(args.config))
+    stroke = _q(args.stroke, "m", "--stroke") if args.stroke else None
+    res = model.static(stroke, n=args.points)
+    _write_outputs(args, res)
+    s = res.summary
+    if args.json:
+        print_json(s)
+        return 0
+    print_table([
+        ("stroke", _fmt(s["stroke_m"], "m", "mm"), ""),
+        ("force at the toggle", _fmt(s["force_at_zero_N"], "N"), ""),
+        ("maximum force", _fmt(s["force_max_N"], "N"), f"at {_fmt(s['deflection_at_force_max_m'], 'm', 'mm')}"),
+        ("minimum force", _fmt(s["force_min_N"], "N"), ""),
+        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), ""),
+        ("PCF energy-based", _fmt(s["pcf_energy_percent"], "%", digits=4), ""),
+        ("PCF compression branch", _fmt(s["pcf_compression_percent"], "%", digits=4),
+         f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}"),
+        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
+        ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
+        ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
+        ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
+        _cutoff_row(s),
+    ], headers=("quantity", "value", "note"))
+    return 0
+
+
+def _dynamic(args) -> int:
+    params = _load(args.config)
+    if args.no_dissipation:
+        params = params.without_dissipation()
+    model = CFCS(params)
+    omega = _q(args.omega, "rad/s", "--omega") if args.omega else None
+    mot = model.motion(omega, args.amplitude, args.offset, csv=args.motion)
+    res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples)
+    _write_outputs(args, res)
+    s = res.summary
+    if args.json:
+        print_json(s)
+        return 0
+    print_table([
+        ("input", s["motion"], ""),
+        ("mean force", _fmt(s["mean_force_N"], "N"), ""),
+        ("median force", _fmt(s["median_force_N"], "N"), ""),
+        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
+        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over one cycle"),
+        ("hysteresis per cycle", _fmt(s["hysteresis_energy_per_cycle_J"], "J"), ""),
+        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+         f"safety factor {_fmt(s['safety_factor'], digits=3)}"),
+        _cutoff_row(s),
+        ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
+    ], headers=("quantity", "value", "note"))
+    return 0
+
+
+def _sweep(args) -> int:
+    model = CFCS(_load(args.config))
+    omegas = parse_range(args.omega, "rad/s", "--omega", bare_unit="rad/s")
+    if np.any(omegas <= 0):
+        raise InputError(f"--omega = {args.omega!r}: every omega must be positive")
+    res = model.sweep(omegas, args.amplitude, _q(args.offset, "m", "--offset"),
+                      samples_per_cycle=args.samples, quiet=args.quiet or args.json)
+    _write_outputs(args, res)
+    if args.json:
+        print_json({**res.summary, **res.columns()})
+        return 0
+    st = res.stats
+    rows = [(f"{w:.4g}", f"{st['mean_force_N'][i]:.4f}", f"{st['median_force_N'][i]:.4f}",
+             f"{st['peak_to_peak_N'][i]:.4f}", f"{st['pcf_percent'][i]:.2f}", f"{st['pcf_no_dissipation_percent'][i]:.2f}")
+            for i, w in enumerate(res.omega)]
+    print_table(rows, headers=("omega_rad_s", "mean_N", "median_N", "p2p_N", "pcf_%", "pcf_no_diss_%"))
+    print(f"toggle cut-off {np.degrees(res.summary['toggle_cutoff_rad']):.4g} deg")
+    return 0
+
+
+def _forward(args) -> int:
+    model = CFCS(_load(args.config))
+    t_end = _q(args.t_end, "s", "--t-end")
+    kw = dict(x0=_q(args.x0, "m", "--x0"), v0=_q(args.v0, "m/s", "--v0"), n=args.points,
+              sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing"))
+    if args.force is not None:
+        if args.base_stiffness is not None:
+            raise InputError("give either --force or --base-stiffness (with --base-omega), not both")
+        res = model.forward(t_end, force=_q(args.force, "N", "--force"), **kw)
+    else:
+        if args.base_stiffness is None or args.base_omega is None:
+            raise InputError("forward needs --force, or --base-stiffness with --base-omega (and --base-amplitude)")
+        base = SinusoidMotion(_q(args.base_omega, "rad/s", "--base-omega"),
+                              amplitude_to_si(args.base_amplitude, model.params.extended_length, "--base-amplitude"),
+                              _q(args.base_offset, "m", "--base-offset"))
+        res = model.forward(t_end, base_motion=lambda t: base(t)[:2],
+                            base_stiffness=_q(args.base_stiffness, "N/m", "--base-stiffness"),
+                            base_damping=_q(args.base_damping, "N*s/m", "--base-damping"), **kw)
+    _write_outputs(args, res)
+    s = res.summary
+    if args.json:
+        print_json(s)
+        return 0
+    print_table([
+        ("deflection range", f"{_fmt(s['min_deflection_m'], 'm', 'mm')} .. {_fmt(s['max_deflection_m'], 'm', 'mm')}", ""),
+        ("toggle crossings", str(s["toggle_crossings"]), ""),
+        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
+        ("sign smoothing", _fmt(s["sign_smoothing_rad_s"], "rad/s"), "tanh(theta2'/v_s)"),
+        _cutoff_row(s),
+    ], headers=("quantity", "value", "note"))
+    return 0
+
+
+def _design(args) -> int:
+    res = design(
+        _q(args.force, "N", "--force"), _q(args.stroke, "m", "--stroke"),
+        _q(args.material_modulus, "Pa", "--material-modulus"),
+        _q(args.allowable_stress, "Pa", "--allowable-stress"),
+        stroke_fraction=_q(args.stroke_fraction, "", "--stroke-fraction"),
+        total_length=_q(args.length, "m", "--length") if args.length else None,
+        pivot_length_ratio=_q(args.pivot_length_ratio, "", "--pivot-length-ratio"),
+        max_width=_q(args.max_width, "m", "--max-width") if args.max_width else None,
+        safety_factor=_q(args.safety_factor, "", "--safety-factor"),
+    )
+    _write_outputs(args, res)
+    if args.toml:
+        res.to_toml(args.toml)
+    s = res.summary
+    if args.json:
+        print_json(s)
+    else:
+        print_table([
+            ("r2 + r3", _fmt(s["total_length_m"], "m", "mm"), f"stroke fraction {s['stroke_fraction']:.3g}"),
+            ("r2 / r3", f"{s['ratio']:.4f}", "flattest force over the stroke"),
+            ("crank r2", _fmt(s["crank_length_m"], "m", "mm"), ""),
+            ("coupler r3", _fmt(s["coupler_length_m"], "m", "mm"), ""),
+            ("K3", _fmt(s["torsional_stiffness_N_m_per_rad"], "N*m/rad"), ""),
+            ("pivot b x h x l", f"{s['pivot_width_m'] * 1e3:.4g} x {s['pivot_thickness_m'] * 1e3:.4g} x "
+             f"{s['pivot_length_m'] * 1e3:.4g} mm", ""),
+            ("force range", f"{s['force_min_N']:.4g} .. {s['force_max_N']:.4g} N", ""),
+            ("PCF", _fmt(s["pcf_percent"], "%", digits=4), f"energy-based {s['pcf_energy_percent']:.4g} %"),
+            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), f"safety factor {s['safety_factor']:.3g}"),
+        ], headers=("quantity", "value", "note"))
+        print(("FEASIBLE: " if res.feasible else "NO FEASIBLE DESIGN: ") + s["message"])
+    return 0 if res.feasible else 1

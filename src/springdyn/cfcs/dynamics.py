@@ -1,0 +1,237 @@
+"""Dynamics of the CFCS, Eqs. (11)-(25) of the CFCS paper.
+
+One degree of freedom, the crank angle theta2.  Lagrange's equation (10) with
+``T = M(theta2) theta2'^2 / 2`` and ``V = K3 theta_K3^2 / 2`` gives::
+
+    M theta2'' + M'/2 theta2'^2 + dV/dtheta2 + tau_d = F G
+
+with ``G = dx/dtheta2`` (minus Eq. (25)), F the slider force (positive in compression)
+and tau_d the dissipative torques opposing the motion.  The inverse problem (slider
+driven along x(t)) solves it for F (reading notes 2.2 item 1 corrects the signs of
+Eqs. (20)/(24)); the forward problem integrates it for theta2(t) under a given force.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..errors import InputError, SolverError
+from .kinematics import (
+    coupler_root,
+    crank_rates,
+    deflection_from_theta2,
+    slider_jacobian,
+    spring_angle_rate_ratio,
+)
+from .statics import (
+    axial_force_torque,
+    dissipative_torque,
+    pin_friction_torque,
+    spring_energy,
+    spring_torque,
+    static_force,
+)
+
+__all__ = [
+    "generalized_mass",
+    "generalized_mass_eq19",
+    "generalized_mass_derivative",
+    "kinetic_energy",
+    "drive_force_components",
+    "forward_rhs",
+    "integrate_forward",
+    "energy",
+]
+
+
+def generalized_mass(theta2, m2, m3, ms, r2, r3):
+    """Generalized mass ``M(theta2)`` [kg*m^2], compact form of Eq. (19) (reading notes 2.1).
+
+    ``M = m2 r2^2/3 + m3 [r2^2 s^2 (1 + u) + r3^2 u^2 / 3] + ms r2^2 s^2 (1 + u)^2``
+    with ``s = sin theta2`` and ``u = r2 cos theta2 / D``; slender links
+    (``I_Ci = m_i r_i^2 / 12``, Eq. (16)).  Equal to the printed bracket of Eq. (19),
+    which the notes confirm is correct (see :func:`generalized_mass_eq19`).
+
+    Parameters
+    ----------
+    theta2 : float or array
+        Crank angle [rad].
+    m2, m3, ms : float
+        Crank, coupler and slider masses [kg].
+    r2, r3 : float
+        Crank and coupler lengths [m].
+    """
+    s = np.sin(theta2)
+    u = spring_angle_rate_ratio(theta2, r2, r3)
+    return (
+        m2 * r2 * r2 / 3.0
+        + m3 * (r2 * r2 * s * s * (1.0 + u) + r3 * r3 * u * u / 3.0)
+        + ms * r2 * r2 * s * s * (1.0 + u) ** 2
+    )
+
+
+def generalized_mass_eq19(theta2, m2, m3, ms, r2, r3):
+    """The coefficient of theta2'' in Eq. (19) of the CFCS paper, term by term as printed [kg*m^2].
+
+    Kept separate from :func:`generalized_mass` so tests can check the compact form
+    against the printed one.
+    """
+    s, c = np.sin(theta2), np.cos(theta2)
+    d2 = r3 * r3 - r2 * r2 * s * s
+    d = np.sqrt(d2)
+    ic2 = m2 * r2 * r2 / 12.0  # Eq. (16)
+    ic3 = m3 * r3 * r3 / 12.0
+    return (
+        m2 * (0.25 * r2 * r2)
+        + m3 * (r2**3 * s * s * c / d + 0.25 * r2 * r2 * r3 * r3 * c * c / d2 + r2 * r2 * s * s)
+        + ms * (r2**4 * s * s * c * c / d2 + 2.0 * r2**3 * s * s * c / d + r2 * r2 * s * s)
+        + ic2
+        + ic3 * r2 * r2 * c * c / d2
+    )
+
+
+def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
+    """``dM/dtheta2`` [kg*m^2/rad]; ``M'/2`` is the coefficient of theta2'^2 in Eq. (19).
+
+    Differentiated from :func:`generalized_mass` with
+    ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (reading notes 2.1: the
+    velocity-squared coefficient is ``M'/2``).
+    """
+    s, c = np.sin(theta2), np.cos(theta2)
+    d = coupler_root(theta2, r2, r3)
+    u = r2 * c / d
+    du = -r2 * s * (r3 * r3 - r2 * r2) / d**3
+    return (
+        m3 * (r2 * r2 * (2.0 * s * c * (1.0 + u) + s * s * du) + 2.0 * r3 * r3 * u * du / 3.0)
+        + ms * r2 * r2 * (2.0 * s * c * (1.0 + u) ** 2 + 2.0 * s * s * (1.0 + u) * du)
+    )
+
+
+def kinetic_energy(theta2, theta2dot, m2, m3, ms, r2, r3):
+    """``T = M(theta2) theta2'^2 / 2`` [J], Eq. (11) of the CFCS paper."""
+    return 0.5 * generalized_mass(theta2, m2, m3, ms, r2, r3) * theta2dot * theta2dot
+
+
+def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_friction, friction_model,
+                           shear_angle, axial_force, slider_friction, theta2_cutoff):
+    """Slider force needed to drive the mechanism along x(t) (inverse dynamics) [N].
+
+    ``F = (M th2'' + M'/2 th2'^2 + dV/dth2 + tau_CF + tau_AF) / G + F_slider sgn(x')``,
+    positive in compression, dissipative terms against the motion: Eqs. (19)-(24) of
+    the CFCS paper with the sign correction of reading notes 2.2 item 1.  The spring
+    term is the exact static force (finite at the toggle); the inertia and dissipative
+    terms use the Jacobian frozen at ``theta2_cutoff`` inside the toggle zone
+    (:func:`springdyn.cfcs.kinematics.crank_rates`).
+
+    Parameters
+    ----------
+    x, xdot, xddot : arrays
+        Slider deflection [m], velocity [m/s], acceleration [m/s^2].
+    r2, r3, m2, m3, ms, k3 : float
+        Link lengths [m], masses [kg], pivot stiffness [N*m/rad].
+    pin_friction : float
+        Coulomb torque C [N*m].
+    friction_model : {"paper", "constant", "none"}
+    shear_angle : float
+        alpha [rad].
+    axial_force : bool
+        Include tau_AF.
+    slider_friction : float
+        Coulomb friction force of the slider [N].
+    theta2_cutoff : float
+        Toggle cut-off angle [rad].
+
+    Returns
+    -------
+    dict of arrays
+        ``theta2``, ``theta2dot``, ``theta2ddot``, ``force_static``, ``force_inertia``,
+        ``force_pin``, ``force_axial``, ``force_slider``, ``force`` [N] and ``in_toggle_zone``.
+    """
+    th, thd, thdd, jac, zone = crank_rates(x, xdot, xddot, r2, r3, theta2_cutoff)
+    m = generalized_mass(th, m2, m3, ms, r2, r3)
+    dm = generalized_mass_derivative(th, m2, m3, ms, r2, r3)
+    f_static = static_force(th, k3, r2, r3)
+    f_inertia = (m * thdd + 0.5 * dm * thd * thd) / jac
+    sgn = np.sign(np.asarray(xdot, dtype=float))  # x' and theta2' share their sign (G >= 0)
+    f_pin = sgn * pin_friction_torque(th, pin_friction, friction_model, r2, r3) / jac
+    f_axial = sgn * axial_force_torque(f_static, shear_angle, r2, r3) / jac if axial_force else np.zeros_like(th)
+    f_slider = sgn * slider_friction
+    force = f_static + f_inertia + f_pin + f_axial + f_slider
+    return dict(
+        theta2=th, theta2dot=thd, theta2ddot=thdd, force_static=f_static, force_inertia=f_inertia,
+        force_pin=f_pin, force_axial=f_axial, force_slider=f_slider, force=force, in_toggle_zone=zone,
+    )
+
+
+def forward_rhs(t, state, force_fn, p, sign_smoothing):
+    """Right-hand side of the forward problem, state ``(theta2, theta2')``.
+
+    ``M th2'' = F G - M'/2 th2'^2 - dV/dth2 - tau_d sgn~(th2') - F_slider sgn~(x') G``
+    where ``sgn~(v) = tanh(v / v_s)`` smooths the Coulomb sign (v_s = ``sign_smoothing``
+    [rad/s]; the slider velocity is ``G th2'``).  No division by G: the forward problem
+    passes through the toggle without a cut-off.
+
+    Parameters
+    ----------
+    force_fn : callable
+        ``force_fn(t, x, xdot) -> F`` [N], positive in compression.
+    p : mapping
+        Mechanism values as in :func:`drive_force_components` (SI).
+    """
+    th, thd = state
+    r2, r3 = p["r2"], p["r3"]
+    g = slider_jacobian(th, r2, r3)
+    x = deflection_from_theta2(th, r2, r3)
+    xdot = g * thd
+    f = force_fn(t, x, xdot)
+    m = generalized_mass(th, p["m2"], p["m3"], p["ms"], r2, r3)
+    dm = generalized_mass_derivative(th, p["m2"], p["m3"], p["ms"], r2, r3)
+    smooth = np.tanh(thd / sign_smoothing)
+    tau_d = dissipative_torque(th, static_force(th, p["k3"], r2, r3), p["pin_friction"], p["friction_model"],
+                               p["shear_angle"], p["axial_force"], r2, r3)
+    slider = p["slider_friction"] * np.tanh(xdot / (sign_smoothing * max(r2, 1e-300))) * g
+    rhs = f * g - 0.5 * dm * thd * thd - spring_torque(th, p["k3"], r2, r3) - tau_d * smooth - slider
+    return np.array([thd, rhs / m])
+
+
+def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smoothing=1e-2, rtol=1e-9, atol=1e-12):
+    """Integrate the forward problem over ``t_eval`` (LSODA); stop at the kinematic limit.
+
+    Returns
+    -------
+    tuple of arrays
+        ``theta2`` [rad] and ``theta2dot`` [rad/s] at ``t_eval``.
+
+    Raises
+    ------
+    SolverError
+        The integrator failed, or the crank reached the kinematic limit ``|theta2| = pi/2``
+        (the slider was pushed past the end of its travel).
+    """
+    t_eval = np.asarray(t_eval, dtype=float)
+    if t_eval.size < 2 or np.any(np.diff(t_eval) <= 0):
+        raise InputError("forward dynamics: the time grid must hold at least two increasing times")
+
+    def limit(t, y, *args):
+        return np.pi / 2 - abs(y[0]) - 1e-9
+
+    limit.terminal = True
+    sol = solve_ivp(forward_rhs, (t_eval[0], t_eval[-1]), [theta2_0, theta2dot_0], method="LSODA",
+                    t_eval=t_eval, args=(force_fn, p, sign_smoothing), rtol=rtol, atol=atol, events=limit)
+    if sol.status == 1:
+        raise SolverError(
+            f"forward dynamics: the crank reached the kinematic limit (theta2 = 90 deg) at "
+            f"t = {sol.t_events[0][0]:.6g} s; the drive pushes the slider past the end of its travel"
+        )
+    if not sol.success:
+        raise SolverError(f"forward dynamics: the integrator failed near t = {sol.t[-1]:.6g} s: {sol.message}")
+    if not np.all(np.isfinite(sol.y)):
+        raise SolverError("forward dynamics: the solution became NaN")
+    return sol.y[0], sol.y[1]
+
+
+def energy(theta2, theta2dot, p):
+    """``T + V`` [J] of the mechanism (for power-balance checks)."""
+    return kinetic_energy(theta2, theta2dot, p["m2"], p["m3"], p["ms"], p["r2"], p["r3"]) + spring_energy(
+        theta2, p["k3"], p["r2"], p["r3"])

@@ -1,0 +1,187 @@
+"""Kinematics of the pseudo-rigid-body slider-crank of the CFCS.
+
+Topology (section 2 of the reading notes): crank ``r2`` pinned to ground, coupler
+``r3`` pinned to the crank, a small-length flexural pivot (torsional spring K3)
+joining coupler and slider.  Loop closure, consistent with Eqs. (14), (15) and (25)
+of the CFCS paper::
+
+    r1 = r2 cos(theta2) + r3 cos(theta3),    r2 sin(theta2) + r3 sin(theta3) = 0
+
+At ``theta2 = 0`` the links are straight (``r1 = r2 + r3``, the toggle); compressing
+the slider increases ``theta2`` up to the kinematic limit ``theta2 = pi/2``
+(``r1 = sqrt(r3^2 - r2^2)``).  The slider deflection is ``x = r2 + r3 - r1 >= 0``.
+
+All functions take SI floats or numpy arrays.  Angles may be negative (the mirror
+branch of the crank); every function is written so that it stays valid there, which
+the forward dynamics uses when the crank passes through the toggle.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "coupler_root",
+    "slider_position",
+    "deflection_from_theta2",
+    "theta2_from_deflection",
+    "coupler_angle",
+    "spring_angle",
+    "spring_angle_rate_ratio",
+    "slider_jacobian",
+    "slider_jacobian_derivative",
+    "dr1_dtheta2",
+    "kinematic_limit_deflection",
+    "kinematic_limit_theta2",
+    "crank_rates",
+]
+
+
+def coupler_root(theta2, r2, r3):
+    """``D = sqrt(r3^2 - r2^2 sin^2 theta2)`` [m], the root that recurs in Eqs. (19)-(25).
+
+    Parameters
+    ----------
+    theta2 : float or array
+        Crank angle [rad].
+    r2, r3 : float
+        Crank and coupler lengths [m] (``r2 < r3``, so ``D > 0`` for every angle).
+    """
+    s = np.sin(theta2)
+    return np.sqrt(r3 * r3 - (r2 * s) ** 2)
+
+
+def slider_position(theta2, r2, r3):
+    """Distance ``r1`` [m] from the ground pin to the slider pivot (loop closure).
+
+    ``r1 = r2 cos theta2 + D`` (the loop closure under Eq. (14) of the CFCS paper,
+    written with ``r3 cos theta3 = D``).
+    """
+    return r2 * np.cos(theta2) + coupler_root(theta2, r2, r3)
+
+
+def deflection_from_theta2(theta2, r2, r3):
+    """Slider deflection ``x = r2 + r3 - r1`` [m] for a crank angle ``theta2`` [rad]."""
+    return (r2 + r3) - slider_position(theta2, r2, r3)
+
+
+def theta2_from_deflection(x, r2, r3):
+    """Exact inverse of :func:`deflection_from_theta2` on ``0 <= theta2 <= pi/2``.
+
+    From the cosine rule, ``1 - cos theta2 = x (2 r3 - x) / (2 r1 r2)`` with
+    ``r1 = r2 + r3 - x``, so ``theta2 = 2 asin(sqrt(x (2 r3 - x) / (4 r1 r2)))``.
+    This form keeps full precision near the toggle (no ``arccos`` of a number
+    close to 1).
+
+    Parameters
+    ----------
+    x : float or array
+        Slider deflection [m], ``0 <= x <=`` :func:`kinematic_limit_deflection`.
+    r2, r3 : float
+        Crank and coupler lengths [m].
+
+    Returns
+    -------
+    float or array
+        Crank angle [rad].  Values outside the range give NaN; callers validate.
+    """
+    x = np.asarray(x, dtype=float)
+    r1 = r2 + r3 - x
+    arg = x * (2.0 * r3 - x) / (4.0 * r1 * r2)
+    with np.errstate(invalid="ignore"):
+        out = 2.0 * np.arcsin(np.sqrt(arg))
+    out = np.where((x < 0) | (arg > 0.5 + 1e-15), np.nan, out)
+    return out if out.ndim else float(out)
+
+
+def coupler_angle(theta2, r2, r3):
+    """Coupler angle ``theta3 = -asin(r2 sin theta2 / r3)`` [rad] (loop closure)."""
+    return -np.arcsin(r2 * np.sin(theta2) / r3)
+
+
+def spring_angle(theta2, r2, r3):
+    """Deflection of the pivot spring ``theta_K3 = -theta3`` [rad].
+
+    Eq. (18) of the CFCS paper gives ``asin(r2 sin theta2 / r3)``, which is this
+    value (reading notes 2.1: the paper's sign is immaterial since V is quadratic).
+    """
+    return np.arcsin(r2 * np.sin(theta2) / r3)
+
+
+def spring_angle_rate_ratio(theta2, r2, r3):
+    """``u = d theta_K3 / d theta2 = r2 cos theta2 / D`` [-].
+
+    It is also ``-theta3'/theta2'`` (Eq. (15) of the CFCS paper) and the second term of
+    the bracket of Eq. (21): the crank-coupler pin turns at ``theta2' (1 + u)``.
+    """
+    return r2 * np.cos(theta2) / coupler_root(theta2, r2, r3)
+
+
+def slider_jacobian(theta2, r2, r3):
+    """``G = dx/dtheta2 = -dr1/dtheta2 = r2 sin theta2 (1 + u)`` [m/rad].
+
+    The negative of Eq. (25) of the CFCS paper (``dr1/dtheta2 = -r1 r2 sin theta2 / D``,
+    reading notes 2.1).  It vanishes at the toggle ``theta2 = 0``.
+    """
+    return r2 * np.sin(theta2) * (1.0 + spring_angle_rate_ratio(theta2, r2, r3))
+
+
+def dr1_dtheta2(theta2, r2, r3):
+    """Eq. (25) of the CFCS paper: ``dr1/dtheta2 = -r2 sin th2 - r2^2 sin th2 cos th2 / D`` [m/rad]."""
+    s, c = np.sin(theta2), np.cos(theta2)
+    return -r2 * s - r2 * r2 * s * c / coupler_root(theta2, r2, r3)
+
+
+def slider_jacobian_derivative(theta2, r2, r3):
+    """``dG/dtheta2 = r2 cos th2 (1 + u) + r2 sin th2 du/dth2`` [m/rad^2].
+
+    With ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (derived from
+    :func:`spring_angle_rate_ratio`; ``D^2 - r2^2 cos^2 = r3^2 - r2^2``).
+    """
+    s, c = np.sin(theta2), np.cos(theta2)
+    d = coupler_root(theta2, r2, r3)
+    u = r2 * c / d
+    du = -r2 * s * (r3 * r3 - r2 * r2) / d**3
+    return r2 * c * (1.0 + u) + r2 * s * du
+
+
+def kinematic_limit_theta2() -> float:
+    """Crank angle of the kinematic limit, ``pi/2`` [rad] (reading notes 2)."""
+    return np.pi / 2
+
+
+def kinematic_limit_deflection(r2, r3):
+    """Largest slider deflection ``r2 + r3 - sqrt(r3^2 - r2^2)`` [m] (``theta2 = pi/2``)."""
+    return r2 + r3 - np.sqrt(r3 * r3 - r2 * r2)
+
+
+def crank_rates(x, xdot, xddot, r2, r3, theta2_cutoff):
+    """Crank angle, rate and acceleration from the slider motion (inverse kinematics).
+
+    Outside the toggle zone (``theta2 >= theta2_cutoff``) this is exact:
+    ``theta2' = x'/G`` and ``theta2'' = (x'' - G' theta2'^2)/G``, with G from
+    :func:`slider_jacobian`.  At the toggle G = 0 and both are 0/0; inside the zone
+    ``theta2 < theta2_cutoff`` the Jacobian and its derivative are frozen at their
+    cut-off values ``G_c = G(theta2_cutoff)``, ``G'_c``.  This regularisation is
+    springdyn's (the CFCS paper does not treat the toggle; reading notes 2.2 item 3);
+    it is continuous at the cut-off and bounded, and results report the cut-off and
+    how many samples used it.
+
+    Returns
+    -------
+    theta2, theta2dot, theta2ddot : arrays
+        [rad], [rad/s], [rad/s^2].
+    jac : array
+        The Jacobian used (exact or frozen) [m/rad].
+    in_zone : bool array
+        Samples inside the toggle zone.
+    """
+    x = np.asarray(x, dtype=float)
+    th = np.asarray(theta2_from_deflection(x, r2, r3), dtype=float)
+    in_zone = th < theta2_cutoff
+    th_eval = np.where(in_zone, theta2_cutoff, th)
+    jac = slider_jacobian(th_eval, r2, r3)
+    djac = slider_jacobian_derivative(th_eval, r2, r3)
+    thd = np.asarray(xdot, dtype=float) / jac
+    thdd = (np.asarray(xddot, dtype=float) - djac * thd * thd) / jac
+    return th, thd, thdd, jac, in_zone

@@ -1,0 +1,307 @@
+"""The CFCS model: statics, inverse and forward dynamics and sweeps on one mechanism.
+
+A thin layer over the physics functions of :mod:`~springdyn.cfcs.kinematics`,
+:mod:`~springdyn.cfcs.statics`, :mod:`~springdyn.cfcs.dynamics` and
+:mod:`~springdyn.cfcs.pivot`; it validates inputs and builds result objects.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from ..errors import InputError
+from ..progress import progress
+from ..units import format_quantity, to_si
+from .dynamics import drive_force_components, energy, integrate_forward
+from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
+from .motion import SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke
+from .params import CFCSParams
+from .pivot import bending_stress, max_stroke_for_stress, safety_factor
+from .results import DynamicResult, ForwardResult, StaticResult, SweepResult
+from .statics import (
+    dissipative_torque,
+    frozen_jacobian,
+    percent_constant_force,
+    percent_constant_force_energy,
+    static_force,
+    static_force_at_toggle,
+)
+
+__all__ = ["CFCS", "DEFAULT_AMPLITUDE"]
+
+#: Default sinusoid amplitude as a fraction of r2 + r3 (the paper's "40 %").
+DEFAULT_AMPLITUDE = 0.4
+
+
+class CFCS:
+    """A constant-force compression spring (pseudo-rigid-body model).
+
+    Parameters
+    ----------
+    params : CFCSParams
+        The mechanism.
+
+    Examples
+    --------
+    >>> m = CFCS(CFCSParams.example("table1"))
+    >>> round(m.static().summary["force_max_N"], 3)
+    12.97
+    """
+
+    def __init__(self, params: CFCSParams):
+        if not isinstance(params, CFCSParams):
+            raise InputError(f"params = {params!r} must be a CFCSParams")
+        self.params = params
+
+    @classmethod
+    def from_toml(cls, path) -> "CFCS":
+        return cls(CFCSParams.from_toml(path))
+
+    @classmethod
+    def example(cls, name: str = "table1") -> "CFCS":
+        return cls(CFCSParams.example(name))
+
+    # -- helpers ------------------------------------------------------------------------
+    def stress(self, theta2):
+        """Pivot bending stress [Pa] at crank angles ``theta2`` (NaN without flexure dimensions)."""
+        p = self.params
+        th_k3 = spring_angle(np.asarray(theta2, dtype=float), p.r2, p.r3)
+        if not p.has_flexure:
+            return np.full_like(th_k3, np.nan)
+        return bending_stress(th_k3, p.youngs_modulus, p.pivot_thickness, p.pivot_length)
+
+    def _stress_summary(self, theta2) -> dict:
+        p = self.params
+        out = {"max_stress_Pa": None, "safety_factor": None, "max_stroke_for_stress_m": None}
+        if p.has_flexure:
+            smax = float(np.max(self.stress(theta2)))
+            out["max_stress_Pa"] = smax
+            if p.allowable_stress is not None:
+                out["safety_factor"] = float(safety_factor(p.allowable_stress, smax))
+                out["max_stroke_for_stress_m"] = max_stroke_for_stress(
+                    p.allowable_stress, p.youngs_modulus, p.pivot_thickness, p.pivot_length, p.r2, p.r3)
+        return out
+
+    def _common_summary(self) -> dict:
+        p = self.params
+        return {"toggle_cutoff_rad": p.toggle_cutoff, "friction_model": p.friction_model,
+                "axial_force": p.axial_force, "k3_N_m_per_rad": p.k3}
+
+    def _stroke(self, stroke) -> float:
+        p = self.params
+        value = DEFAULT_AMPLITUDE * p.extended_length if stroke is None else float(stroke)
+        if not value > 0:
+            raise InputError(f"stroke = {format_quantity(value, 'm', 'mm')} must be positive")
+        check_stroke(0.0, value, p.max_deflection, f"stroke = {format_quantity(value, 'm', 'mm')}")
+        return value
+
+    # -- statics ------------------------------------------------------------------------
+    def static(self, stroke: float | None = None, n: int = 721) -> StaticResult:
+        """Force-deflection by virtual work over ``[0, stroke]`` [m] (default 40 % of r2 + r3).
+
+        Also the quasi-static compression and extension branches with tau_CF, tau_AF and
+        slider friction as configured, the maximum force (refined by a bounded scalar
+        search), PCF (``Fmin/Fmax``) and its energy variant, and the pivot stress.
+        """
+        p = self.params
+        stroke = self._stroke(stroke)
+        if n < 3:
+            raise InputError(f"n = {n} must be at least 3")
+        x = np.linspace(0.0, stroke, n)
+        th = theta2_from_deflection(x, p.r2, p.r3)
+        f = static_force(th, p.k3, p.r2, p.r3)
+        tau = dissipative_torque(th, f, p.pin_friction, p.friction_model, p.shear_angle, p.axial_force, p.r2, p.r3)
+        fd = tau / frozen_jacobian(th, p.r2, p.r3, p.toggle_cutoff) + p.slider_friction
+        i = int(np.argmax(f))
+        lo, hi = x[max(i - 1, 0)], x[min(i + 1, n - 1)]
+        fmax, xmax = f[i], x[i]
+        if hi > lo:
+            res = minimize_scalar(lambda xx: -static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3),
+                                  bounds=(lo, hi), method="bounded", options={"xatol": 1e-10})
+            if -res.fun > fmax:
+                fmax, xmax = -res.fun, res.x
+        summary = {
+            "force_at_zero_N": float(static_force_at_toggle(p.k3, p.r2, p.r3)),
+            "force_max_N": float(fmax),
+            "deflection_at_force_max_m": float(xmax),
+            "force_min_N": float(np.min(f)),
+            "pcf_percent": 100.0 * float(np.min(f)) / float(fmax),
+            "pcf_energy_percent": percent_constant_force_energy(x, f),
+            "pcf_compression_percent": percent_constant_force(f + fd),
+            "stroke_m": stroke,
+            "kinematic_limit_m": p.max_deflection,
+            **self._stress_summary(th),
+            **self._common_summary(),
+        }
+        return StaticResult(x, th, f, f + fd, f - fd, self.stress(th), summary)
+
+    # -- inverse dynamics ---------------------------------------------------------------
+    def motion(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=0.0, csv=None):
+        """Build the prescribed motion: the default sinusoid or a periodic CSV (see :mod:`.motion`)."""
+        p = self.params
+        if csv is not None:
+            mot = TabulatedMotion.from_csv(csv, omega=omega)
+        else:
+            if omega is None:
+                raise InputError("omega is required for the sinusoidal input (or give a motion CSV)")
+            omega = to_si(omega, "rad/s", "omega", bare_unit="rad/s")
+            if not omega > 0:
+                raise InputError(f"omega = {omega:g} rad/s must be positive")
+            off = to_si(offset, "m", "offset", bare_unit="m")
+            mot = SinusoidMotion(omega, amplitude_to_si(amplitude, p.extended_length), off)
+        lo, hi = mot.bounds
+        check_stroke(lo, hi, p.max_deflection, f"the motion {mot.describe()}")
+        return mot
+
+    def dynamic(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=0.0, *, cycles: int = 2,
+                samples_per_cycle: int = 400, motion=None) -> DynamicResult:
+        """Slider force along a prescribed periodic motion (inverse dynamics, Eqs. (19)-(25)).
+
+        Parameters
+        ----------
+        omega : float, optional
+            Circular frequency [rad/s] of the sinusoid (required unless ``motion`` is given).
+        amplitude : float or str
+            Stroke of the sinusoid: a fraction of r2 + r3 (default 0.4) or a length.
+        offset : float
+            Deflection at t = 0 [m] (default 0, the toggle).
+        cycles, samples_per_cycle : int
+            Time grid; statistics use whole cycles.
+        motion : SinusoidMotion or TabulatedMotion, optional
+            A ready-made motion (overrides omega/amplitude/offset).
+        """
+        p = self.params
+        if not (isinstance(cycles, (int, np.integer)) and cycles >= 1):
+            raise InputError(f"cycles = {cycles!r} must be a whole number >= 1")
+        if not (isinstance(samples_per_cycle, (int, np.integer)) and samples_per_cycle >= 8):
+            raise InputError(f"samples_per_cycle = {samples_per_cycle!r} must be a whole number >= 8")
+        mot = motion if motion is not None else self.motion(omega, amplitude, offset)
+        if motion is not None:
+            lo, hi = mot.bounds
+            check_stroke(lo, hi, p.max_deflection, f"the motion {mot.describe()}")
+        n = cycles * samples_per_cycle
+        t = np.arange(n + 1) * (mot.period / samples_per_cycle)
+        x, xd, xdd = mot(t)
+        x = np.clip(x, 0.0, p.max_deflection)  # spline/rounding noise at the ends only (bounds checked)
+        c = drive_force_components(x, xd, xdd, theta2_cutoff=p.toggle_cutoff, **p.values())
+        f = c["force"]
+        whole = f[:-1]
+        summary = {
+            "omega_rad_s": float(mot.omega),
+            "motion": mot.describe(),
+            "mean_force_N": float(np.mean(whole)),
+            "median_force_N": float(np.median(whole)),
+            "peak_to_peak_N": float(np.ptp(whole)),
+            "pcf_percent": percent_constant_force(whole),
+            "force_max_N": float(np.max(whole)),
+            "force_min_N": float(np.min(whole)),
+            "hysteresis_energy_per_cycle_J": float(_cycle_work(t, f, xd, samples_per_cycle)),
+            "toggle_zone_samples": int(np.count_nonzero(c["in_toggle_zone"])),
+            **self._stress_summary(c["theta2"]),
+            **self._common_summary(),
+        }
+        comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
+        return DynamicResult(t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], summary)
+
+    def sweep(self, omegas, amplitude=DEFAULT_AMPLITUDE, offset=0.0, *, samples_per_cycle: int = 400,
+              quiet: bool = True) -> SweepResult:
+        """Mean, median, peak-to-peak force and PCF vs omega (Figs. 5-7 of the CFCS paper).
+
+        Each frequency is one whole cycle of the sinusoid (the inverse problem has no
+        transient); the statistics are given as configured and without tau_CF, tau_AF
+        and slider friction (``*_no_dissipation_*``).
+        """
+        omegas = np.atleast_1d(np.asarray(omegas, dtype=float))
+        if omegas.size == 0 or np.any(~np.isfinite(omegas)) or np.any(omegas <= 0):
+            bad = omegas[~(omegas > 0)] if omegas.size else omegas
+            raise InputError(f"omega = {bad[0] if bad.size else 'empty'!r}: every omega must be positive")
+        ideal = CFCS(self.params.without_dissipation())
+        names = ("mean_force", "median_force", "peak_to_peak", "pcf")
+        stats = {f"{k}_{'percent' if k == 'pcf' else 'N'}": np.empty(omegas.size) for k in names}
+        stats.update({f"{k}_no_dissipation_{'percent' if k == 'pcf' else 'N'}": np.empty(omegas.size) for k in names})
+        keys = {"mean_force": "mean_force_N", "median_force": "median_force_N", "peak_to_peak": "peak_to_peak_N",
+                "pcf": "pcf_percent"}
+        zone = 0
+        for i, w in enumerate(progress(omegas, total=omegas.size, desc="cfcs sweep", quiet=quiet)):
+            for model, suffix in ((self, ""), (ideal, "_no_dissipation")):
+                r = model.dynamic(w, amplitude, offset, cycles=1, samples_per_cycle=samples_per_cycle)
+                for k, src in keys.items():
+                    unit = "percent" if k == "pcf" else "N"
+                    stats[f"{k}{suffix}_{unit}"][i] = r.summary[src]
+            zone = max(zone, r.summary["toggle_zone_samples"])
+        summary = {"motion": r.summary["motion"].replace(f"{omegas[-1]:.6g} t", "w t"),
+                   "toggle_zone_samples_per_cycle": zone, **self._common_summary()}
+        return SweepResult(omegas, stats, summary)
+
+    # -- forward dynamics ---------------------------------------------------------------
+    def forward(self, t_end: float, *, force: float | Callable | None = None, base_motion: Callable | None = None,
+                base_stiffness: float | None = None, base_damping: float = 0.0, x0: float = 1e-3,
+                v0: float = 0.0, n: int = 2001, sign_smoothing: float = 1e-2, rtol: float = 1e-9) -> ForwardResult:
+        """Integrate the slider's response to a force, or to a spring from a moving base.
+
+        Parameters
+        ----------
+        t_end : float
+            End time [s].
+        force : float or callable, optional
+            Slider force [N] (positive in compression), constant or ``force(t)``.
+        base_motion : callable, optional
+            ``base_motion(t) -> x_b`` or ``(x_b, x_b', ...)`` [m]; the slider is driven by
+            ``k (x_b - x) + c (x_b' - x')``.
+        base_stiffness, base_damping : float
+            k [N/m] and c [N*s/m] of the drive spring.
+        x0, v0 : float
+            Initial deflection [m] (> 0: the toggle is an equilibrium the slider cannot
+            leave) and velocity [m/s].
+        n : int
+            Output samples.
+        sign_smoothing : float
+            Velocity scale v_s [rad/s] of ``tanh(theta2'/v_s)`` replacing the Coulomb sign.
+        """
+        p = self.params
+        if (force is None) == (base_motion is None):
+            raise InputError("forward dynamics needs exactly one drive: a force or a base_motion with base_stiffness")
+        if base_motion is not None and not (base_stiffness is not None and base_stiffness > 0):
+            raise InputError(f"base_stiffness = {base_stiffness!r} N/m must be positive with a base_motion")
+        if not t_end > 0:
+            raise InputError(f"t_end = {t_end!r} s must be positive")
+        if not sign_smoothing > 0:
+            raise InputError(f"sign_smoothing = {sign_smoothing!r} rad/s must be positive")
+        check_stroke(x0, x0, p.max_deflection, f"x0 = {format_quantity(x0, 'm', 'mm')}")
+        th0 = float(theta2_from_deflection(x0, p.r2, p.r3))
+        g0 = float(slider_jacobian(th0, p.r2, p.r3))
+        if g0 == 0.0 and v0 != 0.0:
+            raise InputError("x0 = 0 (the toggle) admits no slider velocity; start at x0 > 0")
+        thd0 = v0 / g0 if g0 > 0 else 0.0
+
+        if force is not None:
+            force_fn = (lambda t, x, xd, f0=float(force): f0) if not callable(force) else (lambda t, x, xd: force(t))
+        else:
+            def force_fn(t, x, xd):
+                b = base_motion(t)
+                xb, vb = (b[0], b[1]) if isinstance(b, tuple) else (b, 0.0)
+                return base_stiffness * (xb - x) + base_damping * (vb - xd)
+
+        t = np.linspace(0.0, t_end, n)
+        vals = p.values()
+        th, thd = integrate_forward(force_fn, vals, t, th0, thd0, sign_smoothing=sign_smoothing, rtol=rtol)
+        x = deflection_from_theta2(th, p.r2, p.r3)
+        xd = slider_jacobian(th, p.r2, p.r3) * thd
+        fapplied = np.array([force_fn(ti, xi, vi) for ti, xi, vi in zip(t, x, xd)], dtype=float)
+        summary = {"sign_smoothing_rad_s": sign_smoothing, "x0_m": x0, "v0_m_s": v0,
+                   "max_deflection_m": float(np.max(x)), "min_deflection_m": float(np.min(x)),
+                   "toggle_crossings": int(np.count_nonzero(np.diff(np.sign(th)) != 0)),
+                   **self._stress_summary(th), **self._common_summary()}
+        summary["toggle_cutoff_rad"] = None  # the forward problem needs no cut-off
+        return ForwardResult(t, x, xd, th, thd, fapplied, static_force(th, p.k3, p.r2, p.r3), energy(th, thd, vals),
+                             summary)
+
+
+def _cycle_work(t, force, xdot, samples_per_cycle):
+    """Work ``int F x' dt`` over the last whole cycle [J] (trapezoid rule)."""
+    sl = slice(len(t) - 1 - samples_per_cycle, len(t))
+    p = force[sl] * xdot[sl]
+    return np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(t[sl]))

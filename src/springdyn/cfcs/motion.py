@@ -1,0 +1,186 @@
+"""Prescribed slider motions x(t) for the inverse dynamics.
+
+Default: the sinusoid ``x(t) = offset + amplitude (1 - cos(w t)) / 2`` (Fig. 4 of the
+CFCS paper), which starts at rest at ``offset`` and reaches ``offset + amplitude`` at
+half period.  The paper's "amplitude equal to 40 % mechanism deflection" is read as
+``amplitude = 0.4 (r2 + r3)`` (72 mm for Table 1) with ``offset = 0`` (reading notes
+2.2 item 4: both are explicit parameters here).  Any periodic x(t) can be read from a
+CSV with columns ``time_s`` and ``deflection_m`` (one period, first and last
+deflection equal); it is interpolated by a periodic cubic spline.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from ..errors import InputError
+from ..io import read_csv_columns
+from ..units import format_quantity, to_si
+
+__all__ = ["sinusoid", "SinusoidMotion", "TabulatedMotion", "amplitude_to_si", "check_stroke"]
+
+
+def sinusoid(t, offset, amplitude, omega):
+    """``x = offset + amplitude (1 - cos w t)/2`` and its first two derivatives.
+
+    Parameters
+    ----------
+    t : array
+        Time [s].
+    offset, amplitude : float
+        Deflection at t = 0 [m] and peak-to-peak stroke [m].
+    omega : float
+        Circular frequency [rad/s].
+
+    Returns
+    -------
+    x, xdot, xddot : arrays
+        [m], [m/s], [m/s^2].
+    """
+    t = np.asarray(t, dtype=float)
+    wt = omega * t
+    return (offset + 0.5 * amplitude * (1.0 - np.cos(wt)), 0.5 * amplitude * omega * np.sin(wt),
+            0.5 * amplitude * omega * omega * np.cos(wt))
+
+
+def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> float:
+    """An amplitude as a length (``"72 mm"``) or as a fraction of ``r2 + r3`` (``0.4``) [m].
+
+    A bare number (or a dimensionless string) at most 1 is a fraction; a length is used as is.
+    """
+    if isinstance(value, str) and value.strip().endswith("%"):
+        frac = to_si(value.strip()[:-1], "", field) / 100.0
+        return _fraction(frac, extended_length, field, value)
+    try:
+        frac = to_si(value, "", field)
+    except InputError:
+        length = to_si(value, "m", field)
+        if length <= 0:
+            raise InputError(f"{field} = {value!r} must be positive") from None
+        return length
+    return _fraction(frac, extended_length, field, value)
+
+
+def _fraction(frac, extended_length, field, value):
+    if not 0 < frac <= 1:
+        raise InputError(
+            f"{field} = {value!r}: a bare number is a fraction of r2 + r3 and must lie in (0, 1]; "
+            "give a length such as '72 mm' otherwise"
+        )
+    return frac * extended_length
+
+
+def check_stroke(lowest: float, highest: float, max_deflection: float, what: str) -> None:
+    """Raise InputError if the deflections leave ``[0, max_deflection]``."""
+    if lowest < -1e-12:
+        raise InputError(
+            f"{what} reaches a deflection of {format_quantity(lowest, 'm', 'mm')}: it crosses the toggle "
+            "(deflection 0, links in line); deflections must stay >= 0"
+        )
+    if highest > max_deflection * (1 + 1e-12):
+        raise InputError(
+            f"{what} reaches a deflection of {format_quantity(highest, 'm', 'mm')}, beyond the kinematic limit "
+            f"{format_quantity(max_deflection, 'm', 'mm')} (theta2 = 90 deg)"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
+class SinusoidMotion:
+    """``x(t) = offset + amplitude (1 - cos w t)/2`` [m] (Fig. 4 of the CFCS paper)."""
+
+    omega: float
+    amplitude: float
+    offset: float = 0.0
+
+    def __post_init__(self):
+        if not (np.isfinite(self.omega) and self.omega > 0):
+            raise InputError(f"omega = {self.omega!r} rad/s must be positive")
+        if not (np.isfinite(self.amplitude) and self.amplitude > 0):
+            raise InputError(f"amplitude = {format_quantity(self.amplitude, 'm', 'mm')} must be positive")
+
+    @property
+    def period(self) -> float:
+        return 2.0 * np.pi / self.omega
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        return self.offset, self.offset + self.amplitude
+
+    def __call__(self, t):
+        return sinusoid(t, self.offset, self.amplitude, self.omega)
+
+    def describe(self) -> str:
+        return (f"x(t) = {format_quantity(self.offset, 'm', 'mm')} + {format_quantity(self.amplitude, 'm', 'mm')}"
+                f" (1 - cos({self.omega:.6g} t))/2")
+
+
+@dataclasses.dataclass(frozen=True)
+class TabulatedMotion:
+    """A periodic x(t) from samples, interpolated by a periodic cubic spline.
+
+    Parameters
+    ----------
+    time, deflection : arrays
+        One period of samples [s], [m]; the first and last deflections must match.
+    """
+
+    time: np.ndarray
+    deflection: np.ndarray
+    source: str = "table"
+
+    def __post_init__(self):
+        t = np.asarray(self.time, dtype=float)
+        x = np.asarray(self.deflection, dtype=float)
+        if t.size < 4:
+            raise InputError(f"{self.source}: a periodic motion needs at least 4 samples, got {t.size}")
+        if np.any(np.diff(t) <= 0):
+            raise InputError(f"{self.source}: time_s must increase strictly")
+        scale = max(np.ptp(x), 1e-12)
+        if abs(x[-1] - x[0]) > 1e-6 * scale:
+            raise InputError(
+                f"{self.source}: the motion is not periodic: the last deflection {x[-1]:.6g} m differs from "
+                f"the first {x[0]:.6g} m (give exactly one period)"
+            )
+        x = x.copy()
+        x[-1] = x[0]
+        object.__setattr__(self, "time", t)
+        object.__setattr__(self, "deflection", x)
+        object.__setattr__(self, "_spline", CubicSpline(t - t[0], x, bc_type="periodic"))
+
+    @classmethod
+    def from_csv(cls, path: str | Path, omega: float | None = None) -> "TabulatedMotion":
+        """Read ``time_s, deflection_m`` from a CSV; rescale time to period ``2 pi/omega`` if given."""
+        cols = read_csv_columns(path)
+        for name in ("time_s", "deflection_m"):
+            if name not in cols:
+                raise InputError(f"{path}: no column {name!r} (columns found: {', '.join(cols)})")
+        t = cols["time_s"]
+        if omega is not None:
+            if not omega > 0:
+                raise InputError(f"omega = {omega!r} rad/s must be positive")
+            t = (t - t[0]) * (2.0 * np.pi / omega) / max(t[-1] - t[0], 1e-300)
+        return cls(t, cols["deflection_m"], source=str(path))
+
+    @property
+    def period(self) -> float:
+        return float(self.time[-1] - self.time[0])
+
+    @property
+    def omega(self) -> float:
+        return 2.0 * np.pi / self.period
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        fine = self._spline(np.linspace(0.0, self.period, 20 * self.time.size))
+        return float(fine.min()), float(fine.max())
+
+    def __call__(self, t):
+        tau = np.mod(np.asarray(t, dtype=float), self.period)
+        return self._spline(tau), self._spline(tau, 1), self._spline(tau, 2)
+
+    def describe(self) -> str:
+        return f"periodic spline through {self.time.size} samples of {self.source} (period {self.period:.6g} s)"

@@ -1,0 +1,161 @@
+"""Mechanism definition of a constant-force compression spring (TOML ``[cfcs]`` table)."""
+
+from __future__ import annotations
+
+import dataclasses
+from importlib import resources
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..config import check_fields, from_mapping, load_toml, param
+from ..errors import InputError
+from ..units import format_quantity
+from .kinematics import kinematic_limit_deflection
+from .pivot import flexure_stiffness
+from .statics import FRICTION_MODELS
+
+__all__ = ["CFCSParams", "EXAMPLES"]
+
+#: Built-in examples: name -> TOML file in ``springdyn/data``.
+EXAMPLES = {"table1": "cfcs_table1.toml"}
+
+_PIVOT_DIMENSIONS = ("pivot_width", "pivot_thickness", "pivot_length")
+
+
+@dataclasses.dataclass(frozen=True)
+class CFCSParams:
+    """Parameters of the pseudo-rigid-body model of a CFCS (Table 1 of the CFCS paper).
+
+    The pivot stiffness is given either directly (``torsional_stiffness``) or by the
+    flexure dimensions ``pivot_width``, ``pivot_thickness``, ``pivot_length`` with
+    ``youngs_modulus`` (``K3 = E b h^3 / (12 l)``), never both.
+    """
+
+    crank_length: float = param("m", "crank length", symbol="r2", display="mm", positive=True)
+    coupler_length: float = param("m", "coupler length", symbol="r3", display="mm", positive=True)
+    crank_mass: float = param("kg", "crank mass", symbol="m2", positive=True)
+    coupler_mass: float = param("kg", "coupler mass", symbol="m3", positive=True)
+    slider_mass: float = param("kg", "slider mass", symbol="ms", positive=True)
+    torsional_stiffness: float | None = param("N*m/rad", "pivot torsional stiffness", default=None,
+                                              symbol="K3", positive=True)
+    pivot_width: float | None = param("m", "flexural pivot width", default=None, symbol="b", display="mm",
+                                      positive=True)
+    pivot_thickness: float | None = param("m", "flexural pivot thickness", default=None, symbol="h",
+                                          display="mm", positive=True)
+    pivot_length: float | None = param("m", "flexural pivot length", default=None, symbol="l", display="mm",
+                                       positive=True)
+    youngs_modulus: float | None = param("Pa", "Young's modulus of the pivot", default=None, symbol="E",
+                                         display="GPa", positive=True)
+    allowable_stress: float | None = param("Pa", "allowable bending stress of the pivot", default=None,
+                                           display="GPa", positive=True)
+    pin_friction: float = param("N*m", "Coulomb torque of a pin", default=0.0, symbol="C", nonnegative=True)
+    shear_angle: float = param("rad", "shear angle of the axial-force term", default=0.0, symbol="alpha",
+                               nonnegative=True)
+    friction_model: str = param(None, "pin friction model", default="paper", kind="str", choices=FRICTION_MODELS)
+    axial_force: bool = param(None, "include tau_AF (Eq. 22)", default=True, kind="bool")
+    slider_friction: float = param("N", "Coulomb friction force of the slider", default=0.0, nonnegative=True)
+    toggle_cutoff: float = param("rad", "crank angle below which the Jacobian is frozen (toggle zone)",
+                                 default=float(np.radians(5.0)), display="deg", positive=True)
+
+    def __post_init__(self):
+        check_fields(self)
+        r2, r3 = self.crank_length, self.coupler_length
+        if not r2 < r3:
+            raise InputError(
+                f"crank_length = {format_quantity(r2, 'm', 'mm')} must be shorter than coupler_length = "
+                f"{format_quantity(r3, 'm', 'mm')} (the slider-crank needs r2 < r3)"
+            )
+        dims = {k: getattr(self, k) for k in _PIVOT_DIMENSIONS}
+        given = [k for k, v in dims.items() if v is not None]
+        if self.torsional_stiffness is not None and given:
+            raise InputError(
+                f"both torsional_stiffness and pivot dimensions ({', '.join(given)}) are given; give either "
+                "torsional_stiffness or pivot_width, pivot_thickness, pivot_length and youngs_modulus"
+            )
+        if self.torsional_stiffness is None:
+            missing = [k for k, v in dims.items() if v is None]
+            if self.youngs_modulus is None:
+                missing.append("youngs_modulus")
+            if len(missing) == len(_PIVOT_DIMENSIONS) + 1:
+                raise InputError(
+                    "neither torsional_stiffness nor the pivot dimensions are given; give either "
+                    "torsional_stiffness = \"2.5308 N*m/rad\" or pivot_width, pivot_thickness, pivot_length "
+                    "and youngs_modulus"
+                )
+            if missing:
+                raise InputError(f"the flexural pivot needs {', '.join(missing)} (or give torsional_stiffness)")
+        if not self.toggle_cutoff < np.pi / 2:
+            raise InputError(
+                f"toggle_cutoff = {format_quantity(self.toggle_cutoff, 'rad', 'deg')} must be below 90 deg "
+                "(the kinematic limit)"
+            )
+
+    # -- construction -------------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, mapping: Mapping[str, Any], *, source: str | None = None) -> "CFCSParams":
+        """Build from a ``[cfcs]`` table (values with units as strings, or SI numbers)."""
+        return from_mapping(cls, mapping, section="cfcs", source=source)
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> "CFCSParams":
+        """Read the ``[cfcs]`` table of a TOML file."""
+        return cls.from_dict(load_toml(path, "cfcs"), source=str(path))
+
+    @classmethod
+    def example(cls, name: str = "table1") -> "CFCSParams":
+        """A built-in mechanism; ``"table1"`` is Table 1 of the CFCS paper."""
+        if name not in EXAMPLES:
+            raise InputError(f"example = {name!r} is unknown; choose one of {', '.join(map(repr, EXAMPLES))}")
+        ref = resources.files("springdyn.data").joinpath(EXAMPLES[name])
+        with resources.as_file(ref) as path:
+            return cls.from_toml(path)
+
+    def replace(self, **changes) -> "CFCSParams":
+        """A copy with some fields changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    # -- derived values -----------------------------------------------------------------
+    @property
+    def r2(self) -> float:
+        return self.crank_length
+
+    @property
+    def r3(self) -> float:
+        return self.coupler_length
+
+    @property
+    def k3(self) -> float:
+        """Pivot stiffness K3 [N*m/rad], given or from the flexure (Eq. (1))."""
+        if self.torsional_stiffness is not None:
+            return self.torsional_stiffness
+        return float(flexure_stiffness(self.youngs_modulus, self.pivot_width, self.pivot_thickness,
+                                       self.pivot_length))
+
+    @property
+    def has_flexure(self) -> bool:
+        """True when the flexure dimensions (and so the bending stress) are known."""
+        return self.torsional_stiffness is None
+
+    @property
+    def extended_length(self) -> float:
+        """``r2 + r3`` [m], the slider distance at the toggle (zero deflection)."""
+        return self.crank_length + self.coupler_length
+
+    @property
+    def max_deflection(self) -> float:
+        """Kinematic limit of the slider deflection [m]."""
+        return float(kinematic_limit_deflection(self.r2, self.r3))
+
+    def values(self) -> dict:
+        """The SI values the physics functions take (see :mod:`springdyn.cfcs.dynamics`)."""
+        return dict(
+            r2=self.r2, r3=self.r3, m2=self.crank_mass, m3=self.coupler_mass, ms=self.slider_mass, k3=self.k3,
+            pin_friction=self.pin_friction, friction_model=self.friction_model, shear_angle=self.shear_angle,
+            axial_force=self.axial_force, slider_friction=self.slider_friction,
+        )
+
+    def without_dissipation(self) -> "CFCSParams":
+        """The same mechanism with tau_CF, tau_AF and slider friction switched off."""
+        return self.replace(friction_model="none", axial_force=False, slider_friction=0.0)

@@ -1,0 +1,218 @@
+"""Result objects of the CFCS model: tables with ``to_xarray``, ``to_csv``, ``plot``.
+
+Each result keeps SI arrays and a ``summary`` dict whose keys carry their unit
+(``force_max_N``); every summary states the toggle cut-off it used.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..io import write_csv
+from ..plotting import new_figure, save_figure
+
+__all__ = ["StaticResult", "DynamicResult", "SweepResult", "ForwardResult", "running_pcf"]
+
+
+def running_pcf(force):
+    """PCF vs time [%]: ``100 min(F[0..i]) / max(F[0..i])`` over the record so far.
+
+    springdyn's definition of the paper's Fig. 12 (the paper gives none, reading notes
+    2.2 item 4): it starts at 100 % and falls as the force explores its range; its
+    value at the end of a whole cycle is the cycle's PCF.
+    """
+    f = np.asarray(force, dtype=float)
+    lo = np.minimum.accumulate(f)
+    hi = np.maximum.accumulate(f)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(hi > 0, 100.0 * lo / hi, np.nan)
+
+
+class _Table:
+    """Shared output plumbing: ``columns()`` -> {name_unit: array}."""
+
+    summary: dict
+
+    def columns(self) -> dict:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def to_csv(self, path) -> Path:
+        """Write the table (SI, unit in the column names) atomically."""
+        return write_csv(path, self.columns())
+
+    def _dataset(self, dim: str) -> xr.Dataset:
+        cols = self.columns()
+        first = next(iter(cols))
+        coord = cols.pop(first)
+        ds = xr.Dataset({k: (dim, np.asarray(v)) for k, v in cols.items()}, coords={first: (dim, coord)})
+        ds.attrs.update({k: (v if v is not None else "none") for k, v in self.summary.items()
+                         if isinstance(v, (int, float, str, bool))})
+        return ds
+
+    def _finish(self, fig, path):
+        if path is not None:
+            save_figure(fig, path, close=False)
+        return fig
+
+
+@dataclasses.dataclass
+class StaticResult(_Table):
+    """Quasi-static force-deflection curve over a stroke."""
+
+    deflection: np.ndarray
+    theta2: np.ndarray
+    force: np.ndarray
+    force_compression: np.ndarray
+    force_extension: np.ndarray
+    stress: np.ndarray
+    summary: dict
+
+    def columns(self) -> dict:
+        cols = {"deflection_m": self.deflection, "theta2_rad": self.theta2, "force_N": self.force,
+                "force_compression_N": self.force_compression, "force_extension_N": self.force_extension}
+        if np.all(np.isfinite(self.stress)):
+            cols["stress_Pa"] = self.stress
+        return cols
+
+    def to_xarray(self) -> xr.Dataset:
+        return self._dataset("sample")
+
+    def plot(self, path=None):
+        fig, ax = new_figure()
+        mm = self.deflection * 1e3
+        ax.plot(mm, self.force, label="static (virtual work)", lw=2)
+        if not np.allclose(self.force_compression, self.force):
+            ax.plot(mm, self.force_compression, "--", label="with tau_CF, tau_AF: compression")
+            ax.plot(mm, self.force_extension, "--", label="with tau_CF, tau_AF: extension")
+        ax.set_xlabel("slider deflection [mm]")
+        ax.set_ylabel("force [N]")
+        s = self.summary
+        ax.set_title(f"CFCS static force, PCF {s['pcf_percent']:.1f} % over {s['stroke_m'] * 1e3:.4g} mm "
+                     f"(toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg)")
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        return self._finish(fig, path)
+
+
+@dataclasses.dataclass
+class DynamicResult(_Table):
+    """Inverse dynamics: slider force along a prescribed periodic motion."""
+
+    time: np.ndarray
+    deflection: np.ndarray
+    velocity: np.ndarray
+    theta2: np.ndarray
+    force: np.ndarray
+    force_static: np.ndarray
+    components: dict
+    in_toggle_zone: np.ndarray
+    summary: dict
+
+    @property
+    def pcf_vs_time(self) -> np.ndarray:
+        """Running PCF [%] (see :func:`running_pcf`)."""
+        return running_pcf(self.force)
+
+    def columns(self) -> dict:
+        cols = {"time_s": self.time, "deflection_m": self.deflection, "force_N": self.force,
+                "force_static_N": self.force_static, "velocity_m_s": self.velocity, "theta2_rad": self.theta2}
+        for k, v in self.components.items():
+            cols[f"{k}_N"] = v
+        cols["pcf_running_percent"] = self.pcf_vs_time
+        cols["in_toggle_zone"] = self.in_toggle_zone.astype(int)
+        return cols
+
+    def to_xarray(self) -> xr.Dataset:
+        return self._dataset("time")
+
+    def plot(self, path=None, *, label: str = "dynamic"):
+        fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 7.0), sharex=True)
+        ax.plot(self.time, self.force, label=label, lw=2)
+        ax.plot(self.time, self.force_static, "--", label="static force at the same deflection")
+        ax.set_ylabel("slider force [N]")
+        s = self.summary
+        ax.set_title(f"CFCS at omega = {s['omega_rad_s']:.4g} rad/s: mean {s['mean_force_N']:.4g} N, "
+                     f"p-p {s['peak_to_peak_N']:.3g} N, PCF {s['pcf_percent']:.1f} %\n"
+                     f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg "
+                     f"({s['toggle_zone_samples']} samples inside)", fontsize=10)
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        ax2.plot(self.time, self.pcf_vs_time)
+        ax2.set_xlabel("time [s]")
+        ax2.set_ylabel("running PCF [%]")
+        ax2.grid(True, alpha=0.3)
+        return self._finish(fig, path)
+
+
+@dataclasses.dataclass
+class SweepResult(_Table):
+    """Force statistics vs frequency (Figs. 5-7 of the CFCS paper), with and without
+    the dissipative terms."""
+
+    omega: np.ndarray
+    stats: dict  # name -> array, e.g. mean_force_N, mean_force_no_dissipation_N
+    summary: dict
+
+    def columns(self) -> dict:
+        return {"omega_rad_s": self.omega, **self.stats}
+
+    def to_xarray(self) -> xr.Dataset:
+        return self._dataset("omega")
+
+    def plot(self, path=None):
+        fig, axes = new_figure(2, 2, figsize=(10.0, 7.0), sharex=True)
+        names = [("mean_force", "mean force [N]"), ("median_force", "median force [N]"),
+                 ("peak_to_peak", "peak-to-peak force [N]"), ("pcf", "PCF [%]")]
+        for ax, (name, label) in zip(axes.flat, names):
+            unit = "percent" if name == "pcf" else "N"
+            ax.plot(self.omega, self.stats[f"{name}_{unit}"], label="with tau_CF, tau_AF")
+            ax.plot(self.omega, self.stats[f"{name}_no_dissipation_{unit}"], "--", label="without")
+            ax.set_ylabel(label)
+            ax.grid(True, alpha=0.3)
+        for ax in axes[1]:
+            ax.set_xlabel("omega [rad/s]")
+        axes[0, 0].legend()
+        fig.suptitle(f"CFCS frequency sweep (toggle cut-off {np.degrees(self.summary['toggle_cutoff_rad']):.3g} deg)")
+        return self._finish(fig, path)
+
+
+@dataclasses.dataclass
+class ForwardResult(_Table):
+    """Forward dynamics: the slider's response to a force (or a spring from a moving base)."""
+
+    time: np.ndarray
+    deflection: np.ndarray
+    velocity: np.ndarray
+    theta2: np.ndarray
+    theta2dot: np.ndarray
+    force: np.ndarray
+    force_static: np.ndarray
+    energy: np.ndarray
+    summary: dict
+
+    def columns(self) -> dict:
+        return {"time_s": self.time, "deflection_m": self.deflection, "velocity_m_s": self.velocity,
+                "theta2_rad": self.theta2, "theta2dot_rad_s": self.theta2dot, "force_N": self.force,
+                "force_static_N": self.force_static, "energy_J": self.energy}
+
+    def to_xarray(self) -> xr.Dataset:
+        return self._dataset("time")
+
+    def plot(self, path=None):
+        fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 6.5), sharex=True)
+        ax.plot(self.time, self.deflection * 1e3)
+        ax.set_ylabel("slider deflection [mm]")
+        ax.grid(True, alpha=0.3)
+        ax.set_title("CFCS forward dynamics (smoothed Coulomb sign, "
+                     f"v_s = {self.summary['sign_smoothing_rad_s']:.3g} rad/s)")
+        ax2.plot(self.time, self.force, label="drive force")
+        ax2.plot(self.time, self.force_static, "--", label="static force at the deflection")
+        ax2.set_xlabel("time [s]")
+        ax2.set_ylabel("force [N]")
+        ax2.grid(True, alpha=0.3)
+        ax2.legend()
+        return self._finish(fig, path)

@@ -1,0 +1,187 @@
+"""Statics of the CFCS: spring energy, force-deflection, dissipative terms, PCF.
+
+The static force is the virtual-work result on the pseudo-rigid-body model
+(reading notes 2.3; Fig. 2 of the CFCS paper)::
+
+    F = K3 theta_K3 cos(theta2) / (r1 sin(theta2))
+
+which equals ``dV/dtheta2 / (dx/dtheta2)`` with ``V = K3 theta_K3^2 / 2`` (Eq. (17)).
+
+The dissipative terms of Eqs. (20)-(22) always oppose the motion here (reading notes
+2.2 item 1), so a quasi-static stroke has a compression branch ``F + F_d`` and an
+extension branch ``F - F_d``.  Their conversion to a slider force divides by the
+Jacobian ``G = dx/dtheta2``, which vanishes at the toggle; below the cut-off angle the
+Jacobian is frozen at ``G(theta2_cutoff)`` (see :func:`springdyn.cfcs.kinematics.crank_rates`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .kinematics import (
+    slider_jacobian,
+    slider_position,
+    spring_angle,
+    spring_angle_rate_ratio,
+)
+
+__all__ = [
+    "FRICTION_MODELS",
+    "spring_energy",
+    "spring_torque",
+    "static_force",
+    "static_force_at_toggle",
+    "pin_friction_torque",
+    "axial_force_torque",
+    "dissipative_torque",
+    "frozen_jacobian",
+    "percent_constant_force",
+    "percent_constant_force_energy",
+]
+
+#: Allowed values of ``friction_model``.
+FRICTION_MODELS = ("paper", "constant", "none")
+
+
+def spring_energy(theta2, k3, r2, r3):
+    """Pivot spring energy ``V = K3 theta_K3^2 / 2`` [J], Eq. (17) of the CFCS paper."""
+    th = spring_angle(theta2, r2, r3)
+    return 0.5 * k3 * th * th
+
+
+def spring_torque(theta2, k3, r2, r3):
+    """``dV/dtheta2 = K3 theta_K3 r2 cos theta2 / D`` [N*m], the last term of Eq. (19)."""
+    return k3 * spring_angle(theta2, r2, r3) * spring_angle_rate_ratio(theta2, r2, r3)
+
+
+def _asin_ratio(s, a):
+    """``asin(a s) / s`` with its series ``a (1 + a^2 s^2/6 + 3 a^4 s^4/40)`` near s = 0."""
+    s = np.asarray(s, dtype=float)
+    small = np.abs(s) < 1e-4
+    safe = np.where(small, 1.0, s)
+    exact = np.arcsin(a * safe) / safe
+    series = a * (1.0 + (a * s) ** 2 / 6.0 + 3.0 * (a * s) ** 4 / 40.0)
+    return np.where(small, series, exact)
+
+
+def static_force(theta2, k3, r2, r3):
+    """Static slider force by virtual work ``K3 theta_K3 cos th2 / (r1 sin th2)`` [N].
+
+    Reading notes 2.3 (the paper's Fig. 2).  The limit at the toggle is finite,
+    ``K3 r2 / (r3 (r2 + r3))`` (12.580 N for Table 1), and is used there.
+
+    Parameters
+    ----------
+    theta2 : float or array
+        Crank angle [rad].
+    k3 : float
+        Pivot stiffness [N*m/rad].
+    r2, r3 : float
+        Crank and coupler lengths [m].
+    """
+    theta2 = np.asarray(theta2, dtype=float)
+    out = k3 * _asin_ratio(np.sin(theta2), r2 / r3) * np.cos(theta2) / slider_position(theta2, r2, r3)
+    return out if out.ndim else float(out)
+
+
+def static_force_at_toggle(k3, r2, r3):
+    """Static force as ``theta2 -> 0+``: ``K3 r2 / (r3 (r2 + r3))`` [N] (reading notes 2.3)."""
+    return k3 * r2 / (r3 * (r2 + r3))
+
+
+def pin_friction_torque(theta2, pin_friction, model, r2, r3):
+    """Magnitude of the pin friction torque tau_CF [N*m], Eq. (21) of the CFCS paper.
+
+    - ``"paper"``: ``C |theta2| (2 + r2 cos th2 / D)``, Eq. (21) as printed (the factor
+      theta2 is the paper's, reading notes 2.2 item 2).
+    - ``"constant"``: ``C (2 + r2 cos th2 / D)``, the Coulomb torque C of the ground pin
+      (rate theta2') plus that of the crank-coupler pin (rate theta2' (1 + u)).
+    - ``"none"``: 0.
+
+    The sign (opposing theta2') is applied by the caller.
+
+    Parameters
+    ----------
+    theta2 : float or array
+        Crank angle [rad].
+    pin_friction : float
+        Coulomb torque C of a pin [N*m] (units not given by the paper, reading notes 2.2 item 4).
+    model : {"paper", "constant", "none"}
+    r2, r3 : float
+        Link lengths [m].
+    """
+    theta2 = np.asarray(theta2, dtype=float)
+    bracket = 2.0 + spring_angle_rate_ratio(theta2, r2, r3)
+    if model == "paper":
+        return pin_friction * np.abs(theta2) * bracket
+    if model == "constant":
+        return pin_friction * bracket
+    if model == "none":
+        return np.zeros_like(theta2)
+    raise ValueError(f"friction model {model!r}: choose one of {FRICTION_MODELS}")
+
+
+def axial_force_torque(force_static, shear_angle, r2, r3):
+    """Magnitude of the axial-force torque tau_AF [N*m], Eq. (22) of the CFCS paper.
+
+    ``tau_AF = F_static r2 alpha (1 + r2 / sqrt(r3^2 - r2^2 alpha^2))``.  springdyn
+    applies it, like tau_CF, against the motion (reading notes 2.2 item 1).
+
+    Parameters
+    ----------
+    force_static : float or array
+        Static force at the same deflection [N].
+    shear_angle : float
+        alpha [rad].
+    r2, r3 : float
+        Link lengths [m].
+    """
+    return force_static * r2 * shear_angle * (1.0 + r2 / np.sqrt(r3 * r3 - (r2 * shear_angle) ** 2))
+
+
+def dissipative_torque(theta2, force_static, pin_friction, model, shear_angle, axial_force, r2, r3):
+    """``|tau_CF| + |tau_AF|`` [N*m] with the options of the mechanism (see above)."""
+    tau = pin_friction_torque(theta2, pin_friction, model, r2, r3)
+    if axial_force:
+        tau = tau + axial_force_torque(force_static, shear_angle, r2, r3)
+    return tau
+
+
+def frozen_jacobian(theta2, r2, r3, theta2_cutoff):
+    """``G`` [m/rad] with its value frozen at ``G(theta2_cutoff)`` inside the toggle zone."""
+    theta2 = np.asarray(theta2, dtype=float)
+    return slider_jacobian(np.maximum(np.abs(theta2), theta2_cutoff), r2, r3)
+
+
+def percent_constant_force(force):
+    """Percent constant force ``100 F_min / F_max`` [%] of a force record.
+
+    This is springdyn's explicit definition (the CFCS paper does not define it,
+    reading notes 2.2 item 4).  NaN if the largest force is not positive.
+    """
+    force = np.asarray(force, dtype=float)
+    fmax = np.max(force)
+    return float(100.0 * np.min(force) / fmax) if fmax > 0 else float("nan")
+
+
+def percent_constant_force_energy(deflection, force):
+    """Energy-based PCF ``100 W / (F_max * stroke)`` [%].
+
+    W is the work ``int F dx`` over the stroke; an ideal constant-force spring of force
+    F_max would do ``F_max * stroke``.
+
+    Parameters
+    ----------
+    deflection : array
+        Increasing slider deflections [m].
+    force : array
+        Force at those deflections [N].
+    """
+    x = np.asarray(deflection, dtype=float)
+    f = np.asarray(force, dtype=float)
+    stroke = x[-1] - x[0]
+    fmax = np.max(f)
+    if stroke <= 0 or fmax <= 0:
+        return float("nan")
+    work = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x)))
+    return 100.0 * work / (fmax * stroke)
