@@ -98,10 +98,8 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
                 f"{field} = {value!r} is not a quantity springdyn can read "
                 f"(expected something like '{_example(unit)}'): {exc}"
             ) from None
-        if not isinstance(q, pint.Quantity):  # plain number in a string
-            q = ureg.Quantity(float(q), _unit(bare_unit if bare_unit is not None else unit))
-        elif q.dimensionless and q.units == ureg.dimensionless and bare_unit is not None:
-            q = ureg.Quantity(q.magnitude, _unit(bare_unit))
+        if not isinstance(q, pint.Quantity) or q.unitless:  # a plain number in a string
+            q = ureg.Quantity(float(getattr(q, "magnitude", q)), _unit(bare_unit if bare_unit is not None else unit))
     try:
         mag = q.to(target).magnitude
     except pint.DimensionalityError:

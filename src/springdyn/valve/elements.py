@@ -1,0 +1,169 @@
+"""Nonlinear force laws of the six chain elements (document, "Nonlinear characteristics").
+
+A law is stored as a ``(3, 4)`` float array, one row per segment
+``(x_start, a, b, c)``: on ``x_start <= x < next x_start`` the element force is
+``F = a x^2 + b x + c``.  The first segment starts at ``-inf`` and is linear (tension
+continues the linear law, notes 1.3.9); unused rows have ``x_start = +inf``.  The same
+arrays feed the NumPy functions here and the compiled kernels of the dynamics.
+
+Every law is C1-continuous and has a non-decreasing tangent stiffness, so force is
+strictly increasing in compression and the inverse (force -> compression) is unique.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = [
+    "quadratic_through",
+    "linear_law",
+    "hardening_law",
+    "low_pitch_law",
+    "law_force",
+    "law_stiffness",
+    "law_compression",
+    "damping_coefficient",
+]
+
+_INF = math.inf
+
+
+def quadratic_through(x0: float, f0: float, k0: float, x1: float, f1: float) -> tuple[float, float, float]:
+    """Coefficients of ``F = a x^2 + b x + c`` through ``(x0, f0)`` with slope ``k0`` there
+    and through ``(x1, f1)``.
+
+    This is the closed-form solution of the document's 3x3 systems
+    ``[[x0^2, x0, 1], [x1^2, x1, 1], [2 x0, 1, 0]] (a, b, c) = (f0, f1, k0)``
+    (better conditioned than solving the matrix numerically).
+
+    Parameters
+    ----------
+    x0, x1 : float
+        Compressions [m], ``x1 != x0``.
+    f0, f1 : float
+        Forces [N].
+    k0 : float
+        Slope at ``x0`` [N/m].
+    """
+    h = x1 - x0
+    a = (f1 - f0 - k0 * h) / h**2
+    b = k0 - 2.0 * a * x0
+    c = f0 - a * x0**2 - b * x0
+    return a, b, c
+
+
+def _upper_root(a: float, b: float, c: float, force: float) -> float:
+    """Compression where the rising branch of ``a x^2 + b x + c`` reaches ``force``."""
+    return 2.0 * (force - c) / (b + math.sqrt(b * b + 4.0 * a * (force - c)))
+
+
+def linear_law(k: float) -> np.ndarray:
+    """Law of a linear element ``F = k x`` (the end elements K, notes 1.3.7)."""
+    law = np.full((3, 4), _INF)
+    law[0] = (-_INF, 0.0, k, 0.0)
+    return law
+
+
+def hardening_law(k0: float, k_prime: float, f1: float, f2: float, fcon: float, pc: float):
+    """Law of a Kh1 or Kh2 element with its breakpoints (notes 1.4).
+
+    Linear ``k0 x`` up to ``x_1 = F1/k0``; then the quadratic through ``(x_1, F1)`` with
+    slope ``k0`` and through ``(x_2, F2)``, ``x_2 = x_1 + (F2 - F1)/k'`` (document's
+    x12 / x22 with the typos of notes 1.3.1-2 fixed: ``Kh1'``/``Kh2'`` and ``x11``/``x21``);
+    from ``x_3`` (where that quadratic reaches Fcon) the coil-contact quadratic through
+    ``(x_3, Fcon)`` with the slope there (``Kh1c``/``Kh2c``) and through
+    ``(x_4, 2 Fcon)``, ``x_4 = x_3 + Pc/10``; beyond ``x_4`` it continues (notes 1.3.9).
+
+    Parameters
+    ----------
+    k0 : float
+        Initial rate Kh1 or Kh2 [N/m].
+    k_prime : float
+        Stiffened rate Kh1' or Kh2' [N/m].
+    f1, f2, fcon : float
+        Breakpoint forces F1, F2 and Fcon [N], ``0 < F1 < F2`` and ``F1 < Fcon``.
+    pc : float
+        Coil gap term Pc [m].
+
+    Returns
+    -------
+    law : ndarray, shape (3, 4)
+    breakpoints : dict
+        ``x1, x2, x3, x4`` [m] (the document's x11..x14 or x21..x24) and ``kc`` [N/m]
+        (Kh1c or Kh2c).
+    """
+    x1 = f1 / k0
+    x2 = (f2 - f1) / k_prime + x1
+    a1, b1, c1 = quadratic_through(x1, f1, k0, x2, f2)
+    x3 = _upper_root(a1, b1, c1, fcon)
+    kc = 2.0 * a1 * x3 + b1
+    x4 = x3 + pc / 10.0
+    a2, b2, c2 = quadratic_through(x3, fcon, kc, x4, 2.0 * fcon)
+    law = np.array([(-_INF, 0.0, k0, 0.0), (x1, a1, b1, c1), (x3, a2, b2, c2)])
+    return law, dict(x1=x1, x2=x2, x3=x3, x4=x4, kc=kc)
+
+
+def low_pitch_law(ks: float, fset: float, dw: float):
+    """Law of the two-step low-pitch element Ks (document, "Nonlinear characteristics of Ks").
+
+    Linear ``Ks x`` up to ``x_1 = Fset/Ks``; then the quadratic through ``(x_1, Fset)``
+    with slope Ks and through ``(x_2, 5 Ks x_2)``, ``x_2 = x_1 + Dw/10``.
+
+    Parameters
+    ----------
+    ks : float
+        Low-pitch section rate [N/m].
+    fset : float
+        Set-up force [N].
+    dw : float
+        Wire diameter [m].
+    """
+    x1 = fset / ks
+    x2 = x1 + dw / 10.0
+    a, b, c = quadratic_through(x1, fset, ks, x2, 5.0 * ks * x2)
+    law = np.full((3, 4), _INF)
+    law[0] = (-_INF, 0.0, ks, 0.0)
+    law[1] = (x1, a, b, c)
+    return law, dict(x1=x1, x2=x2)
+
+
+def _segment(x, law):
+    x = np.asarray(x, dtype=float)
+    return (x >= law[1, 0]).astype(np.intp) + (x >= law[2, 0]).astype(np.intp)
+
+
+def law_force(x, law: np.ndarray):
+    """Element force [N] at compression ``x`` [m] (scalar or array)."""
+    x = np.asarray(x, dtype=float)
+    s = _segment(x, law)
+    a, b, c = law[s, 1], law[s, 2], law[s, 3]
+    return (a * x + b) * x + c
+
+
+def law_stiffness(x, law: np.ndarray):
+    """Tangent stiffness ``dF/dx`` [N/m] at compression ``x`` [m]."""
+    x = np.asarray(x, dtype=float)
+    s = _segment(x, law)
+    return 2.0 * law[s, 1] * x + law[s, 2]
+
+
+def law_compression(force, law: np.ndarray):
+    """Inverse law: compression [m] at which the element carries ``force`` [N]."""
+    force = np.asarray(force, dtype=float)
+    f_start = law_force(law[1:, 0], law)  # force at each later segment start (inf if unused)
+    f_start = np.where(np.isfinite(law[1:, 0]), f_start, np.inf)
+    s = (force >= f_start[0]).astype(np.intp) + (force >= f_start[1]).astype(np.intp)
+    a, b, c = law[s, 1], law[s, 2], law[s, 3]
+    d = force - c
+    return 2.0 * d / (b + np.sqrt(np.maximum(b * b + 4.0 * a * d, 0.0)))
+
+
+def damping_coefficient(x, law: np.ndarray, c0: float):
+    """Element damping ``c(x) = C0 sqrt(k(x)/k(0))`` [N s/m] (document, "Damping Coefficient").
+
+    ``k(x)`` is the tangent stiffness of the element's law and ``k(0)`` its initial
+    (linear) rate; ``C0 = 2 Cps sqrt(M K1)`` (notes 1.3.8).
+    """
+    return c0 * np.sqrt(law_stiffness(x, law) / law[0, 2])

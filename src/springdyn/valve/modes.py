@@ -1,0 +1,45 @@
+"""Natural frequencies of the lumped chain linearised about a static state."""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg
+
+__all__ = ["chain_stiffness_matrix", "chain_frequencies"]
+
+
+def chain_stiffness_matrix(k: np.ndarray) -> np.ndarray:
+    """Tridiagonal stiffness matrix [N/m] of masses joined in series, both ends fixed.
+
+    Parameters
+    ----------
+    k : ndarray, shape (n + 1,)
+        Element (tangent) stiffnesses from the seat to the retainer [N/m]; element j
+        joins mass j-1 and mass j (mass -1 is the seat, mass n the retainer).
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+    """
+    k = np.asarray(k, dtype=float)
+    n = k.size - 1
+    kmat = np.diag(k[:-1] + k[1:])
+    i = np.arange(n - 1)
+    kmat[i, i + 1] = kmat[i + 1, i] = -k[1:-1]
+    return kmat
+
+
+def chain_frequencies(masses: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """Natural frequencies [Hz], ascending, of the chain with both ends fixed.
+
+    Solves ``K phi = w^2 M phi`` (symmetric-definite generalised eigenproblem).
+
+    Parameters
+    ----------
+    masses : ndarray, shape (n,)
+        Lumped masses [kg].
+    k : ndarray, shape (n + 1,)
+        Element tangent stiffnesses [N/m].
+    """
+    w2 = scipy.linalg.eigh(chain_stiffness_matrix(k), np.diag(masses), eigvals_only=True)
+    return np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)

@@ -1,0 +1,92 @@
+"""``springdyn valve ...`` commands: output contracts and bad input (exit code 2)."""
+
+import csv
+import json
+from importlib import resources
+
+import pytest
+
+from springdyn.cli.main import main
+
+ONE = str(resources.files("springdyn.data") / "valve_one_step.toml")
+TWO = str(resources.files("springdyn.data") / "valve_two_step.toml")
+
+PARAM_KEYS = "K K1 K2 K3 Kh1 Kh2 m1 m2 me M f1 f2 n1p n2p Pc Lc Fset F1 F2 Fcon C0".split()
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_params_json_keys(capsys):
+    code, out, _ = run(capsys, "valve", "params", ONE, "--json")
+    assert code == 0
+    data = json.loads(out)
+    assert sorted(data) == sorted(PARAM_KEYS)
+    assert data["Fset"] == pytest.approx(251.43, rel=1e-4)
+    code, out, _ = run(capsys, "valve", "params", TWO, "--json")
+    assert sorted(json.loads(out)) == sorted(PARAM_KEYS + ["Ks"])
+
+
+def test_params_table(capsys):
+    code, out, _ = run(capsys, "valve", "params", ONE)
+    assert code == 0 and "Kh1" in out and "80.744 N/mm" in out
+
+
+def test_curve_csv_and_plot(capsys, tmp_path):
+    csv_path, png = tmp_path / "c.csv", tmp_path / "c.png"
+    code, _, _ = run(capsys, "valve", "curve", ONE, "--from", "48mm", "--to", "30mm", "--points", "50",
+                     "--csv", str(csv_path), "--plot", str(png))
+    assert code == 0
+    rows = list(csv.reader(open(csv_path)))
+    assert rows[0] == ["length_m", "force_N", "stiffness_N_per_m"]
+    assert len(rows) == 51
+    assert float(rows[1][0]) == pytest.approx(0.048) and float(rows[-1][0]) == pytest.approx(0.030)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_modes_json(capsys):
+    code, out, _ = run(capsys, "valve", "modes", ONE, "--length", "38 mm", "--count", "3", "--json")
+    data = json.loads(out)
+    assert set(data) == {"length_m", "force_N", "frequencies_Hz"}
+    assert data["frequencies_Hz"] == sorted(data["frequencies_Hz"])
+    assert data["frequencies_Hz"][0] == pytest.approx(449.61, abs=0.005)
+
+
+def test_design(capsys):
+    code, out, _ = run(capsys, "valve", "design", ONE, "--lift", "9mm", "--cam-rpm", "3000", "--json")
+    assert code == 0
+    assert json.loads(out)["installed"]["surge_margin"] == pytest.approx(449.61 / 50, rel=1e-4)
+
+
+@pytest.mark.parametrize(
+    "argv,message",
+    [
+        (["valve", "modes", ONE, "--length", "10mm"], "length = 10 mm is outside the range of the spring"),
+        (["valve", "modes", ONE, "--length", "38 kg"], "--length = '38 kg' has the wrong dimension"),
+        (["valve", "curve", ONE, "--to", "5mm"], "--to = 5 mm is outside the range"),
+        (["valve", "params", "nonexistent.toml"], "nonexistent.toml: no such file"),
+        (["valve", "modes", ONE, "--length", "38mm", "--count", "9"], "count = 9 must be between 1 and 5"),
+    ],
+)
+def test_bad_input_exit_2(capsys, argv, message):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert message in err
+    assert "Traceback" not in err and err.count("\n") == 1
+
+
+def test_bad_toml_exit_2(capsys, tmp_path):
+    f = tmp_path / "bad.toml"
+    f.write_text(open(ONE).read().replace('installed_length = "38 mm"', 'installed_length = "50 mm"'))
+    code, _, err = run(capsys, "valve", "params", str(f))
+    assert code == 2
+    assert "installed_length = 50 mm must be shorter than free_length = 48 mm" in err
+
+
+def test_argparse_errors_exit_2(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["valve", "modes", ONE])  # --length missing
+    assert exc.value.code == 2

@@ -1,0 +1,186 @@
+"""Static series equilibrium, initial condition and chain modes (notes 1.5, 1.6)."""
+
+import numpy as np
+import pytest
+
+from springdyn.errors import InputError
+from springdyn.valve import ValveSpring
+from springdyn.valve.elements import law_force
+
+SPRINGS = ["one-step", "two-step"]
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_static_force_at_setup_is_fset(name):
+    s = ValveSpring.example(name)
+    assert float(s.static_force(s.installed_length)) == pytest.approx(s.internal_parameters()["Fset"], rel=1e-12)
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_series_equilibrium_definition(name):
+    """Same force in every element, compressions summing to Lf - L (exact to round-off)."""
+    s = ValveSpring.example(name)
+    lengths = np.linspace(s.free_length, s.min_length, 57)
+    force, x, _ = s.static_state(lengths)
+    np.testing.assert_allclose(x.sum(axis=0), s.free_length - lengths, rtol=1e-12, atol=1e-16)
+    for xj, law in zip(x, s.chain.laws):
+        np.testing.assert_allclose(law_force(xj, law), force, rtol=1e-11, atol=1e-9)
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_linear_range_rate_is_k1(name):
+    """Below F1 (and for two-step below Fset) every element is linear: rate = K1 exactly."""
+    s = ValveSpring.example(name)
+    p = s.internal_parameters()
+    length = s.free_length - 0.5 * (s.free_length - s.installed_length)
+    assert float(s.static_stiffness(length)) == pytest.approx(p["K1"], rel=1e-12)
+    assert float(s.static_force(length)) == pytest.approx(p["K1"] * (s.free_length - length), rel=1e-12)
+
+
+def test_two_step_rate_approaches_k2_after_low_pitch_closes():
+    """Two-step: once Ks has stiffened (beyond set-up) the rate tends to K2 (Ks -> rigid)
+    before the Kh elements stiffen at F1."""
+    s = ValveSpring.example("two-step")
+    p = s.internal_parameters()
+    length = s.length_at_force(0.5 * (p["Fset"] + p["F1"])) + 0.0
+    k = float(s.static_stiffness(length))
+    assert p["K1"] < k < p["K2"] * 1.001
+    assert k == pytest.approx(p["K2"], rel=0.02)  # Ks is ~20x its initial rate there
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_stiffness_is_derivative_of_force(name):
+    """Tangent stiffness vs central difference of the force (h = 1 um, O(h^2) error)."""
+    s = ValveSpring.example(name)
+    lengths = np.linspace(s.free_length - 1e-4, s.min_length + 1e-4, 41)
+    h = 1e-6
+    fd = (s.static_force(lengths - h) - s.static_force(lengths + h)) / (2 * h)
+    np.testing.assert_allclose(s.static_stiffness(lengths), fd, rtol=2e-3)
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_force_continuous_and_monotonic_over_curve(name):
+    s = ValveSpring.example(name)
+    c = s.static_curve(points=2000)
+    assert np.all(np.diff(c.force) > 0)  # length decreasing -> force increasing
+    assert c.force[0] == pytest.approx(0.0, abs=1e-9)
+    assert c.force[-1] == pytest.approx(3 * s.internal_parameters()["Fcon"], rel=1e-9)
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_initial_condition(name):
+    s = ValveSpring.example(name)
+    p = s.internal_parameters()
+    ic = s.initial_condition(s.free_length - s.installed_length)
+    assert ic["force"] == pytest.approx(p["Fset"], rel=1e-12)
+    np.testing.assert_allclose(ic["displacements"], 0.0, atol=1e-15)
+    lift = 5e-3
+    ic = s.initial_condition(s.free_length - s.installed_length + lift)
+    assert ic["force"] == pytest.approx(float(s.static_force(s.installed_length - lift)), rel=1e-12)
+    # displacement of the last mass + last element's extra compression = lift
+    dx_last = ic["compressions"][-1] - s.chain.setup_compressions[-1]
+    assert ic["displacements"][-1] + dx_last == pytest.approx(lift, rel=1e-12)
+
+
+def test_chain_modes_one_step_reference():
+    """Notes 1.6: 449.61 / 900.65 / 1352.18 Hz (printed to 2 decimals: half a unit, 0.005 Hz)."""
+    s = ValveSpring.example("one-step")
+    f = s.modes(s.free_length, 3)
+    np.testing.assert_allclose(f, [449.61, 900.65, 1352.18], rtol=0, atol=0.005)
+    # surge series f1, 2 f1, 3 f1 of the continuous spring (notes 1.2), within 0.3 %
+    f1 = s.internal_parameters()["f1"]
+    np.testing.assert_allclose(f / (f1 * np.arange(1, 4)), 1.0, atol=3e-3)
+
+
+def test_chain_mode_two_step_reference():
+    s = ValveSpring.example("two-step")
+    assert s.modes(s.installed_length, 1)[0] == pytest.approx(415.28, abs=0.005)  # half the last printed digit
+
+
+def _random_valid_springs(kind, count, seed):
+    """Valid springs drawn around the example (fixed seed: the test is repeatable)."""
+    rng = np.random.default_rng(seed)
+    base = ValveSpring.example(kind)
+    springs = []
+    while len(springs) < count:
+        try:
+            springs.append(
+                base.replace(
+                    mean_diameter=rng.uniform(0.015, 0.035),
+                    wire_diameter=rng.uniform(0.0025, 0.005),
+                    high_pitch_coils=rng.uniform(4, 10),
+                    low_pitch_coils=0.0 if kind == "one-step" else rng.uniform(1.2, 3),
+                    free_length=rng.uniform(0.04, 0.07),
+                    installed_length=rng.uniform(0.03, 0.06),
+                    dead_coils=rng.uniform(0.5, 1.2),
+                    youngs_modulus=rng.uniform(150e9, 220e9),
+                    shear_modulus=rng.uniform(50e9, 85e9),
+                )
+            )
+        except InputError:
+            continue
+    return springs
+
+
+def _first_mode_error(s):
+    p = s.internal_parameters()
+    return abs(s.modes(s.free_length, 1)[0] / p["f1"] - 1), p
+
+
+def test_first_mode_within_2k1_over_k_of_f1_one_step():
+    """Issue 2: the first chain mode at free length lies within 2 K1/K (relative) of the
+    closed-form f1 -- checked on 200 random valid one-step springs."""
+    for s in _random_valid_springs("one-step", 200, seed=11):
+        err, p = _first_mode_error(s)
+        assert err <= 2 * p["K1"] / p["K"]
+
+
+def test_first_mode_two_step_end_compliance_bound():
+    """Two-step: the issue's 2 K1/K bound does NOT hold for every spring (a counterexample
+    below); what holds is the end-compliance bound (Ks + Kh1)/(2 K): the stiff end elements
+    K in series with their neighbours Ks (seat side) and Kh1 (retainer side) are the only
+    thing separating the chain from f1 (see the K -> infinity limit test)."""
+    for s in _random_valid_springs("two-step", 200, seed=12):
+        err, p = _first_mode_error(s)
+        assert err <= (p["Ks"] + p["Kh1"]) / (2 * p["K"])
+    counter = ValveSpring.example("two-step").replace(high_pitch_coils=10.0, free_length=0.062, installed_length=0.050)
+    err, p = _first_mode_error(counter)
+    assert err > 2 * p["K1"] / p["K"]  # 0.201 % against 0.194 %
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_chain_reproduces_f1_as_contact_stiffness_grows(name):
+    """Limit K -> infinity: the end masses are blocked and the closed-form masses reproduce
+    f1 exactly (one-step: also 2 f1 and 3 f1); the error falls like 1/K."""
+    errors = []
+    for e in (2e12, 2e13, 2e14):
+        s = ValveSpring.example(name).replace(youngs_modulus=e)
+        err, p = _first_mode_error(s)
+        errors.append(err)
+        if name == "one-step":
+            f = s.modes(s.free_length, 3)
+            np.testing.assert_allclose(f / p["f1"], [1, 2, 3], rtol=30 * p["K1"] / p["K"])
+    assert errors[2] < 1e-5
+    np.testing.assert_allclose(errors[0] / errors[1], 10, rtol=0.01)
+    np.testing.assert_allclose(errors[1] / errors[2], 10, rtol=0.01)
+
+
+def test_modes_stiffen_past_coil_contact():
+    s = ValveSpring.example("one-step")
+    p = s.internal_parameters()
+    f_setup = s.modes(s.installed_length, 1)[0]
+    f_contact = s.modes(s.length_at_force(1.5 * p["Fcon"]), 1)[0]
+    assert f_contact > 1.2 * f_setup
+
+
+def test_design_figures():
+    s = ValveSpring.example("one-step")
+    d = s.design_figures(lift=9e-3, cam_rpm=3000)
+    c = 22 / 3.5
+    assert d["spring_index"] == pytest.approx(c)
+    assert d["bergstraesser_factor"] == pytest.approx((4 * c + 2) / (4 * c - 3))
+    tau = d["bergstraesser_factor"] * 8 * 251.43232724 * 0.022 / (np.pi * 0.0035**3)
+    assert d["installed"]["shear_stress_Pa"] == pytest.approx(tau, rel=1e-9)
+    assert d["installed"]["surge_margin"] == pytest.approx(d["installed"]["surge_frequency_Hz"] / 50.0)
+    assert d["coil_contact"]["force_N"] == pytest.approx(590.87, rel=1e-4)
+    assert d["installed"]["force_N"] < d["open"]["force_N"] < d["coil_contact"]["force_N"]
