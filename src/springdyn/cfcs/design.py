@@ -217,14 +217,21 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     f = static_force(d["th"], k3_check, d["r2"], d["r3"])
     wmax = width_limit(best)
     feasible = bool(d["b"] <= wmax * (1 + 1e-9))
+    pcf_best = float(np.max(pcf))
+    pcf_here = 100.0 * float(np.min(f) / np.max(f))
+    need = None
+    if not feasible or pcf_here < pcf_best - 0.5:
+        need = _shortest_length_for_flattest(stroke, force, youngs_modulus, sigma, pivot_length_ratio, max_width,
+                                             length, n)
+    hint = (f"; at the flattest ratio a mechanism with r2 + r3 >= {need * 1e3:.4g} mm (stroke fraction <= "
+            f"{stroke / need:.3g}) would meet the stress limit" if need else "")
     if feasible:
         message = (f"design meets the stress limit: pivot stress {float(np.max(stress)) / 1e9:.4g} GPa at the end of "
                    f"the stroke, width {d['b'] * 1e3:.4g} mm <= {wmax * 1e3:.4g} mm")
+        if pcf_here < pcf_best - 0.5:
+            message += (f"; but only at r2/r3 = {best:.3g} with PCF {pcf_here:.1f} % (the flattest ratio, "
+                        f"PCF {pcf_best:.1f} %, does not fit){hint}")
     else:
-        need = _shortest_feasible_length(stroke, force, youngs_modulus, sigma, pivot_length_ratio, max_width,
-                                         length)
-        hint = (f"; a mechanism with r2 + r3 >= {need * 1e3:.4g} mm (stroke fraction <= {stroke / need:.3g}) would"
-                if need else "")
         message = (f"no design meets the stress limit: at {format_quantity(sigma, 'Pa', 'GPa')} the flexure must be "
                    f"{d['h'] * 1e3:.3g} mm thick and {d['b'] * 1e3:.4g} mm wide, wider than the {wmax * 1e3:.4g} mm "
                    f"allowed, for r2 + r3 = {length * 1e3:.4g} mm{hint}")
@@ -237,7 +244,8 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
         "safety_factor_target": safety_factor, "max_stress_Pa": float(np.max(stress)),
         "safety_factor": allowable_stress / float(np.max(stress)),
         "force_min_N": float(np.min(f)), "force_max_N": float(np.max(f)),
-        "pcf_percent": 100.0 * float(np.min(f) / np.max(f)), "pcf_energy_percent": percent_constant_force_energy(
+        "pcf_percent": pcf_here, "pcf_flattest_percent": pcf_best,
+        "suggested_total_length_m": need, "pcf_energy_percent": percent_constant_force_energy(
             d["x"], f),
         "kinematic_limit_m": float(kinematic_limit_deflection(d["r2"], d["r3"])),
         "allowable_spring_angle_rad": float(allowable_spring_angle(allowable_stress, youngs_modulus, d["h"], d["l"])),
@@ -245,19 +253,24 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     return DesignResult(summary, d["x"], f, stress)
 
 
-def _shortest_feasible_length(stroke, force, modulus, sigma, ratio_l, max_width, length0):
-    """Shortest r2 + r3 [m] above ``length0`` for which some ratio is feasible (bisection), or None."""
+def _flattest_ratio(stroke_fraction, n):
+    """The ratio r2/r3 of largest PCF on a grid (no limits)."""
+    lo = min(max(min_ratio_for_stroke(stroke_fraction) * (1 + 1e-9), 0.02), 0.995)
+    ratios = np.linspace(lo, 0.995, 100)
+    return ratios[int(np.argmax([normalized_pcf(r, stroke_fraction, n) for r in ratios]))]
+
+
+def _shortest_length_for_flattest(stroke, force, modulus, sigma, ratio_l, max_width, length0, n):
+    """Shortest r2 + r3 [m] above ``length0`` whose flattest design meets the limits (bisection), or None."""
 
     def margin(total):
-        frac = stroke / total
-        lo = min(max(min_ratio_for_stroke(frac) * (1 + 1e-9), 0.02), 0.995)
-        best = -np.inf
-        for r in np.linspace(lo, 0.995, 60):
-            d = _flexure(r, total, stroke, force, modulus, sigma, ratio_l, 3)
-            w = max_width if max_width is not None else d["r3"]
-            best = max(best, np.log(w / d["b"]))
-        return best
+        r = _flattest_ratio(stroke / total, n)
+        d = _flexure(r, total, stroke, force, modulus, sigma, ratio_l, 3)
+        w = max_width if max_width is not None else d["r3"]
+        return np.log(w / d["b"])
 
+    if margin(length0) > 0:
+        return None
     hi = length0
     for _ in range(40):
         hi *= 1.5
@@ -265,4 +278,4 @@ def _shortest_feasible_length(stroke, force, modulus, sigma, ratio_l, max_width,
             break
     else:
         return None
-    return brentq(margin, length0, hi, xtol=1e-6 * hi)
+    return brentq(margin, length0, hi, xtol=1e-4 * hi)

@@ -18,7 +18,7 @@ from .. import __version__
 from ..errors import InputError, SolverError
 
 #: Model families, in the order the CLI lists them and the demo runs them.
-FAMILIES = ["valve"]
+FAMILIES = ["valve", "cfcs"]
 
 
 class _Parser(argparse.ArgumentParser):
