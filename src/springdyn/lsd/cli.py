@@ -1,0 +1,137 @@
+"""``springdyn lsd ...`` commands (thin layer over :mod:`springdyn.lsd`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from ..errors import InputError
+from ..io import write_json
+from .identify import identify_series, read_rig_data
+from .model import LSDModel
+from .parameters import LSDParameters
+from .rig import circular_orbit, linear_shake, simulate_rig
+
+__all__ = ["register"]
+
+
+def register(sub) -> None:
+    lsd = sub.add_parser("lsd", help="leaf spring dampers: coefficients, rig simulation, identification")
+    lsub = lsd.add_subparsers(dest="lsd_command", metavar="COMMAND", required=True)
+
+    p = lsub.add_parser("coefficients", help="stiffness and damping coefficients vs shaft speed")
+    p.add_argument("config", metavar="CFG.toml", help="damper definition ([lsd] table); or A, B, C for Table 4.1")
+    p.add_argument("--rpm", default="500:3000:500", help="speeds, START:STOP:STEP or a list (default 500:3000:500)")
+    p.add_argument("--amplitude", default="50um", help="vibration amplitude (default 50um; bare number: m)")
+    p.add_argument("--motion", choices=("linear", "circular"), default="linear",
+                   help="motion for the O-ring Coulomb equivalent (default linear, as Eq. (2.22))")
+    add_output_options(p)
+    p.set_defaults(func=cmd_coefficients)
+
+    p = lsub.add_parser("rig", help="simulate the thesis' test rig (eccentric shaft or shakes)")
+    p.add_argument("config", metavar="CFG.toml", help="damper definition; or A, B, C")
+    p.add_argument("--rpm", required=True, help="shaft speed in rpm (one orbit per revolution)")
+    p.add_argument("--eccentricity", required=True, help="orbit radius or shake amplitude, e.g. 50um")
+    p.add_argument("--excitation", choices=("orbit", "backward-orbit", "x", "y"), default="orbit")
+    p.add_argument("--revolutions", type=float, default=20.0, help="number of revolutions (default 20)")
+    p.add_argument("--sample-rate", default="20kHz", help="sampling rate (default 20kHz; bare number: Hz)")
+    p.add_argument("--noise", default="0N", help="force sensor noise, standard deviation (default 0N)")
+    p.add_argument("--displacement-noise", default="0um", help="displacement sensor noise (default 0um)")
+    p.add_argument("--seed", type=int, default=None, help="seed of the noise generator")
+    p.add_argument("--csv", metavar="OUT.csv", required=True, help="write time_s, x_m, y_m, fx_N, fy_N")
+    p.add_argument("--plot", metavar="OUT.png", help="hysteresis loops as PNG")
+    p.set_defaults(func=cmd_rig)
+
+    p = lsub.add_parser("identify", help="identify K and C from rig records (CSV or TDMS)")
+    p.add_argument("data", metavar="DATA.csv", nargs="+", help="record(s) time_s, x_m, y_m, fx_N, fy_N; several = several speeds")
+    p.add_argument("--second", metavar="DATA2.csv", nargs="+", help="second, independent excitation(s), same order")
+    p.add_argument("--rpm", help="shaft speed(s) in rpm, one per record (default: found in the data)")
+    p.add_argument("--mass", default="0kg", help="moving mass whose inertia is removed (default 0kg)")
+    p.add_argument("--model", metavar="CFG.toml", help="also draw this damper's model curves in --plot")
+    p.add_argument("--amplitude", default="50um", help="amplitude for the --model curves (default 50um)")
+    add_output_options(p)
+    p.set_defaults(func=cmd_identify)
+
+
+def _params(text: str) -> LSDParameters:
+    if text.upper() in ("A", "B", "C", "TYPE_A", "TYPE_B", "TYPE_C"):
+        return LSDParameters.example(text)
+    return LSDParameters.from_toml(text)
+
+
+def cmd_coefficients(args) -> int:
+    model = LSDModel(_params(args.config))
+    rpm = parse_range(args.rpm, "rpm", "--rpm")
+    amplitude = quantity(args.amplitude, "m", "--amplitude")
+    res = model.coefficients(rpm, amplitude=amplitude, motion=args.motion)
+    if args.csv:
+        res.to_csv(args.csv)
+    if args.plot:
+        res.plot(args.plot)
+    if args.json:
+        print_json(res.to_dict())
+        return 0
+    print(f"{model.params.name}: k_s = {model.pack_stiffness / 1e3:.5g} N/mm per pack, "
+          f"load ratios {np.array2string(model.load_ratios, precision=4)}, amplitude {amplitude * 1e6:.4g} um")
+    rows = [(f"{r:g}", *(f"{res.K[i, a, b] / 1e3:.5g}" for a, b in ((0, 0), (0, 1), (1, 0), (1, 1))),
+             *(f"{res.C[i, a, b]:.5g}" for a, b in ((0, 0), (0, 1), (1, 0), (1, 1))))
+            for i, r in enumerate(res.rpm)]
+    print_table(rows, headers=("rpm", "Kxx N/mm", "Kxy N/mm", "Kyx N/mm", "Kyy N/mm",
+                               "Cxx Ns/m", "Cxy Ns/m", "Cyx Ns/m", "Cyy Ns/m"))
+    return 0
+
+
+def cmd_rig(args) -> int:
+    model = LSDModel(_params(args.config))
+    rpm = quantity(args.rpm, "rpm", "--rpm")
+    ecc = quantity(args.eccentricity, "m", "--eccentricity")
+    fs = quantity(args.sample_rate, "Hz", "--sample-rate")
+    noise = quantity(args.noise, "N", "--noise")
+    dnoise = quantity(args.displacement_noise, "m", "--displacement-noise")
+    if args.excitation in ("orbit", "backward-orbit"):
+        tr = circular_orbit(rpm, ecc, args.revolutions, fs, direction=1 if args.excitation == "orbit" else -1)
+    else:
+        tr = linear_shake(rpm, ecc, args.excitation, args.revolutions, fs)
+    rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
+    rec.to_csv(args.csv)
+    if args.plot:
+        rec.plot(args.plot)
+    print(f"{model.params.name}: {args.excitation} at {rpm:g} rpm, {ecc * 1e6:.4g} um, {tr.time.size} samples -> {args.csv}; "
+          f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
+    return 0
+
+
+def cmd_identify(args) -> int:
+    records = [read_rig_data(p) for p in args.data]
+    seconds = [read_rig_data(p) for p in args.second] if args.second else None
+    rpms = None
+    if args.rpm:
+        rpms = list(parse_range(args.rpm, "rpm", "--rpm"))
+        if len(rpms) == 1 and len(records) > 1:
+            raise InputError(f"--rpm gives one speed for {len(records)} records; give one per record or none")
+    mass = quantity(args.mass, "kg", "--mass")
+    series = identify_series(records, seconds, mass=mass, rpms=rpms)
+    if args.csv:
+        series.to_csv(args.csv)
+    if args.plot:
+        model = None
+        if args.model:
+            model = LSDModel(_params(args.model)).coefficients(series.rpm, quantity(args.amplitude, "m", "--amplitude"))
+        series.plot(args.plot, model=model)
+    dicts = [it.to_dict() for it in series.items]
+    if args.json:
+        print_json(dicts[0] if len(dicts) == 1 else dicts)
+        return 0
+    for it, d in zip(series.items, dicts):
+        print(f"{', '.join(it.sources)}: {it.rpm:.6g} rpm ({it.frequency:.6g} Hz), {it.cycles} whole periods, "
+              f"{it.mode}, mass {it.mass:g} kg")
+        rows = []
+        for key, value in d.items():
+            if key.endswith(("_N_per_m", "_Ns_per_m")):
+                unc = d.get(f"{key}_uncertainty")
+                unit = "N/m" if key.endswith("_N_per_m") else "N*s/m"
+                rows.append((key.split("_")[0], f"{value:.6g}", "nan" if unc is None else f"{unc:.3g}", unit))
+        print_table(rows, headers=("coefficient", "value", "uncertainty", "unit"))
+        if it.caveat:
+            print(f"note: {it.caveat}")
+    return 0

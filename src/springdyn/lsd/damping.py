@@ -1,0 +1,313 @@
+"""Damping of the leaf spring damper: O-ring friction, inter-leaf friction, oil network.
+
+Three sources add up (Sections 2.2 and 3 of the leaf-spring-damper thesis):
+
+- Coulomb friction of the O-rings, as an equivalent viscous coefficient ``C_f`` (2.21)-(2.22);
+- friction between the leaves of each pack, as a hysteretic loss factor (2.23)-(2.28);
+- the oil squeezed between the chambers (the spaces between packs) through narrow
+  passages (2.11)-(2.20), (3.5)-(3.6), written here as the network
+  ``C_visc = B^T G^+ B`` (READING-NOTES section 3.2).
+
+Units: SI throughout (m, N, Pa, Pa s, rad/s).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = [
+    "coulomb_equivalent_damping",
+    "interleaf_slip_factor",
+    "leaf_loss_factor",
+    "hysteresis_damping_matrix",
+    "hydraulic_diameter",
+    "passage_conductance_thesis",
+    "passage_conductance_rectangular",
+    "boundary_conductance",
+    "chamber_volume_matrix",
+    "chamber_laplacian",
+    "chamber_pressures",
+    "viscous_damping_matrix",
+    "viscous_damping_thesis",
+]
+
+
+def coulomb_equivalent_damping(friction_coefficient, normal_force, omega, amplitude, motion="linear"):
+    """Equivalent viscous damping of a Coulomb friction force [N s/m], Eq. (2.22).
+
+    Equal dissipation per cycle.  For a straight-line harmonic motion of amplitude ``A``
+    the friction ``mu F_N`` dissipates ``4 mu F_N A`` (Eq. (2.21)), so
+    ``C_f = 4 mu F_N / (pi omega A)``, the thesis' formula.  On a circular orbit of
+    radius ``A`` (the thesis' own test rig) the friction force is constant and opposes
+    the velocity, dissipating ``2 pi A mu F_N`` per turn: ``C_f = mu F_N / (omega A)``.
+
+    Parameters
+    ----------
+    friction_coefficient : float
+        ``mu_o`` [-].
+    normal_force : float
+        O-ring normal force ``F_N`` [N].
+    omega : float or array
+        Vibration frequency [rad/s].
+    amplitude : float
+        Vibration amplitude ``A`` [m].
+    motion : {"linear", "circular"}
+        Straight-line shake (thesis) or circular orbit.
+    """
+    omega = np.asarray(omega, dtype=float)
+    if amplitude <= 0:
+        raise InputError(f"amplitude = {amplitude!r} m must be positive")
+    factor = {"linear": 4.0 / np.pi, "circular": 1.0}.get(motion)
+    if factor is None:
+        raise InputError(f"motion = {motion!r} is not allowed; choose 'linear' or 'circular'")
+    return factor * friction_coefficient * normal_force / (omega * amplitude)
+
+
+def interleaf_slip_factor(load_ratios, deflection_ratios, thicknesses, lengths):
+    """Bracket of Eqs. (2.27)-(2.28): ``t_1/L_1 + 2 sum_(i>=2) phi_i (delta_i/delta_1) t_i/L_i`` [-].
+
+    It converts the pack tip deflection into the friction work between the leaves:
+    the slip at the tip of leaf ``i`` is ``3 delta_i t_i / (2 L_i)`` (Eq. (2.26)) and
+    leaves ``i >= 2`` slip on both faces.
+    """
+    phi = np.asarray(load_ratios, dtype=float)
+    r = np.asarray(deflection_ratios, dtype=float)
+    t = np.asarray(thicknesses, dtype=float)
+    L = np.asarray(lengths, dtype=float)
+    return float(t[0] / L[0] + 2.0 * np.sum(phi[1:] * r[1:] * t[1:] / L[1:]))
+
+
+def leaf_loss_factor(friction_coefficient, preload, amplitude, slip_factor, normal_load="peak"):
+    """Hysteretic loss factor ``zeta`` of a pack from inter-leaf friction, Eq. (2.28) [-].
+
+    ``zeta = E_d / (pi k_s delta_1^2)`` with the dissipated energy ``E_d`` of Eq. (2.27).
+
+    - ``normal_load="peak"`` (thesis): the leaves press on each other with the peak pack
+      load ``k_s (delta_1 + delta_pre)`` all cycle long:
+      ``zeta = (6 mu_s / pi) (1 + delta_pre/delta_1) S``.
+    - ``normal_load="instantaneous"``: the normal load follows the pack load
+      ``k_s (delta_pre + delta(t))``, as in springdyn's time-domain rig model; over a
+      harmonic cycle with ``delta_1 <= delta_pre`` the ``delta(t)`` part cancels and
+      ``zeta = (6 mu_s / pi) (delta_pre/delta_1) S``.
+
+    The thesis calls this factor xi (like the stiffness factor of (2.9)) and its
+    hysteretic coefficient eta in (3.1); springdyn names it ``loss_factor``
+    (READING-NOTES section 3.2).  (2.23) is read as ``F_s = k_s (1 + j zeta) delta``
+    (the printed time derivative is a typo, same note).
+
+    Parameters
+    ----------
+    friction_coefficient : float
+        ``mu_s`` between leaves [-].
+    preload : float
+        ``delta_pre`` [m].
+    amplitude : float
+        Pack deflection amplitude ``delta_1`` [m].
+    slip_factor : float
+        ``S`` from :func:`interleaf_slip_factor` [-].
+    normal_load : {"peak", "instantaneous"}
+    """
+    if amplitude <= 0:
+        raise InputError(f"amplitude = {amplitude!r} m must be positive")
+    if normal_load == "peak":
+        load = 1.0 + preload / amplitude
+    elif normal_load == "instantaneous":
+        load = preload / amplitude
+    else:
+        raise InputError(f"normal_load = {normal_load!r} is not allowed; choose 'peak' or 'instantaneous'")
+    return 6.0 * friction_coefficient / np.pi * load * slip_factor
+
+
+def hysteresis_damping_matrix(loss_factor, pack_stiffness, omega, angles):
+    """Equivalent viscous damping of the packs' hysteresis, ``C_h = zeta k_s / omega`` [N s/m].
+
+    Eq. (2.24) per pack, summed over the packs like the stiffness (the second term of
+    each coefficient of (3.5)).  Returns an array of shape ``omega.shape + (2, 2)``.
+    """
+    phi = np.asarray(angles, dtype=float)
+    c, s = np.cos(phi), np.sin(phi)
+    geometry = np.array([[np.sum(c * c), np.sum(s * c)], [np.sum(s * c), np.sum(s * s)]])
+    omega = np.asarray(omega, dtype=float)
+    return (loss_factor * pack_stiffness / omega)[..., None, None] * geometry
+
+
+def hydraulic_diameter(width, clearance):
+    """Hydraulic diameter of a rectangular passage ``d_h = 2 b_o h_o / (b_o + h_o)`` [m], Eq. (2.17)."""
+    return 2.0 * width * clearance / (width + clearance)
+
+
+def passage_conductance_thesis(width, clearance, length, viscosity):
+    """Conductance of one passage as printed in Eq. (2.17): ``pi d_h^4 / (142 eta L_h)`` [m^3/(s Pa)].
+
+    The thesis' ``C_D`` has a factor 2 in front (two passages per chamber boundary);
+    springdyn applies that count separately (``passages_per_boundary``).  The constant
+    142 is the author's (it gives the 639 = 9 x 71 of (3.6)); READING-NOTES section 3.2.
+
+    Parameters
+    ----------
+    width, clearance : float
+        ``b_o``, ``h_o`` [m].
+    length : float
+        ``L_h`` [m].
+    viscosity : float
+        Dynamic viscosity ``eta`` [Pa s].
+    """
+    dh = hydraulic_diameter(width, clearance)
+    return np.pi * dh**4 / (142.0 * viscosity * length)
+
+
+def passage_conductance_rectangular(width, clearance, length, viscosity, terms=50):
+    """Exact laminar conductance of a rectangular duct [m^3/(s Pa)].
+
+    ``Q/dp = b h^3 / (12 eta L) [1 - (192 h / (pi^5 b)) sum_(n odd) tanh(n pi b / (2h)) / n^5]``
+    with ``h <= b`` the smaller side (the classical series solution; White, *Viscous Fluid
+    Flow*, Eq. (3-48)).  For the thin slots of the thesis it is 1.7 to 14 times Eq. (2.17)
+    (READING-NOTES section 3.2).
+
+    Parameters
+    ----------
+    width, clearance : float
+        Sides of the passage [m] (either order).
+    length : float
+        ``L_h`` [m].
+    viscosity : float
+        Dynamic viscosity [Pa s].
+    terms : int
+        Number of odd terms of the series.
+    """
+    b, h = max(width, clearance), min(width, clearance)
+    n = 2.0 * np.arange(terms) + 1.0
+    series = np.sum(np.tanh(n * np.pi * b / (2.0 * h)) / n**5)
+    return b * h**3 / (12.0 * viscosity * length) * (1.0 - 192.0 * h / (np.pi**5 * b) * series)
+
+
+def boundary_conductance(width, clearance, length, viscosity, passages=2, model="exact", leakage_factor=1.0):
+    """Conductance ``C_D`` between two neighbouring chambers [m^3/(s Pa)].
+
+    ``passages`` parallel passages of the chosen ``model`` ("exact" rectangular duct or
+    "thesis" Eq. (2.17)), times the calibration ``leakage_factor`` (READING-NOTES section
+    3.2: the closed form over-predicts damping; a leakage factor > 1 lowers it).
+    """
+    if model == "exact":
+        single = passage_conductance_rectangular(width, clearance, length, viscosity)
+    elif model == "thesis":
+        single = passage_conductance_thesis(width, clearance, length, viscosity)
+    else:
+        raise InputError(f"conductance_model = {model!r} is not allowed; choose 'exact' or 'thesis'")
+    return passages * leakage_factor * single
+
+
+def chamber_volume_matrix(angles, ring_width, ring_diameter, leaf_length):
+    """Volume squeezed out of each chamber per unit ring displacement, Eq. (2.15) [m^2].
+
+    Chamber ``i`` lies between packs ``i`` and ``i+1`` (cyclic).  Row ``i`` is
+    ``[b d_o/2 (sin phi_(i+1) - sin phi_i) + 3bL/8 (cos phi_i - cos phi_(i+1)),
+    b d_o/2 (cos phi_i - cos phi_(i+1)) + 3bL/8 (sin phi_i - sin phi_(i+1))]``:
+    the ring surface term (2.12) plus the leaf bending terms (2.14), whose deflection
+    shape (2.13) sweeps ``3 b L / 8`` per unit tip deflection.  The rows sum to zero
+    (the oil is incompressible and only moves between chambers).
+
+    Parameters
+    ----------
+    angles : array_like
+        Pack angles [rad], in increasing order around the ring.
+    ring_width : float
+        ``b`` [m].
+    ring_diameter : float
+        ``d_o`` [m].
+    leaf_length : float
+        ``L`` of the pack (its longest leaf) [m].
+    """
+    phi = np.asarray(angles, dtype=float)
+    nxt = np.roll(phi, -1)
+    ring = 0.5 * ring_width * ring_diameter
+    leaf = 3.0 * ring_width * leaf_length / 8.0
+    bx = ring * (np.sin(nxt) - np.sin(phi)) + leaf * (np.cos(phi) - np.cos(nxt))
+    by = ring * (np.cos(phi) - np.cos(nxt)) + leaf * (np.sin(phi) - np.sin(nxt))
+    return np.column_stack([bx, by])
+
+
+def chamber_laplacian(chambers: int, conductance: float) -> np.ndarray:
+    """Conductance matrix ``G`` of a ring of chambers joined to their two neighbours [m^3/(s Pa)].
+
+    ``(G p)_i = C_D (2 p_i - p_(i-1) - p_(i+1))`` is the outflow of chamber ``i``
+    (Eq. (2.16) with ``C_DR = C_DL = C_D``).  For two chambers they share two boundaries.
+    """
+    n = int(chambers)
+    if n < 2:
+        raise InputError(f"packs = {n}: an oil network needs at least 2 chambers (2 packs)")
+    G = 2.0 * np.eye(n)
+    for i in range(n):
+        G[i, (i + 1) % n] -= 1.0
+        G[i, (i - 1) % n] -= 1.0
+    return conductance * G
+
+
+def chamber_pressures(volume_matrix, conductance, velocity):
+    """Chamber gauge pressures ``p = G^+ B v`` [Pa] for ring velocity ``v`` [m/s].
+
+    Continuity (2.16), (2.18): the outflow ``G p`` equals the squeeze rate ``B v``.  The
+    pseudo-inverse picks the solution of zero mean (the mean pressure is not set by the
+    network).  Eq. (2.19) prints ``-p`` (READING-NOTES section 3.2): squeezing raises the
+    chamber pressure.
+
+    Parameters
+    ----------
+    volume_matrix : numpy.ndarray
+        ``B`` (N x 2) from :func:`chamber_volume_matrix` [m^2].
+    conductance : float
+        ``C_D`` [m^3/(s Pa)].
+    velocity : array_like
+        ``(vx, vy)`` [m/s], or shape ``(T, 2)``.
+    """
+    B = np.asarray(volume_matrix, dtype=float)
+    Gp = np.linalg.pinv(chamber_laplacian(B.shape[0], conductance))
+    v = np.asarray(velocity, dtype=float)
+    return v @ (Gp @ B).T
+
+
+def viscous_damping_matrix(volume_matrix, conductance):
+    """Damping of the oil network ``C_visc = B^T G^+ B`` [N s/m] (READING-NOTES section 3.2).
+
+    The force needed to move the ring is ``B^T p`` (virtual work of the chamber
+    pressures on the squeezed volumes), so the matrix is symmetric and positive
+    semi-definite.  Equal to (3.5) with the ``C_yy`` typo fixed
+    (:func:`viscous_damping_thesis`).
+    """
+    B = np.asarray(volume_matrix, dtype=float)
+    Gp = np.linalg.pinv(chamber_laplacian(B.shape[0], conductance))
+    C = B.T @ Gp @ B
+    return 0.5 * (C + C.T)
+
+
+def viscous_damping_thesis(angles, ring_width, ring_diameter, leaf_length, conductance):
+    """Viscous part of Eq. (3.5) of the thesis, with the ``C_yy`` typo fixed [N s/m].
+
+    ``C_xx = lambda sum_i {(pbar_(x,i-1) - pbar_(x,i)) cos phi_i
+    + (4 d_o/(3L)) pbar_(x,i) (sin phi_i - sin phi_(i+1))}`` and likewise the others, with
+    ``lambda = 9 b^2 L^2 / (64 C_D)`` (3.6) and ``pbar = 8 C_D/(3 b L) p`` where ``p`` solves
+    (2.19) as printed.  The printed ``C_yy`` has ``pbar_(x,i-1)``; it must be
+    ``pbar_(y,i-1)`` (READING-NOTES section 3.2).  Written out term by term as in the
+    thesis, as an independent check of :func:`viscous_damping_matrix`.
+    """
+    phi = np.asarray(angles, dtype=float)
+    n = phi.size
+    b, L, do = ring_width, leaf_length, ring_diameter
+    B = chamber_volume_matrix(phi, b, do, L)
+    # (2.19) as printed: p_(i-1) - 2 p_i + p_(i+1) = (B v)_i / C_D, i.e. -Laplacian p = B v / C_D
+    lap = -chamber_laplacian(n, 1.0)
+    p_printed = np.linalg.pinv(lap) @ (B / conductance)  # columns: d p / d xdot, d p / d ydot
+    pbar = 8.0 * conductance / (3.0 * b * L) * p_printed
+    lam = 9.0 * b * b * L * L / (64.0 * conductance)
+    k = 4.0 * do / (3.0 * L)
+    px, py = pbar[:, 0], pbar[:, 1]
+    px_prev, py_prev = np.roll(px, 1), np.roll(py, 1)
+    c, s = np.cos(phi), np.sin(phi)
+    c_next, s_next = np.roll(c, -1), np.roll(s, -1)
+    cxx = lam * np.sum((px_prev - px) * c + k * px * (s - s_next))
+    cxy = lam * np.sum((py_prev - py) * c + k * py * (s - s_next))
+    cyx = lam * np.sum((px_prev - px) * s - k * px * (c - c_next))
+    cyy = lam * np.sum((py_prev - py) * s - k * py * (c - c_next))  # typo fixed: py_prev
+    return np.array([[cxx, cxy], [cyx, cyy]])

@@ -1,0 +1,512 @@
+"""Identification of stiffness and damping from rig records, Eqs. (4.1)-(4.22) corrected.
+
+The rig moves the inner ring harmonically at ``omega`` and measures displacements and
+reaction forces.  With ``x = a1 cos wt + a2 sin wt`` and ``F = c1 cos wt + c2 sin wt``
+(Fourier coefficients over whole periods, Eqs. (4.6), (4.15)) and
+``F = K x + C x' + m x''`` (4.1), the complex ratio ``H = F/X = K - m w^2 + j w C``
+with the phasors ``X = a1 - j a2``, ``F = c1 - j c2``.  Hence (READING-NOTES 3.3)::
+
+    K = [a1 (c1 + m w^2 a1) + a2 (c2 + m w^2 a2)] / (a1^2 + a2^2)
+    C = (a2 c1 - a1 c2) / (w (a1^2 + a2^2))
+
+The printed (4.19)-(4.22) are wrong (denominator ``a1^2 - a2^2``, signs, ``m w`` for
+``m w^2``); :func:`thesis_printed_direct_coefficients` keeps them only to show it.
+
+One circular orbit identifies only ``Kxx + w Cxy`` and ``Cxx - Kxy/w`` (likewise for y):
+the cross-coupling caveat.  Two independent excitations (x and y shakes, or a forward
+and a backward orbit) give the full 2 x 2 matrices from ``H = F X^-1``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from ..errors import InputError
+from ..io import read_csv_columns, write_csv
+from .model import COEFFICIENT_NAMES
+
+__all__ = [
+    "RIG_COLUMNS",
+    "RigData",
+    "read_rig_data",
+    "estimate_frequency",
+    "harmonic_coefficients",
+    "direct_coefficients",
+    "thesis_printed_direct_coefficients",
+    "identify",
+    "identify_series",
+    "Identification",
+    "IdentificationSeries",
+    "CROSS_COUPLING_CAVEAT",
+]
+
+#: Columns of a rig record (CSV header or TDMS channel names).
+RIG_COLUMNS = ("time_s", "x_m", "y_m", "fx_N", "fy_N")
+
+CROSS_COUPLING_CAVEAT = (
+    "one circular orbit cannot separate direct and cross-coupled terms: the reported kxx is "
+    "Kxx + w*Cxy and cxx is Cxx - Kxy/w (likewise for y); give a second, independent "
+    "excitation (--second) for the full 2 x 2 K and C"
+)
+
+_IRREGULAR_TOLERANCE = 0.01  # relative deviation of a time step from the median step
+
+
+@dataclasses.dataclass
+class RigData:
+    """A rig record: time [s], displacements [m], reaction forces [N]; checked on creation."""
+
+    time: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    fx: np.ndarray
+    fy: np.ndarray
+    source: str = "<data>"
+    row_offset: int = 2  # file row of sample 0 (CSV: header is row 1)
+
+    def __post_init__(self):
+        for name in ("time", "x", "y", "fx", "fy"):
+            setattr(self, name, np.asarray(getattr(self, name), dtype=float).ravel())
+        cols = dict(zip(RIG_COLUMNS, (self.time, self.x, self.y, self.fx, self.fy)))
+        n = self.time.size
+        for col, v in cols.items():
+            if v.size != n:
+                raise InputError(f"{self.source}: column {col!r} has {v.size} values, 'time_s' has {n}")
+            bad = np.flatnonzero(~np.isfinite(v))
+            if bad.size:
+                raise InputError(
+                    f"{self.source}: row {bad[0] + self.row_offset}, column {col!r}: "
+                    f"{v[bad[0]]} is not a finite number ({bad.size} such rows); remove or fill them"
+                )
+        if n < 8:
+            raise InputError(f"{self.source}: only {n} samples; a rig record needs at least 8")
+        dt = np.diff(self.time)
+        back = np.flatnonzero(dt <= 0)
+        if back.size:
+            r = back[0] + 1
+            raise InputError(
+                f"{self.source}: row {r + self.row_offset}, column 'time_s': time stamps must increase "
+                f"({self.time[r]!r} s follows {self.time[r - 1]!r} s)"
+            )
+        step = float(np.median(dt))
+        off = np.flatnonzero(np.abs(dt - step) > _IRREGULAR_TOLERANCE * step)
+        if off.size:
+            r = off[0] + 1
+            raise InputError(
+                f"{self.source}: row {r + self.row_offset}, column 'time_s': irregular time stamps "
+                f"(step {dt[r - 1]:.6g} s against the usual {step:.6g} s); resample to a uniform rate"
+            )
+
+    @property
+    def sample_rate(self) -> float:
+        """Samples per second [Hz]."""
+        return 1.0 / float(np.median(np.diff(self.time)))
+
+    @property
+    def duration(self) -> float:
+        """Span of the record including the last sample interval [s]."""
+        return float(self.time[-1] - self.time[0]) + 1.0 / self.sample_rate
+
+
+def _read_tdms(path: Path) -> dict:
+    try:
+        from nptdms import TdmsFile
+    except ImportError:
+        raise InputError(f"{path}: reading TDMS needs the optional package nptdms (pip install 'springdyn[tdms]')") from None
+    try:
+        tdms = TdmsFile.read(path)
+    except Exception as exc:  # nptdms raises several types on bad files
+        raise InputError(f"{path}: not a readable TDMS file: {exc}") from None
+    found = {}
+    for group in tdms.groups():
+        for ch in group.channels():
+            found.setdefault(ch.name, np.asarray(ch[:], dtype=float))
+    return found
+
+
+def read_rig_data(path) -> RigData:
+    """Read a rig record from CSV (``time_s, x_m, y_m, fx_N, fy_N``) or TDMS (same channel names).
+
+    Raises
+    ------
+    InputError
+        Missing file or column, non-numeric or NaN cells, time stamps that do not increase
+        or are irregular; the message names the file, the column and the row.
+    """
+    path = Path(path)
+    if path.suffix.lower() == ".tdms":
+        if not path.is_file():
+            raise InputError(f"{path}: no such file")
+        cols, offset = _read_tdms(path), 0
+    else:
+        cols, offset = read_csv_columns(path), 2
+    missing = [c for c in RIG_COLUMNS if c not in cols]
+    if missing:
+        raise InputError(
+            f"{path}: missing column {missing[0]!r} (found: {', '.join(cols) or 'none'}; "
+            f"need {', '.join(RIG_COLUMNS)})"
+        )
+    return RigData(*(cols[c] for c in RIG_COLUMNS), source=str(path), row_offset=offset)
+
+
+def harmonic_coefficients(time, signal, omega):
+    """Fourier coefficients ``(s1, s2)`` of ``s ~ s0 + s1 cos wt + s2 sin wt`` [signal units].
+
+    A least-squares projection on ``1, cos wt, sin wt``; over whole periods of uniformly
+    sampled data it equals the integrals ``(2/tau) int s cos wt dt`` of Eqs. (4.6), (4.7),
+    (4.15), (4.16) and keeps the harmonics of friction out (orthogonality).
+    ``signal`` may be 2-D (samples x channels).
+    """
+    t = np.asarray(time, dtype=float)
+    A = np.column_stack([np.ones_like(t), np.cos(omega * t), np.sin(omega * t)])
+    coef, *_ = np.linalg.lstsq(A, np.asarray(signal, dtype=float), rcond=None)
+    return coef[1], coef[2]
+
+
+def estimate_frequency(time, signal, source="<data>", column="x_m") -> float:
+    """Fundamental frequency of a harmonic record [Hz].
+
+    The peak of the Hann-windowed, zero-padded spectrum, refined by minimising the
+    residual of a sine fit.  Raises :class:`InputError` when the record holds no clear
+    periodic component or less than one period of it.
+    """
+    t = np.asarray(time, dtype=float)
+    s = np.asarray(signal, dtype=float) - np.mean(signal)
+    if not np.std(s) > 0:
+        raise InputError(f"{source}: column {column!r} is constant; no frequency can be found (give --rpm)")
+    dt = float(np.median(np.diff(t)))
+    nfft = 8 * int(2 ** np.ceil(np.log2(s.size)))
+    spec = np.abs(np.fft.rfft(s * np.hanning(s.size), nfft))
+    freqs = np.fft.rfftfreq(nfft, dt)
+    k = int(np.argmax(spec[1:])) + 1
+    f0 = float(freqs[k])
+    span = t[-1] - t[0] + dt
+    if f0 * span < 1.0 or k < 2:
+        raise InputError(
+            f"{source}: column {column!r}: no whole period found in {span:.4g} s "
+            "(the record is shorter than one cycle of its main component); give --rpm or a longer record"
+        )
+
+    def residual(f):
+        a, b = harmonic_coefficients(t, s, 2 * np.pi * f)
+        return float(np.sum((s - a * np.cos(2 * np.pi * f * t) - b * np.sin(2 * np.pi * f * t)) ** 2))
+
+    df = freqs[1] - freqs[0]
+    res = minimize_scalar(residual, bounds=(f0 - 2 * df, f0 + 2 * df), method="bounded",
+                          options={"xatol": 1e-10 * f0})
+    f = float(res.x)
+    explained = 1.0 - residual(f) / float(np.sum(s * s))
+    if explained < 0.5:
+        raise InputError(
+            f"{source}: column {column!r}: no dominant frequency (a sine at {f:.4g} Hz explains only "
+            f"{100 * explained:.0f} % of the signal); give --rpm"
+        )
+    return f
+
+
+def direct_coefficients(a1, a2, c1, c2, mass, omega):
+    """Direct stiffness and damping from one axis' Fourier coefficients (corrected (4.19)-(4.22)).
+
+    ``K = [a1 (c1 + m w^2 a1) + a2 (c2 + m w^2 a2)] / (a1^2 + a2^2)`` [N/m] and
+    ``C = (a2 c1 - a1 c2) / (w (a1^2 + a2^2))`` [N s/m] (READING-NOTES 3.3).
+
+    Parameters
+    ----------
+    a1, a2 : float
+        Displacement cosine/sine coefficients [m].
+    c1, c2 : float
+        Force cosine/sine coefficients [N].
+    mass : float
+        Moving mass ``m`` [kg] (its inertia is removed).
+    omega : float
+        Frequency [rad/s].
+    """
+    d = a1 * a1 + a2 * a2
+    K = (a1 * (c1 + mass * omega**2 * a1) + a2 * (c2 + mass * omega**2 * a2)) / d
+    C = (a2 * c1 - a1 * c2) / (omega * d)
+    return K, C
+
+
+def thesis_printed_direct_coefficients(a1, a2, c1, c2, mass, omega):
+    """Eqs. (4.19), (4.21) exactly as printed in the thesis -- WRONG, kept for the record.
+
+    ``K = [a1 w (c1 + a1 w^2 m) - a2 w (c2 + a2 m w)] / ((a1^2 - a2^2) w)`` and
+    ``C = [-a2 (c1 + a1 m w^2) + a1 w (c2 + a2 m w)] / ((a1^2 - a2^2) w)``: the
+    denominator vanishes when ``|a1| = |a2|`` (a 45 deg phase of the record), ``m w``
+    appears where ``m w^2`` belongs, and the result depends on where the record starts.
+    Use :func:`direct_coefficients` (READING-NOTES 3.3).
+    """
+    d = (a1 * a1 - a2 * a2) * omega
+    K = (a1 * omega * (c1 + a1 * omega**2 * mass) - a2 * omega * (c2 + a2 * mass * omega)) / d
+    C = (-a2 * (c1 + a1 * mass * omega**2) + a1 * omega * (c2 + a2 * mass * omega)) / d
+    return K, C
+
+
+def _phasors(data: RigData, start: int, stop: int, omega):
+    """Complex amplitudes ``X = a1 - j a2`` of x, y, fx, fy over samples ``start:stop``."""
+    signals = np.column_stack([data.x, data.y, data.fx, data.fy])[start:stop]
+    s1, s2 = harmonic_coefficients(data.time[start:stop], signals, omega)
+    return s1 - 1j * s2
+
+
+def _cycles(data: RigData, freq: float):
+    """Index ranges of the whole periods in the record (and the window of all of them)."""
+    period = 1.0 / freq
+    # half a sample of tolerance: a record of exactly n periods must count n
+    n = int(np.floor((data.duration + 0.5 / data.sample_rate) / period))
+    if n < 1:
+        raise InputError(
+            f"{data.source}: the record spans {data.duration:.4g} s, less than one whole period "
+            f"({period:.4g} s at {freq:.4g} Hz)"
+        )
+    t = data.time - data.time[0]
+    edges = np.searchsorted(t, np.arange(n + 1) * period - 0.5 / data.sample_rate)
+    edges[-1] = min(edges[-1], t.size)
+    per_cycle = np.diff(edges)
+    if np.any(per_cycle < 8):
+        raise InputError(f"{data.source}: fewer than 8 samples per period at {freq:.4g} Hz; sample faster")
+    return [(edges[k], edges[k + 1]) for k in range(n)], (edges[0], edges[-1])
+
+
+def _frequency(data: RigData, rpm):
+    if rpm is not None:
+        if not (np.isfinite(rpm) and rpm > 0):
+            raise InputError(f"rpm = {rpm!r} must be a positive shaft speed")
+        return rpm / 60.0
+    col, sig = ("x_m", data.x) if np.std(data.x) >= np.std(data.y) else ("y_m", data.y)
+    return estimate_frequency(data.time, sig, data.source, col)
+
+
+def _solve_full(P1, P2, mass, omega, sources):
+    """Full K, C from two excitations: ``H = F X^-1``, ``K = Re H + m w^2``, ``C = Im H / w``."""
+    X = np.array([[P1[0], P2[0]], [P1[1], P2[1]]])
+    F = np.array([[P1[2], P2[2]], [P1[3], P2[3]]])
+    cond = np.linalg.cond(X)
+    if not np.isfinite(cond) or cond > 1e3:
+        raise InputError(
+            f"{sources[0]} and {sources[1]}: the two excitations are not independent "
+            f"(condition number {cond:.3g} of the displacement matrix); use x and y shakes or "
+            "forward and backward orbits"
+        )
+    H = F @ np.linalg.inv(X)
+    return H.real + mass * omega**2 * np.eye(2), H.imag / omega
+
+
+def _solve_single(P, mass, omega):
+    """K, C entries available from one excitation (NaN where unknown) and the mode."""
+    K = np.full((2, 2), np.nan)
+    C = np.full((2, 2), np.nan)
+    X, Y, Fx, Fy = P
+    ax, ay = abs(X), abs(Y)
+    if ay < 0.02 * ax:
+        mode, axes = "x", [(0, X, Fx, Fy)]
+    elif ax < 0.02 * ay:
+        mode, axes = "y", [(1, Y, Fy, Fx)]
+    else:
+        mode, axes = "orbit", [(0, X, Fx, None), (1, Y, Fy, None)]
+    for i, U, Fd, Fc in axes:
+        H = Fd / U
+        K[i, i], C[i, i] = H.real + mass * omega**2, H.imag / omega
+        if Fc is not None:  # single-axis shake: the cross terms are exact too
+            Hc = Fc / U
+            K[1 - i, i], C[1 - i, i] = Hc.real, Hc.imag / omega
+    return K, C, mode
+
+
+def identify(data: RigData, second: RigData | None = None, *, mass: float = 0.0, rpm: float | None = None) -> "Identification":
+    """Identify K and C from one or two rig records at one speed.
+
+    Parameters
+    ----------
+    data : RigData
+        First record.
+    second : RigData, optional
+        Second, independent excitation at the same speed: gives the full 2 x 2 matrices.
+    mass : float
+        Moving mass whose inertia is removed [kg].
+    rpm : float, optional
+        Shaft speed [rev/min]; by default the frequency is found in the data.
+
+    Returns
+    -------
+    Identification
+        Coefficients and their uncertainty (standard error of the mean over the whole
+        periods of the record, from the cycle-to-cycle scatter).
+    """
+    if not (np.isfinite(mass) and mass >= 0):
+        raise InputError(f"mass = {mass!r} kg must be zero or positive")
+    freq = _frequency(data, rpm)
+    if second is not None:
+        f2 = _frequency(second, rpm)
+        if abs(f2 - freq) > 0.01 * freq:
+            raise InputError(
+                f"{data.source} ({freq:.4g} Hz) and {second.source} ({f2:.4g} Hz): the two excitations "
+                "must be at the same frequency"
+            )
+    omega = 2 * np.pi * freq
+    records = [data] if second is None else [data, second]
+    windows = [_cycles(r, freq) for r in records]
+
+    def solve(slices):
+        P = [_phasors(r, a, b, omega) for r, (a, b) in zip(records, slices)]
+        if second is None:
+            return _solve_single(P[0], mass, omega)
+        K, C = _solve_full(P[0], P[1], mass, omega, [r.source for r in records])
+        return K, C, "two excitations"
+
+    K, C, mode = solve([w[1] for w in windows])
+    n = min(len(w[0]) for w in windows)
+    per = [solve([w[0][k] for w in windows]) for k in range(n)] if n >= 2 else []
+    if per:
+        Ks, Cs = np.array([p[0] for p in per]), np.array([p[1] for p in per])
+        K_unc, C_unc = Ks.std(axis=0, ddof=1) / np.sqrt(n), Cs.std(axis=0, ddof=1) / np.sqrt(n)
+    else:
+        K_unc = np.full((2, 2), np.nan)
+        C_unc = np.full((2, 2), np.nan)
+    return Identification(
+        rpm=60.0 * freq, frequency=freq, K=K, C=C, K_uncertainty=K_unc, C_uncertainty=C_unc,
+        mass=float(mass), cycles=n, mode=mode, sources=[r.source for r in records],
+        caveat=CROSS_COUPLING_CAVEAT if mode == "orbit" else "",
+    )
+
+
+@dataclasses.dataclass
+class Identification:
+    """Identified coefficients at one speed.
+
+    ``K``, ``C`` are 2 x 2 ``[[xx, xy], [yx, yy]]`` [N/m], [N s/m]; entries one record
+    cannot give are NaN.  ``mode`` is ``"orbit"``, ``"x"``, ``"y"`` or ``"two excitations"``.
+    """
+
+    rpm: float
+    frequency: float
+    K: np.ndarray
+    C: np.ndarray
+    K_uncertainty: np.ndarray
+    C_uncertainty: np.ndarray
+    mass: float
+    cycles: int
+    mode: str
+    sources: list
+    caveat: str = ""
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict: ``kxx_N_per_m`` ... with ``_uncertainty`` twins (known entries only)."""
+        d = {"rpm": self.rpm, "frequency_Hz": self.frequency, "mode": self.mode, "cycles": self.cycles,
+             "mass_kg": self.mass, "sources": list(self.sources)}
+        idx = [(0, 0), (0, 1), (1, 0), (1, 1)]
+        for name, (i, j) in zip(COEFFICIENT_NAMES[:4], idx):
+            if np.isfinite(self.K[i, j]):
+                d[f"{name}_N_per_m"] = self.K[i, j]
+                d[f"{name}_N_per_m_uncertainty"] = self.K_uncertainty[i, j]
+        for name, (i, j) in zip(COEFFICIENT_NAMES[4:], idx):
+            if np.isfinite(self.C[i, j]):
+                d[f"{name}_Ns_per_m"] = self.C[i, j]
+                d[f"{name}_Ns_per_m_uncertainty"] = self.C_uncertainty[i, j]
+        if self.caveat:
+            d["caveat"] = self.caveat
+        return d
+
+
+@dataclasses.dataclass
+class IdentificationSeries:
+    """Identifications at several speeds (one :class:`Identification` each)."""
+
+    items: list
+    name: str = "identified"
+
+    @property
+    def rpm(self) -> np.ndarray:
+        return np.array([it.rpm for it in self.items])
+
+    def columns(self) -> dict:
+        """SI columns for CSV: rpm and every coefficient with its uncertainty (NaN if unknown)."""
+        out = {"rpm": self.rpm}
+        idx = [(0, 0), (0, 1), (1, 0), (1, 1)]
+        for name, (i, j) in zip(COEFFICIENT_NAMES[:4], idx):
+            out[f"{name}_N_per_m"] = np.array([it.K[i, j] for it in self.items])
+            out[f"{name}_N_per_m_uncertainty"] = np.array([it.K_uncertainty[i, j] for it in self.items])
+        for name, (i, j) in zip(COEFFICIENT_NAMES[4:], idx):
+            out[f"{name}_Ns_per_m"] = np.array([it.C[i, j] for it in self.items])
+            out[f"{name}_Ns_per_m_uncertainty"] = np.array([it.C_uncertainty[i, j] for it in self.items])
+        return out
+
+    def to_csv(self, path):
+        return write_csv(path, self.columns())
+
+    def to_xarray(self):
+        import xarray as xr
+
+        K = np.array([it.K for it in self.items])
+        C = np.array([it.C for it in self.items])
+        dims = ("rpm", "row", "col")
+        return xr.Dataset(
+            {"K": (dims, K, {"units": "N/m"}), "C": (dims, C, {"units": "N*s/m"}),
+             "K_uncertainty": (dims, np.array([it.K_uncertainty for it in self.items]), {"units": "N/m"}),
+             "C_uncertainty": (dims, np.array([it.C_uncertainty for it in self.items]), {"units": "N*s/m"})},
+            coords={"rpm": self.rpm, "row": ["x", "y"], "col": ["x", "y"]}, attrs={"name": self.name},
+        )
+
+    def plot_on(self, ax_k, ax_c):
+        """Draw the identified coefficients as markers with error bars on two axes."""
+        markers = {"xx": "o", "yy": "s", "xy": "^", "yx": "v"}
+        for key, (i, j) in {"xx": (0, 0), "yy": (1, 1), "xy": (0, 1), "yx": (1, 0)}.items():
+            k = np.array([it.K[i, j] for it in self.items])
+            if np.all(np.isnan(k)):
+                continue
+            ku = np.nan_to_num(np.array([it.K_uncertainty[i, j] for it in self.items]))
+            c = np.array([it.C[i, j] for it in self.items])
+            cu = np.nan_to_num(np.array([it.C_uncertainty[i, j] for it in self.items]))
+            ax_k.errorbar(self.rpm, k / 1e3, yerr=ku / 1e3, fmt=markers[key], ms=5, capsize=2, label=f"K{key} {self.name}")
+            ax_c.errorbar(self.rpm, c, yerr=cu, fmt=markers[key], ms=5, capsize=2, label=f"C{key} {self.name}")
+
+    def plot(self, path=None, model=None):
+        """Coefficients vs speed; with ``model`` (LSDCoefficients) the model curves too."""
+        if model is not None:
+            return model.plot(path, identified=self)
+        from ..plotting import new_figure, save_figure
+
+        fig, (ax_k, ax_c) = new_figure(1, 2, figsize=(11, 4.5))
+        self.plot_on(ax_k, ax_c)
+        ax_k.set_xlabel("shaft speed [rpm]")
+        ax_k.set_ylabel("stiffness [N/mm]")
+        ax_c.set_xlabel("shaft speed [rpm]")
+        ax_c.set_ylabel("damping [N s/m]")
+        for ax in (ax_k, ax_c):
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=8)
+        fig.suptitle(f"{self.name}: identified coefficients")
+        if path is not None:
+            save_figure(fig, path, close=False)
+        return fig
+
+
+def identify_series(records, seconds=None, *, mass=0.0, rpms=None, name="identified") -> IdentificationSeries:
+    """Identify at several speeds at once.
+
+    Parameters
+    ----------
+    records : list of RigData
+        One record per speed.
+    seconds : list of RigData, optional
+        The matching second excitations (same order).
+    mass : float
+        Moving mass [kg].
+    rpms : list of float, optional
+        Speeds [rev/min]; by default found in the data.
+    """
+    records = list(records)
+    if seconds is not None and len(seconds) != len(records):
+        raise InputError(f"{len(records)} first records but {len(seconds)} second records; pair them one to one")
+    if rpms is not None and len(rpms) != len(records):
+        raise InputError(f"{len(records)} records but {len(rpms)} speeds; give one speed per record")
+    items = [
+        identify(r, None if seconds is None else seconds[k], mass=mass, rpm=None if rpms is None else rpms[k])
+        for k, r in enumerate(records)
+    ]
+    items.sort(key=lambda it: it.rpm)
+    return IdentificationSeries(items, name=name)

@@ -1,0 +1,298 @@
+"""The leaf spring damper model: stiffness and damping coefficients vs speed and amplitude."""
+
+from __future__ import annotations
+
+import dataclasses
+from functools import cached_property
+
+import numpy as np
+
+from ..errors import InputError
+from ..io import write_csv
+from . import damping, leafpack, stiffness
+from .parameters import LSDParameters
+
+__all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "rpm_to_omega"]
+
+#: The eight coefficients in ROSS order, with their SI unit suffix.
+COEFFICIENT_NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
+
+
+def rpm_to_omega(rpm):
+    """Vibration frequency of the eccentric-shaft rig ``omega = 2 pi rpm / 60`` [rad/s].
+
+    One orbit of the inner ring per shaft revolution (thesis, Section 4.1).
+    """
+    return 2.0 * np.pi * np.asarray(rpm, dtype=float) / 60.0
+
+
+class LSDModel:
+    """Linearised stiffness and damping of a leaf spring damper (thesis, Chapters 2-3).
+
+    Parameters
+    ----------
+    params : LSDParameters
+        The damper.
+
+    Examples
+    --------
+    >>> m = LSDModel(LSDParameters.example("C"))
+    >>> round(m.pack_stiffness / 1e3, 1)   # k_s [N/mm], READING-NOTES 3.1
+    106.9
+    """
+
+    def __init__(self, params: LSDParameters):
+        if not isinstance(params, LSDParameters):
+            raise InputError(f"LSDModel needs LSDParameters, got {type(params).__name__}")
+        self.params = params
+
+    # ---------------------------------------------------------------- leaf pack
+    @cached_property
+    def flexural_rigidities(self) -> np.ndarray:
+        """``E I_i`` of each leaf [N m^2]."""
+        p = self.params
+        return p.youngs_modulus * leafpack.second_moment_of_area(p.leaf_width, np.asarray(p.leaf_thicknesses))
+
+    @cached_property
+    def load_ratios(self) -> np.ndarray:
+        """``phi_i = P_i / P_1``, Eq. (2.7) [-]."""
+        return leafpack.load_ratios(self.params.leaf_lengths, self.flexural_rigidities)
+
+    @cached_property
+    def deflection_ratios(self) -> np.ndarray:
+        """``delta_i / delta_1`` [-]."""
+        return leafpack.tip_deflection_ratios(self.params.leaf_lengths, self.flexural_rigidities)
+
+    @cached_property
+    def stiffness_factor(self) -> float:
+        """``xi`` of Eq. (2.9) [-]."""
+        return leafpack.stiffness_factor(self.params.leaf_lengths, self.flexural_rigidities)
+
+    @cached_property
+    def pack_stiffness_unclamped(self) -> float:
+        """``k_p`` of Eq. (2.8) [N/m]."""
+        return leafpack.pack_stiffness(self.params.leaf_lengths, self.flexural_rigidities, self.params.poisson_ratio)
+
+    @cached_property
+    def pack_stiffness(self) -> float:
+        """``k_s`` of Eq. (2.10) [N/m]."""
+        p = self.params
+        return leafpack.clamped_pack_stiffness(self.pack_stiffness_unclamped, p.clamp_overhang, p.leaf_lengths[0])
+
+    @cached_property
+    def slip_factor(self) -> float:
+        """Bracket ``S`` of Eq. (2.28) [-]."""
+        p = self.params
+        return damping.interleaf_slip_factor(self.load_ratios, self.deflection_ratios, p.leaf_thicknesses, p.leaf_lengths)
+
+    # ---------------------------------------------------------------- layout
+    @cached_property
+    def angles(self) -> np.ndarray:
+        """Pack angles [rad]."""
+        p = self.params
+        if p.pack_angles:
+            return np.asarray(p.pack_angles, dtype=float)
+        return stiffness.equally_spaced_angles(p.packs, p.first_pack_angle)
+
+    @cached_property
+    def stiffness_matrix(self) -> np.ndarray:
+        """``K`` (2 x 2), Eq. (3.4) [N/m]."""
+        return stiffness.stiffness_matrix(self.pack_stiffness, self.angles)
+
+    # ---------------------------------------------------------------- oil
+    @cached_property
+    def volume_matrix(self) -> np.ndarray:
+        """``B`` (N x 2), Eq. (2.15) [m^2]."""
+        p = self.params
+        return damping.chamber_volume_matrix(self.angles, p.ring_width, p.ring_outer_diameter, p.leaf_lengths[0])
+
+    @cached_property
+    def conductance(self) -> float:
+        """``C_D`` between neighbouring chambers [m^3/(s Pa)]."""
+        p = self.params
+        return damping.boundary_conductance(
+            p.passage_width, p.passage_clearance, p.passage_length, p.oil_viscosity,
+            passages=p.passages_per_boundary, model=p.conductance_model, leakage_factor=p.leakage_factor,
+        )
+
+    @cached_property
+    def viscous_damping(self) -> np.ndarray:
+        """``C_visc = B^T G^+ B`` (2 x 2) [N s/m], independent of frequency."""
+        return damping.viscous_damping_matrix(self.volume_matrix, self.conductance)
+
+    # ---------------------------------------------------------------- damping
+    def loss_factor(self, amplitude: float, normal_load: str | None = None) -> float:
+        """Inter-leaf loss factor ``zeta`` at vibration amplitude ``amplitude`` [m], Eq. (2.28)."""
+        p = self.params
+        return damping.leaf_loss_factor(p.leaf_friction, p.preload, amplitude, self.slip_factor,
+                                        normal_load or p.leaf_normal_load)
+
+    def damping_matrix(self, omega, amplitude: float, motion: str = "linear", parts: bool = False):
+        """Total damping ``C = C_f I + C_h + C_visc`` [N s/m], shape ``omega.shape + (2, 2)``.
+
+        Parameters
+        ----------
+        omega : float or array
+            Vibration frequency [rad/s].
+        amplitude : float
+            Vibration amplitude [m] (pack deflection amplitude ``delta_1``).
+        motion : {"linear", "circular"}
+            Motion used for the O-ring Coulomb equivalent (:func:`damping.coulomb_equivalent_damping`).
+        parts : bool
+            Also return the three parts as a dict.
+        """
+        p = self.params
+        omega = np.asarray(omega, dtype=float)
+        if np.any(omega <= 0):
+            raise InputError("the frequency (rpm) must be positive for the damping coefficients")
+        cf = damping.coulomb_equivalent_damping(p.oring_friction, p.oring_normal_force, omega, amplitude, motion)
+        c_f = cf[..., None, None] * np.eye(2)
+        c_h = damping.hysteresis_damping_matrix(self.loss_factor(amplitude), self.pack_stiffness, omega, self.angles)
+        c_v = np.broadcast_to(self.viscous_damping, omega.shape + (2, 2))
+        total = c_f + c_h + c_v
+        if parts:
+            return total, {"oring": c_f, "hysteresis": c_h, "viscous": np.array(c_v)}
+        return total
+
+    def coefficients(self, rpm, amplitude: float = 50e-6, motion: str = "linear") -> "LSDCoefficients":
+        """K and C at the shaft speeds ``rpm`` [rev/min] and vibration amplitude [m].
+
+        Warns (:class:`~springdyn.lsd.stiffness.PreloadExceededWarning`) when the
+        amplitude exceeds the preload.
+        """
+        rpm = np.atleast_1d(np.asarray(rpm, dtype=float))
+        if rpm.ndim != 1 or np.any(~np.isfinite(rpm)) or np.any(rpm <= 0):
+            raise InputError(f"rpm = {rpm.tolist()} must be positive speeds")
+        if not (np.isfinite(amplitude) and amplitude > 0):
+            raise InputError(f"amplitude = {amplitude!r} m must be positive")
+        unloads = stiffness.warn_if_unloading(amplitude, self.params.preload)
+        omega = rpm_to_omega(rpm)
+        C, parts = self.damping_matrix(omega, amplitude, motion, parts=True)
+        K = np.broadcast_to(self.stiffness_matrix, C.shape).copy()
+        return LSDCoefficients(
+            name=self.params.name, rpm=rpm, amplitude=float(amplitude), K=K, C=C, parts=parts,
+            pack_stiffness=self.pack_stiffness, load_ratios=self.load_ratios.copy(),
+            preload_exceeded=unloads,
+        )
+
+    def to_ross(self, n: int, frequencies=None, amplitude: float = 50e-6, motion: str = "linear", **kwargs):
+        """A ``ross.BearingElement`` with the eight frequency-dependent coefficients.
+
+        Parameters
+        ----------
+        n : int
+            Rotor node of the damper.
+        frequencies : array_like, optional
+            Frequencies [rad/s] (ROSS' convention); default 500-3000 rpm in 11 steps.
+        amplitude : float
+            Vibration amplitude [m] for the amplitude-dependent friction terms.
+        **kwargs
+            Passed to ``BearingElement`` (``tag``, ``n_link``, ...).
+
+        Notes
+        -----
+        Needs the optional extra ``springdyn[ross]`` (``ross-rotordynamics``).
+        """
+        from .rotordynamics import bearing_element
+
+        return bearing_element(self, n, frequencies, amplitude=amplitude, motion=motion, **kwargs)
+
+
+@dataclasses.dataclass
+class LSDCoefficients:
+    """Stiffness and damping coefficients of a leaf spring damper vs shaft speed.
+
+    Attributes
+    ----------
+    rpm : numpy.ndarray
+        Shaft speed [rev/min] (vibration frequency ``rpm/60`` Hz).
+    K, C : numpy.ndarray
+        Shape ``(len(rpm), 2, 2)`` [N/m], [N s/m], ``[[xx, xy], [yx, yy]]``.
+    parts : dict
+        Damping split into ``oring``, ``hysteresis`` and ``viscous`` [N s/m].
+    """
+
+    name: str
+    rpm: np.ndarray
+    amplitude: float
+    K: np.ndarray
+    C: np.ndarray
+    parts: dict
+    pack_stiffness: float
+    load_ratios: np.ndarray
+    preload_exceeded: bool = False
+
+    @property
+    def omega(self) -> np.ndarray:
+        return rpm_to_omega(self.rpm)
+
+    def columns(self) -> dict:
+        """SI columns with units in the names (CSV/JSON)."""
+        out = {"rpm": self.rpm}
+        for k, (i, j) in zip(COEFFICIENT_NAMES[:4], [(0, 0), (0, 1), (1, 0), (1, 1)]):
+            out[f"{k}_N_per_m"] = self.K[:, i, j]
+        for k, (i, j) in zip(COEFFICIENT_NAMES[4:], [(0, 0), (0, 1), (1, 0), (1, 1)]):
+            out[f"{k}_Ns_per_m"] = self.C[:, i, j]
+        return out
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict: the columns as lists plus pack data and the amplitude."""
+        d = {k: np.asarray(v).tolist() for k, v in self.columns().items()}
+        d["pack_stiffness_N_per_m"] = self.pack_stiffness
+        d["load_ratios"] = self.load_ratios.tolist()
+        d["amplitude_m"] = self.amplitude
+        d["preload_exceeded"] = self.preload_exceeded
+        return d
+
+    def to_csv(self, path):
+        """Write the coefficient table (SI, units in column names)."""
+        return write_csv(path, self.columns())
+
+    def to_xarray(self):
+        """``xarray.Dataset`` with ``K`` and ``C`` over ``(rpm, row, col)``."""
+        import xarray as xr
+
+        coords = {"rpm": self.rpm, "row": ["x", "y"], "col": ["x", "y"]}
+        ds = xr.Dataset(
+            {
+                "K": (("rpm", "row", "col"), self.K, {"units": "N/m"}),
+                "C": (("rpm", "row", "col"), self.C, {"units": "N*s/m"}),
+                **{f"C_{k}": (("rpm", "row", "col"), np.asarray(v), {"units": "N*s/m"}) for k, v in self.parts.items()},
+            },
+            coords=coords,
+            attrs={"name": self.name, "amplitude_m": self.amplitude, "pack_stiffness_N_per_m": self.pack_stiffness},
+        )
+        return ds
+
+    def plot(self, path=None, identified=None):
+        """Coefficients vs speed like Figs. 5.9/5.10 and 5.27/5.28 of the thesis.
+
+        Parameters
+        ----------
+        path : path-like, optional
+            Save a PNG there.
+        identified : IdentificationSeries, optional
+            Identified coefficients (:mod:`springdyn.lsd.identify`) drawn as markers
+            with error bars on the same axes.
+        """
+        from ..plotting import new_figure, save_figure
+
+        fig, (ax_k, ax_c) = new_figure(1, 2, figsize=(11, 4.5))
+        styles = {"xx": "-", "yy": "--", "xy": ":", "yx": "-."}
+        for key, (i, j) in {"xx": (0, 0), "yy": (1, 1), "xy": (0, 1), "yx": (1, 0)}.items():
+            ax_k.plot(self.rpm, self.K[:, i, j] / 1e3, styles[key], label=f"K{key} model")
+            ax_c.plot(self.rpm, self.C[:, i, j], styles[key], label=f"C{key} model")
+        if identified is not None:
+            identified.plot_on(ax_k, ax_c)
+        ax_k.set_xlabel("shaft speed [rpm]")
+        ax_k.set_ylabel("stiffness [N/mm]")
+        ax_c.set_xlabel("shaft speed [rpm]")
+        ax_c.set_ylabel("damping [N s/m]")
+        ax_c.set_yscale("symlog", linthresh=max(1.0, float(np.max(np.abs(self.C))) * 1e-3))
+        for ax in (ax_k, ax_c):
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=8)
+        fig.suptitle(f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude")
+        if path is not None:
+            save_figure(fig, path, close=False)
+        return fig

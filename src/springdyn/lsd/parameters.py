@@ -1,0 +1,137 @@
+"""Parameters of a leaf spring damper (the ``[lsd]`` table of a TOML file)."""
+
+from __future__ import annotations
+
+import dataclasses
+from importlib import resources
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..config import check_fields, from_mapping, load_toml, param
+from ..errors import InputError
+from ..units import to_si
+
+__all__ = ["LSDParameters", "EXAMPLES"]
+
+#: Built-in examples: Types A, B and C of Table 4.1 of the thesis.
+EXAMPLES = {"A": "lsd_type_a.toml", "B": "lsd_type_b.toml", "C": "lsd_type_c.toml"}
+
+
+@dataclasses.dataclass(frozen=True)
+class LSDParameters:
+    """Geometry, materials and oil of a leaf spring damper (SI floats).
+
+    Symbols follow the leaf-spring-damper thesis (Table 4.1, Chapter 2).  Build it from
+    a TOML file with :meth:`from_toml`, a mapping with :meth:`from_dict`, or take a
+    built-in prototype with :meth:`example` (``"A"``, ``"B"``, ``"C"``).
+    """
+
+    packs: int = param("", "number of leaf spring packs", symbol="N", kind="int")
+    leaf_lengths: list = param("m", "leaf lengths, longest first", symbol="L_i", kind="quantity_list", display="mm", positive=True)
+    leaf_thicknesses: list = param("m", "leaf thicknesses", symbol="t_i", kind="quantity_list", display="mm", positive=True)
+    leaf_width: float = param("m", "leaf width", symbol="b_1", display="mm", positive=True)
+    youngs_modulus: float = param("Pa", "Young's modulus of the leaves", symbol="E", display="GPa", positive=True)
+    poisson_ratio: float = param("", "Poisson's ratio of the leaves", symbol="nu", nonnegative=True)
+    preload: float = param("m", "pack preload deflection", symbol="delta_pre", display="mm", nonnegative=True)
+    ring_outer_diameter: float = param("m", "inner ring outer diameter", symbol="d_o", display="mm", positive=True)
+    ring_width: float = param("m", "inner ring width", symbol="b", display="mm", positive=True)
+    passage_width: float = param("m", "oil passage width", symbol="b_o", display="mm", positive=True)
+    passage_clearance: float = param("m", "oil passage clearance", symbol="h_o", display="mm", positive=True)
+    passage_length: float = param("m", "oil passage length", symbol="L_h", display="mm", positive=True)
+    oil_viscosity: float = param("Pa*s", "dynamic oil viscosity (TOML may give kinematic, e.g. '100 cSt')", symbol="eta", display="Pa*s", positive=True)
+    oil_density: float = param("kg/m^3", "oil density", symbol="rho", positive=True)
+    first_pack_angle: float = param("rad", "angle of the first pack from the x axis", symbol="phi_1", display="deg", default=0.0)
+    pack_angles: list = param("rad", "explicit pack angles (empty: equally spaced)", kind="quantity_list", display="deg", default=[])
+    clamp_overhang: float = param("m", "clamp overhang a of Fig. 2.3", symbol="a", display="mm", default=0.0, nonnegative=True)
+    ring_mass: float = param("kg", "mass of the inner ring", symbol="m", default=0.0, nonnegative=True)
+    passages_per_boundary: int = param("", "oil passages between two neighbouring chambers", kind="int", default=2)
+    conductance_model: str = param(None, "passage conductance", kind="str", choices=("exact", "thesis"), default="exact")
+    leakage_factor: float = param("", "calibration factor on the passage conductance", default=1.0, positive=True)
+    leaf_friction: float = param("", "friction coefficient between leaves", symbol="mu_s", default=0.1, nonnegative=True)
+    leaf_normal_load: str = param(None, "normal load in the inter-leaf friction of the coefficient model", kind="str", choices=("peak", "instantaneous"), default="peak")
+    oring_friction: float = param("", "O-ring friction coefficient", symbol="mu_o", default=0.0, nonnegative=True)
+    oring_normal_force: float = param("N", "O-ring normal force", symbol="F_N", default=0.0, nonnegative=True)
+    name: str = param(None, "label used in plots", kind="str", default="LSD")
+
+    def __post_init__(self):
+        check_fields(self)
+        if self.packs < 2:
+            raise InputError(f"packs = {self.packs} must be at least 2 (the oil chambers lie between packs)")
+        if len(self.leaf_lengths) != len(self.leaf_thicknesses):
+            raise InputError(
+                f"leaf_lengths has {len(self.leaf_lengths)} entries and leaf_thicknesses "
+                f"{len(self.leaf_thicknesses)}; give one thickness per leaf"
+            )
+        L = np.asarray(self.leaf_lengths)
+        if np.any(np.diff(L) > 0):
+            i = int(np.argmax(np.diff(L) > 0))
+            raise InputError(
+                f"leaf_lengths = {[f'{v * 1e3:g} mm' for v in L]} must be non-increasing "
+                f"(L1 >= L2 >= ...): leaf {i + 2} is longer than leaf {i + 1}"
+            )
+        if not self.poisson_ratio < 0.5:
+            raise InputError(f"poisson_ratio = {self.poisson_ratio} must be below 0.5")
+        if self.passages_per_boundary < 1:
+            raise InputError(f"passages_per_boundary = {self.passages_per_boundary} must be at least 1")
+        if self.pack_angles:
+            if len(self.pack_angles) != self.packs:
+                raise InputError(
+                    f"pack_angles has {len(self.pack_angles)} entries but packs = {self.packs}"
+                )
+            a = np.asarray(self.pack_angles)
+            if np.any(np.diff(a) <= 0) or a[-1] - a[0] >= 2 * np.pi:
+                raise InputError(
+                    "pack_angles must increase around the ring and span less than 360 deg, got "
+                    f"{[f'{np.degrees(v):g} deg' for v in a]}"
+                )
+
+    # ----------------------------------------------------------------- construction
+    @classmethod
+    def from_dict(cls, mapping: Mapping[str, Any], *, source: str | None = None) -> "LSDParameters":
+        """Build from a mapping of TOML keys (strings with units or bare SI numbers).
+
+        ``oil_viscosity`` may be kinematic (``"100 cSt"``, converted with ``oil_density``)
+        or dynamic (``"0.0965 Pa*s"``; a bare number is Pa s).
+        """
+        table = dict(mapping)
+        if isinstance(table.get("oil_viscosity"), str) and "oil_density" in table:
+            where = f"{source}: [lsd] " if source else ""
+            text = table["oil_viscosity"]
+            try:
+                nu = to_si(text, "m^2/s", f"{where}oil_viscosity")
+            except InputError:
+                table["oil_viscosity"] = to_si(text, "Pa*s", f"{where}oil_viscosity (kinematic like '100 cSt' or dynamic like '0.1 Pa*s')")
+            else:
+                rho = to_si(table["oil_density"], "kg/m^3", f"{where}oil_density")
+                table["oil_viscosity"] = nu * rho
+        return from_mapping(cls, table, section="lsd", source=source)
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> "LSDParameters":
+        """Read the ``[lsd]`` table of a TOML file."""
+        return cls.from_dict(load_toml(path, "lsd"), source=str(path))
+
+    @classmethod
+    def example(cls, name: str = "C") -> "LSDParameters":
+        """A built-in prototype: ``"A"``, ``"B"`` or ``"C"`` of Table 4.1 of the thesis.
+
+        Values the thesis does not give (E, nu, a, L_h, frictions, ring mass) are
+        assumptions stated in the shipped TOML files.
+        """
+        key = str(name).upper().removeprefix("TYPE").strip(" _-")
+        if key not in EXAMPLES:
+            raise InputError(f"example {name!r} is not known; choose one of {', '.join(EXAMPLES)}")
+        with resources.as_file(resources.files("springdyn.data") / EXAMPLES[key]) as p:
+            return cls.from_toml(p)
+
+    def replace(self, **changes) -> "LSDParameters":
+        """A copy with some fields changed (SI values), validated again."""
+        return dataclasses.replace(self, **changes)
+
+    # ----------------------------------------------------------------- derived
+    @property
+    def kinematic_viscosity(self) -> float:
+        """``eta / rho`` [m^2/s]."""
+        return self.oil_viscosity / self.oil_density

@@ -1,0 +1,274 @@
+"""Time-domain simulation of the thesis' test rig (Chapter 4).
+
+The inner ring is moved along a prescribed path -- a circular orbit of the eccentric
+shaft, an x-only or y-only shake, or any measured ``x(t), y(t)`` -- and the force the
+shaft must apply to it (what the load cells measure) is computed with the nonlinear
+model, not with the linearised coefficients:
+
+- each pack pushes with ``k_s max(delta_pre + delta_i, 0)`` (it lifts off when the ring
+  moves away from it by more than the preload);
+- friction between the leaves of each pack is a Coulomb force
+  ``1.5 mu_s S P_i sign(d delta_i/dt)`` along the pack, with the instantaneous pack load
+  ``P_i`` (Eqs. (2.25)-(2.27) of the thesis, per unit tip deflection rate);
+- the O-rings give a Coulomb force ``mu_o F_N`` opposing the ring velocity (2.21);
+- the oil network gives ``B^T G^+ B v`` (incompressible oil, READING-NOTES 3.2);
+- the ring's inertia adds ``m a``.
+
+Optional Gaussian sensor noise is added to the measured forces and displacements.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..errors import InputError
+from ..io import write_csv
+from .model import LSDModel, rpm_to_omega
+from .stiffness import pack_deflections, warn_if_unloading
+
+__all__ = [
+    "Trajectory",
+    "circular_orbit",
+    "linear_shake",
+    "trajectory_from_samples",
+    "pack_spring_forces",
+    "interleaf_friction_forces",
+    "oring_friction_force",
+    "simulate_rig",
+    "RigRecord",
+]
+
+
+@dataclasses.dataclass
+class Trajectory:
+    """A prescribed path of the inner ring: time [s], position [m], velocity [m/s], acceleration [m/s^2]."""
+
+    time: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    vx: np.ndarray
+    vy: np.ndarray
+    ax: np.ndarray
+    ay: np.ndarray
+    excitation: str = "measured"
+    rpm: float = float("nan")
+
+
+def _time_base(rpm, revolutions, sample_rate):
+    if not (np.isfinite(rpm) and rpm > 0):
+        raise InputError(f"rpm = {rpm!r} must be a positive shaft speed")
+    if not revolutions > 0:
+        raise InputError(f"revolutions = {revolutions!r} must be positive")
+    f = rpm / 60.0
+    if not sample_rate > 4 * f:
+        raise InputError(
+            f"sample rate {sample_rate:g} Hz is too low for {rpm:g} rpm ({f:g} Hz); use at least {8 * f:g} Hz"
+        )
+    n = int(round(revolutions / f * sample_rate))
+    return np.arange(n) / sample_rate, rpm_to_omega(rpm)
+
+
+def circular_orbit(rpm, eccentricity, revolutions=20, sample_rate=20e3, direction=1):
+    """Circular orbit of the eccentric shaft: ``x = e cos wt``, ``y = +-e sin wt``.
+
+    Parameters
+    ----------
+    rpm : float
+        Shaft speed [rev/min]; one orbit per revolution.
+    eccentricity : float
+        Orbit radius [m].
+    revolutions : float
+        Number of revolutions.
+    sample_rate : float
+        Samples per second [Hz].
+    direction : {1, -1}
+        Forward (counter-clockwise) or backward orbit.
+    """
+    if not eccentricity > 0:
+        raise InputError(f"eccentricity = {eccentricity!r} m must be positive")
+    t, w = _time_base(rpm, revolutions, sample_rate)
+    c, s = np.cos(w * t), np.sin(w * t)
+    d = 1.0 if direction >= 0 else -1.0
+    e = eccentricity
+    return Trajectory(t, e * c, d * e * s, -e * w * s, d * e * w * c, -e * w * w * c, -d * e * w * w * s,
+                      excitation="orbit" if d > 0 else "backward-orbit", rpm=float(rpm))
+
+
+def linear_shake(rpm, amplitude, axis="x", revolutions=20, sample_rate=20e3):
+    """Straight harmonic shake along ``axis`` ("x" or "y"): ``u = A cos wt`` [m]."""
+    if axis not in ("x", "y"):
+        raise InputError(f"axis = {axis!r} must be 'x' or 'y'")
+    if not amplitude > 0:
+        raise InputError(f"amplitude = {amplitude!r} m must be positive")
+    t, w = _time_base(rpm, revolutions, sample_rate)
+    u, v, a = amplitude * np.cos(w * t), -amplitude * w * np.sin(w * t), -amplitude * w * w * np.cos(w * t)
+    z = np.zeros_like(t)
+    if axis == "x":
+        return Trajectory(t, u, z, v, z, a, z, excitation="x", rpm=float(rpm))
+    return Trajectory(t, z, u, z, v, z, a, excitation="y", rpm=float(rpm))
+
+
+def trajectory_from_samples(time, x, y, rpm=float("nan")):
+    """A measured path; velocity and acceleration by second-order finite differences."""
+    t = np.asarray(time, dtype=float)
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    if t.ndim != 1 or t.size < 3 or x.shape != t.shape or y.shape != t.shape:
+        raise InputError("time, x and y must be 1-D arrays of the same length (at least 3 samples)")
+    if np.any(np.diff(t) <= 0):
+        raise InputError(f"time stamps must increase; row {int(np.argmax(np.diff(t) <= 0)) + 2} does not")
+    vx, vy = np.gradient(x, t, edge_order=2), np.gradient(y, t, edge_order=2)
+    ax, ay = np.gradient(vx, t, edge_order=2), np.gradient(vy, t, edge_order=2)
+    return Trajectory(t, x, y, vx, vy, ax, ay, excitation="measured", rpm=float(rpm))
+
+
+def pack_spring_forces(angles, pack_stiffness, preload, x, y):
+    """Force of the packs on the shaft side, ``sum_i k_s [max(delta_pre + delta_i, 0) - delta_pre] e_i`` [N].
+
+    The static preloads cancel at the centre; a pack that the ring leaves by more than
+    the preload lifts off and stops pushing (the nonlinearity the linear (3.4) misses).
+    Returns ``(fx, fy)`` and the pack loads ``P_i`` (shape ``(T, N)``).
+    """
+    phi = np.asarray(angles, dtype=float)
+    delta = pack_deflections(phi, x, y)
+    load = pack_stiffness * np.maximum(preload + delta, 0.0)
+    net = load - pack_stiffness * preload
+    return net @ np.cos(phi), net @ np.sin(phi), load
+
+
+def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_factor, vx, vy):
+    """Coulomb friction between the leaves, ``1.5 mu_s S P_i sign(d delta_i/dt) e_i`` summed [N].
+
+    The dissipation rate of Eq. (2.25) with the slips of (2.26) is
+    ``1.5 mu_s S P_1 |d delta_1/dt|`` per pack; the force is that rate over the
+    deflection rate, with the instantaneous pack load ``P_1``.
+    """
+    phi = np.asarray(angles, dtype=float)
+    rate = pack_deflections(phi, vx, vy)
+    f = 1.5 * friction_coefficient * slip_factor * pack_loads * np.sign(rate)
+    return f @ np.cos(phi), f @ np.sin(phi)
+
+
+def oring_friction_force(friction_coefficient, normal_force, vx, vy):
+    """O-ring Coulomb friction ``mu_o F_N v/|v|`` opposing the ring velocity [N] (Eq. (2.21))."""
+    vx = np.asarray(vx, dtype=float)
+    vy = np.asarray(vy, dtype=float)
+    speed = np.hypot(vx, vy)
+    scale = np.divide(friction_coefficient * normal_force, speed, out=np.zeros_like(speed), where=speed > 0)
+    return scale * vx, scale * vy
+
+
+def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, displacement_noise=0.0, seed=None):
+    """Reaction forces of the damper along a prescribed ring path.
+
+    Parameters
+    ----------
+    model : LSDModel
+    trajectory : Trajectory
+        From :func:`circular_orbit`, :func:`linear_shake` or :func:`trajectory_from_samples`.
+    force_noise : float
+        Standard deviation of Gaussian noise added to each force channel [N].
+    displacement_noise : float
+        Standard deviation of Gaussian noise added to each displacement channel [m].
+    seed : int, optional
+        Seed of the noise generator.
+
+    Returns
+    -------
+    RigRecord
+    """
+    if force_noise < 0 or displacement_noise < 0:
+        raise InputError("noise levels must be zero or positive")
+    p = model.params
+    tr = trajectory
+    parts = {}
+    fx, fy, loads = pack_spring_forces(model.angles, model.pack_stiffness, p.preload, tr.x, tr.y)
+    parts["spring"] = (fx, fy)
+    parts["leaf_friction"] = interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, tr.vx, tr.vy)
+    parts["oring_friction"] = oring_friction_force(p.oring_friction, p.oring_normal_force, tr.vx, tr.vy)
+    Cv = model.viscous_damping
+    parts["oil"] = (Cv[0, 0] * tr.vx + Cv[0, 1] * tr.vy, Cv[1, 0] * tr.vx + Cv[1, 1] * tr.vy)
+    parts["inertia"] = (p.ring_mass * tr.ax, p.ring_mass * tr.ay)
+    total_x = sum(v[0] for v in parts.values())
+    total_y = sum(v[1] for v in parts.values())
+    rng = np.random.default_rng(seed)
+    x, y = tr.x, tr.y
+    if displacement_noise > 0:
+        x = x + rng.normal(0.0, displacement_noise, x.shape)
+        y = y + rng.normal(0.0, displacement_noise, y.shape)
+    if force_noise > 0:
+        total_x = total_x + rng.normal(0.0, force_noise, total_x.shape)
+        total_y = total_y + rng.normal(0.0, force_noise, total_y.shape)
+    amplitude = float(np.max(np.hypot(tr.x - tr.x.mean(), tr.y - tr.y.mean())))
+    warn_if_unloading(amplitude, p.preload)
+    return RigRecord(
+        name=p.name, excitation=tr.excitation, rpm=tr.rpm, time=tr.time, x=x, y=y, fx=total_x, fy=total_y,
+        parts={k: (np.asarray(a), np.asarray(b)) for k, (a, b) in parts.items()},
+        preload_exceeded=amplitude > p.preload,
+    )
+
+
+@dataclasses.dataclass
+class RigRecord:
+    """Simulated (or measured) rig signals: displacements [m] and reaction forces [N] vs time [s]."""
+
+    name: str
+    excitation: str
+    rpm: float
+    time: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    fx: np.ndarray
+    fy: np.ndarray
+    parts: dict = dataclasses.field(default_factory=dict)
+    preload_exceeded: bool = False
+
+    def columns(self) -> dict:
+        """The rig CSV columns ``time_s, x_m, y_m, fx_N, fy_N`` (read back by :mod:`.identify`)."""
+        return {"time_s": self.time, "x_m": self.x, "y_m": self.y, "fx_N": self.fx, "fy_N": self.fy}
+
+    def to_csv(self, path):
+        """Write ``time_s, x_m, y_m, fx_N, fy_N`` (SI)."""
+        return write_csv(path, self.columns())
+
+    def to_xarray(self):
+        """``xarray.Dataset`` over ``time`` with the signals and the force parts."""
+        import xarray as xr
+
+        data = {k: ("time", v, {"units": "m" if k in ("x", "y") else "N"})
+                for k, v in (("x", self.x), ("y", self.y), ("fx", self.fx), ("fy", self.fy))}
+        for k, (a, b) in self.parts.items():
+            data[f"fx_{k}"] = ("time", a, {"units": "N"})
+            data[f"fy_{k}"] = ("time", b, {"units": "N"})
+        return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
+                          attrs={"name": self.name, "excitation": self.excitation, "rpm": self.rpm})
+
+    def plot(self, path=None, cycles=2):
+        """Hysteresis loops ``F_x`` vs ``x`` and ``F_y`` vs ``y`` (like Figs. 5.3-5.26 of the thesis).
+
+        Draws the last ``cycles`` periods when the speed is known, else the whole record.
+        """
+        from ..plotting import new_figure, save_figure
+
+        sel = slice(None)
+        if np.isfinite(self.rpm) and self.rpm > 0:
+            n = int(round(cycles * 60.0 / self.rpm / np.median(np.diff(self.time))))
+            sel = slice(max(0, self.time.size - n), None)
+        fig, (ax1, ax2) = new_figure(1, 2, figsize=(10, 4.5))
+        ax1.plot(self.x[sel] * 1e6, self.fx[sel], lw=0.8)
+        ax2.plot(self.y[sel] * 1e6, self.fy[sel], lw=0.8, color="C1")
+        ax1.set_xlabel("x [um]")
+        ax1.set_ylabel("Fx [N]")
+        ax2.set_xlabel("y [um]")
+        ax2.set_ylabel("Fy [N]")
+        for ax in (ax1, ax2):
+            ax.grid(True, alpha=0.3)
+            ax.axhline(0, color="k", lw=0.5)
+            ax.axvline(0, color="k", lw=0.5)
+        speed = f"{self.rpm:g} rpm" if np.isfinite(self.rpm) else "measured"
+        fig.suptitle(f"{self.name}: hysteresis loops ({self.excitation}, {speed})")
+        if path is not None:
+            save_figure(fig, path, close=False)
+        return fig
