@@ -147,7 +147,11 @@ def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_fac
     """
     phi = np.asarray(angles, dtype=float)
     rate = pack_deflections(phi, vx, vy)
-    f = 1.5 * friction_coefficient * slip_factor * pack_loads * np.sign(rate)
+    # A pack the motion does not deflect (e.g. the pack at 0 deg in a y shake) has a
+    # round-off rate; it sticks and carries no friction.
+    scale = float(np.max(np.hypot(vx, vy), initial=0.0))
+    moving = np.abs(rate) > 1e-9 * scale
+    f = 1.5 * friction_coefficient * slip_factor * pack_loads * np.where(moving, np.sign(rate), 0.0)
     return f @ np.cos(phi), f @ np.sin(phi)
 
 
@@ -257,11 +261,15 @@ class RigRecord:
             n = int(round(cycles * 60.0 / self.rpm / np.median(np.diff(self.time))))
             sel = slice(max(0, self.time.size - n), None)
         fig, (ax1, ax2) = new_figure(1, 2, figsize=(10, 4.5))
-        ax1.plot(self.x[sel] * 1e6, self.fx[sel], lw=0.8)
-        ax2.plot(self.y[sel] * 1e6, self.fy[sel], lw=0.8, color="C1")
-        ax1.set_xlabel("x [um]")
+        span_x, span_y = np.ptp(self.x[sel]), np.ptp(self.y[sel])
+        # a single-axis shake: draw both forces against the moving axis
+        ux, lx = (self.y, "y") if span_x < 1e-3 * span_y else (self.x, "x")
+        uy, ly = (self.x, "x") if span_y < 1e-3 * span_x else (self.y, "y")
+        ax1.plot(ux[sel] * 1e6, self.fx[sel], lw=0.8)
+        ax2.plot(uy[sel] * 1e6, self.fy[sel], lw=0.8, color="C1")
+        ax1.set_xlabel(f"{lx} [um]")
         ax1.set_ylabel("Fx [N]")
-        ax2.set_xlabel("y [um]")
+        ax2.set_xlabel(f"{ly} [um]")
         ax2.set_ylabel("Fy [N]")
         for ax in (ax1, ax2):
             ax.grid(True, alpha=0.3)
