@@ -18,7 +18,7 @@ from .. import __version__
 from ..errors import InputError, SolverError
 
 #: Model families, in the order the CLI lists them and the demo runs them.
-FAMILIES = ["valve", "cfcs"]
+FAMILIES = ["valve", "cfcs", "lsd"]
 
 
 class _Parser(argparse.ArgumentParser):
