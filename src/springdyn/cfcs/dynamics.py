@@ -153,7 +153,11 @@ def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_fricti
     dm = generalized_mass_derivative(th, m2, m3, ms, r2, r3)
     f_static = static_force(th, k3, r2, r3)
     f_inertia = (m * thdd + 0.5 * dm * thd * thd) / jac
-    sgn = np.sign(np.asarray(xdot, dtype=float))  # x' and theta2' share their sign (G >= 0)
+    # x' and theta2' share their sign (G >= 0); a velocity at rounding level (turning points such as
+    # sin(2 pi) ~ -2e-16) counts as zero, so the friction sign does not flicker between cycles
+    xd = np.asarray(xdot, dtype=float)
+    vscale = float(np.max(np.abs(xd))) if xd.size else 0.0
+    sgn = np.where(np.abs(xd) <= 1e-12 * vscale, 0.0, np.sign(xd))
     f_pin = sgn * pin_friction_torque(th, pin_friction, friction_model, r2, r3) / jac
     f_axial = sgn * axial_force_torque(f_static, shear_angle, r2, r3) / jac if axial_force else np.zeros_like(th)
     f_slider = sgn * slider_friction

@@ -61,8 +61,13 @@ def slider_position(theta2, r2, r3):
 
 
 def deflection_from_theta2(theta2, r2, r3):
-    """Slider deflection ``x = r2 + r3 - r1`` [m] for a crank angle ``theta2`` [rad]."""
-    return (r2 + r3) - slider_position(theta2, r2, r3)
+    """Slider deflection ``x = r2 + r3 - r1`` [m] for a crank angle ``theta2`` [rad].
+
+    Written without cancellation as ``2 r2 sin^2(theta2/2) + r2^2 sin^2 theta2 / (r3 + D)``
+    (``r3 - D = r2^2 sin^2 theta2 / (r3 + D)``), so it keeps full precision at the toggle.
+    """
+    s = np.sin(theta2)
+    return 2.0 * r2 * np.sin(0.5 * np.asarray(theta2)) ** 2 + (r2 * s) ** 2 / (r3 + coupler_root(theta2, r2, r3))
 
 
 def theta2_from_deflection(x, r2, r3):
