@@ -73,8 +73,11 @@ def cmd_coefficients(args) -> int:
         return 0
     print(f"{model.params.name}: k_s = {model.pack_stiffness / 1e3:.5g} N/mm per pack, "
           f"load ratios {np.array2string(model.load_ratios, precision=4)}, amplitude {amplitude * 1e6:.4g} um")
-    rows = [(f"{r:g}", *(f"{res.K[i, a, b] / 1e3:.5g}" for a, b in ((0, 0), (0, 1), (1, 0), (1, 1))),
-             *(f"{res.C[i, a, b]:.5g}" for a, b in ((0, 0), (0, 1), (1, 0), (1, 1))))
+    # round-off (1e-16 of the direct terms) shown as 0 in the table; JSON/CSV keep the numbers
+    K = np.where(np.abs(res.K) < 1e-12 * np.abs(res.K).max(), 0.0, res.K) / 1e3
+    C = np.where(np.abs(res.C) < 1e-12 * np.abs(res.C).max(), 0.0, res.C)
+    idx = ((0, 0), (0, 1), (1, 0), (1, 1))
+    rows = [(f"{r:g}", *(f"{K[i, a, b]:.5g}" for a, b in idx), *(f"{C[i, a, b]:.5g}" for a, b in idx))
             for i, r in enumerate(res.rpm)]
     print_table(rows, headers=("rpm", "Kxx N/mm", "Kxy N/mm", "Kyx N/mm", "Kyy N/mm",
                                "Cxx Ns/m", "Cxy Ns/m", "Cyx Ns/m", "Cyy Ns/m"))

@@ -1,0 +1,115 @@
+"""``springdyn lsd ...`` commands: outputs, JSON keys, bad input (exit 2, one line)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from springdyn.cli.main import main
+from springdyn.io import read_csv_columns
+from springdyn.lsd import LSDModel, LSDParameters
+
+COEFF_KEYS = ["rpm", "kxx_N_per_m", "kxy_N_per_m", "kyx_N_per_m", "kyy_N_per_m",
+              "cxx_Ns_per_m", "cxy_Ns_per_m", "cyx_Ns_per_m", "cyy_Ns_per_m"]
+
+
+def _json(capsys):
+    out = capsys.readouterr().out
+    return json.loads(out)
+
+
+def test_coefficients_json_csv_plot(tmp_path, capsys):
+    from importlib import resources
+
+    cfg = resources.files("springdyn.data") / "lsd_type_c.toml"
+    rc = main(["lsd", "coefficients", str(cfg), "--rpm", "500:3000:500", "--amplitude", "50um", "--json",
+               "--csv", str(tmp_path / "c.csv"), "--plot", str(tmp_path / "c.png")])
+    assert rc == 0
+    d = _json(capsys)
+    for k in COEFF_KEYS + ["pack_stiffness_N_per_m", "load_ratios"]:
+        assert k in d
+    assert d["rpm"] == [500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0]
+    # k_s of Type C (READING-NOTES 3.1, 106.9 N/mm) and Kxx = 3 k_s (3.4)
+    assert d["pack_stiffness_N_per_m"] == pytest.approx(106.9e3, abs=50)
+    assert d["kxx_N_per_m"][0] == pytest.approx(3 * d["pack_stiffness_N_per_m"], rel=1e-12)
+    np.testing.assert_allclose(d["load_ratios"], [1, 0.7696, 0.5926], atol=5e-5)
+    cols = read_csv_columns(tmp_path / "c.csv")
+    assert list(cols) == COEFF_KEYS
+    np.testing.assert_allclose(cols["cxx_Ns_per_m"], d["cxx_Ns_per_m"])
+    assert (tmp_path / "c.png").stat().st_size > 10_000
+
+
+def test_coefficients_table_and_warning(capsys):
+    assert main(["lsd", "coefficients", "A", "--rpm", "1000", "--amplitude", "150um"]) == 0
+    cap = capsys.readouterr()
+    assert "Type A" in cap.out and "Kxx N/mm" in cap.out
+    assert "exceeds the pack preload" in cap.err
+
+
+def test_rig_then_identify(tmp_path, capsys):
+    x, y = tmp_path / "x.csv", tmp_path / "y.csv"
+    for exc, path, seed in (("x", x, "1"), ("y", y, "2")):
+        assert main(["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--excitation", exc,
+                     "--revolutions", "10", "--sample-rate", "10kHz", "--noise", "2N", "--seed", seed,
+                     "--csv", str(path)]) == 0
+    capsys.readouterr()
+    cols = read_csv_columns(x)
+    assert list(cols) == ["time_s", "x_m", "y_m", "fx_N", "fy_N"] and cols["time_s"].size == 6000
+    rc = main(["lsd", "identify", str(x), "--second", str(y), "--mass", "0.5kg", "--json",
+               "--plot", str(tmp_path / "id.png"), "--model", "C"])
+    assert rc == 0
+    d = _json(capsys)
+    model = LSDModel(LSDParameters.example("C"))
+    for name in ("kxx", "kxy", "kyx", "kyy"):
+        assert f"{name}_N_per_m" in d and f"{name}_N_per_m_uncertainty" in d
+    for name in ("cxx", "cxy", "cyx", "cyy"):
+        assert f"{name}_Ns_per_m" in d and f"{name}_Ns_per_m_uncertainty" in d
+    # the simulated rig is the model within the preload: K within 1 % (2 N noise on ~30 N)
+    assert d["kxx_N_per_m"] == pytest.approx(model.stiffness_matrix[0, 0], rel=0.01)
+    assert d["rpm"] == pytest.approx(1000, rel=1e-6)
+    assert (tmp_path / "id.png").is_file()
+
+
+def test_identify_single_orbit_prints_caveat(tmp_path, capsys):
+    o = tmp_path / "o.csv"
+    assert main(["lsd", "rig", "C", "--rpm", "1500", "--eccentricity", "40um", "--revolutions", "5",
+                 "--csv", str(o), "--plot", str(tmp_path / "loops.png")]) == 0
+    assert (tmp_path / "loops.png").is_file()
+    capsys.readouterr()
+    assert main(["lsd", "identify", str(o), "--rpm", "1500"]) == 0
+    out = capsys.readouterr().out
+    assert "cannot separate direct and cross-coupled terms" in out and "kxx" in out
+    assert main(["lsd", "identify", str(o), "--json", "--csv", str(tmp_path / "id.csv")]) == 0
+    d = _json(capsys)
+    assert "kxy_N_per_m" not in d and "kxx_N_per_m_uncertainty" in d and "caveat" in d
+    assert read_csv_columns(tmp_path / "id.csv")["rpm"][0] == pytest.approx(1500, rel=1e-6)
+
+
+def _bad(capsys, argv, match):
+    rc = main(argv)
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert match in err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+    return err
+
+
+def test_bad_inputs(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    from importlib import resources
+
+    text = (resources.files("springdyn.data") / "lsd_type_c.toml").read_text()
+    bad.write_text(text.replace('["38 mm", "34 mm", "25 mm"]', '["25 mm", "34 mm", "38 mm"]'))
+    _bad(capsys, ["lsd", "coefficients", str(bad)], "non-increasing")
+    _bad(capsys, ["lsd", "coefficients", str(tmp_path / "none.toml")], "no such file")
+    _bad(capsys, ["lsd", "coefficients", "C", "--amplitude=-5um"], "amplitude")
+    _bad(capsys, ["lsd", "coefficients", "C", "--rpm", "3000:500:500"], "STOP is below START")
+    _bad(capsys, ["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--sample-rate", "20Hz",
+                  "--csv", str(tmp_path / "r.csv")], "too low")
+    assert not (tmp_path / "r.csv").exists()  # nothing half-written
+    nan = tmp_path / "nan.csv"
+    nan.write_text("time_s,x_m,y_m,fx_N,fy_N\n0,0,0,0,0\n0.001,nan,0,0,0\n")
+    _bad(capsys, ["lsd", "identify", str(nan)], "row 3, column 'x_m'")
+    miss = tmp_path / "miss.csv"
+    miss.write_text("time_s,x_m,y_m,fx_N\n0,0,0,0\n")
+    _bad(capsys, ["lsd", "identify", str(miss)], "missing column 'fy_N'")
