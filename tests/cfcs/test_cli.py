@@ -1,0 +1,130 @@
+"""``springdyn cfcs ...`` through springdyn.cli.main.main (exit codes, stderr, files)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from springdyn.cli.main import main
+from springdyn.io import read_csv_columns, write_csv
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_static_json_and_files(capsys, tmp_path):
+    code, out, err = run(capsys, "cfcs", "static", "table1", "--stroke", "72mm", "--json",
+                         "--csv", str(tmp_path / "s.csv"), "--plot", str(tmp_path / "s.png"))
+    assert code == 0, err
+    s = json.loads(out)
+    for key in ("force_at_zero_N", "force_max_N", "deflection_at_force_max_m", "force_min_N", "pcf_percent",
+                "stroke_m", "max_stress_Pa", "toggle_cutoff_rad"):
+        assert key in s
+    # reading notes 2.3 with K3 from the flexure (2.53075 vs 2.5308: 2e-5 relative)
+    assert s["force_max_N"] == pytest.approx(12.970, abs=1e-3)
+    assert s["pcf_percent"] == pytest.approx(97.0, abs=0.05)
+    cols = read_csv_columns(tmp_path / "s.csv")
+    assert list(cols)[:3] == ["deflection_m", "theta2_rad", "force_N"]
+    assert (tmp_path / "s.png").stat().st_size > 0
+
+
+def test_static_table(capsys):
+    code, out, _ = run(capsys, "cfcs", "static", "table1")
+    assert code == 0
+    assert "12.97 N" in out and "toggle cut-off" in out and "5 deg" in out
+
+
+def test_dynamic(capsys, tmp_path):
+    code, out, err = run(capsys, "cfcs", "dynamic", "examples/cfcs/table1.toml", "--omega", "14.7",
+                         "--amplitude", "0.4", "--cycles", "2", "--json", "--csv", str(tmp_path / "d.csv"))
+    assert code == 0, err
+    s = json.loads(out)
+    for key in ("mean_force_N", "median_force_N", "peak_to_peak_N", "pcf_percent", "toggle_cutoff_rad"):
+        assert key in s
+    cols = read_csv_columns(tmp_path / "d.csv")
+    assert list(cols)[:4] == ["time_s", "deflection_m", "force_N", "force_static_N"]
+    assert cols["time_s"].size == 801
+    assert cols["deflection_m"].max() == pytest.approx(0.072)
+
+
+def test_dynamic_from_csv_motion(capsys, tmp_path):
+    t = np.linspace(0, 1, 101)
+    write_csv(tmp_path / "x.csv", {"time_s": t, "deflection_m": 0.01 + 0.02 * np.sin(np.pi * t) ** 2})
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--motion", str(tmp_path / "x.csv"), "--json")
+    assert code == 0, err
+    assert json.loads(out)["omega_rad_s"] == pytest.approx(2 * np.pi)
+
+
+def test_sweep(capsys, tmp_path):
+    code, out, err = run(capsys, "cfcs", "sweep", "table1", "--omega", "1:50:7", "--csv", str(tmp_path / "w.csv"),
+                         "--plot", str(tmp_path / "w.png"))
+    assert code == 0, err
+    cols = read_csv_columns(tmp_path / "w.csv")
+    np.testing.assert_allclose(cols["omega_rad_s"], [1, 8, 15, 22, 29, 36, 43, 50])
+    assert "toggle cut-off" in out
+
+
+def test_design_infeasible_and_feasible(capsys, tmp_path):
+    code, out, _ = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
+                       "207GPa", "--allowable-stress", "1.5GPa")
+    assert code == 1
+    assert "NO FEASIBLE DESIGN: no design meets the stress limit" in out
+    code, out, _ = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
+                       "207GPa", "--allowable-stress", "1.5GPa", "--stroke-fraction", "0.2", "--json",
+                       "--toml", str(tmp_path / "d.toml"))
+    assert code == 0
+    assert json.loads(out)["feasible"] is True
+    code, out, err = run(capsys, "cfcs", "static", str(tmp_path / "d.toml"), "--stroke", "40mm", "--json")
+    assert code == 0, err
+    assert json.loads(out)["safety_factor"] == pytest.approx(1.0, rel=1e-4)
+
+
+def test_forward(capsys, tmp_path):
+    code, out, err = run(capsys, "cfcs", "forward", "table1", "--t-end", "0.3s", "--base-stiffness", "2000N/m",
+                         "--base-omega", "10", "--base-amplitude", "0.2", "--csv", str(tmp_path / "f.csv"))
+    assert code == 0, err
+    assert read_csv_columns(tmp_path / "f.csv")["time_s"].size == 2001
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["cfcs", "static", "nope.toml"], "nope.toml: no such file"),
+    (["cfcs", "static", "table1", "--stroke", "150mm"], "beyond the kinematic limit"),
+    (["cfcs", "static", "table1", "--stroke", "7kg"], "wrong dimension"),
+    (["cfcs", "dynamic", "table1", "--omega", "0"], "omega = 0 rad/s must be positive"),
+    (["cfcs", "dynamic", "table1", "--omega", "-2"], "must be positive"),
+    (["cfcs", "dynamic", "table1", "--omega", "5", "--amplitude", "0.9"], "kinematic limit"),
+    (["cfcs", "dynamic", "table1", "--omega", "5", "--offset=-1mm"], "crosses the toggle"),
+    (["cfcs", "dynamic", "table1"], "omega is required"),
+    (["cfcs", "sweep", "table1", "--omega", "0:5:1"], "every omega must be positive"),
+    (["cfcs", "design", "--force=-1N", "--stroke", "40mm", "--material-modulus", "207GPa",
+      "--allowable-stress", "1.5GPa"], "force"),
+    (["cfcs", "forward", "table1", "--t-end", "1s"], "forward needs --force"),
+])
+def test_bad_input_exit_2(capsys, argv, match):
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert match in err
+    assert "Traceback" not in err and err.count("\n") == 1
+
+
+def test_bad_config_files(capsys, tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[cfcs]\ncrank_length = "95 mm"\ncoupler_length = "85 mm"\ncrank_mass = 0.02\n'
+                   'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\n')
+    code, _, err = run(capsys, "cfcs", "static", str(bad))
+    assert code == 2 and "must be shorter than coupler_length" in err
+    bad.write_text('[cfcs]\ncrank_length = "85 mm"\ncoupler_length = "95 mm"\ncrank_mass = 0.02\n'
+                   'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\npivot_width = "25 mm"\n'
+                   'friction_model = "stribeck"\n')
+    code, _, err = run(capsys, "cfcs", "static", str(bad))
+    assert code == 2 and "friction_model = 'stribeck' is not allowed" in err
+    bad.write_text('[cfcs]\ncrank_length = "85 mm"\ncoupler_length = "95 mm"\ncrank_mass = 0.02\n'
+                   'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\npivot_width = "25 mm"\n')
+    code, _, err = run(capsys, "cfcs", "static", str(bad))
+    assert code == 2 and "both torsional_stiffness and pivot dimensions" in err
+    out_csv = tmp_path / "never.csv"
+    code, _, _ = run(capsys, "cfcs", "static", str(bad), "--csv", str(out_csv))
+    assert code == 2 and not out_csv.exists()  # nothing half-written on bad input
