@@ -6,7 +6,7 @@ import numpy as np
 
 from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
 from ..errors import InputError
-from ..io import write_json
+from ..plotting import plt
 from .identify import identify_series, read_rig_data
 from .model import LSDModel
 from .parameters import LSDParameters
@@ -67,7 +67,7 @@ def cmd_coefficients(args) -> int:
     if args.csv:
         res.to_csv(args.csv)
     if args.plot:
-        res.plot(args.plot)
+        plt.close(res.plot(args.plot))
     if args.json:
         print_json(res.to_dict())
         return 0
@@ -98,7 +98,7 @@ def cmd_rig(args) -> int:
     rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
     rec.to_csv(args.csv)
     if args.plot:
-        rec.plot(args.plot)
+        plt.close(rec.plot(args.plot))
     print(f"{model.params.name}: {args.excitation} at {rpm:g} rpm, {ecc * 1e6:.4g} um, {tr.time.size} samples -> {args.csv}; "
           f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
     return 0
@@ -120,7 +120,7 @@ def cmd_identify(args) -> int:
         model = None
         if args.model:
             model = LSDModel(_params(args.model)).coefficients(series.rpm, quantity(args.amplitude, "m", "--amplitude"))
-        series.plot(args.plot, model=model)
+        plt.close(series.plot(args.plot, model=model))
     dicts = [it.to_dict() for it in series.items]
     if args.json:
         print_json(dicts[0] if len(dicts) == 1 else dicts)

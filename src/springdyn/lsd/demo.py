@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import write_json
+from ..plotting import plt
 from ..progress import progress
 from .identify import RigData, identify_series
 from .model import LSDModel
@@ -47,7 +48,7 @@ def run(out_dir: Path, quiet: bool = False) -> list[Path]:
                 rec = simulate_rig(model, tr, force_noise=2.0, seed=int(rpm))
                 written.append(rec.to_csv(out_dir / f"{tag}_rig_{exc}_{rpm:.0f}rpm.csv"))
                 fig = rec.plot(out_dir / f"{tag}_loops_{exc}_{rpm:.0f}rpm.png")
-                fig.clf()
+                plt.close(fig)
                 written.append(out_dir / f"{tag}_loops_{exc}_{rpm:.0f}rpm.png")
         firsts, seconds = [], []
         with warnings.catch_warnings():
@@ -58,7 +59,7 @@ def run(out_dir: Path, quiet: bool = False) -> list[Path]:
         ident = identify_series(firsts, seconds, mass=model.params.ring_mass, name="identified (simulated rig)")
         written.append(ident.to_csv(out_dir / f"{tag}_identified.csv"))
         fig = coeffs.plot(out_dir / f"{tag}_coefficients.png", identified=ident)
-        fig.clf()
+        plt.close(fig)
         written.append(out_dir / f"{tag}_coefficients.png")
         summary[model.params.name] = {
             "pack_stiffness_N_per_m": model.pack_stiffness,

@@ -468,21 +468,9 @@ class IdentificationSeries:
         """Coefficients vs speed; with ``model`` (LSDCoefficients) the model curves too."""
         if model is not None:
             return model.plot(path, identified=self)
-        from ..plotting import new_figure, save_figure
+        from .plots import coefficients_figure
 
-        fig, (ax_k, ax_c) = new_figure(1, 2, figsize=(11, 4.5))
-        self.plot_on(ax_k, ax_c)
-        ax_k.set_xlabel("shaft speed [rpm]")
-        ax_k.set_ylabel("stiffness [N/mm]")
-        ax_c.set_xlabel("shaft speed [rpm]")
-        ax_c.set_ylabel("damping [N s/m]")
-        for ax in (ax_k, ax_c):
-            ax.grid(True, alpha=0.3)
-            ax.legend(fontsize=8)
-        fig.suptitle(f"{self.name}: identified coefficients")
-        if path is not None:
-            save_figure(fig, path, close=False)
-        return fig
+        return coefficients_figure(f"{self.name}: identified coefficients", self.plot_on, path)
 
 
 def identify_series(records, seconds=None, *, mass=0.0, rpms=None, name="identified") -> IdentificationSeries:

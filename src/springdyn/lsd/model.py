@@ -275,24 +275,18 @@ class LSDCoefficients:
             Identified coefficients (:mod:`springdyn.lsd.identify`) drawn as markers
             with error bars on the same axes.
         """
-        from ..plotting import new_figure, save_figure
+        from .plots import coefficients_figure
 
-        fig, (ax_k, ax_c) = new_figure(1, 2, figsize=(11, 4.5))
         styles = {"xx": "-", "yy": "--", "xy": ":", "yx": "-."}
-        for key, (i, j) in {"xx": (0, 0), "yy": (1, 1), "xy": (0, 1), "yx": (1, 0)}.items():
-            ax_k.plot(self.rpm, self.K[:, i, j] / 1e3, styles[key], label=f"K{key} model")
-            ax_c.plot(self.rpm, self.C[:, i, j], styles[key], label=f"C{key} model")
-        if identified is not None:
-            identified.plot_on(ax_k, ax_c)
-        ax_k.set_xlabel("shaft speed [rpm]")
-        ax_k.set_ylabel("stiffness [N/mm]")
-        ax_c.set_xlabel("shaft speed [rpm]")
-        ax_c.set_ylabel("damping [N s/m]")
-        ax_c.set_yscale("symlog", linthresh=max(1.0, float(np.max(np.abs(self.C))) * 1e-3))
-        for ax in (ax_k, ax_c):
-            ax.grid(True, alpha=0.3)
-            ax.legend(fontsize=8)
-        fig.suptitle(f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude")
-        if path is not None:
-            save_figure(fig, path, close=False)
-        return fig
+
+        def draw(ax_k, ax_c):
+            for key, (i, j) in {"xx": (0, 0), "yy": (1, 1), "xy": (0, 1), "yx": (1, 0)}.items():
+                ax_k.plot(self.rpm, self.K[:, i, j] / 1e3, styles[key], label=f"K{key} model")
+                ax_c.plot(self.rpm, self.C[:, i, j], styles[key], label=f"C{key} model")
+            if identified is not None:
+                identified.plot_on(ax_k, ax_c)
+
+        return coefficients_figure(
+            f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude", draw, path,
+            damping_linthresh=max(1.0, float(np.max(np.abs(self.C))) * 1e-3),
+        )
