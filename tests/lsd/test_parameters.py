@@ -97,3 +97,18 @@ def test_pack_angles_checked():
 def test_unknown_example():
     with pytest.raises(InputError, match="choose one of A, B, C"):
         LSDParameters.example("D")
+
+
+def test_example_files_load():
+    # every TOML under examples/lsd/ reads; the Type files equal the built-in examples
+    from pathlib import Path
+
+    folder = Path(__file__).resolve().parents[2] / "examples" / "lsd"
+    files = sorted(folder.glob("*.toml"))
+    assert len(files) == 5
+    for f in files:
+        p = LSDParameters.from_toml(f)
+        if f.stem in ("type_a", "type_b", "type_c"):
+            assert p == LSDParameters.example(f.stem[-1])
+    thick = LSDParameters.from_toml(folder / "type_c_3000cst.toml")
+    assert thick.oil_viscosity == pytest.approx(3000e-6 * 970)
