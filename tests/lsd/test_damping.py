@@ -60,15 +60,15 @@ def test_printed_c_yy_typo_is_wrong():
     assert fixed == pytest.approx(power, rel=1e-10)
     # reproduce the printed term and show it differs
     lam = 9 * B_RING**2 * L1**2 / (64 * CD)
-    pbar = 8 * CD / (3 * B_RING * L1) * (-p_printed_columns(B))
+    pbar = 8 * CD / (3 * B_RING * L1) * (-gauge_pressure_columns(B))  # printed p = -gauge p
     c, s = np.cos(phi), np.sin(phi)
     cn = np.roll(c, -1)
     printed = lam * np.sum((np.roll(pbar[:, 0], 1) - pbar[:, 1]) * s - 4 * D_O / (3 * L1) * pbar[:, 1] * (c - cn))
     assert abs(printed - power) > 0.05 * power
 
 
-def p_printed_columns(B):
-    """Gauge pressure per unit velocity (columns x, y): the printed p of (2.19) is its negative."""
+def gauge_pressure_columns(B):
+    """Gauge pressure per unit velocity (columns x, y); the printed p of (2.19) is its negative."""
     return np.column_stack([chamber_pressures(B, CD, [1.0, 0.0]), chamber_pressures(B, CD, [0.0, 1.0])])
 
 

@@ -76,6 +76,7 @@ def test_dynamic_viscosity_accepted(tmp_path):
         ("packs = 6", "packs = 1", "at least 2"),
         ("leaf_friction = 0.1", "leaf_fricton = 0.1", "did you mean 'leaf_friction'"),
         ('leaf_width = "14.8 mm"\n', "", "missing key 'leaf_width'"),
+        ('oil_density = "965 kg/m^3"\n', "", "is kinematic; give oil_density"),
     ],
 )
 def test_bad_toml(tmp_path, old, new, match):

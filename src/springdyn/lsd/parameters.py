@@ -96,7 +96,7 @@ class LSDParameters:
         or dynamic (``"0.0965 Pa*s"``; a bare number is Pa s).
         """
         table = dict(mapping)
-        if isinstance(table.get("oil_viscosity"), str) and "oil_density" in table:
+        if isinstance(table.get("oil_viscosity"), str):
             where = f"{source}: [lsd] " if source else ""
             text = table["oil_viscosity"]
             try:
@@ -104,6 +104,8 @@ class LSDParameters:
             except InputError:
                 table["oil_viscosity"] = to_si(text, "Pa*s", f"{where}oil_viscosity (kinematic like '100 cSt' or dynamic like '0.1 Pa*s')")
             else:
+                if "oil_density" not in table:
+                    raise InputError(f"{where}oil_viscosity = {text!r} is kinematic; give oil_density to convert it")
                 rho = to_si(table["oil_density"], "kg/m^3", f"{where}oil_density")
                 table["oil_viscosity"] = nu * rho
         return from_mapping(cls, table, section="lsd", source=source)
