@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
-from ..cli.common import add_output_options, print_json, print_table, quantity
+import math
+
+from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from ..errors import InputError
 from ..units import format_quantity
+from .cam import Cam
+from .simulate import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
 from .spring import ValveSpring
+from .valvetrain import ValveTrain
 
 __all__ = ["register"]
 
@@ -65,6 +71,55 @@ def register(sub) -> None:
     p.add_argument("--cam-rpm", metavar="RPM", help="camshaft speed for the surge margin (bare number: rpm)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_design)
+
+    p = vsub.add_parser("simulate", help="dynamic response under cam drive (spring alone or valve train)")
+    p.add_argument("spring", metavar="SPRING.toml")
+    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    _add_speed_options(p, ranged=False)
+    p.add_argument("--revolutions", type=int, default=3, metavar="N", help="cam revolutions to run (default 3)")
+    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
+    p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
+    p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"relative tolerance (default {DEFAULT_RTOL:g})")
+    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance (default {DEFAULT_ATOL:g})")
+    p.add_argument("--backend", choices=("compiled", "scipy"), default="compiled",
+                   help="compiled engine (default) or the SciPy reference")
+    add_output_options(p)
+    p.set_defaults(func=cmd_simulate)
+
+    p = vsub.add_parser("float", help="float speed: lowest speed at which the follower leaves the cam")
+    p.add_argument("spring", metavar="SPRING.toml")
+    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    p.add_argument("--valve-train", required=True, metavar="VT.toml", help="file with a [valve_train] table")
+    _add_speed_options(p, ranged=True)
+    p.add_argument("--revolutions", type=int, default=3, metavar="N", help="cam revolutions per speed (default 3)")
+    p.add_argument("--resolution", default="1", metavar="RPM", help="bisection resolution in cam rpm (default 1)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_float)
+
+
+def _add_speed_options(p, *, ranged: bool) -> None:
+    g = p.add_mutually_exclusive_group(required=True)
+    what = "START:STOP:STEP or a list" if ranged else "a speed"
+    g.add_argument("--cam-rpm", metavar="RPM", help=f"camshaft speed, {what} (bare numbers: rpm)")
+    g.add_argument("--engine-rpm", metavar="RPM",
+                   help=f"engine speed, {what} (four-stroke: cam speed = engine speed / 2)")
+
+
+def cam_rpm_from_args(args, *, ranged: bool):
+    """Camshaft speed(s) in rev/min from --cam-rpm or --engine-rpm (four-stroke: half)."""
+    option = "--cam-rpm" if args.cam_rpm is not None else "--engine-rpm"
+    text = args.cam_rpm if args.cam_rpm is not None else args.engine_rpm
+    factor = 60.0 / (2 * math.pi) * (1.0 if args.cam_rpm is not None else 0.5)
+    if ranged:
+        values = parse_range(text, "rad/s", option, bare_unit="rpm") * factor
+        if (values <= 0).any():
+            raise InputError(f"{option} = {text!r}: every speed must be positive")
+        return values
+    value = quantity(text, "rad/s", option, bare_unit="rpm") * factor
+    if not value > 0:
+        raise InputError(f"{option} = {text!r} must be a positive speed")
+    return value
 
 
 def _spring(args) -> ValveSpring:
@@ -136,4 +191,73 @@ def cmd_design(args) -> int:
             rows.append((state, f"{s['length_m'] * 1e3:.3f}", f"{s['force_N']:.1f}", f"{s['shear_stress_Pa'] / 1e6:.0f}",
                          f"{s['surge_frequency_Hz']:.1f}", f"{s['surge_margin']:.2f}" if "surge_margin" in s else "-"))
     print_table(rows, headers=("state", "length [mm]", "force [N]", "stress [MPa]", "surge [Hz]", "surge margin"))
+    return 0
+
+
+def _load_cam_and_train(args):
+    cam = Cam.from_toml(args.cam)
+    vt = ValveTrain.from_toml(args.valve_train) if getattr(args, "valve_train", None) else None
+    return cam, vt
+
+
+def cmd_simulate(args) -> int:
+    spring = _spring(args)
+    cam, vt = _load_cam_and_train(args)
+    rpm = cam_rpm_from_args(args, ranged=False)
+    sim = simulate(spring, cam, rpm, args.revolutions, valve_train=vt, rtol=args.rtol, atol=args.atol,
+                   points_per_revolution=args.points_per_revolution, backend=args.backend)
+    if args.csv:
+        sim.to_csv(args.csv)
+    if args.plot:
+        sim.plot(args.plot)
+    s = sim.summary()
+    if args.json:
+        print_json(s)
+        return 0
+    print(f"{spring.type} spring, {cam.law} cam at {rpm:g} cam rpm, last of {args.revolutions} revolutions "
+          f"({'periodic' if s['periodic'] else 'NOT periodic'}: {100 * s['periodicity_error']:.2f} % of Fset "
+          "change from the revolution before)")
+    rows = [
+        ("retainer force", f"{s['max_retainer_force_N']:.1f}", f"{s['min_retainer_force_N']:.1f}",
+         f"{s['max_retainer_force_ratio']:.3f}", f"{s['retainer_surge_amplitude_N']:.1f}"),
+        ("seat force", f"{s['max_seat_force_N']:.1f}", f"{s['min_seat_force_N']:.1f}",
+         f"{s['max_seat_force_ratio']:.3f}", f"{s['seat_surge_amplitude_N']:.1f}"),
+        ("static force", f"{s['max_static_force_N']:.1f}", f"{s['min_static_force_N']:.1f}", "1", "0"),
+    ]
+    print_table(rows, headers=("", "max [N]", "min [N]", "max/static", "surge [N]"))
+    print(f"f1 = {s['f1_Hz']:.1f} Hz = cam order {s['f1_cam_order']:.2f}; strongest harmonics: "
+          + ", ".join(f"{h['order']}: {h['amplitude_N']:.1f} N" for h in sorted(s['spectrum'], key=lambda h: -h['amplitude_N'])[:4]))
+    if s["coil_contact"]:
+        for ev in s["coil_contact"]:
+            print(f"coil contact {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg in {', '.join(ev['elements'])}, "
+                  f"peak {ev['peak_contact_force_N']:.1f} N")
+    else:
+        print("no coil contact")
+    if vt is not None:
+        if s["liftoff"]:
+            for ev in s["liftoff"]:
+                print(f"LIFT-OFF {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg ({ev['duration_s'] * 1e3:.3f} ms)")
+        else:
+            print(f"no lift-off: minimum cam contact force {s['min_cam_contact_force_N']:.1f} N")
+        print(f"seat impact velocity {s['seat_impact_velocity_m_per_s']:.3f} m/s, bounces {s['bounces']}, "
+              f"max bounce {s['max_bounce_height_m'] * 1e3:.3f} mm")
+    return 0
+
+
+def cmd_float(args) -> int:
+    spring = _spring(args)
+    cam, vt = _load_cam_and_train(args)
+    rpms = cam_rpm_from_args(args, ranged=True)
+    res = float_speed(spring, cam, vt, rpms, revolutions=args.revolutions,
+                      resolution=quantity(args.resolution, "rad/s", "--resolution", bare_unit="rpm") * 60 / (2 * math.pi),
+                      progress_quiet=args.quiet)
+    if args.json:
+        print_json(res)
+        return 0
+    if res["float_cam_rpm"] is None:
+        print(f"no lift-off up to {rpms.max():g} cam rpm (minimum cam contact force there "
+              f"{res['min_cam_contact_force_N'][-1]:.1f} N)")
+    else:
+        f = res["float_cam_rpm"]
+        print(f"float speed: {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke)")
     return 0

@@ -25,6 +25,7 @@ __all__ = [
     "law_stiffness",
     "law_compression",
     "damping_coefficient",
+    "law_energy",
 ]
 
 _INF = math.inf
@@ -167,3 +168,23 @@ def damping_coefficient(x, law: np.ndarray, c0: float):
     (linear) rate; ``C0 = 2 Cps sqrt(M K1)`` (notes 1.3.8).
     """
     return c0 * np.sqrt(law_stiffness(x, law) / law[0, 2])
+
+
+def law_energy(x, law: np.ndarray):
+    """Strain energy ``int_0^x F(s) ds`` [J] stored in an element compressed by ``x`` [m].
+
+    Exact integral of the piecewise quadratic law (used for energy balances).
+    """
+    x = np.asarray(x, dtype=float)
+    energy = np.where(x < 0, 0.5 * law[0, 2] * x * x, 0.0)
+    xp = np.maximum(x, 0.0)
+    starts = np.concatenate([[0.0], np.maximum(law[1:, 0], 0.0), [np.inf]])
+    for seg in range(3):
+        lo = starts[seg]
+        hi = np.minimum(xp, starts[seg + 1])
+        if not np.isfinite(lo):
+            break
+        a, b, c = law[seg, 1], law[seg, 2], law[seg, 3]
+        hi = np.maximum(hi, lo)
+        energy = energy + a / 3 * (hi**3 - lo**3) + b / 2 * (hi**2 - lo**2) + c * (hi - lo)
+    return energy

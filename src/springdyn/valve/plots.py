@@ -40,3 +40,63 @@ def plot_static_curve(curve, path=None):
     return fig
 
 
+
+
+def plot_simulation(sim, path=None):
+    """Forces vs cam angle (dynamic against static), mass displacements and spectrum."""
+    vt = sim.valve_train is not None
+    fig, axes = new_figure(4 if vt else 3, 1, figsize=(9, 12 if vt else 10))
+    deg = sim.cam_angle_deg
+    order = np.argsort(deg)
+    ax = axes[0]
+    ax.plot(deg[order], sim.retainer_force[order], color="C0", lw=1.5, label="retainer force (dynamic)")
+    ax.plot(deg[order], sim.seat_force[order], color="C1", lw=1.0, label="seat force (dynamic)")
+    ax.plot(deg[order], sim.static_force[order], color="k", ls="--", lw=1.2, label="static (massless) force")
+    for ev in sim.summary()["coil_contact"]:
+        a, b = ev["start_deg"], ev["end_deg"]
+        spans = [(a, b)] if a <= b else [(a, 360.0), (0.0, b)]
+        for lo, hi in spans:
+            ax.axvspan(lo, hi, color="C3", alpha=0.15)
+    if sim.summary()["coil_contact"]:
+        ax.plot([], [], color="C3", alpha=0.3, lw=6, label="coil contact")
+    ax.set_ylabel("force [N]")
+    ax.set_title(f"{sim.spring.type} spring, {sim.cam.law} cam, {sim.cam_rpm:.0f} cam rpm "
+                 f"(revolution {sim.revolutions} of {sim.revolutions})")
+    ax.legend(fontsize=8)
+    ax2 = ax.twinx()
+    ax2.plot(deg[order], sim.lift[order] * 1e3, color="0.6", lw=0.8)
+    ax2.set_ylabel("cam lift [mm]", color="0.5")
+    ax = axes[1]
+    for i, name in enumerate(sim.spring.chain.mass_names):
+        ax.plot(deg[order], sim.mass_displacement[i][order] * 1e3, lw=1, label=f"mass {i + 1} ({name})")
+    ax.set_ylabel("displacement from set-up [mm]")
+    ax.legend(fontsize=8, ncol=3)
+    row = 2
+    if vt:
+        ax = axes[2]
+        ax.plot(deg[order], sim.cam_contact_force[order], color="C2", label="cam-follower contact force")
+        ax.plot(deg[order], sim.valve_seat_force[order], color="C4", label="valve-seat force")
+        for ev in sim.summary()["liftoff"]:
+            ax.axvspan(ev["start_deg"], ev["end_deg"], color="C3", alpha=0.2)
+        if sim.summary()["liftoff"]:
+            ax.plot([], [], color="C3", alpha=0.3, lw=6, label="lift-off")
+        ax.set_ylabel("force [N]")
+        ax.legend(fontsize=8)
+        row = 3
+    for a in axes[:row]:
+        a.set_xlabel("cam angle [deg]")
+        a.set_xlim(0, 360)
+        a.grid(True, alpha=0.3)
+    ax = axes[row]
+    orders, amp = sim.spectrum(40)
+    ax.bar(orders[1:], amp[1:], color="C0", width=0.7)
+    f1_order = sim.summary()["f1_cam_order"]
+    ax.axvline(f1_order, color="C3", ls="--", label=f"f1 = {sim.summary()['f1_Hz']:.0f} Hz (order {f1_order:.1f})")
+    ax.set_xlabel("cam order")
+    ax.set_ylabel("retainer force amplitude [N]")
+    ax.set_yscale("log")
+    ax.legend(fontsize=8)
+    ax.grid(True, alpha=0.3)
+    if path is not None:
+        save_figure(fig, path, close=False)
+    return fig

@@ -1,0 +1,291 @@
+"""Time integration of the valve-spring chain (and optional valve train).
+
+The equations of motion (notes 1.2-1.5): nodes are numbered from the seat (node 0,
+fixed) over the five masses (nodes 1-5) to the retainer end (node 6).  ``u`` is the
+displacement of a node towards the seat, measured from its set-up position.  Element
+``j`` joins nodes ``j`` and ``j + 1`` and is compressed by
+``x_j = x_j,set + u_(j+1) - u_j``; it carries ``f_j = F_j(x_j) + c_j(x_j) dx_j/dt``
+(element law and damping of :mod:`springdyn.valve.elements`).  Mass ``i`` (node
+``i + 1``) obeys ``m_i d2u/dt2 = f_(i+1) - f_i``.
+
+- Spring alone: the retainer end follows the cam, ``u_6 = h(omega t)``.
+- Valve train: node 6 is the valve body (valve + retainer + follower, mass ``M_v``,
+  displacement ``z`` = valve lift) with ``M_v z'' = F_cam + F_seat - f_5``; the cam
+  contact ``F_cam = max(0, k_c p + c_c p')`` for ``p = h - z - lash > 0`` and the valve
+  seat ``F_seat = max(0, -k_s z - c_s z')`` for ``z < 0`` are unilateral.
+
+The cam enters through a periodic table of lift, velocity and acceleration sampled
+finely over one revolution and interpolated by quintic Hermite polynomials (C2), the same
+in every backend.
+
+Backends: :func:`integrate` (compiled: numba, adaptive Dormand-Prince 5(4) with dense
+output, :mod:`springdyn.integration`) and :func:`integrate_scipy` (the reference:
+``scipy.integrate.solve_ivp`` with the same right-hand side run as plain Python).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .. import integration as _ig
+
+__all__ = ["rhs", "integrate", "integrate_scipy", "hermite_eval", "STATUS"]
+
+#: Status codes of :func:`integrate`.
+STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the solution is not finite (NaN/inf)"}
+
+
+def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, out):
+    """Right-hand side ``ds/dt`` of the chain (plain Python; compiled as :data:`rhs_compiled`).
+
+    Parameters
+    ----------
+    t : float
+        Time [s]; the cam angle is ``omega t``.
+    s : ndarray
+        State: node displacements [m] then velocities [m/s] (5 each, 6 with a valve train).
+    masses : ndarray (5,)
+        Chain masses [kg].
+    laws : ndarray (6, 3, 4)
+        Element laws (segments ``x_start, a, b, c``).
+    xset : ndarray (6,)
+        Element compressions at set-up [m].
+    c0 : float
+        Damping coefficient C0 [N s/m].
+    cam_h, cam_dh, cam_ddh : ndarray (N,)
+        Lift [m] and its first two derivatives per radian at ``k * dth``, one revolution.
+    dth : float
+        Table step [rad].
+    omega : float
+        Cam angular speed [rad/s].
+    vt : ndarray (7,)
+        ``enabled, M_v [kg], k_c [N/m], c_c [N s/m], k_s [N/m], c_s [N s/m], lash [m]``.
+    out : ndarray
+        Receives ``ds/dt``.
+    """
+    nfree = 5 + (1 if vt[0] > 0.5 else 0)
+    # cam lift and velocity (quintic Hermite on the periodic table)
+    theta = omega * t
+    n = cam_h.shape[0]
+    period = n * dth
+    th = theta - period * math.floor(theta / period)
+    i0 = int(th / dth)
+    if i0 >= n:
+        i0 = n - 1
+    i1 = i0 + 1 if i0 + 1 < n else 0
+    x = th / dth - i0
+    x2 = x * x
+    x3 = x2 * x
+    x4 = x3 * x
+    x5 = x4 * x
+    p0 = cam_h[i0]
+    p1 = cam_h[i1]
+    v0 = cam_dh[i0] * dth
+    v1 = cam_dh[i1] * dth
+    a0 = cam_ddh[i0] * dth * dth
+    a1 = cam_ddh[i1] * dth * dth
+    lift = (
+        (1 - 10 * x3 + 15 * x4 - 6 * x5) * p0
+        + (x - 6 * x3 + 8 * x4 - 3 * x5) * v0
+        + 0.5 * (x2 - 3 * x3 + 3 * x4 - x5) * a0
+        + 0.5 * (x3 - 2 * x4 + x5) * a1
+        + (-4 * x3 + 7 * x4 - 3 * x5) * v1
+        + (10 * x3 - 15 * x4 + 6 * x5) * p1
+    )
+    dlift = (
+        (-30 * x2 + 60 * x3 - 30 * x4) * p0
+        + (1 - 18 * x2 + 32 * x3 - 15 * x4) * v0
+        + 0.5 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4) * a0
+        + 0.5 * (3 * x2 - 8 * x3 + 5 * x4) * a1
+        + (-12 * x2 + 28 * x3 - 15 * x4) * v1
+        + (30 * x2 - 60 * x3 + 30 * x4) * p1
+    ) / dth * omega
+    # element forces, from the seat (node 0) to the retainer end (node 6)
+    f_prev = 0.0
+    u_lo = 0.0
+    v_lo = 0.0
+    for j in range(6):
+        if j < 5:
+            u_hi = s[j]
+            v_hi = s[nfree + j]
+        elif nfree == 6:
+            u_hi = s[5]
+            v_hi = s[11]
+        else:
+            u_hi = lift
+            v_hi = dlift
+        xj = xset[j] + u_hi - u_lo
+        seg = 0
+        if xj >= laws[j, 1, 0]:
+            seg = 1
+            if xj >= laws[j, 2, 0]:
+                seg = 2
+        a = laws[j, seg, 1]
+        b = laws[j, seg, 2]
+        force = (a * xj + b) * xj + laws[j, seg, 3]
+        stiff = 2.0 * a * xj + b
+        force += c0 * math.sqrt(stiff / laws[j, 0, 2]) * (v_hi - v_lo)
+        if j > 0:
+            out[j - 1] = s[nfree + j - 1]
+            out[nfree + j - 1] = (force - f_prev) / masses[j - 1]
+        f_prev = force
+        u_lo = u_hi
+        v_lo = v_hi
+    if nfree == 6:
+        z = s[5]
+        zd = s[11]
+        f_cam = 0.0
+        pen = lift - z - vt[6]
+        if pen > 0.0:
+            f_cam = vt[2] * pen + vt[3] * (dlift - zd)
+            if f_cam < 0.0:
+                f_cam = 0.0
+        f_seat = 0.0
+        if z < 0.0:
+            f_seat = -vt[4] * z - vt[5] * zd
+            if f_seat < 0.0:
+                f_seat = 0.0
+        out[5] = zd
+        out[11] = (f_cam + f_seat - f_prev) / vt[1]
+
+
+#: The compiled right-hand side (numba, cached on disk).
+rhs_compiled = njit(cache=True)(rhs)
+
+
+@njit(cache=True)
+def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
+               rtol, atol, h_max, max_steps, out):
+    n = y0.shape[0]
+    k = np.empty((7, n))
+    ytmp = np.empty(n)
+    rc = np.empty((5, n))
+    y = y0.copy()
+    t = t0
+    rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[0])
+    h = _ig.initial_step(y, k[0], rtol, atol, h_max)
+    nout = t_out.shape[0]
+    iout = 0
+    while iout < nout and t_out[iout] <= t:
+        out[iout, :] = y
+        iout += 1
+    err_old = 1e-4
+    accepted_before = False
+    nsteps = 0
+    nrejected = 0
+    while iout < nout:
+        if nsteps + nrejected >= max_steps:
+            return 1, t, nsteps, nrejected
+        if h <= 1e-15 * max(abs(t), 1e-6) + 1e-18:
+            return 2, t, nsteps, nrejected
+        for stage in range(1, 7):
+            _ig.stage_state(y, h, k, stage, ytmp)
+            rhs_compiled(t + _ig.C[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
+                         omega, vt, k[stage])
+        err = _ig.error_norm(y, ytmp, k, h, rtol, atol)
+        if not (err == err) or err > 1e300:
+            if h < 1e-13:
+                return 3, t, nsteps, nrejected
+            h *= 0.1
+            accepted_before = False
+            nrejected += 1
+            continue
+        if err <= 1.0:
+            _ig.dense_coefficients(y, ytmp, k, h, rc)
+            t_new = t + h
+            while iout < nout and t_out[iout] <= t_new:
+                _ig.dense_eval(rc, (t_out[iout] - t) / h, out[iout])
+                iout += 1
+            y[:] = ytmp
+            k[0, :] = k[6, :]
+            t = t_new
+            h_new = _ig.next_step(h, err, err_old, accepted_before)
+            err_old = max(err, 1e-4)
+            accepted_before = True
+            nsteps += 1
+            h = min(h_new, h_max)
+        else:
+            h = min(h, _ig.next_step(h, err, err_old, False))
+            accepted_before = False
+            nrejected += 1
+    return 0, t, nsteps, nrejected
+
+
+def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
+    """Integrate with the compiled engine; states at ``t_out`` (ascending, from ``t_out[0]``).
+
+    ``args`` = ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``.
+
+    Returns
+    -------
+    states : ndarray (len(t_out), n)
+    info : dict
+        ``status`` (0 ok, see :data:`STATUS`), ``t`` (time reached [s]), ``steps``, ``rejected``.
+    """
+    out = np.full((t_out.size, y0.size), np.nan)
+    status, t, steps, rejected = _integrate(
+        np.ascontiguousarray(y0, dtype=float), float(t_out[0]), np.ascontiguousarray(t_out, dtype=float), *args,
+        float(rtol), float(atol), float(h_max), int(max_steps), out,
+    )
+    return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))
+
+
+def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rhs=False, h_max=np.inf):
+    """Reference backend: ``scipy.integrate.solve_ivp`` with the plain-Python :func:`rhs`.
+
+    With ``compiled_rhs=True`` the compiled right-hand side is used instead (same model,
+    faster); the plain one is the independent reference of the benchmarks.
+    """
+    from scipy.integrate import solve_ivp
+
+    f = rhs_compiled if compiled_rhs else rhs
+    buf = np.empty(len(y0))
+
+    def fun(t, y):
+        d = np.empty_like(buf)
+        f(t, y, *args, d)
+        return d
+
+    sol = solve_ivp(fun, (float(t_out[0]), float(t_out[-1])), np.asarray(y0, float), method=method, t_eval=t_out,
+                    rtol=rtol, atol=atol, max_step=h_max)
+    out = np.full((t_out.size, len(y0)), np.nan)
+    out[: sol.y.shape[1]] = sol.y.T
+    status = 0 if sol.status == 0 else 2
+    t_reached = float(sol.t[-1]) if sol.t.size else float(t_out[0])
+    return out, dict(status=status, t=t_reached, steps=int(sol.nfev), rejected=0, message=sol.message)
+
+
+def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
+    """Vectorised quintic Hermite evaluation of the cam table used by :func:`rhs`.
+
+    Returns lift [m], ``dh/dtheta`` [m/rad] at cam angles ``theta`` [rad].
+    """
+    theta = np.asarray(theta, dtype=float)
+    n = cam_h.size
+    th = np.mod(theta, n * dth)
+    i0 = np.minimum((th / dth).astype(np.intp), n - 1)
+    i1 = (i0 + 1) % n
+    x = th / dth - i0
+    p0, p1 = cam_h[i0], cam_h[i1]
+    v0, v1 = cam_dh[i0] * dth, cam_dh[i1] * dth
+    a0, a1 = cam_ddh[i0] * dth**2, cam_ddh[i1] * dth**2
+    lift = (
+        (1 - 10 * x**3 + 15 * x**4 - 6 * x**5) * p0
+        + (x - 6 * x**3 + 8 * x**4 - 3 * x**5) * v0
+        + 0.5 * (x**2 - 3 * x**3 + 3 * x**4 - x**5) * a0
+        + 0.5 * (x**3 - 2 * x**4 + x**5) * a1
+        + (-4 * x**3 + 7 * x**4 - 3 * x**5) * v1
+        + (10 * x**3 - 15 * x**4 + 6 * x**5) * p1
+    )
+    dlift = (
+        (-30 * x**2 + 60 * x**3 - 30 * x**4) * p0
+        + (1 - 18 * x**2 + 32 * x**3 - 15 * x**4) * v0
+        + 0.5 * (2 * x - 9 * x**2 + 12 * x**3 - 5 * x**4) * a0
+        + 0.5 * (3 * x**2 - 8 * x**3 + 5 * x**4) * a1
+        + (-12 * x**2 + 28 * x**3 - 15 * x**4) * v1
+        + (30 * x**2 - 60 * x**3 + 30 * x**4) * p1
+    ) / dth
+    return lift, dlift

@@ -1,0 +1,145 @@
+"""Cam lift laws (notes 1.7): shapes, derivatives, ramps, tables and bad input."""
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from springdyn.errors import InputError
+from springdyn.valve.cam import Cam, polydyne_coefficients, rise_law
+
+LAWS = ["cycloidal", "3-4-5", "4-5-6-7", "polydyne"]
+DUR = math.radians(120)
+
+
+def test_polydyne_coefficients_stoddart():
+    """The 2-10-14-18 polydyne coefficients of the literature (exact rationals)."""
+    np.testing.assert_allclose(polydyne_coefficients(), [-105 / 64, 63 / 32, -15 / 8, 35 / 64], rtol=1e-13)
+
+
+@pytest.mark.parametrize("law", LAWS)
+def test_rise_law_boundary_conditions(law):
+    p, dp, ddp = rise_law(law, np.array([0.0, 1.0]))
+    np.testing.assert_allclose(p, [0, 1], atol=1e-14)
+    np.testing.assert_allclose(dp, [0, 0], atol=1e-13)
+    np.testing.assert_allclose(ddp[0], 0, atol=1e-12)  # all four start with zero acceleration
+
+
+def test_closed_forms_of_notes_1_7():
+    u = np.linspace(0, 1, 11)
+    np.testing.assert_allclose(rise_law("3-4-5", u)[0], 10 * u**3 - 15 * u**4 + 6 * u**5, atol=1e-15)
+    np.testing.assert_allclose(rise_law("4-5-6-7", u)[0], 35 * u**4 - 84 * u**5 + 70 * u**6 - 20 * u**7, atol=1e-14)
+    np.testing.assert_allclose(rise_law("cycloidal", u)[0], u - np.sin(2 * np.pi * u) / (2 * np.pi), atol=1e-15)
+
+
+@pytest.mark.parametrize("ramps", [False, True])
+@pytest.mark.parametrize("law", LAWS)
+def test_event_shape_and_derivatives(law, ramps):
+    kw = dict(ramp_height=0.3e-3, ramp_duration=math.radians(15)) if ramps else {}
+    cam = Cam(law=law, lift=9e-3, duration=DUR, **kw)
+    total = cam.event_duration
+    th = np.linspace(0, 2 * np.pi, 72001)[:-1]
+    h, dh, ddh = cam.evaluate(th)
+    assert h.max() == pytest.approx(9e-3, rel=1e-9)
+    assert cam.lift_at(total / 2) == pytest.approx(9e-3, rel=1e-12)
+    assert np.all(h[th > total + 1e-9] == 0)
+    # symmetric event
+    np.testing.assert_allclose(cam.lift_at(total / 2 - th[:100]), cam.lift_at(total / 2 + th[:100]), atol=1e-15)
+    # analytic derivatives against central differences, away from the junctions (event
+    # ends, ramp ends, nose) where jerk (or, at a ramp start, velocity) steps by design
+    d = th[1] - th[0]
+    phi = cam.ramp_duration
+    junctions = np.array([0.0, phi, total / 2, total - phi, total, 2 * np.pi])
+    inner = np.min(np.abs(th[:, None] - junctions[None, :]), axis=1) > 2.5 * d
+    num_dh = (np.roll(h, -1) - np.roll(h, 1)) / (2 * d)
+    num_ddh = (np.roll(dh, -1) - np.roll(dh, 1)) / (2 * d)
+    scale_v, scale_a = np.abs(dh).max(), np.abs(ddh).max()
+    assert np.max(np.abs(num_dh - dh)[inner]) < 1e-6 * scale_v  # O(d^2) truncation
+    assert np.max(np.abs(num_ddh - ddh)[inner]) < 1e-6 * scale_a
+    if ramps:
+        phi = math.radians(15)
+        v_r = 0.3e-3 / phi
+        # velocity and acceleration continuous where the ramp meets the main rise
+        for e in (1e-9,):
+            a, b = cam.evaluate([phi - e, phi + e])[1:], None
+            assert a[0][0] == pytest.approx(v_r, rel=1e-6) and a[0][1] == pytest.approx(v_r, rel=1e-6)
+            assert abs(a[1][1]) < 1e-6 * scale_a
+
+
+def test_table_cam_periodic_spline(tmp_path):
+    cam = Cam(law="3-4-5", lift=9e-3, duration=DUR)
+    deg = np.arange(0, 360, 0.5)
+    f = tmp_path / "lift.csv"
+    f.write_text("cam_angle_deg,lift_mm\n" + "".join(f"{a},{float(cam.lift_at(math.radians(a))) * 1e3!r}\n" for a in deg))
+    tab = Cam.from_dict({"law": "table", "file": str(f)})
+    th = np.radians(np.linspace(0, 359.9, 3001))
+    np.testing.assert_allclose(tab.lift_at(th), cam.lift_at(th), atol=2e-7)  # 0.5 deg cubic spline of a quintic
+    # periodic: value and two derivatives match across 360 deg
+    e = 1e-9
+    for k in range(3):
+        assert tab.evaluate(2 * np.pi - e)[k] == pytest.approx(tab.evaluate(e)[k], abs=1e-6 * (1 + k * 1e-2))
+    # SI columns and a closing row at 360 deg are accepted
+    f2 = tmp_path / "si.csv"
+    rows = [(math.radians(a), float(cam.lift_at(math.radians(a)))) for a in np.append(deg, 360)]
+    f2.write_text("cam_angle_rad,lift_m\n" + "".join(f"{a!r},{h!r}\n" for a, h in rows))
+    np.testing.assert_allclose(Cam.from_dict({"law": "table", "file": str(f2)}).lift_at(th), tab.lift_at(th), atol=1e-12)
+
+
+def test_table_relative_to_toml(tmp_path):
+    (tmp_path / "t.csv").write_text("cam_angle_deg,lift_mm\n" + "".join(f"{a},0\n" for a in range(0, 360, 10)))
+    (tmp_path / "c.toml").write_text('[cam]\nlaw = "table"\nfile = "t.csv"\n')
+    assert Cam.from_toml(tmp_path / "c.toml").max_lift == 0.0
+
+
+def test_coarse_table_warns():
+    th = np.radians(np.arange(0, 360, 10.0))
+    cam = Cam.from_table(th, Cam(law="cycloidal", lift=9e-3, duration=DUR).lift_at(th), "coarse")
+    # f1 = 450 Hz is cam order 90 at 300 rpm: beyond the table's Nyquist order 18
+    with pytest.warns(UserWarning, match="largest step of 10 deg resolves cam orders up to 18"):
+        cam.check_resolution(300, 450.0)
+    with warnings.catch_warnings():  # order 9 at 3000 rpm: resolved
+        warnings.simplefilter("error")
+        cam.check_resolution(3000, 450.0)
+
+
+@pytest.mark.parametrize(
+    "mapping,pattern",
+    [
+        ({"law": "5-6-7", "lift": "9 mm", "duration": "120 deg"}, r"law = '5-6-7' is not allowed"),
+        ({"law": "3-4-5", "lift": "0 mm", "duration": "120 deg"}, r"lift = 0 mm must be positive"),
+        ({"law": "3-4-5", "lift": "-1 mm", "duration": "120 deg"}, r"lift = -1 mm must be positive"),
+        ({"law": "3-4-5", "lift": "9 mm", "duration": "0 deg"}, r"duration = 0 deg must lie in \(0, 360\] deg"),
+        ({"law": "3-4-5", "lift": "9 mm", "duration": "400 deg"}, r"duration = 400 deg must lie in \(0, 360\] deg"),
+        ({"law": "3-4-5", "lift": "9 mm"}, r"law = '3-4-5' needs duration"),
+        ({"law": "3-4-5", "lift": "9 mm", "duration": "120 deg", "ramp_height": "0.3 mm"}, r"both zero or both positive"),
+        ({"law": "3-4-5", "lift": "9 mm", "duraton": "120 deg"}, r"unknown key 'duraton'"),
+        ({"law": "table"}, r'law = "table" needs file'),
+    ],
+)
+def test_bad_cam(mapping, pattern):
+    with pytest.raises(InputError, match=pattern):
+        Cam.from_dict(mapping)
+
+
+@pytest.mark.parametrize(
+    "rows,pattern",
+    [
+        ([(a, 1.0) for a in range(0, 200, 10)], r"must cover one whole revolution"),
+        ([(a, 1.0) for a in range(0, 400, 10)], r"more than one revolution"),
+        ([(a, 1.0) for a in [0, 10, 20, 15, 30, 40, 50, 60, 70, 80]], r"cam angle must increase: row 5 \(15 deg\)"),
+        ([(a, -1.0 if a == 50 else 0.0) for a in range(0, 360, 10)], r"lift must not be negative: row 7 has -1 mm"),
+    ],
+)
+def test_bad_table(tmp_path, rows, pattern):
+    f = tmp_path / "bad.csv"
+    f.write_text("cam_angle_deg,lift_mm\n" + "".join(f"{a},{h}\n" for a, h in rows))
+    with pytest.raises(InputError, match=pattern):
+        Cam.from_dict({"law": "table", "file": str(f)})
+
+
+def test_table_missing_columns(tmp_path):
+    f = tmp_path / "bad.csv"
+    f.write_text("angle,lift\n0,0\n")
+    with pytest.raises(InputError, match="needs columns cam_angle_deg"):
+        Cam.from_dict({"law": "table", "file": str(f)})

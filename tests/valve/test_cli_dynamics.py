@@ -1,0 +1,75 @@
+"""``springdyn valve simulate`` and ``springdyn valve float``: contracts and bad input."""
+
+import csv
+import json
+from pathlib import Path
+
+import pytest
+
+from springdyn.cli.main import main
+
+EX = Path(__file__).resolve().parents[2] / "examples" / "valve"
+SPRING, CAM, VT = str(EX / "one_step_spring.toml"), str(EX / "cam_345.toml"), str(EX / "valve_train.toml")
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_simulate_csv_json_plot(capsys, tmp_path):
+    c, p = tmp_path / "s.csv", tmp_path / "s.png"
+    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "3000", "--revolutions", "2",
+                       "--points-per-revolution", "360", "--csv", str(c), "--plot", str(p), "--json")
+    assert code == 0
+    s = json.loads(out)
+    for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N", "coil_contact"):
+        assert key in s
+    assert "liftoff" not in s
+    header = next(csv.reader(open(c)))
+    assert header[:6] == ["time_s", "cam_angle_deg", "lift_m", "retainer_force_N", "seat_force_N", "static_force_N"]
+    assert sum(1 for _ in open(c)) == 361
+    assert p.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_engine_rpm_is_twice_cam_rpm(capsys):
+    _, a, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "2000", "--revolutions", "1", "--json")
+    _, b, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--engine-rpm", "4000", "--revolutions", "1", "--json")
+    assert json.loads(a) == json.loads(b)
+
+
+def test_valve_train_reports_liftoff(capsys):
+    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "3500", "--valve-train", VT,
+                       "--json")
+    s = json.loads(out)
+    assert code == 0 and s["liftoff"] and {"start_deg", "end_deg", "duration_s"} <= set(s["liftoff"][0])
+    code, out, _ = run(capsys, "valve", "float", SPRING, "--cam", CAM, "--valve-train", VT, "--cam-rpm", "2000:4000:500",
+                       "--resolution", "5", "--json")
+    res = json.loads(out)
+    assert code == 0 and 2500 < res["float_cam_rpm"] < 3000
+
+
+@pytest.mark.parametrize(
+    "extra,message",
+    [
+        (["--cam-rpm", "0"], "--cam-rpm = '0' must be a positive speed"),
+        (["--cam-rpm", "3000 mm"], "--cam-rpm = '3000 mm' has the wrong dimension"),
+        (["--cam-rpm", "3000", "--revolutions", "0"], "revolutions = 0 must be a whole number of at least 1"),
+    ],
+)
+def test_simulate_bad_input(capsys, extra, message):
+    code, _, err = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, *extra)
+    assert code == 2 and message in err and "Traceback" not in err
+
+
+def test_bad_cam_file(capsys, tmp_path):
+    f = tmp_path / "cam.toml"
+    f.write_text('[cam]\nlaw = "3-4-5"\nlift = "9 mm"\nduration = "400 deg"\n')
+    code, _, err = run(capsys, "valve", "simulate", SPRING, "--cam", str(f), "--cam-rpm", "3000")
+    assert code == 2 and "duration = 400 deg must lie in (0, 360] deg" in err
+
+
+def test_float_empty_range(capsys):
+    code, _, err = run(capsys, "valve", "float", SPRING, "--cam", CAM, "--valve-train", VT, "--cam-rpm", "4000:2000:500")
+    assert code == 2 and "is empty" in err

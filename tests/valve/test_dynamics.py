@@ -1,0 +1,222 @@
+"""Valve spring under cam drive (issue 3): limits, energy, periodicity, modes, lift-off."""
+
+import math
+
+import numpy as np
+import pytest
+
+from springdyn.errors import InputError, SolverError
+from springdyn.valve import ValveSpring
+from springdyn.valve import engine
+from springdyn.valve import simulate as simmod
+from springdyn.valve.cam import Cam
+from springdyn.valve.elements import law_energy, law_force
+from springdyn.valve.simulate import float_speed, prepare, rpm_to_omega, simulate
+from springdyn.valve.valvetrain import ValveTrain
+
+CAM = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+VT = ValveTrain(valve_mass=0.045, retainer_mass=0.010, follower_mass=0.035)
+
+
+@pytest.fixture(scope="module")
+def one_step():
+    return ValveSpring.example("one-step")
+
+
+def test_quasi_static_limit(one_step):
+    """Issue 3: a 10 cam rpm drive reproduces the static force within 0.1 % of Fset."""
+    sim = simulate(one_step, CAM, 10.0, revolutions=1, points_per_revolution=720)
+    fset = one_step.internal_parameters()["Fset"]
+    assert np.max(np.abs(sim.retainer_force - sim.static_force)) < 1e-3 * fset
+    assert np.max(np.abs(sim.seat_force - sim.static_force)) < 1e-3 * fset
+    # and the static force itself is the static curve at the same lift
+    np.testing.assert_allclose(sim.static_force, one_step.static_force(one_step.installed_length - sim.lift), rtol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["one-step", "two-step"])
+def test_refinement_study(name):
+    """Issue 3: halving the tolerances changes the peak forces by less than 0.05 % of Fset."""
+    s = ValveSpring.example(name)
+    fset = s.internal_parameters()["Fset"]
+    a = simulate(s, CAM, 3000, 2).summary()
+    b = simulate(s, CAM, 3000, 2, rtol=simmod.DEFAULT_RTOL / 2, atol=simmod.DEFAULT_ATOL / 2).summary()
+    for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
+        assert abs(a[key] - b[key]) < 5e-4 * fset, key
+
+
+def test_periodicity(one_step):
+    sim = simulate(one_step, CAM, 3000, 3)
+    assert sim.periodic and sim.periodicity_error < 0.01
+    np.testing.assert_allclose(sim.lift, CAM.lift_at(sim.cam_angle), atol=1e-12)
+    assert sim.cam_angle_deg[0] == pytest.approx(0.0, abs=1e-9)
+    # a transient that has not decayed is reported as not periodic
+    assert not simulate(one_step.replace(damping_ratio=0.0), CAM, 3000, 2).periodic
+
+
+def test_compiled_engine_matches_scipy_reference(one_step):
+    """Both backends integrate the same right-hand side; at these tolerances they agree to
+    far better than 0.05 % of Fset over the whole revolution."""
+    a = simulate(one_step, CAM, 3000, 1, rtol=1e-9, atol=1e-12)
+    b = simulate(one_step, CAM, 3000, 1, rtol=1e-9, atol=1e-12, backend="scipy")
+    fset = one_step.internal_parameters()["Fset"]
+    assert np.max(np.abs(a.retainer_force - b.retainer_force)) < 1e-5 * fset
+
+
+def test_compiled_rhs_equals_numpy_element_laws(one_step):
+    """The scalar kernel's forces equal elements.law_force at random states."""
+    setup = prepare(one_step, CAM)
+    args = setup.args(rpm_to_omega(3000))
+    rng = np.random.default_rng(0)
+    ch = one_step.chain
+    for _ in range(20):
+        s = np.concatenate([rng.normal(0, 2e-3, 5), np.zeros(5)])
+        d = np.empty(10)
+        engine.rhs_compiled(0.0, s, *args, d)
+        u = np.concatenate([[0.0], s[:5], [0.0]])  # cam angle 0: lift 0
+        x = ch.setup_compressions + np.diff(u)
+        f = np.array([law_force(x[j], ch.laws[j]) for j in range(6)])
+        np.testing.assert_allclose(d[5:], (f[1:] - f[:-1]) / ch.masses, rtol=1e-10)
+
+
+def test_energy_balance_undamped_chain(one_step):
+    """Undamped chain: work done by the retainer = kinetic + elastic energy change
+    (to integration and trapezoid-quadrature tolerance, 1e-5 of the peak energy)."""
+    s = one_step.replace(damping_ratio=0.0)
+    setup = prepare(s, CAM)
+    omega = rpm_to_omega(3000)
+    t = np.linspace(0, 2 * math.pi / omega, 40001)
+    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-10, atol=1e-13, h_max=1e-5)
+    assert info["status"] == 0
+    lift, dlift = engine.hermite_eval(omega * t, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
+    dlift *= omega
+    ch = s.chain
+    u = np.vstack([np.zeros_like(t), states[:, :5].T, lift])
+    x = ch.setup_compressions[:, None] + np.diff(u, axis=0)
+    pe = sum(law_energy(x[j], ch.laws[j]) - law_energy(ch.setup_compressions[j], ch.laws[j]) for j in range(6))
+    ke = 0.5 * np.sum(ch.masses[:, None] * states[:, 5:].T ** 2, axis=0)
+    power = law_force(x[5], ch.laws[5]) * dlift
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(t))])
+    assert np.max(np.abs(work - (ke + pe))) < 1e-5 * np.max(pe)
+
+
+def test_law_energy_is_integral_of_force(one_step):
+    for law in one_step.chain.laws:
+        xs = np.linspace(-1e-3, 9e-3, 200001)
+        f = law_force(xs, law)
+        num = np.concatenate([[0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(xs))])
+        num -= np.interp(0.0, xs, num)
+        np.testing.assert_allclose(law_energy(xs, law), num, atol=1e-7 * np.abs(num).max())
+
+
+def test_mode_frequencies_from_free_response(one_step):
+    """Free vibration of the undamped chain (cam at rest): the spectrum peaks at the
+    linearised chain modes (Hann window, 1 s record: 1 Hz bins, parabolic peak
+    interpolation of the log spectrum good to ~0.1 Hz; we allow 0.5 Hz)."""
+    s = one_step.replace(damping_ratio=0.0)
+    flat = Cam(law="cycloidal", lift=1e-9, duration=math.radians(1))
+    setup = prepare(s, flat)
+    y0 = setup.y0.copy()
+    y0[:5] = [2e-5, -1e-5, 3e-5, 1e-5, -2e-5]  # small: stays in the linear range
+    fs, n = 20000.0, 20000
+    t = np.arange(n) / fs
+    states, info = engine.integrate(y0, t, setup.args(1e-6), rtol=1e-9, atol=1e-14, h_max=1e-4)
+    sig = states[:, 1] + states[:, 2] - states[:, 3]
+    spec = np.abs(np.fft.rfft((sig - sig.mean()) * np.hanning(n)))
+    freqs = np.fft.rfftfreq(n, 1 / fs)
+    expected = s.modes(s.installed_length, 3)
+    for f0 in expected:
+        k = int(np.argmax(np.where(np.abs(freqs - f0) < 20, spec, 0)))
+        a, b, c = np.log(spec[k - 1 : k + 2])
+        peak = freqs[k] + 0.5 * (a - c) / (a - 2 * b + c) * (freqs[1] - freqs[0])
+        assert peak == pytest.approx(f0, abs=0.5)
+
+
+def test_coil_contact_events():
+    s = ValveSpring.example("one-step")
+    high = Cam(law="3-4-5", lift=12e-3, duration=math.radians(120))
+    sim = simulate(s, high, 4000, 2)
+    ev = sim.summary()["coil_contact"]
+    assert ev, "12 mm lift at 4000 rpm must reach coil contact"
+    fcon = s.internal_parameters()["Fcon"]
+    for e in ev:
+        assert e["peak_contact_force_N"] >= fcon
+        assert all(name.split(":")[1].startswith("Kh") for name in e["elements"])
+    # flags are exactly the Fcon breakpoints of the Kh elements
+    kh = [j for j, n in enumerate(s.chain.element_names) if n.startswith("Kh")]
+    for j in kh:
+        flagged = sim.element_contact[j]
+        np.testing.assert_array_equal(flagged, law_force(sim.element_compression[j], s.chain.laws[j]) >= fcon * (1 - 1e-12))
+
+
+def test_spectrum_harmonics_reconstruct_force(one_step):
+    sim = simulate(one_step, CAM, 3000, 2)
+    orders, amp = sim.spectrum(max_order=10_000)
+    assert amp[0] == pytest.approx(sim.retainer_force.mean(), rel=1e-12)
+    # Parseval: mean square = mean^2 + sum amp^2 / 2
+    ms = np.mean(sim.retainer_force**2)
+    assert ms == pytest.approx(amp[0] ** 2 + np.sum(amp[1:] ** 2) / 2, rel=1e-3)
+
+
+def test_liftoff_at_the_speed_where_contact_force_reaches_zero(one_step):
+    """The float speed is bracketed by a speed whose minimum cam contact force is still
+    positive and one with lift-off; far below it the contact force is large."""
+    res = float_speed(one_step, CAM, VT, np.arange(2000, 4001, 250.0), resolution=2.0)
+    lo, hi = res["bracket"]
+    assert hi - lo <= 2.0
+    a = simulate(one_step, CAM, lo, 3, valve_train=VT).summary()
+    b = simulate(one_step, CAM, hi, 3, valve_train=VT).summary()
+    assert not a["liftoff"] and a["min_cam_contact_force_N"] > 0
+    assert b["liftoff"] and b["min_cam_contact_force_N"] == 0.0
+    assert res["min_cam_contact_force_N"][0] > 50.0
+    # Quasi-static estimate: contact is lost where F_static(h) < M_eff w^2 (-h''),
+    # M_eff = valve body + 1/3 of the spring mass.  Surge forces move the dynamic float
+    # speed, but not by more than 15 % for this spring (f1 is ~9x the cam frequency).
+    th = np.linspace(0, CAM.duration, 4001)
+    h, _, ddh = CAM.evaluate(th)
+    m_eff = VT.moving_mass + one_step.internal_parameters()["M"] / 3
+    f_static = one_step.static_force(one_step.installed_length - h)
+    dec = ddh < 0
+    w = math.sqrt(np.min(f_static[dec] / (m_eff * -ddh[dec])))
+    rpm_qs = w * 60 / (2 * math.pi)
+    assert 0.85 * rpm_qs < res["float_cam_rpm"] < 1.15 * rpm_qs
+
+
+def test_valve_train_at_rest_is_static(one_step):
+    """Far below float speed the valve follows the cam; at rest the spring preload is
+    carried by the valve seat and, with zero lash, shared with the cam base circle
+    (both contacts have the same stiffness here, so half each)."""
+    fset = one_step.internal_parameters()["Fset"]
+    sim = simulate(one_step, CAM, 300, 2, valve_train=VT)
+    closed = sim.lift == 0
+    # the closing transient rings on the contacts for a few degrees: 1 % pointwise, 0.1 % mean
+    total = (sim.valve_seat_force + sim.cam_contact_force)[closed]
+    np.testing.assert_allclose(total, fset, rtol=1e-2)
+    assert total.mean() == pytest.approx(fset, rel=1e-3)
+    assert sim.valve_seat_force[closed].mean() == pytest.approx(fset / 2, rel=1e-3)
+    np.testing.assert_allclose(sim.valve_lift[~closed], sim.lift[~closed], atol=2e-5)  # contact deflection only
+    lashed = simulate(one_step, CAM, 300, 2, valve_train=VT.__class__(**{**VT.__dict__, "lash": 1e-4}))
+    np.testing.assert_allclose(lashed.valve_seat_force[closed], fset, rtol=1e-2)
+    assert np.all(lashed.cam_contact_force[closed] == 0)
+
+
+@pytest.mark.parametrize("rpm", [0.0, -100.0, float("nan")])
+def test_bad_speed(one_step, rpm):
+    with pytest.raises(InputError, match="cam_rpm = .* must be a positive speed"):
+        simulate(one_step, CAM, rpm)
+
+
+def test_lift_that_drives_spring_solid(one_step):
+    with pytest.warns(UserWarning, match=r"coil contact even statically: from cam angle [\d.]+ deg .* peaking at [\d.]+ N at 60\.0 deg"):
+        prepare(one_step, Cam(law="3-4-5", lift=13e-3, duration=math.radians(120)))
+    with pytest.raises(InputError, match=r"cam lift 25 mm at 60\.0 deg drives the spring solid"):
+        prepare(one_step, Cam(law="3-4-5", lift=25e-3, duration=math.radians(120)))
+
+
+def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
+    def broken(y0, t_out, args, **kw):
+        return np.full((t_out.size, y0.size), np.nan), dict(status=2, t=0.0123, steps=42, rejected=7)
+
+    monkeypatch.setattr(simmod, "integrate", broken)
+    with pytest.raises(SolverError, match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
+                                          r"collapsed; likely cause: the element stiffness"):
+        simulate(one_step, CAM, 3000)
