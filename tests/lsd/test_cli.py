@@ -113,3 +113,21 @@ def test_bad_inputs(tmp_path, capsys):
     miss = tmp_path / "miss.csv"
     miss.write_text("time_s,x_m,y_m,fx_N\n0,0,0,0\n")
     _bad(capsys, ["lsd", "identify", str(miss)], "missing column 'fy_N'")
+
+
+def test_rig_along_measured_path(tmp_path, capsys):
+    # the ring follows a measured x(t), y(t) (here a sampled orbit); forces match the
+    # analytic orbit within the finite-difference error (1e-3 of the peak force)
+    from springdyn.io import write_csv
+    from springdyn.lsd import circular_orbit, simulate_rig
+
+    tr = circular_orbit(1000, 50e-6, 3, 10e3)
+    write_csv(tmp_path / "path.csv", {"time_s": tr.time, "x_m": tr.x, "y_m": tr.y})
+    assert main(["lsd", "rig", "C", "--path", str(tmp_path / "path.csv"), "--rpm", "1000",
+                 "--csv", str(tmp_path / "out.csv"), "--plot", str(tmp_path / "out.png")]) == 0
+    out = read_csv_columns(tmp_path / "out.csv")
+    ref = simulate_rig(LSDModel(LSDParameters.example("C")), tr)
+    inner = slice(5, -5)
+    np.testing.assert_allclose(out["fx_N"][inner], ref.fx[inner], atol=1e-3 * np.abs(ref.fx).max())
+    capsys.readouterr()
+    _bad(capsys, ["lsd", "rig", "C", "--csv", str(tmp_path / "o.csv")], "needs --rpm and --eccentricity")

@@ -7,10 +7,11 @@ import numpy as np
 from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
 from ..errors import InputError
 from ..plotting import plt
-from .identify import identify_series, read_rig_data
+from ..io import read_csv_columns
+from .identify import RigData, identify_series, read_rig_data
 from .model import LSDModel
 from .parameters import LSDParameters
-from .rig import circular_orbit, linear_shake, simulate_rig
+from .rig import circular_orbit, linear_shake, simulate_rig, trajectory_from_samples
 
 __all__ = ["register"]
 
@@ -30,8 +31,10 @@ def register(sub) -> None:
 
     p = lsub.add_parser("rig", help="simulate the thesis' test rig (eccentric shaft or shakes)")
     p.add_argument("config", metavar="CFG.toml", help="damper definition; or A, B, C")
-    p.add_argument("--rpm", required=True, help="shaft speed in rpm (one orbit per revolution)")
-    p.add_argument("--eccentricity", required=True, help="orbit radius or shake amplitude, e.g. 50um")
+    p.add_argument("--rpm", help="shaft speed in rpm (one orbit per revolution)")
+    p.add_argument("--eccentricity", help="orbit radius or shake amplitude, e.g. 50um")
+    p.add_argument("--path", metavar="PATH.csv",
+                   help="move the ring along a measured path instead (CSV with time_s, x_m, y_m)")
     p.add_argument("--excitation", choices=("orbit", "backward-orbit", "x", "y"), default="orbit")
     p.add_argument("--revolutions", type=float, default=20.0, help="number of revolutions (default 20)")
     p.add_argument("--sample-rate", default="20kHz", help="sampling rate (default 20kHz; bare number: Hz)")
@@ -86,11 +89,22 @@ def cmd_coefficients(args) -> int:
 
 def cmd_rig(args) -> int:
     model = LSDModel(_params(args.config))
+    noise = quantity(args.noise, "N", "--noise")
+    dnoise = quantity(args.displacement_noise, "m", "--displacement-noise")
+    if args.path:
+        tr = _measured_path(args.path, None if args.rpm is None else quantity(args.rpm, "rpm", "--rpm"))
+        rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
+        rec.to_csv(args.csv)
+        if args.plot:
+            plt.close(rec.plot(args.plot))
+        print(f"{model.params.name}: measured path {args.path}, {tr.time.size} samples -> {args.csv}; "
+              f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
+        return 0
+    if args.rpm is None or args.eccentricity is None:
+        raise InputError("springdyn lsd rig needs --rpm and --eccentricity (or --path PATH.csv)")
     rpm = quantity(args.rpm, "rpm", "--rpm")
     ecc = quantity(args.eccentricity, "m", "--eccentricity")
     fs = quantity(args.sample_rate, "Hz", "--sample-rate")
-    noise = quantity(args.noise, "N", "--noise")
-    dnoise = quantity(args.displacement_noise, "m", "--displacement-noise")
     if args.excitation in ("orbit", "backward-orbit"):
         tr = circular_orbit(rpm, ecc, args.revolutions, fs, direction=1 if args.excitation == "orbit" else -1)
     else:
@@ -102,6 +116,18 @@ def cmd_rig(args) -> int:
     print(f"{model.params.name}: {args.excitation} at {rpm:g} rpm, {ecc * 1e6:.4g} um, {tr.time.size} samples -> {args.csv}; "
           f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
     return 0
+
+
+def _measured_path(path, rpm):
+    """A measured ring path from a CSV with time_s, x_m, y_m (checked like a rig record)."""
+    cols = read_csv_columns(path)
+    for c in ("time_s", "x_m", "y_m"):
+        if c not in cols:
+            raise InputError(f"{path}: missing column {c!r} (found: {', '.join(cols)}; need time_s, x_m, y_m)")
+    n = cols["time_s"].size
+    zeros = np.zeros(n)
+    data = RigData(cols["time_s"], cols["x_m"], cols["y_m"], zeros, zeros, source=str(path))
+    return trajectory_from_samples(data.time, data.x, data.y, rpm=float("nan") if rpm is None else rpm)
 
 
 def cmd_identify(args) -> int:
