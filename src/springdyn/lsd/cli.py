@@ -93,27 +93,23 @@ def cmd_rig(args) -> int:
     dnoise = quantity(args.displacement_noise, "m", "--displacement-noise")
     if args.path:
         tr = _measured_path(args.path, None if args.rpm is None else quantity(args.rpm, "rpm", "--rpm"))
-        rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
-        rec.to_csv(args.csv)
-        if args.plot:
-            plt.close(rec.plot(args.plot))
-        print(f"{model.params.name}: measured path {args.path}, {tr.time.size} samples -> {args.csv}; "
-              f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
-        return 0
-    if args.rpm is None or args.eccentricity is None:
-        raise InputError("springdyn lsd rig needs --rpm and --eccentricity (or --path PATH.csv)")
-    rpm = quantity(args.rpm, "rpm", "--rpm")
-    ecc = quantity(args.eccentricity, "m", "--eccentricity")
-    fs = quantity(args.sample_rate, "Hz", "--sample-rate")
-    if args.excitation in ("orbit", "backward-orbit"):
-        tr = circular_orbit(rpm, ecc, args.revolutions, fs, direction=1 if args.excitation == "orbit" else -1)
+        what = f"measured path {args.path}"
     else:
-        tr = linear_shake(rpm, ecc, args.excitation, args.revolutions, fs)
+        if args.rpm is None or args.eccentricity is None:
+            raise InputError("springdyn lsd rig needs --rpm and --eccentricity (or --path PATH.csv)")
+        rpm = quantity(args.rpm, "rpm", "--rpm")
+        ecc = quantity(args.eccentricity, "m", "--eccentricity")
+        fs = quantity(args.sample_rate, "Hz", "--sample-rate")
+        if args.excitation in ("orbit", "backward-orbit"):
+            tr = circular_orbit(rpm, ecc, args.revolutions, fs, direction=1 if args.excitation == "orbit" else -1)
+        else:
+            tr = linear_shake(rpm, ecc, args.excitation, args.revolutions, fs)
+        what = f"{args.excitation} at {rpm:g} rpm, {ecc * 1e6:.4g} um"
     rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
     rec.to_csv(args.csv)
     if args.plot:
         plt.close(rec.plot(args.plot))
-    print(f"{model.params.name}: {args.excitation} at {rpm:g} rpm, {ecc * 1e6:.4g} um, {tr.time.size} samples -> {args.csv}; "
+    print(f"{model.params.name}: {what}, {tr.time.size} samples -> {args.csv}; "
           f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
     return 0
 
