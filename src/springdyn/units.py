@@ -100,6 +100,10 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
             ) from None
         if not isinstance(q, pint.Quantity) or q.unitless:  # a plain number in a string
             q = ureg.Quantity(float(getattr(q, "magnitude", q)), _unit(bare_unit if bare_unit is not None else unit))
+    if _is_angular_speed(target) and not _has_angle_unit(q):
+        # "50 Hz" or "3000 1/min" for a rotation speed means revolutions per unit time
+        # (pint alone would read 50 Hz as 50 rad/s, since rad is dimensionless).
+        q = q * ureg.Quantity(2.0 * math.pi, "rad")
     try:
         mag = q.to(target).magnitude
     except pint.DimensionalityError:
@@ -112,6 +116,18 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
     if not math.isfinite(mag):
         raise InputError(f"{field} = {value!r} is not a finite number")
     return mag
+
+
+_ANGLE_NAMES = ("radian", "degree", "revolution", "turn", "cycle", "revolutions_per_minute", "arcminute", "arcsecond",
+                "cam_degree", "gradian")
+
+
+def _is_angular_speed(unit) -> bool:
+    return "radian" in str(unit) and ureg.Quantity(1, unit).dimensionality == ureg.Quantity(1, "1/s").dimensionality
+
+
+def _has_angle_unit(q) -> bool:
+    return any(name in str(q.units) for name in _ANGLE_NAMES)
 
 
 def format_quantity(value: float, unit: str, display: str | None = None, digits: int = 5) -> str:

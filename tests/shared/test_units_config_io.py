@@ -36,6 +36,14 @@ def test_to_si(value, unit, expected):
     assert to_si(value, unit, "x") == pytest.approx(expected, rel=1e-12)
 
 
+def test_hz_for_a_rotation_speed_means_revolutions_per_second():
+    assert to_si("50 Hz", "rad/s", "--rpm") == pytest.approx(100 * math.pi)
+    assert to_si("50 Hz", "rad/s", "--rpm", bare_unit="rpm") == pytest.approx(100 * math.pi)
+    assert to_si("3000 rpm", "rad/s", "--rpm") == pytest.approx(100 * math.pi)
+    assert to_si("100 rad/s", "rad/s", "--rpm") == pytest.approx(100)
+    assert to_si("20 kHz", "Hz", "--sample-rate") == pytest.approx(20000)
+
+
 def test_bare_unit_for_named_options():
     assert to_si(3000, "rad/s", "--cam-rpm", bare_unit="rpm") == pytest.approx(100 * math.pi)
     assert to_si("3000", "rad/s", "--cam-rpm", bare_unit="rpm") == pytest.approx(100 * math.pi)

@@ -156,7 +156,7 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
 rhs_compiled = njit(cache=True)(rhs)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
                rtol, atol, h_max, max_steps, out):
     n = y0.shape[0]

@@ -23,7 +23,7 @@ from .spring import ValveSpring
 from .statics import series_force
 from .valvetrain import ValveTrain
 
-__all__ = ["simulate", "Simulation", "SimulationSetup", "prepare", "float_speed", "coil_contact_compressions", "DEFAULT_RTOL", "DEFAULT_ATOL"]
+__all__ = ["simulate", "Simulation", "SimulationSetup", "prepare", "float_speed", "coil_contact_compressions", "chain_response", "DEFAULT_RTOL", "DEFAULT_ATOL"]
 
 #: Default integration tolerances (relative; absolute on displacements [m] and velocities
 #: [m/s]).  Chosen by the refinement study of the tests: halving them changes peak forces
@@ -329,50 +329,85 @@ def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
     )
 
 
-def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, info, n, keep) -> Simulation:
-    spring, chain = setup.spring, setup.spring.chain
+def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.ndarray) -> dict:
+    """Forces and contacts of the chain from integrated states (vectorised).
+
+    Parameters
+    ----------
+    setup : SimulationSetup
+    omega : float or ndarray (...,)
+        Cam speed(s) [rad/s], one per leading index of ``states``.
+    theta : ndarray (n_t,)
+        Cam angles of the samples [rad] (the same for every speed).
+    states : ndarray (..., n_t, 2 nfree)
+        Displacements [m] then velocities [m/s] at those angles.
+
+    Returns
+    -------
+    dict
+        ``lift`` (n_t,) [m]; ``compression``, ``force`` (..., 6, n_t) [m, N];
+        ``contact`` (..., 6, n_t) bool; ``static`` (..., n_t) or (n_t,) [N];
+        with a valve train also ``valve_lift``, ``cam_contact_force``,
+        ``valve_seat_force`` (..., n_t).
+    """
+    chain = setup.spring.chain
     nf = setup.nfree
-    omega = rpm_to_omega(cam_rpm)
-    theta = omega * t_keep
-    lift, dlift = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
-    dlift = dlift * omega
-    u = states[:, :nf].T
-    v = states[:, nf:].T
+    omega = np.asarray(omega, dtype=float)[..., None]
+    lift, dlift_dth = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
+    dlift = dlift_dth * omega  # (..., n_t)
+    u = np.swapaxes(states[..., :nf], -1, -2)  # (..., nf, n_t)
+    v = np.swapaxes(states[..., nf:], -1, -2)
+    lead = u.shape[:-2]
+    n_t = theta.size
     if nf == 6:
-        u_top, v_top = u[5], v[5]
+        u_top, v_top = u[..., 5, :], v[..., 5, :]
     else:
-        u_top, v_top = lift, dlift
-    zeros = np.zeros_like(lift)
-    nodes_u = np.vstack([zeros, u[:5], u_top])
-    nodes_v = np.vstack([zeros, v[:5], v_top])
-    x = chain.setup_compressions[:, None] + np.diff(nodes_u, axis=0)
-    xd = np.diff(nodes_v, axis=0)
-    force = np.stack([law_force(x[j], chain.laws[j]) + damping_coefficient(x[j], chain.laws[j], chain.c0) * xd[j]
-                      for j in range(6)])
-    contact = x >= coil_contact_compressions(spring)[:, None]
-    setup_len = spring.free_length - spring.installed_length
-    static = series_force(setup_len + (u_top if nf == 6 else lift), chain.laws)
-    last = slice((keep - 1) * n, keep * n)
-    prev_err = 0.0
-    fset = spring.internal_parameters()["Fset"]
-    if keep == 2:
-        prev_err = float(np.max(np.abs(force[5, last] - force[5, :n])) / fset)
-    else:
-        prev_err = math.nan
-    sim = Simulation(
-        spring=spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
-        time=t_keep[last], cam_angle=np.mod(theta[last], 2 * math.pi), lift=lift[last],
-        retainer_force=force[5, last], seat_force=force[0, last], static_force=static[last],
-        element_compression=x[:, last], element_force=force[:, last], element_contact=contact[:, last],
-        mass_displacement=u[:5, last], periodicity_error=prev_err, info=info,
+        u_top = np.broadcast_to(lift, lead + (n_t,))
+        v_top = np.broadcast_to(dlift, lead + (n_t,))
+    zeros = np.zeros(lead + (1, n_t))
+    x = chain.setup_compressions[:, None] + np.diff(np.concatenate([zeros, u[..., :5, :], u_top[..., None, :]], axis=-2), axis=-2)
+    xd = np.diff(np.concatenate([zeros, v[..., :5, :], v_top[..., None, :]], axis=-2), axis=-2)
+    force = np.stack(
+        [law_force(x[..., j, :], chain.laws[j]) + damping_coefficient(x[..., j, :], chain.laws[j], chain.c0) * xd[..., j, :]
+         for j in range(6)],
+        axis=-2,
     )
+    out = dict(lift=lift, compression=x, force=force, contact=x >= coil_contact_compressions(setup.spring)[:, None])
     if nf == 6:
         vt = setup.valve_train
-        z, zd = u[5, last], v[5, last]
-        pen = lift[last] - z - vt.lash
-        f_cam = np.where(pen > 0, np.maximum(vt.cam_contact_stiffness * pen + vt.cam_contact_damping * (dlift[last] - zd), 0), 0)
-        f_seat = np.where(z < 0, np.maximum(-vt.seat_stiffness * z - vt.seat_damping * zd, 0), 0)
-        sim.valve_lift, sim.cam_contact_force, sim.valve_seat_force = z, f_cam, f_seat
+        out["static"] = _static_force(setup, theta, u_top)
+        pen = lift - u_top - vt.lash
+        out["valve_lift"] = u_top
+        out["cam_contact_force"] = np.where(
+            pen > 0, np.maximum(vt.cam_contact_stiffness * pen + vt.cam_contact_damping * (dlift - v_top), 0.0), 0.0)
+        out["valve_seat_force"] = np.where(
+            u_top < 0, np.maximum(-vt.seat_stiffness * u_top - vt.seat_damping * v_top, 0.0), 0.0)
+    else:
+        out["static"] = _static_force(setup, theta, None)
+    out["displacement"] = u[..., :5, :]
+    return out
+
+
+def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, info, n, keep) -> Simulation:
+    omega = rpm_to_omega(cam_rpm)
+    theta = omega * t_keep
+    r = chain_response(setup, omega, theta, states)
+    last = slice((keep - 1) * n, keep * n)
+    fset = setup.spring.internal_parameters()["Fset"]
+    force = r["force"]
+    prev_err = float(np.max(np.abs(force[5, last] - force[5, :n])) / fset) if keep == 2 else math.nan
+    sim = Simulation(
+        spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
+        time=t_keep[last], cam_angle=np.mod(theta[last], 2 * math.pi), lift=r["lift"][last],
+        retainer_force=force[5, last], seat_force=force[0, last], static_force=r["static"][last],
+        element_compression=r["compression"][:, last], element_force=force[:, last],
+        element_contact=r["contact"][:, last], mass_displacement=r["displacement"][:, last],
+        periodicity_error=prev_err, info=info,
+    )
+    if setup.nfree == 6:
+        sim.valve_lift = r["valve_lift"][last]
+        sim.cam_contact_force = r["cam_contact_force"][last]
+        sim.valve_seat_force = r["valve_seat_force"][last]
     return sim
 
 
@@ -388,6 +423,21 @@ def coil_contact_compressions(spring: ValveSpring) -> np.ndarray:
         float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
         for name, law in zip(spring.chain.element_names, spring.chain.laws)
     ])
+
+
+def _static_force(setup: SimulationSetup, theta: np.ndarray, valve_lift) -> np.ndarray:
+    """Static force at the same lift: looked up in the prepared cam table when the output
+    angles fall on its samples, otherwise solved; with a valve train, at the valve lift."""
+    spring = setup.spring
+    setup_len = spring.free_length - spring.installed_length
+    if valve_lift is not None:
+        return series_force(setup_len + valve_lift, spring.chain.laws)
+    pos = np.mod(theta, 2 * math.pi) / setup.dth
+    idx = np.rint(pos).astype(np.intp) % setup.cam_h.size
+    if np.all(np.abs(pos - np.rint(pos)) < 1e-6):
+        return setup.static_force_table[idx]
+    lift = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)[0]
+    return series_force(setup_len + lift, spring.chain.laws)
 
 
 def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:

@@ -46,8 +46,9 @@ def series_compliance(force, laws: np.ndarray):
 def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, max_iter: int = 100):
     """Force [N] of the chain compressed by ``total_compression`` [m] in total.
 
-    Solves ``sum_j x_j(F) = dL`` by Newton's method from below (monotone convergence for
-    the concave, increasing ``sum_j x_j(F)``).
+    Solves ``sum_j x_j(F) = dL`` by Newton's method from the linear-chain force
+    ``K1 dL``, which lies below the root (monotone convergence for the concave,
+    increasing ``sum_j x_j(F)``).
 
     Parameters
     ----------
@@ -67,8 +68,9 @@ def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, ma
     """
     dl = np.asarray(total_compression, dtype=float)
     k_lin = 1.0 / sum(1.0 / law[0, 2] for law in laws)
-    # start at the linear estimate in tension (exact there) and at 0 in compression
-    force = np.where(dl < 0.0, dl * k_lin, 0.0)
+    # Start at the force of the all-linear chain: exact in the linear range and, because
+    # the elements only stiffen, never above the root (so convergence stays monotone).
+    force = dl * k_lin
     for _ in range(max_iter):
         x = element_compressions(force, laws)
         resid = dl - x.sum(axis=0)
