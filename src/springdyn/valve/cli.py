@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
 from ..errors import InputError
 from ..units import format_quantity
 from .cam import Cam
 from .simulate import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
+from .sweep import connect, describe_design_value, sweep
 from .spring import ValveSpring
 from .valvetrain import ValveTrain
 
@@ -96,6 +99,25 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_float)
+
+    p = vsub.add_parser("sweep", help="speed sweep (optionally over a design variable), locally or on Dask")
+    p.add_argument("spring", metavar="SPRING.toml")
+    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    _add_speed_options(p, ranged=True)
+    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
+    p.add_argument("--revolutions", type=int, default=2, metavar="N", help="cam revolutions per speed (default 2)")
+    p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
+    p.add_argument("--vary", metavar="FIELD=START:STOP:STEP",
+                   help="also sweep a numeric spring field, e.g. installed_length=36mm:40mm:0.5mm")
+    p.add_argument("--on-invalid", choices=("stop", "skip"), default="stop",
+                   help="a --vary value that makes the spring invalid: stop (default) or skip it")
+    p.add_argument("--out", default="valve-sweep", metavar="DIR", help="output folder (default valve-sweep)")
+    p.add_argument("--workers", type=int, metavar="N", help="local threads (default: 2, both cores)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786")
+    p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"relative tolerance (default {DEFAULT_RTOL:g})")
+    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance (default {DEFAULT_ATOL:g})")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_sweep)
 
 
 def _add_speed_options(p, *, ranged: bool) -> None:
@@ -260,4 +282,55 @@ def cmd_float(args) -> int:
     else:
         f = res["float_cam_rpm"]
         print(f"float speed: {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke)")
+    return 0
+
+
+def parse_vary(text: str, spring: ValveSpring):
+    """``FIELD=START:STOP:STEP`` (values with units) -> (field, SI values)."""
+    import dataclasses
+
+    if "=" not in text:
+        raise InputError(f"--vary {text!r} must read FIELD=START:STOP:STEP, e.g. installed_length=36mm:40mm:0.5mm")
+    name, rng = (t.strip() for t in text.split("=", 1))
+    meta = {f.name: f.metadata for f in dataclasses.fields(ValveSpring)}
+    if name not in meta or meta[name].get("kind") != "quantity":
+        numeric = [k for k, m in meta.items() if m.get("kind") == "quantity"]
+        raise InputError(f"--vary {name}: not a numeric spring field; choose one of {', '.join(numeric)}")
+    return name, parse_range(rng, meta[name]["unit"], f"--vary {name}")
+
+
+def cmd_sweep(args) -> int:
+    from pathlib import Path
+
+    spring = _spring(args)
+    cam, vt = _load_cam_and_train(args)
+    rpms = cam_rpm_from_args(args, ranged=True)
+    vary = parse_vary(args.vary, spring) if args.vary else None
+    if args.workers is not None and args.workers < 1:
+        raise InputError(f"--workers = {args.workers} must be at least 1")
+    client = connect(args.scheduler) if args.scheduler else None
+    try:
+        res = sweep(spring, cam, rpms, revolutions=args.revolutions, valve_train=vt,
+                    points_per_revolution=args.points_per_revolution, rtol=args.rtol, atol=args.atol, vary=vary,
+                    on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet)
+    finally:
+        if client is not None:
+            client.close()
+    written = res.write(Path(args.out))
+    table = res.summary_table()
+    where = "on " + args.scheduler if args.scheduler else "locally"
+    print(f"swept {rpms.size} speeds ({rpms.min():g}-{rpms.max():g} cam rpm)"
+          + (f" x {res.vary_values.size} values of {res.vary_name}" if vary else "") + f" {where}")
+    k = int(np.argmax(table["max_retainer_force_N"]))
+    print(f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {table['cam_rpm'][k]:g} cam rpm "
+          f"(static peak {table['max_static_force_N'][k]:.1f} N); coil contact at "
+          f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs")
+    if vt is not None:
+        for v, f in zip(res.vary_values, res.float_speeds()):
+            tag = f"{describe_design_value(res.vary_name, v)}: " if vary else ""
+            print(f"{tag}float speed " + (f"~{f:g} cam rpm (first swept speed with lift-off; refine with "
+                                            "'springdyn valve float')" if np.isfinite(f) else "above the swept range"))
+    for value, reason in res.skipped:
+        print(f"skipped {describe_design_value(res.vary_name, value)}: {reason}")
+    print(f"wrote {len(written)} files to {Path(args.out).resolve()}")
     return 0

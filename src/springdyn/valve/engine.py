@@ -32,13 +32,19 @@ from numba import njit
 
 from .. import integration as _ig
 
-__all__ = ["rhs", "integrate", "integrate_scipy", "hermite_eval", "STATUS"]
+__all__ = ["rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "hermite_eval", "STATUS", "EXTRA"]
 
 #: Status codes of :func:`integrate`.
 STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the solution is not finite (NaN/inf)"}
 
 
-def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, out):
+#: Layout of the optional ``extra`` output of :func:`rhs`.
+EXTRA = ("f1", "f2", "f3", "f4", "f5", "f6", "x1", "x2", "x3", "x4", "x5", "x6", "lift", "dlift",
+         "cam_contact_force", "valve_seat_force", "top_displacement")
+N_EXTRA = len(EXTRA)
+
+
+def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, out, extra):
     """Right-hand side ``ds/dt`` of the chain (plain Python; compiled as :data:`rhs_compiled`).
 
     Parameters
@@ -65,6 +71,11 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
         ``enabled, M_v [kg], k_c [N/m], c_c [N s/m], k_s [N/m], c_s [N s/m], lash [m]``.
     out : ndarray
         Receives ``ds/dt``.
+    extra : ndarray or None
+        None (numba then compiles a variant without these outputs), or an array of length
+        :data:`N_EXTRA` that receives the element forces [N] and
+        compressions [m], lift [m] and lift rate [m/s], cam contact and valve-seat forces
+        [N] and the displacement of the retainer end [m] (layout :data:`EXTRA`).
     """
     nfree = 5 + (1 if vt[0] > 0.5 else 0)
     # cam lift and velocity (quintic Hermite on the periodic table)
@@ -128,6 +139,9 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
         force = (a * xj + b) * xj + laws[j, seg, 3]
         stiff = 2.0 * a * xj + b
         force += c0 * math.sqrt(stiff / laws[j, 0, 2]) * (v_hi - v_lo)
+        if extra is not None:
+            extra[j] = force
+            extra[6 + j] = xj
         if j > 0:
             out[j - 1] = s[nfree + j - 1]
             out[nfree + j - 1] = (force - f_prev) / masses[j - 1]
@@ -150,6 +164,17 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
                 f_seat = 0.0
         out[5] = zd
         out[11] = (f_cam + f_seat - f_prev) / vt[1]
+        if extra is not None:
+            extra[14] = f_cam
+            extra[15] = f_seat
+            extra[16] = z
+    if extra is not None:
+        if nfree == 5:
+            extra[14] = 0.0
+            extra[15] = 0.0
+            extra[16] = lift
+        extra[12] = lift
+        extra[13] = dlift
 
 
 #: The compiled right-hand side (numba, cached on disk).
@@ -165,7 +190,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     rc = np.empty((5, n))
     y = y0.copy()
     t = t0
-    rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[0])
+    rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[0], None)
     h = _ig.initial_step(y, k[0], rtol, atol, h_max)
     nout = t_out.shape[0]
     iout = 0
@@ -184,7 +209,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
         for stage in range(1, 7):
             _ig.stage_state(y, h, k, stage, ytmp)
             rhs_compiled(t + _ig.C[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
-                         omega, vt, k[stage])
+                         omega, vt, k[stage], None)
         err = _ig.error_norm(y, ytmp, k, h, rtol, atol)
         if not (err == err) or err > 1e300:
             if h < 1e-13:
@@ -212,6 +237,59 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             accepted_before = False
             nrejected += 1
     return 0, t, nsteps, nrejected
+
+
+@njit(cache=True, nogil=True)
+def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, vt,
+                rtol, atol, max_step_fraction, max_steps, extra_out, status, t_end, steps):
+    n = y0.shape[0]
+    nkeep = keep * points
+    d = np.empty(n)
+    for i in range(omegas.shape[0]):
+        omega = omegas[i]
+        period = 2.0 * np.pi / omega
+        first = revolutions - keep
+        pad = 1 if first > 0 else 0
+        t_out = np.empty(nkeep + pad)
+        t_out[0] = 0.0
+        for j in range(nkeep):
+            t_out[pad + j] = (first + j / points) * period
+        states = np.empty((nkeep + pad, n))
+        st, t, ns, nr = _integrate(y0, 0.0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
+                                   rtol, atol, period * max_step_fraction, max_steps, states)
+        status[i] = st
+        t_end[i] = t
+        steps[i] = ns
+        if st != 0:
+            continue
+        for j in range(nkeep):
+            rhs_compiled(t_out[pad + j], states[pad + j], masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
+                         omega, vt, d, extra_out[i, j])
+
+
+def run_speeds(y0, omegas, revolutions, points, args_no_omega, *, rtol, atol, max_step_fraction,
+               max_steps=10_000_000):
+    """Integrate several speeds in one compiled call (the GIL is released throughout).
+
+    For each speed the last ``keep = min(2, revolutions)`` revolutions are sampled at
+    ``points`` per revolution, and :func:`rhs` evaluates there its ``extra`` outputs.
+
+    Returns
+    -------
+    extra : ndarray (n_speeds, keep * points, N_EXTRA)
+    status, t_end, steps : ndarray (n_speeds,)
+    """
+    omegas = np.ascontiguousarray(omegas, dtype=float)
+    keep = min(2, int(revolutions))
+    extra = np.full((omegas.size, keep * points, N_EXTRA), np.nan)
+    status = np.zeros(omegas.size, dtype=np.int64)
+    t_end = np.zeros(omegas.size)
+    steps = np.zeros(omegas.size, dtype=np.int64)
+    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, vt = args_no_omega
+    _run_speeds(np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions), int(points), keep, masses, laws, xset,
+                float(c0), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol), float(atol), float(max_step_fraction),
+                int(max_steps), extra, status, t_end, steps)
+    return extra, status, t_end, steps
 
 
 def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
@@ -246,7 +324,7 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
 
     def fun(t, y):
         d = np.empty_like(buf)
-        f(t, y, *args, d)
+        f(t, y, *args, d, None)
         return d
 
     sol = solve_ivp(fun, (float(t_out[0]), float(t_out[-1])), np.asarray(y0, float), method=method, t_eval=t_out,
@@ -269,23 +347,27 @@ def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
     i0 = np.minimum((th / dth).astype(np.intp), n - 1)
     i1 = (i0 + 1) % n
     x = th / dth - i0
+    x2 = x * x
+    x3 = x2 * x
+    x4 = x3 * x
+    x5 = x4 * x
     p0, p1 = cam_h[i0], cam_h[i1]
     v0, v1 = cam_dh[i0] * dth, cam_dh[i1] * dth
     a0, a1 = cam_ddh[i0] * dth**2, cam_ddh[i1] * dth**2
     lift = (
-        (1 - 10 * x**3 + 15 * x**4 - 6 * x**5) * p0
-        + (x - 6 * x**3 + 8 * x**4 - 3 * x**5) * v0
-        + 0.5 * (x**2 - 3 * x**3 + 3 * x**4 - x**5) * a0
-        + 0.5 * (x**3 - 2 * x**4 + x**5) * a1
-        + (-4 * x**3 + 7 * x**4 - 3 * x**5) * v1
-        + (10 * x**3 - 15 * x**4 + 6 * x**5) * p1
+        (1 - 10 * x3 + 15 * x4 - 6 * x5) * p0
+        + (x - 6 * x3 + 8 * x4 - 3 * x5) * v0
+        + 0.5 * (x2 - 3 * x3 + 3 * x4 - x5) * a0
+        + 0.5 * (x3 - 2 * x4 + x5) * a1
+        + (-4 * x3 + 7 * x4 - 3 * x5) * v1
+        + (10 * x3 - 15 * x4 + 6 * x5) * p1
     )
     dlift = (
-        (-30 * x**2 + 60 * x**3 - 30 * x**4) * p0
-        + (1 - 18 * x**2 + 32 * x**3 - 15 * x**4) * v0
-        + 0.5 * (2 * x - 9 * x**2 + 12 * x**3 - 5 * x**4) * a0
-        + 0.5 * (3 * x**2 - 8 * x**3 + 5 * x**4) * a1
-        + (-12 * x**2 + 28 * x**3 - 15 * x**4) * v1
-        + (30 * x**2 - 60 * x**3 + 30 * x**4) * p1
+        (-30 * x2 + 60 * x3 - 30 * x4) * p0
+        + (1 - 18 * x2 + 32 * x3 - 15 * x4) * v0
+        + 0.5 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4) * a0
+        + 0.5 * (3 * x2 - 8 * x3 + 5 * x4) * a1
+        + (-12 * x2 + 28 * x3 - 15 * x4) * v1
+        + (30 * x2 - 60 * x3 + 30 * x4) * p1
     ) / dth
     return lift, dlift

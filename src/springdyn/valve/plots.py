@@ -100,3 +100,94 @@ def plot_simulation(sim, path=None):
     if path is not None:
         save_figure(fig, path, close=False)
     return fig
+
+
+def plot_sweep(result, out_dir, prefix="sweep"):
+    """Peak/min forces vs speed, speed x cam-angle map, Campbell diagram (and contact force)."""
+    table = result.summary_table()
+    nv, nr = result.vary_values.size, result.cam_rpm.size
+    rpm = result.cam_rpm
+    written = []
+    fig, ax = new_figure(figsize=(9, 5.5))
+    for k in range(nv):
+        sl = slice(k * nr, (k + 1) * nr)
+        tag = f" ({_vary_label(result, k)})" if result.vary_name else ""
+        color = f"C{k % 10}"
+        ax.plot(rpm, table["max_retainer_force_N"][sl], color=color, lw=1.6, label=f"max retainer force{tag}")
+        ax.plot(rpm, table["min_retainer_force_N"][sl], color=color, lw=1.6, ls="-.", label=f"min retainer force{tag}")
+        if nv == 1:
+            ax.plot(rpm, table["max_seat_force_N"][sl], color="C1", lw=1, label="max seat force")
+            ax.plot(rpm, table["min_seat_force_N"][sl], color="C1", lw=1, ls="-.", label="min seat force")
+        ax.plot(rpm, table["max_static_force_N"][sl], color=color, ls="--", lw=0.8, alpha=0.7,
+                label="static max / min" if k == 0 else None)
+        ax.plot(rpm, table["min_static_force_N"][sl], color=color, ls="--", lw=0.8, alpha=0.7)
+    ax.set_xlabel("cam speed [rpm]")
+    ax.set_ylabel("force [N]")
+    ax.set_title(f"{result.spring.type} spring, {result.cam.law} cam: forces over the speed range")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    written.append(save_figure(fig, out_dir / f"{prefix}_forces.png"))
+    deg = np.degrees(result.cam_angle)
+    for k in range(nv):
+        suffix = f"_{k}" if nv > 1 else ""
+        tag = f", {_vary_label(result, k)}" if result.vary_name else ""
+        force = result.data["retainer"][k]
+        fig, ax = new_figure(figsize=(9, 5.5))
+        mesh = ax.pcolormesh(deg, rpm, force, shading="auto", cmap="viridis")
+        fig.colorbar(mesh, ax=ax, label="retainer force [N]")
+        ax.set_xlabel("cam angle [deg]")
+        ax.set_ylabel("cam speed [rpm]")
+        ax.set_title(f"retainer force over speed and cam angle{tag}")
+        written.append(save_figure(fig, out_dir / f"{prefix}_map{suffix}.png"))
+        written.append(_campbell(result, k, out_dir / f"{prefix}_campbell{suffix}.png", tag))
+    if result.valve_train is not None:
+        fig, ax = new_figure(figsize=(9, 5))
+        for k in range(nv):
+            sl = slice(k * nr, (k + 1) * nr)
+            ax.plot(rpm, table["min_cam_contact_force_N"][sl], color=f"C{k % 10}", label="min cam contact force"
+                    + (f" ({_vary_label(result, k)})" if result.vary_name else ""))
+        for k, f in enumerate(result.float_speeds()):
+            if np.isfinite(f):
+                ax.axvline(f, color=f"C{k % 10}", ls="--", lw=1, label=f"float speed ~ {f:.0f} rpm")
+        ax.axhline(0, color="k", lw=0.8)
+        ax.set_xlabel("cam speed [rpm]")
+        ax.set_ylabel("force [N]")
+        ax.set_title("cam-follower contact during the event")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        written.append(save_figure(fig, out_dir / f"{prefix}_contact.png"))
+    return written
+
+
+def _vary_label(result, k):
+    from .sweep import describe_design_value
+
+    return describe_design_value(result.vary_name, result.vary_values[k])
+
+
+def _campbell(result, k, path, tag, max_order=30):
+    spring = result.springs[k]
+    rpm = result.cam_rpm
+    force = result.data["retainer"][k]
+    amp = np.abs(np.fft.rfft(force, axis=1)) * 2.0 / force.shape[1]
+    orders = np.arange(1, min(max_order, amp.shape[1] - 1) + 1)
+    fig, ax = new_figure(figsize=(9, 6))
+    rr, oo = np.meshgrid(rpm, orders, indexing="ij")
+    a = amp[:, orders]
+    sc = ax.scatter(rr.ravel(), (oo * rr / 60.0).ravel(), c=np.log10(np.maximum(a.ravel(), 1e-3)),
+                    s=4 + 40 * (a.ravel() / a.max()), cmap="magma_r")
+    fig.colorbar(sc, ax=ax, label="log10 retainer-force harmonic amplitude [N]")
+    for o in orders[::5]:
+        ax.annotate(f"{o}", (rpm[-1], o * rpm[-1] / 60.0), fontsize=7, color="0.4")
+    f_inst = float(spring.modes(spring.installed_length, 1)[0])
+    ax.axhline(f_inst, color="C0", lw=1.5, label=f"f1 at installed length {f_inst:.0f} Hz")
+    open_len = spring.installed_length - result.cam.max_lift
+    if open_len >= spring.min_length:
+        f_open = float(spring.modes(open_len, 1)[0])
+        ax.axhline(f_open, color="C3", lw=1.5, ls="--", label=f"f1 at open length {f_open:.0f} Hz")
+    ax.set_ylim(0, max(2.5 * f_inst, 1.0))
+    ax.set_xlabel("cam speed [rpm]")
+    ax.set_ylabel("frequency [Hz]")
+    ax.set_title(f"Campbell diagram: cam-order harmonics of the retainer force{tag}")
+    ax.legend(fontsize=8, loc="upper left")
+    return save_figure(fig, path)

@@ -329,7 +329,7 @@ def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
     )
 
 
-def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.ndarray) -> dict:
+def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.ndarray, cam_values=None) -> dict:
     """Forces and contacts of the chain from integrated states (vectorised).
 
     Parameters
@@ -341,6 +341,8 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         Cam angles of the samples [rad] (the same for every speed).
     states : ndarray (..., n_t, 2 nfree)
         Displacements [m] then velocities [m/s] at those angles.
+    cam_values : (ndarray, ndarray), optional
+        Lift [m] and ``dh/dtheta`` [m/rad] at ``theta`` if already evaluated.
 
     Returns
     -------
@@ -353,7 +355,9 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     chain = setup.spring.chain
     nf = setup.nfree
     omega = np.asarray(omega, dtype=float)[..., None]
-    lift, dlift_dth = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
+    if cam_values is None:
+        cam_values = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
+    lift, dlift_dth = cam_values
     dlift = dlift_dth * omega  # (..., n_t)
     u = np.swapaxes(states[..., :nf], -1, -2)  # (..., nf, n_t)
     v = np.swapaxes(states[..., nf:], -1, -2)

@@ -1,0 +1,370 @@
+"""Speed sweeps (and design-variable sweeps) of the valve spring, locally or on Dask.
+
+The work is cut into chunks of speeds; each chunk integrates its speeds with the
+compiled engine (which releases the GIL, so local threads run in parallel) and reduces
+the states to the forces the results need.  Locally a thread pool runs the chunks; with a
+``dask.distributed.Client`` the same chunk function runs on the cluster, so the results
+are identical bit for bit.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import warnings
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..config import describe_value
+from ..errors import InputError
+from ..io import atomic_path, write_csv
+from ..progress import progress
+from .cam import Cam
+from .engine import run_speeds
+from .simulate import (
+    DEFAULT_ATOL,
+    DEFAULT_RTOL,
+    MAX_STEP_FRACTION,
+    SimulationSetup,
+    _solver_error,
+    coil_contact_compressions,
+    prepare,
+    rpm_to_omega,
+)
+from .statics import series_force
+from .spring import ValveSpring
+from .valvetrain import ValveTrain
+
+__all__ = ["sweep", "SweepResult", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
+
+#: Seconds to wait for a Dask scheduler before giving up.
+SCHEDULER_TIMEOUT = 5.0
+
+
+def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, points: int, rtol: float,
+              atol: float) -> dict:
+    """Integrate a chunk of speeds and reduce each to its last revolution's forces.
+
+    Returns a dict of arrays with a leading speed dimension: ``retainer``, ``seat``,
+    ``contact`` (any Kh element past its Fcon breakpoint), ``contact_force`` (largest
+    force of such an element), ``periodicity`` (max change of the retainer force from the
+    revolution before, / Fset), ``status``, ``t``, ``steps`` and, with a valve train,
+    ``cam_contact``, ``valve_lift``, ``static``.
+    """
+    cam_rpm = np.asarray(cam_rpm, dtype=float)
+    keep = min(2, revolutions)
+    ex, status, t_end, steps = run_speeds(setup.y0, rpm_to_omega(cam_rpm), revolutions, points, setup.args(0.0)[:8]
+                                          + (setup.vt,), rtol=rtol, atol=atol, max_step_fraction=MAX_STEP_FRACTION)
+    fset = setup.spring.internal_parameters()["Fset"]
+    last = slice((keep - 1) * points, keep * points)
+    f = ex[:, :, 0:6]
+    contact = ex[:, last, 6:12] >= coil_contact_compressions(setup.spring)
+    out = dict(
+        retainer=f[:, last, 5],
+        seat=f[:, last, 0],
+        contact=contact.any(axis=2),
+        contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
+        periodicity=(np.max(np.abs(f[:, last, 5] - f[:, :points, 5]), axis=1) / fset if keep == 2
+                     else np.full(cam_rpm.size, np.nan)),
+        status=status, t=t_end, steps=steps,
+    )
+    if setup.nfree == 6:
+        out["cam_contact"] = ex[:, last, 14]
+        out["valve_lift"] = ex[:, last, 16]
+        setup_len = setup.spring.free_length - setup.spring.installed_length
+        valid = status == 0
+        static = np.full(out["valve_lift"].shape, np.nan)
+        static[valid] = series_force(setup_len + out["valve_lift"][valid], setup.spring.chain.laws)
+        out["static"] = static
+    return out
+
+
+def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
+    """A ``dask.distributed.Client`` for ``address``, or an InputError within ``timeout`` s."""
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise InputError(
+            f"--scheduler {address}: Dask is not installed; install springdyn[dask]"
+        ) from None
+    try:
+        return Client(address, timeout=f"{timeout}s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise InputError(
+            f"--scheduler {address}: cannot reach a Dask scheduler there within {timeout:g} s ({type(exc).__name__}: "
+            f"{str(exc).splitlines()[0] if str(exc) else 'no answer'})"
+        ) from None
+
+
+def _chunks(cam_rpm: np.ndarray, n_parts: int, min_size: int) -> list[np.ndarray]:
+    size = max(min_size, math.ceil(cam_rpm.size / max(n_parts, 1)))
+    return [cam_rpm[i : i + size] for i in range(0, cam_rpm.size, size)]
+
+
+def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client, quiet, desc):
+    """Run all speeds for one setup; returns the chunk outputs concatenated in speed order."""
+    if client is not None:
+        n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
+        chunks = _chunks(cam_rpm, 4 * n_workers, 10)
+        remote_setup = client.scatter(setup, broadcast=True)
+        futures = [client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, pure=False)
+                   for c in chunks]
+        from dask.distributed import as_completed as dask_completed
+
+        for _ in progress(dask_completed(futures), total=len(futures), desc=desc, quiet=quiet):
+            pass
+        parts = [f.result() for f in futures]
+    else:
+        workers = workers or min(os.cpu_count() or 1, 2)
+        chunks = _chunks(cam_rpm, 8 * workers, 1)
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            futures = [pool.submit(run_chunk, setup, c, revolutions, points, rtol, atol) for c in chunks]
+            for _ in progress(as_completed(futures), total=len(futures), desc=desc, quiet=quiet):
+                pass
+            parts = [f.result() for f in futures]
+    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+
+
+@dataclass
+class SweepResult:
+    """Results of a speed sweep, optionally over a design variable (SI)."""
+
+    spring: ValveSpring
+    cam: Cam
+    valve_train: ValveTrain | None
+    cam_rpm: np.ndarray  # (n_rpm,)
+    cam_angle: np.ndarray  # (n_angle,) [rad]
+    lift: np.ndarray  # (n_angle,) [m]
+    vary_name: str | None
+    vary_values: np.ndarray  # (n_vary,), [nan] without a design variable
+    springs: list  # ValveSpring per vary value
+    data: dict  # arrays (n_vary, n_rpm, ...) and static (n_vary, [n_rpm,] n_angle)
+    skipped: list  # (value, reason) of invalid design values
+
+    # ---------------------------------------------------------------- summary
+    def summary_table(self) -> dict:
+        """One row per (design value, speed): peaks, surge, coil contact, lift-off."""
+        d = self.data
+        nv, nr = d["retainer"].shape[:2]
+        static = d["static"] if d["static"].ndim == 3 else np.broadcast_to(d["static"][:, None, :], d["retainer"].shape)
+        cols = {}
+        if self.vary_name:
+            unit = _field_unit(self.vary_name)
+            cols[f"{self.vary_name}_{unit}" if unit else self.vary_name] = np.repeat(self.vary_values, nr)
+        cols["cam_rpm"] = np.tile(self.cam_rpm, nv)
+        flat = lambda a: a.reshape(nv * nr, *a.shape[2:])  # noqa: E731
+        r, s, st = flat(d["retainer"]), flat(d["seat"]), flat(np.ascontiguousarray(static))
+        cols.update(
+            max_retainer_force_N=r.max(axis=1), min_retainer_force_N=r.min(axis=1),
+            max_seat_force_N=s.max(axis=1), min_seat_force_N=s.min(axis=1),
+            max_static_force_N=st.max(axis=1), min_static_force_N=st.min(axis=1),
+            retainer_surge_amplitude_N=np.abs(r - st).max(axis=1),
+            seat_surge_amplitude_N=np.abs(s - st).max(axis=1),
+            coil_contact=flat(d["contact"]).any(axis=1),
+            peak_coil_contact_force_N=flat(d["contact_force"]).max(axis=1),
+            periodicity_error=flat(d["periodicity"]),
+        )
+        if self.valve_train is not None:
+            in_event = self.lift > self.valve_train.lash + 1e-6
+            cc = flat(d["cam_contact"])[:, in_event]
+            cols["liftoff"] = (cc <= 0).any(axis=1)
+            cols["min_cam_contact_force_N"] = cc.min(axis=1)
+        return cols
+
+    def float_speeds(self) -> np.ndarray:
+        """Lowest swept speed with lift-off per design value [rpm] (nan: none, or no valve train)."""
+        out = np.full(self.vary_values.size, np.nan)
+        if self.valve_train is None:
+            return out
+        lo = self.summary_table()["liftoff"].reshape(self.vary_values.size, self.cam_rpm.size)
+        for i, row in enumerate(lo):
+            if row.any():
+                out[i] = self.cam_rpm[np.argmax(row)]
+        return out
+
+    # ---------------------------------------------------------------- outputs
+    def to_xarray(self):
+        """Dataset with dimensions ``(vary,) cam_rpm, cam_angle`` (angle in degrees)."""
+        import xarray as xr
+
+        d = self.data
+        dims = ("vary", "cam_rpm", "cam_angle")
+        data = {
+            "retainer_force": (dims, d["retainer"], {"units": "N"}),
+            "seat_force": (dims, d["seat"], {"units": "N"}),
+            "in_coil_contact": (dims, d["contact"].astype(np.int8), {"long_name": "a Kh element past its Fcon breakpoint"}),
+            "coil_contact_force": (dims, d["contact_force"], {"units": "N", "long_name": "largest force of an element in coil contact"}),
+            "periodicity_error": (dims[:2], d["periodicity"], {"units": "1", "long_name": "max change from the previous revolution / Fset"}),
+            "lift": (("cam_angle",), self.lift, {"units": "m"}),
+        }
+        if d["static"].ndim == 3:
+            data["static_force"] = (dims, d["static"], {"units": "N"})
+        else:
+            data["static_force"] = (("vary", "cam_angle"), d["static"], {"units": "N"})
+        if self.valve_train is not None:
+            data["cam_contact_force"] = (dims, d["cam_contact"], {"units": "N"})
+            data["valve_lift"] = (dims, d["valve_lift"], {"units": "m"})
+            data["float_cam_rpm"] = (("vary",), self.float_speeds(), {"units": "rpm"})
+        for key, values in self.summary_table().items():
+            if key in ("cam_rpm",) or (self.vary_name and key.startswith(self.vary_name)):
+                continue
+            values = np.asarray(values).reshape(self.vary_values.size, self.cam_rpm.size)
+            if values.dtype == bool:
+                values = values.astype(np.int8)
+            data[key] = (dims[:2], values)
+        ds = xr.Dataset(
+            data,
+            coords={
+                "vary": ("vary", self.vary_values, {"long_name": self.vary_name or "none"}),
+                "cam_rpm": ("cam_rpm", self.cam_rpm, {"units": "rpm"}),
+                "cam_angle": ("cam_angle", np.degrees(self.cam_angle), {"units": "deg"}),
+            },
+            attrs={"spring_type": self.spring.type, "cam_law": self.cam.law, "vary_name": self.vary_name or "",
+                   "valve_train": int(self.valve_train is not None)},
+        )
+        return ds if self.vary_name else ds.isel(vary=0, drop=True)
+
+    def to_netcdf(self, path):
+        """Write :meth:`to_xarray` to NetCDF atomically."""
+        with atomic_path(path, suffix=".nc") as tmp:
+            self.to_xarray().to_netcdf(tmp)
+        return Path(path)
+
+    def to_csv(self, path):
+        """Write the summary table (one row per speed and design value)."""
+        cols = {k: (v.astype(int) if np.asarray(v).dtype == bool else v) for k, v in self.summary_table().items()}
+        return write_csv(path, cols)
+
+    def plot(self, out_dir, prefix: str = "sweep") -> list[Path]:
+        """Write the sweep plots as PNG into ``out_dir``; returns their paths."""
+        from .plots import plot_sweep
+
+        return plot_sweep(self, Path(out_dir), prefix)
+
+    def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
+        """NetCDF, summary CSV and plots into ``out_dir``."""
+        out_dir = Path(out_dir)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        written = [self.to_netcdf(out_dir / f"{prefix}.nc"), self.to_csv(out_dir / f"{prefix}_summary.csv")]
+        return written + self.plot(out_dir, prefix)
+
+
+def _field_unit(name: str) -> str:
+    meta = {f.name: f.metadata for f in dataclasses.fields(ValveSpring)}
+    return meta[name]["unit"].replace("/", "_per_").replace("^", "") if name in meta else ""
+
+
+def sweep(
+    spring: ValveSpring,
+    cam: Cam,
+    cam_rpm,
+    *,
+    revolutions: int = 2,
+    valve_train: ValveTrain | None = None,
+    points_per_revolution: int = 720,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
+    vary: tuple[str, np.ndarray] | None = None,
+    on_invalid: str = "stop",
+    workers: int | None = None,
+    client=None,
+    quiet: bool = True,
+) -> SweepResult:
+    """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
+
+    Parameters
+    ----------
+    spring, cam, valve_train
+        The model (see :func:`springdyn.valve.simulate`).
+    cam_rpm : array_like
+        Camshaft speeds [rev/min], positive.
+    revolutions : int
+        Revolutions per speed (the last is kept; the one before judges periodicity).
+    vary : (str, array_like), optional
+        A numeric :class:`ValveSpring` field and its values (SI), an extra dimension.
+    on_invalid : {"stop", "skip"}
+        What to do with a design value that makes the spring invalid.
+    workers : int, optional
+        Local threads (default: both cores).
+    client : dask.distributed.Client, optional
+        Run the chunks on this cluster instead.
+    quiet : bool
+        No progress bar.
+    """
+    cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    if cam_rpm.size == 0:
+        raise InputError("cam_rpm is empty: give at least one speed")
+    if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
+        bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
+        raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
+    if int(revolutions) != revolutions or revolutions < 1:
+        raise InputError(f"revolutions = {revolutions!r} must be a whole number of at least 1")
+    if on_invalid not in ("stop", "skip"):
+        raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
+    if workers is not None and workers < 1:
+        raise InputError(f"workers = {workers} must be at least 1")
+    springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
+    points = int(points_per_revolution)
+    theta = 2 * math.pi * np.arange(points) / points
+    lift = cam.lift_at(theta)
+    results = []
+    f1 = float(spring.modes(spring.installed_length, 1)[0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("once")
+        cam.check_resolution(float(cam_rpm.min()), f1)
+    for k, (sp, setup) in enumerate(zip(springs, setups)):
+        desc = "valve sweep" + (f" {_describe(vary[0], values[k])}" if vary else "")
+        res = _run_speeds(setup, cam_rpm, int(revolutions), points, rtol, atol, workers, client, quiet, desc)
+        failed = np.flatnonzero(res["status"] != 0)
+        if failed.size:
+            i = int(failed[0])
+            info = dict(status=int(res["status"][i]), t=float(res["t"][i]), steps=int(res["steps"][i]))
+            raise _solver_error(float(cam_rpm[i]), rpm_to_omega(cam_rpm[i]), info)
+        if valve_train is None:
+            idx = (np.arange(points) * (setup.cam_h.size // points)) if setup.cam_h.size % points == 0 else None
+            res["static"] = (setup.static_force_table[idx] if idx is not None
+                             else sp.static_force(sp.installed_length - lift))
+        results.append(res)
+    data = {key: np.stack([r[key] for r in results]) for key in results[0]}
+    return SweepResult(spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values,
+                       springs, data, skipped)
+
+
+def describe_design_value(name: str, value: float) -> str:
+    """``'installed_length = 36 mm'`` for a design value in SI."""
+    return _describe(name, value)
+
+
+def _describe(name: str, value: float) -> str:
+    meta = {f.name: f.metadata for f in dataclasses.fields(ValveSpring)}
+    return f"{name} = {describe_value(float(value), meta[name])}"
+
+
+def _design_variants(spring, cam, valve_train, vary, on_invalid):
+    """Valid springs (and their prepared setups) for every design value."""
+    if vary is None:
+        return [spring], [prepare(spring, cam, valve_train)], np.array([np.nan]), []
+    name, values = vary
+    numeric = [f.name for f in dataclasses.fields(ValveSpring) if f.metadata.get("kind") == "quantity"]
+    if name not in numeric:
+        raise InputError(f"--vary {name}: not a numeric spring field; choose one of {', '.join(numeric)}")
+    values = np.atleast_1d(np.asarray(values, dtype=float))
+    springs, setups, kept, skipped = [], [], [], []
+    for v in values:
+        try:
+            sp = spring.replace(**{name: float(v)})
+            setups.append(prepare(sp, cam, valve_train))
+            springs.append(sp)
+            kept.append(v)
+        except InputError as exc:
+            if on_invalid == "stop":
+                raise InputError(f"--vary {_describe(name, v)}: {exc} (use --on-invalid skip to leave such values out)") from None
+            skipped.append((float(v), str(exc)))
+            warnings.warn(f"--vary {_describe(name, v)} skipped: {exc}", stacklevel=3)
+    if not springs:
+        raise InputError(f"--vary {name}: every value makes the spring invalid")
+    return springs, setups, np.asarray(kept), skipped
