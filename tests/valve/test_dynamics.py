@@ -213,10 +213,32 @@ def test_lift_that_drives_spring_solid(one_step):
 
 
 def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
-    def broken(y0, t_out, args, **kw):
-        return np.full((t_out.size, y0.size), np.nan), dict(status=2, t=0.0123, steps=42, rejected=7)
+    def broken(y0, omegas, revolutions, points, args, **kw):
+        n = len(omegas)
+        return (np.full((n, points * 2, len(engine.EXTRA)), np.nan), np.full(n, 2), np.full(n, 0.0123),
+                np.full(n, 42))
 
-    monkeypatch.setattr(simmod, "integrate", broken)
+    monkeypatch.setattr(simmod, "run_speeds", broken)
     with pytest.raises(SolverError, match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
                                           r"collapsed; likely cause: the element stiffness"):
         simulate(one_step, CAM, 3000)
+
+
+def test_kernel_outputs_equal_numpy_postprocessing(one_step):
+    """The compiled kernel's own force evaluation (used by simulate and sweep) equals the
+    independent NumPy evaluation of the same states (chain_response)."""
+    setup = prepare(one_step, CAM, VT)
+    omega = rpm_to_omega(2000)  # below float speed: no impacts to amplify round-off
+    period = 2 * math.pi / omega
+    extra, status, _, _ = engine.run_speeds(setup.y0, [omega], 1, 360, setup.args(omega), rtol=1e-6, atol=1e-9,
+                                            max_step_fraction=1 / 720)
+    t = np.arange(360) * period / 360
+    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-6, atol=1e-9, h_max=period / 720)
+    r = simmod.chain_response(setup, omega, omega * t, states)
+    e = extra[0]
+    # The right-hand side is inlined into each compiled caller, so the two runs round
+    # differently and their adaptive step sequences part at round-off level; the outputs
+    # then differ by far less than the integration tolerance (rtol 1e-6): we allow 1e-7.
+    np.testing.assert_allclose(e[:, 0:6].T, r["force"], rtol=1e-7, atol=1e-6)
+    np.testing.assert_allclose(e[:, 14], r["cam_contact_force"], rtol=1e-7, atol=1e-6)
+    np.testing.assert_allclose(e[:, 17:22].T, r["displacement"], rtol=1e-7, atol=1e-12)

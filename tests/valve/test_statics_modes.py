@@ -184,3 +184,16 @@ def test_design_figures():
     assert d["installed"]["surge_margin"] == pytest.approx(d["installed"]["surge_frequency_Hz"] / 50.0)
     assert d["coil_contact"]["force_N"] == pytest.approx(590.87, rel=1e-4)
     assert d["installed"]["force_N"] < d["open"]["force_N"] < d["coil_contact"]["force_N"]
+
+
+@pytest.mark.parametrize("name", SPRINGS)
+def test_compiled_series_force_equals_numpy(name):
+    """The compiled static solver used along the cam equals statics.series_force."""
+    from springdyn.valve.engine import series_force_compiled
+    from springdyn.valve.statics import series_force
+
+    s = ValveSpring.example(name)
+    dl = np.linspace(-1e-3, s.free_length - s.min_length, 3001)
+    out = np.empty_like(dl)
+    series_force_compiled(dl, s.chain.laws, out)
+    np.testing.assert_allclose(out, series_force(dl, s.chain.laws), rtol=1e-12, atol=1e-9)

@@ -246,11 +246,13 @@ class Cam:
         main = inside & (s >= phi_r)
         u = np.clip((s - phi_r) / half, 0.0, 1.0)
         p, dp, ddp = rise_law(self.law, u)
-        g, dg, ddg = _g(u)
         span = self.lift - h_r
-        h = np.where(main, h_r + span * p + v_r * half * g, h)
-        dh = np.where(main, span * dp / half + v_r * dg, dh)
-        ddh = np.where(main, span * ddp / half**2 + v_r * ddg / half, ddh)
+        if v_r > 0:
+            g, dg, ddg = _g(u)
+            p, dp, ddp = p + v_r * half / span * g, dp + v_r * half / span * dg, ddp + v_r * half / span * ddg
+        h = np.where(main, h_r + span * p, h)
+        dh = np.where(main, span * dp / half, dh)
+        ddh = np.where(main, span * ddp / half**2, ddh)
         return h, sign * dh, ddh
 
     def lift_at(self, theta):

@@ -40,7 +40,7 @@ STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the soluti
 
 #: Layout of the optional ``extra`` output of :func:`rhs`.
 EXTRA = ("f1", "f2", "f3", "f4", "f5", "f6", "x1", "x2", "x3", "x4", "x5", "x6", "lift", "dlift",
-         "cam_contact_force", "valve_seat_force", "top_displacement")
+         "cam_contact_force", "valve_seat_force", "top_displacement", "u1", "u2", "u3", "u4", "u5")
 N_EXTRA = len(EXTRA)
 
 
@@ -75,7 +75,8 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
         None (numba then compiles a variant without these outputs), or an array of length
         :data:`N_EXTRA` that receives the element forces [N] and
         compressions [m], lift [m] and lift rate [m/s], cam contact and valve-seat forces
-        [N] and the displacement of the retainer end [m] (layout :data:`EXTRA`).
+        [N], the displacement of the retainer end [m] and of the five masses [m] (layout
+        :data:`EXTRA`).
     """
     nfree = 5 + (1 if vt[0] > 0.5 else 0)
     # cam lift and velocity (quintic Hermite on the periodic table)
@@ -142,6 +143,8 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
         if extra is not None:
             extra[j] = force
             extra[6 + j] = xj
+            if j < 5:
+                extra[17 + j] = u_hi
         if j > 0:
             out[j - 1] = s[nfree + j - 1]
             out[nfree + j - 1] = (force - f_prev) / masses[j - 1]
@@ -178,7 +181,7 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
 
 
 #: The compiled right-hand side (numba, cached on disk).
-rhs_compiled = njit(cache=True)(rhs)
+rhs_compiled = njit(cache=True, inline="always")(rhs)
 
 
 @njit(cache=True, nogil=True)
@@ -267,12 +270,12 @@ def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, c
                          omega, vt, d, extra_out[i, j])
 
 
-def run_speeds(y0, omegas, revolutions, points, args_no_omega, *, rtol, atol, max_step_fraction,
-               max_steps=10_000_000):
+def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fraction, max_steps=10_000_000):
     """Integrate several speeds in one compiled call (the GIL is released throughout).
 
     For each speed the last ``keep = min(2, revolutions)`` revolutions are sampled at
     ``points`` per revolution, and :func:`rhs` evaluates there its ``extra`` outputs.
+    ``args`` is the usual argument tuple of :func:`rhs`; its speed is ignored.
 
     Returns
     -------
@@ -285,7 +288,7 @@ def run_speeds(y0, omegas, revolutions, points, args_no_omega, *, rtol, atol, ma
     status = np.zeros(omegas.size, dtype=np.int64)
     t_end = np.zeros(omegas.size)
     steps = np.zeros(omegas.size, dtype=np.int64)
-    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, vt = args_no_omega
+    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, _omega, vt = args  # omega comes from omegas
     _run_speeds(np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions), int(points), keep, masses, laws, xset,
                 float(c0), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol), float(atol), float(max_step_fraction),
                 int(max_steps), extra, status, t_end, steps)
@@ -371,3 +374,44 @@ def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
         + (30 * x2 - 60 * x3 + 30 * x4) * p1
     ) / dth
     return lift, dlift
+
+
+@njit(cache=True)
+def series_force_compiled(total_compression, laws, out):
+    """Compiled twin of :func:`springdyn.valve.statics.series_force` (same Newton scheme).
+
+    For each total compression [m], the common force [N] of the series chain: Newton's
+    method from the all-linear force, which lies below the root, using each element's
+    closed-form inverse law.  Used for the static force along a cam; the tests check it
+    against the NumPy implementation.
+    """
+    n_el = laws.shape[0]
+    k_lin = 0.0
+    for j in range(n_el):
+        k_lin += 1.0 / laws[j, 0, 2]
+    k_lin = 1.0 / k_lin
+    for i in range(total_compression.shape[0]):
+        dl = total_compression[i]
+        force = dl * k_lin
+        for _ in range(100):
+            total = 0.0
+            comp = 0.0
+            for j in range(n_el):
+                seg = 0
+                for s in (1, 2):
+                    xs = laws[j, s, 0]
+                    if xs < np.inf:
+                        fs = (laws[j, s, 1] * xs + laws[j, s, 2]) * xs + laws[j, s, 3]
+                        if force >= fs:
+                            seg = s
+                a = laws[j, seg, 1]
+                b = laws[j, seg, 2]
+                d = force - laws[j, seg, 3]
+                x = 2.0 * d / (b + np.sqrt(max(b * b + 4.0 * a * d, 0.0)))
+                total += x
+                comp += 1.0 / (2.0 * a * x + b)
+            step = (dl - total) / comp
+            force += step
+            if abs(step) <= 1e-12 * abs(force) + 1e-300:
+                break
+        out[i] = force

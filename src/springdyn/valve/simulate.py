@@ -18,7 +18,7 @@ from ..errors import InputError, SolverError
 from ..io import write_csv
 from .cam import Cam
 from .elements import damping_coefficient, law_compression, law_force
-from .engine import STATUS, hermite_eval, integrate, integrate_scipy
+from .engine import STATUS, hermite_eval, integrate_scipy, run_speeds, series_force_compiled
 from .spring import ValveSpring
 from .statics import series_force
 from .valvetrain import ValveTrain
@@ -54,7 +54,15 @@ class SimulationSetup:
     dth: float
     vt: np.ndarray
     y0: np.ndarray
-    static_force_table: np.ndarray = field(repr=False)  # static force at each cam-table angle
+
+    def static_force(self, lift) -> np.ndarray:
+        """Static (massless) spring force [N] at cam or valve lift(s) [m]."""
+        sp = self.spring
+        lift = np.asarray(lift, dtype=float)
+        dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
+        force = np.empty_like(dl)
+        series_force_compiled(dl, sp.chain.laws, force)
+        return force.reshape(lift.shape)
 
     def args(self, omega: float) -> tuple:
         ch = self.spring.chain
@@ -84,25 +92,29 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
             f"installed_length - lift = {open_length * 1e3:.4g} mm is below {spring.min_length * 1e3:.4g} mm, where "
             f"the static force reaches {spring.LIMIT_FORCE_FACTOR:g} Fcon"
         )
-    static = series_force(spring.free_length - spring.installed_length + h, spring.chain.laws)
-    if static.max() > p["Fcon"]:
-        over = np.flatnonzero(static > p["Fcon"])
+    # static force above Fcon <=> lift beyond the lift at which the static force is Fcon
+    lift_fcon = spring.installed_length - spring.length_at_force(p["Fcon"])
+    if h[i_max] > lift_fcon:
+        over = np.flatnonzero(h > lift_fcon)
+        peak = float(series_force(spring.free_length - spring.installed_length + h[i_max], spring.chain.laws))
         warnings.warn(
             f"the cam lift drives the spring into coil contact even statically: from cam angle "
             f"{math.degrees(theta[over[0]]):.1f} deg to {math.degrees(theta[over[-1]]):.1f} deg the static force "
-            f"exceeds Fcon = {p['Fcon']:.1f} N, peaking at {static.max():.1f} N at "
+            f"exceeds Fcon = {p['Fcon']:.1f} N, peaking at {peak:.1f} N at "
             f"{math.degrees(theta[i_max]):.1f} deg (lift {h[i_max] * 1e3:.3g} mm)",
             stacklevel=3,
         )
     vt = valve_train.kernel_parameters() if valve_train is not None else np.zeros(7)
     y0 = _initial_state(spring, h[0], valve_train)
-    return SimulationSetup(spring, cam, valve_train, h, dh, ddh, 2 * math.pi / CAM_SAMPLES, vt, y0, static)
+    return SimulationSetup(spring, cam, valve_train, h, dh, ddh, 2 * math.pi / CAM_SAMPLES, vt, y0)
 
 
 def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None) -> np.ndarray:
     """Static equilibrium at cam angle 0: displacements from set-up, zero velocities."""
     setup = spring.free_length - spring.installed_length
     if valve_train is None:
+        if lift0 == 0.0:  # the set-up state itself: every displacement is zero by definition
+            return np.zeros(10)
         u = spring.initial_condition(setup + lift0)["displacements"]
         return np.concatenate([u, np.zeros(5)])
     laws = spring.chain.laws
@@ -294,23 +306,26 @@ def simulate(
     revolutions = int(revolutions)
     if setup is None:
         setup = prepare(spring, cam, valve_train)
-        cam.check_resolution(cam_rpm, float(spring.modes(spring.installed_length, 1)[0]))
+        if cam.law == "table":
+            cam.check_resolution(cam_rpm, float(spring.modes(spring.installed_length, 1)[0]))
     omega = rpm_to_omega(cam_rpm)
     period = 2 * math.pi / omega
     keep = min(2, revolutions)
     n = points_per_revolution
     t_keep = (revolutions - keep) * period + np.arange(keep * n) * (period / n)
     t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
-    args = setup.args(omega)
-    h_max = period * MAX_STEP_FRACTION
     if backend == "compiled":
-        states, info = integrate(setup.y0, t_out, args, rtol=rtol, atol=atol, h_max=h_max)
-    else:
-        states, info = integrate_scipy(setup.y0, t_out, args, rtol=rtol, atol=atol, h_max=h_max)
+        extra, status, t_end, steps = run_speeds(setup.y0, [omega], revolutions, n, setup.args(0.0),
+                                                 rtol=rtol, atol=atol, max_step_fraction=MAX_STEP_FRACTION)
+        info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]))
+        if info["status"] != 0 or not np.all(np.isfinite(extra)):
+            raise _solver_error(cam_rpm, omega, info)
+        return _from_extra(setup, cam_rpm, revolutions, t_keep, extra[0], info, n, keep)
+    states, info = integrate_scipy(setup.y0, t_out, setup.args(omega), rtol=rtol, atol=atol,
+                                   h_max=period * MAX_STEP_FRACTION)
     if info["status"] != 0 or not np.all(np.isfinite(states)):
         raise _solver_error(cam_rpm, omega, info)
-    states = states[-keep * n:]
-    return _postprocess(setup, cam_rpm, revolutions, t_keep, states, info, n, keep)
+    return _postprocess(setup, cam_rpm, revolutions, t_keep, states[-keep * n:], info, n, keep)
 
 
 def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
@@ -379,7 +394,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     out = dict(lift=lift, compression=x, force=force, contact=x >= coil_contact_compressions(setup.spring)[:, None])
     if nf == 6:
         vt = setup.valve_train
-        out["static"] = _static_force(setup, theta, u_top)
+        out["static"] = setup.static_force(u_top)
         pen = lift - u_top - vt.lash
         out["valve_lift"] = u_top
         out["cam_contact_force"] = np.where(
@@ -387,9 +402,31 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         out["valve_seat_force"] = np.where(
             u_top < 0, np.maximum(-vt.seat_stiffness * u_top - vt.seat_damping * v_top, 0.0), 0.0)
     else:
-        out["static"] = _static_force(setup, theta, None)
+        out["static"] = setup.static_force(lift)
     out["displacement"] = u[..., :5, :]
     return out
+
+
+def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, t_keep, extra, info, n, keep) -> Simulation:
+    """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)."""
+    omega = rpm_to_omega(cam_rpm)
+    last = slice((keep - 1) * n, keep * n)
+    fset = setup.spring.internal_parameters()["Fset"]
+    e = extra[last]
+    force, x = e[:, 0:6].T, e[:, 6:12].T
+    prev_err = float(np.max(np.abs(e[:, 5] - extra[:n, 5])) / fset) if keep == 2 else math.nan
+    lift = e[:, 12]
+    sim = Simulation(
+        spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
+        time=t_keep[last], cam_angle=np.mod(omega * t_keep[last], 2 * math.pi), lift=lift,
+        retainer_force=force[5], seat_force=force[0], static_force=setup.static_force(e[:, 16]),
+        element_compression=x, element_force=force,
+        element_contact=x >= coil_contact_compressions(setup.spring)[:, None],
+        mass_displacement=e[:, 17:22].T, periodicity_error=prev_err, info=info,
+    )
+    if setup.nfree == 6:
+        sim.valve_lift, sim.cam_contact_force, sim.valve_seat_force = e[:, 16], e[:, 14], e[:, 15]
+    return sim
 
 
 def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, info, n, keep) -> Simulation:
@@ -427,21 +464,6 @@ def coil_contact_compressions(spring: ValveSpring) -> np.ndarray:
         float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
         for name, law in zip(spring.chain.element_names, spring.chain.laws)
     ])
-
-
-def _static_force(setup: SimulationSetup, theta: np.ndarray, valve_lift) -> np.ndarray:
-    """Static force at the same lift: looked up in the prepared cam table when the output
-    angles fall on its samples, otherwise solved; with a valve train, at the valve lift."""
-    spring = setup.spring
-    setup_len = spring.free_length - spring.installed_length
-    if valve_lift is not None:
-        return series_force(setup_len + valve_lift, spring.chain.laws)
-    pos = np.mod(theta, 2 * math.pi) / setup.dth
-    idx = np.rint(pos).astype(np.intp) % setup.cam_h.size
-    if np.all(np.abs(pos - np.rint(pos)) < 1e-6):
-        return setup.static_force_table[idx]
-    lift = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)[0]
-    return series_force(setup_len + lift, spring.chain.laws)
 
 
 def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:

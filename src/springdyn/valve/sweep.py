@@ -35,7 +35,6 @@ from .simulate import (
     prepare,
     rpm_to_omega,
 )
-from .statics import series_force
 from .spring import ValveSpring
 from .valvetrain import ValveTrain
 
@@ -57,8 +56,8 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
     keep = min(2, revolutions)
-    ex, status, t_end, steps = run_speeds(setup.y0, rpm_to_omega(cam_rpm), revolutions, points, setup.args(0.0)[:8]
-                                          + (setup.vt,), rtol=rtol, atol=atol, max_step_fraction=MAX_STEP_FRACTION)
+    ex, status, t_end, steps = run_speeds(setup.y0, rpm_to_omega(cam_rpm), revolutions, points, setup.args(0.0),
+                                          rtol=rtol, atol=atol, max_step_fraction=MAX_STEP_FRACTION)
     fset = setup.spring.internal_parameters()["Fset"]
     last = slice((keep - 1) * points, keep * points)
     f = ex[:, :, 0:6]
@@ -75,10 +74,9 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
     if setup.nfree == 6:
         out["cam_contact"] = ex[:, last, 14]
         out["valve_lift"] = ex[:, last, 16]
-        setup_len = setup.spring.free_length - setup.spring.installed_length
         valid = status == 0
         static = np.full(out["valve_lift"].shape, np.nan)
-        static[valid] = series_force(setup_len + out["valve_lift"][valid], setup.spring.chain.laws)
+        static[valid] = setup.static_force(out["valve_lift"][valid])
         out["static"] = static
     return out
 
@@ -325,9 +323,7 @@ def sweep(
             info = dict(status=int(res["status"][i]), t=float(res["t"][i]), steps=int(res["steps"][i]))
             raise _solver_error(float(cam_rpm[i]), rpm_to_omega(cam_rpm[i]), info)
         if valve_train is None:
-            idx = (np.arange(points) * (setup.cam_h.size // points)) if setup.cam_h.size % points == 0 else None
-            res["static"] = (setup.static_force_table[idx] if idx is not None
-                             else sp.static_force(sp.installed_length - lift))
+            res["static"] = setup.static_force(lift)
         results.append(res)
     data = {key: np.stack([r[key] for r in results]) for key in results[0]}
     return SweepResult(spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values,

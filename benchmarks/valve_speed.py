@@ -1,0 +1,116 @@
+"""Valve-spring engine benchmark (issue 4).  Run:  python benchmarks/valve_speed.py
+
+Measures in one run, on this machine, with the one-step example spring and a 3-4-5 cam of
+9 mm over 120 cam degrees:
+
+1. the first call of the compiled engine (compilation, or loading it from numba's disk
+   cache), reported on its own line;
+2. one simulation of 2 cam revolutions at 3000 cam rpm: springdyn's compiled engine
+   against SciPy ``solve_ivp(method="DOP853", rtol=1e-8, atol=1e-12)`` with the plain
+   Python right-hand side of the same model (target: >= 300x faster, peak retainer force
+   within 0.05 % of Fset);
+3. a sweep of 1000 speeds from 300 to 4000 cam rpm, 2 revolutions each (target < 5 s);
+4. the peak resident memory of a process running that sweep (target < 1 GB).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import subprocess
+import sys
+import time
+
+SWEEP_CHILD = """
+import math, resource, sys, time
+import numpy as np
+from springdyn.valve import ValveSpring
+from springdyn.valve.cam import Cam
+from springdyn.valve.sweep import sweep
+s = ValveSpring.example("one-step")
+cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+sweep(s, cam, [3000.0, 3100.0])                      # compile / load from cache first
+t = time.perf_counter()
+res = sweep(s, cam, np.linspace(300.0, 4000.0, {n}), revolutions=2)
+wall = time.perf_counter() - t
+print(wall, int(res.data["steps"].sum()), resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+"""
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--speeds", type=int, default=1000, help="speeds in the sweep (default 1000)")
+    ap.add_argument("--repeat", type=int, default=20, help="repetitions of the compiled single run (default 20)")
+    args = ap.parse_args(argv)
+
+    t0 = time.perf_counter()
+    from springdyn.valve import ValveSpring
+    from springdyn.valve import engine
+    from springdyn.valve.cam import Cam
+    from springdyn.valve.simulate import MAX_STEP_FRACTION, prepare, rpm_to_omega, simulate
+
+    spring = ValveSpring.example("one-step")
+    cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+    fset = spring.internal_parameters()["Fset"]
+    t_import = time.perf_counter() - t0
+
+    t = time.perf_counter()
+    simulate(spring, cam, 3000.0, 2)
+    first = time.perf_counter() - t
+    cached = engine._run_speeds.stats.cache_hits
+    how = "loaded from numba's disk cache" if sum(cached.values()) else "compiled (now cached on disk)"
+    print(f"import springdyn: {t_import:.2f} s")
+    print(f"first call of the compiled engine: {first:.2f} s ({how}; paid once per process)")
+
+    # --- one simulation -------------------------------------------------------------
+    times = []
+    for _ in range(args.repeat):
+        t = time.perf_counter()
+        fast = simulate(spring, cam, 3000.0, 2)
+        times.append(time.perf_counter() - t)
+    t_fast = statistics.median(times)
+    setup = prepare(spring, cam)
+    omega = rpm_to_omega(3000.0)
+    eng = []
+    for _ in range(args.repeat):
+        t = time.perf_counter()
+        engine.run_speeds(setup.y0, [omega], 2, 1440, setup.args(omega), rtol=1e-6, atol=1e-9,
+                          max_step_fraction=MAX_STEP_FRACTION)
+        eng.append(time.perf_counter() - t)
+    t_eng = statistics.median(eng)
+    t = time.perf_counter()
+    ref = simulate(spring, cam, 3000.0, 2, backend="scipy", rtol=1e-8, atol=1e-12)
+    t_ref = time.perf_counter() - t
+    peak_fast = fast.summary()["max_retainer_force_N"]
+    peak_ref = ref.summary()["max_retainer_force_N"]
+    diff = abs(peak_fast - peak_ref) / fset
+    print()
+    print("one simulation, 2 revolutions at 3000 cam rpm (end to end: setup, integration, outputs)")
+    print(f"  SciPy DOP853 rtol=1e-8 atol=1e-12, pure-Python RHS: {t_ref:8.3f} s  ({ref.info['steps']} RHS calls)")
+    print(f"  springdyn compiled engine (median of {args.repeat}):      {t_fast * 1e3:8.2f} ms  ({fast.info['steps']} steps)")
+    print(f"  ratio: {t_ref / t_fast:.0f}x faster (target >= 300x): {'MET' if t_ref / t_fast >= 300 else 'NOT MET'}")
+    print(f"  of which the compiled integration (with its output evaluation): {t_eng * 1e3:.2f} ms, "
+          f"{t_ref / t_eng:.0f}x the reference; the rest is setup (cam table, initial state) and outputs")
+    print(f"  peak retainer force: {peak_fast:.4f} N vs {peak_ref:.4f} N, difference {100 * diff:.5f} % of Fset "
+          f"(target < 0.05 %): {'MET' if diff < 5e-4 else 'NOT MET'}")
+
+    # --- sweep, in a fresh process so that its peak memory is its own -----------------
+    out = subprocess.run([sys.executable, "-c", SWEEP_CHILD.format(n=args.speeds)], capture_output=True, text=True,
+                         check=True)
+    wall, steps, maxrss_kb = out.stdout.split()
+    wall, steps, rss_mb = float(wall), int(steps), int(maxrss_kb) / 1024
+    print()
+    print(f"sweep of {args.speeds} speeds, 300-4000 cam rpm, 2 revolutions each (after compilation), both cores")
+    print(f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.2f} ms per speed); "
+          f"target < 5 s: {'MET' if wall < 5 else 'NOT MET'}")
+    print(f"  same work with the SciPy reference, estimated from the single run: "
+          f"{t_ref * args.speeds * (steps / args.speeds) / max(fast.info['steps'], 1) / 3600:.1f} h "
+          f"(ratio ~{t_ref * steps / fast.info['steps'] / wall:.0f}x)")
+    print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: "
+          f"{'MET' if rss_mb < 1024 else 'NOT MET'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
