@@ -1,7 +1,7 @@
 """Entry point of the ``springdyn`` command.
 
-Each model family contributes ``springdyn.<family>.cli.register(subparsers)`` and
-``springdyn.<family>.demo.run(out_dir, quiet=...)``; this module only wires them and
+Each model family contributes ``springdyn.<family>.cli.register(subparsers)`` and a
+report section (``springdyn.<family>.report``); this module only wires them and
 turns springdyn's errors into one line on stderr with exit code 2 (bad input) or 3
 (solver failure), never a traceback.
 """
@@ -17,7 +17,7 @@ from pathlib import Path
 from .. import __version__
 from ..errors import InputError, SolverError
 
-#: Model families, in the order the CLI lists them and the demo runs them.
+#: Model families, in the order the CLI lists them.
 FAMILIES = ["valve", "cfcs", "lsd"]
 
 
@@ -37,32 +37,42 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"springdyn {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
 
-    demo = sub.add_parser("demo", help="run every analysis on the built-in examples and write a report folder")
+    demo = sub.add_parser("demo", help="run every analysis on the built-in examples and write the HTML report")
     demo.add_argument("--out", default="springdyn-demo", help="output folder (default: springdyn-demo)")
     demo.add_argument("--quiet", action="store_true", help="no progress bar, only the final line")
     demo.set_defaults(func=_run_demo)
+
+    rep = sub.add_parser("report", help="the HTML report for your own definitions (any mix of [spring]+[cam], "
+                                        "[cfcs], [lsd] TOML files)")
+    rep.add_argument("definitions", nargs="+", metavar="FILE.toml")
+    rep.add_argument("--out", default="springdyn-report", help="output folder (default: springdyn-report)")
+    rep.add_argument("--quiet", action="store_true", help="no progress bar, only the final line")
+    rep.set_defaults(func=_run_report)
 
     for family in FAMILIES:
         importlib.import_module(f"springdyn.{family}.cli").register(sub)
     return parser
 
 
-def _run_demo(args) -> int:
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
-    for family in FAMILIES:
-        mod = importlib.import_module(f"springdyn.{family}.demo")
-        fam_dir = out / family
-        fam_dir.mkdir(parents=True, exist_ok=True)
-        if not args.quiet:
-            print(f"springdyn demo: {family} ...", file=sys.stderr)
-        written += mod.run(fam_dir, quiet=args.quiet)
-    print(f"springdyn demo: wrote {len(written)} files to {out.resolve()}")
-    if not args.quiet:
-        for p in written:
-            print(f"  {p}")
+def _report(definitions, out, quiet: bool, title: str, labels=None) -> int:
+    from ..report import build_report
+
+    page = build_report(definitions, out, quiet=quiet, title=title, labels=labels)
+    files = sum(1 for p in Path(out).rglob("*") if p.is_file())
+    print(f"springdyn: wrote the report {page.resolve()} ({files} files in {Path(out).resolve()})")
     return 0
+
+
+def _run_demo(args) -> int:
+    from ..report.build import DEMO_LABEL, demo_definitions
+
+    paths = demo_definitions()
+    return _report(paths, args.out, args.quiet, "springdyn demo: the built-in examples",
+                   labels=[DEMO_LABEL.format(p.name) for p in paths])
+
+
+def _run_report(args) -> int:
+    return _report(args.definitions, args.out, args.quiet, "springdyn report")
 
 
 def main(argv=None) -> int:

@@ -1,0 +1,13 @@
+"""The springdyn report: one self-contained HTML page over any mix of model definitions.
+
+:func:`build_report` reads TOML definition files (a ``[spring]`` table with optional
+``[cam]`` and ``[valve_train]``, a ``[cfcs]`` table, an ``[lsd]`` table, in any mix),
+runs each family's analyses through ``springdyn.<family>.report.section``, writes their
+tables and figures beside the page, and renders ``index.html`` with the figures
+embedded.  ``springdyn demo`` is this report over the built-in example definitions.
+"""
+
+from .build import DEMO_DEFINITIONS, build_report, demo_definitions
+from .html import Section, render_html
+
+__all__ = ["Section", "render_html", "build_report", "demo_definitions", "DEMO_DEFINITIONS"]

@@ -1,0 +1,151 @@
+"""The valve-spring section of the springdyn report (and of ``springdyn demo``)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..io import write_json
+from ..report.html import Section, fmt, parameter_rows
+from .cam import Cam
+from .cli import PARAM_UNITS
+from .simulate import float_speed, simulate
+from .spring import ValveSpring
+from .sweep import sweep
+from .valvetrain import ValveTrain
+from ..units import format_quantity
+
+__all__ = ["load", "section", "ValveDefinition", "REPORT_SPEEDS", "DEFAULT_CAM"]
+
+#: Cam speeds of the detailed runs [rev/min].
+REPORT_SPEEDS = (1000.0, 2500.0, 4000.0)
+#: Speed range of the sweep [rev/min].
+SWEEP_SPEEDS = np.arange(500.0, 4000.0 + 1e-9, 50.0)
+#: Cam used when a definition has a [spring] but no [cam] table.
+DEFAULT_CAM = dict(law="3-4-5", lift="9 mm", duration="120 deg")
+
+
+@dataclass
+class ValveDefinition:
+    spring: ValveSpring
+    cam: Cam
+    valve_train: ValveTrain | None
+    cam_given: bool
+
+
+def load(doc: dict, path: Path) -> ValveDefinition:
+    """Validate the [spring], [cam] and [valve_train] tables of a definition."""
+    spring = ValveSpring.from_dict(doc["spring"], source=str(path))
+    cam_given = "cam" in doc
+    cam = Cam.from_dict(doc["cam"] if cam_given else DEFAULT_CAM, source=str(path), base_dir=Path(path).parent)
+    vt = ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
+    return ValveDefinition(spring, cam, vt, cam_given)
+
+
+def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
+    """Run the valve analyses of one definition into ``out_dir`` and describe them."""
+    sp, cam, vt = d.spring, d.cam, d.valve_train
+    p = sp.internal_parameters()
+    files, figures, findings = [], [], []
+    files.append(write_json(out_dir / "params.json", p))
+    curve = sp.static_curve()
+    files.append(curve.to_csv(out_dir / "static_curve.csv"))
+    curve.plot(out_dir / "static_curve.png")
+    figures.append((out_dir / "static_curve.png", "Static force and tangent stiffness vs length, with the set-up "
+                    "length and the breakpoint forces F1, F2, Fcon (document Figs. 40.34-40.36)"))
+    lift = cam.max_lift
+    design = sp.design_figures(lift=lift, cam_rpm=max(REPORT_SPEEDS))
+    files.append(write_json(out_dir / "design.json", design))
+    modes_free = sp.modes(sp.free_length, 3)
+
+    sims = {}
+    for rpm in REPORT_SPEEDS:
+        sim = simulate(sp, cam, rpm, 3)
+        sims[rpm] = sim
+        stem = out_dir / f"simulate_{rpm:.0f}rpm"
+        files.append(sim.to_csv(stem.with_suffix(".csv")))
+        files.append(write_json(stem.with_name(stem.name + "_summary.json"), sim.summary()))
+        sim.plot(stem.with_suffix(".png"))
+        figures.append((stem.with_suffix(".png"), f"Spring alone at {rpm:.0f} cam rpm: retainer and seat force "
+                        "against the static (massless) force, mass displacements, cam-order spectrum"))
+    sw = sweep(sp, cam, SWEEP_SPEEDS, quiet=quiet)
+    written = sw.write(out_dir, "sweep")
+    files += written[:2]
+    figures.append((out_dir / "sweep_forces.png", "Peak and minimum forces over the speed range against the static values"))
+    figures.append((out_dir / "sweep_campbell.png", "Campbell diagram: cam-order harmonics of the retainer force "
+                    "against f1 at installed and open length"))
+    figures.append((out_dir / "sweep_map.png", "Retainer force over cam speed and cam angle"))
+
+    for rpm, sim in sims.items():
+        s = sim.summary()
+        contact = (f"coil contact from {s['coil_contact'][0]['start_deg']:.1f} to {s['coil_contact'][-1]['end_deg']:.1f} deg "
+                   f"(peak element force {max(e['peak_contact_force_N'] for e in s['coil_contact']):.0f} N)"
+                   if s["coil_contact"] else "no coil contact")
+        findings.append(
+            f"At {rpm:.0f} cam rpm the peak retainer force is {s['max_retainer_force_N']:.1f} N, "
+            f"{s['max_retainer_force_ratio']:.3f} times the static peak of {s['max_static_force_N']:.1f} N; the seat "
+            f"force swings from {s['min_seat_force_N']:.1f} to {s['max_seat_force_N']:.1f} N (surge amplitude "
+            f"{s['seat_surge_amplitude_N']:.1f} N); {contact}."
+        )
+    table = sw.summary_table()
+    k = int(np.argmax(table["max_retainer_force_N"]))
+    clash = SWEEP_SPEEDS[np.asarray(table["coil_contact"], bool)]
+    findings.append(
+        f"Over {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm the retainer force peaks at "
+        f"{table['max_retainer_force_N'][k]:.1f} N at {SWEEP_SPEEDS[k]:.0f} rpm; "
+        + (f"coil clash occurs from {clash[0]:.0f} cam rpm on ({clash.size} of {SWEEP_SPEEDS.size} speeds)."
+           if clash.size else "no coil clash occurs in that range.")
+    )
+    findings.append(
+        f"First surge frequency f1 = {p['f1']:.1f} Hz (chain: {modes_free[0]:.1f} Hz at free length, "
+        f"{design['open']['surge_frequency_Hz']:.1f} Hz at full lift); at {max(REPORT_SPEEDS):.0f} cam rpm that is cam order "
+        f"{p['f1'] / (max(REPORT_SPEEDS) / 60):.1f}, a surge margin of {design['installed']['surge_margin']:.1f} "
+        "(rule of thumb: 10-13 or more)."
+    )
+    findings.append(
+        f"Corrected shear stress (Bergstraesser k = {design['bergstraesser_factor']:.3f}): "
+        f"{design['installed']['shear_stress_Pa'] / 1e6:.0f} MPa installed, {design['open']['shear_stress_Pa'] / 1e6:.0f} MPa "
+        f"at {lift * 1e3:.3g} mm lift, {design['coil_contact']['shear_stress_Pa'] / 1e6:.0f} MPa at coil contact."
+    )
+    if not d.cam_given:
+        findings.append("The definition has no [cam] table: the built-in 3-4-5 cam (9 mm over 120 deg) was used.")
+    commands = [
+        f"springdyn valve params {source}",
+        f"springdyn valve curve {source} --plot curve.png",
+        f"springdyn valve simulate {source} --cam {source} --cam-rpm 2500 --plot sim.png --json",
+        f"springdyn valve sweep {source} --cam {source} --cam-rpm 500:4000:50 --out sweep",
+    ]
+    if vt is not None:
+        res = float_speed(sp, cam, vt, np.arange(1000.0, 6001.0, 250.0))
+        files.append(write_json(out_dir / "float_speed.json", res))
+        f = res["float_cam_rpm"]
+        if f is None:
+            findings.append(f"The follower stays on the cam up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float).")
+        else:
+            above = simulate(sp, cam, 1.05 * f, 3, valve_train=vt)
+            s = above.summary()
+            above.plot(out_dir / "valve_train_above_float.png")
+            files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
+            figures.append((out_dir / "valve_train_above_float.png", f"Valve train 5 % above the float speed "
+                            f"({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals"))
+            findings.append(
+                f"Valve float: the follower first leaves the cam at {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke). "
+                f"5 % above it, contact is lost for {sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the "
+                f"valve lands on its seat at {s['seat_impact_velocity_m_per_s']:.2f} m/s."
+            )
+        commands.append(f"springdyn valve float {source} --cam {source} --valve-train {source} --cam-rpm 1000:6000:250")
+    inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
+    if vt is not None:
+        inputs += [(f"valve_train.{k}", v, m) for k, v, m in parameter_rows(vt)]
+    derived = [(k, format_quantity(v, *PARAM_UNITS[k][:2]), PARAM_UNITS[k][2]) for k, v in p.items()]
+    derived.append(("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length"))
+    derived.append(("spring index", f"{design['spring_index']:.3f}", "D/d"))
+    return Section(
+        family="valve",
+        title=f"Valve spring: {sp.type}" + (" with valve train" if vt is not None else ""),
+        source=source, commands=commands, inputs=inputs, derived=derived, findings=findings,
+        figures=figures, files=files,
+    )
