@@ -1,0 +1,91 @@
+"""Every script in examples/ runs (in a subprocess, like a user would) and prints its findings."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "examples").rglob("*.py"))
+
+#: Output each script must print (regular expressions) and files it must write into --out.
+EXPECTED = {
+    "examples/valve/compare_springs.py": (
+        [r"one-step\s+4000\s", r"two-step\s+4000\s", r"one-step: largest surge [\d.]+ N at \d+ cam rpm"],
+        ["compare_springs.png", "sweep_one-step.csv", "sweep_two-step.csv"],
+    ),
+    "examples/valve/float_speed.py": (
+        [r"float speed: \d+ cam rpm = \d+ engine rpm"],
+        ["float_speed.json", "float_scan.csv", "float_speed.png"],
+    ),
+    "examples/cfcs/design_for_force.py": (
+        [r"FEASIBLE: design meets the stress limit", r"check with the CFCS model: force 19\.9\d* \.\. 20\.0",
+         r"stroke fraction 0\.4 .*not feasible"],
+        ["designed_cfcs.toml", "design_curve.csv", "design_curve.png"],
+    ),
+    "examples/lsd/identify_from_csv.py": (
+        [r"mode: two excitations", r"Kxx =\s+[\d.]+ \+- [\d.]+ N/mm", r"Cyy =\s+[\d.]+ \+- [\d.]+ N s/m"],
+        ["identified.json", "rig_x_shake_1000rpm.csv", "rig_y_shake_1000rpm.csv"],
+    ),
+    "examples/lsd/identify_round_trip.py": ([r"3000 rpm\s+Kxx"], ["type_c_identified.png"]),
+    "examples/lsd/rotor_with_lsd.py": ([r"natural frequency\s+[\d.]+ Hz\s+log decrement"], []),
+}
+
+#: Scripts slower than a few seconds.
+SLOW = {"examples/lsd/rotor_with_lsd.py"}
+
+
+def run_example(script: str, out: Path, *args: str) -> subprocess.CompletedProcess:
+    """Run ``python <script> --out <out> [args]`` from ``out`` (so stray files land there)."""
+    env = dict(os.environ, MPLBACKEND="Agg")
+    return subprocess.run([sys.executable, str(ROOT / script), "--out", str(out), *args], cwd=out, env=env,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_every_example_is_covered():
+    assert set(EXAMPLES) == set(EXPECTED), "add the new example script to EXPECTED in tests/test_examples.py"
+
+
+@pytest.mark.parametrize(
+    "script", [pytest.param(s, marks=pytest.mark.slow) if s in SLOW else s for s in EXAMPLES]
+)
+def test_example_runs(script, tmp_path):
+    if script == "examples/lsd/rotor_with_lsd.py":
+        pytest.importorskip("ross")
+    proc = run_example(script, tmp_path)
+    assert proc.returncode == 0, f"{script} failed:\n{proc.stdout}\n{proc.stderr}"
+    patterns, files = EXPECTED[script]
+    for pattern in patterns:
+        assert re.search(pattern, proc.stdout), f"{script}: no match for {pattern!r} in\n{proc.stdout}"
+    for name in files:
+        assert (tmp_path / name).is_file(), f"{script} did not write {name}"
+
+
+def test_identify_from_a_given_csv_matches_the_written_one(tmp_path):
+    """The CSV path route reads what the API route wrote: same x-shake coefficients."""
+    script = "examples/lsd/identify_from_csv.py"
+    (tmp_path / "a").mkdir()
+    first = run_example(script, tmp_path / "a")
+    assert first.returncode == 0, first.stderr
+    both = json.loads((tmp_path / "a" / "identified.json").read_text())
+    (tmp_path / "b").mkdir()
+    single = run_example(script, tmp_path / "b", str(tmp_path / "a" / "rig_x_shake_1000rpm.csv"))
+    assert single.returncode == 0, single.stderr
+    assert "mode: x" in single.stdout
+    one = json.loads((tmp_path / "b" / "identified.json").read_text())
+    assert one["kxx_N_per_m"] == pytest.approx(both["kxx_N_per_m"], rel=1e-9)
+    assert "kyy_N_per_m" not in one
+    # the identified Kxx is within 1 % of the coefficient model's
+    m = re.search(r"model \(coefficient formulas\) at 1000 rpm: Kxx = ([\d.]+) N/mm", first.stdout)
+    assert both["kxx_N_per_m"] / 1e3 == pytest.approx(float(m.group(1)), rel=0.01)
+
+
+def test_example_scripts_reject_bad_input(tmp_path):
+    proc = run_example("examples/lsd/identify_from_csv.py", tmp_path, "a.csv", "b.csv", "c.csv")
+    assert proc.returncode == 2 and "at most two CSV files" in proc.stderr
