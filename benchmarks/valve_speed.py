@@ -27,7 +27,7 @@ import math, resource, sys, time
 import numpy as np
 from springdyn.valve import ValveSpring
 from springdyn.valve.cam import Cam
-from springdyn.valve.sweep import sweep
+from springdyn.valve.sweeps import sweep
 s = ValveSpring.example("one-step")
 cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
 sweep(s, cam, [3000.0, 3100.0])                      # compile / load from cache first
@@ -48,7 +48,7 @@ def main(argv=None) -> int:
     from springdyn.valve import ValveSpring
     from springdyn.valve import engine
     from springdyn.valve.cam import Cam
-    from springdyn.valve.simulate import MAX_STEP_FRACTION, prepare, rpm_to_omega, simulate
+    from springdyn.valve.dynamics import MAX_STEP_FRACTION, prepare, rpm_to_omega, simulate
 
     spring = ValveSpring.example("one-step")
     cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))

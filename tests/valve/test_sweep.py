@@ -12,8 +12,8 @@ from springdyn.cli.main import main
 from springdyn.errors import InputError
 from springdyn.valve import ValveSpring
 from springdyn.valve.cam import Cam
-from springdyn.valve.simulate import simulate
-from springdyn.valve.sweep import connect, sweep
+from springdyn.valve.dynamics import simulate
+from springdyn.valve.sweeps import connect, sweep
 from springdyn.valve.valvetrain import ValveTrain
 
 CAM = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))

@@ -10,8 +10,8 @@ from ..cli.common import add_output_options, parse_range, print_json, print_tabl
 from ..errors import InputError
 from ..units import format_quantity
 from .cam import Cam
-from .simulate import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
-from .sweep import connect, describe_design_value, sweep
+from .dynamics import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
+from .sweeps import connect, describe_design_value, sweep
 from .spring import ValveSpring
 from .valvetrain import ValveTrain
 

@@ -160,7 +160,7 @@ def plot_sweep(result, out_dir, prefix="sweep"):
 
 
 def _vary_label(result, k):
-    from .sweep import describe_design_value
+    from .sweeps import describe_design_value
 
     return describe_design_value(result.vary_name, result.vary_values[k])
 

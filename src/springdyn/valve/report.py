@@ -12,9 +12,9 @@ from ..io import write_json
 from ..report.html import Section, fmt, parameter_rows
 from .cam import Cam
 from .cli import PARAM_UNITS
-from .simulate import float_speed, simulate
+from .dynamics import float_speed, simulate
 from .spring import ValveSpring
-from .sweep import sweep
+from .sweeps import sweep
 from .valvetrain import ValveTrain
 from ..units import format_quantity
 

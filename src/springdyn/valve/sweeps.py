@@ -25,7 +25,7 @@ from ..io import atomic_path, write_csv
 from ..progress import progress
 from .cam import Cam
 from .engine import run_speeds
-from .simulate import (
+from .dynamics import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
     MAX_STEP_FRACTION,
