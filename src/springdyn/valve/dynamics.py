@@ -344,8 +344,11 @@ def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
     )
 
 
-def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.ndarray, cam_values=None) -> dict:
-    """Forces and contacts of the chain from integrated states (vectorised).
+def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.ndarray) -> dict:
+    """Forces and contacts of the chain from integrated states (vectorised NumPy).
+
+    The reference backend's post-processing, independent of the compiled kernel's own
+    output evaluation (``engine.rhs`` with ``extra``); the tests compare the two.
 
     Parameters
     ----------
@@ -356,8 +359,6 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         Cam angles of the samples [rad] (the same for every speed).
     states : ndarray (..., n_t, 2 nfree)
         Displacements [m] then velocities [m/s] at those angles.
-    cam_values : (ndarray, ndarray), optional
-        Lift [m] and ``dh/dtheta`` [m/rad] at ``theta`` if already evaluated.
 
     Returns
     -------
@@ -370,9 +371,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     chain = setup.spring.chain
     nf = setup.nfree
     omega = np.asarray(omega, dtype=float)[..., None]
-    if cam_values is None:
-        cam_values = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
-    lift, dlift_dth = cam_values
+    lift, dlift_dth = hermite_eval(theta, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
     dlift = dlift_dth * omega  # (..., n_t)
     u = np.swapaxes(states[..., :nf], -1, -2)  # (..., nf, n_t)
     v = np.swapaxes(states[..., nf:], -1, -2)

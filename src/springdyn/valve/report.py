@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..io import write_json
-from ..report.html import Section, fmt, parameter_rows
+from ..report.html import Section, parameter_rows
 from .cam import Cam
 from .cli import PARAM_UNITS
 from .dynamics import float_speed, simulate

@@ -6,7 +6,6 @@ import dataclasses
 from dataclasses import dataclass
 from functools import cached_property
 from importlib import resources
-from pathlib import Path
 
 import numpy as np
 
