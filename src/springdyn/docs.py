@@ -178,6 +178,16 @@ def _allowed_text(meta) -> str:
     return "any"
 
 
+def _markdown(text: str) -> str:
+    """Sphinx roles and reST literals of a docstring as Markdown code spans.
+
+    >>> _markdown(":class:`~springdyn.valve.Cam` and ``Fset``")
+    '`springdyn.valve.Cam` and `Fset`'
+    """
+    text = re.sub(r":(?:mod|class|func|meth|attr|data|exc|obj):`~?([^`]+)`", r"`\1`", text)
+    return re.sub(r"``([^`]+)``", r"`\1`", text)
+
+
 def _first_paragraphs(doc: str | None) -> str:
     """The summary and extended summary of a docstring (text before the first section)."""
     doc = inspect.cleandoc(doc or "")
@@ -298,7 +308,7 @@ def toml_reference() -> str:
         cls = _load(path)
         module, _, name = path.partition(":")
         out.append(f"## `[{table}]`: `{module}.{name}`\n")
-        summary = _first_paragraphs(cls.__doc__)
+        summary = _markdown(_first_paragraphs(cls.__doc__))
         if summary:
             out.append(summary + "\n")
         out.extend(_table_rows(cls))
@@ -466,7 +476,7 @@ def _signature(obj) -> str:
 def _doc_block(doc: str | None) -> list[str]:
     """Summary paragraphs as text, parameter/return sections as preformatted text."""
     out = []
-    summary = _first_paragraphs(doc)
+    summary = _markdown(_first_paragraphs(doc))
     if summary:
         out.append(summary + "\n")
     for title, body in _sections(doc):
@@ -501,7 +511,7 @@ def _document(name: str, obj, qualified: str) -> list[str]:
                 func = getattr(member, "func", member)
                 head = f"- `{mname}{_signature(func)}`"
                 doc = func.__doc__
-            first = _first_paragraphs(doc).split("\n\n")[0]
+            first = _markdown(_first_paragraphs(doc).split("\n\n")[0])
             out.append(head + (f": {_cell(first)}" if first else ""))
         if _members(obj):
             out.append("")
@@ -546,7 +556,7 @@ def api_reference() -> str:
     for modname in modules:
         module = importlib.import_module(modname)
         out.append(f"## {modname}\n")
-        summary = _first_paragraphs(module.__doc__)
+        summary = _markdown(_first_paragraphs(module.__doc__))
         if summary:
             out.append(summary + "\n")
         for name in module.__all__:
