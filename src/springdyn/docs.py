@@ -294,11 +294,11 @@ def toml_reference() -> str:
         "|---|---|---|",
     ]
     users = {
-        "spring": "`springdyn valve params/curve/modes/design/simulate/float/sweep`",
-        "cam": "`springdyn valve simulate/float/sweep`",
-        "valve_train": "`springdyn valve simulate/float/sweep --valve-train`",
-        "cfcs": "`springdyn cfcs ...`",
-        "lsd": "`springdyn lsd ...`",
+        "spring": "`springdyn valve params/curve/modes/design/simulate/float/sweep`, `springdyn report`",
+        "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
+        "valve_train": "`springdyn valve simulate/float/sweep --valve-train`, `springdyn report`",
+        "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",
+        "lsd": "`springdyn lsd coefficients/rig`, `lsd identify --model`, `springdyn report`",
     }
     for table, (path, _) in PARAMETER_TABLES.items():
         module, _, name = path.partition(":")
