@@ -8,6 +8,7 @@ import numpy as np
 
 from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
 from ..errors import InputError
+from ..plotting import plt
 from ..units import format_quantity
 from .cam import Cam
 from .dynamics import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
@@ -171,7 +172,7 @@ def cmd_curve(args) -> int:
     if args.csv:
         curve.to_csv(args.csv)
     if args.plot:
-        curve.plot(args.plot)
+        plt.close(curve.plot(args.plot))
     if not args.csv:
         step = max(1, len(curve.length) // 20)
         rows = [
@@ -231,7 +232,7 @@ def cmd_simulate(args) -> int:
     if args.csv:
         sim.to_csv(args.csv)
     if args.plot:
-        sim.plot(args.plot)
+        plt.close(sim.plot(args.plot))
     s = sim.summary()
     if args.json:
         print_json(s)

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import write_json
+from ..plotting import plt
 from ..report.html import Section, parameter_rows
 from .cam import Cam
 from .cli import PARAM_UNITS
@@ -52,7 +53,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     files.append(write_json(out_dir / "params.json", p))
     curve = sp.static_curve()
     files.append(curve.to_csv(out_dir / "static_curve.csv"))
-    curve.plot(out_dir / "static_curve.png")
+    plt.close(curve.plot(out_dir / "static_curve.png"))
     figures.append((out_dir / "static_curve.png", "Static force and tangent stiffness vs length, with the set-up "
                     "length and the breakpoint forces F1, F2, Fcon (document Figs. 40.34-40.36)"))
     lift = cam.max_lift
@@ -67,7 +68,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         stem = out_dir / f"simulate_{rpm:.0f}rpm"
         files.append(sim.to_csv(stem.with_suffix(".csv")))
         files.append(write_json(stem.with_name(stem.name + "_summary.json"), sim.summary()))
-        sim.plot(stem.with_suffix(".png"))
+        plt.close(sim.plot(stem.with_suffix(".png")))
         figures.append((stem.with_suffix(".png"), f"Spring alone at {rpm:.0f} cam rpm: retainer and seat force "
                         "against the static (massless) force, mass displacements, cam-order spectrum"))
     sw = sweep(sp, cam, SWEEP_SPEEDS, quiet=quiet)
@@ -126,7 +127,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         else:
             above = simulate(sp, cam, 1.05 * f, 3, valve_train=vt)
             s = above.summary()
-            above.plot(out_dir / "valve_train_above_float.png")
+            plt.close(above.plot(out_dir / "valve_train_above_float.png"))
             files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
             figures.append((out_dir / "valve_train_above_float.png", f"Valve train 5 % above the float speed "
                             f"({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals"))
