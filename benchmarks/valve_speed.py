@@ -17,10 +17,20 @@ from __future__ import annotations
 
 import argparse
 import math
-import statistics
 import subprocess
 import sys
 import time
+
+COMPILE_CHILD = """
+import math, time
+from springdyn.valve import ValveSpring, Cam, simulate, sweep
+s = ValveSpring.example("one-step")
+cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+t = time.perf_counter()
+simulate(s, cam, 3000.0, 2)
+sweep(s, cam, [3000.0])
+print(time.perf_counter() - t)
+"""
 
 SWEEP_CHILD = """
 import math, resource, sys, time
@@ -60,7 +70,15 @@ def main(argv=None) -> int:
     first = time.perf_counter() - t
     cached = engine._run_speeds.stats.cache_hits
     how = "loaded from numba's disk cache" if sum(cached.values()) else "compiled (now cached on disk)"
+    import os
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        cold = float(subprocess.run([sys.executable, "-c", COMPILE_CHILD], capture_output=True, text=True, check=True,
+                                    env=env).stdout.split()[-1])
     print(f"import springdyn: {t_import:.2f} s")
+    print(f"compile time of the engine with an empty numba cache: {cold:.2f} s (once; then cached on disk)")
     print(f"first call of the compiled engine: {first:.2f} s ({how}; paid once per process)")
 
     # --- one simulation -------------------------------------------------------------
@@ -69,7 +87,7 @@ def main(argv=None) -> int:
         t = time.perf_counter()
         fast = simulate(spring, cam, 3000.0, 2)
         times.append(time.perf_counter() - t)
-    t_fast = statistics.median(times)
+    t_fast = min(times)  # best of N, as timeit does: the least disturbed by other load
     setup = prepare(spring, cam)
     omega = rpm_to_omega(3000.0)
     eng = []
@@ -78,17 +96,20 @@ def main(argv=None) -> int:
         engine.run_speeds(setup.y0, [omega], 2, 1440, setup.args(omega), rtol=1e-6, atol=1e-9,
                           max_step_fraction=MAX_STEP_FRACTION)
         eng.append(time.perf_counter() - t)
-    t_eng = statistics.median(eng)
-    t = time.perf_counter()
-    ref = simulate(spring, cam, 3000.0, 2, backend="scipy", rtol=1e-8, atol=1e-12)
-    t_ref = time.perf_counter() - t
+    t_eng = min(eng)
+    ref_times = []
+    for _ in range(2):
+        t = time.perf_counter()
+        ref = simulate(spring, cam, 3000.0, 2, backend="scipy", rtol=1e-8, atol=1e-12)
+        ref_times.append(time.perf_counter() - t)
+    t_ref = min(ref_times)
     peak_fast = fast.summary()["max_retainer_force_N"]
     peak_ref = ref.summary()["max_retainer_force_N"]
     diff = abs(peak_fast - peak_ref) / fset
     print()
     print("one simulation, 2 revolutions at 3000 cam rpm (end to end: setup, integration, outputs)")
-    print(f"  SciPy DOP853 rtol=1e-8 atol=1e-12, pure-Python RHS: {t_ref:8.3f} s  ({ref.info['steps']} RHS calls)")
-    print(f"  springdyn compiled engine (median of {args.repeat}):      {t_fast * 1e3:8.2f} ms  ({fast.info['steps']} steps)")
+    print(f"  SciPy DOP853 rtol=1e-8 atol=1e-12, pure-Python RHS (best of 2): {t_ref:8.3f} s  ({ref.info['steps']} RHS calls)")
+    print(f"  springdyn compiled engine (best of {args.repeat}):                 {t_fast * 1e3:8.2f} ms  ({fast.info['steps']} steps)")
     print(f"  ratio: {t_ref / t_fast:.0f}x faster (target >= 300x): {'MET' if t_ref / t_fast >= 300 else 'NOT MET'}")
     print(f"  of which the compiled integration (with its output evaluation): {t_eng * 1e3:.2f} ms, "
           f"{t_ref / t_eng:.0f}x the reference; the rest is setup (cam table, initial state) and outputs")
