@@ -16,6 +16,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..errors import InputError, SolverError
+from . import docs_cmd
 
 #: Model families, in the order the CLI lists them.
 FAMILIES = ["valve", "cfcs", "lsd"]
@@ -51,6 +52,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     for family in FAMILIES:
         importlib.import_module(f"springdyn.{family}.cli").register(sub)
+    docs_cmd.register(sub)
     return parser
 
 
