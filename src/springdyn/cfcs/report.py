@@ -1,4 +1,10 @@
-"""The constant-force-spring section of the springdyn report (and of ``springdyn demo``)."""
+"""The constant-force-spring section of the springdyn report (and of ``springdyn demo``).
+
+For a mechanism: the static curve (Figs. 2-3 of the CFCS paper), the drive force at the
+four frequencies of Figs. 8-11 with and without tau_CF and tau_AF, the frequency sweep
+(Figs. 5-7), the pivot stress, a forward-dynamics run (slider on a spring from a moving
+base) and a design for the same force and stroke within the stress limit.
+"""
 
 from __future__ import annotations
 
@@ -7,13 +13,16 @@ from pathlib import Path
 import numpy as np
 
 from ..io import write_json
-from ..plotting import plt
+from ..plotting import new_figure, plt, save_figure
 from ..report.html import Section, fmt, parameter_rows
-from .demo import PAPER_OMEGAS, _compare_plot, _stress_plot
+from .design import design
 from .model import CFCS
 from .params import CFCSParams
 
-__all__ = ["load", "section"]
+__all__ = ["load", "section", "PAPER_OMEGAS"]
+
+#: The input frequencies of Figs. 8-11 of the CFCS paper [rad/s].
+PAPER_OMEGAS = (2.09, 4.19, 14.7, 41.89)
 
 
 def load(doc: dict, path: Path) -> CFCS:
@@ -45,8 +54,25 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
     plt.close(sw.plot(out_dir / "sweep.png"))
     figures.append((out_dir / "sweep.png", "Mean, median, peak-to-peak force and PCF against omega (paper Figs. 5-7)"))
     s = st.summary
-    files.append(write_json(out_dir / "summary.json", {"static": s, "dynamic": {f"{w:g}": v for w, v in dyn.items()}}))
     p = model.params
+    # forward dynamics: the frictionless slider pushed through a spring by a moving base
+    fw = ideal.forward(1.0, base_motion=lambda t: (0.036 * (1 - np.cos(10.0 * t)), 0.36 * np.sin(10.0 * t)),
+                       base_stiffness=2000.0, x0=1e-3)
+    files.append(fw.to_csv(out_dir / "forward_base_spring.csv"))
+    plt.close(fw.plot(out_dir / "forward_base_spring.png"))
+    figures.append((out_dir / "forward_base_spring.png", "Forward dynamics: the slider driven through a 2 N/mm "
+                    "spring by a base moving 36 mm at 10 rad/s (frictionless model)"))
+    # design for this mechanism's force and stroke, in its material, within its stress limit
+    allowable = p.allowable_stress or 1.5e9
+    target_stroke = s["max_stroke_for_stress_m"] if s["safety_factor"] < 1 else s["stroke_m"]
+    dz = design(s["force_at_zero_N"], target_stroke, p.youngs_modulus, allowable, stroke_fraction=0.2)
+    longer = dz.summary.get("suggested_total_length_m")
+    if dz.summary["pcf_percent"] < dz.summary["pcf_flattest_percent"] - 1.0 and longer:
+        # the flattest ratio does not fit at this size: take the length design() suggests for it
+        dz = design(s["force_at_zero_N"], target_stroke, p.youngs_modulus, allowable, total_length=1.01 * longer)
+    files.append(dz.to_toml(out_dir / "design.toml"))
+    files.append(write_json(out_dir / "summary.json", {"static": s, "dynamic": {f"{w:g}": v for w, v in dyn.items()},
+                                                       "forward_base_spring": fw.summary, "design": dz.summary}))
     findings = [
         f"Over a {s['stroke_m'] * 1e3:.1f} mm stroke the static force stays between {s['force_min_N']:.3f} N and "
         f"{s['force_max_N']:.3f} N (maximum at {s['deflection_at_force_max_m'] * 1e3:.1f} mm): "
@@ -66,6 +92,14 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
             f"{full['peak_to_peak_N']:.2f} N (without tau_CF and tau_AF: {bare['peak_to_peak_N']:.2f} N); "
             f"hysteresis {full['hysteresis_energy_per_cycle_J'] * 1e3:.1f} mJ per cycle."
         )
+    d = dz.summary
+    findings.append(
+        f"Design for {d['target_force_N']:.2f} N over {d['stroke_m'] * 1e3:.1f} mm within {allowable / 1e9:.2f} GPa: "
+        + (f"r2 + r3 = {d['total_length_m'] * 1e3:.1f} mm: r2 = {d['crank_length_m'] * 1e3:.1f} mm, r3 = {d['coupler_length_m'] * 1e3:.1f} mm, flexure "
+           f"{d['pivot_width_m'] * 1e3:.2f} x {d['pivot_thickness_m'] * 1e3:.3f} x {d['pivot_length_m'] * 1e3:.2f} mm "
+           f"(b x h x l), PCF {d['pcf_percent']:.1f} %, safety factor {d['safety_factor']:.2f} (design.toml)."
+           if d["feasible"] else f"no design meets the stress limit: {d['message']}")
+    )
     findings.append(f"Near the toggle (theta2 < {np.degrees(p.toggle_cutoff):.3g} deg) the axial-force term and the "
                     "Jacobian diverge; springdyn holds them at the cut-off, stated in every output.")
     derived = [
@@ -81,6 +115,39 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
         family="cfcs", title="Constant-force compression spring", source=source,
         commands=[f"springdyn cfcs static {source} --plot static.png --json",
                   f"springdyn cfcs dynamic {source} --omega 14.7 --plot dynamic.png --json",
-                  f"springdyn cfcs sweep {source} --omega 1:50:100 --plot sweep.png"],
+                  f"springdyn cfcs sweep {source} --omega 1:50:100 --plot sweep.png",
+                  f"springdyn cfcs design --force {d['target_force_N']:.4g}N --stroke {d['stroke_m'] * 1e3:.4g}mm "
+                  f"--material-modulus {p.youngs_modulus / 1e9:.4g}GPa --allowable-stress {allowable / 1e9:.4g}GPa"],
         inputs=parameter_rows(p), derived=derived, findings=findings, figures=figures, files=files,
     )
+
+
+def _compare_plot(full, bare, path) -> Path:
+    """Figs. 8-11: force with and without tau_CF and tau_AF at one frequency."""
+    fig, ax = new_figure()
+    ax.plot(full.time, full.force, label="with tau_CF, tau_AF")
+    ax.plot(bare.time, bare.force, "--", label="without")
+    ax.plot(full.time, full.force_static, ":", color="k", label="static force")
+    s = full.summary
+    ax.set_title(f"omega = {s['omega_rad_s']:g} rad/s, {s['motion']}\n"
+                 f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg", fontsize=10)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("slider force [N]")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    return save_figure(fig, path)
+
+
+def _stress_plot(model, st, path) -> Path:
+    """Pivot bending stress along the stroke against the allowable stress."""
+    p = model.params
+    fig, ax = new_figure()
+    ax.plot(st.deflection * 1e3, st.stress / 1e9, label="E (h/2) theta_K3 / l")
+    ax.axhline(p.allowable_stress / 1e9, color="r", ls="--", label="allowable")
+    ax.axvline(st.summary["max_stroke_for_stress_m"] * 1e3, color="r", ls=":", label="largest allowed stroke")
+    ax.set_xlabel("slider deflection [mm]")
+    ax.set_ylabel("pivot bending stress [GPa]")
+    ax.set_title(f"Safety factor {st.summary['safety_factor']:.3g} over {st.summary['stroke_m'] * 1e3:.3g} mm")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    return save_figure(fig, path)
