@@ -217,3 +217,50 @@ def test_doctest_runner_finds_examples():
         module = importlib.import_module(modname)
         tests = doctest.DocTestFinder(exclude_empty=True).find(module, modname)
         assert sum(len(t.examples) for t in tests) > 0, modname
+
+
+# --------------------------------------------------------------------------- guides
+DOCS = ROOT / "docs"
+
+
+def _slug(heading: str) -> str:
+    """GitHub's anchor of a Markdown heading."""
+    text = heading.strip().lower()
+    text = re.sub(r"[^\w\- ]", "", text)
+    return text.replace(" ", "-")
+
+
+def _anchors(path: Path) -> set:
+    return {_slug(m.group(1)) for m in re.finditer(r"^#+ (.+)$", path.read_text(encoding="utf-8"), re.M)}
+
+
+@pytest.mark.parametrize("guide", sorted(p.name for p in DOCS.glob("*.md")))
+def test_guide_links_resolve(guide):
+    """Relative links of the guides point to existing files and headings."""
+    path = DOCS / guide
+    text = path.read_text(encoding="utf-8")
+    for target in re.findall(r"\]\(([^)\s]+)\)", text):
+        if re.match(r"[a-z]+://", target):
+            continue
+        file, _, anchor = target.partition("#")
+        dest = (path.parent / file).resolve() if file else path
+        assert dest.exists(), f"{guide}: link to missing {file}"
+        if anchor:
+            assert anchor in _anchors(dest), f"{guide}: no heading #{anchor} in {file or guide}"
+
+
+def test_index_lists_every_guide_and_example():
+    index = (DOCS / "README.md").read_text(encoding="utf-8")
+    for guide in DOCS.glob("*.md"):
+        if guide.name != "README.md":
+            assert f"]({guide.name})" in index, f"docs/README.md does not link {guide.name}"
+    for script in (ROOT / "examples").rglob("*.py"):
+        assert f"`{script.relative_to(ROOT).as_posix()}`" in index, f"docs/README.md does not list {script}"
+
+
+@pytest.mark.parametrize("family", ["valve", "cfcs", "lsd"])
+def test_guide_per_family_covers_the_required_parts(family):
+    """Issue 7: physics, assumptions, corrections with reasons, validity limits."""
+    text = (DOCS / f"{family}.md").read_text(encoding="utf-8").lower()
+    for part in ("physics", "assumption", "correction", "limit"):
+        assert part in text, f"docs/{family}.md lacks a part on {part}"
