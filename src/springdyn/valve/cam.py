@@ -255,6 +255,15 @@ class Cam:
         ddh = np.where(main, span * ddp / half**2, ddh)
         return h, sign * dh, ddh
 
+    def sampled(self, samples: int) -> tuple:
+        """Lift, ``dh/dtheta``, ``d2h/dtheta2`` at ``samples`` equal steps over one revolution
+        (cached: a cam is immutable)."""
+        cache = self.__dict__.setdefault("_sampled", {})
+        if samples not in cache:
+            theta = np.arange(samples) * (2 * math.pi / samples)
+            cache[samples] = tuple(np.ascontiguousarray(a) for a in self.evaluate(theta))
+        return cache[samples]
+
     def lift_at(self, theta):
         """Lift [m] at cam angle(s) [rad]."""
         return self.evaluate(theta)[0]

@@ -82,7 +82,7 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     drive it beyond the model's range.
     """
     theta = np.arange(CAM_SAMPLES) * (2 * math.pi / CAM_SAMPLES)
-    h, dh, ddh = cam.evaluate(theta)
+    h, dh, ddh = cam.sampled(CAM_SAMPLES)
     p = spring.internal_parameters()
     i_max = int(np.argmax(h))
     open_length = spring.installed_length - h[i_max]
@@ -458,11 +458,15 @@ def coil_contact_compressions(spring: ValveSpring) -> np.ndarray:
     elements K already stand for contacting coils and the low-pitch element Ks is closed
     by design from set-up on, so neither is ever flagged (``inf``).
     """
-    fcon = spring.internal_parameters()["Fcon"]
-    return np.array([
-        float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
-        for name, law in zip(spring.chain.element_names, spring.chain.laws)
-    ])
+    cached = spring.__dict__.get("_coil_contact_compressions")
+    if cached is None:
+        fcon = spring.internal_parameters()["Fcon"]
+        cached = np.array([
+            float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
+            for name, law in zip(spring.chain.element_names, spring.chain.laws)
+        ])
+        spring.__dict__["_coil_contact_compressions"] = cached  # a spring is immutable
+    return cached
 
 
 def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:

@@ -29,10 +29,11 @@ import math
 
 import numpy as np
 from numba import njit
+from numba.extending import register_jitable
 
 from .. import integration as _ig
 
-__all__ = ["rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "hermite_eval", "STATUS", "EXTRA"]
+__all__ = ["hermite5", "rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "hermite_eval", "STATUS", "EXTRA"]
 
 #: Status codes of :func:`integrate`.
 STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the solution is not finite (NaN/inf)"}
@@ -42,6 +43,42 @@ STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the soluti
 EXTRA = ("f1", "f2", "f3", "f4", "f5", "f6", "x1", "x2", "x3", "x4", "x5", "x6", "lift", "dlift",
          "cam_contact_force", "valve_seat_force", "top_displacement", "u1", "u2", "u3", "u4", "u5")
 N_EXTRA = len(EXTRA)
+
+
+@register_jitable
+def hermite5(x, p0, v0, a0, p1, v1, a1):
+    """Quintic Hermite interpolation on one table interval and its derivative.
+
+    ``x`` in [0, 1] is the position in the interval; ``p, v, a`` are value, first and
+    second derivative at its ends, the derivatives already scaled by the interval length.
+    Plain arithmetic, so the same function serves scalars, NumPy arrays and compiled code.
+
+    Returns
+    -------
+    value, derivative : float or ndarray
+        The derivative is per unit ``x``.
+    """
+    x2 = x * x
+    x3 = x2 * x
+    x4 = x3 * x
+    x5 = x4 * x
+    value = (
+        (1 - 10 * x3 + 15 * x4 - 6 * x5) * p0
+        + (x - 6 * x3 + 8 * x4 - 3 * x5) * v0
+        + 0.5 * (x2 - 3 * x3 + 3 * x4 - x5) * a0
+        + 0.5 * (x3 - 2 * x4 + x5) * a1
+        + (-4 * x3 + 7 * x4 - 3 * x5) * v1
+        + (10 * x3 - 15 * x4 + 6 * x5) * p1
+    )
+    slope = (
+        (-30 * x2 + 60 * x3 - 30 * x4) * p0
+        + (1 - 18 * x2 + 32 * x3 - 15 * x4) * v0
+        + 0.5 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4) * a0
+        + 0.5 * (3 * x2 - 8 * x3 + 5 * x4) * a1
+        + (-12 * x2 + 28 * x3 - 15 * x4) * v1
+        + (30 * x2 - 60 * x3 + 30 * x4) * p1
+    )
+    return value, slope
 
 
 def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, out, extra):
@@ -88,33 +125,9 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     if i0 >= n:
         i0 = n - 1
     i1 = i0 + 1 if i0 + 1 < n else 0
-    x = th / dth - i0
-    x2 = x * x
-    x3 = x2 * x
-    x4 = x3 * x
-    x5 = x4 * x
-    p0 = cam_h[i0]
-    p1 = cam_h[i1]
-    v0 = cam_dh[i0] * dth
-    v1 = cam_dh[i1] * dth
-    a0 = cam_ddh[i0] * dth * dth
-    a1 = cam_ddh[i1] * dth * dth
-    lift = (
-        (1 - 10 * x3 + 15 * x4 - 6 * x5) * p0
-        + (x - 6 * x3 + 8 * x4 - 3 * x5) * v0
-        + 0.5 * (x2 - 3 * x3 + 3 * x4 - x5) * a0
-        + 0.5 * (x3 - 2 * x4 + x5) * a1
-        + (-4 * x3 + 7 * x4 - 3 * x5) * v1
-        + (10 * x3 - 15 * x4 + 6 * x5) * p1
-    )
-    dlift = (
-        (-30 * x2 + 60 * x3 - 30 * x4) * p0
-        + (1 - 18 * x2 + 32 * x3 - 15 * x4) * v0
-        + 0.5 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4) * a0
-        + 0.5 * (3 * x2 - 8 * x3 + 5 * x4) * a1
-        + (-12 * x2 + 28 * x3 - 15 * x4) * v1
-        + (30 * x2 - 60 * x3 + 30 * x4) * p1
-    ) / dth * omega
+    lift, slope = hermite5(th / dth - i0, cam_h[i0], cam_dh[i0] * dth, cam_ddh[i0] * dth * dth,
+                           cam_h[i1], cam_dh[i1] * dth, cam_ddh[i1] * dth * dth)
+    dlift = slope / dth * omega
     # element forces, from the seat (node 0) to the retainer end (node 6)
     f_prev = 0.0
     u_lo = 0.0
@@ -349,30 +362,9 @@ def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
     th = np.mod(theta, n * dth)
     i0 = np.minimum((th / dth).astype(np.intp), n - 1)
     i1 = (i0 + 1) % n
-    x = th / dth - i0
-    x2 = x * x
-    x3 = x2 * x
-    x4 = x3 * x
-    x5 = x4 * x
-    p0, p1 = cam_h[i0], cam_h[i1]
-    v0, v1 = cam_dh[i0] * dth, cam_dh[i1] * dth
-    a0, a1 = cam_ddh[i0] * dth**2, cam_ddh[i1] * dth**2
-    lift = (
-        (1 - 10 * x3 + 15 * x4 - 6 * x5) * p0
-        + (x - 6 * x3 + 8 * x4 - 3 * x5) * v0
-        + 0.5 * (x2 - 3 * x3 + 3 * x4 - x5) * a0
-        + 0.5 * (x3 - 2 * x4 + x5) * a1
-        + (-4 * x3 + 7 * x4 - 3 * x5) * v1
-        + (10 * x3 - 15 * x4 + 6 * x5) * p1
-    )
-    dlift = (
-        (-30 * x2 + 60 * x3 - 30 * x4) * p0
-        + (1 - 18 * x2 + 32 * x3 - 15 * x4) * v0
-        + 0.5 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4) * a0
-        + 0.5 * (3 * x2 - 8 * x3 + 5 * x4) * a1
-        + (-12 * x2 + 28 * x3 - 15 * x4) * v1
-        + (30 * x2 - 60 * x3 + 30 * x4) * p1
-    ) / dth
+    lift, slope = hermite5(th / dth - i0, cam_h[i0], cam_dh[i0] * dth, cam_ddh[i0] * dth**2,
+                           cam_h[i1], cam_dh[i1] * dth, cam_ddh[i1] * dth**2)
+    dlift = slope / dth
     return lift, dlift
 
 
