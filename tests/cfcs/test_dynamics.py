@@ -200,3 +200,47 @@ def test_running_pcf(model):
     assert pcf[0] == pytest.approx(100.0)
     assert np.all(np.diff(pcf) <= 1e-12)
     assert pcf[-1] == pytest.approx(r.summary["pcf_percent"], rel=1e-12)
+
+
+def test_inertia_is_continuous_through_the_toggle(table1):
+    # the default input touches the toggle at t = 0, T: the inertia force there comes from its limit
+    # (Richardson extrapolation, dynamics.toggle_inertia_limit) and joins the exact values of the
+    # neighbouring samples; the force is even about the touch point, so the step to the next sample
+    # is ~F'' dt^2 / 2 < 1e-3 N with 4000 samples per cycle
+    ideal = CFCS(table1.without_dissipation())
+    r = ideal.dynamic(14.7, cycles=1, samples_per_cycle=4000)
+    n_lim = r.summary["toggle_limit_samples"]
+    assert n_lim == np.count_nonzero(r.theta2 < dyn.TOGGLE_FLOOR) >= 2  # around t = 0 and t = T
+    f = r.force
+    assert np.max(np.abs(np.diff(f[:12]))) < 1e-3 and np.max(np.abs(np.diff(f[-12:]))) < 1e-3
+    assert f[0] == pytest.approx(f[-1], abs=1e-9)
+    # and the exact formula a hair away from the touch point tends to the same value (relative 1e-6)
+    p = table1.without_dissipation()
+    mot = SinusoidMotion(14.7, 0.072, 0.0)
+    t = np.array([4.0, 2.0, 1.0]) * 5e-3 * mot.period  # theta2 = 0.06, 0.03, 0.015 rad: beyond the floor
+    c = dyn.drive_force_components(*mot(t), theta2_cutoff=p.toggle_cutoff, **p.values())
+    assert not c["at_toggle"].any()
+    f4, f2, f1 = c["force"]
+    # the force is even in t about the touch point: two Richardson steps remove the t^2 and t^4 terms,
+    # leaving O((omega t)^6) ~ 1e-9
+    r1, r2 = (4 * f1 - f2) / 3, (4 * f2 - f4) / 3
+    f_lim = (16 * r1 - r2) / 15
+    assert f[0] == pytest.approx(f_lim, rel=1e-6)
+
+
+def test_forward_and_inverse_agree_through_the_toggle(table1):
+    # frictionless motion touching the toggle at t = T: replaying the inverse force in the forward model,
+    # the crank passes into the mirror branch and the slider follows x(t) (reading notes 2: x(theta2) even)
+    p = table1.without_dissipation()
+    mot = SinusoidMotion(omega=14.7, amplitude=0.04, offset=0.0)
+    vals = p.values()
+    t0 = 0.25 * mot.period
+
+    def f_inv(t):
+        return dyn.inverse_dynamics(mot, np.atleast_1d(t + t0), mot.period, theta2_cutoff=p.toggle_cutoff,
+                                    **vals)["force"][0]
+
+    x0, v0, _ = mot(t0)
+    res = CFCS(p).forward(mot.period, force=f_inv, x0=float(x0), v0=float(v0), n=201, rtol=1e-10)
+    assert res.summary["toggle_crossings"] == 1
+    np.testing.assert_allclose(res.deflection, mot(res.time + t0)[0], atol=2e-6)  # 2 um on 40 mm

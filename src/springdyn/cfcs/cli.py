@@ -19,8 +19,10 @@ from .params import EXAMPLES, CFCSParams
 __all__ = ["register"]
 
 _CFG_HELP = f"mechanism TOML file with a [cfcs] table, or a built-in example ({', '.join(EXAMPLES)})"
-_TOGGLE_NOTE = ("Inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) the Jacobian dx/dtheta2 is "
-                "frozen at its cut-off value; every output states the cut-off.")
+_TOGGLE_NOTE = ("At the toggle (theta2 = 0) dx/dtheta2 vanishes and tau_AF / tau_CF turned into a slider force "
+                "diverge: inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) they use dx/dtheta2 "
+                "frozen at its cut-off value; every output states the cut-off.  The spring and inertia forces "
+                "are finite there and computed exactly (their limits at the toggle instant).")
 
 
 def register(subparsers) -> None:

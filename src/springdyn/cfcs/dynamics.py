@@ -26,6 +26,7 @@ from .kinematics import (
 )
 from .statics import (
     axial_force_torque,
+    frozen_jacobian,
     dissipative_torque,
     pin_friction_torque,
     spring_energy,
@@ -38,7 +39,10 @@ __all__ = [
     "generalized_mass_eq19",
     "generalized_mass_derivative",
     "kinetic_energy",
+    "TOGGLE_FLOOR",
     "drive_force_components",
+    "toggle_inertia_limit",
+    "inverse_dynamics",
     "forward_rhs",
     "integrate_forward",
     "energy",
@@ -113,16 +117,28 @@ def kinetic_energy(theta2, theta2dot, m2, m3, ms, r2, r3):
     return 0.5 * generalized_mass(theta2, m2, m3, ms, r2, r3) * theta2dot * theta2dot
 
 
+#: Crank angle [rad] below which the exact inertia formula loses accuracy (0/0 at the toggle);
+#: the inertia force there is replaced by its limit (:func:`inverse_dynamics`).
+TOGGLE_FLOOR = 2e-3
+
+
 def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_friction, friction_model,
                            shear_angle, axial_force, slider_friction, theta2_cutoff):
     """Slider force needed to drive the mechanism along x(t) (inverse dynamics) [N].
 
     ``F = (M th2'' + M'/2 th2'^2 + dV/dth2 + tau_CF + tau_AF) / G + F_slider sgn(x')``,
     positive in compression, dissipative terms against the motion: Eqs. (19)-(24) of
-    the CFCS paper with the sign correction of reading notes 2.2 item 1.  The spring
-    term is the exact static force (finite at the toggle); the inertia and dissipative
-    terms use the Jacobian frozen at ``theta2_cutoff`` inside the toggle zone
-    (:func:`springdyn.cfcs.kinematics.crank_rates`).
+    the CFCS paper with the sign correction of reading notes 2.2 item 1.
+
+    Treatment of the toggle (theta2 = 0, G = 0):
+
+    - spring term: the exact static force, finite at the toggle (its closed-form limit);
+    - dissipative terms: divided by the Jacobian frozen at ``G(theta2_cutoff)`` inside the
+      zone ``theta2 < theta2_cutoff`` (:func:`springdyn.cfcs.statics.frozen_jacobian`);
+    - inertia: exact.  It is finite at the toggle (the crank passes through it into the
+      mirror branch, x(theta2) being even), but 0/0 at the instant itself: samples with
+      ``theta2 < TOGGLE_FLOOR`` are flagged in ``at_toggle`` and their inertia force is
+      not finite here; :func:`inverse_dynamics` replaces it by its limit.
 
     Parameters
     ----------
@@ -140,32 +156,99 @@ def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_fricti
     slider_friction : float
         Coulomb friction force of the slider [N].
     theta2_cutoff : float
-        Toggle cut-off angle [rad].
+        Toggle cut-off angle [rad] of the dissipative terms.
 
     Returns
     -------
     dict of arrays
         ``theta2``, ``theta2dot``, ``theta2ddot``, ``force_static``, ``force_inertia``,
-        ``force_pin``, ``force_axial``, ``force_slider``, ``force`` [N] and ``in_toggle_zone``.
+        ``force_pin``, ``force_axial``, ``force_slider``, ``force`` [N], ``in_toggle_zone``
+        (dissipative terms capped) and ``at_toggle`` (inertia from the limit).
     """
-    th, thd, thdd, jac, zone = crank_rates(x, xdot, xddot, r2, r3, theta2_cutoff)
+    th, thd, thdd, jac = crank_rates(x, xdot, xddot, r2, r3)
     m = generalized_mass(th, m2, m3, ms, r2, r3)
     dm = generalized_mass_derivative(th, m2, m3, ms, r2, r3)
     f_static = static_force(th, k3, r2, r3)
-    f_inertia = (m * thdd + 0.5 * dm * thd * thd) / jac
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f_inertia = (m * thdd + 0.5 * dm * thd * thd) / jac
+    at_toggle = th < TOGGLE_FLOOR
+    f_inertia = np.where(at_toggle, np.nan, f_inertia)
     # x' and theta2' share their sign (G >= 0); a velocity at rounding level (turning points such as
     # sin(2 pi) ~ -2e-16) counts as zero, so the friction sign does not flicker between cycles
     xd = np.asarray(xdot, dtype=float)
     vscale = float(np.max(np.abs(xd))) if xd.size else 0.0
     sgn = np.where(np.abs(xd) <= 1e-12 * vscale, 0.0, np.sign(xd))
-    f_pin = sgn * pin_friction_torque(th, pin_friction, friction_model, r2, r3) / jac
-    f_axial = sgn * axial_force_torque(f_static, shear_angle, r2, r3) / jac if axial_force else np.zeros_like(th)
+    jac_d = frozen_jacobian(th, r2, r3, theta2_cutoff)
+    f_pin = sgn * pin_friction_torque(th, pin_friction, friction_model, r2, r3) / jac_d
+    f_axial = sgn * axial_force_torque(f_static, shear_angle, r2, r3) / jac_d if axial_force else np.zeros_like(th)
     f_slider = sgn * slider_friction
     force = f_static + f_inertia + f_pin + f_axial + f_slider
     return dict(
         theta2=th, theta2dot=thd, theta2ddot=thdd, force_static=f_static, force_inertia=f_inertia,
-        force_pin=f_pin, force_axial=f_axial, force_slider=f_slider, force=force, in_toggle_zone=zone,
+        force_pin=f_pin, force_axial=f_axial, force_slider=f_slider, force=force,
+        in_toggle_zone=th < theta2_cutoff, at_toggle=at_toggle,
     )
+
+
+def toggle_inertia_limit(motion, t0, period, *, r2, r3, m2, m3, ms):
+    """Inertia force [N] at an instant ``t0`` where the crank is at (or within TOGGLE_FLOOR of) the toggle.
+
+    The inertia force is a smooth function of time through the toggle (the crank
+    crosses into the mirror branch with finite angular velocity), so it is
+    extrapolated from ``t0 +- delta`` and ``t0 +- 2 delta`` (fourth-order Richardson
+    combination ``[4 (F(d) + F(-d)) - (F(2d) + F(-2d))] / 6``), with ``delta`` doubled from
+    ``1e-4`` period until every point lies beyond ``2 TOGGLE_FLOOR``.  If the slider
+    dwells at the toggle (no such delta up to period/16) the crank is at rest there and
+    the inertia force is 0.
+
+    Parameters
+    ----------
+    motion : callable
+        ``motion(t) -> (x, x', x'')`` [m, m/s, m/s^2].
+    t0, period : float
+        Instant and period [s].
+    """
+    delta = 1e-4 * period
+    while delta <= period / 16:
+        tt = t0 + delta * np.array([-2.0, -1.0, 1.0, 2.0])
+        x, xd, xdd = motion(tt)
+        th, thd, thdd, jac = crank_rates(np.clip(x, 0.0, None), xd, xdd, r2, r3)
+        if np.all(th >= 2 * TOGGLE_FLOOR):
+            f = (generalized_mass(th, m2, m3, ms, r2, r3) * thdd
+                 + 0.5 * generalized_mass_derivative(th, m2, m3, ms, r2, r3) * thd * thd) / jac
+            return float((4.0 * (f[1] + f[2]) - (f[0] + f[3])) / 6.0)
+        delta *= 2.0
+    return 0.0
+
+
+def inverse_dynamics(motion, t, period, *, theta2_cutoff, **p):
+    """:func:`drive_force_components` along ``motion(t)``, with the inertia at the toggle from its limit.
+
+    Parameters
+    ----------
+    motion : callable
+        ``motion(t) -> (x, x', x'')``.
+    t : array
+        Times [s].
+    period : float
+        Period of the motion [s] (sets the extrapolation step).
+    theta2_cutoff : float
+        Toggle cut-off of the dissipative terms [rad].
+    **p
+        Mechanism values (see :func:`drive_force_components`).
+    """
+    x, xd, xdd = motion(np.asarray(t, dtype=float))
+    x = np.asarray(x, dtype=float)
+    c = drive_force_components(x, xd, xdd, theta2_cutoff=theta2_cutoff, **p)
+    c["deflection"], c["velocity"] = x, np.asarray(xd, dtype=float)
+    idx = np.flatnonzero(c["at_toggle"])
+    if idx.size:
+        geo = {k: p[k] for k in ("r2", "r3", "m2", "m3", "ms")}
+        tt = np.atleast_1d(np.asarray(t, dtype=float))
+        for i in idx:
+            c["force_inertia"][i] = toggle_inertia_limit(motion, tt[i], period, **geo)
+        c["force"] = c["force_static"] + c["force_inertia"] + c["force_pin"] + c["force_axial"] + c["force_slider"]
+    return c
 
 
 def forward_rhs(t, state, force_fn, p, sign_smoothing):

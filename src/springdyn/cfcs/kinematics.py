@@ -160,33 +160,26 @@ def kinematic_limit_deflection(r2, r3):
     return r2 + r3 - np.sqrt(r3 * r3 - r2 * r2)
 
 
-def crank_rates(x, xdot, xddot, r2, r3, theta2_cutoff):
-    """Crank angle, rate and acceleration from the slider motion (inverse kinematics).
+def crank_rates(x, xdot, xddot, r2, r3):
+    """Crank angle, rate and acceleration from the slider motion (exact inverse kinematics).
 
-    Outside the toggle zone (``theta2 >= theta2_cutoff``) this is exact:
-    ``theta2' = x'/G`` and ``theta2'' = (x'' - G' theta2'^2)/G``, with G from
-    :func:`slider_jacobian`.  At the toggle G = 0 and both are 0/0; inside the zone
-    ``theta2 < theta2_cutoff`` the Jacobian and its derivative are frozen at their
-    cut-off values ``G_c = G(theta2_cutoff)``, ``G'_c``.  This regularisation is
-    springdyn's (the CFCS paper does not treat the toggle; reading notes 2.2 item 3);
-    it is continuous at the cut-off and bounded, and results report the cut-off and
-    how many samples used it.
+    ``theta2' = x'/G`` and ``theta2'' = (x'' - G' theta2'^2)/G`` with G from
+    :func:`slider_jacobian`.  At the toggle (G = 0) both are 0/0: the values there are
+    not finite, and :func:`springdyn.cfcs.dynamics.inverse_dynamics` replaces the
+    inertia force at such instants by its limit.
 
     Returns
     -------
     theta2, theta2dot, theta2ddot : arrays
         [rad], [rad/s], [rad/s^2].
     jac : array
-        The Jacobian used (exact or frozen) [m/rad].
-    in_zone : bool array
-        Samples inside the toggle zone.
+        ``G`` [m/rad].
     """
     x = np.asarray(x, dtype=float)
     th = np.asarray(theta2_from_deflection(x, r2, r3), dtype=float)
-    in_zone = th < theta2_cutoff
-    th_eval = np.where(in_zone, theta2_cutoff, th)
-    jac = slider_jacobian(th_eval, r2, r3)
-    djac = slider_jacobian_derivative(th_eval, r2, r3)
-    thd = np.asarray(xdot, dtype=float) / jac
-    thdd = (np.asarray(xddot, dtype=float) - djac * thd * thd) / jac
-    return th, thd, thdd, jac, in_zone
+    jac = slider_jacobian(th, r2, r3)
+    djac = slider_jacobian_derivative(th, r2, r3)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        thd = np.asarray(xdot, dtype=float) / jac
+        thdd = (np.asarray(xddot, dtype=float) - djac * thd * thd) / jac
+    return th, thd, thdd, jac

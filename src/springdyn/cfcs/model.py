@@ -15,7 +15,7 @@ from scipy.optimize import minimize_scalar
 from ..errors import InputError
 from ..progress import progress
 from ..units import format_quantity, to_si
-from .dynamics import drive_force_components, energy, integrate_forward
+from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
 from .motion import SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke
 from .params import CFCSParams
@@ -184,9 +184,14 @@ class CFCS:
             check_stroke(lo, hi, p.max_deflection, f"the motion {mot.describe()}")
         n = cycles * samples_per_cycle
         t = np.arange(n + 1) * (mot.period / samples_per_cycle)
-        x, xd, xdd = mot(t)
-        x = np.clip(x, 0.0, p.max_deflection)  # spline/rounding noise at the ends only (bounds checked)
-        c = drive_force_components(x, xd, xdd, theta2_cutoff=p.toggle_cutoff, **p.values())
+        lo_hi = (0.0, p.max_deflection)
+
+        def clipped(tt):  # spline/rounding noise at the ends only (the bounds were checked)
+            x, xd, xdd = mot(tt)
+            return np.clip(x, *lo_hi), xd, xdd
+
+        c = inverse_dynamics(clipped, t, mot.period, theta2_cutoff=p.toggle_cutoff, **p.values())
+        x, xd = c["deflection"], c["velocity"]
         f = c["force"]
         whole = f[:-1]
         summary = {
@@ -200,6 +205,7 @@ class CFCS:
             "force_min_N": float(np.min(whole)),
             "hysteresis_energy_per_cycle_J": float(_cycle_work(t, f, xd, samples_per_cycle)),
             "toggle_zone_samples": int(np.count_nonzero(c["in_toggle_zone"])),
+            "toggle_limit_samples": int(np.count_nonzero(c["at_toggle"])),
             **self._stress_summary(c["theta2"]),
             **self._common_summary(),
         }

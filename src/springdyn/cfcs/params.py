@@ -56,7 +56,7 @@ class CFCSParams:
     friction_model: str = param(None, "pin friction model", default="paper", kind="str", choices=FRICTION_MODELS)
     axial_force: bool = param(None, "include tau_AF (Eq. 22)", default=True, kind="bool")
     slider_friction: float = param("N", "Coulomb friction force of the slider", default=0.0, nonnegative=True)
-    toggle_cutoff: float = param("rad", "crank angle below which the Jacobian is frozen (toggle zone)",
+    toggle_cutoff: float = param("rad", "toggle zone: below this crank angle tau_CF, tau_AF use dx/dtheta2 at the cut-off",
                                  default=float(np.radians(5.0)), display="deg", positive=True)
 
     def __post_init__(self):

@@ -11,7 +11,9 @@ The dissipative terms of Eqs. (20)-(22) always oppose the motion here (reading n
 2.2 item 1), so a quasi-static stroke has a compression branch ``F + F_d`` and an
 extension branch ``F - F_d``.  Their conversion to a slider force divides by the
 Jacobian ``G = dx/dtheta2``, which vanishes at the toggle; below the cut-off angle the
-Jacobian is frozen at ``G(theta2_cutoff)`` (see :func:`springdyn.cfcs.kinematics.crank_rates`).
+Jacobian is frozen at ``G(theta2_cutoff)`` for these terms (:func:`frozen_jacobian`): a
+documented regularisation of springdyn's, since the paper does not treat the toggle
+(reading notes 2.2 item 3).
 """
 
 from __future__ import annotations
@@ -148,7 +150,13 @@ def dissipative_torque(theta2, force_static, pin_friction, model, shear_angle, a
 
 
 def frozen_jacobian(theta2, r2, r3, theta2_cutoff):
-    """``G`` [m/rad] with its value frozen at ``G(theta2_cutoff)`` inside the toggle zone."""
+    """``G`` [m/rad] frozen at ``G(theta2_cutoff)`` inside the toggle zone ``|theta2| < theta2_cutoff``.
+
+    Used only to turn the dissipative torques tau_CF and tau_AF into a slider force:
+    both are non-zero at the toggle (tau_AF always, tau_CF in the constant model) while
+    G -> 0, so ``tau / G`` diverges there (reading notes 2.2 item 3).  Inside the zone
+    the dissipative force is ``tau / G(theta2_cutoff)``.
+    """
     theta2 = np.asarray(theta2, dtype=float)
     return slider_jacobian(np.maximum(np.abs(theta2), theta2_cutoff), r2, r3)
 
