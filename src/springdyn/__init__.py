@@ -11,7 +11,7 @@ Shared pieces: :mod:`springdyn.units` (pint at the edges, SI floats inside),
 (atomic CSV/JSON), :mod:`springdyn.plotting`, :mod:`springdyn.progress`.
 """
 
-from .errors import InputError, SolverError, SpringdynError
+from .core.errors import InputError, SolverError, SpringdynError
 
 __version__ = "0.1.0"
 

@@ -1,12 +1,12 @@
-"""``springdyn cfcs ...`` through springdyn.cli.main.main (exit codes, stderr, files)."""
+"""``springdyn cfcs ...`` through springdyn.app.cli.main.main (exit codes, stderr, files)."""
 
 import json
 
 import numpy as np
 import pytest
 
-from springdyn.cli.main import main
-from springdyn.io import read_csv_columns, write_csv
+from springdyn.app.cli.main import main
+from springdyn.core.io import read_csv_columns, write_csv
 
 
 def run(capsys, *argv):

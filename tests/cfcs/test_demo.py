@@ -5,7 +5,8 @@ from pathlib import Path
 
 import pytest
 
-from springdyn.cfcs import CFCS, report
+from springdyn.app.report import cfcs as report
+from springdyn.cfcs import CFCS
 
 
 @pytest.mark.slow

@@ -6,7 +6,7 @@ import pytest
 from springdyn.cfcs import CFCS, design
 from springdyn.cfcs.design import min_ratio_for_stroke, normalized_pcf
 from springdyn.cfcs.kinematics import kinematic_limit_deflection
-from springdyn.errors import InputError
+from springdyn.core.errors import InputError
 
 
 def test_feasible_design_verified_through_the_model():

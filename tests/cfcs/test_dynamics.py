@@ -165,7 +165,7 @@ def test_forward_conserves_energy_without_friction(table1, force, x0, crossings)
 
 
 def test_forward_stops_at_the_kinematic_limit(table1):
-    from springdyn.errors import SolverError
+    from springdyn.core.errors import SolverError
 
     with pytest.raises(SolverError, match="kinematic limit"):
         CFCS(table1.without_dissipation()).forward(2.0, force=200.0, x0=0.01)

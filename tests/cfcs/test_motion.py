@@ -5,8 +5,8 @@ import pytest
 
 from springdyn.cfcs import CFCS, SinusoidMotion, TabulatedMotion
 from springdyn.cfcs.motion import amplitude_to_si
-from springdyn.errors import InputError
-from springdyn.io import write_csv
+from springdyn.core.errors import InputError
+from springdyn.core.io import write_csv
 
 
 def test_sinusoid_derivatives():

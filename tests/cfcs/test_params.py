@@ -3,7 +3,7 @@
 import pytest
 
 from springdyn.cfcs import CFCS, CFCSParams
-from springdyn.errors import InputError
+from springdyn.core.errors import InputError
 
 BASE = {
     "crank_length": "85 mm", "coupler_length": "95 mm", "crank_mass": "0.025 kg", "coupler_mass": "0.028 kg",

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from springdyn.io import read_csv_columns
+from springdyn.core.io import read_csv_columns
 
 
 def test_static_outputs(model, tmp_path):

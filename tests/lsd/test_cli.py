@@ -5,8 +5,8 @@ import json
 import numpy as np
 import pytest
 
-from springdyn.cli.main import main
-from springdyn.io import read_csv_columns
+from springdyn.app.cli.main import main
+from springdyn.core.io import read_csv_columns
 from springdyn.lsd import LSDModel, LSDParameters
 
 COEFF_KEYS = ["rpm", "kxx_N_per_m", "kxy_N_per_m", "kyx_N_per_m", "kyy_N_per_m",
@@ -118,7 +118,7 @@ def test_bad_inputs(tmp_path, capsys):
 def test_rig_along_measured_path(tmp_path, capsys):
     # the ring follows a measured x(t), y(t) (here a sampled orbit); forces match the
     # analytic orbit within the finite-difference error (1e-3 of the peak force)
-    from springdyn.io import write_csv
+    from springdyn.core.io import write_csv
     from springdyn.lsd import circular_orbit, simulate_rig
 
     tr = circular_orbit(1000, 50e-6, 3, 10e3)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from springdyn.errors import InputError
+from springdyn.core.errors import InputError
 from springdyn.lsd import LSDParameters
 
 C_TOML = """

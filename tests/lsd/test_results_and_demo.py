@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from springdyn.io import read_csv_columns
+from springdyn.core.io import read_csv_columns
 from springdyn.lsd import LSDModel, LSDParameters, circular_orbit, simulate_rig
 
 
@@ -52,7 +52,7 @@ def test_report_section_type_c(tmp_path):
     """The lsd section of ``springdyn demo`` / ``springdyn report`` (Type C of Table 4.1)."""
     import json
 
-    from springdyn.lsd import report
+    from springdyn.app.report import lsd as report
     from springdyn.lsd.model import LSDModel
     from springdyn.lsd.parameters import LSDParameters
 

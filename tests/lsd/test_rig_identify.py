@@ -5,8 +5,8 @@ import warnings
 import numpy as np
 import pytest
 
-from springdyn.errors import InputError
-from springdyn.io import write_csv
+from springdyn.core.errors import InputError
+from springdyn.core.io import write_csv
 from springdyn.lsd import (
     LSDModel,
     LSDParameters,

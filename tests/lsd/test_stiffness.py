@@ -5,7 +5,7 @@ import warnings
 import numpy as np
 import pytest
 
-from springdyn.errors import InputError
+from springdyn.core.errors import InputError
 from springdyn.lsd import LSDModel, LSDParameters, PreloadExceededWarning
 from springdyn.lsd.stiffness import equally_spaced_angles, isotropic_stiffness, stiffness_matrix
 

@@ -6,7 +6,7 @@ import warnings
 import numpy as np
 import pytest
 
-from springdyn.errors import InputError
+from springdyn.core.errors import InputError
 from springdyn.valve.cam import Cam, polydyne_coefficients, rise_law
 
 LAWS = ["cycloidal", "3-4-5", "4-5-6-7", "polydyne"]

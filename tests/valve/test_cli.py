@@ -6,7 +6,7 @@ from importlib import resources
 
 import pytest
 
-from springdyn.cli.main import main
+from springdyn.app.cli.main import main
 
 ONE = str(resources.files("springdyn.data") / "valve_one_step.toml")
 TWO = str(resources.files("springdyn.data") / "valve_two_step.toml")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from springdyn.cli.main import main
+from springdyn.app.cli.main import main
 
 EX = Path(__file__).resolve().parents[2] / "examples" / "valve"
 SPRING, CAM, VT = str(EX / "one_step_spring.toml"), str(EX / "cam_345.toml"), str(EX / "valve_train.toml")

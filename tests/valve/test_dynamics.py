@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from springdyn.errors import InputError, SolverError
+from springdyn.core.errors import InputError, SolverError
 from springdyn.valve import ValveSpring
 from springdyn.valve import engine
 from springdyn.valve import dynamics as simmod

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from springdyn.errors import InputError
+from springdyn.core.errors import InputError
 from springdyn.valve import ValveSpring
 from springdyn.valve.elements import law_force
 

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from springdyn.cli.main import main
-from springdyn.errors import InputError
+from springdyn.app.cli.main import main
+from springdyn.core.errors import InputError
 from springdyn.valve import ValveSpring
 from springdyn.valve.cam import Cam
 from springdyn.valve.dynamics import simulate

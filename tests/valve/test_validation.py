@@ -4,7 +4,7 @@ import re
 
 import pytest
 
-from springdyn.errors import InputError
+from springdyn.core.errors import InputError
 from springdyn.valve import ValveSpring
 
 BASE = {

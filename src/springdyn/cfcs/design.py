@@ -27,10 +27,10 @@ import numpy as np
 import xarray as xr
 from scipy.optimize import brentq, minimize_scalar
 
-from ..errors import InputError
-from ..io import atomic_open, write_csv
-from ..plotting import new_figure, save_figure
-from ..units import format_quantity
+from ..core.errors import InputError
+from ..core.io import atomic_open, write_csv
+from ..core.plotting import new_figure, save_figure
+from ..core.units import format_quantity
 from .kinematics import deflection_from_theta2, kinematic_limit_deflection, spring_angle, theta2_from_deflection
 from .pivot import allowable_spring_angle, bending_stress, flexure_stiffness
 from .statics import percent_constant_force_energy, static_force

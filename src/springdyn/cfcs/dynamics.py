@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..errors import InputError, SolverError
+from ..core.errors import InputError, SolverError
 from .kinematics import (
     coupler_root,
     crank_rates,

@@ -12,9 +12,9 @@ from typing import Callable
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..errors import InputError
-from ..progress import progress
-from ..units import format_quantity, to_si
+from ..core.errors import InputError
+from ..core.progress import progress
+from ..core.units import format_quantity, to_si
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
 from .motion import SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke

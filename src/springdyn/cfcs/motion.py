@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from ..errors import InputError
-from ..io import read_csv_columns
-from ..units import format_quantity, to_si
+from ..core.errors import InputError
+from ..core.io import read_csv_columns
+from ..core.units import format_quantity, to_si
 
 __all__ = ["sinusoid", "SinusoidMotion", "TabulatedMotion", "amplitude_to_si", "check_stroke"]
 

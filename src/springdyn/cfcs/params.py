@@ -9,9 +9,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..config import check_fields, from_mapping, load_toml, param
-from ..errors import InputError
-from ..units import format_quantity
+from ..core.params import check_fields, from_mapping, load_toml, param
+from ..core.errors import InputError
+from ..core.units import format_quantity
 from .kinematics import kinematic_limit_deflection
 from .pivot import flexure_stiffness
 from .statics import FRICTION_MODELS

@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..io import write_csv
-from ..plotting import new_figure, save_figure
+from ..core.io import write_csv
+from ..core.plotting import new_figure, save_figure
 
 __all__ = ["StaticResult", "DynamicResult", "SweepResult", "ForwardResult", "running_pcf"]
 

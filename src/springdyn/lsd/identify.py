@@ -25,8 +25,8 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..errors import InputError
-from ..io import read_csv_columns, write_csv
+from ..core.errors import InputError
+from ..core.io import read_csv_columns, write_csv
 from .model import COEFFICIENT_NAMES
 
 __all__ = [

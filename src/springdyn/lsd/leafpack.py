@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import solve_banded
 
-from ..errors import InputError
+from ..core.errors import InputError
 
 __all__ = [
     "second_moment_of_area",

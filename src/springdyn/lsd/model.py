@@ -7,8 +7,8 @@ from functools import cached_property
 
 import numpy as np
 
-from ..errors import InputError
-from ..io import write_csv
+from ..core.errors import InputError
+from ..core.io import write_csv
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
 

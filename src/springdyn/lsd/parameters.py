@@ -9,9 +9,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..config import check_fields, from_mapping, load_toml, param
-from ..errors import InputError
-from ..units import to_si
+from ..core.params import check_fields, from_mapping, load_toml, param
+from ..core.errors import InputError
+from ..core.units import to_si
 
 __all__ = ["LSDParameters", "EXAMPLES"]
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..plotting import new_figure, save_figure
+from ..core.plotting import new_figure, save_figure
 
 __all__ = ["coefficients_figure"]
 

@@ -23,8 +23,8 @@ import dataclasses
 
 import numpy as np
 
-from ..errors import InputError
-from ..io import write_csv
+from ..core.errors import InputError
+from ..core.io import write_csv
 from .model import LSDModel, rpm_to_omega
 from .stiffness import pack_deflections, warn_if_unloading
 
@@ -254,7 +254,7 @@ class RigRecord:
 
         Draws the last ``cycles`` periods when the speed is known, else the whole record.
         """
-        from ..plotting import new_figure, save_figure
+        from ..core.plotting import new_figure, save_figure
 
         sel = slice(None)
         if np.isfinite(self.rpm) and self.rpm > 0:

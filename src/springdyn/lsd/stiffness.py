@@ -12,7 +12,7 @@ import warnings
 
 import numpy as np
 
-from ..errors import InputError
+from ..core.errors import InputError
 
 __all__ = [
     "equally_spaced_angles",

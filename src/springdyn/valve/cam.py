@@ -37,9 +37,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..config import check_fields, from_mapping, load_toml, param
-from ..errors import InputError
-from ..io import read_csv_columns
+from ..core.params import check_fields, from_mapping, load_toml, param
+from ..core.errors import InputError
+from ..core.io import read_csv_columns
 
 __all__ = ["Cam", "rise_law", "polydyne_coefficients", "LAWS"]
 

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
-from ..errors import InputError, SolverError
-from ..io import write_csv
+from ..core.errors import InputError, SolverError
+from ..core.io import write_csv
 from .cam import Cam
 from .elements import damping_coefficient, law_compression, law_force
 from .engine import STATUS, hermite_eval, integrate_scipy, run_speeds, series_force_compiled
@@ -571,7 +571,7 @@ def float_speed(
         ``float_cam_rpm`` (None if no lift-off in the range), ``bracket`` (speeds either
         side), and per scanned speed ``cam_rpm`` and ``min_cam_contact_force_N``.
     """
-    from ..progress import progress
+    from ..core.progress import progress
 
     rpms = np.sort(np.asarray(cam_rpm, dtype=float))
     if rpms.size == 0 or rpms[0] <= 0:

@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 from numba.extending import register_jitable
 
-from .. import integration as _ig
+from ..numerics import dopri as _ig
 
 __all__ = ["hermite5", "rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "hermite_eval", "STATUS", "EXTRA"]
 

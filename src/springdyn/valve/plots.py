@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..plotting import new_figure, save_figure
+from ..core.plotting import new_figure, save_figure
 
 __all__ = ["plot_static_curve"]
 

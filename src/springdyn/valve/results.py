@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..io import write_csv
+from ..core.io import write_csv
 
 __all__ = ["StaticCurve"]
 

@@ -9,9 +9,9 @@ from importlib import resources
 
 import numpy as np
 
-from ..config import check_fields, describe_value, from_mapping, load_toml, param
-from ..errors import InputError
-from ..units import format_quantity
+from ..core.params import check_fields, describe_value, from_mapping, load_toml, param
+from ..core.errors import InputError
+from ..core.units import format_quantity
 from . import design, formulas
 from .elements import damping_coefficient, hardening_law, law_stiffness, linear_law, low_pitch_law
 from .modes import chain_frequencies

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import SolverError
+from ..core.errors import SolverError
 from .elements import law_compression, law_force, law_stiffness
 
 __all__ = ["element_compressions", "element_forces", "series_compliance", "series_force", "series_state"]

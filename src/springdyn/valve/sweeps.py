@@ -19,10 +19,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..config import describe_value
-from ..errors import InputError
-from ..io import atomic_path, write_csv
-from ..progress import progress
+from ..core.params import describe_value
+from ..core.errors import InputError
+from ..core.io import atomic_path, write_csv
+from ..core.progress import progress
 from .cam import Cam
 from .engine import run_speeds
 from .dynamics import (

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..config import check_fields, from_mapping, load_toml, param
+from ..core.params import check_fields, from_mapping, load_toml, param
 
 __all__ = ["ValveTrain"]
 

@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from springdyn.cli.main import main
-from springdyn.errors import InputError
-from springdyn.report import DEMO_DEFINITIONS, build_report, demo_definitions
+from springdyn.app.cli.main import main
+from springdyn.core.errors import InputError
+from springdyn.app.report import DEMO_DEFINITIONS, build_report, demo_definitions
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = ROOT / "test-artifacts"
 
 

@@ -8,8 +8,8 @@ import html
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .. import __version__
-from ..io import atomic_open
+from springdyn import __version__
+from springdyn.core.io import atomic_open
 
 __all__ = ["Section", "render_html", "parameter_rows", "fmt"]
 
@@ -76,7 +76,7 @@ def parameter_rows(obj) -> list[tuple]:
     """``(key, value in its display unit, meaning)`` for every declared field of a parameter dataclass."""
     import dataclasses
 
-    from ..config import describe_value
+    from springdyn.core.params import describe_value
 
     rows = []
     for f in dataclasses.fields(obj):

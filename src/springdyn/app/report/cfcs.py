@@ -12,12 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io import write_json
-from ..plotting import new_figure, plt, save_figure
-from ..report.html import Section, fmt, parameter_rows
-from .design import design
-from .model import CFCS
-from .params import CFCSParams
+from springdyn.core.io import write_json
+from springdyn.core.plotting import new_figure, plt, save_figure
+from springdyn.app.report.html import Section, fmt, parameter_rows
+from springdyn.cfcs.design import design
+from springdyn.cfcs.model import CFCS
+from springdyn.cfcs.params import CFCSParams
 
 __all__ = ["load", "section", "PAPER_OMEGAS"]
 

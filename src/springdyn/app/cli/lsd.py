@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
-from ..errors import InputError
-from ..plotting import plt
-from ..io import read_csv_columns
-from .identify import RigData, identify_series, read_rig_data
-from .model import LSDModel
-from .parameters import LSDParameters
-from .rig import circular_orbit, linear_shake, simulate_rig, trajectory_from_samples
+from springdyn.app.cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from springdyn.core.errors import InputError
+from springdyn.core.plotting import plt
+from springdyn.core.io import read_csv_columns
+from springdyn.lsd.identify import RigData, identify_series, read_rig_data
+from springdyn.lsd.model import LSDModel
+from springdyn.lsd.parameters import LSDParameters
+from springdyn.lsd.rig import circular_orbit, linear_shake, simulate_rig, trajectory_from_samples
 
 __all__ = ["register"]
 

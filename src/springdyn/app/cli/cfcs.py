@@ -7,14 +7,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
-from ..errors import InputError
-from ..plotting import plt
-from ..units import format_quantity
-from .design import design
-from .model import CFCS, DEFAULT_AMPLITUDE
-from .motion import SinusoidMotion, amplitude_to_si
-from .params import EXAMPLES, CFCSParams
+from springdyn.app.cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from springdyn.core.errors import InputError
+from springdyn.core.plotting import plt
+from springdyn.core.units import format_quantity
+from springdyn.cfcs.design import design
+from springdyn.cfcs.model import CFCS, DEFAULT_AMPLITUDE
+from springdyn.cfcs.motion import SinusoidMotion, amplitude_to_si
+from springdyn.cfcs.params import EXAMPLES, CFCSParams
 
 __all__ = ["register"]
 

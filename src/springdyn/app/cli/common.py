@@ -9,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
-from ..io import to_jsonable
-from ..units import to_si
+from springdyn.core.errors import InputError
+from springdyn.core.io import to_jsonable
+from springdyn.core.units import to_si
 
 __all__ = [
     "quantity",

@@ -12,14 +12,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io import write_json
-from ..plotting import plt
-from ..report.html import Section, fmt, parameter_rows
-from .identify import RigData, identify_series
-from .model import LSDModel
-from .parameters import LSDParameters
-from .rig import circular_orbit, linear_shake, simulate_rig
-from .stiffness import PreloadExceededWarning
+from springdyn.core.io import write_json
+from springdyn.core.plotting import plt
+from springdyn.app.report.html import Section, fmt, parameter_rows
+from springdyn.lsd.identify import RigData, identify_series
+from springdyn.lsd.model import LSDModel
+from springdyn.lsd.parameters import LSDParameters
+from springdyn.lsd.rig import circular_orbit, linear_shake, simulate_rig
+from springdyn.lsd.stiffness import PreloadExceededWarning
 
 __all__ = ["load", "section", "AMPLITUDE", "SPEEDS"]
 

@@ -14,8 +14,8 @@ import sys
 import warnings
 from pathlib import Path
 
-from .. import __version__
-from ..errors import InputError, SolverError
+from springdyn import __version__
+from springdyn.core.errors import InputError, SolverError
 from . import docs_cmd
 
 #: Model families, in the order the CLI lists them.
@@ -51,13 +51,13 @@ def build_parser() -> argparse.ArgumentParser:
     rep.set_defaults(func=_run_report)
 
     for family in FAMILIES:
-        importlib.import_module(f"springdyn.{family}.cli").register(sub)
+        importlib.import_module(f"springdyn.app.cli.{family}").register(sub)
     docs_cmd.register(sub)
     return parser
 
 
 def _report(definitions, out, quiet: bool, title: str, labels=None) -> int:
-    from ..report import build_report
+    from springdyn.app.report import build_report
 
     page = build_report(definitions, out, quiet=quiet, title=title, labels=labels)
     files = sum(1 for p in Path(out).rglob("*") if p.is_file())
@@ -66,7 +66,7 @@ def _report(definitions, out, quiet: bool, title: str, labels=None) -> int:
 
 
 def _run_demo(args) -> int:
-    from ..report.build import DEMO_LABEL, demo_definitions
+    from springdyn.app.report.build import DEMO_LABEL, demo_definitions
 
     paths = demo_definitions()
     return _report(paths, args.out, args.quiet, "springdyn demo: the built-in examples",

@@ -6,15 +6,15 @@ import math
 
 import numpy as np
 
-from ..cli.common import add_output_options, parse_range, print_json, print_table, quantity
-from ..errors import InputError
-from ..plotting import plt
-from ..units import format_quantity
-from .cam import Cam
-from .dynamics import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
-from .sweeps import connect, describe_design_value, sweep
-from .spring import ValveSpring
-from .valvetrain import ValveTrain
+from springdyn.app.cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from springdyn.core.errors import InputError
+from springdyn.core.plotting import plt
+from springdyn.core.units import format_quantity
+from springdyn.valve.cam import Cam
+from springdyn.valve.dynamics import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
+from springdyn.valve.sweeps import connect, describe_design_value, sweep
+from springdyn.valve.spring import ValveSpring
+from springdyn.valve.valvetrain import ValveTrain
 
 __all__ = ["register"]
 

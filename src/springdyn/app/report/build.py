@@ -6,9 +6,9 @@ import importlib
 from importlib import resources
 from pathlib import Path
 
-from ..config import load_toml
-from ..errors import InputError
-from ..progress import progress
+from springdyn.core.params import load_toml
+from springdyn.core.errors import InputError
+from springdyn.core.progress import progress
 from .html import Section, render_html
 
 __all__ = ["build_report", "demo_definitions", "DEMO_DEFINITIONS", "DEMO_LABEL", "MODEL_TABLES"]
@@ -72,7 +72,7 @@ def build_report(paths, out_dir, *, quiet: bool = False, title: str = "springdyn
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     # validate every parameter table before running anything
-    modules = {f: importlib.import_module(f"springdyn.{f}.report") for f in {j[0] for j in jobs}}
+    modules = {f: importlib.import_module(f"springdyn.app.report.{f}") for f in {j[0] for j in jobs}}
     prepared = [(family, path, modules[family].load(doc, path)) for family, path, doc in jobs]
     sections: list[Section] = []
     used = set()

@@ -7,16 +7,16 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io import write_json
-from ..plotting import plt
-from ..report.html import Section, parameter_rows
-from .cam import Cam
-from .cli import PARAM_UNITS
-from .dynamics import float_speed, simulate
-from .spring import ValveSpring
-from .sweeps import sweep
-from .valvetrain import ValveTrain
-from ..units import format_quantity
+from springdyn.core.io import write_json
+from springdyn.core.plotting import plt
+from springdyn.app.report.html import Section, parameter_rows
+from springdyn.valve.cam import Cam
+from springdyn.app.cli.valve import PARAM_UNITS
+from springdyn.valve.dynamics import float_speed, simulate
+from springdyn.valve.spring import ValveSpring
+from springdyn.valve.sweeps import sweep
+from springdyn.valve.valvetrain import ValveTrain
+from springdyn.core.units import format_quantity
 
 __all__ = ["load", "section", "ValveDefinition", "REPORT_SPEEDS", "DEFAULT_CAM"]
 

@@ -1,0 +1,207 @@
+"""Declarative parameter fields and TOML loading with validation.
+
+A model's parameters are a dataclass whose fields are declared with :func:`param`
+(SI unit, meaning, bounds).  :func:`from_mapping` turns a TOML table (values with units
+as strings, or bare SI numbers) into that dataclass, rejecting unknown keys, missing
+keys, wrong dimensions and out-of-range values with one message that names the field,
+the value and what is allowed.  :func:`check_fields` runs the same per-field checks on
+an instance built directly in Python (call it from ``__post_init__``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import tomllib
+from pathlib import Path
+from typing import Any, Mapping
+
+from .errors import InputError
+from .units import format_quantity, to_si
+
+__all__ = ["param", "from_mapping", "check_fields", "load_toml", "field_specs", "describe_value"]
+
+REQUIRED = dataclasses.MISSING
+
+
+def param(
+    unit: str | None = "",
+    doc: str = "",
+    *,
+    default: Any = REQUIRED,
+    symbol: str = "",
+    kind: str = "quantity",
+    display: str | None = None,
+    choices: tuple | None = None,
+    positive: bool = False,
+    nonnegative: bool = False,
+    bare_unit: str | None = None,
+) -> Any:
+    """Declare a parameter field.
+
+    Parameters
+    ----------
+    unit : str
+        SI unit of the stored float (``"m"``, ``"Pa"``, ``""`` for dimensionless).
+    doc : str
+        What the field means (used in messages and the generated TOML reference).
+    default : optional
+        Default value (already SI); omitted means the key is required.
+    symbol : str
+        Symbol of the source document (``"Do"``).
+    kind : {"quantity", "int", "str", "bool", "quantity_list"}
+        How to read the TOML value.
+    display : str, optional
+        Unit for human-readable tables (``"mm"``).
+    choices : tuple, optional
+        Allowed values of a ``str`` field.
+    positive, nonnegative : bool
+        Range checks applied on load and in :func:`check_fields`.
+    bare_unit : str, optional
+        Unit of a bare number if it is not SI (rarely needed).
+    """
+    meta = dict(
+        unit=unit or "",
+        doc=doc,
+        symbol=symbol,
+        kind=kind,
+        display=display,
+        choices=choices,
+        positive=positive,
+        nonnegative=nonnegative,
+        bare_unit=bare_unit,
+    )
+    if isinstance(default, list):
+        return dataclasses.field(default_factory=lambda d=default: list(d), metadata=meta)
+    return dataclasses.field(default=default, metadata=meta)
+
+
+def field_specs(cls) -> list[tuple[dataclasses.Field, dict]]:
+    """The declared parameter fields of a dataclass with their metadata."""
+    return [(f, f.metadata) for f in dataclasses.fields(cls) if "kind" in f.metadata]
+
+
+def describe_value(value: float, meta: Mapping) -> str:
+    """A value in its display unit for messages: ``'38 mm'``."""
+    if meta.get("kind") in ("quantity",) and isinstance(value, (int, float)):
+        return format_quantity(float(value), meta["unit"], meta.get("display"))
+    return repr(value)
+
+
+def _convert(name: str, value: Any, meta: Mapping, where: str) -> Any:
+    label = f"{where}{name}"
+    kind = meta["kind"]
+    if kind == "quantity":
+        return to_si(value, meta["unit"], label, bare_unit=meta.get("bare_unit"))
+    if kind == "quantity_list":
+        if not isinstance(value, list) or not value:
+            raise InputError(f"{label} = {value!r} must be a non-empty list, e.g. [\"38 mm\", \"34 mm\"]")
+        return [to_si(v, meta["unit"], f"{label}[{i}]") for i, v in enumerate(value)]
+    if kind == "int":
+        if isinstance(value, bool) or not isinstance(value, int):
+            if isinstance(value, float) and value.is_integer():
+                return int(value)
+            raise InputError(f"{label} = {value!r} must be a whole number")
+        return value
+    if kind == "bool":
+        if not isinstance(value, bool):
+            raise InputError(f"{label} = {value!r} must be true or false")
+        return value
+    if kind == "str":
+        if not isinstance(value, str):
+            raise InputError(f"{label} = {value!r} must be a string")
+        choices = meta.get("choices")
+        if choices and value not in choices:
+            allowed = ", ".join(repr(c) for c in choices)
+            raise InputError(f"{label} = {value!r} is not allowed; choose one of {allowed}")
+        return value
+    raise AssertionError(f"unknown field kind {kind}")
+
+
+def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
+    label = f"{where}{name}"
+    values = value if isinstance(value, list) else [value]
+    for i, v in enumerate(values):
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            continue
+        sub = f"{label}[{i}]" if isinstance(value, list) else label
+        shown = describe_value(v, {**meta, "kind": "quantity"}) if meta.get("unit") or meta.get("display") else repr(v)
+        if not math.isfinite(v):
+            raise InputError(f"{sub} = {shown} must be a finite number")
+        if meta.get("positive") and not v > 0:
+            raise InputError(f"{sub} = {shown} must be positive ({meta.get('doc') or 'a size'})")
+        if meta.get("nonnegative") and not v >= 0:
+            raise InputError(f"{sub} = {shown} must be zero or positive ({meta.get('doc') or 'a size'})")
+
+
+def check_fields(obj) -> None:
+    """Per-field range and choice checks on a parameter dataclass instance."""
+    for f, meta in field_specs(type(obj)):
+        value = getattr(obj, f.name)
+        if meta["kind"] == "str" and meta.get("choices") and value not in meta["choices"]:
+            allowed = ", ".join(repr(c) for c in meta["choices"])
+            raise InputError(f"{f.name} = {value!r} is not allowed; choose one of {allowed}")
+        _check_one(f.name, value, meta)
+
+
+def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: str | None = None):
+    """Build the parameter dataclass ``cls`` from a TOML table.
+
+    Unknown keys, missing required keys, bad units and out-of-range values raise
+    :class:`~springdyn.errors.InputError` naming the file, the key and the value.
+    """
+    where = f"{source}: " if source else ""
+    prefix = f"[{section}] " if section else ""
+    specs = {f.name: (f, meta) for f, meta in field_specs(cls)}
+    if not isinstance(mapping, Mapping):
+        raise InputError(f"{where}{prefix or 'the table'} must be a table of keys")
+    unknown = [k for k in mapping if k not in specs]
+    if unknown:
+        k = unknown[0]
+        close = difflib.get_close_matches(k, list(specs), n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        raise InputError(
+            f"{where}{prefix}unknown key {k!r}{hint}; allowed keys: {', '.join(specs)}"
+        )
+    kwargs = {}
+    for name, (f, meta) in specs.items():
+        if name in mapping:
+            kwargs[name] = _convert(name, mapping[name], meta, f"{where}{prefix}")
+            _check_one(name, kwargs[name], meta, f"{where}{prefix}")
+        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+            example = meta.get("display") or meta.get("unit")
+            raise InputError(
+                f"{where}{prefix}missing key {name!r} ({meta.get('doc')}"
+                + (f", e.g. {name} = \"... {example}\")" if example else ")")
+            )
+    try:
+        return cls(**kwargs)
+    except InputError as exc:
+        if source and not str(exc).startswith(where):
+            raise InputError(f"{where}{prefix}{exc}") from None
+        raise
+
+
+def load_toml(path: str | Path, section: str | None = None) -> dict:
+    """Read a TOML file; return the whole document or one of its tables.
+
+    Raises
+    ------
+    InputError
+        The file is missing, is not valid TOML, or lacks the table.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: no such file")
+    try:
+        with open(path, "rb") as fh:
+            doc = tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: not valid TOML: {exc}") from None
+    if section is None:
+        return doc
+    if section not in doc:
+        tables = ", ".join(f"[{k}]" for k in doc) or "none"
+        raise InputError(f"{path}: no [{section}] table (tables found: {tables})")
+    return doc[section]

@@ -1,0 +1,20 @@
+"""Progress reporting for long jobs: a bar on a terminal, silent with ``quiet``."""
+
+from __future__ import annotations
+
+import sys
+from typing import Iterable, Iterator, TypeVar
+
+T = TypeVar("T")
+
+__all__ = ["progress"]
+
+
+def progress(iterable: Iterable[T], *, total: int | None = None, desc: str = "", quiet: bool = False) -> Iterator[T]:
+    """Wrap ``iterable`` in a progress bar when stderr is a terminal and not ``quiet``."""
+    if quiet or not sys.stderr.isatty():
+        yield from iterable
+        return
+    from tqdm.auto import tqdm
+
+    yield from tqdm(iterable, total=total, desc=desc, leave=False, file=sys.stderr)

@@ -1,0 +1,149 @@
+"""Compiled building blocks of an adaptive Dormand-Prince 5(4) integrator.
+
+The explicit Runge-Kutta pair of Dormand & Prince (1980) with the free 4th-order dense
+output of Hairer, Norsett & Wanner (*Solving ODEs I*, 2nd ed., Sec. II.5-6; their
+``dopri5`` code), step-size control by the PI controller of Gustafsson (ibid. Sec. IV.2).
+
+Every function here is a numba kernel with ``cache=True`` and no callable arguments
+(numba cannot disk-cache a function that takes another jitted function), so a model
+writes its own short stepping loop around its own right-hand side and calls these pieces
+for the stages, the error norm, the next step size and the dense output.  See
+:func:`springdyn.valve.engine.integrate` for such a loop.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+__all__ = [
+    "C",
+    "A",
+    "B",
+    "E",
+    "D",
+    "stage_state",
+    "error_norm",
+    "next_step",
+    "dense_coefficients",
+    "dense_eval",
+    "initial_step",
+]
+
+#: Nodes c_i of the Dormand-Prince 5(4) tableau (7 stages, FSAL).
+C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
+#: Coupling coefficients a_ij (row i uses stages 0..i-1).
+A = np.array(
+    [
+        [0, 0, 0, 0, 0, 0],
+        [1 / 5, 0, 0, 0, 0, 0],
+        [3 / 40, 9 / 40, 0, 0, 0, 0],
+        [44 / 45, -56 / 15, 32 / 9, 0, 0, 0],
+        [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0, 0],
+        [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656, 0],
+        [35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84],
+    ]
+)
+#: 5th-order weights (equal to the last row of A: first same as last).
+B = A[6].copy()
+#: Error weights: 5th- minus 4th-order solution.
+E = np.array([71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+#: Dense-output weights of Hairer's dopri5 (4th-order continuous extension).
+D = np.array(
+    [
+        -12715105075 / 11282082432,
+        0.0,
+        87487479700 / 32700410799,
+        -10690763975 / 1880347072,
+        701980252875 / 199316789632,
+        -1453857185 / 822651844,
+        69997945 / 29380423,
+    ]
+)
+
+
+@njit(cache=True)
+def stage_state(y, h, k, row, out):
+    """``out = y + h * sum_j A[row, j] k[j]`` for stage ``row`` (k: (7, n) stage derivatives)."""
+    n = y.shape[0]
+    for i in range(n):
+        acc = 0.0
+        for j in range(row):
+            acc += A[row, j] * k[j, i]
+        out[i] = y[i] + h * acc
+
+
+@njit(cache=True)
+def error_norm(y, y_new, k, h, rtol, atol):
+    """RMS of the local error estimate scaled by ``atol + rtol max(|y|, |y_new|)``."""
+    n = y.shape[0]
+    acc = 0.0
+    for i in range(n):
+        e = 0.0
+        for j in range(7):
+            e += E[j] * k[j, i]
+        sc = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+        r = h * e / sc
+        acc += r * r
+    return np.sqrt(acc / n)
+
+
+@njit(cache=True)
+def next_step(h, err, err_old, accepted_before):
+    """Step-size factor of the PI controller (alpha = 0.7/5, beta = 0.4/5), limited to [0.2, 10]."""
+    safety = 0.9
+    if err == 0.0:
+        return h * 10.0
+    if accepted_before:
+        fac = safety * err ** (-0.7 / 5.0) * err_old ** (0.4 / 5.0)
+    else:
+        fac = safety * err ** (-1.0 / 5.0)
+    fac = min(10.0, max(0.2, fac))
+    return h * fac
+
+
+@njit(cache=True)
+def dense_coefficients(y, y_new, k, h, rc):
+    """Fill ``rc`` (5, n) with the dense-output coefficients of the accepted step.
+
+    ``k[0]`` is f at the step start, ``k[6]`` f at its end (FSAL).
+    """
+    n = y.shape[0]
+    for i in range(n):
+        dy = y_new[i] - y[i]
+        bspl = h * k[0, i] - dy
+        rc[0, i] = y[i]
+        rc[1, i] = dy
+        rc[2, i] = bspl
+        rc[3, i] = dy - h * k[6, i] - bspl
+        acc = 0.0
+        for j in range(7):
+            acc += D[j] * k[j, i]
+        rc[4, i] = h * acc
+
+
+@njit(cache=True)
+def dense_eval(rc, theta, out):
+    """Evaluate the dense output at the fraction ``theta`` in [0, 1] of the step."""
+    t1 = 1.0 - theta
+    for i in range(out.shape[0]):
+        out[i] = rc[0, i] + theta * (rc[1, i] + t1 * (rc[2, i] + theta * (rc[3, i] + t1 * rc[4, i])))
+
+
+@njit(cache=True)
+def initial_step(y, f0, rtol, atol, h_max):
+    """A first step from the size of ``y`` and its derivative (Hairer's heuristic, first part)."""
+    n = y.shape[0]
+    d0 = 0.0
+    d1 = 0.0
+    for i in range(n):
+        sc = atol + rtol * abs(y[i])
+        d0 += (y[i] / sc) ** 2
+        d1 += (f0[i] / sc) ** 2
+    d0 = np.sqrt(d0 / n)
+    d1 = np.sqrt(d1 / n)
+    if d0 < 1e-5 or d1 < 1e-5:
+        h = 1e-6
+    else:
+        h = 0.01 * d0 / d1
+    return min(h, h_max)
