@@ -20,7 +20,7 @@ from typing import Any, Mapping
 from .errors import InputError
 from .units import format_quantity, to_si
 
-__all__ = ["param", "from_mapping", "check_fields", "load_toml", "field_specs", "describe_value"]
+__all__ = ["Parameters", "param", "from_mapping", "check_fields", "load_toml", "field_specs", "describe_value"]
 
 REQUIRED = dataclasses.MISSING
 
@@ -205,3 +205,82 @@ def load_toml(path: str | Path, section: str | None = None) -> dict:
         tables = ", ".join(f"[{k}]" for k in doc) or "none"
         raise InputError(f"{path}: no [{section}] table (tables found: {tables})")
     return doc[section]
+
+
+class Parameters:
+    """Base of every parameter table (a frozen dataclass of :func:`param` fields).
+
+    A subclass names its TOML table and its built-in examples; it gets
+    :meth:`from_dict`, :meth:`from_toml`, :meth:`example` and :meth:`replace`, and the
+    per-field checks of :func:`check_fields` on construction followed by its own
+    cross-key checks in :meth:`_validate`.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> @dataclasses.dataclass(frozen=True)
+    ... class Rod(Parameters):
+    ...     table = "rod"
+    ...     length: float = param("m", "rod length", positive=True)
+    >>> Rod.from_dict({"length": "22 mm"}).length
+    0.022
+    """
+
+    #: TOML table of the definition, e.g. ``"spring"``.
+    table: str = ""
+    #: Built-in examples: name -> TOML file in ``springdyn/data``.
+    examples: dict = {}
+    #: Example returned by :meth:`example` without a name.
+    default_example: str = ""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        # class attributes of the base are configuration, not dataclass fields
+        for name in ("table", "examples", "default_example"):
+            if name in cls.__dict__ and name in getattr(cls, "__annotations__", {}):  # pragma: no cover
+                raise TypeError(f"{cls.__name__}.{name} must not be annotated")
+
+    def __post_init__(self):
+        check_fields(self)
+        self._validate()
+
+    def _validate(self) -> None:
+        """Cross-key checks of the subclass (raise :class:`InputError`)."""
+
+    @classmethod
+    def from_dict(cls, mapping: Mapping[str, Any], *, source: str | None = None, **context):
+        """Build from a mapping of the table's keys (values with units, or SI numbers)."""
+        return from_mapping(cls, cls._prepare(dict(mapping), **context), section=cls.table, source=source)
+
+    @classmethod
+    def _prepare(cls, mapping: dict, **context) -> dict:
+        """Hook: adjust the raw table before conversion (e.g. resolve relative paths)."""
+        return mapping
+
+    @classmethod
+    def from_toml(cls, path):
+        """Read the table :attr:`table` of a TOML file."""
+        return cls.from_dict(load_toml(path, cls.table), source=str(path), base_dir=Path(path).parent)
+
+    @classmethod
+    def example(cls, name: str | None = None):
+        """A built-in example definition (see :attr:`examples`)."""
+        from importlib import resources
+
+        name = cls.default_example if name is None else name
+        key = cls._example_key(name)
+        if key not in cls.examples:
+            raise InputError(
+                f"example = {name!r} is not a built-in {cls.table or cls.__name__}; "
+                f"choose one of {', '.join(map(repr, cls.examples))}"
+            )
+        with resources.as_file(resources.files("springdyn.data") / cls.examples[key]) as path:
+            return cls.from_toml(path)
+
+    @classmethod
+    def _example_key(cls, name: str) -> str:
+        return name
+
+    def replace(self, **changes):
+        """A copy with some fields changed (SI values), validated again."""
+        return dataclasses.replace(self, **changes)

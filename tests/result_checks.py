@@ -1,0 +1,64 @@
+"""The Result interface every analysis result must offer (issue 10), as one reusable check.
+
+Each family's tests call :func:`check_result_interface` on an instance of each of its
+result classes; ``tests/test_result_interface.py`` walks the packages so that no result
+class is forgotten.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+from pathlib import Path
+
+import numpy as np
+
+from springdyn.core.io import read_csv_columns
+from springdyn.core.results import REPR_LINES, Result
+
+#: A summary key ends with its unit, or is a count, flag, ratio or text; these words mark
+#: dimensionless or non-numeric keys.
+_UNITLESS = re.compile(r"(ratio|factor|margin|count|index|percent|order|flag|pcf|_n$|number|type|law|model|"
+                       r"name|periodic|liftoff|contact|feasible|dominated|notes|reason|status|error|bool|"
+                       r"which|kind|binding|warning|coverage|success|converged|orders|n_|revolutions|elements|"
+                       r"bounces|events|samples|points|records|speeds|leaves|packs|chambers)")
+
+
+def check_result_interface(result, tmp_path: Path, *, plot: bool = True) -> None:
+    """Assert that ``result`` offers the whole :class:`Result` interface and that it works."""
+    assert isinstance(result, Result), f"{type(result).__name__} is not a springdyn.core.results.Result"
+    summary = result.summary
+    assert isinstance(summary, dict) and summary, "summary must be a non-empty dict"
+    for key, value in summary.items():
+        assert isinstance(key, str) and key == key.strip(), key
+        if isinstance(value, float):
+            assert math.isfinite(value), f"summary[{key!r}] = {value} is not finite"
+    ds = result.to_xarray()
+    for name, var in ds.data_vars.items():
+        if np.issubdtype(var.dtype, np.floating):
+            assert "units" in var.attrs, f"to_xarray(): variable {name!r} has no attrs['units']"
+    csv = result.to_csv(tmp_path / "result.csv")
+    cols = read_csv_columns(csv)
+    assert cols, "to_csv wrote no column"
+    text = repr(result)
+    assert 1 <= len(text.splitlines()) <= REPR_LINES, f"repr has {len(text.splitlines())} lines"
+    assert "<" in text.splitlines()[0]
+    html = result._repr_html_()
+    assert "<table" in html
+    if plot:
+        import matplotlib.pyplot as plt
+
+        png = tmp_path / "result.png"
+        fig = result.plot(png)
+        assert png.is_file() and png.stat().st_size > 1000, "plot(path) must write the PNG file"
+        assert hasattr(fig, "savefig")
+        plt.close(fig)
+        fig, ax = plt.subplots()
+        out = result.plot(ax=ax)
+        assert out is fig, "plot(ax=ax) must draw into the given axes and return its figure"
+        plt.close(fig)
+
+
+def is_number(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
