@@ -18,7 +18,7 @@ import tempfile
 from pathlib import Path
 
 from springdyn.cfcs import CFCS, design
-from springdyn.units import to_si
+from springdyn.core.units import to_si
 
 
 def design_and_check(force: float, stroke: float, modulus: float, allowable: float, stroke_fraction: float):

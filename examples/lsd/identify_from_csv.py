@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from springdyn.io import write_json
+from springdyn.core.io import write_json
 from springdyn.lsd import LSDModel, LSDParameters, identify, linear_shake, read_rig_data, simulate_rig
 
 RPM, AMPLITUDE = 1000.0, 50e-6

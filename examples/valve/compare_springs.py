@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from springdyn.io import write_csv
-from springdyn.plotting import new_figure, save_figure
+from springdyn.core.io import write_csv
+from springdyn.core.plotting import new_figure, save_figure
 from springdyn.valve import Cam, ValveSpring, sweep
 
 SPEEDS_SHOWN = (1000.0, 2000.0, 3000.0, 4000.0)

@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from springdyn.io import write_csv, write_json
-from springdyn.plotting import new_figure, save_figure
+from springdyn.core.io import write_csv, write_json
+from springdyn.core.plotting import new_figure, save_figure
 from springdyn.valve import Cam, ValveSpring, ValveTrain, float_speed, simulate
 
 HERE = Path(__file__).resolve().parent
@@ -46,7 +46,7 @@ def main(argv=None) -> int:
           f"(Fset {spring.internal_parameters()['Fset']:.1f} N), cam {cam.law} {cam.max_lift * 1e3:.1f} mm")
     for rpm, f in zip(result["cam_rpm"], result["min_cam_contact_force_N"]):
         print(f"  {rpm:6.0f} cam rpm: minimum cam contact force {f:8.1f} N")
-    write_json(out / "float_speed.json", result)
+    write_json(out / "float_speed.json", result.to_dict())
     write_csv(out / "float_scan.csv", {"cam_rpm": result["cam_rpm"],
                                        "min_cam_contact_force_N": result["min_cam_contact_force_N"]})
     if result["float_cam_rpm"] is None:

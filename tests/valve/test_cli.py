@@ -68,7 +68,7 @@ def test_design(capsys):
         (["valve", "modes", ONE, "--length", "38 kg"], "--length = '38 kg' has the wrong dimension"),
         (["valve", "curve", ONE, "--to", "5mm"], "--to = 5 mm is outside the range"),
         (["valve", "params", "nonexistent.toml"], "nonexistent.toml: no such file"),
-        (["valve", "modes", ONE, "--length", "38mm", "--count", "9"], "count = 9 must be between 1 and 5"),
+        (["valve", "modes", ONE, "--length", "38mm", "--count", "9"], "--count = 9 must be a whole number from 1 to 5"),
     ],
 )
 def test_bad_input_exit_2(capsys, argv, message):
@@ -86,7 +86,22 @@ def test_bad_toml_exit_2(capsys, tmp_path):
     assert "installed_length = 50 mm must be shorter than free_length = 48 mm" in err
 
 
-def test_argparse_errors_exit_2(capsys):
-    with pytest.raises(SystemExit) as exc:
-        main(["valve", "modes", ONE])  # --length missing
-    assert exc.value.code == 2
+def test_argparse_errors_exit_2_in_one_line(capsys):
+    code, out, err = run(capsys, "valve", "modes", ONE)  # --length missing
+    assert code == 2
+    assert err.count("\n") == 1 and "--length" in err and "usage:" not in err
+
+
+def test_cli_default_tolerances_are_the_library_defaults():
+    """The parser keeps its own copy (so that --help does not load the engine): they must agree."""
+    from springdyn.app.cli import valve as cli
+    from springdyn.valve import dynamics
+
+    assert (cli.DEFAULT_RTOL, cli.DEFAULT_ATOL) == (dynamics.DEFAULT_RTOL, dynamics.DEFAULT_ATOL)
+
+
+def test_every_valve_command_takes_the_model_option(capsys):
+    code, out, err = run(capsys, "valve", "params", ONE, "--model", "type-c", "--json")
+    assert code == 0
+    code, out, err = run(capsys, "valve", "params", ONE, "--model", "nonsense")
+    assert code == 2 and "--model" in err

@@ -38,8 +38,8 @@ def test_refinement_study(name):
     """Issue 3: halving the tolerances changes the peak forces by less than 0.05 % of Fset."""
     s = ValveSpring.example(name)
     fset = s.internal_parameters()["Fset"]
-    a = simulate(s, CAM, 3000, 2).summary()
-    b = simulate(s, CAM, 3000, 2, rtol=simmod.DEFAULT_RTOL / 2, atol=simmod.DEFAULT_ATOL / 2).summary()
+    a = simulate(s, CAM, 3000, 2).summary
+    b = simulate(s, CAM, 3000, 2, rtol=simmod.DEFAULT_RTOL / 2, atol=simmod.DEFAULT_ATOL / 2).summary
     for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
         assert abs(a[key] - b[key]) < 5e-4 * fset, key
 
@@ -135,7 +135,7 @@ def test_coil_contact_events():
     s = ValveSpring.example("one-step")
     high = Cam(law="3-4-5", lift=12e-3, duration=math.radians(120))
     sim = simulate(s, high, 4000, 2)
-    ev = sim.summary()["coil_contact"]
+    ev = sim.summary["coil_contact"]
     assert ev, "12 mm lift at 4000 rpm must reach coil contact"
     fcon = s.internal_parameters()["Fcon"]
     for e in ev:
@@ -163,8 +163,8 @@ def test_liftoff_at_the_speed_where_contact_force_reaches_zero(one_step):
     res = float_speed(one_step, CAM, VT, np.arange(2000, 4001, 250.0), resolution=2.0)
     lo, hi = res["bracket"]
     assert hi - lo <= 2.0
-    a = simulate(one_step, CAM, lo, 3, valve_train=VT).summary()
-    b = simulate(one_step, CAM, hi, 3, valve_train=VT).summary()
+    a = simulate(one_step, CAM, lo, 3, valve_train=VT).summary
+    b = simulate(one_step, CAM, hi, 3, valve_train=VT).summary
     assert not a["liftoff"] and a["min_cam_contact_force_N"] > 0
     assert b["liftoff"] and b["min_cam_contact_force_N"] == 0.0
     assert res["min_cam_contact_force_N"][0] > 50.0

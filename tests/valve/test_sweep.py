@@ -40,7 +40,7 @@ def test_sweep_matches_single_simulations(spring, local):
         np.testing.assert_allclose(local.data["retainer"][0, i], sim.retainer_force, rtol=1e-9)
         np.testing.assert_allclose(local.data["seat"][0, i], sim.seat_force, rtol=1e-9)
         np.testing.assert_allclose(local.data["cam_contact"][0, i], sim.cam_contact_force, rtol=1e-9, atol=1e-6)
-        s = sim.summary()
+        s = sim.summary
         row = local.summary_table()
         assert row["max_retainer_force_N"][i] == pytest.approx(s["max_retainer_force_N"], rel=1e-9)
         assert bool(row["liftoff"][i]) == bool(s["liftoff"])

@@ -79,7 +79,7 @@ def test_length_outside_curve_range():
         s.static_force(0.010)
     with pytest.raises(InputError, match=r"length = 50 mm is outside the range.*free length Lf = 48 mm"):
         s.modes(0.050)
-    with pytest.raises(InputError, match=r"--to = 5 mm"):
+    with pytest.raises(InputError, match=r"stop = 5 mm"):
         s.static_curve(stop=0.005)
 
 

@@ -9,17 +9,64 @@ takes a bare number in rpm).
 from __future__ import annotations
 
 import math
+import re
+import sys
 from functools import lru_cache
 from numbers import Real
 
-import pint
-
 from .errors import InputError, fmt_value
 
-__all__ = ["ureg", "to_si", "format_quantity", "SI_UNITS"]
+__all__ = ["ureg", "get_registry", "to_si", "format_quantity", "SI_UNITS", "rpm_to_omega", "omega_to_rpm"]
 
-ureg = pint.UnitRegistry()
-ureg.define("cam_degree = degree")
+#: Smallest magnitude springdyn accepts as a nonzero number: subnormal floats (5e-324)
+#: are never a physical input and break the formulas.
+TINY = sys.float_info.min
+
+
+@lru_cache(maxsize=None)
+def get_registry():
+    """springdyn's pint registry, built on first use (pint is imported only then).
+
+    Its parsed definitions are cached on disk by pint (``cache_folder=":auto:"``), which
+    makes a command's start about twice as fast; where no cache folder can be written the
+    registry is built without one.
+    """
+    import pint
+
+    try:
+        reg = pint.UnitRegistry(cache_folder=":auto:")
+    except Exception:  # pragma: no cover - an unwritable cache folder
+        reg = pint.UnitRegistry()
+    reg.define("cam_degree = degree")
+    return reg
+
+
+def __getattr__(name):
+    if name == "ureg":
+        return get_registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def rpm_to_omega(rpm):
+    """Angular speed [rad/s] from a speed [rev/min].
+
+    Parameters
+    ----------
+    rpm : float or array_like
+        Speed [rev/min].
+    """
+    return rpm * (2.0 * math.pi / 60.0)
+
+
+def omega_to_rpm(omega):
+    """Speed [rev/min] from an angular speed [rad/s].
+
+    Parameters
+    ----------
+    omega : float or array_like
+        Angular speed [rad/s].
+    """
+    return omega * (60.0 / (2.0 * math.pi))
 
 #: The SI unit springdyn uses inside for each dimension it names.
 SI_UNITS = {
@@ -44,6 +91,7 @@ SI_UNITS = {
 
 @lru_cache(maxsize=None)
 def _unit(unit: str):
+    ureg = get_registry()
     return ureg.Unit(unit) if unit else ureg.dimensionless
 
 
@@ -81,40 +129,63 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
     >>> to_si(1500, "rad/s", "cam_rpm", bare_unit="rpm") == 50 * math.pi
     True
     """
-    target = _unit(unit)
     if isinstance(value, bool) or not isinstance(value, (Real, str)):
         raise InputError(
             f"{field} = {value!r} must be a number or a quantity with units such as "
             f"'{_example(unit)}'"
         )
+    ureg = get_registry()
+    target = _unit(unit)
+    bare = _unit(bare_unit if bare_unit is not None else unit)
     if isinstance(value, Real):
-        q = ureg.Quantity(float(value), _unit(bare_unit if bare_unit is not None else unit))
+        try:
+            number = float(value)
+        except OverflowError:
+            raise InputError(f"{field} = {str(value)[:20]}... is too large to be a number springdyn can use") from None
+        q = ureg.Quantity(number, bare)
     else:
         text = value.strip()
+        if "," in text:
+            raise InputError(
+                f"{field} = {value!r}: a comma is neither a decimal point nor a thousands separator here; "
+                f"give one value such as '{_example(unit)}' (lists a,b,c are only taken where an option says so)"
+            )
+        if len(text) > 200:
+            raise InputError(f"{field} = {text[:40]!r}... is too long to be a quantity")
+        text = re.sub(r"%", " percent", text)
         try:
             q = ureg.Quantity(text)
         except Exception as exc:  # pint raises several types for bad text
             raise InputError(
                 f"{field} = {value!r} is not a quantity springdyn can read "
-                f"(expected something like '{_example(unit)}'): {exc}"
+                f"(expected something like '{_example(unit)}'): {str(exc).splitlines()[0] if str(exc) else exc}"
             ) from None
-        if not isinstance(q, pint.Quantity) or q.unitless:  # a plain number in a string
-            q = ureg.Quantity(float(getattr(q, "magnitude", q)), _unit(bare_unit if bare_unit is not None else unit))
+        if not isinstance(q, ureg.Quantity):  # a plain number
+            q = ureg.Quantity(float(q), bare)
+        elif str(q.units) == "dimensionless":  # a number in a string: the bare unit
+            q = ureg.Quantity(float(q.magnitude), bare)
     if _is_angular_speed(target) and not _has_angle_unit(q):
         # "50 Hz" or "3000 1/min" for a rotation speed means revolutions per unit time
         # (pint alone would read 50 Hz as 50 rad/s, since rad is dimensionless).
-        q = q * ureg.Quantity(2.0 * math.pi, "rad")
+        q = q * ureg.Quantity(1.0, "revolution")
     try:
         mag = q.to(target).magnitude
-    except pint.DimensionalityError:
+    except Exception as exc:
+        if type(exc).__name__ != "DimensionalityError":
+            raise InputError(f"{field} = {value!r} cannot be converted to {unit or 'a number'}: {exc}") from None
         want = "dimensionless" if not unit else f"a quantity convertible to {unit}"
         raise InputError(
             f"{field} = {value!r} has the wrong dimension: expected {want} "
             f"(for example '{_example(unit)}')"
         ) from None
-    mag = float(mag)
+    try:
+        mag = float(mag)
+    except (OverflowError, TypeError, ValueError):
+        raise InputError(f"{field} = {value!r} is not a number springdyn can use") from None
     if not math.isfinite(mag):
         raise InputError(f"{field} = {value!r} is not a finite number")
+    if mag != 0.0 and abs(mag) < TINY:
+        raise InputError(f"{field} = {value!r} is too small to be a physical value (a subnormal number)")
     return mag
 
 
@@ -123,7 +194,9 @@ _ANGLE_NAMES = ("radian", "degree", "revolution", "turn", "cycle", "revolutions_
 
 
 def _is_angular_speed(unit) -> bool:
-    return "radian" in str(unit) and ureg.Quantity(1, unit).dimensionality == ureg.Quantity(1, "1/s").dimensionality
+    ureg = get_registry()
+    q = ureg.Quantity(1, unit)
+    return q.dimensionality == ureg.Quantity(1, "1/s").dimensionality and _has_angle_unit(q)
 
 
 def _has_angle_unit(q) -> bool:
@@ -137,7 +210,7 @@ def format_quantity(value: float, unit: str, display: str | None = None, digits:
     '22 mm'
     """
     if display and display != unit:
-        value = ureg.Quantity(value, _unit(unit)).to(_unit(display)).magnitude
+        value = get_registry().Quantity(value, _unit(unit)).to(_unit(display)).magnitude
         unit = display
     return fmt_value(float(f"{value:.{digits}g}"), unit)
 

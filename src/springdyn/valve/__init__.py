@@ -8,20 +8,48 @@ Where to find each piece:
 - :mod:`~springdyn.valve.statics` -- series equilibrium (static force, stiffness, set-up state);
 - :mod:`~springdyn.valve.modes` -- natural frequencies of the linearised chain;
 - :mod:`~springdyn.valve.design` -- spring index, corrected shear stress, surge margin;
-- :mod:`~springdyn.valve.spring` -- :class:`ValveSpring` (the ``[spring]`` table) and its chain;
+- :mod:`~springdyn.valve.spring` -- :class:`ValveSpring`, the definition (the ``[spring]`` table);
+- :mod:`~springdyn.valve.model` -- the spring models (:class:`TypeCModel`, the document's
+  MMS Type C chain) behind one interface, chosen by the ``model`` key;
+- :mod:`~springdyn.valve.results` -- :class:`StaticCurve`, :class:`Simulation`,
+  :class:`FloatSpeedResult` (the shared Result interface);
 - :mod:`~springdyn.valve.cam` -- cam lift laws and measured lift tables (``[cam]``);
 - :mod:`~springdyn.valve.valvetrain` -- valve body with cam and seat contacts (``[valve_train]``);
 - :mod:`~springdyn.valve.engine` -- equations of motion and the compiled integrator;
 - :mod:`~springdyn.valve.dynamics` -- :func:`simulate`, :class:`Simulation`, :func:`float_speed`;
-- :mod:`~springdyn.valve.sweeps` -- :func:`sweep` over speeds and design values, local or Dask.
+- :mod:`~springdyn.valve.sweeps` -- :func:`sweep` over speeds and design values, local or Dask
+  (:class:`SpeedSweep`).
+
+The names below load their modules on first use, so that ``import springdyn.valve`` stays
+quick (the compiled engine, numba, loads only when a simulation needs it).
 """
 
-from .cam import Cam
-from .dynamics import Simulation, float_speed, simulate
-from .results import StaticCurve
-from .spring import Chain, ValveSpring
-from .sweeps import SweepResult, sweep
-from .valvetrain import ValveTrain
+from __future__ import annotations
 
-__all__ = ["ValveSpring", "Chain", "StaticCurve", "Cam", "ValveTrain", "simulate", "Simulation", "float_speed",
-           "sweep", "SweepResult"]
+import importlib
+import warnings
+
+_EXPORTS = {
+    "ValveSpring": "spring", "Chain": "model", "SpringModel": "model", "TypeCModel": "model", "MODELS": "model",
+    "StaticCurve": "results", "Simulation": "results", "FloatSpeedResult": "results",
+    "Cam": "cam", "ValveTrain": "valvetrain", "simulate": "dynamics", "float_speed": "dynamics",
+    "sweep": "sweeps", "SpeedSweep": "sweeps",
+}
+
+__all__ = ["ValveSpring", "SpringModel", "TypeCModel", "MODELS", "Chain", "StaticCurve", "Cam", "ValveTrain",
+           "simulate", "Simulation", "float_speed", "FloatSpeedResult", "sweep", "SpeedSweep"]
+
+
+def __getattr__(name):
+    if name == "SweepResult":
+        warnings.warn("springdyn.valve.SweepResult is now SpeedSweep", DeprecationWarning, stacklevel=2)
+        name = "SpeedSweep"
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

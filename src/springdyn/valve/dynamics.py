@@ -9,17 +9,17 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
 
 from ..core.errors import InputError, SolverError
-from ..core.io import write_csv
 from .cam import Cam
-from .elements import damping_coefficient, law_compression, law_force
+from .elements import damping_coefficient, law_force
 from .engine import STATUS, hermite_eval, integrate_scipy, run_speeds, series_force_compiled
 from .spring import ValveSpring
+from .results import FloatSpeedResult, Simulation, coil_contact_compressions
 from .statics import series_force
 from .valvetrain import ValveTrain
 
@@ -132,126 +132,6 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     z0 = brentq(balance, z_lo, z_hi, xtol=1e-16, rtol=1e-15)
     u = spring.initial_condition(setup + z0)["displacements"]
     return np.concatenate([u, [z0], np.zeros(6)])
-
-
-@dataclass
-class Simulation:
-    """The last simulated revolution and its summary (SI; angles in rad, ``*_deg`` in degrees)."""
-
-    spring: ValveSpring
-    cam: Cam
-    valve_train: ValveTrain | None
-    cam_rpm: float
-    revolutions: int
-    time: np.ndarray  # [s]
-    cam_angle: np.ndarray  # [rad], within the revolution
-    lift: np.ndarray  # [m]
-    retainer_force: np.ndarray  # [N]
-    seat_force: np.ndarray  # [N]
-    static_force: np.ndarray  # [N]
-    element_compression: np.ndarray  # (6, n) [m]
-    element_force: np.ndarray  # (6, n) [N]
-    element_contact: np.ndarray  # (6, n) bool
-    mass_displacement: np.ndarray  # (5, n) [m]
-    periodicity_error: float  # max |F(last) - F(previous)| / Fset
-    info: dict
-    valve_lift: np.ndarray | None = None  # [m]
-    cam_contact_force: np.ndarray | None = None  # [N]
-    valve_seat_force: np.ndarray | None = None  # [N]
-    _summary: dict | None = field(default=None, repr=False)
-
-    PERIODIC_TOL = 0.01
-
-    @property
-    def cam_angle_deg(self) -> np.ndarray:
-        return np.degrees(self.cam_angle)
-
-    @property
-    def periodic(self) -> bool:
-        """Whether the last revolution repeats the one before within 1 % of Fset."""
-        return bool(self.periodicity_error <= self.PERIODIC_TOL)
-
-    # ------------------------------------------------------------------ summary
-    def summary(self) -> dict:
-        """Peak forces, ratios to static, surge, coil-contact and lift-off events, spectrum."""
-        if self._summary is None:
-            self._summary = _summarise(self)
-        return self._summary
-
-    def spectrum(self, max_order: int = 40):
-        """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean)."""
-        n = self.retainer_force.size
-        coef = np.fft.rfft(self.retainer_force) / n
-        amp = np.abs(coef) * 2.0
-        amp[0] /= 2.0
-        k = np.arange(amp.size)
-        keep = k <= max_order
-        return k[keep], amp[keep]
-
-    # ------------------------------------------------------------------ outputs
-    def columns(self) -> dict:
-        cols = {
-            "time_s": self.time,
-            "cam_angle_deg": self.cam_angle_deg,
-            "lift_m": self.lift,
-            "retainer_force_N": self.retainer_force,
-            "seat_force_N": self.seat_force,
-            "static_force_N": self.static_force,
-        }
-        if self.valve_train is not None:
-            cols.update(valve_lift_m=self.valve_lift, cam_contact_force_N=self.cam_contact_force,
-                        valve_seat_force_N=self.valve_seat_force)
-        names = self.spring.chain.element_names
-        for j in range(6):
-            cols[f"element{j + 1}_{names[j]}_compression_m"] = self.element_compression[j]
-            cols[f"element{j + 1}_{names[j]}_force_N"] = self.element_force[j]
-            cols[f"element{j + 1}_{names[j]}_contact"] = self.element_contact[j].astype(int)
-        for i, name in enumerate(self.spring.chain.mass_names):
-            cols[f"mass{i + 1}_{name}_displacement_m"] = self.mass_displacement[i]
-        return cols
-
-    def to_csv(self, path):
-        """Write the time series (SI, unit in each column name), atomically."""
-        return write_csv(path, self.columns())
-
-    def to_xarray(self):
-        """The time series as an :class:`xarray.Dataset` over ``cam_angle`` [deg]."""
-        import xarray as xr
-
-        dims = ("cam_angle",)
-        data = {
-            "time": (dims, self.time, {"units": "s"}),
-            "lift": (dims, self.lift, {"units": "m"}),
-            "retainer_force": (dims, self.retainer_force, {"units": "N"}),
-            "seat_force": (dims, self.seat_force, {"units": "N"}),
-            "static_force": (dims, self.static_force, {"units": "N", "long_name": "static (massless) spring force"}),
-            "element_compression": (("element",) + dims, self.element_compression, {"units": "m"}),
-            "element_force": (("element",) + dims, self.element_force, {"units": "N"}),
-            "element_contact": (("element",) + dims, self.element_contact),
-            "mass_displacement": (("mass",) + dims, self.mass_displacement, {"units": "m"}),
-        }
-        if self.valve_train is not None:
-            data.update(
-                valve_lift=(dims, self.valve_lift, {"units": "m"}),
-                cam_contact_force=(dims, self.cam_contact_force, {"units": "N"}),
-                valve_seat_force=(dims, self.valve_seat_force, {"units": "N"}),
-            )
-        return xr.Dataset(
-            data,
-            coords={
-                "cam_angle": (dims, self.cam_angle_deg, {"units": "deg"}),
-                "element": list(self.spring.chain.element_names),
-                "mass": list(self.spring.chain.mass_names),
-            },
-            attrs={"cam_rpm": self.cam_rpm, "revolutions": self.revolutions, "spring_type": self.spring.type,
-                   "cam_law": self.cam.law, "periodicity_error": self.periodicity_error},
-        )
-
-    def plot(self, path=None):
-        """Forces vs cam angle (dynamic against static), mass displacements, spectrum."""
-        from .plots import plot_simulation
-
-        return plot_simulation(self, path)
 
 
 def simulate(
@@ -451,104 +331,6 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, i
     return sim
 
 
-def coil_contact_compressions(spring: ValveSpring) -> np.ndarray:
-    """Compression [m] of each element beyond which its coils touch: the Fcon breakpoint.
-
-    Only the Kh1/Kh2 elements have one (x13/x23 of the document, notes 1.4).  The end
-    elements K already stand for contacting coils and the low-pitch element Ks is closed
-    by design from set-up on, so neither is ever flagged (``inf``).
-    """
-    cached = spring.__dict__.get("_coil_contact_compressions")
-    if cached is None:
-        fcon = spring.internal_parameters()["Fcon"]
-        cached = np.array([
-            float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
-            for name, law in zip(spring.chain.element_names, spring.chain.laws)
-        ])
-        spring.__dict__["_coil_contact_compressions"] = cached  # a spring is immutable
-    return cached
-
-
-def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
-    """Index ranges [start, end] of runs of True in a periodic boolean array."""
-    if not mask.any():
-        return []
-    if mask.all():
-        return [(0, mask.size - 1)]
-    m = mask.astype(np.int8)
-    d = np.diff(np.concatenate([[0], m, [0]]))
-    starts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1
-    runs = list(zip(starts.tolist(), ends.tolist()))
-    if len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == mask.size - 1:  # wraps through 0 deg
-        runs = [(runs[-1][0], runs[0][1])] + runs[1:-1]
-    return runs
-
-
-def _summarise(sim: Simulation) -> dict:
-    p = sim.spring.internal_parameters()
-    deg = sim.cam_angle_deg
-    step_deg = 360.0 / sim.cam_angle.size
-    names = sim.spring.chain.element_names
-    s = dict(
-        cam_rpm=sim.cam_rpm,
-        revolutions=sim.revolutions,
-        periodic=sim.periodic,
-        periodicity_error=sim.periodicity_error,
-        max_retainer_force_N=float(sim.retainer_force.max()),
-        min_retainer_force_N=float(sim.retainer_force.min()),
-        max_seat_force_N=float(sim.seat_force.max()),
-        min_seat_force_N=float(sim.seat_force.min()),
-        max_static_force_N=float(sim.static_force.max()),
-        min_static_force_N=float(sim.static_force.min()),
-    )
-    s["max_retainer_force_ratio"] = s["max_retainer_force_N"] / s["max_static_force_N"]
-    s["min_retainer_force_ratio"] = s["min_retainer_force_N"] / s["min_static_force_N"]
-    s["max_seat_force_ratio"] = s["max_seat_force_N"] / s["max_static_force_N"]
-    s["min_seat_force_ratio"] = s["min_seat_force_N"] / s["min_static_force_N"]
-    s["retainer_surge_amplitude_N"] = float(np.max(np.abs(sim.retainer_force - sim.static_force)))
-    s["seat_surge_amplitude_N"] = float(np.max(np.abs(sim.seat_force - sim.static_force)))
-    events = []
-    for a, b in _ranges(sim.element_contact.any(axis=0)):
-        idx = np.arange(a, b + 1) if a <= b else np.concatenate([np.arange(a, deg.size), np.arange(0, b + 1)])
-        elems = np.flatnonzero(sim.element_contact[:, idx].any(axis=1))
-        events.append(dict(
-            start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(idx.size * step_deg),
-            elements=[f"{j + 1}:{names[j]}" for j in elems],
-            peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
-        ))
-    s["coil_contact"] = events
-    f_cam = sim.cam_rpm / 60.0
-    orders, amp = sim.spectrum(40)
-    top = np.argsort(amp[1:])[::-1][:8] + 1
-    s["f1_Hz"] = p["f1"]
-    s["f1_cam_order"] = p["f1"] / f_cam
-    s["spectrum"] = [dict(order=int(k), frequency_Hz=float(k * f_cam), amplitude_N=float(amp[k])) for k in sorted(top)]
-    if sim.valve_train is not None:
-        vt = sim.valve_train
-        in_event = sim.lift > vt.lash + 1e-6
-        separated = in_event & (sim.cam_contact_force <= 0.0)
-        lo = []
-        for a, b in _ranges(separated):
-            count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
-            lo.append(dict(start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(count * step_deg),
-                           duration_s=float(count * step_deg / (6.0 * sim.cam_rpm))))
-        s["liftoff"] = lo
-        s["min_cam_contact_force_N"] = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
-        s["max_cam_contact_force_N"] = float(sim.cam_contact_force.max())
-        z = sim.valve_lift
-        dt = sim.time[1] - sim.time[0]
-        landings = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
-        vz = np.gradient(z, dt)
-        s["seat_impact_velocity_m_per_s"] = float(-vz[landings[0] + 1]) if landings.size else 0.0
-        s["seat_landings"] = int(landings.size)
-        s["bounces"] = max(int(landings.size) - 1, 0)
-        after = np.zeros_like(z, dtype=bool)
-        if landings.size:
-            after[landings[0] + 1:] = True
-        s["max_bounce_height_m"] = float(np.max(np.where(after & ~in_event, z, 0.0)))
-    return s
-
-
 def float_speed(
     spring: ValveSpring,
     cam: Cam,
@@ -559,7 +341,7 @@ def float_speed(
     resolution: float = 1.0,
     points_per_revolution: int = 1440,
     progress_quiet: bool = True,
-) -> dict:
+) -> FloatSpeedResult:
     """Float speed: the lowest cam speed at which the follower separates from the cam.
 
     Scans the speeds ``cam_rpm`` (ascending), then bisects between the last speed without
@@ -567,7 +349,7 @@ def float_speed(
 
     Returns
     -------
-    dict
+    FloatSpeedResult
         ``float_cam_rpm`` (None if no lift-off in the range), ``bracket`` (speeds either
         side), and per scanned speed ``cam_rpm`` and ``min_cam_contact_force_N``.
     """
@@ -581,7 +363,7 @@ def float_speed(
     def min_force(rpm):
         sim = simulate(spring, cam, rpm, revolutions, valve_train=valve_train, setup=setup,
                        points_per_revolution=points_per_revolution)
-        sm = sim.summary()
+        sm = sim.summary
         return sm["min_cam_contact_force_N"], bool(sm["liftoff"])
 
     scanned, forces = [], []
@@ -593,12 +375,13 @@ def float_speed(
         if lifted:
             first = len(scanned) - 1
             break
-    result = dict(cam_rpm=scanned, min_cam_contact_force_N=forces, float_cam_rpm=None, bracket=None)
+    def result(float_rpm, bracket):
+        return FloatSpeedResult(scanned, forces, float_rpm, bracket, float(resolution))
+
     if first is None:
-        return result
+        return result(None, None)
     if first == 0:
-        result.update(float_cam_rpm=scanned[0], bracket=[None, scanned[0]])
-        return result
+        return result(scanned[0], [None, scanned[0]])
     lo, hi = scanned[first - 1], scanned[first]
     while hi - lo > resolution:
         mid = 0.5 * (lo + hi)
@@ -606,5 +389,4 @@ def float_speed(
             hi = mid
         else:
             lo = mid
-    result.update(float_cam_rpm=hi, bracket=[lo, hi])
-    return result
+    return result(hi, [lo, hi])

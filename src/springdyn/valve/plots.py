@@ -9,16 +9,23 @@ from ..core.plotting import new_figure, save_figure
 __all__ = ["plot_static_curve"]
 
 
-def plot_static_curve(curve, path=None):
-    """Static force and tangent stiffness against spring length, breakpoints marked."""
+def plot_static_curve(curve, path=None, ax=None):
+    """Static force and tangent stiffness against spring length, breakpoints marked.
+
+    With ``ax``, only the force panel is drawn into it.
+    """
     spring = curve.spring
     p = spring.internal_parameters()
-    fig, (ax_f, ax_k) = new_figure(2, 1, figsize=(8, 7), sharex=True)
+    if ax is None:
+        fig, (ax_f, ax_k) = new_figure(2, 1, figsize=(8, 7), sharex=True)
+    else:
+        fig, ax_f, ax_k = ax.figure, ax, None
     mm = curve.length * 1e3
     ax_f.plot(mm, curve.force, color="C0", lw=2, label="static force")
-    ax_k.plot(mm, curve.stiffness / 1e3, color="C1", lw=2, label="tangent stiffness")
+    if ax_k is not None:
+        ax_k.plot(mm, curve.stiffness / 1e3, color="C1", lw=2, label="tangent stiffness")
     ls = spring.installed_length * 1e3
-    for ax in (ax_f, ax_k):
+    for ax in (a for a in (ax_f, ax_k) if a is not None):
         ax.axvline(ls, color="k", ls="--", lw=1)
         ax.grid(True, alpha=0.3)
     ax_f.text(ls, ax_f.get_ylim()[1], " set-up Ls", va="top", fontsize=8)
@@ -29,12 +36,15 @@ def plot_static_curve(curve, path=None):
             ax_f.axhline(force, color=color, ls=":", lw=1)
             ax_f.plot([length], [force], "o", color=color, label=f"{name} = {force:.1f} N at {length:.2f} mm")
     ax_f.set_ylabel("force [N]")
-    ax_k.set_ylabel("stiffness [N/mm]")
-    ax_k.set_yscale("log")
-    ax_k.set_xlabel("spring length [mm]")
+    if ax_k is not None:
+        ax_k.set_ylabel("stiffness [N/mm]")
+        ax_k.set_yscale("log")
+        ax_k.set_xlabel("spring length [mm]")
+    else:
+        ax_f.set_xlabel("spring length [mm]")
     ax_f.invert_xaxis()
     ax_f.legend(fontsize=8, loc="upper left")
-    ax_f.set_title(f"{spring.type} valve spring: static characteristic (MMS Type C chain)")
+    ax_f.set_title(f"{spring.type} valve spring: static characteristic ({curve.model} model)")
     if path is not None:
         save_figure(fig, path, close=False)
     return fig
@@ -42,27 +52,39 @@ def plot_static_curve(curve, path=None):
 
 
 
-def plot_simulation(sim, path=None):
-    """Forces vs cam angle (dynamic against static), mass displacements and spectrum."""
+def plot_simulation(sim, path=None, ax=None):
+    """Forces vs cam angle (dynamic against static), mass displacements and spectrum.
+
+    With ``ax``, only the force panel is drawn into it.
+    """
     vt = sim.valve_train is not None
-    fig, axes = new_figure(4 if vt else 3, 1, figsize=(9, 12 if vt else 10))
+    only_forces = ax is not None
+    if only_forces:
+        fig, axes = ax.figure, [ax]
+    else:
+        fig, axes = new_figure(4 if vt else 3, 1, figsize=(9, 12 if vt else 10))
     deg = sim.cam_angle_deg
     order = np.argsort(deg)
     ax = axes[0]
     ax.plot(deg[order], sim.retainer_force[order], color="C0", lw=1.5, label="retainer force (dynamic)")
     ax.plot(deg[order], sim.seat_force[order], color="C1", lw=1.0, label="seat force (dynamic)")
     ax.plot(deg[order], sim.static_force[order], color="k", ls="--", lw=1.2, label="static (massless) force")
-    for ev in sim.summary()["coil_contact"]:
+    for ev in sim.summary["coil_contact"]:
         a, b = ev["start_deg"], ev["end_deg"]
         spans = [(a, b)] if a <= b else [(a, 360.0), (0.0, b)]
         for lo, hi in spans:
             ax.axvspan(lo, hi, color="C3", alpha=0.15)
-    if sim.summary()["coil_contact"]:
+    if sim.summary["coil_contact"]:
         ax.plot([], [], color="C3", alpha=0.3, lw=6, label="coil contact")
     ax.set_ylabel("force [N]")
     ax.set_title(f"{sim.spring.type} spring, {sim.cam.law} cam, {sim.cam_rpm:.0f} cam rpm "
                  f"(revolution {sim.revolutions} of {sim.revolutions})")
     ax.legend(fontsize=8)
+    if only_forces:
+        ax.set_xlabel("cam angle [deg]")
+        ax.set_xlim(0, 360)
+        ax.grid(True, alpha=0.3)
+        return fig
     ax2 = ax.twinx()
     ax2.plot(deg[order], sim.lift[order] * 1e3, color="0.6", lw=0.8)
     ax2.set_ylabel("cam lift [mm]", color="0.5")
@@ -76,9 +98,9 @@ def plot_simulation(sim, path=None):
         ax = axes[2]
         ax.plot(deg[order], sim.cam_contact_force[order], color="C2", label="cam-follower contact force")
         ax.plot(deg[order], sim.valve_seat_force[order], color="C4", label="valve-seat force")
-        for ev in sim.summary()["liftoff"]:
+        for ev in sim.summary["liftoff"]:
             ax.axvspan(ev["start_deg"], ev["end_deg"], color="C3", alpha=0.2)
-        if sim.summary()["liftoff"]:
+        if sim.summary["liftoff"]:
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="lift-off")
         ax.set_ylabel("force [N]")
         ax.legend(fontsize=8)
@@ -90,8 +112,8 @@ def plot_simulation(sim, path=None):
     ax = axes[row]
     orders, amp = sim.spectrum(40)
     ax.bar(orders[1:], amp[1:], color="C0", width=0.7)
-    f1_order = sim.summary()["f1_cam_order"]
-    ax.axvline(f1_order, color="C3", ls="--", label=f"f1 = {sim.summary()['f1_Hz']:.0f} Hz (order {f1_order:.1f})")
+    f1_order = sim.summary["f1_cam_order"]
+    ax.axvline(f1_order, color="C3", ls="--", label=f"f1 = {sim.summary['f1_Hz']:.0f} Hz (order {f1_order:.1f})")
     ax.set_xlabel("cam order")
     ax.set_ylabel("retainer force amplitude [N]")
     ax.set_yscale("log")
@@ -102,13 +124,13 @@ def plot_simulation(sim, path=None):
     return fig
 
 
-def plot_sweep(result, out_dir, prefix="sweep"):
-    """Peak/min forces vs speed, speed x cam-angle map, Campbell diagram (and contact force)."""
+def plot_sweep_forces(result, ax=None):
+    """Peak and minimum retainer (and seat) forces against speed, with the static values."""
     table = result.summary_table()
     nv, nr = result.vary_values.size, result.cam_rpm.size
     rpm = result.cam_rpm
-    written = []
-    fig, ax = new_figure(figsize=(9, 5.5))
+    if ax is None:
+        fig, ax = new_figure(figsize=(9, 5.5))
     for k in range(nv):
         sl = slice(k * nr, (k + 1) * nr)
         tag = f" ({_vary_label(result, k)})" if result.vary_name else ""
@@ -126,7 +148,14 @@ def plot_sweep(result, out_dir, prefix="sweep"):
     ax.set_title(f"{result.spring.type} spring, {result.cam.law} cam: forces over the speed range")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
-    written.append(save_figure(fig, out_dir / f"{prefix}_forces.png"))
+    return ax.figure
+
+
+def plot_sweep(result, out_dir, prefix="sweep"):
+    """Peak/min forces vs speed, speed x cam-angle map, Campbell diagram (and contact force)."""
+    table = result.summary_table()
+    nv, nr, rpm = result.vary_values.size, result.cam_rpm.size, result.cam_rpm
+    written = [save_figure(plot_sweep_forces(result), out_dir / f"{prefix}_forces.png")]
     deg = np.degrees(result.cam_angle)
     for k in range(nv):
         suffix = f"_{k}" if nv > 1 else ""
@@ -160,9 +189,7 @@ def plot_sweep(result, out_dir, prefix="sweep"):
 
 
 def _vary_label(result, k):
-    from .sweeps import describe_design_value
-
-    return describe_design_value(result.vary_name, result.vary_values[k])
+    return result.vary_label(k)
 
 
 def _campbell(result, k, path, tag, max_order=30):

@@ -1,4 +1,8 @@
-"""Results objects of the valve-spring analyses: arrays plus ``to_xarray``/``to_csv``/``plot``."""
+"""Result objects of the valve-spring analyses, on the shared :class:`~springdyn.core.results.Result`.
+
+:class:`StaticCurve` (force and stiffness against length), :class:`Simulation` (one
+simulated revolution under cam drive, with its summary), :class:`FloatSpeedResult`.
+"""
 
 from __future__ import annotations
 
@@ -6,26 +10,45 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.io import write_csv
+from ..core.results import Result
+from .elements import law_compression
 
-__all__ = ["StaticCurve"]
+__all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "coil_contact_compressions"]
 
 
-@dataclass
-class StaticCurve:
+@dataclass(repr=False)
+class StaticCurve(Result):
     """Static force and tangent stiffness of a spring against its length (SI)."""
 
     spring: object
     length: np.ndarray  # [m]
     force: np.ndarray  # [N]
     stiffness: np.ndarray  # [N/m]
+    model: str = "type-c"
+
+    title = "valve spring static curve"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.spring.type} spring, {self.model} model, {self.length.size} points"
+
+    def _summary(self) -> dict:
+        return dict(
+            model=self.model,
+            points=int(self.length.size),
+            length_max_m=float(self.length.max()),
+            length_min_m=float(self.length.min()),
+            force_min_N=float(self.force.min()),
+            force_max_N=float(self.force.max()),
+            stiffness_min_N_per_m=float(self.stiffness.min()),
+            stiffness_max_N_per_m=float(self.stiffness.max()),
+        )
 
     def columns(self) -> dict:
-        return {"length_m": self.length, "force_N": self.force, "stiffness_N_per_m": self.stiffness}
+        """``length_m, force_N, stiffness_N_per_m`` (the CSV columns)."""
+        from ..core.results import dataset_columns
 
-    def to_csv(self, path):
-        """Write ``length_m, force_N, stiffness_N_per_m`` (atomic)."""
-        return write_csv(path, self.columns())
+        return dataset_columns(self.to_xarray())
 
     def to_xarray(self):
         import xarray as xr
@@ -36,11 +59,298 @@ class StaticCurve:
                 "stiffness": ("length", self.stiffness, {"units": "N/m", "long_name": "tangent stiffness -dF/dL"}),
             },
             coords={"length": ("length", self.length, {"units": "m", "long_name": "spring length"})},
-            attrs={"model": "MMS Type C static series equilibrium", "spring_type": self.spring.type},
+            attrs={"model": self.model, "spring_type": self.spring.type},
         )
 
-    def plot(self, path=None):
-        """Force and stiffness vs length with Ls, F1, F2 and Fcon marked (document Figs. 40.34-40.36)."""
+    def _plot(self, ax=None):
+        """Force and stiffness vs length with Ls, F1, F2 and Fcon marked."""
         from .plots import plot_static_curve
 
-        return plot_static_curve(self, path)
+        return plot_static_curve(self, ax=ax)
+
+
+@dataclass(repr=False)
+class Simulation(Result):
+    """The last simulated revolution and its summary (SI; angles in rad, ``*_deg`` in degrees)."""
+
+    spring: object  # ValveSpring
+    cam: object  # Cam
+    valve_train: object  # ValveTrain or None
+    cam_rpm: float
+    revolutions: int
+    time: np.ndarray  # [s]
+    cam_angle: np.ndarray  # [rad], within the revolution
+    lift: np.ndarray  # [m]
+    retainer_force: np.ndarray  # [N]
+    seat_force: np.ndarray  # [N]
+    static_force: np.ndarray  # [N]
+    element_compression: np.ndarray  # (6, n) [m]
+    element_force: np.ndarray  # (6, n) [N]
+    element_contact: np.ndarray  # (6, n) bool
+    mass_displacement: np.ndarray  # (5, n) [m]
+    periodicity_error: float  # max |F(last) - F(previous)| / Fset
+    info: dict
+    valve_lift: np.ndarray | None = None  # [m]
+    cam_contact_force: np.ndarray | None = None  # [N]
+    valve_seat_force: np.ndarray | None = None  # [N]
+
+    PERIODIC_TOL = 0.01
+    title = "valve spring simulation"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.spring.type} spring, {self.cam.law} cam, {self.cam_rpm:g} cam rpm"
+
+    @property
+    def cam_angle_deg(self) -> np.ndarray:
+        return np.degrees(self.cam_angle)
+
+    @property
+    def periodic(self) -> bool:
+        """Whether the last revolution repeats the one before within 1 % of Fset."""
+        return bool(self.periodicity_error <= self.PERIODIC_TOL)
+
+    # ------------------------------------------------------------------ summary
+    def _summary(self) -> dict:
+        """Peak forces, ratios to static, surge, coil-contact and lift-off events, spectrum."""
+        return _summarise(self)
+
+    def spectrum(self, max_order: int = 40):
+        """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean)."""
+        n = self.retainer_force.size
+        coef = np.fft.rfft(self.retainer_force) / n
+        amp = np.abs(coef) * 2.0
+        amp[0] /= 2.0
+        k = np.arange(amp.size)
+        keep = k <= max_order
+        return k[keep], amp[keep]
+
+    # ------------------------------------------------------------------ outputs
+    def columns(self) -> dict:
+        """The CSV columns (derived from :meth:`to_xarray`)."""
+        from ..core.results import dataset_columns
+
+        return dataset_columns(self.to_xarray())
+
+    def to_xarray(self):
+        """The time series as an :class:`xarray.Dataset` over ``cam_angle`` [deg]."""
+        import xarray as xr
+
+        dims = ("cam_angle",)
+        enames = list(self.spring.chain.element_names)
+        mnames = list(self.spring.chain.mass_names)
+
+        def per_element(what):
+            return ",".join(f"element{j + 1}_{n}_{what}" for j, n in enumerate(enames))
+
+        data = {
+            "lift": (dims, self.lift, {"units": "m", "long_name": "cam lift"}),
+            "retainer_force": (dims, self.retainer_force, {"units": "N"}),
+            "seat_force": (dims, self.seat_force, {"units": "N"}),
+            "static_force": (dims, self.static_force, {"units": "N", "long_name": "static (massless) spring force"}),
+        }
+        if self.valve_train is not None:
+            data.update(
+                valve_lift=(dims, self.valve_lift, {"units": "m"}),
+                cam_contact_force=(dims, self.cam_contact_force, {"units": "N"}),
+                valve_seat_force=(dims, self.valve_seat_force, {"units": "N"}),
+            )
+        data.update({
+            "element_compression": (("element",) + dims, self.element_compression,
+                                    {"units": "m", "csv_columns": per_element("compression_m")}),
+            "element_force": (("element",) + dims, self.element_force,
+                              {"units": "N", "csv_columns": per_element("force_N")}),
+            "element_contact": (("element",) + dims, self.element_contact.astype(np.int8),
+                                {"units": "1", "long_name": "element in coil contact",
+                                 "csv_columns": per_element("contact")}),
+            "mass_displacement": (("mass",) + dims, self.mass_displacement,
+                                  {"units": "m", "long_name": "displacement from set-up, towards the seat",
+                                   "csv_columns": ",".join(f"mass{i + 1}_{n}_displacement_m"
+                                                           for i, n in enumerate(mnames))}),
+        })
+        return xr.Dataset(
+            data,
+            coords={
+                "time": (dims, self.time, {"units": "s"}),
+                "cam_angle": (dims, self.cam_angle_deg, {"units": "deg"}),
+                "element": enames,
+                "mass": mnames,
+            },
+            attrs={"cam_rpm": self.cam_rpm, "revolutions": self.revolutions, "spring_type": self.spring.type,
+                   "model": getattr(self.spring, "model", "type-c"), "cam_law": self.cam.law,
+                   "periodicity_error": (self.periodicity_error if np.isfinite(self.periodicity_error)
+                                         else "n/a (1 revolution)")},
+        )
+
+    def _plot(self, ax=None):
+        """Forces vs cam angle (dynamic against static), mass displacements, spectrum."""
+        from .plots import plot_simulation
+
+        return plot_simulation(self, ax=ax)
+
+
+def coil_contact_compressions(spring) -> np.ndarray:
+    """Compression [m] of each element beyond which its coils touch: the Fcon breakpoint.
+
+    Only the Kh1/Kh2 elements have one (x13/x23 of [MMS], element force laws).  The end
+    elements K already stand for contacting coils and the low-pitch element Ks is closed
+    by design from set-up on, so neither is ever flagged (``inf``).
+    """
+    cached = spring.__dict__.get("_coil_contact_compressions")
+    if cached is None:
+        fcon = spring.internal_parameters()["Fcon"]
+        cached = np.array([
+            float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
+            for name, law in zip(spring.chain.element_names, spring.chain.laws)
+        ])
+        spring.__dict__["_coil_contact_compressions"] = cached  # a spring is immutable
+    return cached
+
+
+def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Index ranges [start, end] of runs of True in a periodic boolean array."""
+    if not mask.any():
+        return []
+    if mask.all():
+        return [(0, mask.size - 1)]
+    m = mask.astype(np.int8)
+    d = np.diff(np.concatenate([[0], m, [0]]))
+    starts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1
+    runs = list(zip(starts.tolist(), ends.tolist()))
+    if len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == mask.size - 1:  # wraps through 0 deg
+        runs = [(runs[-1][0], runs[0][1])] + runs[1:-1]
+    return runs
+
+
+def _summarise(sim: Simulation) -> dict:
+    p = sim.spring.internal_parameters()
+    deg = sim.cam_angle_deg
+    step_deg = 360.0 / sim.cam_angle.size
+    names = sim.spring.chain.element_names
+    s = dict(
+        cam_rpm=sim.cam_rpm,
+        revolutions=sim.revolutions,
+        periodic=sim.periodic,
+        periodicity_error=sim.periodicity_error,
+        max_retainer_force_N=float(sim.retainer_force.max()),
+        min_retainer_force_N=float(sim.retainer_force.min()),
+        max_seat_force_N=float(sim.seat_force.max()),
+        min_seat_force_N=float(sim.seat_force.min()),
+        max_static_force_N=float(sim.static_force.max()),
+        min_static_force_N=float(sim.static_force.min()),
+    )
+    s["max_retainer_force_ratio"] = s["max_retainer_force_N"] / s["max_static_force_N"]
+    s["min_retainer_force_ratio"] = s["min_retainer_force_N"] / s["min_static_force_N"]
+    s["max_seat_force_ratio"] = s["max_seat_force_N"] / s["max_static_force_N"]
+    s["min_seat_force_ratio"] = s["min_seat_force_N"] / s["min_static_force_N"]
+    s["retainer_surge_amplitude_N"] = float(np.max(np.abs(sim.retainer_force - sim.static_force)))
+    s["seat_surge_amplitude_N"] = float(np.max(np.abs(sim.seat_force - sim.static_force)))
+    events = []
+    for a, b in _ranges(sim.element_contact.any(axis=0)):
+        idx = np.arange(a, b + 1) if a <= b else np.concatenate([np.arange(a, deg.size), np.arange(0, b + 1)])
+        elems = np.flatnonzero(sim.element_contact[:, idx].any(axis=1))
+        events.append(dict(
+            start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(idx.size * step_deg),
+            elements=[f"{j + 1}:{names[j]}" for j in elems],
+            peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
+        ))
+    s["coil_contact"] = events
+    f_cam = sim.cam_rpm / 60.0
+    orders, amp = sim.spectrum(40)
+    top = np.argsort(amp[1:])[::-1][:8] + 1
+    s["f1_Hz"] = p["f1"]
+    s["f1_cam_order"] = p["f1"] / f_cam
+    s["spectrum"] = [dict(order=int(k), frequency_Hz=float(k * f_cam), amplitude_N=float(amp[k])) for k in sorted(top)]
+    if sim.valve_train is not None:
+        vt = sim.valve_train
+        in_event = sim.lift > vt.lash + 1e-6
+        separated = in_event & (sim.cam_contact_force <= 0.0)
+        lo = []
+        for a, b in _ranges(separated):
+            count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
+            lo.append(dict(start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(count * step_deg),
+                           duration_s=float(count * step_deg / (6.0 * sim.cam_rpm))))
+        s["liftoff"] = lo
+        s["min_cam_contact_force_N"] = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
+        s["max_cam_contact_force_N"] = float(sim.cam_contact_force.max())
+        z = sim.valve_lift
+        dt = sim.time[1] - sim.time[0]
+        landings = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
+        vz = np.gradient(z, dt)
+        s["seat_impact_velocity_m_per_s"] = float(-vz[landings[0] + 1]) if landings.size else 0.0
+        s["seat_landings"] = int(landings.size)
+        s["bounces"] = max(int(landings.size) - 1, 0)
+        after = np.zeros_like(z, dtype=bool)
+        if landings.size:
+            after[landings[0] + 1:] = True
+        s["max_bounce_height_m"] = float(np.max(np.where(after & ~in_event, z, 0.0)))
+    return s
+
+
+
+
+@dataclass(repr=False)
+class FloatSpeedResult(Result):
+    """The float speed of a valve train: the lowest cam speed with follower lift-off.
+
+    ``float_cam_rpm`` is ``None`` when no scanned speed lifts off; ``bracket`` gives the
+    speeds either side of the bisection; the scan lists the minimum cam contact force
+    during the event at each scanned speed.  ``result["float_cam_rpm"]`` works as for
+    the dict earlier versions returned.
+    """
+
+    cam_rpm: list  # scanned speeds [rev/min]
+    min_cam_contact_force_N: list  # per scanned speed [N]
+    float_cam_rpm: float | None
+    bracket: list | None
+    resolution_rpm: float
+
+    title = "valve float speed"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return "no lift-off in the range" if self.float_cam_rpm is None else f"{self.float_cam_rpm:.1f} cam rpm"
+
+    def _summary(self) -> dict:
+        s = dict(float_cam_rpm=self.float_cam_rpm,
+                 float_engine_rpm=None if self.float_cam_rpm is None else 2.0 * self.float_cam_rpm,
+                 resolution_rpm=self.resolution_rpm,
+                 speeds_scanned=len(self.cam_rpm))
+        s["bracket_low_cam_rpm"], s["bracket_high_cam_rpm"] = (self.bracket or [None, None])
+        if self.float_cam_rpm is None:
+            s["notes"] = ["no lift-off at any scanned speed: the float speed is above the range"]
+        return s
+
+    def to_dict(self) -> dict:
+        """The JSON of ``springdyn valve float``: the scan and the float speed (SI, rpm)."""
+        return dict(cam_rpm=list(self.cam_rpm), min_cam_contact_force_N=list(self.min_cam_contact_force_N),
+                    float_cam_rpm=self.float_cam_rpm, bracket=self.bracket)
+
+    def __getitem__(self, key):
+        legacy = self.to_dict()
+        return legacy[key] if key in legacy else self.summary[key]
+
+    def to_xarray(self):
+        import xarray as xr
+
+        return xr.Dataset(
+            {"min_cam_contact_force": ("cam_rpm", np.asarray(self.min_cam_contact_force_N, dtype=float),
+                                       {"units": "N", "long_name": "minimum cam-follower contact force in the event"})},
+            coords={"cam_rpm": ("cam_rpm", np.asarray(self.cam_rpm, dtype=float), {"units": "rpm"})},
+            attrs={"float_cam_rpm": "none" if self.float_cam_rpm is None else self.float_cam_rpm},
+        )
+
+    def _plot(self, ax=None):
+        from ..core.plotting import new_figure
+
+        if ax is None:
+            fig, ax = new_figure(figsize=(8, 4.5))
+        ax.plot(self.cam_rpm, self.min_cam_contact_force_N, "o-", color="C0", label="minimum cam contact force")
+        ax.axhline(0.0, color="k", lw=0.8)
+        if self.float_cam_rpm is not None:
+            ax.axvline(self.float_cam_rpm, color="C3", ls="--", label=f"float speed {self.float_cam_rpm:.0f} cam rpm")
+        ax.set_xlabel("cam speed [rpm]")
+        ax.set_ylabel("force [N]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        return ax.figure

@@ -21,7 +21,8 @@ import numpy as np
 
 from ..core.params import describe_value
 from ..core.errors import InputError
-from ..core.io import atomic_path, write_csv
+from ..core.io import atomic_path
+from ..core.results import Result
 from ..core.progress import progress
 from .cam import Cam
 from .engine import run_speeds
@@ -38,7 +39,7 @@ from .dynamics import (
 from .spring import ValveSpring
 from .valvetrain import ValveTrain
 
-__all__ = ["sweep", "SweepResult", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
+__all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
 
 #: Seconds to wait for a Dask scheduler before giving up.
 SCHEDULER_TIMEOUT = 5.0
@@ -127,9 +128,14 @@ def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
-@dataclass
-class SweepResult:
-    """Results of a speed sweep, optionally over a design variable (SI)."""
+@dataclass(repr=False)
+class SpeedSweep(Result):
+    """Results of a speed sweep, optionally over a design variable (SI).
+
+    ``plot(path)`` draws the forces against speed; :meth:`plot_all` writes every sweep
+    figure (forces, speed x angle map, Campbell diagram, contact force) into a folder and
+    :meth:`write` the NetCDF, the summary CSV and the figures.
+    """
 
     spring: ValveSpring
     cam: Cam
@@ -142,6 +148,34 @@ class SweepResult:
     springs: list  # ValveSpring per vary value
     data: dict  # arrays (n_vary, n_rpm, ...) and static (n_vary, [n_rpm,] n_angle)
     skipped: list  # (value, reason) of invalid design values
+
+    title = "valve spring speed sweep"
+
+    def _repr_caption(self) -> str:
+        text = (f"{self.spring.type} spring, {self.cam.law} cam, {self.cam_rpm.size} speeds "
+                f"{self.cam_rpm.min():g}-{self.cam_rpm.max():g} cam rpm")
+        return text + (f", {self.vary_values.size} values of {self.vary_name}" if self.vary_name else "")
+
+    def vary_label(self, k: int) -> str:
+        """``'installed_length = 36 mm'`` for the design value ``k``."""
+        return describe_design_value(self.vary_name, self.vary_values[k]) if self.vary_name else ""
+
+    def _summary(self) -> dict:
+        t = self.summary_table()
+        s = dict(speeds=int(self.cam_rpm.size), cam_rpm_min=float(self.cam_rpm.min()),
+                 cam_rpm_max=float(self.cam_rpm.max()), design_values=int(self.vary_values.size),
+                 vary=self.vary_name or "none",
+                 max_retainer_force_N=float(np.max(t["max_retainer_force_N"])),
+                 min_retainer_force_N=float(np.min(t["min_retainer_force_N"])),
+                 max_seat_force_N=float(np.max(t["max_seat_force_N"])),
+                 min_seat_force_N=float(np.min(t["min_seat_force_N"])),
+                 max_retainer_surge_amplitude_N=float(np.max(t["retainer_surge_amplitude_N"])),
+                 speeds_with_coil_contact=int(np.count_nonzero(t["coil_contact"])),
+                 skipped_design_values=len(self.skipped))
+        if self.valve_train is not None:
+            fl = self.float_speeds()
+            s["lowest_float_cam_rpm"] = float(np.nanmin(fl)) if np.isfinite(fl).any() else None
+        return s
 
     # ---------------------------------------------------------------- summary
     def summary_table(self) -> dict:
@@ -232,23 +266,47 @@ class SweepResult:
             self.to_xarray().to_netcdf(tmp)
         return Path(path)
 
-    def to_csv(self, path):
-        """Write the summary table (one row per speed and design value)."""
-        cols = {k: (v.astype(int) if np.asarray(v).dtype == bool else v) for k, v in self.summary_table().items()}
-        return write_csv(path, cols)
+    def _csv_dataset(self):
+        """The summary table (one row per speed and design value) as a one-dimensional dataset."""
+        import xarray as xr
 
-    def plot(self, out_dir, prefix: str = "sweep") -> list[Path]:
-        """Write the sweep plots as PNG into ``out_dir``; returns their paths."""
+        table = self.summary_table()
+        rows = next(iter(table.values())).size
+        return xr.Dataset({k: ("row", (np.asarray(v).astype(int) if np.asarray(v).dtype == bool else np.asarray(v)),
+                                   {"units": ""}) for k, v in table.items()}, coords={})
+
+    def _plot(self, ax=None):
+        from .plots import plot_sweep_forces
+
+        return plot_sweep_forces(self, ax=ax)
+
+    def plot(self, path=None, ax=None, prefix: str = "sweep"):
+        """Plot the forces against speed; return the figure (``path``: that PNG file).
+
+        Earlier versions took an output folder here and wrote every sweep figure into it:
+        a path that is an existing folder still does that, with a DeprecationWarning
+        (use :meth:`plot_all`).
+        """
+        if path is not None and Path(path).is_dir():
+            warnings.warn("SpeedSweep.plot(folder) is deprecated: use plot_all(folder)", DeprecationWarning,
+                          stacklevel=2)
+            return self.plot_all(path, prefix)
+        return super().plot(path, ax=ax)
+
+    def plot_all(self, out_dir, prefix: str = "sweep") -> list[Path]:
+        """Write every sweep figure as PNG into the folder ``out_dir``; returns their paths."""
         from .plots import plot_sweep
 
-        return plot_sweep(self, Path(out_dir), prefix)
+        out_dir = Path(out_dir)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        return plot_sweep(self, out_dir, prefix)
 
     def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
         """NetCDF, summary CSV and plots into ``out_dir``."""
         out_dir = Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
         written = [self.to_netcdf(out_dir / f"{prefix}.nc"), self.to_csv(out_dir / f"{prefix}_summary.csv")]
-        return written + self.plot(out_dir, prefix)
+        return written + self.plot_all(out_dir, prefix)
 
 
 def _field_unit(name: str) -> str:
@@ -271,7 +329,7 @@ def sweep(
     workers: int | None = None,
     client=None,
     quiet: bool = True,
-) -> SweepResult:
+) -> SpeedSweep:
     """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
 
     Parameters
@@ -326,7 +384,7 @@ def sweep(
             res["static"] = setup.static_force(lift)
         results.append(res)
     data = {key: np.stack([r[key] for r in results]) for key in results[0]}
-    return SweepResult(spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values,
+    return SpeedSweep(spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values,
                        springs, data, skipped)
 
 
@@ -364,3 +422,10 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
     if not springs:
         raise InputError(f"--vary {name}: every value makes the spring invalid")
     return springs, setups, np.asarray(kept), skipped
+
+
+def __getattr__(name):
+    if name == "SweepResult":
+        warnings.warn("springdyn.valve.sweeps.SweepResult is now SpeedSweep", DeprecationWarning, stacklevel=2)
+        return SpeedSweep
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

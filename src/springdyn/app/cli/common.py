@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import re
 import json
 import sys
 from pathlib import Path
@@ -20,6 +22,8 @@ __all__ = [
     "print_table",
     "add_output_options",
     "existing_file",
+    "as_options",
+    "close_figure",
 ]
 
 
@@ -82,3 +86,25 @@ def add_output_options(p: argparse.ArgumentParser, *, csv=True, plot=True, json=
         p.add_argument("--plot", metavar="OUT.png", help="write the plot as PNG")
     if json:
         p.add_argument("--json", action="store_true", help="print machine-readable JSON (SI) instead of a table")
+
+
+@contextlib.contextmanager
+def as_options(**names):
+    """Name CLI options in the library's errors: ``as_options(stop="--to")`` turns an
+    :class:`InputError` starting ``stop = 5 mm ...`` into ``--to = 5 mm ...``."""
+    try:
+        yield
+    except InputError as exc:
+        text = str(exc)
+        for arg, option in names.items():
+            new = re.sub(rf"^{re.escape(arg)}(\[\d+\])? = ", rf"{option}\1 = ", text)
+            if new != text:
+                raise InputError(new) from None
+        raise
+
+
+def close_figure(fig) -> None:
+    """Close a matplotlib figure (matplotlib is imported only when a command plots)."""
+    from springdyn.core.plotting import plt
+
+    plt.close(fig)

@@ -1,15 +1,19 @@
 """Entry point of the ``springdyn`` command.
 
-Each model family contributes ``springdyn.<family>.cli.register(subparsers)`` and a
-report section (``springdyn.<family>.report``); this module only wires them and
-turns springdyn's errors into one line on stderr with exit code 2 (bad input) or 3
-(solver failure), never a traceback.
+Each model family contributes ``springdyn.app.cli.<family>.register(subparsers)`` and a
+report section (``springdyn.app.report.<family>``); this module only wires them (loading
+only the family a command needs) and turns every outcome into one line on stderr and an
+exit code: 2 bad input, 3 solver failure, 70 a bug (traceback in a log file), 74 the
+output could not be written, never a traceback.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
+import re
+import signal
 import sys
 import warnings
 from pathlib import Path
@@ -18,22 +22,46 @@ from springdyn import __version__
 from springdyn.core.errors import InputError, SolverError
 from . import docs_cmd
 
-#: Model families, in the order the CLI lists them.
-FAMILIES = ["valve", "cfcs", "lsd"]
+#: Model families, in the order the CLI lists them, with their help line (the family's
+#: ``register`` uses the same line; a test checks it).
+FAMILIES = {
+    "valve": "valve springs: MMS Type C multi-mass model",
+    "cfcs": "constant-force compression springs (pseudo-rigid-body model)",
+    "lsd": "leaf spring dampers: coefficients, rig simulation, identification",
+}
+
+
+class UsageError(Exception):
+    """A command line argparse cannot read (one line, exit code 2)."""
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with exit code 2 and a one-line message (argparse's own convention)."""
+    """argparse whose errors are one line (usage only with ``--help``) and exit code 2."""
+
+    def error(self, message):
+        raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
     print(f"springdyn: warning: {message}", file=sys.stderr)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The ``springdyn`` parser.
+
+    Parameters
+    ----------
+    only : str, optional
+        Build the sub-commands of this family only (the others are listed with their help
+        line): ``springdyn --help`` and a command of one family then load no other family.
+        ``""`` builds no family's sub-commands; ``None`` (the default) builds them all.
+    """
     parser = _Parser(
         prog="springdyn",
         description="Dynamics of springs and spring dampers in machines.",
+        epilog="Quantities take units ('22 mm', '3000 rpm', '5 %'); bare numbers are SI unless an option says "
+               "otherwise. Ranges are START:STOP:STEP, lists a,b,c. Exit codes: 0 done, 2 bad input, "
+               "3 solver failure, 70 a bug in springdyn.",
     )
     parser.add_argument("--version", action="version", version=f"springdyn {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
@@ -50,8 +78,11 @@ def build_parser() -> argparse.ArgumentParser:
     rep.add_argument("--quiet", action="store_true", help="no progress bar, only the final line")
     rep.set_defaults(func=_run_report)
 
-    for family in FAMILIES:
-        importlib.import_module(f"springdyn.app.cli.{family}").register(sub)
+    for family, help_line in FAMILIES.items():
+        if only is None or only == family:
+            importlib.import_module(f"springdyn.app.cli.{family}").register(sub)
+        else:
+            sub.add_parser(family, help=help_line, add_help=False)
     docs_cmd.register(sub)
     return parser
 
@@ -77,23 +108,160 @@ def _run_report(args) -> int:
     return _report(args.definitions, args.out, args.quiet, "springdyn report")
 
 
-def main(argv=None) -> int:
-    warnings.showwarning = _show_warning
-    parser = build_parser()
-    args = parser.parse_args(argv)
+def _join_negative_values(argv) -> list[str]:
+    """``--lift -1mm`` -> ``--lift=-1mm``: a value starting with a minus sign and a digit
+    reaches the option's validator instead of being taken for an option by argparse."""
+    out: list[str] = []
+    for token in argv:
+        if out and re.match(r"^-\.?\d", token) and out[-1].startswith("--") and "=" not in out[-1]:
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
+def _family_of(argv) -> str:
+    """The family whose sub-commands a command line needs (``""``: none)."""
+    for token in argv:
+        if not token.startswith("-"):
+            return token if token in FAMILIES else ""
+    return ""
+
+
+def _write_bug_log(exc: BaseException) -> Path | None:
+    """Write the traceback of an unexpected exception to a log file; return its path."""
+    import tempfile
+    import time
+    import traceback
+
     try:
-        return int(args.func(args) or 0)
+        fd, name = tempfile.mkstemp(prefix=f"springdyn-bug-{time.strftime('%Y%m%d-%H%M%S')}-", suffix=".log")
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(f"springdyn {__version__}, Python {sys.version.split()[0]}\n")
+            fh.write("command line: springdyn " + " ".join(sys.argv[1:]) + "\n\n")
+            traceback.print_exception(type(exc), exc, exc.__traceback__, file=fh)
+        return Path(name)
+    except OSError:
+        return None
+
+
+def _silence_stdout() -> None:
+    """After stdout broke, point it at /dev/null so that the interpreter's final flush is quiet."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
+class StdoutError(OSError):
+    """Standard output is closed, full or broken."""
+
+
+class _GuardedStdout:
+    """Standard output whose write failures become :class:`StdoutError` (exit 74)."""
+
+    def __init__(self, stream):
+        self._stream = stream
+        self.failed = False
+
+    def _call(self, name, *args):
+        if self._stream is None:
+            self.failed = True
+            raise StdoutError("standard output is closed")
+        try:
+            return getattr(self._stream, name)(*args)
+        except (OSError, ValueError) as exc:
+            self.failed = True
+            raise StdoutError(getattr(exc, "strerror", None) or str(exc)) from exc
+
+    def write(self, text):
+        return self._call("write", text)
+
+    def flush(self):
+        return self._call("flush")
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+class _Terminated(BaseException):
+    """SIGTERM: unwind (so that temporary outputs are removed), then exit 143."""
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
+#: Exit codes (sysexits.h where one fits).
+EXIT_INPUT, EXIT_SOLVER, EXIT_BUG, EXIT_IO, EXIT_INTERRUPTED = 2, 3, 70, 74, 130
+
+
+def main(argv=None) -> int:
+    """Run ``springdyn`` with ``argv`` (default: the process's); return the exit code.
+
+    0 done; 2 bad input (one line on stderr); 3 solver failure; 70 an unexpected error,
+    i.e. a bug in springdyn (one line on stderr, the traceback in a log file); 74 the
+    output could not be written (e.g. stdout is full or closed); 130 interrupted.
+    """
+    argv = sys.argv[1:] if argv is None else list(argv)
+    warnings.showwarning = _show_warning
+    real_stdout = sys.stdout
+    sys.stdout = _GuardedStdout(real_stdout)
+    try:
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread
+        previous = None
+    try:
+        argv = _join_negative_values(argv)
+        parser = build_parser(_family_of(argv))
+        args = parser.parse_args(argv)
+        code = int(args.func(args) or 0)
+        sys.stdout.flush()
+        return code
+    except UsageError as exc:
+        print(f"springdyn: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
     except InputError as exc:
         print(f"springdyn: error: {exc}", file=sys.stderr)
-        return 2
+        return EXIT_INPUT
     except SolverError as exc:
         print(f"springdyn: solver failed: {exc}", file=sys.stderr)
-        return 3
-    except KeyboardInterrupt:
-        print("springdyn: interrupted", file=sys.stderr)
-        return 130
-    except BrokenPipeError:
-        return 0
+        return EXIT_SOLVER
+    except (KeyboardInterrupt, _Terminated) as exc:
+        print("springdyn: interrupted; no partial output was left", file=sys.stderr)
+        return 143 if isinstance(exc, _Terminated) else EXIT_INTERRUPTED
+    except (StdoutError, BrokenPipeError) as exc:
+        _silence_stdout()
+        if not isinstance(exc.__cause__, BrokenPipeError) and not isinstance(exc, BrokenPipeError):
+            print(f"springdyn: cannot write to standard output: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_IO
+    except OSError as exc:  # the environment, not springdyn: e.g. a disk that is full
+        print(f"springdyn: cannot write {exc.filename or 'an output'}: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_IO
+    except SystemExit as exc:  # --help and --version (argparse ignores write errors: the guard saw them)
+        try:
+            sys.stdout.flush()
+        except OSError:
+            pass
+        if getattr(sys.stdout, "failed", False):
+            _silence_stdout()
+            return EXIT_IO
+        return int(exc.code or 0) if not isinstance(exc.code, str) else EXIT_INPUT
+    except Exception as exc:  # noqa: BLE001 - the safety net: a bug, said in one line
+        return _bug(exc)
+    finally:
+        sys.stdout = real_stdout
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _bug(exc: BaseException) -> int:
+    log = _write_bug_log(exc)
+    where = f"the traceback is in {log}" if log else "no log file could be written"
+    print(f"springdyn: internal error (a bug in springdyn, please report it): {type(exc).__name__}: "
+          f"{str(exc).splitlines()[0] if str(exc) else ''}; {where}", file=sys.stderr)
+    return EXIT_BUG
 
 
 if __name__ == "__main__":  # pragma: no cover

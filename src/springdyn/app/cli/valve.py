@@ -6,44 +6,17 @@ import math
 
 import numpy as np
 
-from springdyn.app.cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from springdyn.app.cli.common import add_output_options, as_options, close_figure, parse_range, print_json, print_table, quantity
 from springdyn.core.errors import InputError
-from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity
-from springdyn.valve.cam import Cam
-from springdyn.valve.dynamics import DEFAULT_ATOL, DEFAULT_RTOL, float_speed, simulate
-from springdyn.valve.sweeps import connect, describe_design_value, sweep
-from springdyn.valve.spring import ValveSpring
-from springdyn.valve.valvetrain import ValveTrain
+from springdyn.valve.spring import MODEL_NAMES, ValveSpring
+
+#: Default integration tolerances (the values of :mod:`springdyn.valve.dynamics`, kept here
+#: so that building the parser does not load the compiled engine; a test checks they agree).
+DEFAULT_RTOL = 1e-6
+DEFAULT_ATOL = 1e-9
 
 __all__ = ["register"]
-
-#: Display units of the internal parameters in the human-readable table.
-PARAM_UNITS = {
-    "K": ("N/m", "N/mm", "contact stiffness of a coil"),
-    "K1": ("N/m", "N/mm", "spring rate at free length"),
-    "K2": ("N/m", "N/mm", "spring rate at set-up length"),
-    "K3": ("N/m", "N/mm", "stiffened rate 1.15 K2"),
-    "Kh1": ("N/m", "N/mm", "chain element Kh1"),
-    "Kh2": ("N/m", "N/mm", "chain element Kh2"),
-    "Ks": ("N/m", "N/mm", "low-pitch element Ks"),
-    "m1": ("kg", "g", "chain mass m1"),
-    "m2": ("kg", "g", "chain mass m2"),
-    "me": ("kg", "g", "end mass me"),
-    "M": ("kg", "g", "spring mass"),
-    "f1": ("Hz", "Hz", "surge frequency, free length"),
-    "f2": ("Hz", "Hz", "surge frequency, set-up length"),
-    "n1p": ("", "", "pitch term n1'"),
-    "n2p": ("", "", "pitch term n2'"),
-    "Pc": ("m", "mm", "coil gap term"),
-    "Lc": ("m", "mm", "solid length"),
-    "Fset": ("N", "N", "set-up force"),
-    "F1": ("N", "N", "first nonlinear force"),
-    "F2": ("N", "N", "second nonlinear force"),
-    "Fcon": ("N", "N", "coil-contact force"),
-    "C0": ("N*s/m", "N*s/m", "element damping C0"),
-}
-
 
 def register(sub) -> None:
     valve = sub.add_parser("valve", help="valve springs: MMS Type C multi-mass model")
@@ -51,11 +24,13 @@ def register(sub) -> None:
 
     p = vsub.add_parser("params", help="internal parameters and model variables")
     p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_params)
 
     p = vsub.add_parser("curve", help="static force and tangent stiffness vs spring length")
     p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
     p.add_argument("--from", dest="start", metavar="L1", help="first length (default: free length)")
     p.add_argument("--to", dest="stop", metavar="L2", help="last length (default: where the force is 3 Fcon)")
     p.add_argument("--points", type=int, default=400, metavar="N", help="number of lengths (default 400)")
@@ -64,6 +39,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("modes", help="natural frequencies of the chain linearised at a length")
     p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
     p.add_argument("--length", required=True, metavar="L", help="spring length, e.g. 38mm")
     p.add_argument("--count", type=int, default=5, metavar="N", help="how many modes (1-5, default 5)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
@@ -71,6 +47,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("design", help="index, corrected stress, surge frequency at installed/open/coil-contact length")
     p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
     p.add_argument("--lift", metavar="LIFT", help="maximum valve lift, e.g. 9mm")
     p.add_argument("--cam-rpm", metavar="RPM", help="camshaft speed for the surge margin (bare number: rpm)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
@@ -78,6 +55,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("simulate", help="dynamic response under cam drive (spring alone or valve train)")
     p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     _add_speed_options(p, ranged=False)
     p.add_argument("--revolutions", type=int, default=3, metavar="N", help="cam revolutions to run (default 3)")
@@ -92,6 +70,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("float", help="float speed: lowest speed at which the follower leaves the cam")
     p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     p.add_argument("--valve-train", required=True, metavar="VT.toml", help="file with a [valve_train] table")
     _add_speed_options(p, ranged=True)
@@ -103,6 +82,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("sweep", help="speed sweep (optionally over a design variable), locally or on Dask")
     p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     _add_speed_options(p, ranged=True)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
@@ -121,6 +101,11 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_sweep)
 
 
+def _add_model_option(p) -> None:
+    p.add_argument("--model", choices=MODEL_NAMES,
+                   help="spring model (default: the [spring] model key, else 'type-c', the document's MMS Type C)")
+
+
 def _add_speed_options(p, *, ranged: bool) -> None:
     g = p.add_mutually_exclusive_group(required=True)
     what = "START:STOP:STEP or a list" if ranged else "a speed"
@@ -133,20 +118,25 @@ def cam_rpm_from_args(args, *, ranged: bool):
     """Camshaft speed(s) in rev/min from --cam-rpm or --engine-rpm (four-stroke: half)."""
     option = "--cam-rpm" if args.cam_rpm is not None else "--engine-rpm"
     text = args.cam_rpm if args.cam_rpm is not None else args.engine_rpm
-    factor = 60.0 / (2 * math.pi) * (1.0 if args.cam_rpm is not None else 0.5)
+
+    from springdyn.valve.cam import cam_rpm_from_engine_rpm
+
+    def cam(rpm):
+        return rpm if args.cam_rpm is not None else cam_rpm_from_engine_rpm(rpm)
+
     if ranged:
-        values = parse_range(text, "rad/s", option, bare_unit="rpm") * factor
+        values = cam(parse_range(text, "rpm", option, bare_unit="rpm"))
         if (values <= 0).any():
             raise InputError(f"{option} = {text!r}: every speed must be positive")
         return values
-    value = quantity(text, "rad/s", option, bare_unit="rpm") * factor
+    value = cam(quantity(text, "rpm", option, bare_unit="rpm"))
     if not value > 0:
         raise InputError(f"{option} = {text!r} must be a positive speed")
     return value
 
 
 def _spring(args) -> ValveSpring:
-    return ValveSpring.from_toml(args.spring)
+    return ValveSpring.from_toml(args.spring).with_model(getattr(args, "model", None))
 
 
 def cmd_params(args) -> int:
@@ -155,9 +145,11 @@ def cmd_params(args) -> int:
     if args.json:
         print_json(params)
         return 0
+    from springdyn.valve.model import PARAMETER_UNITS
+
     rows = []
     for key, value in params.items():
-        unit, display, doc = PARAM_UNITS[key]
+        unit, display, doc = PARAMETER_UNITS[key]
         rows.append((key, format_quantity(value, unit, display), doc))
     print(f"{args.spring}: {spring.type} valve spring, MMS Type C")
     print_table(rows, headers=("parameter", "value", "meaning"))
@@ -168,11 +160,12 @@ def cmd_curve(args) -> int:
     spring = _spring(args)
     start = quantity(args.start, "m", "--from") if args.start is not None else None
     stop = quantity(args.stop, "m", "--to") if args.stop is not None else None
-    curve = spring.static_curve(start, stop, args.points)
+    with as_options(start="--from", stop="--to", points="--points"):
+        curve = spring.static_curve(start, stop, args.points)
     if args.csv:
         curve.to_csv(args.csv)
     if args.plot:
-        plt.close(curve.plot(args.plot))
+        close_figure(curve.plot(args.plot))
     if not args.csv:
         step = max(1, len(curve.length) // 20)
         rows = [
@@ -186,7 +179,8 @@ def cmd_curve(args) -> int:
 def cmd_modes(args) -> int:
     spring = _spring(args)
     length = quantity(args.length, "m", "--length")
-    freqs = spring.modes(length, args.count)
+    with as_options(length="--length", count="--count"):
+        freqs = spring.modes(length, args.count)
     force = float(spring.static_force(length))
     if args.json:
         print_json({"length_m": length, "force_N": force, "frequencies_Hz": list(freqs)})
@@ -218,12 +212,17 @@ def cmd_design(args) -> int:
 
 
 def _load_cam_and_train(args):
+    from springdyn.valve.cam import Cam
+    from springdyn.valve.valvetrain import ValveTrain
+
     cam = Cam.from_toml(args.cam)
     vt = ValveTrain.from_toml(args.valve_train) if getattr(args, "valve_train", None) else None
     return cam, vt
 
 
 def cmd_simulate(args) -> int:
+    from springdyn.valve.dynamics import simulate
+
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpm = cam_rpm_from_args(args, ranged=False)
@@ -232,8 +231,8 @@ def cmd_simulate(args) -> int:
     if args.csv:
         sim.to_csv(args.csv)
     if args.plot:
-        plt.close(sim.plot(args.plot))
-    s = sim.summary()
+        close_figure(sim.plot(args.plot))
+    s = sim.summary
     if args.json:
         print_json(s)
         return 0
@@ -268,6 +267,8 @@ def cmd_simulate(args) -> int:
 
 
 def cmd_float(args) -> int:
+    from springdyn.valve.dynamics import float_speed
+
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpms = cam_rpm_from_args(args, ranged=True)
@@ -275,7 +276,7 @@ def cmd_float(args) -> int:
                       resolution=quantity(args.resolution, "rad/s", "--resolution", bare_unit="rpm") * 60 / (2 * math.pi),
                       progress_quiet=args.quiet)
     if args.json:
-        print_json(res)
+        print_json(res.to_dict())
         return 0
     if res["float_cam_rpm"] is None:
         print(f"no lift-off up to {rpms.max():g} cam rpm (minimum cam contact force there "
@@ -301,6 +302,8 @@ def parse_vary(text: str, spring: ValveSpring):
 
 
 def cmd_sweep(args) -> int:
+    from springdyn.valve.sweeps import connect, describe_design_value, sweep
+
     from pathlib import Path
 
     spring = _spring(args)

@@ -11,7 +11,7 @@ from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
 from springdyn.app.report.html import Section, parameter_rows
 from springdyn.valve.cam import Cam
-from springdyn.app.cli.valve import PARAM_UNITS
+from springdyn.valve.model import PARAMETER_UNITS
 from springdyn.valve.dynamics import float_speed, simulate
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.sweeps import sweep
@@ -67,7 +67,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         sims[rpm] = sim
         stem = out_dir / f"simulate_{rpm:.0f}rpm"
         files.append(sim.to_csv(stem.with_suffix(".csv")))
-        files.append(write_json(stem.with_name(stem.name + "_summary.json"), sim.summary()))
+        files.append(write_json(stem.with_name(stem.name + "_summary.json"), sim.summary))
         plt.close(sim.plot(stem.with_suffix(".png")))
         figures.append((stem.with_suffix(".png"), f"Spring alone at {rpm:.0f} cam rpm: retainer and seat force "
                         "against the static (massless) force, mass displacements, cam-order spectrum"))
@@ -80,7 +80,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     figures.append((out_dir / "sweep_map.png", "Retainer force over cam speed and cam angle"))
 
     for rpm, sim in sims.items():
-        s = sim.summary()
+        s = sim.summary
         contact = (f"coil contact from {s['coil_contact'][0]['start_deg']:.1f} to {s['coil_contact'][-1]['end_deg']:.1f} deg "
                    f"(peak element force {max(e['peak_contact_force_N'] for e in s['coil_contact']):.0f} N)"
                    if s["coil_contact"] else "no coil contact")
@@ -120,13 +120,13 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     ]
     if vt is not None:
         res = float_speed(sp, cam, vt, np.arange(1000.0, 6001.0, 250.0))
-        files.append(write_json(out_dir / "float_speed.json", res))
+        files.append(write_json(out_dir / "float_speed.json", res.to_dict()))
         f = res["float_cam_rpm"]
         if f is None:
             findings.append(f"The follower stays on the cam up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float).")
         else:
             above = simulate(sp, cam, 1.05 * f, 3, valve_train=vt)
-            s = above.summary()
+            s = above.summary
             plt.close(above.plot(out_dir / "valve_train_above_float.png"))
             files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
             figures.append((out_dir / "valve_train_above_float.png", f"Valve train 5 % above the float speed "
@@ -140,7 +140,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
     if vt is not None:
         inputs += [(f"valve_train.{k}", v, m) for k, v, m in parameter_rows(vt)]
-    derived = [(k, format_quantity(v, *PARAM_UNITS[k][:2]), PARAM_UNITS[k][2]) for k, v in p.items()]
+    derived = [(k, format_quantity(v, *PARAMETER_UNITS[k][:2]), PARAMETER_UNITS[k][2]) for k, v in p.items()]
     derived.append(("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length"))
     derived.append(("spring index", f"{design['spring_index']:.3f}", "D/d"))
     return Section(
