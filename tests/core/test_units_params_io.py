@@ -88,8 +88,17 @@ def test_atomic_writers_leave_nothing_on_failure(tmp_path):
             raise RuntimeError("boom")
     assert target.read_text() == before
     assert os.listdir(tmp_path) == ["out.csv"]
-    write_json(tmp_path / "x.json", {"v": np.float64(1.5), "n": float("nan"), "arr": np.arange(2)})
+    write_json(tmp_path / "x.json", {"v": np.float64(1.5), "n": None, "arr": np.arange(2)})
     assert json.loads((tmp_path / "x.json").read_text()) == {"v": 1.5, "n": None, "arr": [0, 1]}
+    # a NaN never reaches a file (issue 11): the writer refuses, naming the key, and writes nothing
+    from springdyn.core.io import NonFiniteOutputError
+
+    with pytest.raises(NonFiniteOutputError, match="'n'"):
+        write_json(tmp_path / "y.json", {"v": 1.0, "n": float("nan")})
+    with pytest.raises(NonFiniteOutputError, match="column 'b', row 2"):
+        write_csv(tmp_path / "y.csv", {"a": [1.0, 2.0], "b": [0.0, float("inf")]})
+    assert not (tmp_path / "y.json").exists() and not (tmp_path / "y.csv").exists()
+    assert sorted(os.listdir(tmp_path)) == ["out.csv", "x.json"]
 
 
 def test_read_csv_columns_errors(tmp_path):

@@ -18,19 +18,99 @@ from typing import Iterator, Mapping
 
 import numpy as np
 
-__all__ = ["atomic_path", "atomic_open", "write_csv", "write_json", "read_csv_columns", "to_jsonable"]
+__all__ = ["atomic_path", "atomic_open", "output_set", "direct_outputs", "check_output_file", "check_output_folder", "write_csv",
+           "write_json", "read_csv_columns", "to_jsonable", "NonFiniteOutputError"]
+
+#: Longest file name (one path component) most file systems take [bytes].
+MAX_NAME_BYTES = 255
+
+
+class NonFiniteOutputError(ValueError):
+    """A NaN or inf reached an output writer (names where): a bug or an unhandled case."""
+
+
+class _OutputSet:
+    """Files written inside :func:`output_set`: temporaries renamed together at the end."""
+
+    def __init__(self):
+        self.pending: dict[Path, Path] = {}  # final path -> temporary
+
+    def add(self, tmp: Path, path: Path) -> None:
+        old = self.pending.pop(path.resolve(), None)
+        if old is not None:
+            with contextlib.suppress(FileNotFoundError):
+                old.unlink()
+        self.pending[path.resolve()] = tmp
+
+    def commit(self) -> None:
+        for path, tmp in list(self.pending.items()):
+            os.replace(tmp, path)
+            del self.pending[path]
+
+    def discard(self) -> None:
+        for tmp in self.pending.values():
+            with contextlib.suppress(FileNotFoundError):
+                tmp.unlink()
+        self.pending.clear()
+
+
+_SETS: list[_OutputSet] = []
+
+
+@contextlib.contextmanager
+def output_set():
+    """Group the files written inside into one output set.
+
+    Every :func:`atomic_path` inside writes its temporary file as usual but renames it
+    onto its final name only when the block ends without an error, all files one after
+    the other; on an error, ``KeyboardInterrupt`` or ``SystemExit`` every temporary is
+    removed and no final file is touched.  Sets nest: an inner set hands its files to the
+    outer one.
+    """
+    current = _OutputSet()
+    _SETS.append(current)
+    try:
+        yield current
+    except BaseException:
+        _SETS.remove(current)
+        current.discard()
+        raise
+    _SETS.remove(current)
+    if _SETS and _SETS[-1] is not None:
+        for path, tmp in current.pending.items():
+            _SETS[-1].add(tmp, path)
+    else:
+        try:
+            current.commit()
+        except BaseException:
+            current.discard()
+            raise
+
+
+@contextlib.contextmanager
+def direct_outputs():
+    """Inside an :func:`output_set`, write files onto their final names at once (for a job
+    that reads back what it wrote, such as the report, which builds in a temporary folder
+    of its own and renames that folder at the end)."""
+    _SETS.append(None)
+    try:
+        yield
+    finally:
+        _SETS.pop()
 
 
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
 
-    On an exception the temporary file is removed and ``path`` is left untouched.
+    On an exception the temporary file is removed and ``path`` is left untouched.  Inside
+    :func:`output_set` the rename waits for the end of the set.
     """
     path = Path(path)
     if path.parent and not path.parent.exists():
         path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix or path.suffix, dir=path.parent or ".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:100]}.", suffix=suffix or path.suffix,
+                               dir=path.parent or ".")
     os.close(fd)
     tmp = Path(tmp)
     try:
@@ -38,11 +118,82 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600 files; give the usual permissions
-        os.replace(tmp, path)
+        if _SETS and _SETS[-1] is not None:
+            _SETS[-1].add(tmp, path)
+        else:
+            os.replace(tmp, path)
     except BaseException:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()
         raise
+
+
+def _check_names(path: Path, name: str) -> None:
+    from .errors import InputError
+
+    for part in path.parts:
+        if len(part.encode("utf-8", "surrogateescape")) > MAX_NAME_BYTES:
+            raise InputError(f"{name}: the file name is longer than {MAX_NAME_BYTES} bytes")
+
+
+def _check_parent(path: Path, name: str) -> None:
+    from .errors import InputError
+
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.exists():
+        raise InputError(f"{name} = {str(path)!r}: the folder {str(parent)!r} does not exist")
+    if not parent.is_dir():
+        raise InputError(f"{name} = {str(path)!r}: {str(parent)!r} is a file, not a folder")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise InputError(f"{name} = {str(path)!r}: cannot write into the folder {str(parent)!r} (no permission)")
+
+
+def check_output_file(path, name: str) -> Path:
+    """Check before any work that a file can be written at ``path`` (``name``: the option or argument).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output file.
+    name : str
+        Its option or argument name, for messages.
+    """
+    from .errors import InputError
+
+    if path is None or str(path).strip() == "":
+        raise InputError(f"{name}: an empty file name was given")
+    path = Path(path)
+    _check_names(path, name)
+    if path.is_dir():
+        raise InputError(f"{name} = {str(path)!r} is a folder: give a file name such as {str(path / 'out')!r}")
+    _check_parent(path, name)
+    return path
+
+
+def check_output_folder(path, name: str) -> Path:
+    """Check before any work that ``path`` is a folder, or can be made one.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output folder.
+    name : str
+        Its option or argument name, for messages.
+    """
+    from .errors import InputError
+
+    if path is None or str(path).strip() == "":
+        raise InputError(f"{name}: an empty folder name was given")
+    path = Path(path)
+    _check_names(path, name)
+    if path.exists() and not path.is_dir():
+        raise InputError(f"{name} = {str(path)!r} is an existing file: give a folder (new or existing)")
+    if path.is_dir():
+        if not os.access(path, os.W_OK | os.X_OK):
+            raise InputError(f"{name} = {str(path)!r}: cannot write into this folder (no permission)")
+        return path
+    _check_parent(path, name)
+    return path
 
 
 @contextlib.contextmanager
@@ -56,10 +207,17 @@ def atomic_open(path: str | os.PathLike, mode: str = "w", **kwargs):
 def to_jsonable(obj):
     """Convert numpy scalars/arrays (and nested containers) to JSON-ready Python objects.
 
-    Non-finite floats become ``None`` (JSON has no NaN).
+    A NaN or inf raises :class:`NonFiniteOutputError` naming the key: springdyn never
+    writes one (a figure that does not apply is ``None`` with a note saying why).
     """
     if isinstance(obj, Mapping):
-        return {str(k): to_jsonable(v) for k, v in obj.items()}
+        out = {}
+        for k, v in obj.items():
+            try:
+                out[str(k)] = to_jsonable(v)
+            except NonFiniteOutputError as exc:
+                raise NonFiniteOutputError(f"{exc} at key {k!r}") from None
+        return out
     if hasattr(obj, "to_dict") and callable(obj.to_dict):
         return to_jsonable(obj.to_dict())
     if isinstance(obj, (list, tuple)):
@@ -72,7 +230,9 @@ def to_jsonable(obj):
         return int(obj)
     if isinstance(obj, (np.floating, float)):
         f = float(obj)
-        return f if math.isfinite(f) else None
+        if not math.isfinite(f):
+            raise NonFiniteOutputError(f"{f} in an output")
+        return f
     if isinstance(obj, Path):
         return str(obj)
     return obj
@@ -108,43 +268,76 @@ def write_csv(path: str | os.PathLike, columns: Mapping[str, object]) -> Path:
         w = csv.writer(fh)
         w.writerow(names)
         for i in range(n):
-            w.writerow([_cell(a[i]) for a in arrays])
+            try:
+                w.writerow([_cell(a[i]) for a in arrays])
+            except NonFiniteOutputError as exc:
+                bad = next(name for name, a in zip(names, arrays) if not _finite(a[i]))
+                raise NonFiniteOutputError(f"{exc}: column {bad!r}, row {i + 1} of {path}") from None
     return Path(path)
+
+
+def _finite(v) -> bool:
+    return not isinstance(v, (float, np.floating)) or math.isfinite(v)
 
 
 def _cell(v):
     if isinstance(v, (float, np.floating)):
+        if not math.isfinite(v):
+            raise NonFiniteOutputError(f"{v} in a CSV cell")
         return repr(float(v))
     if isinstance(v, (np.bool_, bool)):
         return int(bool(v))
     return v
 
 
+#: Largest CSV file springdyn reads [bytes] (a long rig record is a few tens of MB).
+MAX_CSV_BYTES = 500_000_000
+
+
 def read_csv_columns(path: str | os.PathLike) -> dict[str, np.ndarray]:
     """Read a numeric CSV with a header row into a dict of float arrays.
 
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file (UTF-8, a header row, then numbers).
+
     Raises
     ------
-    springdyn.errors.InputError
-        Missing file, empty file, or a cell that is not a number (file, row and column named).
+    springdyn.core.errors.InputError
+        Missing file, a folder, an empty or binary or non-UTF-8 file, duplicate or empty
+        column names, a row of the wrong length, or a cell that is not a finite number
+        (file, row and column named).
     """
     from .errors import InputError
+    from .params import decode_utf8, read_text_file
 
-    path = Path(path)
-    if not path.is_file():
-        raise InputError(f"{path}: no such file")
-    with open(path, newline="", encoding="utf-8-sig") as fh:
-        rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
+    path, data = read_text_file(path, "CSV", max_bytes=MAX_CSV_BYTES)
+    text = decode_utf8(path, data, "CSV")
+    try:
+        rows = [(n, r) for n, r in enumerate(csv.reader(text.splitlines()), start=1) if r and any(c.strip() for c in r)]
+    except csv.Error as exc:
+        raise InputError(f"{path}: not a CSV file springdyn can read: {exc}") from None
     if not rows:
         raise InputError(f"{path}: the file is empty")
-    header = [h.strip() for h in rows[0]]
-    data = {h: [] for h in header}
-    for lineno, row in enumerate(rows[1:], start=2):
+    header = [h.strip() for h in rows[0][1]]
+    if any(not h for h in header):
+        raise InputError(f"{path}: the header row has an empty column name (column {header.index('') + 1})")
+    dup = [h for h in header if header.count(h) > 1]
+    if dup:
+        raise InputError(f"{path}: the header names column {dup[0]!r} twice")
+    if len(rows) < 2:
+        raise InputError(f"{path}: the file has a header but no data rows")
+    data_cols: dict[str, list] = {h: [] for h in header}
+    for lineno, row in rows[1:]:
         if len(row) != len(header):
             raise InputError(f"{path}: row {lineno} has {len(row)} cells, the header has {len(header)}")
         for h, cell in zip(header, row):
             try:
-                data[h].append(float(cell))
+                value = float(cell)
             except ValueError:
-                raise InputError(f"{path}: row {lineno}, column {h!r}: {cell!r} is not a number") from None
-    return {h: np.asarray(v, dtype=float) for h, v in data.items()}
+                raise InputError(f"{path}: row {lineno}, column {h!r}: {cell.strip()!r} is not a number") from None
+            if not math.isfinite(value):
+                raise InputError(f"{path}: row {lineno}, column {h!r}: {cell.strip()!r} is not a finite number")
+            data_cols[h].append(value)
+    return {h: np.asarray(v, dtype=float) for h, v in data_cols.items()}

@@ -20,7 +20,7 @@ from typing import Any, Mapping
 from .errors import InputError
 from .units import format_quantity, to_si
 
-__all__ = ["Parameters", "param", "from_mapping", "check_fields", "load_toml", "field_specs", "describe_value"]
+__all__ = ["KNOWN_TABLES", "read_text_file", "decode_utf8", "Parameters", "param", "from_mapping", "check_fields", "load_toml", "field_specs", "describe_value"]
 
 REQUIRED = dataclasses.MISSING
 
@@ -183,27 +183,103 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
         raise
 
 
-def load_toml(path: str | Path, section: str | None = None) -> dict:
-    """Read a TOML file; return the whole document or one of its tables.
+#: Every table a springdyn definition file may hold; any other table is an error.
+KNOWN_TABLES = ("spring", "cam", "valve_train", "cfcs", "lsd")
+#: Largest definition file springdyn reads [bytes]: definitions are a few kB.
+MAX_TOML_BYTES = 1_000_000
+
+
+def read_text_file(path: str | Path, what: str, *, max_bytes: int) -> tuple[Path, bytes]:
+    """The bytes of a definition or data file, with one clear message for every way it fails.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
+    what : str
+        What the file should be, for messages (``"TOML"``, ``"CSV"``).
+    max_bytes : int
+        Largest size accepted [bytes].
+    """
+    path = Path(path)
+    if str(path) == "":
+        raise InputError("an empty file name was given")
+    if any(len(part.encode("utf-8", "surrogateescape")) > 255 for part in path.parts):
+        raise InputError(f"{str(path)[:60]}...: the file name is longer than 255 bytes")
+    if path.is_dir():
+        raise InputError(f"{path}: is a folder, not a {what} file")
+    if not path.exists():
+        raise InputError(f"{path}: no such file")
+    if not path.is_file():
+        raise InputError(f"{path}: is not a regular file")
+    try:
+        size = path.stat().st_size
+        if size > max_bytes:
+            raise InputError(f"{path}: {size} bytes is larger than any {what} file springdyn reads "
+                             f"({max_bytes} bytes at most)")
+        data = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    if not data.strip():
+        raise InputError(f"{path}: the file is empty")
+    if b"\x00" in data:
+        hint = " (it looks like UTF-16: save it as UTF-8)" if data[:2] in (b"\xff\xfe", b"\xfe\xff") else ""
+        raise InputError(f"{path}: is not a {what} text file (it holds NUL bytes){hint}")
+    return path, data
+
+
+def decode_utf8(path: Path, data: bytes, what: str) -> str:
+    """Text of a UTF-8 file (a BOM is allowed), or an InputError naming the line."""
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data[: exc.start].count(b"\n") + 1
+        raise InputError(f"{path}: line {line} is not UTF-8 text (byte {data[exc.start]:#04x}); "
+                         f"save the {what} file as UTF-8") from None
+
+
+def load_toml(path: str | Path, section: str | None = None, *, allowed: tuple = KNOWN_TABLES) -> dict:
+    """Read a TOML definition file; return the whole document or one of its tables.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The TOML file.
+    section : str, optional
+        The table to return (default: the whole document).
+    allowed : tuple of str
+        The top-level tables the file may hold (default: every springdyn table); any
+        other table or top-level key is an error, with the nearest allowed name.
 
     Raises
     ------
     InputError
-        The file is missing, is not valid TOML, or lacks the table.
+        The file is missing, a folder, empty, too large, not UTF-8, not valid TOML,
+        nested absurdly deep, holds an unknown table, or lacks ``section``.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise InputError(f"{path}: no such file")
+    path, data = read_text_file(path, "TOML", max_bytes=MAX_TOML_BYTES)
+    text = decode_utf8(path, data, "TOML")
     try:
-        with open(path, "rb") as fh:
-            doc = tomllib.load(fh)
+        doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{path}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise InputError(f"{path}: not a springdyn definition: its tables or arrays are nested too deeply") from None
+    unknown = [k for k in doc if k not in allowed]
+    if unknown:
+        k = unknown[0]
+        close = difflib.get_close_matches(k, list(allowed), n=1)
+        hint = f" (did you mean [{close[0]}]?)" if close else ""
+        what = "table" if isinstance(doc[k], dict) else "top-level key"
+        raise InputError(f"{path}: unknown {what} [{k}]{hint}; a definition holds "
+                         + ", ".join(f"[{t}]" for t in allowed))
     if section is None:
         return doc
     if section not in doc:
         tables = ", ".join(f"[{k}]" for k in doc) or "none"
         raise InputError(f"{path}: no [{section}] table (tables found: {tables})")
+    if not isinstance(doc[section], dict):
+        raise InputError(f"{path}: [{section}] must be a table of keys")
     return doc[section]
 
 

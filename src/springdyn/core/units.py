@@ -145,6 +145,9 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
         q = ureg.Quantity(number, bare)
     else:
         text = value.strip()
+        if ":" in text:
+            raise InputError(f"{field} = {value!r}: a range START:STOP:STEP is not taken here; give one value "
+                             f"such as '{_example(unit)}'")
         if "," in text:
             raise InputError(
                 f"{field} = {value!r}: a comma is neither a decimal point nor a thousands separator here; "

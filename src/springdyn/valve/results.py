@@ -106,8 +106,11 @@ class Simulation(Result):
         return np.degrees(self.cam_angle)
 
     @property
-    def periodic(self) -> bool:
-        """Whether the last revolution repeats the one before within 1 % of Fset."""
+    def periodic(self) -> bool | None:
+        """Whether the last revolution repeats the one before within 1 % of Fset
+        (``None`` after a single revolution: there is nothing to compare with)."""
+        if not np.isfinite(self.periodicity_error):
+            return None
         return bool(self.periodicity_error <= self.PERIODIC_TOL)
 
     # ------------------------------------------------------------------ summary
@@ -231,7 +234,7 @@ def _summarise(sim: Simulation) -> dict:
         cam_rpm=sim.cam_rpm,
         revolutions=sim.revolutions,
         periodic=sim.periodic,
-        periodicity_error=sim.periodicity_error,
+        periodicity_error=sim.periodicity_error if np.isfinite(sim.periodicity_error) else None,
         max_retainer_force_N=float(sim.retainer_force.max()),
         min_retainer_force_N=float(sim.retainer_force.min()),
         max_seat_force_N=float(sim.seat_force.max()),
@@ -255,6 +258,10 @@ def _summarise(sim: Simulation) -> dict:
             peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
         ))
     s["coil_contact"] = events
+    notes = []
+    if s["periodicity_error"] is None:
+        notes.append("periodicity_error needs at least 2 revolutions (the last one is compared with the one "
+                      "before): run 2 or more")
     f_cam = sim.cam_rpm / 60.0
     orders, amp = sim.spectrum(40)
     top = np.argsort(amp[1:])[::-1][:8] + 1
@@ -284,6 +291,7 @@ def _summarise(sim: Simulation) -> dict:
         if landings.size:
             after[landings[0] + 1:] = True
         s["max_bounce_height_m"] = float(np.max(np.where(after & ~in_event, z, 0.0)))
+    s["notes"] = notes
     return s
 
 

@@ -198,8 +198,9 @@ class SpeedSweep(Result):
             seat_surge_amplitude_N=np.abs(s - st).max(axis=1),
             coil_contact=flat(d["contact"]).any(axis=1),
             peak_coil_contact_force_N=flat(d["contact_force"]).max(axis=1),
-            periodicity_error=flat(d["periodicity"]),
         )
+        if np.all(np.isfinite(d["periodicity"])):  # not with 1 revolution per speed: nothing to compare
+            cols["periodicity_error"] = flat(d["periodicity"])
         if self.valve_train is not None:
             in_event = self.lift > self.valve_train.lash + 1e-6
             cc = flat(d["cam_contact"])[:, in_event]
@@ -230,9 +231,11 @@ class SpeedSweep(Result):
             "seat_force": (dims, d["seat"], {"units": "N"}),
             "in_coil_contact": (dims, d["contact"].astype(np.int8), {"long_name": "a Kh element past its Fcon breakpoint"}),
             "coil_contact_force": (dims, d["contact_force"], {"units": "N", "long_name": "largest force of an element in coil contact"}),
-            "periodicity_error": (dims[:2], d["periodicity"], {"units": "1", "long_name": "max change from the previous revolution / Fset"}),
             "lift": (("cam_angle",), self.lift, {"units": "m"}),
         }
+        if np.all(np.isfinite(d["periodicity"])):
+            data["periodicity_error"] = (dims[:2], d["periodicity"],
+                                         {"units": "1", "long_name": "max change from the previous revolution / Fset"})
         if d["static"].ndim == 3:
             data["static_force"] = (dims, d["static"], {"units": "N"})
         else:

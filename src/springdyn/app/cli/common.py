@@ -32,28 +32,61 @@ def quantity(text, unit: str, option: str, *, bare_unit: str | None = None) -> f
     return to_si(text, unit, option, bare_unit=bare_unit)
 
 
-def parse_range(text: str, unit: str, option: str, *, bare_unit: str | None = None) -> np.ndarray:
-    """Parse ``START:STOP:STEP`` (inclusive of STOP when it falls on the grid), or a
-    comma-separated list, or one value, into an SI array.
+#: Most values one range or list option may give.
+MAX_RANGE_POINTS = 100_000
 
-    Examples: ``300:4000:25`` (rpm), ``36mm:40mm:0.5mm``, ``1000,2000,3000``.
+
+def parse_range(text: str, unit: str, option: str, *, bare_unit: str | None = None,
+                max_points: int = MAX_RANGE_POINTS) -> np.ndarray:
+    """Parse a range or a list option into an SI array: the one syntax of every CLI option.
+
+    - ``START:STOP:STEP``: START < STOP, STEP > 0; STOP is included when it falls on the
+      grid; it must give at least two values and at most ``max_points``;
+    - ``a,b,c``: a list (one value alone is a list of one).
+
+    Each value may carry units (``36mm:40mm:0.5mm``, ``1000,2000 rpm`` is not a list
+    with units: write ``1000rpm,2000rpm``).
+
+    Examples
+    --------
+    >>> parse_range("300:400:50", "m", "--x").tolist()
+    [300.0, 350.0, 400.0]
+    >>> parse_range("1,2.5", "m", "--x").tolist()
+    [1.0, 2.5]
     """
     text = str(text).strip()
+    example = "START:STOP:STEP (e.g. 300:4000:25) or a list a,b,c"
+    if not text:
+        raise InputError(f"{option} is empty: give {example}")
     if ":" in text:
         parts = text.split(":")
-        if len(parts) != 3:
-            raise InputError(f"{option} = {text!r} must be START:STOP:STEP, e.g. 300:4000:25")
+        if len(parts) != 3 or not all(p.strip() for p in parts):
+            raise InputError(f"{option} = {text!r} must be {example}")
+        if any("," in p for p in parts):
+            raise InputError(f"{option} = {text!r}: a range START:STOP:STEP and a list a,b,c cannot be mixed")
         start, stop, step = (to_si(p, unit, option, bare_unit=bare_unit) for p in parts)
-        if step <= 0:
-            raise InputError(f"{option} = {text!r}: the step must be positive")
-        if stop < start:
-            raise InputError(f"{option} = {text!r} is empty: STOP is below START")
-        n = int(np.floor((stop - start) / step + 1e-9)) + 1
-        return start + step * np.arange(n)
-    values = [to_si(p, unit, option, bare_unit=bare_unit) for p in text.split(",") if p.strip()]
-    if not values:
-        raise InputError(f"{option} = {text!r} is empty")
-    return np.asarray(values, dtype=float)
+        if not step > 0:
+            raise InputError(f"{option} = {text!r}: the STEP must be positive")
+        if not stop > start:
+            raise InputError(f"{option} = {text!r} is empty: STOP is below START (a range counts upwards, "
+                             "START:STOP:STEP with START < STOP)")
+        count = (stop - start) / step
+        if not np.isfinite(count) or count + 1 > max_points:
+            raise InputError(f"{option} = {text!r} gives more than {max_points} values: use a larger STEP")
+        n = int(np.floor(count + 1e-9)) + 1
+        if n < 2:
+            raise InputError(f"{option} = {text!r} gives only one value (STEP is larger than STOP - START): "
+                             "use a smaller STEP, or give the one value alone")
+        values = start + step * np.arange(n)
+        if not np.all(np.isfinite(values)):
+            raise InputError(f"{option} = {text!r} gives values that are not finite numbers")
+        return values
+    items = text.split(",")
+    if any(not item.strip() for item in items):
+        raise InputError(f"{option} = {text!r}: a list a,b,c has an empty item")
+    if len(items) > max_points:
+        raise InputError(f"{option} = {text!r} gives more than {max_points} values")
+    return np.asarray([to_si(item, unit, option, bare_unit=bare_unit) for item in items], dtype=float)
 
 
 def existing_file(path: str, option: str) -> Path:

@@ -20,6 +20,7 @@ from pathlib import Path
 
 from springdyn import __version__
 from springdyn.core.errors import InputError, SolverError
+from springdyn.core.io import NonFiniteOutputError, check_output_file, check_output_folder, output_set
 from . import docs_cmd
 
 #: Model families, in the order the CLI lists them, with their help line (the family's
@@ -120,6 +121,23 @@ def _join_negative_values(argv) -> list[str]:
     return out
 
 
+#: Options that name an output file, and options that name an output folder.
+OUTPUT_FILE_OPTIONS = ("csv", "plot", "toml", "netcdf", "json_out")
+OUTPUT_FOLDER_OPTIONS = ("out",)
+
+
+def check_outputs(args) -> None:
+    """Check every output file and folder option before any work is done."""
+    for name in OUTPUT_FILE_OPTIONS:
+        value = getattr(args, name, None)
+        if isinstance(value, str):
+            check_output_file(value, f"--{name.replace('_', '-')}")
+    for name in OUTPUT_FOLDER_OPTIONS:
+        value = getattr(args, name, None)
+        if isinstance(value, str):
+            check_output_folder(value, f"--{name}")
+
+
 def _family_of(argv) -> str:
     """The family whose sub-commands a command line needs (``""``: none)."""
     for token in argv:
@@ -216,7 +234,9 @@ def main(argv=None) -> int:
         argv = _join_negative_values(argv)
         parser = build_parser(_family_of(argv))
         args = parser.parse_args(argv)
-        code = int(args.func(args) or 0)
+        check_outputs(args)
+        with output_set():  # every file of the command is renamed into place together, at the end
+            code = int(args.func(args) or 0)
         sys.stdout.flush()
         return code
     except UsageError as exc:
@@ -227,6 +247,10 @@ def main(argv=None) -> int:
         return EXIT_INPUT
     except SolverError as exc:
         print(f"springdyn: solver failed: {exc}", file=sys.stderr)
+        return EXIT_SOLVER
+    except NonFiniteOutputError as exc:
+        print(f"springdyn: solver failed: the result holds a value that is not a finite number ({exc}); "
+              "no output was written", file=sys.stderr)
         return EXIT_SOLVER
     except (KeyboardInterrupt, _Terminated) as exc:
         print("springdyn: interrupted; no partial output was left", file=sys.stderr)

@@ -236,9 +236,12 @@ def cmd_simulate(args) -> int:
     if args.json:
         print_json(s)
         return 0
-    print(f"{spring.type} spring, {cam.law} cam at {rpm:g} cam rpm, last of {args.revolutions} revolutions "
-          f"({'periodic' if s['periodic'] else 'NOT periodic'}: {100 * s['periodicity_error']:.2f} % of Fset "
-          "change from the revolution before)")
+    if s["periodicity_error"] is None:
+        period = "periodicity n/a (1 revolution)"
+    else:
+        period = (f"{'periodic' if s['periodic'] else 'NOT periodic'}: {100 * s['periodicity_error']:.2f} % of Fset "
+                  "change from the revolution before")
+    print(f"{spring.type} spring, {cam.law} cam at {rpm:g} cam rpm, last of {args.revolutions} revolutions ({period})")
     rows = [
         ("retainer force", f"{s['max_retainer_force_N']:.1f}", f"{s['min_retainer_force_N']:.1f}",
          f"{s['max_retainer_force_ratio']:.3f}", f"{s['retainer_surge_amplitude_N']:.1f}"),

@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import importlib
+import os
+import shutil
+import tempfile
 from importlib import resources
 from pathlib import Path
 
+from springdyn.core.io import direct_outputs
 from springdyn.core.params import load_toml
 from springdyn.core.errors import InputError
 from springdyn.core.progress import progress
@@ -70,10 +74,47 @@ def build_report(paths, out_dir, *, quiet: bool = False, title: str = "springdyn
         raise InputError("give at least one definition file (TOML with [spring], [cfcs] or [lsd])")
     jobs = _jobs(paths)
     out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
     # validate every parameter table before running anything
     modules = {f: importlib.import_module(f"springdyn.app.report.{f}") for f in {j[0] for j in jobs}}
     prepared = [(family, path, modules[family].load(doc, path)) for family, path, doc in jobs]
+    # build in a temporary folder beside out_dir and swap it in at the end: the report's files
+    # appear together or not at all (an interrupted build leaves the previous report as it was)
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+    try:
+        with direct_outputs():
+            page = _build(prepared, modules, work, label_of, quiet, title, subtitle)
+        _swap_in(work, out_dir)
+    except BaseException:
+        shutil.rmtree(work, ignore_errors=True)
+        raise
+    return out_dir / page.name
+
+
+def _swap_in(work: Path, out_dir: Path) -> None:
+    """Put the finished folder ``work`` in place of ``out_dir`` (kept files of other programs stay)."""
+    os.chmod(work, 0o777 & ~_umask())
+    if out_dir.is_dir():
+        old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old.", dir=out_dir.parent))
+        # move what springdyn writes aside, then the new files in; a user's own files stay
+        for item in work.iterdir():
+            target = out_dir / item.name
+            if target.exists():
+                os.replace(target, old / item.name)
+            os.replace(item, target)
+        shutil.rmtree(old, ignore_errors=True)
+        work.rmdir()
+    else:
+        os.replace(work, out_dir)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _build(prepared, modules, out_dir, label_of, quiet, title, subtitle) -> Path:
     sections: list[Section] = []
     used = set()
     for family, path, model in progress(prepared, total=len(prepared), desc="report", quiet=quiet):
