@@ -9,7 +9,7 @@ import numpy as np
 
 from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
-from springdyn.app.report.html import Section, parameter_rows
+from springdyn.app.report.html import Criterion, Section, parameter_rows
 from springdyn.valve.cam import Cam
 from springdyn.valve.model import PARAMETER_UNITS
 from springdyn.valve.dynamics import float_speed, simulate
@@ -110,6 +110,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         f"{design['installed']['shear_stress_Pa'] / 1e6:.0f} MPa installed, {design['open']['shear_stress_Pa'] / 1e6:.0f} MPa "
         f"at {lift * 1e3:.3g} mm lift, {design['coil_contact']['shear_stress_Pa'] / 1e6:.0f} MPa at coil contact."
     )
+    criteria = _criteria(p, design, table, sims)
     if not d.cam_given:
         findings.append("The definition has no [cam] table: the built-in 3-4-5 cam (9 mm over 120 deg) was used.")
     commands = [
@@ -123,6 +124,9 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         files.append(write_json(out_dir / "float_speed.json", res.to_dict()))
         f = res["float_cam_rpm"]
         if f is None:
+            criteria.append(Criterion("float speed", f"above {res['cam_rpm'][-1]:.0f} cam rpm",
+                                      f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm", True,
+                                      "no lift-off in the scanned range"))
             findings.append(f"The follower stays on the cam up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float).")
         else:
             above = simulate(sp, cam, 1.05 * f, 3, valve_train=vt)
@@ -131,6 +135,9 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
             figures.append((out_dir / "valve_train_above_float.png", f"Valve train 5 % above the float speed "
                             f"({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals"))
+            criteria.append(Criterion(
+                "float speed", f"{f:.0f} cam rpm", f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm",
+                bool(f > SWEEP_SPEEDS[-1]), "lowest cam speed at which the follower leaves the cam"))
             findings.append(
                 f"Valve float: the follower first leaves the cam at {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke). "
                 f"5 % above it, contact is lost for {sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the "
@@ -143,9 +150,42 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     derived = [(k, format_quantity(v, *PARAMETER_UNITS[k][:2]), PARAMETER_UNITS[k][2]) for k, v in p.items()]
     derived.append(("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length"))
     derived.append(("spring index", f"{design['spring_index']:.3f}", "D/d"))
+    if vt is None:
+        criteria.append(Criterion("float speed", "n/a", "above the top speed", None,
+                                  "the definition has no [valve_train]: the spring alone cannot float"))
     return Section(
-        family="valve",
+        family="valve", criteria=criteria,
         title=f"Valve spring: {sp.type}" + (" with valve train" if vt is not None else ""),
         source=source, commands=commands, inputs=inputs, derived=derived, findings=findings,
         figures=figures, files=files,
     )
+
+
+#: Surge margin f1 / cam frequency below which valve-spring surge is likely (rule of thumb
+#: of valve-train practice: 10-13, the larger for aggressive cams).
+SURGE_MARGIN_MIN = 10.0
+
+
+def _criteria(p, design, table, sims) -> list[Criterion]:
+    """The valve section's criteria: surge margin, coil clash, minimum retainer force, stress."""
+    top = max(REPORT_SPEEDS)
+    margin = design["installed"]["surge_margin"]
+    out = [Criterion(
+        f"surge margin at {top:.0f} cam rpm", f"{margin:.1f}", f">= {SURGE_MARGIN_MIN:g} (rule of thumb 10-13)",
+        bool(margin >= SURGE_MARGIN_MIN), "first natural frequency at installed length / camshaft frequency")]
+    clash = np.asarray(table["coil_contact"], bool)
+    out.append(Criterion(
+        f"coil clash, {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm",
+        f"{int(clash.sum())} of {clash.size} speeds", "none", bool(not clash.any()),
+        f"from {SWEEP_SPEEDS[clash][0]:.0f} cam rpm" if clash.any() else "no coil reaches its contact force"))
+    fmin = float(np.min(table["min_retainer_force_N"]))
+    k = int(np.argmin(table["min_retainer_force_N"]))
+    out.append(Criterion(
+        "minimum retainer force (dynamic)", f"{fmin:.1f} N at {SWEEP_SPEEDS[k]:.0f} cam rpm", "> 0 N",
+        bool(fmin > 0.0), f"static minimum {float(np.min(table['min_static_force_N'])):.1f} N; at 0 N the spring "
+        "end leaves the retainer"))
+    out.append(Criterion(
+        "fatigue safety factor", "n/a", ">= 1.1", None,
+        f"corrected shear stress {design['open']['shear_stress_Pa'] / 1e6:.0f} MPa at full lift; a fatigue "
+        "assessment needs the wire's strength (not modelled yet)"))
+    return out
