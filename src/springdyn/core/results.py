@@ -31,7 +31,7 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["Result", "Summary", "unit_suffix", "column_name", "dataset_columns", "format_value"]
+__all__ = ["Result", "Summary", "unit_suffix", "units_from_name", "column_name", "dataset_columns", "format_value"]
 
 #: Lines of a result's ``repr`` at most (header and footer included).
 REPR_LINES = 15
@@ -70,6 +70,23 @@ def unit_suffix(units: str | None) -> str:
     if den:
         out += "_per_" + "_".join(p.replace("^", "").strip() for p in den.replace(" ", "*").split("*") if p.strip())
     return out
+
+
+_SUFFIX_UNITS = {"N": "N", "m": "m", "s": "s", "Pa": "Pa", "Hz": "Hz", "kg": "kg", "deg": "deg", "rad": "rad",
+                 "rpm": "rpm", "percent": "%", "N_per_m": "N/m", "N_s_per_m": "N*s/m", "m_per_s": "m/s",
+                 "rad_per_s": "rad/s", "J": "J", "W": "W"}
+
+
+def units_from_name(name: str) -> str:
+    """The unit a ``<quantity>_<unit>`` name carries (``"1"`` when it names none).
+
+    >>> units_from_name("max_retainer_force_N"), units_from_name("rate_N_per_m"), units_from_name("periodic")
+    ('N', 'N/m', '1')
+    """
+    for suffix in sorted(_SUFFIX_UNITS, key=len, reverse=True):
+        if name.endswith("_" + suffix):
+            return _SUFFIX_UNITS[suffix]
+    return "1"
 
 
 def column_name(name: str, units: str | None) -> str:

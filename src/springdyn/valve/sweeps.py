@@ -22,7 +22,7 @@ import numpy as np
 from ..core.params import describe_value
 from ..core.errors import InputError
 from ..core.io import atomic_path
-from ..core.results import Result
+from ..core.results import Result, units_from_name
 from ..core.progress import progress
 from .cam import Cam
 from .engine import run_speeds
@@ -250,7 +250,7 @@ class SpeedSweep(Result):
             values = np.asarray(values).reshape(self.vary_values.size, self.cam_rpm.size)
             if values.dtype == bool:
                 values = values.astype(np.int8)
-            data[key] = (dims[:2], values)
+            data[key] = (dims[:2], values, {"units": units_from_name(key)})
         ds = xr.Dataset(
             data,
             coords={

@@ -1,0 +1,82 @@
+"""Every result object of every family has the Result interface (issue 10).
+
+The walk finds every class of the family packages that looks like a result (it has
+``to_xarray`` or ``to_csv``); each must subclass :class:`springdyn.core.results.Result` and
+have a factory below that builds a small instance, which must pass the whole interface
+check (summary, to_xarray with units, derived CSV, plot(path) and plot(ax), reprs).
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
+
+import numpy as np
+import pytest
+
+import springdyn
+from springdyn.core.results import Result
+
+from .result_checks import check_result_interface
+
+
+def _result_like_classes():
+    found = {}
+    for family in ("valve", "cfcs", "lsd"):
+        pkg = importlib.import_module(f"springdyn.{family}")
+        for info in pkgutil.walk_packages(pkg.__path__, f"springdyn.{family}."):
+            module = importlib.import_module(info.name)
+            for name, cls in inspect.getmembers(module, inspect.isclass):
+                if cls.__module__ != module.__name__ or name.startswith("_"):
+                    continue
+                if hasattr(cls, "to_xarray") or hasattr(cls, "to_csv"):
+                    found[f"{cls.__module__}.{name}"] = cls
+    return found
+
+
+def _valve_spring():
+    from springdyn.valve import ValveSpring
+
+    return ValveSpring.example("one-step")
+
+
+def _valve_cam():
+    from springdyn.valve import Cam
+
+    return Cam.from_dict({"law": "3-4-5", "lift": "9 mm", "duration": "120 deg"})
+
+
+def _valve_train():
+    from springdyn.valve import ValveTrain
+
+    return ValveTrain.example() if hasattr(ValveTrain, "examples") and ValveTrain.examples else None
+
+
+FACTORIES = {
+    "springdyn.valve.results.StaticCurve": lambda: _valve_spring().static_curve(points=50),
+    "springdyn.valve.results.Simulation": lambda: springdyn.valve.simulate(_valve_spring(), _valve_cam(), 2500, 2,
+                                                                           points_per_revolution=360),
+    "springdyn.valve.results.FloatSpeedResult": lambda: springdyn.valve.results.FloatSpeedResult(
+        [1000.0, 2000.0], [120.0, -5.0], 1800.0, [1500.0, 1800.0], 1.0),
+    "springdyn.valve.sweeps.SpeedSweep": lambda: springdyn.valve.sweep(_valve_spring(), _valve_cam(),
+                                                                       np.array([1000.0, 2000.0, 3000.0]),
+                                                                       revolutions=2, points_per_revolution=180, quiet=True),
+}
+
+
+def test_every_result_class_is_a_result_with_a_factory():
+    classes = _result_like_classes()
+    assert len(classes) >= 4
+    not_results = sorted(name for name, cls in classes.items() if not issubclass(cls, Result))
+    assert not not_results, f"result-like classes without the Result interface: {not_results}"
+    missing = sorted(set(classes) - set(FACTORIES))
+    assert not missing, f"result classes with no factory in this test: {missing}"
+
+
+@pytest.mark.parametrize("name", sorted(FACTORIES))
+def test_result_interface(name, tmp_path):
+    import springdyn.valve.results  # noqa: F401  (the factories use the module attributes)
+
+    result = FACTORIES[name]()
+    check_result_interface(result, tmp_path)
