@@ -37,6 +37,8 @@ def param(
     positive: bool = False,
     nonnegative: bool = False,
     bare_unit: str | None = None,
+    minimum: float | None = None,
+    maximum: float | None = None,
 ) -> Any:
     """Declare a parameter field.
 
@@ -60,6 +62,9 @@ def param(
         Range checks applied on load and in :func:`check_fields`.
     bare_unit : str, optional
         Unit of a bare number if it is not SI (rarely needed).
+    minimum, maximum : float, optional
+        Inclusive bounds [SI unit of the field] checked like ``positive`` (e.g. a count
+        that sizes a matrix needs a maximum).
     """
     meta = dict(
         unit=unit or "",
@@ -71,6 +76,8 @@ def param(
         positive=positive,
         nonnegative=nonnegative,
         bare_unit=bare_unit,
+        minimum=minimum,
+        maximum=maximum,
     )
     if isinstance(default, list):
         return dataclasses.field(default_factory=lambda d=default: list(d), metadata=meta)
@@ -133,6 +140,11 @@ def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
             raise InputError(f"{sub} = {shown} must be positive ({meta.get('doc') or 'a size'})")
         if meta.get("nonnegative") and not v >= 0:
             raise InputError(f"{sub} = {shown} must be zero or positive ({meta.get('doc') or 'a size'})")
+        lo, hi = meta.get("minimum"), meta.get("maximum")
+        if (lo is not None and v < lo) or (hi is not None and v > hi):
+            rng = (f"from {lo:g} to {hi:g}" if lo is not None and hi is not None
+                   else f"at least {lo:g}" if lo is not None else f"at most {hi:g}")
+            raise InputError(f"{sub} = {shown} must be {rng} ({meta.get('doc') or 'a count'})")
 
 
 def check_fields(obj) -> None:
