@@ -88,13 +88,13 @@ def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
         from dask.distributed import Client
     except ImportError:
         raise InputError(
-            f"--scheduler {address}: Dask is not installed; install springdyn[dask]"
+            f"scheduler = {address!r}: Dask is not installed; install springdyn[dask]"
         ) from None
     try:
         return Client(address, timeout=f"{timeout}s")
     except (OSError, TimeoutError, ValueError) as exc:
         raise InputError(
-            f"--scheduler {address}: cannot reach a Dask scheduler there within {timeout:g} s ({type(exc).__name__}: "
+            f"scheduler = {address!r}: cannot reach a Dask scheduler there within {timeout:g} s ({type(exc).__name__}: "
             f"{str(exc).splitlines()[0] if str(exc) else 'no answer'})"
         ) from None
 
@@ -408,7 +408,7 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
     name, values = vary
     numeric = [f.name for f in dataclasses.fields(ValveSpring) if f.metadata.get("kind") == "quantity"]
     if name not in numeric:
-        raise InputError(f"--vary {name}: not a numeric spring field; choose one of {', '.join(numeric)}")
+        raise InputError(f"vary = {name!r}: not a numeric spring field; choose one of {', '.join(numeric)}")
     values = np.atleast_1d(np.asarray(values, dtype=float))
     springs, setups, kept, skipped = [], [], [], []
     for v in values:
@@ -419,11 +419,11 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
             kept.append(v)
         except InputError as exc:
             if on_invalid == "stop":
-                raise InputError(f"--vary {_describe(name, v)}: {exc} (use --on-invalid skip to leave such values out)") from None
+                raise InputError(f"vary: {_describe(name, v)}: {exc} (on_invalid='skip' leaves such values out)") from None
             skipped.append((float(v), str(exc)))
-            warnings.warn(f"--vary {_describe(name, v)} skipped: {exc}", stacklevel=3)
+            warnings.warn(f"vary: {_describe(name, v)} skipped: {exc}", stacklevel=3)
     if not springs:
-        raise InputError(f"--vary {name}: every value makes the spring invalid")
+        raise InputError(f"vary = {name!r}: every value makes the spring invalid")
     return springs, setups, np.asarray(kept), skipped
 
 

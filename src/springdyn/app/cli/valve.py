@@ -315,11 +315,13 @@ def cmd_sweep(args) -> int:
     vary = parse_vary(args.vary, spring) if args.vary else None
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers = {args.workers} must be at least 1")
-    client = connect(args.scheduler) if args.scheduler else None
+    with as_options(scheduler="--scheduler"):
+        client = connect(args.scheduler) if args.scheduler else None
     try:
-        res = sweep(spring, cam, rpms, revolutions=args.revolutions, valve_train=vt,
-                    points_per_revolution=args.points_per_revolution, rtol=args.rtol, atol=args.atol, vary=vary,
-                    on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet)
+        with as_options(vary="--vary", rtol="--rtol", atol="--atol", workers="--workers"):
+            res = sweep(spring, cam, rpms, revolutions=args.revolutions, valve_train=vt,
+                        points_per_revolution=args.points_per_revolution, rtol=args.rtol, atol=args.atol, vary=vary,
+                        on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet)
     finally:
         if client is not None:
             client.close()
