@@ -13,6 +13,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import math
+import numbers
 import tomllib
 from pathlib import Path
 from typing import Any, Mapping
@@ -147,10 +148,40 @@ def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
             raise InputError(f"{sub} = {shown} must be {rng} ({meta.get('doc') or 'a count'})")
 
 
+def _check_type(name: str, value: Any, meta: Mapping, default: Any) -> None:
+    """Types are checked like values: a wrong type is an InputError naming the field."""
+    if value is None and default is None:
+        return
+    kind = meta["kind"]
+    unit = meta.get("unit") or "-"
+    if kind == "quantity":
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise InputError(f"{name} = {value!r} must be a number in SI units [{unit}] (values with units such "
+                             "as '22 mm' are read by from_dict and from_toml)")
+    elif kind == "int":
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise InputError(f"{name} = {value!r} must be a whole number")
+    elif kind == "quantity_list":
+        if isinstance(value, (list, tuple)) and not value and default == []:
+            return
+        if not isinstance(value, (list, tuple)) or not value or any(
+                isinstance(v, bool) or not isinstance(v, numbers.Real) for v in value):
+            raise InputError(f"{name} = {value!r} must be a non-empty list of numbers in SI units [{unit}]")
+    elif kind == "str":
+        if not isinstance(value, str):
+            raise InputError(f"{name} = {value!r} must be a string")
+    elif kind == "bool":
+        if not isinstance(value, bool):
+            raise InputError(f"{name} = {value!r} must be true or false")
+
+
 def check_fields(obj) -> None:
-    """Per-field range and choice checks on a parameter dataclass instance."""
+    """Per-field type, range and choice checks on a parameter dataclass instance."""
     for f, meta in field_specs(type(obj)):
         value = getattr(obj, f.name)
+        default = (f.default if f.default is not dataclasses.MISSING
+                   else f.default_factory() if f.default_factory is not dataclasses.MISSING else REQUIRED)
+        _check_type(f.name, value, meta, default)
         if meta["kind"] == "str" and meta.get("choices") and value not in meta["choices"]:
             allowed = ", ".join(repr(c) for c in meta["choices"])
             raise InputError(f"{f.name} = {value!r} is not allowed; choose one of {allowed}")
