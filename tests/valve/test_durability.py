@@ -21,7 +21,7 @@ def test_corrected_stress_of_the_example_spring_by_hand():
     k = (22 / 3.5 + 0.5) / (22 / 3.5 - 0.75)
     by_hand = k * 8 * 251.43 * 0.022 / (math.pi * 0.0035 ** 3)
     assert du.corrected_shear_stress(251.43, 0.022, 0.0035) == pytest.approx(by_hand, rel=1e-12)
-    assert by_hand == pytest.approx(403.2e6, rel=1e-3)  # the report's "403 MPa installed"
+    assert by_hand == pytest.approx(402.7e6, rel=1e-4)  # the report prints it rounded: "403 MPa installed"
 
 
 def test_goodman_limits():
