@@ -18,7 +18,7 @@ from . import formulas
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES"]
 
-#: Built-in example springs (reading notes 1.6), shipped in ``springdyn/data``.
+#: Built-in example springs (the reference springs of docs/valve.md), shipped in ``springdyn/data``.
 EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"}
 
 #: Names of the spring models (:data:`springdyn.valve.model.MODELS`).
