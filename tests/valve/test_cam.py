@@ -1,4 +1,4 @@
-"""Cam lift laws (notes 1.7): shapes, derivatives, ramps, tables and bad input."""
+"""Cam lift laws of valve-cam practice (not in [MMS]): shapes, derivatives, ramps, tables and bad input."""
 
 import math
 import warnings
@@ -26,7 +26,7 @@ def test_rise_law_boundary_conditions(law):
     np.testing.assert_allclose(ddp[0], 0, atol=1e-12)  # all four start with zero acceleration
 
 
-def test_closed_forms_of_notes_1_7():
+def test_closed_forms_of_the_rise_laws():
     u = np.linspace(0, 1, 11)
     np.testing.assert_allclose(rise_law("3-4-5", u)[0], 10 * u**3 - 15 * u**4 + 6 * u**5, atol=1e-15)
     np.testing.assert_allclose(rise_law("4-5-6-7", u)[0], 35 * u**4 - 84 * u**5 + 70 * u**6 - 20 * u**7, atol=1e-14)

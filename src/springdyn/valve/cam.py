@@ -335,6 +335,17 @@ def read_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
 
 def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):
     """Check a lift table covers exactly one revolution; drop a closing row at +360 deg."""
+    try:
+        angle, lift = np.asarray(angle, dtype=float), np.asarray(lift, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: cam angle and lift must be arrays of numbers") from None
+    if angle.ndim != 1 or lift.shape != angle.shape:
+        raise InputError(f"{name}: cam angle and lift must be two flat arrays of the same length, "
+                         f"not of shapes {angle.shape} and {lift.shape}")
+    for column, values in (("cam angle", angle), ("lift", lift)):
+        if not np.all(np.isfinite(values)):
+            i = int(np.argmax(~np.isfinite(values)))
+            raise InputError(f"{name}: row {i + 2}, column {column}: {values[i]:g} is not a finite number")
     if angle.size < 8:
         raise InputError(f"{name}: a lift table needs at least 8 rows, found {angle.size}")
     d = np.diff(angle)

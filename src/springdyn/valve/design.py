@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import math
 
+from ..core.errors import InputError
+
 __all__ = [
     "spring_index",
     "bergstraesser_factor",
@@ -95,5 +97,12 @@ def surge_margin(surge_frequency: float, cam_speed_rpm: float) -> float:
         First surge frequency of the spring [Hz] ([Wahl]; [MMS], f1 and f2).
     cam_speed_rpm : float
         Camshaft speed [rev/min], positive.
+
+    Raises
+    ------
+    InputError
+        ``cam_speed_rpm`` is not a positive, finite speed (the margin needs a rotating cam).
     """
+    if not (math.isfinite(cam_speed_rpm) and cam_speed_rpm > 0):
+        raise InputError(f"cam_speed_rpm = {cam_speed_rpm!r} must be a positive, finite speed [rev/min]")
     return surge_frequency / (cam_speed_rpm / 60.0)

@@ -229,6 +229,10 @@ class SpringModel:
             ``shear_stress_Pa`` (Bergstraesser-corrected), ``surge_frequency_Hz`` (first
             mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
         """
+        if cam_rpm is not None and (isinstance(cam_rpm, bool) or not isinstance(cam_rpm, (int, float, np.number))
+                                    or not (np.isfinite(cam_rpm) and cam_rpm > 0)):
+            raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive, finite camshaft speed [rev/min]: the surge "
+                             "margin is the surge frequency over the camshaft frequency")
         p = self.internal_parameters()
         c = design.spring_index(self.spring.mean_diameter, self.spring.wire_diameter)
         kb = design.bergstraesser_factor(c)
