@@ -210,7 +210,7 @@ class Cam(Parameters):
     @classmethod
     def from_table(cls, angle, lift, name: str = "table") -> "Cam":
         """A cam from arrays: cam angle [rad] over one revolution and lift [m]."""
-        return cls(law="table", file=name, table_angle=np.asarray(angle, float), table_lift=np.asarray(lift, float))
+        return cls(law="table", file=name, table_angle=np.asarray(angle), table_lift=np.asarray(lift))
 
     # -------------------------------------------------------------- evaluation
     @property
