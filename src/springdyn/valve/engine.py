@@ -1,7 +1,8 @@
 """Time integration of the valve-spring chain (and optional valve train).
 
-The equations of motion (notes 1.2-1.5): nodes are numbered from the seat (node 0,
-fixed) over the five masses (nodes 1-5) to the retainer end (node 6).  ``u`` is the
+The equations of motion ([MMS], "Model variable" and "Initial condition & position";
+corrections MMS-7 to MMS-10 of docs/references.md): nodes are numbered from the seat
+(node 0, fixed) over the five masses (nodes 1-5) to the retainer end (node 6).  ``u`` is the
 displacement of a node towards the seat, measured from its set-up position.  Element
 ``j`` joins nodes ``j`` and ``j + 1`` and is compressed by
 ``x_j = x_j,set + u_(j+1) - u_j``; it carries ``f_j = F_j(x_j) + c_j(x_j) dx_j/dt``

@@ -1,4 +1,9 @@
-"""Natural frequencies of the lumped chain linearised about a static state."""
+"""Natural frequencies of the lumped chain linearised about a static state.
+
+The chain is the 5-mass, 6-element chain of [MMS], "Model variable for One-Step spring"
+and "for Two-Step spring" (Figs. 40.32-40.33; topology in docs/valve.md), linearised
+with the tangent stiffnesses of its "Nonlinear characteristics".
+"""
 
 from __future__ import annotations
 
@@ -32,7 +37,9 @@ def chain_stiffness_matrix(k: np.ndarray) -> np.ndarray:
 def chain_frequencies(masses: np.ndarray, k: np.ndarray) -> np.ndarray:
     """Natural frequencies [Hz], ascending, of the chain with both ends fixed.
 
-    Solves ``K phi = w^2 M phi`` (symmetric-definite generalised eigenproblem).
+    Solves ``K phi = w^2 M phi`` (symmetric-definite generalised eigenproblem).  At free
+    length the one-step chain's first mode is close to f1 of [MMS], "Natural Frequency
+    for free length" (the check of docs/valve.md, "Modes").
 
     Parameters
     ----------

@@ -1,7 +1,7 @@
 """Static (massless) behaviour of the element chain: series equilibrium.
 
 In statics every element of the series chain carries the same force and the element
-compressions add up to the total compression ``Lf - L`` (notes 1.5).  Because each
+compressions add up to the total compression ``Lf - L`` (correction MMS-10 of docs/references.md).  Because each
 element law has a non-decreasing tangent stiffness, the total compression is a concave,
 strictly increasing function of the force; Newton's method started below the root
 converges monotonically, which :func:`series_force` exploits (vectorised over lengths).

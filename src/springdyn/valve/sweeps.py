@@ -354,18 +354,31 @@ def sweep(
     quiet : bool
         No progress bar.
     """
-    cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    try:
+        cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"cam_rpm = {cam_rpm!r} must be a speed or a list of speeds [rev/min]") from None
+    if cam_rpm.ndim != 1:
+        raise InputError(f"cam_rpm must be a flat list of speeds [rev/min], not an array of shape {cam_rpm.shape}")
     if cam_rpm.size == 0:
         raise InputError("cam_rpm is empty: give at least one speed")
     if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
         bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
         raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
-    if int(revolutions) != revolutions or revolutions < 1:
-        raise InputError(f"revolutions = {revolutions!r} must be a whole number of at least 1")
+    number = (int, float, np.integer, np.floating)
+    for name, value, lo, hi in (("revolutions", revolutions, 1, 1000), ("points_per_revolution", points_per_revolution, 16, 100_000)):
+        if (isinstance(value, bool) or not isinstance(value, number) or not math.isfinite(value)
+                or value != int(value) or not lo <= value <= hi):
+            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
+    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
+        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
+            raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
+                             "(integration tolerance" + (": absolute, on displacements [m] and velocities [m/s])"
+                                                         if name == "atol" else ", relative)"))
     if on_invalid not in ("stop", "skip"):
         raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
-    if workers is not None and workers < 1:
-        raise InputError(f"workers = {workers} must be at least 1")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
+        raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
     springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
     points = int(points_per_revolution)
     theta = 2 * math.pi * np.arange(points) / points
