@@ -80,6 +80,15 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     Warns when the lift drives the spring into coil contact statically (force above
     Fcon), naming the cam angle and the force; raises :class:`InputError` when it would
     drive it beyond the model's range.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        The spring definition (its model gives the chain).
+    cam : Cam
+        The cam.
+    valve_train : ValveTrain, optional
+        Adds the valve body with cam and seat contacts.
     """
     theta = np.arange(CAM_SAMPLES) * (2 * math.pi / CAM_SAMPLES)
     h, dh, ddh = cam.sampled(CAM_SAMPLES)
@@ -156,17 +165,20 @@ def simulate(
     cam_rpm : float
         Camshaft speed [rev/min] (half the engine speed of a four-stroke engine).
     revolutions : int
-        Cam revolutions to integrate from static equilibrium; the last is reported and
+        Cam revolutions [-] to integrate from static equilibrium; the last is reported and
         compared with the one before to judge periodicity.
     valve_train : ValveTrain, optional
         Adds the valve body with cam and seat contacts (lift-off, bounce).
     points_per_revolution : int
-        Output resolution (1440: every 0.25 deg).
+        Output resolution [-] (1440: every 0.25 deg).
     rtol, atol : float
         Integration tolerances (absolute: on displacements [m] and velocities [m/s]).
     backend : {"compiled", "scipy"}
         ``"compiled"``: the numba Dormand-Prince engine; ``"scipy"``: ``solve_ivp``
         (DOP853) with the plain-Python right-hand side, the reference.
+    setup : SimulationSetup, optional
+        A prepared setup of the same spring, cam and valve train (:func:`prepare`), reused
+        across speeds.
 
     Raises
     ------

@@ -54,6 +54,15 @@ def hermite5(x, p0, v0, a0, p1, v1, a1):
     second derivative at its ends, the derivatives already scaled by the interval length.
     Plain arithmetic, so the same function serves scalars, NumPy arrays and compiled code.
 
+    Parameters
+    ----------
+    x : float or ndarray
+        Position in the interval [-], 0 to 1.
+    p0, v0, a0 : float or ndarray
+        Value [m], first [m] and second [m] derivative (scaled by the interval) at the start.
+    p1, v1, a1 : float or ndarray
+        The same at the end [m].
+
     Returns
     -------
     value, derivative : float or ndarray
@@ -94,7 +103,8 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     masses : ndarray (5,)
         Chain masses [kg].
     laws : ndarray (6, 3, 4)
-        Element laws (segments ``x_start, a, b, c``).
+        Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+        (see :mod:`springdyn.valve.elements`).
     xset : ndarray (6,)
         Element compressions at set-up [m].
     c0 : float
@@ -108,7 +118,7 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     vt : ndarray (7,)
         ``enabled, M_v [kg], k_c [N/m], c_c [N s/m], k_s [N/m], c_s [N s/m], lash [m]``.
     out : ndarray
-        Receives ``ds/dt``.
+        Receives ``ds/dt`` [m/s, m/s^2].
     extra : ndarray or None
         None (numba then compiles a variant without these outputs), or an array of length
         :data:`N_EXTRA` that receives the element forces [N] and
@@ -291,6 +301,25 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     ``points`` per revolution, and :func:`rhs` evaluates there its ``extra`` outputs.
     ``args`` is the usual argument tuple of :func:`rhs`; its speed is ignored.
 
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    omegas : array_like
+        Cam speeds [rad/s].
+    revolutions : int
+        Revolutions per speed [-].
+    points : int
+        Output samples per revolution [-].
+    args : tuple
+        Arguments of :func:`rhs` after the state.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    max_step_fraction : float
+        Largest step as a fraction of a revolution [-].
+    max_steps : int
+        Most steps per speed [-] (the loop is bounded).
+
     Returns
     -------
     extra : ndarray (n_speeds, keep * points, N_EXTRA)
@@ -314,6 +343,21 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
 
     ``args`` = ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``.
 
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    t_out : ndarray
+        Output times [s], ascending.
+    args : tuple
+        Arguments of :func:`rhs` after the state.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    h_max : float
+        Largest step [s].
+    max_steps : int
+        Most steps [-] (the loop is bounded).
+
     Returns
     -------
     states : ndarray (len(t_out), n)
@@ -333,6 +377,23 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
 
     With ``compiled_rhs=True`` the compiled right-hand side is used instead (same model,
     faster); the plain one is the independent reference of the benchmarks.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    t_out : ndarray
+        Output times [s], ascending.
+    args : tuple
+        Arguments of :func:`rhs` after the state.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    method : str
+        ``solve_ivp`` method name [-] (default ``"DOP853"``).
+    compiled_rhs : bool
+        Use the compiled right-hand side.
+    h_max : float
+        Largest step [s].
     """
     from scipy.integrate import solve_ivp
 
@@ -357,6 +418,15 @@ def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
     """Vectorised quintic Hermite evaluation of the cam table used by :func:`rhs`.
 
     Returns lift [m], ``dh/dtheta`` [m/rad] at cam angles ``theta`` [rad].
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Cam angles [rad].
+    cam_h, cam_dh, cam_ddh : ndarray
+        Lift [m], ``dh/dtheta`` [m/rad] and ``d2h/dtheta2`` [m/rad^2] at ``k * dth``.
+    dth : float
+        Table step [rad].
     """
     theta = np.asarray(theta, dtype=float)
     n = cam_h.size

@@ -198,6 +198,11 @@ def coil_contact_compressions(spring) -> np.ndarray:
     Only the Kh1/Kh2 elements have one (x13/x23 of [MMS], element force laws).  The end
     elements K already stand for contacting coils and the low-pitch element Ks is closed
     by design from set-up on, so neither is ever flagged (``inf``).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        The spring definition (its model gives the chain).
     """
     cached = spring.__dict__.get("_coil_contact_compressions")
     if cached is None:

@@ -54,6 +54,19 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
     force of such an element), ``periodicity`` (max change of the retainer force from the
     revolution before, / Fset), ``status``, ``t``, ``steps`` and, with a valve train,
     ``cam_contact``, ``valve_lift``, ``static``.
+
+    Parameters
+    ----------
+    setup : SimulationSetup
+        The prepared spring, cam and valve train.
+    cam_rpm : array_like
+        Camshaft speeds [rev/min].
+    revolutions : int
+        Revolutions per speed [-].
+    points : int
+        Output samples per revolution [-].
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
     keep = min(2, revolutions)
@@ -83,7 +96,15 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
 
 
 def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
-    """A ``dask.distributed.Client`` for ``address``, or an InputError within ``timeout`` s."""
+    """A ``dask.distributed.Client`` for ``address``, or an InputError within ``timeout`` s.
+
+    Parameters
+    ----------
+    address : str
+        Scheduler address, e.g. ``tcp://127.0.0.1:8786``.
+    timeout : float
+        Seconds [s] to wait for the scheduler.
+    """
     try:
         from dask.distributed import Client
     except ImportError:
@@ -337,18 +358,27 @@ def sweep(
 
     Parameters
     ----------
-    spring, cam, valve_train
-        The model (see :func:`springdyn.valve.simulate`).
+    spring : ValveSpring
+        The spring definition.
+    cam : Cam
+        The cam.
     cam_rpm : array_like
         Camshaft speeds [rev/min], positive.
+    valve_train : ValveTrain, optional
+        Adds lift-off (see :func:`springdyn.valve.simulate`).
     revolutions : int
-        Revolutions per speed (the last is kept; the one before judges periodicity).
+        Revolutions per speed [-] (the last is kept; the one before judges periodicity).
+    points_per_revolution : int
+        Output samples per revolution [-].
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] integration tolerances.
     vary : (str, array_like), optional
-        A numeric :class:`ValveSpring` field and its values (SI), an extra dimension.
+        A numeric :class:`ValveSpring` field and its values [SI unit of the field], an
+        extra dimension.
     on_invalid : {"stop", "skip"}
         What to do with a design value that makes the spring invalid.
     workers : int, optional
-        Local threads (default: both cores).
+        Local threads [-] (default: both cores).
     client : dask.distributed.Client, optional
         Run the chunks on this cluster instead.
     quiet : bool
@@ -405,7 +435,15 @@ def sweep(
 
 
 def describe_design_value(name: str, value: float) -> str:
-    """``'installed_length = 36 mm'`` for a design value in SI."""
+    """``'installed_length = 36 mm'`` for a design value in SI.
+
+    Parameters
+    ----------
+    name : str
+        A numeric :class:`ValveSpring` field.
+    value : float
+        Its value [SI unit of the field].
+    """
     return _describe(name, value)
 
 
