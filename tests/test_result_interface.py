@@ -53,7 +53,19 @@ def _valve_train():
     return ValveTrain.example() if hasattr(ValveTrain, "examples") and ValveTrain.examples else None
 
 
+def _cfcs():
+    from springdyn.cfcs import CFCS
+
+    return CFCS.example("table1")
+
+
 FACTORIES = {
+    "springdyn.cfcs.results.StaticResult": lambda: _cfcs().static(),
+    "springdyn.cfcs.results.DynamicResult": lambda: _cfcs().dynamic(14.7),
+    "springdyn.cfcs.results.FrequencySweep": lambda: _cfcs().sweep(np.array([2.0, 10.0, 20.0])),
+    "springdyn.cfcs.results.ForwardResult": lambda: _cfcs().forward(0.05, force=12.8),
+    "springdyn.cfcs.design.DesignResult": lambda: __import__("springdyn.cfcs", fromlist=["design"]).design(
+        12.8, 0.02, 207e9, 1.5e9),
     "springdyn.valve.results.StaticCurve": lambda: _valve_spring().static_curve(points=50),
     "springdyn.valve.results.Simulation": lambda: springdyn.valve.simulate(_valve_spring(), _valve_cam(), 2500, 2,
                                                                            points_per_revolution=360),

@@ -1,7 +1,7 @@
 """Constant-force compression spring (CFCS): pseudo-rigid-body statics, dynamics, design.
 
 The model of Ugwuoke, "A Simplified Dynamic Model for Constant-Force Compression
-Spring" (the CFCS paper), with the corrections of section 2 of the reading notes.
+Spring" (the CFCS paper), with the corrections CFCS-1 to CFCS-4 of docs/references.md.
 Where to find each equation:
 
 - :mod:`.kinematics` -- loop closure, exact inverse x -> theta2, Jacobian (Eq. (25)), toggle.
@@ -17,7 +17,7 @@ from .design import DesignResult, design
 from .model import CFCS, DEFAULT_AMPLITUDE
 from .motion import SinusoidMotion, TabulatedMotion
 from .params import CFCSParams
-from .results import DynamicResult, ForwardResult, StaticResult, SweepResult, running_pcf
+from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult, running_pcf
 
 __all__ = [
     "CFCS",
@@ -28,8 +28,17 @@ __all__ = [
     "ForwardResult",
     "SinusoidMotion",
     "StaticResult",
-    "SweepResult",
+    "FrequencySweep",
     "TabulatedMotion",
     "design",
     "running_pcf",
 ]
+
+
+def __getattr__(name):
+    if name == "SweepResult":
+        import warnings
+
+        warnings.warn("springdyn.cfcs.SweepResult is now FrequencySweep", DeprecationWarning, stacklevel=2)
+        return FrequencySweep
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
