@@ -11,13 +11,28 @@ Where to find each equation:
 - :mod:`.motion` -- sinusoidal and tabulated slider motions.
 - :mod:`.design` -- choose r2/r3, K3 and the flexure for a target force and stroke.
 - :mod:`.params`, :mod:`.model`, :mod:`.results` -- the classes on top.
+
+The names below load their modules on first use, so that ``import springdyn.cfcs`` stays quick.
 """
 
-from .design import DesignResult, design
-from .model import CFCS, DEFAULT_AMPLITUDE
-from .motion import SinusoidMotion, TabulatedMotion
-from .params import CFCSParams
-from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult, running_pcf
+from __future__ import annotations
+
+from .._lazy import lazy_package
+
+_EXPORTS = {
+    "DesignResult": "design",
+    "design": "design",
+    "CFCS": "model",
+    "DEFAULT_AMPLITUDE": "model",
+    "SinusoidMotion": "motion",
+    "TabulatedMotion": "motion",
+    "CFCSParams": "params",
+    "DynamicResult": "results",
+    "ForwardResult": "results",
+    "FrequencySweep": "results",
+    "StaticResult": "results",
+    "running_pcf": "results",
+}
 
 __all__ = [
     "CFCS",
@@ -35,10 +50,4 @@ __all__ = [
 ]
 
 
-def __getattr__(name):
-    if name == "SweepResult":
-        import warnings
-
-        warnings.warn("springdyn.cfcs.SweepResult is now FrequencySweep", DeprecationWarning, stacklevel=2)
-        return FrequencySweep
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+lazy_package(__name__, _EXPORTS, aliases={"SweepResult": "FrequencySweep"})
