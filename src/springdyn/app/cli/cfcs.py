@@ -55,7 +55,7 @@ def register(subparsers) -> None:
 
     w = sub.add_parser("sweep", help="mean/median/peak-to-peak force and PCF vs omega (Figs. 5-7)")
     w.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
-    _motion_options(w, omega_help="frequencies START:STOP:STEP or a comma list [rad/s], e.g. 1:50:100",
+    _motion_options(w, omega_help="frequencies START:STOP:STEP or a comma list [rad/s], e.g. 1:50:0.5",
                     required=True)
     w.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     w.add_argument("--quiet", action="store_true", help="no progress bar")
