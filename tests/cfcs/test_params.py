@@ -75,7 +75,8 @@ def test_unknown_example():
     (dict(omega=5.0, amplitude=0.9), "beyond the kinematic limit"),
     (dict(omega=5.0, amplitude="150 mm"), "beyond the kinematic limit"),
     (dict(omega=5.0, offset=-0.002), "crosses the toggle"),
-    (dict(omega=5.0, amplitude=1.5), "fraction of r2 \\+ r3"),
+    (dict(omega=5.0, amplitude=1.5), "1500 mm, beyond the kinematic limit"),  # bare numbers are metres
+    (dict(omega=5.0, amplitude="150 %"), "percentage of r2 \\+ r3 must lie in"),
     (dict(), "omega is required"),
 ])
 def test_bad_motion(model, kwargs, match):
@@ -102,3 +103,33 @@ def test_bad_forward(model):
 def test_model_needs_params():
     with pytest.raises(InputError):
         CFCS({"crank_length": 0.085})
+
+
+def test_amplitude_bare_numbers_are_metres_and_percent_is_a_fraction(model):
+    """Issue 11: bare numbers are SI everywhere; a fraction of the mechanism needs '%'."""
+    ext = model.params.extended_length
+    a = model.dynamic(5.0, amplitude="40 %").summary
+    b = model.dynamic(5.0, amplitude=0.4 * ext).summary
+    assert a["peak_to_peak_N"] == pytest.approx(b["peak_to_peak_N"], rel=1e-12)
+    with pytest.warns(DeprecationWarning, match="write '40 %'"):
+        c = model.dynamic(5.0, amplitude=0.4).summary  # 0.4 m is beyond the mechanism: the old fraction
+    assert c["peak_to_peak_N"] == pytest.approx(a["peak_to_peak_N"], rel=1e-12)
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda m: m.dynamic(1e308), "beyond 100000 rad/s"),
+    (lambda m: m.sweep([1.0, 1e306]), "beyond 100000 rad/s"),
+    (lambda m: m.params.replace(shear_angle=1.5), "shear_angle = 1.5 rad must lie within"),
+])
+def test_issue11_reproducers_are_input_errors(model, call, match):
+    """Issue 11: omega 1e308 and shear_angle = 1.5 rad gave NaN statistics; now one message each."""
+    with pytest.raises(InputError, match=match):
+        call(model)
+
+
+def test_design_stroke_fraction_beyond_the_kinematic_range():
+    """Issue 11: stroke_fraction 0.95 failed inside brentq; now the allowed range is named."""
+    from springdyn.cfcs import design
+
+    with pytest.raises(InputError, match=r"stroke_fraction = 0.95 must lie in \(0, 0.9\]"):
+        design(12.8, 0.04, 207e9, 1.5e9, stroke_fraction=0.95)

@@ -39,6 +39,11 @@ from .statics import percent_constant_force_energy, static_force
 __all__ = ["DesignResult", "design", "normalized_pcf", "min_ratio_for_stroke"]
 
 
+#: Largest stroke fraction ``stroke / (r2 + r3)`` the design accepts: beyond it the
+#: smallest r2/r3 that reaches the stroke exceeds 0.98 (see :func:`min_ratio_for_stroke`).
+MAX_STROKE_FRACTION = 0.9
+
+
 def min_ratio_for_stroke(stroke_fraction):
     """Smallest ``r2/r3`` whose kinematic limit reaches ``stroke_fraction (r2 + r3)``.
 
@@ -203,8 +208,12 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
             raise InputError(f"total_length = {format_quantity(total_length, 'm', 'mm')} must exceed the stroke "
                              f"{format_quantity(stroke, 'm', 'mm')}")
         stroke_fraction = stroke / total_length
-    if not 0 < stroke_fraction < 1:
-        raise InputError(f"stroke_fraction = {stroke_fraction!r} must lie in (0, 1)")
+    if not 0 < stroke_fraction <= MAX_STROKE_FRACTION:
+        raise InputError(
+            f"stroke_fraction = {stroke_fraction!r} must lie in (0, {MAX_STROKE_FRACTION:g}]: a longer stroke needs a "
+            f"crank within 2 % of the coupler length (r2/r3 > {min_ratio_for_stroke(MAX_STROKE_FRACTION):.3f}) and "
+            "runs into the kinematic limit"
+        )
     length = stroke / stroke_fraction
     sigma = allowable_stress / safety_factor
     lo = min(max(min_ratio_for_stroke(stroke_fraction) * (1 + 1e-9), 0.02), 0.995)

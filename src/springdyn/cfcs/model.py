@@ -17,7 +17,7 @@ from ..core.progress import progress
 from ..core.units import format_quantity, to_si
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
-from .motion import SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke
+from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke
 from .params import CFCSParams
 from .pivot import bending_stress, max_stroke_for_stress, safety_factor
 from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult
@@ -32,8 +32,9 @@ from .statics import (
 
 __all__ = ["CFCS", "DEFAULT_AMPLITUDE"]
 
-#: Default sinusoid amplitude as a fraction of r2 + r3 (the paper's "40 %").
-DEFAULT_AMPLITUDE = 0.4
+#: Default sinusoid amplitude: 40 % of r2 + r3 (the paper's "40 % mechanism deflection",
+#: correction CFCS-4 of docs/references.md).
+DEFAULT_AMPLITUDE = "40 %"
 
 
 class CFCS:
@@ -92,7 +93,7 @@ class CFCS:
 
     def _stroke(self, stroke) -> float:
         p = self.params
-        value = DEFAULT_AMPLITUDE * p.extended_length if stroke is None else float(stroke)
+        value = 0.4 * p.extended_length if stroke is None else float(stroke)
         if not value > 0:
             raise InputError(f"stroke = {format_quantity(value, 'm', 'mm')} must be positive")
         check_stroke(0.0, value, p.max_deflection, f"stroke = {format_quantity(value, 'm', 'mm')}")
@@ -165,7 +166,8 @@ class CFCS:
         omega : float, optional
             Circular frequency [rad/s] of the sinusoid (required unless ``motion`` is given).
         amplitude : float or str
-            Stroke of the sinusoid: a fraction of r2 + r3 (default 0.4) or a length.
+            Stroke of the sinusoid: a length [m] (a bare number is metres) or a percentage of
+            r2 + r3 such as "40 %" (the default).
         offset : float
             Deflection at t = 0 [m] (default 0, the toggle).
         cycles, samples_per_cycle : int
@@ -224,6 +226,9 @@ class CFCS:
         if omegas.size == 0 or np.any(~np.isfinite(omegas)) or np.any(omegas <= 0):
             bad = omegas[~(omegas > 0)] if omegas.size else omegas
             raise InputError(f"omega = {bad[0] if bad.size else 'empty'!r}: every omega must be positive")
+        if np.any(omegas > MAX_OMEGA):
+            raise InputError(f"omega = {omegas.max():g} rad/s is beyond {MAX_OMEGA:g} rad/s: far above any motion of "
+                             "a constant-force mechanism (its inertia forces would overflow)")
         ideal = CFCS(self.params.without_dissipation())
         names = ("mean_force", "median_force", "peak_to_peak", "pcf")
         stats = {f"{k}_{'percent' if k == 'pcf' else 'N'}": np.empty(omegas.size) for k in names}

@@ -46,40 +46,56 @@ def sinusoid(t, offset, amplitude, omega):
             0.5 * amplitude * omega * omega * np.cos(wt))
 
 
-def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> float:
-    """An amplitude as a length (``"72 mm"``) or as a fraction of ``r2 + r3`` (``0.4``) [m].
+#: Largest input frequency springdyn accepts [rad/s] (about 16 kHz).
+MAX_OMEGA = 1e5
 
-    A bare number (or a dimensionless string) at most 1 is a fraction; a length is used as is.
+
+def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> float:
+    """An amplitude [m]: a length (``"72 mm"``, or a bare number in metres, SI like every
+    bare number), or a percentage of ``r2 + r3`` (``"40 %"``).
+
+    Earlier versions read a bare number up to 1 as a fraction of ``r2 + r3``.  Where only
+    that reading fits the mechanism (the number in metres would be beyond the kinematic
+    range, the fraction within it) it is still taken as a fraction, with a
+    :class:`DeprecationWarning`; write ``"40 %"`` instead.
 
     Parameters
     ----------
     value : str or float
-        The amplitude: a length such as '72 mm' [m], or a fraction of r2 + r3 [-].
+        The amplitude: a length such as '72 mm' or a bare number [m], or a percentage
+        of r2 + r3 such as '40 %' [-].
     extended_length : float
         r2 + r3, the slider position at the toggle [m].
     field : str
         Name of the argument, for messages.
     """
-    if isinstance(value, str) and value.strip().endswith("%"):
-        frac = to_si(value.strip()[:-1], "", field) / 100.0
-        return _fraction(frac, extended_length, field, value)
+    import warnings
+
+    text = value.strip() if isinstance(value, str) else None
+    if text is not None and (text.endswith("%") or text.endswith("percent")):
+        frac = to_si(text, "", field)
+        if not 0 < frac <= 1:
+            raise InputError(f"{field} = {value!r}: a percentage of r2 + r3 must lie in (0 %, 100 %]")
+        return frac * extended_length
+    length = to_si(value, "m", field)
+    if not length > 0:
+        raise InputError(f"{field} = {value!r} must be a positive length, e.g. '72 mm', or a percentage of "
+                         "r2 + r3, e.g. '40 %'")
+    bare = not isinstance(value, str) or _is_number(text)
+    if bare and extended_length <= length <= 1.0:
+        warnings.warn(f"{field} = {value!r} read as a fraction of r2 + r3 ({100 * length:g} %), as earlier versions "
+                      f"did: a bare number is metres ({length:g} m is beyond this mechanism); write "
+                      f"'{100 * length:g} %' instead", DeprecationWarning, stacklevel=3)
+        return length * extended_length
+    return length
+
+
+def _is_number(text: str) -> bool:
     try:
-        frac = to_si(value, "", field)
-    except InputError:
-        length = to_si(value, "m", field)
-        if length <= 0:
-            raise InputError(f"{field} = {value!r} must be positive") from None
-        return length
-    return _fraction(frac, extended_length, field, value)
-
-
-def _fraction(frac, extended_length, field, value):
-    if not 0 < frac <= 1:
-        raise InputError(
-            f"{field} = {value!r}: a bare number is a fraction of r2 + r3 and must lie in (0, 1]; "
-            "give a length such as '72 mm' otherwise"
-        )
-    return frac * extended_length
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def check_stroke(lowest: float, highest: float, max_deflection: float, what: str) -> None:
@@ -119,6 +135,9 @@ class SinusoidMotion:
     def __post_init__(self):
         if not (np.isfinite(self.omega) and self.omega > 0):
             raise InputError(f"omega = {self.omega!r} rad/s must be positive")
+        if self.omega > MAX_OMEGA:
+            raise InputError(f"omega = {self.omega:g} rad/s is beyond {MAX_OMEGA:g} rad/s: far above any motion of a "
+                             "constant-force mechanism (its inertia forces would overflow)")
         if not (np.isfinite(self.amplitude) and self.amplitude > 0):
             raise InputError(f"amplitude = {format_quantity(self.amplitude, 'm', 'mm')} must be positive")
 

@@ -24,6 +24,11 @@ EXAMPLES = {"table1": "cfcs_table1.toml"}
 _PIVOT_DIMENSIONS = ("pivot_width", "pivot_thickness", "pivot_length")
 
 
+#: Largest shear angle alpha of Eq. (22) springdyn accepts [rad] (about 17 deg; the
+#: expression needs r2 alpha < r3 and is a small-angle one).
+MAX_SHEAR_ANGLE = 0.3
+
+
 @dataclasses.dataclass(frozen=True)
 class CFCSParams:
     """Parameters of the pseudo-rigid-body model of a CFCS (Table 1 of the CFCS paper).
@@ -66,6 +71,11 @@ class CFCSParams:
             raise InputError(
                 f"crank_length = {format_quantity(r2, 'm', 'mm')} must be shorter than coupler_length = "
                 f"{format_quantity(r3, 'm', 'mm')} (the slider-crank needs r2 < r3)"
+            )
+        if not abs(self.shear_angle) <= MAX_SHEAR_ANGLE:
+            raise InputError(
+                f"shear_angle = {self.shear_angle:g} rad must lie within +-{MAX_SHEAR_ANGLE:g} rad: Eq. (22) of "
+                "[CFCS] is a small-angle expression (the shear angle of a flexure is a few degrees)"
             )
         dims = {k: getattr(self, k) for k in _PIVOT_DIMENSIONS}
         given = [k for k, v in dims.items() if v is not None]

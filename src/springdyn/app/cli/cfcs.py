@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from springdyn.app.cli.common import (add_output_options, close_figure, parse_range, print_json, print_table,
+from springdyn.app.cli.common import (add_output_options, as_options, close_figure, parse_range, print_json, print_table,
                                      quantity)
 from springdyn.core.errors import InputError
 from springdyn.core.units import format_quantity
@@ -15,9 +15,14 @@ from springdyn.cfcs.params import EXAMPLES, CFCSParams
 
 #: The default stroke of the sinusoidal motion (``springdyn.cfcs.model.DEFAULT_AMPLITUDE``,
 #: a fraction of r2 + r3; a test checks the two agree).
-DEFAULT_AMPLITUDE = 0.4
+DEFAULT_AMPLITUDE = "40 %"
 
 __all__ = ["register"]
+
+#: Library argument -> CLI option, for the library's error messages.
+_OPTIONS = dict(omega="--omega", amplitude="--amplitude", offset="--offset", stroke="--stroke",
+                stroke_fraction="--stroke-fraction", force="--force", n="--points", cycles="--cycles",
+                samples_per_cycle="--samples")
 
 _CFG_HELP = f"mechanism TOML file with a [cfcs] table, or a built-in example ({', '.join(EXAMPLES)})"
 _TOGGLE_NOTE = ("At the toggle (theta2 = 0) dx/dtheta2 vanishes and tau_AF / tau_CF turned into a slider force "
@@ -94,8 +99,9 @@ def register(subparsers) -> None:
 
 def _motion_options(p, *, omega_help, required=False, prefix=""):
     p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
-    p.add_argument(f"--{prefix}amplitude", default=str(DEFAULT_AMPLITUDE),
-                   help="stroke of the sinusoid: a fraction of r2 + r3 (default 0.4) or a length such as 72mm")
+    p.add_argument(f"--{prefix}amplitude", default=DEFAULT_AMPLITUDE,
+                   help="stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
+                        "r2 + r3 such as '40%%' (default 40%%)")
     p.add_argument(f"--{prefix}offset", default="0", help="deflection at t = 0 (default 0, the toggle), e.g. 5mm")
 
 
@@ -138,7 +144,8 @@ def _static(args) -> int:
 
     model = CFCS(_load(args.config))
     stroke = _q(args.stroke, "m", "--stroke") if args.stroke else None
-    res = model.static(stroke, n=args.points)
+    with as_options(**_OPTIONS):
+        res = model.static(stroke, n=args.points)
     _write_outputs(args, res)
     s = res.summary
     if args.json:
@@ -170,8 +177,9 @@ def _dynamic(args) -> int:
         params = params.without_dissipation()
     model = CFCS(params)
     omega = _q(args.omega, "rad/s", "--omega") if args.omega else None
-    mot = model.motion(omega, args.amplitude, args.offset, csv=args.motion)
-    res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples)
+    with as_options(**_OPTIONS):
+        mot = model.motion(omega, args.amplitude, args.offset, csv=args.motion)
+        res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples)
     _write_outputs(args, res)
     s = res.summary
     if args.json:
@@ -199,8 +207,9 @@ def _sweep(args) -> int:
     omegas = parse_range(args.omega, "rad/s", "--omega", bare_unit="rad/s")
     if np.any(omegas <= 0):
         raise InputError(f"--omega = {args.omega!r}: every omega must be positive")
-    res = model.sweep(omegas, args.amplitude, _q(args.offset, "m", "--offset"),
-                      samples_per_cycle=args.samples, quiet=args.quiet or args.json)
+    with as_options(**_OPTIONS):
+        res = model.sweep(omegas, args.amplitude, _q(args.offset, "m", "--offset"),
+                          samples_per_cycle=args.samples, quiet=args.quiet or args.json)
     _write_outputs(args, res)
     if args.json:
         print_json({**res.summary, **res.columns()})
@@ -253,16 +262,17 @@ def _forward(args) -> int:
 def _design(args) -> int:
     from springdyn.cfcs.design import design
 
-    res = design(
-        _q(args.force, "N", "--force"), _q(args.stroke, "m", "--stroke"),
-        _q(args.material_modulus, "Pa", "--material-modulus"),
-        _q(args.allowable_stress, "Pa", "--allowable-stress"),
-        stroke_fraction=_q(args.stroke_fraction, "", "--stroke-fraction"),
-        total_length=_q(args.length, "m", "--length") if args.length else None,
-        pivot_length_ratio=_q(args.pivot_length_ratio, "", "--pivot-length-ratio"),
-        max_width=_q(args.max_width, "m", "--max-width") if args.max_width else None,
-        safety_factor=_q(args.safety_factor, "", "--safety-factor"),
-    )
+    with as_options(**_OPTIONS):
+        res = design(
+            _q(args.force, "N", "--force"), _q(args.stroke, "m", "--stroke"),
+            _q(args.material_modulus, "Pa", "--material-modulus"),
+            _q(args.allowable_stress, "Pa", "--allowable-stress"),
+            stroke_fraction=_q(args.stroke_fraction, "", "--stroke-fraction"),
+            total_length=_q(args.length, "m", "--length") if args.length else None,
+            pivot_length_ratio=_q(args.pivot_length_ratio, "", "--pivot-length-ratio"),
+            max_width=_q(args.max_width, "m", "--max-width") if args.max_width else None,
+            safety_factor=_q(args.safety_factor, "", "--safety-factor"),
+        )
     _write_outputs(args, res)
     if args.toml:
         res.to_toml(args.toml)
