@@ -131,3 +131,25 @@ def test_rig_along_measured_path(tmp_path, capsys):
     np.testing.assert_allclose(out["fx_N"][inner], ref.fx[inner], atol=1e-3 * np.abs(ref.fx).max())
     capsys.readouterr()
     _bad(capsys, ["lsd", "rig", "C", "--csv", str(tmp_path / "o.csv")], "needs --rpm and --eccentricity")
+
+
+def test_issue11_reproducers(capsys, tmp_path):
+    """Issue 11: a wrong --rpm, an all-zero record, an absurd rig request and a unit slip."""
+    x = tmp_path / "x.csv"
+    assert main(["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--excitation", "x", "--revolutions", "5",
+                 "--csv", str(x)]) == 0
+    capsys.readouterr()
+    assert main(["lsd", "identify", str(x), "--rpm", "3000", "--json"]) == 2
+    assert "does not match the record" in capsys.readouterr().err
+    zeros = tmp_path / "z.csv"
+    lines = x.read_text().splitlines()
+    zeros.write_text("\n".join([lines[0]] + [r.split(",")[0] + ",0,0,0,0" for r in lines[1:]]) + "\n")
+    assert main(["lsd", "identify", str(zeros), "--rpm", "1000", "--json"]) == 2
+    assert "nothing to identify" in capsys.readouterr().err
+    assert main(["lsd", "rig", "C", "--rpm", "2.5", "--eccentricity", "50um", "--csv", str(tmp_path / "r.csv")]) == 2
+    assert "samples, more than" in capsys.readouterr().err
+    assert main(["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--revolutions", "inf",
+                 "--csv", str(tmp_path / "r.csv")]) == 2
+    assert "finite" in capsys.readouterr().err
+    assert main(["lsd", "coefficients", "C", "--rpm", "1000", "--amplitude", "50", "--json"]) == 0
+    assert "did you mean 50 um" in capsys.readouterr().err

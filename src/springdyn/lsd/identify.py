@@ -269,12 +269,28 @@ def _cycles(data: RigData, freq: float):
     return [(edges[k], edges[k + 1]) for k in range(n)], (edges[0], edges[-1])
 
 
+#: Largest relative difference between a given speed and the fundamental found in the
+#: data that identification accepts (a larger one is a wrong speed, not a drift).
+RPM_MISMATCH = 0.05
+
+
 def _frequency(data: RigData, rpm):
+    col, sig = ("x_m", data.x) if np.std(data.x) >= np.std(data.y) else ("y_m", data.y)
     if rpm is not None:
         if not (np.isfinite(rpm) and rpm > 0):
             raise InputError(f"rpm = {rpm!r} must be a positive shaft speed")
+        try:  # the check needs a fundamental that the record shows (a short record has none)
+            found = estimate_frequency(data.time, sig, data.source, col) if np.std(sig) > 0 else None
+        except InputError:
+            found = None
+        if found is not None:
+            if abs(rpm / 60.0 - found) > RPM_MISMATCH * found:
+                raise InputError(
+                    f"rpm = {rpm:g} does not match the record {data.source}: its fundamental is {found:.4g} Hz "
+                    f"({60 * found:.4g} rpm), {100 * abs(rpm / 60.0 / found - 1):.0f} % away (at most "
+                    f"{100 * RPM_MISMATCH:g} % is accepted); leave the speed out to use the one found in the data"
+                )
         return rpm / 60.0
-    col, sig = ("x_m", data.x) if np.std(data.x) >= np.std(data.y) else ("y_m", data.y)
     return estimate_frequency(data.time, sig, data.source, col)
 
 
@@ -347,6 +363,12 @@ def identify(data: RigData, second: RigData | None = None, *, mass: float = 0.0,
     omega = 2 * np.pi * freq
     records = [data] if second is None else [data, second]
     windows = [_cycles(r, freq) for r in records]
+    for r, w in zip(records, windows):
+        p = _phasors(r, w[1][0], w[1][1], omega)
+        scale = max(float(np.max(np.abs(np.column_stack([r.x, r.y])))), np.finfo(float).tiny)
+        if not np.max(np.abs(p[:2])) > 1e-9 * scale or not np.max(np.abs(p[:2])) > 0:
+            raise InputError(f"{r.source}: the displacements have no component at {freq:.4g} Hz: there is "
+                             "nothing to identify (is the record all zeros, or the speed wrong?)")
 
     def solve(slices):
         P = [_phasors(r, a, b, omega) for r, (a, b) in zip(records, slices)]

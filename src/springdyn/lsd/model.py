@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import dataclasses
 from functools import cached_property
 
@@ -170,6 +172,9 @@ class LSDModel:
             raise InputError(f"rpm = {rpm.tolist()} must be positive speeds")
         if not (np.isfinite(amplitude) and amplitude > 0):
             raise InputError(f"amplitude = {amplitude!r} m must be positive")
+        if amplitude > 0.01:
+            warnings.warn(f"amplitude = {amplitude:g} m is far larger than any damper vibration (1 um to 1 mm): "
+                          f"did you mean {amplitude:g} um?", stacklevel=2)
         unloads = stiffness.warn_if_unloading(amplitude, self.params.preload)
         omega = rpm_to_omega(rpm)
         C, parts = self.damping_matrix(omega, amplitude, motion, parts=True)

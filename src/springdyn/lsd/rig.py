@@ -57,17 +57,29 @@ class Trajectory:
     rpm: float = float("nan")
 
 
+#: Most samples one simulated rig record may hold (a few tens of MB of signals).
+MAX_SAMPLES = 2_000_000
+
+
 def _time_base(rpm, revolutions, sample_rate):
     if not (np.isfinite(rpm) and rpm > 0):
         raise InputError(f"rpm = {rpm!r} must be a positive shaft speed")
-    if not revolutions > 0:
-        raise InputError(f"revolutions = {revolutions!r} must be positive")
+    if not (np.isfinite(revolutions) and revolutions > 0):
+        raise InputError(f"revolutions = {revolutions!r} must be a positive, finite number of revolutions")
+    if not (np.isfinite(sample_rate) and sample_rate > 0):
+        raise InputError(f"sample_rate = {sample_rate!r} Hz must be positive")
     f = rpm / 60.0
     if not sample_rate > 4 * f:
         raise InputError(
             f"sample rate {sample_rate:g} Hz is too low for {rpm:g} rpm ({f:g} Hz); use at least {8 * f:g} Hz"
         )
-    n = int(round(revolutions / f * sample_rate))
+    n = revolutions / f * sample_rate
+    if n > MAX_SAMPLES:
+        raise InputError(
+            f"rpm = {rpm:g}, revolutions = {revolutions:g} at {sample_rate:g} Hz give {n:.3g} samples, more than "
+            f"{MAX_SAMPLES:g}: fewer revolutions, a lower sample rate or a higher speed"
+        )
+    n = int(round(n))
     return np.arange(n) / sample_rate, rpm_to_omega(rpm)
 
 
