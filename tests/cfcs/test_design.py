@@ -73,3 +73,18 @@ def test_design_outputs(tmp_path):
     p = CFCSParams.from_toml(r.to_toml(tmp_path / "d.toml"))
     assert p.k3 == pytest.approx(r.summary["torsional_stiffness_N_m_per_rad"], rel=1e-5)  # 6 digits written
     assert r.to_xarray()["force_N"].size == r.deflection.size
+
+
+def test_design_flattest_moves_to_the_suggested_length():
+    """The policy the report used to carry (issue 10): when the flattest ratio does not fit at
+    the first size, the design is redone at the length design() suggests, and gets flatter."""
+    from springdyn.cfcs.design import design, design_flattest
+
+    first = design(12.58, 0.0316, 207e9, 1.5e9, stroke_fraction=0.2)
+    best = design_flattest(12.58, 0.0316, 207e9, 1.5e9, stroke_fraction=0.2)
+    if first.summary["pcf_percent"] < first.summary["pcf_flattest_percent"] - 1.0 and first.summary.get(
+            "suggested_total_length_m"):
+        assert best.summary["pcf_percent"] > first.summary["pcf_percent"]
+        assert best.summary["total_length_m"] == pytest.approx(1.01 * first.summary["suggested_total_length_m"])
+    else:
+        assert best.summary == first.summary

@@ -36,12 +36,40 @@ from .kinematics import deflection_from_theta2, kinematic_limit_deflection, spri
 from .pivot import allowable_spring_angle, bending_stress, flexure_stiffness
 from .statics import percent_constant_force_energy, static_force
 
-__all__ = ["DesignResult", "design", "normalized_pcf", "min_ratio_for_stroke"]
+__all__ = ["design_flattest", "DesignResult", "design", "normalized_pcf", "min_ratio_for_stroke"]
 
 
 #: Largest stroke fraction ``stroke / (r2 + r3)`` the design accepts: beyond it the
 #: smallest r2/r3 that reaches the stroke exceeds 0.98 (see :func:`min_ratio_for_stroke`).
 MAX_STROKE_FRACTION = 0.9
+
+
+def design_flattest(force, stroke, youngs_modulus, allowable_stress, **kwargs) -> "DesignResult":
+    """:func:`design`, then again at the length it suggests when the flattest ratio does not fit.
+
+    When the flattest ``r2/r3`` for the stroke fraction does not fit at the first size
+    (its PCF more than 1 point below the flattest one) and :func:`design` suggests a total
+    length at which it would, the design is repeated at 1.01 times that length.
+
+    Parameters
+    ----------
+    force : float
+        Target constant force [N].
+    stroke : float
+        Working stroke from the toggle [m].
+    youngs_modulus : float
+        Young's modulus of the flexure [Pa].
+    allowable_stress : float
+        Allowable bending stress of the flexure [Pa].
+    **kwargs
+        Further arguments of :func:`design`.
+    """
+    first = design(force, stroke, youngs_modulus, allowable_stress, **kwargs)
+    longer = first.summary.get("suggested_total_length_m")
+    if first.summary["pcf_percent"] < first.summary["pcf_flattest_percent"] - 1.0 and longer:
+        kwargs = {k: v for k, v in kwargs.items() if k not in ("stroke_fraction", "total_length")}
+        return design(force, stroke, youngs_modulus, allowable_stress, total_length=1.01 * longer, **kwargs)
+    return first
 
 
 def min_ratio_for_stroke(stroke_fraction):

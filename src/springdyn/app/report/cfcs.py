@@ -15,7 +15,8 @@ import numpy as np
 from springdyn.core.io import write_json
 from springdyn.core.plotting import new_figure, plt, save_figure
 from springdyn.app.report.html import Criterion, Section, fmt, parameter_rows
-from springdyn.cfcs.design import design
+from springdyn.cfcs.design import design_flattest
+from springdyn.cfcs.motion import SinusoidMotion
 from springdyn.cfcs.model import CFCS
 from springdyn.cfcs.params import CFCSParams
 
@@ -60,8 +61,8 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
     s = st.summary
     p = model.params
     # forward dynamics: the frictionless slider pushed through a spring by a moving base
-    fw = ideal.forward(1.0, base_motion=lambda t: (0.036 * (1 - np.cos(10.0 * t)), 0.36 * np.sin(10.0 * t)),
-                       base_stiffness=2000.0, x0=1e-3)
+    base = SinusoidMotion(10.0, 0.072, 0.0)  # x = 36 mm (1 - cos 10 t), the library's sinusoid
+    fw = ideal.forward(1.0, base_motion=lambda t: base(t)[:2], base_stiffness=2000.0, x0=1e-3)
     files.append(fw.to_csv(out_dir / "forward_base_spring.csv"))
     plt.close(fw.plot(out_dir / "forward_base_spring.png"))
     figures.append((out_dir / "forward_base_spring.png", "Forward dynamics: the slider driven through a 2 N/mm "
@@ -70,11 +71,7 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
     allowable = p.allowable_stress or 1.5e9
     limited = s["safety_factor"] is not None and s["safety_factor"] < 1
     target_stroke = s["max_stroke_for_stress_m"] if limited else s["stroke_m"]
-    dz = design(s["force_at_zero_N"], target_stroke, p.youngs_modulus, allowable, stroke_fraction=0.2)
-    longer = dz.summary.get("suggested_total_length_m")
-    if dz.summary["pcf_percent"] < dz.summary["pcf_flattest_percent"] - 1.0 and longer:
-        # the flattest ratio does not fit at this size: take the length design() suggests for it
-        dz = design(s["force_at_zero_N"], target_stroke, p.youngs_modulus, allowable, total_length=1.01 * longer)
+    dz = design_flattest(s["force_at_zero_N"], target_stroke, p.youngs_modulus, allowable, stroke_fraction=0.2)
     files.append(dz.to_toml(out_dir / "design.toml"))
     files.append(write_json(out_dir / "summary.json", {"static": s, "dynamic": {f"{w:g}": v for w, v in dyn.items()},
                                                        "forward_base_spring": fw.summary, "design": dz.summary}))
