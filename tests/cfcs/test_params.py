@@ -65,7 +65,7 @@ def test_missing_key_names_it():
 
 
 def test_unknown_example():
-    with pytest.raises(InputError, match="example = 'nope' is unknown"):
+    with pytest.raises(InputError, match="example = 'nope' is not a built-in cfcs; choose one of 'table1'"):
         CFCSParams.example("nope")
 
 

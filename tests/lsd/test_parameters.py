@@ -96,7 +96,7 @@ def test_pack_angles_checked():
 
 
 def test_unknown_example():
-    with pytest.raises(InputError, match="choose one of A, B, C"):
+    with pytest.raises(InputError, match="choose one of 'A', 'B', 'C'"):
         LSDParameters.example("D")
 
 

@@ -9,7 +9,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..core.params import check_fields, from_mapping, load_toml, param
+from ..core.params import Parameters, param
 from ..core.errors import InputError
 from ..core.units import format_quantity
 from .kinematics import kinematic_limit_deflection
@@ -30,7 +30,7 @@ MAX_SHEAR_ANGLE = 0.3
 
 
 @dataclasses.dataclass(frozen=True)
-class CFCSParams:
+class CFCSParams(Parameters):
     """Parameters of the pseudo-rigid-body model of a CFCS (Table 1 of the CFCS paper).
 
     The pivot stiffness is given either directly (``torsional_stiffness``) or by the
@@ -64,8 +64,7 @@ class CFCSParams:
     toggle_cutoff: float = param("rad", "toggle zone: below this crank angle tau_CF, tau_AF use dx/dtheta2 at the cut-off",
                                  default=float(np.radians(5.0)), display="deg", positive=True)
 
-    def __post_init__(self):
-        check_fields(self)
+    def _validate(self) -> None:
         r2, r3 = self.crank_length, self.coupler_length
         if not r2 < r3:
             raise InputError(
@@ -102,29 +101,9 @@ class CFCSParams:
                 "(the kinematic limit)"
             )
 
-    # -- construction -------------------------------------------------------------------
-    @classmethod
-    def from_dict(cls, mapping: Mapping[str, Any], *, source: str | None = None) -> "CFCSParams":
-        """Build from a ``[cfcs]`` table (values with units as strings, or SI numbers)."""
-        return from_mapping(cls, mapping, section="cfcs", source=source)
-
-    @classmethod
-    def from_toml(cls, path: str | Path) -> "CFCSParams":
-        """Read the ``[cfcs]`` table of a TOML file."""
-        return cls.from_dict(load_toml(path, "cfcs"), source=str(path))
-
-    @classmethod
-    def example(cls, name: str = "table1") -> "CFCSParams":
-        """A built-in mechanism; ``"table1"`` is Table 1 of the CFCS paper."""
-        if name not in EXAMPLES:
-            raise InputError(f"example = {name!r} is unknown; choose one of {', '.join(map(repr, EXAMPLES))}")
-        ref = resources.files("springdyn.data").joinpath(EXAMPLES[name])
-        with resources.as_file(ref) as path:
-            return cls.from_toml(path)
-
-    def replace(self, **changes) -> "CFCSParams":
-        """A copy with some fields changed (validated again)."""
-        return dataclasses.replace(self, **changes)
+    table = "cfcs"
+    examples = EXAMPLES
+    default_example = "table1"
 
     # -- derived values -----------------------------------------------------------------
     @property

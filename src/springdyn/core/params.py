@@ -369,11 +369,17 @@ class Parameters:
     @classmethod
     def from_dict(cls, mapping: Mapping[str, Any], *, source: str | None = None, **context):
         """Build from a mapping of the table's keys (values with units, or SI numbers)."""
-        return from_mapping(cls, cls._prepare(dict(mapping), **context), section=cls.table, source=source)
+        if not isinstance(mapping, Mapping):
+            raise InputError(f"{source + ': ' if source else ''}[{cls.table}] must be a table of keys")
+        return from_mapping(cls, cls._prepare(dict(mapping), source=source, **context), section=cls.table,
+                            source=source)
 
     @classmethod
     def _prepare(cls, mapping: dict, **context) -> dict:
-        """Hook: adjust the raw table before conversion (e.g. resolve relative paths)."""
+        """Hook: adjust the raw table before conversion (e.g. resolve relative paths).
+
+        ``context`` holds ``source`` (the file, for messages) and ``base_dir`` (its folder).
+        """
         return mapping
 
     @classmethod

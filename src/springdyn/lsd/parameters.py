@@ -9,7 +9,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..core.params import check_fields, from_mapping, load_toml, param
+from ..core.params import Parameters, param
 from ..core.errors import InputError
 from ..core.units import to_si
 
@@ -26,7 +26,7 @@ MAX_LEAVES = 20
 
 
 @dataclasses.dataclass(frozen=True)
-class LSDParameters:
+class LSDParameters(Parameters):
     """Geometry, materials and oil of a leaf spring damper (SI floats).
 
     Symbols follow the leaf-spring-damper thesis (Table 4.1, Chapter 2).  Build it from
@@ -62,8 +62,7 @@ class LSDParameters:
     oring_normal_force: float = param("N", "O-ring normal force", symbol="F_N", default=0.0, nonnegative=True)
     name: str = param(None, "label used in plots", kind="str", default="LSD")
 
-    def __post_init__(self):
-        check_fields(self)
+    def _validate(self) -> None:
         if len(self.leaf_lengths) > MAX_LEAVES:
             raise InputError(f"leaf_lengths has {len(self.leaf_lengths)} leaves; a pack has at most {MAX_LEAVES}")
         if self.packs < 2:
@@ -97,14 +96,15 @@ class LSDParameters:
                 )
 
     # ----------------------------------------------------------------- construction
-    @classmethod
-    def from_dict(cls, mapping: Mapping[str, Any], *, source: str | None = None) -> "LSDParameters":
-        """Build from a mapping of TOML keys (strings with units or bare SI numbers).
+    table = "lsd"
+    examples = EXAMPLES
+    default_example = "C"
 
-        ``oil_viscosity`` may be kinematic (``"100 cSt"``, converted with ``oil_density``)
-        or dynamic (``"0.0965 Pa*s"``; a bare number is Pa s).
-        """
-        table = dict(mapping)
+    @classmethod
+    def _prepare(cls, mapping: dict, *, source: str | None = None, **context) -> dict:
+        """``oil_viscosity`` may be kinematic (``"100 cSt"``, converted with ``oil_density``)
+        or dynamic (``"0.0965 Pa*s"``; a bare number is Pa s)."""
+        table = mapping
         if isinstance(table.get("oil_viscosity"), str):
             where = f"{source}: [lsd] " if source else ""
             text = table["oil_viscosity"]
@@ -117,29 +117,13 @@ class LSDParameters:
                     raise InputError(f"{where}oil_viscosity = {text!r} is kinematic; give oil_density to convert it")
                 rho = to_si(table["oil_density"], "kg/m^3", f"{where}oil_density")
                 table["oil_viscosity"] = nu * rho
-        return from_mapping(cls, table, section="lsd", source=source)
+        return table
 
     @classmethod
-    def from_toml(cls, path: str | Path) -> "LSDParameters":
-        """Read the ``[lsd]`` table of a TOML file."""
-        return cls.from_dict(load_toml(path, "lsd"), source=str(path))
-
-    @classmethod
-    def example(cls, name: str = "C") -> "LSDParameters":
-        """A built-in prototype: ``"A"``, ``"B"`` or ``"C"`` of Table 4.1 of the thesis.
-
-        Values the thesis does not give (E, nu, a, L_h, frictions, ring mass) are
-        assumptions stated in the shipped TOML files.
-        """
-        key = str(name).upper().removeprefix("TYPE").strip(" _-")
-        if key not in EXAMPLES:
-            raise InputError(f"example {name!r} is not known; choose one of {', '.join(EXAMPLES)}")
-        with resources.as_file(resources.files("springdyn.data") / EXAMPLES[key]) as p:
-            return cls.from_toml(p)
-
-    def replace(self, **changes) -> "LSDParameters":
-        """A copy with some fields changed (SI values), validated again."""
-        return dataclasses.replace(self, **changes)
+    def _example_key(cls, name: str) -> str:
+        """``"A"``, ``"type a"``, ``"Type_A"``: Types A, B, C of Table 4.1 of the thesis (values the
+        thesis does not give are assumptions stated in the shipped TOML files)."""
+        return str(name).upper().removeprefix("TYPE").strip(" _-")
 
     # ----------------------------------------------------------------- derived
     @property
