@@ -18,7 +18,7 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.units import format_quantity
 from . import design, formulas
-from .elements import damping_coefficient, hardening_law, law_stiffness, linear_law, low_pitch_law
+from .elements import damping_coefficient, hardening_law, law_compression, law_stiffness, linear_law, low_pitch_law
 from .modes import chain_frequencies
 from .statics import element_compressions, series_state
 
@@ -69,11 +69,16 @@ class Chain:
     mass_names: tuple
     masses: np.ndarray  # (n,) [kg]
     laws: np.ndarray  # (n + 1, segments, 4)
-    c0: float  # [N s/m]
+    c0: float | np.ndarray  # [N s/m], one value or one per element
     setup_compressions: np.ndarray  # (n + 1,) [m], every element at Fset
     setup_force: float  # [N]
     free_length: float  # [m]
     installed_length: float  # [m]
+
+    @property
+    def c0_array(self) -> np.ndarray:
+        """Damping coefficient of every element at its initial rate [N s/m], shape (n + 1,)."""
+        return np.ascontiguousarray(np.broadcast_to(np.asarray(self.c0, dtype=float), (self.laws.shape[0],)))
 
     def tangent_stiffness(self, compressions) -> np.ndarray:
         """Element tangent stiffnesses [N/m] at the given compressions [m]."""
@@ -81,7 +86,7 @@ class Chain:
 
     def damping(self, compressions) -> np.ndarray:
         """Element damping coefficients [N s/m] at the given compressions [m]."""
-        return np.stack([damping_coefficient(x, law, self.c0) for x, law in zip(compressions, self.laws)])
+        return np.stack([damping_coefficient(x, law, c) for x, law, c in zip(compressions, self.laws, self.c0_array)])
 
 
 def _mm(value: float) -> str:
@@ -121,6 +126,10 @@ class SpringModel:
 
     @property
     def chain(self) -> Chain:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def contact_compressions(self) -> np.ndarray:  # pragma: no cover - abstract
+        """Compression [m] of each element beyond which its coils touch (``inf``: never flagged)."""
         raise NotImplementedError
 
     # ------------------------------------------------------------------ statics
@@ -426,6 +435,17 @@ class TypeCModel(SpringModel):
             named["Ks"], bs = low_pitch_law(p["Ks"], p["Fset"], self.spring.wire_diameter)
             bp.update(x1=bs["x1"], x2=bs["x2"])
         return named, bp
+
+    def contact_compressions(self) -> np.ndarray:
+        """Compression [m] of each element beyond which its coils touch: the Fcon breakpoint.
+
+        Only the Kh1/Kh2 elements have one (x13/x23 of [MMS], element force laws).  The end
+        elements K already stand for contacting coils and the low-pitch element Ks is closed
+        by design from set-up on, so neither is ever flagged (``inf``).
+        """
+        fcon = self._parameters["Fcon"]
+        return np.array([float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
+                         for name, law in zip(self.chain.element_names, self.chain.laws)])
 
     @cached_property
     def chain(self) -> Chain:
