@@ -54,6 +54,10 @@ PARAMETER_UNITS = {
     "F2": ("N", "N", "second nonlinear force"),
     "Fcon": ("N", "N", "coil-contact force"),
     "C0": ("N*s/m", "N*s/m", "element damping C0"),
+    "f_continuum": ("Hz", "Hz", "continuum surge frequency of the active coils"),
+    "elements": ("", "", "wire elements"),
+    "beta": ("s", "s", "stiffness-proportional damping (mode 1 at set-up gets damping_ratio)"),
+    "pitch_max": ("m", "mm", "largest pitch of the unloaded spring"),
 }
 
 
@@ -468,8 +472,14 @@ class TypeCModel(SpringModel):
         )
 
 
+def _models() -> dict:
+    from .distributed import DistributedModel
+
+    return {TypeCModel.name: TypeCModel, DistributedModel.name: DistributedModel}
+
+
 #: The spring models, by their ``[spring] model`` name.
-MODELS = {TypeCModel.name: TypeCModel}
+MODELS = _models()
 
 
 def make_model(spring, name: str | None = None) -> SpringModel:

@@ -29,10 +29,11 @@ def chain_stiffness_matrix(k: np.ndarray) -> np.ndarray:
     return kmat
 
 
-def chain_frequencies(masses: np.ndarray, k: np.ndarray) -> np.ndarray:
+def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> np.ndarray:
     """Natural frequencies [Hz], ascending, of the chain with both ends fixed.
 
-    Solves ``K phi = w^2 M phi`` (symmetric-definite generalised eigenproblem).
+    Solves ``K phi = w^2 M phi``: the mass-normalised matrix ``M^-1/2 K M^-1/2`` is
+    symmetric tridiagonal (LAPACK's tridiagonal eigensolver).
 
     Parameters
     ----------
@@ -40,6 +41,15 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray) -> np.ndarray:
         Lumped masses [kg].
     k : ndarray, shape (n + 1,)
         Element tangent stiffnesses [N/m].
+    count : int, optional
+        Only the lowest ``count`` frequencies.
     """
-    w2 = scipy.linalg.eigh(chain_stiffness_matrix(k), np.diag(masses), eigvals_only=True)
+    m = np.asarray(masses, dtype=float)
+    k = np.asarray(k, dtype=float)
+    d = (k[:-1] + k[1:]) / m
+    e = -k[1:-1] / np.sqrt(m[:-1] * m[1:])
+    if count is None or count >= m.size:
+        w2 = scipy.linalg.eigh_tridiagonal(d, e, eigvals_only=True)
+    else:
+        w2 = scipy.linalg.eigh_tridiagonal(d, e, eigvals_only=True, select="i", select_range=(0, count - 1))
     return np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
