@@ -179,6 +179,8 @@ def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: flo
         if not pa > dw:
             raise InputError(f"{field('free_length')} is too short for the coils: the active pitch would be "
                              f"{_mm(pa)}, not more than the wire diameter {_mm(dw)}")
+        if dead == 0:
+            return np.array([0.0, n_total]), np.array([pa, pa])
         s = [0.0, dead, dead + tr, n_total - dead - tr, n_total - dead, n_total]
         p = [dw, dw, pa, pa, dw, dw]
         return _dedupe(s, p)

@@ -210,17 +210,28 @@ class SpringModel:
         self._compression(np.array([start]), "start")
         self._compression(np.array([stop]), "stop")
         length = np.linspace(start, stop, points)
-        force, _, k = self.static_state(length)
-        return StaticCurve(self.spring, length, force, k, model=self.name)
+        force, x, k = self.static_state(length)
+        ch = self.chain
+        kt = ch.tangent_stiffness(x)
+        freq = np.array([chain_frequencies(ch.masses, kt[:, i], 1)[0] for i in range(length.size)])
+        return StaticCurve(self.spring, length, force, k, model=self.name, frequency=freq)
 
     # ------------------------------------------------------------------ modes
     def modes(self, length: float, count: int = 5) -> np.ndarray:
-        """Natural frequencies [Hz], ascending, of the chain linearised at ``length`` [m], ends fixed."""
+        """Natural frequencies [Hz], ascending, of the chain linearised at ``length`` [m], ends fixed.
+
+        Parameters
+        ----------
+        length : float
+            Spring length [m].
+        count : int
+            How many, from the lowest (at most the number of masses).
+        """
         n = len(self.chain.masses)
         if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n:
             raise InputError(f"count = {count!r} must be a whole number from 1 to {n} (the chain has {n} masses)")
         _, x, _ = self.static_state(float(length))
-        return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x))[:count]
+        return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x), count)
 
     # ------------------------------------------------------------------ design
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:

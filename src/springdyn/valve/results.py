@@ -25,6 +25,7 @@ class StaticCurve(Result):
     force: np.ndarray  # [N]
     stiffness: np.ndarray  # [N/m]
     model: str = "type-c"
+    frequency: np.ndarray | None = None  # first natural frequency, ends fixed [Hz]
 
     title = "valve spring static curve"
     cheap_plot = True
@@ -42,6 +43,8 @@ class StaticCurve(Result):
             force_max_N=float(self.force.max()),
             stiffness_min_N_per_m=float(self.stiffness.min()),
             stiffness_max_N_per_m=float(self.stiffness.max()),
+            **({} if self.frequency is None else dict(first_mode_min_Hz=float(self.frequency.min()),
+                                                       first_mode_max_Hz=float(self.frequency.max()))),
         )
 
     def columns(self) -> dict:
@@ -53,11 +56,15 @@ class StaticCurve(Result):
     def to_xarray(self):
         import xarray as xr
 
+        data = {
+            "force": ("length", self.force, {"units": "N", "long_name": "static spring force"}),
+            "stiffness": ("length", self.stiffness, {"units": "N/m", "long_name": "tangent stiffness -dF/dL"}),
+        }
+        if self.frequency is not None:
+            data["first_mode_frequency"] = ("length", self.frequency,
+                                            {"units": "Hz", "long_name": "first natural frequency, ends fixed"})
         return xr.Dataset(
-            {
-                "force": ("length", self.force, {"units": "N", "long_name": "static spring force"}),
-                "stiffness": ("length", self.stiffness, {"units": "N/m", "long_name": "tangent stiffness -dF/dL"}),
-            },
+            data,
             coords={"length": ("length", self.length, {"units": "m", "long_name": "spring length"})},
             attrs={"model": self.model, "spring_type": self.spring.type},
         )
@@ -193,6 +200,24 @@ class Simulation(Result):
         from .plots import plot_simulation
 
         return plot_simulation(self, ax=ax)
+
+    def plot_closure_map(self, path=None, ax=None):
+        """Coil-closure map of the distributed model (cam angle x position along the wire).
+
+        Parameters
+        ----------
+        path : path-like, optional
+            PNG file to write.
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw into.
+        """
+        from ..core.errors import InputError
+        from .plots import plot_closure_map
+
+        if not hasattr(self.spring.spring_model, "element_positions"):
+            raise InputError("the coil-closure map needs the distributed model (model = \"distributed\"): Type C "
+                             "has no coil geometry")
+        return plot_closure_map(self, path, ax)
 
 
 def coil_contact_compressions(spring) -> np.ndarray:
