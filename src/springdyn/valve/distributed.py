@@ -46,7 +46,7 @@ from .geometry import (
     turn_compliance,
     wire_length_per_turn,
 )
-from .model import Chain, SpringModel
+from .chain import Chain, SpringModel
 from .modes import chain_frequencies
 from .statics import element_compressions, series_force
 
