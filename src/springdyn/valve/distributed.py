@@ -13,7 +13,11 @@ response and dynamics are shared.
 ``k_w = 1 / int c_turn ds`` (open-coil compliance per turn, Wahl) while the element's coil
 gap ``g = int (p - Dw) ds`` is open; when the compression reaches ``g`` the coils touch and
 the contact stiffness ``k_c = K / ds`` builds up linearly over the onset width
-``w = ds * CONTACT_ONSET * Dw``, then stays.  ``K = pi D E / 1e3`` is the document's
+``w = ds * CONTACT_ONSET * Dw``, then stays.  Where the pitch varies along the element
+(transitions, low-pitch coils) its turn-slices close one after the other: the contact
+quadratic then starts where the first slice touches and passes through the force at which
+the last one closes (exact for a gap varying linearly along the element), so the closing
+of graded coils converges with the element count.  ``K = pi D E / 1e3`` is the document's
 "stiffness for fully contact" of one coil ([MMS]), the stiffness Type C gives its end
 contacts: a closed turn compressed by ``delta`` carries ``K delta``, so a piece of ``ds``
 turns has ``K / ds``.
@@ -196,14 +200,20 @@ class DistributedModel(SpringModel):
         comp = np.sum(turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * dsub, axis=1)
         area = np.pi * sp.wire_diameter**2 / 4
         mass = sp.density * area * np.sum(wire_length_per_turn(d, p) * dsub, axis=1)
-        gap = np.array([g.gap_integral(a, b) for a, b in zip(edges[:-1], edges[1:])])
+        gap = np.maximum(np.array([g.gap_integral(a, b) for a, b in zip(edges[:-1], edges[1:])]), 0.0)
         dturn = edges[1:] - edges[:-1]
         kc = formulas.contact_stiffness(d.mean(axis=1), sp.youngs_modulus) / dturn
+        k = 1.0 / comp
+        # graded gaps: the element's first turn-slice touches at x_a = ds min(p - Dw); it is
+        # closed throughout at x_b = int (p - Dw) ds, where the force is k (2 x_b - x_a)
+        # (linear gap along the element); the contact quadratic from x_a passes through it
+        pmin = np.minimum(np.minimum(p.min(axis=1), g.pitch(edges[:-1])), g.pitch(edges[1:]))
+        first = np.clip(dturn * (pmin - sp.wire_diameter), 0.0, gap)
+        onset = np.maximum(CONTACT_ONSET * sp.wire_diameter * dturn, kc * (gap - first) / (2.0 * k))
         dead = np.linspace(0.0, g.dead_coils, 65)
         dead_mass = [sp.density * area * float(np.trapezoid(wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
                      for x in (dead, g.turns - dead[::-1])]
-        return dict(gap=np.maximum(gap, 0.0), k=1.0 / comp, mass=mass, kc=kc, onset=CONTACT_ONSET * sp.wire_diameter * dturn,
-                    dead_mass=dead_mass, n=n)
+        return dict(gap=gap, first=first, k=k, mass=mass, kc=kc, onset=onset, dead_mass=dead_mass, n=n)
 
     # ------------------------------------------------------------------ the chain
     def _chain(self, beta: float) -> Chain:
@@ -212,7 +222,7 @@ class DistributedModel(SpringModel):
         k_seat = formulas.contact_stiffness(float(g.diameter(0.0)), sp.youngs_modulus)
         k_ret = formulas.contact_stiffness(float(g.diameter(g.turns)), sp.youngs_modulus)
         laws = [np.array([(-np.inf, 0.0, k_seat, 0.0), (np.inf,) * 4, (np.inf,) * 4])]
-        laws += [coil_law(k, gap, kc, w) for k, gap, kc, w in zip(pc["k"], pc["gap"], pc["kc"], pc["onset"])]
+        laws += [coil_law(k, gap, kc, w) for k, gap, kc, w in zip(pc["k"], pc["first"], pc["kc"], pc["onset"])]
         laws.append(np.array([(-np.inf, 0.0, k_ret, 0.0), (np.inf,) * 4, (np.inf,) * 4]))
         laws = np.stack(laws)
         masses = np.zeros(n + 1)
@@ -254,8 +264,9 @@ class DistributedModel(SpringModel):
         return self._chain(self._beta)
 
     def contact_compressions(self) -> np.ndarray:
-        """Coil gap of each wire element [m]; ``inf`` for the end contacts."""
-        return np.concatenate([[np.inf], self._pieces["gap"], [np.inf]])
+        """Compression [m] of each wire element at which its coils first touch; ``inf`` for
+        the end contacts."""
+        return np.concatenate([[np.inf], self._pieces["first"], [np.inf]])
 
     @property
     def element_positions(self) -> np.ndarray:
@@ -270,7 +281,7 @@ class DistributedModel(SpringModel):
         ch = self.chain
         laws = ch.laws
         k1 = 1.0 / np.sum(1.0 / laws[:, 0, 2])
-        fcon = float(np.max(pc["k"] * pc["gap"] * (1 + 1e-12)))  # the last coil closes: solid
+        fcon = float(np.max(self.closing_forces()))  # the last coil closes: solid
         f_free = chain_frequencies(ch.masses, laws[:, 0, 2], 1)[0]
         k_set = ch.tangent_stiffness(ch.setup_compressions)
         f_set = chain_frequencies(ch.masses, k_set, 1)[0]
@@ -305,9 +316,9 @@ class DistributedModel(SpringModel):
 
     # ------------------------------------------------------------------ outputs
     def closing_forces(self) -> np.ndarray:
-        """Static force [N] at which each wire element's coils touch, from the seat end."""
+        """Static force [N] at which each wire element is closed throughout, from the seat end."""
         pc = self._pieces
-        return pc["k"] * pc["gap"]
+        return pc["k"] * (2.0 * pc["gap"] - pc["first"])
 
     def clashing_coils(self, sim) -> list[int]:
         """Coils (1 = the seat's first coil) with an element that closes and opens again in

@@ -22,7 +22,6 @@ def plot_closure_map(sim, path=None, ax=None):
         Axes to draw into.
     """
     model = sim.spring.spring_model
-    pos = model.element_positions
     contact = sim.element_contact[1:-1].astype(float)
     if ax is None:
         fig, ax = new_figure(figsize=(9, 4.5))
@@ -31,8 +30,9 @@ def plot_closure_map(sim, path=None, ax=None):
     deg = sim.cam_angle_deg
     order = np.argsort(deg)
     edges = model.element_turns
-    ax.pcolormesh(deg[order], edges, np.r_[contact[:, order], np.zeros((1, deg.size))][:-1],
-                  shading="nearest", cmap="Greys", vmin=0, vmax=1.3)
+    step = 360.0 / deg.size
+    ax.pcolormesh(np.append(deg[order], deg[order][-1] + step) - step / 2, edges, contact[:, order],
+                  shading="flat", cmap="Greys", vmin=0, vmax=1.3)
     ax2 = ax.twinx()
     ax2.plot(deg[order], sim.lift[order] * 1e3, color="C0", lw=1)
     ax2.set_ylabel("cam lift [mm]", color="C0")
@@ -42,7 +42,6 @@ def plot_closure_map(sim, path=None, ax=None):
     ax.set_ylim(edges[0], edges[-1])
     ax.set_title(f"coil closure (dark: closed), {sim.cam_rpm:.0f} cam rpm; clashing coils: "
                  + (", ".join(map(str, clash)) if clash else "none"))
-    del pos
     if path is not None:
         save_figure(fig, path, close=False)
     return fig
