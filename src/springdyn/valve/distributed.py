@@ -264,9 +264,16 @@ class DistributedModel(SpringModel):
         return self._chain(self._beta)
 
     def contact_compressions(self) -> np.ndarray:
-        """Compression [m] of each wire element at which its coils first touch; ``inf`` for
-        the end contacts."""
-        return np.concatenate([[np.inf], self._pieces["first"], [np.inf]])
+        """Compression [m] at which each wire element is closed throughout (its mean coil
+        gap); ``inf`` for the end contacts and for elements already closed at set-up (closed
+        by design, like Type C's low-pitch element, so never flagged)."""
+        pc = self._pieces
+        closed_at_setup = self.closing_forces() <= self._parameters_setup_force
+        return np.concatenate([[np.inf], np.where(closed_at_setup, np.inf, pc["gap"]), [np.inf]])
+
+    @cached_property
+    def _parameters_setup_force(self) -> float:
+        return float(self.chain.setup_force)
 
     @property
     def element_positions(self) -> np.ndarray:
@@ -321,23 +328,18 @@ class DistributedModel(SpringModel):
         return pc["k"] * (2.0 * pc["gap"] - pc["first"])
 
     def clashing_coils(self, sim) -> list[int]:
-        """Coils (1 = the seat's first coil) with an element that closes and opens again in
-        the simulated revolution (closed throughout is not a clash).
+        """Coils (1 = the seat's first coil) that clash: an element of the coil is closed at a
+        cam angle where the static (massless) spring at the same lift has it open.  Coils
+        that close quasi-statically (the transitions at full lift) are not clashes.
 
         Parameters
         ----------
         sim : Simulation
             A simulation of this model.
         """
-        from .results import located_events
-
-        closing = set()
-        if sim.monitor is not None:
-            for key, ivals in located_events(sim).items():
-                if isinstance(key, tuple) and key[0] == 1 and any(c < 360.0 - 1e-9 for _, _, c in ivals):
-                    closing.add(key[1])
-        else:
-            contact = sim.element_contact
-            closing = {j for j in range(contact.shape[0]) if contact[j].any() and not contact[j].all()}
+        gaps = self.contact_compressions()
+        static_x = element_compressions(sim.static_force, self.chain.laws)
+        clash = sim.element_contact & (static_x < gaps[:, None])
+        closing = set(np.flatnonzero(clash.any(axis=1)).tolist())
         pos = self.element_positions
         return sorted({int(np.floor(pos[j - 1])) + 1 for j in closing if 1 <= j <= pos.size})

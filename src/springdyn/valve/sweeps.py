@@ -97,6 +97,9 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
     if setup.valve_train is not None:
         out["cam_contact"] = ex[:, last, lay["cam_contact_force"]]
         out["valve_lift"] = ex[:, last, lay["top_displacement"]]
+    # copies, so that the chunk's full engine output (every element, every point) is freed
+    out = {k: np.array(v, copy=True) for k, v in out.items()}
+    if setup.valve_train is not None:
         valid = status == 0
         static = np.full(out["valve_lift"].shape, np.nan)
         static[valid] = setup.static_force(out["valve_lift"][valid])
