@@ -53,7 +53,44 @@ def _valve_train():
     return ValveTrain.example() if hasattr(ValveTrain, "examples") and ValveTrain.examples else None
 
 
+def _cfcs():
+    from springdyn.cfcs import CFCS
+
+    return CFCS.example("table1")
+
+
+def _lsd():
+    from springdyn.lsd import LSDModel, LSDParameters
+
+    return LSDModel(LSDParameters.example("C"))
+
+
+def _rig(excitation="x"):
+    from springdyn.lsd import simulate_rig
+    from springdyn.lsd.rig import circular_orbit, linear_shake
+
+    tr = linear_shake(1000.0, 50e-6, excitation, 3, 5e3) if excitation in "xy" else circular_orbit(1000.0, 50e-6, 3, 5e3)
+    return simulate_rig(_lsd(), tr)
+
+
+def _identified():
+    from springdyn.lsd import identify_series
+
+    return identify_series([_rig("x")], [_rig("y")], mass=0.5)
+
+
 FACTORIES = {
+    "springdyn.lsd.model.LSDCoefficients": lambda: _lsd().coefficients([500.0, 1000.0, 2000.0], amplitude=20e-6),
+    "springdyn.lsd.rig.RigRecord": lambda: _rig("x"),
+    "springdyn.lsd.identify.RigData": lambda: __import__("springdyn.lsd.identify", fromlist=["RigData"]).RigData(
+        *(getattr(_rig("y"), k) for k in ("time", "x", "y", "fx", "fy")), source="measured.csv"),
+    "springdyn.lsd.identify.IdentificationSeries": _identified,
+    "springdyn.cfcs.results.StaticResult": lambda: _cfcs().static(),
+    "springdyn.cfcs.results.DynamicResult": lambda: _cfcs().dynamic(14.7),
+    "springdyn.cfcs.results.FrequencySweep": lambda: _cfcs().sweep(np.array([2.0, 10.0, 20.0])),
+    "springdyn.cfcs.results.ForwardResult": lambda: _cfcs().forward(0.05, force=12.8),
+    "springdyn.cfcs.design.DesignResult": lambda: __import__("springdyn.cfcs", fromlist=["design"]).design(
+        12.8, 0.02, 207e9, 1.5e9),
     "springdyn.valve.results.StaticCurve": lambda: _valve_spring().static_curve(points=50),
     "springdyn.valve.results.Simulation": lambda: springdyn.valve.simulate(_valve_spring(), _valve_cam(), 2500, 2,
                                                                            points_per_revolution=360),

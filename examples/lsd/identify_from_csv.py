@@ -5,7 +5,7 @@ format the test rig writes and ``springdyn lsd identify`` reads.  Without argume
 script first writes two such files with the API: the Type C damper of the thesis shaken
 along x and then along y at 1000 rpm (50 um, with 2 N of force noise).  Given CSV paths it
 reads those instead: one file identifies what a single excitation can (for a circular
-orbit ``Kxx + w Cxy`` and ``Cxx - Kxy/w``, reading notes 3.3), two independent
+orbit ``Kxx + w Cxy`` and ``Cxx - Kxy/w``, docs/references.md), two independent
 excitations at the same speed identify the full 2 x 2 matrices K and C.
 
 Run:  python examples/lsd/identify_from_csv.py [--out DIR] [FIRST.csv [SECOND.csv]] [--mass KG]

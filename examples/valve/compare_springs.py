@@ -1,6 +1,6 @@
 """Compare the one-step and the two-step example valve springs over the speed range.
 
-Both springs (reading notes 1.6) run on the same 3-4-5 cam (9 mm lift, 120 cam degrees)
+Both springs (docs/references.md) run on the same 3-4-5 cam (9 mm lift, 120 cam degrees)
 from 500 to 4000 cam rpm.  The script prints, at a few speeds, the peak and minimum
 retainer force, the seat force and the surge amplitude (largest departure of the
 retainer force from the static force), and writes a comparison plot and the summary

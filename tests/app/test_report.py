@@ -115,3 +115,32 @@ def test_report_renders_in_headless_chromium(demo_dir, tmp_path):
     shot = ARTIFACTS / "report.png"
     subprocess.run([exe, *flags, f"--screenshot={shot}", url], capture_output=True, timeout=180)
     assert shot.is_file() and shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        {"allowable_stress": None},
+        {"torsional_stiffness": "2.5308 N*m/rad", "pivot_width": None, "pivot_thickness": None, "pivot_length": None,
+         "allowable_stress": None},
+    ],
+    ids=["no-allowable-stress", "torsional-stiffness-only"],
+)
+def test_report_builds_for_documented_optional_cfcs_keys(tmp_path, change):
+    """Every [cfcs] table the CLI accepts also builds a report (issue 10), not only the example."""
+    import tomllib
+
+    from springdyn.app.report import cfcs as section_builder
+
+    table = tomllib.loads((ROOT / "examples" / "cfcs" / "table1.toml").read_text())["cfcs"]
+    for key, value in change.items():
+        if value is None:
+            table.pop(key, None)
+        else:
+            table[key] = value
+    model = section_builder.load({"cfcs": table}, tmp_path / "def.toml")
+    out = tmp_path / "out"
+    out.mkdir()
+    sec = section_builder.section(model, source="def.toml", out_dir=out)
+    assert sec.criteria and sec.findings and sec.figures
+    assert any(c.passed is None for c in sec.criteria)  # the stress criterion says n/a, with a note

@@ -128,3 +128,11 @@ def test_bad_config_files(capsys, tmp_path):
     out_csv = tmp_path / "never.csv"
     code, _, _ = run(capsys, "cfcs", "static", str(bad), "--csv", str(out_csv))
     assert code == 2 and not out_csv.exists()  # nothing half-written on bad input
+
+
+def test_cli_default_amplitude_is_the_library_default():
+    """The parser keeps its own copy (so that --help does not load the model): they must agree."""
+    from springdyn.app.cli import cfcs as cli
+    from springdyn.cfcs.model import DEFAULT_AMPLITUDE
+
+    assert cli.DEFAULT_AMPLITUDE == DEFAULT_AMPLITUDE

@@ -1,4 +1,4 @@
-"""Cam lift laws (notes 1.7): shapes, derivatives, ramps, tables and bad input."""
+"""Cam lift laws of valve-cam practice (not in [MMS]): shapes, derivatives, ramps, tables and bad input."""
 
 import math
 import warnings
@@ -26,7 +26,7 @@ def test_rise_law_boundary_conditions(law):
     np.testing.assert_allclose(ddp[0], 0, atol=1e-12)  # all four start with zero acceleration
 
 
-def test_closed_forms_of_notes_1_7():
+def test_closed_forms_of_the_rise_laws():
     u = np.linspace(0, 1, 11)
     np.testing.assert_allclose(rise_law("3-4-5", u)[0], 10 * u**3 - 15 * u**4 + 6 * u**5, atol=1e-15)
     np.testing.assert_allclose(rise_law("4-5-6-7", u)[0], 35 * u**4 - 84 * u**5 + 70 * u**6 - 20 * u**7, atol=1e-14)
@@ -143,3 +143,49 @@ def test_table_missing_columns(tmp_path):
     f.write_text("angle,lift\n0,0\n")
     with pytest.raises(InputError, match="needs columns cam_angle_deg"):
         Cam.from_dict({"law": "table", "file": str(f)})
+
+
+@pytest.mark.parametrize("cell", ["nan", "inf", "-inf"])
+def test_nan_in_lift_table_names_file_row_and_column(tmp_path, cell):
+    """Issue 11: a ``nan`` in a lift table CSV crashed with a traceback."""
+    f = tmp_path / "nan.csv"
+    f.write_text("cam_angle_deg,lift_mm\n" + "".join(f"{a},{cell if a == 40 else 1.0}\n" for a in range(0, 360, 10)))
+    with pytest.raises(InputError, match=rf"{f}: row 6, column 'lift_mm': '{cell}' is not a finite number"):
+        Cam.from_dict({"law": "table", "file": str(f)})
+
+
+@pytest.mark.parametrize(
+    "angle,lift,pattern",
+    [
+        (np.radians(np.arange(0, 360, 10.0)), np.where(np.arange(36) == 4, np.nan, 0.0),
+         r"table: row 6, column lift: nan is not a finite number"),
+        (np.where(np.arange(36) == 0, np.inf, np.radians(np.arange(0, 360, 10.0))), np.zeros(36),
+         r"table: row 2, column cam angle: inf is not a finite number"),
+        (np.radians(np.arange(0, 360, 10.0)), np.zeros(35), r"two flat arrays of the same length"),
+        (np.radians(np.arange(0, 360, 10.0)), ["a"] * 36, r"arrays of numbers"),
+    ],
+)
+def test_bad_table_arrays(angle, lift, pattern):
+    """The Python API (``Cam.from_table``) is checked like the CSV reader."""
+    with pytest.raises(InputError, match=pattern):
+        Cam.from_table(angle, lift)
+
+
+def test_cam_and_valve_train_use_the_parameters_base(tmp_path):
+    """Issue 10: one from_dict/from_toml; a relative table path is resolved by ``_prepare``
+    from the ``base_dir`` context (and left alone without it)."""
+    from springdyn.core.params import Parameters
+    from springdyn.valve import ValveTrain
+
+    assert issubclass(Cam, Parameters) and Cam.table == "cam"
+    assert issubclass(ValveTrain, Parameters) and ValveTrain.table == "valve_train"
+    (tmp_path / "t.csv").write_text("cam_angle_deg,lift_mm\n" + "".join(f"{a},0\n" for a in range(0, 360, 10)))
+    cam = Cam.from_dict({"law": "table", "file": "t.csv"}, base_dir=tmp_path)
+    assert cam.file == str(tmp_path / "t.csv")
+    with pytest.raises(InputError, match="t.csv: no such file"):
+        Cam.from_dict({"law": "table", "file": "t.csv"}, base_dir=tmp_path / "elsewhere")
+    (tmp_path / "vt.toml").write_text('[valve_train]\nvalve_mass = "50 g"\nlash = "0.1 mm"\n')
+    vt = ValveTrain.from_toml(tmp_path / "vt.toml")
+    assert vt.valve_mass == pytest.approx(0.05) and vt.lash == pytest.approx(1e-4)
+    with pytest.raises(InputError, match=r"\[valve_train\] unknown key 'valve_mas'"):
+        ValveTrain.from_dict({"valve_mas": 0.05})

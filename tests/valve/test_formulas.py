@@ -1,4 +1,5 @@
-"""Internal parameters and model variables against reading notes 1.6 (and notes 1.2)."""
+"""Internal parameters and model variables of [MMS] ("Internal Parameter", "Model variable")
+against the reference values of docs/valve.md, and the series identities of the chain."""
 
 import math
 
@@ -8,7 +9,7 @@ import pytest
 from springdyn.valve import ValveSpring
 from springdyn.valve import formulas
 
-# Reading notes 1.6 print 5 significant digits; we require agreement to 4 significant
+# The reference values (docs/valve.md) are printed to 5 significant digits; we require agreement to 4 significant
 # digits or better, i.e. relative 5e-5 of the printed value's last digit is too strict for
 # a rounded figure, so the tolerance is half a unit in the 5th digit (rel 1e-4 is the
 # 4-digit requirement of the issue with one digit of margin).
@@ -25,7 +26,7 @@ TWO_STEP = dict(
 
 
 @pytest.mark.parametrize("name,ref", [("one-step", ONE_STEP), ("two-step", TWO_STEP)])
-def test_reference_values_notes_1_6(name, ref):
+def test_reference_values(name, ref):
     p = ValveSpring.example(name).internal_parameters()
     for key, value in ref.items():
         assert p[key] == pytest.approx(value, rel=REL), key
@@ -38,10 +39,10 @@ def test_one_step_k2_equals_k1():
 
 
 @pytest.mark.parametrize("name", ["one-step", "two-step"])
-def test_series_identities_notes_1_2(name):
+def test_series_identities_of_the_chain(name):
     """One-step 2/K + 2/Kh1 + 2/Kh2 = 1/K1; two-step 2/K + 1/Ks + 2/Kh1 + 1/Kh2 = 1/K1 and,
     with the low-pitch section closed, = 1/K2 (exact algebra: relative 1e-12 allows for
-    round-off only).  "Ks rigid" in notes 1.2 holds exactly when the closed low-pitch
+    round-off only).  "Ks rigid" (docs/valve.md, chain topology) holds exactly when the closed low-pitch
     section takes the contact stiffness K of a fully contacting coil (3/K + 2/Kh1 + 1/Kh2
     = 1/K2); with Ks infinite the sum is 1/K2 - 1/K (0.2 % off for the example)."""
     s = ValveSpring.example(name)
@@ -89,7 +90,7 @@ def test_two_step_m1_is_dynamic_condensation_at_f1():
 
 def test_textbook_rate_and_surge_frequency():
     """K1 is the textbook rate G d^4/(8 n D^3); f1 with n1' = 0 is the textbook surge
-    frequency d/(2 pi n D^2) sqrt(G/(2 rho)) (notes 1.7)."""
+    frequency d/(2 pi n D^2) sqrt(G/(2 rho)) ([Wahl])."""
     g, d, D, n, rho = 78.5e9, 3.5e-3, 22e-3, 5.5, 7850.0
     assert formulas.free_length_stiffness(g, d, D, n) == pytest.approx(g * d**4 / (8 * n * D**3), rel=1e-15)
     f = d / (2 * math.pi * n * D**2) * math.sqrt(g / (2 * rho))

@@ -86,9 +86,9 @@ def test_vary_adds_a_dimension_and_skips_invalid(spring):
     # a longer installed length gives a smaller set-up force: static min follows Fset
     fset = [s.internal_parameters()["Fset"] for s in res.springs]
     np.testing.assert_allclose(ds["min_static_force_N"].values[:, 0], fset, rtol=1e-12)
-    with pytest.raises(InputError, match=r"--vary installed_length = 20 mm: installed_length = 20 mm is at or below"):
+    with pytest.raises(InputError, match=r"vary: installed_length = 20 mm: installed_length = 20 mm is at or below"):
         sweep(spring, CAM, [1000.0], vary=("installed_length", np.array([0.020])))
-    with pytest.raises(InputError, match=r"--vary colour: not a numeric spring field"):
+    with pytest.raises(InputError, match=r"vary = 'colour': not a numeric spring field"):
         sweep(spring, CAM, [1000.0], vary=("colour", np.array([1.0])))
 
 
@@ -119,7 +119,7 @@ def test_unreachable_scheduler_fails_fast():
     import time
 
     t = time.monotonic()
-    with pytest.raises(InputError, match=r"--scheduler tcp://127.0.0.1:9: cannot reach a Dask scheduler there within 1 s"):
+    with pytest.raises(InputError, match=r"scheduler = 'tcp://127.0.0.1:9': cannot reach a Dask scheduler there within 1 s"):
         connect("tcp://127.0.0.1:9", timeout=1.0)
     assert time.monotonic() - t < 10
 

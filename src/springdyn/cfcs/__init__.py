@@ -1,7 +1,7 @@
 """Constant-force compression spring (CFCS): pseudo-rigid-body statics, dynamics, design.
 
 The model of Ugwuoke, "A Simplified Dynamic Model for Constant-Force Compression
-Spring" (the CFCS paper), with the corrections of section 2 of the reading notes.
+Spring" (the CFCS paper), with the corrections CFCS-1 to CFCS-4 of docs/references.md.
 Where to find each equation:
 
 - :mod:`.kinematics` -- loop closure, exact inverse x -> theta2, Jacobian (Eq. (25)), toggle.
@@ -11,13 +11,28 @@ Where to find each equation:
 - :mod:`.motion` -- sinusoidal and tabulated slider motions.
 - :mod:`.design` -- choose r2/r3, K3 and the flexure for a target force and stroke.
 - :mod:`.params`, :mod:`.model`, :mod:`.results` -- the classes on top.
+
+The names below load their modules on first use, so that ``import springdyn.cfcs`` stays quick.
 """
 
-from .design import DesignResult, design
-from .model import CFCS, DEFAULT_AMPLITUDE
-from .motion import SinusoidMotion, TabulatedMotion
-from .params import CFCSParams
-from .results import DynamicResult, ForwardResult, StaticResult, SweepResult, running_pcf
+from __future__ import annotations
+
+from .._lazy import lazy_package
+
+_EXPORTS = {
+    "DesignResult": "design",
+    "design": "design",
+    "CFCS": "model",
+    "DEFAULT_AMPLITUDE": "model",
+    "SinusoidMotion": "motion",
+    "TabulatedMotion": "motion",
+    "CFCSParams": "params",
+    "DynamicResult": "results",
+    "ForwardResult": "results",
+    "FrequencySweep": "results",
+    "StaticResult": "results",
+    "running_pcf": "results",
+}
 
 __all__ = [
     "CFCS",
@@ -28,8 +43,11 @@ __all__ = [
     "ForwardResult",
     "SinusoidMotion",
     "StaticResult",
-    "SweepResult",
+    "FrequencySweep",
     "TabulatedMotion",
     "design",
     "running_pcf",
 ]
+
+
+lazy_package(__name__, _EXPORTS, aliases={"SweepResult": "FrequencySweep"})

@@ -28,8 +28,9 @@ import xarray as xr
 from scipy.optimize import brentq, minimize_scalar
 
 from ..core.errors import InputError
-from ..core.io import atomic_open, write_csv
-from ..core.plotting import new_figure, save_figure
+from ..core.io import atomic_open
+from ..core.plotting import new_figure
+from ..core.results import Result
 from ..core.units import format_quantity
 from .kinematics import deflection_from_theta2, kinematic_limit_deflection, spring_angle, theta2_from_deflection
 from .pivot import allowable_spring_angle, bending_stress, flexure_stiffness
@@ -61,8 +62,8 @@ def normalized_pcf(ratio, stroke_fraction, n=401):
     return 100.0 * float(np.min(f) / np.max(f))
 
 
-@dataclasses.dataclass
-class DesignResult:
+@dataclasses.dataclass(repr=False)
+class DesignResult(Result):
     """A CFCS design and its verification (force curve, PCF, stress)."""
 
     summary: dict
@@ -70,20 +71,24 @@ class DesignResult:
     force: np.ndarray
     stress: np.ndarray
 
+    title = "constant-force spring design"
+
     @property
     def feasible(self) -> bool:
         return bool(self.summary["feasible"])
 
+    def _repr_caption(self) -> str:
+        return "feasible" if self.feasible else "NOT feasible"
+
     def columns(self) -> dict:
         return {"deflection_m": self.deflection, "force_N": self.force, "stress_Pa": self.stress}
 
-    def to_csv(self, path) -> Path:
-        return write_csv(path, self.columns())
-
     def to_xarray(self) -> xr.Dataset:
-        ds = xr.Dataset({"force_N": ("deflection_m", self.force), "stress_Pa": ("deflection_m", self.stress)},
-                        coords={"deflection_m": self.deflection})
-        ds.attrs.update({k: v for k, v in self.summary.items() if isinstance(v, (int, float, str))})
+        ds = xr.Dataset({"force_N": ("deflection_m", self.force, {"units": "N"}),
+                         "stress_Pa": ("deflection_m", self.stress, {"units": "Pa"})},
+                        coords={"deflection_m": ("deflection_m", self.deflection, {"units": "m"})})
+        ds.attrs.update({k: v for k, v in self.summary.items()
+                         if isinstance(v, (int, float, str)) and not isinstance(v, bool)})
         return ds
 
     def to_params(self, crank_mass, coupler_mass, slider_mass, **extra):
@@ -118,8 +123,8 @@ class DesignResult:
             fh.write(text)
         return Path(path)
 
-    def plot(self, path=None):
-        fig, ax = new_figure()
+    def _plot(self, ax=None):
+        fig, ax = new_figure() if ax is None else (ax.figure, ax)
         s = self.summary
         ax.plot(self.deflection * 1e3, self.force)
         ax.axhline(s["target_force_N"], ls=":", color="k", label="target")
@@ -129,8 +134,6 @@ class DesignResult:
                      f"{'feasible' if s['feasible'] else 'NOT feasible'}")
         ax.grid(True, alpha=0.3)
         ax.legend()
-        if path is not None:
-            save_figure(fig, path, close=False)
         return fig
 
 

@@ -20,7 +20,7 @@ from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, t
 from .motion import SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke
 from .params import CFCSParams
 from .pivot import bending_stress, max_stroke_for_stress, safety_factor
-from .results import DynamicResult, ForwardResult, StaticResult, SweepResult
+from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult
 from .statics import (
     dissipative_torque,
     frozen_jacobian,
@@ -213,7 +213,7 @@ class CFCS:
         return DynamicResult(t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], summary)
 
     def sweep(self, omegas, amplitude=DEFAULT_AMPLITUDE, offset=0.0, *, samples_per_cycle: int = 400,
-              quiet: bool = True) -> SweepResult:
+              quiet: bool = True) -> FrequencySweep:
         """Mean, median, peak-to-peak force and PCF vs omega (Figs. 5-7 of the CFCS paper).
 
         Each frequency is one whole cycle of the sinusoid (the inverse problem has no
@@ -240,7 +240,7 @@ class CFCS:
             zone = max(zone, r.summary["toggle_zone_samples"])
         summary = {"motion": r.summary["motion"].replace(f"{omegas[-1]:.6g} t", "w t"),
                    "toggle_zone_samples_per_cycle": zone, **self._common_summary()}
-        return SweepResult(omegas, stats, summary)
+        return FrequencySweep(omegas, stats, summary)
 
     # -- forward dynamics ---------------------------------------------------------------
     def forward(self, t_end: float, *, force: float | Callable | None = None, base_motion: Callable | None = None,

@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..core.io import write_csv
-from ..core.plotting import new_figure, save_figure
+from ..core.plotting import new_figure
+from ..core.results import Result, units_from_name
 
-__all__ = ["StaticResult", "DynamicResult", "SweepResult", "ForwardResult", "running_pcf"]
+__all__ = ["StaticResult", "DynamicResult", "FrequencySweep", "ForwardResult", "running_pcf"]
 
 
 def running_pcf(force):
@@ -32,34 +32,31 @@ def running_pcf(force):
         return np.where(hi > 0, 100.0 * lo / hi, np.nan)
 
 
-class _Table:
-    """Shared output plumbing: ``columns()`` -> {name_unit: array}."""
+class _Table(Result):
+    """Shared plumbing of the CFCS results on :class:`~springdyn.core.results.Result`.
 
-    summary: dict
+    ``columns()`` gives ``{name_unit: array}``; :meth:`to_xarray` turns it into the dataset
+    (each variable with the unit its name carries), from which the base derives the CSV.
+    The summary is stored by the model that builds the result (a dataclass field).
+    """
+
+    title = "constant-force spring result"
 
     def columns(self) -> dict:  # pragma: no cover - overridden
         raise NotImplementedError
-
-    def to_csv(self, path) -> Path:
-        """Write the table (SI, unit in the column names) atomically."""
-        return write_csv(path, self.columns())
 
     def _dataset(self, dim: str) -> xr.Dataset:
         cols = self.columns()
         first = next(iter(cols))
         coord = cols.pop(first)
-        ds = xr.Dataset({k: (dim, np.asarray(v)) for k, v in cols.items()}, coords={first: (dim, coord)})
+        ds = xr.Dataset({k: (dim, np.asarray(v), {"units": units_from_name(k)}) for k, v in cols.items()},
+                        coords={first: (dim, coord, {"units": units_from_name(first)})})
         ds.attrs.update({k: (v if v is not None else "none") for k, v in self.summary.items()
-                         if isinstance(v, (int, float, str, bool))})
+                         if isinstance(v, (int, float, str)) and not isinstance(v, bool)})
         return ds
 
-    def _finish(self, fig, path):
-        if path is not None:
-            save_figure(fig, path, close=False)
-        return fig
 
-
-@dataclasses.dataclass
+@dataclasses.dataclass(repr=False)
 class StaticResult(_Table):
     """Quasi-static force-deflection curve over a stroke."""
 
@@ -81,8 +78,10 @@ class StaticResult(_Table):
     def to_xarray(self) -> xr.Dataset:
         return self._dataset("sample")
 
-    def plot(self, path=None):
-        fig, ax = new_figure()
+    title = "constant-force spring: static force"
+
+    def _plot(self, ax=None):
+        fig, ax = new_figure() if ax is None else (ax.figure, ax)
         mm = self.deflection * 1e3
         ax.plot(mm, self.force, label="static (virtual work)", lw=2)
         if not np.allclose(self.force_compression, self.force):
@@ -95,10 +94,10 @@ class StaticResult(_Table):
                      f"(toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg)")
         ax.grid(True, alpha=0.3)
         ax.legend()
-        return self._finish(fig, path)
+        return fig
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(repr=False)
 class DynamicResult(_Table):
     """Inverse dynamics: slider force along a prescribed periodic motion."""
 
@@ -129,8 +128,13 @@ class DynamicResult(_Table):
     def to_xarray(self) -> xr.Dataset:
         return self._dataset("time")
 
-    def plot(self, path=None, *, label: str = "dynamic"):
-        fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 7.0), sharex=True)
+    title = "constant-force spring: dynamic force"
+
+    def _plot(self, ax=None, *, label: str = "dynamic"):
+        if ax is None:
+            fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 7.0), sharex=True)
+        else:
+            fig, ax2 = ax.figure, None
         ax.plot(self.time, self.force, label=label, lw=2)
         ax.plot(self.time, self.force_static, "--", label="static force at the same deflection")
         ax.set_ylabel("slider force [N]")
@@ -141,15 +145,18 @@ class DynamicResult(_Table):
                      f"({s['toggle_zone_samples']} samples inside)", fontsize=10)
         ax.grid(True, alpha=0.3)
         ax.legend()
+        if ax2 is None:
+            ax.set_xlabel("time [s]")
+            return fig
         ax2.plot(self.time, self.pcf_vs_time)
         ax2.set_xlabel("time [s]")
         ax2.set_ylabel("running PCF [%]")
         ax2.grid(True, alpha=0.3)
-        return self._finish(fig, path)
+        return fig
 
 
-@dataclasses.dataclass
-class SweepResult(_Table):
+@dataclasses.dataclass(repr=False)
+class FrequencySweep(_Table):
     """Force statistics vs frequency (Figs. 5-7 of the CFCS paper), with and without
     the dissipative terms."""
 
@@ -163,24 +170,43 @@ class SweepResult(_Table):
     def to_xarray(self) -> xr.Dataset:
         return self._dataset("omega")
 
-    def plot(self, path=None):
-        fig, axes = new_figure(2, 2, figsize=(10.0, 7.0), sharex=True)
+    title = "constant-force spring: frequency sweep"
+
+    def _plot(self, ax=None):
         names = [("mean_force", "mean force [N]"), ("median_force", "median force [N]"),
                  ("peak_to_peak", "peak-to-peak force [N]"), ("pcf", "PCF [%]")]
-        for ax, (name, label) in zip(axes.flat, names):
+        if ax is None:
+            fig, axes = new_figure(2, 2, figsize=(10.0, 7.0), sharex=True)
+            pairs = list(zip(axes.flat, names))
+        else:
+            fig, axes, pairs = ax.figure, None, [(ax, names[2])]
+        for ax, (name, label) in pairs:
             unit = "percent" if name == "pcf" else "N"
             ax.plot(self.omega, self.stats[f"{name}_{unit}"], label="with tau_CF, tau_AF")
             ax.plot(self.omega, self.stats[f"{name}_no_dissipation_{unit}"], "--", label="without")
             ax.set_ylabel(label)
             ax.grid(True, alpha=0.3)
+        if axes is None:
+            ax.set_xlabel("omega [rad/s]")
+            ax.legend()
+            return fig
         for ax in axes[1]:
             ax.set_xlabel("omega [rad/s]")
         axes[0, 0].legend()
         fig.suptitle(f"CFCS frequency sweep (toggle cut-off {np.degrees(self.summary['toggle_cutoff_rad']):.3g} deg)")
-        return self._finish(fig, path)
+        return fig
 
 
-@dataclasses.dataclass
+def __getattr__(name):
+    if name == "SweepResult":
+        import warnings
+
+        warnings.warn("springdyn.cfcs.results.SweepResult is now FrequencySweep", DeprecationWarning, stacklevel=2)
+        return FrequencySweep
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+@dataclasses.dataclass(repr=False)
 class ForwardResult(_Table):
     """Forward dynamics: the slider's response to a force (or a spring from a moving base)."""
 
@@ -202,7 +228,15 @@ class ForwardResult(_Table):
     def to_xarray(self) -> xr.Dataset:
         return self._dataset("time")
 
-    def plot(self, path=None):
+    title = "constant-force spring: forward dynamics"
+
+    def _plot(self, ax=None):
+        if ax is not None:
+            ax.plot(self.time, self.deflection * 1e3)
+            ax.set_xlabel("time [s]")
+            ax.set_ylabel("slider deflection [mm]")
+            ax.grid(True, alpha=0.3)
+            return ax.figure
         fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 6.5), sharex=True)
         ax.plot(self.time, self.deflection * 1e3)
         ax.set_ylabel("slider deflection [mm]")
@@ -215,4 +249,4 @@ class ForwardResult(_Table):
         ax2.set_ylabel("force [N]")
         ax2.grid(True, alpha=0.3)
         ax2.legend()
-        return self._finish(fig, path)
+        return fig

@@ -13,6 +13,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import math
+import numbers
 import tomllib
 from pathlib import Path
 from typing import Any, Mapping
@@ -37,6 +38,8 @@ def param(
     positive: bool = False,
     nonnegative: bool = False,
     bare_unit: str | None = None,
+    minimum: float | None = None,
+    maximum: float | None = None,
 ) -> Any:
     """Declare a parameter field.
 
@@ -60,6 +63,9 @@ def param(
         Range checks applied on load and in :func:`check_fields`.
     bare_unit : str, optional
         Unit of a bare number if it is not SI (rarely needed).
+    minimum, maximum : float, optional
+        Inclusive bounds [SI unit of the field] checked like ``positive`` (e.g. a count
+        that sizes a matrix needs a maximum).
     """
     meta = dict(
         unit=unit or "",
@@ -71,6 +77,8 @@ def param(
         positive=positive,
         nonnegative=nonnegative,
         bare_unit=bare_unit,
+        minimum=minimum,
+        maximum=maximum,
     )
     if isinstance(default, list):
         return dataclasses.field(default_factory=lambda d=default: list(d), metadata=meta)
@@ -133,12 +141,47 @@ def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
             raise InputError(f"{sub} = {shown} must be positive ({meta.get('doc') or 'a size'})")
         if meta.get("nonnegative") and not v >= 0:
             raise InputError(f"{sub} = {shown} must be zero or positive ({meta.get('doc') or 'a size'})")
+        lo, hi = meta.get("minimum"), meta.get("maximum")
+        if (lo is not None and v < lo) or (hi is not None and v > hi):
+            rng = (f"from {lo:g} to {hi:g}" if lo is not None and hi is not None
+                   else f"at least {lo:g}" if lo is not None else f"at most {hi:g}")
+            raise InputError(f"{sub} = {shown} must be {rng} ({meta.get('doc') or 'a count'})")
+
+
+def _check_type(name: str, value: Any, meta: Mapping, default: Any) -> None:
+    """Types are checked like values: a wrong type is an InputError naming the field."""
+    if value is None and default is None:
+        return
+    kind = meta["kind"]
+    unit = meta.get("unit") or "-"
+    if kind == "quantity":
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise InputError(f"{name} = {value!r} must be a number in SI units [{unit}] (values with units such "
+                             "as '22 mm' are read by from_dict and from_toml)")
+    elif kind == "int":
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise InputError(f"{name} = {value!r} must be a whole number")
+    elif kind == "quantity_list":
+        if isinstance(value, (list, tuple)) and not value and default == []:
+            return
+        if not isinstance(value, (list, tuple)) or not value or any(
+                isinstance(v, bool) or not isinstance(v, numbers.Real) for v in value):
+            raise InputError(f"{name} = {value!r} must be a non-empty list of numbers in SI units [{unit}]")
+    elif kind == "str":
+        if not isinstance(value, str):
+            raise InputError(f"{name} = {value!r} must be a string")
+    elif kind == "bool":
+        if not isinstance(value, bool):
+            raise InputError(f"{name} = {value!r} must be true or false")
 
 
 def check_fields(obj) -> None:
-    """Per-field range and choice checks on a parameter dataclass instance."""
+    """Per-field type, range and choice checks on a parameter dataclass instance."""
     for f, meta in field_specs(type(obj)):
         value = getattr(obj, f.name)
+        default = (f.default if f.default is not dataclasses.MISSING
+                   else f.default_factory() if f.default_factory is not dataclasses.MISSING else REQUIRED)
+        _check_type(f.name, value, meta, default)
         if meta["kind"] == "str" and meta.get("choices") and value not in meta["choices"]:
             allowed = ", ".join(repr(c) for c in meta["choices"])
             raise InputError(f"{f.name} = {value!r} is not allowed; choose one of {allowed}")

@@ -158,8 +158,29 @@ def format_value(value: Any, digits: int = 5) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
+class _SummaryAttribute:
+    """``result.summary``: built once from ``_summary()`` and cached on the instance.
+
+    A non-data descriptor, so that a result class that stores its summary itself (a
+    dataclass field named ``summary``) keeps working: the instance's own value wins.  It
+    is invisible on the class (``getattr(cls, "summary")`` raises), so that such a field
+    gets no default.
+    """
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            raise AttributeError("summary is an attribute of a result, not of its class")
+        cached = obj.__dict__.get("_summary_cache")
+        if cached is None:
+            cached = Summary(obj._summary())
+            object.__setattr__(obj, "_summary_cache", cached)
+        return cached
+
+
 class Result:
     """Base of every analysis result (see the module docstring for the interface)."""
+
+    summary = _SummaryAttribute()
 
     #: What the result is, for people: ``"valve spring simulation"``.
     title: ClassVar[str] = "result"
@@ -184,15 +205,6 @@ class Result:
         return ""
 
     # ------------------------------------------------------------------ the interface
-    @property
-    def summary(self) -> Summary:
-        """Summary figures: SI values under keys ``<quantity>_<unit>``."""
-        cached = self.__dict__.get("_summary_cache")
-        if cached is None:
-            cached = Summary(self._summary())
-            object.__setattr__(self, "_summary_cache", cached)
-        return cached
-
     def to_csv(self, path) -> Path:
         """Write the table derived from :meth:`to_xarray` (SI, unit in each column name), atomically."""
         from .io import write_csv

@@ -12,33 +12,49 @@ spaces between the packs are oil chambers joined by narrow passages.  Modules:
 - :mod:`~springdyn.lsd.rig` -- time-domain test-rig simulation (Chapter 4), :class:`RigRecord`;
 - :mod:`~springdyn.lsd.identify` -- identification (4.1)-(4.22) with the corrected algebra;
 - :mod:`~springdyn.lsd.rotordynamics` -- the damper as a ``ross.BearingElement``.
+
+The names below load their modules on first use, so that ``import springdyn.lsd`` stays quick.
 """
 
-from .damping import (
-    boundary_conductance,
-    chamber_volume_matrix,
-    coulomb_equivalent_damping,
-    hysteresis_damping_matrix,
-    leaf_loss_factor,
-    passage_conductance_rectangular,
-    passage_conductance_thesis,
-    viscous_damping_matrix,
-    viscous_damping_thesis,
-)
-from .identify import (
-    Identification,
-    IdentificationSeries,
-    RigData,
-    direct_coefficients,
-    identify,
-    identify_series,
-    read_rig_data,
-)
-from .leafpack import load_ratios, load_ratios_direct, pack_stiffness, stiffness_factor
-from .model import LSDCoefficients, LSDModel
-from .parameters import LSDParameters
-from .rig import RigRecord, Trajectory, circular_orbit, linear_shake, simulate_rig, trajectory_from_samples
-from .stiffness import PreloadExceededWarning, equally_spaced_angles, isotropic_stiffness, stiffness_matrix
+from __future__ import annotations
+
+from .._lazy import lazy_package
+
+_EXPORTS = {
+    "boundary_conductance": "damping",
+    "chamber_volume_matrix": "damping",
+    "coulomb_equivalent_damping": "damping",
+    "hysteresis_damping_matrix": "damping",
+    "leaf_loss_factor": "damping",
+    "passage_conductance_rectangular": "damping",
+    "passage_conductance_thesis": "damping",
+    "viscous_damping_matrix": "damping",
+    "viscous_damping_thesis": "damping",
+    "Identification": "identify",
+    "IdentificationSeries": "identify",
+    "RigData": "identify",
+    "direct_coefficients": "identify",
+    "identify": "identify",
+    "identify_series": "identify",
+    "read_rig_data": "identify",
+    "load_ratios": "leafpack",
+    "load_ratios_direct": "leafpack",
+    "pack_stiffness": "leafpack",
+    "stiffness_factor": "leafpack",
+    "LSDCoefficients": "model",
+    "LSDModel": "model",
+    "LSDParameters": "parameters",
+    "RigRecord": "rig",
+    "Trajectory": "rig",
+    "circular_orbit": "rig",
+    "linear_shake": "rig",
+    "simulate_rig": "rig",
+    "trajectory_from_samples": "rig",
+    "PreloadExceededWarning": "stiffness",
+    "equally_spaced_angles": "stiffness",
+    "isotropic_stiffness": "stiffness",
+    "stiffness_matrix": "stiffness",
+}
 
 __all__ = [
     "LSDParameters",
@@ -75,3 +91,6 @@ __all__ = [
     "viscous_damping_matrix",
     "viscous_damping_thesis",
 ]
+
+
+lazy_package(__name__, _EXPORTS, aliases=None)

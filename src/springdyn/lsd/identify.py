@@ -26,8 +26,10 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from ..core.errors import InputError
+from ..core.results import Result
 from ..core.io import read_csv_columns, write_csv
 from .model import COEFFICIENT_NAMES
+from .rig import RIG_COLUMNS, RigRecord
 
 __all__ = [
     "RIG_COLUMNS",
@@ -45,7 +47,6 @@ __all__ = [
 ]
 
 #: Columns of a rig record (CSV header or TDMS channel names).
-RIG_COLUMNS = ("time_s", "x_m", "y_m", "fx_N", "fy_N")
 
 CROSS_COUPLING_CAVEAT = (
     "one circular orbit cannot separate direct and cross-coupled terms: the reported kxx is "
@@ -53,63 +54,19 @@ CROSS_COUPLING_CAVEAT = (
     "excitation (--second) for the full 2 x 2 K and C"
 )
 
-_IRREGULAR_TOLERANCE = 0.01  # relative deviation of a time step from the median step
 
 
-@dataclasses.dataclass
-class RigData:
-    """A rig record: time [s], displacements [m], reaction forces [N]; checked on creation."""
+class RigData(RigRecord):
+    """A measured rig record: time [s], displacements [m], reaction forces [N].
 
-    time: np.ndarray
-    x: np.ndarray
-    y: np.ndarray
-    fx: np.ndarray
-    fy: np.ndarray
-    source: str = "<data>"
-    row_offset: int = 2  # file row of sample 0 (CSV: header is row 1)
+    The same class as :class:`~springdyn.lsd.rig.RigRecord` (one record type for simulated
+    and measured data), with the constructor of a measured record: the speed is not known
+    until it is identified, the name is the source.
+    """
 
-    def __post_init__(self):
-        for name in ("time", "x", "y", "fx", "fy"):
-            setattr(self, name, np.asarray(getattr(self, name), dtype=float).ravel())
-        cols = dict(zip(RIG_COLUMNS, (self.time, self.x, self.y, self.fx, self.fy)))
-        n = self.time.size
-        for col, v in cols.items():
-            if v.size != n:
-                raise InputError(f"{self.source}: column {col!r} has {v.size} values, 'time_s' has {n}")
-            bad = np.flatnonzero(~np.isfinite(v))
-            if bad.size:
-                raise InputError(
-                    f"{self.source}: row {bad[0] + self.row_offset}, column {col!r}: "
-                    f"{v[bad[0]]} is not a finite number ({bad.size} such rows); remove or fill them"
-                )
-        if n < 8:
-            raise InputError(f"{self.source}: only {n} samples; a rig record needs at least 8")
-        dt = np.diff(self.time)
-        back = np.flatnonzero(dt <= 0)
-        if back.size:
-            r = back[0] + 1
-            raise InputError(
-                f"{self.source}: row {r + self.row_offset}, column 'time_s': time stamps must increase "
-                f"({self.time[r]!r} s follows {self.time[r - 1]!r} s)"
-            )
-        step = float(np.median(dt))
-        off = np.flatnonzero(np.abs(dt - step) > _IRREGULAR_TOLERANCE * step)
-        if off.size:
-            r = off[0] + 1
-            raise InputError(
-                f"{self.source}: row {r + self.row_offset}, column 'time_s': irregular time stamps "
-                f"(step {dt[r - 1]:.6g} s against the usual {step:.6g} s); resample to a uniform rate"
-            )
-
-    @property
-    def sample_rate(self) -> float:
-        """Samples per second [Hz]."""
-        return 1.0 / float(np.median(np.diff(self.time)))
-
-    @property
-    def duration(self) -> float:
-        """Span of the record including the last sample interval [s]."""
-        return float(self.time[-1] - self.time[0]) + 1.0 / self.sample_rate
+    def __init__(self, time, x, y, fx, fy, source: str = "<data>", row_offset: int = 2):
+        super().__init__(name=source, excitation="measured", rpm=float("nan"), time=time, x=x, y=y, fx=fx,
+                         fy=fy, source=source, row_offset=row_offset)
 
 
 def _read_tdms(path: Path) -> dict:
@@ -395,29 +352,63 @@ class Identification:
     caveat: str = ""
 
     def to_dict(self) -> dict:
-        """JSON-ready dict: ``kxx_N_per_m`` ... with ``_uncertainty`` twins (known entries only)."""
+        """JSON-ready dict: ``kxx_N_per_m`` ... with ``_uncertainty`` twins (known entries only).
+
+        An uncertainty that the record cannot give (a single period) is ``None``, and
+        ``notes`` says why; entries the excitation cannot separate are left out.
+        """
         d = {"rpm": self.rpm, "frequency_Hz": self.frequency, "mode": self.mode, "cycles": self.cycles,
              "mass_kg": self.mass, "sources": list(self.sources)}
+        notes = []
         idx = [(0, 0), (0, 1), (1, 0), (1, 1)]
-        for name, (i, j) in zip(COEFFICIENT_NAMES[:4], idx):
-            if np.isfinite(self.K[i, j]):
-                d[f"{name}_N_per_m"] = self.K[i, j]
-                d[f"{name}_N_per_m_uncertainty"] = self.K_uncertainty[i, j]
-        for name, (i, j) in zip(COEFFICIENT_NAMES[4:], idx):
-            if np.isfinite(self.C[i, j]):
-                d[f"{name}_Ns_per_m"] = self.C[i, j]
-                d[f"{name}_Ns_per_m_uncertainty"] = self.C_uncertainty[i, j]
+        for names, value, unc, unit in ((COEFFICIENT_NAMES[:4], self.K, self.K_uncertainty, "N_per_m"),
+                                        (COEFFICIENT_NAMES[4:], self.C, self.C_uncertainty, "Ns_per_m")):
+            for name, (i, j) in zip(names, idx):
+                if np.isfinite(value[i, j]):
+                    d[f"{name}_{unit}"] = float(value[i, j])
+                    u = float(unc[i, j])
+                    d[f"{name}_{unit}_uncertainty"] = u if np.isfinite(u) else None
+                    if not np.isfinite(u) and not notes:
+                        notes.append("uncertainties need at least 2 periods of the record (they come from the "
+                                     "scatter between periods)")
+        if any(not np.isfinite(v) for v in np.concatenate([self.K.ravel(), self.C.ravel()])):
+            notes.append("one excitation cannot separate the direct and cross-coupled terms: the entries it "
+                         "cannot give are left out (record a second, independent excitation)")
         if self.caveat:
             d["caveat"] = self.caveat
+        if notes:
+            d["notes"] = notes
         return d
 
 
-@dataclasses.dataclass
-class IdentificationSeries:
-    """Identifications at several speeds (one :class:`Identification` each)."""
+@dataclasses.dataclass(repr=False)
+class IdentificationSeries(Result):
+    """Identifications at several speeds (one :class:`Identification` each).
+
+    The CSV holds the entries known at every speed (with their uncertainties); entries
+    one excitation cannot separate, or uncertainties one period cannot give, are left
+    out and the summary's ``notes`` say why.
+    """
 
     items: list
     name: str = "identified"
+
+    title = "identified leaf spring damper coefficients"
+
+    def _repr_caption(self) -> str:
+        return f"{self.name}, {len(self.items)} speeds"
+
+    def _summary(self) -> dict:
+        s = dict(name=self.name, speeds=len(self.items), rpm_min=float(self.rpm.min()),
+                 rpm_max=float(self.rpm.max()), modes=", ".join(sorted({it.mode for it in self.items})))
+        cols = self.columns()
+        known = [k for k, v in cols.items() if k != "rpm" and not k.endswith("_uncertainty")
+                 and np.all(np.isfinite(v))]
+        s["known_coefficients"] = ", ".join(known)
+        notes = [d for it in self.items for d in it.to_dict().get("notes", [])]
+        if notes:
+            s["notes"] = sorted(set(notes))
+        return s
 
     @property
     def rpm(self) -> np.ndarray:
@@ -435,8 +426,13 @@ class IdentificationSeries:
             out[f"{name}_Ns_per_m_uncertainty"] = np.array([it.C_uncertainty[i, j] for it in self.items])
         return out
 
-    def to_csv(self, path):
-        return write_csv(path, self.columns())
+    def _csv_dataset(self):
+        import xarray as xr
+
+        cols = {k: v for k, v in self.columns().items() if np.all(np.isfinite(v))}
+        rpm = cols.pop("rpm")
+        return xr.Dataset({k: ("rpm", v, {"units": ""}) for k, v in cols.items()},
+                          coords={"rpm": ("rpm", rpm, {"units": "rpm"})})
 
     def to_xarray(self):
         import xarray as xr
@@ -448,7 +444,8 @@ class IdentificationSeries:
             {"K": (dims, K, {"units": "N/m"}), "C": (dims, C, {"units": "N*s/m"}),
              "K_uncertainty": (dims, np.array([it.K_uncertainty for it in self.items]), {"units": "N/m"}),
              "C_uncertainty": (dims, np.array([it.C_uncertainty for it in self.items]), {"units": "N*s/m"})},
-            coords={"rpm": self.rpm, "row": ["x", "y"], "col": ["x", "y"]}, attrs={"name": self.name},
+            coords={"rpm": ("rpm", self.rpm, {"units": "rpm"}), "row": ["x", "y"], "col": ["x", "y"]},
+            attrs={"name": self.name},
         )
 
     def plot_on(self, ax_k, ax_c):
@@ -464,13 +461,21 @@ class IdentificationSeries:
             ax_k.errorbar(self.rpm, k / 1e3, yerr=ku / 1e3, fmt=markers[key], ms=5, capsize=2, label=f"K{key} {self.name}")
             ax_c.errorbar(self.rpm, c, yerr=cu, fmt=markers[key], ms=5, capsize=2, label=f"C{key} {self.name}")
 
-    def plot(self, path=None, model=None):
+    def _plot(self, ax=None, model=None):
         """Coefficients vs speed; with ``model`` (LSDCoefficients) the model curves too."""
         if model is not None:
-            return model.plot(path, identified=self)
+            return model._plot(ax=ax, identified=self)
+        if ax is not None:
+            for key, (i, j) in {"xx": (0, 0), "yy": (1, 1)}.items():
+                k = np.array([it.K[i, j] for it in self.items])
+                if np.all(np.isfinite(k)):
+                    ax.plot(self.rpm, k / 1e3, "o", label=f"K{key} {self.name}")
+            ax.set_xlabel("shaft speed [rpm]")
+            ax.set_ylabel("stiffness [N/mm]")
+            return ax.figure
         from .plots import coefficients_figure
 
-        return coefficients_figure(f"{self.name}: identified coefficients", self.plot_on, path)
+        return coefficients_figure(f"{self.name}: identified coefficients", self.plot_on, None)
 
 
 def identify_series(records, seconds=None, *, mass=0.0, rpms=None, name="identified") -> IdentificationSeries:

@@ -8,7 +8,7 @@ from functools import cached_property
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.io import write_csv
+from ..core.results import Result
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
 
@@ -198,8 +198,13 @@ class LSDModel:
         return bearing_element(self, n, frequencies, amplitude=amplitude, motion=motion, **kwargs)
 
 
-@dataclasses.dataclass
-class LSDCoefficients:
+def _names(prefix_k: bool, unit: str) -> str:
+    names = COEFFICIENT_NAMES[:4] if prefix_k else COEFFICIENT_NAMES[4:]
+    return ",".join(f"{n}_{unit}" for n in names)
+
+
+@dataclasses.dataclass(repr=False)
+class LSDCoefficients(Result):
     """Stiffness and damping coefficients of a leaf spring damper vs shaft speed.
 
     Attributes
@@ -221,6 +226,21 @@ class LSDCoefficients:
     pack_stiffness: float
     load_ratios: np.ndarray
     preload_exceeded: bool = False
+
+    title = "leaf spring damper coefficients"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.name}, {self.rpm.size} speeds, {self.amplitude * 1e6:.3g} um amplitude"
+
+    def _summary(self) -> dict:
+        s = dict(name=self.name, speeds=int(self.rpm.size), rpm_min=float(self.rpm.min()),
+                 rpm_max=float(self.rpm.max()), amplitude_m=float(self.amplitude),
+                 pack_stiffness_N_per_m=float(self.pack_stiffness),
+                 kxx_min_N_per_m=float(self.K[:, 0, 0].min()), kxx_max_N_per_m=float(self.K[:, 0, 0].max()),
+                 cxx_min_N_s_per_m=float(self.C[:, 0, 0].min()), cxx_max_N_s_per_m=float(self.C[:, 0, 0].max()),
+                 preload_exceeded=bool(self.preload_exceeded))
+        return s
 
     @property
     def omega(self) -> np.ndarray:
@@ -244,33 +264,30 @@ class LSDCoefficients:
         d["preload_exceeded"] = self.preload_exceeded
         return d
 
-    def to_csv(self, path):
-        """Write the coefficient table (SI, units in column names)."""
-        return write_csv(path, self.columns())
-
     def to_xarray(self):
-        """``xarray.Dataset`` with ``K`` and ``C`` over ``(rpm, row, col)``."""
+        """``xarray.Dataset`` with ``K`` and ``C`` over ``(rpm, row, col)`` (the CSV: one column per entry)."""
         import xarray as xr
 
-        coords = {"rpm": self.rpm, "row": ["x", "y"], "col": ["x", "y"]}
+        coords = {"rpm": ("rpm", self.rpm, {"units": "rpm"}), "row": ["x", "y"], "col": ["x", "y"]}
         ds = xr.Dataset(
             {
-                "K": (("rpm", "row", "col"), self.K, {"units": "N/m"}),
-                "C": (("rpm", "row", "col"), self.C, {"units": "N*s/m"}),
-                **{f"C_{k}": (("rpm", "row", "col"), np.asarray(v), {"units": "N*s/m"}) for k, v in self.parts.items()},
+                "K": (("rpm", "row", "col"), self.K, {"units": "N/m", "csv_columns": _names(True, "N_per_m")}),
+                "C": (("rpm", "row", "col"), self.C, {"units": "N*s/m", "csv_columns": _names(False, "Ns_per_m")}),
+                **{f"C_{k}": (("rpm", "row", "col"), np.asarray(v), {"units": "N*s/m", "csv": "no"})
+                   for k, v in self.parts.items()},
             },
             coords=coords,
             attrs={"name": self.name, "amplitude_m": self.amplitude, "pack_stiffness_N_per_m": self.pack_stiffness},
         )
         return ds
 
-    def plot(self, path=None, identified=None):
+    def _plot(self, ax=None, identified=None):
         """Coefficients vs speed like Figs. 5.9/5.10 and 5.27/5.28 of the thesis.
 
         Parameters
         ----------
-        path : path-like, optional
-            Save a PNG there.
+        ax : matplotlib.axes.Axes, optional
+            Draw the stiffness panel only, into these axes.
         identified : IdentificationSeries, optional
             Identified coefficients (:mod:`springdyn.lsd.identify`) drawn as markers
             with error bars on the same axes.
@@ -286,7 +303,14 @@ class LSDCoefficients:
             if identified is not None:
                 identified.plot_on(ax_k, ax_c)
 
+        if ax is not None:
+            for key, (i, j) in {"xx": (0, 0), "yy": (1, 1)}.items():
+                ax.plot(self.rpm, self.K[:, i, j] / 1e3, styles[key], label=f"K{key} model")
+            ax.set_xlabel("shaft speed [rpm]")
+            ax.set_ylabel("stiffness [N/mm]")
+            ax.legend(fontsize=8)
+            return ax.figure
         return coefficients_figure(
-            f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude", draw, path,
+            f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude", draw, None,
             damping_linthresh=max(1.0, float(np.max(np.abs(self.C))) * 1e-3),
         )

@@ -19,6 +19,12 @@ __all__ = ["LSDParameters", "EXAMPLES"]
 EXAMPLES = {"A": "lsd_type_a.toml", "B": "lsd_type_b.toml", "C": "lsd_type_c.toml"}
 
 
+#: Most packs and leaves per pack springdyn models (the thesis' dampers have 4-8 packs of
+#: 2-4 leaves; the limits keep the chamber network and the pack equations small).
+MAX_PACKS = 64
+MAX_LEAVES = 20
+
+
 @dataclasses.dataclass(frozen=True)
 class LSDParameters:
     """Geometry, materials and oil of a leaf spring damper (SI floats).
@@ -28,7 +34,7 @@ class LSDParameters:
     built-in prototype with :meth:`example` (``"A"``, ``"B"``, ``"C"``).
     """
 
-    packs: int = param("", "number of leaf spring packs", symbol="N", kind="int")
+    packs: int = param("", "number of leaf spring packs", symbol="N", kind="int", minimum=2, maximum=MAX_PACKS)
     leaf_lengths: list = param("m", "leaf lengths, longest first", symbol="L_i", kind="quantity_list", display="mm", positive=True)
     leaf_thicknesses: list = param("m", "leaf thicknesses", symbol="t_i", kind="quantity_list", display="mm", positive=True)
     leaf_width: float = param("m", "leaf width", symbol="b_1", display="mm", positive=True)
@@ -46,7 +52,8 @@ class LSDParameters:
     pack_angles: list = param("rad", "explicit pack angles (empty: equally spaced)", kind="quantity_list", display="deg", default=[])
     clamp_overhang: float = param("m", "clamp overhang a of Fig. 2.3", symbol="a", display="mm", default=0.0, nonnegative=True)
     ring_mass: float = param("kg", "mass of the inner ring", symbol="m", default=0.0, nonnegative=True)
-    passages_per_boundary: int = param("", "oil passages between two neighbouring chambers", kind="int", default=2)
+    passages_per_boundary: int = param("", "oil passages between two neighbouring chambers", kind="int", default=2,
+                                       minimum=1, maximum=100)
     conductance_model: str = param(None, "passage conductance", kind="str", choices=("exact", "thesis"), default="exact")
     leakage_factor: float = param("", "calibration factor on the passage conductance", default=1.0, positive=True)
     leaf_friction: float = param("", "friction coefficient between leaves", symbol="mu_s", default=0.1, nonnegative=True)
@@ -57,6 +64,8 @@ class LSDParameters:
 
     def __post_init__(self):
         check_fields(self)
+        if len(self.leaf_lengths) > MAX_LEAVES:
+            raise InputError(f"leaf_lengths has {len(self.leaf_lengths)} leaves; a pack has at most {MAX_LEAVES}")
         if self.packs < 2:
             raise InputError(f"packs = {self.packs} must be at least 2 (the oil chambers lie between packs)")
         if len(self.leaf_lengths) != len(self.leaf_thicknesses):

@@ -24,11 +24,12 @@ import dataclasses
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.io import write_csv
+from ..core.results import Result
 from .model import LSDModel, rpm_to_omega
 from .stiffness import pack_deflections, warn_if_unloading
 
 __all__ = [
+    "RIG_COLUMNS",
     "Trajectory",
     "circular_orbit",
     "linear_shake",
@@ -214,8 +215,13 @@ def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, di
     )
 
 
-@dataclasses.dataclass
-class RigRecord:
+#: The columns of a rig CSV (SI, unit in the name).
+RIG_COLUMNS = ("time_s", "x_m", "y_m", "fx_N", "fy_N")
+_IRREGULAR_TOLERANCE = 0.01  # relative deviation of a time step from the median step
+
+
+@dataclasses.dataclass(repr=False)
+class RigRecord(Result):
     """Simulated (or measured) rig signals: displacements [m] and reaction forces [N] vs time [s]."""
 
     name: str
@@ -228,38 +234,105 @@ class RigRecord:
     fy: np.ndarray
     parts: dict = dataclasses.field(default_factory=dict)
     preload_exceeded: bool = False
+    source: str = ""
+    row_offset: int = 2  # file row of sample 0 (CSV: header is row 1)
+
+    title = "leaf spring damper rig record"
+
+    def __post_init__(self):
+        self.source = self.source or f"{self.name} {self.excitation}"
+        for name in ("time", "x", "y", "fx", "fy"):
+            setattr(self, name, np.asarray(getattr(self, name), dtype=float).ravel())
+        cols = dict(zip(RIG_COLUMNS, (self.time, self.x, self.y, self.fx, self.fy)))
+        n = self.time.size
+        for col, v in cols.items():
+            if v.size != n:
+                raise InputError(f"{self.source}: column {col!r} has {v.size} values, 'time_s' has {n}")
+            bad = np.flatnonzero(~np.isfinite(v))
+            if bad.size:
+                raise InputError(
+                    f"{self.source}: row {bad[0] + self.row_offset}, column {col!r}: "
+                    f"{v[bad[0]]} is not a finite number ({bad.size} such rows); remove or fill them"
+                )
+        if n < 8:
+            raise InputError(f"{self.source}: only {n} samples; a rig record needs at least 8")
+        dt = np.diff(self.time)
+        back = np.flatnonzero(dt <= 0)
+        if back.size:
+            r = back[0] + 1
+            raise InputError(
+                f"{self.source}: row {r + self.row_offset}, column 'time_s': time stamps must increase "
+                f"({self.time[r]!r} s follows {self.time[r - 1]!r} s)"
+            )
+        step = float(np.median(dt))
+        off = np.flatnonzero(np.abs(dt - step) > _IRREGULAR_TOLERANCE * step)
+        if off.size:
+            r = off[0] + 1
+            raise InputError(
+                f"{self.source}: row {r + self.row_offset}, column 'time_s': irregular time stamps "
+                f"(step {dt[r - 1]:.6g} s against the usual {step:.6g} s); resample to a uniform rate"
+            )
+
+    @property
+    def sample_rate(self) -> float:
+        """Samples per second [Hz]."""
+        return 1.0 / float(np.median(np.diff(self.time)))
+
+    @property
+    def duration(self) -> float:
+        """Span of the record including the last sample interval [s]."""
+        return float(self.time[-1] - self.time[0]) + 1.0 / self.sample_rate
+
+    def _repr_caption(self) -> str:
+        speed = f"{self.rpm:g} rpm" if np.isfinite(self.rpm) else "measured"
+        return f"{self.name}, {self.excitation} excitation, {speed}, {self.time.size} samples"
+
+    def _summary(self) -> dict:
+        s = dict(name=self.name, excitation=self.excitation, samples=int(self.time.size),
+                 duration_s=float(self.time[-1] - self.time[0]) if self.time.size else 0.0,
+                 x_amplitude_m=float(np.ptp(self.x) / 2), y_amplitude_m=float(np.ptp(self.y) / 2),
+                 fx_amplitude_N=float(np.ptp(self.fx) / 2), fy_amplitude_N=float(np.ptp(self.fy) / 2),
+                 preload_exceeded=bool(self.preload_exceeded))
+        s["rpm"] = float(self.rpm) if np.isfinite(self.rpm) else None
+        if s["rpm"] is None:
+            s["notes"] = ["the shaft speed of a measured record is not known until it is identified"]
+        return s
 
     def columns(self) -> dict:
         """The rig CSV columns ``time_s, x_m, y_m, fx_N, fy_N`` (read back by :mod:`.identify`)."""
         return {"time_s": self.time, "x_m": self.x, "y_m": self.y, "fx_N": self.fx, "fy_N": self.fy}
 
-    def to_csv(self, path):
-        """Write ``time_s, x_m, y_m, fx_N, fy_N`` (SI)."""
-        return write_csv(path, self.columns())
-
     def to_xarray(self):
-        """``xarray.Dataset`` over ``time`` with the signals and the force parts."""
+        """``xarray.Dataset`` over ``time`` with the signals and the force parts (the CSV:
+        ``time_s, x_m, y_m, fx_N, fy_N``)."""
         import xarray as xr
 
         data = {k: ("time", v, {"units": "m" if k in ("x", "y") else "N"})
                 for k, v in (("x", self.x), ("y", self.y), ("fx", self.fx), ("fy", self.fy))}
         for k, (a, b) in self.parts.items():
-            data[f"fx_{k}"] = ("time", a, {"units": "N"})
-            data[f"fy_{k}"] = ("time", b, {"units": "N"})
+            data[f"fx_{k}"] = ("time", a, {"units": "N", "csv": "no"})
+            data[f"fy_{k}"] = ("time", b, {"units": "N", "csv": "no"})
         return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
-                          attrs={"name": self.name, "excitation": self.excitation, "rpm": self.rpm})
+                          attrs={"name": self.name, "excitation": self.excitation,
+                                 "rpm": self.rpm if np.isfinite(self.rpm) else "unknown"})
 
-    def plot(self, path=None, cycles=2):
+    def _plot(self, ax=None, cycles=2):
         """Hysteresis loops ``F_x`` vs ``x`` and ``F_y`` vs ``y`` (like Figs. 5.3-5.26 of the thesis).
 
         Draws the last ``cycles`` periods when the speed is known, else the whole record.
         """
-        from ..core.plotting import new_figure, save_figure
+        from ..core.plotting import new_figure
 
         sel = slice(None)
         if np.isfinite(self.rpm) and self.rpm > 0:
             n = int(round(cycles * 60.0 / self.rpm / np.median(np.diff(self.time))))
             sel = slice(max(0, self.time.size - n), None)
+        if ax is not None:
+            ax.plot(self.x[sel] * 1e6, self.fx[sel], lw=0.8)
+            ax.set_xlabel("x [um]")
+            ax.set_ylabel("Fx [N]")
+            ax.grid(True, alpha=0.3)
+            return ax.figure
         fig, (ax1, ax2) = new_figure(1, 2, figsize=(10, 4.5))
         span_x, span_y = np.ptp(self.x[sel]), np.ptp(self.y[sel])
         # a single-axis shake: draw both forces against the moving axis
@@ -277,6 +350,4 @@ class RigRecord:
             ax.axvline(0, color="k", lw=0.5)
         speed = f"{self.rpm:g} rpm" if np.isfinite(self.rpm) else "measured"
         fig.suptitle(f"{self.name}: hysteresis loops ({self.excitation}, {speed})")
-        if path is not None:
-            save_figure(fig, path, close=False)
         return fig

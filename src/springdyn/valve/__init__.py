@@ -26,8 +26,7 @@ quick (the compiled engine, numba, loads only when a simulation needs it).
 
 from __future__ import annotations
 
-import importlib
-import warnings
+from .._lazy import lazy_package
 
 _EXPORTS = {
     "ValveSpring": "spring", "Chain": "model", "SpringModel": "model", "TypeCModel": "model", "MODELS": "model",
@@ -40,16 +39,4 @@ __all__ = ["ValveSpring", "SpringModel", "TypeCModel", "MODELS", "Chain", "Stati
            "simulate", "Simulation", "float_speed", "FloatSpeedResult", "sweep", "SpeedSweep"]
 
 
-def __getattr__(name):
-    if name == "SweepResult":
-        warnings.warn("springdyn.valve.SweepResult is now SpeedSweep", DeprecationWarning, stacklevel=2)
-        name = "SpeedSweep"
-    if name in _EXPORTS:
-        value = getattr(importlib.import_module(f"{__name__}.{_EXPORTS[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+lazy_package(__name__, _EXPORTS, aliases={"SweepResult": "SpeedSweep"})

@@ -8,7 +8,8 @@ rest of the revolution.  Each exposes lift, velocity ``dh/dtheta`` and accelerat
 ``d2h/dtheta2`` (per radian of cam angle); multiply by ``omega`` and ``omega^2`` for time
 derivatives.
 
-Rise laws (notes 1.7), with ``u`` in [0, 1] over the rise half and ``P(u)`` rising 0 -> 1:
+Rise laws of valve-cam practice (not in [MMS], which drives the retainer end by a given
+lift, "Initial condition & position"), with ``u`` in [0, 1] over the rise half and ``P(u)`` rising 0 -> 1:
 
 - ``cycloidal``: ``P = u - sin(2 pi u)/(2 pi)``
 - ``3-4-5``: ``P = 10u^3 - 15u^4 + 6u^5``
@@ -37,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.params import check_fields, from_mapping, load_toml, param
+from ..core.params import Parameters, param
 from ..core.errors import InputError
 from ..core.io import read_csv_columns
 
@@ -141,7 +142,7 @@ def _g(u):
 
 
 @dataclass(frozen=True)
-class Cam:
+class Cam(Parameters):
     """A cam lift law over one camshaft revolution (SI: m and rad).
 
     Examples
@@ -160,8 +161,9 @@ class Cam:
     table_angle: np.ndarray = field(default=None, repr=False, compare=False)
     table_lift: np.ndarray = field(default=None, repr=False, compare=False)
 
-    def __post_init__(self):
-        check_fields(self)
+    table = "cam"
+
+    def _validate(self) -> None:
         if self.law == "table":
             given = [k for k in ("lift", "duration") if getattr(self, k) is not None]
             if given or self.ramp_height or self.ramp_duration:
@@ -198,23 +200,17 @@ class Cam:
             raise InputError(f"ramp_height = {_mm(self.ramp_height)} must be smaller than lift = {_mm(self.lift)}")
 
     @classmethod
-    def from_dict(cls, mapping, *, source: str | None = None, base_dir: Path | None = None) -> "Cam":
-        """Build from a mapping of ``[cam]`` keys; a relative ``file`` is taken from ``base_dir``."""
-        mapping = dict(mapping)
-        if "file" in mapping and base_dir is not None and isinstance(mapping["file"], str):
+    def _prepare(cls, mapping: dict, *, base_dir: Path | str | None = None, **context) -> dict:
+        """A relative lift-table ``file`` is taken from ``base_dir`` (the TOML file's folder)."""
+        if "file" in mapping and base_dir is not None and isinstance(mapping["file"], str) and mapping["file"]:
             p = Path(mapping["file"])
             mapping["file"] = str(p if p.is_absolute() else Path(base_dir) / p)
-        return from_mapping(cls, mapping, section="cam", source=source)
-
-    @classmethod
-    def from_toml(cls, path) -> "Cam":
-        """Read the ``[cam]`` table of a TOML file (a table ``file`` is relative to the TOML file)."""
-        return cls.from_dict(load_toml(path, "cam"), source=str(path), base_dir=Path(path).parent)
+        return mapping
 
     @classmethod
     def from_table(cls, angle, lift, name: str = "table") -> "Cam":
         """A cam from arrays: cam angle [rad] over one revolution and lift [m]."""
-        return cls(law="table", file=name, table_angle=np.asarray(angle, float), table_lift=np.asarray(lift, float))
+        return cls(law="table", file=name, table_angle=np.asarray(angle), table_lift=np.asarray(lift))
 
     # -------------------------------------------------------------- evaluation
     @property
@@ -339,6 +335,17 @@ def read_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
 
 def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):
     """Check a lift table covers exactly one revolution; drop a closing row at +360 deg."""
+    try:
+        angle, lift = np.asarray(angle, dtype=float), np.asarray(lift, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name}: cam angle and lift must be arrays of numbers") from None
+    if angle.ndim != 1 or lift.shape != angle.shape:
+        raise InputError(f"{name}: cam angle and lift must be two flat arrays of the same length, "
+                         f"not of shapes {angle.shape} and {lift.shape}")
+    for column, values in (("cam angle", angle), ("lift", lift)):
+        if not np.all(np.isfinite(values)):
+            i = int(np.argmax(~np.isfinite(values)))
+            raise InputError(f"{name}: row {i + 2}, column {column}: {values[i]:g} is not a finite number")
     if angle.size < 8:
         raise InputError(f"{name}: a lift table needs at least 8 rows, found {angle.size}")
     d = np.diff(angle)

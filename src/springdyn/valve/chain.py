@@ -128,7 +128,7 @@ class SpringModel:
         """Static (massless) spring force [N] at spring length ``length`` [m].
 
         Series equilibrium of the six elements: equal force, compressions summing to
-        ``Lf - length`` (notes 1.5).  Valid from the free length down to :attr:`min_length`.
+        ``Lf - length`` (correction MMS-10 of docs/references.md).  Valid from the free length down to :attr:`min_length`.
         """
         return self.static_state(length)[0]
 
@@ -141,7 +141,7 @@ class SpringModel:
         return float(self.spring.free_length - element_compressions(force, self.chain.laws).sum())
 
     def initial_condition(self, total_compression: float):
-        """Static state at a total compression ``dL = (Lf - Ls) + lift`` [m] (notes 1.5).
+        """Static state at a total compression ``dL = (Lf - Ls) + lift`` [m] (correction MMS-10 of docs/references.md).
 
         Returns
         -------
@@ -214,6 +214,10 @@ class SpringModel:
             ``shear_stress_Pa`` (Bergstraesser-corrected), ``surge_frequency_Hz`` (first
             mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
         """
+        if cam_rpm is not None and (isinstance(cam_rpm, bool) or not isinstance(cam_rpm, (int, float, np.number))
+                                    or not (np.isfinite(cam_rpm) and cam_rpm > 0)):
+            raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive, finite camshaft speed [rev/min]: the surge "
+                             "margin is the surge frequency over the camshaft frequency")
         p = self.internal_parameters()
         c = design.spring_index(self.spring.mean_diameter, self.spring.wire_diameter)
         kb = design.bergstraesser_factor(c)

@@ -94,6 +94,15 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     Warns when the lift drives the spring into coil contact statically (force above
     Fcon), naming the cam angle and the force; raises :class:`InputError` when it would
     drive it beyond the model's range.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        The spring definition (its model gives the chain).
+    cam : Cam
+        The cam.
+    valve_train : ValveTrain, optional
+        Adds the valve body with cam and seat contacts.
     """
     theta = np.arange(CAM_SAMPLES) * (2 * math.pi / CAM_SAMPLES)
     h, dh, ddh = cam.sampled(CAM_SAMPLES)
@@ -171,17 +180,20 @@ def simulate(
     cam_rpm : float
         Camshaft speed [rev/min] (half the engine speed of a four-stroke engine).
     revolutions : int
-        Cam revolutions to integrate from static equilibrium; the last is reported and
+        Cam revolutions [-] to integrate from static equilibrium; the last is reported and
         compared with the one before to judge periodicity.
     valve_train : ValveTrain, optional
         Adds the valve body with cam and seat contacts (lift-off, bounce).
     points_per_revolution : int
-        Output resolution (1440: every 0.25 deg).
+        Output resolution [-] (1440: every 0.25 deg).
     rtol, atol : float
         Integration tolerances (absolute: on displacements [m] and velocities [m/s]).
     backend : {"compiled", "scipy"}
         ``"compiled"``: the numba Dormand-Prince engine; ``"scipy"``: ``solve_ivp``
         (DOP853) with the plain-Python right-hand side, the reference.
+    setup : SimulationSetup, optional
+        A prepared setup of the same spring, cam and valve train (:func:`prepare`), reused
+        across speeds.
 
     Raises
     ------
@@ -190,15 +202,38 @@ def simulate(
     SolverError
         Integration failure, naming the speed, the time and the likely cause.
     """
-    if not (cam_rpm > 0 and math.isfinite(cam_rpm)):
-        raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive speed")
-    if int(revolutions) != revolutions or revolutions < 1:
-        raise InputError(f"revolutions = {revolutions!r} must be a whole number of at least 1")
-    if points_per_revolution < 16:
-        raise InputError(f"points_per_revolution = {points_per_revolution} must be at least 16")
+    number = (int, float, np.integer, np.floating)
+    if isinstance(cam_rpm, bool) or not isinstance(cam_rpm, number) or not (cam_rpm > 0 and math.isfinite(cam_rpm)):
+        raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive speed: a finite number [rev/min]")
+    for name, value, lo, hi in (("revolutions", revolutions, 1, 1000), ("points_per_revolution", points_per_revolution, 16, 100_000)):
+        if (isinstance(value, bool) or not isinstance(value, number) or not math.isfinite(value)
+                or value != int(value) or not lo <= value <= hi):
+            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
+    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
+        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
+            raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
+                             "(integration tolerance" + (": absolute, on displacements [m] and velocities [m/s])"
+                                                         if name == "atol" else ", relative)"))
     if backend not in ("compiled", "scipy"):
         raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")
-    revolutions = int(revolutions)
+    revolutions, points_per_revolution = int(revolutions), int(points_per_revolution)
+    # bound the work by the periods of the fastest mode: solve_ivp has no step cap (20 to
+    # 70 right-hand-side calls per period: 2e4 periods take seconds to a minute); the
+    # compiled engine stops at 1e7 steps (3 to 5 steps per period)
+    max_cycles = 2.0e4 if backend == "scipy" else 2.0e6
+    f_top = float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1])
+    if valve_train is not None:
+        f_top = max(f_top, math.sqrt((valve_train.cam_contact_stiffness + valve_train.seat_stiffness)
+                                     / valve_train.moving_mass) / (2 * math.pi))
+    cycles = revolutions * 60.0 / cam_rpm * f_top
+    if cycles > max_cycles:
+        raise InputError(
+            f"cam_rpm = {cam_rpm:g} is too slow for backend = {backend!r}: {revolutions} revolutions last "
+            f"{revolutions * 60.0 / cam_rpm:.4g} s, {cycles:.3g} periods of the fastest mode ({f_top:.0f} Hz), "
+            f"more than the {max_cycles:g} this backend integrates in bounded time; "
+            + ("use backend = 'compiled' or " if backend == "scipy" else "give fewer revolutions or ")
+            + f"at least {revolutions * 60.0 * f_top / max_cycles:.3g} rev/min"
+        )
     if setup is None:
         setup = prepare(spring, cam, valve_train)
         if cam.law == "table":
@@ -383,7 +418,25 @@ def float_speed(
     """Float speed: the lowest cam speed at which the follower separates from the cam.
 
     Scans the speeds ``cam_rpm`` (ascending), then bisects between the last speed without
-    lift-off and the first with it down to ``resolution`` [rev/min].
+    lift-off and the first with it down to ``resolution`` [rev/min] (at most
+    ``MAX_HALVINGS`` halvings).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain
+        The valve body whose contact with the cam may open.
+    cam_rpm : array_like
+        Camshaft speeds to scan [rev/min], positive.
+    revolutions : int
+        Cam revolutions per simulation [-] (see :func:`simulate`).
+    resolution : float
+        Width of the final bracket [rev/min], positive.
+    points_per_revolution : int
+        Output resolution of each simulation [-].
+    progress_quiet : bool
+        No progress bar.
 
     Returns
     -------
@@ -393,9 +446,20 @@ def float_speed(
     """
     from ..core.progress import progress
 
-    rpms = np.sort(np.asarray(cam_rpm, dtype=float))
-    if rpms.size == 0 or rpms[0] <= 0:
-        raise InputError("cam_rpm must hold at least one positive speed")
+    max_halvings = 40
+    try:
+        rpms = np.sort(np.atleast_1d(np.asarray(cam_rpm, dtype=float)))
+    except (TypeError, ValueError):
+        raise InputError(f"cam_rpm = {cam_rpm!r} must be a speed or a list of speeds [rev/min]") from None
+    if rpms.ndim != 1 or rpms.size == 0 or not np.all(np.isfinite(rpms)) or rpms[0] <= 0:
+        raise InputError(f"cam_rpm = {cam_rpm!r} must hold at least one speed, all positive and finite [rev/min]")
+    if (isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating))
+            or not (math.isfinite(resolution) and resolution > 0)):
+        raise InputError(f"resolution = {resolution!r} must be a positive, finite speed [rev/min]")
+    finest = max(float(rpms[-1] - rpms[0]), float(rpms[-1])) / 2.0**max_halvings
+    if resolution < finest:
+        raise InputError(f"resolution = {resolution:g} rev/min is finer than the bisection reaches in {max_halvings} "
+                         f"halvings of the scanned range: it must be at least {finest:.3g} rev/min")
     setup = prepare(spring, cam, valve_train)
 
     def min_force(rpm):
@@ -421,7 +485,9 @@ def float_speed(
     if first == 0:
         return result(scanned[0], [None, scanned[0]])
     lo, hi = scanned[first - 1], scanned[first]
-    while hi - lo > resolution:
+    for _ in range(max_halvings):  # bounded: the check above makes this many enough
+        if hi - lo <= resolution:
+            break
         mid = 0.5 * (lo + hi)
         if min_force(mid)[1]:
             hi = mid

@@ -1,9 +1,9 @@
-"""Nonlinear force laws of the six chain elements (document, "Nonlinear characteristics").
+"""Nonlinear force laws of the six chain elements ([MMS], "Nonlinear characteristics").
 
 A law is stored as a ``(3, 4)`` float array, one row per segment
 ``(x_start, a, b, c)``: on ``x_start <= x < next x_start`` the element force is
 ``F = a x^2 + b x + c``.  The first segment starts at ``-inf`` and is linear (tension
-continues the linear law, notes 1.3.9); unused rows have ``x_start = +inf``.  The same
+continues the linear law, correction MMS-9 of docs/references.md); unused rows have ``x_start = +inf``.  The same
 arrays feed the NumPy functions here and the compiled kernels of the dynamics.
 
 Every law is C1-continuous and has a non-decreasing tangent stiffness, so force is
@@ -37,7 +37,8 @@ def quadratic_through(x0: float, f0: float, k0: float, x1: float, f1: float) -> 
 
     This is the closed-form solution of the document's 3x3 systems
     ``[[x0^2, x0, 1], [x1^2, x1, 1], [2 x0, 1, 0]] (a, b, c) = (f0, f1, k0)``
-    (better conditioned than solving the matrix numerically).
+    (better conditioned than solving the matrix numerically); [MMS], "Nonlinear
+    characteristics of Kh1" / "of Kh2" / "of Ks".
 
     Parameters
     ----------
@@ -61,21 +62,38 @@ def _upper_root(a: float, b: float, c: float, force: float) -> float:
 
 
 def linear_law(k: float) -> np.ndarray:
-    """Law of a linear element ``F = k x`` (the end elements K, notes 1.3.7)."""
+    """Law of a linear element ``F = k x`` (the end elements K).
+
+    Parameters
+    ----------
+    k : float
+        Element stiffness [N/m].
+
+    Returns
+    -------
+    law : ndarray, shape (3, 4)
+
+    Notes
+    -----
+    [MMS], "Stiffness for fully contact" gives K no nonlinear law; the end elements are
+    linear in compression (correction MMS-7 of docs/references.md).
+    """
     law = np.full((3, 4), _INF)
     law[0] = (-_INF, 0.0, k, 0.0)
     return law
 
 
 def hardening_law(k0: float, k_prime: float, f1: float, f2: float, fcon: float, pc: float):
-    """Law of a Kh1 or Kh2 element with its breakpoints (notes 1.4).
+    """Law of a Kh1 or Kh2 element with its breakpoints ([MMS], "Nonlinear characteristics
+    of Kh1" and "of Kh2").
 
     Linear ``k0 x`` up to ``x_1 = F1/k0``; then the quadratic through ``(x_1, F1)`` with
     slope ``k0`` and through ``(x_2, F2)``, ``x_2 = x_1 + (F2 - F1)/k'`` (document's
-    x12 / x22 with the typos of notes 1.3.1-2 fixed: ``Kh1'``/``Kh2'`` and ``x11``/``x21``);
+    x12 / x22 with corrections MMS-1 and MMS-2 of docs/references.md: ``Kh1'``/``Kh2'`` and ``x11``/``x21``);
     from ``x_3`` (where that quadratic reaches Fcon) the coil-contact quadratic through
     ``(x_3, Fcon)`` with the slope there (``Kh1c``/``Kh2c``) and through
-    ``(x_4, 2 Fcon)``, ``x_4 = x_3 + Pc/10``; beyond ``x_4`` it continues (notes 1.3.9).
+    ``(x_4, 2 Fcon)``, ``x_4 = x_3 + Pc/10``; beyond ``x_4`` it continues
+    (correction MMS-9 of docs/references.md).
 
     Parameters
     ----------
@@ -120,6 +138,12 @@ def low_pitch_law(ks: float, fset: float, dw: float):
         Set-up force [N].
     dw : float
         Wire diameter [m].
+
+    Returns
+    -------
+    law : ndarray, shape (3, 4)
+    breakpoints : dict
+        ``x1, x2`` [m].
     """
     x1 = fset / ks
     x2 = x1 + dw / 10.0
@@ -136,7 +160,19 @@ def _segment(x, law):
 
 
 def law_force(x, law: np.ndarray):
-    """Element force [N] at compression ``x`` [m] (scalar or array)."""
+    """Element force [N] at compression ``x`` [m] (scalar or array).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Element compression from its free state [m].
+    law : ndarray, shape (3, 4)
+        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+
+    Notes
+    -----
+    [MMS], "Spring load for Kh1 becomes as follows" (and likewise Kh2, Ks).
+    """
     x = np.asarray(x, dtype=float)
     s = _segment(x, law)
     a, b, c = law[s, 1], law[s, 2], law[s, 3]
@@ -144,14 +180,40 @@ def law_force(x, law: np.ndarray):
 
 
 def law_stiffness(x, law: np.ndarray):
-    """Tangent stiffness ``dF/dx`` [N/m] at compression ``x`` [m]."""
+    """Tangent stiffness ``dF/dx`` [N/m] at compression ``x`` [m].
+
+    Parameters
+    ----------
+    x : float or array_like
+        Element compression [m].
+    law : ndarray, shape (3, 4)
+        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+
+    Notes
+    -----
+    Derivative of the law of [MMS], "Nonlinear characteristics" (the ``K(x)`` of
+    "Damping Coefficient").
+    """
     x = np.asarray(x, dtype=float)
     s = _segment(x, law)
     return 2.0 * law[s, 1] * x + law[s, 2]
 
 
 def law_compression(force, law: np.ndarray):
-    """Inverse law: compression [m] at which the element carries ``force`` [N]."""
+    """Inverse law: compression [m] at which the element carries ``force`` [N].
+
+    Parameters
+    ----------
+    force : float or array_like
+        Element force [N].
+    law : ndarray, shape (3, 4)
+        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+
+    Notes
+    -----
+    The rising root of the law of [MMS], "Nonlinear characteristics" (as ``x13`` there);
+    used for the series equilibrium of correction MMS-10 of docs/references.md.
+    """
     force = np.asarray(force, dtype=float)
     f_start = law_force(law[1:, 0], law)  # force at each later segment start (inf if unused)
     f_start = np.where(np.isfinite(law[1:, 0]), f_start, np.inf)
@@ -162,10 +224,19 @@ def law_compression(force, law: np.ndarray):
 
 
 def damping_coefficient(x, law: np.ndarray, c0: float):
-    """Element damping ``c(x) = C0 sqrt(k(x)/k(0))`` [N s/m] (document, "Damping Coefficient").
+    """Element damping ``c(x) = C0 sqrt(k(x)/k(0))`` [N s/m] ([MMS], "Damping Coefficient").
 
     ``k(x)`` is the tangent stiffness of the element's law and ``k(0)`` its initial
-    (linear) rate; ``C0 = 2 Cps sqrt(M K1)`` (notes 1.3.8).
+    (linear) rate; ``C0 = 2 Cps sqrt(M K1)`` (correction MMS-8 of docs/references.md).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Element compression [m].
+    law : ndarray, shape (3, 4)
+        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    c0 : float
+        Base damping coefficient C0 [N s/m].
     """
     return c0 * np.sqrt(law_stiffness(x, law) / law[0, 2])
 
@@ -173,7 +244,15 @@ def damping_coefficient(x, law: np.ndarray, c0: float):
 def law_energy(x, law: np.ndarray):
     """Strain energy ``int_0^x F(s) ds`` [J] stored in an element compressed by ``x`` [m].
 
-    Exact integral of the piecewise quadratic law (used for energy balances).
+    Exact integral of the piecewise quadratic law of [MMS], "Nonlinear characteristics"
+    (used for energy balances).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Element compression [m].
+    law : ndarray, shape (3, 4)
+        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
     """
     x = np.asarray(x, dtype=float)
     energy = np.where(x < 0, 0.5 * law[0, 2] * x * x, 0.0)

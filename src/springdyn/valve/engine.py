@@ -1,7 +1,8 @@
 """Time integration of the valve-spring chain (and optional valve train).
 
-The equations of motion (notes 1.2-1.5): nodes are numbered from the seat (node 0,
-fixed) over the five masses (nodes 1-5) to the retainer end (node 6).  ``u`` is the
+The equations of motion ([MMS], "Model variable" and "Initial condition & position";
+corrections MMS-7 to MMS-10 of docs/references.md): nodes are numbered from the seat
+(node 0, fixed) over the five masses (nodes 1-5) to the retainer end (node 6).  ``u`` is the
 displacement of a node towards the seat, measured from its set-up position.  Element
 ``j`` joins nodes ``j`` and ``j + 1`` and is compressed by
 ``x_j = x_j,set + u_(j+1) - u_j``; it carries ``f_j = F_j(x_j) + c_j(x_j) dx_j/dt``
@@ -90,6 +91,15 @@ def hermite5(x, p0, v0, a0, p1, v1, a1):
     second derivative at its ends, the derivatives already scaled by the interval length.
     Plain arithmetic, so the same function serves scalars, NumPy arrays and compiled code.
 
+    Parameters
+    ----------
+    x : float or ndarray
+        Position in the interval [-], 0 to 1.
+    p0, v0, a0 : float or ndarray
+        Value [m], first [m] and second [m] derivative (scaled by the interval) at the start.
+    p1, v1, a1 : float or ndarray
+        The same at the end [m].
+
     Returns
     -------
     value, derivative : float or ndarray
@@ -135,7 +145,8 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     masses : ndarray (N,)
         Chain masses [kg].
     laws : ndarray (N + 1, 3, 4)
-        Element laws (segments ``x_start, a, b, c``).
+        Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+        (see :mod:`springdyn.valve.elements`).
     xset : ndarray (N + 1,)
         Element compressions at set-up [m].
     c0 : ndarray (N + 1,)
@@ -149,7 +160,7 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     vt : ndarray (7,)
         ``enabled, M_v [kg], k_c [N/m], c_c [N s/m], k_s [N/m], c_s [N s/m], lash [m]``.
     out : ndarray
-        Receives ``ds/dt``.
+        Receives ``ds/dt`` [m/s, m/s^2].
     extra : ndarray or None
         None (numba then compiles a variant without these outputs), or an array of
         length ``extra_layout(N)["size"]`` that receives the element forces [N] and
@@ -614,6 +625,25 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     monitor : bool
         Also return the monitor outputs.
 
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    omegas : array_like
+        Cam speeds [rad/s].
+    revolutions : int
+        Revolutions per speed [-].
+    points : int
+        Output samples per revolution [-].
+    args : tuple
+        Arguments of :func:`rhs` after the state.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    max_step_fraction : float
+        Largest step as a fraction of a revolution [-].
+    max_steps : int
+        Most steps per speed [-] (the loop is bounded).
+
     Returns
     -------
     extra : ndarray (n_speeds, keep * points, extra size)
@@ -652,6 +682,21 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
 
     ``args`` = ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``.
 
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    t_out : ndarray
+        Output times [s], ascending.
+    args : tuple
+        Arguments of :func:`rhs` after the state.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    h_max : float
+        Largest step [s].
+    max_steps : int
+        Most steps [-] (the loop is bounded).
+
     Returns
     -------
     states : ndarray (len(t_out), n)
@@ -674,6 +719,23 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
 
     With ``compiled_rhs=True`` the compiled right-hand side is used instead (same model,
     faster); the plain one is the independent reference of the benchmarks.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    t_out : ndarray
+        Output times [s], ascending.
+    args : tuple
+        Arguments of :func:`rhs` after the state.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    method : str
+        ``solve_ivp`` method name [-] (default ``"DOP853"``).
+    compiled_rhs : bool
+        Use the compiled right-hand side.
+    h_max : float
+        Largest step [s].
     """
     from scipy.integrate import solve_ivp
 
@@ -700,6 +762,15 @@ def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
     """Vectorised quintic Hermite evaluation of the cam table used by :func:`rhs`.
 
     Returns lift [m], ``dh/dtheta`` [m/rad] at cam angles ``theta`` [rad].
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Cam angles [rad].
+    cam_h, cam_dh, cam_ddh : ndarray
+        Lift [m], ``dh/dtheta`` [m/rad] and ``d2h/dtheta2`` [m/rad^2] at ``k * dth``.
+    dth : float
+        Table step [rad].
     """
     theta = np.asarray(theta, dtype=float)
     n = cam_h.size

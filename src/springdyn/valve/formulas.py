@@ -1,12 +1,13 @@
 """Closed-form parameters of the MMS Type C valve-spring model.
 
 Every function is a pure function of SI floats.  Equation references are to section
-40.3.2.1 "Specification of MMS Type C" of the valve-spring document
-(``shared/seeds/valve-spring-mms-type-c.txt``); "notes 1.x" are the sections of the
-project's reading notes, which fix the document's typos.
+40.3.2.1 "Specification of MMS Type C" of [MMS] (see docs/references.md), by the names
+the document gives them ("Internal Parameter", "Model variable for One-Step spring",
+"Nonlinear characteristics"); its typos are fixed as numbered there (MMS-1 ... MMS-10).
 
 The document writes some formulas in mm and N/mm; each is dimensionally consistent in
-SI (notes 1.1), so all of them are evaluated in SI here.
+SI (``K = pi Do E / 1e3`` is N/m with Do in m and E in Pa), so all of them are evaluated
+in SI here.
 """
 
 from __future__ import annotations
@@ -37,17 +38,45 @@ __all__ = [
 
 
 def active_coils_free(n1: float, n2: float, nb: float) -> float:
-    """Active coils at free length, ``N1 + N2 - 2 Nb`` (notes 1.1)."""
+    """Active coils at free length, ``N1 + N2 - 2 Nb`` [-].
+
+    Parameters
+    ----------
+    n1 : float
+        Low-pitch coils N1 (0 for a one-step spring) [-].
+    n2 : float
+        High-pitch coils N2 [-].
+    nb : float
+        Dead (seat-contact) coils per end Nb [-].
+
+    Notes
+    -----
+    [MMS], "Internal Parameter": the coil count of K1, n'1 and f1.
+    """
     return n1 + n2 - 2.0 * nb
 
 
 def active_coils_setup(n1: float, n2: float, nb: float, two_step: bool) -> float:
-    """Active coils at set-up length.
+    """Active coils at set-up length [-].
 
-    Two-step: ``N2 - Nb`` (the low-pitch coils are closed at set-up; document, K2).
-    One-step: the document sets ``K2 = K1``, i.e. the set-up active coil count equals the
-    free one, ``N1 + N2 - 2 Nb``; springdyn uses it for n2' and f2 too, so that K2, n2'
-    and f2 describe the same coils (the document prints the two-step count only).
+    Parameters
+    ----------
+    n1 : float
+        Low-pitch coils N1 [-].
+    n2 : float
+        High-pitch coils N2 [-].
+    nb : float
+        Dead coils per end Nb [-].
+    two_step : bool
+        True for a two-step spring.
+
+    Notes
+    -----
+    Two-step: ``N2 - Nb`` (the low-pitch coils are closed at set-up; [MMS], "Stiffness
+    for set-up length", K2).  One-step: [MMS] sets ``K2 = K1`` (correction MMS-6 of
+    docs/references.md), i.e. the set-up active coil count equals the free one,
+    ``N1 + N2 - 2 Nb``; springdyn uses it for n2' and f2 too, so that K2, n2' and f2
+    describe the same coils (the document prints the two-step count only).
     """
     return n2 - nb if two_step else active_coils_free(n1, n2, nb)
 
@@ -64,8 +93,8 @@ def contact_stiffness(do: float, e: float) -> float:
 
     Notes
     -----
-    Document, "Stiffness for fully contact".  The 1e3 is part of the empirical formula;
-    with Do in m and E in Pa it gives N/m (notes 1.1).
+    [MMS], "Stiffness for fully contact".  The 1e3 is part of the empirical formula;
+    with Do in m and E in Pa it gives N/m.
     """
     return math.pi * do * e / 1e3
 
@@ -73,8 +102,8 @@ def contact_stiffness(do: float, e: float) -> float:
 def free_length_stiffness(g: float, dw: float, do: float, n_active: float) -> float:
     """Helical spring rate ``G Dw^4 / (8 n Do^3)`` [N/m].
 
-    With ``n = N1 + N2 - 2 Nb`` this is the document's K1 (free length); with
-    ``n = N2 - Nb`` it is K2 (set-up length, two-step).
+    With ``n = N1 + N2 - 2 Nb`` this is K1 of [MMS], "Stiffness for free length"; with
+    ``n = N2 - Nb`` it is K2, "Stiffness for set-up length" (two-step).
 
     Parameters
     ----------
@@ -96,13 +125,46 @@ setup_stiffness = free_length_stiffness
 def pitch_correction_free(lf: float, dw: float, n1: float, n2: float, n_active: float, do: float) -> float:
     """Pitch term ``n1' = (Lf - Dw (N1 + N2 - 1)) / ((N1 + N2 - 2 Nb) Do)`` [-].
 
-    Document, n'1.  ``n_active`` is the free active coil count.
+    Parameters
+    ----------
+    lf : float
+        Free length Lf [m].
+    dw : float
+        Wire diameter Dw [m].
+    n1, n2 : float
+        Low- and high-pitch coils N1, N2 [-].
+    n_active : float
+        Active coils at free length ``N1 + N2 - 2 Nb`` [-].
+    do : float
+        Mean coil diameter Do [m].
+
+    Notes
+    -----
+    [MMS], "Internal Parameter", n'1 (in f1, "Natural Frequency for free length").
     """
     return (lf - dw * (n1 + n2 - 1.0)) / (n_active * do)
 
 
 def pitch_correction_setup(ls: float, dw: float, n1: float, n2: float, n_active: float, do: float) -> float:
-    """Pitch term ``n2' = (Ls - Dw (N1 + N2 - 1)) / (n_setup Do)`` [-] (document, n'2)."""
+    """Pitch term ``n2' = (Ls - Dw (N1 + N2 - 1)) / (n_setup Do)`` [-].
+
+    Parameters
+    ----------
+    ls : float
+        Set-up (installed) length Ls [m].
+    dw : float
+        Wire diameter Dw [m].
+    n1, n2 : float
+        Low- and high-pitch coils N1, N2 [-].
+    n_active : float
+        Active coils at set-up length (:func:`active_coils_setup`) [-].
+    do : float
+        Mean coil diameter Do [m].
+
+    Notes
+    -----
+    [MMS], "Stiffness for set-up length", n'2 (in f2, "Natural frequency for set-up length").
+    """
     return (ls - dw * (n1 + n2 - 1.0)) / (n_active * do)
 
 
@@ -111,7 +173,8 @@ def surge_frequency(g: float, rho: float, dw: float, do: float, n_eff: float) ->
 
     The document's f1 uses ``n = N1 + N2 - 2 Nb + n1'`` and f2 uses
     ``n = N2 - Nb + n2'``; with the plain active coil count it is the textbook surge
-    frequency of a spring with both ends fixed (notes 1.7).
+    frequency of a spring with both ends fixed ([Wahl]; [MMS], "Natural Frequency for
+    free length").
 
     Parameters
     ----------
@@ -128,32 +191,89 @@ def surge_frequency(g: float, rho: float, dw: float, do: float, n_eff: float) ->
 
 
 def total_mass(rho: float, do: float, dw: float, n1: float, n2: float) -> float:
-    """Total spring mass ``M = pi^2/4 rho Do Dw^2 (N1 + N2 - 0.7)`` [kg] (document, M)."""
+    """Total spring mass ``M = pi^2/4 rho Do Dw^2 (N1 + N2 - 0.7)`` [kg].
+
+    Parameters
+    ----------
+    rho : float
+        Density rho' [kg/m^3].
+    do : float
+        Mean coil diameter Do [m].
+    dw : float
+        Wire diameter Dw [m].
+    n1, n2 : float
+        Low- and high-pitch coils N1, N2 [-].
+
+    Notes
+    -----
+    [MMS], "Total Mass of spring".
+    """
     return math.pi**2 / 4.0 * rho * do * dw**2 * (n1 + n2 - 0.7)
 
 
 def coil_pitch(ls: float, dw: float, n1: float, n2: float) -> float:
-    """Gap term ``Pc = 2 (Ls - Dw (N1 + N2 - 1)) / N2`` [m] (document, Pc).
+    """Gap term ``Pc = 2 (Ls - Dw (N1 + N2 - 1)) / N2`` [m].
 
     Twice the mean coil gap of the high-pitch coils at set-up length.
+
+    Parameters
+    ----------
+    ls : float
+        Set-up (installed) length Ls [m].
+    dw : float
+        Wire diameter Dw [m].
+    n1, n2 : float
+        Low- and high-pitch coils N1, N2 [-].
+
+    Notes
+    -----
+    [MMS], "Set-up load", Pc.
     """
     return 2.0 * (ls - dw * (n1 + n2 - 1.0)) / n2
 
 
 def coil_contact_length(dw: float, n1: float, n2: float) -> float:
-    """Solid (coil contact) length ``Lc = Dw (N1 + N2 + 0.5)`` [m] (document, Lc; notes 1.3.5)."""
+    """Solid (coil contact) length ``Lc = Dw (N1 + N2 + 0.5)`` [m].
+
+    Parameters
+    ----------
+    dw : float
+        Wire diameter Dw [m].
+    n1, n2 : float
+        Low- and high-pitch coils N1, N2 [-].
+
+    Notes
+    -----
+    [MMS], "Set-up load", Lc; the ``+0.5`` is kept as printed (correction MMS-5 of
+    docs/references.md).
+    """
     return dw * (n1 + n2 + 0.5)
 
 
 def setup_force(lf: float, ls: float, k1: float) -> float:
-    """Set-up load ``Fset = (Lf - Ls) K1`` [N] (document, Fset)."""
+    """Set-up load ``Fset = (Lf - Ls) K1`` [N].
+
+    Parameters
+    ----------
+    lf : float
+        Free length Lf [m].
+    ls : float
+        Set-up (installed) length Ls [m].
+    k1 : float
+        Free-length spring rate K1 [N/m].
+
+    Notes
+    -----
+    [MMS], "Set-up load", Fset.
+    """
     return (lf - ls) * k1
 
 
 def onestep_model_variables(k: float, k1: float, f1: float, m_total: float) -> dict:
-    """Stiffnesses and masses of the one-step chain (document, Fig. 40.32).
+    """Stiffnesses and masses of the one-step chain ([MMS], "Model variable for One-Step
+    spring", Fig. 40.32).
 
-    Chain (notes 1.2): ``seat -K- me -Kh1- m1 -Kh2- m2 -Kh2- m1 -Kh1- me -K- retainer``.
+    Chain (topology in docs/valve.md): ``seat -K- me -Kh1- m1 -Kh2- m2 -Kh2- m1 -Kh1- me -K- retainer``.
 
     Parameters
     ----------
@@ -179,11 +299,28 @@ def onestep_model_variables(k: float, k1: float, f1: float, m_total: float) -> d
 
 
 def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float, m_total: float) -> dict:
-    """Stiffnesses and masses of the two-step chain (document, Fig. 40.33).
+    """Stiffnesses and masses of the two-step chain ([MMS], "Model variable for Two-Step
+    spring", Fig. 40.33).
 
-    Chain (notes 1.2): ``seat -K- me -Ks- m1 -Kh1- m2 -Kh2- m2 -Kh1- me -K- retainer``.
+    Chain (topology in docs/valve.md):
+    ``seat -K- me -Ks- m1 -Kh1- m2 -Kh2- m2 -Kh1- me -K- retainer``.
     ``m2 = Kh1 / (2 pi f2)^2`` is the in-phase mode of the two m2 masses with m1 blocked;
     ``m1`` is the dynamic condensation of the chain at ``w1 = 2 pi f1``.
+
+    Parameters
+    ----------
+    k : float
+        End-element (contact) stiffness K [N/m].
+    k1 : float
+        Free-length spring rate K1 [N/m].
+    k2 : float
+        Set-up-length spring rate K2 [N/m].
+    f1 : float
+        Free-length surge frequency f1 [Hz].
+    f2 : float
+        Set-up-length surge frequency f2 [Hz].
+    m_total : float
+        Spring mass M [kg].
 
     Returns
     -------
@@ -205,29 +342,104 @@ def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float
 
 
 def first_nonlinear_force(fset: float, ls: float, lc: float, pc: float, k2: float) -> float:
-    """``F1 = Fset + (Ls - Lc - Pc) K2`` [N]: force where the chain elements start to stiffen."""
+    """``F1 = Fset + (Ls - Lc - Pc) K2`` [N]: force where the chain elements start to stiffen.
+
+    Parameters
+    ----------
+    fset : float
+        Set-up force Fset [N].
+    ls : float
+        Set-up (installed) length Ls [m].
+    lc : float
+        Solid length Lc [m].
+    pc : float
+        Gap term Pc [m].
+    k2 : float
+        Set-up-length spring rate K2 [N/m].
+
+    Notes
+    -----
+    [MMS], "Nonlinear characteristics", F1.
+    """
     return fset + (ls - lc - pc) * k2
 
 
 def stiffened_rate(k2: float) -> float:
-    """``K3 = 1.15 K2`` [N/m]: spring rate between F1 and F2 (document)."""
+    """``K3 = 1.15 K2`` [N/m]: spring rate between F1 and F2.
+
+    Parameters
+    ----------
+    k2 : float
+        Set-up-length spring rate K2 [N/m].
+
+    Notes
+    -----
+    [MMS], "Nonlinear characteristics", K3.
+    """
     return 1.15 * k2
 
 
 def second_nonlinear_force(f1_force: float, pc: float, k3: float) -> float:
-    """``F2 = F1 + Pc K3`` [N] (document)."""
+    """``F2 = F1 + Pc K3`` [N].
+
+    Parameters
+    ----------
+    f1_force : float
+        First nonlinear force F1 [N].
+    pc : float
+        Gap term Pc [m].
+    k3 : float
+        Stiffened rate K3 [N/m].
+
+    Notes
+    -----
+    [MMS], "Nonlinear characteristics", F2.
+    """
     return f1_force + pc * k3
 
 
 def coil_contact_force(k1: float, k2: float, lf: float, ls: float, dw: float, n1: float, n2: float) -> float:
-    """``Fcon = K1 (Lf - Ls) + K2 (Ls - Dw (N1 + N2 - 0.5))`` [N]: coil-contact force (document)."""
+    """``Fcon = K1 (Lf - Ls) + K2 (Ls - Dw (N1 + N2 - 0.5))`` [N]: coil-contact force.
+
+    Parameters
+    ----------
+    k1, k2 : float
+        Free- and set-up-length spring rates K1, K2 [N/m].
+    lf : float
+        Free length Lf [m].
+    ls : float
+        Set-up (installed) length Ls [m].
+    dw : float
+        Wire diameter Dw [m].
+    n1, n2 : float
+        Low- and high-pitch coils N1, N2 [-].
+
+    Notes
+    -----
+    [MMS], "Nonlinear characteristics", Fcon; the ``-0.5`` is kept as printed
+    (correction MMS-5 of docs/references.md).
+    """
     return k1 * (lf - ls) + k2 * (ls - dw * (n1 + n2 - 0.5))
 
 
 def stiffened_chain_rates(k: float, k3: float, two_step: bool) -> tuple[float, float]:
-    """``Kh1'``, ``Kh2'`` [N/m]: the chain rates that reproduce K3 (document; notes 1.3.6).
+    """``Kh1'``, ``Kh2'`` [N/m]: the chain rates that reproduce K3.
 
     One-step: ``(16/5, 16/3) K K3 / (K - 2 K3)``; two-step: ``(8/3, 4) K K3 / (K - 3 K3)``.
+
+    Parameters
+    ----------
+    k : float
+        End-element (contact) stiffness K [N/m].
+    k3 : float
+        Stiffened rate K3 [N/m].
+    two_step : bool
+        True for a two-step spring.
+
+    Notes
+    -----
+    [MMS], "Nonlinear characteristics of Kh1" / "of Kh2" (Kh1', Kh2'), with the factors
+    of correction MMS-6 of docs/references.md.
     """
     if two_step:
         q = k * k3 / (k - 3.0 * k3)

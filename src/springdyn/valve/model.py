@@ -224,7 +224,7 @@ class TypeCModel(SpringModel):
 
     @cached_property
     def chain(self) -> Chain:
-        """The lumped 5-mass chain with its element laws and damping (notes 1.2)."""
+        """The lumped 5-mass chain with its element laws and damping ([MMS], Figs. 40.32-40.33; topology in docs/valve.md)."""
         p = self._parameters
         named, _ = self._laws
         enames = TWO_STEP_ELEMENTS if self.two_step else ONE_STEP_ELEMENTS

@@ -51,6 +51,15 @@ def plot_static_curve(curve, path=None, ax=None):
     """Static force and tangent stiffness against spring length, breakpoints marked.
 
     With ``ax``, only the force panel is drawn into it.
+
+    Parameters
+    ----------
+    curve : StaticCurve
+        The curve.
+    path : path-like, optional
+        PNG file to write.
+    ax : matplotlib.axes.Axes, optional
+        Axes for the force panel.
     """
     spring = curve.spring
     p = spring.internal_parameters()

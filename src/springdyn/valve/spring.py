@@ -18,7 +18,7 @@ from . import formulas
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES"]
 
-#: Built-in example springs (reading notes 1.6), shipped in ``springdyn/data``.
+#: Built-in example springs (the reference springs of docs/valve.md), shipped in ``springdyn/data``.
 EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"}
 
 #: Names of the spring models (:data:`springdyn.valve.model.MODELS`).
@@ -97,8 +97,27 @@ class ValveSpring(Parameters):
         return mapping
 
     def _validate(self) -> None:
-        self._check_geometry()
-        self.spring_model  # the model checks that its equations hold for this spring
+        import warnings
+        from pathlib import Path
+
+        unlikely = self._check_geometry()
+        try:
+            self.spring_model  # the model checks that its equations hold for this spring
+        except InputError as exc:
+            if not unlikely:
+                raise
+            raise InputError(f"{exc} (note: {'; '.join(unlikely)})") from None
+        if unlikely:
+            import sys
+
+            # attribute the warning to the caller's line, outside springdyn
+            package, level, frame = str(Path(__file__).parents[1]), 1, sys._getframe(0)
+            while frame is not None and (frame.f_code.co_filename.startswith(package)
+                                         or frame.f_code.co_filename.endswith("dataclasses.py")
+                                         or frame.f_locals.get("self") is self):
+                frame, level = frame.f_back, level + 1
+        for message in unlikely:
+            warnings.warn(message, UserWarning, stacklevel=level)
 
     def with_model(self, model: str | None) -> "ValveSpring":
         """The same spring with another model (``None``: unchanged)."""
@@ -119,7 +138,80 @@ class ValveSpring(Parameters):
         meta = {f.name: f.metadata for f in dataclasses.fields(self)}[name]
         return f"{name} = {describe_value(getattr(self, name), meta)}"
 
-    def _check_geometry(self) -> None:
+    def _check_geometry(self) -> list[str]:
+        """Cross-key and plausibility checks; returns warnings for values unlike a valve spring.
+
+        Errors (:class:`InputError`) for values no helical spring can have, which would
+        otherwise overflow, underflow or divide by zero in the closed forms of [MMS],
+        "Internal Parameter"; warnings for values far outside the range of valve springs,
+        naming the likely unit slip (``22 m`` for ``22 mm``).
+        """
+        import math
+
+        # key: (error range, valve-spring range) in SI
+        ranges = {
+            "mean_diameter": ((1e-6, 1e3), (5e-3, 0.1), "any helical spring", "any valve spring"),
+            "wire_diameter": ((1e-6, 1e3), (0.5e-3, 15e-3), "any helical spring", "any valve spring"),
+            "free_length": ((1e-6, 1e4), (8e-3, 0.3), "any helical spring", "any valve spring"),
+            "installed_length": ((1e-6, 1e4), (5e-3, 0.3), "any helical spring", "any valve spring"),
+            "youngs_modulus": ((1e5, 1e16), (50e9, 400e9), "any spring material", "spring steel or titanium"),
+            "shear_modulus": ((1e5, 1e16), (20e9, 150e9), "any spring material", "spring steel or titanium"),
+            "density": ((1.0, 1e6), (1000.0, 25000.0), "any solid", "spring steel or titanium"),
+        }
+        def show(value, unit, display):
+            # in the display unit unless that needs many digits: 22 m, not 22000 mm
+            in_display = value * {"mm": 1e3, "GPa": 1e-9}.get(display, 1.0)
+            return format_quantity(value, unit, display if 1e-2 <= in_display < 1e3 else None)
+
+        unlikely = []
+        for key, ((lo, hi), (wlo, whi), what, typical) in ranges.items():
+            value = getattr(self, key)
+            meta = {f.name: f.metadata for f in dataclasses.fields(self)}[key]
+            display = meta.get("display") or meta["unit"]
+            shown = show(value, meta["unit"], display)
+            hint = ""
+            for factor in (1e-3, 1e3, 1e-6, 1e6, 1e-9, 1e9, 1e-12, 1e12):
+                if wlo <= value * factor <= whi:
+                    hint = f": did you mean {format_quantity(value * factor, meta['unit'], display)}?"
+                    break
+            side = "larger" if value > whi else "smaller"
+            if not lo <= value <= hi:
+                raise InputError(
+                    f"{key} = {shown} is far {side} than {what}: it must lie between "
+                    f"{show(lo, meta['unit'], display)} and {show(hi, meta['unit'], display)}"
+                    f"{hint}"
+                )
+            if not wlo <= value <= whi:
+                unlikely.append(
+                    f"{key} = {shown} is far {side} than {typical} "
+                    f"({show(wlo, meta['unit'], display)} to {show(whi, meta['unit'], display)})"
+                    + (hint or "; check its unit")
+                )
+        for key in ("dead_coils", "low_pitch_coils", "high_pitch_coils"):
+            if getattr(self, key) > 1000:
+                raise InputError(f"{self._field(key)} is more coils than any spring has: it must be at most 1000")
+        if self.damping_ratio > 1.0:
+            raise InputError(
+                f"damping_ratio = {self.damping_ratio:g} is above critical damping (1), which no spring wire has"
+                + (f": did you mean {self.damping_ratio:g} % ({self.damping_ratio / 100:g})?"
+                   if self.damping_ratio <= 100 else "")
+            )
+        if self.damping_ratio > 0.2:
+            unlikely.append(f"damping_ratio = {self.damping_ratio:g} is far above the damping of valve springs "
+                            f"(a few %, e.g. 0.05)")
+        if self.shear_modulus > self.youngs_modulus:
+            unlikely.append(f"{self._field('shear_modulus')} exceeds {self._field('youngs_modulus')}: for a metal "
+                            "G is about 0.4 E (are the two swapped?)")
+        index = self.mean_diameter / self.wire_diameter
+        if not 3.0 <= index <= 20.0:
+            raise InputError(
+                f"spring index C = mean_diameter / wire_diameter = {show(self.mean_diameter, 'm', 'mm')} / "
+                f"{show(self.wire_diameter, 'm', 'mm')} = {index:.4g} must lie between 3 and 20 (EN 13906-1 recommends 4 to "
+                "20; below 3 the wire cannot be coiled, above 20 the coils are unstable)"
+                + (": is the wire diameter given as the mean diameter?" if index < 1 else "")
+            )
+        if not math.isfinite(index):  # pragma: no cover - excluded by the ranges above
+            raise InputError(f"spring index C = {index!r} is not finite")
         if self.installed_length >= self.free_length:
             raise InputError(
                 f"{self._field('installed_length')} must be shorter than {self._field('free_length')}"
@@ -146,6 +238,7 @@ class ValveSpring(Parameters):
                 f"{self._field('installed_length')} is at or below coil contact: it must be longer than the "
                 f"solid length Lc = Dw (N1 + N2 + 0.5) = {_mm(lc)}"
             )
+        return unlikely
 
     # ------------------------------------------------------------------ the model's methods
     def internal_parameters(self) -> dict:

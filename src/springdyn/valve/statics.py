@@ -1,7 +1,7 @@
 """Static (massless) behaviour of the element chain: series equilibrium.
 
 In statics every element of the series chain carries the same force and the element
-compressions add up to the total compression ``Lf - L`` (notes 1.5).  Because each
+compressions add up to the total compression ``Lf - L`` (correction MMS-10 of docs/references.md).  Because each
 element law has a non-decreasing tangent stiffness, the total compression is a concave,
 strictly increasing function of the force; Newton's method started below the root
 converges monotonically, which :func:`series_force` exploits (vectorised over lengths).
@@ -27,18 +27,29 @@ def element_compressions(force, laws: np.ndarray) -> np.ndarray:
     ----------
     force : float or ndarray, shape (n,)
         Force carried by the chain [N].
-    laws : ndarray, shape (6, 3, 4)
-        Element laws (see :mod:`springdyn.valve.elements`).
+    laws : ndarray, shape (n_elements, 3, 4)
+        Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+        (see :mod:`springdyn.valve.elements`).
 
     Returns
     -------
-    ndarray, shape (6,) or (6, n)
+    ndarray, shape (n_elements,) or (n_elements, n)
+        Compressions [m].
     """
     return np.stack([law_compression(force, law) for law in laws])
 
 
 def series_compliance(force, laws: np.ndarray):
-    """Tangent compliance ``sum_j 1/k_j`` [m/N] of the chain at a common force [N]."""
+    """Tangent compliance ``sum_j 1/k_j`` [m/N] of the chain at a common force [N].
+
+    Parameters
+    ----------
+    force : float or ndarray
+        Force carried by the chain [N].
+    laws : ndarray, shape (n_elements, 3, 4)
+        Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+        (see :mod:`springdyn.valve.elements`).
+    """
     x = element_compressions(force, laws)
     return sum(1.0 / law_stiffness(xj, law) for xj, law in zip(x, laws))
 
@@ -54,12 +65,15 @@ def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, ma
     ----------
     total_compression : float or ndarray
         ``Lf - L`` [m]; negative values (tension) follow the linear laws.
-    laws : ndarray, shape (6, 3, 4)
-        Element laws.
+    laws : ndarray, shape (n_elements, 3, 4)
+        Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+        (see :mod:`springdyn.valve.elements`).
     rtol : float
-        Relative size of the last Newton step at which to stop; Newton converges
+        Relative size [-] of the last Newton step at which to stop; Newton converges
         quadratically, so the force is then exact to round-off (about 1e-14 relative,
         where round-off of the compression sum makes further steps oscillate).
+    max_iter : int
+        Most Newton steps [-] before a :class:`SolverError` (the loop is bounded).
 
     Raises
     ------
@@ -87,6 +101,14 @@ def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, ma
 def series_state(total_compression, laws: np.ndarray):
     """Force [N], element compressions [m] and tangent stiffness [N/m] of the chain.
 
+    Parameters
+    ----------
+    total_compression : float or ndarray
+        ``Lf - L`` [m].
+    laws : ndarray, shape (n_elements, 3, 4)
+        Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+        (see :mod:`springdyn.valve.elements`).
+
     Returns
     -------
     force : float or ndarray
@@ -101,5 +123,14 @@ def series_state(total_compression, laws: np.ndarray):
 
 
 def element_forces(compressions, laws: np.ndarray) -> np.ndarray:
-    """Force of every element [N] at its compression [m]."""
+    """Force of every element [N] at its compression [m].
+
+    Parameters
+    ----------
+    compressions : ndarray, shape (n_elements,) or (n_elements, n)
+        Element compressions [m].
+    laws : ndarray, shape (n_elements, 3, 4)
+        Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+        (see :mod:`springdyn.valve.elements`).
+    """
     return np.stack([law_force(xj, law) for xj, law in zip(compressions, laws)])

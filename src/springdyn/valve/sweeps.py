@@ -108,18 +108,26 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
 
 
 def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
-    """A ``dask.distributed.Client`` for ``address``, or an InputError within ``timeout`` s."""
+    """A ``dask.distributed.Client`` for ``address``, or an InputError within ``timeout`` s.
+
+    Parameters
+    ----------
+    address : str
+        Scheduler address, e.g. ``tcp://127.0.0.1:8786``.
+    timeout : float
+        Seconds [s] to wait for the scheduler.
+    """
     try:
         from dask.distributed import Client
     except ImportError:
         raise InputError(
-            f"--scheduler {address}: Dask is not installed; install springdyn[dask]"
+            f"scheduler = {address!r}: Dask is not installed; install springdyn[dask]"
         ) from None
     try:
         return Client(address, timeout=f"{timeout}s")
     except (OSError, TimeoutError, ValueError) as exc:
         raise InputError(
-            f"--scheduler {address}: cannot reach a Dask scheduler there within {timeout:g} s ({type(exc).__name__}: "
+            f"scheduler = {address!r}: cannot reach a Dask scheduler there within {timeout:g} s ({type(exc).__name__}: "
             f"{str(exc).splitlines()[0] if str(exc) else 'no answer'})"
         ) from None
 
@@ -377,35 +385,57 @@ def sweep(
 
     Parameters
     ----------
-    spring, cam, valve_train
-        The model (see :func:`springdyn.valve.simulate`).
+    spring : ValveSpring
+        The spring definition.
+    cam : Cam
+        The cam.
     cam_rpm : array_like
         Camshaft speeds [rev/min], positive.
+    valve_train : ValveTrain, optional
+        Adds lift-off (see :func:`springdyn.valve.simulate`).
     revolutions : int
-        Revolutions per speed (the last is kept; the one before judges periodicity).
+        Revolutions per speed [-] (the last is kept; the one before judges periodicity).
+    points_per_revolution : int
+        Output samples per revolution [-].
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] integration tolerances.
     vary : (str, array_like), optional
-        A numeric :class:`ValveSpring` field and its values (SI), an extra dimension.
+        A numeric :class:`ValveSpring` field and its values [SI unit of the field], an
+        extra dimension.
     on_invalid : {"stop", "skip"}
         What to do with a design value that makes the spring invalid.
     workers : int, optional
-        Local threads (default: both cores).
+        Local threads [-] (default: both cores).
     client : dask.distributed.Client, optional
         Run the chunks on this cluster instead.
     quiet : bool
         No progress bar.
     """
-    cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    try:
+        cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"cam_rpm = {cam_rpm!r} must be a speed or a list of speeds [rev/min]") from None
+    if cam_rpm.ndim != 1:
+        raise InputError(f"cam_rpm must be a flat list of speeds [rev/min], not an array of shape {cam_rpm.shape}")
     if cam_rpm.size == 0:
         raise InputError("cam_rpm is empty: give at least one speed")
     if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
         bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
         raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
-    if int(revolutions) != revolutions or revolutions < 1:
-        raise InputError(f"revolutions = {revolutions!r} must be a whole number of at least 1")
+    number = (int, float, np.integer, np.floating)
+    for name, value, lo, hi in (("revolutions", revolutions, 1, 1000), ("points_per_revolution", points_per_revolution, 16, 100_000)):
+        if (isinstance(value, bool) or not isinstance(value, number) or not math.isfinite(value)
+                or value != int(value) or not lo <= value <= hi):
+            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
+    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
+        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
+            raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
+                             "(integration tolerance" + (": absolute, on displacements [m] and velocities [m/s])"
+                                                         if name == "atol" else ", relative)"))
     if on_invalid not in ("stop", "skip"):
         raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
-    if workers is not None and workers < 1:
-        raise InputError(f"workers = {workers} must be at least 1")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
+        raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
     springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
     points = int(points_per_revolution)
     theta = 2 * math.pi * np.arange(points) / points
@@ -432,7 +462,15 @@ def sweep(
 
 
 def describe_design_value(name: str, value: float) -> str:
-    """``'installed_length = 36 mm'`` for a design value in SI."""
+    """``'installed_length = 36 mm'`` for a design value in SI.
+
+    Parameters
+    ----------
+    name : str
+        A numeric :class:`ValveSpring` field.
+    value : float
+        Its value [SI unit of the field].
+    """
     return _describe(name, value)
 
 
@@ -448,7 +486,7 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
     name, values = vary
     numeric = [f.name for f in dataclasses.fields(ValveSpring) if f.metadata.get("kind") == "quantity"]
     if name not in numeric:
-        raise InputError(f"--vary {name}: not a numeric spring field; choose one of {', '.join(numeric)}")
+        raise InputError(f"vary = {name!r}: not a numeric spring field; choose one of {', '.join(numeric)}")
     values = np.atleast_1d(np.asarray(values, dtype=float))
     springs, setups, kept, skipped = [], [], [], []
     for v in values:
@@ -459,11 +497,11 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
             kept.append(v)
         except InputError as exc:
             if on_invalid == "stop":
-                raise InputError(f"--vary {_describe(name, v)}: {exc} (use --on-invalid skip to leave such values out)") from None
+                raise InputError(f"vary: {_describe(name, v)}: {exc} (on_invalid='skip' leaves such values out)") from None
             skipped.append((float(v), str(exc)))
-            warnings.warn(f"--vary {_describe(name, v)} skipped: {exc}", stacklevel=3)
+            warnings.warn(f"vary: {_describe(name, v)} skipped: {exc}", stacklevel=3)
     if not springs:
-        raise InputError(f"--vary {name}: every value makes the spring invalid")
+        raise InputError(f"vary = {name!r}: every value makes the spring invalid")
     return springs, setups, np.asarray(kept), skipped
 
 

@@ -6,13 +6,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.params import check_fields, from_mapping, load_toml, param
+from ..core.params import Parameters, param
 
 __all__ = ["ValveTrain"]
 
 
 @dataclass(frozen=True)
-class ValveTrain:
+class ValveTrain(Parameters):
     """Valve + retainer + follower as one rigid body, with cam and valve-seat contacts.
 
     Beyond the MMS document (issue 3, section 3): the spring sits between the cylinder
@@ -34,22 +34,12 @@ class ValveTrain:
     seat_damping: float = param("N*s/m", "valve-seat contact damping", nonnegative=True, default=200.0)
     lash: float = param("m", "valve lash (clearance on the base circle)", display="mm", nonnegative=True, default=0.0)
 
-    def __post_init__(self):
-        check_fields(self)
+    table = "valve_train"
 
     @property
     def moving_mass(self) -> float:
         """Valve + retainer + follower [kg]."""
         return self.valve_mass + self.retainer_mass + self.follower_mass
-
-    @classmethod
-    def from_dict(cls, mapping, *, source: str | None = None) -> "ValveTrain":
-        return from_mapping(cls, mapping, section="valve_train", source=source)
-
-    @classmethod
-    def from_toml(cls, path) -> "ValveTrain":
-        """Read the ``[valve_train]`` table of a TOML file."""
-        return cls.from_dict(load_toml(path, "valve_train"), source=str(path))
 
     def kernel_parameters(self) -> np.ndarray:
         """``enabled, M_v, k_c, c_c, k_s, c_s, lash`` as the engine expects them."""

@@ -130,7 +130,7 @@ def as_options(**names):
     except InputError as exc:
         text = str(exc)
         for arg, option in names.items():
-            new = re.sub(rf"^{re.escape(arg)}(\[\d+\])? = ", rf"{option}\1 = ", text)
+            new = re.sub(rf"^{re.escape(arg)}(\[\d+\])?( = |: )", rf"{option}\1\2", text)
             if new != text:
                 raise InputError(new) from None
         raise

@@ -4,14 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from springdyn.app.cli.common import add_output_options, parse_range, print_json, print_table, quantity
+from springdyn.app.cli.common import (add_output_options, close_figure, parse_range, print_json, print_table,
+                                     quantity)
 from springdyn.core.errors import InputError
-from springdyn.core.plotting import plt
 from springdyn.core.io import read_csv_columns
-from springdyn.lsd.identify import RigData, identify_series, read_rig_data
-from springdyn.lsd.model import LSDModel
 from springdyn.lsd.parameters import LSDParameters
-from springdyn.lsd.rig import circular_orbit, linear_shake, simulate_rig, trajectory_from_samples
 
 __all__ = ["register"]
 
@@ -63,6 +60,8 @@ def _params(text: str) -> LSDParameters:
 
 
 def cmd_coefficients(args) -> int:
+    from springdyn.lsd.model import LSDModel
+
     model = LSDModel(_params(args.config))
     rpm = parse_range(args.rpm, "rpm", "--rpm")
     amplitude = quantity(args.amplitude, "m", "--amplitude")
@@ -70,7 +69,7 @@ def cmd_coefficients(args) -> int:
     if args.csv:
         res.to_csv(args.csv)
     if args.plot:
-        plt.close(res.plot(args.plot))
+        close_figure(res.plot(args.plot))
     if args.json:
         print_json(res.to_dict())
         return 0
@@ -88,6 +87,9 @@ def cmd_coefficients(args) -> int:
 
 
 def cmd_rig(args) -> int:
+    from springdyn.lsd.model import LSDModel
+    from springdyn.lsd.rig import circular_orbit, linear_shake, simulate_rig
+
     model = LSDModel(_params(args.config))
     noise = quantity(args.noise, "N", "--noise")
     dnoise = quantity(args.displacement_noise, "m", "--displacement-noise")
@@ -108,7 +110,7 @@ def cmd_rig(args) -> int:
     rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
     rec.to_csv(args.csv)
     if args.plot:
-        plt.close(rec.plot(args.plot))
+        close_figure(rec.plot(args.plot))
     print(f"{model.params.name}: {what}, {tr.time.size} samples -> {args.csv}; "
           f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
     return 0
@@ -116,6 +118,9 @@ def cmd_rig(args) -> int:
 
 def _measured_path(path, rpm):
     """A measured ring path from a CSV with time_s, x_m, y_m (checked like a rig record)."""
+    from springdyn.lsd.identify import RigData
+    from springdyn.lsd.rig import trajectory_from_samples
+
     cols = read_csv_columns(path)
     for c in ("time_s", "x_m", "y_m"):
         if c not in cols:
@@ -127,6 +132,9 @@ def _measured_path(path, rpm):
 
 
 def cmd_identify(args) -> int:
+    from springdyn.lsd.identify import identify_series, read_rig_data
+    from springdyn.lsd.model import LSDModel
+
     records = [read_rig_data(p) for p in args.data]
     seconds = [read_rig_data(p) for p in args.second] if args.second else None
     rpms = None
@@ -142,7 +150,7 @@ def cmd_identify(args) -> int:
         model = None
         if args.model:
             model = LSDModel(_params(args.model)).coefficients(series.rpm, quantity(args.amplitude, "m", "--amplitude"))
-        plt.close(series.plot(args.plot, model=model))
+        close_figure(series.plot(args.plot, model=model))
     dicts = [it.to_dict() for it in series.items]
     if args.json:
         print_json(dicts[0] if len(dicts) == 1 else dicts)

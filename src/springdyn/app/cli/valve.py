@@ -231,7 +231,8 @@ def cmd_design(args) -> int:
     spring = _spring(args)
     lift = quantity(args.lift, "m", "--lift") if args.lift is not None else None
     rpm = quantity(args.cam_rpm, "rad/s", "--cam-rpm", bare_unit="rpm") * 60 / (2 * 3.141592653589793) if args.cam_rpm else None
-    fig = spring.design_figures(lift=lift, cam_rpm=rpm)
+    with as_options(cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
+        fig = spring.design_figures(lift=lift, cam_rpm=rpm)
     if args.json:
         print_json(fig)
         return 0
@@ -263,8 +264,9 @@ def cmd_simulate(args) -> int:
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpm = cam_rpm_from_args(args, ranged=False)
-    sim = simulate(spring, cam, rpm, args.revolutions, valve_train=vt, rtol=args.rtol, atol=args.atol,
-                   points_per_revolution=args.points_per_revolution, backend=args.backend)
+    with as_options(cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
+        sim = simulate(spring, cam, rpm, args.revolutions, valve_train=vt, rtol=args.rtol, atol=args.atol,
+                       points_per_revolution=args.points_per_revolution, backend=args.backend)
     if args.csv:
         sim.to_csv(args.csv)
     if args.plot:
@@ -319,9 +321,10 @@ def cmd_float(args) -> int:
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpms = cam_rpm_from_args(args, ranged=True)
-    res = float_speed(spring, cam, vt, rpms, revolutions=args.revolutions,
-                      resolution=quantity(args.resolution, "rad/s", "--resolution", bare_unit="rpm") * 60 / (2 * math.pi),
-                      progress_quiet=args.quiet)
+    with as_options(cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
+        res = float_speed(spring, cam, vt, rpms, revolutions=args.revolutions,
+                          resolution=quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm"),
+                          progress_quiet=args.quiet)
     if args.json:
         print_json(res.to_dict())
         return 0
@@ -359,11 +362,13 @@ def cmd_sweep(args) -> int:
     vary = parse_vary(args.vary, spring) if args.vary else None
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers = {args.workers} must be at least 1")
-    client = connect(args.scheduler) if args.scheduler else None
+    with as_options(scheduler="--scheduler"):
+        client = connect(args.scheduler) if args.scheduler else None
     try:
-        res = sweep(spring, cam, rpms, revolutions=args.revolutions, valve_train=vt,
-                    points_per_revolution=args.points_per_revolution, rtol=args.rtol, atol=args.atol, vary=vary,
-                    on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet)
+        with as_options(vary="--vary", workers="--workers", cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
+            res = sweep(spring, cam, rpms, revolutions=args.revolutions, valve_train=vt,
+                        points_per_revolution=args.points_per_revolution, rtol=args.rtol, atol=args.atol, vary=vary,
+                        on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet)
     finally:
         if client is not None:
             client.close()

@@ -14,7 +14,7 @@ import numpy as np
 
 from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
-from springdyn.app.report.html import Section, fmt, parameter_rows
+from springdyn.app.report.html import Criterion, Section, fmt, parameter_rows
 from springdyn.lsd.identify import RigData, identify_series
 from springdyn.lsd.model import LSDModel
 from springdyn.lsd.parameters import LSDParameters
@@ -86,8 +86,23 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
         "instantaneous pack load while the closed form (2.27)-(2.28) uses the peak load.",
     ]
     if p.leakage_factor == 1.0:
-        findings.append("leakage_factor = 1: the viscous closed form is uncalibrated (reading notes 3.2 warn that it "
-                        "over-predicts the measured damping of Types A and B by orders of magnitude).")
+        findings.append("leakage_factor = 1: the viscous closed form is uncalibrated (correction LSD-6 of "
+                        "docs/references.md: it over-predicts the measured damping of Types A and B by orders of "
+                        "magnitude).")
+    omega = SPEEDS * 2.0 * np.pi / 60.0
+    loss = cxx_m * omega / kxx_m
+    k = int(np.argmax(loss))
+    criteria = [
+        Criterion("damping model calibrated", "no (leakage_factor = 1)" if p.leakage_factor == 1.0
+                  else f"leakage_factor = {p.leakage_factor:g}", "calibrated against measured forces",
+                  p.leakage_factor != 1.0,
+                  "the viscous closed form alone over-predicts measured damping (correction LSD-6)"
+                  if p.leakage_factor == 1.0 else "a calibrated leakage factor is set"),
+        Criterion(f"lock-up: loss factor Cxx w / Kxx, {SPEEDS[0]:.0f}-{SPEEDS[-1]:.0f} rpm",
+                  f"{loss[k]:.3g} at {SPEEDS[k]:.0f} rpm", "<= 1", bool(loss.max() <= 1.0),
+                  "above 1 the damping force exceeds the spring force: the oil locks the damper and a rotor "
+                  "support acts nearly rigid"),
+    ]
     derived = [
         ("load ratios", ", ".join(f"{v:.4f}" for v in model.load_ratios), "P_i/P_1 from (2.7), typo fixed"),
         ("xi", f"{model.stiffness_factor:.4f}", "stiffness factor"),
@@ -95,7 +110,7 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
         ("Kxx = Kyy", fmt(kxx_m[0] / 1e3, "N/mm"), "(3.4)"),
     ] + [(f"Cxx at {r:.0f} rpm", fmt(c, "N*s/m"), f"model, {AMPLITUDE * 1e6:.0f} um") for r, c in zip(SPEEDS, cxx_m)]
     return Section(
-        family="lsd", title=f"Leaf spring damper: {p.name or Path(source).stem}", source=source,
+        family="lsd", title=f"Leaf spring damper: {p.name or Path(source).stem}", source=source, criteria=criteria,
         commands=[f"springdyn lsd coefficients {source} --rpm 500:3000:500 --amplitude 50um --plot coefficients.png",
                   f"springdyn lsd rig {source} --rpm 1000 --eccentricity 50um --excitation x --csv x.csv",
                   f"springdyn lsd rig {source} --rpm 1000 --eccentricity 50um --excitation y --csv y.csv",

@@ -1,0 +1,52 @@
+"""Wire fatigue building blocks (springdyn.valve.durability) against their closed forms."""
+
+import math
+
+import numpy as np
+import pytest
+
+from springdyn.core.errors import InputError
+from springdyn.valve import durability as du
+from springdyn.valve.design import bergstraesser_factor
+
+
+@pytest.mark.parametrize("w", [3.0, 4.0, 6.2857, 10.0, 20.0])
+def test_en13906_factor_is_bergstraesser(w):
+    """EN 13906-1's (w + 0.5)/(w - 0.75) and Bergstraesser's (4w + 2)/(4w - 3) are one expression."""
+    assert du.stress_correction_factor(w) == pytest.approx(bergstraesser_factor(w), rel=1e-14)
+
+
+def test_corrected_stress_of_the_example_spring_by_hand():
+    """Fset = 251.43 N on D = 22 mm, d = 3.5 mm: k = 6.7857/5.5357 = 1.22581, tau = k 8 F D/(pi d^3)."""
+    k = (22 / 3.5 + 0.5) / (22 / 3.5 - 0.75)
+    by_hand = k * 8 * 251.43 * 0.022 / (math.pi * 0.0035 ** 3)
+    assert du.corrected_shear_stress(251.43, 0.022, 0.0035) == pytest.approx(by_hand, rel=1e-12)
+    assert by_hand == pytest.approx(402.7e6, rel=1e-4)  # the report prints it rounded: "403 MPa installed"
+
+
+def test_goodman_limits():
+    """Static stress: n = tau_u/tau; fully reversed: n = tau_e/tau_a; on the line n = 1."""
+    assert du.goodman_safety_factor(300e6, 300e6, 400e6, 1200e6) == pytest.approx(4.0)
+    assert du.goodman_safety_factor(-200e6, 200e6, 400e6, 1200e6) == pytest.approx(2.0)
+    tau_e, tau_u = 400e6, 1200e6
+    mean = 600e6
+    amp = tau_e * (1 - mean / tau_u)  # a point on the Goodman line
+    assert du.goodman_safety_factor(mean - amp, mean + amp, tau_e, tau_u) == pytest.approx(1.0)
+
+
+def test_zimmerli_point_lies_on_its_goodman_line():
+    """The endurance strength derived from Zimmerli's peened point puts that point at n = 1."""
+    s_su = du.ultimate_shear_strength(1960e6)
+    tau_e = du.zimmerli_endurance_shear_strength(s_su)
+    s_sa, s_sm = du.ZIMMERLI_PEENED
+    assert du.goodman_safety_factor(s_sm - s_sa, s_sm + s_sa, tau_e, s_su) == pytest.approx(1.0, rel=1e-12)
+
+
+def test_bad_inputs():
+    with pytest.raises(InputError):
+        du.stress_correction_factor(0.5)
+    with pytest.raises(InputError):
+        du.goodman_safety_factor(2.0, 1.0, 1.0, 1.0)
+    with pytest.raises(InputError):
+        du.goodman_safety_factor(0.0, 0.0, 1.0, 1.0)
+    assert np.all(du.goodman_safety_factor(np.array([1e8, 2e8]), np.array([3e8, 4e8]), 4e8, 1.2e9) > 0)
