@@ -292,7 +292,7 @@ def test_dense_extremes_catch_a_ringing_minimum_the_grid_misses():
     cam = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4,
               ramp_duration=math.radians(20))
     coarse = simulate(s, cam, 1000.0, 2)
-    fine = simulate(s, cam, 1000.0, 2, points_per_revolution=144000)
+    fine = simulate(s, cam, 1000.0, 2, points_per_revolution=100000)
     fset = s.internal_parameters()["Fset"]
     grid_min = coarse.retainer_force.min()
     true_min = fine.retainer_force.min()

@@ -67,7 +67,7 @@ def extra_layout(n_masses: int) -> dict:
     Parameters
     ----------
     n_masses : int
-        Number of chain masses (5 for Type C).
+        Number of chain masses (5 for Type C) [-].
 
     Returns
     -------
@@ -619,11 +619,29 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
 
     Parameters
     ----------
+    y0 : ndarray
+        Initial state: displacements [m] then velocities [m/s].
+    omegas : array_like
+        Cam speeds [rad/s].
+    revolutions : int
+        Revolutions to integrate per speed [-].
+    points : int
+        Output samples per revolution [-].
+    args : tuple
+        The argument tuple of :func:`rhs` (masses [kg], laws [m, N], set-up compressions
+        [m], damping [N s/m], cam table [m, m/rad, m/rad^2], table step [rad], speed
+        [rad/s], valve train parameters); its speed is ignored.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    max_step_fraction : float
+        Largest step as a fraction of a revolution [-].
+    max_steps : int
+        Step budget per speed [-].
     gaps : ndarray (N + 1,), optional
         Compression [m] of each element beyond which its coils touch (``inf``: never);
         crossings are located as coil-contact events.
     monitor : bool
-        Also return the monitor outputs.
+        Also return the monitor outputs [-].
 
     Parameters
     ----------

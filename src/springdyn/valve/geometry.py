@@ -159,15 +159,15 @@ def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: flo
     Parameters
     ----------
     n_total : float
-        Total turns N1 + N2.
+        Total turns N1 + N2 [-].
     dead : float
-        Dead coils per end Nb.
+        Dead coils per end Nb [-].
     dw : float
         Wire diameter [m].
     free_length, installed_length : float
         Lf and Ls [m].
     low_pitch : float
-        N1 (0 for a one-step spring).
+        N1 (0 for a one-step spring) [-].
     field : callable
         ``field(name)`` describes a ``[spring]`` key for messages.
     """

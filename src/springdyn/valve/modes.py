@@ -49,7 +49,7 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
     k : ndarray, shape (n + 1,)
         Element tangent stiffnesses [N/m].
     count : int, optional
-        Only the lowest ``count`` frequencies.
+        Only the lowest ``count`` frequencies [-].
     """
     m = np.asarray(masses, dtype=float)
     k = np.asarray(k, dtype=float)

@@ -56,9 +56,9 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
     cam_rpm : ndarray
         Camshaft speeds [rev/min].
     revolutions : int
-        Revolutions per speed.
+        Revolutions per speed [-].
     points : int
-        Output points per revolution.
+        Output points per revolution [-].
     rtol, atol : float
         Integration tolerances (absolute: [m] and [m/s]).
 
