@@ -73,7 +73,7 @@ def test_dynamic_viscosity_accepted(tmp_path):
         ('"100 cSt"', '"0 cSt"', "oil_viscosity.*positive"),
         ('"100 cSt"', '"100 mm"', "oil_viscosity"),
         ('conductance_model = "exact"', 'conductance_model = "moody"', "choose one of"),
-        ("packs = 6", "packs = 1", "at least 2"),
+        ("packs = 6", "packs = 1", "from 2 to 64"),
         ("leaf_friction = 0.1", "leaf_fricton = 0.1", "did you mean 'leaf_friction'"),
         ('leaf_width = "14.8 mm"\n', "", "missing key 'leaf_width'"),
         ('oil_density = "965 kg/m^3"\n', "", "is kinematic; give oil_density"),

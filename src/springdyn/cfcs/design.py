@@ -44,6 +44,11 @@ def min_ratio_for_stroke(stroke_fraction):
 
     The limit is ``L (1 - sqrt((1 - rho)/(1 + rho)))``, so ``rho >= (1 - q^2)/(1 + q^2)``
     with ``q = 1 - stroke_fraction``.
+
+    Parameters
+    ----------
+    stroke_fraction : float
+        Stroke as a fraction of r2 + r3 [-].
     """
     q = 1.0 - stroke_fraction
     return (1.0 - q * q) / (1.0 + q * q)
@@ -55,7 +60,17 @@ def _geometry(ratio, total_length):
 
 
 def normalized_pcf(ratio, stroke_fraction, n=401):
-    """PCF [%] over ``[0, stroke_fraction (r2 + r3)]`` for ``r2/r3 = ratio`` (independent of K3 and size)."""
+    """PCF [%] over ``[0, stroke_fraction (r2 + r3)]`` for ``r2/r3 = ratio`` (independent of K3 and size).
+
+    Parameters
+    ----------
+    ratio : float
+        Crank-to-coupler length ratio r2/r3 [-].
+    stroke_fraction : float
+        Stroke as a fraction of r2 + r3 [-].
+    n : int
+        Number of samples along the stroke [-].
+    """
     r2, r3 = _geometry(ratio, 1.0)
     x = np.linspace(0.0, stroke_fraction, n)
     f = static_force(theta2_from_deflection(x, r2, r3), 1.0, r2, r3)
@@ -164,17 +179,17 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     youngs_modulus, allowable_stress : float
         Flexure material [Pa].
     stroke_fraction : float
-        ``stroke / (r2 + r3)`` when ``total_length`` is not given (default 0.4).
+        ``stroke / (r2 + r3)`` [-] when ``total_length`` is not given (default 0.4).
     total_length : float, optional
         ``r2 + r3`` [m].
     pivot_length_ratio : float
-        ``l / r3`` (default 0.1).
+        ``l / r3`` [-] (default 0.1).
     max_width : float, optional
         Largest flexure width b [m] (default r3).
     safety_factor : float
-        The stress at the end of the stroke is ``allowable_stress / safety_factor``.
+        Safety factor [-]: the stress at the end of the stroke is ``allowable_stress / safety_factor``.
     n : int
-        Samples of the force curve.
+        Samples of the force curve [-].
     """
     for name, v in (("force", force), ("stroke", stroke), ("youngs_modulus", youngs_modulus),
                     ("allowable_stress", allowable_stress), ("pivot_length_ratio", pivot_length_ratio),

@@ -7,7 +7,7 @@ One degree of freedom, the crank angle theta2.  Lagrange's equation (10) with
 
 with ``G = dx/dtheta2`` (minus Eq. (25)), F the slider force (positive in compression)
 and tau_d the dissipative torques opposing the motion.  The inverse problem (slider
-driven along x(t)) solves it for F (reading notes 2.2 item 1 corrects the signs of
+driven along x(t)) solves it for F (correction CFCS-1 of docs/references.md corrects the signs of
 Eqs. (20)/(24)); the forward problem integrates it for theta2(t) under a given force.
 """
 
@@ -50,7 +50,7 @@ __all__ = [
 
 
 def generalized_mass(theta2, m2, m3, ms, r2, r3):
-    """Generalized mass ``M(theta2)`` [kg*m^2], compact form of Eq. (19) (reading notes 2.1).
+    """Generalized mass ``M(theta2)`` [kg*m^2], compact form of Eq. (19) (docs/references.md).
 
     ``M = m2 r2^2/3 + m3 [r2^2 s^2 (1 + u) + r3^2 u^2 / 3] + ms r2^2 s^2 (1 + u)^2``
     with ``s = sin theta2`` and ``u = r2 cos theta2 / D``; slender links
@@ -80,6 +80,21 @@ def generalized_mass_eq19(theta2, m2, m3, ms, r2, r3):
 
     Kept separate from :func:`generalized_mass` so tests can check the compact form
     against the printed one.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    m2 : float
+        Crank mass [kg].
+    m3 : float
+        Coupler mass [kg].
+    ms : float
+        Slider mass [kg].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     s, c = np.sin(theta2), np.cos(theta2)
     d2 = r3 * r3 - r2 * r2 * s * s
@@ -99,8 +114,23 @@ def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
     """``dM/dtheta2`` [kg*m^2/rad]; ``M'/2`` is the coefficient of theta2'^2 in Eq. (19).
 
     Differentiated from :func:`generalized_mass` with
-    ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (reading notes 2.1: the
+    ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (docs/references.md: the
     velocity-squared coefficient is ``M'/2``).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    m2 : float
+        Crank mass [kg].
+    m3 : float
+        Coupler mass [kg].
+    ms : float
+        Slider mass [kg].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     s, c = np.sin(theta2), np.cos(theta2)
     d = coupler_root(theta2, r2, r3)
@@ -113,7 +143,25 @@ def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
 
 
 def kinetic_energy(theta2, theta2dot, m2, m3, ms, r2, r3):
-    """``T = M(theta2) theta2'^2 / 2`` [J], Eq. (11) of the CFCS paper."""
+    """``T = M(theta2) theta2'^2 / 2`` [J], Eq. (11) of the CFCS paper.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    theta2dot : float or array_like
+        Crank angular speed [rad/s].
+    m2 : float
+        Crank mass [kg].
+    m3 : float
+        Coupler mass [kg].
+    ms : float
+        Slider mass [kg].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     return 0.5 * generalized_mass(theta2, m2, m3, ms, r2, r3) * theta2dot * theta2dot
 
 
@@ -128,7 +176,7 @@ def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_fricti
 
     ``F = (M th2'' + M'/2 th2'^2 + dV/dth2 + tau_CF + tau_AF) / G + F_slider sgn(x')``,
     positive in compression, dissipative terms against the motion: Eqs. (19)-(24) of
-    the CFCS paper with the sign correction of reading notes 2.2 item 1.
+    the CFCS paper with the sign correction of correction CFCS-1 of docs/references.md.
 
     Treatment of the toggle (theta2 = 0, G = 0):
 
@@ -207,6 +255,16 @@ def toggle_inertia_limit(motion, t0, period, *, r2, r3, m2, m3, ms):
         ``motion(t) -> (x, x', x'')`` [m, m/s, m/s^2].
     t0, period : float
         Instant and period [s].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    m2 : float
+        Crank mass [kg].
+    m3 : float
+        Coupler mass [kg].
+    ms : float
+        Slider mass [kg].
     """
     delta = 1e-4 * period
     while delta <= period / 16:
@@ -265,6 +323,12 @@ def forward_rhs(t, state, force_fn, p, sign_smoothing):
         ``force_fn(t, x, xdot) -> F`` [N], positive in compression.
     p : mapping
         Mechanism values as in :func:`drive_force_components` (SI).
+    t : float
+        Time [s].
+    state : ndarray
+        State: crank angle [rad] and crank speed [rad/s].
+    sign_smoothing : float
+        Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
     """
     th, thd = state
     r2, r3 = p["r2"], p["r3"]
@@ -284,6 +348,25 @@ def forward_rhs(t, state, force_fn, p, sign_smoothing):
 
 def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smoothing=1e-2, rtol=1e-9, atol=1e-12):
     """Integrate the forward problem over ``t_eval`` (LSODA); stop at the kinematic limit.
+
+    Parameters
+    ----------
+    force_fn : callable
+        Applied slider force F(t, x, x') [N].
+    p : CFCSParams
+        The mechanism.
+    t_eval : array_like
+        Output times [s].
+    theta2_0 : float
+        Initial crank angle [rad].
+    theta2dot_0 : float
+        Initial crank speed [rad/s].
+    sign_smoothing : float
+        Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
+    rtol : float
+        Relative tolerance [-].
+    atol : float
+        Absolute tolerance [rad, rad/s].
 
     Returns
     -------
@@ -319,6 +402,16 @@ def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smooth
 
 
 def energy(theta2, theta2dot, p):
-    """``T + V`` [J] of the mechanism (for power-balance checks)."""
+    """``T + V`` [J] of the mechanism (for power-balance checks).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    theta2dot : float or array_like
+        Crank angular speed [rad/s].
+    p : CFCSParams
+        The mechanism.
+    """
     return kinetic_energy(theta2, theta2dot, p["m2"], p["m3"], p["ms"], p["r2"], p["r3"]) + spring_energy(
         theta2, p["k3"], p["r2"], p["r3"])

@@ -1,6 +1,6 @@
 """Kinematics of the pseudo-rigid-body slider-crank of the CFCS.
 
-Topology (section 2 of the reading notes): crank ``r2`` pinned to ground, coupler
+Topology ([CFCS], see docs/references.md): crank ``r2`` pinned to ground, coupler
 ``r3`` pinned to the crank, a small-length flexural pivot (torsional spring K3)
 joining coupler and slider.  Loop closure, consistent with Eqs. (14), (15) and (25)
 of the CFCS paper::
@@ -56,6 +56,15 @@ def slider_position(theta2, r2, r3):
 
     ``r1 = r2 cos theta2 + D`` (the loop closure under Eq. (14) of the CFCS paper,
     written with ``r3 cos theta3 = D``).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     return r2 * np.cos(theta2) + coupler_root(theta2, r2, r3)
 
@@ -65,6 +74,15 @@ def deflection_from_theta2(theta2, r2, r3):
 
     Written without cancellation as ``2 r2 sin^2(theta2/2) + r2^2 sin^2 theta2 / (r3 + D)``
     (``r3 - D = r2^2 sin^2 theta2 / (r3 + D)``), so it keeps full precision at the toggle.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     s = np.sin(theta2)
     return 2.0 * r2 * np.sin(0.5 * np.asarray(theta2)) ** 2 + (r2 * s) ** 2 / (r3 + coupler_root(theta2, r2, r3))
@@ -100,7 +118,17 @@ def theta2_from_deflection(x, r2, r3):
 
 
 def coupler_angle(theta2, r2, r3):
-    """Coupler angle ``theta3 = -asin(r2 sin theta2 / r3)`` [rad] (loop closure)."""
+    """Coupler angle ``theta3 = -asin(r2 sin theta2 / r3)`` [rad] (loop closure).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     return -np.arcsin(r2 * np.sin(theta2) / r3)
 
 
@@ -108,7 +136,16 @@ def spring_angle(theta2, r2, r3):
     """Deflection of the pivot spring ``theta_K3 = -theta3`` [rad].
 
     Eq. (18) of the CFCS paper gives ``asin(r2 sin theta2 / r3)``, which is this
-    value (reading notes 2.1: the paper's sign is immaterial since V is quadratic).
+    value (docs/references.md: the paper's sign is immaterial since V is quadratic).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     return np.arcsin(r2 * np.sin(theta2) / r3)
 
@@ -118,6 +155,15 @@ def spring_angle_rate_ratio(theta2, r2, r3):
 
     It is also ``-theta3'/theta2'`` (Eq. (15) of the CFCS paper) and the second term of
     the bracket of Eq. (21): the crank-coupler pin turns at ``theta2' (1 + u)``.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     return r2 * np.cos(theta2) / coupler_root(theta2, r2, r3)
 
@@ -126,13 +172,32 @@ def slider_jacobian(theta2, r2, r3):
     """``G = dx/dtheta2 = -dr1/dtheta2 = r2 sin theta2 (1 + u)`` [m/rad].
 
     The negative of Eq. (25) of the CFCS paper (``dr1/dtheta2 = -r1 r2 sin theta2 / D``,
-    reading notes 2.1).  It vanishes at the toggle ``theta2 = 0``.
+    docs/references.md).  It vanishes at the toggle ``theta2 = 0``.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     return r2 * np.sin(theta2) * (1.0 + spring_angle_rate_ratio(theta2, r2, r3))
 
 
 def dr1_dtheta2(theta2, r2, r3):
-    """Eq. (25) of the CFCS paper: ``dr1/dtheta2 = -r2 sin th2 - r2^2 sin th2 cos th2 / D`` [m/rad]."""
+    """Eq. (25) of the CFCS paper: ``dr1/dtheta2 = -r2 sin th2 - r2^2 sin th2 cos th2 / D`` [m/rad].
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     s, c = np.sin(theta2), np.cos(theta2)
     return -r2 * s - r2 * r2 * s * c / coupler_root(theta2, r2, r3)
 
@@ -142,6 +207,15 @@ def slider_jacobian_derivative(theta2, r2, r3):
 
     With ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (derived from
     :func:`spring_angle_rate_ratio`; ``D^2 - r2^2 cos^2 = r3^2 - r2^2``).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
     """
     s, c = np.sin(theta2), np.cos(theta2)
     d = coupler_root(theta2, r2, r3)
@@ -151,12 +225,20 @@ def slider_jacobian_derivative(theta2, r2, r3):
 
 
 def kinematic_limit_theta2() -> float:
-    """Crank angle of the kinematic limit, ``pi/2`` [rad] (reading notes 2)."""
+    """Crank angle of the kinematic limit, ``pi/2`` [rad] ([CFCS]: the links are square to each other)."""
     return np.pi / 2
 
 
 def kinematic_limit_deflection(r2, r3):
-    """Largest slider deflection ``r2 + r3 - sqrt(r3^2 - r2^2)`` [m] (``theta2 = pi/2``)."""
+    """Largest slider deflection ``r2 + r3 - sqrt(r3^2 - r2^2)`` [m] (``theta2 = pi/2``).
+
+    Parameters
+    ----------
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     return r2 + r3 - np.sqrt(r3 * r3 - r2 * r2)
 
 
@@ -167,6 +249,19 @@ def crank_rates(x, xdot, xddot, r2, r3):
     :func:`slider_jacobian`.  At the toggle (G = 0) both are 0/0: the values there are
     not finite, and :func:`springdyn.cfcs.dynamics.inverse_dynamics` replaces the
     inertia force at such instants by its limit.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Slider deflection from the toggle [m].
+    xdot : float or array_like
+        Slider speed [m/s].
+    xddot : float or array_like
+        Slider acceleration [m/s^2].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
 
     Returns
     -------

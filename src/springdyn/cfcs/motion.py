@@ -3,8 +3,7 @@
 Default: the sinusoid ``x(t) = offset + amplitude (1 - cos(w t)) / 2`` (Fig. 4 of the
 CFCS paper), which starts at rest at ``offset`` and reaches ``offset + amplitude`` at
 half period.  The paper's "amplitude equal to 40 % mechanism deflection" is read as
-``amplitude = 0.4 (r2 + r3)`` (72 mm for Table 1) with ``offset = 0`` (reading notes
-2.2 item 4: both are explicit parameters here).  Any periodic x(t) can be read from a
+``amplitude = 0.4 (r2 + r3)`` (72 mm for Table 1) with ``offset = 0`` (correction CFCS-4 of docs/references.md: both are explicit parameters here).  Any periodic x(t) can be read from a
 CSV with columns ``time_s`` and ``deflection_m`` (one period, first and last
 deflection equal); it is interpolated by a periodic cubic spline.
 """
@@ -51,6 +50,15 @@ def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> 
     """An amplitude as a length (``"72 mm"``) or as a fraction of ``r2 + r3`` (``0.4``) [m].
 
     A bare number (or a dimensionless string) at most 1 is a fraction; a length is used as is.
+
+    Parameters
+    ----------
+    value : str or float
+        The amplitude: a length such as '72 mm' [m], or a fraction of r2 + r3 [-].
+    extended_length : float
+        r2 + r3, the slider position at the toggle [m].
+    field : str
+        Name of the argument, for messages.
     """
     if isinstance(value, str) and value.strip().endswith("%"):
         frac = to_si(value.strip()[:-1], "", field) / 100.0
@@ -75,7 +83,19 @@ def _fraction(frac, extended_length, field, value):
 
 
 def check_stroke(lowest: float, highest: float, max_deflection: float, what: str) -> None:
-    """Raise InputError if the deflections leave ``[0, max_deflection]``."""
+    """Raise InputError if the deflections leave ``[0, max_deflection]``.
+
+    Parameters
+    ----------
+    lowest : float
+        Smallest deflection of the motion [m].
+    highest : float
+        Largest deflection of the motion [m].
+    max_deflection : float
+        Kinematic limit deflection [m].
+    what : str
+        What the deflections belong to, for messages.
+    """
     if lowest < -1e-12:
         raise InputError(
             f"{what} reaches a deflection of {format_quantity(lowest, 'm', 'mm')}: it crosses the toggle "

@@ -21,9 +21,13 @@ __all__ = ["StaticResult", "DynamicResult", "FrequencySweep", "ForwardResult", "
 def running_pcf(force):
     """PCF vs time [%]: ``100 min(F[0..i]) / max(F[0..i])`` over the record so far.
 
-    springdyn's definition of the paper's Fig. 12 (the paper gives none, reading notes
-    2.2 item 4): it starts at 100 % and falls as the force explores its range; its
+    springdyn's definition of the paper's Fig. 12 (the paper gives none, correction CFCS-4 of docs/references.md): it starts at 100 % and falls as the force explores its range; its
     value at the end of a whole cycle is the cycle's PCF.
+
+    Parameters
+    ----------
+    force : array_like
+        Force record [N].
     """
     f = np.asarray(force, dtype=float)
     lo = np.minimum.accumulate(f)

@@ -1,19 +1,18 @@
 """Statics of the CFCS: spring energy, force-deflection, dissipative terms, PCF.
 
 The static force is the virtual-work result on the pseudo-rigid-body model
-(reading notes 2.3; Fig. 2 of the CFCS paper)::
+(reference values of docs/references.md; Fig. 2 of the CFCS paper)::
 
     F = K3 theta_K3 cos(theta2) / (r1 sin(theta2))
 
 which equals ``dV/dtheta2 / (dx/dtheta2)`` with ``V = K3 theta_K3^2 / 2`` (Eq. (17)).
 
-The dissipative terms of Eqs. (20)-(22) always oppose the motion here (reading notes
-2.2 item 1), so a quasi-static stroke has a compression branch ``F + F_d`` and an
+The dissipative terms of Eqs. (20)-(22) always oppose the motion here (correction CFCS-1 of docs/references.md), so a quasi-static stroke has a compression branch ``F + F_d`` and an
 extension branch ``F - F_d``.  Their conversion to a slider force divides by the
 Jacobian ``G = dx/dtheta2``, which vanishes at the toggle; below the cut-off angle the
 Jacobian is frozen at ``G(theta2_cutoff)`` for these terms (:func:`frozen_jacobian`): a
 documented regularisation of springdyn's, since the paper does not treat the toggle
-(reading notes 2.2 item 3).
+(correction CFCS-3 of docs/references.md).
 """
 
 from __future__ import annotations
@@ -46,13 +45,37 @@ FRICTION_MODELS = ("paper", "constant", "none")
 
 
 def spring_energy(theta2, k3, r2, r3):
-    """Pivot spring energy ``V = K3 theta_K3^2 / 2`` [J], Eq. (17) of the CFCS paper."""
+    """Pivot spring energy ``V = K3 theta_K3^2 / 2`` [J], Eq. (17) of the CFCS paper.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    k3 : float
+        Pivot torsional stiffness K3 [N*m/rad].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     th = spring_angle(theta2, r2, r3)
     return 0.5 * k3 * th * th
 
 
 def spring_torque(theta2, k3, r2, r3):
-    """``dV/dtheta2 = K3 theta_K3 r2 cos theta2 / D`` [N*m], the last term of Eq. (19)."""
+    """``dV/dtheta2 = K3 theta_K3 r2 cos theta2 / D`` [N*m], the last term of Eq. (19).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    k3 : float
+        Pivot torsional stiffness K3 [N*m/rad].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     return k3 * spring_angle(theta2, r2, r3) * spring_angle_rate_ratio(theta2, r2, r3)
 
 
@@ -69,7 +92,7 @@ def _asin_ratio(s, a):
 def static_force(theta2, k3, r2, r3):
     """Static slider force by virtual work ``K3 theta_K3 cos th2 / (r1 sin th2)`` [N].
 
-    Reading notes 2.3 (the paper's Fig. 2).  The limit at the toggle is finite,
+    The reference values of docs/references.md (the paper's Fig. 2).  The limit at the toggle is finite,
     ``K3 r2 / (r3 (r2 + r3))`` (12.580 N for Table 1), and is used there.
 
     Parameters
@@ -87,7 +110,17 @@ def static_force(theta2, k3, r2, r3):
 
 
 def static_force_at_toggle(k3, r2, r3):
-    """Static force as ``theta2 -> 0+``: ``K3 r2 / (r3 (r2 + r3))`` [N] (reading notes 2.3)."""
+    """Static force as ``theta2 -> 0+``: ``K3 r2 / (r3 (r2 + r3))`` [N] (reference values of docs/references.md).
+
+    Parameters
+    ----------
+    k3 : float
+        Pivot torsional stiffness K3 [N*m/rad].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     return k3 * r2 / (r3 * (r2 + r3))
 
 
@@ -95,7 +128,7 @@ def pin_friction_torque(theta2, pin_friction, model, r2, r3):
     """Magnitude of the pin friction torque tau_CF [N*m], Eq. (21) of the CFCS paper.
 
     - ``"paper"``: ``C |theta2| (2 + r2 cos th2 / D)``, Eq. (21) as printed (the factor
-      theta2 is the paper's, reading notes 2.2 item 2).
+      theta2 is the paper's, correction CFCS-2 of docs/references.md).
     - ``"constant"``: ``C (2 + r2 cos th2 / D)``, the Coulomb torque C of the ground pin
       (rate theta2') plus that of the crank-coupler pin (rate theta2' (1 + u)).
     - ``"none"``: 0.
@@ -107,7 +140,7 @@ def pin_friction_torque(theta2, pin_friction, model, r2, r3):
     theta2 : float or array
         Crank angle [rad].
     pin_friction : float
-        Coulomb torque C of a pin [N*m] (units not given by the paper, reading notes 2.2 item 4).
+        Coulomb torque C of a pin [N*m] (units not given by the paper, correction CFCS-4 of docs/references.md).
     model : {"paper", "constant", "none"}
     r2, r3 : float
         Link lengths [m].
@@ -127,7 +160,7 @@ def axial_force_torque(force_static, shear_angle, r2, r3):
     """Magnitude of the axial-force torque tau_AF [N*m], Eq. (22) of the CFCS paper.
 
     ``tau_AF = F_static r2 alpha (1 + r2 / sqrt(r3^2 - r2^2 alpha^2))``.  springdyn
-    applies it, like tau_CF, against the motion (reading notes 2.2 item 1).
+    applies it, like tau_CF, against the motion (correction CFCS-1 of docs/references.md).
 
     Parameters
     ----------
@@ -142,7 +175,27 @@ def axial_force_torque(force_static, shear_angle, r2, r3):
 
 
 def dissipative_torque(theta2, force_static, pin_friction, model, shear_angle, axial_force, r2, r3):
-    """``|tau_CF| + |tau_AF|`` [N*m] with the options of the mechanism (see above)."""
+    """``|tau_CF| + |tau_AF|`` [N*m] with the options of the mechanism (see above).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    force_static : float or array_like
+        Static slider force [N].
+    pin_friction : float
+        Coulomb pin friction torque C of Eq. (21) [N*m].
+    model : str
+        Pin friction model: 'paper', 'constant' or 'none' (correction CFCS-2 of docs/references.md).
+    shear_angle : float
+        Shear angle alpha of Eq. (22) [rad].
+    axial_force : bool
+        Include the axial-force torque tau_AF of Eq. (22).
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
     tau = pin_friction_torque(theta2, pin_friction, model, r2, r3)
     if axial_force:
         tau = tau + axial_force_torque(force_static, shear_angle, r2, r3)
@@ -154,8 +207,19 @@ def frozen_jacobian(theta2, r2, r3, theta2_cutoff):
 
     Used only to turn the dissipative torques tau_CF and tau_AF into a slider force:
     both are non-zero at the toggle (tau_AF always, tau_CF in the constant model) while
-    G -> 0, so ``tau / G`` diverges there (reading notes 2.2 item 3).  Inside the zone
+    G -> 0, so ``tau / G`` diverges there (correction CFCS-3 of docs/references.md).  Inside the zone
     the dissipative force is ``tau / G(theta2_cutoff)``.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    theta2_cutoff : float
+        Toggle cut-off angle [rad] (correction CFCS-3 of docs/references.md).
     """
     theta2 = np.asarray(theta2, dtype=float)
     return slider_jacobian(np.maximum(np.abs(theta2), theta2_cutoff), r2, r3)
@@ -165,7 +229,12 @@ def percent_constant_force(force):
     """Percent constant force ``100 F_min / F_max`` [%] of a force record.
 
     This is springdyn's explicit definition (the CFCS paper does not define it,
-    reading notes 2.2 item 4).  NaN if the largest force is not positive.
+    correction CFCS-4 of docs/references.md).  NaN if the largest force is not positive.
+
+    Parameters
+    ----------
+    force : array_like
+        Force record [N].
     """
     force = np.asarray(force, dtype=float)
     fmax = np.max(force)

@@ -6,7 +6,7 @@ Three sources add up (Sections 2.2 and 3 of the leaf-spring-damper thesis):
 - friction between the leaves of each pack, as a hysteretic loss factor (2.23)-(2.28);
 - the oil squeezed between the chambers (the spaces between packs) through narrow
   passages (2.11)-(2.20), (3.5)-(3.6), written here as the network
-  ``C_visc = B^T G^+ B`` (READING-NOTES section 3.2).
+  ``C_visc = B^T G^+ B`` (correction LSD-3 of docs/references.md).
 
 Units: SI throughout (m, N, Pa, Pa s, rad/s).
 """
@@ -71,6 +71,17 @@ def interleaf_slip_factor(load_ratios, deflection_ratios, thicknesses, lengths):
     It converts the pack tip deflection into the friction work between the leaves:
     the slip at the tip of leaf ``i`` is ``3 delta_i t_i / (2 L_i)`` (Eq. (2.26)) and
     leaves ``i >= 2`` slip on both faces.
+
+    Parameters
+    ----------
+    load_ratios : array_like
+        Leaf load ratios phi_i = P_i/P_1 of Eq. (2.7) [-].
+    deflection_ratios : array_like
+        Leaf tip deflection ratios delta_i/delta_1 [-].
+    thicknesses : array_like
+        Leaf thicknesses t_i [m].
+    lengths : array_like
+        Leaf lengths L_i, longest first [m].
     """
     phi = np.asarray(load_ratios, dtype=float)
     r = np.asarray(deflection_ratios, dtype=float)
@@ -94,7 +105,7 @@ def leaf_loss_factor(friction_coefficient, preload, amplitude, slip_factor, norm
 
     The thesis calls this factor xi (like the stiffness factor of (2.9)) and its
     hysteretic coefficient eta in (3.1); springdyn names it ``loss_factor``
-    (READING-NOTES section 3.2).  (2.23) is read as ``F_s = k_s (1 + j zeta) delta``
+    (correction LSD-3 of docs/references.md).  (2.23) is read as ``F_s = k_s (1 + j zeta) delta``
     (the printed time derivative is a typo, same note).
 
     Parameters
@@ -125,6 +136,17 @@ def hysteresis_damping_matrix(loss_factor, pack_stiffness, omega, angles):
 
     Eq. (2.24) per pack, summed over the packs like the stiffness (the second term of
     each coefficient of (3.5)).  Returns an array of shape ``omega.shape + (2, 2)``.
+
+    Parameters
+    ----------
+    loss_factor : float
+        Loss factor zeta of the packs' hysteresis, Eq. (2.28) [-].
+    pack_stiffness : float
+        Stiffness k_s of one pack [N/m].
+    omega : float
+        Vibration frequency [rad/s].
+    angles : array_like
+        Pack angles phi_i [rad].
     """
     phi = np.asarray(angles, dtype=float)
     c, s = np.cos(phi), np.sin(phi)
@@ -134,7 +156,15 @@ def hysteresis_damping_matrix(loss_factor, pack_stiffness, omega, angles):
 
 
 def hydraulic_diameter(width, clearance):
-    """Hydraulic diameter of a rectangular passage ``d_h = 2 b_o h_o / (b_o + h_o)`` [m], Eq. (2.17)."""
+    """Hydraulic diameter of a rectangular passage ``d_h = 2 b_o h_o / (b_o + h_o)`` [m], Eq. (2.17).
+
+    Parameters
+    ----------
+    width : float
+        Passage width b_o [m].
+    clearance : float
+        Passage clearance h_o [m].
+    """
     return 2.0 * width * clearance / (width + clearance)
 
 
@@ -143,7 +173,7 @@ def passage_conductance_thesis(width, clearance, length, viscosity):
 
     The thesis' ``C_D`` has a factor 2 in front (two passages per chamber boundary);
     springdyn applies that count separately (``passages_per_boundary``).  The constant
-    142 is the author's (it gives the 639 = 9 x 71 of (3.6)); READING-NOTES section 3.2.
+    142 is the author's (it gives the 639 = 9 x 71 of (3.6)); docs/references.md.
 
     Parameters
     ----------
@@ -164,7 +194,7 @@ def passage_conductance_rectangular(width, clearance, length, viscosity, terms=5
     ``Q/dp = b h^3 / (12 eta L) [1 - (192 h / (pi^5 b)) sum_(n odd) tanh(n pi b / (2h)) / n^5]``
     with ``h <= b`` the smaller side (the classical series solution; White, *Viscous Fluid
     Flow*, Eq. (3-48)).  For the thin slots of the thesis it is 1.7 to 14 times Eq. (2.17)
-    (READING-NOTES section 3.2).
+    (correction LSD-3 of docs/references.md).
 
     Parameters
     ----------
@@ -175,7 +205,7 @@ def passage_conductance_rectangular(width, clearance, length, viscosity, terms=5
     viscosity : float
         Dynamic viscosity [Pa s].
     terms : int
-        Number of odd terms of the series.
+        Number of odd terms of the series [-].
     """
     b, h = max(width, clearance), min(width, clearance)
     n = 2.0 * np.arange(terms) + 1.0
@@ -187,8 +217,25 @@ def boundary_conductance(width, clearance, length, viscosity, passages=2, model=
     """Conductance ``C_D`` between two neighbouring chambers [m^3/(s Pa)].
 
     ``passages`` parallel passages of the chosen ``model`` ("exact" rectangular duct or
-    "thesis" Eq. (2.17)), times the calibration ``leakage_factor`` (READING-NOTES section
-    3.2: the closed form over-predicts damping; a leakage factor > 1 lowers it).
+    "thesis" Eq. (2.17)), times the calibration ``leakage_factor`` (correction LSD-6
+    of docs/references.md: the closed form over-predicts damping; a leakage factor > 1 lowers it).
+
+    Parameters
+    ----------
+    width : float
+        Passage width b_o [m].
+    clearance : float
+        Passage clearance h_o [m].
+    length : float
+        Passage length L_h [m].
+    viscosity : float
+        Dynamic oil viscosity [Pa s].
+    passages : int
+        Parallel passages between two chambers [-].
+    model : str
+        Conductance model: 'exact' (rectangular duct, correction LSD-2 of docs/references.md) or 'thesis' (Eq. (2.17)).
+    leakage_factor : float
+        Calibration factor on the conductance [-].
     """
     if model == "exact":
         single = passage_conductance_rectangular(width, clearance, length, viscosity)
@@ -234,6 +281,13 @@ def chamber_laplacian(chambers: int, conductance: float) -> np.ndarray:
 
     ``(G p)_i = C_D (2 p_i - p_(i-1) - p_(i+1))`` is the outflow of chamber ``i``
     (Eq. (2.16) with ``C_DR = C_DL = C_D``).  For two chambers they share two boundaries.
+
+    Parameters
+    ----------
+    chambers : int
+        Number of oil chambers [-].
+    conductance : float
+        Conductance C_D between neighbouring chambers [m^3/(s Pa)].
     """
     n = int(chambers)
     if n < 2:
@@ -250,7 +304,7 @@ def chamber_pressures(volume_matrix, conductance, velocity):
 
     Continuity (2.16), (2.18): the outflow ``G p`` equals the squeeze rate ``B v``.  The
     pseudo-inverse picks the solution of zero mean (the mean pressure is not set by the
-    network).  Eq. (2.19) prints ``-p`` (READING-NOTES section 3.2): squeezing raises the
+    network).  Eq. (2.19) prints ``-p`` (correction LSD-3 of docs/references.md): squeezing raises the
     chamber pressure.
 
     Parameters
@@ -269,12 +323,19 @@ def chamber_pressures(volume_matrix, conductance, velocity):
 
 
 def viscous_damping_matrix(volume_matrix, conductance):
-    """Damping of the oil network ``C_visc = B^T G^+ B`` [N s/m] (READING-NOTES section 3.2).
+    """Damping of the oil network ``C_visc = B^T G^+ B`` [N s/m] (correction LSD-3 of docs/references.md).
 
     The force needed to move the ring is ``B^T p`` (virtual work of the chamber
     pressures on the squeezed volumes), so the matrix is symmetric and positive
     semi-definite.  Equal to (3.5) with the ``C_yy`` typo fixed
     (:func:`viscous_damping_thesis`).
+
+    Parameters
+    ----------
+    volume_matrix : ndarray
+        Chamber volume change per unit ring displacement, B (N x 2) [m^2].
+    conductance : float
+        Conductance C_D between neighbouring chambers [m^3/(s Pa)].
     """
     B = np.asarray(volume_matrix, dtype=float)
     Gp = np.linalg.pinv(chamber_laplacian(B.shape[0], conductance))
@@ -289,8 +350,21 @@ def viscous_damping_thesis(angles, ring_width, ring_diameter, leaf_length, condu
     + (4 d_o/(3L)) pbar_(x,i) (sin phi_i - sin phi_(i+1))}`` and likewise the others, with
     ``lambda = 9 b^2 L^2 / (64 C_D)`` (3.6) and ``pbar = 8 C_D/(3 b L) p`` where ``p`` solves
     (2.19) as printed.  The printed ``C_yy`` has ``pbar_(x,i-1)``; it must be
-    ``pbar_(y,i-1)`` (READING-NOTES section 3.2).  Written out term by term as in the
+    ``pbar_(y,i-1)`` (correction LSD-3 of docs/references.md).  Written out term by term as in the
     thesis, as an independent check of :func:`viscous_damping_matrix`.
+
+    Parameters
+    ----------
+    angles : array_like
+        Pack angles phi_i [rad].
+    ring_width : float
+        Inner ring width b [m].
+    ring_diameter : float
+        Inner ring outer diameter d_o [m].
+    leaf_length : float
+        Length of the longest leaf L_1 [m].
+    conductance : float
+        Conductance C_D between neighbouring chambers [m^3/(s Pa)].
     """
     phi = np.asarray(angles, dtype=float)
     n = phi.size

@@ -4,7 +4,7 @@ The rig moves the inner ring harmonically at ``omega`` and measures displacement
 reaction forces.  With ``x = a1 cos wt + a2 sin wt`` and ``F = c1 cos wt + c2 sin wt``
 (Fourier coefficients over whole periods, Eqs. (4.6), (4.15)) and
 ``F = K x + C x' + m x''`` (4.1), the complex ratio ``H = F/X = K - m w^2 + j w C``
-with the phasors ``X = a1 - j a2``, ``F = c1 - j c2``.  Hence (READING-NOTES 3.3)::
+with the phasors ``X = a1 - j a2``, ``F = c1 - j c2``.  Hence (docs/references.md)::
 
     K = [a1 (c1 + m w^2 a1) + a2 (c2 + m w^2 a2)] / (a1^2 + a2^2)
     C = (a2 c1 - a1 c2) / (w (a1^2 + a2^2))
@@ -88,6 +88,11 @@ def _read_tdms(path: Path) -> dict:
 def read_rig_data(path) -> RigData:
     """Read a rig record from CSV (``time_s, x_m, y_m, fx_N, fy_N``) or TDMS (same channel names).
 
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV or TDMS file.
+
     Raises
     ------
     InputError
@@ -117,6 +122,15 @@ def harmonic_coefficients(time, signal, omega):
     sampled data it equals the integrals ``(2/tau) int s cos wt dt`` of Eqs. (4.6), (4.7),
     (4.15), (4.16) and keeps the harmonics of friction out (orthogonality).
     ``signal`` may be 2-D (samples x channels).
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s].
+    signal : array_like
+        Signal samples [signal unit].
+    omega : float
+        Vibration frequency [rad/s].
     """
     t = np.asarray(time, dtype=float)
     A = np.column_stack([np.ones_like(t), np.cos(omega * t), np.sin(omega * t)])
@@ -130,6 +144,17 @@ def estimate_frequency(time, signal, source="<data>", column="x_m") -> float:
     The peak of the Hann-windowed, zero-padded spectrum, refined by minimising the
     residual of a sine fit.  Raises :class:`InputError` when the record holds no clear
     periodic component or less than one period of it.
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s].
+    signal : array_like
+        Signal samples [signal unit].
+    source : str
+        Where the record comes from, for messages.
+    column : str
+        Column name, for messages.
     """
     t = np.asarray(time, dtype=float)
     s = np.asarray(signal, dtype=float) - np.mean(signal)
@@ -169,7 +194,7 @@ def direct_coefficients(a1, a2, c1, c2, mass, omega):
     """Direct stiffness and damping from one axis' Fourier coefficients (corrected (4.19)-(4.22)).
 
     ``K = [a1 (c1 + m w^2 a1) + a2 (c2 + m w^2 a2)] / (a1^2 + a2^2)`` [N/m] and
-    ``C = (a2 c1 - a1 c2) / (w (a1^2 + a2^2))`` [N s/m] (READING-NOTES 3.3).
+    ``C = (a2 c1 - a1 c2) / (w (a1^2 + a2^2))`` [N s/m] (docs/references.md).
 
     Parameters
     ----------
@@ -195,7 +220,22 @@ def thesis_printed_direct_coefficients(a1, a2, c1, c2, mass, omega):
     ``C = [-a2 (c1 + a1 m w^2) + a1 w (c2 + a2 m w)] / ((a1^2 - a2^2) w)``: the
     denominator vanishes when ``|a1| = |a2|`` (a 45 deg phase of the record), ``m w``
     appears where ``m w^2`` belongs, and the result depends on where the record starts.
-    Use :func:`direct_coefficients` (READING-NOTES 3.3).
+    Use :func:`direct_coefficients` (docs/references.md).
+
+    Parameters
+    ----------
+    a1 : float
+        Cosine coefficient of the displacement [m].
+    a2 : float
+        Sine coefficient of the displacement [m].
+    c1 : float
+        Cosine coefficient of the force [N].
+    c2 : float
+        Sine coefficient of the force [N].
+    mass : float
+        Moving mass [kg].
+    omega : float
+        Vibration frequency [rad/s].
     """
     d = (a1 * a1 - a2 * a2) * omega
     K = (a1 * omega * (c1 + a1 * omega**2 * mass) - a2 * omega * (c2 + a2 * mass * omega)) / d
@@ -491,6 +531,8 @@ def identify_series(records, seconds=None, *, mass=0.0, rpms=None, name="identif
         Moving mass [kg].
     rpms : list of float, optional
         Speeds [rev/min]; by default found in the data.
+    name : str
+        Label of the series in plots and outputs.
     """
     records = list(records)
     if seconds is not None and len(seconds) != len(records):

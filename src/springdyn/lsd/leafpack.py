@@ -94,7 +94,7 @@ def load_ratios(lengths, flexural_rigidities):
     ``d_i = -2 (L_i/L_1)^3 (1 + (EI)_(i-1)/(EI)_i)``.
 
     The thesis prints ``a_i = (3 L_(i-1) - L_i) L_i^2 / L_i^3``; the denominator must be
-    ``L_1^3`` like in ``d_i`` (typo, READING-NOTES section 3.1).
+    ``L_1^3`` like in ``d_i`` (typo, docs/references.md).
 
     Parameters
     ----------
@@ -173,6 +173,13 @@ def tip_deflection_ratios(lengths, flexural_rigidities):
     """Tip deflection of each leaf relative to leaf 1, ``delta_i / delta_1`` [-].
 
     Used in the inter-leaf slip of Eqs. (2.26)-(2.28) of the thesis.
+
+    Parameters
+    ----------
+    lengths : array_like
+        Leaf lengths L_i, longest first [m].
+    flexural_rigidities : array_like
+        Flexural rigidities (E I)_i of the leaves [N m^2].
     """
     L, EI = _leaves(lengths, flexural_rigidities)
     phi = load_ratios(L, EI)
@@ -191,6 +198,13 @@ def stiffness_factor(lengths, flexural_rigidities):
     ``xi = 1 - phi_2 (L_2/L_1)^2 (3 - L_2/L_1) / 2``: the tip deflection of leaf 1 relative
     to a lone leaf 1.  ``xi = 1`` for one leaf and ``1/n`` for ``n`` equal leaves.
     (The thesis also calls a loss factor xi; springdyn names that one ``loss_factor``.)
+
+    Parameters
+    ----------
+    lengths : array_like
+        Leaf lengths L_i, longest first [m].
+    flexural_rigidities : array_like
+        Flexural rigidities (E I)_i of the leaves [N m^2].
     """
     L, EI = _leaves(lengths, flexural_rigidities)
     if L.size == 1:

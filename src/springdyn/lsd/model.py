@@ -22,6 +22,11 @@ def rpm_to_omega(rpm):
     """Vibration frequency of the eccentric-shaft rig ``omega = 2 pi rpm / 60`` [rad/s].
 
     One orbit of the inner ring per shaft revolution (thesis, Section 4.1).
+
+    Parameters
+    ----------
+    rpm : float or array_like
+        Shaft speed [rev/min].
     """
     return 2.0 * np.pi * np.asarray(rpm, dtype=float) / 60.0
 
@@ -37,7 +42,7 @@ class LSDModel:
     Examples
     --------
     >>> m = LSDModel(LSDParameters.example("C"))
-    >>> round(m.pack_stiffness / 1e3, 1)   # k_s [N/mm], READING-NOTES 3.1
+    >>> round(m.pack_stiffness / 1e3, 1)   # k_s [N/mm], docs/references.md
     106.9
     """
 

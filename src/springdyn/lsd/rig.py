@@ -11,7 +11,7 @@ model, not with the linearised coefficients:
   ``1.5 mu_s S P_i sign(d delta_i/dt)`` along the pack, with the instantaneous pack load
   ``P_i`` (Eqs. (2.25)-(2.27) of the thesis, per unit tip deflection rate);
 - the O-rings give a Coulomb force ``mu_o F_N`` opposing the ring velocity (2.21);
-- the oil network gives ``B^T G^+ B v`` (incompressible oil, READING-NOTES 3.2);
+- the oil network gives ``B^T G^+ B v`` (incompressible oil, docs/references.md);
 - the ring's inertia adds ``m a``.
 
 Optional Gaussian sensor noise is added to the measured forces and displacements.
@@ -81,7 +81,7 @@ def circular_orbit(rpm, eccentricity, revolutions=20, sample_rate=20e3, directio
     eccentricity : float
         Orbit radius [m].
     revolutions : float
-        Number of revolutions.
+        Number of revolutions [-].
     sample_rate : float
         Samples per second [Hz].
     direction : {1, -1}
@@ -98,7 +98,21 @@ def circular_orbit(rpm, eccentricity, revolutions=20, sample_rate=20e3, directio
 
 
 def linear_shake(rpm, amplitude, axis="x", revolutions=20, sample_rate=20e3):
-    """Straight harmonic shake along ``axis`` ("x" or "y"): ``u = A cos wt`` [m]."""
+    """Straight harmonic shake along ``axis`` ("x" or "y"): ``u = A cos wt`` [m].
+
+    Parameters
+    ----------
+    rpm : float or array_like
+        Shaft speed [rev/min].
+    amplitude : float
+        Shake amplitude [m].
+    axis : str
+        Axis of the shake, 'x' or 'y'.
+    revolutions : float
+        Shaft revolutions to record [-].
+    sample_rate : float
+        Samples per second [Hz].
+    """
     if axis not in ("x", "y"):
         raise InputError(f"axis = {axis!r} must be 'x' or 'y'")
     if not amplitude > 0:
@@ -112,7 +126,19 @@ def linear_shake(rpm, amplitude, axis="x", revolutions=20, sample_rate=20e3):
 
 
 def trajectory_from_samples(time, x, y, rpm=float("nan")):
-    """A measured path; velocity and acceleration by second-order finite differences."""
+    """A measured path; velocity and acceleration by second-order finite differences.
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s].
+    x : array_like
+        Ring displacement along x [m].
+    y : array_like
+        Ring displacement along y [m].
+    rpm : float or array_like
+        Shaft speed [rev/min].
+    """
     t = np.asarray(time, dtype=float)
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -131,6 +157,19 @@ def pack_spring_forces(angles, pack_stiffness, preload, x, y):
     The static preloads cancel at the centre; a pack that the ring leaves by more than
     the preload lifts off and stops pushing (the nonlinearity the linear (3.4) misses).
     Returns ``(fx, fy)`` and the pack loads ``P_i`` (shape ``(T, N)``).
+
+    Parameters
+    ----------
+    angles : array_like
+        Pack angles phi_i [rad].
+    pack_stiffness : float
+        Stiffness k_s of one pack [N/m].
+    preload : float
+        Pack preload deflection delta_pre [m].
+    x : array_like
+        Ring displacement along x [m].
+    y : array_like
+        Ring displacement along y [m].
     """
     phi = np.asarray(angles, dtype=float)
     delta = pack_deflections(phi, x, y)
@@ -145,6 +184,21 @@ def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_fac
     The dissipation rate of Eq. (2.25) with the slips of (2.26) is
     ``1.5 mu_s S P_1 |d delta_1/dt|`` per pack; the force is that rate over the
     deflection rate, with the instantaneous pack load ``P_1``.
+
+    Parameters
+    ----------
+    angles : array_like
+        Pack angles phi_i [rad].
+    pack_loads : array_like
+        Pack loads P_i [N].
+    friction_coefficient : float
+        Coulomb friction coefficient [-].
+    slip_factor : float
+        Inter-leaf slip factor S of Eqs. (2.27)-(2.28) [-].
+    vx : float
+        Ring velocity along x [m/s].
+    vy : float
+        Ring velocity along y [m/s].
     """
     phi = np.asarray(angles, dtype=float)
     rate = pack_deflections(phi, vx, vy)
@@ -157,7 +211,19 @@ def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_fac
 
 
 def oring_friction_force(friction_coefficient, normal_force, vx, vy):
-    """O-ring Coulomb friction ``mu_o F_N v/|v|`` opposing the ring velocity [N] (Eq. (2.21))."""
+    """O-ring Coulomb friction ``mu_o F_N v/|v|`` opposing the ring velocity [N] (Eq. (2.21)).
+
+    Parameters
+    ----------
+    friction_coefficient : float
+        Coulomb friction coefficient [-].
+    normal_force : float
+        O-ring normal force F_N [N].
+    vx : float
+        Ring velocity along x [m/s].
+    vy : float
+        Ring velocity along y [m/s].
+    """
     vx = np.asarray(vx, dtype=float)
     vy = np.asarray(vy, dtype=float)
     speed = np.hypot(vx, vy)
@@ -178,7 +244,7 @@ def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, di
     displacement_noise : float
         Standard deviation of Gaussian noise added to each displacement channel [m].
     seed : int, optional
-        Seed of the noise generator.
+        Seed of the noise generator [-].
 
     Returns
     -------

@@ -24,7 +24,7 @@ def bearing_element(model, n: int, frequencies=None, *, amplitude: float = 50e-6
     ----------
     model : LSDModel
     n : int
-        Rotor node.
+        Rotor node number [-].
     frequencies : array_like, optional
         Frequencies [rad/s] at which the coefficients are tabulated (ROSS interpolates
         between them); default :data:`DEFAULT_FREQUENCIES`.

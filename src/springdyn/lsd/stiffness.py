@@ -29,7 +29,15 @@ class PreloadExceededWarning(UserWarning):
 
 
 def equally_spaced_angles(packs: int, first_angle: float = 0.0) -> np.ndarray:
-    """Angles of ``packs`` equally spaced packs [rad], the first at ``first_angle`` [rad]."""
+    """Angles of ``packs`` equally spaced packs [rad], the first at ``first_angle`` [rad].
+
+    Parameters
+    ----------
+    packs : int
+        Number of packs N [-].
+    first_angle : float
+        Angle of the first pack [rad].
+    """
     if int(packs) != packs or packs < 1:
         raise InputError(f"packs = {packs!r} must be a whole number of at least 1")
     return first_angle + 2.0 * np.pi * np.arange(int(packs)) / int(packs)
@@ -76,6 +84,13 @@ def stiffness_matrix(pack_stiffness, angles):
 def isotropic_stiffness(packs: int, pack_stiffness: float) -> float:
     """``Kxx = Kyy = N k_s / 2`` of ``N >= 3`` equally spaced packs (thesis, after (3.6)) [N/m].
 
+    Parameters
+    ----------
+    packs : int
+        Number of packs N [-].
+    pack_stiffness : float
+        Stiffness k_s of one pack [N/m].
+
     Raises
     ------
     InputError
@@ -90,7 +105,17 @@ def isotropic_stiffness(packs: int, pack_stiffness: float) -> float:
 
 
 def warn_if_unloading(amplitude: float, preload: float, *, stacklevel: int = 3) -> bool:
-    """Warn (:class:`PreloadExceededWarning`) when ``amplitude > preload``; return whether it did."""
+    """Warn (:class:`PreloadExceededWarning`) when ``amplitude > preload``; return whether it did.
+
+    Parameters
+    ----------
+    amplitude : float
+        Shake amplitude [m].
+    preload : float
+        Pack preload deflection delta_pre [m].
+    stacklevel : int
+        Stack level of the warning [-].
+    """
     if amplitude > preload:
         warnings.warn(
             f"vibration amplitude {amplitude * 1e6:.4g} um exceeds the pack preload "
