@@ -99,6 +99,8 @@ FACTORIES = {
     "springdyn.valve.sweeps.SpeedSweep": lambda: springdyn.valve.sweep(_valve_spring(), _valve_cam(),
                                                                        np.array([1000.0, 2000.0, 3000.0]),
                                                                        revolutions=2, points_per_revolution=180, quiet=True),
+    "springdyn.valve.frf.FrequencyResponse": lambda: importlib.import_module("springdyn.valve.frf").dynamic_stiffness(
+        _valve_spring(), np.linspace(50.0, 2000.0, 40)),
 }
 
 

@@ -41,7 +41,7 @@ def test_curve_csv_and_plot(capsys, tmp_path):
                      "--csv", str(csv_path), "--plot", str(png))
     assert code == 0
     rows = list(csv.reader(open(csv_path)))
-    assert rows[0] == ["length_m", "force_N", "stiffness_N_per_m"]
+    assert rows[0] == ["length_m", "force_N", "stiffness_N_per_m", "first_mode_frequency_Hz"]  # issue 12 adds the last
     assert len(rows) == 51
     assert float(rows[1][0]) == pytest.approx(0.048) and float(rows[-1][0]) == pytest.approx(0.030)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -17,7 +17,7 @@ from scipy.optimize import brentq
 from ..core.errors import InputError, SolverError
 from .cam import Cam
 from .elements import damping_coefficient, law_force
-from .engine import STATUS, hermite_eval, integrate_scipy, run_speeds, series_force_compiled
+from .engine import STATUS, extra_layout, hermite_eval, integrate_scipy, run_speeds, series_force_compiled
 from .spring import ValveSpring
 from .results import FloatSpeedResult, Simulation, coil_contact_compressions
 from .statics import series_force
@@ -66,12 +66,26 @@ class SimulationSetup:
 
     def args(self, omega: float) -> tuple:
         ch = self.spring.chain
-        return (ch.masses, ch.laws, ch.setup_compressions, ch.c0, self.cam_h, self.cam_dh, self.cam_ddh,
+        return (ch.masses, ch.laws, ch.setup_compressions, ch.c0_array, self.cam_h, self.cam_dh, self.cam_ddh,
                 self.dth, omega, self.vt)
 
     @property
+    def n_masses(self) -> int:
+        """Masses of the spring's chain."""
+        return len(self.spring.chain.masses)
+
+    @property
     def nfree(self) -> int:
-        return 6 if self.valve_train is not None else 5
+        """Degrees of freedom: the chain's masses, plus the valve body with a valve train."""
+        return self.n_masses + (1 if self.valve_train is not None else 0)
+
+    def run(self, omegas, revolutions: int, points: int, *, rtol: float, atol: float):
+        """Integrate the speeds ``omegas`` [rad/s] with the compiled engine, monitoring the
+        last revolution (true extremes and events on the dense output, see
+        :func:`springdyn.valve.engine.run_speeds`)."""
+        return run_speeds(self.y0, omegas, revolutions, points, self.args(0.0), rtol=rtol, atol=atol,
+                          max_step_fraction=MAX_STEP_FRACTION, gaps=coil_contact_compressions(self.spring),
+                          monitor=True)
 
 
 def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None) -> SimulationSetup:
@@ -121,11 +135,12 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
 def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None) -> np.ndarray:
     """Static equilibrium at cam angle 0: displacements from set-up, zero velocities."""
     setup = spring.free_length - spring.installed_length
+    nm = len(spring.chain.masses)
     if valve_train is None:
         if lift0 == 0.0:  # the set-up state itself: every displacement is zero by definition
-            return np.zeros(10)
+            return np.zeros(2 * nm)
         u = spring.initial_condition(setup + lift0)["displacements"]
-        return np.concatenate([u, np.zeros(5)])
+        return np.concatenate([u, np.zeros(nm)])
     laws = spring.chain.laws
     vt = valve_train
 
@@ -140,7 +155,7 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     z_hi = max(lift0 - vt.lash, 0.0) + 1e-6
     z0 = brentq(balance, z_lo, z_hi, xtol=1e-16, rtol=1e-15)
     u = spring.initial_condition(setup + z0)["displacements"]
-    return np.concatenate([u, [z0], np.zeros(6)])
+    return np.concatenate([u, [z0], np.zeros(nm + 1)])
 
 
 def simulate(
@@ -230,12 +245,13 @@ def simulate(
     t_keep = (revolutions - keep) * period + np.arange(keep * n) * (period / n)
     t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
     if backend == "compiled":
-        extra, status, t_end, steps = run_speeds(setup.y0, [omega], revolutions, n, setup.args(0.0),
-                                                 rtol=rtol, atol=atol, max_step_fraction=MAX_STEP_FRACTION)
+        extra, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol)
         info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]))
         if info["status"] != 0 or not np.all(np.isfinite(extra)):
             raise _solver_error(cam_rpm, omega, info)
-        return _from_extra(setup, cam_rpm, revolutions, t_keep, extra[0], info, n, keep)
+        sim = _from_extra(setup, cam_rpm, revolutions, t_keep, extra[0], info, n, keep)
+        sim.monitor = _monitor_record(mon, 0, omega, revolutions)
+        return sim
     states, info = integrate_scipy(setup.y0, t_out, setup.args(omega), rtol=rtol, atol=atol,
                                    h_max=period * MAX_STEP_FRACTION)
     if info["status"] != 0 or not np.all(np.isfinite(states)):
@@ -292,21 +308,25 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     v = np.swapaxes(states[..., nf:], -1, -2)
     lead = u.shape[:-2]
     n_t = theta.size
-    if nf == 6:
-        u_top, v_top = u[..., 5, :], v[..., 5, :]
+    nm = setup.n_masses
+    if nf > nm:
+        u_top, v_top = u[..., nm, :], v[..., nm, :]
     else:
         u_top = np.broadcast_to(lift, lead + (n_t,))
         v_top = np.broadcast_to(dlift, lead + (n_t,))
     zeros = np.zeros(lead + (1, n_t))
-    x = chain.setup_compressions[:, None] + np.diff(np.concatenate([zeros, u[..., :5, :], u_top[..., None, :]], axis=-2), axis=-2)
-    xd = np.diff(np.concatenate([zeros, v[..., :5, :], v_top[..., None, :]], axis=-2), axis=-2)
+    x = chain.setup_compressions[:, None] + np.diff(np.concatenate([zeros, u[..., :nm, :], u_top[..., None, :]], axis=-2), axis=-2)
+    xd = np.diff(np.concatenate([zeros, v[..., :nm, :], v_top[..., None, :]], axis=-2), axis=-2)
+    c0 = chain.c0_array
     force = np.stack(
-        [law_force(x[..., j, :], chain.laws[j]) + damping_coefficient(x[..., j, :], chain.laws[j], chain.c0) * xd[..., j, :]
-         for j in range(6)],
+        [law_force(x[..., j, :], chain.laws[j]) + damping_coefficient(x[..., j, :], chain.laws[j], c0[j]) * xd[..., j, :]
+         for j in range(nm + 1)],
         axis=-2,
     )
+    for j in (0, nm):  # unilateral end contacts (correction MMS-7 of docs/references.md)
+        force[..., j, :] = np.where(x[..., j, :] > 0.0, np.maximum(force[..., j, :], 0.0), 0.0)
     out = dict(lift=lift, compression=x, force=force, contact=x >= coil_contact_compressions(setup.spring)[:, None])
-    if nf == 6:
+    if nf > nm:
         vt = setup.valve_train
         out["static"] = setup.static_force(u_top)
         pen = lift - u_top - vt.lash
@@ -317,7 +337,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
             u_top < 0, np.maximum(-vt.seat_stiffness * u_top - vt.seat_damping * v_top, 0.0), 0.0)
     else:
         out["static"] = setup.static_force(lift)
-    out["displacement"] = u[..., :5, :]
+    out["displacement"] = u[..., :nm, :]
     return out
 
 
@@ -327,20 +347,38 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, t_keep, extra, inf
     last = slice((keep - 1) * n, keep * n)
     fset = setup.spring.internal_parameters()["Fset"]
     e = extra[last]
-    force, x = e[:, 0:6].T, e[:, 6:12].T
-    prev_err = float(np.max(np.abs(e[:, 5] - extra[:n, 5])) / fset) if keep == 2 else math.nan
-    lift = e[:, 12]
+    lay = extra_layout(setup.n_masses)
+    ne = setup.n_masses + 1
+    force, x = e[:, lay["force"]].T, e[:, lay["compression"]].T
+    prev_err = float(np.max(np.abs(e[:, ne - 1] - extra[:n, ne - 1])) / fset) if keep == 2 else math.nan
+    lift = e[:, lay["lift"]]
     sim = Simulation(
         spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
         time=t_keep[last], cam_angle=np.mod(omega * t_keep[last], 2 * math.pi), lift=lift,
-        retainer_force=force[5], seat_force=force[0], static_force=setup.static_force(e[:, 16]),
+        retainer_force=force[-1], seat_force=force[0], static_force=setup.static_force(e[:, lay["top_displacement"]]),
         element_compression=x, element_force=force,
         element_contact=x >= coil_contact_compressions(setup.spring)[:, None],
-        mass_displacement=e[:, 17:22].T, periodicity_error=prev_err, info=info,
+        mass_displacement=e[:, lay["displacement"]].T, periodicity_error=prev_err, info=info,
     )
-    if setup.nfree == 6:
-        sim.valve_lift, sim.cam_contact_force, sim.valve_seat_force = e[:, 16], e[:, 14], e[:, 15]
+    if setup.valve_train is not None:
+        sim.valve_lift = e[:, lay["top_displacement"]]
+        sim.cam_contact_force = e[:, lay["cam_contact_force"]]
+        sim.valve_seat_force = e[:, lay["valve_seat_force"]]
     return sim
+
+
+def _monitor_record(mon: dict, i: int, omega: float, revolutions: int) -> dict:
+    """The monitor outputs of speed ``i`` in the terms of the last revolution.
+
+    Times become cam angles within the revolution [rad] (``t0`` the revolution's start);
+    events open at the window's start or end are marked by ``None`` times there.
+    """
+    from .engine import EXT
+
+    ext = dict(zip(EXT, (float(v) for v in mon["ext"][i])))
+    t0 = (revolutions - 1) * 2 * math.pi / omega
+    rows = mon["events"][i, : int(mon["n_events"][i])]
+    return dict(ext=ext, events=rows.copy(), omega=omega, t0=t0)
 
 
 def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, info, n, keep) -> Simulation:
@@ -350,16 +388,16 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, i
     last = slice((keep - 1) * n, keep * n)
     fset = setup.spring.internal_parameters()["Fset"]
     force = r["force"]
-    prev_err = float(np.max(np.abs(force[5, last] - force[5, :n])) / fset) if keep == 2 else math.nan
+    prev_err = float(np.max(np.abs(force[-1, last] - force[-1, :n])) / fset) if keep == 2 else math.nan
     sim = Simulation(
         spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
         time=t_keep[last], cam_angle=np.mod(theta[last], 2 * math.pi), lift=r["lift"][last],
-        retainer_force=force[5, last], seat_force=force[0, last], static_force=r["static"][last],
+        retainer_force=force[-1, last], seat_force=force[0, last], static_force=r["static"][last],
         element_compression=r["compression"][:, last], element_force=force[:, last],
         element_contact=r["contact"][:, last], mass_displacement=r["displacement"][:, last],
         periodicity_error=prev_err, info=info,
     )
-    if setup.nfree == 6:
+    if setup.valve_train is not None:
         sim.valve_lift = r["valve_lift"][last]
         sim.cam_contact_force = r["cam_contact_force"][last]
         sim.valve_seat_force = r["valve_seat_force"][last]

@@ -34,16 +34,53 @@ from numba.extending import register_jitable
 
 from ..numerics import dopri as _ig
 
-__all__ = ["hermite5", "rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "hermite_eval", "STATUS", "EXTRA"]
+__all__ = ["hermite5", "rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "hermite_eval", "STATUS", "EXTRA",
+           "EXT", "EVENT_KINDS", "extra_layout"]
 
 #: Status codes of :func:`integrate`.
 STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the solution is not finite (NaN/inf)"}
 
 
-#: Layout of the optional ``extra`` output of :func:`rhs`.
+#: Layout of the optional ``extra`` output of :func:`rhs` for the 5-mass Type C chain (see
+#: :func:`extra_layout` for any number of masses).
 EXTRA = ("f1", "f2", "f3", "f4", "f5", "f6", "x1", "x2", "x3", "x4", "x5", "x6", "lift", "dlift",
-         "cam_contact_force", "valve_seat_force", "top_displacement", "u1", "u2", "u3", "u4", "u5")
+         "cam_contact_force", "valve_seat_force", "top_displacement", "u1", "u2", "u3", "u4", "u5", "cam_gap")
 N_EXTRA = len(EXTRA)
+
+#: Layout of the per-speed ``ext`` output of the monitored integration (true extremes of
+#: the last revolution from the dense output, see :func:`run_speeds`).
+EXT = ("max_retainer_force", "t_max_retainer_force", "min_retainer_force", "t_min_retainer_force",
+       "max_seat_force", "t_max_seat_force", "min_seat_force", "t_min_seat_force",
+       "min_cam_contact_force", "t_min_cam_contact_force", "seat_impact_velocity", "t_seat_impact",
+       "seat_landings", "events_lost")
+N_EXT = len(EXT)
+#: Event kinds of the monitored integration (column 0 of the event table).
+EVENT_KINDS = {0: "end separation", 1: "coil contact", 2: "lift-off", 3: "valve landing"}
+#: Event table rows per speed (further events are counted in ``events_lost``).
+MAX_EVENTS = 512
+_N_SIG = 5  # extreme signals: retainer max/min, seat max/min, cam contact min
+
+
+def extra_layout(n_masses: int) -> dict:
+    """Slices / indices of the ``extra`` output of :func:`rhs` for a chain of ``n_masses``.
+
+    Parameters
+    ----------
+    n_masses : int
+        Number of chain masses (5 for Type C) [-].
+
+    Returns
+    -------
+    dict
+        ``force`` and ``compression`` (slices over the ``n_masses + 1`` elements), ``lift``,
+        ``dlift``, ``cam_contact_force``, ``valve_seat_force``, ``top_displacement`` (ints),
+        ``displacement`` (slice over the masses), ``cam_gap`` (int) and ``size``.
+    """
+    ne = n_masses + 1
+    b = 2 * ne
+    return dict(force=slice(0, ne), compression=slice(ne, b), lift=b, dlift=b + 1, cam_contact_force=b + 2,
+                valve_seat_force=b + 3, top_displacement=b + 4, displacement=slice(b + 5, b + 5 + n_masses),
+                cam_gap=b + 5 + n_masses, size=b + 6 + n_masses)
 
 
 @register_jitable
@@ -92,24 +129,29 @@ def hermite5(x, p0, v0, a0, p1, v1, a1):
 
 
 def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, out, extra):
-    """Right-hand side ``ds/dt`` of the chain (plain Python; compiled as :data:`rhs_compiled`).
+    """Right-hand side ``ds/dt`` of a chain of N masses (plain Python; compiled as :data:`rhs_compiled`).
+
+    The two end elements (element 0 on the seat, the last one on the retainer) are
+    contacts that carry compression only: in tension, or when their spring-damper force
+    would pull, they carry nothing and the end separates (correction MMS-7 of
+    docs/references.md).
 
     Parameters
     ----------
     t : float
         Time [s]; the cam angle is ``omega t``.
     s : ndarray
-        State: node displacements [m] then velocities [m/s] (5 each, 6 with a valve train).
-    masses : ndarray (5,)
+        State: node displacements [m] then velocities [m/s] (N each, N + 1 with a valve train).
+    masses : ndarray (N,)
         Chain masses [kg].
-    laws : ndarray (6, 3, 4)
+    laws : ndarray (N + 1, 3, 4)
         Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
         (see :mod:`springdyn.valve.elements`).
-    xset : ndarray (6,)
+    xset : ndarray (N + 1,)
         Element compressions at set-up [m].
-    c0 : float
-        Damping coefficient C0 [N s/m].
-    cam_h, cam_dh, cam_ddh : ndarray (N,)
+    c0 : ndarray (N + 1,)
+        Damping coefficient of each element at its initial rate [N s/m].
+    cam_h, cam_dh, cam_ddh : ndarray (M,)
         Lift [m] and its first two derivatives per radian at ``k * dth``, one revolution.
     dth : float
         Table step [rad].
@@ -120,13 +162,16 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2].
     extra : ndarray or None
-        None (numba then compiles a variant without these outputs), or an array of length
-        :data:`N_EXTRA` that receives the element forces [N] and
+        None (numba then compiles a variant without these outputs), or an array of
+        length ``extra_layout(N)["size"]`` that receives the element forces [N] and
         compressions [m], lift [m] and lift rate [m/s], cam contact and valve-seat forces
-        [N], the displacement of the retainer end [m] and of the five masses [m] (layout
-        :data:`EXTRA`).
+        [N], the displacement of the retainer end [m], of the masses [m] and the signed
+        cam-contact gap [m] (positive in contact; layout :func:`extra_layout`).
     """
-    nfree = 5 + (1 if vt[0] > 0.5 else 0)
+    nm = masses.shape[0]
+    ne = nm + 1
+    vtrain = vt[0] > 0.5
+    nfree = nm + 1 if vtrain else nm
     # cam lift and velocity (quintic Hermite on the periodic table)
     theta = omega * t
     n = cam_h.shape[0]
@@ -139,17 +184,17 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     lift, slope = hermite5(th / dth - i0, cam_h[i0], cam_dh[i0] * dth, cam_ddh[i0] * dth * dth,
                            cam_h[i1], cam_dh[i1] * dth, cam_ddh[i1] * dth * dth)
     dlift = slope / dth * omega
-    # element forces, from the seat (node 0) to the retainer end (node 6)
+    # element forces, from the seat (node 0) to the retainer end (node N + 1)
     f_prev = 0.0
     u_lo = 0.0
     v_lo = 0.0
-    for j in range(6):
-        if j < 5:
+    for j in range(ne):
+        if j < nm:
             u_hi = s[j]
             v_hi = s[nfree + j]
-        elif nfree == 6:
-            u_hi = s[5]
-            v_hi = s[11]
+        elif vtrain:
+            u_hi = s[nm]
+            v_hi = s[nfree + nm]
         else:
             u_hi = lift
             v_hi = dlift
@@ -162,26 +207,32 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
         a = laws[j, seg, 1]
         b = laws[j, seg, 2]
         force = (a * xj + b) * xj + laws[j, seg, 3]
-        stiff = 2.0 * a * xj + b
-        force += c0 * math.sqrt(stiff / laws[j, 0, 2]) * (v_hi - v_lo)
+        if seg == 0:
+            force += c0[j] * (v_hi - v_lo)
+        else:
+            force += c0[j] * math.sqrt((2.0 * a * xj + b) / laws[j, 0, 2]) * (v_hi - v_lo)
+        if j == 0 or j == ne - 1:  # unilateral end contacts (MMS-7)
+            if xj <= 0.0 or force < 0.0:
+                force = 0.0
         if extra is not None:
             extra[j] = force
-            extra[6 + j] = xj
-            if j < 5:
-                extra[17 + j] = u_hi
+            extra[ne + j] = xj
+            if j < nm:
+                extra[2 * ne + 5 + j] = u_hi
         if j > 0:
             out[j - 1] = s[nfree + j - 1]
             out[nfree + j - 1] = (force - f_prev) / masses[j - 1]
         f_prev = force
         u_lo = u_hi
         v_lo = v_hi
-    if nfree == 6:
-        z = s[5]
-        zd = s[11]
+    if vtrain:
+        z = s[nm]
+        zd = s[nfree + nm]
         f_cam = 0.0
         pen = lift - z - vt[6]
+        raw = vt[2] * pen + vt[3] * (dlift - zd)
         if pen > 0.0:
-            f_cam = vt[2] * pen + vt[3] * (dlift - zd)
+            f_cam = raw
             if f_cam < 0.0:
                 f_cam = 0.0
         f_seat = 0.0
@@ -189,32 +240,165 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
             f_seat = -vt[4] * z - vt[5] * zd
             if f_seat < 0.0:
                 f_seat = 0.0
-        out[5] = zd
-        out[11] = (f_cam + f_seat - f_prev) / vt[1]
+        out[nm] = zd
+        out[nfree + nm] = (f_cam + f_seat - f_prev) / vt[1]
         if extra is not None:
-            extra[14] = f_cam
-            extra[15] = f_seat
-            extra[16] = z
+            extra[2 * ne + 2] = f_cam
+            extra[2 * ne + 3] = f_seat
+            extra[2 * ne + 4] = z
+            extra[2 * ne + 5 + nm] = min(pen, raw / vt[2])
     if extra is not None:
-        if nfree == 5:
-            extra[14] = 0.0
-            extra[15] = 0.0
-            extra[16] = lift
-        extra[12] = lift
-        extra[13] = dlift
+        if not vtrain:
+            extra[2 * ne + 2] = 0.0
+            extra[2 * ne + 3] = 0.0
+            extra[2 * ne + 4] = lift
+            extra[2 * ne + 5 + nm] = 1.0
+        extra[2 * ne] = lift
+        extra[2 * ne + 1] = dlift
 
 
 #: The compiled right-hand side (numba, cached on disk).
 rhs_compiled = njit(cache=True, inline="always")(rhs)
 
 
+@register_jitable
+def _eval_at(rc, theta, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf):
+    """Dense output at the fraction ``theta`` of the step [t, t + h] into ``ybuf``, and the
+    right-hand side's ``extra`` outputs there into ``ebuf``."""
+    _ig.dense_eval(rc, theta, ybuf)
+    rhs_compiled(t + theta * h, ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, dbuf, ebuf)
+
+
+@register_jitable
+def _signal(k, ebuf, ne, nm, vt):
+    """Extreme signal ``k`` (maximised): retainer force, -retainer force, seat force,
+    -seat force, -cam contact force while the cam lift exceeds the lash."""
+    if k == 0:
+        return ebuf[ne - 1]
+    if k == 1:
+        return -ebuf[ne - 1]
+    if k == 2:
+        return ebuf[0]
+    if k == 3:
+        return -ebuf[0]
+    if vt[0] > 0.5 and ebuf[2 * ne] > vt[6] + 1e-6:
+        return -ebuf[2 * ne + 2]
+    return -np.inf
+
+
+@register_jitable
+def _channel(c, ebuf, ne, nm, vt, gaps):
+    """Event channel ``c``, active while negative: 0/1 seat/retainer end compression,
+    2 cam-contact gap during the cam event (lift-off), 3 + j coil gap left in element j."""
+    if c == 0:
+        return ebuf[ne]
+    if c == 1:
+        return ebuf[2 * ne - 1]
+    if c == 2:
+        if vt[0] > 0.5 and ebuf[2 * ne] > vt[6] + 1e-6:
+            return ebuf[2 * ne + 5 + nm]
+        return 1.0
+    return gaps[c - 3] - ebuf[ne + c - 3]
+
+
+@register_jitable
+def _golden(rc, t, h, lo, hi, k, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf):
+    """Golden-section maximum of extreme signal ``k`` over step fractions [lo, hi]."""
+    ne = laws.shape[0]
+    nm = ne - 1
+    g = 0.6180339887498949
+    a = lo
+    b = hi
+    c = b - g * (b - a)
+    d = a + g * (b - a)
+    _eval_at(rc, c, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf)
+    fc = _signal(k, ebuf, ne, nm, vt)
+    _eval_at(rc, d, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf)
+    fd = _signal(k, ebuf, ne, nm, vt)
+    for _ in range(28):
+        if fc >= fd:
+            b = d
+            d = c
+            fd = fc
+            c = b - g * (b - a)
+            _eval_at(rc, c, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf)
+            fc = _signal(k, ebuf, ne, nm, vt)
+        else:
+            a = c
+            c = d
+            fc = fd
+            d = a + g * (b - a)
+            _eval_at(rc, d, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf)
+            fd = _signal(k, ebuf, ne, nm, vt)
+    if fc >= fd:
+        return fc, c
+    return fd, d
+
+
+@register_jitable
+def _bisect(rc, t, h, lo, hi, c, landing, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, gaps,
+            ybuf, dbuf, ebuf):
+    """Step fraction in [lo, hi] where channel ``c`` (or, with ``landing``, the valve lift)
+    changes sign, to 1e-10 of the step (the state at ``lo`` is on the old side)."""
+    ne = laws.shape[0]
+    nm = ne - 1
+    _eval_at(rc, lo, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf)
+    if landing:
+        neg_lo = ebuf[2 * ne + 4] <= 0.0
+    else:
+        neg_lo = _channel(c, ebuf, ne, nm, vt, gaps) < 0.0
+    a = lo
+    b = hi
+    for _ in range(34):
+        m = 0.5 * (a + b)
+        _eval_at(rc, m, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf)
+        if landing:
+            neg = ebuf[2 * ne + 4] <= 0.0
+        else:
+            neg = _channel(c, ebuf, ne, nm, vt, gaps) < 0.0
+        if neg == neg_lo:
+            a = m
+        else:
+            b = m
+    return b
+
+
 @njit(cache=True, nogil=True)
 def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-               rtol, atol, h_max, max_steps, out):
+               rtol, atol, h_max, max_steps, out, gaps, t_w0, t_w1, ext, events, nev):
+    """Adaptive Dormand-Prince loop; states at ``t_out`` from the dense output.
+
+    With ``t_w0 < t_w1`` it also monitors the window [t_w0, t_w1] on the dense output:
+    true extremes of the end forces and of the cam contact force (golden-section search
+    on the step's interpolant around each new record), and the events (end separation,
+    coil contact, lift-off, valve landing) located by bisection on the interpolant.
+    """
     n = y0.shape[0]
+    ne = laws.shape[0]
+    nm = ne - 1
+    nfree = n // 2
+    monitor = t_w1 > t_w0
+    nch = 3 + ne
     k = np.empty((7, n))
     ytmp = np.empty(n)
     rc = np.empty((5, n))
+    rc_prev = np.empty((5, n))
+    ybuf = np.empty(n)
+    dbuf = np.empty(n)
+    ebuf = np.empty(2 * ne + 6 + nm)
+    vprev = np.empty(nch)
+    vcur = np.empty(nch)
+    open_row = np.full(nch, -1)
+    best = np.full(_N_SIG, -np.inf)
+    best_t = np.zeros(_N_SIG)
+    sval = np.empty((3, _N_SIG))
+    slast = np.full(_N_SIG, -np.inf)
+    have_prev = False
+    started = False
+    z_prev = 0.0
+    t_prev = 0.0
+    h_prev = 0.0
+    mid_prev = 0.5
     y = y0.copy()
     t = t0
     rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[0], None)
@@ -228,7 +412,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     accepted_before = False
     nsteps = 0
     nrejected = 0
-    while iout < nout:
+    while iout < nout or (monitor and t < t_w1):
         if nsteps + nrejected >= max_steps:
             return 1, t, nsteps, nrejected
         if h <= 1e-15 * max(abs(t), 1e-6) + 1e-18:
@@ -251,6 +435,121 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             while iout < nout and t_out[iout] <= t_new:
                 _ig.dense_eval(rc, (t_out[iout] - t) / h, out[iout])
                 iout += 1
+            if monitor and t_new > t_w0 and t < t_w1:
+                th_a = max(0.0, (t_w0 - t) / h)
+                th_b = min(1.0, (t_w1 - t) / h)
+                th_m = 0.5 * (th_a + th_b)
+                ths = (th_a, th_m, th_b)
+                for isamp in range(3):
+                    if isamp == 0 and started:
+                        continue  # the step start is the previous step's end, already seen
+                    _eval_at(rc, ths[isamp], t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
+                             ybuf, dbuf, ebuf)
+                    for sg in range(_N_SIG):
+                        sval[isamp, sg] = _signal(sg, ebuf, ne, nm, vt)
+                    for c in range(nch):
+                        vcur[c] = _channel(c, ebuf, ne, nm, vt, gaps)
+                    z_cur = ebuf[2 * ne + 4]
+                    if not started:
+                        started = True
+                        for c in range(nch):
+                            if vcur[c] < 0.0:  # active at the window start
+                                if nev[0] < events.shape[0]:
+                                    r = nev[0]
+                                    events[r, 0] = 0.0 if c < 2 else (2.0 if c == 2 else 1.0)
+                                    events[r, 1] = float(c if c < 2 else (0 if c == 2 else c - 3))
+                                    events[r, 2] = t_w0
+                                    events[r, 3] = np.nan
+                                    open_row[c] = r
+                                    nev[0] += 1
+                                else:
+                                    ext[13] += 1.0
+                    else:
+                        lo = ths[isamp - 1]
+                        for c in range(nch):
+                            if (vcur[c] < 0.0) != (vprev[c] < 0.0):
+                                if nev[0] >= events.shape[0] and open_row[c] < 0:
+                                    ext[13] += 1.0
+                                    continue
+                                fr = _bisect(rc, t, h, lo, ths[isamp], c, False, masses, laws, xset, c0, cam_h,
+                                             cam_dh, cam_ddh, dth, omega, vt, gaps, ybuf, dbuf, ebuf)
+                                tc = t + fr * h
+                                if vcur[c] < 0.0:
+                                    r = nev[0]
+                                    events[r, 0] = 0.0 if c < 2 else (2.0 if c == 2 else 1.0)
+                                    events[r, 1] = float(c if c < 2 else (0 if c == 2 else c - 3))
+                                    events[r, 2] = tc
+                                    events[r, 3] = np.nan
+                                    open_row[c] = r
+                                    nev[0] += 1
+                                else:
+                                    if open_row[c] >= 0:
+                                        events[open_row[c], 3] = tc
+                                    open_row[c] = -1
+                        if vt[0] > 0.5 and z_prev > 0.0 and z_cur <= 0.0:
+                            fr = _bisect(rc, t, h, lo, ths[isamp], 0, True, masses, laws, xset, c0, cam_h, cam_dh,
+                                         cam_ddh, dth, omega, vt, gaps, ybuf, dbuf, ebuf)
+                            _ig.dense_eval(rc, fr, ybuf)
+                            v_imp = -ybuf[2 * nfree - 1]
+                            if ext[12] == 0.0:
+                                ext[10] = v_imp
+                                ext[11] = t + fr * h
+                            ext[12] += 1.0
+                            if nev[0] < events.shape[0]:
+                                r = nev[0]
+                                events[r, 0] = 3.0
+                                events[r, 1] = 0.0
+                                events[r, 2] = t + fr * h
+                                events[r, 3] = v_imp
+                                nev[0] += 1
+                            else:
+                                ext[13] += 1.0
+                    for c in range(nch):
+                        vprev[c] = vcur[c]
+                    z_prev = z_cur
+                    if isamp == 0:
+                        for sg in range(_N_SIG):
+                            if sval[0, sg] > best[sg]:
+                                best[sg] = sval[0, sg]
+                                best_t[sg] = t + th_a * h
+                # true extremes: refine around a new record on the interpolant
+                for sg in range(_N_SIG):
+                    if have_prev:
+                        sval[0, sg] = slast[sg]
+                    va = sval[0, sg]
+                    vm = sval[1, sg]
+                    vb = sval[2, sg]
+                    slast[sg] = vb
+                    if vm == -np.inf and vb == -np.inf and va == -np.inf:
+                        continue
+                    if vm >= va and vm >= vb and vm > best[sg]:  # a local maximum inside the step
+                        v, fr = _golden(rc, t, h, th_a, th_b, sg, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh,
+                                        dth, omega, vt, ybuf, dbuf, ebuf)
+                        if v < vm:
+                            v = vm
+                            fr = th_m
+                        best[sg] = v
+                        best_t[sg] = t + fr * h
+                    elif vb > vm and vb > best[sg]:  # rising at the step end: the next step refines
+                        best[sg] = vb
+                        best_t[sg] = t + th_b * h
+                    elif have_prev and va > vm and best_t[sg] == t:
+                        # the record sits at the step boundary: search both sides of it
+                        v1, f1 = _golden(rc_prev, t_prev, h_prev, mid_prev, 1.0, sg, masses, laws, xset, c0,
+                                         cam_h, cam_dh, cam_ddh, dth, omega, vt, ybuf, dbuf, ebuf)
+                        v2, f2 = _golden(rc, t, h, 0.0, th_m, sg, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh,
+                                         dth, omega, vt, ybuf, dbuf, ebuf)
+                        if v1 > best[sg] and v1 >= v2:
+                            best[sg] = v1
+                            best_t[sg] = t_prev + f1 * h_prev
+                        elif v2 > best[sg]:
+                            best[sg] = v2
+                            best_t[sg] = t + f2 * h
+                rc_prev[:, :] = rc
+                t_prev = t
+                h_prev = h
+                mid_prev = th_m
+                have_prev = True
             y[:] = ytmp
             k[0, :] = k[6, :]
             t = t_new
@@ -259,16 +558,29 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             accepted_before = True
             nsteps += 1
             h = min(h_new, h_max)
+            if monitor and t < t_w1:
+                h = min(h, max(t_w1 - t, 1e-3 * h))  # land on the window end, no need to pass it
         else:
             h = min(h, _ig.next_step(h, err, err_old, False))
             accepted_before = False
             nrejected += 1
+    if monitor:
+        ext[0] = best[0]
+        ext[1] = best_t[0]
+        ext[2] = -best[1]
+        ext[3] = best_t[1]
+        ext[4] = best[2]
+        ext[5] = best_t[2]
+        ext[6] = -best[3]
+        ext[7] = best_t[3]
+        ext[8] = -best[4] if best[4] > -np.inf else np.nan
+        ext[9] = best_t[4]
     return 0, t, nsteps, nrejected
 
 
 @njit(cache=True, nogil=True)
 def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, vt,
-                rtol, atol, max_step_fraction, max_steps, extra_out, status, t_end, steps):
+                rtol, atol, max_step_fraction, max_steps, gaps, extra_out, status, t_end, steps, ext, events, nev):
     n = y0.shape[0]
     nkeep = keep * points
     d = np.empty(n)
@@ -283,7 +595,8 @@ def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, c
             t_out[pad + j] = (first + j / points) * period
         states = np.empty((nkeep + pad, n))
         st, t, ns, nr = _integrate(y0, 0.0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-                                   rtol, atol, period * max_step_fraction, max_steps, states)
+                                   rtol, atol, period * max_step_fraction, max_steps, states, gaps,
+                                   (revolutions - 1) * period, revolutions * period, ext[i], events[i], nev[i])
         status[i] = st
         t_end[i] = t
         steps[i] = ns
@@ -294,12 +607,41 @@ def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, c
                          omega, vt, d, extra_out[i, j])
 
 
-def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fraction, max_steps=10_000_000):
+def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fraction, max_steps=10_000_000,
+               gaps=None, monitor=False):
     """Integrate several speeds in one compiled call (the GIL is released throughout).
 
     For each speed the last ``keep = min(2, revolutions)`` revolutions are sampled at
     ``points`` per revolution, and :func:`rhs` evaluates there its ``extra`` outputs.
-    ``args`` is the usual argument tuple of :func:`rhs`; its speed is ignored.
+    ``args`` is the usual argument tuple of :func:`rhs`; its speed is ignored.  The last
+    revolution is also monitored on the integrator's dense output (true extremes and
+    events, see :func:`_integrate`).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state: displacements [m] then velocities [m/s].
+    omegas : array_like
+        Cam speeds [rad/s].
+    revolutions : int
+        Revolutions to integrate per speed [-].
+    points : int
+        Output samples per revolution [-].
+    args : tuple
+        The argument tuple of :func:`rhs` (masses [kg], laws [m, N], set-up compressions
+        [m], damping [N s/m], cam table [m, m/rad, m/rad^2], table step [rad], speed
+        [rad/s], valve train parameters); its speed is ignored.
+    rtol, atol : float
+        Relative [-] and absolute [m, m/s] tolerances.
+    max_step_fraction : float
+        Largest step as a fraction of a revolution [-].
+    max_steps : int
+        Step budget per speed [-].
+    gaps : ndarray (N + 1,), optional
+        Compression [m] of each element beyond which its coils touch (``inf``: never);
+        crossings are located as coil-contact events.
+    monitor : bool
+        Also return the monitor outputs [-].
 
     Parameters
     ----------
@@ -322,20 +664,35 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
 
     Returns
     -------
-    extra : ndarray (n_speeds, keep * points, N_EXTRA)
+    extra : ndarray (n_speeds, keep * points, extra size)
     status, t_end, steps : ndarray (n_speeds,)
+    monitor : dict, with ``monitor=True`` only
+        ``ext`` (n_speeds, :data:`N_EXT`) true extremes (layout :data:`EXT`), ``events``
+        (n_speeds, :data:`MAX_EVENTS`, 4) rows ``kind, index, t_start, t_end`` (a landing
+        has its impact velocity [m/s] in the last column), ``n_events`` (n_speeds,).
     """
     omegas = np.ascontiguousarray(omegas, dtype=float)
+    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, _omega, vt = args  # omega comes from omegas
     keep = min(2, int(revolutions))
-    extra = np.full((omegas.size, keep * points, N_EXTRA), np.nan)
+    size = extra_layout(masses.shape[0])["size"]
+    extra = np.full((omegas.size, keep * points, size), np.nan)
     status = np.zeros(omegas.size, dtype=np.int64)
     t_end = np.zeros(omegas.size)
     steps = np.zeros(omegas.size, dtype=np.int64)
-    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, _omega, vt = args  # omega comes from omegas
+    ext = np.zeros((omegas.size, N_EXT))
+    events = np.full((omegas.size, MAX_EVENTS, 4), np.nan)
+    nev = np.zeros((omegas.size, 1), dtype=np.int64)
+    gaps = np.full(laws.shape[0], np.inf) if gaps is None else np.ascontiguousarray(gaps, dtype=float)
     _run_speeds(np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions), int(points), keep, masses, laws, xset,
-                float(c0), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol), float(atol), float(max_step_fraction),
-                int(max_steps), extra, status, t_end, steps)
+                _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol), float(atol),
+                float(max_step_fraction), int(max_steps), gaps, extra, status, t_end, steps, ext, events, nev)
+    if monitor:
+        return extra, status, t_end, steps, dict(ext=ext, events=events, n_events=nev[:, 0].copy())
     return extra, status, t_end, steps
+
+
+def _c0_array(c0, laws) -> np.ndarray:
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
 
 
 def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
@@ -365,9 +722,12 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
         ``status`` (0 ok, see :data:`STATUS`), ``t`` (time reached [s]), ``steps``, ``rejected``.
     """
     out = np.full((t_out.size, y0.size), np.nan)
+    args = tuple(args)
+    args = args[:3] + (_c0_array(args[3], args[1]),) + args[4:]
     status, t, steps, rejected = _integrate(
         np.ascontiguousarray(y0, dtype=float), float(t_out[0]), np.ascontiguousarray(t_out, dtype=float), *args,
-        float(rtol), float(atol), float(h_max), int(max_steps), out,
+        float(rtol), float(atol), float(h_max), int(max_steps), out, np.full(args[1].shape[0], np.inf), 0.0, -1.0,
+        np.zeros(N_EXT), np.full((1, 4), np.nan), np.zeros(1, dtype=np.int64),
     )
     return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))
 
@@ -399,6 +759,8 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
 
     f = rhs_compiled if compiled_rhs else rhs
     buf = np.empty(len(y0))
+    args = tuple(args)
+    args = args[:3] + (_c0_array(args[3], args[1]),) + args[4:]
 
     def fun(t, y):
         d = np.empty_like(buf)

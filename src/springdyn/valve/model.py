@@ -10,17 +10,15 @@ the classes; a new model is a new class registered there.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.units import format_quantity
-from . import design, formulas
-from .elements import damping_coefficient, hardening_law, law_stiffness, linear_law, low_pitch_law
-from .modes import chain_frequencies
-from .statics import element_compressions, series_state
+from . import formulas
+from .chain import Chain, SpringModel
+from .elements import hardening_law, law_compression, linear_law, low_pitch_law
+from .statics import element_compressions
 
 __all__ = ["SpringModel", "TypeCModel", "Chain", "MODELS", "make_model", "PARAMETER_UNITS"]
 
@@ -54,229 +52,11 @@ PARAMETER_UNITS = {
     "F2": ("N", "N", "second nonlinear force"),
     "Fcon": ("N", "N", "coil-contact force"),
     "C0": ("N*s/m", "N*s/m", "element damping C0"),
+    "f_continuum": ("Hz", "Hz", "continuum surge frequency of the active coils"),
+    "elements": ("", "", "wire elements"),
+    "beta": ("s", "s", "stiffness-proportional damping (mode 1 at set-up gets damping_ratio)"),
+    "pitch_max": ("m", "mm", "largest pitch of the unloaded spring"),
 }
-
-
-@dataclass(frozen=True)
-class Chain:
-    """A spring as a chain of point masses joined by nonlinear elements, SI throughout.
-
-    Elements are numbered from the seat (element 0 touches the fixed seat, the last one
-    the retainer); mass ``i`` sits between elements ``i`` and ``i + 1``.
-    """
-
-    element_names: tuple
-    mass_names: tuple
-    masses: np.ndarray  # (n,) [kg]
-    laws: np.ndarray  # (n + 1, segments, 4)
-    c0: float  # [N s/m]
-    setup_compressions: np.ndarray  # (n + 1,) [m], every element at Fset
-    setup_force: float  # [N]
-    free_length: float  # [m]
-    installed_length: float  # [m]
-
-    def tangent_stiffness(self, compressions) -> np.ndarray:
-        """Element tangent stiffnesses [N/m] at the given compressions [m]."""
-        return np.stack([law_stiffness(x, law) for x, law in zip(compressions, self.laws)])
-
-    def damping(self, compressions) -> np.ndarray:
-        """Element damping coefficients [N s/m] at the given compressions [m]."""
-        return np.stack([damping_coefficient(x, law, self.c0) for x, law in zip(compressions, self.laws)])
-
-
-def _mm(value: float) -> str:
-    return format_quantity(value, "m", "mm")
-
-
-class SpringModel:
-    """Interface of a valve-spring model (see the module docstring).
-
-    Subclasses define :attr:`name`, :meth:`internal_parameters`, :attr:`chain` and
-    :attr:`min_length`; statics, modes and design figures follow from the chain.
-    """
-
-    #: The ``[spring] model`` name.
-    name = ""
-    #: What the model is, for people.
-    description = ""
-    #: The model is evaluated down to the length where the static force reaches this
-    #: multiple of Fcon; beyond ``2 Fcon`` the coil-contact branch is already an
-    #: extrapolation (correction MMS-9 of docs/references.md), beyond ``10 Fcon``
-    #: springdyn refuses.
-    LIMIT_FORCE_FACTOR = 10.0
-
-    def __init__(self, spring):
-        self.spring = spring
-
-    def __repr__(self) -> str:
-        p = self.internal_parameters()
-        s = self.spring
-        return (f"<{type(self).__name__}: {self.description}; {s.type} spring, "
-                f"{len(self.chain.masses)} masses, K1 = {p['K1']:.6g} N/m, f1 = {p['f1']:.5g} Hz, "
-                f"Fset = {p['Fset']:.5g} N>")
-
-    # ------------------------------------------------------------------ to define
-    def internal_parameters(self) -> dict:  # pragma: no cover - abstract
-        raise NotImplementedError
-
-    @property
-    def chain(self) -> Chain:  # pragma: no cover - abstract
-        raise NotImplementedError
-
-    # ------------------------------------------------------------------ statics
-    @cached_property
-    def min_length(self) -> float:
-        """Shortest length [m] springdyn evaluates: where the static force is 10 Fcon.
-
-        Note that the document's solid length ``Lc = Dw (N1 + N2 + 0.5)`` is *not* the
-        model's limit: the element laws reach Fcon at a shorter length (25.9 mm against
-        Lc = 28 mm for the one-step example), so Lc is reported as a design figure only.
-        """
-        return self.length_at_force(self.LIMIT_FORCE_FACTOR * self._parameters["Fcon"])
-
-    def _compression(self, length, name: str = "length"):
-        length = np.asarray(length, dtype=float)
-        lo = self.min_length
-        bad = ~np.isfinite(length) | (length > self.spring.free_length) | (length < lo)
-        if np.any(bad):
-            raise InputError(
-                f"{name} = {_mm(float(np.ravel(length)[np.ravel(bad)][0]))} is outside the range of the spring: "
-                f"it must lie between {_mm(lo)} (where the force reaches {self.LIMIT_FORCE_FACTOR:g} Fcon, far past "
-                f"coil contact) and the free length Lf = {_mm(self.spring.free_length)}"
-            )
-        return self.spring.free_length - length
-
-    def static_state(self, length):
-        """Static force [N], element compressions [m] and tangent stiffness [N/m] at a length [m]."""
-        return series_state(self._compression(length), self.chain.laws)
-
-    def static_force(self, length):
-        """Static (massless) spring force [N] at spring length ``length`` [m].
-
-        Series equilibrium of the six elements: equal force, compressions summing to
-        ``Lf - length`` (correction MMS-10 of docs/references.md).  Valid from the free length down to :attr:`min_length`.
-        """
-        return self.static_state(length)[0]
-
-    def static_stiffness(self, length):
-        """Static tangent stiffness ``-dF/dL`` [N/m] at spring length ``length`` [m]."""
-        return self.static_state(length)[2]
-
-    def length_at_force(self, force: float) -> float:
-        """Spring length [m] at which the static force is ``force`` [N]."""
-        return float(self.spring.free_length - element_compressions(force, self.chain.laws).sum())
-
-    def initial_condition(self, total_compression: float):
-        """Static state at a total compression ``dL = (Lf - Ls) + lift`` [m] (correction MMS-10 of docs/references.md).
-
-        Returns
-        -------
-        dict
-            ``force`` [N], ``compressions`` (6,) [m], ``displacements`` (5,) [m] of the
-            masses towards the seat, measured from their set-up positions (the document's
-            ``x_j - x_OSZY``), ``stiffness`` [N/m].
-        """
-        length = self.spring.free_length - total_compression
-        force, x, kt = self.static_state(length)
-        dx = x - self.chain.setup_compressions
-        return dict(force=float(force), compressions=x, displacements=np.cumsum(dx)[:-1], stiffness=float(kt))
-
-    def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
-        """Static force and stiffness against length, from ``start`` down to ``stop`` [m].
-
-        Defaults: from the free length to the length where the force reaches three times
-        the coil-contact force Fcon (well past coil contact).
-        """
-        from .results import StaticCurve
-
-        if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 2:
-            raise InputError(f"points = {points!r} must be a whole number of at least 2")
-        start = self.spring.free_length if start is None else float(start)
-        if stop is None:
-            stop = self.length_at_force(3.0 * self.internal_parameters()["Fcon"])
-        self._compression(np.array([start]), "start")
-        self._compression(np.array([stop]), "stop")
-        length = np.linspace(start, stop, points)
-        force, _, k = self.static_state(length)
-        return StaticCurve(self.spring, length, force, k, model=self.name)
-
-    # ------------------------------------------------------------------ modes
-    def modes(self, length: float, count: int = 5) -> np.ndarray:
-        """Natural frequencies [Hz], ascending, of the chain linearised at ``length`` [m], ends fixed."""
-        n = len(self.chain.masses)
-        if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n:
-            raise InputError(f"count = {count!r} must be a whole number from 1 to {n} (the chain has {n} masses)")
-        _, x, _ = self.static_state(float(length))
-        return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x))[:count]
-
-    # ------------------------------------------------------------------ design
-    def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:
-        """Design figures at installed length, at maximum lift and at coil contact.
-
-        Parameters
-        ----------
-        lift : float, optional
-            Maximum valve lift [m]; the open length is ``Ls - lift``.
-        cam_rpm : float, optional
-            Camshaft speed [rev/min], for the surge margin.
-
-        Returns
-        -------
-        dict
-            ``spring_index``, ``bergstraesser_factor``, ``wahl_factor``, ``solid_length_m``,
-            ``spring_mass_kg``, ``rate_free_N_per_m`` and, per state (``installed``,
-            ``open`` if lift is given, ``coil_contact``): ``length_m``, ``force_N``,
-            ``shear_stress_Pa`` (Bergstraesser-corrected), ``surge_frequency_Hz`` (first
-            mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
-        """
-        if cam_rpm is not None and (isinstance(cam_rpm, bool) or not isinstance(cam_rpm, (int, float, np.number))
-                                    or not (np.isfinite(cam_rpm) and cam_rpm > 0)):
-            raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive, finite camshaft speed [rev/min]: the surge "
-                             "margin is the surge frequency over the camshaft frequency")
-        p = self.internal_parameters()
-        c = design.spring_index(self.spring.mean_diameter, self.spring.wire_diameter)
-        kb = design.bergstraesser_factor(c)
-        out = dict(
-            spring_index=c,
-            bergstraesser_factor=kb,
-            wahl_factor=design.wahl_factor(c),
-            solid_length_m=p["Lc"],
-            spring_mass_kg=p["M"],
-            rate_free_N_per_m=p["K1"],
-            surge_frequency_free_Hz=p["f1"],
-            surge_frequency_setup_Hz=p["f2"],
-        )
-        states = {"installed": self.spring.installed_length}
-        if lift is not None:
-            if not lift > 0:
-                raise InputError(f"lift = {_mm(lift)} must be positive")
-            states["open"] = self.spring.installed_length - lift
-        states["coil_contact"] = self.length_at_force(p["Fcon"])
-        for name, length in states.items():
-            force = float(self.static_force(length)) if name != "open" else float(self._open_force(length, lift))
-            f_surge = float(self.modes(length, 1)[0])
-            st = dict(
-                length_m=length,
-                force_N=force,
-                shear_stress_Pa=design.shear_stress(force, self.spring.mean_diameter, self.spring.wire_diameter, kb),
-                surge_frequency_Hz=f_surge,
-            )
-            if cam_rpm is not None:
-                st["surge_margin"] = design.surge_margin(f_surge, cam_rpm)
-            out[name] = st
-        return out
-
-    def _open_force(self, length: float, lift: float) -> float:
-        if length < self.min_length:
-            raise InputError(
-                f"lift = {_mm(lift)} drives the spring far past coil contact: installed_length - lift = "
-                f"{_mm(length)} is below {_mm(self.min_length)}, where the force reaches "
-                f"{self.LIMIT_FORCE_FACTOR:g} Fcon"
-            )
-        return self.static_force(length)
-
-
-
 
 
 class TypeCModel(SpringModel):
@@ -431,6 +211,17 @@ class TypeCModel(SpringModel):
             bp.update(x1=bs["x1"], x2=bs["x2"])
         return named, bp
 
+    def contact_compressions(self) -> np.ndarray:
+        """Compression [m] of each element beyond which its coils touch: the Fcon breakpoint.
+
+        Only the Kh1/Kh2 elements have one (x13/x23 of [MMS], element force laws).  The end
+        elements K already stand for contacting coils and the low-pitch element Ks is closed
+        by design from set-up on, so neither is ever flagged (``inf``).
+        """
+        fcon = self._parameters["Fcon"]
+        return np.array([float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
+                         for name, law in zip(self.chain.element_names, self.chain.laws)])
+
     @cached_property
     def chain(self) -> Chain:
         """The lumped 5-mass chain with its element laws and damping ([MMS], Figs. 40.32-40.33; topology in docs/valve.md)."""
@@ -452,8 +243,14 @@ class TypeCModel(SpringModel):
         )
 
 
+def _models() -> dict:
+    from .distributed import DistributedModel
+
+    return {TypeCModel.name: TypeCModel, DistributedModel.name: DistributedModel}
+
+
 #: The spring models, by their ``[spring] model`` name.
-MODELS = {TypeCModel.name: TypeCModel}
+MODELS = _models()
 
 
 def make_model(spring, name: str | None = None) -> SpringModel:

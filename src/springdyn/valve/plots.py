@@ -6,7 +6,45 @@ import numpy as np
 
 from ..core.plotting import new_figure, save_figure
 
-__all__ = ["plot_static_curve"]
+__all__ = ["plot_static_curve", "plot_closure_map"]
+
+
+def plot_closure_map(sim, path=None, ax=None):
+    """Coil-closure map: cam angle x position along the wire, closed (dark) or open.
+
+    Parameters
+    ----------
+    sim : Simulation
+        A simulation of the distributed model.
+    path : path-like, optional
+        PNG file to write.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into.
+    """
+    model = sim.spring.spring_model
+    contact = sim.element_contact[1:-1].astype(float)
+    if ax is None:
+        fig, ax = new_figure(figsize=(9, 4.5))
+    else:
+        fig = ax.figure
+    deg = sim.cam_angle_deg
+    order = np.argsort(deg)
+    edges = model.element_turns
+    step = 360.0 / deg.size
+    ax.pcolormesh(np.append(deg[order], deg[order][-1] + step) - step / 2, edges, contact[:, order],
+                  shading="flat", cmap="Greys", vmin=0, vmax=1.3)
+    ax2 = ax.twinx()
+    ax2.plot(deg[order], sim.lift[order] * 1e3, color="C0", lw=1)
+    ax2.set_ylabel("cam lift [mm]", color="C0")
+    clash = sim.summary.get("clashing_coils") or []
+    ax.set_xlabel("cam angle [deg]")
+    ax.set_ylabel("position along the wire [turns from the seat]")
+    ax.set_ylim(edges[0], edges[-1])
+    ax.set_title(f"coil closure (dark: closed), {sim.cam_rpm:.0f} cam rpm; clashing coils: "
+                 + (", ".join(map(str, clash)) if clash else "none"))
+    if path is not None:
+        save_figure(fig, path, close=False)
+    return fig
 
 
 def plot_static_curve(curve, path=None, ax=None):
@@ -33,12 +71,20 @@ def plot_static_curve(curve, path=None, ax=None):
     ax_f.plot(mm, curve.force, color="C0", lw=2, label="static force")
     if ax_k is not None:
         ax_k.plot(mm, curve.stiffness / 1e3, color="C1", lw=2, label="tangent stiffness")
+        if getattr(curve, "frequency", None) is not None:
+            ax_n = ax_k.twinx()
+            ax_n.plot(mm, curve.frequency, color="C2", lw=1.5, label="first natural frequency")
+            ax_n.set_ylabel("first natural frequency [Hz]", color="C2")
+            ax_k.plot([], [], color="C2", lw=1.5, label="first natural frequency (right)")
+            ax_k.legend(fontsize=8, loc="upper left")
     ls = spring.installed_length * 1e3
     for ax in (a for a in (ax_f, ax_k) if a is not None):
         ax.axvline(ls, color="k", ls="--", lw=1)
         ax.grid(True, alpha=0.3)
     ax_f.text(ls, ax_f.get_ylim()[1], " set-up Ls", va="top", fontsize=8)
     for name, color in (("F1", "C2"), ("F2", "C3"), ("Fcon", "C4")):
+        if name not in p:
+            continue
         force = p[name]
         if force <= curve.force.max():
             length = spring.length_at_force(force) * 1e3

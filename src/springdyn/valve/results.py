@@ -25,6 +25,7 @@ class StaticCurve(Result):
     force: np.ndarray  # [N]
     stiffness: np.ndarray  # [N/m]
     model: str = "type-c"
+    frequency: np.ndarray | None = None  # first natural frequency, ends fixed [Hz]
 
     title = "valve spring static curve"
     cheap_plot = True
@@ -42,6 +43,8 @@ class StaticCurve(Result):
             force_max_N=float(self.force.max()),
             stiffness_min_N_per_m=float(self.stiffness.min()),
             stiffness_max_N_per_m=float(self.stiffness.max()),
+            **({} if self.frequency is None else dict(first_mode_min_Hz=float(self.frequency.min()),
+                                                       first_mode_max_Hz=float(self.frequency.max()))),
         )
 
     def columns(self) -> dict:
@@ -53,11 +56,15 @@ class StaticCurve(Result):
     def to_xarray(self):
         import xarray as xr
 
+        data = {
+            "force": ("length", self.force, {"units": "N", "long_name": "static spring force"}),
+            "stiffness": ("length", self.stiffness, {"units": "N/m", "long_name": "tangent stiffness -dF/dL"}),
+        }
+        if self.frequency is not None:
+            data["first_mode_frequency"] = ("length", self.frequency,
+                                            {"units": "Hz", "long_name": "first natural frequency, ends fixed"})
         return xr.Dataset(
-            {
-                "force": ("length", self.force, {"units": "N", "long_name": "static spring force"}),
-                "stiffness": ("length", self.stiffness, {"units": "N/m", "long_name": "tangent stiffness -dF/dL"}),
-            },
+            data,
             coords={"length": ("length", self.length, {"units": "m", "long_name": "spring length"})},
             attrs={"model": self.model, "spring_type": self.spring.type},
         )
@@ -93,6 +100,9 @@ class Simulation(Result):
     valve_lift: np.ndarray | None = None  # [m]
     cam_contact_force: np.ndarray | None = None  # [N]
     valve_seat_force: np.ndarray | None = None  # [N]
+    #: Monitor outputs of the compiled engine (true extremes and located events of the
+    #: last revolution from the dense output); ``None`` for the SciPy reference.
+    monitor: dict | None = None
 
     PERIODIC_TOL = 0.01
     title = "valve spring simulation"
@@ -191,26 +201,39 @@ class Simulation(Result):
 
         return plot_simulation(self, ax=ax)
 
+    def plot_closure_map(self, path=None, ax=None):
+        """Coil-closure map of the distributed model (cam angle x position along the wire).
+
+        Parameters
+        ----------
+        path : path-like, optional
+            PNG file to write.
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw into.
+        """
+        from ..core.errors import InputError
+        from .plots import plot_closure_map
+
+        if not hasattr(self.spring.spring_model, "element_positions"):
+            raise InputError("the coil-closure map needs the distributed model (model = \"distributed\"): Type C "
+                             "has no coil geometry")
+        return plot_closure_map(self, path, ax)
+
 
 def coil_contact_compressions(spring) -> np.ndarray:
-    """Compression [m] of each element beyond which its coils touch: the Fcon breakpoint.
+    """Compression [m] of each element beyond which its coils touch (``inf``: never flagged).
 
-    Only the Kh1/Kh2 elements have one (x13/x23 of [MMS], element force laws).  The end
-    elements K already stand for contacting coils and the low-pitch element Ks is closed
-    by design from set-up on, so neither is ever flagged (``inf``).
+    Type C: the Fcon breakpoint of the Kh elements; distributed: the element's coil gap
+    (:meth:`~springdyn.valve.model.SpringModel.contact_compressions`).
 
     Parameters
     ----------
     spring : ValveSpring
-        The spring definition (its model gives the chain).
+        The spring definition (its model decides).
     """
     cached = spring.__dict__.get("_coil_contact_compressions")
     if cached is None:
-        fcon = spring.internal_parameters()["Fcon"]
-        cached = np.array([
-            float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
-            for name, law in zip(spring.chain.element_names, spring.chain.laws)
-        ])
+        cached = np.ascontiguousarray(spring.spring_model.contact_compressions(), dtype=float)
         spring.__dict__["_coil_contact_compressions"] = cached  # a spring is immutable
     return cached
 
@@ -230,12 +253,78 @@ def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
     return runs
 
 
+def located_events(sim: Simulation) -> dict:
+    """Events of the last revolution located on the dense output, as cam-angle intervals.
+
+    Returns
+    -------
+    dict
+        ``(kind, index) -> [(start_deg, end_deg, duration_deg), ...]`` for the interval
+        events (0 end separation with index 0 seat / 1 retainer, 1 coil contact of element
+        ``index``, 2 lift-off), and ``"landings"``: ``[(angle_deg, impact_velocity_m_per_s)]``.
+        An interval that runs through the revolution's start is one wrapped interval
+        (``end_deg < start_deg``); one that lasts the whole revolution is ``(0, 360, 360)``.
+    """
+    mon = sim.monitor
+    out: dict = {"landings": []}
+    if mon is None:
+        return out
+    omega, t0 = mon["omega"], mon["t0"]
+    period = 2 * np.pi / omega
+
+    def deg(t):
+        return float(np.degrees(omega * (t - t0)))
+
+    chans: dict = {}
+    for kind, index, ts, te in mon["events"]:
+        if kind == 3:
+            out["landings"].append((deg(ts), float(te)))
+            continue
+        chans.setdefault((int(kind), int(index)), []).append((ts, te))
+    for key, rows in chans.items():
+        at_start = [r for r in rows if r[0] == t0]
+        open_end = [r for r in rows if not np.isfinite(r[1])]
+        ivals = []
+        for ts, te in rows:
+            if ts == t0 and not np.isfinite(te):
+                ivals.append((0.0, 360.0, 360.0))
+            elif ts == t0 and open_end:
+                continue  # joined with the interval open at the end
+            elif not np.isfinite(te):
+                end = at_start[0][1] if at_start else t0 + period
+                ivals.append((deg(ts), deg(end) % 360.0, (end + (period if at_start else 0.0) - ts) * omega * 180 / np.pi))
+            else:
+                ivals.append((deg(ts), deg(te), (te - ts) * omega * 180 / np.pi))
+        out[key] = sorted(ivals)
+    return out
+
+
+def _angle_mask(deg: np.ndarray, start: float, end: float) -> np.ndarray:
+    if start <= end:
+        return (deg >= start) & (deg <= end)
+    return (deg >= start) | (deg <= end)
+
+
+def _union(ivals: list) -> list:
+    """Union of cam-angle intervals (wrapped ones unrolled past 360 deg)."""
+    spans = sorted((s, e if e >= s else e + 360.0) for s, e, _ in ivals)
+    merged: list = []
+    for s, e in spans:
+        if merged and s <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], e)
+        else:
+            merged.append([s, e])
+    return merged
+
+
 def _summarise(sim: Simulation) -> dict:
     p = sim.spring.internal_parameters()
     deg = sim.cam_angle_deg
     step_deg = 360.0 / sim.cam_angle.size
     names = sim.spring.chain.element_names
+    mon = sim.monitor
     s = dict(
+        model=getattr(sim.spring, "model", "type-c"),
         cam_rpm=sim.cam_rpm,
         revolutions=sim.revolutions,
         periodic=sim.periodic,
@@ -247,23 +336,67 @@ def _summarise(sim: Simulation) -> dict:
         max_static_force_N=float(sim.static_force.max()),
         min_static_force_N=float(sim.static_force.min()),
     )
+    notes = []
+    if mon is not None:
+        ext = mon["ext"]
+        to_deg = lambda t: float(np.degrees(mon["omega"] * (t - mon["t0"])) % 360.0)  # noqa: E731
+        # true extremes from the dense output; never less extreme than the grid samples
+        for key, ek, pick in (("max_retainer_force", "max_retainer_force", max), ("min_retainer_force", "min_retainer_force", min),
+                              ("max_seat_force", "max_seat_force", max), ("min_seat_force", "min_seat_force", min)):
+            s[key + "_N"] = float(pick(ext[ek], s[key + "_N"]))
+            s[key + "_cam_angle_deg"] = to_deg(ext["t_" + ek])
+    else:
+        notes.append("extremes are samples of the output grid (the SciPy reference backend has no dense-output "
+                     "monitor)")
     s["max_retainer_force_ratio"] = s["max_retainer_force_N"] / s["max_static_force_N"]
     s["min_retainer_force_ratio"] = s["min_retainer_force_N"] / s["min_static_force_N"]
     s["max_seat_force_ratio"] = s["max_seat_force_N"] / s["max_static_force_N"]
     s["min_seat_force_ratio"] = s["min_seat_force_N"] / s["min_static_force_N"]
     s["retainer_surge_amplitude_N"] = float(np.max(np.abs(sim.retainer_force - sim.static_force)))
     s["seat_surge_amplitude_N"] = float(np.max(np.abs(sim.seat_force - sim.static_force)))
+    rpm = sim.cam_rpm
+    located = located_events(sim)
     events = []
-    for a, b in _ranges(sim.element_contact.any(axis=0)):
-        idx = np.arange(a, b + 1) if a <= b else np.concatenate([np.arange(a, deg.size), np.arange(0, b + 1)])
-        elems = np.flatnonzero(sim.element_contact[:, idx].any(axis=1))
-        events.append(dict(
-            start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(idx.size * step_deg),
-            elements=[f"{j + 1}:{names[j]}" for j in elems],
-            peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
-        ))
+    if mon is not None:
+        per_el = {k[1]: v for k, v in located.items() if isinstance(k, tuple) and k[0] == 1}
+        allv = [(a, b, c, j) for j, v in per_el.items() for a, b, c in v]
+        for lo, hi in _union([(a, b, c) for a, b, c, _ in allv]):
+            end = hi % 360.0 if hi > 360.0 else hi
+            elems = sorted({j for a, b, c, j in allv
+                            if any(lo - 1e-9 <= x <= hi + 1e-9 for x in (a, b if b >= a else b + 360.0))})
+            mask = _angle_mask(deg, lo, end)
+            grid = sim.element_force[np.ix_(elems, np.flatnonzero(mask))] if mask.any() else np.empty((0, 0))
+            gaps = coil_contact_compressions(sim.spring)
+            at_touch = max(float(law_force_at(gaps[j], sim.spring.chain.laws[j])) for j in elems)
+            events.append(dict(
+                start_deg=float(lo), end_deg=float(end), duration_deg=float(hi - lo),
+                elements=[f"{j + 1}:{names[j]}" for j in elems],
+                peak_contact_force_N=float(max(grid.max(), at_touch)) if grid.size else at_touch,
+            ))
+    else:
+        for a, b in _ranges(sim.element_contact.any(axis=0)):
+            idx = np.arange(a, b + 1) if a <= b else np.concatenate([np.arange(a, deg.size), np.arange(0, b + 1)])
+            elems = np.flatnonzero(sim.element_contact[:, idx].any(axis=1))
+            events.append(dict(
+                start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(idx.size * step_deg),
+                elements=[f"{j + 1}:{names[j]}" for j in elems],
+                peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
+            ))
     s["coil_contact"] = events
-    notes = []
+    clash = sim.spring.spring_model.clashing_coils(sim) if hasattr(sim.spring.spring_model, "clashing_coils") else None
+    if clash is not None:
+        s["clashing_coils"] = clash
+    sep = []
+    for end_index, end_name in ((0, "seat"), (1, "retainer")):
+        for a, b, c in located.get((0, end_index), []):
+            sep.append(dict(end=end_name, start_deg=a, end_deg=b, duration_deg=c, duration_s=c / (6.0 * rpm)))
+    if mon is None:
+        for j, end_name in ((0, "seat"), (-1, "retainer")):
+            for a, b in _ranges(sim.element_compression[j] <= 0.0):
+                count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
+                sep.append(dict(end=end_name, start_deg=float(deg[a]), end_deg=float(deg[b]),
+                                duration_deg=float(count * step_deg), duration_s=float(count * step_deg / (6.0 * rpm))))
+    s["end_separation"] = sep
     if s["periodicity_error"] is None:
         notes.append("periodicity_error needs at least 2 revolutions (the last one is compared with the one "
                       "before): run 2 or more")
@@ -276,28 +409,58 @@ def _summarise(sim: Simulation) -> dict:
     if sim.valve_train is not None:
         vt = sim.valve_train
         in_event = sim.lift > vt.lash + 1e-6
-        separated = in_event & (sim.cam_contact_force <= 0.0)
         lo = []
-        for a, b in _ranges(separated):
-            count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
-            lo.append(dict(start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(count * step_deg),
-                           duration_s=float(count * step_deg / (6.0 * sim.cam_rpm))))
+        if mon is not None:
+            for a, b, c in located.get((2, 0), []):
+                lo.append(dict(start_deg=a, end_deg=b, duration_deg=c, duration_s=c / (6.0 * rpm)))
+        else:
+            separated = in_event & (sim.cam_contact_force <= 0.0)
+            for a, b in _ranges(separated):
+                count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
+                lo.append(dict(start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(count * step_deg),
+                               duration_s=float(count * step_deg / (6.0 * sim.cam_rpm))))
         s["liftoff"] = lo
-        s["min_cam_contact_force_N"] = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
+        grid_min = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
+        if mon is not None and np.isfinite(mon["ext"]["min_cam_contact_force"]):
+            s["min_cam_contact_force_N"] = max(min(mon["ext"]["min_cam_contact_force"], grid_min), 0.0)
+        else:
+            s["min_cam_contact_force_N"] = grid_min
         s["max_cam_contact_force_N"] = float(sim.cam_contact_force.max())
         z = sim.valve_lift
         dt = sim.time[1] - sim.time[0]
         landings = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
-        vz = np.gradient(z, dt)
-        s["seat_impact_velocity_m_per_s"] = float(-vz[landings[0] + 1]) if landings.size else 0.0
-        s["seat_landings"] = int(landings.size)
-        s["bounces"] = max(int(landings.size) - 1, 0)
+        if mon is not None:
+            lands = located["landings"]
+            s["seat_impact_velocity_m_per_s"] = float(lands[0][1]) if lands else 0.0
+            s["seat_landings"] = len(lands)
+        else:
+            vz = np.gradient(z, dt)
+            s["seat_impact_velocity_m_per_s"] = float(-vz[landings[0] + 1]) if landings.size else 0.0
+            s["seat_landings"] = int(landings.size)
+        s["bounces"] = max(s["seat_landings"] - 1, 0)
         after = np.zeros_like(z, dtype=bool)
         if landings.size:
             after[landings[0] + 1:] = True
         s["max_bounce_height_m"] = float(np.max(np.where(after & ~in_event, z, 0.0)))
+    if mon is not None and mon["ext"]["events_lost"] > 0:
+        notes.append(f"{int(mon['ext']['events_lost'])} events beyond the first {len(mon['events'])} were not located")
     s["notes"] = notes
     return s
+
+
+def law_force_at(x: float, law: np.ndarray) -> float:
+    """Element force [N] at compression ``x`` [m] (``nan``-free: 0 for an infinite ``x``).
+
+    Parameters
+    ----------
+    x : float
+        Compression [m].
+    law : ndarray, shape (3, 4)
+        Element law.
+    """
+    from .elements import law_force
+
+    return float(law_force(x, law)) if np.isfinite(x) else 0.0
 
 
 

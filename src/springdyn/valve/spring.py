@@ -22,7 +22,7 @@ __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES"]
 EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"}
 
 #: Names of the spring models (:data:`springdyn.valve.model.MODELS`).
-MODEL_NAMES = ("type-c",)
+MODEL_NAMES = ("type-c", "distributed")
 
 
 def _mm(value: float) -> str:
@@ -58,14 +58,44 @@ class ValveSpring(Parameters):
     shear_modulus: float = param("Pa", "shear modulus", symbol="G'", display="GPa", positive=True)
     density: float = param("kg/m^3", "density", symbol="rho'", positive=True)
     damping_ratio: float = param("", "damping ratio", symbol="Cps", nonnegative=True)
-    model: str = param(None, "spring model: 'type-c' (the document's MMS Type C, 5 masses)", kind="str",
-                       choices=MODEL_NAMES, default="type-c")
+    model: str = param(None, "spring model: 'type-c' (the document's MMS Type C, 5 masses) or 'distributed' "
+                       "(coil by coil from the geometry)", kind="str", choices=MODEL_NAMES, default="type-c")
+    elements: int = param("", "wire elements of the distributed model", kind="int", default=50, positive=True)
+    pitch_profile: str = param(None, "distributed model: pitch against turns from the seat end, a CSV file (columns "
+                               "turns, pitch_mm) or an array of [turns, pitch] pairs (default: from the keys above)",
+                               kind="str", default="")
+    diameter_profile: str = param(None, "distributed model: mean coil diameter against turns from the seat end, a "
+                                  "CSV file (columns turns, diameter_mm) or an array of [turns, diameter] pairs "
+                                  "(default: mean_diameter throughout)", kind="str", default="")
 
     table = "spring"
     examples = EXAMPLES
     default_example = "one-step"
 
     # ------------------------------------------------------------------ construction
+    @classmethod
+    def _prepare(cls, mapping: dict, base_dir=None, **context) -> dict:
+        """Profiles: a TOML array of ``[turns, value]`` pairs becomes an inline table (SI); a
+        relative CSV path is taken from the TOML file's folder."""
+        from pathlib import Path
+
+        from ..core.units import to_si
+
+        for key in ("pitch_profile", "diameter_profile"):
+            value = mapping.get(key)
+            if isinstance(value, list):
+                rows = []
+                for i, row in enumerate(value):
+                    if not isinstance(row, list) or len(row) != 2 or isinstance(row[0], (bool, str)) \
+                            or not isinstance(row[0], (int, float)):
+                        raise InputError(f"{key}[{i}] = {row!r} must be a pair [turns, value], e.g. [1.5, \"7 mm\"]")
+                    rows.append(f"{float(row[0])!r} {to_si(row[1], 'm', f'{key}[{i}][1]')!r}")
+                mapping[key] = "table: " + "; ".join(rows)
+            elif isinstance(value, str) and value and base_dir is not None and not value.startswith("table:"):
+                p = Path(value)
+                mapping[key] = str(p if p.is_absolute() else Path(base_dir) / p)
+        return mapping
+
     def _validate(self) -> None:
         import warnings
         from pathlib import Path

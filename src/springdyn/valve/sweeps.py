@@ -25,7 +25,7 @@ from ..core.io import atomic_path
 from ..core.results import Result, units_from_name
 from ..core.progress import progress
 from .cam import Cam
-from .engine import run_speeds
+from .engine import EXT, extra_layout
 from .dynamics import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
@@ -49,45 +49,57 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
               atol: float) -> dict:
     """Integrate a chunk of speeds and reduce each to its last revolution's forces.
 
-    Returns a dict of arrays with a leading speed dimension: ``retainer``, ``seat``,
-    ``contact`` (any Kh element past its Fcon breakpoint), ``contact_force`` (largest
-    force of such an element), ``periodicity`` (max change of the retainer force from the
-    revolution before, / Fset), ``status``, ``t``, ``steps`` and, with a valve train,
-    ``cam_contact``, ``valve_lift``, ``static``.
-
     Parameters
     ----------
     setup : SimulationSetup
-        The prepared spring, cam and valve train.
-    cam_rpm : array_like
+        Spring, cam and valve train prepared for the engine.
+    cam_rpm : ndarray
         Camshaft speeds [rev/min].
     revolutions : int
         Revolutions per speed [-].
     points : int
-        Output samples per revolution [-].
+        Output points per revolution [-].
     rtol, atol : float
-        Relative [-] and absolute [m, m/s] tolerances.
+        Integration tolerances (absolute: [m] and [m/s]).
+
+    Returns
+    -------
+    dict
+        Arrays with a leading speed dimension: ``retainer``, ``seat``, ``contact`` (any
+        element past its coil-contact compression), ``contact_force`` (largest force of
+        such an element), ``periodicity`` (max change of the retainer force from the
+        revolution before, / Fset), ``ext`` (true extremes of the last revolution from the
+        dense output, layout :data:`springdyn.valve.engine.EXT`), ``separation`` (end
+        separation events located in the last revolution), ``status``, ``t``, ``steps``
+        and, with a valve train, ``cam_contact``, ``valve_lift``, ``static``.
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
     keep = min(2, revolutions)
-    ex, status, t_end, steps = run_speeds(setup.y0, rpm_to_omega(cam_rpm), revolutions, points, setup.args(0.0),
-                                          rtol=rtol, atol=atol, max_step_fraction=MAX_STEP_FRACTION)
+    ex, status, t_end, steps, mon = setup.run(rpm_to_omega(cam_rpm), revolutions, points, rtol=rtol, atol=atol)
     fset = setup.spring.internal_parameters()["Fset"]
     last = slice((keep - 1) * points, keep * points)
-    f = ex[:, :, 0:6]
-    contact = ex[:, last, 6:12] >= coil_contact_compressions(setup.spring)
+    lay = extra_layout(setup.n_masses)
+    ne = setup.n_masses + 1
+    f = ex[:, :, lay["force"]]
+    contact = ex[:, last, lay["compression"]] >= coil_contact_compressions(setup.spring)
+    ev = mon["events"]
     out = dict(
-        retainer=f[:, last, 5],
+        retainer=f[:, last, ne - 1],
         seat=f[:, last, 0],
         contact=contact.any(axis=2),
         contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
-        periodicity=(np.max(np.abs(f[:, last, 5] - f[:, :points, 5]), axis=1) / fset if keep == 2
+        periodicity=(np.max(np.abs(f[:, last, ne - 1] - f[:, :points, ne - 1]), axis=1) / fset if keep == 2
                      else np.full(cam_rpm.size, np.nan)),
+        ext=mon["ext"],
+        separation=np.sum(ev[:, :, 0] == 0.0, axis=1),
         status=status, t=t_end, steps=steps,
     )
-    if setup.nfree == 6:
-        out["cam_contact"] = ex[:, last, 14]
-        out["valve_lift"] = ex[:, last, 16]
+    if setup.valve_train is not None:
+        out["cam_contact"] = ex[:, last, lay["cam_contact_force"]]
+        out["valve_lift"] = ex[:, last, lay["top_displacement"]]
+    # copies, so that the chunk's full engine output (every element, every point) is freed
+    out = {k: np.array(v, copy=True) for k, v in out.items()}
+    if setup.valve_train is not None:
         valid = status == 0
         static = np.full(out["valve_lift"].shape, np.nan)
         static[valid] = setup.static_force(out["valve_lift"][valid])
@@ -120,16 +132,24 @@ def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
         ) from None
 
 
-def _chunks(cam_rpm: np.ndarray, n_parts: int, min_size: int) -> list[np.ndarray]:
+#: Largest engine output of one chunk [bytes]: bounds the memory of sweeps of big chains.
+CHUNK_BYTES = 32 * 2**20
+
+
+def _chunks(cam_rpm: np.ndarray, n_parts: int, min_size: int, max_size: int | None = None) -> list[np.ndarray]:
     size = max(min_size, math.ceil(cam_rpm.size / max(n_parts, 1)))
+    if max_size is not None:
+        size = max(1, min(size, max_size))
     return [cam_rpm[i : i + size] for i in range(0, cam_rpm.size, size)]
 
 
 def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client, quiet, desc):
     """Run all speeds for one setup; returns the chunk outputs concatenated in speed order."""
+    per_speed = 8 * min(2, revolutions) * points * extra_layout(setup.n_masses)["size"]
+    max_size = max(1, CHUNK_BYTES // per_speed)
     if client is not None:
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
-        chunks = _chunks(cam_rpm, 4 * n_workers, 10)
+        chunks = _chunks(cam_rpm, 4 * n_workers, 10, max_size)
         remote_setup = client.scatter(setup, broadcast=True)
         futures = [client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, pure=False)
                    for c in chunks]
@@ -140,7 +160,7 @@ def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client
         parts = [f.result() for f in futures]
     else:
         workers = workers or min(os.cpu_count() or 1, 2)
-        chunks = _chunks(cam_rpm, 8 * workers, 1)
+        chunks = _chunks(cam_rpm, 8 * workers, 1, max_size)
         with ThreadPoolExecutor(max_workers=workers) as pool:
             futures = [pool.submit(run_chunk, setup, c, revolutions, points, rtol, atol) for c in chunks]
             for _ in progress(as_completed(futures), total=len(futures), desc=desc, quiet=quiet):
@@ -211,13 +231,19 @@ class SpeedSweep(Result):
         cols["cam_rpm"] = np.tile(self.cam_rpm, nv)
         flat = lambda a: a.reshape(nv * nr, *a.shape[2:])  # noqa: E731
         r, s, st = flat(d["retainer"]), flat(d["seat"]), flat(np.ascontiguousarray(static))
+        ext = flat(d["ext"])
+        col = {name: i for i, name in enumerate(EXT)}
         cols.update(
-            max_retainer_force_N=r.max(axis=1), min_retainer_force_N=r.min(axis=1),
-            max_seat_force_N=s.max(axis=1), min_seat_force_N=s.min(axis=1),
+            # true extremes from the dense output (never less extreme than the grid samples)
+            max_retainer_force_N=np.maximum(ext[:, col["max_retainer_force"]], r.max(axis=1)),
+            min_retainer_force_N=np.minimum(ext[:, col["min_retainer_force"]], r.min(axis=1)),
+            max_seat_force_N=np.maximum(ext[:, col["max_seat_force"]], s.max(axis=1)),
+            min_seat_force_N=np.minimum(ext[:, col["min_seat_force"]], s.min(axis=1)),
             max_static_force_N=st.max(axis=1), min_static_force_N=st.min(axis=1),
             retainer_surge_amplitude_N=np.abs(r - st).max(axis=1),
             seat_surge_amplitude_N=np.abs(s - st).max(axis=1),
             coil_contact=flat(d["contact"]).any(axis=1),
+            end_separation=flat(d["separation"]) > 0,
             peak_coil_contact_force_N=flat(d["contact_force"]).max(axis=1),
         )
         if np.all(np.isfinite(d["periodicity"])):  # not with 1 revolution per speed: nothing to compare
@@ -226,7 +252,8 @@ class SpeedSweep(Result):
             in_event = self.lift > self.valve_train.lash + 1e-6
             cc = flat(d["cam_contact"])[:, in_event]
             cols["liftoff"] = (cc <= 0).any(axis=1)
-            cols["min_cam_contact_force_N"] = cc.min(axis=1)
+            dense = ext[:, col["min_cam_contact_force"]]
+            cols["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, cc.min(axis=1)), 0.0)
         return cols
 
     def float_speeds(self) -> np.ndarray:

@@ -19,7 +19,7 @@ DEFAULT_ATOL = 1e-9
 __all__ = ["register"]
 
 def register(sub) -> None:
-    valve = sub.add_parser("valve", help="valve springs: MMS Type C multi-mass model")
+    valve = sub.add_parser("valve", help="valve springs: MMS Type C multi-mass or distributed coil-by-coil model")
     vsub = valve.add_subparsers(dest="valve_command", metavar="COMMAND", required=True)
 
     p = vsub.add_parser("params", help="internal parameters and model variables")
@@ -45,6 +45,15 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_modes)
 
+    p = vsub.add_parser("frf", help="linearised dynamic stiffness against frequency (seat fixed, retainer driven)")
+    p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
+    p.add_argument("--frequency", required=True, metavar="START:STOP:STEP",
+                   help="frequencies, e.g. 10:3000:5 (bare numbers: Hz)")
+    p.add_argument("--length", metavar="L", help="spring length of the static state (default: installed length)")
+    add_output_options(p)
+    p.set_defaults(func=cmd_frf)
+
     p = vsub.add_parser("design", help="index, corrected stress, surge frequency at installed/open/coil-contact length")
     p.add_argument("spring", metavar="SPRING.toml")
     _add_model_option(p)
@@ -65,6 +74,8 @@ def register(sub) -> None:
     p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance (default {DEFAULT_ATOL:g})")
     p.add_argument("--backend", choices=("compiled", "scipy"), default="compiled",
                    help="compiled engine (default) or the SciPy reference")
+    p.add_argument("--closure-map", metavar="PNG",
+                   help="distributed model: write the coil-closure map (cam angle x position along the wire)")
     add_output_options(p)
     p.set_defaults(func=cmd_simulate)
 
@@ -151,7 +162,7 @@ def cmd_params(args) -> int:
     for key, value in params.items():
         unit, display, doc = PARAMETER_UNITS[key]
         rows.append((key, format_quantity(value, unit, display), doc))
-    print(f"{args.spring}: {spring.type} valve spring, MMS Type C")
+    print(f"{args.spring}: {spring.type} valve spring, {spring.spring_model.description}")
     print_table(rows, headers=("parameter", "value", "meaning"))
     return 0
 
@@ -169,10 +180,11 @@ def cmd_curve(args) -> int:
     if not args.csv:
         step = max(1, len(curve.length) // 20)
         rows = [
-            (f"{l * 1e3:.3f}", f"{f:.2f}", f"{k / 1e3:.2f}")
-            for l, f, k in zip(curve.length[::step], curve.force[::step], curve.stiffness[::step])
+            (f"{l * 1e3:.3f}", f"{f:.2f}", f"{k / 1e3:.2f}", f"{n:.1f}")
+            for l, f, k, n in zip(curve.length[::step], curve.force[::step], curve.stiffness[::step],
+                                  curve.frequency[::step])
         ]
-        print_table(rows, headers=("length [mm]", "force [N]", "stiffness [N/mm]"))
+        print_table(rows, headers=("length [mm]", "force [N]", "stiffness [N/mm]", "first mode [Hz]"))
     return 0
 
 
@@ -187,6 +199,31 @@ def cmd_modes(args) -> int:
     else:
         print(f"length {length * 1e3:.3f} mm, static force {force:.2f} N")
         print_table([(str(i + 1), f"{f:.2f}") for i, f in enumerate(freqs)], headers=("mode", "frequency [Hz]"))
+    return 0
+
+
+def cmd_frf(args) -> int:
+    from springdyn.valve.frf import dynamic_stiffness
+
+    spring = _spring(args)
+    freq = parse_range(args.frequency, "Hz", "--frequency", bare_unit="Hz")
+    length = quantity(args.length, "m", "--length") if args.length is not None else None
+    with as_options(length="--length", frequency="--frequency"):
+        res = dynamic_stiffness(spring, freq, length)
+    if args.csv:
+        res.to_csv(args.csv)
+    if args.plot:
+        close_figure(res.plot(args.plot))
+    if args.json:
+        print_json(res.to_dict())
+        return 0
+    if not args.csv:
+        step = max(1, res.frequency.size // 25)
+        rows = [(f"{f:.1f}", f"{abs(r) / 1e3:.3f}", f"{abs(st) / 1e3:.3f}")
+                for f, r, st in zip(res.frequency[::step], res.retainer[::step], res.seat[::step])]
+        print(f"{spring.type} spring, {res.model} model, at {res.length * 1e3:.3f} mm: static rate "
+              f"{res.static_stiffness / 1e3:.3f} N/mm, modes " + ", ".join(f"{f:.1f}" for f in res.modes) + " Hz")
+        print_table(rows, headers=("frequency [Hz]", "retainer [N/mm]", "seat [N/mm]"))
     return 0
 
 
@@ -234,6 +271,8 @@ def cmd_simulate(args) -> int:
         sim.to_csv(args.csv)
     if args.plot:
         close_figure(sim.plot(args.plot))
+    if args.closure_map:
+        close_figure(sim.plot_closure_map(args.closure_map))
     s = sim.summary
     if args.json:
         print_json(s)
@@ -260,6 +299,11 @@ def cmd_simulate(args) -> int:
                   f"peak {ev['peak_contact_force_N']:.1f} N")
     else:
         print("no coil contact")
+    if "clashing_coils" in s:
+        print("clashing coils (from the seat): " + (", ".join(map(str, s["clashing_coils"])) or "none"))
+    for ev in s["end_separation"]:
+        print(f"END SEPARATION at the {ev['end']} {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg "
+              f"({ev['duration_s'] * 1e3:.3f} ms)")
     if vt is not None:
         if s["liftoff"]:
             for ev in s["liftoff"]:

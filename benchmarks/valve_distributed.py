@@ -1,0 +1,108 @@
+"""Distributed valve-spring model benchmark (issue 12).  Run:  python benchmarks/valve_distributed.py
+
+Measures in one run, on this machine, with the one-step example spring and a 3-4-5 cam of
+9 mm over 120 cam degrees:
+
+1. one simulation of 2 cam revolutions at 3000 cam rpm with the distributed model (50
+   elements) against Type C end to end (target: within 8x Type C's time), each with its
+   peak retainer force against a tight-tolerance run of the same model (rtol 1e-9);
+2. the stiffness that limits the explicit step: the largest eigenvalue of the linearised
+   chain at set-up times the mean step, against Dormand-Prince's stability limit (~3.3);
+3. a sweep of 1000 speeds from 300 to 4000 cam rpm, 2 revolutions each, distributed model,
+   both cores (target < 60 s) and the peak resident memory of that process (target < 1 GB).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import subprocess
+import sys
+import time
+
+SWEEP_CHILD = """
+import math, resource, time
+import numpy as np
+from springdyn.valve import ValveSpring, Cam, sweep
+s = ValveSpring.example("one-step").with_model("distributed")
+cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+sweep(s, cam, [3000.0, 3100.0])
+t = time.perf_counter()
+res = sweep(s, cam, np.linspace(300.0, 4000.0, {n}), revolutions=2)
+wall = time.perf_counter() - t
+print(wall, int(res.data["steps"].sum()), resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+"""
+
+
+def _best(fn, repeat):
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t)
+    return min(times), out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--speeds", type=int, default=1000, help="speeds in the sweep (default 1000)")
+    ap.add_argument("--repeat", type=int, default=10, help="repetitions of each single run (default 10)")
+    args = ap.parse_args(argv)
+
+    import numpy as np
+    from scipy.linalg import eigvals
+
+    from springdyn.valve import Cam, ValveSpring, simulate
+
+    cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+    tc = ValveSpring.example("one-step")
+    ds = tc.with_model("distributed")
+    for s in (tc, ds):
+        simulate(s, cam, 3000.0, 2)  # compile / load from cache
+    print("one simulation, 2 revolutions at 3000 cam rpm (end to end), best of", args.repeat)
+    rows = {}
+    for name, s in (("type-c", tc), ("distributed", ds)):
+        t, sim = _best(lambda s=s: simulate(s, cam, 3000.0, 2), args.repeat)
+        ref = simulate(s, cam, 3000.0, 2, rtol=1e-9, atol=1e-12)
+        fset = s.internal_parameters()["Fset"]
+        err = max(abs(sim.summary[k] - ref.summary[k]) for k in
+                  ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")) / fset
+        rows[name] = (t, sim.info["steps"])
+        print(f"  {name:12s} {t * 1e3:8.2f} ms  {sim.info['steps']:6d} steps  {len(s.chain.masses):3d} masses  "
+              f"largest end-force extreme error vs rtol 1e-9: {100 * err:.4f} % of Fset")
+    ratio = rows["distributed"][0] / rows["type-c"][0]
+    print(f"  ratio distributed / Type C: {ratio:.1f}x (target <= 8x): {'MET' if ratio <= 8 else 'NOT MET'}")
+    print(f"  of which steps {rows['distributed'][1] / rows['type-c'][1]:.2f}x and time per step "
+          f"{ratio * rows['type-c'][1] / rows['distributed'][1]:.2f}x")
+
+    print()
+    print("stiffness of the explicit step (linearised at set-up; Dormand-Prince stability radius ~3.3)")
+    for name, s in (("type-c", tc), ("distributed", ds)):
+        ch = s.chain
+        x = ch.setup_compressions
+        from springdyn.valve.modes import chain_stiffness_matrix
+
+        n = ch.masses.size
+        a = np.zeros((2 * n, 2 * n))
+        a[:n, n:] = np.eye(n)
+        a[n:, :n] = -chain_stiffness_matrix(ch.tangent_stiffness(x)) / ch.masses[:, None]
+        a[n:, n:] = -chain_stiffness_matrix(ch.damping(x)) / ch.masses[:, None]
+        lam = np.abs(eigvals(a)).max()
+        h = 2 * 0.02 / rows[name][1]
+        print(f"  {name:12s} |lambda|max = {lam:.3g} 1/s, mean step {h * 1e6:.2f} us, |lambda| h = {lam * h:.2f}")
+
+    out = subprocess.run([sys.executable, "-c", SWEEP_CHILD.format(n=args.speeds)], capture_output=True, text=True,
+                         check=True)
+    wall, steps, maxrss_kb = out.stdout.split()
+    wall, steps, rss_mb = float(wall), int(steps), int(maxrss_kb) / 1024
+    print()
+    print(f"sweep of {args.speeds} speeds, 300-4000 cam rpm, 2 revolutions each, distributed model, both cores")
+    print(f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.1f} ms per speed); target < 60 s: "
+          f"{'MET' if wall < 60 else 'NOT MET'}")
+    print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: "
+          f"{'MET' if rss_mb < 1024 else 'NOT MET'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

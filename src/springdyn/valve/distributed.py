@@ -1,0 +1,345 @@
+"""The distributed (coil-by-coil) valve-spring model.
+
+The active wire, from the seat's dead coils to the retainer's, is cut into ``elements``
+equal pieces of ``ds`` turns.  Each piece is an element with the axial stiffness and the
+mass of its wire at the local mean diameter and pitch (:mod:`springdyn.valve.geometry`);
+its mass is lumped half to each end node.  The closed dead coils move with the end nodes
+(their mass is added there) and touch seat and retainer through the end contacts, as in
+Type C: ``seat -K- node 0 -k_1- node 1 ... node n -K- retainer``.  The same chain, laws and
+engine as Type C (:class:`~springdyn.valve.model.Chain`), so statics, modes, frequency
+response and dynamics are shared.
+
+**Element law** (piecewise quadratic, C1, :func:`coil_law`): the wire's rate
+``k_w = 1 / int c_turn ds`` (open-coil compliance per turn, Wahl) while the element's coil
+gap ``g = int (p - Dw) ds`` is open; when the compression reaches ``g`` the coils touch and
+the contact stiffness ``k_c = K / ds`` builds up linearly over the onset width
+``w = ds * CONTACT_ONSET * Dw``, then stays.  Where the pitch varies along the element
+(transitions, low-pitch coils) its turn-slices close one after the other: the contact
+quadratic then starts where the first slice touches and passes through the force at which
+the last one closes (exact for a gap varying linearly along the element), so the closing
+of graded coils converges with the element count.  ``K = pi D E / 1e3`` is the document's
+"stiffness for fully contact" of one coil ([MMS]), the stiffness Type C gives its end
+contacts: a closed turn compressed by ``delta`` carries ``K delta``, so a piece of ``ds``
+turns has ``K / ds``.
+
+**End contacts**: linear ``K`` at the end diameters, compression only (correction MMS-7).
+
+**Damping**: every element carries ``c(x) = beta k0 sqrt(k(x)/k0)`` (the document's law
+``C0 sqrt(k(x)/k(0))`` with ``C0 = beta k0`` per element): stiffness-proportional
+(Kelvin-Voigt) damping of the wire, which gives mode ``j`` the damping ratio
+``beta w_j / 2``.  ``beta`` is set so that the first mode at the set-up length has exactly
+``damping_ratio``; the higher surge modes get ``damping_ratio * f_j / f_1`` (about ``j``
+times it for the harmonic series), and the element-scale modes, which are artefacts of
+the discretisation, are strongly damped.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+from ..core.errors import InputError
+from ..core.units import format_quantity
+from . import formulas
+from .geometry import (
+    CoilGeometry,
+    check_profile_span,
+    default_pitch_knots,
+    parse_profile,
+    turn_compliance,
+    wire_length_per_turn,
+)
+from .chain import Chain, SpringModel
+from .modes import chain_frequencies
+from .statics import element_compressions, series_force
+
+__all__ = ["DistributedModel", "coil_law", "CONTACT_ONSET", "DEFAULT_ELEMENTS", "modal_damping"]
+
+#: Default number of wire elements (convergence study in docs/valve.md: peak and minimum
+#: forces of the one-step example at 3000 and 4000 cam rpm change by less than 0.1 % of
+#: Fset from 50 to 100 elements, and the surge modes 1-5 are within 1 % of the harmonic
+#: series).
+DEFAULT_ELEMENTS = 50
+#: Width of the contact onset per turn, as a fraction of the wire diameter: the contact
+#: stiffness builds up over ``0.05 Dw`` of closure per turn (coils touch first at their
+#: high points).  A regularisation that makes the law C1; docs/valve.md shows its effect.
+CONTACT_ONSET = 0.05
+
+
+def coil_law(k_wire: float, gap: float, k_contact: float, onset: float) -> np.ndarray:
+    """Element law of a piece of wire with coil contact (the ``(3, 4)`` law format).
+
+    ``F = k_w x`` for ``x < g``; ``F = k_w x + k_c (x - g)^2 / (2 w)`` for
+    ``g <= x < g + w``; ``F = k_w x + k_c (x - g - w/2)`` beyond: C1 with the tangent
+    stiffness rising from ``k_w`` to ``k_w + k_c``.
+
+    Parameters
+    ----------
+    k_wire : float
+        Rate of the open wire [N/m].
+    gap : float
+        Compression at which the coils touch [m], ``>= 0``.
+    k_contact : float
+        Contact stiffness added once closed [N/m].
+    onset : float
+        Compression over which the contact stiffness builds up [m], ``> 0``.
+    """
+    a = k_contact / (2.0 * onset)
+    law = np.empty((3, 4))
+    law[0] = (-np.inf, 0.0, k_wire, 0.0)
+    law[1] = (gap, a, k_wire - 2.0 * a * gap, a * gap * gap)
+    law[2] = (gap + onset, 0.0, k_wire + k_contact, -k_contact * (gap + 0.5 * onset))
+    return law
+
+
+def modal_damping(masses, stiffness, damping) -> tuple[np.ndarray, np.ndarray]:
+    """Natural frequencies [Hz] and damping ratios of a damped chain, ascending.
+
+    Eigenvalues of ``M u'' + C u' + K u = 0`` (state-space form), both ends fixed.
+
+    Parameters
+    ----------
+    masses : ndarray (n,)
+        Lumped masses [kg].
+    stiffness, damping : ndarray (n + 1,)
+        Element tangent stiffnesses [N/m] and damping coefficients [N s/m].
+    """
+    from .modes import chain_stiffness_matrix
+
+    n = len(masses)
+    kmat = chain_stiffness_matrix(stiffness)
+    cmat = chain_stiffness_matrix(damping)
+    minv = 1.0 / np.asarray(masses)[:, None]
+    a = np.zeros((2 * n, 2 * n))
+    a[:n, n:] = np.eye(n)
+    a[n:, :n] = -minv * kmat
+    a[n:, n:] = -minv * cmat
+    lam = np.linalg.eigvals(a)
+    lam = lam[lam.imag > 0]
+    lam = lam[np.argsort(np.abs(lam))]
+    return np.abs(lam) / (2 * np.pi), -lam.real / np.abs(lam)
+
+
+class DistributedModel(SpringModel):
+    """The distributed coil-by-coil model (see the module docstring).
+
+    Examples
+    --------
+    >>> from springdyn.valve import ValveSpring
+    >>> m = ValveSpring.example("one-step").with_model("distributed").spring_model
+    >>> len(m.chain.masses)
+    51
+    """
+
+    name = "distributed"
+    description = "distributed coil-by-coil chain"
+
+    def __init__(self, spring):
+        super().__init__(spring)
+        n = spring.elements
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 4 <= n <= 2000:
+            raise InputError(f"elements = {n!r} must be a whole number from 4 to 2000")
+        self.geometry  # builds and checks the geometry
+        self._parameters  # and the chain
+
+    def __repr__(self) -> str:
+        p = self._parameters
+        return (f"<DistributedModel: {self.spring.type} spring, {self.spring.elements} elements over "
+                f"{self.geometry.turns - 2 * self.geometry.dead_coils:g} active turns, K1 = {p['K1']:.6g} N/m, "
+                f"f1 = {p['f1']:.5g} Hz, Fset = {p['Fset']:.5g} N>")
+
+    # ------------------------------------------------------------------ geometry
+    @cached_property
+    def geometry(self) -> CoilGeometry:
+        """Pitch and diameter profiles (given, or the defaults from the ``[spring]`` keys)."""
+        sp = self.spring
+        n_total = sp.low_pitch_coils + sp.high_pitch_coils
+        if sp.pitch_profile:
+            ps, pv = parse_profile(sp.pitch_profile, "pitch_profile", {"pitch_mm": 1e-3, "pitch_m": 1.0})
+            check_profile_span(ps, n_total, "pitch_profile")
+            if np.any(pv < sp.wire_diameter * (1 - 1e-9)):
+                raise InputError(f"pitch_profile: a pitch below the wire diameter {format_quantity(sp.wire_diameter, 'm', 'mm')} "
+                                 "is impossible (the coils would overlap)")
+        else:
+            ps, pv = default_pitch_knots(n_total, sp.dead_coils, sp.wire_diameter, sp.free_length,
+                                         sp.installed_length, sp.low_pitch_coils if sp.two_step else 0.0, sp._field)
+        if sp.diameter_profile:
+            ds, dv = parse_profile(sp.diameter_profile, "diameter_profile", {"diameter_mm": 1e-3, "diameter_m": 1.0})
+            check_profile_span(ds, n_total, "diameter_profile")
+            if np.any(dv <= sp.wire_diameter):
+                raise InputError("diameter_profile: the mean diameter must exceed the wire diameter everywhere")
+        else:
+            ds, dv = np.array([0.0, n_total]), np.full(2, sp.mean_diameter)
+        g = CoilGeometry(n_total, sp.dead_coils, sp.wire_diameter, ps, pv, ds, dv)
+        if sp.pitch_profile and abs(g.free_length - sp.free_length) > 0.005 * sp.free_length:
+            raise InputError(f"pitch_profile gives the free length Dw/2 + int p ds = {format_quantity(g.free_length, 'm', 'mm')}, "
+                             f"but {sp._field('free_length')}: they must agree within 0.5 %")
+        if not sp.installed_length > g.solid_length:
+            raise InputError(f"{sp._field('installed_length')} must exceed the solid length (wire stack) "
+                             f"Dw (N1 + N2 + 1/2) = {format_quantity(g.solid_length, 'm', 'mm')}")
+        return g
+
+    @cached_property
+    def element_turns(self) -> np.ndarray:
+        """Edges of the wire elements [turns from the seat end], ``elements + 1`` values."""
+        g = self.geometry
+        return np.linspace(g.dead_coils, g.turns - g.dead_coils, self.spring.elements + 1)
+
+    @cached_property
+    def _pieces(self) -> dict:
+        """Per wire element: gap [m], wire rate [N/m], wire mass [kg], contact stiffness [N/m]."""
+        sp, g = self.spring, self.geometry
+        edges = self.element_turns
+        n = edges.size - 1
+        sub = 64  # midpoint samples per element for the compliance and mass integrals
+        frac = (np.arange(sub) + 0.5) / sub
+        s = edges[:-1, None] + (edges[1:] - edges[:-1])[:, None] * frac  # (n, sub)
+        dsub = ((edges[1:] - edges[:-1]) / sub)[:, None]
+        d, p = g.diameter(s), g.pitch(s)
+        comp = np.sum(turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * dsub, axis=1)
+        area = np.pi * sp.wire_diameter**2 / 4
+        mass = sp.density * area * np.sum(wire_length_per_turn(d, p) * dsub, axis=1)
+        gap = np.maximum(np.array([g.gap_integral(a, b) for a, b in zip(edges[:-1], edges[1:])]), 0.0)
+        dturn = edges[1:] - edges[:-1]
+        kc = formulas.contact_stiffness(d.mean(axis=1), sp.youngs_modulus) / dturn
+        k = 1.0 / comp
+        # graded gaps: the element's first turn-slice touches at x_a = ds min(p - Dw); it is
+        # closed throughout at x_b = int (p - Dw) ds, where the force is k (2 x_b - x_a)
+        # (linear gap along the element); the contact quadratic from x_a passes through it
+        pmin = np.minimum(np.minimum(p.min(axis=1), g.pitch(edges[:-1])), g.pitch(edges[1:]))
+        first = np.clip(dturn * (pmin - sp.wire_diameter), 0.0, gap)
+        onset = np.maximum(CONTACT_ONSET * sp.wire_diameter * dturn, kc * (gap - first) / (2.0 * k))
+        dead = np.linspace(0.0, g.dead_coils, 65)
+        dead_mass = [sp.density * area * float(np.trapezoid(wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
+                     for x in (dead, g.turns - dead[::-1])]
+        return dict(gap=gap, first=first, k=k, mass=mass, kc=kc, onset=onset, dead_mass=dead_mass, n=n)
+
+    # ------------------------------------------------------------------ the chain
+    def _chain(self, beta: float) -> Chain:
+        sp, g, pc = self.spring, self.geometry, self._pieces
+        n = pc["n"]
+        k_seat = formulas.contact_stiffness(float(g.diameter(0.0)), sp.youngs_modulus)
+        k_ret = formulas.contact_stiffness(float(g.diameter(g.turns)), sp.youngs_modulus)
+        laws = [np.array([(-np.inf, 0.0, k_seat, 0.0), (np.inf,) * 4, (np.inf,) * 4])]
+        laws += [coil_law(k, gap, kc, w) for k, gap, kc, w in zip(pc["k"], pc["first"], pc["kc"], pc["onset"])]
+        laws.append(np.array([(-np.inf, 0.0, k_ret, 0.0), (np.inf,) * 4, (np.inf,) * 4]))
+        laws = np.stack(laws)
+        masses = np.zeros(n + 1)
+        masses[:-1] += pc["mass"] / 2
+        masses[1:] += pc["mass"] / 2
+        masses[0] += pc["dead_mass"][0]
+        masses[-1] += pc["dead_mass"][1]
+        fset = float(series_force(sp.free_length - sp.installed_length, laws))
+        enames = ("seat",) + tuple(f"w{i + 1}" for i in range(n)) + ("retainer",)
+        mnames = tuple(f"n{i}" for i in range(n + 1))
+        return Chain(
+            element_names=enames, mass_names=mnames, masses=masses, laws=laws,
+            c0=beta * laws[:, 0, 2], setup_compressions=element_compressions(fset, laws), setup_force=fset,
+            free_length=sp.free_length, installed_length=sp.installed_length,
+        )
+
+    @cached_property
+    def _beta(self) -> float:
+        """Stiffness-proportional damping coefficient [s]: mode 1 at set-up gets ``damping_ratio``."""
+        zeta = self.spring.damping_ratio
+        if zeta == 0:
+            return 0.0
+        ch = self._chain(0.0)
+        x = ch.setup_compressions
+        k = ch.tangent_stiffness(x)
+        w1 = 2 * np.pi * chain_frequencies(ch.masses, k, 1)[0]
+        beta = 2 * zeta / w1
+        for _ in range(6):  # the contact elements' sqrt law makes it not exactly proportional
+            c = beta * ch.laws[:, 0, 2] * np.sqrt(k / ch.laws[:, 0, 2])
+            z1 = modal_damping(ch.masses, k, c)[1][0]
+            if abs(z1 - zeta) < 1e-6 * zeta:
+                break
+            beta *= zeta / z1
+        return float(beta)
+
+    @cached_property
+    def chain(self) -> Chain:
+        """The chain of ``elements + 1`` masses and ``elements + 2`` elements."""
+        return self._chain(self._beta)
+
+    def contact_compressions(self) -> np.ndarray:
+        """Compression [m] at which each wire element is closed throughout (its mean coil
+        gap); ``inf`` for the end contacts and for elements already closed at set-up (closed
+        by design, like Type C's low-pitch element, so never flagged)."""
+        pc = self._pieces
+        closed_at_setup = self.closing_forces() <= self._parameters_setup_force
+        return np.concatenate([[np.inf], np.where(closed_at_setup, np.inf, pc["gap"]), [np.inf]])
+
+    @cached_property
+    def _parameters_setup_force(self) -> float:
+        return float(self.chain.setup_force)
+
+    @property
+    def element_positions(self) -> np.ndarray:
+        """Middle of each wire element [turns from the seat end]."""
+        e = self.element_turns
+        return 0.5 * (e[:-1] + e[1:])
+
+    # ------------------------------------------------------------------ parameters
+    @cached_property
+    def _parameters(self) -> dict:
+        sp, g, pc = self.spring, self.geometry, self._pieces
+        ch = self.chain
+        laws = ch.laws
+        k1 = 1.0 / np.sum(1.0 / laws[:, 0, 2])
+        fcon = float(np.max(self.closing_forces()))  # the last coil closes: solid
+        f_free = chain_frequencies(ch.masses, laws[:, 0, 2], 1)[0]
+        k_set = ch.tangent_stiffness(ch.setup_compressions)
+        f_set = chain_frequencies(ch.masses, k_set, 1)[0]
+        kset = 1.0 / np.sum(1.0 / k_set)
+        active = g.turns - 2 * g.dead_coils
+        return dict(
+            K=float(formulas.contact_stiffness(sp.mean_diameter, sp.youngs_modulus)),
+            K1=float(k1), K2=float(kset), M=float(ch.masses.sum()),
+            f1=float(f_free), f2=float(f_set),
+            f_continuum=float(formulas.surge_frequency(sp.shear_modulus, sp.density, sp.wire_diameter,
+                                                       sp.mean_diameter, active)),
+            Lc=float(g.solid_length), Fset=float(ch.setup_force), Fcon=fcon,
+            elements=int(pc["n"]), beta=float(self._beta),
+            pitch_max=float(g.pitch_v.max()),
+        )
+
+    def internal_parameters(self) -> dict:
+        """Parameters of the distributed chain (SI), under the CLI's JSON keys.
+
+        ``K`` contact stiffness of a coil [N/m] ([MMS]), ``K1`` rate at free length and
+        ``K2`` at set-up [N/m], ``M`` mass of the wire [kg], ``f1`` first mode at free
+        length and ``f2`` at set-up [Hz], ``f_continuum`` the continuum surge frequency of
+        the active coils [Hz], ``Lc`` solid length (wire stack) [m], ``Fset`` set-up force,
+        ``Fcon`` force at which the last coil closes (solid) [N], ``elements``, ``beta``
+        stiffness-proportional damping [s], ``pitch_max`` largest pitch [m].
+        """
+        return dict(self._parameters)
+
+    def breakpoints(self) -> dict:
+        """Coil gap of every wire element [m] (``gap_1`` at the seat end ...)."""
+        return {f"gap_{i + 1}": float(v) for i, v in enumerate(self._pieces["gap"])}
+
+    # ------------------------------------------------------------------ outputs
+    def closing_forces(self) -> np.ndarray:
+        """Static force [N] at which each wire element is closed throughout, from the seat end."""
+        pc = self._pieces
+        return pc["k"] * (2.0 * pc["gap"] - pc["first"])
+
+    def clashing_coils(self, sim) -> list[int]:
+        """Coils (1 = the seat's first coil) that clash: an element of the coil is closed at a
+        cam angle where the static (massless) spring at the same lift has it open.  Coils
+        that close quasi-statically (the transitions at full lift) are not clashes.
+
+        Parameters
+        ----------
+        sim : Simulation
+            A simulation of this model.
+        """
+        gaps = self.contact_compressions()
+        static_x = element_compressions(sim.static_force, self.chain.laws)
+        clash = sim.element_contact & (static_x < gaps[:, None])
+        closing = set(np.flatnonzero(clash.any(axis=1)).tolist())
+        pos = self.element_positions
+        return sorted({int(np.floor(pos[j - 1])) + 1 for j in closing if 1 <= j <= pos.size})
