@@ -120,7 +120,7 @@ def check_stroke(lowest: float, highest: float, max_deflection: float, what: str
     if highest > max_deflection * (1 + 1e-12):
         raise InputError(
             f"{what} reaches a deflection of {format_quantity(highest, 'm', 'mm')}, beyond the kinematic limit "
-            f"{format_quantity(max_deflection, 'm', 'mm')} (theta2 = 90 deg)"
+            f"{format_quantity(max_deflection, 'm', 'mm')} (theta2 = 90 deg): reduce the amplitude or the offset"
         )
 
 
