@@ -23,7 +23,7 @@ from .results import FloatSpeedResult, Simulation, coil_contact_compressions
 from .statics import series_force
 from .valvetrain import ValveTrain
 
-__all__ = ["simulate", "Simulation", "SimulationSetup", "prepare", "float_speed", "coil_contact_compressions", "chain_response", "DEFAULT_RTOL", "DEFAULT_ATOL"]
+__all__ = ["simulate", "check_run_settings", "Simulation", "SimulationSetup", "prepare", "float_speed", "coil_contact_compressions", "chain_response", "DEFAULT_RTOL", "DEFAULT_ATOL"]
 
 #: Default integration tolerances (relative; absolute on displacements [m] and velocities
 #: [m/s]).  Chosen by the refinement study of the tests: halving them changes peak forces
@@ -158,6 +158,33 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     return np.concatenate([u, [z0], np.zeros(nm + 1)])
 
 
+def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
+    """Check the run settings of :func:`simulate` and the sweeps (raise :class:`InputError`).
+
+    Parameters
+    ----------
+    revolutions : int
+        Cam revolutions [-], 1 to 1000.
+    points_per_revolution : int
+        Output samples per revolution [-], 16 to 100 000.
+    rtol : float
+        Relative tolerance [-], 1e-12 to 1e-2.
+    atol : float
+        Absolute tolerance [m, m/s], 1e-15 to 1e-5.
+    """
+    number = (int, float, np.integer, np.floating)
+    for name, value, lo, hi in (("revolutions", revolutions, 1, 1000),
+                                ("points_per_revolution", points_per_revolution, 16, 100_000)):
+        if (isinstance(value, bool) or not isinstance(value, number) or not math.isfinite(value)
+                or value != int(value) or not lo <= value <= hi):
+            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
+    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
+        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
+            raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
+                             "(integration tolerance" + (": absolute, on displacements [m] and velocities [m/s])"
+                                                         if name == "atol" else ", relative)"))
+
+
 def simulate(
     spring: ValveSpring,
     cam: Cam,
@@ -205,15 +232,7 @@ def simulate(
     number = (int, float, np.integer, np.floating)
     if isinstance(cam_rpm, bool) or not isinstance(cam_rpm, number) or not (cam_rpm > 0 and math.isfinite(cam_rpm)):
         raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive speed: a finite number [rev/min]")
-    for name, value, lo, hi in (("revolutions", revolutions, 1, 1000), ("points_per_revolution", points_per_revolution, 16, 100_000)):
-        if (isinstance(value, bool) or not isinstance(value, number) or not math.isfinite(value)
-                or value != int(value) or not lo <= value <= hi):
-            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
-    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
-        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
-            raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
-                             "(integration tolerance" + (": absolute, on displacements [m] and velocities [m/s])"
-                                                         if name == "atol" else ", relative)"))
+    check_run_settings(revolutions, points_per_revolution, rtol, atol)
     if backend not in ("compiled", "scipy"):
         raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")
     revolutions, points_per_revolution = int(revolutions), int(points_per_revolution)

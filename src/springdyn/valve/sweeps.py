@@ -32,6 +32,7 @@ from .dynamics import (
     MAX_STEP_FRACTION,
     SimulationSetup,
     _solver_error,
+    check_run_settings,
     coil_contact_compressions,
     prepare,
     rpm_to_omega,
@@ -422,16 +423,7 @@ def sweep(
     if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
         bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
         raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
-    number = (int, float, np.integer, np.floating)
-    for name, value, lo, hi in (("revolutions", revolutions, 1, 1000), ("points_per_revolution", points_per_revolution, 16, 100_000)):
-        if (isinstance(value, bool) or not isinstance(value, number) or not math.isfinite(value)
-                or value != int(value) or not lo <= value <= hi):
-            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
-    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
-        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
-            raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
-                             "(integration tolerance" + (": absolute, on displacements [m] and velocities [m/s])"
-                                                         if name == "atol" else ", relative)"))
+    check_run_settings(revolutions, points_per_revolution, rtol, atol)
     if on_invalid not in ("stop", "skip"):
         raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
