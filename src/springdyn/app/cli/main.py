@@ -43,8 +43,21 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
 
 
+#: Warnings of the running command: printed when it succeeds; when it fails, its one-line
+#: error is all that is printed (bad input gets one message).
+_PENDING_WARNINGS: list[str] = []
+
+
 def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"springdyn: warning: {message}", file=sys.stderr)
+    text = f"springdyn: warning: {message}"
+    if text not in _PENDING_WARNINGS:
+        _PENDING_WARNINGS.append(text)
+
+
+def _flush_warnings() -> None:
+    for text in _PENDING_WARNINGS:
+        print(text, file=sys.stderr)
+    _PENDING_WARNINGS.clear()
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
@@ -238,6 +251,7 @@ def main(argv=None) -> int:
         with output_set():  # every file of the command is renamed into place together, at the end
             code = int(args.func(args) or 0)
         sys.stdout.flush()
+        _flush_warnings()
         return code
     except UsageError as exc:
         print(f"springdyn: error: {exc}", file=sys.stderr)
@@ -275,6 +289,7 @@ def main(argv=None) -> int:
     except Exception as exc:  # noqa: BLE001 - the safety net: a bug, said in one line
         return _bug(exc)
     finally:
+        _PENDING_WARNINGS.clear()
         sys.stdout = real_stdout
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
