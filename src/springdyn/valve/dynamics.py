@@ -21,7 +21,7 @@ from .engine import STATUS, extra_layout, hermite_eval, integrate_scipy, run_spe
 from .spring import ValveSpring
 from .results import FloatSpeedResult, Simulation, coil_contact_compressions
 from .statics import series_force
-from .valvetrain import ValveTrain
+from .valvetrain import KERNEL_SIZE, ValveTrain
 
 __all__ = ["simulate", "check_run_settings", "Simulation", "SimulationSetup", "prepare", "float_speed", "coil_contact_compressions", "chain_response", "DEFAULT_RTOL", "DEFAULT_ATOL"]
 
@@ -76,8 +76,8 @@ class SimulationSetup:
 
     @property
     def nfree(self) -> int:
-        """Degrees of freedom: the chain's masses, plus the valve body with a valve train."""
-        return self.n_masses + (1 if self.valve_train is not None else 0)
+        """Degrees of freedom: the chain's masses, plus the valve train's (valve, lever, lifter)."""
+        return self.n_masses + (self.valve_train.degrees_of_freedom if self.valve_train is not None else 0)
 
     def run(self, omegas, revolutions: int, points: int, *, rtol: float, atol: float):
         """Integrate the speeds ``omegas`` [rad/s] with the compiled engine, monitoring the
@@ -107,6 +107,9 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     theta = np.arange(CAM_SAMPLES) * (2 * math.pi / CAM_SAMPLES)
     h, dh, ddh = cam.sampled(CAM_SAMPLES)
     p = spring.internal_parameters()
+    h_cam = h
+    if valve_train is not None and valve_train.ratio != 1.0:
+        h = h * valve_train.ratio  # the rigid valve lift checks the spring; the engine gets the lobe lift
     i_max = int(np.argmax(h))
     open_length = spring.installed_length - h[i_max]
     if open_length < spring.min_length:
@@ -127,35 +130,94 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
             f"{math.degrees(theta[i_max]):.1f} deg (lift {h[i_max] * 1e3:.3g} mm)",
             stacklevel=3,
         )
-    vt = valve_train.kernel_parameters() if valve_train is not None else np.zeros(7)
-    y0 = _initial_state(spring, h[0], valve_train)
-    return SimulationSetup(spring, cam, valve_train, h, dh, ddh, 2 * math.pi / CAM_SAMPLES, vt, y0)
+    y0, lash = _initial_state(spring, h_cam[0], valve_train)
+    vt = valve_train.kernel_parameters(lash=lash) if valve_train is not None else np.zeros(KERNEL_SIZE)
+    return SimulationSetup(spring, cam, valve_train, h_cam, dh, ddh, 2 * math.pi / CAM_SAMPLES, vt, y0)
 
 
-def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None) -> np.ndarray:
-    """Static equilibrium at cam angle 0: displacements from set-up, zero velocities."""
+def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None):
+    """Static equilibrium at cam angle 0: displacements from set-up, zero velocities.
+
+    Returns the state and the lash the engine uses [m]: the train's own, or, with a
+    hydraulic adjuster, the one at which the train rests on the cam with the plunger
+    force (the seat carries the rest of the spring force).
+    """
     setup = spring.free_length - spring.installed_length
     nm = len(spring.chain.masses)
     if valve_train is None:
         if lift0 == 0.0:  # the set-up state itself: every displacement is zero by definition
-            return np.zeros(2 * nm)
+            return np.zeros(2 * nm), 0.0
         u = spring.initial_condition(setup + lift0)["displacements"]
-        return np.concatenate([u, np.zeros(nm)])
+        return np.concatenate([u, np.zeros(nm)]), 0.0
     laws = spring.chain.laws
     vt = valve_train
+    r = vt.ratio
+    k_train = vt.stiffness_at_valve
+    fset = spring.internal_parameters()["Fset"]
 
-    def balance(z):
-        f_spring = float(series_force(setup + z, laws))
-        pen = lift0 - z - vt.lash
-        f_cam = vt.cam_contact_stiffness * pen if pen > 0 else 0.0
-        f_seat = -vt.seat_stiffness * z if z < 0 else 0.0
-        return f_cam + f_seat - f_spring
+    def seat(z):
+        return -vt.seat_stiffness * z if z < 0 else 0.0
 
-    z_lo = -2.0 * (spring.internal_parameters()["Fset"] + 1.0) / vt.seat_stiffness
-    z_hi = max(lift0 - vt.lash, 0.0) + 1e-6
-    z0 = brentq(balance, z_lo, z_hi, xtol=1e-16, rtol=1e-15)
+    def spring_force(z):
+        return float(series_force(setup + z, laws))
+
+    z_lo = -2.0 * (fset + 1.0) / vt.seat_stiffness
+    if vt.hydraulic:
+        f_h = vt.hla_force
+        if not f_h < fset:
+            raise InputError(f"[valve_train] hla_preload = {f_h:g} N must be below the spring's set-up force "
+                             f"Fset = {fset:.1f} N: the adjuster would open the valve")
+        z0 = brentq(lambda z: seat(z) + f_h - spring_force(z), z_lo, 1e-6, xtol=1e-16, rtol=1e-15)
+        lash = r * lift0 - z0 - f_h / k_train
+        force = f_h
+    else:
+        lash = vt.lash
+
+        def train(z):
+            pen = r * lift0 - z - lash
+            return k_train * pen if pen > 0 else 0.0
+
+        z_hi = max(r * lift0 - lash, 0.0) + 1e-6
+        z0 = brentq(lambda z: train(z) + seat(z) - spring_force(z), z_lo, z_hi, xtol=1e-16, rtol=1e-15)
+        force = train(z0)
     u = spring.initial_condition(setup + z0)["displacements"]
-    return np.concatenate([u, [z0], np.zeros(nm + 1)])
+    pos = vt.static_state(lift0, z0, force)
+    return np.concatenate([u, pos, np.zeros(nm + pos.size)]), float(lash)
+
+
+def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
+    """Contact forces of the valve train from its states (vectorised NumPy).
+
+    The reference backend's evaluation, written apart from the compiled kernel
+    (:func:`springdyn.valve.engine.rhs`); the tests compare the two.
+
+    Parameters
+    ----------
+    vt : ndarray (16,)
+        Engine parameters of the train (:meth:`ValveTrain.kernel_parameters`).
+    lift, dlift : ndarray (..., n_t)
+        Lobe lift [m] and its rate [m/s].
+    u, v : ndarray (..., dof, n_t)
+        Positions [m] and velocities [m/s] of valve, lever tip, lifter.
+
+    Returns
+    -------
+    dict
+        ``cam_contact_force``, ``valve_seat_force``, ``valve_lift`` [N, N, m].
+    """
+    def contact(k, c, pen, rate):
+        return np.where(pen > 0, np.maximum(k * pen + c * rate, 0.0), 0.0)
+
+    dof = int(vt[7])
+    z, zd = u[..., 0, :], v[..., 0, :]
+    seat = np.where(z < 0, np.maximum(-vt[4] * z - vt[5] * zd, 0.0), 0.0)
+    if dof == 1:
+        cam = contact(vt[2], vt[3], lift - z - vt[6], dlift - zd)
+    elif dof == 2:
+        cam = contact(vt[2], vt[3], lift - u[..., 1, :] / vt[8], dlift - v[..., 1, :] / vt[8])
+    else:
+        cam = contact(vt[2], vt[3], lift - u[..., 2, :], dlift - v[..., 2, :])
+    return dict(cam_contact_force=cam, valve_seat_force=seat, valve_lift=z)
 
 
 def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
@@ -242,8 +304,7 @@ def simulate(
     max_cycles = 2.0e4 if backend == "scipy" else 2.0e6
     f_top = float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1])
     if valve_train is not None:
-        f_top = max(f_top, math.sqrt((valve_train.cam_contact_stiffness + valve_train.seat_stiffness)
-                                     / valve_train.moving_mass) / (2 * math.pi))
+        f_top = max(f_top, valve_train.highest_frequency())
     cycles = revolutions * 60.0 / cam_rpm * f_top
     if cycles > max_cycles:
         raise InputError(
@@ -346,14 +407,8 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         force[..., j, :] = np.where(x[..., j, :] > 0.0, np.maximum(force[..., j, :], 0.0), 0.0)
     out = dict(lift=lift, compression=x, force=force, contact=x >= coil_contact_compressions(setup.spring)[:, None])
     if nf > nm:
-        vt = setup.valve_train
         out["static"] = setup.static_force(u_top)
-        pen = lift - u_top - vt.lash
-        out["valve_lift"] = u_top
-        out["cam_contact_force"] = np.where(
-            pen > 0, np.maximum(vt.cam_contact_stiffness * pen + vt.cam_contact_damping * (dlift - v_top), 0.0), 0.0)
-        out["valve_seat_force"] = np.where(
-            u_top < 0, np.maximum(-vt.seat_stiffness * u_top - vt.seat_damping * v_top, 0.0), 0.0)
+        out.update(train_response(setup.vt, lift, dlift, u[..., nm:, :], v[..., nm:, :]))
     else:
         out["static"] = setup.static_force(lift)
     out["displacement"] = u[..., :nm, :]

@@ -157,8 +157,12 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
         Table step [rad].
     omega : float
         Cam angular speed [rad/s].
-    vt : ndarray (7,)
-        ``enabled, M_v [kg], k_c [N/m], c_c [N s/m], k_s [N/m], c_s [N s/m], lash [m]``.
+    vt : ndarray (16,)
+        The valve train (:meth:`springdyn.valve.valvetrain.ValveTrain.kernel_parameters`):
+        ``enabled, M_v [kg], k_c [N/m], c_c [N s/m], k_s [N/m], c_s [N s/m], lash [m], dof [-],
+        r [-], M_r [kg], k_t [N/m], c_t [N s/m], M_f [kg], k_p [N/m], c_p [N s/m],
+        lobe_lash [m]``; all zero without a train.  Train states follow the chain's masses:
+        valve, lever tip (rocker, pushrod), lifter (pushrod).
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2].
     extra : ndarray or None
@@ -171,7 +175,7 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
     nm = masses.shape[0]
     ne = nm + 1
     vtrain = vt[0] > 0.5
-    nfree = nm + 1 if vtrain else nm
+    nfree = nm + int(vt[7]) if vtrain else nm
     # cam lift and velocity (quintic Hermite on the periodic table)
     theta = omega * t
     n = cam_h.shape[0]
@@ -226,27 +230,67 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
         u_lo = u_hi
         v_lo = v_hi
     if vtrain:
+        # the valve train (layouts of springdyn.valve.valvetrain): every link unilateral
+        ntr = int(vt[7])
+        r = vt[8]
         z = s[nm]
         zd = s[nfree + nm]
-        f_cam = 0.0
-        pen = lift - z - vt[6]
-        raw = vt[2] * pen + vt[3] * (dlift - zd)
-        if pen > 0.0:
-            f_cam = raw
-            if f_cam < 0.0:
-                f_cam = 0.0
         f_seat = 0.0
         if z < 0.0:
             f_seat = -vt[4] * z - vt[5] * zd
             if f_seat < 0.0:
                 f_seat = 0.0
+        if ntr == 1:  # direct-acting: the cam on the valve body, lash at the cam
+            pen = lift - z - vt[6]
+            raw = vt[2] * pen + vt[3] * (dlift - zd)
+            f_cam = 0.0
+            if pen > 0.0:
+                f_cam = raw if raw > 0.0 else 0.0
+            gap = min(pen, raw / vt[2])
+            f_valve = f_cam
+        else:
+            zr = s[nm + 1]
+            zrd = s[nfree + nm + 1]
+            pen_t = zr - z - vt[6]  # the lever tip on the valve, lash here
+            raw_t = vt[10] * pen_t + vt[11] * (zrd - zd)
+            f_valve = 0.0
+            if pen_t > 0.0:
+                f_valve = raw_t if raw_t > 0.0 else 0.0
+            gap = min(pen_t, raw_t / vt[10])
+            if ntr == 2:  # finger follower / rocker: the follower rides on the lever
+                pen = lift - zr / r
+                raw = vt[2] * pen + vt[3] * (dlift - zrd / r)
+                f_cam = 0.0
+                if pen > 0.0:
+                    f_cam = raw if raw > 0.0 else 0.0
+                gap = min(gap, min(pen, raw / vt[2]))
+                f_lever = f_cam / r
+            else:  # pushrod: lifter on the cam, pushrod to the lever
+                zf = s[nm + 2]
+                zfd = s[nfree + nm + 2]
+                pen = lift - zf
+                raw = vt[2] * pen + vt[3] * (dlift - zfd)
+                f_cam = 0.0
+                if pen > 0.0:
+                    f_cam = raw if raw > 0.0 else 0.0
+                xp = zf - zr / r
+                raw_p = vt[13] * xp + vt[14] * (zfd - zrd / r)
+                f_push = 0.0
+                if xp > 0.0:
+                    f_push = raw_p if raw_p > 0.0 else 0.0
+                gap = min(gap, min(min(pen, raw / vt[2]), min(xp, raw_p / vt[13])))
+                out[nm + 2] = zfd
+                out[nfree + nm + 2] = (f_cam - f_push) / vt[12]
+                f_lever = f_push / r
+            out[nm + 1] = zrd
+            out[nfree + nm + 1] = (f_lever - f_valve) / vt[9]
         out[nm] = zd
-        out[nfree + nm] = (f_cam + f_seat - f_prev) / vt[1]
+        out[nfree + nm] = (f_valve + f_seat - f_prev) / vt[1]
         if extra is not None:
             extra[2 * ne + 2] = f_cam
             extra[2 * ne + 3] = f_seat
             extra[2 * ne + 4] = z
-            extra[2 * ne + 5 + nm] = min(pen, raw / vt[2])
+            extra[2 * ne + 5 + nm] = gap
     if extra is not None:
         if not vtrain:
             extra[2 * ne + 2] = 0.0
@@ -272,7 +316,8 @@ def _eval_at(rc, theta, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
 @register_jitable
 def _signal(k, ebuf, ne, nm, vt):
     """Extreme signal ``k`` (maximised): retainer force, -retainer force, seat force,
-    -seat force, -cam contact force while the cam lift exceeds the lash."""
+    -seat force, -cam contact force while the valve is open (off its seat, the lobe past
+    the lash: the float margin; ramp impacts on the seated valve are not float)."""
     if k == 0:
         return ebuf[ne - 1]
     if k == 1:
@@ -281,7 +326,7 @@ def _signal(k, ebuf, ne, nm, vt):
         return ebuf[0]
     if k == 3:
         return -ebuf[0]
-    if vt[0] > 0.5 and ebuf[2 * ne] > vt[6] + 1e-6:
+    if vt[0] > 0.5 and ebuf[2 * ne] > vt[15] + 1e-6 and ebuf[2 * ne + 4] > 0.0:
         return -ebuf[2 * ne + 2]
     return -np.inf
 
@@ -289,13 +334,14 @@ def _signal(k, ebuf, ne, nm, vt):
 @register_jitable
 def _channel(c, ebuf, ne, nm, vt, gaps):
     """Event channel ``c``, active while negative: 0/1 seat/retainer end compression,
-    2 cam-contact gap during the cam event (lift-off), 3 + j coil gap left in element j."""
+    2 smallest gap of the train's links while the valve is open (lift-off), 3 + j coil gap
+    left in element j."""
     if c == 0:
         return ebuf[ne]
     if c == 1:
         return ebuf[2 * ne - 1]
     if c == 2:
-        if vt[0] > 0.5 and ebuf[2 * ne] > vt[6] + 1e-6:
+        if vt[0] > 0.5 and ebuf[2 * ne] > vt[15] + 1e-6 and ebuf[2 * ne + 4] > 0.0:
             return ebuf[2 * ne + 5 + nm]
         return 1.0
     return gaps[c - 3] - ebuf[ne + c - 3]
@@ -493,7 +539,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                             fr = _bisect(rc, t, h, lo, ths[isamp], 0, True, masses, laws, xset, c0, cam_h, cam_dh,
                                          cam_ddh, dth, omega, vt, gaps, ybuf, dbuf, ebuf)
                             _ig.dense_eval(rc, fr, ybuf)
-                            v_imp = -ybuf[2 * nfree - 1]
+                            v_imp = -ybuf[nfree + nm]  # the valve's velocity
                             if ext[12] == 0.0:
                                 ext[10] = v_imp
                                 ext[11] = t + fr * h

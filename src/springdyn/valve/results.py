@@ -408,7 +408,7 @@ def _summarise(sim: Simulation) -> dict:
     s["spectrum"] = [dict(order=int(k), frequency_Hz=float(k * f_cam), amplitude_N=float(amp[k])) for k in sorted(top)]
     if sim.valve_train is not None:
         vt = sim.valve_train
-        in_event = sim.lift > vt.lash + 1e-6
+        in_event = (sim.lift > vt.lobe_lash + 1e-6) & (sim.valve_lift > 0.0)  # valve open: float
         lo = []
         if mon is not None:
             for a, b, c in located.get((2, 0), []):
@@ -441,7 +441,7 @@ def _summarise(sim: Simulation) -> dict:
         after = np.zeros_like(z, dtype=bool)
         if landings.size:
             after[landings[0] + 1:] = True
-        s["max_bounce_height_m"] = float(np.max(np.where(after & ~in_event, z, 0.0)))
+        s["max_bounce_height_m"] = float(np.max(np.where(after & ~(sim.lift > vt.lobe_lash + 1e-6), z, 0.0)))
     if mon is not None and mon["ext"]["events_lost"] > 0:
         notes.append(f"{int(mon['ext']['events_lost'])} events beyond the first {len(mon['events'])} were not located")
     s["notes"] = notes

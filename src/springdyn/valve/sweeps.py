@@ -250,11 +250,13 @@ class SpeedSweep(Result):
         if np.all(np.isfinite(d["periodicity"])):  # not with 1 revolution per speed: nothing to compare
             cols["periodicity_error"] = flat(d["periodicity"])
         if self.valve_train is not None:
-            in_event = self.lift > self.valve_train.lash + 1e-6
-            cc = flat(d["cam_contact"])[:, in_event]
-            cols["liftoff"] = (cc <= 0).any(axis=1)
+            # the valve open (off its seat, the lobe past the lash): float, not ramp impacts
+            in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (flat(d["valve_lift"]) > 0.0)
+            cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
+            cols["liftoff"] = (cc <= 0).any(axis=1) | (ext[:, col["min_cam_contact_force"]] <= 0.0)
             dense = ext[:, col["min_cam_contact_force"]]
-            cols["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, cc.min(axis=1)), 0.0)
+            grid = np.where(np.isfinite(cc.min(axis=1)), cc.min(axis=1), 0.0)
+            cols["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, grid), 0.0)
         return cols
 
     def float_speeds(self) -> np.ndarray:

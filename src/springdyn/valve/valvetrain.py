@@ -1,47 +1,357 @@
-"""Optional valve-train parameters: a rigid valve body on unilateral cam and seat contacts."""
+"""Valve-train parameters: direct-acting, rocker (finger follower) and pushrod layouts.
+
+Beyond the MMS document (issue 3, section 3, and issue 13).  The spring sits between the
+cylinder head and the retainer; the valve body (valve + retainer) lands on its seat
+through a unilateral contact; the cam drives it through one of three layouts:
+
+``"direct-acting"``
+    bucket tappet: valve + retainer + follower are one rigid body, the cam contact (with
+    the stem) is the only link.  One degree of freedom.
+``"rocker"``
+    rocker arm or finger follower: a rigid lever of ratio ``r`` (valve lift / follower
+    lift) and inertia ``J`` about its pivot carries the follower (roller or pad) at the
+    cam; its valve-side tip pushes the valve through the tip contact (rocker bending,
+    stem and lash in series).  Two degrees of freedom: the lever, measured by the
+    displacement of its valve-side tip, and the valve.
+``"pushrod"``
+    OHV: lifter (follower) at the cam, pushrod, rocker, valve.  Three degrees of freedom:
+    lifter, rocker tip, valve.
+
+Every link is a unilateral contact (compression only): cam-follower, pushrod ends,
+rocker tip on the valve, valve on its seat.  The lever is rigid in its kinematics (the
+lift at the valve is exactly ``r`` times the lift at the follower for a rigid train: the
+small-rotation lever with contact points on the lever's line; the arc of the contact point
+is not modelled), flexible through ``rocker_stiffness`` at the tip.  Masses are referred to
+the coordinate they move with by kinetic energy (``m_f / r^2`` and ``J / arm^2`` at the
+valve side of the lever), stiffnesses by strain energy (``k / r^2``).
+
+The clearance ``lash`` is at the valve side: between the rocker tip and the valve for the
+lever layouts, between cam and bucket for the direct-acting one.  A hydraulic lash
+adjuster (``lash_adjuster = "hydraulic"``) takes it up: on the base circle the train rests
+on the cam with the plunger-spring force ``hla_preload`` and the seat carries the rest of
+the spring preload; during the event the adjuster is a stiffness ``hla_stiffness`` in
+series.  Its leak-down and pump-up are not modelled (see :data:`HLA_NOT_MODELLED`).
+
+Defaults and their sources are listed in :data:`DEFAULT_SOURCES` (and in docs/valve.md).
+"""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.errors import InputError
 from ..core.params import Parameters, param
 
-__all__ = ["ValveTrain"]
+__all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "series_stiffness",
+           "KERNEL_SIZE"]
+
+LAYOUTS = ("direct-acting", "rocker", "pushrod")
+
+#: Length of the engine's valve-train parameter vector (see :meth:`ValveTrain.kernel_parameters`).
+KERNEL_SIZE = 16
+
+#: Where each default comes from (stated in messages, docs and the generated TOML reference).
+DEFAULT_SOURCES = {
+    "cam_contact_stiffness": (
+        "direct-acting: 50 N/um for the bucket tappet including the valve stem (a 5.5 mm steel stem of 100 mm "
+        "is E A / L = 49 N/um; the flat-face Hertz contact of a 14 mm wide cam is several times stiffer, so the "
+        "stem governs); rocker and pushrod: 150 N/um for the cam-roller line contact alone (Hertz line contact "
+        "of a 14 mm wide steel roller under 500-1500 N, secant stiffness 120-200 N/um), the stem being the "
+        "separate key stem_stiffness"),
+    "stem_stiffness": "50 N/um: E A / L of a 5.5 mm steel valve stem of 100 mm (206 GPa)",
+    "rocker_stiffness": ("15 N/um at the valve tip: bending of a stamped-steel finger follower or cast rocker "
+                         "arm; with the stem and the cam contact in series the train stiffness at the valve "
+                         "falls in the 3.5-10.5 N/um that handbooks give for follower trains (Norton, Cam Design "
+                         "and Manufacturing Handbook, 2nd ed., ch. 15)"),
+    "pushrod_stiffness": ("no default (required for the pushrod layout): E A / L of the pushrod, e.g. 21 N/um "
+                          "for an 8 x 1.2 mm steel tube of 250 mm"),
+    "seat_stiffness": "50 N/um: valve head and seat insert in axial contact (same order as the stem)",
+    "damping": ("200 N s/m for each contact: a damping ratio of 0.05-0.1 of a contact of 10-50 N/um on "
+                "50-100 g, the range valve-train models use to reproduce measured seat bounce"),
+    "hla_stiffness": ("20 N/um referred to the valve: the oil column of a hydraulic lash adjuster under "
+                      "load (bulk modulus of aerated oil 1-1.5 GPa over a 10 mm plunger chamber of 2 mm)"),
+    "hla_preload": "15 N referred to the valve: the plunger spring of an adjuster (10-30 N)",
+}
+
+HLA_NOT_MODELLED = ("the adjuster's leak-down (the plunger sinking under load: about 1-5 um per event at "
+                    "typical leak-down times of 5-20 s per mm under the valve load), its pump-up after a "
+                    "separation (it would take up any float gap between events: 'pump-up'), check-ball dynamics "
+                    "and oil aeration; within one event the adjuster is a stiffness with a fixed length")
+
+
+def series_stiffness(*stiffnesses: float) -> float:
+    """Stiffness of springs in series [N/m] (``inf`` entries are rigid and drop out).
+
+    Parameters
+    ----------
+    *stiffnesses : float
+        Stiffnesses [N/m], all referred to the same coordinate.
+
+    Examples
+    --------
+    >>> series_stiffness(2.0, 2.0)
+    1.0
+    """
+    compliance = sum(1.0 / k for k in stiffnesses if math.isfinite(k))
+    return math.inf if compliance == 0.0 else 1.0 / compliance
 
 
 @dataclass(frozen=True)
 class ValveTrain(Parameters):
-    """Valve + retainer + follower as one rigid body, with cam and valve-seat contacts.
+    """The valve train between cam and spring: layout, masses, stiffnesses, lash.
 
-    Beyond the MMS document (issue 3, section 3): the spring sits between the cylinder
-    head and the retainer; the cam pushes the follower through a unilateral contact
-    (stiffness and damping, force never tensile); the valve head lands on its seat through
-    a second unilateral contact.  The follower separates from the cam (valve float) when
-    the spring cannot decelerate the valve body fast enough.
-
-    Defaults are typical of a passenger-car direct-acting bucket valve train.
+    See the module docstring for the three layouts and :data:`DEFAULT_SOURCES` for the
+    defaults.  Values given for another layout are an error, so that nothing is silently
+    ignored.
     """
 
     valve_mass: float = param("kg", "valve mass", display="g", positive=True)
     retainer_mass: float = param("kg", "retainer and keepers mass", display="g", nonnegative=True, default=0.0)
-    follower_mass: float = param("kg", "follower (bucket tappet) mass", display="g", nonnegative=True, default=0.0)
-    cam_contact_stiffness: float = param("N/m", "cam-follower contact stiffness (incl. valve stem)", display="N/um",
-                                         positive=True, default=5.0e7)
+    follower_mass: float = param("kg", "follower at the cam: bucket tappet, roller/pad on the lever, or lifter",
+                                 display="g", nonnegative=True, default=0.0)
+    cam_contact_stiffness: float = param(
+        "N/m", "cam-follower contact stiffness (direct-acting: including the valve stem; default 50 N/um, rocker "
+        "and pushrod: the cam-roller contact alone, default 150 N/um)", display="N/um", positive=True, default=None)
     cam_contact_damping: float = param("N*s/m", "cam-follower contact damping", nonnegative=True, default=200.0)
     seat_stiffness: float = param("N/m", "valve-seat contact stiffness", display="N/um", positive=True, default=5.0e7)
     seat_damping: float = param("N*s/m", "valve-seat contact damping", nonnegative=True, default=200.0)
-    lash: float = param("m", "valve lash (clearance on the base circle)", display="mm", nonnegative=True, default=0.0)
+    lash: float = param("m", "valve lash: clearance at the valve side on the base circle", display="mm",
+                        nonnegative=True, default=0.0)
+    layout: str = param(None, "valve-train layout", kind="str", choices=LAYOUTS, default="direct-acting")
+    rocker_ratio: float = param("", "rocker ratio: valve lift / follower (lobe) lift (rocker, pushrod)",
+                                default=None, minimum=0.2, maximum=5.0)
+    rocker_inertia: float = param("kg*m^2", "rocker or finger-follower inertia about its pivot (rocker, pushrod)",
+                                  display="kg*mm^2", nonnegative=True, default=None)
+    rocker_valve_arm: float = param("m", "rocker pivot to valve tip (rocker, pushrod)", display="mm",
+                                    positive=True, default=None)
+    rocker_stiffness: float = param("N/m", "rocker bending stiffness at the valve tip (rocker, pushrod; default "
+                                    "15 N/um)", display="N/um", positive=True, default=None)
+    stem_stiffness: float = param("N/m", "valve stem stiffness (rocker, pushrod: default 50 N/um; direct-acting: "
+                                  "in series with the cam contact if given)", display="N/um", positive=True,
+                                  default=None)
+    pushrod_mass: float = param("kg", "pushrod mass (pushrod), half at each end", display="g", nonnegative=True,
+                                default=None)
+    pushrod_stiffness: float = param("N/m", "pushrod axial stiffness (pushrod)", display="N/um", positive=True,
+                                     default=None)
+    link_damping: float = param("N*s/m", "damping of the rocker-tip and pushrod contacts", nonnegative=True,
+                                default=200.0)
+    lash_adjuster: str = param(None, "lash adjuster: none (mechanical lash) or hydraulic", kind="str",
+                               choices=("none", "hydraulic"), default="none")
+    hla_stiffness: float = param("N/m", "hydraulic lash adjuster stiffness referred to the valve (default "
+                                 "20 N/um)", display="N/um", positive=True, default=None)
+    hla_preload: float = param("N", "hydraulic lash adjuster plunger-spring force referred to the valve "
+                               "(default 15 N)", nonnegative=True, default=None)
 
     table = "valve_train"
+    examples = {"direct-acting": "valve_train_direct_acting.toml", "finger-follower": "valve_train_finger.toml",
+                "pushrod": "valve_train_pushrod.toml"}
+    default_example = "direct-acting"
+
+    def _validate(self) -> None:
+        lever = self.layout in ("rocker", "pushrod")
+        lever_keys = ("rocker_ratio", "rocker_inertia", "rocker_valve_arm", "rocker_stiffness")
+        if lever:
+            missing = [k for k in ("rocker_ratio", "rocker_inertia", "rocker_valve_arm") if getattr(self, k) is None]
+            if self.layout == "pushrod":
+                missing += [k for k in ("pushrod_mass", "pushrod_stiffness") if getattr(self, k) is None]
+            if missing:
+                raise InputError(f"[valve_train] layout = {self.layout!r} needs {', '.join(missing)}")
+        else:
+            given = [k for k in lever_keys if getattr(self, k) is not None]
+            if given:
+                raise InputError(f"[valve_train] {', '.join(given)} apply to layout = 'rocker' or 'pushrod', not "
+                                 f"{self.layout!r}: remove them or set the layout")
+        if self.layout != "pushrod":
+            given = [k for k in ("pushrod_mass", "pushrod_stiffness") if getattr(self, k) is not None]
+            if given:
+                raise InputError(f"[valve_train] {', '.join(given)} apply to layout = 'pushrod' only, not "
+                                 f"{self.layout!r}")
+        if lever and self.rocker_mass <= 0.0:
+            raise InputError("[valve_train] rocker_inertia and follower_mass (and pushrod_mass) are all zero: the "
+                             "lever needs a mass; give rocker_inertia > 0")
+        if self.layout == "pushrod" and self.lifter_mass <= 0.0:
+            raise InputError("[valve_train] follower_mass and pushrod_mass are zero: the lifter needs a mass")
+        if self.lash_adjuster == "hydraulic":
+            if self.lash != 0.0:
+                raise InputError(f"[valve_train] lash = {self.lash * 1e3:g} mm with lash_adjuster = 'hydraulic': "
+                                 "the adjuster takes the lash up; remove lash or set lash_adjuster = 'none'")
+        else:
+            given = [k for k in ("hla_stiffness", "hla_preload") if getattr(self, k) is not None]
+            if given:
+                raise InputError(f"[valve_train] {', '.join(given)} apply to lash_adjuster = 'hydraulic' only")
+
+    # -- resolved values ---------------------------------------------------------------
+    @property
+    def ratio(self) -> float:
+        """Valve lift per follower (lobe) lift of the rigid train [-] (1 for direct-acting)."""
+        return 1.0 if self.layout == "direct-acting" else float(self.rocker_ratio)
+
+    @property
+    def cam_stiffness(self) -> float:
+        """Cam contact stiffness in use [N/m] (layout default if not given)."""
+        if self.cam_contact_stiffness is not None:
+            return self.cam_contact_stiffness
+        return 5.0e7 if self.layout == "direct-acting" else 1.5e8
+
+    @property
+    def hydraulic(self) -> bool:
+        """A hydraulic lash adjuster takes up the lash."""
+        return self.lash_adjuster == "hydraulic"
+
+    @property
+    def hla_k(self) -> float:
+        """Adjuster stiffness referred to the valve [N/m] (``inf`` without an adjuster)."""
+        if not self.hydraulic:
+            return math.inf
+        return 2.0e7 if self.hla_stiffness is None else self.hla_stiffness
+
+    @property
+    def hla_force(self) -> float:
+        """Adjuster plunger-spring force referred to the valve [N] (0 without an adjuster)."""
+        if not self.hydraulic:
+            return 0.0
+        return 15.0 if self.hla_preload is None else self.hla_preload
+
+    @property
+    def tip_stiffness(self) -> float:
+        """Stiffness of the link at the valve side of the lever [N/m]: rocker, stem and
+        adjuster in series (lever layouts); ``inf`` for direct-acting."""
+        if self.layout == "direct-acting":
+            return math.inf
+        k_r = 1.5e7 if self.rocker_stiffness is None else self.rocker_stiffness
+        k_s = 5.0e7 if self.stem_stiffness is None else self.stem_stiffness
+        return series_stiffness(k_r, k_s, self.hla_k)
+
+    @property
+    def cam_link_stiffness(self) -> float:
+        """Stiffness of the cam-side link in the engine [N/m]: direct-acting: the cam
+        contact with the stem (if given separately) and the adjuster in series; lever
+        layouts: the cam contact alone."""
+        if self.layout == "direct-acting":
+            return series_stiffness(self.cam_stiffness, math.inf if self.stem_stiffness is None
+                                    else self.stem_stiffness, self.hla_k)
+        return self.cam_stiffness
+
+    @property
+    def valve_side_mass(self) -> float:
+        """Mass moving with the valve [kg]: valve + retainer (+ follower for direct-acting)."""
+        m = self.valve_mass + self.retainer_mass
+        return m + self.follower_mass if self.layout == "direct-acting" else m
+
+    @property
+    def rocker_mass(self) -> float:
+        """Lever mass referred to its valve-side tip by kinetic energy [kg]:
+        ``J / arm^2`` (+ ``m_f / r^2`` for the follower riding on a finger follower, +
+        half the pushrod ``m_p / (2 r^2)``)."""
+        if self.layout == "direct-acting":
+            return 0.0
+        r = self.ratio
+        m = self.rocker_inertia / self.rocker_valve_arm**2
+        if self.layout == "rocker":
+            return m + self.follower_mass / r**2
+        return m + 0.5 * self.pushrod_mass / r**2
+
+    @property
+    def lifter_mass(self) -> float:
+        """Lifter + half the pushrod [kg] (pushrod layout; 0 otherwise)."""
+        return self.follower_mass + 0.5 * self.pushrod_mass if self.layout == "pushrod" else 0.0
 
     @property
     def moving_mass(self) -> float:
-        """Valve + retainer + follower [kg]."""
-        return self.valve_mass + self.retainer_mass + self.follower_mass
+        """All moving masses referred to the valve by kinetic energy [kg]."""
+        r = self.ratio
+        return self.valve_side_mass + self.rocker_mass + self.lifter_mass / r**2
 
-    def kernel_parameters(self) -> np.ndarray:
-        """``enabled, M_v, k_c, c_c, k_s, c_s, lash`` as the engine expects them."""
-        return np.array([1.0, self.moving_mass, self.cam_contact_stiffness, self.cam_contact_damping,
-                         self.seat_stiffness, self.seat_damping, self.lash])
+    @property
+    def stiffness_at_valve(self) -> float:
+        """Series stiffness of the train from cam to valve, referred to the valve [N/m]."""
+        r = self.ratio
+        parts = [self.tip_stiffness, self.cam_link_stiffness / r**2]
+        if self.layout == "pushrod":
+            parts.append(self.pushrod_stiffness / r**2)
+        return series_stiffness(*parts)
+
+    @property
+    def lobe_lash(self) -> float:
+        """Lobe lift at which a rigid train takes up the lash [m] (0 with an adjuster)."""
+        return 0.0 if self.hydraulic else self.lash / self.ratio
+
+    @property
+    def degrees_of_freedom(self) -> int:
+        """Degrees of freedom of the train: 1 direct-acting, 2 rocker, 3 pushrod."""
+        return LAYOUTS.index(self.layout) + 1
+
+    def equivalent_direct_acting(self) -> "ValveTrain":
+        """The direct-acting train of the same referred mass, series stiffness and lash.
+
+        Masses referred to the valve by kinetic energy (``m / r^2``, ``J / arm^2``),
+        stiffnesses in series referred by strain energy (``k / r^2``): the reduction a
+        rigid lever allows.  The cam lift must be multiplied by :attr:`ratio` to drive it.
+        """
+        return ValveTrain(valve_mass=self.moving_mass, cam_contact_stiffness=self.stiffness_at_valve,
+                          cam_contact_damping=self.cam_contact_damping / self.ratio**2,
+                          seat_stiffness=self.seat_stiffness, seat_damping=self.seat_damping, lash=self.lash)
+
+    def kernel_parameters(self, lash: float | None = None) -> np.ndarray:
+        """The engine's parameter vector (:func:`springdyn.valve.engine.rhs`, ``vt``).
+
+        ``enabled, M_v, k_c, c_c, k_s, c_s, lash, dof, r, M_r, k_t, c_t, M_f, k_p, c_p,
+        lobe_lash``: masses [kg], stiffnesses [N/m], dampings [N s/m], lash at the valve
+        side [m] (``lash`` overrides it: the effective lash of an adjuster), lobe lift that
+        starts the event [m].
+        """
+        lash = self.lash if lash is None else lash
+        lever = self.layout != "direct-acting"
+        return np.array([
+            1.0, self.valve_side_mass, self.cam_link_stiffness, self.cam_contact_damping, self.seat_stiffness,
+            self.seat_damping, lash, float(self.degrees_of_freedom), self.ratio,
+            self.rocker_mass if lever else 0.0, self.tip_stiffness if lever else 0.0,
+            self.link_damping if lever else 0.0, self.lifter_mass,
+            self.pushrod_stiffness if self.layout == "pushrod" else 0.0,
+            self.link_damping if self.layout == "pushrod" else 0.0, self.lobe_lash,
+        ])
+
+    def highest_frequency(self) -> float:
+        """An upper bound of the train's contact frequencies [Hz] (bounds the work of a run)."""
+        parts = [math.sqrt((self.cam_link_stiffness / self.ratio**2 + self.seat_stiffness
+                            + (self.tip_stiffness if math.isfinite(self.tip_stiffness) else 0.0))
+                           / self.valve_side_mass)]
+        if self.layout != "direct-acting" and self.rocker_mass > 0:
+            parts.append(math.sqrt((self.tip_stiffness + self.cam_stiffness / self.ratio**2
+                                    + (self.pushrod_stiffness / self.ratio**2 if self.layout == "pushrod" else 0.0))
+                                   / self.rocker_mass))
+        if self.layout == "pushrod" and self.lifter_mass > 0:
+            parts.append(math.sqrt((self.cam_stiffness + self.pushrod_stiffness) / self.lifter_mass))
+        return max(parts) / (2 * math.pi)
+
+    def static_state(self, lobe_lift: float, valve_lift: float, valve_force: float) -> np.ndarray:
+        """Positions of the train's degrees of freedom in static equilibrium [m].
+
+        Parameters
+        ----------
+        lobe_lift : float
+            Cam lift at the follower [m].
+        valve_lift : float
+            Valve position [m] (negative: pressed into its seat).
+        valve_force : float
+            Force the train delivers to the valve [N] (0: the lash is open and the lever
+            and lifter rest on the cam without load).
+
+        Returns
+        -------
+        ndarray (dof,)
+            Valve, then lever tip [m] and lifter [m] as the layout has them.
+        """
+        r = self.ratio
+        if self.layout == "direct-acting":
+            return np.array([valve_lift])
+        f_cam = r * valve_force
+        if self.layout == "rocker":
+            tip = r * (lobe_lift - f_cam / self.cam_stiffness)
+            return np.array([valve_lift, tip])
+        lifter = lobe_lift - f_cam / self.cam_stiffness
+        tip = r * (lifter - f_cam / self.pushrod_stiffness)
+        return np.array([valve_lift, tip, lifter])
