@@ -50,3 +50,47 @@ def test_bad_inputs():
     with pytest.raises(InputError):
         du.goodman_safety_factor(0.0, 0.0, 1.0, 1.0)
     assert np.all(du.goodman_safety_factor(np.array([1e8, 2e8]), np.array([3e8, 4e8]), 4e8, 1.2e9) > 0)
+
+
+# --- the assessment over a cycle (issue 13) --------------------------------------------------
+import math as _math
+
+from springdyn.valve import Cam as _Cam, ValveSpring as _VS, simulate as _simulate, sweep as _sweep
+from springdyn.valve.durability import fatigue_assessment, spring_strengths
+
+
+def test_example_spring_goodman_factor_by_hand():
+    # hand calculation: w = 22/3.5, k = (w + 0.5)/(w - 0.75), tau = k 8 F D / (pi d^3);
+    # tau_u = 0.67 x 2000 MPa, tau_e = 398 / (1 - 534/1340) MPa (Zimmerli, peened)
+    s = _VS.example("one-step")
+    w = 22 / 3.5
+    k = (w + 0.5) / (w - 0.75)
+    tau = lambda f: k * 8 * f * 22e-3 / (_math.pi * 3.5e-3**3)  # noqa: E731
+    fmin, fmax = 251.43, 486.4
+    tu, te = 0.67 * 2000e6, 398e6 / (1 - 534e6 / 1340e6)
+    n = 1 / ((tau(fmax) - tau(fmin)) / 2 / te + (tau(fmax) + tau(fmin)) / 2 / tu)
+    out = fatigue_assessment(s, fmin, fmax)
+    assert out["fatigue_safety_factor"] == pytest.approx(n, rel=1e-12)
+    assert spring_strengths(s)["strength_defaults"] == ["tensile_strength", "endurance_shear_strength"]
+    given = s.replace(tensile_strength=1.9e9, endurance_shear_strength=600e6)
+    assert spring_strengths(given)["strength_defaults"] == []
+
+
+@pytest.mark.parametrize("model", ["type-c", "distributed"])
+def test_dynamic_factor_equals_static_at_low_speed_and_falls_with_surge(model):
+    s = _VS.example("one-step").with_model(model)
+    cam = _Cam(law="3-4-5", lift=9e-3, duration=_math.radians(120))
+    slow = _simulate(s, cam, 300.0, 2).summary
+    # quasi-static: the element forces follow the static force within the surge of 300 rpm
+    assert slow["fatigue_safety_factor"] == pytest.approx(slow["static_fatigue_safety_factor"], rel=5e-3)
+    fast = _simulate(s, cam, 3500.0, 2).summary
+    assert fast["fatigue_safety_factor"] < 0.95 * fast["static_fatigue_safety_factor"]
+    assert any("default wire strengths" in n for n in fast["notes"])
+
+
+def test_sweep_reports_the_factor_against_speed():
+    s = _VS.example("one-step")
+    cam = _Cam(law="3-4-5", lift=9e-3, duration=_math.radians(120))
+    t = _sweep(s, cam, [400.0, 3500.0], revolutions=2).summary_table()
+    assert t["fatigue_safety_factor"][0] == pytest.approx(t["static_fatigue_safety_factor"][0], rel=5e-3)
+    assert t["fatigue_safety_factor"][1] < t["fatigue_safety_factor"][0]

@@ -145,3 +145,29 @@ def test_examples_load_and_state_their_layouts():
     assert ValveTrain.example().layout == "direct-acting" and ValveTrain.example().lash > 0
     assert ValveTrain.example("finger-follower").hydraulic
     assert ValveTrain.example("pushrod").degrees_of_freedom == 3
+
+
+def test_natural_frequencies_of_the_spring_alone_equal_its_modes():
+    # the linearisation of the simulation's own laws against the model's modal analysis
+    from springdyn.valve.dynamics import natural_frequencies
+
+    res = natural_frequencies(SPRING, LOBE, None, count=5)
+    assert res["base_circle_Hz"] == pytest.approx(list(SPRING.modes(SPRING.installed_length)), rel=1e-6)
+
+
+def test_valve_on_its_seat_has_the_seat_frequency():
+    # a valve far heavier than the spring on a soft seat: f -> sqrt((k_seat + K) / m) / 2 pi
+    from springdyn.valve.dynamics import natural_frequencies
+
+    vt = ValveTrain(valve_mass=5.0, seat_stiffness=1e6, lash=1e-3)  # lash beyond the 0.25 mm seat deflection
+    res = natural_frequencies(SPRING, LOBE, vt, count=8)
+    k_spring = SPRING.internal_parameters()["K1"]
+    f = math.sqrt((1e6 + k_spring) / 5.0) / (2 * math.pi)
+    assert min(abs(x - f) for x in res["base_circle_Hz"]) < 0.02 * f  # spring mass 35 g vs 5 kg
+
+
+def test_resonance_speeds_by_hand():
+    from springdyn.valve.dynamics import resonance_speeds
+
+    rows = resonance_speeds([500.0], 2900, 3100)
+    assert rows == [dict(mode=1, frequency_Hz=500.0, order=10, cam_rpm=3000.0)]

@@ -249,6 +249,18 @@ class SpringModel:
             if cam_rpm is not None:
                 st["surge_margin"] = design.surge_margin(f_surge, cam_rpm)
             out[name] = st
+        if "open" in out:  # fatigue of the static cycle installed -> open (issue 13)
+            from .durability import fatigue_assessment
+
+            fat = fatigue_assessment(self.spring, out["installed"]["force_N"], out["open"]["force_N"])
+            out["fatigue"] = dict(
+                static_fatigue_safety_factor=fat["fatigue_safety_factor"],
+                min_shear_stress_Pa=fat["min_shear_stress_Pa"], max_shear_stress_Pa=fat["max_shear_stress_Pa"],
+                endurance_shear_strength_Pa=fat["endurance_shear_strength_Pa"],
+                ultimate_shear_strength_Pa=fat["ultimate_shear_strength_Pa"],
+                strength_defaults=fat["strength_defaults"],
+                note="the dynamic factor needs a simulation: valve simulate reports it beside this one",
+            )
         return out
 
     def _open_force(self, length: float, lift: float) -> float:

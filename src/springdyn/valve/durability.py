@@ -19,8 +19,14 @@ Strengths from the wire's tensile strength: the ultimate shear strength is 0.67 
 (Shigley Sec. 10-4, after Joerres: ``S_su = 0.67 S_ut``), and the fully reversed torsional
 endurance strength follows from Zimmerli's data for peened springs (``S_sa = 398 MPa`` at
 ``S_sm = 534 MPa``, Shigley Sec. 10-9) through the Goodman line
-``tau_e = S_sa / (1 - S_sm / S_su)``.  (These are the building blocks of the fatigue
-assessment of the valve spring; the assessment over a simulated cycle is future work.)
+``tau_e = S_sa / (1 - S_sm / S_su)``.
+
+:func:`spring_strengths` reads the wire's strengths from the spring definition
+(``tensile_strength``, ``endurance_shear_strength``) or uses the documented defaults for
+oil-tempered, shot-peened Cr-Si valve-spring wire (:data:`DEFAULT_TENSILE_STRENGTH`), and
+says which defaults it used; :func:`fatigue_assessment` gives the factor of a force cycle.
+The simulation results use it per element (Type C: its six elements; distributed: every
+element, the coils' share) between the smallest and largest force of the cycle.
 """
 
 from __future__ import annotations
@@ -39,7 +45,14 @@ __all__ = [
     "goodman_safety_factor",
     "ULTIMATE_SHEAR_FRACTION",
     "ZIMMERLI_PEENED",
+    "DEFAULT_TENSILE_STRENGTH",
+    "spring_strengths",
+    "fatigue_assessment",
 ]
+
+#: Default tensile strength [Pa] of oil-tempered Cr-Si valve-spring wire of 3-4 mm
+#: (EN 10270-2 grade VDSiCr: about 1960-2060 MPa at these diameters; the lower-middle value).
+DEFAULT_TENSILE_STRENGTH = 2.0e9
 
 #: Ultimate shear strength / tensile strength of spring wire (Shigley Sec. 10-4).
 ULTIMATE_SHEAR_FRACTION = 0.67
@@ -159,3 +172,68 @@ def goodman_safety_factor(tau_min, tau_max, endurance_shear: float, ultimate_she
     if np.any(~np.isfinite(n)):
         raise InputError("a stress cycle with no stress has no fatigue safety factor")
     return float(n) if n.ndim == 0 else n
+
+
+def spring_strengths(spring) -> dict:
+    """Torsional ultimate and endurance strengths of a spring's wire, and which are defaults.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        Reads ``tensile_strength`` [Pa] and ``endurance_shear_strength`` [Pa] (None: the
+        defaults of this module: :data:`DEFAULT_TENSILE_STRENGTH`, and Zimmerli's peened
+        data through the Goodman line).
+
+    Returns
+    -------
+    dict
+        ``tensile_strength_Pa``, ``ultimate_shear_strength_Pa`` (0.67 of the tensile),
+        ``endurance_shear_strength_Pa``, ``strength_defaults`` (the keys that took defaults).
+    """
+    defaults = []
+    rm = getattr(spring, "tensile_strength", None)
+    if rm is None:
+        rm = DEFAULT_TENSILE_STRENGTH
+        defaults.append("tensile_strength")
+    tau_u = ultimate_shear_strength(rm)
+    tau_e = getattr(spring, "endurance_shear_strength", None)
+    if tau_e is None:
+        tau_e = zimmerli_endurance_shear_strength(tau_u, peened=True)
+        defaults.append("endurance_shear_strength")
+    return dict(tensile_strength_Pa=float(rm), ultimate_shear_strength_Pa=float(tau_u),
+                endurance_shear_strength_Pa=float(tau_e), strength_defaults=defaults)
+
+
+def fatigue_assessment(spring, force_min, force_max) -> dict:
+    """Goodman fatigue safety factor of the wire for axial force cycles.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        Wire diameter, mean coil diameter (the largest of a diameter profile: the
+        conservative choice) and strengths (:func:`spring_strengths`).
+    force_min, force_max : float or array_like
+        Smallest and largest force of the cycle [N] (per element for an array).
+
+    Returns
+    -------
+    dict
+        ``min_shear_stress_Pa``, ``max_shear_stress_Pa`` (the corrected stress of EN 13906-1 at
+        the critical element), ``fatigue_safety_factor`` (the smallest over the elements),
+        ``critical_element`` (its index, 0 at the seat), and the strengths.
+    """
+    d = spring.wire_diameter
+    big = getattr(spring.spring_model, "largest_mean_diameter", None)
+    dm = float(big()) if callable(big) else spring.mean_diameter
+    lo = np.atleast_1d(np.asarray(force_min, dtype=float))
+    hi = np.atleast_1d(np.asarray(force_max, dtype=float))
+    tau_lo = corrected_shear_stress(np.maximum(lo, 0.0), dm, d)
+    tau_hi = corrected_shear_stress(np.maximum(hi, 0.0), dm, d)
+    st = spring_strengths(spring)
+    demand = (0.5 * (tau_hi - tau_lo) / st["endurance_shear_strength_Pa"]
+              + 0.5 * (tau_hi + tau_lo) / st["ultimate_shear_strength_Pa"])
+    j = int(np.argmax(demand))
+    n = goodman_safety_factor(tau_lo[j], tau_hi[j], st["endurance_shear_strength_Pa"],
+                              st["ultimate_shear_strength_Pa"]) if demand[j] > 0 else None
+    return dict(min_shear_stress_Pa=float(tau_lo[j]), max_shear_stress_Pa=float(tau_hi[j]),
+                fatigue_safety_factor=n, critical_element=j, **st)

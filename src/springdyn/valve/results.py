@@ -383,6 +383,7 @@ def _summarise(sim: Simulation) -> dict:
                 peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
             ))
     s["coil_contact"] = events
+    s.update(_durability(sim, s, notes))
     clash = sim.spring.spring_model.clashing_coils(sim) if hasattr(sim.spring.spring_model, "clashing_coils") else None
     if clash is not None:
         s["clashing_coils"] = clash
@@ -530,3 +531,46 @@ class FloatSpeedResult(Result):
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
         return ax.figure
+
+
+def _durability(sim, s: dict, notes: list) -> dict:
+    """Fatigue of the wire over the simulated cycle, beside the static one (issue 13).
+
+    Dynamic: every element between its smallest and largest force of the last revolution
+    (the end elements from the true extremes); static: the static force's range over the
+    cycle (installed to open).  Also the smallest length to solid, and for the distributed
+    model the smallest coil gap.
+    """
+    from .durability import fatigue_assessment
+
+    lo = sim.element_force.min(axis=1)
+    hi = sim.element_force.max(axis=1)
+    lo[0], hi[0] = min(lo[0], s["min_seat_force_N"]), max(hi[0], s["max_seat_force_N"])
+    lo[-1], hi[-1] = min(lo[-1], s["min_retainer_force_N"]), max(hi[-1], s["max_retainer_force_N"])
+    dyn = fatigue_assessment(sim.spring, lo, hi)
+    sta = fatigue_assessment(sim.spring, s["min_static_force_N"], s["max_static_force_N"])
+    out = dict(
+        static_fatigue_safety_factor=sta["fatigue_safety_factor"],
+        fatigue_safety_factor=dyn["fatigue_safety_factor"],
+        static_min_shear_stress_Pa=sta["min_shear_stress_Pa"], static_max_shear_stress_Pa=sta["max_shear_stress_Pa"],
+        min_shear_stress_Pa=dyn["min_shear_stress_Pa"], max_shear_stress_Pa=dyn["max_shear_stress_Pa"],
+        fatigue_critical_element=dyn["critical_element"] + 1,
+        endurance_shear_strength_Pa=dyn["endurance_shear_strength_Pa"],
+        ultimate_shear_strength_Pa=dyn["ultimate_shear_strength_Pa"],
+    )
+    if dyn["strength_defaults"]:
+        notes.append("fatigue: default wire strengths used for " + " and ".join(dyn["strength_defaults"])
+                     + " (oil-tempered, shot-peened Cr-Si valve-spring wire; give them in [spring] for your wire)")
+    if out["fatigue_safety_factor"] is None:
+        notes.append("fatigue: the wire carries no stress over the cycle")
+    # length to solid: the spring's length against its solid length
+    p = sim.spring.internal_parameters()
+    length = sim.spring.free_length - sim.element_compression.sum(axis=0)
+    out["min_length_to_solid_m"] = float(max(length.min() - p["Lc"], 0.0))
+    if sim.spring.model == "distributed":
+        gaps = coil_contact_compressions(sim.spring)
+        # the coils open at set-up (dead coils and closed transitions excluded)
+        active = np.isfinite(gaps) & (gaps > sim.spring.chain.setup_compressions + 1e-12)
+        gap = gaps[active, None] - sim.element_compression[active]
+        out["min_coil_gap_m"] = float(max(gap.min(), 0.0)) if gap.size else None
+    return out

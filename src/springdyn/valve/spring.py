@@ -58,6 +58,12 @@ class ValveSpring(Parameters):
     shear_modulus: float = param("Pa", "shear modulus", symbol="G'", display="GPa", positive=True)
     density: float = param("kg/m^3", "density", symbol="rho'", positive=True)
     damping_ratio: float = param("", "damping ratio", symbol="Cps", nonnegative=True)
+    tensile_strength: float = param("Pa", "tensile strength of the wire (default 2000 MPa: oil-tempered Cr-Si "
+                                    "valve-spring wire, EN 10270-2 VDSiCr)", display="MPa", positive=True,
+                                    default=None)
+    endurance_shear_strength: float = param("Pa", "fully reversed torsional endurance strength of the wire "
+                                            "(default: Zimmerli's peened data on the Goodman line)", display="MPa",
+                                            positive=True, default=None)
     model: str = param(None, "spring model: 'type-c' (the document's MMS Type C, 5 masses) or 'distributed' "
                        "(coil by coil from the geometry)", kind="str", choices=MODEL_NAMES, default="type-c")
     elements: int = param("", "wire elements of the distributed model", kind="int", default=50, positive=True)

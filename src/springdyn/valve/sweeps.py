@@ -257,7 +257,27 @@ class SpeedSweep(Result):
             dense = ext[:, col["min_cam_contact_force"]]
             grid = np.where(np.isfinite(cc.min(axis=1)), cc.min(axis=1), 0.0)
             cols["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, grid), 0.0)
+        cols.update(self._fatigue_columns(cols, nv, nr))
         return cols
+
+    def _fatigue_columns(self, cols, nv, nr) -> dict:
+        """Goodman fatigue factor against speed (issue 13): the end coils between the
+        smallest and largest end force of the revolution (true extremes), and the static
+        cycle; per design value, from that variant's wire and strengths."""
+        from .durability import fatigue_assessment
+
+        dyn = np.empty(nv * nr)
+        sta = np.empty(nv * nr)
+        for i in range(nv):
+            sp = self.spring if not self.vary_name else self.spring.replace(**{self.vary_name: float(self.vary_values[i])})
+            for j in range(nr):
+                k = i * nr + j
+                a = fatigue_assessment(sp, [cols["min_seat_force_N"][k], cols["min_retainer_force_N"][k]],
+                                       [cols["max_seat_force_N"][k], cols["max_retainer_force_N"][k]])
+                b = fatigue_assessment(sp, cols["min_static_force_N"][k], cols["max_static_force_N"][k])
+                dyn[k] = a["fatigue_safety_factor"] if a["fatigue_safety_factor"] is not None else 0.0
+                sta[k] = b["fatigue_safety_factor"] if b["fatigue_safety_factor"] is not None else 0.0
+        return dict(fatigue_safety_factor=dyn, static_fatigue_safety_factor=sta)
 
     def float_speeds(self) -> np.ndarray:
         """Lowest swept speed with lift-off per design value [rpm] (nan: none, or no valve train)."""

@@ -45,6 +45,18 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_modes)
 
+    p = vsub.add_parser("train-modes", help="natural frequencies of spring + valve train (base circle, full lift) "
+                                            "and the cam-order resonance speeds")
+    p.add_argument("spring", metavar="SPRING.toml")
+    _add_model_option(p)
+    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table (without: the spring alone)")
+    p.add_argument("--cam-rpm", default="500:8000:500", metavar="RANGE",
+                   help="speed range for the resonance table, START:STOP:STEP in cam rpm (default 500:8000:500)")
+    p.add_argument("--count", type=int, default=6, metavar="N", help="frequencies per state (1-20, default 6)")
+    p.add_argument("--json", action="store_true", help="print JSON (SI values)")
+    p.set_defaults(func=cmd_train_modes)
+
     p = vsub.add_parser("frf", help="linearised dynamic stiffness against frequency (seat fixed, retainer driven)")
     p.add_argument("spring", metavar="SPRING.toml")
     _add_model_option(p)
@@ -87,6 +99,8 @@ def register(sub) -> None:
     _add_speed_options(p, ranged=True)
     p.add_argument("--revolutions", type=int, default=3, metavar="N", help="cam revolutions per speed (default 3)")
     p.add_argument("--resolution", default="1", metavar="RPM", help="bisection resolution in cam rpm (default 1)")
+    p.add_argument("--csv", metavar="FILE.csv", help="write the minimum cam contact force against speed")
+    p.add_argument("--plot", metavar="FILE.png", help="plot the minimum contact force against speed, float speed marked")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_float)
@@ -202,6 +216,35 @@ def cmd_modes(args) -> int:
     return 0
 
 
+def cmd_train_modes(args) -> int:
+    from springdyn.valve.dynamics import natural_frequencies, resonance_speeds
+
+    spring = _spring(args)
+    cam, vt = _load_cam_and_train(args)
+    if not 1 <= args.count <= 20:
+        raise InputError(f"--count = {args.count} must be from 1 to 20")
+    rpms = cam_rpm_from_args(args, ranged=True)
+    with as_options(count="--count"):
+        res = natural_frequencies(spring, cam, vt, count=args.count)
+    table = resonance_speeds(res["full_lift_Hz"] or res["base_circle_Hz"], float(rpms.min()), float(rpms.max()))
+    if args.json:
+        print_json({**res, "resonance_speeds": table})
+        return 0
+    rows = [(str(i + 1), f"{b:.1f}" if i < len(res["base_circle_Hz"]) else "-",
+             f"{f:.1f}" if i < len(res["full_lift_Hz"]) else "-")
+            for i, (b, f) in enumerate(zip(res["base_circle_Hz"] + [0.0] * args.count,
+                                            res["full_lift_Hz"] + [0.0] * args.count))
+            if i < max(len(res["base_circle_Hz"]), len(res["full_lift_Hz"]))]
+    print_table(rows, headers=("mode", "base circle [Hz]", f"full lift ({res['full_lift_cam_angle_deg']:.0f} deg) [Hz]"))
+    for note in res["notes"]:
+        print("note: " + note)
+    print(f"cam-order resonances (cam rpm = 60 f / N, full-lift frequencies) from {rpms.min():g} to {rpms.max():g} "
+          "cam rpm:")
+    print_table([(str(r["mode"]), f"{r['frequency_Hz']:.1f}", str(r["order"]), f"{r['cam_rpm']:.0f}") for r in table],
+                headers=("mode", "f [Hz]", "order N", "cam rpm"))
+    return 0
+
+
 def cmd_frf(args) -> int:
     from springdyn.valve.frf import dynamic_stiffness
 
@@ -246,6 +289,12 @@ def cmd_design(args) -> int:
             rows.append((state, f"{s['length_m'] * 1e3:.3f}", f"{s['force_N']:.1f}", f"{s['shear_stress_Pa'] / 1e6:.0f}",
                          f"{s['surge_frequency_Hz']:.1f}", f"{s['surge_margin']:.2f}" if "surge_margin" in s else "-"))
     print_table(rows, headers=("state", "length [mm]", "force [N]", "stress [MPa]", "surge [Hz]", "surge margin"))
+    if "fatigue" in fig:
+        f = fig["fatigue"]
+        print(f"fatigue (Goodman, installed -> open): safety factor {f['static_fatigue_safety_factor']:.2f}; "
+              f"endurance {f['endurance_shear_strength_Pa'] / 1e6:.0f} MPa, ultimate shear "
+              f"{f['ultimate_shear_strength_Pa'] / 1e6:.0f} MPa"
+              + (f" (defaults for {', '.join(f['strength_defaults'])})" if f["strength_defaults"] else ""))
     return 0
 
 
@@ -312,6 +361,12 @@ def cmd_simulate(args) -> int:
             print(f"no lift-off: minimum cam contact force {s['min_cam_contact_force_N']:.1f} N")
         print(f"seat impact velocity {s['seat_impact_velocity_m_per_s']:.3f} m/s, bounces {s['bounces']}, "
               f"max bounce {s['max_bounce_height_m'] * 1e3:.3f} mm")
+    fs, fd = s["static_fatigue_safety_factor"], s["fatigue_safety_factor"]
+    print("fatigue safety factor (Goodman): static " + (f"{fs:.2f}" if fs is not None else "-") + ", dynamic "
+          + (f"{fd:.2f}" if fd is not None else "-")
+          + f" (element {s['fatigue_critical_element']}, {s['min_shear_stress_Pa'] / 1e6:.0f}-"
+          f"{s['max_shear_stress_Pa'] / 1e6:.0f} MPa)"
+          + (f"; smallest coil gap {s['min_coil_gap_m'] * 1e3:.3f} mm" if s.get("min_coil_gap_m") is not None else ""))
     return 0
 
 
@@ -325,6 +380,10 @@ def cmd_float(args) -> int:
         res = float_speed(spring, cam, vt, rpms, revolutions=args.revolutions,
                           resolution=quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm"),
                           progress_quiet=args.quiet)
+    if args.csv:
+        res.to_csv(args.csv)
+    if args.plot:
+        close_figure(res.plot(args.plot))
     if args.json:
         print_json(res.to_dict())
         return 0
