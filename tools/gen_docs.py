@@ -44,7 +44,7 @@ __all__ = [
 PARAMETER_TABLES = {
     "spring": ("springdyn.valve.spring:ValveSpring", "valve_one_step.toml"),
     "cam": ("springdyn.valve.cam:Cam", "valve_cam_345.toml"),
-    "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train.toml"),
+    "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train_direct_acting.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
     "lsd": ("springdyn.lsd.parameters:LSDParameters", "lsd_type_c.toml"),
 }
@@ -298,7 +298,7 @@ def toml_reference() -> str:
     users = {
         "spring": "`springdyn valve params/curve/modes/design/simulate/float/sweep`, `springdyn report`",
         "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
-        "valve_train": "`springdyn valve simulate/float/sweep --valve-train`, `springdyn report`",
+        "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",
         "lsd": "`springdyn lsd coefficients/rig`, `lsd identify --model`, `springdyn report`",
     }

@@ -10,6 +10,7 @@ from springdyn.app.cli.main import main
 
 EX = Path(__file__).resolve().parents[2] / "examples" / "valve"
 SPRING, CAM, VT = str(EX / "one_step_spring.toml"), str(EX / "cam_345.toml"), str(EX / "valve_train.toml")
+CAMR = str(EX / "cam_polydyne_ramps.toml")  # the valve train's lash is taken up by these ramps
 
 
 def run(capsys, *argv):
@@ -40,14 +41,14 @@ def test_engine_rpm_is_twice_cam_rpm(capsys):
 
 
 def test_valve_train_reports_liftoff(capsys):
-    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "3500", "--valve-train", VT,
+    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAMR, "--cam-rpm", "3500", "--valve-train", VT,
                        "--json")
     s = json.loads(out)
     assert code == 0 and s["liftoff"] and {"start_deg", "end_deg", "duration_s"} <= set(s["liftoff"][0])
-    code, out, _ = run(capsys, "valve", "float", SPRING, "--cam", CAM, "--valve-train", VT, "--cam-rpm", "2000:4000:500",
+    code, out, _ = run(capsys, "valve", "float", SPRING, "--cam", CAMR, "--valve-train", VT, "--cam-rpm", "2000:4000:500",
                        "--resolution", "5", "--json")
     res = json.loads(out)
-    assert code == 0 and 2500 < res["float_cam_rpm"] < 3000
+    assert code == 0 and 3000 < res["float_cam_rpm"] < 3300
 
 
 @pytest.mark.parametrize(

@@ -184,7 +184,7 @@ def test_profiles_from_toml_arrays_and_csv(tmp_path):
     base = ValveSpring.example("one-step").with_model("distributed")
     g = base.spring_model.geometry
     pairs = [[float(s), f"{float(p) * 1e3!r} mm"] for s, p in zip(g.pitch_s, g.pitch_v)]
-    d = {k: v for k, v in base.__dict__.items() if not k.startswith("_") and k != "spring_model"}
+    d = {k: v for k, v in base.__dict__.items() if not k.startswith("_") and k != "spring_model" and v is not None}
     a = ValveSpring.from_dict({**d, "pitch_profile": pairs, "diameter_profile": [[0, "22 mm"], [7.5, "22 mm"]]})
     csv = tmp_path / "pitch.csv"
     csv.write_text("turns,pitch_mm\n" + "\n".join(f"{float(s)!r},{float(p) * 1e3!r}" for s, p in zip(g.pitch_s, g.pitch_v)))

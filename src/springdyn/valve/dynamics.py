@@ -689,7 +689,7 @@ def resonance_speeds(frequencies, cam_rpm_min: float, cam_rpm_max: float, max_or
     Examples
     --------
     >>> [r["cam_rpm"] for r in resonance_speeds([450.0], 2000, 3000)]
-    [2076.923076923077, 2250.0, 2454.5454545454545, 2700.0]
+    [2076.923076923077, 2250.0, 2454.5454545454545, 2700.0, 3000.0]
     """
     rows = []
     for m, f in enumerate(frequencies, start=1):
