@@ -498,6 +498,11 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                         sval[isamp, sg] = _signal(sg, ebuf, ne, nm, vt)
                     for c in range(nch):
                         vcur[c] = _channel(c, ebuf, ne, nm, vt, gaps)
+                    if ext[12] > 0.0:
+                        # after the valve's first landing in the window, separations are seat
+                        # bounces, not float: no lift-off and no cam-contact minimum there
+                        sval[isamp, 4] = -np.inf
+                        vcur[2] = 1.0
                     z_cur = ebuf[2 * ne + 4]
                     if not started:
                         started = True

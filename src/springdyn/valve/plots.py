@@ -117,7 +117,7 @@ def plot_simulation(sim, path=None, ax=None):
     if only_forces:
         fig, axes = ax.figure, [ax]
     else:
-        fig, axes = new_figure(4 if vt else 3, 1, figsize=(9, 12 if vt else 10))
+        fig, axes = new_figure(5 if vt else 3, 1, figsize=(9, 15 if vt else 10))
     deg = sim.cam_angle_deg
     order = np.argsort(deg)
     ax = axes[0]
@@ -157,6 +157,9 @@ def plot_simulation(sim, path=None, ax=None):
             ax.axvspan(ev["start_deg"], ev["end_deg"], color="C3", alpha=0.2)
         if sim.summary["liftoff"]:
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="lift-off")
+        sm = sim.summary
+        ax.set_title(f"seat impact velocity {sm['seat_impact_velocity_m_per_s']:.3f} m/s, "
+                     f"{sm['seat_landings']} landing(s), {sm['bounces']} bounce(s)", fontsize=9)
         ax.set_ylabel("force [N]")
         ax.legend(fontsize=8)
         row = 3
@@ -164,6 +167,18 @@ def plot_simulation(sim, path=None, ax=None):
         a.set_xlabel("cam angle [deg]")
         a.set_xlim(0, 360)
         a.grid(True, alpha=0.3)
+    if vt:  # valve lift against lobe lift: the train's ratio, lash and elastic deflection
+        ax = axes[3]
+        t = sim.valve_train
+        ax.plot(sim.lift[order] * 1e3, sim.valve_lift[order] * 1e3, color="C0", lw=1, label="valve lift (dynamic)")
+        lobe = np.linspace(0.0, float(sim.lift.max()), 50)
+        ax.plot(lobe * 1e3, np.maximum(t.ratio * lobe - t.lash, 0.0) * 1e3, "k--", lw=1,
+                label=f"rigid train: {t.ratio:g} x lobe lift - lash")
+        ax.set_xlabel("lobe lift at the follower [mm]")
+        ax.set_ylabel("valve lift [mm]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        row = 4
     ax = axes[row]
     orders, amp = sim.spectrum(40)
     ax.bar(orders[1:], amp[1:], color="C0", width=0.7)

@@ -409,7 +409,14 @@ def _summarise(sim: Simulation) -> dict:
     s["spectrum"] = [dict(order=int(k), frequency_Hz=float(k * f_cam), amplitude_N=float(amp[k])) for k in sorted(top)]
     if sim.valve_train is not None:
         vt = sim.valve_train
-        in_event = (sim.lift > vt.lobe_lash + 1e-6) & (sim.valve_lift > 0.0)  # valve open: float
+        # float: the valve open (off its seat, the lobe past the lash) and before its first
+        # landing in the revolution (later separations are seat bounces)
+        z = sim.valve_lift
+        first_landing = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
+        before = np.ones(z.size, dtype=bool)
+        if first_landing.size:
+            before[first_landing[0] + 1:] = False
+        in_event = (sim.lift > vt.lobe_lash + 1e-6) & (z > 0.0) & before
         lo = []
         if mon is not None:
             for a, b, c in located.get((2, 0), []):

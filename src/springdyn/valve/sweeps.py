@@ -251,7 +251,11 @@ class SpeedSweep(Result):
             cols["periodicity_error"] = flat(d["periodicity"])
         if self.valve_train is not None:
             # the valve open (off its seat, the lobe past the lash): float, not ramp impacts
-            in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (flat(d["valve_lift"]) > 0.0)
+            # and before the valve's first landing in the revolution (then: seat bounces)
+            z = flat(d["valve_lift"])
+            landed = np.cumsum(np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)],
+                                              axis=1), axis=1) > 0
+            in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0) & ~landed
             cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
             cols["liftoff"] = (cc <= 0).any(axis=1) | (ext[:, col["min_cam_contact_force"]] <= 0.0)
             dense = ext[:, col["min_cam_contact_force"]]
@@ -375,11 +379,31 @@ class SpeedSweep(Result):
         out_dir.mkdir(parents=True, exist_ok=True)
         return plot_sweep(self, out_dir, prefix)
 
+    def resonance_table(self) -> list[dict]:
+        """Cam speeds in the swept range where a cam order meets a natural frequency.
+
+        ``cam rpm = 60 f / N`` (N up to 20) for the modes of the spring (and valve train)
+        linearised at full lift (:func:`springdyn.valve.dynamics.natural_frequencies`; the
+        base-circle modes where full lift has none).  Rows: ``mode``, ``frequency_Hz``,
+        ``order``, ``cam_rpm``.
+        """
+        from .dynamics import natural_frequencies, resonance_speeds
+
+        nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)
+        return resonance_speeds(nat["full_lift_Hz"] or nat["base_circle_Hz"], float(np.min(self.cam_rpm)),
+                                float(np.max(self.cam_rpm)))
+
     def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
-        """NetCDF, summary CSV and plots into ``out_dir``."""
+        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``."""
+        from ..core.io import write_csv
+
         out_dir = Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
         written = [self.to_netcdf(out_dir / f"{prefix}.nc"), self.to_csv(out_dir / f"{prefix}_summary.csv")]
+        rows = self.resonance_table()
+        written.append(write_csv(out_dir / f"{prefix}_resonances.csv", {
+            "mode": [r["mode"] for r in rows], "frequency_Hz": [r["frequency_Hz"] for r in rows],
+            "cam_order": [r["order"] for r in rows], "cam_rpm": [r["cam_rpm"] for r in rows]}))
         return written + self.plot_all(out_dir, prefix)
 
 

@@ -447,5 +447,10 @@ def cmd_sweep(args) -> int:
                                             "'springdyn valve float')" if np.isfinite(f) else "above the swept range"))
     for value, reason in res.skipped:
         print(f"skipped {describe_design_value(res.vary_name, value)}: {reason}")
+    first = [r for r in res.resonance_table() if r["mode"] == 1]
+    if first:
+        print(f"cam-order resonances of the first mode ({first[0]['frequency_Hz']:.0f} Hz at full lift): "
+              + ", ".join(f"N={r['order']} at {r['cam_rpm']:.0f}" for r in first) + " cam rpm (all modes: "
+              "sweep_resonances.csv)")
     print(f"wrote {len(written)} files to {Path(args.out).resolve()}")
     return 0
