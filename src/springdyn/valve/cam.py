@@ -30,6 +30,8 @@ controlled constant velocity).
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -211,6 +213,22 @@ class Cam(Parameters):
     def from_table(cls, angle, lift, name: str = "table") -> "Cam":
         """A cam from arrays: cam angle [rad] over one revolution and lift [m]."""
         return cls(law="table", file=name, table_angle=np.asarray(angle), table_lift=np.asarray(lift))
+
+    def scaled(self, factor: float) -> "Cam":
+        """The same cam with every lift multiplied by ``factor`` (e.g. the valve lift of a
+        rigid rocker train: lobe lift x rocker ratio).
+
+        Parameters
+        ----------
+        factor : float
+            Lift factor [-], positive.
+        """
+        if isinstance(factor, bool) or not isinstance(factor, (int, float, np.number)) or not (
+                math.isfinite(factor) and factor > 0):
+            raise InputError(f"factor = {factor!r} must be a positive, finite number")
+        if self.law == "table":
+            return Cam.from_table(self.table_angle, self.table_lift * factor, name=f"{self.file} x {factor:g}")
+        return dataclasses.replace(self, lift=self.lift * factor, ramp_height=self.ramp_height * factor)
 
     # -------------------------------------------------------------- evaluation
     @property

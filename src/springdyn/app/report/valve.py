@@ -13,7 +13,7 @@ from springdyn.core.plotting import plt
 from springdyn.app.report.html import Criterion, Section, parameter_rows
 from springdyn.valve.cam import Cam
 from springdyn.valve.model import PARAMETER_UNITS
-from springdyn.valve.dynamics import float_speed, simulate
+from springdyn.valve.dynamics import float_speed, natural_frequencies, simulate
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.sweeps import sweep
 from springdyn.valve.valvetrain import ValveTrain
@@ -48,9 +48,14 @@ def load(doc: dict, path: Path) -> ValveDefinition:
 
 def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
     """Run the valve analyses of one definition into ``out_dir`` and describe them."""
-    sp, cam, vt = d.spring, d.cam, d.valve_train
+    sp, lobe, vt = d.spring, d.cam, d.valve_train
     p = sp.internal_parameters()
     files, figures, findings = [], [], []
+    # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio
+    cam = lobe if vt is None or vt.ratio == 1.0 else lobe.scaled(vt.ratio)
+    if cam is not lobe:
+        findings.append(f"The spring-alone analyses drive the spring with the valve lift of the rigid train: the "
+                        f"lobe lift ({lobe.max_lift * 1e3:.3g} mm) times the rocker ratio {vt.ratio:g}.")
     files.append(write_json(out_dir / "params.json", p))
     curve = sp.static_curve()
     files.append(curve.to_csv(out_dir / "static_curve.csv"))
@@ -134,7 +139,15 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         f"springdyn valve sweep {source} --cam {source} --cam-rpm 500:4000:50 --out sweep",
     ]
     if vt is not None:
-        res = float_speed(sp, cam, vt, np.arange(1000.0, 6001.0, 250.0))
+        nat = natural_frequencies(sp, lobe, vt, count=6)
+        files.append(write_json(out_dir / "train_modes.json", nat))
+        findings.append(
+            f"Valve train ({vt.layout}{', hydraulic lash adjuster' if vt.hydraulic else ''}): "
+            f"{vt.moving_mass * 1e3:.1f} g referred to the valve, {vt.stiffness_at_valve / 1e6:.1f} N/um from cam to "
+            f"valve; natural frequencies of spring and train on the base circle "
+            + ", ".join(f"{f:.0f}" for f in nat["base_circle_Hz"]) + " Hz, at full lift "
+            + (", ".join(f"{f:.0f}" for f in nat["full_lift_Hz"]) or "n/a") + " Hz.")
+        res = float_speed(sp, lobe, vt, np.arange(1000.0, 6001.0, 250.0))
         files.append(write_json(out_dir / "float_speed.json", res.to_dict()))
         f = res["float_cam_rpm"]
         if f is None:
@@ -143,7 +156,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                                       "no lift-off in the scanned range"))
             findings.append(f"The follower stays on the cam up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float).")
         else:
-            above = simulate(sp, cam, 1.05 * f, 3, valve_train=vt)
+            above = simulate(sp, lobe, 1.05 * f, 3, valve_train=vt)
             s = above.summary
             plt.close(above.plot(out_dir / "valve_train_above_float.png"))
             files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
