@@ -220,6 +220,15 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
     return dict(cam_contact_force=cam, valve_seat_force=seat, valve_lift=z)
 
 
+def _fastest_mode(spring: ValveSpring) -> float:
+    """Highest natural frequency of the chain at installed length [Hz] (cached: a spring is immutable)."""
+    cached = spring.__dict__.get("_fastest_mode")
+    if cached is None:
+        cached = float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1])
+        spring.__dict__["_fastest_mode"] = cached
+    return cached
+
+
 def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
     """Check the run settings of :func:`simulate` and the sweeps (raise :class:`InputError`).
 
@@ -302,7 +311,7 @@ def simulate(
     # 70 right-hand-side calls per period: 2e4 periods take seconds to a minute); the
     # compiled engine stops at 1e7 steps (3 to 5 steps per period)
     max_cycles = 2.0e4 if backend == "scipy" else 2.0e6
-    f_top = float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1])
+    f_top = _fastest_mode(spring)
     if valve_train is not None:
         f_top = max(f_top, valve_train.highest_frequency())
     cycles = revolutions * 60.0 / cam_rpm * f_top

@@ -435,6 +435,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     ybuf = np.empty(n)
     dbuf = np.empty(n)
     ebuf = np.empty(2 * ne + 6 + nm)
+    eend = np.empty(2 * ne + 6 + nm)
     vprev = np.empty(nch)
     vcur = np.empty(nch)
     open_row = np.full(nch, -1)
@@ -466,10 +467,16 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             return 1, t, nsteps, nrejected
         if h <= 1e-15 * max(abs(t), 1e-6) + 1e-18:
             return 2, t, nsteps, nrejected
-        for stage in range(1, 7):
+        in_window = monitor and t + h > t_w0 and t < t_w1
+        for stage in range(1, 6):
             _ig.stage_state(y, h, k, stage, ytmp)
             rhs_compiled(t + _ig.C[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
                          omega, vt, k[stage], None)
+        _ig.stage_state(y, h, k, 6, ytmp)
+        if in_window:  # the last stage is the step's end (FSAL): its outputs are the end sample
+            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[6], eend)
+        else:
+            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[6], None)
         err = _ig.error_norm(y, ytmp, k, h, rtol, atol)
         if not (err == err) or err > 1e300:
             if h < 1e-13:
@@ -492,8 +499,11 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                 for isamp in range(3):
                     if isamp == 0 and started:
                         continue  # the step start is the previous step's end, already seen
-                    _eval_at(rc, ths[isamp], t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-                             ybuf, dbuf, ebuf)
+                    if isamp == 2 and th_b == 1.0:
+                        ebuf[:] = eend  # the end of the step: already evaluated as its last stage
+                    else:
+                        _eval_at(rc, ths[isamp], t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega,
+                                 vt, ybuf, dbuf, ebuf)
                     for sg in range(_N_SIG):
                         sval[isamp, sg] = _signal(sg, ebuf, ne, nm, vt)
                     for c in range(nch):
