@@ -47,7 +47,7 @@ def test_dynamic(capsys, tmp_path):
     cols = read_csv_columns(tmp_path / "d.csv")
     assert list(cols)[:4] == ["time_s", "deflection_m", "force_N", "force_static_N"]
     assert cols["time_s"].size == 801
-    assert cols["deflection_m"].max() == pytest.approx(0.072)
+    assert cols["deflection_m"].max() == pytest.approx(0.0045 + 0.072)  # default preload 2.5 % of r2 + r3
 
 
 def test_dynamic_from_csv_motion(capsys, tmp_path):
@@ -136,3 +136,18 @@ def test_cli_default_amplitude_is_the_library_default():
     from springdyn.cfcs.model import DEFAULT_AMPLITUDE
 
     assert cli.DEFAULT_AMPLITUDE == DEFAULT_AMPLITUDE
+
+
+def test_cli_default_offset_is_the_library_default():
+    from springdyn.app.cli import cfcs as cli
+    from springdyn.cfcs.model import DEFAULT_OFFSET
+
+    assert cli.DEFAULT_OFFSET == DEFAULT_OFFSET
+
+
+def test_toggle_flag_in_the_table(capsys):
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "14.7", "--offset", "0")
+    assert code == 0, err
+    assert "toggle-dominated" in out and "YES" in out
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "14.7")
+    assert code == 0 and "toggle-dominated  no" in " ".join(out.split("  ")) or "no" in out

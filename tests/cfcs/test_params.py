@@ -75,7 +75,7 @@ def test_unknown_example():
     (dict(omega=5.0, amplitude=0.9), "beyond the kinematic limit"),
     (dict(omega=5.0, amplitude="150 mm"), "beyond the kinematic limit"),
     (dict(omega=5.0, offset=-0.002), "crosses the toggle"),
-    (dict(omega=5.0, amplitude=1.5), "1500 mm, beyond the kinematic limit"),  # bare numbers are metres
+    (dict(omega=5.0, amplitude=1.5), "1504.5 mm, beyond the kinematic limit"),  # bare numbers are metres
     (dict(omega=5.0, amplitude="150 %"), "percentage of r2 \\+ r3 must lie in"),
     (dict(), "omega is required"),
 ])
