@@ -48,6 +48,7 @@ def register(subparsers) -> None:
     s.add_argument("--points", type=int, default=721, help="samples of the curve (default 721)")
     s.add_argument("--offset", default=DEFAULT_OFFSET, help="start of the working range over which the dissipative "
                    "branches are rated (default 2.5%% of r2 + r3, a preload), e.g. 5mm or 0")
+    _model_option(s)
     add_output_options(s)
     s.set_defaults(func=_static)
 
@@ -61,6 +62,7 @@ def register(subparsers) -> None:
     d.add_argument("--cycles", type=int, default=2, help="cycles to output (default 2)")
     d.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     d.add_argument("--no-dissipation", action="store_true", help="switch off tau_CF, tau_AF and slider friction")
+    _model_option(d)
     add_output_options(d)
     d.set_defaults(func=_dynamic)
 
@@ -70,6 +72,7 @@ def register(subparsers) -> None:
                     required=True)
     w.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     w.add_argument("--quiet", action="store_true", help="no progress bar")
+    _model_option(w)
     add_output_options(w)
     w.set_defaults(func=_sweep)
 
@@ -84,6 +87,7 @@ def register(subparsers) -> None:
     f.add_argument("--v0", default="0", help="initial slider velocity [m/s] (default 0)")
     f.add_argument("--points", type=int, default=2001, help="output samples (default 2001)")
     f.add_argument("--sign-smoothing", default="0.01", help="velocity scale of the smoothed Coulomb sign [rad/s]")
+    _model_option(f)
     add_output_options(f)
     f.set_defaults(func=_forward)
 
@@ -101,6 +105,12 @@ def register(subparsers) -> None:
     g.add_argument("--toml", metavar="OUT.toml", help="write the design as a [cfcs] table")
     add_output_options(g)
     g.set_defaults(func=_design)
+
+
+def _model_option(p, default=None):
+    p.add_argument("--model", choices=("prbm", "beam"), default=default,
+                   help="flexure model: prbm (pin with K3 = EI/l) or beam (large-deflection elastica of the strip)"
+                        + ("" if default else "; default: flexure_model of the configuration (prbm)"))
 
 
 def _motion_options(p, *, omega_help, required=False, prefix=""):
@@ -124,13 +134,18 @@ def _q(text, unit: str, option: str) -> float:
     return quantity(text, unit, option, bare_unit=unit)
 
 
-def _load(config: str) -> CFCSParams:
+def _load(config: str, model: str | None = None) -> CFCSParams:
     path = Path(config)
     if path.is_file():
-        return CFCSParams.from_toml(path)
-    if config in EXAMPLES:
-        return CFCSParams.example(config)
-    raise InputError(f"{config}: no such file (and not a built-in example: {', '.join(EXAMPLES)})")
+        params = CFCSParams.from_toml(path)
+    elif config in EXAMPLES:
+        params = CFCSParams.example(config)
+    else:
+        raise InputError(f"{config}: no such file (and not a built-in example: {', '.join(EXAMPLES)})")
+    if model is not None and model != params.flexure_model:
+        with as_options(flexure_model="--model"):
+            params = params.replace(flexure_model=model)
+    return params
 
 
 def _fmt(value, unit="", display=None, digits=5):
@@ -156,7 +171,7 @@ def _cutoff_row(summary):
 def _static(args) -> int:
     from springdyn.cfcs.model import CFCS
 
-    model = CFCS(_load(args.config))
+    model = CFCS(_load(args.config, args.model))
     stroke = _q(args.stroke, "m", "--stroke") if args.stroke else None
     with as_options(**_OPTIONS):
         res = model.static(stroke, n=args.points, offset=args.offset)
@@ -165,7 +180,17 @@ def _static(args) -> int:
     if args.json:
         print_json(s)
         return 0
+    beam = s["flexure_model"] == "beam"
+    prbm_rows = [
+        ("PRBM maximum force", _fmt(s["prbm_force_max_N"], "N"),
+         f"at {_fmt(s['prbm_deflection_at_force_max_m'], 'm', 'mm')}"),
+        ("PRBM PCF Fmin/Fmax", _fmt(s["prbm_pcf_percent"], "%", digits=4), ""),
+        ("max |beam - PRBM| force", _fmt(s["max_force_difference_to_prbm_N"], "N"), ""),
+        ("PRBM max pivot stress", _fmt(s["prbm_max_stress_Pa"], "Pa", "GPa", 4), "mean curvature theta_K3/l"),
+    ] if beam else []
     print_table([
+        ("flexure model", s["flexure_model"], ("elastica of the strip, " if beam else "pin with K3 = EI/l, ")
+         + ("plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E")),
         ("stroke", _fmt(s["stroke_m"], "m", "mm"), ""),
         ("force at the toggle", _fmt(s["force_at_zero_N"], "N"), ""),
         ("maximum force", _fmt(s["force_max_N"], "N"), f"at {_fmt(s['deflection_at_force_max_m'], 'm', 'mm')}"),
@@ -174,8 +199,10 @@ def _static(args) -> int:
         ("PCF energy-based", _fmt(s["pcf_energy_percent"], "%", digits=4), ""),
         ("PCF compression branch", _fmt(s["pcf_compression_percent"], "%", digits=4),
          f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}"),
-        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
+        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+         "largest curvature of the strip" if beam else "E (h/2) theta_K3 / l"),
         ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
+        *prbm_rows,
         ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
         ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
         ("working range", f"{_fmt(s['working_start_m'], 'm', 'mm')} .. {_fmt(s['working_end_m'], 'm', 'mm')}",
@@ -195,7 +222,7 @@ def _toggle_row(summary):
 def _dynamic(args) -> int:
     from springdyn.cfcs.model import CFCS
 
-    params = _load(args.config)
+    params = _load(args.config, args.model)
     if args.no_dissipation:
         params = params.without_dissipation()
     model = CFCS(params)
@@ -227,7 +254,7 @@ def _dynamic(args) -> int:
 def _sweep(args) -> int:
     from springdyn.cfcs.model import CFCS
 
-    model = CFCS(_load(args.config))
+    model = CFCS(_load(args.config, args.model))
     omegas = parse_range(args.omega, "rad/s", "--omega", bare_unit="rad/s")
     if np.any(omegas <= 0):
         raise InputError(f"--omega = {args.omega!r}: every omega must be positive")
@@ -253,7 +280,7 @@ def _forward(args) -> int:
     from springdyn.cfcs.model import CFCS
     from springdyn.cfcs.motion import SinusoidMotion, amplitude_to_si
 
-    model = CFCS(_load(args.config))
+    model = CFCS(_load(args.config, args.model))
     t_end = _q(args.t_end, "s", "--t-end")
     kw = dict(x0=_q(args.x0, "m", "--x0"), v0=_q(args.v0, "m/s", "--v0"), n=args.points,
               sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing"))
