@@ -73,13 +73,22 @@ def test_design_infeasible_and_feasible(capsys, tmp_path):
     assert code == 1
     assert "NO FEASIBLE DESIGN: no design meets the stress limit" in out
     code, out, _ = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
-                       "207GPa", "--allowable-stress", "1.5GPa", "--stroke-fraction", "0.2", "--json",
+                       "207GPa", "--allowable-stress", "1.5GPa", "--length", "300mm", "--json",
                        "--toml", str(tmp_path / "d.toml"))
     assert code == 0
     assert json.loads(out)["feasible"] is True
     code, out, err = run(capsys, "cfcs", "static", str(tmp_path / "d.toml"), "--stroke", "40mm", "--json")
     assert code == 0, err
-    assert json.loads(out)["safety_factor"] == pytest.approx(1.0, rel=1e-4)
+    s = json.loads(out)
+    # the TOML keeps the design's bending model; 6 digits are written, hence 1e-4
+    assert s["flexure_model"] == "beam"
+    assert s["safety_factor"] == pytest.approx(1.5, rel=1e-4)
+
+
+def test_design_stroke_fraction_message(capsys):
+    code, out, err = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
+                         "207GPa", "--allowable-stress", "1.5GPa", "--stroke-fraction", "0.95")
+    assert code == 2 and "--stroke-fraction = 0.95 must not exceed 0.9" in err and "Traceback" not in err
 
 
 def test_forward(capsys, tmp_path):

@@ -120,21 +120,21 @@ def bending_stiffness(youngs_modulus, width, thickness, plate_bending=False, poi
     return e * width * thickness**3 / 12.0
 
 
-def strip_buckling_load(ei, length):
-    """Euler load ``pi^2 EI / (0.5 l)^2`` [N] of the strip clamped at both ends (slider clamp and rigid coupler).
+def strip_buckling_load(ei, effective_length):
+    """Euler buckling load ``pi^2 EI / L_e^2`` [N] of the strip.
 
-    The strip is clamped to the slider and built into the coupler, whose far end is pinned at
-    the crank: the conservative end condition of the two is the fixed-free-in-rotation
-    ``K = 1`` column, ``pi^2 EI / l^2``; that value is returned (the smaller, safe one).
+    The design check takes the strip as a cantilever (clamped at the slider, its other end
+    free to sway and turn with the coupler): ``L_e = 2 l``, the lowest of the usual end
+    conditions and so the safe one.
 
     Parameters
     ----------
     ei : float
         Bending stiffness [N*m^2].
-    length : float
-        Strip length l [m].
+    effective_length : float
+        Effective column length L_e [m] (2 l for a cantilever).
     """
-    return math.pi**2 * ei / (length * length)
+    return math.pi**2 * ei / (effective_length * effective_length)
 
 
 def strip_first_frequency(ei, mass_per_length, length):

@@ -92,7 +92,10 @@ def register(subparsers) -> None:
     f.set_defaults(func=_forward)
 
     g = sub.add_parser("design", help="choose r2/r3, K3 and the flexure for a target force and stroke",
-                       description="Exit status 1 when no design meets the stress limit (the reason is printed).")
+                       description="Sizes the strip with the beam (elastica) model by default and checks the "
+                       "stress (safety factor 1.5), the PCF, buckling of the strip and the thickness tolerance.  "
+                       "Exit status 1 when no design holds (the binding check and the smallest changes are "
+                       "printed).")
     g.add_argument("--force", required=True, help="target constant force, e.g. 12.8N")
     g.add_argument("--stroke", required=True, help="working stroke from the toggle, e.g. 40mm")
     g.add_argument("--material-modulus", required=True, help="Young's modulus of the flexure, e.g. 207GPa")
@@ -101,7 +104,17 @@ def register(subparsers) -> None:
     g.add_argument("--length", help="r2 + r3 (overrides --stroke-fraction), e.g. 180mm")
     g.add_argument("--pivot-length-ratio", default="0.1", help="flexure length / r3 (default 0.1)")
     g.add_argument("--max-width", help="largest flexure width (default r3)")
-    g.add_argument("--safety-factor", default="1", help="design stress = allowable / this (default 1)")
+    g.add_argument("--safety-factor", default="1.5", help="design stress = allowable / this (default 1.5)")
+    g.add_argument("--min-pcf", default="90", help="smallest percent constant force over the working range "
+                   "[%%] (default 90)")
+    g.add_argument("--thickness-tolerance", default="5%", help="strip thickness tolerance (default 5%%; the force "
+                   "goes as h^3)")
+    g.add_argument("--preload", default="0", help="start of the working range (default 0, the toggle), e.g. 3mm")
+    g.add_argument("--plate-bending", choices=("auto", "true", "false"), default="auto",
+                   help="strip modulus E/(1 - nu^2) (true) or E (false); auto: plate when the width >= the length "
+                        "(beam model)")
+    g.add_argument("--poisson-ratio", default="0.3", help="Poisson's ratio of the strip (default 0.3)")
+    _model_option(g, default="beam")
     g.add_argument("--toml", metavar="OUT.toml", help="write the design as a [cfcs] table")
     add_output_options(g)
     g.set_defaults(func=_design)
@@ -312,6 +325,22 @@ def _forward(args) -> int:
     return 0
 
 
+#: design() argument -> CLI option, for the suggestions printed by the CLI.
+_DESIGN_OPTIONS = dict(max_width="--max-width", pivot_length_ratio="--pivot-length-ratio",
+                       safety_factor="--safety-factor", min_pcf="--min-pcf")
+
+
+def _cli_names(message: str) -> str:
+    """The library's argument names in a design message, as the CLI options that set them."""
+    import re
+
+    for key, opt in _DESIGN_OPTIONS.items():
+        message = re.sub(rf"\b{key}\b", opt, message)
+    message = message.replace("allowable_stress / --safety-factor", "--allowable-stress / --safety-factor")
+    message = message.replace("r2 + r3 >=", "--length >=")
+    return message
+
+
 def _design(args) -> int:
     from springdyn.cfcs.design import design
 
@@ -325,6 +354,12 @@ def _design(args) -> int:
             pivot_length_ratio=_q(args.pivot_length_ratio, "", "--pivot-length-ratio"),
             max_width=_q(args.max_width, "m", "--max-width") if args.max_width else None,
             safety_factor=_q(args.safety_factor, "", "--safety-factor"),
+            min_pcf=_q(args.min_pcf, "", "--min-pcf"),
+            thickness_tolerance=_q(args.thickness_tolerance, "", "--thickness-tolerance"),
+            preload=_q(args.preload, "m", "--preload"),
+            flexure_model=args.model,
+            plate_bending=None if args.plate_bending == "auto" else args.plate_bending == "true",
+            poisson_ratio=_q(args.poisson_ratio, "", "--poisson-ratio"),
         )
     _write_outputs(args, res)
     if args.toml:
@@ -343,7 +378,17 @@ def _design(args) -> int:
              f"{s['pivot_length_m'] * 1e3:.4g} mm", ""),
             ("force range", f"{s['force_min_N']:.4g} .. {s['force_max_N']:.4g} N", ""),
             ("PCF", _fmt(s["pcf_percent"], "%", digits=4), f"energy-based {s['pcf_energy_percent']:.4g} %"),
-            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), f"safety factor {s['safety_factor']:.3g}"),
+            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+             f"safety factor {s['safety_factor']:.3g} (target {s['safety_factor_target']:.3g}), "
+             + ("largest curvature of the elastica" if s["flexure_model"] == "beam" else "PRBM")),
+            ("flexure model", s["flexure_model"], "plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E"),
+            ("working range", f"{s['working_start_m'] * 1e3:.4g} .. {s['working_end_m'] * 1e3:.4g} mm", ""),
+            (f"force at h +-{100 * s['thickness_tolerance']:.3g} %",
+             f"{s['force_min_at_thickness_tolerance_N']:.4g} .. {s['force_max_at_thickness_tolerance_N']:.4g} N",
+             f"stress at +tolerance {s['max_stress_at_thickness_tolerance_Pa'] / 1e9:.4g} GPa"),
+            ("strip buckling", f"{s['buckling_load_N']:.4g} N", f"{s['buckling_safety_factor']:.3g} x the largest "
+             f"axial load {s['axial_load_max_N']:.4g} N"),
+            ("binding check", s["binding_constraint"] or "none", ""),
         ], headers=("quantity", "value", "note"))
-        print(("FEASIBLE: " if res.feasible else "NO FEASIBLE DESIGN: ") + s["message"])
+        print(("FEASIBLE: " if res.feasible else "NO FEASIBLE DESIGN: ") + _cli_names(s["message"]))
     return 0 if res.feasible else 1
