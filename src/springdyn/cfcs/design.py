@@ -476,7 +476,8 @@ def _suggestions(failing, *, width, wmax, sigma, pivot_length_ratio, need, strok
         q = width / wmax  # b ~ K3 E^2 theta^3 / (sigma^3 l^2)
         out.append(f"max_width >= {width * 1e3:.4g} mm")
         out.append(f"allowable_stress / safety_factor >= {sigma * q ** (1 / 3) / 1e9:.4g} GPa")
-        out.append(f"pivot_length_ratio >= {pivot_length_ratio * q ** 0.5:.3g}")
+        if pivot_length_ratio * q ** 0.5 <= 0.5:  # beyond, the strip is no small-length flexure
+            out.append(f"pivot_length_ratio >= {pivot_length_ratio * q ** 0.5:.3g}")
         if need:
             out.append(f"r2 + r3 >= {need * 1e3:.4g} mm (stroke fraction <= {stroke / need:.3g})")
     if "pcf" in failing:
