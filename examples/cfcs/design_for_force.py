@@ -54,9 +54,9 @@ def main(argv=None) -> int:
     print(f"  design force {s['force_min_N']:.3f} .. {s['force_max_N']:.3f} N, PCF {s['pcf_percent']:.2f} %, "
           f"max pivot stress {s['max_stress_Pa'] / 1e9:.3f} GPa (safety factor {s['safety_factor']:.2f})")
     c = static.summary
-    print(f"  check with the CFCS model ({c['flexure_model']}): force {c['force_min_N']:.3f} .. "
-          f"{c['force_max_N']:.3f} N, PCF {c['pcf_percent']:.2f} %, peak stress {c['max_stress_Pa'] / 1e9:.3f} GPa "
-          f"(PRBM mean-curvature value {c['prbm_max_stress_Pa'] / 1e9:.3f} GPa)")
+    print(f"  check with the CFCS model: force {c['force_min_N']:.3f} .. {c['force_max_N']:.3f} N, "
+          f"PCF {c['pcf_percent']:.2f} %, peak stress {c['max_stress_Pa'] / 1e9:.3f} GPa ({c['flexure_model']} model; "
+          f"PRBM mean-curvature value {c['prbm_max_stress_Pa'] / 1e9:.3f} GPa)")
     print(("FEASIBLE: " if result.feasible else "NOT FEASIBLE: ") + s["message"])
     result.to_toml(out / "designed_cfcs.toml")
     result.to_csv(out / "design_curve.csv")

@@ -399,7 +399,7 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     hint = (f"; at the flattest ratio a mechanism with r2 + r3 >= {need * 1e3:.4g} mm (stroke fraction <= "
             f"{stroke / need:.3g}) would meet the stress limit" if need else "")
     if feasible:
-        message = (f"design meets every check ({flexure_model} model): peak flexure stress {smax / 1e9:.4g} GPa = "
+        message = (f"design meets the stress limit and every check ({flexure_model} model): peak flexure stress {smax / 1e9:.4g} GPa = "
                    f"allowable / {allowable_stress / smax:.3g}, width {width * 1e3:.4g} mm <= {wmax * 1e3:.4g} mm, "
                    f"PCF {pcf_here:.1f} % >= {min_pcf:g} %")
         if pcf_here < pcf_best - 0.5:
