@@ -113,3 +113,13 @@ def test_beam_forward_conserves_energy(table1):
     r = m.forward(0.3, force=13.0, x0=0.02, v0=0.2, n=301)
     h = r.energy - 13.0 * r.deflection
     assert np.ptp(h) < 1e-6 * np.max(np.abs(r.energy))
+
+
+def test_beam_results_offer_the_result_interface(table1, tmp_path):
+    from ..result_checks import check_result_interface
+
+    m = CFCS(table1.replace(flexure_model="beam"))
+    st = m.static(0.05, n=101)
+    check_result_interface(st, tmp_path)
+    assert {"force_prbm_N", "stress_prbm_Pa", "end_rotation_rad"} <= set(st.to_xarray().data_vars)
+    check_result_interface(m.dynamic(10.0, cycles=1, samples_per_cycle=100), tmp_path)

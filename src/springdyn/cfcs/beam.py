@@ -225,7 +225,7 @@ def beam_force_at_toggle(r2, r3, length, ei, *, steps=SHOOTING_STEPS):
     ei : float
         Bending stiffness of the strip [N*m^2].
     steps : int
-        RK4 steps along the strip.
+        RK4 steps along the strip [-].
     """
     rigid, x_clamp = _geometry(r2, r3, length)
 
@@ -279,7 +279,7 @@ def beam_force_curve(deflection, r2, r3, length, ei, *, steps=SHOOTING_STEPS):
     ei : float
         Bending stiffness of the strip [N*m^2].
     steps : int
-        RK4 steps along the strip.
+        RK4 steps along the strip [-].
 
     Returns
     -------
@@ -381,7 +381,7 @@ def chain_equilibrium(deflection, r2, r3, length, ei, *, links=200, guess=None):
     ei : float
         Bending stiffness of the strip [N*m^2].
     links : int
-        Number of links N.
+        Number of links N [-].
     guess : dict, optional
         A previous result of this function (continuation); else the PRBM configuration.
 
