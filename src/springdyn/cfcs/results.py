@@ -151,7 +151,9 @@ class DynamicResult(_Table):
         ax.set_title(f"CFCS at omega = {s['omega_rad_s']:.4g} rad/s: mean {s['mean_force_N']:.4g} N, "
                      f"p-p {s['peak_to_peak_N']:.3g} N, PCF {s['pcf_percent']:.1f} %\n"
                      f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg "
-                     f"({s['toggle_zone_samples']} samples inside)", fontsize=10)
+                     f"({s['toggle_zone_samples']} samples inside"
+                     + ("; TOGGLE-DOMINATED: the statistics depend on the cut-off)" if s.get("toggle_dominated")
+                        else ")"), fontsize=10)
         ax.grid(True, alpha=0.3)
         ax.legend()
         if ax2 is None:
