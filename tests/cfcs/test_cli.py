@@ -47,7 +47,7 @@ def test_dynamic(capsys, tmp_path):
     cols = read_csv_columns(tmp_path / "d.csv")
     assert list(cols)[:4] == ["time_s", "deflection_m", "force_N", "force_static_N"]
     assert cols["time_s"].size == 801
-    assert cols["deflection_m"].max() == pytest.approx(0.072)
+    assert cols["deflection_m"].max() == pytest.approx(0.0045 + 0.072)  # default preload 2.5 % of r2 + r3
 
 
 def test_dynamic_from_csv_motion(capsys, tmp_path):
@@ -73,13 +73,22 @@ def test_design_infeasible_and_feasible(capsys, tmp_path):
     assert code == 1
     assert "NO FEASIBLE DESIGN: no design meets the stress limit" in out
     code, out, _ = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
-                       "207GPa", "--allowable-stress", "1.5GPa", "--stroke-fraction", "0.2", "--json",
+                       "207GPa", "--allowable-stress", "1.5GPa", "--length", "300mm", "--json",
                        "--toml", str(tmp_path / "d.toml"))
     assert code == 0
     assert json.loads(out)["feasible"] is True
     code, out, err = run(capsys, "cfcs", "static", str(tmp_path / "d.toml"), "--stroke", "40mm", "--json")
     assert code == 0, err
-    assert json.loads(out)["safety_factor"] == pytest.approx(1.0, rel=1e-4)
+    s = json.loads(out)
+    # the TOML keeps the design's bending model; 6 digits are written, hence 1e-4
+    assert s["flexure_model"] == "beam"
+    assert s["safety_factor"] == pytest.approx(1.5, rel=1e-4)
+
+
+def test_design_stroke_fraction_message(capsys):
+    code, out, err = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
+                         "207GPa", "--allowable-stress", "1.5GPa", "--stroke-fraction", "0.95")
+    assert code == 2 and "--stroke-fraction = 0.95 must not exceed 0.9" in err and "Traceback" not in err
 
 
 def test_forward(capsys, tmp_path):
@@ -136,3 +145,21 @@ def test_cli_default_amplitude_is_the_library_default():
     from springdyn.cfcs.model import DEFAULT_AMPLITUDE
 
     assert cli.DEFAULT_AMPLITUDE == DEFAULT_AMPLITUDE
+
+
+def test_cli_default_offset_is_the_library_default():
+    from springdyn.app.cli import cfcs as cli
+    from springdyn.cfcs.model import DEFAULT_OFFSET
+
+    assert cli.DEFAULT_OFFSET == DEFAULT_OFFSET
+
+
+def test_toggle_flag_in_the_table(capsys):
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "14.7", "--offset", "0")
+    assert code == 0, err
+    row = next(line for line in out.splitlines() if line.startswith("toggle-dominated"))
+    assert row.split()[1] == "YES" and "peak_to_peak_N" in row
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "14.7")
+    assert code == 0, err
+    row = next(line for line in out.splitlines() if line.startswith("toggle-dominated"))
+    assert row.split()[1] == "no"

@@ -180,12 +180,13 @@ def test_forward_friction_dissipates(table1):
 
 
 def test_dynamic_force_components_add_up(model):
-    r = model.dynamic(14.7)
+    r = model.dynamic(14.7, offset=0.0)
     total = r.force_static + sum(r.components.values())
     np.testing.assert_allclose(r.force, total, rtol=1e-13)
     assert np.all(np.isfinite(r.force))
     assert r.summary["toggle_cutoff_rad"] == model.params.toggle_cutoff
-    assert r.summary["toggle_zone_samples"] > 0  # the default input starts at the toggle
+    assert r.summary["toggle_zone_samples"] > 0  # this input starts at the toggle
+    assert model.dynamic(14.7).summary["toggle_zone_samples"] == 0  # the default starts from a preload
 
 
 def test_dynamic_periodic(model):
@@ -208,7 +209,7 @@ def test_inertia_is_continuous_through_the_toggle(table1):
     # neighbouring samples; the force is even about the touch point, so the step to the next sample
     # is ~F'' dt^2 / 2 < 1e-3 N with 4000 samples per cycle
     ideal = CFCS(table1.without_dissipation())
-    r = ideal.dynamic(14.7, cycles=1, samples_per_cycle=4000)
+    r = ideal.dynamic(14.7, offset=0.0, cycles=1, samples_per_cycle=4000)
     n_lim = r.summary["toggle_limit_samples"]
     assert n_lim == np.count_nonzero(r.theta2 < dyn.TOGGLE_FLOOR) >= 2  # around t = 0 and t = T
     f = r.force

@@ -171,7 +171,7 @@ TOGGLE_FLOOR = 2e-3
 
 
 def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_friction, friction_model,
-                           shear_angle, axial_force, slider_friction, theta2_cutoff):
+                           shear_angle, axial_force, slider_friction, theta2_cutoff, spring_force=None):
     """Slider force needed to drive the mechanism along x(t) (inverse dynamics) [N].
 
     ``F = (M th2'' + M'/2 th2'^2 + dV/dth2 + tau_CF + tau_AF) / G + F_slider sgn(x')``,
@@ -205,6 +205,10 @@ def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_fricti
         Coulomb friction force of the slider [N].
     theta2_cutoff : float
         Toggle cut-off angle [rad] of the dissipative terms.
+    spring_force : callable, optional
+        ``spring_force(x) -> F`` [N], the quasi-static force of another flexure model (the
+        elastica of :mod:`springdyn.cfcs.beam`) used in place of the PRBM's static force, with
+        the PRBM's inertia (see docs/cfcs.md for where this holds).
 
     Returns
     -------
@@ -216,7 +220,7 @@ def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_fricti
     th, thd, thdd, jac = crank_rates(x, xdot, xddot, r2, r3)
     m = generalized_mass(th, m2, m3, ms, r2, r3)
     dm = generalized_mass_derivative(th, m2, m3, ms, r2, r3)
-    f_static = static_force(th, k3, r2, r3)
+    f_static = static_force(th, k3, r2, r3) if spring_force is None else np.asarray(spring_force(x), dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
         f_inertia = (m * thdd + 0.5 * dm * thd * thd) / jac
     at_toggle = th < TOGGLE_FLOOR
@@ -339,10 +343,13 @@ def forward_rhs(t, state, force_fn, p, sign_smoothing):
     m = generalized_mass(th, p["m2"], p["m3"], p["ms"], r2, r3)
     dm = generalized_mass_derivative(th, p["m2"], p["m3"], p["ms"], r2, r3)
     smooth = np.tanh(thd / sign_smoothing)
-    tau_d = dissipative_torque(th, static_force(th, p["k3"], r2, r3), p["pin_friction"], p["friction_model"],
+    spring = p.get("spring_force")
+    f_spring = static_force(th, p["k3"], r2, r3) if spring is None else float(spring(x))
+    tau_d = dissipative_torque(th, f_spring, p["pin_friction"], p["friction_model"],
                                p["shear_angle"], p["axial_force"], r2, r3)
     slider = p["slider_friction"] * np.tanh(xdot / (sign_smoothing * max(r2, 1e-300))) * g
-    rhs = f * g - 0.5 * dm * thd * thd - spring_torque(th, p["k3"], r2, r3) - tau_d * smooth - slider
+    torque = spring_torque(th, p["k3"], r2, r3) if spring is None else f_spring * g
+    rhs = f * g - 0.5 * dm * thd * thd - torque - tau_d * smooth - slider
     return np.array([thd, rhs / m])
 
 

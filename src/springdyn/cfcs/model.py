@@ -15,14 +15,16 @@ from scipy.optimize import minimize_scalar
 from ..core.errors import InputError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
+from .beam import beam_force_at_toggle, beam_force_curve, strip_buckling_load, strip_first_frequency
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
-from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke
+from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke, offset_to_si
 from .params import CFCSParams
 from .pivot import bending_stress, max_stroke_for_stress, safety_factor
 from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult
 from .statics import (
     dissipative_torque,
+    spring_energy,
     frozen_jacobian,
     percent_constant_force,
     percent_constant_force_energy,
@@ -30,11 +32,53 @@ from .statics import (
     static_force_at_toggle,
 )
 
-__all__ = ["CFCS", "DEFAULT_AMPLITUDE"]
+__all__ = ["CFCS", "DEFAULT_AMPLITUDE", "DEFAULT_OFFSET", "TOGGLE_TOLERANCE", "toggle_check"]
 
 #: Default sinusoid amplitude: 40 % of r2 + r3 (the paper's "40 % mechanism deflection",
 #: correction CFCS-4 of docs/references.md).
 DEFAULT_AMPLITUDE = "40 %"
+
+#: Default preload offset of the motion and start of the quasi-static working range: 2.5 % of
+#: r2 + r3 (4.5 mm and a crank angle of 13.5 deg for Table 1).  A constant-force spring is worked
+#: inside its constant-force band, not through the toggle, where the dissipative terms of
+#: Eqs. (21)-(22) turned into a slider force diverge (correction CFCS-5 of docs/references.md).
+DEFAULT_OFFSET = "2.5 %"
+
+#: Relative change of a statistic [-] between the toggle cut-off and twice it above which the
+#: statistic is reported ``toggle_dominated``.
+TOGGLE_TOLERANCE = 0.01
+
+
+def toggle_check(at_cutoff: dict, at_double: dict, keys) -> list:
+    """Names of the statistics that change by more than :data:`TOGGLE_TOLERANCE` (relative)
+    when the toggle cut-off doubles.
+
+    Parameters
+    ----------
+    at_cutoff, at_double : dict
+        Statistics computed with the cut-off and with twice it.
+    keys : iterable of str
+        The statistics to compare.
+    """
+    out = []
+    for k in keys:
+        a, b = at_cutoff[k], at_double[k]
+        if a is None or b is None:
+            continue
+        scale = max(abs(a), abs(b))
+        if abs(a - b) > TOGGLE_TOLERANCE * scale and abs(a - b) > 1e-12:
+            out.append(k)
+    return out
+
+
+def _double_cutoff(cutoff: float) -> float:
+    """Twice the cut-off, kept below the kinematic limit (90 deg)."""
+    return min(2.0 * cutoff, 0.5 * (cutoff + 0.5 * np.pi))
+
+
+#: Statistics of a dynamic result checked against the cut-off.
+_DYNAMIC_STATS = ("mean_force_N", "median_force_N", "peak_to_peak_N", "pcf_percent", "force_max_N", "force_min_N",
+                  "hysteresis_energy_per_cycle_J")
 
 
 class CFCS:
@@ -65,31 +109,107 @@ class CFCS:
     def example(cls, name: str = "table1") -> "CFCS":
         return cls(CFCSParams.example(name))
 
+    def __repr__(self) -> str:
+        p = self.params
+        return (f"CFCS(r2={p.r2 * 1e3:.4g} mm, r3={p.r3 * 1e3:.4g} mm, K3={p.k3:.5g} N*m/rad, "
+                f"flexure_model={p.flexure_model!r}, friction={p.friction_model!r}, "
+                f"axial_force={p.axial_force})")
+
     # -- helpers ------------------------------------------------------------------------
-    def stress(self, theta2):
-        """Pivot bending stress [Pa] at crank angles ``theta2`` (NaN without flexure dimensions)."""
+    @property
+    def beam(self) -> bool:
+        """True when the flexure is the large-deflection strip (``flexure_model = 'beam'``)."""
+        return self.params.flexure_model == "beam"
+
+    def with_flexure_model(self, model: str) -> "CFCS":
+        """The same mechanism with another flexure model ('prbm' or 'beam')."""
+        return CFCS(self.params.replace(flexure_model=model))
+
+    def beam_curve(self, deflection) -> dict:
+        """The elastica solution at increasing deflections [m] (see :func:`springdyn.cfcs.beam.beam_force_curve`).
+
+        Adds ``stress`` [Pa], the peak bending stress ``E' (h/2) max|curvature|``.
+        """
+        p = self.params
+        c = beam_force_curve(deflection, p.r2, p.r3, p.pivot_length, p.bending_stiffness("beam"))
+        c["stress"] = p.bending_modulus("beam") * 0.5 * p.pivot_thickness * c["max_curvature"]
+        return c
+
+    def _beam_table(self, hi: float):
+        """Cubic splines of the beam's force and stress over ``[0, hi]`` (cached; 401 points)."""
+        from scipy.interpolate import CubicSpline
+
+        cache = getattr(self, "_beam_cache", None)
+        if cache is not None and cache[0] >= hi:
+            return cache[1]
+        x = np.linspace(0.0, hi, 401)
+        c = self.beam_curve(x)
+        table = {"x_max": hi, "force": CubicSpline(x, c["force"]), "stress": CubicSpline(x, c["stress"])}
+        self._beam_cache = (hi, table)
+        return table
+
+    def spring_force(self, x, theta2=None):
+        """Quasi-static slider force [N] of the flexure model at deflections ``x`` [m]."""
+        p = self.params
+        if self.beam:
+            return self._beam_table(max(float(np.max(x)), 1e-9))["force"](np.asarray(x, dtype=float))
+        th = theta2_from_deflection(x, p.r2, p.r3) if theta2 is None else theta2
+        return static_force(th, p.k3, p.r2, p.r3)
+
+    def stress(self, theta2, deflection=None):
+        """Pivot bending stress [Pa] at crank angles ``theta2`` (NaN without flexure dimensions).
+
+        PRBM: ``E (h/2) theta_K3 / l``; beam model: ``E' (h/2) max|curvature|`` at the
+        deflections (from the tabulated elastica).
+        """
         p = self.params
         th_k3 = spring_angle(np.asarray(theta2, dtype=float), p.r2, p.r3)
         if not p.has_flexure:
             return np.full_like(th_k3, np.nan)
-        return bending_stress(th_k3, p.youngs_modulus, p.pivot_thickness, p.pivot_length)
+        if self.beam:
+            x = deflection_from_theta2(theta2, p.r2, p.r3) if deflection is None else np.asarray(deflection)
+            return self._beam_table(max(float(np.max(x)), 1e-9))["stress"](x)
+        return bending_stress(th_k3, p.bending_modulus("prbm"), p.pivot_thickness, p.pivot_length)
 
-    def _stress_summary(self, theta2) -> dict:
+    def _stress_summary(self, theta2, deflection=None, stress=None) -> dict:
         p = self.params
         out = {"max_stress_Pa": None, "safety_factor": None, "max_stroke_for_stress_m": None}
         if p.has_flexure:
-            smax = float(np.max(self.stress(theta2)))
+            smax = float(np.max(self.stress(theta2, deflection) if stress is None else stress))
             out["max_stress_Pa"] = smax
             if p.allowable_stress is not None:
                 out["safety_factor"] = float(safety_factor(p.allowable_stress, smax))
-                out["max_stroke_for_stress_m"] = max_stroke_for_stress(
-                    p.allowable_stress, p.youngs_modulus, p.pivot_thickness, p.pivot_length, p.r2, p.r3)
+                out["max_stroke_for_stress_m"] = self.max_stroke_for_stress()
         return out
+
+    def max_stroke_for_stress(self) -> float | None:
+        """Largest deflection [m] at which the flexure stress stays within the allowable stress."""
+        p = self.params
+        if not (p.has_flexure and p.allowable_stress is not None):
+            return None
+        if not self.beam:
+            return max_stroke_for_stress(p.allowable_stress, p.bending_modulus("prbm"), p.pivot_thickness,
+                                         p.pivot_length, p.r2, p.r3)
+        lim = p.max_deflection
+        x = np.linspace(0.0, lim, 401)
+        s = self._beam_table(lim)["stress"](x)
+        over = np.flatnonzero(s > p.allowable_stress)
+        if over.size == 0:
+            return float(lim)
+        i = int(over[0])
+        from scipy.optimize import brentq
+
+        spl = self._beam_table(lim)["stress"]
+        return float(brentq(lambda xx: spl(xx) - p.allowable_stress, x[i - 1], x[i], xtol=1e-12))
 
     def _common_summary(self) -> dict:
         p = self.params
-        return {"toggle_cutoff_rad": p.toggle_cutoff, "friction_model": p.friction_model,
-                "axial_force": p.axial_force, "k3_N_m_per_rad": p.k3}
+        out = {"toggle_cutoff_rad": p.toggle_cutoff, "friction_model": p.friction_model,
+               "axial_force": p.axial_force, "k3_N_m_per_rad": p.k3, "flexure_model": p.flexure_model,
+               "plate_bending": p.uses_plate_bending(), "poisson_ratio": p.poisson_ratio}
+        if p.has_flexure:
+            out["bending_stiffness_N_m2"] = p.bending_stiffness()
+        return out
 
     def _stroke(self, stroke) -> float:
         p = self.params
@@ -100,47 +220,110 @@ class CFCS:
         return value
 
     # -- statics ------------------------------------------------------------------------
-    def static(self, stroke: float | None = None, n: int = 721) -> StaticResult:
+    def static(self, stroke: float | None = None, n: int = 721, *, offset=DEFAULT_OFFSET) -> StaticResult:
         """Force-deflection by virtual work over ``[0, stroke]`` [m] (default 40 % of r2 + r3).
 
         Also the quasi-static compression and extension branches with tau_CF, tau_AF and
         slider friction as configured, the maximum force (refined by a bounded scalar
         search), PCF (``Fmin/Fmax``) and its energy variant, and the pivot stress.
+
+        The curve starts at the toggle (the reference values of the elastic force are given
+        from there); the statistics of the dissipative branches (``pcf_compression_percent``)
+        are taken over the working range ``[offset, stroke]``, by default from the preload
+        offset :data:`DEFAULT_OFFSET` (a length [m] or a percentage of r2 + r3).  If the working
+        range reaches into the toggle zone they are computed at the cut-off and at twice it,
+        and ``toggle_dominated`` says whether they differ by more than 1 %.
         """
         p = self.params
         stroke = self._stroke(stroke)
-        if n < 3:
-            raise InputError(f"n = {n} must be at least 3")
+        if not (isinstance(n, (int, np.integer)) and n >= 3):
+            raise InputError(f"n = {n} must be a whole number >= 3")
+        start = offset_to_si(offset, p.extended_length)
+        if not 0.0 <= start < stroke:
+            raise InputError(f"offset = {format_quantity(start, 'm', 'mm')} must lie in [0, stroke) = "
+                             f"[0, {format_quantity(stroke, 'm', 'mm')})")
         x = np.linspace(0.0, stroke, n)
+        if start > 0:  # the start of the working range is a sample
+            x = np.unique(np.concatenate([x, [start]]))
         th = theta2_from_deflection(x, p.r2, p.r3)
-        f = static_force(th, p.k3, p.r2, p.r3)
-        tau = dissipative_torque(th, f, p.pin_friction, p.friction_model, p.shear_angle, p.axial_force, p.r2, p.r3)
-        fd = tau / frozen_jacobian(th, p.r2, p.r3, p.toggle_cutoff) + p.slider_friction
-        i = int(np.argmax(f))
-        lo, hi = x[max(i - 1, 0)], x[min(i + 1, n - 1)]
-        fmax, xmax = f[i], x[i]
-        if hi > lo:
-            res = minimize_scalar(lambda xx: -static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3),
-                                  bounds=(lo, hi), method="bounded", options={"xatol": 1e-10})
-            if -res.fun > fmax:
-                fmax, xmax = -res.fun, res.x
+        f_prbm = static_force(th, p.k3, p.r2, p.r3)
+        extra = {}
+        if self.beam:
+            bc = self.beam_curve(x)
+            f, stress = bc["force"], bc["stress"]
+            extra = {"force_prbm_N": f_prbm, "theta2_beam_rad": bc["theta2"], "end_rotation_rad": bc["end_rotation"]}
+            if p.has_flexure:
+                extra["stress_prbm_Pa"] = bending_stress(spring_angle(th, p.r2, p.r3), p.bending_modulus("prbm"),
+                                                         p.pivot_thickness, p.pivot_length)
+        else:
+            f, stress = f_prbm, self.stress(th)
+        work = x >= start
+
+        def branches(cutoff):
+            tau = dissipative_torque(th, f, p.pin_friction, p.friction_model, p.shear_angle, p.axial_force,
+                                     p.r2, p.r3)
+            return tau / frozen_jacobian(th, p.r2, p.r3, cutoff) + p.slider_friction
+
+        fd = branches(p.toggle_cutoff)
+        fmax, xmax = _refined_max(x, f, None if self.beam else
+                                  (lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3)))
+        stats = {"pcf_compression_percent": percent_constant_force((f + fd)[work])}
+        in_zone = bool(np.any(th[work] < p.toggle_cutoff))
+        dominated, check = [], {}
+        if in_zone:
+            fd2 = branches(_double_cutoff(p.toggle_cutoff))
+            check = {"pcf_compression_percent": percent_constant_force((f + fd2)[work])}
+            dominated = toggle_check(stats, check, stats)
+        f_zero = (beam_force_at_toggle(p.r2, p.r3, p.pivot_length, p.bending_stiffness("beam")) if self.beam
+                  else static_force_at_toggle(p.k3, p.r2, p.r3))
         summary = {
-            "force_at_zero_N": float(static_force_at_toggle(p.k3, p.r2, p.r3)),
+            "force_at_zero_N": float(f_zero),
             "force_max_N": float(fmax),
             "deflection_at_force_max_m": float(xmax),
             "force_min_N": float(np.min(f)),
             "pcf_percent": 100.0 * float(np.min(f)) / float(fmax),
             "pcf_energy_percent": percent_constant_force_energy(x, f),
-            "pcf_compression_percent": percent_constant_force(f + fd),
+            **stats,
+            "pcf_working_percent": percent_constant_force(f[work]),
+            "working_start_m": float(start),
+            "working_end_m": float(stroke),
             "stroke_m": stroke,
             "kinematic_limit_m": p.max_deflection,
-            **self._stress_summary(th),
+            **self._stress_summary(th, x, stress),
             **self._common_summary(),
+            **self._toggle_summary(in_zone, dominated, check),
         }
-        return StaticResult(x, th, f, f + fd, f - fd, self.stress(th), summary)
+        if self.beam:
+            pm, pxm = _refined_max(x, f_prbm, lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3,
+                                                                        p.r2, p.r3))
+            summary.update({
+                "prbm_force_max_N": float(pm), "prbm_deflection_at_force_max_m": float(pxm),
+                "prbm_pcf_percent": 100.0 * float(np.min(f_prbm)) / float(pm),
+                "max_force_difference_to_prbm_N": float(np.max(np.abs(f - f_prbm))),
+                "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
+            })
+        return StaticResult(x, th, f, f + fd, f - fd, stress, summary, extra)
+
+    def _toggle_summary(self, in_zone: bool, dominated: list, check: dict) -> dict:
+        """The toggle flag of a result: which statistics a factor 2 in the cut-off moves by > 1 %."""
+        out = {"toggle_dominated": bool(dominated), "toggle_dominated_statistics": list(dominated)}
+        if in_zone:
+            out["toggle_cutoff_doubled_rad"] = _double_cutoff(self.params.toggle_cutoff)
+            out["statistics_at_doubled_cutoff"] = dict(check)
+        notes = []
+        if dominated:
+            notes.append(f"toggle-dominated: {', '.join(dominated)} change by more than "
+                         f"{100 * TOGGLE_TOLERANCE:g} % when the toggle cut-off doubles; they depend on a numerical "
+                         "setting, not on the mechanism (start the motion from a preload offset inside the "
+                         "constant-force band)")
+        elif in_zone:
+            notes.append("the motion enters the toggle zone, but no statistic changes by more than "
+                         f"{100 * TOGGLE_TOLERANCE:g} % when the cut-off doubles")
+        out["notes"] = notes
+        return out
 
     # -- inverse dynamics ---------------------------------------------------------------
-    def motion(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=0.0, csv=None):
+    def motion(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=DEFAULT_OFFSET, csv=None):
         """Build the prescribed motion: the default sinusoid or a periodic CSV (see :mod:`.motion`)."""
         p = self.params
         if csv is not None:
@@ -151,13 +334,13 @@ class CFCS:
             omega = to_si(omega, "rad/s", "omega", bare_unit="rad/s")
             if not omega > 0:
                 raise InputError(f"omega = {omega:g} rad/s must be positive")
-            off = to_si(offset, "m", "offset", bare_unit="m")
+            off = offset_to_si(offset, p.extended_length)
             mot = SinusoidMotion(omega, amplitude_to_si(amplitude, p.extended_length), off)
         lo, hi = mot.bounds
         check_stroke(lo, hi, p.max_deflection, f"the motion {mot.describe()}")
         return mot
 
-    def dynamic(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=0.0, *, cycles: int = 2,
+    def dynamic(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=DEFAULT_OFFSET, *, cycles: int = 2,
                 samples_per_cycle: int = 400, motion=None) -> DynamicResult:
         """Slider force along a prescribed periodic motion (inverse dynamics, Eqs. (19)-(25)).
 
@@ -168,8 +351,11 @@ class CFCS:
         amplitude : float or str
             Stroke of the sinusoid: a length [m] (a bare number is metres) or a percentage of
             r2 + r3 such as "40 %" (the default).
-        offset : float
-            Deflection at t = 0 [m] (default 0, the toggle).
+        offset : float or str
+            Deflection at t = 0 [m], or a percentage of r2 + r3 (default :data:`DEFAULT_OFFSET`,
+            a preload inside the constant-force band).  A motion that enters the toggle zone
+            (crank angle below ``toggle_cutoff``) has its statistics computed at the cut-off and
+            at twice it; ``toggle_dominated`` flags those that change by more than 1 %.
         cycles, samples_per_cycle : int
             Time grid; statistics use whole cycles.
         motion : SinusoidMotion or TabulatedMotion, optional
@@ -192,29 +378,32 @@ class CFCS:
             x, xd, xdd = mot(tt)
             return np.clip(x, *lo_hi), xd, xdd
 
-        c = inverse_dynamics(clipped, t, mot.period, theta2_cutoff=p.toggle_cutoff, **p.values())
+        vals = self._values(hi=mot.bounds[1])
+        c = inverse_dynamics(clipped, t, mot.period, theta2_cutoff=p.toggle_cutoff, **vals)
         x, xd = c["deflection"], c["velocity"]
         f = c["force"]
-        whole = f[:-1]
+        stats = _dynamic_stats(t, f, xd, samples_per_cycle)
+        in_zone = bool(np.any(c["in_toggle_zone"]))
+        dominated, check = [], {}
+        if in_zone:
+            c2 = inverse_dynamics(clipped, t, mot.period, theta2_cutoff=_double_cutoff(p.toggle_cutoff), **vals)
+            check = _dynamic_stats(t, c2["force"], xd, samples_per_cycle)
+            dominated = toggle_check(stats, check, _DYNAMIC_STATS)
         summary = {
             "omega_rad_s": float(mot.omega),
             "motion": mot.describe(),
-            "mean_force_N": float(np.mean(whole)),
-            "median_force_N": float(np.median(whole)),
-            "peak_to_peak_N": float(np.ptp(whole)),
-            "pcf_percent": percent_constant_force(whole),
-            "force_max_N": float(np.max(whole)),
-            "force_min_N": float(np.min(whole)),
-            "hysteresis_energy_per_cycle_J": float(_cycle_work(t, f, xd, samples_per_cycle)),
+            **stats,
             "toggle_zone_samples": int(np.count_nonzero(c["in_toggle_zone"])),
             "toggle_limit_samples": int(np.count_nonzero(c["at_toggle"])),
-            **self._stress_summary(c["theta2"]),
+            **self._stress_summary(c["theta2"], x),
             **self._common_summary(),
+            **self._beam_dynamics_summary(mot.omega),
+            **self._toggle_summary(in_zone, dominated, check),
         }
         comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
         return DynamicResult(t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], summary)
 
-    def sweep(self, omegas, amplitude=DEFAULT_AMPLITUDE, offset=0.0, *, samples_per_cycle: int = 400,
+    def sweep(self, omegas, amplitude=DEFAULT_AMPLITUDE, offset=DEFAULT_OFFSET, *, samples_per_cycle: int = 400,
               quiet: bool = True) -> FrequencySweep:
         """Mean, median, peak-to-peak force and PCF vs omega (Figs. 5-7 of the CFCS paper).
 
@@ -236,15 +425,26 @@ class CFCS:
         keys = {"mean_force": "mean_force_N", "median_force": "median_force_N", "peak_to_peak": "peak_to_peak_N",
                 "pcf": "pcf_percent"}
         zone = 0
+        flags = np.zeros(omegas.size)
+        dominated = set()
         for i, w in enumerate(progress(omegas, total=omegas.size, desc="cfcs sweep", quiet=quiet)):
             for model, suffix in ((self, ""), (ideal, "_no_dissipation")):
                 r = model.dynamic(w, amplitude, offset, cycles=1, samples_per_cycle=samples_per_cycle)
                 for k, src in keys.items():
                     unit = "percent" if k == "pcf" else "N"
                     stats[f"{k}{suffix}_{unit}"][i] = r.summary[src]
-            zone = max(zone, r.summary["toggle_zone_samples"])
+                if r.summary["toggle_dominated"]:
+                    flags[i] = 1.0
+                    dominated.update(f"{s[:-2]}{suffix}{s[-2:]}" if s.endswith("_N") else
+                                     s.replace("_percent", f"{suffix}_percent") if s.endswith("_percent") else s
+                                     for s in r.summary["toggle_dominated_statistics"])
+                zone = max(zone, r.summary["toggle_zone_samples"])
+        stats["toggle_dominated"] = flags
+        notes = ([f"toggle-dominated at {int(flags.sum())} of {omegas.size} frequencies ({', '.join(sorted(dominated))}"
+                  " change by more than 1 % when the toggle cut-off doubles)"] if flags.any() else [])
         summary = {"motion": r.summary["motion"].replace(f"{omegas[-1]:.6g} t", "w t"),
-                   "toggle_zone_samples_per_cycle": zone, **self._common_summary()}
+                   "toggle_zone_samples_per_cycle": zone, "toggle_dominated": bool(flags.any()),
+                   "toggle_dominated_statistics": sorted(dominated), "notes": notes, **self._common_summary()}
         return FrequencySweep(omegas, stats, summary)
 
     # -- forward dynamics ---------------------------------------------------------------
@@ -297,18 +497,77 @@ class CFCS:
                 return base_stiffness * (xb - x) + base_damping * (vb - xd)
 
         t = np.linspace(0.0, t_end, n)
-        vals = p.values()
+        vals = self._values(hi=p.max_deflection if self.beam else None)
         th, thd = integrate_forward(force_fn, vals, t, th0, thd0, sign_smoothing=sign_smoothing, rtol=rtol)
         x = deflection_from_theta2(th, p.r2, p.r3)
         xd = slider_jacobian(th, p.r2, p.r3) * thd
+        fspring = static_force(th, p.k3, p.r2, p.r3) if not self.beam else self.spring_force(x)
         fapplied = np.array([force_fn(ti, xi, vi) for ti, xi, vi in zip(t, x, xd)], dtype=float)
         summary = {"sign_smoothing_rad_s": sign_smoothing, "x0_m": x0, "v0_m_s": v0,
                    "max_deflection_m": float(np.max(x)), "min_deflection_m": float(np.min(x)),
                    "toggle_crossings": int(np.count_nonzero(np.diff(np.sign(th)) != 0)),
-                   **self._stress_summary(th), **self._common_summary()}
+                   **self._stress_summary(th, x), **self._common_summary()}
         summary["toggle_cutoff_rad"] = None  # the forward problem needs no cut-off
-        return ForwardResult(t, x, xd, th, thd, fapplied, static_force(th, p.k3, p.r2, p.r3), energy(th, thd, vals),
-                             summary)
+        if self.beam:  # T + the strip's strain energy, the integral of its quasi-static force
+            e = (energy(th, thd, vals) - spring_energy(th, p.k3, p.r2, p.r3)
+                 + self._beam_table(p.max_deflection)["force"].antiderivative()(x))
+        else:
+            e = energy(th, thd, vals)
+        return ForwardResult(t, x, xd, th, thd, fapplied, fspring, e, summary)
+
+    def _values(self, hi=None) -> dict:
+        """The SI values of the physics functions; with the beam model, its tabulated force over [0, hi]."""
+        vals = self.params.values()
+        if self.beam:
+            table = self._beam_table(max(float(hi), 1e-9))
+            vals["spring_force"] = table["force"]
+        return vals
+
+    def _beam_dynamics_summary(self, omega: float) -> dict:
+        """Where the beam's quasi-static force with the PRBM's inertia holds (beam model only)."""
+        p = self.params
+        if not self.beam:
+            return {}
+        ei = p.bending_stiffness("beam")
+        # steel-like density assumed for the strip's mass (the [cfcs] table gives no density)
+        mass_per_length = 7850.0 * p.pivot_width * p.pivot_thickness
+        w1 = strip_first_frequency(ei, mass_per_length, p.pivot_length)
+        return {"strip_first_frequency_rad_s": w1, "strip_frequency_ratio": float(omega) / w1,
+                "strip_mass_kg": mass_per_length * p.pivot_length}
+
+
+def _refined_max(x, f, fun=None):
+    """Largest value of a sampled curve and where: a bounded search on ``fun`` if given, else the
+    vertex of the parabola through the largest sample and its neighbours."""
+    i = int(np.argmax(f))
+    fmax, xmax = float(f[i]), float(x[i])
+    if 0 < i < x.size - 1:
+        lo, hi = x[i - 1], x[i + 1]
+        if fun is not None:
+            res = minimize_scalar(lambda xx: -fun(xx), bounds=(lo, hi), method="bounded", options={"xatol": 1e-10})
+            if -res.fun > fmax:
+                fmax, xmax = float(-res.fun), float(res.x)
+        else:
+            coef = np.polyfit(x[i - 1:i + 2] - x[i], f[i - 1:i + 2], 2)
+            if coef[0] < 0:
+                dx = -coef[1] / (2 * coef[0])
+                if abs(dx) <= hi - lo:
+                    fmax, xmax = float(np.polyval(coef, dx)), float(x[i] + dx)
+    return fmax, xmax
+
+
+def _dynamic_stats(t, f, xd, samples_per_cycle) -> dict:
+    """Force statistics of a dynamic record over its whole cycles."""
+    whole = f[:-1]
+    return {
+        "mean_force_N": float(np.mean(whole)),
+        "median_force_N": float(np.median(whole)),
+        "peak_to_peak_N": float(np.ptp(whole)),
+        "pcf_percent": percent_constant_force(whole),
+        "force_max_N": float(np.max(whole)),
+        "force_min_N": float(np.min(whole)),
+        "hysteresis_energy_per_cycle_J": float(_cycle_work(t, f, xd, samples_per_cycle)),
+    }
 
 
 def _cycle_work(t, force, xdot, samples_per_cycle):

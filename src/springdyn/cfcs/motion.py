@@ -3,7 +3,10 @@
 Default: the sinusoid ``x(t) = offset + amplitude (1 - cos(w t)) / 2`` (Fig. 4 of the
 CFCS paper), which starts at rest at ``offset`` and reaches ``offset + amplitude`` at
 half period.  The paper's "amplitude equal to 40 % mechanism deflection" is read as
-``amplitude = 0.4 (r2 + r3)`` (72 mm for Table 1) with ``offset = 0`` (correction CFCS-4 of docs/references.md: both are explicit parameters here).  Any periodic x(t) can be read from a
+``amplitude = 0.4 (r2 + r3)`` (72 mm for Table 1); the motion starts from a preload
+offset inside the constant-force band, by default ``2.5 %`` of ``r2 + r3`` (4.5 mm for
+Table 1, crank angle 13.5 deg), not from the toggle (corrections CFCS-4 and CFCS-5 of
+docs/references.md: both are explicit parameters here).  Any periodic x(t) can be read from a
 CSV with columns ``time_s`` and ``deflection_m`` (one period, first and last
 deflection equal); it is interpolated by a periodic cubic spline.
 """
@@ -20,7 +23,7 @@ from ..core.errors import InputError
 from ..core.io import read_csv_columns
 from ..core.units import format_quantity, to_si
 
-__all__ = ["sinusoid", "SinusoidMotion", "TabulatedMotion", "amplitude_to_si", "check_stroke"]
+__all__ = ["sinusoid", "SinusoidMotion", "TabulatedMotion", "amplitude_to_si", "offset_to_si", "check_stroke"]
 
 
 def sinusoid(t, offset, amplitude, omega):
@@ -88,6 +91,29 @@ def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> 
                       f"'{100 * length:g} %' instead", DeprecationWarning, stacklevel=3)
         return length * extended_length
     return length
+
+
+def offset_to_si(value, extended_length: float, field: str = "offset") -> float:
+    """An offset (preload deflection) [m]: a length (``"5 mm"``, or a bare number in metres) or a
+    percentage of ``r2 + r3`` (``"2.5 %"``).
+
+    Parameters
+    ----------
+    value : str or float
+        The offset: a length such as '5 mm' or a bare number [m], or a percentage of r2 + r3
+        such as '2.5 %' [-].
+    extended_length : float
+        r2 + r3, the slider position at the toggle [m].
+    field : str
+        Name of the argument, for messages.
+    """
+    text = value.strip() if isinstance(value, str) else None
+    if text is not None and (text.endswith("%") or text.endswith("percent")):
+        frac = to_si(text, "", field)
+        if not 0 <= frac < 1:
+            raise InputError(f"{field} = {value!r}: a percentage of r2 + r3 must lie in [0 %, 100 %)")
+        return frac * extended_length
+    return to_si(value, "m", field, bare_unit="m")
 
 
 def _is_number(text: str) -> bool:

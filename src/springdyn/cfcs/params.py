@@ -13,6 +13,7 @@ from ..core.params import Parameters, param
 from ..core.errors import InputError
 from ..core.units import format_quantity
 from .kinematics import kinematic_limit_deflection
+from .beam import FLEXURE_MODELS, bending_stiffness, default_plate_bending, plate_modulus
 from .pivot import flexure_stiffness
 from .statics import FRICTION_MODELS
 
@@ -61,6 +62,14 @@ class CFCSParams(Parameters):
     friction_model: str = param(None, "pin friction model", default="paper", kind="str", choices=FRICTION_MODELS)
     axial_force: bool = param(None, "include tau_AF (Eq. 22)", default=True, kind="bool")
     slider_friction: float = param("N", "Coulomb friction force of the slider", default=0.0, nonnegative=True)
+    flexure_model: str = param(None, "bending model of the flexure: 'prbm' (pin with K3 = EI/l, Eq. (1)) or 'beam' "
+                               "(large-deflection elastica of the strip)", default="prbm", kind="str",
+                               choices=FLEXURE_MODELS)
+    plate_bending: bool | None = param(None, "bend the strip as a plate, E/(1 - nu^2); default: true for the beam "
+                                       "model when pivot_width >= pivot_length, false for the PRBM (Eq. (1))",
+                                       default=None, kind="bool")
+    poisson_ratio: float = param("", "Poisson's ratio of the flexure (plate bending)", default=0.3, symbol="nu",
+                                 minimum=0.0, maximum=0.49)
     toggle_cutoff: float = param("rad", "toggle zone: below this crank angle tau_CF, tau_AF use dx/dtheta2 at the cut-off",
                                  default=float(np.radians(5.0)), display="deg", positive=True)
 
@@ -95,6 +104,20 @@ class CFCSParams(Parameters):
                 )
             if missing:
                 raise InputError(f"the flexural pivot needs {', '.join(missing)} (or give torsional_stiffness)")
+        if self.flexure_model == "beam" and not self.has_flexure:
+            raise InputError(
+                "flexure_model = 'beam' needs the strip: give pivot_width, pivot_thickness, pivot_length and "
+                "youngs_modulus instead of torsional_stiffness"
+            )
+        if self.plate_bending and not self.has_flexure:
+            raise InputError("plate_bending = true needs the flexure dimensions (pivot_width, pivot_thickness, "
+                             "pivot_length, youngs_modulus), not torsional_stiffness")
+        if self.has_flexure and not self.pivot_length < 2.0 * self.coupler_length:
+            raise InputError(
+                f"pivot_length = {format_quantity(self.pivot_length, 'm', 'mm')} must be shorter than twice "
+                f"coupler_length = {format_quantity(self.coupler_length, 'm', 'mm')} (the PRBM pin sits at the middle "
+                "of the strip)"
+            )
         if not self.toggle_cutoff < np.pi / 2:
             raise InputError(
                 f"toggle_cutoff = {format_quantity(self.toggle_cutoff, 'rad', 'deg')} must be below 90 deg "
@@ -116,11 +139,44 @@ class CFCSParams(Parameters):
 
     @property
     def k3(self) -> float:
-        """Pivot stiffness K3 [N*m/rad], given or from the flexure (Eq. (1))."""
+        """Pivot stiffness K3 [N*m/rad] of the PRBM, given or from the flexure (Eq. (1)).
+
+        With the flexure dimensions, ``K3 = E b h^3 / (12 l)`` (Eq. (1), beam modulus) unless
+        ``plate_bending = true`` is set explicitly (then E / (1 - nu^2)).
+        """
         if self.torsional_stiffness is not None:
             return self.torsional_stiffness
-        return float(flexure_stiffness(self.youngs_modulus, self.pivot_width, self.pivot_thickness,
+        return float(flexure_stiffness(self.bending_modulus("prbm"), self.pivot_width, self.pivot_thickness,
                                        self.pivot_length))
+
+    def uses_plate_bending(self, model: str | None = None) -> bool:
+        """Whether the strip bends as a plate in ``model`` (default: this mechanism's flexure model).
+
+        An explicit ``plate_bending`` holds for both models; unset, the beam model chooses by
+        the width/length ratio (:func:`springdyn.cfcs.beam.default_plate_bending`) and the PRBM
+        keeps Eq. (1) of [CFCS] (beam modulus).
+        """
+        model = model or self.flexure_model
+        if self.plate_bending is not None:
+            return bool(self.plate_bending)
+        if model == "beam" and self.has_flexure:
+            return default_plate_bending(self.pivot_width, self.pivot_length)
+        return False
+
+    def bending_modulus(self, model: str | None = None) -> float | None:
+        """E or E / (1 - nu^2) [Pa] of the strip in ``model``; None without the flexure."""
+        if self.youngs_modulus is None:
+            return None
+        if self.uses_plate_bending(model):
+            return float(plate_modulus(self.youngs_modulus, self.poisson_ratio))
+        return self.youngs_modulus
+
+    def bending_stiffness(self, model: str | None = None) -> float:
+        """EI [N*m^2] of the strip in ``model`` (``K3 l`` when only K3 is given)."""
+        if not self.has_flexure:
+            raise InputError("the strip's bending stiffness needs pivot_width, pivot_thickness, pivot_length and "
+                             "youngs_modulus")
+        return float(bending_stiffness(self.bending_modulus(model), self.pivot_width, self.pivot_thickness))
 
     @property
     def has_flexure(self) -> bool:

@@ -71,12 +71,14 @@ class StaticResult(_Table):
     force_extension: np.ndarray
     stress: np.ndarray
     summary: dict
+    extra: dict = dataclasses.field(default_factory=dict)  # beam model: the PRBM beside it
 
     def columns(self) -> dict:
         cols = {"deflection_m": self.deflection, "theta2_rad": self.theta2, "force_N": self.force,
                 "force_compression_N": self.force_compression, "force_extension_N": self.force_extension}
         if np.all(np.isfinite(self.stress)):
             cols["stress_Pa"] = self.stress
+        cols.update(self.extra)
         return cols
 
     def to_xarray(self) -> xr.Dataset:
@@ -87,7 +89,10 @@ class StaticResult(_Table):
     def _plot(self, ax=None):
         fig, ax = new_figure() if ax is None else (ax.figure, ax)
         mm = self.deflection * 1e3
-        ax.plot(mm, self.force, label="static (virtual work)", lw=2)
+        beam = self.summary.get("flexure_model") == "beam"
+        ax.plot(mm, self.force, label="static, beam (elastica)" if beam else "static (virtual work)", lw=2)
+        if "force_prbm_N" in self.extra:
+            ax.plot(mm, self.extra["force_prbm_N"], ":", label="static, PRBM (pin with K3)")
         if not np.allclose(self.force_compression, self.force):
             ax.plot(mm, self.force_compression, "--", label="with tau_CF, tau_AF: compression")
             ax.plot(mm, self.force_extension, "--", label="with tau_CF, tau_AF: extension")
@@ -146,7 +151,9 @@ class DynamicResult(_Table):
         ax.set_title(f"CFCS at omega = {s['omega_rad_s']:.4g} rad/s: mean {s['mean_force_N']:.4g} N, "
                      f"p-p {s['peak_to_peak_N']:.3g} N, PCF {s['pcf_percent']:.1f} %\n"
                      f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg "
-                     f"({s['toggle_zone_samples']} samples inside)", fontsize=10)
+                     f"({s['toggle_zone_samples']} samples inside"
+                     + ("; TOGGLE-DOMINATED: the statistics depend on the cut-off)" if s.get("toggle_dominated")
+                        else ")"), fontsize=10)
         ax.grid(True, alpha=0.3)
         ax.legend()
         if ax2 is None:

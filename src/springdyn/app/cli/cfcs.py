@@ -16,6 +16,8 @@ from springdyn.cfcs.params import EXAMPLES, CFCSParams
 #: The default stroke of the sinusoidal motion (``springdyn.cfcs.model.DEFAULT_AMPLITUDE``,
 #: a fraction of r2 + r3; a test checks the two agree).
 DEFAULT_AMPLITUDE = "40 %"
+#: The default preload offset (``springdyn.cfcs.model.DEFAULT_OFFSET``; a test checks the two agree).
+DEFAULT_OFFSET = "2.5 %"
 
 __all__ = ["register"]
 
@@ -25,10 +27,12 @@ _OPTIONS = dict(omega="--omega", amplitude="--amplitude", offset="--offset", str
                 samples_per_cycle="--samples")
 
 _CFG_HELP = f"mechanism TOML file with a [cfcs] table, or a built-in example ({', '.join(EXAMPLES)})"
-_TOGGLE_NOTE = ("At the toggle (theta2 = 0) dx/dtheta2 vanishes and tau_AF / tau_CF turned into a slider force "
-                "diverge: inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) they use dx/dtheta2 "
-                "frozen at its cut-off value; every output states the cut-off.  The spring and inertia forces "
-                "are finite there and computed exactly (their limits at the toggle instant).")
+_TOGGLE_NOTE = ("The motion starts by default from a preload offset of 2.5%% of r2 + r3 inside the constant-force "
+                "band.  At the toggle (theta2 = 0) dx/dtheta2 vanishes and tau_AF / tau_CF turned into a slider "
+                "force diverge: inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) they use "
+                "dx/dtheta2 frozen at its cut-off value; a motion that enters the zone has its statistics computed "
+                "at the cut-off and at twice it, and those that change by more than 1%% are flagged "
+                "toggle-dominated.  The spring and inertia forces are finite there and computed exactly.")
 
 
 def register(subparsers) -> None:
@@ -42,6 +46,9 @@ def register(subparsers) -> None:
     s.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
     s.add_argument("--stroke", help="stroke from the toggle (default 40%% of r2 + r3), e.g. 72mm")
     s.add_argument("--points", type=int, default=721, help="samples of the curve (default 721)")
+    s.add_argument("--offset", default=DEFAULT_OFFSET, help="start of the working range over which the dissipative "
+                   "branches are rated (default 2.5%% of r2 + r3, a preload), e.g. 5mm or 0")
+    _model_option(s)
     add_output_options(s)
     s.set_defaults(func=_static)
 
@@ -55,6 +62,7 @@ def register(subparsers) -> None:
     d.add_argument("--cycles", type=int, default=2, help="cycles to output (default 2)")
     d.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     d.add_argument("--no-dissipation", action="store_true", help="switch off tau_CF, tau_AF and slider friction")
+    _model_option(d)
     add_output_options(d)
     d.set_defaults(func=_dynamic)
 
@@ -64,6 +72,7 @@ def register(subparsers) -> None:
                     required=True)
     w.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     w.add_argument("--quiet", action="store_true", help="no progress bar")
+    _model_option(w)
     add_output_options(w)
     w.set_defaults(func=_sweep)
 
@@ -78,11 +87,15 @@ def register(subparsers) -> None:
     f.add_argument("--v0", default="0", help="initial slider velocity [m/s] (default 0)")
     f.add_argument("--points", type=int, default=2001, help="output samples (default 2001)")
     f.add_argument("--sign-smoothing", default="0.01", help="velocity scale of the smoothed Coulomb sign [rad/s]")
+    _model_option(f)
     add_output_options(f)
     f.set_defaults(func=_forward)
 
     g = sub.add_parser("design", help="choose r2/r3, K3 and the flexure for a target force and stroke",
-                       description="Exit status 1 when no design meets the stress limit (the reason is printed).")
+                       description="Sizes the strip with the beam (elastica) model by default and checks the "
+                       "stress (safety factor 1.5), the PCF, buckling of the strip and the thickness tolerance.  "
+                       "Exit status 1 when no design holds (the binding check and the smallest changes are "
+                       "printed).")
     g.add_argument("--force", required=True, help="target constant force, e.g. 12.8N")
     g.add_argument("--stroke", required=True, help="working stroke from the toggle, e.g. 40mm")
     g.add_argument("--material-modulus", required=True, help="Young's modulus of the flexure, e.g. 207GPa")
@@ -91,18 +104,42 @@ def register(subparsers) -> None:
     g.add_argument("--length", help="r2 + r3 (overrides --stroke-fraction), e.g. 180mm")
     g.add_argument("--pivot-length-ratio", default="0.1", help="flexure length / r3 (default 0.1)")
     g.add_argument("--max-width", help="largest flexure width (default r3)")
-    g.add_argument("--safety-factor", default="1", help="design stress = allowable / this (default 1)")
+    g.add_argument("--safety-factor", default="1.5", help="design stress = allowable / this (default 1.5)")
+    g.add_argument("--min-pcf", default="90", help="smallest percent constant force over the working range "
+                   "[%%] (default 90)")
+    g.add_argument("--thickness-tolerance", default="5%", help="strip thickness tolerance (default 5%%; the force "
+                   "goes as h^3)")
+    g.add_argument("--preload", default="0", help="start of the working range (default 0, the toggle), e.g. 3mm")
+    g.add_argument("--plate-bending", choices=("auto", "true", "false"), default="auto",
+                   help="strip modulus E/(1 - nu^2) (true) or E (false); auto: plate when the width >= the length "
+                        "(beam model)")
+    g.add_argument("--poisson-ratio", default="0.3", help="Poisson's ratio of the strip (default 0.3)")
+    _model_option(g, default="beam")
     g.add_argument("--toml", metavar="OUT.toml", help="write the design as a [cfcs] table")
     add_output_options(g)
     g.set_defaults(func=_design)
 
 
+def _model_option(p, default=None):
+    p.add_argument("--model", choices=("prbm", "beam"), default=default,
+                   help="flexure model: prbm (pin with K3 = EI/l) or beam (large-deflection elastica of the strip)"
+                        + ("" if default else "; default: flexure_model of the configuration (prbm)"))
+
+
 def _motion_options(p, *, omega_help, required=False, prefix=""):
+    if prefix:  # the base of the forward problem: no preload
+        p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
+        p.add_argument(f"--{prefix}amplitude", default=DEFAULT_AMPLITUDE, help="stroke of the base sinusoid: a "
+                       "length such as 72mm or a percentage of r2 + r3 such as '40%%' (default 40%%)")
+        p.add_argument(f"--{prefix}offset", default="0", help="base position at t = 0 (default 0), e.g. 5mm")
+        return
     p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
     p.add_argument(f"--{prefix}amplitude", default=DEFAULT_AMPLITUDE,
                    help="stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
                         "r2 + r3 such as '40%%' (default 40%%)")
-    p.add_argument(f"--{prefix}offset", default="0", help="deflection at t = 0 (default 0, the toggle), e.g. 5mm")
+    p.add_argument(f"--{prefix}offset", default=DEFAULT_OFFSET,
+                   help="deflection at t = 0: a preload, a length or a percentage of r2 + r3 (default 2.5%%); "
+                        "0 starts at the toggle")
 
 
 def _q(text, unit: str, option: str) -> float:
@@ -110,13 +147,18 @@ def _q(text, unit: str, option: str) -> float:
     return quantity(text, unit, option, bare_unit=unit)
 
 
-def _load(config: str) -> CFCSParams:
+def _load(config: str, model: str | None = None) -> CFCSParams:
     path = Path(config)
     if path.is_file():
-        return CFCSParams.from_toml(path)
-    if config in EXAMPLES:
-        return CFCSParams.example(config)
-    raise InputError(f"{config}: no such file (and not a built-in example: {', '.join(EXAMPLES)})")
+        params = CFCSParams.from_toml(path)
+    elif config in EXAMPLES:
+        params = CFCSParams.example(config)
+    else:
+        raise InputError(f"{config}: no such file (and not a built-in example: {', '.join(EXAMPLES)})")
+    if model is not None and model != params.flexure_model:
+        with as_options(flexure_model="--model"):
+            params = params.replace(flexure_model=model)
+    return params
 
 
 def _fmt(value, unit="", display=None, digits=5):
@@ -142,16 +184,26 @@ def _cutoff_row(summary):
 def _static(args) -> int:
     from springdyn.cfcs.model import CFCS
 
-    model = CFCS(_load(args.config))
+    model = CFCS(_load(args.config, args.model))
     stroke = _q(args.stroke, "m", "--stroke") if args.stroke else None
     with as_options(**_OPTIONS):
-        res = model.static(stroke, n=args.points)
+        res = model.static(stroke, n=args.points, offset=args.offset)
     _write_outputs(args, res)
     s = res.summary
     if args.json:
         print_json(s)
         return 0
+    beam = s["flexure_model"] == "beam"
+    prbm_rows = [
+        ("PRBM maximum force", _fmt(s["prbm_force_max_N"], "N"),
+         f"at {_fmt(s['prbm_deflection_at_force_max_m'], 'm', 'mm')}"),
+        ("PRBM PCF Fmin/Fmax", _fmt(s["prbm_pcf_percent"], "%", digits=4), ""),
+        ("max |beam - PRBM| force", _fmt(s["max_force_difference_to_prbm_N"], "N"), ""),
+        ("PRBM max pivot stress", _fmt(s["prbm_max_stress_Pa"], "Pa", "GPa", 4), "mean curvature theta_K3/l"),
+    ] if beam else []
     print_table([
+        ("flexure model", s["flexure_model"], ("elastica of the strip, " if beam else "pin with K3 = EI/l, ")
+         + ("plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E")),
         ("stroke", _fmt(s["stroke_m"], "m", "mm"), ""),
         ("force at the toggle", _fmt(s["force_at_zero_N"], "N"), ""),
         ("maximum force", _fmt(s["force_max_N"], "N"), f"at {_fmt(s['deflection_at_force_max_m'], 'm', 'mm')}"),
@@ -160,19 +212,30 @@ def _static(args) -> int:
         ("PCF energy-based", _fmt(s["pcf_energy_percent"], "%", digits=4), ""),
         ("PCF compression branch", _fmt(s["pcf_compression_percent"], "%", digits=4),
          f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}"),
-        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
+        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+         "largest curvature of the strip" if beam else "E (h/2) theta_K3 / l"),
         ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
+        *prbm_rows,
         ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
         ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
+        ("working range", f"{_fmt(s['working_start_m'], 'm', 'mm')} .. {_fmt(s['working_end_m'], 'm', 'mm')}",
+         "PCF compression branch rated here"),
         _cutoff_row(s),
+        _toggle_row(s),
     ], headers=("quantity", "value", "note"))
     return 0
+
+
+def _toggle_row(summary):
+    dom = summary.get("toggle_dominated_statistics") or []
+    return ("toggle-dominated", "YES" if summary.get("toggle_dominated") else "no",
+            (", ".join(dom) + " move > 1 % when the cut-off doubles") if dom else "")
 
 
 def _dynamic(args) -> int:
     from springdyn.cfcs.model import CFCS
 
-    params = _load(args.config)
+    params = _load(args.config, args.model)
     if args.no_dissipation:
         params = params.without_dissipation()
     model = CFCS(params)
@@ -196,6 +259,7 @@ def _dynamic(args) -> int:
          f"safety factor {_fmt(s['safety_factor'], digits=3)}"),
         _cutoff_row(s),
         ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
+        _toggle_row(s),
     ], headers=("quantity", "value", "note"))
     return 0
 
@@ -203,12 +267,12 @@ def _dynamic(args) -> int:
 def _sweep(args) -> int:
     from springdyn.cfcs.model import CFCS
 
-    model = CFCS(_load(args.config))
+    model = CFCS(_load(args.config, args.model))
     omegas = parse_range(args.omega, "rad/s", "--omega", bare_unit="rad/s")
     if np.any(omegas <= 0):
         raise InputError(f"--omega = {args.omega!r}: every omega must be positive")
     with as_options(**_OPTIONS):
-        res = model.sweep(omegas, args.amplitude, _q(args.offset, "m", "--offset"),
+        res = model.sweep(omegas, args.amplitude, args.offset,
                           samples_per_cycle=args.samples, quiet=args.quiet or args.json)
     _write_outputs(args, res)
     if args.json:
@@ -220,6 +284,8 @@ def _sweep(args) -> int:
             for i, w in enumerate(res.omega)]
     print_table(rows, headers=("omega_rad_s", "mean_N", "median_N", "p2p_N", "pcf_%", "pcf_no_diss_%"))
     print(f"toggle cut-off {np.degrees(res.summary['toggle_cutoff_rad']):.4g} deg")
+    if res.summary["toggle_dominated"]:
+        print("TOGGLE-DOMINATED: " + res.summary["notes"][0])
     return 0
 
 
@@ -227,7 +293,7 @@ def _forward(args) -> int:
     from springdyn.cfcs.model import CFCS
     from springdyn.cfcs.motion import SinusoidMotion, amplitude_to_si
 
-    model = CFCS(_load(args.config))
+    model = CFCS(_load(args.config, args.model))
     t_end = _q(args.t_end, "s", "--t-end")
     kw = dict(x0=_q(args.x0, "m", "--x0"), v0=_q(args.v0, "m/s", "--v0"), n=args.points,
               sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing"))
@@ -259,6 +325,22 @@ def _forward(args) -> int:
     return 0
 
 
+#: design() argument -> CLI option, for the suggestions printed by the CLI.
+_DESIGN_OPTIONS = dict(max_width="--max-width", pivot_length_ratio="--pivot-length-ratio",
+                       safety_factor="--safety-factor", min_pcf="--min-pcf")
+
+
+def _cli_names(message: str) -> str:
+    """The library's argument names in a design message, as the CLI options that set them."""
+    import re
+
+    for key, opt in _DESIGN_OPTIONS.items():
+        message = re.sub(rf"\b{key}\b", opt, message)
+    message = message.replace("allowable_stress / --safety-factor", "--allowable-stress / --safety-factor")
+    message = message.replace("r2 + r3 >=", "--length >=")
+    return message
+
+
 def _design(args) -> int:
     from springdyn.cfcs.design import design
 
@@ -272,6 +354,12 @@ def _design(args) -> int:
             pivot_length_ratio=_q(args.pivot_length_ratio, "", "--pivot-length-ratio"),
             max_width=_q(args.max_width, "m", "--max-width") if args.max_width else None,
             safety_factor=_q(args.safety_factor, "", "--safety-factor"),
+            min_pcf=_q(args.min_pcf, "", "--min-pcf"),
+            thickness_tolerance=_q(args.thickness_tolerance, "", "--thickness-tolerance"),
+            preload=_q(args.preload, "m", "--preload"),
+            flexure_model=args.model,
+            plate_bending=None if args.plate_bending == "auto" else args.plate_bending == "true",
+            poisson_ratio=_q(args.poisson_ratio, "", "--poisson-ratio"),
         )
     _write_outputs(args, res)
     if args.toml:
@@ -290,7 +378,17 @@ def _design(args) -> int:
              f"{s['pivot_length_m'] * 1e3:.4g} mm", ""),
             ("force range", f"{s['force_min_N']:.4g} .. {s['force_max_N']:.4g} N", ""),
             ("PCF", _fmt(s["pcf_percent"], "%", digits=4), f"energy-based {s['pcf_energy_percent']:.4g} %"),
-            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), f"safety factor {s['safety_factor']:.3g}"),
+            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+             f"safety factor {s['safety_factor']:.3g} (target {s['safety_factor_target']:.3g}), "
+             + ("largest curvature of the elastica" if s["flexure_model"] == "beam" else "PRBM")),
+            ("flexure model", s["flexure_model"], "plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E"),
+            ("working range", f"{s['working_start_m'] * 1e3:.4g} .. {s['working_end_m'] * 1e3:.4g} mm", ""),
+            (f"force at h +-{100 * s['thickness_tolerance']:.3g} %",
+             f"{s['force_min_at_thickness_tolerance_N']:.4g} .. {s['force_max_at_thickness_tolerance_N']:.4g} N",
+             f"stress at +tolerance {s['max_stress_at_thickness_tolerance_Pa'] / 1e9:.4g} GPa"),
+            ("strip buckling", f"{s['buckling_load_N']:.4g} N", f"{s['buckling_safety_factor']:.3g} x the largest "
+             f"axial load {s['axial_load_max_N']:.4g} N"),
+            ("binding check", s["binding_constraint"] or "none", ""),
         ], headers=("quantity", "value", "note"))
-        print(("FEASIBLE: " if res.feasible else "NO FEASIBLE DESIGN: ") + s["message"])
+        print(("FEASIBLE: " if res.feasible else "NO FEASIBLE DESIGN: ") + _cli_names(s["message"]))
     return 0 if res.feasible else 1

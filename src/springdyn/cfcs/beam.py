@@ -1,0 +1,456 @@
+"""Large-deflection (elastica) model of the CFCS flexure, beside the pseudo-rigid-body pin.
+
+Geometry (issue 14 of springdyn, docs/cfcs.md): the flexure is a straight strip of length
+``l`` at the slider end of the coupler, clamped to the slider with its tangent along the
+slider axis (straight at the toggle).  The pseudo-rigid-body pin sits at the middle of the
+strip, so the rigid part of the coupler, from the end of the strip to the crank pin, is
+``a = r3 - l/2``, and at the toggle the clamp stands at ``r2 + r3 + l/2`` from the ground pin.
+The slider deflection is measured as in the PRBM, ``x = r2 + r3 + l/2 - X_clamp``.
+
+The crank is a two-force member (frictionless pins, quasi-static), so the load on the
+coupler at the crank pin B is ``P (cos theta2, sin theta2)``, along the crank; its moment
+about a point r of the strip is ``M = P (y cos theta2 - x sin theta2)`` (the line of action
+passes through the ground pin).  The inextensible elastica (Euler-Bernoulli, no shear, no
+axial strain) of the strip is ``EI dphi/ds = M(s)`` with ``dx/ds = cos phi``,
+``dy/ds = sin phi``, ``phi(0) = pi`` at the clamp.  The crank pin must close the loop::
+
+    x(l) + a cos phi(l) = r2 cos theta2,    y(l) + a sin phi(l) = r2 sin theta2
+
+two equations for the two unknowns ``(P, theta2)`` at a given deflection.  The slider force
+is ``F = P cos theta2`` (the guide takes the normal component and the clamp moment).
+
+Two independent solvers:
+
+- :func:`beam_force_curve`: shooting.  A fixed-step RK4 integration of the elastica and of
+  its sensitivities to ``(P, theta2)`` (so Newton gets the exact Jacobian of the discrete
+  map), continued along the stroke from the toggle with a secant predictor and step halving.
+  At the toggle the straight strip is an equilibrium for every P: the force as
+  ``x -> 0+`` is the bifurcation load where the linearised loop-closure residual vanishes
+  (:func:`beam_force_at_toggle`).
+- :func:`chain_equilibrium`: the strip as a chain of rigid links with torsional springs
+  ``EI/h`` (Hencky's bar chain, second order in ``h``), the minimum of its elastic energy
+  under the loop-closure constraint by Newton on the Lagrange conditions; the multipliers
+  are the force at the crank pin.
+
+With ``l/r3 -> 0`` the strip's curvature concentrates and the model tends to the PRBM
+(a pin with ``K3 = EI/l`` at its middle).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..core.errors import InputError, SolverError
+from .kinematics import spring_angle, theta2_from_deflection
+from .statics import static_force
+
+__all__ = [
+    "FLEXURE_MODELS",
+    "PLATE_WIDTH_RATIO",
+    "plate_modulus",
+    "default_plate_bending",
+    "bending_stiffness",
+    "beam_force_at_toggle",
+    "beam_force_curve",
+    "chain_equilibrium",
+    "strip_buckling_load",
+    "strip_first_frequency",
+]
+
+#: Allowed values of ``flexure_model``.
+FLEXURE_MODELS = ("prbm", "beam")
+
+#: Width/length ratio b/l from which a strip bends as a plate (E / (1 - nu^2)) by default.
+PLATE_WIDTH_RATIO = 1.0
+
+#: RK4 steps along the strip in the shooting solver (a test checks 2x steps changes F by < 1e-9 F0).
+SHOOTING_STEPS = 200
+
+
+def plate_modulus(youngs_modulus, poisson_ratio):
+    """Plate (cylindrical bending) modulus ``E / (1 - nu^2)`` [Pa].
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    poisson_ratio : float
+        Poisson's ratio nu [-].
+    """
+    return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio)
+
+
+def default_plate_bending(width, length) -> bool:
+    """Whether a strip of width b and length l bends as a plate by default: ``b >= l``.
+
+    A wide strip cannot take its anticlastic curvature except in edge zones of width about
+    ``sqrt(R h)`` (R the bending radius), so most of its width is in cylindrical bending
+    (E / (1 - nu^2)); a narrow one bends as a beam (E).  For ``b >= l`` the edge zones are a
+    small part of the width at the curvatures a flexure reaches (R of the order of l), so the
+    plate value is the closer one.
+
+    Parameters
+    ----------
+    width : float
+        Strip width b [m].
+    length : float
+        Strip length l [m].
+    """
+    return bool(width >= PLATE_WIDTH_RATIO * length)
+
+
+def bending_stiffness(youngs_modulus, width, thickness, plate_bending=False, poisson_ratio=0.3):
+    """Bending stiffness ``EI = E' b h^3 / 12`` [N*m^2], E' = E or E/(1 - nu^2).
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    width, thickness : float
+        Strip width b and thickness h [m].
+    plate_bending : bool
+        Use the plate modulus E / (1 - nu^2).
+    poisson_ratio : float
+        nu [-].
+    """
+    e = plate_modulus(youngs_modulus, poisson_ratio) if plate_bending else youngs_modulus
+    return e * width * thickness**3 / 12.0
+
+
+def strip_buckling_load(ei, effective_length):
+    """Euler buckling load ``pi^2 EI / L_e^2`` [N] of the strip.
+
+    The design check takes the strip as a cantilever (clamped at the slider, its other end
+    free to sway and turn with the coupler): ``L_e = 2 l``, the lowest of the usual end
+    conditions and so the safe one.
+
+    Parameters
+    ----------
+    ei : float
+        Bending stiffness [N*m^2].
+    effective_length : float
+        Effective column length L_e [m] (2 l for a cantilever).
+    """
+    return math.pi**2 * ei / (effective_length * effective_length)
+
+
+def strip_first_frequency(ei, mass_per_length, length):
+    """First bending frequency ``1.875^2 sqrt(EI / (rho A)) / l^2`` [rad/s] of the strip as a cantilever.
+
+    The strip's own dynamics can be left out (its quasi-static force used with the PRBM's
+    inertia) while the motion's frequencies stay far below this value and the strip's mass is
+    small beside the link masses.
+
+    Parameters
+    ----------
+    ei : float
+        Bending stiffness [N*m^2].
+    mass_per_length : float
+        rho b h [kg/m].
+    length : float
+        Strip length l [m].
+    """
+    return 1.8751**2 * math.sqrt(ei / mass_per_length) / (length * length)
+
+
+# -- shooting ------------------------------------------------------------------------------
+@njit(cache=True)
+def _rhs(st, p, c2, s2, inv_ei):
+    x, y, ph, xp, yp, pp, xt, yt, pt = st
+    cp, sp = math.cos(ph), math.sin(ph)
+    dist = y * c2 - x * s2
+    out = np.empty(9)
+    out[0] = cp
+    out[1] = sp
+    out[2] = p * dist * inv_ei
+    out[3] = -sp * pp
+    out[4] = cp * pp
+    out[5] = (dist + p * (yp * c2 - xp * s2)) * inv_ei
+    out[6] = -sp * pt
+    out[7] = cp * pt
+    out[8] = p * ((yt * c2 - xt * s2) - (y * s2 + x * c2)) * inv_ei
+    return out
+
+
+@njit(cache=True)
+def _shoot(p, theta2, x_clamp, length, rigid, r2, ei, steps):
+    """Residual of the loop closure, its Jacobian and the largest |curvature| [1/m]."""
+    c2, s2 = math.cos(theta2), math.sin(theta2)
+    inv_ei = 1.0 / ei
+    st = np.zeros(9)
+    st[0] = x_clamp
+    st[2] = math.pi
+    h = length / steps
+    kmax = abs(p * (st[1] * c2 - st[0] * s2)) * inv_ei
+    for _ in range(steps):
+        k1 = _rhs(st, p, c2, s2, inv_ei)
+        k2 = _rhs(st + 0.5 * h * k1, p, c2, s2, inv_ei)
+        k3 = _rhs(st + 0.5 * h * k2, p, c2, s2, inv_ei)
+        k4 = _rhs(st + h * k3, p, c2, s2, inv_ei)
+        st = st + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        k = abs(p * (st[1] * c2 - st[0] * s2)) * inv_ei
+        if k > kmax:
+            kmax = k
+    x, y, ph, xp, yp, pp, xt, yt, pt = st
+    cp, sp = math.cos(ph), math.sin(ph)
+    res = np.array([x + rigid * cp - r2 * c2, y + rigid * sp - r2 * s2])
+    jac = np.array([[xp - rigid * sp * pp, xt - rigid * sp * pt + r2 * s2],
+                    [yp + rigid * cp * pp, yt + rigid * cp * pt - r2 * c2]])
+    return res, jac, ph, kmax
+
+
+def _geometry(r2, r3, length):
+    if not (length > 0 and length < 2.0 * r3):
+        raise InputError(f"pivot_length = {length * 1e3:.6g} mm must be positive and shorter than twice the coupler "
+                         f"length r3 = {r3 * 1e3:.6g} mm (the rigid part of the coupler is r3 - l/2)")
+    return r3 - 0.5 * length, r2 + r3 + 0.5 * length
+
+
+def beam_force_at_toggle(r2, r3, length, ei, *, steps=SHOOTING_STEPS):
+    """Slider force [N] of the elastica model as ``x -> 0+`` (the bifurcation load at the toggle).
+
+    The straight strip at the toggle is an equilibrium for every P; the bent branch leaves it
+    where the linearised residual ``d R_y / d theta2`` vanishes (secant iteration from the
+    PRBM value ``K3 r2 / (r3 (r2 + r3))`` with ``K3 = EI/l``).
+
+    Parameters
+    ----------
+    r2, r3 : float
+        Crank and coupler lengths [m].
+    length : float
+        Strip length l [m].
+    ei : float
+        Bending stiffness of the strip [N*m^2].
+    steps : int
+        RK4 steps along the strip [-].
+    """
+    rigid, x_clamp = _geometry(r2, r3, length)
+
+    def g(p):
+        _, jac, _, _ = _shoot(p, 0.0, x_clamp, length, rigid, r2, ei, steps)
+        return jac[1, 1]
+
+    p0 = ei / length * r2 / (r3 * (r2 + r3))
+    a, b = p0, 1.01 * p0
+    ga, gb = g(a), g(b)
+    for _ in range(60):
+        if gb == ga:
+            break
+        c = b - gb * (b - a) / (gb - ga)
+        a, ga, b, gb = b, gb, c, g(c)
+        if abs(b - a) <= 1e-14 * abs(b):
+            return float(b)
+    if abs(gb) <= 1e-9 * abs(g(p0)) or abs(b - a) <= 1e-12 * abs(b):
+        return float(b)
+    raise SolverError("beam model: the bifurcation load at the toggle did not converge (secant iteration)")
+
+
+def _newton(p, th, x_clamp, length, rigid, r2, ei, steps, scale):
+    for _ in range(30):
+        res, jac, ph, kmax = _shoot(p, th, x_clamp, length, rigid, r2, ei, steps)
+        try:
+            dp, dth = np.linalg.solve(jac, -res)
+        except np.linalg.LinAlgError:
+            return None
+        if not (np.isfinite(dp) and np.isfinite(dth)) or abs(dth) > 0.2:
+            return None
+        p, th = p + dp, th + dth
+        if abs(dp) <= 1e-13 * scale and abs(dth) <= 1e-13:
+            res, _, ph, kmax = _shoot(p, th, x_clamp, length, rigid, r2, ei, steps)
+            if np.max(np.abs(res)) <= 1e-12 * r2:
+                return p, th, ph, kmax
+    return None
+
+
+def beam_force_curve(deflection, r2, r3, length, ei, *, steps=SHOOTING_STEPS):
+    """Elastica solution along a stroke by shooting and continuation (see the module docstring).
+
+    Parameters
+    ----------
+    deflection : array_like
+        Slider deflections [m], increasing, from 0 (the toggle) or above.
+    r2, r3 : float
+        Crank and coupler lengths [m] (r3 to the PRBM pin at the middle of the strip).
+    length : float
+        Strip length l [m].
+    ei : float
+        Bending stiffness of the strip [N*m^2].
+    steps : int
+        RK4 steps along the strip [-].
+
+    Returns
+    -------
+    dict of arrays
+        ``force`` slider force [N], ``theta2`` crank angle [rad], ``end_rotation`` rotation of
+        the strip's end (and of the rigid coupler) from the slider axis [rad] (the PRBM's
+        theta_K3), ``max_curvature`` largest |curvature| along the strip [1/m].
+
+    Raises
+    ------
+    SolverError
+        When the continuation cannot follow the branch (typically near the kinematic limit).
+    """
+    x = np.asarray(deflection, dtype=float)
+    if x.ndim != 1 or x.size == 0 or np.any(np.diff(x) <= 0) or x[0] < 0:
+        raise InputError("deflection must be an increasing array of deflections >= 0 [m]")
+    rigid, x_top = _geometry(r2, r3, length)
+    f0 = beam_force_at_toggle(r2, r3, length, ei, steps=steps)
+    out = {k: np.empty(x.size) for k in ("force", "theta2", "end_rotation", "max_curvature")}
+    hist = []  # (x, P, theta2) of solved points, for the secant predictor
+    xs = x.copy()
+    start = 0
+    if xs[0] == 0.0:
+        out["force"][0], out["theta2"][0], out["end_rotation"][0], out["max_curvature"][0] = f0, 0.0, 0.0, 0.0
+        start = 1
+    k3 = ei / length
+
+    def predict(xq):
+        if len(hist) >= 2:
+            (xa, pa, ta), (xb, pb, tb) = hist[-2], hist[-1]
+            w = (xq - xb) / (xb - xa)
+            return pb + w * (pb - pa), tb + w * (tb - ta)
+        th = float(theta2_from_deflection(xq, r2, r3))
+        f = float(static_force(th, k3, r2, r3)) if not hist else hist[-1][1] * math.cos(hist[-1][2])
+        if not hist:
+            f = f * f0 / float(static_force(0.0, k3, r2, r3))
+        return f / math.cos(th), th
+
+    def solve_at(xq, depth=0):
+        p_guess, th_guess = predict(xq)
+        sol = _newton(p_guess, th_guess, x_top - xq, length, rigid, r2, ei, steps, f0)
+        if sol is not None and sol[1] > 0:
+            return sol
+        if depth >= 12:
+            return None
+        prev = hist[-1][0] if hist else 0.0
+        mid = 0.5 * (prev + xq)
+        s = solve_at(mid, depth + 1)
+        if s is None:
+            return None
+        hist.append((mid, s[0], s[1]))
+        return solve_at(xq, depth + 1)
+
+    for i in range(start, x.size):
+        xq = xs[i]
+        if not hist and xq > 0:
+            # begin the branch close to the toggle, where the PRBM guess is within Newton's reach
+            first = min(xq, 1e-4 * (r2 + r3))
+            if first < xq:
+                s = solve_at(first)
+                if s is None:
+                    raise SolverError(f"beam model: no elastica solution near the toggle (x = {first * 1e3:.3g} mm)")
+                hist.append((first, s[0], s[1]))
+        sol = solve_at(xq)
+        if sol is None:
+            raise SolverError(
+                f"beam model: the continuation of the elastica lost the branch at x = {xq * 1e3:.4g} mm "
+                "(beyond the strip's kinematic limit, or too close to it): reduce the stroke")
+        p, th, ph, kmax = sol
+        hist.append((xq, p, th))
+        out["force"][i] = p * math.cos(th)
+        out["theta2"][i] = th
+        out["end_rotation"][i] = math.pi - ph
+        out["max_curvature"][i] = kmax
+    return out
+
+
+# -- discretised chain ---------------------------------------------------------------------
+def chain_equilibrium(deflection, r2, r3, length, ei, *, links=200, guess=None):
+    """Elastica by a discretised rigid-link chain: energy minimum under the loop closure.
+
+    The strip is Hencky's bar chain: node angles ``phi_k`` at ``s_k = k h`` (``h = l/N``,
+    ``phi_0 = pi`` at the clamp), each node carrying a rigid link of length h centred on it
+    (h/2 at both ends), joint springs ``EI/h`` between neighbours; elastic energy
+    ``E = sum EI/(2h) (phi_k - phi_(k-1))^2`` and the rigid coupler continuing the last link.
+    Stationarity of ``E - lambda . (B(phi) - r2 e(theta2))`` is solved by Newton (dense,
+    analytic Hessian); ``lambda`` is the load at the crank pin, so the slider force is
+    ``lambda_x``.  The scheme is the trapezoidal rule of the elastica, error O(h^2):
+    Richardson extrapolation of N and 2N links gives O(h^4).
+
+    Parameters
+    ----------
+    deflection : float
+        Slider deflection [m] (> 0).
+    r2, r3 : float
+        Crank and coupler lengths [m].
+    length : float
+        Strip length l [m].
+    ei : float
+        Bending stiffness of the strip [N*m^2].
+    links : int
+        Number of links N [-].
+    guess : dict, optional
+        A previous result of this function (continuation); else the PRBM configuration.
+
+    Returns
+    -------
+    dict
+        ``force`` [N], ``theta2`` [rad], ``end_rotation`` [rad], ``phi`` (link angles) and
+        ``lam`` (load at the crank pin) [N].
+    """
+    rigid, x_top = _geometry(r2, r3, length)
+    n = int(links)
+    h = length / n
+    xc = x_top - deflection - 0.5 * h  # the half link at the clamp lies along the axis
+    if guess is None:
+        th = float(theta2_from_deflection(deflection, r2, r3))
+        tk = float(spring_angle(th, r2, r3))
+        s_mid = (np.arange(n) + 1.0) * h
+        # PRBM-like start: the rotation builds up over the strip
+        phi = np.pi - tk * np.clip(s_mid / length, 0.0, 1.0)
+        f = float(static_force(th, ei / length, r2, r3))
+        lam = np.array([f, f * math.tan(th)])
+    else:
+        phi, th, lam = guess["phi"].copy(), guess["theta2"], guess["lam"].copy()
+    w = np.full(n, ei / h)
+    lengths = np.full(n, h)
+    lengths[-1] = 0.5 * h
+    for _ in range(60):
+        c, s = np.cos(phi), np.sin(phi)
+        lev = lengths.copy()
+        lev[-1] += rigid  # the rigid coupler continues the last link
+        # energy gradient
+        d = np.diff(phi)
+        grad = np.zeros(n)
+        grad[0] += w[0] * (phi[0] - np.pi)
+        grad[:-1] -= w[1:] * d
+        grad[1:] += w[1:] * d
+        b = np.array([xc + np.sum(lev * c), np.sum(lev * s)])
+        db = np.vstack([-lev * s, lev * c])  # dB/dphi_i
+        e2 = np.array([math.cos(th), math.sin(th)])
+        de2 = np.array([-math.sin(th), math.cos(th)])
+        r_phi = grad - lam @ db
+        r_th = r2 * (lam @ de2)
+        r_c = b - r2 * e2
+        res = np.concatenate([r_phi, [r_th], r_c])
+        # Jacobian
+        m = n + 3
+        jac = np.zeros((m, m))
+        hess = np.zeros((n, n))
+        idx = np.arange(n)
+        hess[idx, idx] += w * 0.0
+        hess[0, 0] += w[0]
+        for_k = np.arange(1, n)
+        hess[for_k, for_k] += w[1:]
+        hess[for_k - 1, for_k - 1] += w[1:]
+        hess[for_k, for_k - 1] -= w[1:]
+        hess[for_k - 1, for_k] -= w[1:]
+        hess[idx, idx] += lam[0] * lev * c + lam[1] * lev * s  # -lam . d2B/dphi^2, d2B = -lev (c, s)
+        jac[:n, :n] = hess
+        jac[:n, n] = 0.0
+        jac[:n, n + 1:] = -db.T
+        jac[n, n] = -r2 * (lam @ e2)
+        jac[n, n + 1:] = r2 * de2
+        jac[n + 1:, :n] = db
+        jac[n + 1:, n] = -r2 * de2
+        step = np.linalg.solve(jac, -res)
+        phi = phi + step[:n]
+        th = th + step[n]
+        lam = lam + step[n + 1:]
+        if np.max(np.abs(step[:n + 1])) < 1e-13 and np.max(np.abs(step[n + 1:])) < 1e-12 * max(1.0, abs(lam[0])):
+            return {"force": float(lam[0]), "theta2": float(th), "end_rotation": float(np.pi - phi[-1]),
+                    "phi": phi, "lam": lam}
+    raise SolverError(f"beam model (chain): Newton did not converge at x = {deflection * 1e3:.4g} mm")
