@@ -74,3 +74,22 @@ def test_bad_cam_file(capsys, tmp_path):
 def test_float_empty_range(capsys):
     code, _, err = run(capsys, "valve", "float", SPRING, "--cam", CAM, "--valve-train", VT, "--cam-rpm", "4000:2000:500")
     assert code == 2 and "is empty" in err
+
+
+@pytest.mark.parametrize("train,cam", [("valve_train.toml", "cam_polydyne_ramps.toml"),
+                                       ("finger_follower.toml", "cam_finger.toml"), ("pushrod.toml", "cam_pushrod.toml")])
+def test_every_layout_runs_simulate_float_and_train_modes(capsys, tmp_path, train, cam):
+    vt, cm = str(EX / train), str(EX / cam)
+    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", cm, "--valve-train", vt, "--cam-rpm", "1500",
+                       "--revolutions", "2", "--json")
+    s = json.loads(out)
+    assert code == 0 and isinstance(s["liftoff"], list)
+    assert 0 < s["fatigue_safety_factor"] <= s["static_fatigue_safety_factor"] * 1.01
+    c, p = tmp_path / "f.csv", tmp_path / "f.png"
+    code, out, _ = run(capsys, "valve", "float", SPRING, "--cam", cm, "--valve-train", vt, "--cam-rpm", "1000:4000:1000",
+                       "--resolution", "50", "--csv", str(c), "--plot", str(p), "--quiet")
+    assert code == 0 and "float speed" in out
+    assert next(csv.reader(open(c))) == ["cam_rpm", "min_cam_contact_force_N"] and p.read_bytes()[:4] == b"\x89PNG"
+    code, out, _ = run(capsys, "valve", "train-modes", SPRING, "--cam", cm, "--valve-train", vt, "--json")
+    res = json.loads(out)
+    assert code == 0 and len(res["full_lift_Hz"]) == 6 and res["resonance_speeds"]
