@@ -268,6 +268,7 @@ def simulate(
     atol: float = DEFAULT_ATOL,
     backend: str = "compiled",
     setup: SimulationSetup | None = None,
+    check_elements: bool = True,
 ) -> Simulation:
     """Simulate the valve spring (or valve train) driven by the cam.
 
@@ -292,6 +293,11 @@ def simulate(
     setup : SimulationSetup, optional
         A prepared setup of the same spring, cam and valve train (:func:`prepare`), reused
         across speeds.
+    check_elements : bool
+        Distributed model: when coils clash, run again with half the elements and report
+        how much the peak end forces change (``clash_force_element_sensitivity``,
+        ``clash_forces_converged`` and a note in the summary): clash forces are a penalty
+        contact on the element scale and may not be converged.
 
     Raises
     ------
@@ -340,12 +346,29 @@ def simulate(
             raise _solver_error(cam_rpm, omega, info)
         sim = _from_extra(setup, cam_rpm, revolutions, t_keep, extra[0], info, n, keep)
         sim.monitor = _monitor_record(mon, 0, omega, revolutions)
+        if check_elements:
+            _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol)
         return sim
     states, info = integrate_scipy(setup.y0, t_out, setup.args(omega), rtol=rtol, atol=atol,
                                    h_max=period * MAX_STEP_FRACTION)
     if info["status"] != 0 or not np.all(np.isfinite(states)):
         raise _solver_error(cam_rpm, omega, info)
     return _postprocess(setup, cam_rpm, revolutions, t_keep, states[-keep * n:], info, n, keep)
+
+
+def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rtol, atol) -> None:
+    """Distributed model with clashing coils: the peak end forces with half the elements."""
+    sp = sim.spring
+    if sp.model != "distributed" or not sim.summary.get("clashing_coils"):
+        return
+    half = max(sp.elements // 2, 10)
+    if half == sp.elements:
+        return
+    coarse = simulate(sp.replace(elements=half), cam, cam_rpm, revolutions, valve_train=valve_train,
+                      points_per_revolution=points, rtol=rtol, atol=atol, check_elements=False).summary
+    sim.element_check = dict(elements=half, max_retainer_force_N=coarse["max_retainer_force_N"],
+                             max_seat_force_N=coarse["max_seat_force_N"])
+    sim.__dict__.pop("_summary_cache", None)  # the summary now includes the check
 
 
 def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
@@ -547,7 +570,7 @@ def float_speed(
 
     def min_force(rpm):
         sim = simulate(spring, cam, rpm, revolutions, valve_train=valve_train, setup=setup,
-                       points_per_revolution=points_per_revolution)
+                       points_per_revolution=points_per_revolution, check_elements=False)
         sm = sim.summary
         return sm["min_cam_contact_force_N"], bool(sm["liftoff"])
 

@@ -217,6 +217,10 @@ class SpeedSweep(Result):
         if self.valve_train is not None:
             fl = self.float_speeds()
             s["lowest_float_cam_rpm"] = float(np.nanmin(fl)) if np.isfinite(fl).any() else None
+        s["min_fatigue_safety_factor"] = float(np.min(t["fatigue_safety_factor"]))
+        if self.spring.model == "distributed" and s["speeds_with_coil_contact"]:
+            s["notes"] = ["coil contact at some speeds: the distributed model's clash forces depend on the element "
+                          "count (docs/valve.md); valve simulate at such a speed measures how much"]
         return s
 
     # ---------------------------------------------------------------- summary
