@@ -47,6 +47,7 @@ BAD = ("traceback", "hang", "nan", "unclear", "leftover", "mixed")
 DEFINITIONS = {
     "valve": (EX / "report" / "report_valve_one_step.toml", "spring"),
     "valve2": (EX / "report" / "report_valve_two_step.toml", "spring"),
+    "valve3": (EX / "valve" / "ohv_pushrod.toml", "spring"),
     "cfcs": (EX / "cfcs" / "table1.toml", "cfcs"),
     "lsd": (EX / "lsd" / "type_c.toml", "lsd"),
 }
@@ -73,6 +74,9 @@ def _commands(kind: str, path: str, out: Path) -> list[list[str]]:
             ["valve", "design", path, "--lift", "9mm", "--cam-rpm", "3000", "--json"],
             ["valve", "simulate", path, "--cam", path, "--cam-rpm", "2500", "--revolutions", "2",
              "--points-per-revolution", "360", "--json"],
+            ["valve", "simulate", path, "--cam", path, "--valve-train", path, "--cam-rpm", "2000", "--revolutions",
+             "2", "--points-per-revolution", "360", "--json"],
+            ["valve", "train-modes", path, "--cam", path, "--valve-train", path, "--json"],
         ]
     if kind == "cfcs":
         return [
