@@ -75,14 +75,15 @@ def stage_state(y, h, k, row, out):
 
 @njit(cache=True)
 def error_norm(y, y_new, k, h, rtol, atol):
-    """RMS of the local error estimate scaled by ``atol + rtol max(|y|, |y_new|)``."""
+    """RMS of the local error estimate scaled by ``atol_i + rtol max(|y|, |y_new|)``
+    (``atol``: one absolute tolerance per component)."""
     n = y.shape[0]
     acc = 0.0
     for i in range(n):
         e = 0.0
         for j in range(7):
             e += E[j] * k[j, i]
-        sc = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+        sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
         r = h * e / sc
         acc += r * r
     return np.sqrt(acc / n)
@@ -137,7 +138,7 @@ def initial_step(y, f0, rtol, atol, h_max):
     d0 = 0.0
     d1 = 0.0
     for i in range(n):
-        sc = atol + rtol * abs(y[i])
+        sc = atol[i] + rtol * abs(y[i])
         d0 += (y[i] / sc) ** 2
         d1 += (f0[i] / sc) ** 2
     d0 = np.sqrt(d0 / n)

@@ -671,8 +671,27 @@ def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, c
                          omega, vt, d, extra_out[i, j])
 
 
+def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -> np.ndarray:
+    """Absolute tolerance per state component: ``atol`` [m] on the displacements,
+    ``atol_velocity`` [m/s] (default ``atol``) on the velocities.
+
+    Parameters
+    ----------
+    n_state : int
+        State size (displacements then velocities) [-].
+    atol : float
+        Absolute tolerance of the displacements [m].
+    atol_velocity : float or ndarray (n_state // 2,), optional
+        Absolute tolerance of the velocities [m/s], one for all or one per velocity.
+    """
+    half = n_state // 2
+    out = np.full(n_state, float(atol))
+    out[half:] = atol if atol_velocity is None else np.asarray(atol_velocity, dtype=float)
+    return out
+
+
 def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fraction, max_steps=10_000_000,
-               gaps=None, monitor=False):
+               gaps=None, monitor=False, atol_velocity=None):
     """Integrate several speeds in one compiled call (the GIL is released throughout).
 
     For each speed the last ``keep = min(2, revolutions)`` revolutions are sampled at
@@ -696,7 +715,7 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
         [m], damping [N s/m], cam table [m, m/rad, m/rad^2], table step [rad], speed
         [rad/s], valve train parameters); its speed is ignored.
     rtol, atol : float
-        Relative [-] and absolute [m, m/s] tolerances.
+        Relative [-] and absolute [m] tolerances.
     max_step_fraction : float
         Largest step as a fraction of a revolution [-].
     max_steps : int
@@ -706,6 +725,9 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
         crossings are located as coil-contact events.
     monitor : bool
         Also return the monitor outputs [-].
+    atol_velocity : float or ndarray, optional
+        Absolute tolerance of the velocities [m/s], one for all or one per velocity
+        (default ``atol``).
 
     Parameters
     ----------
@@ -748,7 +770,8 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     nev = np.zeros((omegas.size, 1), dtype=np.int64)
     gaps = np.full(laws.shape[0], np.inf) if gaps is None else np.ascontiguousarray(gaps, dtype=float)
     _run_speeds(np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions), int(points), keep, masses, laws, xset,
-                _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol), float(atol),
+                _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol),
+                atol_vector(len(y0), atol, atol_velocity),
                 float(max_step_fraction), int(max_steps), gaps, extra, status, t_end, steps, ext, events, nev)
     if monitor:
         return extra, status, t_end, steps, dict(ext=ext, events=events, n_events=nev[:, 0].copy())
@@ -759,7 +782,7 @@ def _c0_array(c0, laws) -> np.ndarray:
     return np.ascontiguousarray(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
 
 
-def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
+def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None):
     """Integrate with the compiled engine; states at ``t_out`` (ascending, from ``t_out[0]``).
 
     ``args`` = ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``.
@@ -778,6 +801,9 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
         Largest step [s].
     max_steps : int
         Most steps [-] (the loop is bounded).
+    atol_velocity : float or ndarray, optional
+        Absolute tolerance of the velocities [m/s], one for all or one per velocity
+        (default ``atol``).
 
     Returns
     -------
@@ -790,13 +816,14 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000):
     args = args[:3] + (_c0_array(args[3], args[1]),) + args[4:]
     status, t, steps, rejected = _integrate(
         np.ascontiguousarray(y0, dtype=float), float(t_out[0]), np.ascontiguousarray(t_out, dtype=float), *args,
-        float(rtol), float(atol), float(h_max), int(max_steps), out, np.full(args[1].shape[0], np.inf), 0.0, -1.0,
+        float(rtol), atol_vector(len(y0), atol, atol_velocity), float(h_max), int(max_steps), out, np.full(args[1].shape[0], np.inf), 0.0, -1.0,
         np.zeros(N_EXT), np.full((1, 4), np.nan), np.zeros(1, dtype=np.int64),
     )
     return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))
 
 
-def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rhs=False, h_max=np.inf):
+def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rhs=False, h_max=np.inf,
+                    atol_velocity=None):
     """Reference backend: ``scipy.integrate.solve_ivp`` with the plain-Python :func:`rhs`.
 
     With ``compiled_rhs=True`` the compiled right-hand side is used instead (same model,
@@ -818,6 +845,9 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
         Use the compiled right-hand side.
     h_max : float
         Largest step [s].
+    atol_velocity : float or ndarray, optional
+        Absolute tolerance of the velocities [m/s], one for all or one per velocity
+        (default ``atol``).
     """
     from scipy.integrate import solve_ivp
 
@@ -832,7 +862,7 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
         return d
 
     sol = solve_ivp(fun, (float(t_out[0]), float(t_out[-1])), np.asarray(y0, float), method=method, t_eval=t_out,
-                    rtol=rtol, atol=atol, max_step=h_max)
+                    rtol=rtol, atol=atol_vector(len(y0), atol, atol_velocity), max_step=h_max)
     out = np.full((t_out.size, len(y0)), np.nan)
     out[: sol.y.shape[1]] = sol.y.T
     status = 0 if sol.status == 0 else 2
