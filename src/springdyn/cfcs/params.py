@@ -112,6 +112,21 @@ class CFCSParams(Parameters):
         if self.plate_bending and not self.has_flexure:
             raise InputError("plate_bending = true needs the flexure dimensions (pivot_width, pivot_thickness, "
                              "pivot_length, youngs_modulus), not torsional_stiffness")
+        if self.has_flexure and not self.pivot_thickness < self.pivot_length:
+            raise InputError(
+                f"pivot_thickness = {format_quantity(self.pivot_thickness, 'm', 'mm')} must be smaller than "
+                f"pivot_length = {format_quantity(self.pivot_length, 'm', 'mm')}: the flexure is a thin strip (bending "
+                "theory needs a length of several thicknesses)"
+            )
+        if self.has_flexure:
+            with np.errstate(over="ignore"):
+                ei = np.float64(self.youngs_modulus) * np.float64(self.pivot_width) * np.float64(self.pivot_thickness) ** 3
+            if not np.isfinite(ei / 12.0 / self.pivot_length):
+                raise InputError(
+                    "youngs_modulus x pivot_width x pivot_thickness^3 overflows: the flexure's bending stiffness is "
+                    f"not a finite number (pivot_thickness = {format_quantity(self.pivot_thickness, 'm', 'mm')}, "
+                    f"pivot_width = {format_quantity(self.pivot_width, 'm', 'mm')}); check their units"
+                )
         if self.has_flexure and not self.pivot_length < 2.0 * self.coupler_length:
             raise InputError(
                 f"pivot_length = {format_quantity(self.pivot_length, 'm', 'mm')} must be shorter than twice "
