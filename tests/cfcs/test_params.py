@@ -133,3 +133,14 @@ def test_design_stroke_fraction_beyond_the_kinematic_range():
 
     with pytest.raises(InputError, match=r"stroke_fraction = 0.95 must not exceed 0.9"):
         design(12.8, 0.04, 207e9, 1.5e9, stroke_fraction=0.95)
+
+
+@pytest.mark.parametrize("changes,match", [
+    ({"pivot_thickness": "2**1000"}, "must be smaller than pivot_length"),  # the fuzz's OverflowError
+    ({"pivot_thickness": "12 mm"}, "pivot_thickness = 12 mm must be smaller than pivot_length"),
+    ({"pivot_width": "1e300 m"}, "overflows"),
+])
+def test_flexure_strip_is_checked(table1, changes, match):
+    base = {k: v for k, v in table1.__dict__.items() if not k.startswith("_") and v is not None}
+    with pytest.raises(InputError, match=match):
+        CFCSParams.from_dict({**base, **changes})
