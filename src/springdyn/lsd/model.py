@@ -214,6 +214,51 @@ class LSDModel:
             preload_exceeded=unloads,
         )
 
+    def equivalent_coefficients(self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *,
+                                omega=None, samples: int = 2048) -> "LSDCoefficients":
+        """K and C of the nonlinear force laws at this amplitude (describing function).
+
+        Unlike :meth:`coefficients` (the closed forms of Chapters 2-3), every mechanism is
+        evaluated with the force laws of the time-domain rig (lift-off of the packs,
+        inter-leaf friction on the instantaneous pack load, each pack at its own deflection
+        amplitude, O-ring friction, oil) along a harmonic motion, and the first harmonic
+        of the force gives the coefficients (:mod:`springdyn.lsd.equivalent`).  This is
+        what a rig identifies at that amplitude.
+
+        Parameters
+        ----------
+        rpm : float or array_like, optional
+            Speeds [rev/min] (one vibration per revolution).
+        amplitude : float
+            Shake amplitude or orbit radius [m].
+        motion : {"linear", "circular"}
+            x and y shakes, or forward and backward orbits.
+        omega : float or array_like, optional
+            Vibration frequencies [rad/s] instead of ``rpm``.
+        samples : int
+            Quadrature points per period [-].
+        """
+        from .equivalent import equivalent_matrices
+
+        if (rpm is None) == (omega is None):
+            raise InputError("give the speeds as rpm [rev/min] or as omega [rad/s], exactly one of them")
+        name = "rpm" if omega is None else "omega"
+        values = np.atleast_1d(np.asarray(rpm if omega is None else omega, dtype=float))
+        if values.ndim != 1 or np.any(~np.isfinite(values)) or np.any(values <= 0):
+            raise InputError(f"{name} = {values.tolist()} must be positive speeds")
+        w = rpm_to_omega(values) if omega is None else values
+        mats = [equivalent_matrices(self, wi, amplitude, motion, samples) for wi in w]
+        K = np.array([sum(m[k][0] for k in m) for m in mats])
+        C = np.array([sum(m[k][1] for k in m) for m in mats])
+        parts = {"oring": np.array([m["oring_friction"][1] for m in mats]),
+                 "hysteresis": np.array([m["leaf_friction"][1] for m in mats]),
+                 "viscous": np.array([m["oil"][1] for m in mats])}
+        return LSDCoefficients(
+            name=self.params.name, rpm=omega_to_rpm(w), amplitude=float(amplitude), K=K, C=C, parts=parts,
+            pack_stiffness=self.pack_stiffness, load_ratios=self.load_ratios.copy(),
+            preload_exceeded=bool(amplitude > self.params.preload), method="describing function",
+        )
+
     def to_ross(self, n: int, frequencies=None, amplitude: float = 50e-6, motion: str = "linear", *,
                 rpm_range=(0.0, 20000.0), points: int = 40, outside: str = "raise", omega=None, **kwargs):
         """A ``ross.BearingElement`` with the eight coefficients tabulated over ``rpm_range``.
@@ -285,6 +330,7 @@ class LSDCoefficients(Result):
     pack_stiffness: float
     load_ratios: np.ndarray
     preload_exceeded: bool = False
+    method: str = "closed form"
 
     title = "leaf spring damper coefficients"
     cheap_plot = True
@@ -298,7 +344,7 @@ class LSDCoefficients(Result):
                  pack_stiffness_N_per_m=float(self.pack_stiffness),
                  kxx_min_N_per_m=float(self.K[:, 0, 0].min()), kxx_max_N_per_m=float(self.K[:, 0, 0].max()),
                  cxx_min_N_s_per_m=float(self.C[:, 0, 0].min()), cxx_max_N_s_per_m=float(self.C[:, 0, 0].max()),
-                 preload_exceeded=bool(self.preload_exceeded))
+                 preload_exceeded=bool(self.preload_exceeded), model=self.method)
         return s
 
     @property
