@@ -191,9 +191,11 @@ def cmd_identify(args) -> int:
         for key, value in d.items():
             if key.endswith(("_N_per_m", "_Ns_per_m")):
                 unc = d.get(f"{key}_uncertainty")
+                ci = d.get(f"{key}_ci")
                 unit = "N/m" if key.endswith("_N_per_m") else "N*s/m"
-                rows.append((key.split("_")[0], f"{value:.6g}", "nan" if unc is None else f"{unc:.3g}", unit))
-        print_table(rows, headers=("coefficient", "value", "uncertainty", "unit"))
+                rows.append((key.split("_")[0], f"{value:.6g}", "nan" if unc is None else f"{unc:.3g}",
+                             "-" if ci is None else f"+-{(ci[1] - ci[0]) / 2:.3g}", unit))
+        print_table(rows, headers=("coefficient", "value", "std. error", "95 % CI (Student t)", "unit"))
         if it.caveat:
             print(f"note: {it.caveat}")
     return 0
