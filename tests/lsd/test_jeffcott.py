@@ -67,3 +67,23 @@ def test_friction_can_hold_the_ring():
     assert d["damper_damping_Ns_per_m"][0] is None and d["damper_damping_Ns_per_m"][1] > 0
     with pytest.raises(InputError, match="disk_mass"):
         JeffcottRotor(disk_mass=0.0, shaft_stiffness=1e6, bearing_mass=1.0, unbalance=1e-4)
+
+
+def test_critical_amplitude_vs_leakage_shows_optimum_and_lock_up():
+    # Issue 15, Build 6: the peak disk amplitude over speed against the leakage factor.
+    # Small leakage factor = stiff oil network: the dampers lock, the rotor runs on rigid
+    # supports and its critical moves to sqrt(k/M) (4775 rpm) with only the disk damping;
+    # large leakage factor = no oil damping: a large peak at the soft-support critical
+    # (about 1500 rpm). In between lies the optimum.
+    rotor = JeffcottRotor(disk_mass=20.0, shaft_stiffness=5e6, bearing_mass=1.0, unbalance=1e-3, disk_damping=100.0)
+    rpm = np.geomspace(800, 8000, 30)
+    peaks = {}
+    for lf in (0.01, 1.5, 300.0):
+        r = unbalance_response(LSDModel(LSDParameters.example("C").replace(leakage_factor=lf)), rotor, rpm, samples=256)
+        peaks[lf] = r.peak
+    locked, best, free = peaks[0.01], peaks[1.5], peaks[300.0]
+    # (the locked peak is sharp: the 30-speed grid under-reads it, hence the loose factor)
+    assert best[1] < 0.2 * free[1] and best[1] < 0.2 * locked[1]
+    rigid = 60 * np.sqrt(5e6 / 20.0) / (2 * np.pi)
+    assert locked[0] == pytest.approx(rigid, rel=0.05)  # the speed grid steps 8 %
+    assert free[0] < 0.4 * rigid
