@@ -121,3 +121,42 @@ def test_ross_rotor_modal_analysis_and_whirl_consistency(rs):
     # and the answer no longer depends on the spin speed (the issue: 0.07 to 1.0 with spin)
     wd_fast, _ = whirl_consistent_mode(build, 3 * speed, omega_guess=speed, mode=0, num_modes=8)
     assert wd_fast == pytest.approx(wd, rel=0.01)
+
+
+@pytest.mark.slow
+def test_nonlinear_force_callback_in_ross_time_response(rs):
+    # ROSS 2.3's add_to_RHS: with no friction and no lift-off the damper's force laws are
+    # linear (K x + C_visc v), so the rotor with the callback (and zero-coefficient bearings)
+    # must respond like the rotor with linear bearing elements. ROSS evaluates the callback
+    # with the state of the step before (first order in the step): the difference falls
+    # about 4x for 4x smaller steps, and is below 3 % of the amplitude at the finer one.
+    from springdyn.lsd.rotordynamics import nonlinear_force
+
+    model = LSDModel(LSDParameters.example("C").replace(leakage_factor=20.0, leaf_friction=0.0))
+    steel = rs.Material(name="steel_lsd_nl", rho=7810, E=211e9, G_s=81.2e9)
+
+    def rotor(b0, b1):
+        shaft = [rs.ShaftElement(0.1, 0.0, 0.08, material=steel) for _ in range(2)]
+        disk = rs.DiskElement.from_geometry(n=1, material=steel, width=0.05, i_d=0.08, o_d=0.2)
+        return rs.Rotor(shaft, [disk], [b0, b1])
+
+    K, C = model.stiffness_matrix[0, 0], model.viscous_damping[0, 0]
+    lin = rotor(rs.BearingElement(0, kxx=K, cxx=C), rs.BearingElement(2, kxx=K, cxx=C))
+    free = rotor(rs.BearingElement(0, kxx=0.0, cxx=0.0), rs.BearingElement(2, kxx=0.0, cxx=0.0))
+    f0, f2 = nonlinear_force(model, free, 0), nonlinear_force(model, free, 2)
+    speed = 2 * np.pi * 1500 / 60
+    d = lin.number_dof * 1
+    errors = []
+    for steps in (2001, 8001):
+        t = np.linspace(0.0, 0.2, steps)
+        F = np.zeros((t.size, lin.ndof))
+        F[:, d] = 1e-4 * speed**2 * np.cos(speed * t)
+        F[:, d + 1] = 1e-4 * speed**2 * np.sin(speed * t)
+        _, ref, _ = lin.time_response(speed, F, t)
+        _, y, _ = free.time_response(speed, F, t, method="newmark",
+                                     add_to_RHS=lambda step, **kw: f0(step, **kw) + f2(step, **kw))
+        errors.append(np.abs(y[:, d] - ref[:, d]).max() / np.abs(ref[:, d]).max())
+    assert errors[1] < 0.03
+    assert 3.0 < errors[0] / errors[1] < 5.0
+    with pytest.raises(InputError, match="not a node"):
+        nonlinear_force(model, free, 7)

@@ -44,6 +44,7 @@ _EXPORTS = {
     "unbalance_response": "jeffcott",
     "bearing_at_frequency": "rotordynamics",
     "whirl_consistent_mode": "rotordynamics",
+    "nonlinear_force": "rotordynamics",
     "Identification": "identify",
     "IdentificationSeries": "identify",
     "RigData": "identify",
@@ -115,6 +116,7 @@ __all__ = [
     "simulate_time_response",
     "bearing_at_frequency",
     "whirl_consistent_mode",
+    "nonlinear_force",
 ]
 
 

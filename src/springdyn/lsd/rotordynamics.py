@@ -39,6 +39,7 @@ __all__ = [
     "bearing_element",
     "bearing_at_frequency",
     "whirl_consistent_mode",
+    "nonlinear_force",
     "TableInterpolant",
     "DEFAULT_RPM_RANGE",
     "DEFAULT_POINTS",
@@ -294,3 +295,55 @@ def whirl_consistent_mode(build_rotor, speed: float, omega_guess: float, *, mode
         omega = wd
     raise SolverError(f"whirl_consistent_mode: mode {mode} did not settle in {max_iterations} iterations "
                       f"(last omega {omega:.6g} rad/s, wd {wd:.6g} rad/s)")
+
+
+def nonlinear_force(model, rotor, n: int, *, count: int = 1):
+    """The damper's nonlinear force as an ``add_to_RHS`` callback of ROSS's time response.
+
+    ROSS 2.3's ``rotor.run_time_response(speed, F, t, add_to_RHS=f)`` adds ``f(step,
+    disp_resp=..., velc_resp=..., ...)`` to the right-hand side at every step.  The callback
+    returned here evaluates the rig's force laws (:mod:`springdyn.lsd.rig`: pack springs with
+    lift-off, inter-leaf and O-ring Coulomb friction, oil) at the x, y displacement and
+    velocity of node ``n`` and returns minus that force (the damper pushes back) on the node's
+    x and y degrees of freedom.  Build the rotor **without** a linear element for this damper
+    (or with zero coefficients at node ``n``), so it is not counted twice.
+
+    Parameters
+    ----------
+    model : LSDModel
+        The damper.
+    rotor : ross.Rotor
+        The rotor (for ``ndof`` and ``number_dof``).
+    n : int
+        Node of the damper [-].
+    count : int
+        Identical dampers acting on that node [-].
+
+    Returns
+    -------
+    callable
+        ``f(step, disp_resp=None, velc_resp=None, **kwargs) -> ndarray (rotor.ndof,)`` [N].
+    """
+    from . import rig
+
+    ndof, per_node = int(rotor.ndof), int(rotor.number_dof)
+    ix, iy = per_node * int(n), per_node * int(n) + 1
+    if not (0 <= iy < ndof):
+        raise InputError(f"n = {n!r} is not a node of the rotor ({ndof // per_node} nodes)")
+    p = model.params
+    Cv = model.viscous_damping
+
+    def force(step, disp_resp=None, velc_resp=None, **kwargs):
+        out = np.zeros(ndof)
+        if disp_resp is None or velc_resp is None:
+            return out
+        x, y = np.array([disp_resp[ix]]), np.array([disp_resp[iy]])
+        vx, vy = np.array([velc_resp[ix]]), np.array([velc_resp[iy]])
+        fx, fy, loads = rig.pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
+        lx, ly = rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy)
+        ox, oy = rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy)
+        out[ix] = -count * float((fx + lx + ox + Cv[0, 0] * vx + Cv[0, 1] * vy)[0])
+        out[iy] = -count * float((fy + ly + oy + Cv[1, 0] * vx + Cv[1, 1] * vy)[0])
+        return out
+
+    return force
