@@ -88,8 +88,9 @@ class LSDModel:
 
     @cached_property
     def pack_stiffness_unclamped(self) -> float:
-        """``k_p`` of Eq. (2.8) [N/m]."""
-        return leafpack.pack_stiffness(self.params.leaf_lengths, self.flexural_rigidities, self.params.poisson_ratio)
+        """``k_p`` of Eq. (2.8) [N/m]; with ``leaf_bending = "beam"`` without the ``1/(1 - nu^2)``."""
+        nu = self.params.poisson_ratio if self.params.leaf_bending == "plate" else 0.0
+        return leafpack.pack_stiffness(self.params.leaf_lengths, self.flexural_rigidities, nu)
 
     @cached_property
     def pack_stiffness(self) -> float:
