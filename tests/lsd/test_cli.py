@@ -153,3 +153,27 @@ def test_issue11_reproducers(capsys, tmp_path):
     assert "finite" in capsys.readouterr().err
     assert main(["lsd", "coefficients", "C", "--rpm", "1000", "--amplitude", "50", "--json"]) == 0
     assert "did you mean 50 um" in capsys.readouterr().err
+
+
+def test_a_frequency_is_revolutions_per_second_in_every_lsd_command(tmp_path, capsys):
+    # Issue 15, Build 8: --rpm 50Hz is 3000 rpm (not 50 rad/s = 477.5 rpm) everywhere
+    assert main(["lsd", "coefficients", "C", "--rpm", "50Hz,1000", "--json"]) == 0
+    assert _json(capsys)["rpm"] == pytest.approx([3000.0, 1000.0])
+    x = tmp_path / "x.csv"
+    assert main(["lsd", "rig", "C", "--rpm", "50Hz", "--eccentricity", "20um", "--excitation", "x",
+                 "--revolutions", "3", "--csv", str(x)]) == 0
+    assert "at 3000 rpm" in capsys.readouterr().out
+    assert main(["lsd", "identify", str(x), "--rpm", "50 Hz", "--json"]) == 0
+    assert _json(capsys)["rpm"] == pytest.approx(3000.0)
+    assert main(["lsd", "calibrate", "C", str(x), "--rpm", "50Hz", "--json"]) == 0
+    assert _json(capsys)["residuals"][0]["rpm"] == pytest.approx(3000.0)
+
+
+def test_library_speeds_are_rpm_or_omega():
+    model = LSDModel(LSDParameters.example("C"))
+    a = model.coefficients([3000.0])
+    b = model.coefficients(omega=[100 * np.pi])
+    np.testing.assert_allclose(a.C, b.C, rtol=1e-12)
+    assert b.rpm[0] == pytest.approx(3000.0)
+    with pytest.raises(ValueError, match="exactly one"):
+        model.coefficients([3000.0], omega=[1.0])

@@ -151,3 +151,24 @@ def test_viscosity_scaling():
     base = LSDModel(LSDParameters.example("C"))
     thick = LSDModel(LSDParameters.example("C").replace(oil_viscosity=30 * base.params.oil_viscosity))
     np.testing.assert_allclose(thick.viscous_damping, 30 * base.viscous_damping, rtol=1e-12, atol=1e-12 * thick.viscous_damping[0, 0])
+
+
+def test_compliant_chambers_limits():
+    # G p + c dp/dt = B v: incompressible limit is C_visc with no stiffness; stiff-network
+    # limit (high frequency) is the spring B^T B / c; damping stays positive (dissipation)
+    from springdyn.lsd import LSDModel, LSDParameters
+    from springdyn.lsd.damping import compliant_chamber_coefficients
+
+    m = LSDModel(LSDParameters.example("C"))
+    B, cd = m.volume_matrix, m.conductance
+    K0, C0 = compliant_chamber_coefficients(B, cd, 0.0, 100.0)
+    np.testing.assert_allclose(C0, m.viscous_damping)
+    assert np.all(K0 == 0)
+    K, C = compliant_chamber_coefficients(B, cd, 1e-20, 100.0)
+    np.testing.assert_allclose(C, m.viscous_damping, rtol=1e-6, atol=1e-9 * C[0, 0])
+    c = 1e-12
+    K, C = compliant_chamber_coefficients(B, cd, c, 1e9 * cd / c)
+    np.testing.assert_allclose(K, B.T @ B / c, rtol=1e-6, atol=1e-9 * K[0, 0])
+    for w in (10.0, 300.0, 3000.0):
+        K, C = compliant_chamber_coefficients(B, cd, 2e-13, w)
+        assert np.all(np.linalg.eigvalsh(0.5 * (C + C.T)) > 0) and K[0, 0] > 0

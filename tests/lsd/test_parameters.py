@@ -106,7 +106,7 @@ def test_example_files_load():
 
     folder = Path(__file__).resolve().parents[2] / "examples" / "lsd"
     files = sorted(folder.glob("*.toml"))
-    assert len(files) == 5
+    assert len(files) == 7  # Types A-C, C with two thicker oils, A and B calibrated
     for f in files:
         p = LSDParameters.from_toml(f)
         if f.stem in ("type_a", "type_b", "type_c"):

@@ -293,3 +293,31 @@ def test_tdms_round_trip(tmp_path):
     d = read_rig_data(path)
     np.testing.assert_allclose(d.fx, cols["fx_N"])
     assert identify(d).rpm == pytest.approx(RPM, rel=1e-6)
+
+
+def test_interval_coverage_is_nominal_with_student_t():
+    # Issue 15, Build 8: 400 noisy copies of one x-shake record of 4 periods (3 N force
+    # noise). The 95 % intervals t_(0.975, n-1) * standard error must hold the noise-free
+    # identification in 95 % of the records: binomial standard deviation 1.1 % at N = 400,
+    # so 92-98 % is the 3-sigma band. With the normal quantile 1.96 (what the issue found)
+    # the coverage of 4 periods is expected near 86 %: below 92 %.
+    from springdyn.lsd import LSDModel, LSDParameters, RigData, identify, linear_shake, simulate_rig
+
+    m = LSDModel(LSDParameters.example("C").replace(leakage_factor=3.0))
+    clean = simulate_rig(m, linear_shake(1000, 50e-6, "x", 4, 2e3))
+    ref = identify(RigData(clean.time, clean.x, clean.y, clean.fx, clean.fy), rpm=1000)
+    rng = np.random.default_rng(7)
+    n, hit_t, hit_normal = 400, 0, 0
+    for _ in range(n):
+        fx = clean.fx + rng.normal(0.0, 3.0, clean.fx.shape)
+        it = identify(RigData(clean.time, clean.x, clean.y, fx, clean.fy), rpm=1000)
+        assert it.cycles == 4
+        half_k, half_c = it.intervals()
+        hit_t += abs(it.C[0, 0] - ref.C[0, 0]) <= half_c[0, 0]
+        hit_normal += abs(it.C[0, 0] - ref.C[0, 0]) <= 1.96 * it.C_uncertainty[0, 0]
+    assert 0.92 <= hit_t / n <= 0.98
+    assert hit_normal / n < 0.92
+    assert it.interval_factor() == pytest.approx(3.182, abs=1e-3)  # t_(0.975, 3)
+    d = it.to_dict()
+    low, high = d["cxx_Ns_per_m_ci"]
+    assert (high - low) / 2 == pytest.approx(half_c[0, 0], rel=1e-12)

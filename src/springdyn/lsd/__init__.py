@@ -11,7 +11,10 @@ spaces between the packs are oil chambers joined by narrow passages.  Modules:
 - :mod:`~springdyn.lsd.model` -- :class:`LSDModel`, :class:`LSDCoefficients` (K, C vs rpm);
 - :mod:`~springdyn.lsd.rig` -- time-domain test-rig simulation (Chapter 4), :class:`RigRecord`;
 - :mod:`~springdyn.lsd.identify` -- identification (4.1)-(4.22) with the corrected algebra;
-- :mod:`~springdyn.lsd.rotordynamics` -- the damper as a ``ross.BearingElement``.
+- :mod:`~springdyn.lsd.equivalent` -- describing-function coefficients of the nonlinear laws at an amplitude;
+- :mod:`~springdyn.lsd.calibrate` -- fit parameters (``leakage_factor`` ...) to rig records;
+- :mod:`~springdyn.lsd.jeffcott` -- amplitude-consistent unbalance response of a simple rotor;
+- :mod:`~springdyn.lsd.rotordynamics` -- the damper as a ``ross.BearingElement`` (never extrapolating).
 
 The names below load their modules on first use, so that ``import springdyn.lsd`` stays quick.
 """
@@ -30,6 +33,18 @@ _EXPORTS = {
     "passage_conductance_thesis": "damping",
     "viscous_damping_matrix": "damping",
     "viscous_damping_thesis": "damping",
+    "Calibration": "calibrate",
+    "calibrate": "calibrate",
+    "equivalent_matrices": "equivalent",
+    "forward_whirl_coefficient": "equivalent",
+    "harmonic_forces": "equivalent",
+    "JeffcottRotor": "jeffcott",
+    "UnbalanceResponse": "jeffcott",
+    "simulate_time_response": "jeffcott",
+    "unbalance_response": "jeffcott",
+    "bearing_at_frequency": "rotordynamics",
+    "whirl_consistent_mode": "rotordynamics",
+    "nonlinear_force": "rotordynamics",
     "Identification": "identify",
     "IdentificationSeries": "identify",
     "RigData": "identify",
@@ -90,6 +105,18 @@ __all__ = [
     "chamber_volume_matrix",
     "viscous_damping_matrix",
     "viscous_damping_thesis",
+    "calibrate",
+    "Calibration",
+    "harmonic_forces",
+    "equivalent_matrices",
+    "forward_whirl_coefficient",
+    "JeffcottRotor",
+    "UnbalanceResponse",
+    "unbalance_response",
+    "simulate_time_response",
+    "bearing_at_frequency",
+    "whirl_consistent_mode",
+    "nonlinear_force",
 ]
 
 

@@ -31,6 +31,7 @@ __all__ = [
     "chamber_pressures",
     "viscous_damping_matrix",
     "viscous_damping_thesis",
+    "compliant_chamber_coefficients",
 ]
 
 
@@ -385,3 +386,46 @@ def viscous_damping_thesis(angles, ring_width, ring_diameter, leaf_length, condu
     cyx = lam * np.sum((px_prev - px) * s - k * px * (c - c_next))
     cyy = lam * np.sum((py_prev - py) * s - k * py * (c - c_next))  # typo fixed: py_prev
     return np.array([[cxx, cxy], [cyx, cyy]])
+
+
+def compliant_chamber_coefficients(volume_matrix, conductance, chamber_compliance, omega):
+    """Stiffness and damping of the oil network with compliant chambers [N/m], [N s/m].
+
+    Each chamber stores ``c_ch dp/dt`` (``c_ch = V / beta_eff``: chamber volume over the
+    effective bulk modulus of the oil, lowered by entrained air), so continuity (2.16),
+    (2.18) becomes ``G p + c_ch dp/dt = B v`` and, for a harmonic motion,
+    ``H(omega) = j omega B^T (G + j omega c_ch I)^-1 B``: ``K = Re H``, ``C = Im H / omega``.
+    For ``c_ch -> 0`` it is ``C_visc = B^T G^+ B`` with no stiffness; at high frequency or
+    with thick oil the chambers stop passing oil and ``H -> B^T B / c_ch``: a stiffness that
+    does not depend on the viscosity, and a damping force that saturates.  **Not part of
+    the coefficient model** (no chamber volume or air content is known for the thesis'
+    dampers): an analysis tool for the weak viscosity dependence of correction LSD-7 of
+    docs/references.md.
+
+    Parameters
+    ----------
+    volume_matrix : numpy.ndarray
+        ``B`` (N x 2) from :func:`chamber_volume_matrix` [m^2].
+    conductance : float
+        ``C_D`` between neighbouring chambers [m^3/(s Pa)].
+    chamber_compliance : float
+        ``c_ch = V / beta_eff`` of each chamber [m^3/Pa]; 0 is incompressible oil.
+    omega : float
+        Vibration frequency [rad/s].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(K, C)``, each 2 x 2.
+    """
+    if not (np.isfinite(chamber_compliance) and chamber_compliance >= 0):
+        raise InputError(f"chamber_compliance = {chamber_compliance!r} m^3/Pa must be zero or positive")
+    if not (np.isfinite(omega) and omega > 0):
+        raise InputError(f"omega = {omega!r} rad/s must be positive")
+    B = np.asarray(volume_matrix, dtype=float)
+    G = chamber_laplacian(B.shape[0], conductance)
+    if chamber_compliance == 0:
+        return np.zeros((2, 2)), viscous_damping_matrix(B, conductance)
+    A = G + 1j * omega * chamber_compliance * np.eye(B.shape[0])
+    H = 1j * omega * B.T @ np.linalg.solve(A, B)
+    return H.real, H.imag / omega

@@ -14,7 +14,7 @@ from ..core.results import Result
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
 
-__all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "rpm_to_omega"]
+__all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "rpm_to_omega", "omega_to_rpm"]
 
 #: The eight coefficients in ROSS order, with their SI unit suffix.
 COEFFICIENT_NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
@@ -31,6 +31,17 @@ def rpm_to_omega(rpm):
         Shaft speed [rev/min].
     """
     return 2.0 * np.pi * np.asarray(rpm, dtype=float) / 60.0
+
+
+def omega_to_rpm(omega):
+    """Shaft speed [rev/min] of a vibration frequency ``omega`` [rad/s] on the rig (inverse of :func:`rpm_to_omega`).
+
+    Parameters
+    ----------
+    omega : float or array_like
+        Vibration frequency [rad/s].
+    """
+    return 60.0 * np.asarray(omega, dtype=float) / (2.0 * np.pi)
 
 
 class LSDModel:
@@ -77,8 +88,9 @@ class LSDModel:
 
     @cached_property
     def pack_stiffness_unclamped(self) -> float:
-        """``k_p`` of Eq. (2.8) [N/m]."""
-        return leafpack.pack_stiffness(self.params.leaf_lengths, self.flexural_rigidities, self.params.poisson_ratio)
+        """``k_p`` of Eq. (2.8) [N/m]; with ``leaf_bending = "beam"`` without the ``1/(1 - nu^2)``."""
+        nu = self.params.poisson_ratio if self.params.leaf_bending == "plate" else 0.0
+        return leafpack.pack_stiffness(self.params.leaf_lengths, self.flexural_rigidities, nu)
 
     @cached_property
     def pack_stiffness(self) -> float:
@@ -151,7 +163,7 @@ class LSDModel:
         p = self.params
         omega = np.asarray(omega, dtype=float)
         if np.any(omega <= 0):
-            raise InputError("the frequency (rpm) must be positive for the damping coefficients")
+            raise InputError(f"omega = {omega.tolist()} rad/s must be positive for the damping coefficients")
         cf = damping.coulomb_equivalent_damping(p.oring_friction, p.oring_normal_force, omega, amplitude, motion)
         c_f = cf[..., None, None] * np.eye(2)
         c_h = damping.hysteresis_damping_matrix(self.loss_factor(amplitude), self.pack_stiffness, omega, self.angles)
@@ -161,23 +173,41 @@ class LSDModel:
             return total, {"oring": c_f, "hysteresis": c_h, "viscous": np.array(c_v)}
         return total
 
-    def coefficients(self, rpm, amplitude: float = 50e-6, motion: str = "linear") -> "LSDCoefficients":
-        """K and C at the shaft speeds ``rpm`` [rev/min] and vibration amplitude [m].
+    def coefficients(self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *,
+                     omega=None) -> "LSDCoefficients":
+        """K and C at the shaft speeds ``rpm`` [rev/min] (or vibration frequencies ``omega`` [rad/s]).
 
+        On the thesis' rig the ring vibrates once per shaft revolution, so the vibration
+        frequency is ``omega = 2 pi rpm / 60``; give exactly one of ``rpm`` and ``omega``.
         Warns (:class:`~springdyn.lsd.stiffness.PreloadExceededWarning`) when the
         amplitude exceeds the preload.
+
+        Parameters
+        ----------
+        rpm : float or array_like, optional
+            Speeds [rev/min].
+        amplitude : float
+            Vibration amplitude [m] of the friction equivalents.
+        motion : {"linear", "circular"}
+            Motion for the O-ring Coulomb equivalent.
+        omega : float or array_like, optional
+            Vibration frequencies [rad/s] instead of ``rpm``.
         """
-        rpm = np.atleast_1d(np.asarray(rpm, dtype=float))
-        if rpm.ndim != 1 or np.any(~np.isfinite(rpm)) or np.any(rpm <= 0):
-            raise InputError(f"rpm = {rpm.tolist()} must be positive speeds")
+        if (rpm is None) == (omega is None):
+            raise InputError("give the speeds as rpm [rev/min] or as omega [rad/s], exactly one of them")
+        name = "rpm" if omega is None else "omega"
+        values = np.atleast_1d(np.asarray(rpm if omega is None else omega, dtype=float))
+        if values.ndim != 1 or np.any(~np.isfinite(values)) or np.any(values <= 0):
+            raise InputError(f"{name} = {values.tolist()} must be positive speeds")
+        rpm = values if omega is None else omega_to_rpm(values)
         if not (np.isfinite(amplitude) and amplitude > 0):
             raise InputError(f"amplitude = {amplitude!r} m must be positive")
         if amplitude > 0.01:
             warnings.warn(f"amplitude = {amplitude:g} m is far larger than any damper vibration (1 um to 1 mm): "
                           f"did you mean {amplitude:g} um?", stacklevel=2)
         unloads = stiffness.warn_if_unloading(amplitude, self.params.preload)
-        omega = rpm_to_omega(rpm)
-        C, parts = self.damping_matrix(omega, amplitude, motion, parts=True)
+        w = rpm_to_omega(rpm) if omega is None else values
+        C, parts = self.damping_matrix(w, amplitude, motion, parts=True)
         K = np.broadcast_to(self.stiffness_matrix, C.shape).copy()
         return LSDCoefficients(
             name=self.params.name, rpm=rpm, amplitude=float(amplitude), K=K, C=C, parts=parts,
@@ -185,17 +215,81 @@ class LSDModel:
             preload_exceeded=unloads,
         )
 
-    def to_ross(self, n: int, frequencies=None, amplitude: float = 50e-6, motion: str = "linear", **kwargs):
-        """A ``ross.BearingElement`` with the eight frequency-dependent coefficients.
+    def equivalent_coefficients(self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *,
+                                omega=None, samples: int = 2048) -> "LSDCoefficients":
+        """K and C of the nonlinear force laws at this amplitude (describing function).
+
+        Unlike :meth:`coefficients` (the closed forms of Chapters 2-3), every mechanism is
+        evaluated with the force laws of the time-domain rig (lift-off of the packs,
+        inter-leaf friction on the instantaneous pack load, each pack at its own deflection
+        amplitude, O-ring friction, oil) along a harmonic motion, and the first harmonic
+        of the force gives the coefficients (:mod:`springdyn.lsd.equivalent`).  This is
+        what a rig identifies at that amplitude.
+
+        Parameters
+        ----------
+        rpm : float or array_like, optional
+            Speeds [rev/min] (one vibration per revolution).
+        amplitude : float
+            Shake amplitude or orbit radius [m].
+        motion : {"linear", "circular"}
+            x and y shakes, or forward and backward orbits.
+        omega : float or array_like, optional
+            Vibration frequencies [rad/s] instead of ``rpm``.
+        samples : int
+            Quadrature points per period [-].
+        """
+        from .equivalent import equivalent_matrices
+
+        if (rpm is None) == (omega is None):
+            raise InputError("give the speeds as rpm [rev/min] or as omega [rad/s], exactly one of them")
+        name = "rpm" if omega is None else "omega"
+        values = np.atleast_1d(np.asarray(rpm if omega is None else omega, dtype=float))
+        if values.ndim != 1 or np.any(~np.isfinite(values)) or np.any(values <= 0):
+            raise InputError(f"{name} = {values.tolist()} must be positive speeds")
+        w = rpm_to_omega(values) if omega is None else values
+        mats = [equivalent_matrices(self, wi, amplitude, motion, samples) for wi in w]
+        K = np.array([sum(m[k][0] for k in m) for m in mats])
+        C = np.array([sum(m[k][1] for k in m) for m in mats])
+        parts = {"oring": np.array([m["oring_friction"][1] for m in mats]),
+                 "hysteresis": np.array([m["leaf_friction"][1] for m in mats]),
+                 "viscous": np.array([m["oil"][1] for m in mats])}
+        return LSDCoefficients(
+            name=self.params.name, rpm=omega_to_rpm(w), amplitude=float(amplitude), K=K, C=C, parts=parts,
+            pack_stiffness=self.pack_stiffness, load_ratios=self.load_ratios.copy(),
+            preload_exceeded=bool(amplitude > self.params.preload), method="describing function",
+        )
+
+    def to_ross(self, n: int, frequencies=None, amplitude: float = 50e-6, motion: str = "linear", *,
+                rpm_range=(0.0, 20000.0), points: int = 40, outside: str = "raise", omega=None, **kwargs):
+        """A ``ross.BearingElement`` with the eight coefficients tabulated over ``rpm_range``.
+
+        The table is dense (``points`` >= 30, log-spaced) and the element **never
+        extrapolates**: asked beyond ``rpm_range`` it raises an ``InputError``
+        (``outside="raise"``, the default) or holds the end values (``outside="clamp"``).
+        The table's ``frequency`` is the vibration frequency [rad/s]; ROSS 2.3 evaluates it
+        at the spin speed, which is right for unbalance (synchronous) responses; for modal
+        analysis see :func:`springdyn.lsd.rotordynamics.whirl_consistent_mode`.
 
         Parameters
         ----------
         n : int
             Rotor node of the damper.
         frequencies : array_like, optional
-            Frequencies [rad/s] (ROSS' convention); default 500-3000 rpm in 11 steps.
+            Deprecated alias of ``omega``.
         amplitude : float
             Vibration amplitude [m] for the amplitude-dependent friction terms.
+        motion : {"linear", "circular"}
+            Motion for the O-ring Coulomb equivalent.
+        rpm_range : tuple of float
+            ``(start, stop)`` vibration frequencies [rev/min]; default 0 to 20 000 rpm
+            (below 60 rpm the 60 rpm values are used).
+        points : int
+            Table points [-], at least 30.
+        outside : {"raise", "clamp"}
+            Beyond the range: raise (default) or clamp.
+        omega : array_like, optional
+            Explicit table [rad/s] instead of ``rpm_range``.
         **kwargs
             Passed to ``BearingElement`` (``tag``, ``n_link``, ...).
 
@@ -205,7 +299,8 @@ class LSDModel:
         """
         from .rotordynamics import bearing_element
 
-        return bearing_element(self, n, frequencies, amplitude=amplitude, motion=motion, **kwargs)
+        return bearing_element(self, n, frequencies, amplitude=amplitude, motion=motion, rpm_range=rpm_range,
+                               points=points, outside=outside, omega=omega, **kwargs)
 
 
 def _names(prefix_k: bool, unit: str) -> str:
@@ -236,6 +331,7 @@ class LSDCoefficients(Result):
     pack_stiffness: float
     load_ratios: np.ndarray
     preload_exceeded: bool = False
+    method: str = "closed form"
 
     title = "leaf spring damper coefficients"
     cheap_plot = True
@@ -249,7 +345,7 @@ class LSDCoefficients(Result):
                  pack_stiffness_N_per_m=float(self.pack_stiffness),
                  kxx_min_N_per_m=float(self.K[:, 0, 0].min()), kxx_max_N_per_m=float(self.K[:, 0, 0].max()),
                  cxx_min_N_s_per_m=float(self.C[:, 0, 0].min()), cxx_max_N_s_per_m=float(self.C[:, 0, 0].max()),
-                 preload_exceeded=bool(self.preload_exceeded))
+                 preload_exceeded=bool(self.preload_exceeded), model=self.method)
         return s
 
     @property

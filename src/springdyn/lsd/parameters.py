@@ -50,6 +50,8 @@ class LSDParameters(Parameters):
     oil_density: float = param("kg/m^3", "oil density", symbol="rho", positive=True)
     first_pack_angle: float = param("rad", "angle of the first pack from the x axis", symbol="phi_1", display="deg", default=0.0)
     pack_angles: list = param("rad", "explicit pack angles (empty: equally spaced)", kind="quantity_list", display="deg", default=[])
+    leaf_bending: str = param(None, "leaf rigidity in (2.8): 'plate' E/(1-nu^2) as printed, or 'beam' E (free anticlastic bending)",
+                              kind="str", choices=("plate", "beam"), default="plate")
     clamp_overhang: float = param("m", "clamp overhang a of Fig. 2.3", symbol="a", display="mm", default=0.0, nonnegative=True)
     ring_mass: float = param("kg", "mass of the inner ring", symbol="m", default=0.0, nonnegative=True)
     passages_per_boundary: int = param("", "oil passages between two neighbouring chambers", kind="int", default=2,

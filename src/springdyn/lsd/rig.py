@@ -25,7 +25,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.results import Result
-from .model import LSDModel, rpm_to_omega
+from ..core.units import rpm_to_omega
 from .stiffness import pack_deflections, warn_if_unloading
 
 __all__ = [
@@ -243,7 +243,7 @@ def oring_friction_force(friction_coefficient, normal_force, vx, vy):
     return scale * vx, scale * vy
 
 
-def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, displacement_noise=0.0, seed=None):
+def simulate_rig(model: "LSDModel", trajectory: Trajectory, *, force_noise=0.0, displacement_noise=0.0, seed=None):
     """Reaction forces of the damper along a prescribed ring path.
 
     Parameters

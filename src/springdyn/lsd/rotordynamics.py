@@ -1,56 +1,349 @@
-"""The leaf spring damper as a ROSS bearing element (optional extra ``springdyn[ross]``).
+"""The leaf spring damper in a rotor model: ROSS bearing elements that never extrapolate.
 
-ROSS (``ross-rotordynamics``) takes bearing and damper elements with frequency-dependent
-``kxx, kxy, kyx, kyy, cxx, cxy, cyx, cyy`` (``ross.BearingElement(n, kxx, cxx, ...,
-frequency=...)``, frequencies in rad/s).  ROSS is imported only here, when asked for.
+ROSS (``ross-rotordynamics``, tested with 2.3) takes bearing and damper elements with
+``kxx, kxy, kyx, kyy, cxx, cxy, cyx, cyy`` tabulated against ``frequency`` [rad/s] and
+interpolates them with a spline that, left alone, extrapolates beyond the table
+(polynomially: the damping of Type C comes out negative a little above 3000 rpm).
+:func:`bearing_element` therefore
+
+- tabulates the coefficients densely (40 log-spaced points by default) over a stated
+  speed range, 0 to 20 000 rpm by default;
+- replaces ROSS's smoothing spline by an interpolating one (``s = 0``) on that table;
+- **refuses** (default ``outside="raise"``) any evaluation beyond the range with a
+  :class:`~springdyn.core.errors.InputError` naming the frequency and the range, or, with
+  ``outside="clamp"``, holds the coefficients at the nearest end of the table.
+
+Which frequency.  The damper's coefficients depend on the **vibration frequency** (the
+friction equivalents fall as ``1/omega``).  ROSS 2.3 evaluates bearing coefficients at
+``frequency = speed``, the spin speed, in ``run_modal``, ``run_campbell``,
+``run_freq_response`` and ``run_unbalance_response``.  For an unbalance (synchronous)
+response the vibration frequency *is* the spin speed, so the table is right as it is.
+For a modal analysis it is right only for a mode whose frequency equals the spin speed;
+use :func:`bearing_at_frequency` (constant coefficients at one vibration frequency) and
+:func:`whirl_consistent_mode` (iterate until the mode's frequency and the frequency of the
+coefficients agree).  ROSS 3 renames/redefines ``frequency`` as the whirl frequency; the
+tables built here are functions of the vibration (whirl) frequency, which for ROSS 2.3's
+synchronous analyses equals the spin speed.
 """
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
-from ..core.errors import InputError
+from ..core.errors import InputError, SolverError
+from ..core.units import omega_to_rpm, rpm_to_omega
 
-__all__ = ["bearing_element", "DEFAULT_FREQUENCIES"]
+__all__ = [
+    "bearing_element",
+    "bearing_at_frequency",
+    "whirl_consistent_mode",
+    "nonlinear_force",
+    "TableInterpolant",
+    "DEFAULT_RPM_RANGE",
+    "DEFAULT_POINTS",
+    "LOWEST_TABLE_RPM",
+    "DEFAULT_FREQUENCIES",
+]
 
-#: Default frequencies [rad/s]: 500 to 3000 rpm, the speed range of the thesis' rig.
+#: Default speed range of :func:`bearing_element` [rev/min].
+DEFAULT_RPM_RANGE = (0.0, 20000.0)
+#: Default number of table points (log-spaced) [-].
+DEFAULT_POINTS = 40
+#: Lowest tabulated speed [rev/min] (1 Hz): below it the friction equivalents
+#: ``C ~ 1/omega`` grow without bound, so a range starting lower is held at this value.
+LOWEST_TABLE_RPM = 60.0
+#: Old default table [rad/s] (500-3000 rpm, 11 points); kept for code that imported it.
 DEFAULT_FREQUENCIES = 2.0 * np.pi * np.linspace(500.0, 3000.0, 11) / 60.0
 
+_NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
+_INDEX = {"kxx": (0, 0), "kxy": (0, 1), "kyx": (1, 0), "kyy": (1, 1)}
 
-def bearing_element(model, n: int, frequencies=None, *, amplitude: float = 50e-6, motion: str = "linear", **kwargs):
-    """Build ``ross.BearingElement`` at node ``n`` from an :class:`~springdyn.lsd.LSDModel`.
 
-    Parameters
-    ----------
-    model : LSDModel
-    n : int
-        Rotor node number [-].
-    frequencies : array_like, optional
-        Frequencies [rad/s] at which the coefficients are tabulated (ROSS interpolates
-        between them); default :data:`DEFAULT_FREQUENCIES`.
-    amplitude : float
-        Vibration amplitude [m] for the amplitude-dependent friction damping.
-    motion : {"linear", "circular"}
-        Motion assumed for the O-ring Coulomb equivalent.
-    **kwargs
-        Passed on (``tag``, ``n_link``, ``scale_factor``...).
-    """
+def _import_ross():
     try:
-        import ross
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            import ross
     except ImportError:
         raise InputError(
             "to_ross() needs the optional package ross-rotordynamics (pip install 'springdyn[ross]')"
         ) from None
-    w = DEFAULT_FREQUENCIES if frequencies is None else np.atleast_1d(np.asarray(frequencies, dtype=float))
-    if w.ndim != 1 or w.size < 1 or np.any(~np.isfinite(w)) or np.any(w <= 0) or np.any(np.diff(w) <= 0):
-        raise InputError(f"frequencies = {w.tolist()} rad/s must be positive and increasing")
-    coeffs = model.coefficients(60.0 * w / (2.0 * np.pi), amplitude=amplitude, motion=motion)
+    return ross
+
+
+class TableInterpolant:
+    """Interpolating cubic spline of one coefficient over a table, never extrapolating.
+
+    Called by ROSS with a frequency [rad/s] (scalar or array).  Inside
+    ``[omega_low, omega_high]`` it interpolates (values between 0 and the first table
+    point, when the stated range starts below it, are the first point's value); outside it
+    raises :class:`InputError` (``outside="raise"``) or returns the value at the nearer end
+    (``outside="clamp"``).
+
+    Parameters
+    ----------
+    omega : array_like
+        Table frequencies [rad/s], increasing.
+    values : array_like
+        Coefficient at those frequencies [N/m or N s/m].
+    omega_low, omega_high : float
+        The stated range [rad/s] (``omega_low`` may be below ``omega[0]``).
+    outside : {"raise", "clamp"}
+        What to do beyond the stated range.
+    label : str
+        Name used in messages, e.g. ``"cxx of LSD Type C"``.
+    """
+
+    def __init__(self, omega, values, omega_low, omega_high, outside="raise", label="coefficient"):
+        from scipy.interpolate import UnivariateSpline
+
+        self.omega = np.asarray(omega, dtype=float)
+        self.values = np.asarray(values, dtype=float)
+        self.omega_low, self.omega_high = float(omega_low), float(omega_high)
+        self.outside, self.label = outside, label
+        k = min(3, self.omega.size - 1)
+        if self.omega.size == 1:
+            self._spline = None
+        else:
+            self._spline = UnivariateSpline(self.omega, self.values, k=k, s=0, ext=3)
+
+    def __call__(self, frequency):
+        w = np.asarray(frequency, dtype=float)
+        tol = 1e-9 * self.omega_high
+        bad = (w < self.omega_low - tol) | (w > self.omega_high + tol) | ~np.isfinite(w)
+        if np.any(bad):
+            if self.outside == "raise" or np.any(~np.isfinite(w)):
+                first = float(np.atleast_1d(w)[np.atleast_1d(bad)][0])
+                raise InputError(
+                    f"{self.label}: asked at frequency = {first:.6g} rad/s ({omega_to_rpm(first):.6g} rpm), outside "
+                    f"the table {self.omega_low:.6g}-{self.omega_high:.6g} rad/s "
+                    f"({omega_to_rpm(self.omega_low):.6g}-{omega_to_rpm(self.omega_high):.6g} rpm); springdyn does not "
+                    "extrapolate: build the element over a wider rpm_range, or with outside='clamp'"
+                )
+        w = np.clip(w, self.omega[0], self.omega[-1])
+        if self._spline is None:
+            out = np.full(w.shape, self.values[0])
+        else:
+            out = self._spline(w)
+        return out if np.ndim(frequency) else float(out)
+
+
+def _table(rpm_range, points):
+    """Log-spaced table speeds [rev/min] over ``rpm_range`` (from 60 rpm up if it starts lower)."""
+    try:
+        lo, hi = (float(v) for v in rpm_range)
+    except (TypeError, ValueError):
+        raise InputError(f"rpm_range = {rpm_range!r} must be two speeds (start, stop) in rpm") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0.0 <= lo < hi):
+        raise InputError(f"rpm_range = ({lo:g}, {hi:g}) rpm must satisfy 0 <= start < stop")
+    if int(points) != points or points < 30:
+        raise InputError(f"points = {points!r} must be a whole number of at least 30 (the table must be dense)")
+    first = max(lo, LOWEST_TABLE_RPM)
+    if not hi > first:
+        raise InputError(f"rpm_range = ({lo:g}, {hi:g}) rpm must reach above {LOWEST_TABLE_RPM:g} rpm")
+    return lo, hi, np.geomspace(first, hi, int(points))
+
+
+def bearing_element(model, n: int, frequencies=None, *, amplitude: float = 50e-6, motion: str = "linear",
+                    rpm_range=DEFAULT_RPM_RANGE, points: int = DEFAULT_POINTS, outside: str = "raise",
+                    omega=None, **kwargs):
+    """``ross.BearingElement`` at node ``n`` from an :class:`~springdyn.lsd.LSDModel`, never extrapolating.
+
+    Parameters
+    ----------
+    model : LSDModel
+        The damper.
+    n : int
+        Rotor node number [-].
+    frequencies : array_like, optional
+        Deprecated alias of ``omega`` (explicit table frequencies [rad/s]).
+    amplitude : float
+        Vibration amplitude [m] for the amplitude-dependent friction damping.
+    motion : {"linear", "circular"}
+        Motion assumed for the O-ring Coulomb equivalent.
+    rpm_range : tuple of float
+        ``(start, stop)`` [rev/min] of vibration frequencies the element answers for; default
+        0 to 20 000 rpm.  The table is log-spaced from ``max(start, 60 rpm)`` to ``stop``
+        (between 0 and 60 rpm the 60 rpm values are used: friction equivalents are unbounded
+        at rest).
+    points : int
+        Table points, at least 30 [-].
+    outside : {"raise", "clamp"}
+        Beyond the range: raise an :class:`InputError` (default) or hold the end value.
+    omega : array_like, optional
+        Explicit table frequencies [rad/s] instead of ``rpm_range`` (the range is then the
+        table's span).
+    **kwargs
+        Passed on (``tag``, ``n_link``, ``scale_factor``...).
+
+    Returns
+    -------
+    ross.BearingElement
+        Its ``frequency`` is the **vibration frequency** [rad/s] (equal to the spin speed in
+        ROSS 2.3's synchronous analyses); ``kxx_interpolated`` ... are
+        :class:`TableInterpolant` objects.
+    """
+    if outside not in ("raise", "clamp"):
+        raise InputError(f"outside = {outside!r} is not allowed; choose 'raise' or 'clamp'")
+    if frequencies is not None:
+        warnings.warn("to_ross(frequencies=...) is deprecated: give rpm_range=(start, stop) for a dense table, "
+                      "or omega=[...] [rad/s] for an explicit one", DeprecationWarning, stacklevel=3)
+        if omega is None:
+            omega = frequencies
+    if omega is not None:
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        if w.ndim != 1 or w.size < 1 or np.any(~np.isfinite(w)) or np.any(w <= 0) or np.any(np.diff(w) <= 0):
+            raise InputError(f"omega = {w.tolist()} rad/s must be positive and increasing")
+        w_low, w_high = float(w[0]), float(w[-1])
+    else:
+        lo, hi, rpm = _table(rpm_range, points)
+        w = rpm_to_omega(rpm)
+        w_low, w_high = float(rpm_to_omega(lo)), float(rpm_to_omega(hi))
+    ross = _import_ross()
+    coeffs = model.coefficients(omega=w, amplitude=amplitude, motion=motion)
     K, C = coeffs.K, coeffs.C
     kwargs.setdefault("tag", f"LSD {model.params.name}")
-    return ross.BearingElement(
-        n=n,
-        kxx=K[:, 0, 0], kxy=K[:, 0, 1], kyx=K[:, 1, 0], kyy=K[:, 1, 1],
-        cxx=C[:, 0, 0], cxy=C[:, 0, 1], cyx=C[:, 1, 0], cyy=C[:, 1, 1],
-        frequency=w,
-        **kwargs,
-    )
+    values = {name: (K if name[0] == "k" else C)[(slice(None),) + _INDEX["k" + name[1:]]] for name in _NAMES}
+    elem = ross.BearingElement(n=n, frequency=w, **values, **kwargs)
+    for name in _NAMES:
+        setattr(elem, f"{name}_interpolated",
+                TableInterpolant(w, values[name], w_low, w_high, outside, f"{name} of {kwargs['tag']}"))
+    return elem
+
+
+def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-6, motion: str = "linear", **kwargs):
+    """``ross.BearingElement`` with the coefficients at one vibration frequency ``omega`` [rad/s].
+
+    Constant coefficients (no table), so ROSS uses them at every spin speed: the element
+    for a modal analysis of a mode vibrating at ``omega`` (see :func:`whirl_consistent_mode`),
+    or for a forced response at a single frequency.
+
+    Parameters
+    ----------
+    model : LSDModel
+        The damper.
+    n : int
+        Rotor node number [-].
+    omega : float
+        Vibration frequency [rad/s].
+    amplitude : float
+        Vibration amplitude [m].
+    motion : {"linear", "circular"}
+        Motion for the O-ring Coulomb equivalent.
+    **kwargs
+        Passed on to ``ross.BearingElement``.
+    """
+    if not (np.isfinite(omega) and omega > 0):
+        raise InputError(f"omega = {omega!r} rad/s must be a positive vibration frequency")
+    ross = _import_ross()
+    c = model.coefficients(omega=[float(omega)], amplitude=amplitude, motion=motion)
+    kwargs.setdefault("tag", f"LSD {model.params.name}")
+    K, C = c.K[0], c.C[0]
+    return ross.BearingElement(n=n, kxx=K[0, 0], kxy=K[0, 1], kyx=K[1, 0], kyy=K[1, 1],
+                               cxx=C[0, 0], cxy=C[0, 1], cyx=C[1, 0], cyy=C[1, 1], **kwargs)
+
+
+def whirl_consistent_mode(build_rotor, speed: float, omega_guess: float, *, mode: int = 0, num_modes: int = 12,
+                          rtol: float = 1e-4, max_iterations: int = 50):
+    """Modal analysis with the damper's coefficients at the mode's own frequency.
+
+    Repeats ``rotor = build_rotor(omega)`` (the rotor with every damper built by
+    :func:`bearing_at_frequency` at ``omega``) and ``rotor.run_modal(speed)`` until the
+    damped natural frequency ``wd`` of mode ``mode`` equals ``omega`` within ``rtol``.
+
+    Parameters
+    ----------
+    build_rotor : callable
+        ``build_rotor(omega) -> ross.Rotor`` [omega in rad/s].
+    speed : float
+        Spin speed [rad/s] of the modal analysis.
+    omega_guess : float
+        Starting vibration frequency [rad/s].
+    mode : int
+        Index of the mode in ROSS's (frequency-sorted) list [-].
+    num_modes : int
+        Modes ROSS computes [-].
+    rtol : float
+        Relative tolerance on ``wd - omega`` [-].
+    max_iterations : int
+        Bound on the iterations [-].
+
+    Returns
+    -------
+    tuple
+        ``(omega, modal)``: the consistent frequency [rad/s] and ROSS's modal results.
+
+    Raises
+    ------
+    SolverError
+        No consistent frequency within ``max_iterations`` (a mode that is overdamped at
+        that frequency has no damped frequency to iterate on).
+    """
+    if not (np.isfinite(omega_guess) and omega_guess > 0):
+        raise InputError(f"omega_guess = {omega_guess!r} rad/s must be positive")
+    omega = float(omega_guess)
+    for _ in range(int(max_iterations)):
+        modal = build_rotor(omega).run_modal(speed=speed, num_modes=num_modes)
+        wd = float(modal.wd[mode])
+        if not (np.isfinite(wd) and wd > 0):
+            raise SolverError(f"whirl_consistent_mode: mode {mode} has no damped frequency at omega = {omega:.6g} rad/s "
+                              "(overdamped); pick another mode")
+        if abs(wd - omega) <= rtol * wd:
+            return wd, modal
+        omega = wd
+    raise SolverError(f"whirl_consistent_mode: mode {mode} did not settle in {max_iterations} iterations "
+                      f"(last omega {omega:.6g} rad/s, wd {wd:.6g} rad/s)")
+
+
+def nonlinear_force(model, rotor, n: int, *, count: int = 1):
+    """The damper's nonlinear force as an ``add_to_RHS`` callback of ROSS's time response.
+
+    ROSS 2.3's ``rotor.run_time_response(speed, F, t, add_to_RHS=f)`` adds ``f(step,
+    disp_resp=..., velc_resp=..., ...)`` to the right-hand side at every step.  The callback
+    returned here evaluates the rig's force laws (:mod:`springdyn.lsd.rig`: pack springs with
+    lift-off, inter-leaf and O-ring Coulomb friction, oil) at the x, y displacement and
+    velocity of node ``n`` and returns minus that force (the damper pushes back) on the node's
+    x and y degrees of freedom.  Build the rotor **without** a linear element for this damper
+    (or with zero coefficients at node ``n``), so it is not counted twice.
+
+    Parameters
+    ----------
+    model : LSDModel
+        The damper.
+    rotor : ross.Rotor
+        The rotor (for ``ndof`` and ``number_dof``).
+    n : int
+        Node of the damper [-].
+    count : int
+        Identical dampers acting on that node [-].
+
+    Returns
+    -------
+    callable
+        ``f(step, disp_resp=None, velc_resp=None, **kwargs) -> ndarray (rotor.ndof,)`` [N].
+    """
+    from . import rig
+
+    ndof, per_node = int(rotor.ndof), int(rotor.number_dof)
+    ix, iy = per_node * int(n), per_node * int(n) + 1
+    if not (0 <= iy < ndof):
+        raise InputError(f"n = {n!r} is not a node of the rotor ({ndof // per_node} nodes)")
+    p = model.params
+    Cv = model.viscous_damping
+
+    def force(step, disp_resp=None, velc_resp=None, **kwargs):
+        out = np.zeros(ndof)
+        if disp_resp is None or velc_resp is None:
+            return out
+        x, y = np.array([disp_resp[ix]]), np.array([disp_resp[iy]])
+        vx, vy = np.array([velc_resp[ix]]), np.array([velc_resp[iy]])
+        fx, fy, loads = rig.pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
+        lx, ly = rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy)
+        ox, oy = rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy)
+        out[ix] = -count * float((fx + lx + ox + Cv[0, 0] * vx + Cv[0, 1] * vy)[0])
+        out[iy] = -count * float((fy + ly + oy + Cv[1, 0] * vx + Cv[1, 1] * vy)[0])
+        return out
+
+    return force

@@ -52,11 +52,40 @@ def register(sub) -> None:
     add_output_options(p)
     p.set_defaults(func=cmd_identify)
 
+    p = lsub.add_parser("calibrate", help="fit model parameters (default leakage_factor) to rig records")
+    p.add_argument("config", metavar="MODEL.toml", help="damper definition to calibrate; or A, B, C")
+    p.add_argument("data", metavar="RECORDS.csv", nargs="+", help="rig record(s), one per speed (CSV or TDMS)")
+    p.add_argument("--second", metavar="RECORDS2.csv", nargs="+", help="second, independent excitation(s), same order")
+    p.add_argument("--fit", default="leakage_factor",
+                   help="comma-separated [lsd] keys to fit (default leakage_factor), e.g. leakage_factor,leaf_friction")
+    p.add_argument("--rpm", help="shaft speed(s) in rpm, one per record (default: found in the data)")
+    p.add_argument("--mass", help="moving mass whose inertia is removed (default: the model's ring_mass)")
+    p.add_argument("--confidence", default="95%", help="confidence level of the intervals (default 95%%)")
+    p.add_argument("--toml", metavar="OUT.toml", help="write the calibrated definition")
+    add_output_options(p, plot=False)
+    p.set_defaults(func=cmd_calibrate)
+
+
+def _is_example(text: str) -> bool:
+    return text.upper() in ("A", "B", "C", "TYPE_A", "TYPE_B", "TYPE_C")
+
 
 def _params(text: str) -> LSDParameters:
-    if text.upper() in ("A", "B", "C", "TYPE_A", "TYPE_B", "TYPE_C"):
+    if _is_example(text):
         return LSDParameters.example(text)
     return LSDParameters.from_toml(text)
+
+
+def _definition_text(text: str) -> str:
+    """The TOML text of a definition (a file, or a built-in example)."""
+    from importlib import resources
+    from pathlib import Path
+
+    from springdyn.lsd.parameters import EXAMPLES
+
+    if _is_example(text):
+        return (resources.files("springdyn.data") / EXAMPLES[LSDParameters._example_key(text)]).read_text()
+    return Path(text).read_text(encoding="utf-8")
 
 
 def cmd_coefficients(args) -> int:
@@ -162,9 +191,70 @@ def cmd_identify(args) -> int:
         for key, value in d.items():
             if key.endswith(("_N_per_m", "_Ns_per_m")):
                 unc = d.get(f"{key}_uncertainty")
+                ci = d.get(f"{key}_ci")
                 unit = "N/m" if key.endswith("_N_per_m") else "N*s/m"
-                rows.append((key.split("_")[0], f"{value:.6g}", "nan" if unc is None else f"{unc:.3g}", unit))
-        print_table(rows, headers=("coefficient", "value", "uncertainty", "unit"))
+                rows.append((key.split("_")[0], f"{value:.6g}", "nan" if unc is None else f"{unc:.3g}",
+                             "-" if ci is None else f"+-{(ci[1] - ci[0]) / 2:.3g}", unit))
+        print_table(rows, headers=("coefficient", "value", "std. error", "95 % CI (Student t)", "unit"))
         if it.caveat:
             print(f"note: {it.caveat}")
+    return 0
+
+
+def _speeds(text, records):
+    if not text:
+        return None
+    rpms = list(parse_range(text, "rpm", "--rpm"))
+    if len(rpms) == 1 and len(records) > 1:
+        raise InputError(f"--rpm gives one speed for {len(records)} records; give one per record or none")
+    return rpms
+
+
+def cmd_calibrate(args) -> int:
+    from springdyn.core.io import atomic_open, write_csv
+    from springdyn.lsd.calibrate import calibrate
+    from springdyn.lsd.identify import read_rig_data
+
+    params = _params(args.config)
+    records = [read_rig_data(p) for p in args.data]
+    seconds = [read_rig_data(p) for p in args.second] if args.second else None
+    rpms = _speeds(args.rpm, records)
+    mass = None if args.mass is None else quantity(args.mass, "kg", "--mass")
+    confidence = quantity(args.confidence, "", "--confidence")
+    fit = [s.strip() for s in args.fit.split(",") if s.strip()]
+    try:
+        cal = calibrate(params, records, seconds, fit=fit, mass=mass, rpms=rpms, confidence=confidence)
+    except InputError as exc:
+        text = str(exc)
+        for key, option in (("fit", "--fit"), ("confidence", "--confidence"), ("mass", "--mass")):
+            if text.startswith(f"{key} ") or text.startswith(f"{key}:"):
+                text = option + text[len(key):]
+        raise InputError(text) from None
+    if args.toml:
+        with atomic_open(args.toml) as fh:
+            fh.write(cal.toml_text(_definition_text(args.config)))
+    if args.csv:
+        cols = {k: np.array([row[k] for row in cal.residuals]) for k in cal.residuals[0]}
+        write_csv(args.csv, cols)
+    if args.json:
+        print_json(cal.to_dict())
+        return 0
+    print(f"{params.name}: calibrated on {len(records)} speed(s) "
+          f"({'two excitations' if seconds else 'one excitation'} each), {cal.dof} degrees of freedom")
+    rows = []
+    for name, value in cal.values.items():
+        ci = cal.intervals[name]
+        rows.append((name, f"{value:.6g}", "-" if ci is None else f"{ci[0]:.6g} to {ci[1]:.6g}"))
+    print_table(rows, headers=("parameter", "value", f"{100 * cal.confidence:g} % interval"))
+    rows = []
+    for row in cal.residuals:
+        for k in cal.coefficients:
+            unit = "N_per_m" if k[0] == "k" else "Ns_per_m"
+            rows.append((f"{row['rpm']:.6g}", k, f"{row[f'{k}_identified_{unit}']:.6g}",
+                         f"{row[f'{k}_model_{unit}']:.6g}", f"{100 * row[f'{k}_relative']:+.2f} %"))
+    print_table(rows, headers=("rpm", "coefficient", "identified", "calibrated model", "difference"))
+    for note in cal.notes:
+        print(f"note: {note}")
+    if args.toml:
+        print(f"calibrated definition -> {args.toml}")
     return 0

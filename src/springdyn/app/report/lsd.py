@@ -65,7 +65,7 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
     png = out_dir / "coefficients.png"
     plt.close(coeffs.plot(png, identified=ident))
     figures.insert(0, (png, "Stiffness and damping coefficients vs speed: model (lines) and identified from "
-                       "simulated x/y shakes (markers), like Figs. 5.9-5.10"))
+                       "simulated x/y shakes (markers, 95 % Student-t intervals), like Figs. 5.9-5.10"))
     kxx_m, cxx_m = coeffs.K[:, 0, 0], coeffs.C[:, 0, 0]
     kxx_i = np.array([it.K[0, 0] for it in ident.items])
     cxx_i = np.array([it.C[0, 0] for it in ident.items])
@@ -86,9 +86,11 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
         "instantaneous pack load while the closed form (2.27)-(2.28) uses the peak load.",
     ]
     if p.leakage_factor == 1.0:
-        findings.append("leakage_factor = 1: the viscous closed form is uncalibrated (correction LSD-6 of "
-                        "docs/references.md: it over-predicts the measured damping of Types A and B by orders of "
-                        "magnitude).")
+        findings.append("leakage_factor = 1: the damping shown is the raw, uncalibrated closed form, a comparison "
+                        "and not a prediction (correction LSD-6 of docs/references.md: it over-predicts the forces "
+                        "the thesis reports for Types A and B by one to two orders of magnitude; calibrated to them, "
+                        "Type A needs leakage_factor 11.9 and Type B 120, examples/lsd/type_a_calibrated.toml and "
+                        "type_b_calibrated.toml; calibrate on records with springdyn lsd calibrate).")
     omega = SPEEDS * 2.0 * np.pi / 60.0
     loss = cxx_m * omega / kxx_m
     k = int(np.argmax(loss))
