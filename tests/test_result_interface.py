@@ -79,7 +79,28 @@ def _identified():
     return identify_series([_rig("x")], [_rig("y")], mass=0.5)
 
 
+def _calibration():
+    from springdyn.lsd import LSDParameters, RigData, linear_shake, simulate_rig
+    from springdyn.lsd.calibrate import calibrate
+
+    truth = _lsd().params.replace(leakage_factor=2.0)
+    from springdyn.lsd import LSDModel
+
+    recs = [simulate_rig(LSDModel(truth), linear_shake(rpm, 50e-6, "x", 4, 5e3)) for rpm in (500.0, 1500.0)]
+    data = [RigData(r.time, r.x, r.y, r.fx, r.fy, source=f"x{i}.csv") for i, r in enumerate(recs)]
+    return calibrate(LSDParameters.example("C"), data)
+
+
+def _unbalance():
+    from springdyn.lsd.jeffcott import JeffcottRotor, unbalance_response
+
+    rotor = JeffcottRotor(disk_mass=20.0, shaft_stiffness=5e6, bearing_mass=1.0, unbalance=1e-3)
+    return unbalance_response(_lsd(), rotor, [1000.0, 2000.0])
+
+
 FACTORIES = {
+    "springdyn.lsd.calibrate.Calibration": _calibration,
+    "springdyn.lsd.jeffcott.UnbalanceResponse": _unbalance,
     "springdyn.lsd.model.LSDCoefficients": lambda: _lsd().coefficients([500.0, 1000.0, 2000.0], amplitude=20e-6),
     "springdyn.lsd.rig.RigRecord": lambda: _rig("x"),
     "springdyn.lsd.identify.RigData": lambda: __import__("springdyn.lsd.identify", fromlist=["RigData"]).RigData(

@@ -29,6 +29,7 @@ import re
 import numpy as np
 
 from ..core.errors import InputError, SolverError
+from ..core.results import Result
 from ..core.params import field_specs
 from .equivalent import harmonic_forces
 from .identify import IdentificationSeries, _cycles, _frequency, _phasors, _solve_full, _solve_single, identify
@@ -63,8 +64,8 @@ def _specs(names):
     return names, [meta[n] for n in names]
 
 
-@dataclasses.dataclass
-class Calibration:
+@dataclasses.dataclass(repr=False)
+class Calibration(Result):
     """Fitted parameters with confidence intervals, residuals per speed, the calibrated damper.
 
     Attributes
@@ -109,14 +110,52 @@ class Calibration:
             d["notes"] = list(self.notes)
         return d
 
-    def __repr__(self) -> str:
-        lines = [f"<Calibration of {self.params.name}: {self.identified.rpm.size} speeds, dof {self.dof}>"]
-        for name, value in self.values.items():
-            ci = self.intervals[name]
-            ci_text = "no interval" if ci is None else f"{100 * self.confidence:g} % CI [{ci[0]:.6g}, {ci[1]:.6g}]"
-            lines.append(f"  {name} = {value:.6g} ({ci_text})")
-        lines.append(f"  rms relative residual {self.rms_relative_residual:.3g}")
-        return "\n".join(lines[:15])
+    title = "leaf spring damper calibration"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.params.name}, {self.identified.rpm.size} speeds, dof {self.dof}"
+
+    def _summary(self) -> dict:
+        """The JSON of ``springdyn lsd calibrate`` without the per-speed residuals (in
+        :meth:`to_xarray` and the CSV): fitted values, ``<name>_ci``, the fit's figures."""
+        d = {k: v for k, v in self.to_dict().items() if k != "residuals"}
+        d.setdefault("notes", [])
+        return d
+
+    def to_xarray(self):
+        """Identified and calibrated-model coefficients per speed (dimension ``rpm``)."""
+        import xarray as xr
+
+        rpm = np.array([r["rpm"] for r in self.residuals], dtype=float)
+        data = {}
+        for k in self.coefficients:
+            unit, tag = ("N/m", "N_per_m") if k[0] == "k" else ("N*s/m", "Ns_per_m")
+            data[f"{k}_identified"] = ("rpm", np.array([r[f"{k}_identified_{tag}"] for r in self.residuals]),
+                                       {"units": unit, "long_name": f"{k} identified from the records"})
+            data[f"{k}_model"] = ("rpm", np.array([r[f"{k}_model_{tag}"] for r in self.residuals]),
+                                  {"units": unit, "long_name": f"{k} of the calibrated model"})
+            data[f"{k}_relative"] = ("rpm", np.array([r[f"{k}_relative"] for r in self.residuals]),
+                                     {"units": "", "long_name": f"model / identified - 1 for {k}"})
+        return xr.Dataset(data, coords={"rpm": ("rpm", rpm, {"units": "rpm"})},
+                          attrs={k: float(v) for k, v in self.values.items()})
+
+    def _plot(self, ax=None):
+        from ..core.plotting import new_figure
+
+        if ax is None:
+            fig, ax = new_figure(1, 1, figsize=(7, 4.5))
+        ds = self.to_xarray()
+        for i, k in enumerate(self.coefficients):
+            ax.plot(ds["rpm"], ds[f"{k}_identified"], "o", color=f"C{i}", label=f"{k} identified")
+            ax.plot(ds["rpm"], ds[f"{k}_model"], "-", color=f"C{i}", label=f"{k} calibrated model")
+        fitted = ", ".join(f"{k} = {v:.4g}" for k, v in self.values.items())
+        ax.set_title(f"calibration: {fitted}", fontsize=9)
+        ax.set_xlabel("speed [rpm]")
+        ax.set_ylabel("coefficient [SI]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        return ax.figure
 
     def toml_text(self, text: str) -> str:
         """``text`` (a TOML definition) with the fitted keys of ``[lsd]`` set to the calibrated values."""

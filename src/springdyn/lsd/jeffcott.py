@@ -27,6 +27,7 @@ import dataclasses
 import numpy as np
 
 from ..core.errors import InputError, SolverError
+from ..core.results import Result
 from .equivalent import forward_whirl_coefficient
 from .model import LSDModel, rpm_to_omega
 from . import rig
@@ -85,8 +86,8 @@ class JeffcottRotor:
         return D, B
 
 
-@dataclasses.dataclass
-class UnbalanceResponse:
+@dataclasses.dataclass(repr=False)
+class UnbalanceResponse(Result):
     """Amplitude-consistent unbalance response vs speed.
 
     Attributes
@@ -128,23 +129,54 @@ class UnbalanceResponse:
         k = int(np.argmax(self.disk_amplitude))
         return float(self.rpm[k]), float(self.disk_amplitude[k])
 
-    def plot(self, path=None, ax=None):
-        """Disk and damper amplitudes vs speed [um]; writes ``path`` if given, returns the figure."""
-        from ..core.plotting import new_figure, save_figure
+    title = "amplitude-consistent unbalance response"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.rpm.min():g}-{self.rpm.max():g} rpm, {self.rpm.size} speeds"
+
+    def _summary(self) -> dict:
+        rpm, amp = self.peak
+        locked = ~np.isfinite(self.stiffness)
+        return dict(peak_rpm=rpm, peak_disk_amplitude_m=amp,
+                    peak_bearing_amplitude_m=float(self.bearing_amplitude[int(np.argmax(self.disk_amplitude))]),
+                    speeds=int(self.rpm.size), speeds_locked=int(locked.sum()), notes=list(self.notes))
+
+    def to_xarray(self):
+        """Amplitudes and the damper's equivalent coefficients per speed (NaN where it is locked)."""
+        import xarray as xr
+
+        return xr.Dataset(
+            {"disk_amplitude": ("rpm", self.disk_amplitude, {"units": "m", "long_name": "disk orbit radius"}),
+             "bearing_amplitude": ("rpm", self.bearing_amplitude, {"units": "m", "long_name": "damper orbit radius"}),
+             "damper_stiffness": ("rpm", self.stiffness, {"units": "N/m", "long_name": "equivalent stiffness"}),
+             "damper_damping": ("rpm", self.damping, {"units": "N*s/m", "long_name": "equivalent damping"}),
+             "locked": ("rpm", (~np.isfinite(self.stiffness)).astype(int),
+                        {"units": "", "long_name": "1 where friction holds the ring"})},
+            coords={"rpm": ("rpm", np.asarray(self.rpm, dtype=float), {"units": "rpm"})},
+        )
+
+    def _csv_dataset(self):
+        """The CSV never holds NaN: where friction locks the ring the coefficients are left
+        out (the ``locked`` column says where), and so are they when any speed is locked."""
+        ds = self.to_xarray()
+        if not np.all(np.isfinite(self.stiffness)) or not np.all(np.isfinite(self.damping)):
+            ds = ds.drop_vars(["damper_stiffness", "damper_damping"])
+        return ds
+
+    def _plot(self, ax=None):
+        """Disk and damper amplitudes vs speed [um]."""
+        from ..core.plotting import new_figure
 
         if ax is None:
             fig, ax = new_figure(1, 1, figsize=(7, 4.5))
-        else:
-            fig = ax.figure
         ax.plot(self.rpm, self.disk_amplitude * 1e6, label="disk")
         ax.plot(self.rpm, self.bearing_amplitude * 1e6, "--", label="damper")
         ax.set_xlabel("speed [rpm]")
         ax.set_ylabel("orbit radius [um]")
         ax.grid(True, alpha=0.3)
         ax.legend()
-        if path is not None:
-            save_figure(fig, path)
-        return fig
+        return ax.figure
 
 
 def _consistent(rotor, model, omega, samples, lo=1e-9, hi=1e-2, grid=40):
