@@ -138,7 +138,10 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
             f"the static force reaches {spring.LIMIT_FORCE_FACTOR:g} Fcon"
         )
     # static force above Fcon <=> lift beyond the lift at which the static force is Fcon
-    lift_fcon = spring.installed_length - spring.length_at_force(p["Fcon"])
+    lift_fcon = spring.__dict__.get("_lift_fcon")  # cached: a spring is immutable
+    if lift_fcon is None:
+        lift_fcon = spring.installed_length - spring.length_at_force(p["Fcon"])
+        spring.__dict__["_lift_fcon"] = lift_fcon
     if h[i_max] > lift_fcon:
         over = np.flatnonzero(h > lift_fcon)
         peak = float(series_force(spring.free_length - spring.installed_length + h[i_max], spring.chain.laws))
