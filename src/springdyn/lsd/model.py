@@ -193,20 +193,13 @@ class LSDModel:
         omega : float or array_like, optional
             Vibration frequencies [rad/s] instead of ``rpm``.
         """
-        if (rpm is None) == (omega is None):
-            raise InputError("give the speeds as rpm [rev/min] or as omega [rad/s], exactly one of them")
-        name = "rpm" if omega is None else "omega"
-        values = np.atleast_1d(np.asarray(rpm if omega is None else omega, dtype=float))
-        if values.ndim != 1 or np.any(~np.isfinite(values)) or np.any(values <= 0):
-            raise InputError(f"{name} = {values.tolist()} must be positive speeds")
-        rpm = values if omega is None else omega_to_rpm(values)
+        rpm, w = _speeds(rpm, omega)
         if not (np.isfinite(amplitude) and amplitude > 0):
             raise InputError(f"amplitude = {amplitude!r} m must be positive")
         if amplitude > 0.01:
             warnings.warn(f"amplitude = {amplitude:g} m is far larger than any damper vibration (1 um to 1 mm): "
                           f"did you mean {amplitude:g} um?", stacklevel=2)
         unloads = stiffness.warn_if_unloading(amplitude, self.params.preload)
-        w = rpm_to_omega(rpm) if omega is None else values
         C, parts = self.damping_matrix(w, amplitude, motion, parts=True)
         K = np.broadcast_to(self.stiffness_matrix, C.shape).copy()
         return LSDCoefficients(
@@ -241,13 +234,7 @@ class LSDModel:
         """
         from .equivalent import equivalent_matrices
 
-        if (rpm is None) == (omega is None):
-            raise InputError("give the speeds as rpm [rev/min] or as omega [rad/s], exactly one of them")
-        name = "rpm" if omega is None else "omega"
-        values = np.atleast_1d(np.asarray(rpm if omega is None else omega, dtype=float))
-        if values.ndim != 1 or np.any(~np.isfinite(values)) or np.any(values <= 0):
-            raise InputError(f"{name} = {values.tolist()} must be positive speeds")
-        w = rpm_to_omega(values) if omega is None else values
+        _, w = _speeds(rpm, omega)
         mats = [equivalent_matrices(self, wi, amplitude, motion, samples) for wi in w]
         K = np.array([sum(m[k][0] for k in m) for m in mats])
         C = np.array([sum(m[k][1] for k in m) for m in mats])
@@ -420,3 +407,16 @@ class LSDCoefficients(Result):
             f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude", draw, None,
             damping_linthresh=max(1.0, float(np.max(np.abs(self.C))) * 1e-3),
         )
+
+
+def _speeds(rpm, omega) -> tuple:
+    """Speeds given as ``rpm`` [rev/min] or ``omega`` [rad/s] (exactly one): both, as arrays."""
+    if (rpm is None) == (omega is None):
+        raise InputError("give the speeds as rpm [rev/min] or as omega [rad/s], exactly one of them")
+    name = "rpm" if omega is None else "omega"
+    values = np.atleast_1d(np.asarray(rpm if omega is None else omega, dtype=float))
+    if values.ndim != 1 or np.any(~np.isfinite(values)) or np.any(values <= 0):
+        raise InputError(f"{name} = {values.tolist()} must be positive speeds")
+    if omega is None:
+        return values, rpm_to_omega(values)
+    return omega_to_rpm(values), values
