@@ -182,6 +182,19 @@ class CFCS:
                 out["max_stroke_for_stress_m"] = self.max_stroke_for_stress()
         return out
 
+    def _note_nulls(self, summary: dict) -> dict:
+        """Say why a figure is ``None`` (``notes`` of the summary): no figure without a reason."""
+        p = self.params
+        notes = summary.setdefault("notes", [])
+        if summary.get("max_stress_Pa") is None and "max_stress_Pa" in summary:
+            notes.append("stress figures need the flexure's dimensions (pivot_width, pivot_thickness, "
+                         "pivot_length, youngs_modulus); this definition gives torsional_stiffness")
+        elif summary.get("safety_factor") is None and "safety_factor" in summary and p.allowable_stress is None:
+            notes.append("safety_factor and max_stroke_for_stress_m need allowable_stress in [cfcs]")
+        if "toggle_cutoff_rad" in summary and summary["toggle_cutoff_rad"] is None:
+            notes.append("toggle_cutoff_rad: the forward problem integrates through the toggle without a cut-off")
+        return summary
+
     def max_stroke_for_stress(self) -> float | None:
         """Largest deflection [m] at which the flexure stress stays within the allowable stress."""
         p = self.params
@@ -302,7 +315,7 @@ class CFCS:
                 "max_force_difference_to_prbm_N": float(np.max(np.abs(f - f_prbm))),
                 "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
             })
-        return StaticResult(x, th, f, f + fd, f - fd, stress, summary, extra)
+        return StaticResult(x, th, f, f + fd, f - fd, stress, self._note_nulls(summary), extra)
 
     def _toggle_summary(self, in_zone: bool, dominated: list, check: dict) -> dict:
         """The toggle flag of a result: which statistics a factor 2 in the cut-off moves by > 1 %."""
@@ -401,7 +414,7 @@ class CFCS:
             **self._toggle_summary(in_zone, dominated, check),
         }
         comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
-        return DynamicResult(t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], summary)
+        return DynamicResult(t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], self._note_nulls(summary))
 
     def sweep(self, omegas, amplitude=DEFAULT_AMPLITUDE, offset=DEFAULT_OFFSET, *, samples_per_cycle: int = 400,
               quiet: bool = True) -> FrequencySweep:
@@ -508,6 +521,7 @@ class CFCS:
                    "toggle_crossings": int(np.count_nonzero(np.diff(np.sign(th)) != 0)),
                    **self._stress_summary(th, x), **self._common_summary()}
         summary["toggle_cutoff_rad"] = None  # the forward problem needs no cut-off
+        self._note_nulls(summary)
         if self.beam:  # T + the strip's strain energy, the integral of its quasi-static force
             e = (energy(th, thd, vals) - spring_energy(th, p.k3, p.r2, p.r3)
                  + self._beam_table(p.max_deflection)["force"].antiderivative()(x))
