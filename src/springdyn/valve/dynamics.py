@@ -138,10 +138,7 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
             f"the static force reaches {spring.LIMIT_FORCE_FACTOR:g} Fcon"
         )
     # static force above Fcon <=> lift beyond the lift at which the static force is Fcon
-    lift_fcon = spring.__dict__.get("_lift_fcon")  # cached: a spring is immutable
-    if lift_fcon is None:
-        lift_fcon = spring.installed_length - spring.length_at_force(p["Fcon"])
-        spring.__dict__["_lift_fcon"] = lift_fcon
+    lift_fcon = spring.cached("lift_fcon", lambda: spring.installed_length - spring.length_at_force(p["Fcon"]))
     if h[i_max] > lift_fcon:
         over = np.flatnonzero(h > lift_fcon)
         peak = float(series_force(spring.free_length - spring.installed_length + h[i_max], spring.chain.laws))
@@ -244,11 +241,8 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
 
 def _fastest_mode(spring: ValveSpring) -> float:
     """Highest natural frequency of the chain at installed length [Hz] (cached: a spring is immutable)."""
-    cached = spring.__dict__.get("_fastest_mode")
-    if cached is None:
-        cached = float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1])
-        spring.__dict__["_fastest_mode"] = cached
-    return cached
+    return spring.cached("fastest_mode",
+                         lambda: float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1]))
 
 
 def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:

@@ -729,25 +729,6 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
         Absolute tolerance of the velocities [m/s], one for all or one per velocity
         (default ``atol``).
 
-    Parameters
-    ----------
-    y0 : ndarray
-        Initial state [m, m/s].
-    omegas : array_like
-        Cam speeds [rad/s].
-    revolutions : int
-        Revolutions per speed [-].
-    points : int
-        Output samples per revolution [-].
-    args : tuple
-        Arguments of :func:`rhs` after the state.
-    rtol, atol : float
-        Relative [-] and absolute [m, m/s] tolerances.
-    max_step_fraction : float
-        Largest step as a fraction of a revolution [-].
-    max_steps : int
-        Most steps per speed [-] (the loop is bounded).
-
     Returns
     -------
     extra : ndarray (n_speeds, keep * points, extra size)
@@ -796,7 +777,7 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
     args : tuple
         Arguments of :func:`rhs` after the state.
     rtol, atol : float
-        Relative [-] and absolute [m, m/s] tolerances.
+        Relative [-] and absolute [m] tolerances (velocities: ``atol_velocity``).
     h_max : float
         Largest step [s].
     max_steps : int
@@ -838,7 +819,7 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
     args : tuple
         Arguments of :func:`rhs` after the state.
     rtol, atol : float
-        Relative [-] and absolute [m, m/s] tolerances.
+        Relative [-] and absolute [m] tolerances (velocities: ``atol_velocity``).
     method : str
         ``solve_ivp`` method name [-] (default ``"DOP853"``).
     compiled_rhs : bool

@@ -238,11 +238,8 @@ def coil_contact_compressions(spring) -> np.ndarray:
     spring : ValveSpring
         The spring definition (its model decides).
     """
-    cached = spring.__dict__.get("_coil_contact_compressions")
-    if cached is None:
-        cached = np.ascontiguousarray(spring.spring_model.contact_compressions(), dtype=float)
-        spring.__dict__["_coil_contact_compressions"] = cached  # a spring is immutable
-    return cached
+    return spring.cached("coil_contact_compressions",
+                         lambda: np.ascontiguousarray(spring.spring_model.contact_compressions(), dtype=float))
 
 
 def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:

@@ -129,6 +129,13 @@ class ValveSpring(Parameters):
         """The same spring with another model (``None``: unchanged)."""
         return self if model is None or model == self.model else self.replace(model=model)
 
+    def cached(self, key: str, compute):
+        """``compute()`` once per spring (a definition is immutable), kept under ``key``."""
+        store = self.__dict__.setdefault("_derived", {})
+        if key not in store:
+            store[key] = compute()
+        return store[key]
+
     @cached_property
     def spring_model(self):
         """The model of this definition (:class:`~springdyn.valve.model.SpringModel`)."""

@@ -393,9 +393,11 @@ class SpeedSweep(Result):
         """
         from .dynamics import natural_frequencies, resonance_speeds
 
-        nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)
-        return resonance_speeds(nat["full_lift_Hz"] or nat["base_circle_Hz"], float(np.min(self.cam_rpm)),
-                                float(np.max(self.cam_rpm)))
+        if "_resonances" not in self.__dict__:  # a linearisation and a root search: once per sweep
+            nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)
+            self.__dict__["_resonances"] = resonance_speeds(nat["full_lift_Hz"] or nat["base_circle_Hz"],
+                                                            float(np.min(self.cam_rpm)), float(np.max(self.cam_rpm)))
+        return list(self.__dict__["_resonances"])
 
     def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
         """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``."""
