@@ -303,13 +303,19 @@ def test_dense_extremes_catch_a_ringing_minimum_the_grid_misses():
 
 def test_seat_impact_velocity_from_event_location():
     """The valve's seat impact velocity is the velocity state at the located crossing of
-    z = 0: within 0.5 % of a tight-tolerance reference read off a 1 ns grid; the old
-    finite difference on the 0.25 deg grid after the crossing is more than 5 % low."""
+    z = 0: at rtol 1e-8 within 0.05 % of a reference at rtol 1e-10 read off a 1 ns grid
+    (the location itself); at the default rtol 1e-6 within 1.5 %, because the trajectory
+    after float is sensitive to the integration error (measured 0.2-0.9 % at 3150-3250 cam
+    rpm; the summary says so in its notes).  The old finite difference on the 0.25 deg grid
+    after the crossing is more than 2 % low."""
     s = ValveSpring.example("one-step")
     rpm = 3200.0
     sim = simulate(s, CAM, rpm, 2, valve_train=VT)
-    v = sim.summary["seat_impact_velocity_m_per_s"]
-    land = [e for e in sim.monitor["events"] if e[0] == 3][0]
+    assert any("the valve floated" in n for n in sim.summary["notes"])
+    v_default = sim.summary["seat_impact_velocity_m_per_s"]
+    tight = simulate(s, CAM, rpm, 2, valve_train=VT, rtol=1e-8, atol=1e-11)
+    v = tight.summary["seat_impact_velocity_m_per_s"]
+    land = [e for e in tight.monitor["events"] if e[0] == 3][0]
     setup = prepare(s, CAM, VT)
     omega = rpm_to_omega(rpm)
     t = np.linspace(land[2] - 2e-5, land[2] + 2e-5, 40001)
@@ -318,11 +324,12 @@ def test_seat_impact_velocity_from_event_location():
     nm = s.chain.masses.size
     z, vz = st[1:, nm], st[1:, -1]
     i = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))[0]
-    assert v == pytest.approx(-vz[i], rel=5e-3)
+    assert v == pytest.approx(-vz[i], rel=5e-4)
+    assert v_default == pytest.approx(-vz[i], rel=1.5e-2)
     zg = sim.valve_lift
     k = np.flatnonzero((zg[:-1] > 0) & (zg[1:] <= 0))[0]
     fd = -np.gradient(zg, sim.time[1] - sim.time[0])[k + 1]
-    assert fd < 0.95 * v
+    assert fd < 0.98 * -vz[i]  # measured 3.8 % low (2.09 against 2.17 m/s)
 
 
 def test_coil_closure_map_and_clashing_coils(one_step, tmp_path):

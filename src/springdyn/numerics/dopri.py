@@ -62,34 +62,45 @@ D = np.array(
 )
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def stage_state(y, h, k, row, out):
-    """``out = y + h * sum_j A[row, j] k[j]`` for stage ``row`` (k: (7, n) stage derivatives)."""
+    """``out = y + h * sum_j A[row, j] k[j]`` for stage ``row`` (k: (7, n) stage derivatives).
+
+    The loops run along the rows of ``k`` (contiguous), which lets the compiler vectorise
+    them: for the 100-state distributed chain this is several times faster than a sum
+    over the stages per component.
+    """
     n = y.shape[0]
     for i in range(n):
-        acc = 0.0
-        for j in range(row):
-            acc += A[row, j] * k[j, i]
-        out[i] = y[i] + h * acc
+        out[i] = y[i]
+    for j in range(row):
+        c = h * A[row, j]
+        if c != 0.0:
+            for i in range(n):
+                out[i] += c * k[j, i]
 
 
-@njit(cache=True)
-def error_norm(y, y_new, k, h, rtol, atol):
+@njit(cache=True, error_model="numpy")
+def error_norm(y, y_new, k, h, rtol, atol, work):
     """RMS of the local error estimate scaled by ``atol_i + rtol max(|y|, |y_new|)``
-    (``atol``: one absolute tolerance per component)."""
+    (``atol``: one absolute tolerance per component; ``work``: scratch of the state's size)."""
     n = y.shape[0]
+    for i in range(n):
+        work[i] = E[0] * k[0, i]
+    for j in range(1, 7):
+        c = E[j]
+        if c != 0.0:
+            for i in range(n):
+                work[i] += c * k[j, i]
     acc = 0.0
     for i in range(n):
-        e = 0.0
-        for j in range(7):
-            e += E[j] * k[j, i]
         sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
-        r = h * e / sc
+        r = h * work[i] / sc
         acc += r * r
     return np.sqrt(acc / n)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def next_step(h, err, err_old, accepted_before):
     """Step-size factor of the PI controller (alpha = 0.7/5, beta = 0.4/5), limited to [0.2, 10]."""
     safety = 0.9
@@ -103,7 +114,7 @@ def next_step(h, err, err_old, accepted_before):
     return h * fac
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def dense_coefficients(y, y_new, k, h, rc):
     """Fill ``rc`` (5, n) with the dense-output coefficients of the accepted step.
 
@@ -117,13 +128,17 @@ def dense_coefficients(y, y_new, k, h, rc):
         rc[1, i] = dy
         rc[2, i] = bspl
         rc[3, i] = dy - h * k[6, i] - bspl
-        acc = 0.0
-        for j in range(7):
-            acc += D[j] * k[j, i]
-        rc[4, i] = h * acc
+        rc[4, i] = D[0] * k[0, i]
+    for j in range(1, 7):
+        c = D[j]
+        if c != 0.0:
+            for i in range(n):
+                rc[4, i] += c * k[j, i]
+    for i in range(n):
+        rc[4, i] *= h
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def dense_eval(rc, theta, out):
     """Evaluate the dense output at the fraction ``theta`` in [0, 1] of the step."""
     t1 = 1.0 - theta
@@ -131,7 +146,7 @@ def dense_eval(rc, theta, out):
         out[i] = rc[0, i] + theta * (rc[1, i] + t1 * (rc[2, i] + theta * (rc[3, i] + t1 * rc[4, i])))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def initial_step(y, f0, rtol, atol, h_max):
     """A first step from the size of ``y`` and its derivative (Hairer's heuristic, first part)."""
     n = y.shape[0]
