@@ -12,7 +12,8 @@ MOVED = {
     "springdyn.io": "springdyn.core.io",
     "springdyn.plotting": "springdyn.core.plotting",
     "springdyn.progress": "springdyn.core.progress",
-    "springdyn.integration": "springdyn.numerics.dopri",
+    "springdyn.integration": "springdyn.numerics.erk",
+    "springdyn.numerics.dopri": "springdyn.numerics.erk",
 }
 
 

@@ -1,4 +1,4 @@
-"""Deprecated: use :mod:`springdyn.numerics.dopri`."""
+"""Deprecated: use :mod:`springdyn.numerics.erk`."""
 from ._deprecated import alias
 
-alias(__name__, "springdyn.numerics.dopri")
+alias(__name__, "springdyn.numerics.erk")

@@ -194,6 +194,15 @@ def test_compiled_series_force_equals_numpy(name):
 
     s = ValveSpring.example(name)
     dl = np.linspace(-1e-3, s.free_length - s.min_length, 3001)
+    exact = series_force(dl, s.chain.laws)
     out = np.empty_like(dl)
-    series_force_compiled(dl, s.chain.laws, out)
-    np.testing.assert_allclose(out, series_force(dl, s.chain.laws), rtol=1e-12, atol=1e-9)
+    series_force_compiled(dl, s.chain.laws, out, np.empty(0), np.empty(0))  # from the all-linear force
+    np.testing.assert_allclose(out, exact, rtol=1e-12, atol=1e-9)
+    x = np.linspace(0.0, s.free_length - s.min_length, 129)  # from the interpolated table
+    series_force_compiled(dl, s.chain.laws, out, x, series_force(x, s.chain.laws))
+    np.testing.assert_allclose(out, exact, rtol=1e-12, atol=1e-9)
+    # each point's result is its own: the same from a shuffled array, bit for bit
+    order = np.random.default_rng(1).permutation(dl.size)
+    shuffled = np.empty_like(dl)
+    series_force_compiled(dl[order], s.chain.laws, shuffled, x, series_force(x, s.chain.laws))
+    np.testing.assert_array_equal(shuffled, out[order])

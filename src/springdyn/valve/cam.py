@@ -245,6 +245,23 @@ class Cam(Parameters):
             return TWO_PI
         return self.duration + 2 * self.ramp_duration
 
+    @property
+    def breakpoints(self) -> np.ndarray:
+        """Cam angles [rad] in [0, 2 pi) where the lift rate steps: the outer ends of the
+        ramps (a ramp starts and ends at constant velocity); empty without ramps, where every
+        join keeps lift, velocity and acceleration continuous, and for a table (a periodic
+        spline).
+
+        The engine's cam table smooths such a step over one table interval (0.05 deg), a
+        feature an adaptive step can cross without one of its stages inside it; the engine
+        therefore lands a step on the table nodes around each breakpoint
+        (:func:`springdyn.valve.engine.stop_angles`).
+        """
+        if self.law == "table" or self.ramp_duration == 0.0:
+            return np.empty(0)
+        total = self.duration + 2 * self.ramp_duration
+        return np.unique(np.mod(np.array([0.0, total]), TWO_PI))
+
     @cached_property
     def _spline(self):
         from scipy.interpolate import CubicSpline

@@ -17,7 +17,7 @@ from scipy.optimize import brentq
 from ..core.errors import InputError, SolverError
 from .cam import Cam
 from .elements import damping_coefficient, law_force
-from .engine import STATUS, extra_layout, hermite_eval, integrate_scipy, run_speeds, series_force_compiled
+from .engine import STATUS, extra_layout, hermite_eval, integrate_scipy, run_speeds, series_force_compiled, stop_angles
 from .spring import ValveSpring
 from .results import FloatSpeedResult, Simulation, coil_contact_compressions
 from .statics import series_force
@@ -34,6 +34,16 @@ DEFAULT_ATOL = 1e-9
 CAM_SAMPLES = 7200
 #: Maximum step [fraction of a revolution] so that no step can jump over a short event.
 MAX_STEP_FRACTION = 1.0 / 720.0
+#: The spring's velocities get the absolute tolerance ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR``
+#: [m/s] (:meth:`SimulationSetup.atol_velocity`; the study in docs/valve.md).
+VELOCITY_TOLERANCE_DIVISOR = 30.0
+#: The embedded Runge-Kutta pair of the compiled engine per spring model, chosen by
+#: measurement (docs/valve.md, "Stepping"): Type C's step is set by accuracy, where the
+#: 5th-order Dormand-Prince pair takes the fewest right-hand sides; the distributed chain's
+#: by the stability of its stiffness-proportionally damped top modes (real eigenvalues to
+#: -3.3e5 1/s for 50 elements), where the Bogacki-Shampine 3(2) pair takes 1.3x more steps
+#: for half the right-hand sides each, and still holds the end forces within 0.05 % of Fset.
+PAIR = {"type-c": "dopri5", "distributed": "bs3"}
 
 
 def rpm_to_omega(rpm: float) -> float:
@@ -61,8 +71,15 @@ class SimulationSetup:
         lift = np.asarray(lift, dtype=float)
         dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
         force = np.empty_like(dl)
-        series_force_compiled(dl, sp.chain.laws, force)
+        series_force_compiled(dl, sp.chain.laws, force, *self.spring.cached("series_force_table", self._force_table))
         return force.reshape(lift.shape)
+
+    def _force_table(self) -> tuple:
+        """Static force [N] at 129 total compressions [m] from zero to the model's limit: the
+        starts of the compiled Newton solver (two or three iterations instead of ten)."""
+        sp = self.spring
+        x = np.linspace(0.0, sp.free_length - sp.min_length, 129)
+        return x, np.asarray(series_force(x, sp.chain.laws), dtype=float)
 
     def args(self, omega: float) -> tuple:
         ch = self.spring.chain
@@ -79,31 +96,39 @@ class SimulationSetup:
         """Degrees of freedom: the chain's masses, plus the valve train's (valve, lever, lifter)."""
         return self.n_masses + (self.valve_train.degrees_of_freedom if self.valve_train is not None else 0)
 
-    def run(self, omegas, revolutions: int, points: int, *, rtol: float, atol: float):
+    def run(self, omegas, revolutions: int, points: int, *, rtol: float, atol: float, method: str | None = None):
         """Integrate the speeds ``omegas`` [rad/s] with the compiled engine, monitoring the
         last revolution (true extremes and events on the dense output, see
         :func:`springdyn.valve.engine.run_speeds`)."""
         return run_speeds(self.y0, omegas, revolutions, points, self.args(0.0), rtol=rtol, atol=atol,
                           max_step_fraction=MAX_STEP_FRACTION, gaps=coil_contact_compressions(self.spring),
-                          monitor=True, atol_velocity=self.atol_velocity(atol))
+                          monitor=True, atol_velocity=self.atol_velocity(atol),
+                          method=self.method if method is None else method,
+                          stop_angles=stop_angles(self.cam.breakpoints, self.dth))
+
+    @property
+    def method(self) -> str:
+        """The engine's Runge-Kutta pair for this spring model (:data:`PAIR`)."""
+        return PAIR[self.spring.model]
 
     def atol_velocity(self, atol: float) -> np.ndarray:
         """Absolute tolerances of the velocities [m/s] for ``atol`` [m] on the displacements.
 
-        The spring's masses: ``atol 2 pi f1 / 10`` (the velocity of a displacement ``atol``
-        oscillating at a tenth of the first surge frequency); the valve train's bodies keep
-        ``atol`` (their stiff contacts make the contact forces sensitive to velocity errors).
+        The spring's masses: ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR`` (the velocity of
+        a displacement ``atol`` oscillating at a hundredth of the first surge frequency);
+        the valve train's bodies keep ``atol`` (their stiff contacts make the contact forces
+        sensitive to velocity errors).
 
-        Measured (the study in docs/valve.md): against one absolute tolerance for every
-        component (earlier versions, which held the velocities of the spring's masses near
-        rest about 3000 times tighter than their displacements), the spring alone takes 1.7
-        times fewer steps and its worst end-force extreme over two springs, two cams and
-        five speeds moves from 0.007 % to 0.011 % of Fset against a tight reference;
-        ``2 pi f1`` itself would reach 0.05 %, and relaxing the train's velocities too would
-        move the minimum cam contact force by 0.055 % of Fset near float.
+        Measured (benchmarks/valve_tolerances.py, docs/valve.md): over 100 runs of Type C
+        (two springs, four cams, 10 to 12 speeds) against a tight reference the worst
+        end-force extreme is 0.010 % of Fset with 1.3 times fewer steps than one tolerance
+        for every component (0.0074 %).  Looser scalings fail on single runs where a coil
+        contact starts a little earlier or later: ``/ 30`` 0.031 %, ``/ 10`` 0.27 %
+        (one-step spring, polydyne with ramps, 4200 cam rpm), ``2 pi f1`` 0.05 %.
         """
         out = np.full(self.nfree, float(atol))
-        out[: self.n_masses] = atol * 2.0 * math.pi * float(self.spring.internal_parameters()["f1"]) / 10.0
+        out[: self.n_masses] = (atol * 2.0 * math.pi * float(self.spring.internal_parameters()["f1"])
+                                / VELOCITY_TOLERANCE_DIVISOR)
         return out
 
 
@@ -268,7 +293,7 @@ def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
     for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
         if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
             raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
-                             "(integration tolerance" + (": absolute, on displacements [m]; velocities get it times 2 pi f1/10)"
+                             "(integration tolerance" + (": absolute, on displacements [m]; velocities get it times 2 pi f1/30)"
                                                          if name == "atol" else ", relative)"))
 
 
@@ -285,6 +310,7 @@ def simulate(
     backend: str = "compiled",
     setup: SimulationSetup | None = None,
     check_elements: bool = True,
+    method: str | None = None,
 ) -> Simulation:
     """Simulate the valve spring (or valve train) driven by the cam.
 
@@ -303,10 +329,10 @@ def simulate(
         Output resolution [-] (1440: every 0.25 deg).
     rtol, atol : float
         Integration tolerances: relative [-], and absolute on the displacements [m]; the
-        velocities get ``atol 2 pi f1 / 10`` [m/s] (:meth:`SimulationSetup.atol_velocity`).
+        velocities get ``atol 2 pi f1 / 30`` [m/s] (:meth:`SimulationSetup.atol_velocity`).
     backend : {"compiled", "scipy"}
-        ``"compiled"``: the numba Dormand-Prince engine; ``"scipy"``: ``solve_ivp``
-        (DOP853) with the plain-Python right-hand side, the reference.
+        ``"compiled"``: the numba engine (embedded Runge-Kutta pair per model, :data:`PAIR`);
+        ``"scipy"``: ``solve_ivp`` (DOP853) with the plain-Python right-hand side, the reference.
     setup : SimulationSetup, optional
         A prepared setup of the same spring, cam and valve train (:func:`prepare`), reused
         across speeds.
@@ -315,6 +341,9 @@ def simulate(
         how much the peak end forces change (``clash_force_element_sensitivity``,
         ``clash_forces_converged`` and a note in the summary): clash forces are a penalty
         contact on the element scale and may not be converged.
+    method : {"dopri5", "bs3"}, optional
+        The compiled engine's Runge-Kutta pair; default the model's (:data:`PAIR`: Type C
+        Dormand-Prince 5(4), distributed Bogacki-Shampine 3(2)).
 
     Raises
     ------
@@ -357,8 +386,9 @@ def simulate(
     t_keep = (revolutions - keep) * period + np.arange(keep * n) * (period / n)
     t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
     if backend == "compiled":
-        extra, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol)
-        info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]))
+        method = setup.method if method is None else method
+        extra, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol, method=method)
+        info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]), method=method)
         if info["status"] != 0 or not np.all(np.isfinite(extra)):
             raise _solver_error(cam_rpm, omega, info)
         sim = _from_extra(setup, cam_rpm, revolutions, t_keep, extra[0], info, n, keep)
@@ -381,8 +411,10 @@ def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rt
     half = max(sp.elements // 2, 10)
     if half == sp.elements:
         return
-    coarse = simulate(sp.replace(elements=half), cam, cam_rpm, revolutions, valve_train=valve_train,
-                      points_per_revolution=points, rtol=rtol, atol=atol, check_elements=False).summary
+    coarse_spring = sp.cached(f"elements={half}", lambda: sp.replace(elements=half))  # its set-up is kept
+    coarse = simulate(coarse_spring, cam, cam_rpm, revolutions, valve_train=valve_train,
+                      points_per_revolution=points, rtol=rtol, atol=atol, check_elements=False,
+                      method=sim.info.get("method")).summary
     sim.element_check = dict(elements=half, max_retainer_force_N=coarse["max_retainer_force_N"],
                              max_seat_force_N=coarse["max_seat_force_N"])
     sim.__dict__.pop("_summary_cache", None)  # the summary now includes the check

@@ -32,9 +32,9 @@ import numpy as np
 from numba import njit
 from numba.extending import register_jitable
 
-from ..numerics import dopri as _ig
+from ..numerics import erk as _ig
 
-__all__ = ["hermite5", "rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "hermite_eval", "STATUS", "EXTRA",
+__all__ = ["hermite5", "rhs", "rhs_compiled", "integrate", "integrate_scipy", "run_speeds", "stop_angles", "hermite_eval", "STATUS", "EXTRA",
            "EXT", "EVENT_KINDS", "extra_layout"]
 
 #: Status codes of :func:`integrate`.
@@ -431,8 +431,17 @@ def _bisect(rc, t, h, lo, hi, c, landing, masses, laws, xset, c0, cam_h, cam_dh,
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy")
 def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-               rtol, atol, h_max, max_steps, out, gaps, t_w0, t_w1, ext, events, nev):
-    """Adaptive Dormand-Prince loop; states at ``t_out`` from the dense output.
+               rtol, atol, h_max, max_steps, out, gaps, t_w0, t_w1, ext, events, nev, pc, pa, pe, pd, pq, stops,
+               xout, xpad):
+    """Adaptive embedded Runge-Kutta loop (the pair ``pc, pa, pe, pd, pq`` of
+    :func:`springdyn.numerics.erk.pair_arrays`); states at ``t_out`` from the dense output.
+    A step never crosses a time in ``stops`` (ascending): it lands on it (the cam's
+    breakpoints, where the lift law is not smooth).
+
+    ``out`` (len(t_out) or 0 rows) receives the states at ``t_out``; ``xout`` (len(t_out) -
+    ``xpad`` rows, or 0) the right-hand side's ``extra`` outputs at ``t_out[xpad:]``,
+    evaluated as the integration passes them.  Inside the monitored window an output time
+    within a step serves as the step's interior sample (no evaluation of its own).
 
     With ``t_w0 < t_w1`` it also monitors the window [t_w0, t_w1] on the dense output:
     true extremes of the end forces and of the cam contact force (golden-section search
@@ -445,7 +454,9 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     nfree = n // 2
     monitor = t_w1 > t_w0
     nch = 3 + ne
-    k = np.empty((7, n))
+    ns_ = pc.shape[0]  # stages; the last is the step's end (FSAL)
+    last = ns_ - 1
+    k = np.empty((ns_, n))
     ytmp = np.empty(n)
     rc = np.empty((5, n))
     rc_prev = np.empty((5, n))
@@ -472,11 +483,18 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     h = _ig.initial_step(y, k[0], rtol, atol, h_max)
     nout = t_out.shape[0]
     iout = 0
+    want_states = out.shape[0] > 0
+    want_extra = xout.shape[0] > 0
     while iout < nout and t_out[iout] <= t:
-        out[iout, :] = y
+        if want_states:
+            out[iout, :] = y
+        if want_extra and iout >= xpad:
+            rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, dbuf, xout[iout - xpad])
         iout += 1
     err_old = 1e-4
     accepted_before = False
+    istop = 0
+    nstops = stops.shape[0]
     nsteps = 0
     nrejected = 0
     while iout < nout or (monitor and t < t_w1):
@@ -484,17 +502,21 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             return 1, t, nsteps, nrejected
         if h <= 1e-15 * max(abs(t), 1e-6) + 1e-18:
             return 2, t, nsteps, nrejected
+        while istop < nstops and stops[istop] <= t + 1e-9 * h:  # reached (or within round-off)
+            istop += 1
+        if istop < nstops and t + h > stops[istop]:
+            h = stops[istop] - t  # land on the breakpoint
         in_window = monitor and t + h > t_w0 and t < t_w1
-        for stage in range(1, 6):
-            _ig.stage_state(y, h, k, stage, ytmp)
-            rhs_compiled(t + _ig.C[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
+        for stage in range(1, last):
+            _ig.stage_state(y, h, k, stage, ytmp, pa)
+            rhs_compiled(t + pc[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
                          omega, vt, k[stage], None)
-        _ig.stage_state(y, h, k, 6, ytmp)
+        _ig.stage_state(y, h, k, last, ytmp, pa)
         if in_window:  # the last stage is the step's end (FSAL): its outputs are the end sample
-            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[6], eend)
+            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last], eend)
         else:
-            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[6], None)
-        err = _ig.error_norm(y, ytmp, k, h, rtol, atol, dbuf)
+            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last], None)
+        err = _ig.error_norm(y, ytmp, k, h, rtol, atol, dbuf, pe)
         if not (err == err) or err > 1e300:
             if h < 1e-13:
                 return 3, t, nsteps, nrejected
@@ -503,24 +525,41 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             nrejected += 1
             continue
         if err <= 1.0:
-            _ig.dense_coefficients(y, ytmp, k, h, rc)
+            _ig.dense_coefficients(y, ytmp, k, h, rc, pd)
             t_new = t + h
+            in_mon = monitor and t_new > t_w0 and t < t_w1
+            th_a = max(0.0, (t_w0 - t) / h)
+            th_b = min(1.0, (t_w1 - t) / h)
+            th_m = 0.5 * (th_a + th_b)
+            mid_row = -1
             while iout < nout and t_out[iout] <= t_new:
-                _ig.dense_eval(rc, (t_out[iout] - t) / h, out[iout])
+                fr = (t_out[iout] - t) / h
+                _ig.dense_eval(rc, fr, ybuf)
+                if want_states:
+                    out[iout, :] = ybuf
+                if want_extra and iout >= xpad:
+                    row = iout - xpad
+                    rhs_compiled(t_out[iout], ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
+                                 dbuf, xout[row])
+                    # an output inside the window's part of the step is its interior sample
+                    if in_mon and th_a < fr < th_b and (mid_row < 0 or abs(fr - 0.5) < abs(th_m - 0.5)):
+                        mid_row = row
+                        th_m = fr
                 iout += 1
-            if monitor and t_new > t_w0 and t < t_w1:
-                th_a = max(0.0, (t_w0 - t) / h)
-                th_b = min(1.0, (t_w1 - t) / h)
-                th_m = 0.5 * (th_a + th_b)
+            if in_mon:
                 ths = (th_a, th_m, th_b)
                 for isamp in range(3):
                     if isamp == 0 and started:
                         continue  # the step start is the previous step's end, already seen
                     if isamp == 2 and th_b == 1.0:
                         ebuf[:] = eend  # the end of the step: already evaluated as its last stage
+                    elif isamp == 1 and mid_row >= 0:
+                        ebuf[:] = xout[mid_row]  # an output sample: already evaluated
                     else:
-                        _eval_at(rc, ths[isamp], t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega,
-                                 vt, ybuf, dbuf, ebuf)
+                        # _eval_at written out: a call passing twenty arrays costs more than the work
+                        _ig.dense_eval(rc, ths[isamp], ybuf)
+                        rhs_compiled(t + ths[isamp] * h, ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
+                                     omega, vt, dbuf, ebuf)
                     for sg in range(_N_SIG):
                         sval[isamp, sg] = _signal(sg, ebuf, ne, nm, vt)
                     _channels(ebuf, ne, nm, vt, gaps, vcur)
@@ -631,9 +670,9 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                 mid_prev = th_m
                 have_prev = True
             y[:] = ytmp
-            k[0, :] = k[6, :]
+            k[0, :] = k[last, :]
             t = t_new
-            h_new = _ig.next_step(h, err, err_old, accepted_before)
+            h_new = _ig.next_step(h, err, err_old, accepted_before, pq)
             err_old = max(err, 1e-4)
             accepted_before = True
             nsteps += 1
@@ -641,7 +680,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             if monitor and t < t_w1:
                 h = min(h, max(t_w1 - t, 1e-3 * h))  # land on the window end, no need to pass it
         else:
-            h = min(h, _ig.next_step(h, err, err_old, False))
+            h = min(h, _ig.next_step(h, err, err_old, False, pq))
             accepted_before = False
             nrejected += 1
     if monitor:
@@ -660,10 +699,12 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy")
 def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, vt,
-                rtol, atol, max_step_fraction, max_steps, gaps, extra_out, status, t_end, steps, ext, events, nev):
+                rtol, atol, max_step_fraction, max_steps, gaps, extra_out, status, t_end, steps, ext, events, nev,
+                pc, pa, pe, pd, pq, stop_angles):
     n = y0.shape[0]
+    nb = stop_angles.shape[0]
     nkeep = keep * points
-    d = np.empty(n)
+    no_states = np.empty((0, n))  # the outputs are the extra rows, evaluated during the integration
     for i in range(omegas.shape[0]):
         omega = omegas[i]
         period = 2.0 * np.pi / omega
@@ -673,18 +714,19 @@ def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, c
         t_out[0] = 0.0
         for j in range(nkeep):
             t_out[pad + j] = (first + j / points) * period
-        states = np.empty((nkeep + pad, n))
+        stops = np.empty(revolutions * nb)
+        for r in range(revolutions):
+            for b in range(nb):
+                stops[r * nb + b] = (2.0 * np.pi * r + stop_angles[b]) / omega
         st, t, ns, nr = _integrate(y0, 0.0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-                                   rtol, atol, period * max_step_fraction, max_steps, states, gaps,
-                                   (revolutions - 1) * period, revolutions * period, ext[i], events[i], nev[i])
+                                   rtol, atol, period * max_step_fraction, max_steps, no_states, gaps,
+                                   (revolutions - 1) * period, revolutions * period, ext[i], events[i], nev[i],
+                                   pc, pa, pe, pd, pq, stops, extra_out[i], pad)
         status[i] = st
         t_end[i] = t
         steps[i] = ns
-        if st != 0:
-            continue
-        for j in range(nkeep):
-            rhs_compiled(t_out[pad + j], states[pad + j], masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
-                         omega, vt, d, extra_out[i, j])
+        if st != 0:  # no partial outputs
+            extra_out[i, :, :] = np.nan
 
 
 def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -> np.ndarray:
@@ -707,7 +749,7 @@ def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -
 
 
 def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fraction, max_steps=10_000_000,
-               gaps=None, monitor=False, atol_velocity=None):
+               gaps=None, monitor=False, atol_velocity=None, method="dopri5", stop_angles=None):
     """Integrate several speeds in one compiled call (the GIL is released throughout).
 
     For each speed the last ``keep = min(2, revolutions)`` revolutions are sampled at
@@ -744,6 +786,11 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     atol_velocity : float or ndarray, optional
         Absolute tolerance of the velocities [m/s], one for all or one per velocity
         (default ``atol``).
+    method : {"dopri5", "bs3"}
+        The embedded Runge-Kutta pair (:data:`springdyn.numerics.erk.PAIRS`).
+    stop_angles : array_like, optional
+        Cam angles [rad] in [0, 2 pi), ascending, on which a step lands in every revolution
+        (:func:`stop_angles` of the cam's breakpoints).
 
     Returns
     -------
@@ -758,7 +805,7 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, _omega, vt = args  # omega comes from omegas
     keep = min(2, int(revolutions))
     size = extra_layout(masses.shape[0])["size"]
-    extra = np.full((omegas.size, keep * points, size), np.nan)
+    extra = np.empty((omegas.size, keep * points, size))  # every row written, NaN on a failed speed
     status = np.zeros(omegas.size, dtype=np.int64)
     t_end = np.zeros(omegas.size)
     steps = np.zeros(omegas.size, dtype=np.int64)
@@ -769,7 +816,8 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     _run_speeds(np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions), int(points), keep, masses, laws, xset,
                 _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol),
                 atol_vector(len(y0), atol, atol_velocity),
-                float(max_step_fraction), int(max_steps), gaps, extra, status, t_end, steps, ext, events, nev)
+                float(max_step_fraction), int(max_steps), gaps, extra, status, t_end, steps, ext, events, nev,
+                *_pair(method), _angles(stop_angles))
     if monitor:
         return extra, status, t_end, steps, dict(ext=ext, events=events, n_events=nev[:, 0].copy())
     return extra, status, t_end, steps
@@ -779,7 +827,46 @@ def _c0_array(c0, laws) -> np.ndarray:
     return np.ascontiguousarray(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
 
 
-def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None):
+def stop_angles(breakpoints, dth: float) -> np.ndarray:
+    """The cam-table nodes around each breakpoint, on which the engine lands its steps.
+
+    The table (step ``dth``) smooths a jump of the lift law over the interval that holds
+    it; landing on the nodes from one before to two after each breakpoint lets the
+    integrator take that interval as a step of its own.
+
+    Parameters
+    ----------
+    breakpoints : array_like
+        Cam angles [rad] where the lift law is not smooth (:attr:`springdyn.valve.cam.Cam.breakpoints`).
+    dth : float
+        Table step [rad].
+
+    Returns
+    -------
+    ndarray
+        Ascending cam angles [rad] in [0, 2 pi).
+    """
+    b = np.asarray(breakpoints, dtype=float)
+    if b.size == 0:
+        return np.empty(0)
+    n = int(round(2.0 * math.pi / dth))
+    k = np.floor(b / dth).astype(np.int64)
+    nodes = np.mod((k[:, None] + np.arange(-1, 3)[None, :]).ravel(), n)
+    return np.unique(nodes) * dth
+
+
+def _angles(a) -> np.ndarray:
+    return np.empty(0) if a is None else np.ascontiguousarray(a, dtype=float)
+
+
+def _pair(method: str) -> tuple:
+    if method not in _ig.PAIRS:
+        raise ValueError(f"method = {method!r} must be one of {sorted(_ig.PAIRS)}")
+    return _ig.pair_arrays(method)
+
+
+def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None, method="dopri5",
+              stops=None):
     """Integrate with the compiled engine; states at ``t_out`` (ascending, from ``t_out[0]``).
 
     ``args`` = ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``.
@@ -801,6 +888,10 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
     atol_velocity : float or ndarray, optional
         Absolute tolerance of the velocities [m/s], one for all or one per velocity
         (default ``atol``).
+    method : {"dopri5", "bs3"}
+        The embedded Runge-Kutta pair (:data:`springdyn.numerics.erk.PAIRS`).
+    stops : array_like, optional
+        Times [s], ascending, on which a step lands.
 
     Returns
     -------
@@ -814,7 +905,8 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
     status, t, steps, rejected = _integrate(
         np.ascontiguousarray(y0, dtype=float), float(t_out[0]), np.ascontiguousarray(t_out, dtype=float), *args,
         float(rtol), atol_vector(len(y0), atol, atol_velocity), float(h_max), int(max_steps), out, np.full(args[1].shape[0], np.inf), 0.0, -1.0,
-        np.zeros(N_EXT), np.full((1, 4), np.nan), np.zeros(1, dtype=np.int64),
+        np.zeros(N_EXT), np.full((1, 4), np.nan), np.zeros(1, dtype=np.int64), *_pair(method), _angles(stops),
+        np.empty((0, extra_layout(args[0].shape[0])["size"])), 0,
     )
     return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))
 
@@ -893,26 +985,37 @@ def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
 
 
 @njit(cache=True)
-def series_force_compiled(total_compression, laws, out):
-    """Compiled twin of :func:`springdyn.valve.statics.series_force` (same Newton scheme).
+def series_force_compiled(total_compression, laws, out, table_x, table_f):
+    """Compiled twin of :func:`springdyn.valve.statics.series_force` (Newton's method).
 
-    For each total compression [m], the common force [N] of the series chain: Newton's
-    method from the all-linear force, which lies below the root, using each element's
-    closed-form inverse law.  A compression equal to its predecessor's (the base circle)
-    repeats its force: the same result as solving again, bit for bit.  Used for the static
-    force along a cam; the tests check it against the NumPy implementation.
+    For each total compression [m], the common force [N] of the series chain, by Newton's
+    method on each element's closed-form inverse law.  The total compression is a concave
+    function of the force (every law stiffens), so from any start the iterates fall below
+    the root after one step and rise to it monotonically.  The start is the linear
+    interpolation of the force table ``table_x`` [m], ``table_f`` [N] (ascending; it lies
+    above the convex force curve), or the all-linear force, below the root, outside the
+    table or when it is empty.  Each point's start depends on its compression alone, so a
+    result does not depend on the other points (sweeps chunked differently agree bit for
+    bit); a compression equal to its predecessor's (the base circle) repeats its force.
+    Used for the static force along a cam; the tests check it against the NumPy
+    implementation.
     """
     n_el = laws.shape[0]
     k_lin = 0.0
     for j in range(n_el):
         k_lin += 1.0 / laws[j, 0, 2]
     k_lin = 1.0 / k_lin
+    nt = table_x.shape[0]
     for i in range(total_compression.shape[0]):
         dl = total_compression[i]
         if i > 0 and dl == total_compression[i - 1]:
             out[i] = out[i - 1]
             continue
         force = dl * k_lin
+        if nt > 1 and table_x[0] <= dl < table_x[nt - 1]:
+            k = np.searchsorted(table_x, dl, side="right") - 1
+            w = (dl - table_x[k]) / (table_x[k + 1] - table_x[k])
+            force = table_f[k] + w * (table_f[k + 1] - table_f[k])
         for _ in range(100):
             total = 0.0
             comp = 0.0

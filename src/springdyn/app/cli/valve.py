@@ -83,7 +83,7 @@ def register(sub) -> None:
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
     p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"relative tolerance (default {DEFAULT_RTOL:g})")
-    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/10 (default {DEFAULT_ATOL:g})")
+    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 (default {DEFAULT_ATOL:g})")
     p.add_argument("--backend", choices=("compiled", "scipy"), default="compiled",
                    help="compiled engine (default) or the SciPy reference")
     p.add_argument("--closure-map", metavar="PNG",
@@ -121,7 +121,7 @@ def register(sub) -> None:
     p.add_argument("--workers", type=int, metavar="N", help="local threads (default: 2, both cores)")
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786")
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"relative tolerance (default {DEFAULT_RTOL:g})")
-    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/10 (default {DEFAULT_ATOL:g})")
+    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 (default {DEFAULT_ATOL:g})")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
 
