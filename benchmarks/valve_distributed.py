@@ -52,7 +52,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     import numpy as np
-    from scipy.linalg import eigvals
+    from springdyn.valve.modes import chain_eigenvalues
 
     from springdyn.valve import Cam, ValveSpring, simulate
 
@@ -89,14 +89,7 @@ def main(argv=None) -> int:
     for name, s in (("type-c", tc), ("distributed", ds)):
         ch = s.chain
         x = ch.setup_compressions
-        from springdyn.valve.modes import chain_stiffness_matrix
-
-        n = ch.masses.size
-        a = np.zeros((2 * n, 2 * n))
-        a[:n, n:] = np.eye(n)
-        a[n:, :n] = -chain_stiffness_matrix(ch.tangent_stiffness(x)) / ch.masses[:, None]
-        a[n:, n:] = -chain_stiffness_matrix(ch.damping(x)) / ch.masses[:, None]
-        lam = np.abs(eigvals(a)).max()
+        lam = np.abs(chain_eigenvalues(ch.masses, ch.tangent_stiffness(x), ch.damping(x))).max()
         h = 2 * 0.02 / rows[name][1]
         print(f"  {name:12s} |lambda|max = {lam:.3g} 1/s, mean step {h * 1e6:.2f} us, |lambda| h = {lam * h:.2f}")
 

@@ -45,11 +45,10 @@ def main(argv=None) -> int:
     warnings.filterwarnings("ignore", message="the cam lift drives the spring into coil contact")
 
     import numpy as np
-    from scipy.linalg import eigvals
 
     from springdyn.valve import Cam, ValveSpring, simulate
     from springdyn.valve import dynamics
-    from springdyn.valve.modes import chain_stiffness_matrix
+    from springdyn.valve.modes import chain_eigenvalues
 
     cams = _cams(Cam)
     speeds = (1700.0, 3500.0) if args.quick else SPEEDS
@@ -85,12 +84,7 @@ def main(argv=None) -> int:
         s = ValveSpring.example("one-step").with_model(model)
         ch = s.chain
         x = ch.setup_compressions
-        n = ch.masses.size
-        a = np.zeros((2 * n, 2 * n))
-        a[:n, n:] = np.eye(n)
-        a[n:, :n] = -chain_stiffness_matrix(ch.tangent_stiffness(x)) / ch.masses[:, None]
-        a[n:, n:] = -chain_stiffness_matrix(ch.damping(x)) / ch.masses[:, None]
-        lam = eigvals(a)
+        lam = chain_eigenvalues(ch.masses, ch.tangent_stiffness(x), ch.damping(x))
         top = lam[np.argmax(np.abs(lam))]
         sim = simulate(s, cams["3-4-5"], 3000.0, 2, check_elements=False)
         h = 2 * 0.02 / sim.info["steps"]

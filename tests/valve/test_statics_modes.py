@@ -206,3 +206,14 @@ def test_compiled_series_force_equals_numpy(name):
     shuffled = np.empty_like(dl)
     series_force_compiled(dl[order], s.chain.laws, shuffled, x, series_force(x, s.chain.laws))
     np.testing.assert_array_equal(shuffled, out[order])
+
+
+def test_chain_eigenvalues_of_one_damped_mass():
+    """One mass between two springs and dampers: m s^2 + 2 c s + 2 k = 0 (closed form)."""
+    from springdyn.valve.modes import chain_eigenvalues
+
+    m, k, c = 0.01, 1.0e6, 3.0
+    lam = np.sort_complex(chain_eigenvalues([m], [k, k], [c, c]))
+    root = np.sqrt(complex((2 * c) ** 2 - 4 * m * 2 * k))
+    np.testing.assert_allclose(lam, np.sort_complex([(-2 * c - root) / (2 * m), (-2 * c + root) / (2 * m)]),
+                               rtol=1e-12)

@@ -94,28 +94,18 @@ def coil_law(k_wire: float, gap: float, k_contact: float, onset: float) -> np.nd
 
 
 def modal_damping(masses, stiffness, damping) -> tuple[np.ndarray, np.ndarray]:
-    """Natural frequencies [Hz] and damping ratios of a damped chain, ascending.
-
-    Eigenvalues of ``M u'' + C u' + K u = 0`` (state-space form), both ends fixed.
+    """Natural frequencies [Hz] and damping ratios of a damped chain, ascending: its
+    underdamped eigenvalues (:func:`springdyn.valve.modes.chain_eigenvalues`).
 
     Parameters
     ----------
-    masses : ndarray (n,)
-        Lumped masses [kg].
-    stiffness, damping : ndarray (n + 1,)
-        Element tangent stiffnesses [N/m] and damping coefficients [N s/m].
+    masses, stiffness, damping : ndarray
+        As for ``chain_eigenvalues``: lumped masses [kg] (n), element stiffnesses [N/m]
+        and damping coefficients [N s/m] (n + 1 each).
     """
-    from .modes import chain_stiffness_matrix
+    from .modes import chain_eigenvalues
 
-    n = len(masses)
-    kmat = chain_stiffness_matrix(stiffness)
-    cmat = chain_stiffness_matrix(damping)
-    minv = 1.0 / np.asarray(masses)[:, None]
-    a = np.zeros((2 * n, 2 * n))
-    a[:n, n:] = np.eye(n)
-    a[n:, :n] = -minv * kmat
-    a[n:, n:] = -minv * cmat
-    lam = np.linalg.eigvals(a)
+    lam = chain_eigenvalues(masses, stiffness, damping)
     lam = lam[lam.imag > 0]
     lam = lam[np.argsort(np.abs(lam))]
     return np.abs(lam) / (2 * np.pi), -lam.real / np.abs(lam)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg
 
-__all__ = ["chain_stiffness_matrix", "chain_frequencies"]
+__all__ = ["chain_stiffness_matrix", "chain_frequencies", "chain_eigenvalues"]
 
 
 def chain_stiffness_matrix(k: np.ndarray) -> np.ndarray:
@@ -60,3 +60,30 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
     else:
         w2 = scipy.linalg.eigh_tridiagonal(d, e, eigvals_only=True, select="i", select_range=(0, count - 1))
     return np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
+
+
+def chain_eigenvalues(masses, stiffness, damping) -> np.ndarray:
+    """Eigenvalues [1/s] of the damped chain ``M u'' + C u' + K u = 0``, both ends fixed.
+
+    The eigenvalues of the first-order (state-space) matrix: complex pairs for the
+    underdamped modes, real ones for the overdamped; the largest magnitude bounds an
+    explicit integrator's step (``|lambda| h`` within its stability interval).
+
+    Parameters
+    ----------
+    masses : ndarray (n,)
+        Lumped masses [kg].
+    stiffness, damping : ndarray (n + 1,)
+        Element tangent stiffnesses [N/m] and damping coefficients [N s/m].
+
+    Returns
+    -------
+    ndarray (2 n,), complex
+    """
+    n = len(masses)
+    minv = 1.0 / np.asarray(masses, dtype=float)[:, None]
+    a = np.zeros((2 * n, 2 * n))
+    a[:n, n:] = np.eye(n)
+    a[n:, :n] = -minv * chain_stiffness_matrix(stiffness)
+    a[n:, n:] = -minv * chain_stiffness_matrix(damping)
+    return np.linalg.eigvals(a)
