@@ -53,6 +53,7 @@ def main(argv=None) -> int:
     ap.add_argument("--speeds", type=int, default=1000, help="speeds in the sweep (default 1000)")
     ap.add_argument("--rounds", type=int, default=5, help="interleaved reference/engine rounds (default 5)")
     ap.add_argument("--repeat", type=int, default=20, help="repetitions of the compiled single run (default 20)")
+    ap.add_argument("--ref-repeat", type=int, default=3, help="repetitions of the SciPy reference per round (default 3)")
     args = ap.parse_args(argv)
 
     t0 = time.perf_counter()
@@ -86,12 +87,15 @@ def main(argv=None) -> int:
 
     # --- one simulation -------------------------------------------------------------
     # rounds interleave the reference and the engine, so that both see the same load on a
-    # shared machine; each round's ratio is best-of-N engine against one reference run
+    # shared machine; each round's ratio is the best of N engine runs against the best of a
+    # few reference runs (a single reference run under load inflated the ratio: 208-446x)
     ratios, fast_times, ref_times = [], [], []
     for _ in range(args.rounds):
-        t = time.perf_counter()
-        ref = simulate(spring, cam, 3000.0, 2, backend="scipy", rtol=1e-8, atol=1e-12)
-        t_r = time.perf_counter() - t
+        t_r = math.inf
+        for _ in range(args.ref_repeat):  # best of a few, like the engine: load only ever adds time
+            t = time.perf_counter()
+            ref = simulate(spring, cam, 3000.0, 2, backend="scipy", rtol=1e-8, atol=1e-12)
+            t_r = min(t_r, time.perf_counter() - t)
         times = []
         for _ in range(args.repeat):
             t = time.perf_counter()
@@ -117,7 +121,8 @@ def main(argv=None) -> int:
     print()
     print("one simulation, 2 revolutions at 3000 cam rpm (end to end: setup, integration, outputs)")
     med = float(np.median(ratios))
-    print(f"  SciPy DOP853 rtol=1e-8 atol=1e-12, pure-Python RHS (median of {args.rounds}): {t_ref:8.3f} s  "
+    print(f"  SciPy DOP853 rtol=1e-8 atol=1e-12, pure-Python RHS (median of {args.rounds} rounds, best of "
+          f"{args.ref_repeat} each): {t_ref:8.3f} s  "
           f"({ref.info['steps']} RHS calls)")
     print(f"  springdyn compiled engine (median of {args.rounds} rounds, best of {args.repeat} each): "
           f"{t_fast * 1e3:8.2f} ms  ({fast.info['steps']} steps)")

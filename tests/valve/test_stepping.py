@@ -50,32 +50,26 @@ def test_stop_angles_are_the_table_nodes_around_each_breakpoint():
 
 
 def test_landing_on_the_ramp_ends_keeps_the_default_accurate():
-    """The case that showed it: without the stops the default tolerances missed the minimum
-    retainer force after the closing ramp by 0.27 % of Fset (71.17 against 71.85 N): a step
-    crossed the 0.05 deg table interval of the ramp's velocity step with no stage inside."""
+    """The case that showed it: without the stops (and the velocity tolerance at / 10) the
+    default missed the minimum retainer force after the closing ramp by 0.27 % of Fset
+    (71.17 against 71.85 N): a step crossed the 0.05 deg table interval of the ramp's
+    velocity step with no stage inside.  Whether a step does so is chance (round-off moves
+    it: at / 30 without stops one of 14 speeds from 3000 to 4300 cam rpm is 0.024 % off, the
+    others 0.01 %), so the test holds the engine as built, with its stops, to the target over
+    that scan."""
     s = ValveSpring.example("one-step")
     fset = s.internal_parameters()["Fset"]
-    sim = simulate(s, RAMPS, 4200.0, 2)
-    ref = simulate(s, RAMPS, 4200.0, 2, rtol=1e-10, atol=1e-13)
-    assert _worst(sim, ref, fset) < 5e-4
-    # and without the stops (the engine directly) the same run is measurably worse
     setup = prepare(s, RAMPS)
-    om = rpm_to_omega(4200.0)
-    args = dict(rtol=1e-6, atol=1e-9, max_step_fraction=dynamics.MAX_STEP_FRACTION, monitor=True,
-                atol_velocity=setup.atol_velocity(1e-9) * 3.0, gaps=dynamics.coil_contact_compressions(s))
-    stops = engine.stop_angles(RAMPS.breakpoints, setup.dth)
-    mins = []
-    for sa in (None, stops):
-        *_, mon = engine.run_speeds(setup.y0, [om], 2, 1440, setup.args(om), stop_angles=sa, **args)
-        mins.append(mon["ext"][0, engine.EXT.index("min_retainer_force")])
-    true_min = ref.summary["min_retainer_force_N"]
-    assert abs(mins[1] - true_min) < 5e-4 * fset < abs(mins[0] - true_min)
+    for rpm in (3000.0, 3500.0, 4100.0, 4200.0):
+        sim = simulate(s, RAMPS, rpm, 2, setup=setup)
+        ref = simulate(s, RAMPS, rpm, 2, rtol=1e-10, atol=1e-13, setup=setup)
+        assert _worst(sim, ref, fset) < 2e-4, rpm  # measured at most 0.0095 %
 
 
 def test_pairs_per_model_and_their_accuracy():
     """Type C steps with Dormand-Prince, the distributed chain with Bogacki-Shampine; each
     within 0.05 % of Fset of a tight Dormand-Prince run (measured 0.0009 % and 0.0002 % here;
-    the study over 105 runs per model: 0.011 % and 0.0034 %)."""
+    the study over 112 runs per model: 0.014 % and 0.0035 %)."""
     for model, pair in (("type-c", "dopri5"), ("distributed", "bs3")):
         s = ValveSpring.example("one-step").with_model(model)
         assert prepare(s, CAM).method == pair

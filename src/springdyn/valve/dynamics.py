@@ -115,16 +115,16 @@ class SimulationSetup:
         """Absolute tolerances of the velocities [m/s] for ``atol`` [m] on the displacements.
 
         The spring's masses: ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR`` (the velocity of
-        a displacement ``atol`` oscillating at a hundredth of the first surge frequency);
+        a displacement ``atol`` oscillating at a thirtieth of the first surge frequency);
         the valve train's bodies keep ``atol`` (their stiff contacts make the contact forces
         sensitive to velocity errors).
 
-        Measured (benchmarks/valve_tolerances.py, docs/valve.md): over 100 runs of Type C
-        (two springs, four cams, 10 to 12 speeds) against a tight reference the worst
-        end-force extreme is 0.010 % of Fset with 1.3 times fewer steps than one tolerance
-        for every component (0.0074 %).  Looser scalings fail on single runs where a coil
-        contact starts a little earlier or later: ``/ 30`` 0.031 %, ``/ 10`` 0.27 %
-        (one-step spring, polydyne with ramps, 4200 cam rpm), ``2 pi f1`` 0.05 %.
+        Measured (benchmarks/valve_tolerances.py, docs/valve.md): over 112 runs per model
+        (two springs, four cams, 14 speeds) the worst end-force extreme against a tight
+        reference is 0.014 % of Fset for Type C (0.0087 % with ``atol`` for every
+        component, which takes 1.4 times more steps) and 0.0035 % for the distributed
+        chain; ``/ 10`` reaches 0.028 %, a factor 1.8 to the 0.05 % target only (and 0.27 %
+        on a ramp cam before the engine landed its steps on the ramps' ends).
         """
         out = np.full(self.nfree, float(atol))
         out[: self.n_masses] = (atol * 2.0 * math.pi * float(self.spring.internal_parameters()["f1"])

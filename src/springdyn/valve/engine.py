@@ -105,26 +105,15 @@ def hermite5(x, p0, v0, a0, p1, v1, a1):
     value, derivative : float or ndarray
         The derivative is per unit ``x``.
     """
-    x2 = x * x
-    x3 = x2 * x
-    x4 = x3 * x
-    x5 = x4 * x
-    value = (
-        (1 - 10 * x3 + 15 * x4 - 6 * x5) * p0
-        + (x - 6 * x3 + 8 * x4 - 3 * x5) * v0
-        + 0.5 * (x2 - 3 * x3 + 3 * x4 - x5) * a0
-        + 0.5 * (x3 - 2 * x4 + x5) * a1
-        + (-4 * x3 + 7 * x4 - 3 * x5) * v1
-        + (10 * x3 - 15 * x4 + 6 * x5) * p1
-    )
-    slope = (
-        (-30 * x2 + 60 * x3 - 30 * x4) * p0
-        + (1 - 18 * x2 + 32 * x3 - 15 * x4) * v0
-        + 0.5 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4) * a0
-        + 0.5 * (3 * x2 - 8 * x3 + 5 * x4) * a1
-        + (-12 * x2 + 28 * x3 - 15 * x4) * v1
-        + (30 * x2 - 60 * x3 + 30 * x4) * p1
-    )
+    # the quintic in monomial form (Horner): the same polynomial as the Hermite basis
+    # sum, with a third of the operations
+    dp = p1 - p0
+    c2 = 0.5 * a0
+    c3 = 10.0 * dp - 6.0 * v0 - 4.0 * v1 - 1.5 * a0 + 0.5 * a1
+    c4 = -15.0 * dp + 8.0 * v0 + 7.0 * v1 + 1.5 * a0 - a1
+    c5 = 6.0 * dp - 3.0 * v0 - 3.0 * v1 - 0.5 * a0 + 0.5 * a1
+    value = p0 + x * (v0 + x * (c2 + x * (c3 + x * (c4 + x * c5))))
+    slope = v0 + x * (2.0 * c2 + x * (3.0 * c3 + x * (4.0 * c4 + x * (5.0 * c5))))
     return value, slope
 
 
