@@ -19,8 +19,9 @@ The cam enters through a periodic table of lift, velocity and acceleration sampl
 finely over one revolution and interpolated by quintic Hermite polynomials (C2), the same
 in every backend.
 
-Backends: :func:`integrate` (compiled: numba, adaptive Dormand-Prince 5(4) with dense
-output, :mod:`springdyn.integration`) and :func:`integrate_scipy` (the reference:
+Backends: :func:`integrate` and :func:`run_speeds` (compiled: numba, an adaptive embedded
+Runge-Kutta pair with dense output, :mod:`springdyn.numerics.erk`: Dormand-Prince 5(4) or
+Bogacki-Shampine 3(2)) and :func:`integrate_scipy` (the reference:
 ``scipy.integrate.solve_ivp`` with the same right-hand side run as plain Python).
 """
 
