@@ -22,6 +22,7 @@ from springdyn.core.units import to_si
         ("[spring]\nx = 1\n".encode("utf-16"), "UTF-16"),
         (bytes(range(256)), "NUL bytes"),
         (b"a = " + b"[" * 5000 + b"]" * 5000, "nested too deeply"),
+        (b"[spring]\nx = " + b"9" * 5000 + b"\n", "too long to read"),  # fuzz: Python's 4300-digit limit
         (b"", "empty"),
         (b"[spring]\nx = 1\n[extra]\ny = 2\n", "unknown table [extra]"),
         (b"[sprnig]\nx = 1\n", "did you mean [spring]"),

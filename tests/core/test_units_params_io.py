@@ -76,6 +76,9 @@ def test_from_mapping():
         from_mapping(Demo, {"width": 1, "count": 2.5})
     with pytest.raises(InputError, match=r"mode = 'c' is not allowed"):
         Demo(0.1, "c")
+    # fuzz: an integer beyond any float (math.isfinite raised OverflowError)
+    with pytest.raises(InputError, match=r"count is an integer of 1329 bits: too large"):
+        from_mapping(Demo, {"width": 1, "count": 10**400})
 
 
 def test_atomic_writers_leave_nothing_on_failure(tmp_path):

@@ -134,6 +134,8 @@ def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
         if isinstance(v, bool) or not isinstance(v, (int, float)):
             continue
         sub = f"{label}[{i}]" if isinstance(value, list) else label
+        if isinstance(v, int) and not -1e300 < v < 1e300:  # beyond any float (and any spring)
+            raise InputError(f"{sub} is an integer of {v.bit_length()} bits: too large; it must be a finite number")
         shown = describe_value(v, {**meta, "kind": "quantity"}) if meta.get("unit") or meta.get("display") else repr(v)
         if not math.isfinite(v):
             raise InputError(f"{sub} = {shown} must be a finite number")
@@ -308,6 +310,8 @@ def load_toml(path: str | Path, section: str | None = None, *, allowed: tuple = 
         raise InputError(f"{path}: not valid TOML: {exc}") from None
     except RecursionError:
         raise InputError(f"{path}: not a springdyn definition: its tables or arrays are nested too deeply") from None
+    except ValueError as exc:  # an integer of more than 4300 digits (Python's conversion limit)
+        raise InputError(f"{path}: a number in it is too long to read ({exc}); give a finite number") from None
     unknown = [k for k in doc if k not in allowed]
     if unknown:
         k = unknown[0]
