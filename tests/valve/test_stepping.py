@@ -12,6 +12,7 @@ import math
 import numpy as np
 import pytest
 
+from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, simulate
 from springdyn.valve import dynamics, engine
 from springdyn.valve.dynamics import CAM_SAMPLES, prepare, rpm_to_omega
@@ -96,3 +97,11 @@ def test_distributed_chain_is_stability_bound():
         out[model] = lam * 0.04 / sim.info["steps"]
     assert out["type-c"] < 1.0
     assert 1.2 < out["distributed"] < 2.6
+
+
+def test_method_is_checked():
+    s = ValveSpring.example("one-step")
+    with pytest.raises(InputError, match="method = 'rk45'"):
+        simulate(s, CAM, 3000.0, 2, method="rk45")
+    with pytest.raises(InputError, match="has its own"):
+        simulate(s, CAM, 3000.0, 2, method="bs3", backend="scipy")

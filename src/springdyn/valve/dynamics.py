@@ -358,6 +358,9 @@ def simulate(
     check_run_settings(revolutions, points_per_revolution, rtol, atol)
     if backend not in ("compiled", "scipy"):
         raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")
+    if method is not None and (backend != "compiled" or method not in PAIR.values()):
+        raise InputError(f"method = {method!r}: the compiled backend's pairs are {sorted(set(PAIR.values()))}"
+                         + ("" if backend == "compiled" else f"; backend = {backend!r} has its own (DOP853)"))
     revolutions, points_per_revolution = int(revolutions), int(points_per_revolution)
     # bound the work by the periods of the fastest mode: solve_ivp has no step cap (20 to
     # 70 right-hand-side calls per period: 2e4 periods take seconds to a minute); the

@@ -520,7 +520,8 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             in_mon = monitor and t_new > t_w0 and t < t_w1
             th_a = max(0.0, (t_w0 - t) / h)
             th_b = min(1.0, (t_w1 - t) / h)
-            th_m = 0.5 * (th_a + th_b)
+            th_c = 0.5 * (th_a + th_b)
+            th_m = th_c  # the interior sample: the output time nearest the middle, else the middle
             mid_row = -1
             while iout < nout and t_out[iout] <= t_new:
                 fr = (t_out[iout] - t) / h
@@ -532,7 +533,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                     rhs_compiled(t_out[iout], ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
                                  dbuf, xout[row])
                     # an output inside the window's part of the step is its interior sample
-                    if in_mon and th_a < fr < th_b and (mid_row < 0 or abs(fr - 0.5) < abs(th_m - 0.5)):
+                    if in_mon and th_a < fr < th_b and (mid_row < 0 or abs(fr - th_c) < abs(th_m - th_c)):
                         mid_row = row
                         th_m = fr
                 iout += 1
