@@ -877,10 +877,9 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
     max_steps : int
         Most steps [-] (the loop is bounded).
     atol_velocity : float or ndarray, optional
-        Absolute tolerance of the velocities [m/s], one for all or one per velocity
-        (default ``atol``).
+        Velocity tolerance [m/s], as for :func:`run_speeds`.
     method : {"dopri5", "bs3"}
-        The embedded Runge-Kutta pair (:data:`springdyn.numerics.erk.PAIRS`).
+        Runge-Kutta pair, as for :func:`run_speeds`.
     stops : array_like, optional
         Times [s], ascending, on which a step lands.
 
