@@ -74,12 +74,12 @@ def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> 
     """
     import warnings
 
-    text = value.strip() if isinstance(value, str) else None
-    if text is not None and (text.endswith("%") or text.endswith("percent")):
-        frac = to_si(text, "", field)
+    frac = _percentage(value, field)
+    if frac is not None:
         if not 0 < frac <= 1:
             raise InputError(f"{field} = {value!r}: a percentage of r2 + r3 must lie in (0 %, 100 %]")
         return frac * extended_length
+    text = value.strip() if isinstance(value, str) else None
     length = to_si(value, "m", field)
     if not length > 0:
         raise InputError(f"{field} = {value!r} must be a positive length, e.g. '72 mm', or a percentage of "
@@ -107,13 +107,21 @@ def offset_to_si(value, extended_length: float, field: str = "offset") -> float:
     field : str
         Name of the argument, for messages.
     """
-    text = value.strip() if isinstance(value, str) else None
-    if text is not None and (text.endswith("%") or text.endswith("percent")):
-        frac = to_si(text, "", field)
+    frac = _percentage(value, field)
+    if frac is not None:
         if not 0 <= frac < 1:
             raise InputError(f"{field} = {value!r}: a percentage of r2 + r3 must lie in [0 %, 100 %)")
         return frac * extended_length
     return to_si(value, "m", field, bare_unit="m")
+
+
+def _percentage(value, field: str):
+    """The fraction [-] that a percentage such as ``"40 %"`` or ``"40 percent"`` gives; None
+    when ``value`` is not one (a length, or a bare number)."""
+    text = value.strip() if isinstance(value, str) else None
+    if text is not None and (text.endswith("%") or text.endswith("percent")):
+        return to_si(text, "", field)
+    return None
 
 
 def _is_number(text: str) -> bool:
