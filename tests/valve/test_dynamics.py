@@ -217,8 +217,8 @@ def test_lift_that_drives_spring_solid(one_step):
 def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
     def broken(y0, omegas, revolutions, points, args, **kw):
         n = len(omegas)
-        return (np.full((n, points * 2, len(engine.EXTRA)), np.nan), np.full(n, 2), np.full(n, 0.0123),
-                np.full(n, 42), {})
+        return (np.full((n, points, len(engine.EXTRA)), np.nan), np.full((n, points), np.nan), np.full(n, 2),
+                np.full(n, 0.0123), np.full(n, 42), {})
 
     monkeypatch.setattr(simmod, "run_speeds", broken)
     with pytest.raises(SolverError, match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
@@ -232,11 +232,18 @@ def test_kernel_outputs_equal_numpy_postprocessing(one_step):
     setup = prepare(one_step, CAM, VT)
     omega = rpm_to_omega(2000)  # below float speed: no impacts to amplify round-off
     period = 2 * math.pi / omega
-    extra, status, _, _ = engine.run_speeds(setup.y0, [omega], 1, 360, setup.args(omega), rtol=1e-6, atol=1e-9,
-                                            max_step_fraction=1 / 720)
-    t = np.arange(360) * period / 360
-    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-6, atol=1e-9, h_max=period / 720)
+    extra, previous, status, _, _ = engine.run_speeds(setup.y0, [omega], 2, 360, setup.args(omega), rtol=1e-6,
+                                                      atol=1e-9, max_step_fraction=1 / 720)
+    assert extra.shape == (1, 360, engine.extra_layout(5)["size"]) and previous.shape == (1, 360)
+    t = np.arange(720) * period / 360
+    # run_speeds integrates the first revolution and then the monitored last one, landing a
+    # step on the revolution boundary: a stop there gives integrate the same step sequence
+    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-6, atol=1e-9, h_max=period / 720,
+                                    stops=[period])
     r = simmod.chain_response(setup, omega, omega * t, states)
+    # the revolution before the last: the retainer force alone
+    np.testing.assert_allclose(previous[0], r["force"][-1, :360], rtol=1e-7, atol=1e-6)
+    r = {k: v[..., 360:] for k, v in r.items()}
     e = extra[0]
     # The right-hand side is inlined into each compiled caller, so the two runs round
     # differently and their adaptive step sequences part at round-off level; the outputs

@@ -15,6 +15,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..core.errors import InputError, SolverError
+from ..numerics.erk import PAIRS
 from .cam import Cam
 from .elements import damping_coefficient, law_force
 from .engine import STATUS, extra_layout, hermite_eval, integrate_scipy, run_speeds, series_force_compiled, stop_angles
@@ -341,7 +342,7 @@ def simulate(
         how much the peak end forces change (``clash_force_element_sensitivity``,
         ``clash_forces_converged`` and a note in the summary): clash forces are a penalty
         contact on the element scale and may not be converged.
-    method : {"dopri5", "bs3"}, optional
+    method : {"dopri5", "tsit5", "bs3"}, optional
         The compiled engine's Runge-Kutta pair; default the model's (:data:`PAIR`: Type C
         Dormand-Prince 5(4), distributed Bogacki-Shampine 3(2)).
 
@@ -358,8 +359,8 @@ def simulate(
     check_run_settings(revolutions, points_per_revolution, rtol, atol)
     if backend not in ("compiled", "scipy"):
         raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")
-    if method is not None and (backend != "compiled" or method not in PAIR.values()):
-        raise InputError(f"method = {method!r}: the compiled backend's pairs are {sorted(set(PAIR.values()))}"
+    if method is not None and (backend != "compiled" or method not in PAIRS):
+        raise InputError(f"method = {method!r}: the compiled backend's pairs are {sorted(PAIRS)}"
                          + ("" if backend == "compiled" else f"; backend = {backend!r} has its own (DOP853)"))
     revolutions, points_per_revolution = int(revolutions), int(points_per_revolution)
     # bound the work by the periods of the fastest mode: solve_ivp has no step cap (20 to
@@ -390,11 +391,12 @@ def simulate(
     t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
     if backend == "compiled":
         method = setup.method if method is None else method
-        extra, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol, method=method)
+        extra, prev, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol,
+                                                           method=method)
         info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]), method=method)
-        if info["status"] != 0 or not np.all(np.isfinite(extra)):
+        if info["status"] != 0 or not (np.all(np.isfinite(extra)) and np.all(np.isfinite(prev))):
             raise _solver_error(cam_rpm, omega, info)
-        sim = _from_extra(setup, cam_rpm, revolutions, t_keep, extra[0], info, n, keep)
+        sim = _from_extra(setup, cam_rpm, revolutions, t_keep[-n:], extra[0], prev[0], info)
         sim.monitor = _monitor_record(mon, 0, omega, revolutions)
         if check_elements:
             _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol)
@@ -499,20 +501,19 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     return out
 
 
-def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, t_keep, extra, info, n, keep) -> Simulation:
-    """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)."""
+def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous, info) -> Simulation:
+    """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)
+    over the last revolution, ``e``; ``previous`` is the retainer force over the one before."""
     omega = rpm_to_omega(cam_rpm)
-    last = slice((keep - 1) * n, keep * n)
     fset = setup.spring.internal_parameters()["Fset"]
-    e = extra[last]
     lay = extra_layout(setup.n_masses)
     ne = setup.n_masses + 1
     force, x = e[:, lay["force"]].T, e[:, lay["compression"]].T
-    prev_err = float(np.max(np.abs(e[:, ne - 1] - extra[:n, ne - 1])) / fset) if keep == 2 else math.nan
+    prev_err = float(np.max(np.abs(e[:, ne - 1] - previous)) / fset) if previous.size else math.nan
     lift = e[:, lay["lift"]]
     sim = Simulation(
         spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
-        time=t_keep[last], cam_angle=np.mod(omega * t_keep[last], 2 * math.pi), lift=lift,
+        time=time, cam_angle=np.mod(omega * time, 2 * math.pi), lift=lift,
         retainer_force=force[-1], seat_force=force[0], static_force=setup.static_force(e[:, lay["top_displacement"]]),
         element_compression=x, element_force=force,
         element_contact=x >= coil_contact_compressions(setup.spring)[:, None],

@@ -298,6 +298,10 @@ def rhs(t, s, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, ou
 #: side).  No licence that assumes finite values: the NaN/inf checks must stay.
 FASTMATH = {"contract", "arcp", "nsz"}
 
+#: Dormand-Prince steps use the fused kernels of :mod:`springdyn.numerics.erk` (the generic
+#: ones when False: the same arithmetic, reordered; Tsitouras steps always use its fused ones).
+FUSED_DOPRI5 = True
+
 #: The compiled right-hand side (numba, cached on disk).
 rhs_compiled = njit(cache=True, inline="always", fastmath=FASTMATH, error_model="numpy")(rhs)
 
@@ -310,7 +314,7 @@ def _eval_at(rc, theta, t, h, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     rhs_compiled(t + theta * h, ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, dbuf, ebuf)
 
 
-@register_jitable
+@register_jitable(inline="always")
 def _signal(k, ebuf, ne, nm, vt):
     """Extreme signal ``k`` (maximised): retainer force, -retainer force, seat force,
     -seat force, -cam contact force while the valve is open (off its seat, the lobe past
@@ -328,7 +332,7 @@ def _signal(k, ebuf, ne, nm, vt):
     return -np.inf
 
 
-@register_jitable
+@register_jitable(inline="always")
 def _channel(c, ebuf, ne, nm, vt, gaps):
     """Event channel ``c``, active while negative: 0/1 seat/retainer end compression,
     2 smallest gap of the train's links while the valve is open (lift-off), 3 + j coil gap
@@ -344,7 +348,7 @@ def _channel(c, ebuf, ne, nm, vt, gaps):
     return gaps[c - 3] - ebuf[ne + c - 3]
 
 
-@register_jitable
+@register_jitable(inline="always")
 def _channels(ebuf, ne, nm, vt, gaps, vcur):
     """All event channels of :func:`_channel` into ``vcur``, the coil gaps in one plain loop
     (a call per channel cost ~16 ns each: most of the monitor's time for 50 elements)."""
@@ -420,29 +424,34 @@ def _bisect(rc, t, h, lo, hi, c, landing, masses, laws, xset, c0, cam_h, cam_dh,
 
 
 @njit(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy")
-def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-               rtol, atol, h_max, max_steps, out, gaps, t_w0, t_w1, ext, events, nev, pc, pa, pe, pd, pq, stops,
-               xout, xpad):
-    """Adaptive embedded Runge-Kutta loop (the pair ``pc, pa, pe, pd, pq`` of
-    :func:`springdyn.numerics.erk.pair_arrays`); states at ``t_out`` from the dense output.
-    A step never crosses a time in ``stops`` (ascending): it lands on it (the cam's
-    breakpoints, where the lift law is not smooth).
+def _integrate(y, t0, t_end, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
+               rtol, atol, h_max, max_steps, ctl, stops, pc, pa, pe, pd, pq, kernels, out, xout, fout, gaps, ext,
+               events, nev):
+    """Adaptive embedded Runge-Kutta loop from ``t0`` to ``t_end`` (the pair ``pc, pa, pe, pd,
+    pq`` of :func:`springdyn.numerics.erk.pair_arrays`).  ``y`` holds the state at ``t0`` and
+    receives the state reached.  A step never crosses a time in ``stops`` (ascending) or
+    ``t_end``: it lands on it (the cam's breakpoints, where the lift law is not smooth).
+    ``ctl`` = (step to try, or 0 to choose one; previous error norm; 1 if the last step was
+    accepted) continues the step-size control across calls and is updated.
 
-    ``out`` (len(t_out) or 0 rows) receives the states at ``t_out``; ``xout`` (len(t_out) -
-    ``xpad`` rows, or 0) the right-hand side's ``extra`` outputs at ``t_out[xpad:]``,
-    evaluated as the integration passes them.  Inside the monitored window an output time
-    within a step serves as the step's interior sample (no evaluation of its own).
+    The outputs at the times ``t_out`` (ascending, within [t0, t_end]) come from the dense
+    output as the integration passes them; each of ``out`` (the states), ``xout`` (the
+    right-hand side's ``extra`` outputs) and ``fout`` (the retainer force alone) is an
+    array with a row per time, or None for none.  numba compiles a variant per
+    combination, without the code of the absent ones: the revolutions before the last run
+    in a lean loop.
 
-    With ``t_w0 < t_w1`` it also monitors the window [t_w0, t_w1] on the dense output:
-    true extremes of the end forces and of the cam contact force (golden-section search
-    on the step's interpolant around each new record), and the events (end separation,
-    coil contact, lift-off, valve landing) located by bisection on the interpolant.
+    With ``ext`` (and ``events``, ``nev``; None for none) it also monitors the whole call on
+    the dense output: true extremes of the end forces and of the cam contact force
+    (golden-section search on the step's interpolant around each new record), and the
+    events (end separation, coil contact, lift-off, valve landing) located by bisection on
+    the interpolant.  An output time within a step then serves as the step's interior
+    sample (no evaluation of its own).
     """
-    n = y0.shape[0]
+    n = y.shape[0]
     ne = laws.shape[0]
     nm = ne - 1
     nfree = n // 2
-    monitor = t_w1 > t_w0
     nch = 3 + ne
     ns_ = pc.shape[0]  # stages; the last is the step's end (FSAL)
     last = ns_ - 1
@@ -467,46 +476,67 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     t_prev = 0.0
     h_prev = 0.0
     mid_prev = 0.5
-    y = y0.copy()
     t = t0
     rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[0], None)
-    h = _ig.initial_step(y, k[0], rtol, atol, h_max)
+    h = ctl[0]
+    if not h > 0.0:
+        h = _ig.initial_step(y, k[0], rtol, atol, h_max)
+    h = min(h, h_max)
+    err_old = ctl[1]
+    accepted_before = ctl[2] > 0.5
     nout = t_out.shape[0]
     iout = 0
-    want_states = out.shape[0] > 0
-    want_extra = xout.shape[0] > 0
     while iout < nout and t_out[iout] <= t:
-        if want_states:
+        if out is not None:
             out[iout, :] = y
-        if want_extra and iout >= xpad:
-            rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, dbuf, xout[iout - xpad])
+        if xout is not None:
+            rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, dbuf, xout[iout])
+        if fout is not None:
+            rhs_compiled(t, y, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, dbuf, ebuf)
+            fout[iout] = ebuf[nm]
         iout += 1
-    err_old = 1e-4
-    accepted_before = False
     istop = 0
     nstops = stops.shape[0]
     nsteps = 0
     nrejected = 0
-    while iout < nout or (monitor and t < t_w1):
+    while t < t_end:
         if nsteps + nrejected >= max_steps:
             return 1, t, nsteps, nrejected
         if h <= 1e-15 * max(abs(t), 1e-6) + 1e-18:
             return 2, t, nsteps, nrejected
         while istop < nstops and stops[istop] <= t + 1e-9 * h:  # reached (or within round-off)
             istop += 1
-        if istop < nstops and t + h > stops[istop]:
-            h = stops[istop] - t  # land on the breakpoint
-        in_window = monitor and t + h > t_w0 and t < t_w1
+        target = t_end
+        if istop < nstops and stops[istop] < t_end:
+            target = stops[istop]
+        landing = t + h >= target
+        if landing:
+            h = target - t  # land on the breakpoint or the end
         for stage in range(1, last):
-            _ig.stage_state(y, h, k, stage, ytmp, pa)
+            if kernels == 1:
+                _ig.dopri5_stage_state(y, h, k, stage, ytmp)
+            elif kernels == 2:
+                _ig.tsit5_stage_state(y, h, k, stage, ytmp)
+            else:
+                _ig.stage_state(y, h, k, stage, ytmp, pa)
             rhs_compiled(t + pc[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
                          omega, vt, k[stage], None)
-        _ig.stage_state(y, h, k, last, ytmp, pa)
-        if in_window:  # the last stage is the step's end (FSAL): its outputs are the end sample
+        if kernels == 1:
+            _ig.dopri5_stage_state(y, h, k, last, ytmp)
+        elif kernels == 2:
+            _ig.tsit5_stage_state(y, h, k, last, ytmp)
+        else:
+            _ig.stage_state(y, h, k, last, ytmp, pa)
+        if ext is not None:  # the last stage is the step's end (FSAL): its outputs are the end sample
             rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last], eend)
         else:
             rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last], None)
-        err = _ig.error_norm(y, ytmp, k, h, rtol, atol, dbuf, pe)
+        if kernels == 1:
+            err = _ig.dopri5_error_norm(y, ytmp, k, h, rtol, atol)
+        elif kernels == 2:
+            err = _ig.tsit5_error_norm(y, ytmp, k, h, rtol, atol)
+        else:
+            err = _ig.error_norm(y, ytmp, k, h, rtol, atol, dbuf, pe)
         if not (err == err) or err > 1e300:
             if h < 1e-13:
                 return 3, t, nsteps, nrejected
@@ -515,51 +545,58 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             nrejected += 1
             continue
         if err <= 1.0:
-            _ig.dense_coefficients(y, ytmp, k, h, rc, pd)
-            t_new = t + h
-            in_mon = monitor and t_new > t_w0 and t < t_w1
-            th_a = max(0.0, (t_w0 - t) / h)
-            th_b = min(1.0, (t_w1 - t) / h)
-            th_c = 0.5 * (th_a + th_b)
-            th_m = th_c  # the interior sample: the output time nearest the middle, else the middle
+            t_new = target if landing else t + h
+            if ext is not None or (iout < nout and t_out[iout] <= t_new):
+                if kernels == 1:
+                    _ig.dopri5_dense_coefficients(y, ytmp, k, h, rc)
+                elif kernels == 2:
+                    _ig.tsit5_dense_coefficients(y, k, h, rc)
+                else:
+                    _ig.dense_coefficients(y, ytmp, k, h, rc, pd)
+            th_m = 0.5  # the interior sample: the output time nearest the middle, else the middle
             mid_row = -1
             while iout < nout and t_out[iout] <= t_new:
                 fr = (t_out[iout] - t) / h
                 _ig.dense_eval(rc, fr, ybuf)
-                if want_states:
+                if out is not None:
                     out[iout, :] = ybuf
-                if want_extra and iout >= xpad:
-                    row = iout - xpad
+                if xout is not None:
                     rhs_compiled(t_out[iout], ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-                                 dbuf, xout[row])
-                    # an output inside the window's part of the step is its interior sample
-                    if in_mon and th_a < fr < th_b and (mid_row < 0 or abs(fr - th_c) < abs(th_m - th_c)):
-                        mid_row = row
+                                 dbuf, xout[iout])
+                    # an output inside the step is its interior sample
+                    if 0.0 < fr < 1.0 and (mid_row < 0 or abs(fr - 0.5) < abs(th_m - 0.5)):
+                        mid_row = iout
                         th_m = fr
+                if fout is not None:
+                    rhs_compiled(t_out[iout], ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
+                                 dbuf, ebuf)
+                    fout[iout] = ebuf[nm]
                 iout += 1
-            if in_mon:
-                ths = (th_a, th_m, th_b)
+            if ext is not None:
+                ths = (0.0, th_m, 1.0)
                 for isamp in range(3):
                     if isamp == 0 and started:
                         continue  # the step start is the previous step's end, already seen
-                    if isamp == 2 and th_b == 1.0:
-                        ebuf[:] = eend  # the end of the step: already evaluated as its last stage
+                    if isamp == 2:
+                        src = eend  # the end of the step: already evaluated as its last stage
                     elif isamp == 1 and mid_row >= 0:
-                        ebuf[:] = xout[mid_row]  # an output sample: already evaluated
+                        src = xout[mid_row]  # an output sample: already evaluated
                     else:
                         # _eval_at written out: a call passing twenty arrays costs more than the work
                         _ig.dense_eval(rc, ths[isamp], ybuf)
                         rhs_compiled(t + ths[isamp] * h, ybuf, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
                                      omega, vt, dbuf, ebuf)
+                        src = ebuf
+                    # (src is read before any search below overwrites ebuf)
                     for sg in range(_N_SIG):
-                        sval[isamp, sg] = _signal(sg, ebuf, ne, nm, vt)
-                    _channels(ebuf, ne, nm, vt, gaps, vcur)
+                        sval[isamp, sg] = _signal(sg, src, ne, nm, vt)
+                    _channels(src, ne, nm, vt, gaps, vcur)
                     if ext[12] > 0.0:
                         # after the valve's first landing in the window, separations are seat
                         # bounces, not float: no lift-off and no cam-contact minimum there
                         sval[isamp, 4] = -np.inf
                         vcur[2] = 1.0
-                    z_cur = ebuf[2 * ne + 4]
+                    z_cur = src[2 * ne + 4]
                     if not started:
                         started = True
                         for c in range(nch):
@@ -568,7 +605,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                                     r = nev[0]
                                     events[r, 0] = 0.0 if c < 2 else (2.0 if c == 2 else 1.0)
                                     events[r, 1] = float(c if c < 2 else (0 if c == 2 else c - 3))
-                                    events[r, 2] = t_w0
+                                    events[r, 2] = t0
                                     events[r, 3] = np.nan
                                     open_row[c] = r
                                     nev[0] += 1
@@ -576,7 +613,10 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                                     ext[13] += 1.0
                     else:
                         lo = ths[isamp - 1]
+                        changed = False  # a plain pass first: most samples change no channel
                         for c in range(nch):
+                            changed |= (vcur[c] < 0.0) != (vprev[c] < 0.0)
+                        for c in range(nch if changed else 0):
                             if (vcur[c] < 0.0) != (vprev[c] < 0.0):
                                 if nev[0] >= events.shape[0] and open_row[c] < 0:
                                     ext[13] += 1.0
@@ -621,7 +661,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                         for sg in range(_N_SIG):
                             if sval[0, sg] > best[sg]:
                                 best[sg] = sval[0, sg]
-                                best_t[sg] = t + th_a * h
+                                best_t[sg] = t
                 # true extremes: refine around a new record on the interpolant
                 for sg in range(_N_SIG):
                     if have_prev:
@@ -633,7 +673,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                     if vm == -np.inf and vb == -np.inf and va == -np.inf:
                         continue
                     if vm >= va and vm >= vb and vm > best[sg]:  # a local maximum inside the step
-                        v, fr = _golden(rc, t, h, th_a, th_b, sg, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh,
+                        v, fr = _golden(rc, t, h, 0.0, 1.0, sg, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh,
                                         dth, omega, vt, ybuf, dbuf, ebuf)
                         if v < vm:
                             v = vm
@@ -642,7 +682,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                         best_t[sg] = t + fr * h
                     elif vb > vm and vb > best[sg]:  # rising at the step end: the next step refines
                         best[sg] = vb
-                        best_t[sg] = t + th_b * h
+                        best_t[sg] = t_new
                     elif have_prev and va > vm and best_t[sg] == t:
                         # the record sits at the step boundary: search both sides of it
                         v1, f1 = _golden(rc_prev, t_prev, h_prev, mid_prev, 1.0, sg, masses, laws, xset, c0,
@@ -655,7 +695,7 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
                         elif v2 > best[sg]:
                             best[sg] = v2
                             best_t[sg] = t + f2 * h
-                rc_prev[:, :] = rc
+                rc, rc_prev = rc_prev, rc  # this step's interpolant is the previous one now
                 t_prev = t
                 h_prev = h
                 mid_prev = th_m
@@ -668,13 +708,14 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
             accepted_before = True
             nsteps += 1
             h = min(h_new, h_max)
-            if monitor and t < t_w1:
-                h = min(h, max(t_w1 - t, 1e-3 * h))  # land on the window end, no need to pass it
         else:
             h = min(h, _ig.next_step(h, err, err_old, False, pq))
             accepted_before = False
             nrejected += 1
-    if monitor:
+    ctl[0] = h
+    ctl[1] = err_old
+    ctl[2] = 1.0 if accepted_before else 0.0
+    if ext is not None:
         ext[0] = best[0]
         ext[1] = best_t[0]
         ext[2] = -best[1]
@@ -688,36 +729,63 @@ def _integrate(y0, t0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dt
     return 0, t, nsteps, nrejected
 
 
-@njit(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy")
-def _run_speeds(y0, omegas, revolutions, points, keep, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, vt,
-                rtol, atol, max_step_fraction, max_steps, gaps, extra_out, status, t_end, steps, ext, events, nev,
-                pc, pa, pe, pd, pq, stop_angles):
-    n = y0.shape[0]
+@register_jitable
+def _stop_times(stop_angles, omega, r0, r1):
+    """The times [s] of the stop angles [rad] in revolutions ``r0`` to ``r1 - 1``."""
     nb = stop_angles.shape[0]
-    nkeep = keep * points
-    no_states = np.empty((0, n))  # the outputs are the extra rows, evaluated during the integration
+    out = np.empty(max(r1 - r0, 0) * nb)
+    for r in range(r0, r1):
+        for b in range(nb):
+            out[(r - r0) * nb + b] = (2.0 * np.pi * r + stop_angles[b]) / omega
+    return out
+
+
+@njit(cache=True, nogil=True, fastmath=FASTMATH, error_model="numpy")
+def _run_speeds(y0, omegas, revolutions, points, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, vt,
+                rtol, atol, max_step_fraction, max_steps, gaps, extra_out, prev_out, status, t_end, steps, ext, events,
+                nev, pc, pa, pe, pd, pq, kernels, stop_angles):
+    n = y0.shape[0]
+    y = np.empty(n)
+    ctl = np.empty(3)
+    t_rev = np.empty(points)
     for i in range(omegas.shape[0]):
         omega = omegas[i]
         period = 2.0 * np.pi / omega
-        first = revolutions - keep
-        pad = 1 if first > 0 else 0
-        t_out = np.empty(nkeep + pad)
-        t_out[0] = 0.0
-        for j in range(nkeep):
-            t_out[pad + j] = (first + j / points) * period
-        stops = np.empty(revolutions * nb)
-        for r in range(revolutions):
-            for b in range(nb):
-                stops[r * nb + b] = (2.0 * np.pi * r + stop_angles[b]) / omega
-        st, t, ns, nr = _integrate(y0, 0.0, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt,
-                                   rtol, atol, period * max_step_fraction, max_steps, no_states, gaps,
-                                   (revolutions - 1) * period, revolutions * period, ext[i], events[i], nev[i],
-                                   pc, pa, pe, pd, pq, stops, extra_out[i], pad)
+        h_max = period * max_step_fraction
+        y[:] = y0
+        ctl[0] = 0.0
+        ctl[1] = 1e-4
+        ctl[2] = 0.0
+        t1 = (revolutions - 1) * period
+        st = 0
+        t = 0.0
+        ns = 0
+        nr = 0
+        if revolutions > 1:
+            # the revolutions before the last, in the lean loop: the retainer force over the
+            # one before the last only (for the periodicity check)
+            for j in range(points):
+                t_rev[j] = (revolutions - 2 + j / points) * period
+            st, t, ns, nr = _integrate(y, 0.0, t1, t_rev, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega,
+                                       vt, rtol, atol, h_max, max_steps, ctl,
+                                       _stop_times(stop_angles, omega, 0, revolutions - 1), pc, pa, pe, pd, pq, kernels,
+                                       None, None, prev_out[i], gaps, None, None, None)
+        if st == 0:
+            # the last revolution: every output, monitored
+            for j in range(points):
+                t_rev[j] = (revolutions - 1 + j / points) * period
+            st, t, ns2, nr2 = _integrate(y, t1, revolutions * period, t_rev, masses, laws, xset, c0, cam_h, cam_dh,
+                                         cam_ddh, dth, omega, vt, rtol, atol, h_max, max_steps - ns - nr, ctl,
+                                         _stop_times(stop_angles, omega, revolutions - 1, revolutions),
+                                         pc, pa, pe, pd, pq, kernels, None, extra_out[i], None, gaps, ext[i], events[i],
+                                         nev[i])
+            ns += ns2
         status[i] = st
         t_end[i] = t
         steps[i] = ns
         if st != 0:  # no partial outputs
             extra_out[i, :, :] = np.nan
+            prev_out[i, :] = np.nan
 
 
 def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -> np.ndarray:
@@ -743,8 +811,9 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
                gaps=None, monitor=False, atol_velocity=None, method="dopri5", stop_angles=None):
     """Integrate several speeds in one compiled call (the GIL is released throughout).
 
-    For each speed the last ``keep = min(2, revolutions)`` revolutions are sampled at
-    ``points`` per revolution, and :func:`rhs` evaluates there its ``extra`` outputs.
+    For each speed the last revolution is sampled at ``points`` per revolution, where
+    :func:`rhs` evaluates its ``extra`` outputs, and so is the revolution before it (with
+    two revolutions or more) for its retainer force alone, which judges periodicity.
     ``args`` is the usual argument tuple of :func:`rhs`; its speed is ignored.  The last
     revolution is also monitored on the integrator's dense output (true extremes and
     events, see :func:`_integrate`).
@@ -777,7 +846,7 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     atol_velocity : float or ndarray, optional
         Absolute tolerance of the velocities [m/s], one for all or one per velocity
         (default ``atol``).
-    method : {"dopri5", "bs3"}
+    method : {"dopri5", "tsit5", "bs3"}
         The embedded Runge-Kutta pair (:data:`springdyn.numerics.erk.PAIRS`).
     stop_angles : array_like, optional
         Cam angles [rad] in [0, 2 pi), ascending, on which a step lands in every revolution
@@ -785,7 +854,10 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
 
     Returns
     -------
-    extra : ndarray (n_speeds, keep * points, extra size)
+    extra : ndarray (n_speeds, points, extra size)
+        The last revolution's ``extra`` outputs (layout :func:`extra_layout`).
+    previous : ndarray (n_speeds, points) or (n_speeds, 0)
+        The retainer force [N] over the revolution before (none with one revolution).
     status, t_end, steps : ndarray (n_speeds,)
     monitor : dict, with ``monitor=True`` only
         ``ext`` (n_speeds, :data:`N_EXT`) true extremes (layout :data:`EXT`), ``events``
@@ -794,9 +866,9 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     """
     omegas = np.ascontiguousarray(omegas, dtype=float)
     masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, _omega, vt = args  # omega comes from omegas
-    keep = min(2, int(revolutions))
     size = extra_layout(masses.shape[0])["size"]
-    extra = np.empty((omegas.size, keep * points, size))  # every row written, NaN on a failed speed
+    extra = np.empty((omegas.size, points, size))  # every row written, NaN on a failed speed
+    previous = np.empty((omegas.size, points if int(revolutions) > 1 else 0))
     status = np.zeros(omegas.size, dtype=np.int64)
     t_end = np.zeros(omegas.size)
     steps = np.zeros(omegas.size, dtype=np.int64)
@@ -804,14 +876,14 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     events = np.full((omegas.size, MAX_EVENTS, 4), np.nan)
     nev = np.zeros((omegas.size, 1), dtype=np.int64)
     gaps = np.full(laws.shape[0], np.inf) if gaps is None else np.ascontiguousarray(gaps, dtype=float)
-    _run_speeds(np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions), int(points), keep, masses, laws, xset,
+    _run_speeds(np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions), int(points), masses, laws, xset,
                 _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth), vt, float(rtol),
                 atol_vector(len(y0), atol, atol_velocity),
-                float(max_step_fraction), int(max_steps), gaps, extra, status, t_end, steps, ext, events, nev,
+                float(max_step_fraction), int(max_steps), gaps, extra, previous, status, t_end, steps, ext, events, nev,
                 *_pair(method), _angles(stop_angles))
     if monitor:
-        return extra, status, t_end, steps, dict(ext=ext, events=events, n_events=nev[:, 0].copy())
-    return extra, status, t_end, steps
+        return extra, previous, status, t_end, steps, dict(ext=ext, events=events, n_events=nev[:, 0].copy())
+    return extra, previous, status, t_end, steps
 
 
 def _c0_array(c0, laws) -> np.ndarray:
@@ -851,9 +923,14 @@ def _angles(a) -> np.ndarray:
 
 
 def _pair(method: str) -> tuple:
+    """The pair's arrays for :func:`_integrate` and its kernels: 0 the generic ones on the
+    arrays, 1 and 2 the fused ones of Dormand-Prince and Tsitouras (which has only those)."""
     if method not in _ig.PAIRS:
         raise ValueError(f"method = {method!r} must be one of {sorted(_ig.PAIRS)}")
-    return _ig.pair_arrays(method)
+    c, a, e, d, q = _ig.pair_arrays(method)
+    if method == "tsit5":
+        return c, a, e, np.zeros(c.size), q, 2
+    return c, a, e, d, q, (1 if method == "dopri5" and FUSED_DOPRI5 else 0)
 
 
 def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None, method="dopri5",
@@ -878,7 +955,7 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
         Most steps [-] (the loop is bounded).
     atol_velocity : float or ndarray, optional
         Velocity tolerance [m/s], as for :func:`run_speeds`.
-    method : {"dopri5", "bs3"}
+    method : {"dopri5", "tsit5", "bs3"}
         Runge-Kutta pair, as for :func:`run_speeds`.
     stops : array_like, optional
         Times [s], ascending, on which a step lands.
@@ -892,11 +969,11 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
     out = np.full((t_out.size, y0.size), np.nan)
     args = tuple(args)
     args = args[:3] + (_c0_array(args[3], args[1]),) + args[4:]
+    t_out = np.ascontiguousarray(t_out, dtype=float)
     status, t, steps, rejected = _integrate(
-        np.ascontiguousarray(y0, dtype=float), float(t_out[0]), np.ascontiguousarray(t_out, dtype=float), *args,
-        float(rtol), atol_vector(len(y0), atol, atol_velocity), float(h_max), int(max_steps), out, np.full(args[1].shape[0], np.inf), 0.0, -1.0,
-        np.zeros(N_EXT), np.full((1, 4), np.nan), np.zeros(1, dtype=np.int64), *_pair(method), _angles(stops),
-        np.empty((0, extra_layout(args[0].shape[0])["size"])), 0,
+        np.array(y0, dtype=float), float(t_out[0]), float(t_out[-1]), t_out, *args, float(rtol),
+        atol_vector(len(y0), atol, atol_velocity), float(h_max), int(max_steps), np.array([0.0, 1e-4, 0.0]),
+        _angles(stops), *_pair(method), out, None, None, np.full(args[1].shape[0], np.inf), None, None, None,
     )
     return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))
 

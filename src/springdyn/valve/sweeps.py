@@ -75,10 +75,9 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
         and, with a valve train, ``cam_contact``, ``valve_lift``, ``static``.
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
-    keep = min(2, revolutions)
-    ex, status, t_end, steps, mon = setup.run(rpm_to_omega(cam_rpm), revolutions, points, rtol=rtol, atol=atol)
+    ex, prev, status, t_end, steps, mon = setup.run(rpm_to_omega(cam_rpm), revolutions, points, rtol=rtol, atol=atol)
     fset = setup.spring.internal_parameters()["Fset"]
-    last = slice((keep - 1) * points, keep * points)
+    last = slice(0, points)
     lay = extra_layout(setup.n_masses)
     ne = setup.n_masses + 1
     f = ex[:, :, lay["force"]]
@@ -89,7 +88,7 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
         seat=f[:, last, 0],
         contact=contact.any(axis=2),
         contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
-        periodicity=(np.max(np.abs(f[:, last, ne - 1] - f[:, :points, ne - 1]), axis=1) / fset if keep == 2
+        periodicity=(np.max(np.abs(f[:, last, ne - 1] - prev), axis=1) / fset if prev.shape[1]
                      else np.full(cam_rpm.size, np.nan)),
         ext=mon["ext"],
         separation=np.sum(ev[:, :, 0] == 0.0, axis=1),
@@ -146,7 +145,7 @@ def _chunks(cam_rpm: np.ndarray, n_parts: int, min_size: int, max_size: int | No
 
 def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client, quiet, desc):
     """Run all speeds for one setup; returns the chunk outputs concatenated in speed order."""
-    per_speed = 8 * min(2, revolutions) * points * extra_layout(setup.n_masses)["size"]
+    per_speed = 8 * points * (extra_layout(setup.n_masses)["size"] + 1)  # the last revolution, one force before
     max_size = max(1, CHUNK_BYTES // per_speed)
     if client is not None:
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
