@@ -512,25 +512,22 @@ def _integrate(y, t0, t_end, t_out, masses, laws, xset, c0, cam_h, cam_dh, cam_d
         landing = t + h >= target
         if landing:
             h = target - t  # land on the breakpoint or the end
-        for stage in range(1, last):
+        for stage in range(1, last + 1):
             if kernels == 1:
                 _ig.dopri5_stage_state(y, h, k, stage, ytmp)
             elif kernels == 2:
                 _ig.tsit5_stage_state(y, h, k, stage, ytmp)
             else:
                 _ig.stage_state(y, h, k, stage, ytmp, pa)
-            rhs_compiled(t + pc[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
-                         omega, vt, k[stage], None)
-        if kernels == 1:
-            _ig.dopri5_stage_state(y, h, k, last, ytmp)
-        elif kernels == 2:
-            _ig.tsit5_stage_state(y, h, k, last, ytmp)
-        else:
-            _ig.stage_state(y, h, k, last, ytmp, pa)
-        if ext is not None:  # the last stage is the step's end (FSAL): its outputs are the end sample
-            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last], eend)
-        else:
-            rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last], None)
+            if stage < last:
+                rhs_compiled(t + pc[stage] * h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth,
+                             omega, vt, k[stage], None)
+            elif ext is not None:  # the last stage is the step's end (FSAL): its outputs are the end sample
+                rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last],
+                             eend)
+            else:
+                rhs_compiled(t + h, ytmp, masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt, k[last],
+                             None)
         if kernels == 1:
             err = _ig.dopri5_error_norm(y, ytmp, k, h, rtol, atol)
         elif kernels == 2:
