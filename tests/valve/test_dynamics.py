@@ -33,6 +33,29 @@ def test_quasi_static_limit(one_step):
     np.testing.assert_allclose(sim.static_force, one_step.static_force(one_step.installed_length - sim.lift), rtol=1e-12)
 
 
+def test_static_force_along_the_cam_is_kept_per_cam(one_step):
+    """The static force of a simulation of the spring alone is kept per spring, cam and output
+    grid (it depends on no speed): each cam gets its own, equal to the static curve at that
+    cam's lift (the static curve of test_statics_modes); the store is bounded, and the shared
+    array is read-only."""
+    spring = one_step.replace(free_length=one_step.free_length)  # a fresh store
+    cams = [Cam(law="3-4-5", lift=lift, duration=math.radians(120)) for lift in (7e-3, 8e-3, 9e-3)]
+    for cam in cams:
+        sim = simulate(spring, cam, 2000.0, revolutions=1, points_per_revolution=720)
+        again = simulate(spring, cam, 3500.0, revolutions=1, points_per_revolution=720)
+        assert again.static_force is sim.static_force  # kept across speeds
+        assert not sim.static_force.flags.writeable
+        np.testing.assert_allclose(sim.static_force, spring.static_force(spring.installed_length - sim.lift),
+                                   rtol=1e-12)
+        np.testing.assert_allclose(sim.static_force.max(), float(spring.static_force(spring.installed_length
+                                                                                       - cam.lift)), rtol=1e-12)
+    coarse = simulate(spring, cams[0], 2000.0, revolutions=1, points_per_revolution=360)
+    assert coarse.static_force.shape == (360,)
+    for k in range(3 * simmod.SimulationSetup.STATIC_CACHE_SIZE):
+        prepare(spring, Cam(law="3-4-5", lift=5e-3 + 1e-5 * k, duration=math.radians(120))).static_force_along_cam(90)
+    assert len(spring.cached("static_force_along_cam", dict)) == simmod.SimulationSetup.STATIC_CACHE_SIZE
+
+
 @pytest.mark.parametrize("name", ["one-step", "two-step"])
 def test_refinement_study(name):
     """Issue 3: halving the tolerances changes the peak forces by less than 0.05 % of Fset."""

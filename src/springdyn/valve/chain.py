@@ -40,9 +40,10 @@ class Chain:
     free_length: float  # [m]
     installed_length: float  # [m]
 
-    @property
+    @cached_property
     def c0_array(self) -> np.ndarray:
-        """Damping coefficient of every element at its initial rate [N s/m], shape (n + 1,)."""
+        """Damping coefficient of every element at its initial rate [N s/m], shape (n + 1,)
+        (computed once: a chain is immutable)."""
         return np.ascontiguousarray(np.broadcast_to(np.asarray(self.c0, dtype=float), (self.laws.shape[0],)))
 
     def tangent_stiffness(self, compressions) -> np.ndarray:

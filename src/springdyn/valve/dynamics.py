@@ -52,6 +52,11 @@ def rpm_to_omega(rpm: float) -> float:
     return rpm * 2.0 * math.pi / 60.0
 
 
+def output_angles(points: int) -> np.ndarray:
+    """The cam angles [rad] of the output samples of a revolution, ``2 pi j / points``."""
+    return np.arange(int(points)) * (2.0 * math.pi / int(points))
+
+
 @dataclass
 class SimulationSetup:
     """Everything the engine needs for one spring, cam and valve train (speed-independent)."""
@@ -74,6 +79,29 @@ class SimulationSetup:
         force = np.empty_like(dl)
         series_force_compiled(dl, sp.chain.laws, force, *self.spring.cached("series_force_table", self._force_table))
         return force.reshape(lift.shape)
+
+    def static_force_along_cam(self, points: int) -> np.ndarray:
+        """Static (massless) force [N] of the spring alone at the cam angles ``2 pi j / points``,
+        ``j = 0 .. points - 1``: at the lift of the engine's cam table there.
+
+        It depends on the spring, the cam and ``points`` only, not on the speed, so the
+        spring keeps it for its last :attr:`STATIC_CACHE_SIZE` cams (a Newton solve per
+        angle costs about 5 % of a Type C simulation).  Read-only: results share it.
+        """
+        store = self.spring.cached("static_force_along_cam", dict)
+        key = (id(self.cam), int(points))
+        hit = store.get(key)
+        if hit is None or hit[0] is not self.cam:  # the cam is held, so its id is not reused
+            lift = hermite_eval(output_angles(points), self.cam_h, self.cam_dh, self.cam_ddh, self.dth)[0]
+            force = self.static_force(lift)
+            force.flags.writeable = False
+            hit = store[key] = (self.cam, force)
+            while len(store) > self.STATIC_CACHE_SIZE:
+                store.pop(next(iter(store)), None)  # the oldest
+        return hit[1]
+
+    #: Cams per spring whose static force along the output grid is kept.
+    STATIC_CACHE_SIZE = 8
 
     def _force_table(self) -> tuple:
         """Static force [N] at 129 total compressions [m] from zero to the model's limit: the
@@ -149,8 +177,11 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     valve_train : ValveTrain, optional
         Adds the valve body with cam and seat contacts.
     """
-    theta = np.arange(CAM_SAMPLES) * (2 * math.pi / CAM_SAMPLES)
     h, dh, ddh = cam.sampled(CAM_SAMPLES)
+
+    def deg(i):  # the cam angle of table sample i [deg]
+        return 360.0 * int(i) / CAM_SAMPLES
+
     p = spring.internal_parameters()
     h_cam = h
     if valve_train is not None and valve_train.ratio != 1.0:
@@ -159,7 +190,7 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     open_length = spring.installed_length - h[i_max]
     if open_length < spring.min_length:
         raise InputError(
-            f"cam lift {h[i_max] * 1e3:.4g} mm at {math.degrees(theta[i_max]):.1f} deg drives the spring solid: "
+            f"cam lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} deg drives the spring solid: "
             f"installed_length - lift = {open_length * 1e3:.4g} mm is below {spring.min_length * 1e3:.4g} mm, where "
             f"the static force reaches {spring.LIMIT_FORCE_FACTOR:g} Fcon"
         )
@@ -170,9 +201,9 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         peak = float(series_force(spring.free_length - spring.installed_length + h[i_max], spring.chain.laws))
         warnings.warn(
             f"the cam lift drives the spring into coil contact even statically: from cam angle "
-            f"{math.degrees(theta[over[0]]):.1f} deg to {math.degrees(theta[over[-1]]):.1f} deg the static force "
+            f"{deg(over[0]):.1f} deg to {deg(over[-1]):.1f} deg the static force "
             f"exceeds Fcon = {p['Fcon']:.1f} N, peaking at {peak:.1f} N at "
-            f"{math.degrees(theta[i_max]):.1f} deg (lift {h[i_max] * 1e3:.3g} mm)",
+            f"{deg(i_max):.1f} deg (lift {h[i_max] * 1e3:.3g} mm)",
             stacklevel=3,
         )
     y0, lash = _initial_state(spring, h_cam[0], valve_train)
@@ -385,22 +416,23 @@ def simulate(
             cam.check_resolution(cam_rpm, float(spring.modes(spring.installed_length, 1)[0]))
     omega = rpm_to_omega(cam_rpm)
     period = 2 * math.pi / omega
-    keep = min(2, revolutions)
     n = points_per_revolution
-    t_keep = (revolutions - keep) * period + np.arange(keep * n) * (period / n)
-    t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
     if backend == "compiled":
         method = setup.method if method is None else method
         extra, prev, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol,
                                                            method=method)
         info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]), method=method)
-        if info["status"] != 0 or not (np.all(np.isfinite(extra)) and np.all(np.isfinite(prev))):
+        if info["status"] != 0 or not (np.isfinite(extra).all() and np.isfinite(prev).all()):
             raise _solver_error(cam_rpm, omega, info)
-        sim = _from_extra(setup, cam_rpm, revolutions, t_keep[-n:], extra[0], prev[0], info)
+        time = (revolutions - 1) * period + np.arange(n) * (period / n)
+        sim = _from_extra(setup, cam_rpm, revolutions, time, extra[0], prev[0], info)
         sim.monitor = _monitor_record(mon, 0, omega, revolutions)
         if check_elements:
             _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol)
         return sim
+    keep = min(2, revolutions)
+    t_keep = (revolutions - keep) * period + np.arange(keep * n) * (period / n)
+    t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
     states, info = integrate_scipy(setup.y0, t_out, setup.args(omega), rtol=rtol, atol=atol,
                                    h_max=period * MAX_STEP_FRACTION, atol_velocity=setup.atol_velocity(atol))
     if info["status"] != 0 or not np.all(np.isfinite(states)):
@@ -504,17 +536,20 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
 def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous, info) -> Simulation:
     """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)
     over the last revolution, ``e``; ``previous`` is the retainer force over the one before."""
-    omega = rpm_to_omega(cam_rpm)
     fset = setup.spring.internal_parameters()["Fset"]
     lay = extra_layout(setup.n_masses)
     ne = setup.n_masses + 1
     force, x = e[:, lay["force"]].T, e[:, lay["compression"]].T
     prev_err = float(np.max(np.abs(e[:, ne - 1] - previous)) / fset) if previous.size else math.nan
     lift = e[:, lay["lift"]]
+    if setup.valve_train is None:  # the lift of the cam table at the output angles: kept per cam
+        static = setup.static_force_along_cam(time.size)
+    else:
+        static = setup.static_force(e[:, lay["top_displacement"]])
     sim = Simulation(
         spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
-        time=time, cam_angle=np.mod(omega * time, 2 * math.pi), lift=lift,
-        retainer_force=force[-1], seat_force=force[0], static_force=setup.static_force(e[:, lay["top_displacement"]]),
+        time=time, cam_angle=output_angles(time.size), lift=lift,
+        retainer_force=force[-1], seat_force=force[0], static_force=static,
         element_compression=x, element_force=force,
         element_contact=x >= coil_contact_compressions(setup.spring)[:, None],
         mass_displacement=e[:, lay["displacement"]].T, periodicity_error=prev_err, info=info,
@@ -534,7 +569,7 @@ def _monitor_record(mon: dict, i: int, omega: float, revolutions: int) -> dict:
     """
     from .engine import EXT
 
-    ext = dict(zip(EXT, (float(v) for v in mon["ext"][i])))
+    ext = dict(zip(EXT, mon["ext"][i].tolist()))
     t0 = (revolutions - 1) * 2 * math.pi / omega
     rows = mon["events"][i, : int(mon["n_events"][i])]
     return dict(ext=ext, events=rows.copy(), omega=omega, t0=t0)

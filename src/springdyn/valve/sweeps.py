@@ -34,6 +34,7 @@ from .dynamics import (
     _solver_error,
     check_run_settings,
     coil_contact_compressions,
+    output_angles,
     prepare,
     rpm_to_omega,
 )
@@ -481,7 +482,7 @@ def sweep(
         raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
     springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
     points = int(points_per_revolution)
-    theta = 2 * math.pi * np.arange(points) / points
+    theta = output_angles(points)
     lift = cam.lift_at(theta)
     results = []
     f1 = float(spring.modes(spring.installed_length, 1)[0])
@@ -497,7 +498,7 @@ def sweep(
             info = dict(status=int(res["status"][i]), t=float(res["t"][i]), steps=int(res["steps"][i]))
             raise _solver_error(float(cam_rpm[i]), rpm_to_omega(cam_rpm[i]), info)
         if valve_train is None:
-            res["static"] = setup.static_force(lift)
+            res["static"] = setup.static_force_along_cam(points)  # the same as a simulation's
         results.append(res)
     data = {key: np.stack([r[key] for r in results]) for key in results[0]}
     return SpeedSweep(spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values,
