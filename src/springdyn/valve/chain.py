@@ -43,8 +43,9 @@ class Chain:
     @cached_property
     def c0_array(self) -> np.ndarray:
         """Damping coefficient of every element at its initial rate [N s/m], shape (n + 1,)
-        (computed once: a chain is immutable)."""
-        return np.ascontiguousarray(np.broadcast_to(np.asarray(self.c0, dtype=float), (self.laws.shape[0],)))
+        (computed once: a chain is immutable; a writable copy, the array type the compiled
+        engine is compiled for)."""
+        return np.array(np.broadcast_to(np.asarray(self.c0, dtype=float), (self.laws.shape[0],)))
 
     def tangent_stiffness(self, compressions) -> np.ndarray:
         """Element tangent stiffnesses [N/m] at the given compressions [m]."""

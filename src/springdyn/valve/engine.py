@@ -903,9 +903,12 @@ def _train(vt):
 
 
 def _c0_array(c0, laws) -> np.ndarray:
-    if isinstance(c0, np.ndarray) and c0.dtype == np.float64 and c0.shape == laws.shape[:1] and c0.flags.c_contiguous:
+    """The damping coefficients [N s/m], one per element, as a writable contiguous array
+    (one array type for numba: a read-only one would compile the loop again)."""
+    if (isinstance(c0, np.ndarray) and c0.dtype == np.float64 and c0.shape == laws.shape[:1]
+            and c0.flags.c_contiguous and c0.flags.writeable):
         return c0
-    return np.ascontiguousarray(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
+    return np.array(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
 
 
 def stop_angles(breakpoints, dth: float) -> np.ndarray:
