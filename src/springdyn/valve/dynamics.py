@@ -89,9 +89,9 @@ class SimulationSetup:
         angle costs about 5 % of a Type C simulation).  Read-only: results share it.
         """
         store = self.spring.cached("static_force_along_cam", dict)
-        key = (id(self.cam), int(points))
+        key = (id(self.cam), int(points))  # the entry holds the cam: its id is not reused meanwhile
         hit = store.get(key)
-        if hit is None or hit[0] is not self.cam:  # the cam is held, so its id is not reused
+        if hit is None:
             lift = hermite_eval(output_angles(points), self.cam_h, self.cam_dh, self.cam_ddh, self.dth)[0]
             force = self.static_force(lift)
             force.flags.writeable = False
