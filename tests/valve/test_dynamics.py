@@ -95,7 +95,7 @@ def test_compiled_rhs_equals_numpy_element_laws(one_step):
     for _ in range(20):
         s = np.concatenate([rng.normal(0, 2e-3, 5), np.zeros(5)])
         d = np.empty(10)
-        engine.rhs_compiled(0.0, s, *args, d, None)
+        engine.rhs_call(0.0, s, engine.model_of(args), args[8], engine.train_of(args[9]), d, engine.NO_EXTRA)
         u = np.concatenate([[0.0], s[:5], [0.0]])  # cam angle 0: lift 0
         x = ch.setup_compressions + np.diff(u)
         f = np.array([law_force(x[j], ch.laws[j]) for j in range(6)])

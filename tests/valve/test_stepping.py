@@ -107,19 +107,27 @@ def test_method_is_checked():
         simulate(s, CAM, 3000.0, 2, method="bs3", backend="scipy")
 
 
-def test_spring_alone_loop_variant_matches_the_generic_one(monkeypatch):
-    """Without a valve train the engine passes ``vt = None`` and numba compiles the loop
-    without the train's code (engine._train); the generic variant, given the all-zero train
-    parameters of the spring alone, must integrate the same run: the same arithmetic, so the
-    same steps and outputs to round-off."""
+def test_spring_alone_and_train_equations_agree_without_a_train():
+    """The spring alone runs :func:`spring_rhs` (numba compiles no valve-train code for it,
+    engine.train_of gives None); :func:`chain_rhs` given the all-zero train parameters of the
+    spring alone must take the same path: the same derivatives and extra outputs, bit for bit."""
+    from springdyn.valve.engine import equations as eq
+
     spring = ValveSpring.example("one-step")
     setup = prepare(spring, Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)))
-    assert setup.vt[0] == 0.0 and engine._train(setup.vt) is None
-    omega = [rpm_to_omega(3000.0), rpm_to_omega(1234.0)]
-    lean = setup.run(omega, 2, 360, rtol=1e-6, atol=1e-9)
-    monkeypatch.setattr(engine, "_train", lambda vt: vt)  # the generic loop, as with a valve train
-    generic = setup.run(omega, 2, 360, rtol=1e-6, atol=1e-9)
-    np.testing.assert_array_equal(lean[4], generic[4])  # steps
-    for a, b in zip(lean[:2], generic[:2]):  # outputs, the retainer force before
-        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-15)
-    np.testing.assert_allclose(lean[5]["ext"], generic[5]["ext"], rtol=1e-12, atol=1e-15)
+    assert setup.vt[0] == 0.0 and engine.train_of(setup.vt) is None
+    m = engine.model_of(setup.args(0.0))
+    rng = np.random.default_rng(1)
+    size = engine.extra_layout(5)["size"]
+    for _ in range(10):
+        s = np.concatenate([rng.normal(0, 1e-3, 5), rng.normal(0, 1.0, 5)])
+        t = rng.uniform(0, 0.02)
+        a, b, c = np.empty(10), np.empty(10), np.empty(10)
+        ea, eb, ec = np.empty(size), np.empty(size), np.empty(size)
+        eq.spring_rhs(t, s, m, 300.0, None, a, ea)
+        eq.chain_rhs(t, s, m, 300.0, setup.vt, b, eb)
+        engine.rhs_call(t, s, m, 300.0, setup.vt, c, ec)
+        np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(ea, eb)
+        np.testing.assert_allclose(c, a, rtol=1e-13, atol=1e-12)  # compiled (fma, reciprocals): round-off
+        np.testing.assert_allclose(ec, ea, rtol=1e-13, atol=1e-15)

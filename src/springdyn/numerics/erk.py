@@ -23,21 +23,29 @@ the coefficients compiled in; the tests check them against the generic kernels.
 Step-size control is the PI controller of Gustafsson (ibid. Sec. IV.2) with exponents
 ``0.7/q`` and ``0.4/q`` for a pair whose error estimate is of order ``q - 1``.
 
-Every function here is a numba kernel with ``cache=True`` and no callable arguments
-(numba cannot disk-cache a function that takes another jitted function); a pair is passed
-as its arrays (:data:`PAIRS`), and a model writes its own short stepping loop around its
-own right-hand side and calls these pieces for the stages, the error norm, the next step
-size and the dense output.  See :func:`springdyn.valve.engine.run_speeds` for such a loop.
+Every function here is a small cached kernel (:func:`springdyn.numerics.jit.kernel`) with no
+callable arguments (numba cannot disk-cache a function that takes another jitted function).
+A pair is passed as its tableau (:data:`TABLEAUS`), a named tuple whose *class* names the
+pair: a model's stepping code dispatches on that type at compile time, so a run compiles
+the kernels of its own pair only (see :mod:`springdyn.valve.engine.stepping`).
 """
 
 from __future__ import annotations
 
+import math
+from typing import NamedTuple
+
 import numpy as np
-from numba import njit
+
+from .jit import kernel
 
 __all__ = [
     "PAIRS",
     "pair_arrays",
+    "TABLEAUS",
+    "DormandPrince",
+    "BogackiShampine",
+    "Tsitouras",
     "stage_state",
     "error_norm",
     "next_step",
@@ -166,7 +174,42 @@ def pair_arrays(name: str) -> tuple:
     return p["c"], np.ascontiguousarray(p["a"], dtype=float), p["e"], p["d"], float(p["q"])
 
 
-@njit(cache=True, error_model="numpy")
+class DormandPrince(NamedTuple):
+    """Dormand-Prince 5(4) as the engines read it (arrays of :func:`pair_arrays`)."""
+
+    c: np.ndarray  #: nodes [-]
+    a: np.ndarray  #: coupling matrix [-]
+    e: np.ndarray  #: error weights [-]
+    d: np.ndarray  #: dense-output weights [-]
+    q: float       #: controller order [-]
+
+
+class BogackiShampine(NamedTuple):
+    """Bogacki-Shampine 3(2) as the engines read it (arrays of :func:`pair_arrays`)."""
+
+    c: np.ndarray  #: nodes [-]
+    a: np.ndarray  #: coupling matrix [-]
+    e: np.ndarray  #: error weights [-]
+    d: np.ndarray  #: dense-output weights [-] (zero: cubic Hermite)
+    q: float       #: controller order [-]
+
+
+class Tsitouras(NamedTuple):
+    """Tsitouras 5(4) as the engines read it (arrays of :func:`pair_arrays`)."""
+
+    c: np.ndarray  #: nodes [-]
+    a: np.ndarray  #: coupling matrix [-]
+    e: np.ndarray  #: error weights [-]
+    d: np.ndarray  #: dense-output matrix (4, stages) [-]
+    q: float       #: controller order [-]
+
+
+#: The pairs' tableaus by name; the class of each selects its compiled kernels.
+TABLEAUS = {"dopri5": DormandPrince(*pair_arrays("dopri5")), "bs3": BogackiShampine(*pair_arrays("bs3")),
+            "tsit5": Tsitouras(*pair_arrays("tsit5"))}
+
+
+@kernel(_nrt=False)
 def stage_state(y, h, k, row, out, a):
     """``out = y + h * sum_j a[row, j] k[j]`` for stage ``row`` (k: (stages, n) derivatives).
 
@@ -184,7 +227,7 @@ def stage_state(y, h, k, row, out, a):
                 out[i] += c * k[j, i]
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def error_norm(y, y_new, k, h, rtol, atol, work, e):
     """RMS of the local error estimate ``h sum_j e_j k_j`` scaled by ``atol_i + rtol
     max(|y|, |y_new|)`` (``atol``: one absolute tolerance per component; ``work``: scratch
@@ -202,10 +245,10 @@ def error_norm(y, y_new, k, h, rtol, atol, work, e):
         sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
         r = h * work[i] / sc
         acc += r * r
-    return np.sqrt(acc / n)
+    return math.sqrt(acc / n)
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def next_step(h, err, err_old, accepted_before, q):
     """Step-size factor of the PI controller (alpha = 0.7/q, beta = 0.4/q), limited to
     [0.2, 10]; right after a rejection the step does not grow."""
@@ -220,7 +263,7 @@ def next_step(h, err, err_old, accepted_before, q):
     return h * fac
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def dense_coefficients(y, y_new, k, h, rc, d):
     """Fill ``rc`` (5, n) with the dense-output coefficients of the accepted step.
 
@@ -246,7 +289,7 @@ def dense_coefficients(y, y_new, k, h, rc, d):
         rc[4, i] *= h
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def dense_eval(rc, theta, out):
     """Evaluate the dense output at the fraction ``theta`` in [0, 1] of the step."""
     t1 = 1.0 - theta
@@ -254,7 +297,7 @@ def dense_eval(rc, theta, out):
         out[i] = rc[0, i] + theta * (rc[1, i] + t1 * (rc[2, i] + theta * (rc[3, i] + t1 * rc[4, i])))
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def initial_step(y, f0, rtol, atol, h_max):
     """A first step from the size of ``y`` and its derivative (Hairer's heuristic, first part)."""
     n = y.shape[0]
@@ -264,8 +307,8 @@ def initial_step(y, f0, rtol, atol, h_max):
         sc = atol[i] + rtol * abs(y[i])
         d0 += (y[i] / sc) ** 2
         d1 += (f0[i] / sc) ** 2
-    d0 = np.sqrt(d0 / n)
-    d1 = np.sqrt(d1 / n)
+    d0 = math.sqrt(d0 / n)
+    d1 = math.sqrt(d1 / n)
     if d0 < 1e-5 or d1 < 1e-5:
         h = 1e-6
     else:
@@ -290,7 +333,7 @@ _D1, _D3, _D4 = -12715105075 / 11282082432, 87487479700 / 32700410799, -10690763
 _D5, _D6, _D7 = 701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def dopri5_stage_state(y, h, k, row, out):
     """:func:`stage_state` for Dormand-Prince 5(4), row ``row`` (1 to 6) of its tableau."""
     n = y.shape[0]
@@ -314,7 +357,7 @@ def dopri5_stage_state(y, h, k, row, out):
             out[i] = y[i] + h * (_A71 * k[0, i] + _A73 * k[2, i] + _A74 * k[3, i] + _A75 * k[4, i] + _A76 * k[5, i])
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def dopri5_error_norm(y, y_new, k, h, rtol, atol):
     """:func:`error_norm` for Dormand-Prince 5(4)."""
     n = y.shape[0]
@@ -323,10 +366,10 @@ def dopri5_error_norm(y, y_new, k, h, rtol, atol):
         sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
         r = h * (_E1 * k[0, i] + _E3 * k[2, i] + _E4 * k[3, i] + _E5 * k[4, i] + _E6 * k[5, i] + _E7 * k[6, i]) / sc
         acc += r * r
-    return np.sqrt(acc / n)
+    return math.sqrt(acc / n)
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def dopri5_dense_coefficients(y, y_new, k, h, rc):
     """:func:`dense_coefficients` for Dormand-Prince 5(4)."""
     n = y.shape[0]
@@ -340,7 +383,7 @@ def dopri5_dense_coefficients(y, y_new, k, h, rc):
         rc[4, i] = h * (_D1 * k[0, i] + _D3 * k[2, i] + _D4 * k[3, i] + _D5 * k[4, i] + _D6 * k[5, i] + _D7 * k[6, i])
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def dense_coefficients_matrix(y, k, h, rc, d):
     """Fill ``rc`` (5, n) for :func:`dense_eval` from a (4, stages) matrix ``d`` (row ``j`` gives
     ``rc[j + 1] = h sum_i d[j, i] k_i``; ``rc[0] = y``): any quartic continuous extension
@@ -364,7 +407,7 @@ _TS_E = TSIT5["e"]
 _TS_D = TSIT5["d"]
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def tsit5_stage_state(y, h, k, row, out):
     """:func:`stage_state` for Tsitouras 5(4), row ``row`` (1 to 6) of its tableau."""
     n = y.shape[0]
@@ -391,7 +434,7 @@ def tsit5_stage_state(y, h, k, row, out):
                                  + _TS_A[6, 3] * k[3, i] + _TS_A[6, 4] * k[4, i] + _TS_A[6, 5] * k[5, i])
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def tsit5_error_norm(y, y_new, k, h, rtol, atol):
     """:func:`error_norm` for Tsitouras 5(4)."""
     n = y.shape[0]
@@ -401,10 +444,10 @@ def tsit5_error_norm(y, y_new, k, h, rtol, atol):
         r = h * (_TS_E[0] * k[0, i] + _TS_E[1] * k[1, i] + _TS_E[2] * k[2, i] + _TS_E[3] * k[3, i]
                  + _TS_E[4] * k[4, i] + _TS_E[5] * k[5, i] + _TS_E[6] * k[6, i]) / sc
         acc += r * r
-    return np.sqrt(acc / n)
+    return math.sqrt(acc / n)
 
 
-@njit(cache=True, error_model="numpy")
+@kernel(_nrt=False)
 def tsit5_dense_coefficients(y, k, h, rc):
     """:func:`dense_coefficients_matrix` for Tsitouras 5(4)."""
     n = y.shape[0]

@@ -12,7 +12,6 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..core.errors import InputError, SolverError
 from ..numerics.erk import PAIRS
@@ -225,6 +224,8 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
             return np.zeros(2 * nm), 0.0
         u = spring.initial_condition(setup + lift0)["displacements"]
         return np.concatenate([u, np.zeros(nm)]), 0.0
+    from scipy.optimize import brentq  # (imported here: scipy.optimize costs 0.2 s of start-up)
+
     laws = spring.chain.laws
     vt = valve_train
     r = vt.ratio
@@ -265,7 +266,7 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
     """Contact forces of the valve train from its states (vectorised NumPy).
 
     The reference backend's evaluation, written apart from the compiled kernel
-    (:func:`springdyn.valve.engine.rhs`); the tests compare the two.
+    (:func:`springdyn.valve.engine.chain_rhs`); the tests compare the two.
 
     Parameters
     ----------
@@ -477,7 +478,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     """Forces and contacts of the chain from integrated states (vectorised NumPy).
 
     The reference backend's post-processing, independent of the compiled kernel's own
-    output evaluation (``engine.rhs`` with ``extra``); the tests compare the two.
+    output evaluation (``engine.chain_rhs`` with ``extra``); the tests compare the two.
 
     Parameters
     ----------
@@ -692,13 +693,13 @@ def float_speed(
 
 def _static_accelerations(setup: SimulationSetup, theta: float, u: np.ndarray) -> np.ndarray:
     """Accelerations [m/s^2] of the masses at rest at positions ``u`` [m], cam at ``theta`` [rad]."""
-    from .engine import rhs
+    from .engine import NO_EXTRA, chain_rhs, model_of, train_of
 
     nf = setup.nfree
     omega = 1e-9  # quasi-static: the cam's velocity terms vanish
     y = np.concatenate([u, np.zeros(nf)])
     out = np.empty(2 * nf)
-    rhs(theta / omega, y, *setup.args(omega)[:-2], omega, setup.vt, out, None)
+    chain_rhs(theta / omega, y, model_of(setup.args(omega)), omega, train_of(setup.vt), out, NO_EXTRA)
     return out[nf:]
 
 
@@ -722,7 +723,7 @@ def _frequencies(setup: SimulationSetup, theta: float, u: np.ndarray, dofs: np.n
 def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None, count: int = 8) -> dict:
     """Natural frequencies of spring and valve train, linearised on the base circle and at full lift.
 
-    The same element and contact laws as the simulation (:func:`springdyn.valve.engine.rhs`),
+    The same element and contact laws as the simulation (:func:`springdyn.valve.engine.chain_rhs`),
     linearised by central differences of the accelerations at static equilibrium: on the
     base circle (the initial state of :func:`simulate`) and at the cam's largest lift (the
     static equilibrium found from the rigid-train guess).  With a mechanical lash the lever

@@ -44,6 +44,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.params import Parameters, param
+from .engine.layout import VT_SIZE
 
 __all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "series_stiffness",
            "KERNEL_SIZE"]
@@ -51,7 +52,7 @@ __all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "seri
 LAYOUTS = ("direct-acting", "rocker", "pushrod")
 
 #: Length of the engine's valve-train parameter vector (see :meth:`ValveTrain.kernel_parameters`).
-KERNEL_SIZE = 16
+KERNEL_SIZE = VT_SIZE
 
 #: Where each default comes from (stated in messages, docs and the generated TOML reference).
 DEFAULT_SOURCES = {
@@ -296,7 +297,7 @@ class ValveTrain(Parameters):
                           seat_stiffness=self.seat_stiffness, seat_damping=self.seat_damping, lash=self.lash)
 
     def kernel_parameters(self, lash: float | None = None) -> np.ndarray:
-        """The engine's parameter vector (:func:`springdyn.valve.engine.rhs`, ``vt``).
+        """The engine's parameter vector (:func:`springdyn.valve.engine.chain_rhs`, ``vt``; layout ``VT_*`` of :mod:`springdyn.valve.engine.layout`).
 
         ``enabled, M_v, k_c, c_c, k_s, c_s, lash, dof, r, M_r, k_t, c_t, M_f, k_p, c_p,
         lobe_lash``: masses [kg], stiffnesses [N/m], dampings [N s/m], lash at the valve

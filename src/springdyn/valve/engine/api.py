@@ -1,0 +1,243 @@
+"""The engine's Python face: argument checks, array allocation, the compile notice, and the
+calls into the compiled loops (:mod:`.loop`)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...numerics import erk as _ig
+from ...numerics.jit import call, compiling
+from .equations import EngineModel
+from .layout import MAX_EVENTS, N_EXT, VT_ENABLED, extra_layout
+from .loop import Tolerances, integrate_loop, run_speeds_loop, workspace
+from .monitor import new_monitor
+from .reference import atol_vector
+
+__all__ = ["integrate", "run_speeds", "stop_angles", "model_of", "train_of", "COMPILE_SECONDS"]
+
+#: About how long the engine takes to compile on a 2-core machine [s], per model and pair
+#: (measured with an empty cache, benchmarks/cold_start.py; the figure the compile notice quotes).
+COMPILE_SECONDS = {("spring alone", "dopri5"): 5.0, ("valve train", "dopri5"): 6.0, ("spring alone", "bs3"): 5.0,
+                   ("valve train", "bs3"): 6.0, ("spring alone", "tsit5"): 5.0, ("valve train", "tsit5"): 6.0}
+_PAIR_NAMES = {"dopri5": "Dormand-Prince 5(4)", "bs3": "Bogacki-Shampine 3(2)", "tsit5": "Tsitouras 5(4)"}
+
+
+def train_of(vt):
+    """The valve train's parameters for the compiled code: None for the spring alone
+    (``vt[VT_ENABLED]`` zero), which selects the variant compiled without the train's code.
+
+    Parameters
+    ----------
+    vt : ndarray (VT_SIZE,) or None
+        The train's parameter vector [mixed units, layout ``VT_*``].
+    """
+    return vt if vt is not None and vt[VT_ENABLED] > 0.5 else None
+
+
+def _c0_array(c0, laws) -> np.ndarray:
+    """The damping coefficients [N s/m], one per element, as a writable contiguous array
+    (one array type for numba: a read-only one would compile the loop again)."""
+    if (isinstance(c0, np.ndarray) and c0.dtype == np.float64 and c0.shape == laws.shape[:1]
+            and c0.flags.c_contiguous and c0.flags.writeable):
+        return c0
+    return np.array(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
+
+
+def model_of(args) -> EngineModel:
+    """The engine's model arrays from the argument tuple of a simulation set-up.
+
+    Parameters
+    ----------
+    args : tuple
+        ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``: masses [kg],
+        element laws [m, N], set-up compressions [m], damping [N s/m], cam table [m, m/rad,
+        m/rad^2], table step [rad], speed [rad/s] and valve-train parameters
+        (:meth:`springdyn.valve.dynamics.SimulationSetup.args`).
+    """
+    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth = args[:8]
+    return EngineModel(masses, laws, xset, _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth))
+
+
+def _tableau(method: str):
+    if method not in _ig.TABLEAUS:
+        raise ValueError(f"method = {method!r} must be one of {sorted(_ig.TABLEAUS)}")
+    return _ig.TABLEAUS[method]
+
+
+#: The loop variants run in this process (their first call may compile).
+_RUN = set()
+
+
+def _run(loop, vt, method, *args):
+    """Call the compiled ``loop`` with ``args``, announcing a compilation (first call of a
+    variant in a process: then on a deep frame, :func:`springdyn.numerics.jit.call`)."""
+    model = "spring alone" if vt is None else "valve train"
+    key = (loop.__name__, model, method)
+    if key in _RUN:
+        return loop(*args)
+    with compiling(f"the valve engine ({model}, {_PAIR_NAMES[method]})", COMPILE_SECONDS[(model, method)]):
+        result = call(loop, *args)
+    _RUN.add(key)
+    return result
+
+
+def stop_angles(breakpoints, dth: float) -> np.ndarray:
+    """The cam-table nodes around each breakpoint, on which the engine lands its steps.
+
+    The table (step ``dth``) smooths a jump of the lift law over the interval that holds
+    it; landing on the nodes from one before to two after each breakpoint lets the
+    integrator take that interval as a step of its own.
+
+    Parameters
+    ----------
+    breakpoints : array_like
+        Cam angles [rad] where the lift law is not smooth (:attr:`springdyn.valve.cam.Cam.breakpoints`).
+    dth : float
+        Table step [rad].
+
+    Returns
+    -------
+    ndarray
+        Ascending cam angles [rad] in [0, 2 pi).
+    """
+    b = np.asarray(breakpoints, dtype=float)
+    if b.size == 0:
+        return np.empty(0)
+    n = int(round(2.0 * math.pi / dth))
+    k = np.floor(b / dth).astype(np.int64)
+    nodes = np.mod((k[:, None] + np.arange(-1, 3)[None, :]).ravel(), n)
+    return np.unique(nodes) * dth
+
+
+def _angles(a) -> np.ndarray:
+    return np.empty(0) if a is None else np.ascontiguousarray(a, dtype=float)
+
+
+def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fraction, max_steps=10_000_000,
+               gaps=None, monitor=False, atol_velocity=None, method="dopri5", stop_angles=None):
+    """Integrate several speeds in one compiled call (the GIL is released throughout).
+
+    For each speed the last revolution is sampled at ``points`` per revolution, where the
+    right-hand side evaluates its ``extra`` outputs, and so is the revolution before it (with
+    two revolutions or more) for its retainer force alone, which judges periodicity.
+    The last revolution is also monitored on the integrator's dense output (true extremes
+    and events, :mod:`.monitor`).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state: displacements [m] then velocities [m/s].
+    omegas : array_like
+        Cam speeds [rad/s].
+    revolutions : int
+        Revolutions to integrate per speed [-].
+    points : int
+        Output samples per revolution [-].
+    args : tuple
+        The set-up's argument tuple (:func:`model_of`); its speed is ignored.
+    rtol, atol : float
+        Relative [-] and absolute [m] tolerances.
+    max_step_fraction : float
+        Largest step as a fraction of a revolution [-].
+    max_steps : int
+        Step budget per speed [-].
+    gaps : ndarray (N + 1,), optional
+        Compression [m] of each element beyond which its coils touch (``inf``: never);
+        crossings are located as coil-contact events.
+    monitor : bool
+        Also return the monitor outputs [-].
+    atol_velocity : float or ndarray, optional
+        Absolute tolerance of the velocities [m/s], one for all or one per velocity
+        (default ``atol``).
+    method : {"dopri5", "tsit5", "bs3"}
+        The embedded Runge-Kutta pair (:data:`springdyn.numerics.erk.TABLEAUS`).
+    stop_angles : array_like, optional
+        Cam angles [rad] in [0, 2 pi), ascending, on which a step lands in every revolution
+        (:func:`stop_angles` of the cam's breakpoints).
+
+    Returns
+    -------
+    extra : ndarray (n_speeds, points, extra size)
+        The last revolution's ``extra`` outputs (layout :func:`extra_layout`).
+    previous : ndarray (n_speeds, points) or (n_speeds, 0)
+        The retainer force [N] over the revolution before (none with one revolution).
+    status, t_end, steps : ndarray (n_speeds,)
+    monitor : dict, with ``monitor=True`` only
+        ``ext`` (n_speeds, :data:`N_EXT`) true extremes (layout :data:`EXT`), ``events``
+        (n_speeds, :data:`MAX_EVENTS`, 4) rows ``kind, index, t_start, t_end`` (a landing
+        has its impact velocity [m/s] in the last column), ``n_events`` (n_speeds,).
+    """
+    tab = _tableau(method)
+    omegas = np.ascontiguousarray(omegas, dtype=float)
+    m = model_of(args)
+    vt = train_of(args[9])
+    size = extra_layout(m.masses.shape[0])["size"]
+    n = max(omegas.size, 1)
+    extra = np.empty((omegas.size, points, size))  # every row written, NaN on a failed speed
+    previous = np.empty((omegas.size, points if int(revolutions) > 1 else 0))
+    status = np.zeros(omegas.size, dtype=np.int64)
+    t_end = np.zeros(omegas.size)
+    steps = np.zeros(omegas.size, dtype=np.int64)
+    ext = np.zeros((omegas.size, N_EXT))
+    events = np.full((n, MAX_EVENTS, 4), np.nan)
+    nev = np.zeros((n, 1), dtype=np.int64)
+    gaps = np.full(m.laws.shape[0], np.inf) if gaps is None else np.ascontiguousarray(gaps, dtype=float)
+    tol = Tolerances(float(rtol), atol_vector(len(y0), atol, atol_velocity), float(max_step_fraction), int(max_steps))
+    if omegas.size:
+        _run(run_speeds_loop, vt, method, np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions),
+             int(points), m, vt, tab, tol, _angles(stop_angles), gaps, extra, previous, status, t_end, steps, ext,
+             events, nev)
+    if monitor:
+        return extra, previous, status, t_end, steps, dict(ext=ext, events=events[:omegas.size],
+                                                           n_events=nev[:omegas.size, 0].copy())
+    return extra, previous, status, t_end, steps
+
+
+def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None, method="dopri5",
+              stops=None):
+    """Integrate with the compiled engine; states at ``t_out`` (ascending, from ``t_out[0]``).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    t_out : ndarray
+        Output times [s], ascending.
+    args : tuple
+        The set-up's argument tuple (:func:`model_of`), with the speed [rad/s].
+    rtol, atol : float
+        Relative [-] and absolute [m] tolerances (velocities: ``atol_velocity``).
+    h_max : float
+        Largest step [s].
+    max_steps : int
+        Most steps [-] (the loop is bounded).
+    atol_velocity : float or ndarray, optional
+        Velocity tolerance [m/s], as for :func:`run_speeds`.
+    method : {"dopri5", "tsit5", "bs3"}
+        Runge-Kutta pair, as for :func:`run_speeds`.
+    stops : array_like, optional
+        Times [s], ascending, on which a step lands.
+
+    Returns
+    -------
+    states : ndarray (len(t_out), n)
+    info : dict
+        ``status`` (0 ok, see :data:`STATUS`), ``t`` (time reached [s]), ``steps``, ``rejected``.
+    """
+    tab = _tableau(method)
+    m = model_of(args)
+    vt = train_of(args[9])
+    out = np.full((t_out.size, y0.size), np.nan)
+    t_out = np.ascontiguousarray(t_out, dtype=float)
+    size = extra_layout(m.masses.shape[0])["size"]
+    gaps = np.full(m.laws.shape[0], np.inf)
+    tol = Tolerances(float(rtol), atol_vector(len(y0), atol, atol_velocity), float(h_max), int(max_steps))
+    off = _run(new_monitor, vt, method, np.empty(0), np.empty((0, 4)), np.zeros(1, dtype=np.int64), gaps, 0.0, vt)
+    ws = _run(workspace, vt, method, y0.size, size, tab.c.shape[0])
+    status, t, steps, rejected = _run(
+        integrate_loop, vt, method, np.array(y0, dtype=float), float(t_out[0]), float(t_out[-1]), t_out, m,
+        float(args[8]), vt, tab, tol, np.array([0.0, 1e-4, 0.0]), _angles(stops), out, np.empty((0, size)),
+        np.empty(0), off, ws)
+    return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))

@@ -1,0 +1,314 @@
+"""The equations of motion the engine integrates: the spring's chain, its contacts, the valve train.
+
+One place for each (the element laws themselves are :mod:`springdyn.valve.elements`, whose
+piecewise-quadratic tables ``laws`` the chain reads):
+
+- :func:`hermite5`: the cam as the engine sees it, a quintic Hermite interpolant (C2) of the
+  periodic lift table; :func:`cam_at` evaluates it at a cam angle.
+- :func:`chain_rhs`: the right-hand side ``ds/dt`` of the chain of N masses between the seat
+  and the retainer ([MMS], "Model variable" and "Initial condition & position"; corrections
+  MMS-7 to MMS-10 of docs/references.md), with the unilateral end contacts (MMS-7) and, with
+  a valve train, its unilateral links (cam, lever tip, pushrod, valve seat).
+
+Nodes are numbered from the seat (node 0, fixed) to the retainer end (node N + 1).  ``u``
+is the displacement of a node towards the seat from its set-up position.  Element ``j``
+joins nodes ``j`` and ``j + 1``, is compressed by ``x_j = x_j,set + u_(j+1) - u_j`` and
+carries ``f_j = F_j(x_j) + c_j(x_j) dx_j/dt``.  Mass ``i`` (node ``i + 1``) obeys
+``m_i d2u/dt2 = f_(i+1) - f_i``.
+
+- Spring alone: the retainer end follows the cam, ``u_(N+1) = h(omega t)``.
+- Valve train: node N + 1 is the valve body (mass ``M_v``, displacement ``z`` = valve lift)
+  with ``M_v z'' = F_cam + F_seat - f_N``; the cam contact ``F_cam = max(0, k_c p + c_c p')``
+  for ``p = h - z - lash > 0`` and the seat ``F_seat = max(0, -k_s z - c_s z')`` for ``z < 0``.
+
+The functions are plain Python on floats and arrays: :data:`spring_rhs_hot`,
+:data:`train_rhs_hot` and :data:`rhs_call` are their compiled twins (the first two inlined
+into the integration step, the last called), and the SciPy reference (:mod:`.reference`)
+runs them as they are.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from ...numerics.jit import kernel, rebind, twins
+from .layout import (VT_C_CAM, VT_C_PUSH, VT_C_SEAT, VT_C_TIP, VT_DOF, VT_ENABLED, VT_K_CAM, VT_K_PUSH, VT_K_SEAT,
+                     VT_K_TIP, VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS, VT_RATIO, X_CAM_FORCE, X_DISP, X_DLIFT,
+                     X_LIFT, X_SEAT_FORCE, X_TOP)
+
+__all__ = ["EngineModel", "hermite5", "cam_at", "chain_forces", "spring_rhs", "train_rhs", "chain_rhs", "spring_rhs_hot",
+           "train_rhs_hot", "cam_at_hot", "rhs_call", "FASTMATH", "NO_EXTRA"]
+
+#: Floating-point licences of the compiled kernels: fused multiply-add (``contract``),
+#: division by a reciprocal (``arcp``) and no signed zeros (``nsz``).  Each changes a result
+#: by at most an ulp per operation (round-off, far below the tolerances); together they cut
+#: the Type C step by ~12 % (divisions by masses and table steps dominate the right-hand
+#: side).  No licence that assumes finite values: the NaN/inf checks must stay.
+FASTMATH = {"contract", "arcp", "nsz"}
+
+#: The ``extra`` argument that asks for no extra outputs.
+NO_EXTRA = np.empty(0)
+
+
+class EngineModel(NamedTuple):
+    """The speed-independent arrays of one spring and cam, as the compiled engine reads them."""
+
+    masses: np.ndarray   #: chain masses (N,) [kg]
+    laws: np.ndarray     #: element laws (N + 1, 3, 4): segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+    xset: np.ndarray     #: element compressions at set-up (N + 1,) [m]
+    c0: np.ndarray       #: element damping at the initial rate (N + 1,) [N s/m]
+    cam_h: np.ndarray    #: lift table over one revolution (M,) [m]
+    cam_dh: np.ndarray   #: its first derivative [m/rad]
+    cam_ddh: np.ndarray  #: its second derivative [m/rad^2]
+    dth: float           #: table step [rad]
+
+
+def hermite5(x, p0, v0, a0, p1, v1, a1):
+    """Quintic Hermite interpolation on one table interval and its derivative.
+
+    ``x`` in [0, 1] is the position in the interval; ``p, v, a`` are value, first and
+    second derivative at its ends, the derivatives already scaled by the interval length.
+    Plain arithmetic, so the same function serves scalars, NumPy arrays and compiled code.
+
+    Parameters
+    ----------
+    x : float or ndarray
+        Position in the interval [-], 0 to 1.
+    p0, v0, a0 : float or ndarray
+        Value [m], first [m] and second [m] derivative (scaled by the interval) at the start.
+    p1, v1, a1 : float or ndarray
+        The same at the end [m].
+
+    Returns
+    -------
+    value, derivative : float or ndarray
+        The derivative is per unit ``x``.
+    """
+    # the quintic in monomial form (Horner): the same polynomial as the Hermite basis
+    # sum, with a third of the operations
+    dp = p1 - p0
+    c2 = 0.5 * a0
+    c3 = 10.0 * dp - 6.0 * v0 - 4.0 * v1 - 1.5 * a0 + 0.5 * a1
+    c4 = -15.0 * dp + 8.0 * v0 + 7.0 * v1 + 1.5 * a0 - a1
+    c5 = 6.0 * dp - 3.0 * v0 - 3.0 * v1 - 0.5 * a0 + 0.5 * a1
+    value = p0 + x * (v0 + x * (c2 + x * (c3 + x * (c4 + x * c5))))
+    slope = v0 + x * (2.0 * c2 + x * (3.0 * c3 + x * (4.0 * c4 + x * (5.0 * c5))))
+    return value, slope
+
+
+def cam_at(theta, cam_h, cam_dh, cam_ddh, dth):
+    """Lift [m] and ``dh/dtheta`` [m/rad] of the periodic cam table at the cam angle ``theta`` [rad].
+
+    Parameters
+    ----------
+    theta : float
+        Cam angle [rad], any real (the table repeats every revolution).
+    cam_h, cam_dh, cam_ddh : ndarray (M,)
+        Lift [m] and its first two derivatives [m/rad, m/rad^2] at ``k * dth``.
+    dth : float
+        Table step [rad].
+    """
+    n = cam_h.shape[0]
+    period = n * dth
+    th = theta - period * math.floor(theta / period)
+    i0 = int(th / dth)
+    if i0 >= n:
+        i0 = n - 1
+    i1 = i0 + 1 if i0 + 1 < n else 0
+    lift, slope = hermite5(th / dth - i0, cam_h[i0], cam_dh[i0] * dth, cam_ddh[i0] * dth * dth,
+                           cam_h[i1], cam_dh[i1] * dth, cam_ddh[i1] * dth * dth)
+    return lift, slope / dth
+
+
+def chain_forces(s, m, nfree, u_top, v_top, out, extra):
+    """The element forces of the chain from the seat (node 0) to the retainer end (node N + 1,
+    at ``u_top`` [m], ``v_top`` [m/s]), the accelerations of its masses into ``out``; returns
+    the force of the last element [N].  ``nfree``: the degrees of freedom (velocities start
+    there in ``s``).  The two end elements carry compression only (MMS-7)."""
+    masses = m.masses
+    laws = m.laws
+    xset = m.xset
+    c0 = m.c0
+    nm = masses.shape[0]
+    ne = nm + 1
+    rec = extra.shape[0] > 0
+    f_prev = 0.0
+    u_lo = 0.0
+    v_lo = 0.0
+    for j in range(ne):
+        if j < nm:
+            u_hi = s[j]
+            v_hi = s[nfree + j]
+        else:
+            u_hi = u_top
+            v_hi = v_top
+        xj = xset[j] + u_hi - u_lo
+        seg = 0
+        if xj >= laws[j, 1, 0]:
+            seg = 1
+            if xj >= laws[j, 2, 0]:
+                seg = 2
+        a = laws[j, seg, 1]
+        b = laws[j, seg, 2]
+        force = (a * xj + b) * xj + laws[j, seg, 3]
+        if seg == 0:
+            force += c0[j] * (v_hi - v_lo)
+        else:
+            force += c0[j] * math.sqrt((2.0 * a * xj + b) / laws[j, 0, 2]) * (v_hi - v_lo)
+        if j == 0 or j == ne - 1:  # unilateral end contacts (MMS-7)
+            if xj <= 0.0 or force < 0.0:
+                force = 0.0
+        if rec:
+            extra[j] = force
+            extra[ne + j] = xj
+            if j < nm:
+                extra[2 * ne + X_DISP + j] = u_hi
+        if j > 0:
+            out[j - 1] = s[nfree + j - 1]
+            out[nfree + j - 1] = (force - f_prev) / masses[j - 1]
+        f_prev = force
+        u_lo = u_hi
+        v_lo = v_hi
+    return f_prev
+
+
+def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
+    if extra.shape[0] > 0:
+        b = 2 * ne
+        extra[b + X_LIFT] = lift
+        extra[b + X_DLIFT] = dlift
+        extra[b + X_CAM_FORCE] = f_cam
+        extra[b + X_SEAT_FORCE] = f_seat
+        extra[b + X_TOP] = z
+        extra[b + X_DISP + nm] = gap
+
+
+def spring_rhs(t, s, m, omega, vt, out, extra):
+    """Right-hand side of the spring alone: the retainer end follows the cam, ``u_(N+1) = h(omega t)``.
+
+    Arguments as for :func:`chain_rhs` (``vt`` is not read).
+    """
+    nm = m.masses.shape[0]
+    lift, slope = cam_at(omega * t, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
+    dlift = slope * omega
+    chain_forces(s, m, nm, lift, dlift, out, extra)
+    _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
+
+
+def train_rhs(t, s, m, omega, vt, out, extra):
+    """Right-hand side of the spring in its valve train: node N + 1 is the valve body, and the
+    train's links (cam, lever tip, pushrod, valve seat) are unilateral.
+
+    Arguments as for :func:`chain_rhs`, with ``vt`` an enabled train.
+    """
+    nm = m.masses.shape[0]
+    ntr = int(vt[VT_DOF])
+    nfree = nm + ntr
+    lift, slope = cam_at(omega * t, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
+    dlift = slope * omega
+    z = s[nm]
+    zd = s[nfree + nm]
+    f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
+    r = vt[VT_RATIO]
+    f_cam = 0.0
+    f_seat = 0.0
+    if z < 0.0:
+        f_seat = -vt[VT_K_SEAT] * z - vt[VT_C_SEAT] * zd
+        if f_seat < 0.0:
+            f_seat = 0.0
+    if ntr == 1:  # direct-acting: the cam on the valve body, lash at the cam
+        pen = lift - z - vt[VT_LASH]
+        raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zd)
+        if pen > 0.0:
+            f_cam = raw if raw > 0.0 else 0.0
+        gap = min(pen, raw / vt[VT_K_CAM])
+        f_valve = f_cam
+    else:
+        zr = s[nm + 1]
+        zrd = s[nfree + nm + 1]
+        pen_t = zr - z - vt[VT_LASH]  # the lever tip on the valve, lash here
+        raw_t = vt[VT_K_TIP] * pen_t + vt[VT_C_TIP] * (zrd - zd)
+        f_valve = 0.0
+        if pen_t > 0.0:
+            f_valve = raw_t if raw_t > 0.0 else 0.0
+        gap = min(pen_t, raw_t / vt[VT_K_TIP])
+        if ntr == 2:  # finger follower / rocker: the follower rides on the lever
+            pen = lift - zr / r
+            raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zrd / r)
+            if pen > 0.0:
+                f_cam = raw if raw > 0.0 else 0.0
+            gap = min(gap, min(pen, raw / vt[VT_K_CAM]))
+            f_lever = f_cam / r
+        else:  # pushrod: lifter on the cam, pushrod to the lever
+            zf = s[nm + 2]
+            zfd = s[nfree + nm + 2]
+            pen = lift - zf
+            raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zfd)
+            if pen > 0.0:
+                f_cam = raw if raw > 0.0 else 0.0
+            xp = zf - zr / r
+            raw_p = vt[VT_K_PUSH] * xp + vt[VT_C_PUSH] * (zfd - zrd / r)
+            f_push = 0.0
+            if xp > 0.0:
+                f_push = raw_p if raw_p > 0.0 else 0.0
+            gap = min(gap, min(min(pen, raw / vt[VT_K_CAM]), min(xp, raw_p / vt[VT_K_PUSH])))
+            out[nm + 2] = zfd
+            out[nfree + nm + 2] = (f_cam - f_push) / vt[VT_M_LIFTER]
+            f_lever = f_push / r
+        out[nm + 1] = zrd
+        out[nfree + nm + 1] = (f_lever - f_valve) / vt[VT_M_LEVER]
+    out[nm] = zd
+    out[nfree + nm] = (f_valve + f_seat - f_spring) / vt[VT_MASS]
+    _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
+
+
+def chain_rhs(t, s, m, omega, vt, out, extra):
+    """Right-hand side ``ds/dt`` of a chain of N masses, with or without a valve train.
+
+    The two end elements (element 0 on the seat, the last one on the retainer) are
+    contacts that carry compression only: in tension, or when their spring-damper force
+    would pull, they carry nothing and the end separates (correction MMS-7 of
+    docs/references.md).  Calls :func:`spring_rhs` or :func:`train_rhs`.
+
+    Parameters
+    ----------
+    t : float
+        Time [s]; the cam angle is ``omega t``.
+    s : ndarray
+        State: node displacements [m] then velocities [m/s] (N each, N + dof with a valve train).
+    m : EngineModel
+        The chain's masses [kg], element laws [m, N], set-up compressions [m], damping
+        [N s/m] and the cam table [m, m/rad, m/rad^2] with its step [rad].
+    omega : float
+        Cam angular speed [rad/s].
+    vt : ndarray (VT_SIZE,) or None
+        The valve train's parameters (layout ``VT_*`` of :mod:`.layout`); None, or
+        ``vt[VT_ENABLED] = 0``, for the spring alone.  Train states follow the chain's
+        masses: valve, lever tip (rocker, pushrod), lifter (pushrod).
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2].
+    extra : ndarray
+        Empty for none, or an array of ``extra_layout(N)["size"]`` that receives the element
+        forces [N] and compressions [m], then (offsets ``X_*``) lift [m] and lift rate
+        [m/s], cam contact and valve-seat forces [N], the displacement of the retainer end
+        [m], of the masses [m] and the signed cam-contact gap [m] (positive in contact).
+    """
+    if vt is not None:
+        if vt[VT_ENABLED] > 0.5:
+            train_rhs(t, s, m, omega, vt, out, extra)
+            return
+    spring_rhs(t, s, m, omega, vt, out, extra)
+
+
+_TWINS = twins(globals(), ["hermite5", "cam_at", "chain_forces", "_record_tail", "spring_rhs", "train_rhs"],
+               fastmath=FASTMATH)
+#: :func:`spring_rhs` and :func:`train_rhs` compiled to be inlined into the integration step
+#: (their one hot call site, :mod:`.stepping`, chooses by the type of ``vt``).
+spring_rhs_hot = _TWINS["spring_rhs"]
+train_rhs_hot = _TWINS["train_rhs"]
+#: The cam table's interpolant compiled to be inlined (:mod:`.static_force`, the monitor).
+cam_at_hot = _TWINS["cam_at"]
+#: :func:`chain_rhs` compiled as a function of its own: outputs, monitor, static checks.
+rhs_call = kernel(rebind(chain_rhs, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False)

@@ -1,0 +1,114 @@
+"""The engine's array layouts, by name (numba freezes module-level integers into the code).
+
+- ``VT_*``: the valve train's parameter vector (:meth:`springdyn.valve.valvetrain.ValveTrain.kernel_parameters`).
+- ``X_*``: the right-hand side's ``extra`` outputs after the ``2 (N + 1)`` element forces and
+  compressions (:func:`extra_layout`).
+- ``EXT_*``: the monitor's per-speed extremes (:data:`EXT`).
+- ``EV_*``: the columns and kinds of the monitor's event table (:data:`EVENT_KINDS`).
+"""
+
+from __future__ import annotations
+
+__all__ = ["VT_SIZE", "EXTRA", "EXT", "N_EXT", "EVENT_KINDS", "MAX_EVENTS", "STATUS", "extra_layout"]
+
+# --- valve-train parameters ------------------------------------------------------------
+VT_ENABLED = 0      #: 1 with a valve train, 0 for the spring alone [-]
+VT_MASS = 1         #: valve-side mass M_v [kg]
+VT_K_CAM = 2        #: cam-contact stiffness k_c [N/m]
+VT_C_CAM = 3        #: cam-contact damping c_c [N s/m]
+VT_K_SEAT = 4       #: valve-seat stiffness k_s [N/m]
+VT_C_SEAT = 5       #: valve-seat damping c_s [N s/m]
+VT_LASH = 6         #: lash at the valve side [m]
+VT_DOF = 7          #: the train's degrees of freedom (1 direct-acting, 2 lever, 3 pushrod) [-]
+VT_RATIO = 8        #: lever ratio r [-]
+VT_M_LEVER = 9      #: lever (rocker) mass at its tip M_r [kg]
+VT_K_TIP = 10       #: lever-tip contact stiffness k_t [N/m]
+VT_C_TIP = 11       #: lever-tip contact damping c_t [N s/m]
+VT_M_LIFTER = 12    #: lifter mass M_f [kg]
+VT_K_PUSH = 13      #: pushrod stiffness k_p [N/m]
+VT_C_PUSH = 14      #: pushrod damping c_p [N s/m]
+VT_LOBE_LASH = 15   #: lobe lift that starts the event [m]
+VT_SIZE = 16
+
+# --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
+X_LIFT = 0          #: cam lift [m]
+X_DLIFT = 1         #: cam lift rate [m/s]
+X_CAM_FORCE = 2     #: cam contact force [N]
+X_SEAT_FORCE = 3    #: valve-seat force [N]
+X_TOP = 4           #: displacement of the retainer end (the valve lift with a train) [m]
+X_DISP = 5          #: first of the N mass displacements [m]; the cam gap follows them
+
+#: Names of the ``extra`` outputs for the 5-mass Type C chain (:func:`extra_layout` for any N).
+EXTRA = ("f1", "f2", "f3", "f4", "f5", "f6", "x1", "x2", "x3", "x4", "x5", "x6", "lift", "dlift",
+         "cam_contact_force", "valve_seat_force", "top_displacement", "u1", "u2", "u3", "u4", "u5", "cam_gap")
+
+
+def extra_layout(n_masses: int) -> dict:
+    """Slices / indices of the ``extra`` output of the right-hand side for a chain of ``n_masses``.
+
+    Parameters
+    ----------
+    n_masses : int
+        Number of chain masses (5 for Type C) [-].
+
+    Returns
+    -------
+    dict
+        ``force`` and ``compression`` (slices over the ``n_masses + 1`` elements), ``lift``,
+        ``dlift``, ``cam_contact_force``, ``valve_seat_force``, ``top_displacement`` (ints),
+        ``displacement`` (slice over the masses), ``cam_gap`` (int) and ``size``.
+    """
+    ne = n_masses + 1
+    b = 2 * ne
+    return dict(force=slice(0, ne), compression=slice(ne, b), lift=b + X_LIFT, dlift=b + X_DLIFT,
+                cam_contact_force=b + X_CAM_FORCE, valve_seat_force=b + X_SEAT_FORCE, top_displacement=b + X_TOP,
+                displacement=slice(b + X_DISP, b + X_DISP + n_masses), cam_gap=b + X_DISP + n_masses,
+                size=b + X_DISP + 1 + n_masses)
+
+
+# --- the monitor's extremes per speed ----------------------------------------------------
+EXT = ("max_retainer_force", "t_max_retainer_force", "min_retainer_force", "t_min_retainer_force",
+       "max_seat_force", "t_max_seat_force", "min_seat_force", "t_min_seat_force",
+       "min_cam_contact_force", "t_min_cam_contact_force", "seat_impact_velocity", "t_seat_impact",
+       "seat_landings", "events_lost")
+N_EXT = len(EXT)
+EXT_MAX_RETAINER = 0
+EXT_MIN_RETAINER = 2
+EXT_MAX_SEAT = 4
+EXT_MIN_SEAT = 6
+EXT_MIN_CAM = 8
+EXT_IMPACT_VELOCITY = 10
+EXT_IMPACT_TIME = 11
+EXT_LANDINGS = 12
+EXT_LOST = 13
+
+#: Extreme signals (maximised): retainer force, -retainer force, seat force, -seat force,
+#: -cam contact force while the valve is open.
+SIG_RETAINER_MAX = 0
+SIG_RETAINER_MIN = 1
+SIG_SEAT_MAX = 2
+SIG_SEAT_MIN = 3
+SIG_CAM_MIN = 4
+N_SIG = 5
+
+# --- events --------------------------------------------------------------------------------
+#: Event kinds of the monitored integration (column :data:`EV_KIND` of the event table).
+EVENT_KINDS = {0: "end separation", 1: "coil contact", 2: "lift-off", 3: "valve landing"}
+EV_KIND = 0         #: column: the kind (a key of EVENT_KINDS)
+EV_INDEX = 1        #: column: the end (0 seat, 1 retainer) or the element
+EV_START = 2        #: column: start time [s]
+EV_END = 3          #: column: end time [s] (a landing: its impact velocity [m/s])
+KIND_SEPARATION = 0.0
+KIND_COIL_CONTACT = 1.0
+KIND_LIFT_OFF = 2.0
+KIND_LANDING = 3.0
+#: Event table rows per speed (further events are counted in ``events_lost``).
+MAX_EVENTS = 512
+#: Event channels before the coil gaps: seat end, retainer end, the train's smallest gap.
+CH_SEAT = 0
+CH_RETAINER = 1
+CH_TRAIN = 2
+N_FIXED_CHANNELS = 3
+
+#: Status codes of the integration.
+STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the solution is not finite (NaN/inf)"}

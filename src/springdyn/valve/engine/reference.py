@@ -1,0 +1,109 @@
+"""The NumPy / SciPy twins of the compiled engine, the references its tests compare with.
+
+- :func:`hermite_eval`: the cam table interpolant of :func:`.equations.cam_at`, vectorised.
+- :func:`integrate_scipy`: ``scipy.integrate.solve_ivp`` with the plain-Python
+  :func:`.equations.chain_rhs` (the same equations, run by the interpreter).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .equations import NO_EXTRA, chain_rhs, hermite5, rhs_call
+
+__all__ = ["hermite_eval", "integrate_scipy", "atol_vector"]
+
+
+def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -> np.ndarray:
+    """Absolute tolerance per state component: ``atol`` [m] on the displacements,
+    ``atol_velocity`` [m/s] (default ``atol``) on the velocities.
+
+    Parameters
+    ----------
+    n_state : int
+        State size (displacements then velocities) [-].
+    atol : float
+        Absolute tolerance of the displacements [m].
+    atol_velocity : float or ndarray (n_state // 2,), optional
+        Absolute tolerance of the velocities [m/s], one for all or one per velocity.
+    """
+    half = n_state // 2
+    out = np.full(n_state, float(atol))
+    out[half:] = atol if atol_velocity is None else np.asarray(atol_velocity, dtype=float)
+    return out
+
+
+def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
+    """Vectorised quintic Hermite evaluation of the cam table (the engine's :func:`.equations.cam_at`).
+
+    Returns lift [m], ``dh/dtheta`` [m/rad] at cam angles ``theta`` [rad].
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Cam angles [rad].
+    cam_h, cam_dh, cam_ddh : ndarray
+        Lift [m], ``dh/dtheta`` [m/rad] and ``d2h/dtheta2`` [m/rad^2] at ``k * dth``.
+    dth : float
+        Table step [rad].
+    """
+    theta = np.asarray(theta, dtype=float)
+    n = cam_h.size
+    th = np.mod(theta, n * dth)
+    i0 = np.minimum((th / dth).astype(np.intp), n - 1)
+    i1 = (i0 + 1) % n
+    lift, slope = hermite5(th / dth - i0, cam_h[i0], cam_dh[i0] * dth, cam_ddh[i0] * dth**2,
+                           cam_h[i1], cam_dh[i1] * dth, cam_ddh[i1] * dth**2)
+    return lift, slope / dth
+
+
+def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rhs=False, h_max=np.inf,
+                    atol_velocity=None):
+    """Reference backend: ``scipy.integrate.solve_ivp`` with the plain-Python right-hand side.
+
+    With ``compiled_rhs=True`` the compiled right-hand side is used instead (same model,
+    faster); the plain one is the independent reference of the benchmarks.
+
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    t_out : ndarray
+        Output times [s], ascending.
+    args : tuple
+        ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)`` [kg, m and N,
+        m, N s/m, m, m/rad, m/rad^2, rad, rad/s, -] (see :func:`springdyn.valve.engine.model_of`).
+    rtol, atol : float
+        Relative [-] and absolute [m] tolerances (velocities: ``atol_velocity``).
+    method : str
+        ``solve_ivp`` method name [-] (default ``"DOP853"``).
+    compiled_rhs : bool
+        Use the compiled right-hand side.
+    h_max : float
+        Largest step [s].
+    atol_velocity : float or ndarray, optional
+        Absolute tolerance of the velocities [m/s], one for all or one per velocity
+        (default ``atol``).
+    """
+    from scipy.integrate import solve_ivp
+
+    from .api import model_of, train_of
+
+    f = rhs_call if compiled_rhs else chain_rhs
+    m = model_of(args)
+    omega = float(args[8])
+    vt = train_of(args[9])
+    buf = np.empty(len(y0))
+
+    def fun(t, y):
+        d = np.empty_like(buf)
+        f(t, y, m, omega, vt, d, NO_EXTRA)
+        return d
+
+    sol = solve_ivp(fun, (float(t_out[0]), float(t_out[-1])), np.asarray(y0, float), method=method, t_eval=t_out,
+                    rtol=rtol, atol=atol_vector(len(y0), atol, atol_velocity), max_step=h_max)
+    out = np.full((t_out.size, len(y0)), np.nan)
+    out[: sol.y.shape[1]] = sol.y.T
+    status = 0 if sol.status == 0 else 2
+    t_reached = float(sol.t[-1]) if sol.t.size else float(t_out[0])
+    return out, dict(status=status, t=t_reached, steps=int(sol.nfev), rejected=0, message=sol.message)
