@@ -55,6 +55,13 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=40, help="runs of the compiled engine per round (default 40)")
     ap.add_argument("--ref-repeat", type=int, default=3, help="repetitions of the SciPy reference per round (default 3)")
     args = ap.parse_args(argv)
+    missed = []
+
+    def met(ok: bool) -> str:
+        """MET or NOT MET; a miss makes the benchmark exit non-zero."""
+        if not ok:
+            missed.append(1)
+        return "MET" if ok else "NOT MET"
 
     t0 = time.perf_counter()
     import numpy as np
@@ -72,7 +79,9 @@ def main(argv=None) -> int:
     t = time.perf_counter()
     simulate(spring, cam, 3000.0, 2)
     first = time.perf_counter() - t
-    cached = engine._run_speeds.stats.cache_hits
+    from springdyn.valve.engine import loop
+
+    cached = loop.run_speeds_loop.stats.cache_hits
     how = "loaded from numba's disk cache" if sum(cached.values()) else "compiled (now cached on disk)"
     import os
     import tempfile
@@ -139,11 +148,11 @@ def main(argv=None) -> int:
           f"each, in {args.ref_repeat + 1} blocks around the reference runs): "
           f"{t_fast * 1e3:8.2f} ms  ({fast.info['steps']} steps)")
     print(f"  ratio: median {med:.0f}x over {args.rounds} interleaved rounds (min {min(ratios):.0f}x, max "
-          f"{max(ratios):.0f}x; target >= 300x): {'MET' if med >= 300 else 'NOT MET'}")
+          f"{max(ratios):.0f}x; target >= 300x): {met(med >= 300)}")
     print(f"  of which the compiled integration (with its output evaluation): {t_eng * 1e3:.2f} ms, "
           f"{t_ref / t_eng:.0f}x the reference; the rest is setup (cam table, initial state) and outputs")
     print(f"  peak retainer force: {peak_fast:.4f} N vs {peak_ref:.4f} N, difference {100 * diff:.5f} % of Fset "
-          f"(target < 0.05 %): {'MET' if diff < 5e-4 else 'NOT MET'}")
+          f"(target < 0.05 %): {met(diff < 5e-4)}")
     loose = []
     for _ in range(args.repeat):
         t = time.perf_counter()
@@ -161,13 +170,13 @@ def main(argv=None) -> int:
     print()
     print(f"sweep of {args.speeds} speeds, 300-4000 cam rpm, 2 revolutions each (after compilation), both cores")
     print(f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.2f} ms per speed); "
-          f"target < 5 s: {'MET' if wall < 5 else 'NOT MET'}")
+          f"target < 5 s: {met(wall < 5)}")
     print(f"  same work with the SciPy reference, estimated from the single run: "
           f"{t_ref * args.speeds * (steps / args.speeds) / max(fast.info['steps'], 1) / 3600:.1f} h "
           f"(ratio ~{t_ref * steps / fast.info['steps'] / wall:.0f}x)")
     print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: "
-          f"{'MET' if rss_mb < 1024 else 'NOT MET'}")
-    return 0
+          f"{met(rss_mb < 1024)}")
+    return 0 if not missed else 1
 
 
 if __name__ == "__main__":

@@ -41,7 +41,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from ..numerics.jit import kernel
 
 from ..core.errors import InputError, SolverError
 from .kinematics import spring_angle, theta2_from_deflection
@@ -157,7 +157,7 @@ def strip_first_frequency(ei, mass_per_length, length):
 
 
 # -- shooting ------------------------------------------------------------------------------
-@njit(cache=True)
+@kernel
 def _rhs(st, p, c2, s2, inv_ei):
     x, y, ph, xp, yp, pp, xt, yt, pt = st
     cp, sp = math.cos(ph), math.sin(ph)
@@ -175,7 +175,7 @@ def _rhs(st, p, c2, s2, inv_ei):
     return out
 
 
-@njit(cache=True)
+@kernel
 def _shoot(p, theta2, x_clamp, length, rigid, r2, ei, steps):
     """Residual of the loop closure, its Jacobian and the largest |curvature| [1/m]."""
     c2, s2 = math.cos(theta2), math.sin(theta2)

@@ -10,9 +10,10 @@ plain ``numba.njit(cache=True)``:
    *source group*: every ``.py`` file in the kernel's own package folder and in
    ``springdyn/numerics`` (:func:`source_group`).  A kernel may call compiled code from
    nowhere else; ``tests/numerics/test_jit.py`` walks every kernel's globals and checks it.
-2. **A cache that cannot be used never stops a run.**  An unwritable cache folder, or a
-   corrupt or foreign file in it, makes the kernels compile in memory for this process;
-   one line on stderr says so (:func:`notices`).
+2. **A cache that cannot be used never stops a run.**  With no writable cache folder the
+   kernels compile in memory for the process; an unreadable (corrupt, truncated, foreign)
+   cache file is dropped and its kernel compiles again.  One line on stderr says so, once
+   (:func:`notices`).
 3. **The user hears about a compilation before waiting for it.**  :func:`compiling` wraps
    the call of an engine: when numba starts to compile (a cache miss), one line on stderr
    says what compiles, about how long it takes and that it happens once per machine and
@@ -154,10 +155,15 @@ class _Cache(_nc.FunctionCache):
     def load_overload(self, sig, target_context):
         try:
             return super().load_overload(sig, target_context)
-        except Exception as exc:  # a corrupt, truncated or foreign cache file
-            self.disable()
-            _say_once("cache-read", f"the compile cache in {self.cache_path} could not be read ({type(exc).__name__}); "
-                                    "the engines compile in memory for this run")
+        except Exception as exc:  # a corrupt, truncated or foreign cache file: drop its entries
+            try:
+                self.flush()
+                what = "its entries were dropped and the kernels compile again"
+            except Exception:
+                self.disable()
+                what = "the kernels compile in memory for this run"
+            _say_once("cache-read", f"the compile cache in {self.cache_path} could not be read "
+                                    f"({type(exc).__name__}): {what}")
             return None
 
     def save_overload(self, sig, data):

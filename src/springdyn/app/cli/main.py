@@ -10,6 +10,7 @@ output could not be written, never a traceback.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import os
 import re
@@ -228,6 +229,21 @@ def _on_sigterm(signum, frame):
 EXIT_INPUT, EXIT_SOLVER, EXIT_BUG, EXIT_IO, EXIT_INTERRUPTED = 2, 3, 70, 74, 130
 
 
+@contextlib.contextmanager
+def _compile_notices(on: bool):
+    """The one-line compile notices of the engines on stderr, off under ``--quiet``."""
+    if on:
+        yield
+        return
+    from springdyn.numerics import jit  # (numba: imported only when it is switched off)
+
+    old = jit.notices(False)
+    try:
+        yield
+    finally:
+        jit.notices(old)
+
+
 def main(argv=None) -> int:
     """Run ``springdyn`` with ``argv`` (default: the process's); return the exit code.
 
@@ -248,7 +264,8 @@ def main(argv=None) -> int:
         parser = build_parser(_family_of(argv))
         args = parser.parse_args(argv)
         check_outputs(args)
-        with output_set():  # every file of the command is renamed into place together, at the end
+        with output_set(), _compile_notices(not getattr(args, "quiet", False)):
+            # every file of the command is renamed into place together, at the end
             code = int(args.func(args) or 0)
         sys.stdout.flush()
         _flush_warnings()

@@ -9,55 +9,19 @@ import numpy as np
 
 from ...numerics import erk as _ig
 from ...numerics.jit import call, compiling
-from .equations import EngineModel
-from .layout import MAX_EVENTS, N_EXT, VT_ENABLED, extra_layout
+from .equations import model_of, train_of
+from .layout import MAX_EVENTS, N_EXT, extra_layout
 from .loop import Tolerances, integrate_loop, run_speeds_loop, workspace
 from .monitor import new_monitor
 from .reference import atol_vector
 
-__all__ = ["integrate", "run_speeds", "stop_angles", "model_of", "train_of", "COMPILE_SECONDS"]
+__all__ = ["integrate", "run_speeds", "stop_angles", "COMPILE_SECONDS"]
 
 #: About how long the engine takes to compile on a 2-core machine [s], per model and pair
 #: (measured with an empty cache, benchmarks/cold_start.py; the figure the compile notice quotes).
 COMPILE_SECONDS = {("spring alone", "dopri5"): 5.0, ("valve train", "dopri5"): 6.0, ("spring alone", "bs3"): 5.0,
                    ("valve train", "bs3"): 6.0, ("spring alone", "tsit5"): 5.0, ("valve train", "tsit5"): 6.0}
 _PAIR_NAMES = {"dopri5": "Dormand-Prince 5(4)", "bs3": "Bogacki-Shampine 3(2)", "tsit5": "Tsitouras 5(4)"}
-
-
-def train_of(vt):
-    """The valve train's parameters for the compiled code: None for the spring alone
-    (``vt[VT_ENABLED]`` zero), which selects the variant compiled without the train's code.
-
-    Parameters
-    ----------
-    vt : ndarray (VT_SIZE,) or None
-        The train's parameter vector [mixed units, layout ``VT_*``].
-    """
-    return vt if vt is not None and vt[VT_ENABLED] > 0.5 else None
-
-
-def _c0_array(c0, laws) -> np.ndarray:
-    """The damping coefficients [N s/m], one per element, as a writable contiguous array
-    (one array type for numba: a read-only one would compile the loop again)."""
-    if (isinstance(c0, np.ndarray) and c0.dtype == np.float64 and c0.shape == laws.shape[:1]
-            and c0.flags.c_contiguous and c0.flags.writeable):
-        return c0
-    return np.array(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
-
-
-def model_of(args) -> EngineModel:
-    """The engine's model arrays from the argument tuple of a simulation set-up.
-
-    Parameters
-    ----------
-    args : tuple
-        ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``: masses [kg],
-        element laws [m, N], set-up compressions [m], damping [N s/m], cam table [m, m/rad,
-        m/rad^2], table step [rad], speed [rad/s] and valve-train parameters
-        (:meth:`springdyn.valve.dynamics.SimulationSetup.args`).
-    """
-    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth = args[:8]
-    return EngineModel(masses, laws, xset, _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth))
 
 
 def _tableau(method: str):

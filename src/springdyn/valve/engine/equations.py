@@ -38,8 +38,8 @@ from .layout import (VT_C_CAM, VT_C_PUSH, VT_C_SEAT, VT_C_TIP, VT_DOF, VT_ENABLE
                      VT_K_TIP, VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS, VT_RATIO, X_CAM_FORCE, X_DISP, X_DLIFT,
                      X_LIFT, X_SEAT_FORCE, X_TOP)
 
-__all__ = ["EngineModel", "hermite5", "cam_at", "chain_forces", "spring_rhs", "train_rhs", "chain_rhs", "spring_rhs_hot",
-           "train_rhs_hot", "cam_at_hot", "rhs_call", "FASTMATH", "NO_EXTRA"]
+__all__ = ["EngineModel", "model_of", "train_of", "hermite5", "cam_at", "chain_forces", "spring_rhs", "train_rhs", "chain_rhs", "spring_rhs_hot",
+           "train_rhs_hot", "cam_at_hot", "rhs_call", "NO_EXTRA"]
 
 #: Floating-point licences of the compiled kernels: fused multiply-add (``contract``),
 #: division by a reciprocal (``arcp``) and no signed zeros (``nsz``).  Each changes a result
@@ -63,6 +63,42 @@ class EngineModel(NamedTuple):
     cam_dh: np.ndarray   #: its first derivative [m/rad]
     cam_ddh: np.ndarray  #: its second derivative [m/rad^2]
     dth: float           #: table step [rad]
+
+
+def train_of(vt):
+    """The valve train's parameters for the compiled code: None for the spring alone
+    (``vt[VT_ENABLED]`` zero), which selects the variant compiled without the train's code.
+
+    Parameters
+    ----------
+    vt : ndarray (VT_SIZE,) or None
+        The train's parameter vector [mixed units, layout ``VT_*``].
+    """
+    return vt if vt is not None and vt[VT_ENABLED] > 0.5 else None
+
+
+def _c0_array(c0, laws) -> np.ndarray:
+    """The damping coefficients [N s/m], one per element, as a writable contiguous array
+    (one array type for numba: a read-only one would compile the loop again)."""
+    if (isinstance(c0, np.ndarray) and c0.dtype == np.float64 and c0.shape == laws.shape[:1]
+            and c0.flags.c_contiguous and c0.flags.writeable):
+        return c0
+    return np.array(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
+
+
+def model_of(args) -> EngineModel:
+    """The engine's model arrays from the argument tuple of a simulation set-up.
+
+    Parameters
+    ----------
+    args : tuple
+        ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``: masses [kg],
+        element laws [m, N], set-up compressions [m], damping [N s/m], cam table [m, m/rad,
+        m/rad^2], table step [rad], speed [rad/s] and valve-train parameters
+        (:meth:`springdyn.valve.dynamics.SimulationSetup.args`).
+    """
+    masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth = args[:8]
+    return EngineModel(masses, laws, xset, _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth))
 
 
 def hermite5(x, p0, v0, a0, p1, v1, a1):
@@ -123,10 +159,30 @@ def cam_at(theta, cam_h, cam_dh, cam_ddh, dth):
 
 
 def chain_forces(s, m, nfree, u_top, v_top, out, extra):
-    """The element forces of the chain from the seat (node 0) to the retainer end (node N + 1,
-    at ``u_top`` [m], ``v_top`` [m/s]), the accelerations of its masses into ``out``; returns
-    the force of the last element [N].  ``nfree``: the degrees of freedom (velocities start
-    there in ``s``).  The two end elements carry compression only (MMS-7)."""
+    """The element forces of the chain and the accelerations of its masses ([MMS], MMS-7).
+
+    The two end elements carry compression only (correction MMS-7).
+
+    Parameters
+    ----------
+    s : ndarray
+        State: displacements [m] then velocities [m/s].
+    m : EngineModel
+        The chain's arrays [kg, m, N, N s/m].
+    nfree : int
+        Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+    u_top, v_top : float
+        Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
+    out : ndarray
+        Receives the derivatives of the masses' states [m/s, m/s^2].
+    extra : ndarray
+        Empty, or receives element forces [N], compressions [m] and mass displacements [m].
+
+    Returns
+    -------
+    float
+        Force of the last element, on the retainer end [N].
+    """
     masses = m.masses
     laws = m.laws
     xset = m.xset
@@ -188,7 +244,22 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
 def spring_rhs(t, s, m, omega, vt, out, extra):
     """Right-hand side of the spring alone: the retainer end follows the cam, ``u_(N+1) = h(omega t)``.
 
-    Arguments as for :func:`chain_rhs` (``vt`` is not read).
+    Parameters
+    ----------
+    t : float
+        Time [s].
+    s : ndarray
+        State [m, m/s].
+    m : EngineModel
+        The chain and cam arrays [kg, m, N, N s/m, rad].
+    omega : float
+        Cam speed [rad/s].
+    vt : None or ndarray
+        Not read [-].
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2].
+    extra : ndarray
+        Empty, or receives the extra outputs [N, m, m/s] (:func:`chain_rhs`).
     """
     nm = m.masses.shape[0]
     lift, slope = cam_at(omega * t, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
@@ -201,7 +272,22 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     """Right-hand side of the spring in its valve train: node N + 1 is the valve body, and the
     train's links (cam, lever tip, pushrod, valve seat) are unilateral.
 
-    Arguments as for :func:`chain_rhs`, with ``vt`` an enabled train.
+    Parameters
+    ----------
+    t : float
+        Time [s].
+    s : ndarray
+        State: the chain's, then the train's degrees of freedom [m, m/s].
+    m : EngineModel
+        The chain and cam arrays [kg, m, N, N s/m, rad].
+    omega : float
+        Cam speed [rad/s].
+    vt : ndarray (VT_SIZE,)
+        An enabled valve train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2].
+    extra : ndarray
+        Empty, or receives the extra outputs [N, m, m/s] (:func:`chain_rhs`).
     """
     nm = m.masses.shape[0]
     ntr = int(vt[VT_DOF])

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .equations import NO_EXTRA, chain_rhs, hermite5, rhs_call
+from .equations import NO_EXTRA, chain_rhs, hermite5, model_of, rhs_call, train_of
 
 __all__ = ["hermite_eval", "integrate_scipy", "atol_vector"]
 
@@ -86,8 +86,6 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
         (default ``atol``).
     """
     from scipy.integrate import solve_ivp
-
-    from .api import model_of, train_of
 
     f = rhs_call if compiled_rhs else chain_rhs
     m = model_of(args)

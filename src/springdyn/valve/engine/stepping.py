@@ -23,18 +23,60 @@ __all__ = ["attempt_step", "dense_coefficients"]
 
 
 def attempt_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
-    """Stages of a step of size ``h`` [s] from ``(t, y)`` into ``k`` and ``ytmp`` (the 5th- or
-    3rd-order solution at ``t + h``); returns the scaled error norm [-].
+    """Stages of a step of size ``h`` from ``(t, y)``; returns the scaled error norm [-].
 
-    ``k[0]`` holds the derivative at ``t`` (first same as last); the last stage, at
-    ``t + h``, also writes the right-hand side's extra outputs into ``last_extra`` (an empty
-    array for none).  Compiled code only (an overload per tableau class).
+    Compiled code only (an implementation per tableau class).
+
+    Parameters
+    ----------
+    tab : DormandPrince, BogackiShampine or Tsitouras
+        The pair's tableau [-].
+    t : float
+        Start of the step [s].
+    y : ndarray
+        State at ``t`` [m, m/s].
+    h : float
+        Step size [s].
+    k : ndarray (stages, n)
+        Stage derivatives; ``k[0]`` holds the derivative at ``t`` (first same as last).
+    ytmp : ndarray
+        Receives the new solution at ``t + h`` [m, m/s].
+    m : EngineModel
+        The chain and cam arrays.
+    omega : float
+        Cam speed [rad/s].
+    vt : None or ndarray
+        The valve train [kg, N/m, N s/m, m, -] (None: the spring alone).
+    rtol : float
+        Relative tolerance [-].
+    atol : ndarray
+        Absolute tolerance per component [m, m/s].
+    last_extra : ndarray
+        Receives the extra outputs at ``t + h`` [N, m, m/s] (empty: none).
+    no_extra : ndarray
+        The empty array [-].
+    work : ndarray
+        Scratch of the state's size [m, m/s].
     """
     raise NotImplementedError("attempt_step is compiled code: call it from a kernel")
 
 
 def dense_coefficients(tab, y, y_new, k, h, rc):
-    """The dense-output coefficients ``rc`` (5, n) of an accepted step (compiled code only)."""
+    """The dense-output coefficients of an accepted step (compiled code only).
+
+    Parameters
+    ----------
+    tab : DormandPrince, BogackiShampine or Tsitouras
+        The pair's tableau [-].
+    y, y_new : ndarray
+        State at the step's start and end [m, m/s].
+    k : ndarray (stages, n)
+        Stage derivatives [m/s, m/s^2].
+    h : float
+        Step size [s].
+    rc : ndarray (5, n)
+        Receives the coefficients [m, m/s] (:func:`springdyn.numerics.erk.dense_eval`).
+    """
     raise NotImplementedError("dense_coefficients is compiled code: call it from a kernel")
 
 

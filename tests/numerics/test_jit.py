@@ -1,0 +1,199 @@
+"""The compiled kernels' cache and notices (springdyn.numerics.jit).
+
+Requirements checked here:
+- an edit to any file an engine is compiled from invalidates that engine's cache: an edited
+  copy of the package runs its new code (numba alone keys a kernel on its own file only);
+- every kernel calls compiled code only from its source group (so the stamp covers it);
+- a cache folder that cannot be written, or cache files that cannot be read, never stop a
+  run: the kernels compile again and one line says so;
+- a compilation is announced by one line on stderr, none when nothing compiles or under
+  ``notices(False)``;
+- a Type C spring-alone run compiles no integration pair and no valve-train variant it does
+  not run.
+"""
+
+from __future__ import annotations
+
+import inspect
+import os
+import shutil
+import subprocess
+import sys
+import types
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import springdyn
+from springdyn.numerics import jit
+
+PACKAGE = Path(springdyn.__file__).resolve().parent
+
+MONITOR_PROBE = """
+import numpy as np
+from springdyn.valve.engine.monitor import new_monitor
+m = new_monitor(np.zeros(14), np.zeros((4, 4)), np.zeros(1, dtype=np.int64), np.full(6, np.inf), 0.0, None)
+s = new_monitor.stats
+print(m.best.shape[0], sum(s.cache_hits.values()), sum(s.cache_misses.values()))
+"""
+
+
+def _copy_package(tmp_path: Path) -> Path:
+    root = tmp_path / "site"
+    shutil.copytree(PACKAGE, root / "springdyn", ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
+    return root
+
+
+def _run(root: Path, code: str, env_extra: dict) -> subprocess.CompletedProcess:
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env.update(PYTHONPATH=str(root), PYTHONDONTWRITEBYTECODE="1", **env_extra)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=root, timeout=300)
+    assert done.returncode == 0, done.stderr
+    return done
+
+
+def test_an_edit_of_any_source_file_invalidates_the_cached_kernels(tmp_path):
+    """new_monitor (monitor.py) sizes its arrays by N_SIG of layout.py: after layout.py is
+    edited, the cached kernel must not run (numba's own stamp covers monitor.py only); an
+    edit of numerics/erk.py, which the engines call, invalidates it too."""
+    root = _copy_package(tmp_path)
+    env = {"NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    first = _run(root, MONITOR_PROBE, env).stdout.split()
+    assert first == ["5", "0", "1"]  # compiled
+    again = _run(root, MONITOR_PROBE, env).stdout.split()
+    assert again == ["5", "1", "0"]  # loaded from the cache
+    layout = root / "springdyn" / "valve" / "engine" / "layout.py"
+    layout.write_text(layout.read_text().replace("N_SIG = 5\n", "N_SIG = 7\n"))
+    edited = _run(root, MONITOR_PROBE, env).stdout.split()
+    assert edited == ["7", "0", "1"]  # the new code runs
+    erk = root / "springdyn" / "numerics" / "erk.py"
+    erk.write_text(erk.read_text() + "\n# an edit\n")
+    assert _run(root, MONITOR_PROBE, env).stdout.split() == ["7", "0", "1"]
+    assert _run(root, MONITOR_PROBE, env).stdout.split() == ["7", "1", "0"]
+
+
+def _kernel_modules():
+    import springdyn.cfcs.beam  # noqa: F401
+    import springdyn.valve.engine.api  # noqa: F401  (loads every engine module)
+    import springdyn.valve.engine.stepping  # noqa: F401
+
+    return jit.KERNELS
+
+
+def _referenced_files(fn) -> set:
+    """Files of the springdyn functions, kernels, classes and modules ``fn`` names as globals."""
+    out = set()
+    code_objects = [fn.__code__]
+    while code_objects:
+        code = code_objects.pop()
+        code_objects += [c for c in code.co_consts if isinstance(c, types.CodeType)]
+        for name in code.co_names:
+            value = fn.__globals__.get(name)
+            value = getattr(value, "py_func", value)
+            if isinstance(value, types.ModuleType):
+                f = getattr(value, "__file__", None)
+            elif inspect.isfunction(value) or inspect.isclass(value):
+                f = inspect.getfile(value) if value.__module__.startswith("springdyn") else None
+            else:
+                f = None
+            if f and Path(f).resolve().is_relative_to(PACKAGE):
+                out.add(Path(f).resolve())
+    return out
+
+
+def test_every_kernel_calls_code_from_its_source_group_only():
+    kernels = _kernel_modules()
+    assert len(kernels) > 20
+    for k in kernels:
+        own = Path(inspect.getfile(k.py_func)).resolve()
+        group = set(jit.source_group(own))
+        stray = _referenced_files(k.py_func) - group
+        assert not stray, f"{k.py_func.__qualname__} ({own.name}) calls code outside its cache stamp: {stray}"
+
+
+def test_the_stamp_changes_with_every_file_of_the_group(tmp_path):
+    files = jit.source_group(PACKAGE / "valve" / "engine" / "loop.py")
+    names = {f.relative_to(PACKAGE).as_posix() for f in files}
+    assert {"valve/engine/equations.py", "valve/engine/monitor.py", "numerics/erk.py", "numerics/jit.py"} <= names
+    assert "valve/dynamics.py" not in names  # the Python around the engine does not key it
+
+
+def test_no_writable_cache_folder_compiles_in_memory_and_says_so_once(tmp_path):
+    root = _copy_package(tmp_path)
+    blocker = tmp_path / "a-file"
+    blocker.write_text("not a folder")
+    for d in (root / "springdyn").rglob("*"):
+        if d.is_dir():
+            (d / "__pycache__").write_text("not a folder")  # numba's in-tree cache
+    env = {"NUMBA_CACHE_DIR": str(blocker / "cache"), "XDG_CACHE_HOME": str(blocker / "xdg"),
+           "HOME": str(blocker / "home")}
+    done = _run(root, MONITOR_PROBE, env)
+    assert done.stdout.split()[0] == "5"
+    lines = [ln for ln in done.stderr.splitlines() if ln.startswith("springdyn:")]
+    assert len(lines) == 1 and "no writable compile cache folder" in lines[0], done.stderr
+
+
+def test_unreadable_cache_files_are_dropped_and_compiled_again(tmp_path):
+    root = _copy_package(tmp_path)
+    cache = tmp_path / "cache"
+    env = {"NUMBA_CACHE_DIR": str(cache)}
+    _run(root, MONITOR_PROBE, env)
+    files = list(cache.rglob("*.nb[ic]"))
+    assert files
+    for f in files:
+        f.write_bytes(b"\x80\x04garbage, not a pickle")
+    done = _run(root, MONITOR_PROBE, env)
+    assert done.stdout.split() == ["5", "0", "1"]
+    lines = [ln for ln in done.stderr.splitlines() if ln.startswith("springdyn:")]
+    assert len(lines) == 1 and "could not be read" in lines[0], done.stderr
+    healed = _run(root, MONITOR_PROBE, env)  # the cache was written anew
+    assert healed.stdout.split() == ["5", "1", "0"] and "springdyn:" not in healed.stderr
+
+
+def test_a_compilation_is_announced_once(capsys):
+    import numba
+
+    f = numba.njit(lambda x: x + 1.0)
+    with jit.compiling("a test kernel", 3):
+        assert f(1.0) == 2.0
+        assert f(2.0) == 3.0
+    err = capsys.readouterr().err
+    assert err.count("springdyn: compiling a test kernel for this machine: about 3 s, once per machine") == 1
+    with jit.compiling("a test kernel", 3):  # compiled already: silent
+        f(3.0)
+    assert capsys.readouterr().err == ""
+    g = numba.njit(lambda x: x - 1.0)
+    old = jit.notices(False)
+    try:
+        with jit.compiling("a quiet kernel", 3):
+            g(1.0)
+    finally:
+        jit.notices(old)
+    assert capsys.readouterr().err == ""
+
+
+USED_PROBE = """
+import math
+from springdyn.valve import Cam, ValveSpring, simulate
+from springdyn.numerics import erk
+from springdyn.valve.engine import loop
+simulate(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)), 3000.0, 2)
+print("pairs", sorted({type(sig[6]).__name__ + ":" + sig[6].instance_class.__name__ for sig in loop.run_speeds_loop.signatures}))
+print("trains", sorted({str(sig[5]) for sig in loop.run_speeds_loop.signatures}))
+print("unused", [k.py_func.__name__ for k in (erk.stage_state, erk.error_norm, erk.tsit5_stage_state,
+                                              erk.tsit5_error_norm, erk.dense_coefficients) if k.signatures])
+"""
+
+
+@pytest.mark.slow
+def test_a_type_c_run_compiles_only_its_pair_and_model(tmp_path):
+    """With an empty cache (so that every kernel it calls compiles and shows its signatures)."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
+    done = subprocess.run([sys.executable, "-c", USED_PROBE], capture_output=True, text=True, timeout=300, env=env)
+    assert done.returncode == 0, done.stderr
+    out = dict(line.split(" ", 1) for line in done.stdout.splitlines())
+    assert out["pairs"] == "['NamedTuple:DormandPrince']"
+    assert out["trains"] == "['none']"  # the spring alone: no valve-train variant
+    assert out["unused"] == "[]"  # no Bogacki-Shampine or Tsitouras kernel
