@@ -30,12 +30,25 @@ from springdyn.numerics import jit
 
 PACKAGE = Path(springdyn.__file__).resolve().parent
 
-MONITOR_PROBE = """
+#: The compiled right-hand side (equations.py) against its plain-Python source, at a time
+#: the cam lifts; prints whether they agree, then the kernel's cache hits and misses.
+RHS_PROBE = """
+import math
 import numpy as np
-from springdyn.valve.engine.monitor import new_monitor
-m = new_monitor(np.zeros(14), np.zeros((4, 4)), np.zeros(1, dtype=np.int64), np.full(6, np.inf), 0.0, None)
-s = new_monitor.stats
-print(m.best.shape[0], sum(s.cache_hits.values()), sum(s.cache_misses.values()))
+from springdyn.valve import Cam, ValveSpring
+from springdyn.valve.dynamics import prepare
+from springdyn.valve.engine.equations import chain_rhs, model_of, rhs_call, train_of
+from springdyn.valve.engine.layout import extra_layout
+setup = prepare(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)))
+omega = 314.0
+args = setup.args(omega)
+m, vt = model_of(args), train_of(args[9])
+got, want = np.zeros(extra_layout(m.masses.shape[0])["size"]), np.zeros(extra_layout(m.masses.shape[0])["size"])
+t = 0.1 * 2 * math.pi / omega
+rhs_call(t, setup.y0.copy(), m, omega, vt, np.zeros(setup.y0.size), got)
+chain_rhs(t, setup.y0.copy(), m, omega, vt, np.zeros(setup.y0.size), want)
+s = rhs_call.stats
+print(bool(np.allclose(got, want, rtol=1e-12, atol=0.0)), sum(s.cache_hits.values()), sum(s.cache_misses.values()))
 """
 
 
@@ -54,23 +67,27 @@ def _run(root: Path, code: str, env_extra: dict) -> subprocess.CompletedProcess:
 
 
 def test_an_edit_of_any_source_file_invalidates_the_cached_kernels(tmp_path):
-    """new_monitor (monitor.py) sizes its arrays by N_SIG of layout.py: after layout.py is
-    edited, the cached kernel must not run (numba's own stamp covers monitor.py only); an
-    edit of numerics/erk.py, which the engines call, invalidates it too."""
+    """The right-hand side (equations.py) writes its outputs at the offsets of layout.py:
+    after layout.py swaps two of them, the cached kernel must not run (numba's own stamp
+    covers equations.py only): the compiled code agrees with its plain-Python source
+    again, after a compilation.  An edit of numerics/erk.py, which the engines call,
+    invalidates it too."""
     root = _copy_package(tmp_path)
     env = {"NUMBA_CACHE_DIR": str(tmp_path / "cache")}
-    first = _run(root, MONITOR_PROBE, env).stdout.split()
-    assert first == ["5", "0", "1"]  # compiled
-    again = _run(root, MONITOR_PROBE, env).stdout.split()
-    assert again == ["5", "1", "0"]  # loaded from the cache
+    first = _run(root, RHS_PROBE, env).stdout.split()
+    assert first == ["True", "0", "1"]  # compiled
+    again = _run(root, RHS_PROBE, env).stdout.split()
+    assert again == ["True", "1", "0"]  # loaded from the cache
     layout = root / "springdyn" / "valve" / "engine" / "layout.py"
-    layout.write_text(layout.read_text().replace("N_SIG = 5\n", "N_SIG = 7\n"))
-    edited = _run(root, MONITOR_PROBE, env).stdout.split()
-    assert edited == ["7", "0", "1"]  # the new code runs
+    text = layout.read_text()
+    assert "X_LIFT = 0 " in text and "X_DLIFT = 1 " in text
+    layout.write_text(text.replace("X_LIFT = 0 ", "X_LIFT = 1 ").replace("X_DLIFT = 1 ", "X_DLIFT = 0 "))
+    edited = _run(root, RHS_PROBE, env).stdout.split()
+    assert edited == ["True", "0", "1"]  # the new code runs (a stale kernel would disagree)
     erk = root / "springdyn" / "numerics" / "erk.py"
     erk.write_text(erk.read_text() + "\n# an edit\n")
-    assert _run(root, MONITOR_PROBE, env).stdout.split() == ["7", "0", "1"]
-    assert _run(root, MONITOR_PROBE, env).stdout.split() == ["7", "1", "0"]
+    assert _run(root, RHS_PROBE, env).stdout.split() == ["True", "0", "1"]
+    assert _run(root, RHS_PROBE, env).stdout.split() == ["True", "1", "0"]
 
 
 def _kernel_modules():
@@ -128,8 +145,8 @@ def test_no_writable_cache_folder_compiles_in_memory_and_says_so_once(tmp_path):
             (d / "__pycache__").write_text("not a folder")  # numba's in-tree cache
     env = {"NUMBA_CACHE_DIR": str(blocker / "cache"), "XDG_CACHE_HOME": str(blocker / "xdg"),
            "HOME": str(blocker / "home")}
-    done = _run(root, MONITOR_PROBE, env)
-    assert done.stdout.split()[0] == "5"
+    done = _run(root, RHS_PROBE, env)
+    assert done.stdout.split()[0] == "True"
     lines = [ln for ln in done.stderr.splitlines() if ln.startswith("springdyn:")]
     assert len(lines) == 1 and "no writable compile cache folder" in lines[0], done.stderr
 
@@ -138,17 +155,17 @@ def test_unreadable_cache_files_are_dropped_and_compiled_again(tmp_path):
     root = _copy_package(tmp_path)
     cache = tmp_path / "cache"
     env = {"NUMBA_CACHE_DIR": str(cache)}
-    _run(root, MONITOR_PROBE, env)
+    _run(root, RHS_PROBE, env)
     files = list(cache.rglob("*.nb[ic]"))
     assert files
     for f in files:
         f.write_bytes(b"\x80\x04garbage, not a pickle")
-    done = _run(root, MONITOR_PROBE, env)
-    assert done.stdout.split() == ["5", "0", "1"]
+    done = _run(root, RHS_PROBE, env)
+    assert done.stdout.split() == ["True", "0", "1"]
     lines = [ln for ln in done.stderr.splitlines() if ln.startswith("springdyn:")]
     assert len(lines) == 1 and "could not be read" in lines[0], done.stderr
-    healed = _run(root, MONITOR_PROBE, env)  # the cache was written anew
-    assert healed.stdout.split() == ["5", "1", "0"] and "springdyn:" not in healed.stderr
+    healed = _run(root, RHS_PROBE, env)  # the cache was written anew
+    assert healed.stdout.split() == ["True", "1", "0"] and "springdyn:" not in healed.stderr
 
 
 def test_a_compilation_is_announced_once(capsys):
@@ -179,8 +196,8 @@ from springdyn.valve import Cam, ValveSpring, simulate
 from springdyn.numerics import erk
 from springdyn.valve.engine import loop
 simulate(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)), 3000.0, 2)
-print("pairs", sorted({type(sig[6]).__name__ + ":" + sig[6].instance_class.__name__ for sig in loop.run_speeds_loop.signatures}))
-print("trains", sorted({str(sig[5]) for sig in loop.run_speeds_loop.signatures}))
+print("variants", sorted(k.py_func.__qualname__ for k in loop._VARIANTS.values() if k.signatures))
+print("trains", sorted({str(sig[6]) for k in loop._VARIANTS.values() for sig in k.signatures}))
 print("unused", [k.py_func.__name__ for k in (erk.stage_state, erk.error_norm, erk.tsit5_stage_state,
                                               erk.tsit5_error_norm, erk.dense_coefficients) if k.signatures])
 """
@@ -194,6 +211,6 @@ def test_a_type_c_run_compiles_only_its_pair_and_model(tmp_path):
     done = subprocess.run([sys.executable, "-c", USED_PROBE], capture_output=True, text=True, timeout=300, env=env)
     assert done.returncode == 0, done.stderr
     out = dict(line.split(" ", 1) for line in done.stdout.splitlines())
-    assert out["pairs"] == "['NamedTuple:DormandPrince']"
+    assert out["variants"] == "['integrate_loop_dopri5_spring']"
     assert out["trains"] == "['none']"  # the spring alone: no valve-train variant
     assert out["unused"] == "[]"  # no Bogacki-Shampine or Tsitouras kernel

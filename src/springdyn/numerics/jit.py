@@ -273,10 +273,11 @@ class _NoticeListener(_ev.Listener):
         self.fired = False
 
     def on_start(self, event):
+        # listeners are process-wide: threads that start the same engine together hear each
+        # other's compilation, and the line is said once
         if not self.fired:
             self.fired = True
-            if _state["notices"]:
-                print(f"springdyn: {self.text}", file=sys.stderr, flush=True)
+            _say_once("compiling: " + self.text, self.text)
 
     def on_end(self, event):
         pass

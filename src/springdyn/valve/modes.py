@@ -8,9 +8,12 @@ with the tangent stiffnesses of its "Nonlinear characteristics".
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg
 
 __all__ = ["chain_stiffness_matrix", "chain_frequencies", "chain_eigenvalues"]
+
+#: Largest chain [-] solved as a dense matrix (LAPACK's symmetric solver; above it, the
+#: tridiagonal solver of SciPy, which selects the lowest modes).
+_DENSE_MAX = 64
 
 
 def chain_stiffness_matrix(k: np.ndarray) -> np.ndarray:
@@ -38,7 +41,7 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
     """Natural frequencies [Hz], ascending, of the chain with both ends fixed.
 
     Solves ``K phi = w^2 M phi``: the mass-normalised matrix ``M^-1/2 K M^-1/2`` is
-    symmetric tridiagonal (LAPACK's tridiagonal eigensolver).
+    symmetric tridiagonal (LAPACK's symmetric eigensolver; the tridiagonal one for long chains).
     At free length the one-step chain's first mode is close to f1 of [MMS], "Natural
     Frequency for free length" (the check of docs/valve.md, "Modes").
 
@@ -55,10 +58,15 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
     k = np.asarray(k, dtype=float)
     d = (k[:-1] + k[1:]) / m
     e = -k[1:-1] / np.sqrt(m[:-1] * m[1:])
-    if count is None or count >= m.size:
-        w2 = scipy.linalg.eigh_tridiagonal(d, e, eigvals_only=True)
+    if m.size <= _DENSE_MAX:  # small chains (Type C): NumPy's dense solver, no SciPy import
+        w2 = np.linalg.eigvalsh(np.diag(d) + np.diag(e, 1) + np.diag(e, -1))[:count]
     else:
-        w2 = scipy.linalg.eigh_tridiagonal(d, e, eigvals_only=True, select="i", select_range=(0, count - 1))
+        import scipy.linalg  # (here: it costs a tenth of a second of every command's start)
+
+        if count is None or count >= m.size:
+            w2 = scipy.linalg.eigh_tridiagonal(d, e, eigvals_only=True)
+        else:
+            w2 = scipy.linalg.eigh_tridiagonal(d, e, eigvals_only=True, select="i", select_range=(0, count - 1))
     return np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
 
 

@@ -11,7 +11,7 @@ from ...numerics import erk as _ig
 from ...numerics.jit import call, compiling
 from .equations import model_of, train_of
 from .layout import MAX_EVENTS, N_EXT, extra_layout
-from .loop import Tolerances, integrate_loop, run_speeds_loop, workspace
+from .loop import Tolerances, integrate_kernel, run_speeds_loop, workspace
 from .monitor import new_monitor
 from .reference import atol_vector
 
@@ -198,10 +198,10 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
     size = extra_layout(m.masses.shape[0])["size"]
     gaps = np.full(m.laws.shape[0], np.inf)
     tol = Tolerances(float(rtol), atol_vector(len(y0), atol, atol_velocity), float(h_max), int(max_steps))
-    off = _run(new_monitor, vt, method, np.empty(0), np.empty((0, 4)), np.zeros(1, dtype=np.int64), gaps, 0.0, vt)
-    ws = _run(workspace, vt, method, y0.size, size, tab.c.shape[0])
+    off = new_monitor(np.empty(0), np.empty((0, 4)), np.zeros(1, dtype=np.int64), gaps, 0.0, vt)
+    ws = workspace(y0.size, size, tab.c.shape[0])
     status, t, steps, rejected = _run(
-        integrate_loop, vt, method, np.array(y0, dtype=float), float(t_out[0]), float(t_out[-1]), t_out, m,
+        integrate_kernel(tab, vt), vt, method, np.array(y0, dtype=float), float(t_out[0]), float(t_out[-1]), t_out, m,
         float(args[8]), vt, tab, tol, np.array([0.0, 1e-4, 0.0]), _angles(stops), out, np.empty((0, size)),
         np.empty(0), off, ws)
     return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))

@@ -19,13 +19,20 @@ from typing import NamedTuple
 
 import numpy as np
 
+import threading
+
 from ...numerics import erk
-from ...numerics.jit import kernel
+from ...numerics.jit import kernel, rebind
 from .equations import FASTMATH, rhs_call
 from .monitor import finish_monitor, monitor_step, new_monitor
-from .stepping import attempt_step, dense_coefficients
+from .stepping import step_kernels
 
-__all__ = ["Tolerances", "Workspace", "workspace", "integrate_loop", "run_speeds_loop", "stop_times"]
+__all__ = ["Tolerances", "Workspace", "workspace", "integrate_loop", "integrate_kernel", "run_speeds_loop",
+           "stop_times"]
+
+#: The step and dense-output functions :func:`integrate_loop` calls: bound, per pair and
+#: model, to inlined twins of :mod:`.stepping` by :func:`integrate_kernel`.
+attempt_step = dense_coefficients = None
 
 
 class Tolerances(NamedTuple):
@@ -53,7 +60,6 @@ class Workspace(NamedTuple):
     no_extra: np.ndarray  #: the empty array: no extra outputs (0,)
 
 
-@kernel
 def workspace(n, size, stages):
     """A :class:`Workspace` for a state of ``n`` [-], extra outputs of ``size`` [-] and a pair of
     ``stages`` [-] (its ``c.shape[0]``)."""
@@ -61,7 +67,6 @@ def workspace(n, size, stages):
                      np.empty(n), np.empty(n), np.empty(size), np.empty(size), np.empty(0))
 
 
-@kernel(nogil=True, fastmath=FASTMATH, _nrt=False)
 def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out, xout, fout, mon, ws):
     """Adaptive embedded Runge-Kutta loop from ``t0`` to ``t_end``.
 
@@ -199,71 +204,91 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
     return 0, t, nsteps, nrejected
 
 
-@kernel(inline="always")
+_METHOD_OF = {type(tab): name for name, tab in erk.TABLEAUS.items()}
+_VARIANTS: dict = {}
+_VARIANTS_LOCK = threading.Lock()
+
+
+def integrate_kernel(tab, vt):
+    """The compiled :func:`integrate_loop` for the pair ``tab`` and the model of ``vt``.
+
+    One variant per pair and model (``vt`` None: the spring alone; else the valve train),
+    each with its own step and right-hand side inlined (:func:`.stepping.step_kernels`) and
+    its own cache entry; made on first use, so a run compiles its own variant only.
+
+    Parameters
+    ----------
+    tab : DormandPrince, BogackiShampine or Tsitouras
+        The pair's tableau (:data:`springdyn.numerics.erk.TABLEAUS`).
+    vt : None or ndarray
+        The valve train's parameters (None: the spring alone).
+
+    Returns
+    -------
+    numba dispatcher
+        ``integrate_loop`` compiled with ``nogil``, :data:`.equations.FASTMATH` and without
+        numba's reference counting.
+    """
+    key = (_METHOD_OF[type(tab)], vt is not None)
+    with _VARIANTS_LOCK:
+        if key not in _VARIANTS:
+            step, dense = step_kernels(*key)
+            fn = rebind(integrate_loop, dict(globals(), attempt_step=step, dense_coefficients=dense))
+            fn.__qualname__ = f"integrate_loop_{key[0]}_{'train' if key[1] else 'spring'}"
+            _VARIANTS[key] = kernel(fn, nogil=True, fastmath=FASTMATH, _nrt=False)
+        return _VARIANTS[key]
+
+
 def stop_times(stop_angles, omega, r0, r1):
     """The times [s] of the stop angles [rad] in revolutions ``r0`` to ``r1 - 1`` at ``omega`` [rad/s]."""
-    nb = stop_angles.shape[0]
-    out = np.empty(max(r1 - r0, 0) * nb)
-    for r in range(r0, r1):
-        for b in range(nb):
-            out[(r - r0) * nb + b] = (2.0 * np.pi * r + stop_angles[b]) / omega
-    return out
+    r = np.arange(r0, max(r1, r0))
+    return ((2.0 * np.pi * r[:, None] + stop_angles[None, :]) / omega).ravel()
 
 
-@kernel(nogil=True)
 def run_speeds_loop(y0, omegas, revolutions, points, m, vt, tab, tol, stop_angles, gaps, extra_out, prev_out,
                     status, t_end, steps, ext, events, nev):
     """Every speed of ``omegas`` [rad/s] from ``y0``: ``revolutions`` revolutions, the last
     sampled at ``points`` per revolution into ``extra_out`` and monitored into ``ext``,
     ``events``, ``nev``; the retainer force over the one before into ``prev_out``.  ``tol.h_max``
-    is a fraction of a revolution here.  A failed speed has NaN outputs (no partial ones)."""
+    is a fraction of a revolution here.  A failed speed has NaN outputs (no partial ones).
+
+    Plain Python around two calls of :func:`integrate_loop` per speed, which release the GIL
+    (a compiled loop over the speeds would cost a second and a half of compilation for a few
+    microseconds a speed)."""
     n = y0.shape[0]
-    y = np.empty(n)
-    ctl = np.empty(3)
-    t_rev = np.empty(points)
     no_states = np.empty((0, n))
     no_extra = np.empty((0, extra_out.shape[2]))
     no_force = np.empty(0)
     off = new_monitor(np.empty(0), events[0], nev[0], gaps, 0.0, vt)
     ws = workspace(n, extra_out.shape[2], tab.c.shape[0])
-    for i in range(omegas.shape[0]):
-        omega = omegas[i]
+    integrate = integrate_kernel(tab, vt)
+    frac = np.arange(points) / points
+    for i, omega in enumerate(omegas):
+        omega = float(omega)
         period = 2.0 * np.pi / omega
         tol_i = Tolerances(tol.rtol, tol.atol, period * tol.h_max, tol.max_steps)
-        for j in range(n):
-            y[j] = y0[j]
-        ctl[0] = 0.0
-        ctl[1] = 1e-4
-        ctl[2] = 0.0
+        y = y0.copy()
+        ctl = np.array([0.0, 1e-4, 0.0])
         t1 = (revolutions - 1) * period
-        st = 0
-        t = 0.0
-        ns = 0
-        nr = 0
+        st, t, ns, nr = 0, 0.0, 0, 0
         if revolutions > 1:
             # the revolutions before the last: the retainer force over the one before the
             # last only (for the periodicity check)
-            for j in range(points):
-                t_rev[j] = (revolutions - 2 + j / points) * period
-            st, t, ns, nr = integrate_loop(y, 0.0, t1, t_rev, m, omega, vt, tab, tol_i, ctl,
-                                           stop_times(stop_angles, omega, 0, revolutions - 1), no_states, no_extra,
-                                           prev_out[i], off, ws)
+            st, t, ns, nr = integrate(y, 0.0, t1, (revolutions - 2 + frac) * period, m, omega, vt, tab, tol_i,
+                                           ctl, stop_times(stop_angles, omega, 0, revolutions - 1), no_states,
+                                           no_extra, prev_out[i], off, ws)
         if st == 0:
             # the last revolution: every output, monitored
-            for j in range(points):
-                t_rev[j] = (revolutions - 1 + j / points) * period
             mon = new_monitor(ext[i], events[i], nev[i], gaps, t1, vt)
             tol_l = Tolerances(tol.rtol, tol.atol, tol_i.h_max, tol.max_steps - ns - nr)
-            st, t, ns2, nr2 = integrate_loop(y, t1, revolutions * period, t_rev, m, omega, vt, tab, tol_l, ctl,
-                                             stop_times(stop_angles, omega, revolutions - 1, revolutions), no_states,
-                                             extra_out[i], no_force, mon, ws)
+            st, t, ns2, _ = integrate(y, t1, revolutions * period, (revolutions - 1 + frac) * period, m, omega,
+                                           vt, tab, tol_l, ctl, stop_times(stop_angles, omega, revolutions - 1,
+                                                                            revolutions), no_states, extra_out[i],
+                                           no_force, mon, ws)
             ns += ns2
         status[i] = st
         t_end[i] = t
         steps[i] = ns
         if st != 0:  # no partial outputs
-            for j in range(points):
-                for c in range(extra_out.shape[2]):
-                    extra_out[i, j, c] = np.nan
-            for j in range(prev_out.shape[1]):
-                prev_out[i, j] = np.nan
+            extra_out[i] = np.nan
+            prev_out[i] = np.nan

@@ -55,9 +55,10 @@ class Monitor(NamedTuple):
     sc: np.ndarray        #: scalars SC_*
 
 
-@kernel
 def new_monitor(ext, events, nev, gaps, t0, vt):
     """A fresh :class:`Monitor` writing into ``ext``, ``events`` and ``nev`` for a window from ``t0`` [s].
+
+    Plain Python (allocation only: compiling it would cost more than it ever runs).
 
     Parameters
     ----------
@@ -77,22 +78,12 @@ def new_monitor(ext, events, nev, gaps, t0, vt):
     nch = N_FIXED_CHANNELS + gaps.shape[0]
     sc = np.zeros(N_SC)
     sc[SC_OPEN_LIFT] = np.inf
-    if vt is not None:
-        if vt[VT_ENABLED] > 0.5:
-            sc[SC_OPEN_LIFT] = vt[VT_LOBE_LASH] + 1e-6
+    if vt is not None and vt[VT_ENABLED] > 0.5:
+        sc[SC_OPEN_LIFT] = vt[VT_LOBE_LASH] + 1e-6
     sc[SC_T0] = t0
-    best = np.empty(N_SIG)
-    slast = np.empty(N_SIG)
-    for sg in range(N_SIG):
-        best[sg] = -np.inf
-        slast[sg] = -np.inf
-    open_row = np.empty(nch, dtype=np.int64)
-    for c in range(nch):
-        open_row[c] = -1
-    for i in range(ext.shape[0]):
-        ext[i] = 0.0
-    return Monitor(ext, events, nev, gaps, best, np.zeros(N_SIG), np.empty((3, N_SIG)), slast, np.empty(nch),
-                   np.empty(nch), open_row, sc)
+    ext[:] = 0.0
+    return Monitor(ext, events, nev, gaps, np.full(N_SIG, -np.inf), np.zeros(N_SIG), np.empty((3, N_SIG)),
+                   np.full(N_SIG, -np.inf), np.empty(nch), np.empty(nch), np.full(nch, -1, dtype=np.int64), sc)
 
 
 @kernel(inline="always")

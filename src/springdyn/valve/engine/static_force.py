@@ -40,7 +40,15 @@ def series_force_compiled(total_compression, laws, out, table_x, table_f):
             continue
         force = dl * k_lin
         if nt > 1 and table_x[0] <= dl < table_x[nt - 1]:
-            k = np.searchsorted(table_x, dl, side="right") - 1
+            lo = 0  # bisection for table_x[lo] <= dl < table_x[lo + 1] (np.searchsorted
+            hi = nt - 1  # costs a quarter of this kernel's compilation)
+            while hi - lo > 1:
+                mid = (lo + hi) // 2
+                if table_x[mid] <= dl:
+                    lo = mid
+                else:
+                    hi = mid
+            k = lo
             w = (dl - table_x[k]) / (table_x[k + 1] - table_x[k])
             force = table_f[k] + w * (table_f[k + 1] - table_f[k])
         for _ in range(100):

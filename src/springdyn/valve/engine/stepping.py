@@ -1,11 +1,12 @@
-"""One step of the embedded Runge-Kutta pair on the valve chain: stages, error, dense output.
+"""One step of an embedded Runge-Kutta pair on the valve chain: stages, error, dense output.
 
-:func:`attempt_step` and :func:`dense_coefficients` are typed on the pair's tableau
-(:data:`springdyn.numerics.erk.TABLEAUS`): numba sees the tableau's class when it compiles
-the integration loop and types the chosen pair's code only, so a Type C run compiles no
-Bogacki-Shampine or Tsitouras kernel.  :func:`attempt_step` holds the one hot call site of
-the right-hand side (:data:`.equations.spring_rhs_hot` or :data:`.equations.train_rhs_hot`,
-inlined), for every stage.
+For each pair of :data:`springdyn.numerics.erk.TABLEAUS` a step function (``<pair>_step``:
+the stages, each with the right-hand side ``rhs_hot`` inlined, and the scaled error norm)
+and a dense-output function (``<pair>_dense``).  They are plain Python: :func:`step_kernels`
+makes their compiled twins for one pair and one right-hand side (the spring alone or the
+valve train, :mod:`.equations`), inlined into the integration loop before typing
+(:func:`springdyn.numerics.jit.twins`).  So a loop variant types the code of its own pair
+and equations only: a Type C run compiles no Bogacki-Shampine, Tsitouras or valve-train code.
 
 - Dormand-Prince 5(4) and Tsitouras 5(4): the fused kernels of :mod:`springdyn.numerics.erk`.
 - Bogacki-Shampine 3(2): the generic kernels on its arrays.
@@ -13,23 +14,22 @@ inlined), for every stage.
 
 from __future__ import annotations
 
-from numba import types
-from numba.extending import overload
-
 from ...numerics import erk
+from ...numerics.jit import twins
 from .equations import FASTMATH, spring_rhs_hot, train_rhs_hot
 
-__all__ = ["attempt_step", "dense_coefficients"]
+__all__ = ["dopri5_step", "dopri5_dense", "tsit5_step", "tsit5_dense", "bs3_step", "bs3_dense", "step_kernels"]
+
+#: The right-hand side the step functions call (rebound to a compiled twin by :func:`step_kernels`).
+rhs_hot = None
 
 
-def attempt_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
-    """Stages of a step of size ``h`` from ``(t, y)``; returns the scaled error norm [-].
-
-    Compiled code only (an implementation per tableau class).
+def dopri5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
+    """Stages of a Dormand-Prince step of size ``h`` from ``(t, y)``; returns the scaled error norm [-].
 
     Parameters
     ----------
-    tab : DormandPrince, BogackiShampine or Tsitouras
+    tab : DormandPrince
         The pair's tableau [-].
     t : float
         Start of the step [s].
@@ -58,15 +58,51 @@ def attempt_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no
     work : ndarray
         Scratch of the state's size [m, m/s].
     """
-    raise NotImplementedError("attempt_step is compiled code: call it from a kernel")
+    for stage in range(1, 7):
+        erk.dopri5_stage_state(y, h, k, stage, ytmp)
+        rhs_hot(t + tab.c[stage] * h, ytmp, m, omega, vt, k[stage], last_extra if stage == 6 else no_extra)
+    return erk.dopri5_error_norm(y, ytmp, k, h, rtol, atol)
 
 
-def dense_coefficients(tab, y, y_new, k, h, rc):
-    """The dense-output coefficients of an accepted step (compiled code only).
+def tsit5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
+    """Stages of a Tsitouras step; returns the scaled error norm [-] (parameters of :func:`dopri5_step`).
 
     Parameters
     ----------
-    tab : DormandPrince, BogackiShampine or Tsitouras
+    tab : Tsitouras
+        The pair's tableau [-].
+    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work
+        As for :func:`dopri5_step` [s, m, m/s, ...].
+    """
+    for stage in range(1, 7):
+        erk.tsit5_stage_state(y, h, k, stage, ytmp)
+        rhs_hot(t + tab.c[stage] * h, ytmp, m, omega, vt, k[stage], last_extra if stage == 6 else no_extra)
+    return erk.tsit5_error_norm(y, ytmp, k, h, rtol, atol)
+
+
+def bs3_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
+    """Stages of a Bogacki-Shampine step; returns the scaled error norm [-] (parameters of :func:`dopri5_step`).
+
+    Parameters
+    ----------
+    tab : BogackiShampine
+        The pair's tableau [-].
+    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work
+        As for :func:`dopri5_step` [s, m, m/s, ...].
+    """
+    last = tab.c.shape[0] - 1
+    for stage in range(1, last + 1):
+        erk.stage_state(y, h, k, stage, ytmp, tab.a)
+        rhs_hot(t + tab.c[stage] * h, ytmp, m, omega, vt, k[stage], last_extra if stage == last else no_extra)
+    return erk.error_norm(y, ytmp, k, h, rtol, atol, work, tab.e)
+
+
+def dopri5_dense(tab, y, y_new, k, h, rc):
+    """The dense-output coefficients of an accepted Dormand-Prince step.
+
+    Parameters
+    ----------
+    tab : DormandPrince
         The pair's tableau [-].
     y, y_new : ndarray
         State at the step's start and end [m, m/s].
@@ -77,57 +113,50 @@ def dense_coefficients(tab, y, y_new, k, h, rc):
     rc : ndarray (5, n)
         Receives the coefficients [m, m/s] (:func:`springdyn.numerics.erk.dense_eval`).
     """
-    raise NotImplementedError("dense_coefficients is compiled code: call it from a kernel")
+    erk.dopri5_dense_coefficients(y, y_new, k, h, rc)
 
 
-def _class(tab):
-    return getattr(tab, "instance_class", None)
+def tsit5_dense(tab, y, y_new, k, h, rc):
+    """The dense-output coefficients of an accepted Tsitouras step (parameters of :func:`dopri5_dense`).
+
+    Parameters
+    ----------
+    tab : Tsitouras
+        The pair's tableau [-].
+    y, y_new, k, h, rc
+        As for :func:`dopri5_dense` [m, m/s, s].
+    """
+    erk.tsit5_dense_coefficients(y, k, h, rc)
 
 
-@overload(attempt_step, jit_options=dict(fastmath=FASTMATH, error_model="numpy", _nrt=False))
-def _attempt_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
-    cls = _class(tab)
-    # the spring alone (vt None) or the valve train: chosen here, by type, so that each
-    # variant types the equations it runs only
-    rhs_hot = spring_rhs_hot if isinstance(vt, types.NoneType) else train_rhs_hot
-    if cls is erk.DormandPrince:
-        def dopri5(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
-            for stage in range(1, 7):
-                erk.dopri5_stage_state(y, h, k, stage, ytmp)
-                rhs_hot(t + tab.c[stage] * h, ytmp, m, omega, vt, k[stage], last_extra if stage == 6 else no_extra)
-            return erk.dopri5_error_norm(y, ytmp, k, h, rtol, atol)
-        return dopri5
-    if cls is erk.Tsitouras:
-        def tsit5(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
-            for stage in range(1, 7):
-                erk.tsit5_stage_state(y, h, k, stage, ytmp)
-                rhs_hot(t + tab.c[stage] * h, ytmp, m, omega, vt, k[stage], last_extra if stage == 6 else no_extra)
-            return erk.tsit5_error_norm(y, ytmp, k, h, rtol, atol)
-        return tsit5
-    if cls is erk.BogackiShampine:
-        def bs3(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
-            last = tab.c.shape[0] - 1
-            for stage in range(1, last + 1):
-                erk.stage_state(y, h, k, stage, ytmp, tab.a)
-                rhs_hot(t + tab.c[stage] * h, ytmp, m, omega, vt, k[stage], last_extra if stage == last else no_extra)
-            return erk.error_norm(y, ytmp, k, h, rtol, atol, work, tab.e)
-        return bs3
-    return None
+def bs3_dense(tab, y, y_new, k, h, rc):
+    """The dense-output coefficients of an accepted Bogacki-Shampine step (parameters of :func:`dopri5_dense`).
+
+    Parameters
+    ----------
+    tab : BogackiShampine
+        The pair's tableau [-].
+    y, y_new, k, h, rc
+        As for :func:`dopri5_dense` [m, m/s, s].
+    """
+    erk.dense_coefficients(y, y_new, k, h, rc, tab.d)
 
 
-@overload(dense_coefficients, jit_options=dict(error_model="numpy", _nrt=False))
-def _dense_coefficients(tab, y, y_new, k, h, rc):
-    cls = _class(tab)
-    if cls is erk.DormandPrince:
-        def dopri5(tab, y, y_new, k, h, rc):
-            erk.dopri5_dense_coefficients(y, y_new, k, h, rc)
-        return dopri5
-    if cls is erk.Tsitouras:
-        def tsit5(tab, y, y_new, k, h, rc):
-            erk.tsit5_dense_coefficients(y, k, h, rc)
-        return tsit5
-    if cls is erk.BogackiShampine:
-        def bs3(tab, y, y_new, k, h, rc):
-            erk.dense_coefficients(y, y_new, k, h, rc, tab.d)
-        return bs3
-    return None
+def step_kernels(method: str, train: bool) -> tuple:
+    """The compiled twins (inlined where called) of the step and dense-output functions of a pair.
+
+    Parameters
+    ----------
+    method : {"dopri5", "tsit5", "bs3"}
+        The pair (:data:`springdyn.numerics.erk.TABLEAUS`).
+    train : bool
+        The valve train's right-hand side (else the spring alone's).
+
+    Returns
+    -------
+    attempt_step, dense_coefficients
+        Twins of ``<method>_step`` and ``<method>_dense``.
+    """
+    namespace = dict(globals(), rhs_hot=train_rhs_hot if train else spring_rhs_hot)
+    made = twins(namespace, [f"{method}_step", f"{method}_dense"], fastmath=FASTMATH)
+    return made[f"{method}_step"], made[f"{method}_dense"]
