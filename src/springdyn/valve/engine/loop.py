@@ -2,15 +2,15 @@
 
 - :func:`integrate_loop`: one run from ``t0`` to ``t_end`` of the chain (and valve train)
   with the pair of ``tab``; outputs at given times from the dense output, optionally
-  monitored (:mod:`.monitor`).  One compiled variant serves every combination of outputs
-  and monitor: those are runtime choices (empty arrays for none).
-- :func:`run_speeds_loop`: many speeds in one call (the GIL released), each from the same
-  initial state: the revolutions before the last for the retainer force of the one before
-  (periodicity), then the last one with every output, monitored.
-
-What numba specialises on, and so compiles separately: the pair's tableau class (only the
-pair a run uses is compiled), and ``vt`` None (the spring alone: no valve-train code)
-against an array.
+  monitored (:mod:`.monitor`).  Outputs and monitor are runtime choices (empty arrays for
+  none), so one compiled variant serves them all.
+- :func:`integrate_kernel`: that loop compiled for one pair and one model (the spring
+  alone, or the valve train), with the pair's step and the model's right-hand side
+  inlined (:mod:`.stepping`): the only compiled variants, made on first use.
+- :func:`run_speeds_loop`: many speeds, each from the same initial state: the revolutions
+  before the last for the retainer force of the one before (periodicity), then the last
+  one with every output, monitored.  Plain Python around the compiled loop, which releases
+  the GIL (so threads run speeds in parallel).
 """
 
 from __future__ import annotations
