@@ -61,8 +61,17 @@ class Workspace(NamedTuple):
 
 
 def workspace(n, size, stages):
-    """A :class:`Workspace` for a state of ``n`` [-], extra outputs of ``size`` [-] and a pair of
-    ``stages`` [-] (its ``c.shape[0]``)."""
+    """A :class:`Workspace` for a state of ``n``, extra outputs of ``size`` and a pair of ``stages``.
+
+    Parameters
+    ----------
+    n : int
+        State size [-].
+    size : int
+        Extra outputs per sample [-] (:func:`.layout.extra_layout`).
+    stages : int
+        Stages of the pair [-] (its ``c.shape[0]``).
+    """
     return Workspace(np.empty((stages, n)), np.empty(n), np.empty((5, n)), np.empty((5, n)), np.empty(n),
                      np.empty(n), np.empty(n), np.empty(size), np.empty(size), np.empty(0))
 
@@ -86,6 +95,36 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
     It allocates nothing and is compiled without numba's reference counting (``_nrt=False``,
     like every kernel it calls): the atomic increments and decrements on each array passed
     to a callee cost as much as the monitor's work.
+
+    Parameters
+    ----------
+    y : ndarray
+        State at ``t0`` [m, m/s]; receives the state reached.
+    t0, t_end : float
+        Start and end [s].
+    t_out : ndarray
+        Output times [s], ascending.
+    m : EngineModel
+        The chain and cam arrays [kg, m, N, N s/m, rad].
+    omega : float
+        Cam speed [rad/s].
+    vt : None or ndarray
+        The valve train [kg, N/m, N s/m, m, -] (None: the spring alone).
+    tab : DormandPrince, BogackiShampine or Tsitouras
+        The pair's tableau [-].
+    tol : Tolerances
+        Step control [-, m, m/s, s].
+    ctl : ndarray (3,)
+        Step-size control carried across calls [s, -, -].
+    stops : ndarray
+        Times [s] a step lands on, ascending.
+    out, xout, fout : ndarray
+        Receive the states [m, m/s], extra outputs [N, m, m/s] and retainer force [N] at
+        ``t_out`` (empty: none).
+    mon : Monitor
+        The monitor's arrays (empty ``mon.ext``: not monitored) [N, s, m/s].
+    ws : Workspace
+        Scratch arrays [m, m/s].
 
     Returns
     -------
@@ -221,7 +260,7 @@ def integrate_kernel(tab, vt):
     tab : DormandPrince, BogackiShampine or Tsitouras
         The pair's tableau (:data:`springdyn.numerics.erk.TABLEAUS`).
     vt : None or ndarray
-        The valve train's parameters (None: the spring alone).
+        The valve train's parameters [kg, N/m, N s/m, m, -] (None: the spring alone).
 
     Returns
     -------
@@ -240,7 +279,17 @@ def integrate_kernel(tab, vt):
 
 
 def stop_times(stop_angles, omega, r0, r1):
-    """The times [s] of the stop angles [rad] in revolutions ``r0`` to ``r1 - 1`` at ``omega`` [rad/s]."""
+    """The times [s] of the stop angles in revolutions ``r0`` to ``r1 - 1``.
+
+    Parameters
+    ----------
+    stop_angles : ndarray
+        Cam angles [rad] in [0, 2 pi), ascending.
+    omega : float
+        Cam speed [rad/s].
+    r0, r1 : int
+        First revolution and the one after the last [-].
+    """
     r = np.arange(r0, max(r1, r0))
     return ((2.0 * np.pi * r[:, None] + stop_angles[None, :]) / omega).ravel()
 
@@ -254,7 +303,36 @@ def run_speeds_loop(y0, omegas, revolutions, points, m, vt, tab, tol, stop_angle
 
     Plain Python around two calls of :func:`integrate_loop` per speed, which release the GIL
     (a compiled loop over the speeds would cost a second and a half of compilation for a few
-    microseconds a speed)."""
+    microseconds a speed).
+
+    Parameters
+    ----------
+    y0 : ndarray
+        Initial state [m, m/s].
+    omegas : ndarray
+        Cam speeds [rad/s].
+    revolutions, points : int
+        Revolutions per speed and output samples per revolution [-].
+    m : EngineModel
+        The chain and cam arrays [kg, m, N, N s/m, rad].
+    vt : None or ndarray
+        The valve train [kg, N/m, N s/m, m, -] (None: the spring alone).
+    tab : DormandPrince, BogackiShampine or Tsitouras
+        The pair's tableau [-].
+    tol : Tolerances
+        Step control; ``h_max`` as a fraction of a revolution [-, m, m/s, -].
+    stop_angles : ndarray
+        Cam angles [rad] a step lands on in every revolution.
+    gaps : ndarray
+        Coil-contact compressions [m] (``inf``: never).
+    extra_out, prev_out : ndarray
+        Receive the last revolution's extra outputs [N, m, m/s] and the retainer force [N]
+        over the one before.
+    status, t_end, steps : ndarray
+        Receive per speed the status [-], time reached [s] and steps [-].
+    ext, events, nev : ndarray
+        Receive the monitor's extremes, events and event counts [N, s, m/s, -].
+    """
     n = y0.shape[0]
     no_states = np.empty((0, n))
     no_extra = np.empty((0, extra_out.shape[2]))

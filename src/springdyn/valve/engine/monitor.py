@@ -63,17 +63,17 @@ def new_monitor(ext, events, nev, gaps, t0, vt):
     Parameters
     ----------
     ext : ndarray (N_EXT,)
-        Receives the extremes (zeroed here); empty for no monitor.
+        Receives the extremes [N, s, m/s, -] (zeroed here); empty for no monitor.
     events : ndarray (rows, 4)
-        Receives the events.
+        Receives the events [-, -, s, s or m/s].
     nev : ndarray (1,) of int
-        Receives the number of events written.
+        Receives the number of events written [-].
     gaps : ndarray (N + 1,)
         Coil-contact compressions [m] (``inf``: never).
     t0 : float
         Start of the monitored window [s].
     vt : ndarray or None
-        The valve train's parameters (None: the spring alone).
+        The valve train's parameters [kg, N/m, N s/m, m, -] (None: the spring alone).
     """
     nch = N_FIXED_CHANNELS + gaps.shape[0]
     sc = np.zeros(N_SC)

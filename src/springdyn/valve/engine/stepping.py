@@ -71,8 +71,9 @@ def tsit5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_e
     ----------
     tab : Tsitouras
         The pair's tableau [-].
-    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work
-        As for :func:`dopri5_step` [s, m, m/s, ...].
+    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work : as for :func:`dopri5_step`
+        Time [s], state [m, m/s], step [s], stages, new state, model, speed [rad/s], train,
+        tolerances [-, m, m/s], extra outputs, the empty array, scratch.
     """
     for stage in range(1, 7):
         erk.tsit5_stage_state(y, h, k, stage, ytmp)
@@ -87,8 +88,9 @@ def bs3_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_ext
     ----------
     tab : BogackiShampine
         The pair's tableau [-].
-    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work
-        As for :func:`dopri5_step` [s, m, m/s, ...].
+    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work : as for :func:`dopri5_step`
+        Time [s], state [m, m/s], step [s], stages, new state, model, speed [rad/s], train,
+        tolerances [-, m, m/s], extra outputs, the empty array, scratch.
     """
     last = tab.c.shape[0] - 1
     for stage in range(1, last + 1):
@@ -123,8 +125,8 @@ def tsit5_dense(tab, y, y_new, k, h, rc):
     ----------
     tab : Tsitouras
         The pair's tableau [-].
-    y, y_new, k, h, rc
-        As for :func:`dopri5_dense` [m, m/s, s].
+    y, y_new, k, h, rc : as for :func:`dopri5_dense`
+        States [m, m/s], stage derivatives, step [s], coefficients.
     """
     erk.tsit5_dense_coefficients(y, k, h, rc)
 
@@ -136,8 +138,8 @@ def bs3_dense(tab, y, y_new, k, h, rc):
     ----------
     tab : BogackiShampine
         The pair's tableau [-].
-    y, y_new, k, h, rc
-        As for :func:`dopri5_dense` [m, m/s, s].
+    y, y_new, k, h, rc : as for :func:`dopri5_dense`
+        States [m, m/s], stage derivatives, step [s], coefficients.
     """
     erk.dense_coefficients(y, y_new, k, h, rc, tab.d)
 
