@@ -105,3 +105,30 @@ def test_every_valve_command_takes_the_model_option(capsys):
     assert code == 0
     code, out, err = run(capsys, "valve", "params", ONE, "--model", "nonsense")
     assert code == 2 and "--model" in err
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("quiet", [False, True])
+def test_a_compiling_command_says_so_in_one_line_unless_quiet(tmp_path, quiet):
+    """Issue 23: with an empty compile cache the first `valve simulate` prints one line on
+    stderr while its engine compiles (what, about how long, once per machine), none under
+    --quiet; the result on stdout is the same."""
+    import os
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
+    cam = str(resources.files("springdyn.data") / "valve_cam_345.toml")
+    argv = [sys.executable, "-c", "import sys; from springdyn.app.cli.main import main; sys.exit(main())",
+            "valve", "simulate", ONE, "--cam", cam, "--cam-rpm", "3000"] + (["--quiet"] if quiet else [])
+    done = subprocess.run(argv, capture_output=True, text=True, env=env, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "retainer force" in done.stdout
+    notices = [ln for ln in done.stderr.splitlines() if ln.startswith("springdyn:")]
+    if quiet:
+        assert notices == []
+    else:
+        assert len(notices) == 1, done.stderr
+        assert "compiling the valve engine (spring alone, Dormand-Prince 5(4))" in notices[0]
+        assert "once per machine" in notices[0]

@@ -42,7 +42,7 @@ import numba
 from numba.core import caching as _nc
 from numba.core import event as _ev
 
-__all__ = ["kernel", "twins", "rebind", "call", "source_group", "group_stamp", "compiling", "notices", "KERNELS"]
+__all__ = ["kernel", "twins", "rebind", "call", "source_group", "group_stamp", "compiling", "notices"]
 
 #: springdyn's package folder; kernels live below it.
 PACKAGE_DIR = Path(__file__).resolve().parents[1]

@@ -99,7 +99,20 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         else:
             sub.add_parser(family, help=help_line, add_help=False)
     docs_cmd.register(sub)
+    _add_quiet(parser)
     return parser
+
+
+def _add_quiet(parser: argparse.ArgumentParser) -> None:
+    """Give every command that has none a ``--quiet`` (no compile notice on stderr)."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for child in action.choices.values():
+                if child.add_help:  # (not a placeholder of a family that is not loaded)
+                    _add_quiet(child)
+            return
+    if "--quiet" not in parser._option_string_actions:
+        parser.add_argument("--quiet", action="store_true", help="no notice on stderr while an engine compiles")
 
 
 def _report(definitions, out, quiet: bool, title: str, labels=None) -> int:
