@@ -55,7 +55,7 @@ def test_dynamic_from_csv_motion(capsys, tmp_path):
     write_csv(tmp_path / "x.csv", {"time_s": t, "deflection_m": 0.01 + 0.02 * np.sin(np.pi * t) ** 2})
     code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--motion", str(tmp_path / "x.csv"), "--json")
     assert code == 0, err
-    assert json.loads(out)["omega_rad_s"] == pytest.approx(2 * np.pi)
+    assert json.loads(out)["omega_rad_per_s"] == pytest.approx(2 * np.pi)
 
 
 def test_sweep(capsys, tmp_path):
@@ -63,7 +63,7 @@ def test_sweep(capsys, tmp_path):
                          "--plot", str(tmp_path / "w.png"))
     assert code == 0, err
     cols = read_csv_columns(tmp_path / "w.csv")
-    np.testing.assert_allclose(cols["omega_rad_s"], [1, 8, 15, 22, 29, 36, 43, 50])
+    np.testing.assert_allclose(cols["omega_rad_per_s"], [1, 8, 15, 22, 29, 36, 43, 50])
     assert "toggle cut-off" in out
 
 

@@ -121,3 +121,18 @@ def test_ci_runs_the_readme_test_command():
     demo_cmd = [b for b in blocks if "springdyn demo" in b]
     assert len(test_cmd) >= 1 and len(demo_cmd) >= 1
     assert test_cmd[0].strip() in (ROOT / ".ci" / "run").read_text()
+
+
+def test_a_name_with_a_unit_gives_that_unit():
+    """The <quantity>_<unit> convention of every family: a rate is <unit>_per_s (the CFCS
+    names velocity_m_s and omega_rad_s were read as seconds and written into NetCDF as such)."""
+    from springdyn.core.results import column_name, units_from_name
+
+    assert units_from_name("velocity_m_per_s") == "m/s"
+    assert units_from_name("omega_rad_per_s") == "rad/s"
+    assert units_from_name("time_s") == "s"
+    assert column_name("velocity", "m/s") == "velocity_m_per_s"
+    from springdyn.cfcs import CFCS
+
+    ds = CFCS.example("table1").dynamic(14.7).to_xarray()
+    assert ds["velocity_m_per_s"].attrs["units"] == "m/s"

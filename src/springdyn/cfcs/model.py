@@ -403,7 +403,7 @@ class CFCS:
             check = _dynamic_stats(t, c2["force"], xd, samples_per_cycle)
             dominated = toggle_check(stats, check, _DYNAMIC_STATS)
         summary = {
-            "omega_rad_s": float(mot.omega),
+            "omega_rad_per_s": float(mot.omega),
             "motion": mot.describe(),
             **stats,
             "toggle_zone_samples": int(np.count_nonzero(c["in_toggle_zone"])),
@@ -516,7 +516,7 @@ class CFCS:
         xd = slider_jacobian(th, p.r2, p.r3) * thd
         fspring = static_force(th, p.k3, p.r2, p.r3) if not self.beam else self.spring_force(x)
         fapplied = np.array([force_fn(ti, xi, vi) for ti, xi, vi in zip(t, x, xd)], dtype=float)
-        summary = {"sign_smoothing_rad_s": sign_smoothing, "x0_m": x0, "v0_m_s": v0,
+        summary = {"sign_smoothing_rad_per_s": sign_smoothing, "x0_m": x0, "v0_m_per_s": v0,
                    "max_deflection_m": float(np.max(x)), "min_deflection_m": float(np.min(x)),
                    "toggle_crossings": int(np.count_nonzero(np.diff(np.sign(th)) != 0)),
                    **self._stress_summary(th, x), **self._common_summary()}
@@ -546,7 +546,7 @@ class CFCS:
         # steel-like density assumed for the strip's mass (the [cfcs] table gives no density)
         mass_per_length = 7850.0 * p.pivot_width * p.pivot_thickness
         w1 = strip_first_frequency(ei, mass_per_length, p.pivot_length)
-        return {"strip_first_frequency_rad_s": w1, "strip_frequency_ratio": float(omega) / w1,
+        return {"strip_first_frequency_rad_per_s": w1, "strip_frequency_ratio": float(omega) / w1,
                 "strip_mass_kg": mass_per_length * p.pivot_length}
 
 

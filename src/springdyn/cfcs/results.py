@@ -127,7 +127,7 @@ class DynamicResult(_Table):
 
     def columns(self) -> dict:
         cols = {"time_s": self.time, "deflection_m": self.deflection, "force_N": self.force,
-                "force_static_N": self.force_static, "velocity_m_s": self.velocity, "theta2_rad": self.theta2}
+                "force_static_N": self.force_static, "velocity_m_per_s": self.velocity, "theta2_rad": self.theta2}
         for k, v in self.components.items():
             cols[f"{k}_N"] = v
         cols["pcf_running_percent"] = self.pcf_vs_time
@@ -148,7 +148,7 @@ class DynamicResult(_Table):
         ax.plot(self.time, self.force_static, "--", label="static force at the same deflection")
         ax.set_ylabel("slider force [N]")
         s = self.summary
-        ax.set_title(f"CFCS at omega = {s['omega_rad_s']:.4g} rad/s: mean {s['mean_force_N']:.4g} N, "
+        ax.set_title(f"CFCS at omega = {s['omega_rad_per_s']:.4g} rad/s: mean {s['mean_force_N']:.4g} N, "
                      f"p-p {s['peak_to_peak_N']:.3g} N, PCF {s['pcf_percent']:.1f} %\n"
                      f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg "
                      f"({s['toggle_zone_samples']} samples inside"
@@ -176,7 +176,7 @@ class FrequencySweep(_Table):
     summary: dict
 
     def columns(self) -> dict:
-        return {"omega_rad_s": self.omega, **self.stats}
+        return {"omega_rad_per_s": self.omega, **self.stats}
 
     def to_xarray(self) -> xr.Dataset:
         return self._dataset("omega")
@@ -232,8 +232,8 @@ class ForwardResult(_Table):
     summary: dict
 
     def columns(self) -> dict:
-        return {"time_s": self.time, "deflection_m": self.deflection, "velocity_m_s": self.velocity,
-                "theta2_rad": self.theta2, "theta2dot_rad_s": self.theta2dot, "force_N": self.force,
+        return {"time_s": self.time, "deflection_m": self.deflection, "velocity_m_per_s": self.velocity,
+                "theta2_rad": self.theta2, "theta2dot_rad_per_s": self.theta2dot, "force_N": self.force,
                 "force_static_N": self.force_static, "energy_J": self.energy}
 
     def to_xarray(self) -> xr.Dataset:
@@ -253,7 +253,7 @@ class ForwardResult(_Table):
         ax.set_ylabel("slider deflection [mm]")
         ax.grid(True, alpha=0.3)
         ax.set_title("CFCS forward dynamics (smoothed Coulomb sign, "
-                     f"v_s = {self.summary['sign_smoothing_rad_s']:.3g} rad/s)")
+                     f"v_s = {self.summary['sign_smoothing_rad_per_s']:.3g} rad/s)")
         ax2.plot(self.time, self.force, label="drive force")
         ax2.plot(self.time, self.force_static, "--", label="static force at the deflection")
         ax2.set_xlabel("time [s]")

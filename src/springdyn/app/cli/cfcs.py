@@ -282,7 +282,7 @@ def _sweep(args) -> int:
     rows = [(f"{w:.4g}", f"{st['mean_force_N'][i]:.4f}", f"{st['median_force_N'][i]:.4f}",
              f"{st['peak_to_peak_N'][i]:.4f}", f"{st['pcf_percent'][i]:.2f}", f"{st['pcf_no_dissipation_percent'][i]:.2f}")
             for i, w in enumerate(res.omega)]
-    print_table(rows, headers=("omega_rad_s", "mean_N", "median_N", "p2p_N", "pcf_%", "pcf_no_diss_%"))
+    print_table(rows, headers=("omega_rad_per_s", "mean_N", "median_N", "p2p_N", "pcf_%", "pcf_no_diss_%"))
     print(f"toggle cut-off {np.degrees(res.summary['toggle_cutoff_rad']):.4g} deg")
     if res.summary["toggle_dominated"]:
         print("TOGGLE-DOMINATED: " + res.summary["notes"][0])
@@ -319,7 +319,7 @@ def _forward(args) -> int:
         ("deflection range", f"{_fmt(s['min_deflection_m'], 'm', 'mm')} .. {_fmt(s['max_deflection_m'], 'm', 'mm')}", ""),
         ("toggle crossings", str(s["toggle_crossings"]), ""),
         ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
-        ("sign smoothing", _fmt(s["sign_smoothing_rad_s"], "rad/s"), "tanh(theta2'/v_s)"),
+        ("sign smoothing", _fmt(s["sign_smoothing_rad_per_s"], "rad/s"), "tanh(theta2'/v_s)"),
         _cutoff_row(s),
     ], headers=("quantity", "value", "note"))
     return 0

@@ -119,7 +119,7 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
         )
     chk = through.get("statistics_at_doubled_cutoff", {})
     findings.append(
-        f"Started at the toggle instead (offset 0, omega = {through['omega_rad_s']:g} rad/s) the peak-to-peak force is "
+        f"Started at the toggle instead (offset 0, omega = {through['omega_rad_per_s']:g} rad/s) the peak-to-peak force is "
         f"{through['peak_to_peak_N']:.1f} N with the {np.degrees(p.toggle_cutoff):.3g} deg cut-off and "
         f"{chk.get('peak_to_peak_N', through['peak_to_peak_N']):.1f} N with twice it: "
         + ("toggle-dominated, a property of the numerical cut-off and not of the mechanism (the axial-force term "
@@ -227,7 +227,7 @@ def _compare_plot(full, bare, path) -> Path:
     ax.plot(bare.time, bare.force, "--", label="without")
     ax.plot(full.time, full.force_static, ":", color="k", label="static force")
     s = full.summary
-    ax.set_title(f"omega = {s['omega_rad_s']:g} rad/s, {s['motion']}\n"
+    ax.set_title(f"omega = {s['omega_rad_per_s']:g} rad/s, {s['motion']}\n"
                  f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg", fontsize=10)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("slider force [N]")
