@@ -18,9 +18,6 @@ import pytest
 import springdyn
 
 PACKAGE = Path(springdyn.__file__).resolve().parent
-#: Old module paths kept as deprecated aliases (springdyn/_deprecated.py); not part of the graph.
-ALIASES = {"springdyn.units", "springdyn.config", "springdyn.errors", "springdyn.io", "springdyn.plotting",
-           "springdyn.progress", "springdyn.integration", "springdyn._deprecated"}
 
 
 def _module_name(path: Path) -> str:
@@ -75,7 +72,7 @@ def _imports(path: Path, name: str, modules: set[str]) -> set[str]:
 
 def import_graph() -> dict[str, set[str]]:
     files = {_module_name(p): p for p in PACKAGE.rglob("*.py")}
-    modules = set(files) - ALIASES
+    modules = set(files)
     return {name: _imports(files[name], name, modules) - {"springdyn"} for name in sorted(modules)}
 
 

@@ -196,8 +196,7 @@ def _all_modules():
     import springdyn
 
     names = ["springdyn"] + [m.name for m in pkgutil.walk_packages(springdyn.__path__, "springdyn.")]
-    aliases = {f"springdyn.{m}" for m in ("units", "config", "errors", "io", "plotting", "progress", "integration")}
-    return sorted(n for n in names if not n.endswith("__main__") and n not in aliases)
+    return sorted(n for n in names if not n.endswith("__main__"))
 
 
 @pytest.mark.parametrize("modname", _all_modules())

@@ -6,9 +6,10 @@ Model families, one subpackage each:
 - :mod:`springdyn.cfcs` -- constant-force compression springs (pseudo-rigid-body model).
 - :mod:`springdyn.lsd` -- leaf spring dampers for rotors.
 
-Shared pieces: :mod:`springdyn.units` (pint at the edges, SI floats inside),
-:mod:`springdyn.config` (TOML parameters with validation), :mod:`springdyn.io`
-(atomic CSV/JSON), :mod:`springdyn.plotting`, :mod:`springdyn.progress`.
+Shared pieces: :mod:`springdyn.core` (units: pint at the edges, SI floats inside; params:
+TOML parameters with validation; io: atomic CSV/JSON; results; plotting; progress;
+errors) and :mod:`springdyn.numerics` (the compiled kernels and Runge-Kutta pairs).
+The command line and the report live in :mod:`springdyn.app`.
 """
 
 from .core.errors import InputError, SolverError, SpringdynError

@@ -8,23 +8,16 @@ import sys
 import types
 
 
-def lazy_package(name: str, exports: dict, aliases: dict | None = None) -> None:
+def lazy_package(name: str, exports: dict) -> None:
     """Make the package ``name`` load each of ``exports`` (public name -> submodule) on first use.
 
     A public function named like its own submodule (``springdyn.cfcs.design``, the
     function, in ``design.py``) stays the function: the import system's record of the
     submodule on the package is kept out of the way (the module is in ``sys.modules``).
-    ``aliases`` map deprecated names to current ones.
     """
     package = sys.modules[name]
-    aliases = aliases or {}
 
     def __getattr__(attr):
-        if attr in aliases:
-            import warnings
-
-            warnings.warn(f"{name}.{attr} is now {aliases[attr]}", DeprecationWarning, stacklevel=2)
-            attr = aliases[attr]
         if attr in exports:
             value = getattr(importlib.import_module(f"{name}.{exports[attr]}"), attr)
             if exports[attr] != attr:

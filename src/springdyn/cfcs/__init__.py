@@ -50,4 +50,4 @@ __all__ = [
 ]
 
 
-lazy_package(__name__, _EXPORTS, aliases={"SweepResult": "FrequencySweep"})
+lazy_package(__name__, _EXPORTS)

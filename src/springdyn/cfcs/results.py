@@ -208,15 +208,6 @@ class FrequencySweep(_Table):
         return fig
 
 
-def __getattr__(name):
-    if name == "SweepResult":
-        import warnings
-
-        warnings.warn("springdyn.cfcs.results.SweepResult is now FrequencySweep", DeprecationWarning, stacklevel=2)
-        return FrequencySweep
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 @dataclasses.dataclass(repr=False)
 class ForwardResult(_Table):
     """Forward dynamics: the slider's response to a force (or a spring from a moving base)."""

@@ -194,7 +194,7 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
     """Build the parameter dataclass ``cls`` from a TOML table.
 
     Unknown keys, missing required keys, bad units and out-of-range values raise
-    :class:`~springdyn.errors.InputError` naming the file, the key and the value.
+    :class:`~springdyn.core.errors.InputError` naming the file, the key and the value.
     """
     where = f"{source}: " if source else ""
     prefix = f"[{section}] " if section else ""

@@ -14,9 +14,12 @@ import sys
 from functools import lru_cache
 from numbers import Real
 
+import numpy as np
+
 from .errors import InputError, fmt_value
 
-__all__ = ["ureg", "get_registry", "to_si", "format_quantity", "SI_UNITS", "rpm_to_omega", "omega_to_rpm"]
+__all__ = ["ureg", "get_registry", "to_si", "format_quantity", "format_mm", "SI_UNITS", "rpm_to_omega",
+           "omega_to_rpm"]
 
 #: Smallest magnitude springdyn accepts as a nonzero number: subnormal floats (5e-324)
 #: are never a physical input and break the formulas.
@@ -55,6 +58,8 @@ def rpm_to_omega(rpm):
     rpm : float or array_like
         Speed [rev/min].
     """
+    if not isinstance(rpm, Real):
+        rpm = np.asarray(rpm, dtype=float)
     return rpm * (2.0 * math.pi / 60.0)
 
 
@@ -66,7 +71,20 @@ def omega_to_rpm(omega):
     omega : float or array_like
         Angular speed [rad/s].
     """
+    if not isinstance(omega, Real):
+        omega = np.asarray(omega, dtype=float)
     return omega * (60.0 / (2.0 * math.pi))
+
+
+def format_mm(value: float) -> str:
+    """A length [m] for people, in millimetres (``"22 mm"``).
+
+    Parameters
+    ----------
+    value : float
+        Length [m].
+    """
+    return format_quantity(value, "m", "mm")
 
 #: The SI unit springdyn uses inside for each dimension it names.
 SI_UNITS = {

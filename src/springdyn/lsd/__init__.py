@@ -120,4 +120,4 @@ __all__ = [
 ]
 
 
-lazy_package(__name__, _EXPORTS, aliases=None)
+lazy_package(__name__, _EXPORTS)

@@ -11,37 +11,14 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.results import Result
+from ..core.units import omega_to_rpm, rpm_to_omega
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
 
-__all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "rpm_to_omega", "omega_to_rpm"]
+__all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES"]
 
 #: The eight coefficients in ROSS order, with their SI unit suffix.
 COEFFICIENT_NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
-
-
-def rpm_to_omega(rpm):
-    """Vibration frequency of the eccentric-shaft rig ``omega = 2 pi rpm / 60`` [rad/s].
-
-    One orbit of the inner ring per shaft revolution (thesis, Section 4.1).
-
-    Parameters
-    ----------
-    rpm : float or array_like
-        Shaft speed [rev/min].
-    """
-    return 2.0 * np.pi * np.asarray(rpm, dtype=float) / 60.0
-
-
-def omega_to_rpm(omega):
-    """Shaft speed [rev/min] of a vibration frequency ``omega`` [rad/s] on the rig (inverse of :func:`rpm_to_omega`).
-
-    Parameters
-    ----------
-    omega : float or array_like
-        Vibration frequency [rad/s].
-    """
-    return 60.0 * np.asarray(omega, dtype=float) / (2.0 * np.pi)
 
 
 class LSDModel:

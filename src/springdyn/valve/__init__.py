@@ -39,4 +39,4 @@ __all__ = ["ValveSpring", "SpringModel", "TypeCModel", "MODELS", "Chain", "Stati
            "simulate", "Simulation", "float_speed", "FloatSpeedResult", "sweep", "SpeedSweep"]
 
 
-lazy_package(__name__, _EXPORTS, aliases={"SweepResult": "SpeedSweep"})
+lazy_package(__name__, _EXPORTS)

@@ -43,6 +43,7 @@ import numpy as np
 from ..core.params import Parameters, param
 from ..core.errors import InputError
 from ..core.io import read_csv_columns
+from ..core.units import format_mm
 
 __all__ = ["cam_rpm_from_engine_rpm", "Cam", "rise_law", "polydyne_coefficients", "LAWS"]
 
@@ -188,7 +189,7 @@ class Cam(Parameters):
         if self.file:
             raise InputError(f'file = {self.file!r} is only used with law = "table"')
         if not self.lift > 0:
-            raise InputError(f"lift = {_mm(self.lift)} must be positive")
+            raise InputError(f"lift = {format_mm(self.lift)} must be positive")
         deg = math.degrees(self.duration)
         if not 0 < self.duration <= TWO_PI + 1e-12:
             raise InputError(f"duration = {deg:.6g} deg must lie in (0, 360] deg")
@@ -199,7 +200,7 @@ class Cam(Parameters):
         if (self.ramp_height > 0) != (self.ramp_duration > 0):
             raise InputError("ramp_height and ramp_duration must be both zero or both positive")
         if self.ramp_height >= self.lift:
-            raise InputError(f"ramp_height = {_mm(self.ramp_height)} must be smaller than lift = {_mm(self.lift)}")
+            raise InputError(f"ramp_height = {format_mm(self.ramp_height)} must be smaller than lift = {format_mm(self.lift)}")
 
     @classmethod
     def _prepare(cls, mapping: dict, *, base_dir: Path | str | None = None, **context) -> dict:
@@ -345,9 +346,6 @@ class Cam(Parameters):
                 stacklevel=2,
             )
 
-
-def _mm(v: float) -> str:
-    return f"{v * 1e3:.6g} mm"
 
 
 _ANGLE_UNITS = {"cam_angle_deg": math.pi / 180.0, "cam_angle_rad": 1.0}

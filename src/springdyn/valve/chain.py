@@ -13,7 +13,7 @@ from functools import cached_property
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.units import format_quantity
+from ..core.units import format_mm, format_quantity
 from . import design
 from .elements import damping_coefficient, law_stiffness
 from .modes import chain_frequencies
@@ -55,9 +55,6 @@ class Chain:
         """Element damping coefficients [N s/m] at the given compressions [m]."""
         return np.stack([damping_coefficient(x, law, c) for x, law, c in zip(compressions, self.laws, self.c0_array)])
 
-
-def _mm(value: float) -> str:
-    return format_quantity(value, "m", "mm")
 
 
 class SpringModel:
@@ -116,9 +113,9 @@ class SpringModel:
         bad = ~np.isfinite(length) | (length > self.spring.free_length) | (length < lo)
         if np.any(bad):
             raise InputError(
-                f"{name} = {_mm(float(np.ravel(length)[np.ravel(bad)][0]))} is outside the range of the spring: "
-                f"it must lie between {_mm(lo)} (where the force reaches {self.LIMIT_FORCE_FACTOR:g} Fcon, far past "
-                f"coil contact) and the free length Lf = {_mm(self.spring.free_length)}"
+                f"{name} = {format_mm(float(np.ravel(length)[np.ravel(bad)][0]))} is outside the range of the spring: "
+                f"it must lie between {format_mm(lo)} (where the force reaches {self.LIMIT_FORCE_FACTOR:g} Fcon, far past "
+                f"coil contact) and the free length Lf = {format_mm(self.spring.free_length)}"
             )
         return self.spring.free_length - length
 
@@ -236,7 +233,7 @@ class SpringModel:
         states = {"installed": self.spring.installed_length}
         if lift is not None:
             if not lift > 0:
-                raise InputError(f"lift = {_mm(lift)} must be positive")
+                raise InputError(f"lift = {format_mm(lift)} must be positive")
             states["open"] = self.spring.installed_length - lift
         states["coil_contact"] = self.length_at_force(p["Fcon"])
         for name, length in states.items():
@@ -268,8 +265,8 @@ class SpringModel:
     def _open_force(self, length: float, lift: float) -> float:
         if length < self.min_length:
             raise InputError(
-                f"lift = {_mm(lift)} drives the spring far past coil contact: installed_length - lift = "
-                f"{_mm(length)} is below {_mm(self.min_length)}, where the force reaches "
+                f"lift = {format_mm(lift)} drives the spring far past coil contact: installed_length - lift = "
+                f"{format_mm(length)} is below {format_mm(self.min_length)}, where the force reaches "
                 f"{self.LIMIT_FORCE_FACTOR:g} Fcon"
             )
         return self.static_force(length)

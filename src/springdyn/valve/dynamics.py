@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import InputError, SolverError
+from ..core.units import rpm_to_omega
 from ..numerics.erk import PAIRS
 from .cam import Cam
 from .elements import damping_coefficient, law_force
@@ -44,11 +45,6 @@ VELOCITY_TOLERANCE_DIVISOR = 30.0
 #: -3.3e5 1/s for 50 elements), where the Bogacki-Shampine 3(2) pair takes 1.3x more steps
 #: for half the right-hand sides each, and still holds the end forces within 0.05 % of Fset.
 PAIR = {"type-c": "dopri5", "distributed": "bs3"}
-
-
-def rpm_to_omega(rpm: float) -> float:
-    """Cam speed [rad/s] from rev/min."""
-    return rpm * 2.0 * math.pi / 60.0
 
 
 def output_angles(points: int) -> np.ndarray:

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.units import format_quantity
+from ..core.units import format_mm, format_quantity
 
 __all__ = ["TRANSITION_TURNS", "CoilGeometry", "default_pitch_knots", "parse_profile", "turn_compliance",
            "wire_length_per_turn"]
@@ -36,9 +36,6 @@ __all__ = ["TRANSITION_TURNS", "CoilGeometry", "default_pitch_knots", "parse_pro
 #: assumption typical of coiled valve springs; give a ``pitch_profile`` for a measured one).
 TRANSITION_TURNS = 0.5
 
-
-def _mm(v: float) -> str:
-    return format_quantity(v, "m", "mm")
 
 
 def turn_compliance(mean_diameter, wire_diameter, pitch, shear_modulus, youngs_modulus):
@@ -178,7 +175,7 @@ def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: flo
         pa = (free_length - base - tr * dw) / (active - tr)
         if not pa > dw:
             raise InputError(f"{field('free_length')} is too short for the coils: the active pitch would be "
-                             f"{_mm(pa)}, not more than the wire diameter {_mm(dw)}")
+                             f"{format_mm(pa)}, not more than the wire diameter {format_mm(dw)}")
         if dead == 0:
             return np.array([0.0, n_total]), np.array([pa, pa])
         s = [0.0, dead, dead + tr, n_total - dead - tr, n_total - dead, n_total]
@@ -217,8 +214,8 @@ def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: flo
                          "with the given free length and coil counts") from None
     s, p = knots(delta)
     if not p[3] > p[2]:
-        raise InputError(f"two-step spring: the high-pitch coils' pitch {_mm(p[3])} must exceed the low-pitch "
-                         f"coils' {_mm(p[2])}; check {field('free_length')}, {field('installed_length')} and the "
+        raise InputError(f"two-step spring: the high-pitch coils' pitch {format_mm(p[3])} must exceed the low-pitch "
+                         f"coils' {format_mm(p[2])}; check {field('free_length')}, {field('installed_length')} and the "
                          "coil counts")
     return _dedupe(list(s), list(p))
 

@@ -1,4 +1,4 @@
-"""Plots of the valve-spring analyses (PNG via :func:`springdyn.plotting.save_figure`)."""
+"""Plots of the valve-spring analyses (PNG via :func:`springdyn.core.plotting.save_figure`)."""
 
 from __future__ import annotations
 

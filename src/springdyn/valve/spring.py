@@ -13,7 +13,7 @@ from functools import cached_property
 
 from ..core.errors import InputError
 from ..core.params import Parameters, describe_value, param
-from ..core.units import format_quantity
+from ..core.units import format_mm, format_quantity
 from . import formulas
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES"]
@@ -24,9 +24,6 @@ EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"
 #: Names of the spring models (:data:`springdyn.valve.model.MODELS`).
 MODEL_NAMES = ("type-c", "distributed")
 
-
-def _mm(value: float) -> str:
-    return format_quantity(value, "m", "mm")
 
 
 @dataclass(frozen=True)
@@ -249,7 +246,7 @@ class ValveSpring(Parameters):
         if self.installed_length <= lc:
             raise InputError(
                 f"{self._field('installed_length')} is at or below coil contact: it must be longer than the "
-                f"solid length Lc = Dw (N1 + N2 + 0.5) = {_mm(lc)}"
+                f"solid length Lc = Dw (N1 + N2 + 0.5) = {format_mm(lc)}"
             )
         return unlikely
 

@@ -548,9 +548,3 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
         raise InputError(f"vary = {name!r}: every value makes the spring invalid")
     return springs, setups, np.asarray(kept), skipped
 
-
-def __getattr__(name):
-    if name == "SweepResult":
-        warnings.warn("springdyn.valve.sweeps.SweepResult is now SpeedSweep", DeprecationWarning, stacklevel=2)
-        return SpeedSweep
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
