@@ -66,8 +66,7 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     import numpy as np
 
-    from springdyn.valve import ValveSpring
-    from springdyn.valve import engine
+    from springdyn.valve import ValveSpring, engine
     from springdyn.valve.cam import Cam
     from springdyn.valve.dynamics import MAX_STEP_FRACTION, prepare, rpm_to_omega, simulate
 

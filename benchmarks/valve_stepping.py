@@ -21,9 +21,8 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-import warnings
 import time
-
+import warnings
 
 #: The study's speeds [cam rpm]: 700 to 4300 in steps of 400, and 800, 1700, 2600, 3500, 4200.
 SPEEDS = tuple(float(v) for v in sorted({*range(700, 4700, 400), 800, 1700, 2600, 3500, 4200}))
@@ -49,8 +48,7 @@ def main(argv=None) -> int:
 
     import numpy as np
 
-    from springdyn.valve import Cam, ValveSpring, simulate
-    from springdyn.valve import dynamics
+    from springdyn.valve import Cam, ValveSpring, dynamics, simulate
     from springdyn.valve.modes import chain_eigenvalues
 
     cams = _cams(Cam)

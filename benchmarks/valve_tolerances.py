@@ -28,8 +28,7 @@ def main(argv=None) -> int:
     sys.path.insert(0, str(__import__("pathlib").Path(__file__).parent))
     from valve_stepping import SPEEDS, _cams
 
-    from springdyn.valve import Cam, ValveSpring, simulate
-    from springdyn.valve import dynamics
+    from springdyn.valve import Cam, ValveSpring, dynamics, simulate
 
     cams = _cams(Cam)
     keys = ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")

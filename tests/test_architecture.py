@@ -13,8 +13,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import pytest
-
 import springdyn
 
 PACKAGE = Path(springdyn.__file__).resolve().parent

@@ -7,19 +7,19 @@ import dataclasses
 import importlib
 import inspect
 import re
+import sys
 from importlib import resources
 from pathlib import Path
 
 import pytest
 
-import sys
-
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 import gen_docs as docs  # noqa: E402  (tools/ is not part of the installed package)
+
 from springdyn.app.cli import docs_cmd
 from springdyn.app.cli.main import build_parser
-from springdyn.core.params import load_toml
 from springdyn.core.errors import InputError
+from springdyn.core.params import load_toml
 
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "docs" / "reference"
@@ -100,7 +100,7 @@ def test_toml_reference_lists_every_field_with_unit_default_and_range(generated)
 
 def test_toml_defaults_read_back_to_the_declared_defaults():
     """Each default as printed (display unit) loads back to the SI default."""
-    for table, cls in _parameter_classes().items():
+    for cls in _parameter_classes().values():
         for f, meta in docs.field_specs(cls):
             if f.default is dataclasses.MISSING or f.default is None or meta["kind"] not in ("quantity",):
                 continue

@@ -13,8 +13,6 @@ import re
 
 import pytest
 
-import springdyn
-
 FAMILIES = ("valve", "cfcs", "lsd")
 #: Types whose entries need a unit in brackets.
 NUMERIC = re.compile(r"\b(float|int|array|ndarray|array_like|array-like|number|scalar)\b")

@@ -26,8 +26,8 @@ import re
 from importlib import resources
 from pathlib import Path
 
-from springdyn.core.params import field_specs
 from springdyn.core.io import atomic_open
+from springdyn.core.params import field_specs
 from springdyn.core.units import format_quantity
 
 __all__ = [

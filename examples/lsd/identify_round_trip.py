@@ -3,7 +3,6 @@
 Run:  python examples/lsd/identify_round_trip.py
 """
 
-import numpy as np
 
 from springdyn.lsd import LSDModel, LSDParameters, RigData, identify_series, linear_shake, simulate_rig
 

@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from springdyn.app.cli.main import main
-from springdyn.core.errors import InputError
 from springdyn.app.report import DEMO_DEFINITIONS, build_report, demo_definitions
+from springdyn.core.errors import InputError
 
 ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = ROOT / "test-artifacts"
@@ -28,7 +28,7 @@ def test_demo_report_is_complete(demo_dir):
     page = (demo_dir / "index.html").read_text()
     sections = re.findall(r"<section id='([^']+)' data-family='(\w+)'>(.*?)</section>", page, flags=re.S)
     assert [fam for _, fam, _ in sections] == ["valve", "valve", "cfcs", "lsd", "lsd", "lsd"]
-    for anchor, family, body in sections:
+    for anchor, _family, body in sections:
         assert body.count("<img ") >= 3, anchor
         assert body.count("<li>") >= 3, anchor  # findings
         assert "Inputs" in body and "Derived parameters" in body and "springdyn " in body, anchor

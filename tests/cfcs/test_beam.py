@@ -8,8 +8,7 @@ error 0.97 % of F0, Fmax at 42.3 mm instead of 48.5 mm, flatness band 0.329 vs 0
 import numpy as np
 import pytest
 
-from springdyn.cfcs import CFCS, CFCSParams
-from springdyn.cfcs import beam
+from springdyn.cfcs import CFCS, CFCSParams, beam
 from springdyn.cfcs.kinematics import spring_angle, theta2_from_deflection
 from springdyn.cfcs.statics import static_force, static_force_at_toggle
 from springdyn.core.errors import InputError

@@ -4,9 +4,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from springdyn.cfcs import CFCS, SinusoidMotion
+from springdyn.cfcs import CFCS, SinusoidMotion, statics
 from springdyn.cfcs import dynamics as dyn
-from springdyn.cfcs import statics
 from springdyn.cfcs.kinematics import deflection_from_theta2, theta2_from_deflection
 
 from .conftest import R2, R3

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from springdyn.cfcs import CFCS, SinusoidMotion, TabulatedMotion
+from springdyn.cfcs import SinusoidMotion, TabulatedMotion
 from springdyn.cfcs.motion import amplitude_to_si
 from springdyn.core.errors import InputError
 from springdyn.core.io import write_csv

@@ -9,8 +9,14 @@ import numpy as np
 import pytest
 
 from springdyn.core.errors import InputError
-from springdyn.core.io import (check_output_file, check_output_folder, output_set, read_csv_columns, write_csv,
-                               write_json)
+from springdyn.core.io import (
+    check_output_file,
+    check_output_folder,
+    output_set,
+    read_csv_columns,
+    write_csv,
+    write_json,
+)
 from springdyn.core.params import load_toml
 from springdyn.core.units import to_si
 

@@ -1,12 +1,10 @@
 """Rig simulation and identification: round trips, friction equivalents, bad data."""
 
-import warnings
 
 import numpy as np
 import pytest
 
 from springdyn.core.errors import InputError
-from springdyn.core.io import write_csv
 from springdyn.lsd import (
     LSDModel,
     LSDParameters,

@@ -281,7 +281,7 @@ def test_end_separation_events_located():
         inside |= (deg > e["start_deg"] + 1e-6) & (deg < e["end_deg"] - 1e-6)
     assert np.all(x[inside] <= 1e-12)
     grid_sep = x < -1e-9
-    assert np.all(grid_sep <= ((deg >= min(e["start_deg"] for e in sep) - 0.05)))  # none before the first
+    assert np.all(grid_sep <= (deg >= min(e["start_deg"] for e in sep) - 0.05))  # none before the first
 
 
 def test_dense_extremes_catch_a_ringing_minimum_the_grid_misses():

@@ -55,7 +55,10 @@ def test_bad_inputs():
 # --- the assessment over a cycle (issue 13) --------------------------------------------------
 import math as _math
 
-from springdyn.valve import Cam as _Cam, ValveSpring as _VS, simulate as _simulate, sweep as _sweep
+from springdyn.valve import Cam as _Cam
+from springdyn.valve import ValveSpring as _VS
+from springdyn.valve import simulate as _simulate
+from springdyn.valve import sweep as _sweep
 from springdyn.valve.durability import fatigue_assessment, spring_strengths
 
 

@@ -6,12 +6,11 @@ import numpy as np
 import pytest
 
 from springdyn.core.errors import InputError, SolverError
-from springdyn.valve import ValveSpring
-from springdyn.valve import engine
+from springdyn.valve import ValveSpring, engine
 from springdyn.valve import dynamics as simmod
 from springdyn.valve.cam import Cam
-from springdyn.valve.elements import law_energy, law_force
 from springdyn.valve.dynamics import float_speed, prepare, rpm_to_omega, simulate
+from springdyn.valve.elements import law_energy, law_force
 from springdyn.valve.valvetrain import ValveTrain
 
 CAM = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))

@@ -6,8 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from springdyn.valve import ValveSpring
-from springdyn.valve import formulas
+from springdyn.valve import ValveSpring, formulas
 
 # The reference values (docs/valve.md) are printed to 5 significant digits; we require agreement to 4 significant
 # digits or better, i.e. relative 5e-5 of the printed value's last digit is too strict for

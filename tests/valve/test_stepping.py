@@ -13,9 +13,8 @@ import numpy as np
 import pytest
 
 from springdyn.core.errors import InputError
-from springdyn.valve import Cam, ValveSpring, simulate
-from springdyn.valve import dynamics, engine
-from springdyn.valve.dynamics import CAM_SAMPLES, prepare, rpm_to_omega
+from springdyn.valve import Cam, ValveSpring, engine, simulate
+from springdyn.valve.dynamics import CAM_SAMPLES, prepare
 
 RAMPS = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4,
             ramp_duration=math.radians(20))

@@ -112,9 +112,7 @@ import warnings
 
 import numpy as np
 
-from springdyn.valve import Cam, ValveTrain
-from springdyn.valve import simulate, float_speed, sweep
-from springdyn.valve import design
+from springdyn.valve import Cam, ValveTrain, design, float_speed, simulate, sweep
 
 CAM = Cam(law="3-4-5", lift=0.009, duration=math.radians(120))
 VT = ValveTrain(valve_mass=0.05)

@@ -41,9 +41,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from ..numerics.jit import kernel
 
 from ..core.errors import InputError, SolverError
+from ..numerics.jit import kernel
 from .kinematics import spring_angle, theta2_from_deflection
 from .statics import static_force
 

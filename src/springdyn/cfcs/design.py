@@ -46,7 +46,7 @@ MAX_STROKE_FRACTION = 0.9
 
 
 def design_flattest(force, stroke, youngs_modulus, allowable_stress, *, max_total_length=None,
-                    **kwargs) -> "DesignResult":
+                    **kwargs) -> DesignResult:
     """:func:`design`, then again at the length it suggests when the first one does not hold or is not flat.
 
     When the design at the first size is not feasible, or its ratio is more than 1 point of

@@ -26,8 +26,8 @@ from .kinematics import (
 )
 from .statics import (
     axial_force_torque,
-    frozen_jacobian,
     dissipative_torque,
+    frozen_jacobian,
     pin_friction_torque,
     spring_energy,
     spring_torque,

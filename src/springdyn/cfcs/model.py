@@ -7,7 +7,7 @@ A thin layer over the physics functions of :mod:`~springdyn.cfcs.kinematics`,
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 from scipy.optimize import minimize_scalar
@@ -15,7 +15,7 @@ from scipy.optimize import minimize_scalar
 from ..core.errors import InputError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
-from .beam import beam_force_at_toggle, beam_force_curve, strip_buckling_load, strip_first_frequency
+from .beam import beam_force_at_toggle, beam_force_curve, strip_first_frequency
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
 from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke, offset_to_si
@@ -24,10 +24,10 @@ from .pivot import bending_stress, max_stroke_for_stress, safety_factor
 from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult
 from .statics import (
     dissipative_torque,
-    spring_energy,
     frozen_jacobian,
     percent_constant_force,
     percent_constant_force_energy,
+    spring_energy,
     static_force,
     static_force_at_toggle,
 )
@@ -102,11 +102,11 @@ class CFCS:
         self.params = params
 
     @classmethod
-    def from_toml(cls, path) -> "CFCS":
+    def from_toml(cls, path) -> CFCS:
         return cls(CFCSParams.from_toml(path))
 
     @classmethod
-    def example(cls, name: str = "table1") -> "CFCS":
+    def example(cls, name: str = "table1") -> CFCS:
         return cls(CFCSParams.example(name))
 
     def __repr__(self) -> str:
@@ -121,7 +121,7 @@ class CFCS:
         """True when the flexure is the large-deflection strip (``flexure_model = 'beam'``)."""
         return self.params.flexure_model == "beam"
 
-    def with_flexure_model(self, model: str) -> "CFCS":
+    def with_flexure_model(self, model: str) -> CFCS:
         """The same mechanism with another flexure model ('prbm' or 'beam')."""
         return CFCS(self.params.replace(flexure_model=model))
 

@@ -225,7 +225,7 @@ class TabulatedMotion:
         object.__setattr__(self, "_spline", CubicSpline(t - t[0], x, bc_type="periodic"))
 
     @classmethod
-    def from_csv(cls, path: str | Path, omega: float | None = None) -> "TabulatedMotion":
+    def from_csv(cls, path: str | Path, omega: float | None = None) -> TabulatedMotion:
         """Read ``time_s, deflection_m`` from a CSV; rescale time to period ``2 pi/omega`` if given."""
         cols = read_csv_columns(path)
         for name in ("time_s", "deflection_m"):

@@ -3,17 +3,14 @@
 from __future__ import annotations
 
 import dataclasses
-from importlib import resources
-from pathlib import Path
-from typing import Any, Mapping
 
 import numpy as np
 
-from ..core.params import Parameters, param
 from ..core.errors import InputError
+from ..core.params import Parameters, param
 from ..core.units import format_quantity
-from .kinematics import kinematic_limit_deflection
 from .beam import FLEXURE_MODELS, bending_stiffness, default_plate_bending, plate_modulus
+from .kinematics import kinematic_limit_deflection
 from .pivot import flexure_stiffness
 from .statics import FRICTION_MODELS
 
@@ -216,6 +213,6 @@ class CFCSParams(Parameters):
             axial_force=self.axial_force, slider_friction=self.slider_friction,
         )
 
-    def without_dissipation(self) -> "CFCSParams":
+    def without_dissipation(self) -> CFCSParams:
         """The same mechanism with tau_CF, tau_AF and slider friction switched off."""
         return self.replace(friction_model="none", axial_force=False, slider_friction=0.0)

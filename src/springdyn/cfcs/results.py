@@ -7,7 +7,6 @@ Each result keeps SI arrays and a ``summary`` dict whose keys carry their unit
 from __future__ import annotations
 
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 import xarray as xr

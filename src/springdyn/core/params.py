@@ -15,8 +15,9 @@ import difflib
 import math
 import numbers
 import tomllib
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 from .errors import InputError
 from .units import format_quantity, to_si

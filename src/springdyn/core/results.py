@@ -24,8 +24,9 @@ import io as _io
 import math
 import numbers
 import warnings
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, ClassVar, Mapping
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -44,7 +45,7 @@ class Summary(dict):
     itself with a :class:`DeprecationWarning`.
     """
 
-    def __call__(self) -> "Summary":
+    def __call__(self) -> Summary:
         warnings.warn("summary() is deprecated: summary is now an attribute (result.summary)",
                       DeprecationWarning, stacklevel=2)
         return self

@@ -11,14 +11,14 @@ from __future__ import annotations
 import math
 import re
 import sys
-from functools import lru_cache
+from functools import cache
 from numbers import Real
 
 import numpy as np
 
 from .errors import InputError, fmt_value
 
-__all__ = ["ureg", "get_registry", "to_si", "format_quantity", "format_mm", "SI_UNITS", "rpm_to_omega",
+__all__ = ["ureg", "get_registry", "to_si", "format_quantity", "format_mm", "SI_UNITS", "rpm_to_omega",  # noqa: F822
            "omega_to_rpm"]
 
 #: Smallest magnitude springdyn accepts as a nonzero number: subnormal floats (5e-324)
@@ -26,7 +26,7 @@ __all__ = ["ureg", "get_registry", "to_si", "format_quantity", "format_mm", "SI_
 TINY = sys.float_info.min
 
 
-@lru_cache(maxsize=None)
+@cache
 def get_registry():
     """springdyn's pint registry, built on first use (pint is imported only then).
 
@@ -107,7 +107,7 @@ SI_UNITS = {
 }
 
 
-@lru_cache(maxsize=None)
+@cache
 def _unit(unit: str):
     ureg = get_registry()
     return ureg.Unit(unit) if unit else ureg.dimensionless

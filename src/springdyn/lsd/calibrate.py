@@ -29,8 +29,8 @@ import re
 import numpy as np
 
 from ..core.errors import InputError, SolverError
-from ..core.results import Result
 from ..core.params import field_specs
+from ..core.results import Result
 from .equivalent import harmonic_forces
 from .identify import IdentificationSeries, _cycles, _frequency, _phasors, _solve_full, _solve_single, identify
 from .model import LSDModel
@@ -160,7 +160,7 @@ class Calibration(Result):
     def toml_text(self, text: str) -> str:
         """``text`` (a TOML definition) with the fitted keys of ``[lsd]`` set to the calibrated values."""
         comments = {}
-        for name, value in self.values.items():
+        for name in self.values:
             ci = self.intervals[name]
             rng = "" if ci is None else f", {100 * self.confidence:g} % CI {ci[0]:.4g} to {ci[1]:.4g}"
             comments[name] = f"calibrated by springdyn lsd calibrate{rng}"

@@ -26,8 +26,8 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from ..core.errors import InputError
+from ..core.io import read_csv_columns
 from ..core.results import Result
-from ..core.io import read_csv_columns, write_csv
 from .model import COEFFICIENT_NAMES
 from .rig import RIG_COLUMNS, RigRecord
 
@@ -330,7 +330,7 @@ def _solve_single(P, mass, omega):
     return K, C, mode
 
 
-def identify(data: RigData, second: RigData | None = None, *, mass: float = 0.0, rpm: float | None = None) -> "Identification":
+def identify(data: RigData, second: RigData | None = None, *, mass: float = 0.0, rpm: float | None = None) -> Identification:
     """Identify K and C from one or two rig records at one speed.
 
     Parameters

@@ -30,7 +30,6 @@ from ..core.errors import InputError, SolverError
 from ..core.results import Result
 from .equivalent import forward_whirl_coefficient
 from .model import LSDModel, rpm_to_omega
-from . import rig
 
 __all__ = ["JeffcottRotor", "UnbalanceResponse", "unbalance_response", "simulate_time_response"]
 

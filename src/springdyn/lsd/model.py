@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-import warnings
-
 import dataclasses
+import warnings
 from functools import cached_property
 
 import numpy as np
@@ -151,7 +150,7 @@ class LSDModel:
         return total
 
     def coefficients(self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *,
-                     omega=None) -> "LSDCoefficients":
+                     omega=None) -> LSDCoefficients:
         """K and C at the shaft speeds ``rpm`` [rev/min] (or vibration frequencies ``omega`` [rad/s]).
 
         On the thesis' rig the ring vibrates once per shaft revolution, so the vibration
@@ -186,7 +185,7 @@ class LSDModel:
         )
 
     def equivalent_coefficients(self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *,
-                                omega=None, samples: int = 2048) -> "LSDCoefficients":
+                                omega=None, samples: int = 2048) -> LSDCoefficients:
         """K and C of the nonlinear force laws at this amplitude (describing function).
 
         Unlike :meth:`coefficients` (the closed forms of Chapters 2-3), every mechanism is

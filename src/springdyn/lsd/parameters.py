@@ -3,14 +3,11 @@
 from __future__ import annotations
 
 import dataclasses
-from importlib import resources
-from pathlib import Path
-from typing import Any, Mapping
 
 import numpy as np
 
-from ..core.params import Parameters, param
 from ..core.errors import InputError
+from ..core.params import Parameters, param
 from ..core.units import to_si
 
 __all__ = ["LSDParameters", "EXAMPLES"]

@@ -20,6 +20,7 @@ Optional Gaussian sensor noise is added to the measured forces and displacements
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,6 +28,9 @@ from ..core.errors import InputError
 from ..core.results import Result
 from ..core.units import rpm_to_omega
 from .stiffness import pack_deflections, warn_if_unloading
+
+if TYPE_CHECKING:
+    from .model import LSDModel
 
 __all__ = [
     "RIG_COLUMNS",
@@ -243,7 +247,7 @@ def oring_friction_force(friction_coefficient, normal_force, vx, vy):
     return scale * vx, scale * vy
 
 
-def simulate_rig(model: "LSDModel", trajectory: Trajectory, *, force_noise=0.0, displacement_noise=0.0, seed=None):
+def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, displacement_noise=0.0, seed=None):
     """Reaction forces of the damper along a prescribed ring path.
 
     Parameters

@@ -35,7 +35,7 @@ import os
 import sys
 import threading
 import types
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import numba
@@ -101,7 +101,7 @@ def source_group(py_file) -> tuple:
     return tuple(sorted(p for d in folders for p in d.glob("*.py")))
 
 
-@lru_cache(maxsize=None)
+@cache
 def _stamp_of(files: tuple, stats: tuple) -> str:
     h = hashlib.sha256()
     for f in files:

@@ -31,7 +31,6 @@ controlled constant velocity).
 from __future__ import annotations
 
 import dataclasses
-
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -40,9 +39,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.params import Parameters, param
 from ..core.errors import InputError
 from ..core.io import read_csv_columns
+from ..core.params import Parameters, param
 from ..core.units import format_mm
 
 __all__ = ["cam_rpm_from_engine_rpm", "Cam", "rise_law", "polydyne_coefficients", "LAWS"]
@@ -211,11 +210,11 @@ class Cam(Parameters):
         return mapping
 
     @classmethod
-    def from_table(cls, angle, lift, name: str = "table") -> "Cam":
+    def from_table(cls, angle, lift, name: str = "table") -> Cam:
         """A cam from arrays: cam angle [rad] over one revolution and lift [m]."""
         return cls(law="table", file=name, table_angle=np.asarray(angle), table_lift=np.asarray(lift))
 
-    def scaled(self, factor: float) -> "Cam":
+    def scaled(self, factor: float) -> Cam:
         """The same cam with every lift multiplied by ``factor`` (e.g. the valve lift of a
         rigid rocker train: lobe lift x rocker ratio).
 

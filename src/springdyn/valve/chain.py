@@ -13,7 +13,7 @@ from functools import cached_property
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.units import format_mm, format_quantity
+from ..core.units import format_mm
 from . import design
 from .elements import damping_coefficient, law_stiffness
 from .modes import chain_frequencies

@@ -42,6 +42,7 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.units import format_quantity
 from . import formulas
+from .chain import Chain, SpringModel
 from .geometry import (
     CoilGeometry,
     check_profile_span,
@@ -50,7 +51,6 @@ from .geometry import (
     turn_compliance,
     wire_length_per_turn,
 )
-from .chain import Chain, SpringModel
 from .modes import chain_frequencies
 from .statics import element_compressions, series_force
 
@@ -130,8 +130,8 @@ class DistributedModel(SpringModel):
         n = spring.elements
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 4 <= n <= 2000:
             raise InputError(f"elements = {n!r} must be a whole number from 4 to 2000")
-        self.geometry  # builds and checks the geometry
-        self._parameters  # and the chain
+        _ = self.geometry  # builds and checks the geometry
+        _ = self._parameters  # and the chain
 
     def __repr__(self) -> str:
         p = self._parameters

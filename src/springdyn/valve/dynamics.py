@@ -19,8 +19,8 @@ from ..numerics.erk import PAIRS
 from .cam import Cam
 from .elements import damping_coefficient, law_force
 from .engine import STATUS, extra_layout, hermite_eval, integrate_scipy, run_speeds, series_force_compiled, stop_angles
-from .spring import ValveSpring
 from .results import FloatSpeedResult, Simulation, coil_contact_compressions
+from .spring import ValveSpring
 from .statics import series_force
 from .valvetrain import KERNEL_SIZE, ValveTrain
 

@@ -21,13 +21,12 @@ Default profiles (:func:`default_pitch_knots`) follow from the ``[spring]`` keys
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.units import format_mm, format_quantity
+from ..core.units import format_mm
 
 __all__ = ["TRANSITION_TURNS", "CoilGeometry", "default_pitch_knots", "parse_profile", "turn_compliance",
            "wire_length_per_turn"]

@@ -11,7 +11,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.results import Result
-from .elements import law_compression
 
 __all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "coil_contact_compressions"]
 

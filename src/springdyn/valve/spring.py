@@ -105,7 +105,7 @@ class ValveSpring(Parameters):
 
         unlikely = self._check_geometry()
         try:
-            self.spring_model  # the model checks that its equations hold for this spring
+            _ = self.spring_model  # the model checks that its equations hold for this spring
         except InputError as exc:
             if not unlikely:
                 raise
@@ -122,7 +122,7 @@ class ValveSpring(Parameters):
         for message in unlikely:
             warnings.warn(message, UserWarning, stacklevel=level)
 
-    def with_model(self, model: str | None) -> "ValveSpring":
+    def with_model(self, model: str | None) -> ValveSpring:
         """The same spring with another model (``None``: unchanged)."""
         return self if model is None or model == self.model else self.replace(model=model)
 

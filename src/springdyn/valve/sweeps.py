@@ -19,17 +19,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.params import describe_value
 from ..core.errors import InputError
 from ..core.io import atomic_path
-from ..core.results import Result, units_from_name
+from ..core.params import describe_value
 from ..core.progress import progress
+from ..core.results import Result, units_from_name
 from .cam import Cam
-from .engine import EXT, extra_layout
 from .dynamics import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
-    MAX_STEP_FRACTION,
     SimulationSetup,
     _solver_error,
     check_run_settings,
@@ -38,6 +36,7 @@ from .dynamics import (
     prepare,
     rpm_to_omega,
 )
+from .engine import EXT, extra_layout
 from .spring import ValveSpring
 from .valvetrain import ValveTrain
 
@@ -353,7 +352,6 @@ class SpeedSweep(Result):
         import xarray as xr
 
         table = self.summary_table()
-        rows = next(iter(table.values())).size
         return xr.Dataset({k: ("row", (np.asarray(v).astype(int) if np.asarray(v).dtype == bool else np.asarray(v)),
                                    {"units": ""}) for k, v in table.items()}, coords={})
 
@@ -489,7 +487,7 @@ def sweep(
     with warnings.catch_warnings():
         warnings.simplefilter("once")
         cam.check_resolution(float(cam_rpm.min()), f1)
-    for k, (sp, setup) in enumerate(zip(springs, setups)):
+    for k, setup in enumerate(setups):
         desc = "valve sweep" + (f" {_describe(vary[0], values[k])}" if vary else "")
         res = _run_speeds(setup, cam_rpm, int(revolutions), points, rtol, atol, workers, client, quiet, desc)
         failed = np.flatnonzero(res["status"] != 0)

@@ -285,7 +285,7 @@ class ValveTrain(Parameters):
         """Degrees of freedom of the train: 1 direct-acting, 2 rocker, 3 pushrod."""
         return LAYOUTS.index(self.layout) + 1
 
-    def equivalent_direct_acting(self) -> "ValveTrain":
+    def equivalent_direct_acting(self) -> ValveTrain:
         """The direct-acting train of the same referred mass, series stiffness and lash.
 
         Masses referred to the valve by kinetic energy (``m / r^2``, ``J / arm^2``),

@@ -2,16 +2,22 @@
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import numpy as np
 
-from springdyn.app.cli.common import (add_output_options, as_options, close_figure, parse_range, print_json, print_table,
-                                     quantity)
+from springdyn.app.cli.common import (
+    add_output_options,
+    as_options,
+    close_figure,
+    parse_range,
+    print_json,
+    print_table,
+    quantity,
+)
+from springdyn.cfcs.params import EXAMPLES, CFCSParams
 from springdyn.core.errors import InputError
 from springdyn.core.units import format_quantity
-from springdyn.cfcs.params import EXAMPLES, CFCSParams
 
 #: The default stroke of the sinusoidal motion (``springdyn.cfcs.model.DEFAULT_AMPLITUDE``,
 #: a fraction of r2 + r3; a test checks the two agree).

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import re
 import json
+import re
 import sys
 from pathlib import Path
 

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springdyn.app.cli.common import (add_output_options, close_figure, parse_range, print_json, print_table,
-                                     quantity)
+from springdyn.app.cli.common import add_output_options, close_figure, parse_range, print_json, print_table, quantity
 from springdyn.core.errors import InputError
 from springdyn.core.io import read_csv_columns
 from springdyn.lsd.parameters import LSDParameters

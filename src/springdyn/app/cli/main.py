@@ -22,6 +22,7 @@ from pathlib import Path
 from springdyn import __version__
 from springdyn.core.errors import InputError, SolverError
 from springdyn.core.io import NonFiniteOutputError, check_output_file, check_output_folder, output_set
+
 from . import docs_cmd
 
 #: Model families, in the order the CLI lists them, with their help line (the family's

@@ -2,11 +2,17 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from springdyn.app.cli.common import add_output_options, as_options, close_figure, parse_range, print_json, print_table, quantity
+from springdyn.app.cli.common import (
+    add_output_options,
+    as_options,
+    close_figure,
+    parse_range,
+    print_json,
+    print_table,
+    quantity,
+)
 from springdyn.core.errors import InputError
 from springdyn.core.units import format_quantity
 from springdyn.valve.spring import MODEL_NAMES, ValveSpring
@@ -411,9 +417,9 @@ def parse_vary(text: str, spring: ValveSpring):
 
 
 def cmd_sweep(args) -> int:
-    from springdyn.valve.sweeps import connect, describe_design_value, sweep
-
     from pathlib import Path
+
+    from springdyn.valve.sweeps import connect, describe_design_value, sweep
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)

@@ -9,10 +9,11 @@ import tempfile
 from importlib import resources
 from pathlib import Path
 
+from springdyn.core.errors import InputError
 from springdyn.core.io import direct_outputs
 from springdyn.core.params import load_toml
-from springdyn.core.errors import InputError
 from springdyn.core.progress import progress
+
 from .html import Section, render_html
 
 __all__ = ["build_report", "demo_definitions", "DEMO_DEFINITIONS", "DEMO_LABEL", "MODEL_TABLES"]

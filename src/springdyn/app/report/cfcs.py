@@ -13,13 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
-from springdyn.core.io import write_json
-from springdyn.core.plotting import new_figure, plt, save_figure
 from springdyn.app.report.html import Criterion, Section, fmt, parameter_rows
 from springdyn.cfcs.design import design_flattest
-from springdyn.cfcs.motion import SinusoidMotion
 from springdyn.cfcs.model import CFCS
+from springdyn.cfcs.motion import SinusoidMotion
 from springdyn.cfcs.params import CFCSParams
+from springdyn.core.io import write_json
+from springdyn.core.plotting import new_figure, plt, save_figure
 
 __all__ = ["load", "section", "PAPER_OMEGAS"]
 

@@ -12,9 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
+from springdyn.app.report.html import Criterion, Section, fmt, parameter_rows
 from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
-from springdyn.app.report.html import Criterion, Section, fmt, parameter_rows
 from springdyn.lsd.identify import RigData, identify_series
 from springdyn.lsd.model import LSDModel
 from springdyn.lsd.parameters import LSDParameters

@@ -7,17 +7,17 @@ from pathlib import Path
 
 import numpy as np
 
+from springdyn.app.report.html import Criterion, Section, parameter_rows
 from springdyn.core.errors import InputError
 from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
-from springdyn.app.report.html import Criterion, Section, parameter_rows
+from springdyn.core.units import format_quantity
 from springdyn.valve.cam import Cam
-from springdyn.valve.model import PARAMETER_UNITS
 from springdyn.valve.dynamics import float_speed, natural_frequencies, simulate
+from springdyn.valve.model import PARAMETER_UNITS
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.sweeps import sweep
 from springdyn.valve.valvetrain import ValveTrain
-from springdyn.core.units import format_quantity
 
 __all__ = ["load", "section", "ValveDefinition", "REPORT_SPEEDS", "DEFAULT_CAM"]
 
@@ -94,8 +94,8 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     if sw_other is not None:
         png, sentence, table_other = _compare_models(sp, sw, sw_other, out_dir)
         files.append(sw_other.to_csv(out_dir / f"sweep_{other_model}_summary.csv"))
-        figures.append((png, f"The same spring with both models over the speed range: peak and minimum retainer "
-                        f"and seat forces, and the surge at the resonance orders"))
+        figures.append((png, "The same spring with both models over the speed range: peak and minimum retainer "
+                        "and seat forces, and the surge at the resonance orders"))
         findings.append(sentence)
 
     for rpm, sim in sims.items():

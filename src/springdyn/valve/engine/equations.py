@@ -33,10 +33,31 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+
 from ...numerics.jit import kernel, rebind, twins
-from .layout import (VT_C_CAM, VT_C_PUSH, VT_C_SEAT, VT_C_TIP, VT_DOF, VT_ENABLED, VT_K_CAM, VT_K_PUSH, VT_K_SEAT,
-                     VT_K_TIP, VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS, VT_RATIO, X_CAM_FORCE, X_DISP, X_DLIFT,
-                     X_LIFT, X_SEAT_FORCE, X_TOP)
+from .layout import (
+    VT_C_CAM,
+    VT_C_PUSH,
+    VT_C_SEAT,
+    VT_C_TIP,
+    VT_DOF,
+    VT_ENABLED,
+    VT_K_CAM,
+    VT_K_PUSH,
+    VT_K_SEAT,
+    VT_K_TIP,
+    VT_LASH,
+    VT_M_LEVER,
+    VT_M_LIFTER,
+    VT_MASS,
+    VT_RATIO,
+    X_CAM_FORCE,
+    X_DISP,
+    X_DLIFT,
+    X_LIFT,
+    X_SEAT_FORCE,
+    X_TOP,
+)
 
 __all__ = ["EngineModel", "model_of", "train_of", "hermite5", "cam_at", "chain_forces", "spring_rhs", "train_rhs", "chain_rhs", "spring_rhs_hot",
            "train_rhs_hot", "cam_at_hot", "rhs_call", "NO_EXTRA"]

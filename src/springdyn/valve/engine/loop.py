@@ -15,11 +15,10 @@
 
 from __future__ import annotations
 
+import threading
 from typing import NamedTuple
 
 import numpy as np
-
-import threading
 
 from ...numerics import erk
 from ...numerics.jit import kernel, rebind

@@ -18,11 +18,41 @@ import numpy as np
 from ...numerics import erk
 from ...numerics.jit import kernel
 from .equations import FASTMATH, rhs_call
-from .layout import (CH_RETAINER, CH_SEAT, CH_TRAIN, EV_END, EV_INDEX, EV_KIND, EV_START, EXT_IMPACT_TIME,
-                     EXT_IMPACT_VELOCITY, EXT_LANDINGS, EXT_LOST, EXT_MAX_RETAINER, EXT_MAX_SEAT, EXT_MIN_CAM,
-                     EXT_MIN_RETAINER, EXT_MIN_SEAT, KIND_COIL_CONTACT, KIND_LANDING, KIND_LIFT_OFF,
-                     KIND_SEPARATION, N_FIXED_CHANNELS, N_SIG, SIG_CAM_MIN, SIG_RETAINER_MAX, SIG_RETAINER_MIN,
-                     SIG_SEAT_MAX, SIG_SEAT_MIN, VT_ENABLED, VT_LOBE_LASH, X_CAM_FORCE, X_DISP, X_LIFT, X_TOP)
+from .layout import (
+    CH_RETAINER,
+    CH_SEAT,
+    CH_TRAIN,
+    EV_END,
+    EV_INDEX,
+    EV_KIND,
+    EV_START,
+    EXT_IMPACT_TIME,
+    EXT_IMPACT_VELOCITY,
+    EXT_LANDINGS,
+    EXT_LOST,
+    EXT_MAX_RETAINER,
+    EXT_MAX_SEAT,
+    EXT_MIN_CAM,
+    EXT_MIN_RETAINER,
+    EXT_MIN_SEAT,
+    KIND_COIL_CONTACT,
+    KIND_LANDING,
+    KIND_LIFT_OFF,
+    KIND_SEPARATION,
+    N_FIXED_CHANNELS,
+    N_SIG,
+    SIG_CAM_MIN,
+    SIG_RETAINER_MAX,
+    SIG_RETAINER_MIN,
+    SIG_SEAT_MAX,
+    SIG_SEAT_MIN,
+    VT_ENABLED,
+    VT_LOBE_LASH,
+    X_CAM_FORCE,
+    X_DISP,
+    X_LIFT,
+    X_TOP,
+)
 
 __all__ = ["Monitor", "new_monitor", "monitor_step", "finish_monitor"]
 
