@@ -1,4 +1,4 @@
-"""The Result interface every analysis result must offer (issue 10), as one reusable check.
+"""The Result interface every analysis result must offer, as one reusable check.
 
 Each family's tests call :func:`check_result_interface` on an instance of each of its
 result classes; ``tests/test_result_interface.py`` walks the packages so that no result

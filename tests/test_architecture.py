@@ -1,4 +1,4 @@
-"""The package's architecture (issue 10): the physics never imports the application layer,
+"""The package's architecture: the physics never imports the application layer,
 and no two springdyn modules import each other, directly or through others.
 
 The import graph is read from the source (every ``import`` statement, also inside

@@ -263,7 +263,7 @@ def test_index_lists_every_guide_and_example():
 
 @pytest.mark.parametrize("family", ["valve", "cfcs", "lsd"])
 def test_guide_per_family_covers_the_required_parts(family):
-    """Issue 7: physics, assumptions, corrections with reasons, validity limits."""
+    """Physics, assumptions, corrections with reasons, validity limits."""
     text = (DOCS / f"{family}.md").read_text(encoding="utf-8").lower()
     for part in ("physics", "assumption", "correction", "limit"):
         assert part in text, f"docs/{family}.md lacks a part on {part}"

@@ -1,4 +1,4 @@
-"""Docstrings of the physics (issue 10): every public function of the family packages has a
+"""Docstrings of the physics: every public function of the family packages has a
 numpydoc ``Parameters`` section whose numeric entries give their unit in brackets
 (``Mean coil diameter [m].``; ``[-]`` for dimensionless), and no docstring cites a file
 outside the repository (the reading notes and source documents are cited through

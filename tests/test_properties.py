@@ -1,4 +1,4 @@
-"""Property-based tests of the input boundary (issue 11), seeded and bounded.
+"""Property-based tests of the input boundary, seeded and bounded.
 
 For any input: either a valid result with finite outputs, or an :class:`InputError` (a
 ``ValueError``) with a one-line message that names the key or option.  Hypothesis is

@@ -1,4 +1,4 @@
-"""Every result object of every family has the Result interface (issue 10).
+"""Every result object of every family has the Result interface.
 
 The walk finds every class of the family packages that looks like a result (it has
 ``to_xarray`` or ``to_csv``); each must subclass :class:`springdyn.core.results.Result` and

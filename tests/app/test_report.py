@@ -1,4 +1,4 @@
-"""The report (issue 7): complete on the built-in examples, rendered in headless Chromium,
+"""The report: complete on the built-in examples, rendered in headless Chromium,
 and the same through ``springdyn report`` on the example files."""
 
 import json
@@ -24,6 +24,7 @@ def demo_dir(tmp_path_factory):
     return out
 
 
+@pytest.mark.slow  # the whole demo (12 s)
 def test_demo_report_is_complete(demo_dir):
     page = (demo_dir / "index.html").read_text()
     sections = re.findall(r"<section id='([^']+)' data-family='(\w+)'>(.*?)</section>", page, flags=re.S)
@@ -38,11 +39,15 @@ def test_demo_report_is_complete(demo_dir):
 
 
 def test_examples_are_the_built_in_definitions():
+    """The definitions live in one place (springdyn/data, shipped with the package); the
+    examples folder links to them, so the two cannot drift apart."""
     for name in DEMO_DEFINITIONS:
-        assert (ROOT / "examples" / "report" / name).read_text() == next(
-            p for p in demo_definitions() if p.name == name).read_text()
+        example = ROOT / "examples" / "report" / name
+        built_in = next(p for p in demo_definitions() if p.name == name)
+        assert example.is_symlink() and example.resolve() == built_in.resolve(), name
 
 
+@pytest.mark.slow  # the whole demo (12 s)
 def test_report_on_example_files_gives_the_same(demo_dir, tmp_path):
     """``springdyn report`` on examples/report/*.toml reproduces the demo's results."""
     names = ["report_valve_two_step.toml", "lsd_type_c.toml"]
@@ -89,8 +94,9 @@ def _render(exe, url, tmp_path, width):
     return attrs, flags
 
 
+@pytest.mark.slow  # the whole demo (12 s)
 def test_report_renders_in_headless_chromium(demo_dir, tmp_path):
-    """As a browser sees the page (issue 10): every figure loads; every section has a criteria
+    """As a browser sees the page: every figure loads; every section has a criteria
     table, findings and figures; the smallest figure text is at least 10 px at a 1400 px
     window; verdicts are words with a colour; at 800 px nothing overflows the page.  A
     screenshot is kept in test-artifacts/report.png."""
@@ -127,7 +133,7 @@ def test_report_renders_in_headless_chromium(demo_dir, tmp_path):
     ids=["no-allowable-stress", "torsional-stiffness-only"],
 )
 def test_report_builds_for_documented_optional_cfcs_keys(tmp_path, change):
-    """Every [cfcs] table the CLI accepts also builds a report (issue 10), not only the example."""
+    """Every [cfcs] table the CLI accepts also builds a report, not only the example."""
     import tomllib
 
     from springdyn.app.report import cfcs as section_builder

@@ -1,4 +1,4 @@
-"""The large-deflection (elastica) model of the flexure (issue 14, item 2), springdyn.cfcs.beam.
+"""The large-deflection (elastica) model of the flexure, springdyn.cfcs.beam.
 
 References: the PRBM of [CFCS] as the short-flexure limit; a second, independent solver (Hencky
 chain) for the shooting solver; the issue's independent verification for Table 1 (max force
@@ -52,7 +52,7 @@ def test_toggle_force_is_the_limit_of_the_curve():
 @pytest.mark.parametrize("ratio", [0.1, 0.05, 0.025])
 def test_tends_to_the_prbm_for_short_flexures(ratio):
     # same K3 = EI/l, shorter strip: the largest force difference over 0-72 mm falls in proportion to l/r3
-    # (issue 14: 1.0 % of F0 at l/r3 = 0.1, 0.2 % at 0.025); bound: 10 % of F0 per unit l/r3, and the
+    # (measured by an independent elastica solver: 1.0 % of F0 at l/r3 = 0.1, 0.2 % at 0.025); bound: 10 % of F0 per unit l/r3, and the
     # end rotation tends to the PRBM's theta_K3 likewise
     length = ratio * R3
     ei = (EI / L) * length

@@ -1,12 +1,16 @@
 """``springdyn cfcs ...`` through springdyn.app.cli.main.main (exit codes, stderr, files)."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from springdyn.app.cli.main import main
 from springdyn.core.io import read_csv_columns, write_csv
+
+#: The repository (the example files), wherever pytest runs from.
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def run(capsys, *argv):
@@ -38,7 +42,7 @@ def test_static_table(capsys):
 
 
 def test_dynamic(capsys, tmp_path):
-    code, out, err = run(capsys, "cfcs", "dynamic", "examples/cfcs/table1.toml", "--omega", "14.7",
+    code, out, err = run(capsys, "cfcs", "dynamic", str(ROOT / "examples/cfcs/table1.toml"), "--omega", "14.7",
                          "--amplitude", "0.4", "--cycles", "2", "--json", "--csv", str(tmp_path / "d.csv"))
     assert code == 0, err
     s = json.loads(out)

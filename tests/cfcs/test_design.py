@@ -1,4 +1,4 @@
-"""Design: r2/r3 for the flattest force, K3 and the flexure (issue 5, section 2)."""
+"""Design: r2/r3 for the flattest force, K3 and the flexure."""
 
 import numpy as np
 import pytest
@@ -26,7 +26,7 @@ def test_feasible_prbm_design_verified_through_the_model():
 
 
 def test_beam_design_holds_when_reanalysed():
-    # issue 14: a designed mechanism re-analysed with the beam model meets the force (1 %), the PCF and the
+    # A designed mechanism re-analysed with the beam model meets the force (1 %), the PCF and the
     # stress limits. The re-analysis is the CFCS model (static over the working range, its own grid)
     r = design(12.8, 0.040, 207e9, 1.5e9, total_length=0.3)
     s = r.summary

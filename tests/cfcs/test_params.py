@@ -1,4 +1,4 @@
-"""Mechanism definition and bad input (issue 5, section 4)."""
+"""Mechanism definition and bad input."""
 
 import pytest
 
@@ -106,7 +106,7 @@ def test_model_needs_params():
 
 
 def test_amplitude_bare_numbers_are_metres_and_percent_is_a_fraction(model):
-    """Issue 11: bare numbers are SI everywhere; a fraction of the mechanism needs '%'."""
+    """Bare numbers are SI everywhere; a fraction of the mechanism needs '%'."""
     ext = model.params.extended_length
     a = model.dynamic(5.0, amplitude="40 %").summary
     b = model.dynamic(5.0, amplitude=0.4 * ext).summary
@@ -122,13 +122,13 @@ def test_amplitude_bare_numbers_are_metres_and_percent_is_a_fraction(model):
     (lambda m: m.params.replace(shear_angle=1.5), "shear_angle = 1.5 rad must lie within"),
 ])
 def test_issue11_reproducers_are_input_errors(model, call, match):
-    """Issue 11: omega 1e308 and shear_angle = 1.5 rad gave NaN statistics; now one message each."""
+    """An omega of 1e308 and shear_angle = 1.5 rad gave NaN statistics; now one message each."""
     with pytest.raises(InputError, match=match):
         call(model)
 
 
 def test_design_stroke_fraction_beyond_the_kinematic_range():
-    """Issue 11: stroke_fraction 0.95 failed inside brentq; now the allowed range is named."""
+    """A stroke_fraction of 0.95 failed inside brentq; now the allowed range is named."""
     from springdyn.cfcs import design
 
     with pytest.raises(InputError, match=r"stroke_fraction = 0.95 must not exceed 0.9"):

@@ -1,4 +1,4 @@
-"""Issue 14, item 1: no reported statistic may depend on the toggle cut-off (a numerical setting).
+"""No reported statistic may depend on the toggle cut-off (a numerical setting).
 
 Checked on Table 1 of [CFCS] with the friction and axial-force terms of the shipped example on.
 """
@@ -40,7 +40,7 @@ def test_default_motion_is_independent_of_the_cutoff(table1):
 
 def test_through_the_toggle_is_flagged(table1):
     # offset 0 requested explicitly: the peak-to-peak force at 14.7 rad/s halves with each doubling of
-    # the cut-off (issue 14: 65.5, 33.1, 13.7, 7.3 N for 1, 2, 5, 10 deg), so it must be flagged, and the
+    # the cut-off (measured: 65.5, 33.1, 13.7, 7.3 N for 1, 2, 5, 10 deg), so it must be flagged, and the
     # value the flag compares with is the one computed at twice the cut-off
     one, two = _at(table1, 1.0).dynamic(14.7, offset=0.0).summary, _at(table1, 2.0).dynamic(14.7, offset=0.0).summary
     assert one["toggle_dominated"] and "peak_to_peak_N" in one["toggle_dominated_statistics"]

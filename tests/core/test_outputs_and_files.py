@@ -1,4 +1,4 @@
-"""Issue 11 at the core: files that cannot be read give one message; outputs are checked
+"""Bad files and outputs at the core: files that cannot be read give one message; outputs are checked
 before any work and written as one set (temporaries renamed together, removed on error)."""
 
 from __future__ import annotations

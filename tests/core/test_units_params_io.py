@@ -93,7 +93,7 @@ def test_atomic_writers_leave_nothing_on_failure(tmp_path):
     assert os.listdir(tmp_path) == ["out.csv"]
     write_json(tmp_path / "x.json", {"v": np.float64(1.5), "n": None, "arr": np.arange(2)})
     assert json.loads((tmp_path / "x.json").read_text()) == {"v": 1.5, "n": None, "arr": [0, 1]}
-    # a NaN never reaches a file (issue 11): the writer refuses, naming the key, and writes nothing
+    # a NaN never reaches a file: the writer refuses, naming the key, and writes nothing
     from springdyn.core.io import NonFiniteOutputError
 
     with pytest.raises(NonFiniteOutputError, match="'n'"):

@@ -1,4 +1,4 @@
-"""Calibration against rig records (issue 15, Build 1): lsd/calibrate.py and ``springdyn lsd calibrate``."""
+"""Calibration against rig records: lsd/calibrate.py and ``springdyn lsd calibrate``."""
 
 import json
 import tomllib
@@ -33,7 +33,7 @@ def noisy():
 
 def test_round_trip_recovers_leakage_and_friction_with_noise(noisy):
     # records simulated with a known leakage factor and friction (2 N force noise on ~25 N
-    # forces, 10 periods) are calibrated back within 1 % (issue 15), starting from the
+    # forces, 10 periods) are calibrated back within 1 %, starting from the
     # uncalibrated Type C (leakage 1, friction 0.1)
     firsts, seconds = noisy
     cal = calibrate(LSDParameters.example("C"), firsts, seconds, fit=["leakage_factor", "leaf_friction"])

@@ -134,7 +134,7 @@ def test_rig_along_measured_path(tmp_path, capsys):
 
 
 def test_issue11_reproducers(capsys, tmp_path):
-    """Issue 11: a wrong --rpm, an all-zero record, an absurd rig request and a unit slip."""
+    """A wrong --rpm, an all-zero record, an absurd rig request and a unit slip."""
     x = tmp_path / "x.csv"
     assert main(["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--excitation", "x", "--revolutions", "5",
                  "--csv", str(x)]) == 0
@@ -156,7 +156,7 @@ def test_issue11_reproducers(capsys, tmp_path):
 
 
 def test_a_frequency_is_revolutions_per_second_in_every_lsd_command(tmp_path, capsys):
-    # Issue 15, Build 8: --rpm 50Hz is 3000 rpm (not 50 rad/s = 477.5 rpm) everywhere
+    # --rpm 50Hz is 3000 rpm (not 50 rad/s = 477.5 rpm) everywhere
     assert main(["lsd", "coefficients", "C", "--rpm", "50Hz,1000", "--json"]) == 0
     assert _json(capsys)["rpm"] == pytest.approx([3000.0, 1000.0])
     x = tmp_path / "x.csv"

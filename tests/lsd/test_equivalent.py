@@ -1,4 +1,4 @@
-"""Describing-function coefficients of the nonlinear force laws: lsd/equivalent.py (issue 15, Build 5)."""
+"""Describing-function coefficients of the nonlinear force laws: lsd/equivalent.py."""
 
 import warnings
 

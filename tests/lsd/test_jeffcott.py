@@ -1,5 +1,5 @@
 """Amplitude-consistent unbalance response (describing function) against a time-domain
-simulation of the nonlinear damper on a Jeffcott rotor: lsd/jeffcott.py (issue 15, Build 5)."""
+simulation of the nonlinear damper on a Jeffcott rotor: lsd/jeffcott.py."""
 
 import numpy as np
 import pytest
@@ -70,7 +70,7 @@ def test_friction_can_hold_the_ring():
 
 
 def test_critical_amplitude_vs_leakage_shows_optimum_and_lock_up():
-    # Issue 15, Build 6: the peak disk amplitude over speed against the leakage factor.
+    # The peak disk amplitude over speed against the leakage factor.
     # Small leakage factor = stiff oil network: the dampers lock, the rotor runs on rigid
     # supports and its critical moves to sqrt(k/M) (4775 rpm) with only the disk damping;
     # large leakage factor = no oil damping: a large peak at the soft-support critical

@@ -100,7 +100,7 @@ def test_bad_leaves():
 
 def test_leaf_bending_beam_drops_the_plate_factor():
     # leaf_bending = "beam": E I without 1/(1 - nu^2) of (2.8), i.e. (1 - nu^2) = 0.91 of the
-    # printed pack stiffness; the independent plate model of issue 15 lies between the two
+    # printed pack stiffness; an independent plate model of the pack lies between the two
     # (4-6 % below the printed value), which is why both bounds are offered
     from springdyn.lsd import LSDModel, LSDParameters
 

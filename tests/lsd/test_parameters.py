@@ -110,7 +110,7 @@ def test_example_files_load():
     for f in files:
         p = LSDParameters.from_toml(f)
         if f.stem == "type_c" or f.stem.endswith("_calibrated"):
-            # the built-in A and B are the calibrated definitions (issue 15): the demo shows them
+            # the built-in A and B are the calibrated definitions: the demo shows them
             assert p == LSDParameters.example(f.stem.split("_")[1])
     for x in ("a", "b"):  # the raw closed form differs only in its leakage factor (and name)
         raw = LSDParameters.from_toml(folder / f"type_{x}.toml")

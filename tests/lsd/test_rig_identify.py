@@ -50,7 +50,7 @@ M_TRUE = 0.5
 
 @pytest.mark.parametrize("pair", [("x", "y"), ("orbit", "backward-orbit")])
 def test_identification_round_trip_within_1_percent(pair):
-    # Issue 6 section 5: known K, C, M plus noise, two independent excitations, frequency
+    # Known K, C, M plus noise, two independent excitations, frequency
     # found in the data.  Noise: 2 N on forces of ~30 N, 0.2 um on 50 um displacements.
     # Tolerance 1 % of each matrix' largest entry (the issue's figure).
     trajs = []
@@ -123,7 +123,7 @@ def test_printed_4_19_to_4_22_are_wrong():
 
 
 def test_coulomb_equivalent_recovered_from_time_domain():
-    # Issue 6 section 5: identifying the simulated O-ring friction (true Coulomb sign law)
+    # Identifying the simulated O-ring friction (true Coulomb sign law)
     # of an x shake recovers C_f = 4 mu F_N / (pi w A) of (2.22); a circular orbit gives
     # mu F_N / (w A).  Oil and leaf friction switched off (huge leakage, mu_s = 0).
     # Tolerance: the sign law is sampled 1200 times per period; the two samples at the
@@ -294,7 +294,7 @@ def test_tdms_round_trip(tmp_path):
 
 
 def test_interval_coverage_is_nominal_with_student_t():
-    # Issue 15, Build 8: 400 noisy copies of one x-shake record of 4 periods (3 N force
+    # 400 noisy copies of one x-shake record of 4 periods (3 N force
     # noise). The 95 % intervals t_(0.975, n-1) * standard error must hold the noise-free
     # identification in 95 % of the records: binomial standard deviation 1.1 % at N = 400,
     # so 92-98 % is the 3-sigma band. With the normal quantile 1.96 (what the issue found)

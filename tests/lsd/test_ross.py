@@ -1,6 +1,6 @@
 """The damper as a ROSS bearing element (optional extra springdyn[ross]): lsd/rotordynamics.py.
 
-Issue 15, Build 4: the exported table is dense over a stated speed range (0-20 000 rpm by
+The exported table is dense over a stated speed range (0-20 000 rpm by
 default), ROSS's interpolated coefficients equal springdyn's over the whole range and are
 never extrapolated.
 """
@@ -41,7 +41,7 @@ def test_ross_interpolation_matches_over_the_whole_range_and_never_extrapolates(
         expected = (ref.K if name[0] == "k" else ref.C)[:, i, j]
         got = np.array([(b.K(f) if name[0] == "k" else b.C(f))[i, j] for f in w[::50]])
         scale = np.max(np.abs((ref.K if name[0] == "k" else ref.C)[:, i, i]))  # cross terms are round-off
-        # issue 15: within 0.5 % over the whole stated range (the spline's error is ~2e-4)
+        # Within 0.5 % over the whole stated range (the spline's error is ~2e-4)
         np.testing.assert_allclose(got, expected[::50], rtol=5e-3, atol=1e-9 * scale)
         full = getattr(b, f"{name}_interpolated")(w)
         np.testing.assert_allclose(full, expected, rtol=5e-3, atol=1e-9 * scale)

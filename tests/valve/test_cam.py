@@ -147,7 +147,7 @@ def test_table_missing_columns(tmp_path):
 
 @pytest.mark.parametrize("cell", ["nan", "inf", "-inf"])
 def test_nan_in_lift_table_names_file_row_and_column(tmp_path, cell):
-    """Issue 11: a ``nan`` in a lift table CSV crashed with a traceback."""
+    """A ``nan`` in a lift table CSV crashed with a traceback."""
     f = tmp_path / "nan.csv"
     f.write_text("cam_angle_deg,lift_mm\n" + "".join(f"{a},{cell if a == 40 else 1.0}\n" for a in range(0, 360, 10)))
     with pytest.raises(InputError, match=rf"{f}: row 6, column 'lift_mm': '{cell}' is not a finite number"):
@@ -172,7 +172,7 @@ def test_bad_table_arrays(angle, lift, pattern):
 
 
 def test_cam_and_valve_train_use_the_parameters_base(tmp_path):
-    """Issue 10: one from_dict/from_toml; a relative table path is resolved by ``_prepare``
+    """One from_dict/from_toml; a relative table path is resolved by ``_prepare``
     from the ``base_dir`` context (and left alone without it)."""
     from springdyn.core.params import Parameters
     from springdyn.valve import ValveTrain

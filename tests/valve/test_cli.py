@@ -41,7 +41,7 @@ def test_curve_csv_and_plot(capsys, tmp_path):
                      "--csv", str(csv_path), "--plot", str(png))
     assert code == 0
     rows = list(csv.reader(open(csv_path)))
-    assert rows[0] == ["length_m", "force_N", "stiffness_N_per_m", "first_mode_frequency_Hz"]  # issue 12 adds the last
+    assert rows[0] == ["length_m", "force_N", "stiffness_N_per_m", "first_mode_frequency_Hz"]  # the first mode beside the force (distributed model)
     assert len(rows) == 51
     assert float(rows[1][0]) == pytest.approx(0.048) and float(rows[-1][0]) == pytest.approx(0.030)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -110,7 +110,7 @@ def test_every_valve_command_takes_the_model_option(capsys):
 @pytest.mark.slow
 @pytest.mark.parametrize("quiet", [False, True])
 def test_a_compiling_command_says_so_in_one_line_unless_quiet(tmp_path, quiet):
-    """Issue 23: with an empty compile cache the first `valve simulate` prints one line on
+    """With an empty compile cache the first `valve simulate` prints one line on
     stderr while its engine compiles (what, about how long, once per machine), none under
     --quiet; the result on stdout is the same."""
     import os

@@ -1,4 +1,4 @@
-"""The distributed (coil-by-coil) valve-spring model (issue 12): continuum limits, statics
+"""The distributed (coil-by-coil) valve-spring model: continuum limits, statics
 coil by coil, convergence, energy, unilateral ends, true extremes, located events."""
 
 import math
@@ -50,7 +50,7 @@ def test_coil_law_is_c1_and_reaches_the_contact_stiffness():
 
 # ---------------------------------------------------------------- linear limits
 def test_modes_form_the_harmonic_series(uniform):
-    """Issue 12: surge modes k f1 (k = 1..5) within 1 % at the default element count (a
+    """Surge modes k f1 (k = 1..5) within 1 % at the default element count (a
     uniform fixed-fixed chain of n pieces has f_k/f_1 = sin(k pi/2n)/sin(pi/2n), 0.4 %
     below k at k = 5, n = 50)."""
     assert uniform.elements == DEFAULT_ELEMENTS
@@ -117,7 +117,7 @@ def test_element_convergence(one_step):
 
 @pytest.mark.slow
 def test_peak_forces_converge_in_elements(one_step):
-    """Issue 12 convergence: peak and minimum end forces at 3000 cam rpm (no coil clash)
+    """Peak and minimum end forces at 3000 cam rpm (no coil clash)
     change by less than 0.75 % of Fset from 50 to 100 elements (measured 0.4 %)."""
     fset = one_step.internal_parameters()["Fset"]
     a = simulate(one_step, CAM, 3000, 2).summary
@@ -160,7 +160,7 @@ def test_solid_length_from_the_wire_stack(one_step):
 
 
 def test_two_step_frequency_rises_as_low_pitch_coils_close(two_step):
-    """Issue 12: the two-step spring's first mode rises steadily (no jump: < 2 % per 0.1 mm)
+    """The two-step spring's first mode rises steadily (no jump: < 2 % per 0.1 mm)
     while its low-pitch coils close from the seat, and they are all closed at set-up."""
     L = np.arange(two_step.free_length, two_step.installed_length - 1e-9, -1e-4)
     f = np.array([two_step.modes(x, 1)[0] for x in L])
@@ -255,7 +255,7 @@ def test_energy_balance_undamped(one_step):
 
 @pytest.mark.parametrize("model", ["type-c", "distributed"])
 def test_no_tensile_end_force_at_any_speed(model):
-    """Issue 12 / MMS-7: the end contacts carry compression only, for both models, at the
+    """MMS-7: the end contacts carry compression only, for both models, at the
     speeds of the issue (above valve float with a valve train; 4-5-6-7 two-step)."""
     for name, cam, rpm, vt in (("one-step", CAM, 3600.0, VT),
                                ("two-step", Cam(law="4-5-6-7", lift=8e-3, duration=math.radians(120)), 4250.0, None)):

@@ -52,7 +52,7 @@ def test_bad_inputs():
     assert np.all(du.goodman_safety_factor(np.array([1e8, 2e8]), np.array([3e8, 4e8]), 4e8, 1.2e9) > 0)
 
 
-# --- the assessment over a cycle (issue 13) --------------------------------------------------
+# --- the assessment over a cycle --------------------------------------------------
 import math as _math
 
 from springdyn.valve import Cam as _Cam

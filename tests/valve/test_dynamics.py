@@ -1,4 +1,4 @@
-"""Valve spring under cam drive (issue 3): limits, energy, periodicity, modes, lift-off."""
+"""Valve spring under cam drive: limits, energy, periodicity, modes, lift-off."""
 
 import math
 
@@ -23,7 +23,7 @@ def one_step():
 
 
 def test_quasi_static_limit(one_step):
-    """Issue 3: a 10 cam rpm drive reproduces the static force within 0.1 % of Fset."""
+    """A 10 cam rpm drive reproduces the static force within 0.1 % of Fset."""
     sim = simulate(one_step, CAM, 10.0, revolutions=1, points_per_revolution=720)
     fset = one_step.internal_parameters()["Fset"]
     assert np.max(np.abs(sim.retainer_force - sim.static_force)) < 1e-3 * fset
@@ -57,7 +57,7 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
 
 @pytest.mark.parametrize("name", ["one-step", "two-step"])
 def test_refinement_study(name):
-    """Issue 3: halving the tolerances changes the peak forces by less than 0.05 % of Fset."""
+    """Halving the tolerances changes the peak forces by less than 0.05 % of Fset."""
     s = ValveSpring.example(name)
     fset = s.internal_parameters()["Fset"]
     a = simulate(s, CAM, 3000, 2).summary

@@ -128,7 +128,7 @@ def _first_mode_error(s):
 
 
 def test_first_mode_within_2k1_over_k_of_f1_one_step():
-    """Issue 2: the first chain mode at free length lies within 2 K1/K (relative) of the
+    """The first chain mode at free length lies within 2 K1/K (relative) of the
     closed-form f1 -- checked on 200 random valid one-step springs."""
     for s in _random_valid_springs("one-step", 200, seed=11):
         err, p = _first_mode_error(s)

@@ -1,5 +1,5 @@
 """How the compiled engine steps: the pair per model, the cam's breakpoints, the velocity
-tolerance (issue 12, "choose explicit, implicit or IMEX stepping from measurements").
+tolerance ("choose explicit, implicit or IMEX stepping from measurements").
 
 References: a tight Dormand-Prince run at rtol 1e-10 (the engine itself, checked against
 SciPy's DOP853 in test_dynamics.py); the cam law's definition (the ramps' velocity steps);

@@ -1,4 +1,4 @@
-"""Speed sweeps (issue 4): consistency with single runs, parallel = serial = Dask, design
+"""Speed sweeps: consistency with single runs, parallel = serial = Dask, design
 variables, outputs and bad input."""
 
 import csv

@@ -1,4 +1,4 @@
-"""Bad input for valve springs (issue 2, section 5): one clear message each."""
+"""Bad input for valve springs: one clear message each."""
 
 import re
 
@@ -104,7 +104,7 @@ def test_toml_errors_name_the_file(tmp_path):
 
 
 # --------------------------------------------------------------------------------------
-# Issue 11 reproducers on the library side: every bad input is an InputError naming the
+# Reproducers of bad input on the library side: every bad input is an InputError naming the
 # argument, the value and what is allowed; nothing hangs, overflows or returns NaN.
 
 import math
@@ -125,7 +125,7 @@ def one_step():
 
 @pytest.mark.parametrize("resolution", [0, -5.0, float("nan"), float("inf"), "5", True])
 def test_float_speed_resolution_must_be_positive(one_step, resolution):
-    """Issue 11, hang: ``float --resolution 0`` (or negative) bisected forever."""
+    """A hang: ``float --resolution 0`` (or negative) bisected forever."""
     with pytest.raises(InputError, match=r"resolution = .* must be a positive, finite speed \[rev/min\]"):
         float_speed(one_step, CAM, VT, [3000.0], resolution=resolution)
 
@@ -147,7 +147,7 @@ def test_float_speed_speeds(one_step, speeds):
 @pytest.mark.parametrize("key", ["rtol", "atol"])
 @pytest.mark.parametrize("value", [float("inf"), -1.0, float("nan"), 0.0, 1.0, "1e-6"])
 def test_tolerances_are_inputs(one_step, key, value):
-    """Issue 11, section 7: ``--rtol inf`` or ``-1`` ran up to 52 s and was reported as a
+    """``--rtol inf`` or ``-1`` ran up to 52 s and was reported as a
     solver failure; now it is refused at once, naming the allowed range."""
     pattern = {"rtol": r"rtol = .* is outside the allowed range 1e-12 <= rtol <= 0\.01",
                "atol": r"atol = .* is outside the allowed range 1e-15 <= atol <= 1e-05"}[key]
@@ -182,7 +182,7 @@ def test_whole_float_settings_still_accepted(one_step):
 
 @pytest.mark.parametrize("rpm", [0, -3000, float("nan"), float("inf"), True, "3000"])
 def test_design_figures_need_a_positive_speed(one_step, rpm):
-    """Issue 11: ``valve design --cam-rpm 0`` crashed; ``-3000`` gave a negative surge margin."""
+    """``valve design --cam-rpm 0`` crashed; ``-3000`` gave a negative surge margin."""
     with pytest.raises(InputError, match=r"cam_rpm = .* must be a positive, finite camshaft speed \[rev/min\]: "
                                          r"the surge margin"):
         one_step.design_figures(0.009, rpm)
@@ -196,14 +196,14 @@ def test_surge_margin_function_refuses_a_standing_cam():
 
 @pytest.mark.parametrize("points", [2.5, 1, "400", None])
 def test_static_curve_points(one_step, points):
-    """Issue 11, section 9: ``static_curve(points=2.5)`` (checked: an InputError)."""
+    """``static_curve(points=2.5)`` (checked: an InputError)."""
     with pytest.raises(InputError, match=r"points = .* must be a whole number of at least 2"):
         one_step.static_curve(points=points)
 
 
 @pytest.mark.parametrize("backend,rpm,limit", [("scipy", 1.0, r"59\.7"), ("compiled", 1e-3, r"0\.597")])
 def test_low_speed_work_is_bounded(one_step, backend, rpm, limit):
-    """Issue 11, hang: ``simulate --cam-rpm 1 --backend scipy`` ran without a step cap.
+    """A hang: ``simulate --cam-rpm 1 --backend scipy`` ran without a step cap.
     The number of periods of the chain's fastest mode (6633 Hz for the example) bounds the
     work: 2e4 for SciPy, 2e6 for the compiled engine (whose 1e7-step cap would otherwise
     end a long run in a misleading solver failure)."""
@@ -233,7 +233,7 @@ def test_low_speed_work_is_bounded(one_step, backend, rpm, limit):
     ],
 )
 def test_extreme_springs_are_input_errors(changes, pattern):
-    """Issue 11, section 9: an extreme ValveSpring raised ZeroDivisionError/OverflowError;
+    """An extreme ValveSpring raised ZeroDivisionError/OverflowError;
     now every value outside what a helical spring can be is an InputError naming the key,
     the value and the allowed range (the ranges keep the closed forms of [MMS] finite)."""
     with pytest.raises(InputError, match=pattern) as exc:
@@ -282,7 +282,7 @@ def test_random_extreme_springs_never_crash():
     ],
 )
 def test_unit_slips_warn(changes, pattern):
-    """Issue 11, section 4: a bare ``mean_diameter = "22"`` is 22 m with no word; values far
+    """A bare ``mean_diameter = "22"`` is 22 m with no word; values far
     outside valve springs now warn (not an error: the model still holds) naming the slip."""
     with pytest.warns(UserWarning, match=pattern) as record:
         ValveSpring.example("one-step").replace(**changes)

@@ -1,9 +1,10 @@
-"""Valve-train layouts (issue 13): reduction to the direct-acting train, quasi-static
+"""Valve-train layouts: reduction to the direct-acting train, quasi-static
 deflection, the hydraulic lash adjuster, validation.  References: the kinetic- and
 strain-energy reduction of a rigid lever (masses ``m / r^2``, ``J / arm^2``, stiffnesses
 ``k / r^2`` in series), and the static series-spring deflection."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,6 +13,9 @@ from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, float_speed, simulate
 from springdyn.valve.dynamics import prepare
 from springdyn.valve.valvetrain import ValveTrain, series_stiffness
+
+#: The repository (the example files), wherever pytest runs from.
+ROOT = Path(__file__).resolve().parents[2]
 
 SPRING = ValveSpring.example("one-step")
 FSET = SPRING.internal_parameters()["Fset"]
@@ -44,7 +48,7 @@ def test_referred_mass_and_stiffness_by_hand():
     assert vt.moving_mass == pytest.approx(m, rel=1e-12)
     k = 1.0 / (1 / 15e6 + 1 / 50e6 + r**2 / 150e6 + r**2 / 21e6)
     assert vt.stiffness_at_valve == pytest.approx(k, rel=1e-12)
-    # handbook range for follower trains, 3.5-10.5 N/um (issue 13)
+    # handbook range for follower trains, 3.5-10.5 N/um
     for name in ("pushrod", "finger-follower"):
         assert 3.5e6 <= ValveTrain.example(name).stiffness_at_valve <= 10.5e6
     assert series_stiffness(2.0, math.inf, 2.0) == 1.0
@@ -52,7 +56,7 @@ def test_referred_mass_and_stiffness_by_hand():
 
 @pytest.mark.parametrize("rpm", [1500.0, 2600.0])
 def test_stiff_pushrod_reduces_to_direct_acting(rpm):
-    # reference: the rigid-lever reduction; tolerance 1 % of Fset (issue 13)
+    # reference: the rigid-lever reduction; tolerance 1 % of Fset
     lever = stiff_pushrod()
     eq = lever.equivalent_direct_acting()
     a = simulate(SPRING, LOBE, rpm, 2, valve_train=lever)
@@ -70,7 +74,7 @@ def test_stiff_pushrod_float_speed_matches_reduced_train():
     fa = float_speed(SPRING, LOBE, lever, rpms, revolutions=2, resolution=5.0)["float_cam_rpm"]
     fb = float_speed(SPRING, valve_cam(LOBE, RATIO), eq, rpms, revolutions=2, resolution=5.0)["float_cam_rpm"]
     assert fa is not None and fb is not None
-    assert abs(fa - fb) <= 0.01 * fb  # 1 % (issue 13)
+    assert abs(fa - fb) <= 0.01 * fb  # 1 %
 
 
 @pytest.mark.parametrize("name", ["pushrod", "finger-follower"])
@@ -106,7 +110,7 @@ def test_hydraulic_adjuster_zero_lash_and_seat_preload():
 
 def test_lever_train_forces_never_pull():
     vt = ValveTrain.example("pushrod")
-    cam = Cam.from_toml("examples/valve/cam_pushrod.toml")
+    cam = Cam.from_toml(ROOT / "examples/valve/cam_pushrod.toml")
     sim = simulate(SPRING, cam, 3000.0, 2, valve_train=vt)
     assert sim.summary["liftoff"]  # a heavy OHV train floats at 3000 cam rpm with this spring
     assert np.all(sim.cam_contact_force >= 0) and np.all(sim.valve_seat_force >= 0)
@@ -117,7 +121,7 @@ def test_compiled_and_reference_backends_agree_for_a_finger_follower():
     # the finger follower: with a mechanical lash the free lifter rattles on the base circle and
     # its impacts make the two solvers' histories differ in detail
     vt = ValveTrain.example("finger-follower")
-    cam = Cam.from_toml("examples/valve/cam_finger.toml")
+    cam = Cam.from_toml(ROOT / "examples/valve/cam_finger.toml")
     a = simulate(SPRING, cam, 1200.0, 1, valve_train=vt, points_per_revolution=360)
     b = simulate(SPRING, cam, 1200.0, 1, valve_train=vt, points_per_revolution=360, backend="scipy", rtol=1e-9,
                  atol=1e-12)
@@ -233,5 +237,5 @@ def test_train_energy_balance_over_a_revolution(name, camfile, rpm):
     # tolerance: integration at rtol 1e-10 and trapezoid quadrature of the cam's work on
     # 40 000 intervals through contact impacts: 1e-4 of the peak elastic energy
     vt = ValveTrain.example(name).replace(cam_contact_damping=0.0, seat_damping=0.0, link_damping=0.0)
-    err = _train_energy_error(vt, Cam.from_toml(camfile), rpm)
+    err = _train_energy_error(vt, Cam.from_toml(ROOT / camfile), rpm)
     assert err < 1e-4

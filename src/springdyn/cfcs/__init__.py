@@ -9,6 +9,7 @@ Where to find each equation:
 - :mod:`.dynamics` -- generalized mass (19), velocity term, inverse and forward dynamics.
 - :mod:`.pivot` -- flexure stiffness (1), bending stress, allowable stroke.
 - :mod:`.motion` -- sinusoidal and tabulated slider motions.
+- :mod:`.beam` -- the flexure as an elastica (shooting on the beam equations) and as a Hencky chain.
 - :mod:`.design` -- choose r2/r3, K3 and the flexure for a target force and stroke.
 - :mod:`.params`, :mod:`.model`, :mod:`.results` -- the classes on top.
 

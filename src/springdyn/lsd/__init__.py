@@ -14,7 +14,8 @@ spaces between the packs are oil chambers joined by narrow passages.  Modules:
 - :mod:`~springdyn.lsd.equivalent` -- describing-function coefficients of the nonlinear laws at an amplitude;
 - :mod:`~springdyn.lsd.calibrate` -- fit parameters (``leakage_factor`` ...) to rig records;
 - :mod:`~springdyn.lsd.jeffcott` -- amplitude-consistent unbalance response of a simple rotor;
-- :mod:`~springdyn.lsd.rotordynamics` -- the damper as a ``ross.BearingElement`` (never extrapolating).
+- :mod:`~springdyn.lsd.rotordynamics` -- the damper as a ``ross.BearingElement`` (never extrapolating);
+- :mod:`~springdyn.lsd.plots` -- the figures of the results.
 
 The names below load their modules on first use, so that ``import springdyn.lsd`` stays quick.
 """

@@ -1,4 +1,10 @@
-"""The ``springdyn`` command line: a thin layer over the Python API (no physics here)."""
+"""The ``springdyn`` command line: a thin layer over the Python API (no physics here).
+
+- :mod:`.main` -- the entry point: the parser, exit codes, one line per outcome;
+- :mod:`.common` -- what every family's commands share (outputs, ranges, tables);
+- :mod:`.valve`, :mod:`.cfcs`, :mod:`.lsd` -- each family's commands;
+- :mod:`.docs_cmd` -- ``springdyn docs``, the generated references.
+"""
 
 import os as _os
 

@@ -2,9 +2,13 @@
 
 :func:`build_report` reads TOML definition files (a ``[spring]`` table with optional
 ``[cam]`` and ``[valve_train]``, a ``[cfcs]`` table, an ``[lsd]`` table, in any mix),
-runs each family's analyses through ``springdyn.<family>.report.section``, writes their
+runs each family's analyses through ``springdyn.app.report.<family>.section``, writes their
 tables and figures beside the page, and renders ``index.html`` with the figures
 embedded.  ``springdyn demo`` is this report over the built-in example definitions.
+
+- :mod:`.build` -- reads the definitions, runs the sections, writes the page;
+- :mod:`.html` -- the page itself;
+- :mod:`.valve`, :mod:`.cfcs`, :mod:`.lsd` -- each family's section.
 """
 
 from .build import DEMO_DEFINITIONS, build_report, demo_definitions
