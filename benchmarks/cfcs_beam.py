@@ -35,7 +35,10 @@ def main() -> int:
         x = np.linspace(0.0, 0.072, n)
         timed(f"shooting curve, {n} points", lambda x=x: beam.beam_force_curve(x, R2, R3, L, EI))
     for links in (100, 200):
-        timed(f"chain, {links} links, x = 40 mm", lambda links=links: beam.chain_equilibrium(0.04, R2, R3, L, EI, links=links))
+        timed(
+            f"chain, {links} links, x = 40 mm",
+            lambda links=links: beam.chain_equilibrium(0.04, R2, R3, L, EI, links=links),
+        )
     timed("design 12.8 N / 40 mm, beam model", lambda: design(12.8, 0.04, 207e9, 1.5e9, total_length=0.3), 1)
     return 0
 

@@ -100,10 +100,14 @@ def main(argv=None) -> int:
             cpus.append(c)
         cold, warm, cpu = statistics.median(colds), statistics.median(warms), statistics.median(cpus)
         print("springdyn valve simulate (one-step example, 3-4-5 cam, 3000 cam rpm)")
-        print(f"  cold (empty cache): {cold:.2f} s (runs: {', '.join(f'{t:.2f}' for t in colds)}; "
-              f"target <= 8 s): {met(cold <= 8.0, 'cold simulate')}")
-        print(f"  warm: {warm:.2f} s wall, {cpu:.2f} s CPU (target <= 1 s CPU): {met(cpu <= 1.0, 'warm CPU')}; "
-              f"cold / warm {cold / warm:.1f}x")
+        print(
+            f"  cold (empty cache): {cold:.2f} s (runs: {', '.join(f'{t:.2f}' for t in colds)}; "
+            f"target <= 8 s): {met(cold <= 8.0, 'cold simulate')}"
+        )
+        print(
+            f"  warm: {warm:.2f} s wall, {cpu:.2f} s CPU (target <= 1 s CPU): {met(cpu <= 1.0, 'warm CPU')}; "
+            f"cold / warm {cold / warm:.1f}x"
+        )
         print(f"  the notice it printed: {notice or '(none)'}")
         if not args.skip_demo:
             env = environment(os.path.join(work, "cache-demo"))
@@ -119,8 +123,13 @@ def main(argv=None) -> int:
             for model in ("spring", "train"):
                 for method in ("dopri5", "bs3", "tsit5"):
                     env = environment(os.path.join(work, f"cache-{model}-{method}"))
-                    done = subprocess.run([sys.executable, "-c", VARIANT_CHILD, model, method, train], env=env,
-                                          cwd=work, capture_output=True, text=True)
+                    done = subprocess.run(
+                        [sys.executable, "-c", VARIANT_CHILD, model, method, train],
+                        env=env,
+                        cwd=work,
+                        capture_output=True,
+                        text=True,
+                    )
                     if done.returncode != 0:
                         raise SystemExit(f"variant {model}/{method} failed: {done.stderr.strip()}")
                     print(f"  {model:6s} {method:6s} {float(done.stdout.split()[-1]):5.1f} s")

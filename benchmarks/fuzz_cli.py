@@ -52,14 +52,71 @@ DEFINITIONS = {
 }
 
 EXTREME_VALUES = [
-    "nan", "inf", "-inf", 0, -1, 1e-300, 1e300, 5e-324, "1e400 m", 10 ** 400, "", " ", "abc", "22", "22 kg",
-    "22 mm", "5 %", "-5 %", "3,8 mm", "3000,5", "1:2:3", True, [1, 2], {"a": 1}, "1e-9 m", "1e9 m", "0.5",
-    "2**1000", "1/0", "()", "22 mm mm", "22 furlong", "\u00b5m", "1e3 GPa", "7850 kg/m^3", "100 cSt", 3, 2.5,
+    "nan",
+    "inf",
+    "-inf",
+    0,
+    -1,
+    1e-300,
+    1e300,
+    5e-324,
+    "1e400 m",
+    10**400,
+    "",
+    " ",
+    "abc",
+    "22",
+    "22 kg",
+    "22 mm",
+    "5 %",
+    "-5 %",
+    "3,8 mm",
+    "3000,5",
+    "1:2:3",
+    True,
+    [1, 2],
+    {"a": 1},
+    "1e-9 m",
+    "1e9 m",
+    "0.5",
+    "2**1000",
+    "1/0",
+    "()",
+    "22 mm mm",
+    "22 furlong",
+    "\u00b5m",
+    "1e3 GPa",
+    "7850 kg/m^3",
+    "100 cSt",
+    3,
+    2.5,
 ]
 
 OPTION_VALUES = [
-    "nan", "inf", "-1", "0", "1e308", "1e-320", "3000,5", "4000:1000:250", "1:50:100", "1:2:0", "-3000", "50Hz",
-    "3,8mm", "5%", "40%", "abc", "", "1e9", "10 kg", "2.5", "1:1e9:1", "0:0:0", "300:4000:25", "1000,2000",
+    "nan",
+    "inf",
+    "-1",
+    "0",
+    "1e308",
+    "1e-320",
+    "3000,5",
+    "4000:1000:250",
+    "1:50:100",
+    "1:2:0",
+    "-3000",
+    "50Hz",
+    "3,8mm",
+    "5%",
+    "40%",
+    "abc",
+    "",
+    "1e9",
+    "10 kg",
+    "2.5",
+    "1:1e9:1",
+    "0:0:0",
+    "300:4000:25",
+    "1000,2000",
 ]
 
 
@@ -71,10 +128,36 @@ def _commands(kind: str, path: str, out: Path) -> list[list[str]]:
             ["valve", "curve", path, "--points", "50", "--csv", str(out / "c.csv")],
             ["valve", "modes", path, "--length", "38mm", "--json"],
             ["valve", "design", path, "--lift", "9mm", "--cam-rpm", "3000", "--json"],
-            ["valve", "simulate", path, "--cam", path, "--cam-rpm", "2500", "--revolutions", "2",
-             "--points-per-revolution", "360", "--json"],
-            ["valve", "simulate", path, "--cam", path, "--valve-train", path, "--cam-rpm", "2000", "--revolutions",
-             "2", "--points-per-revolution", "360", "--json"],
+            [
+                "valve",
+                "simulate",
+                path,
+                "--cam",
+                path,
+                "--cam-rpm",
+                "2500",
+                "--revolutions",
+                "2",
+                "--points-per-revolution",
+                "360",
+                "--json",
+            ],
+            [
+                "valve",
+                "simulate",
+                path,
+                "--cam",
+                path,
+                "--valve-train",
+                path,
+                "--cam-rpm",
+                "2000",
+                "--revolutions",
+                "2",
+                "--points-per-revolution",
+                "360",
+                "--json",
+            ],
             ["valve", "train-modes", path, "--cam", path, "--valve-train", path, "--json"],
         ]
     if kind == "cfcs":
@@ -98,14 +181,53 @@ def _option_cases(out: Path) -> list[list[str]]:
         ["valve", "modes", v, "--length", "38mm", "--count", "{x}"],
         ["valve", "curve", v, "--points", "{x}", "--csv", str(out / "c.csv")],
         ["valve", "curve", v, "--from", "{x}", "--csv", str(out / "c.csv")],
-        ["valve", "simulate", v, "--cam", v, "--cam-rpm", "{x}", "--revolutions", "2",
-         "--points-per-revolution", "360", "--json"],
+        [
+            "valve",
+            "simulate",
+            v,
+            "--cam",
+            v,
+            "--cam-rpm",
+            "{x}",
+            "--revolutions",
+            "2",
+            "--points-per-revolution",
+            "360",
+            "--json",
+        ],
         ["valve", "simulate", v, "--cam", v, "--cam-rpm", "2500", "--revolutions", "{x}", "--json"],
         ["valve", "simulate", v, "--cam", v, "--cam-rpm", "2500", "--rtol", "{x}", "--json"],
-        ["valve", "float", v, "--cam", v, "--valve-train", v, "--cam-rpm", "2000:3000:500", "--resolution", "{x}",
-         "--json", "--quiet"],
-        ["valve", "sweep", v, "--cam", v, "--cam-rpm", "{x}", "--revolutions", "2", "--points-per-revolution", "180",
-         "--out", str(out / "sw"), "--quiet"],
+        [
+            "valve",
+            "float",
+            v,
+            "--cam",
+            v,
+            "--valve-train",
+            v,
+            "--cam-rpm",
+            "2000:3000:500",
+            "--resolution",
+            "{x}",
+            "--json",
+            "--quiet",
+        ],
+        [
+            "valve",
+            "sweep",
+            v,
+            "--cam",
+            v,
+            "--cam-rpm",
+            "{x}",
+            "--revolutions",
+            "2",
+            "--points-per-revolution",
+            "180",
+            "--out",
+            str(out / "sw"),
+            "--quiet",
+        ],
         ["cfcs", "static", c, "--stroke", "{x}", "--json"],
         ["cfcs", "dynamic", c, "--omega", "{x}", "--json"],
         ["cfcs", "dynamic", c, "--omega", "14.7", "--amplitude", "{x}", "--json"],
@@ -169,8 +291,13 @@ def _mutated_definition(rng: random.Random, kind: str, work: Path) -> Path:
         path = work / f"{kind}.toml"
         raw = _dump(doc).encode()
         choice = rng.randrange(5)
-        data = [raw[: rng.randrange(max(len(raw), 1))], raw.replace(b"=", b":", 1), raw + b"\xff\xfe",
-                _dump(doc).encode("utf-16"), b"x = " + b"[" * 3000 + b"]" * 3000][choice]
+        data = [
+            raw[: rng.randrange(max(len(raw), 1))],
+            raw.replace(b"=", b":", 1),
+            raw + b"\xff\xfe",
+            _dump(doc).encode("utf-16"),
+            b"x = " + b"[" * 3000 + b"]" * 3000,
+        ][choice]
         path.write_bytes(data)
         return path
     path = work / f"{kind}.toml"
@@ -182,9 +309,13 @@ def _mutated_definition(rng: random.Random, kind: str, work: Path) -> Path:
 
 
 def _names_something(message: str) -> bool:
-    return bool(re.search(r"--[a-z]|\b[a-z]+_[a-z_]+\b|\[[a-z_]+\]|\.toml|\.csv|\b(lift|length|count|points|"
-                          r"stroke|omega|rpm|amplitude|force|resolution|revolutions|file|folder|model|key|table)\b",
-                          message))
+    return bool(
+        re.search(
+            r"--[a-z]|\b[a-z]+_[a-z_]+\b|\[[a-z_]+\]|\.toml|\.csv|\b(lift|length|count|points|"
+            r"stroke|omega|rpm|amplitude|force|resolution|revolutions|file|folder|model|key|table)\b",
+            message,
+        )
+    )
 
 
 def _finite_json(text: str) -> bool:
@@ -217,8 +348,9 @@ def _finite_csvs(folder: Path) -> bool:
 
 def classify(argv, work: Path, timeout: float) -> tuple[str, str]:
     try:
-        done = subprocess.run([*CLI, *argv], capture_output=True, text=True, timeout=timeout, cwd=work,
-                              stdin=subprocess.DEVNULL)
+        done = subprocess.run(
+            [*CLI, *argv], capture_output=True, text=True, timeout=timeout, cwd=work, stdin=subprocess.DEVNULL
+        )
     except subprocess.TimeoutExpired:
         return "hang", ""
     err = done.stderr.strip()
@@ -243,8 +375,22 @@ def classify(argv, work: Path, timeout: float) -> tuple[str, str]:
 def kill_case(rng: random.Random, work: Path) -> tuple[str, str]:
     """Run a command writing an output set into a folder that holds an older set; kill it part way."""
     v = str(EX / "report" / "report_valve_one_step.toml")
-    argv = ["valve", "simulate", v, "--cam", v, "--cam-rpm", "2500", "--revolutions", "3",
-            "--csv", str(work / "sim.csv"), "--plot", str(work / "sim.png"), "--json"]
+    argv = [
+        "valve",
+        "simulate",
+        v,
+        "--cam",
+        v,
+        "--cam-rpm",
+        "2500",
+        "--revolutions",
+        "3",
+        "--csv",
+        str(work / "sim.csv"),
+        "--plot",
+        str(work / "sim.png"),
+        "--json",
+    ]
     first = subprocess.run([*CLI, *argv], capture_output=True, timeout=120, cwd=work)
     if first.returncode != 0:
         return "traceback", first.stderr.decode()[-200:]
@@ -308,8 +454,11 @@ def main() -> int:
     with ThreadPoolExecutor(max_workers=args.workers) as pool:
         futures = []
         for i in range(args.cases):
-            futures.append(pool.submit(lambda i=i: None if time.monotonic() - t0 > args.budget
-                                       else one_case(i, args.seed, args.timeout)))
+            futures.append(
+                pool.submit(
+                    lambda i=i: None if time.monotonic() - t0 > args.budget else one_case(i, args.seed, args.timeout)
+                )
+            )
         for f in futures:
             res = f.result()
             if res is None:

@@ -41,12 +41,16 @@ def main() -> int:
     subprocess.run([*CLI, "valve", "params", str(SPRING), "--json"], stdout=subprocess.DEVNULL)  # pint cache, pyc
     numpy = best_time([sys.executable, "-c", "import numpy"], args.repeat)
     scipy = best_time([sys.executable, "-c", "import numpy, scipy.optimize"], args.repeat)
-    print(f"references: python -c 'import numpy' {numpy * 1e3:.0f} ms; "
-          f"python -c 'import numpy, scipy.optimize' {scipy * 1e3:.0f} ms")
+    print(
+        f"references: python -c 'import numpy' {numpy * 1e3:.0f} ms; "
+        f"python -c 'import numpy, scipy.optimize' {scipy * 1e3:.0f} ms"
+    )
     helps = [["--help"], ["valve", "--help"], ["cfcs", "--help"], ["lsd", "--help"]]
-    for family, commands in (("valve", ["params", "curve", "modes", "design", "simulate", "float", "sweep"]),
-                             ("cfcs", ["static", "dynamic", "sweep", "forward", "design"]),
-                             ("lsd", ["coefficients", "rig", "identify"])):
+    for family, commands in (
+        ("valve", ["params", "curve", "modes", "design", "simulate", "float", "sweep"]),
+        ("cfcs", ["static", "dynamic", "sweep", "forward", "design"]),
+        ("lsd", ["coefficients", "rig", "identify"]),
+    ):
         helps += [[family, c, "--help"] for c in commands]
     worst = 0.0
     failed = []
@@ -57,11 +61,15 @@ def main() -> int:
         if ratio > 3.0:
             failed.append(" ".join(argv))
         print(f"  springdyn {' '.join(argv):<28} {t * 1e3:6.0f} ms  {ratio:4.2f}x import numpy")
-    print(f"--help: worst {worst:.2f}x import numpy (target <= 3x): {'MET' if not failed else 'NOT MET: ' + ', '.join(failed)}")
+    print(
+        f"--help: worst {worst:.2f}x import numpy (target <= 3x): {'MET' if not failed else 'NOT MET: ' + ', '.join(failed)}"
+    )
     t = best_time([*CLI, "valve", "params", str(SPRING), "--json"], args.repeat)
     ratio = t / scipy
-    print(f"springdyn valve params FILE --json: {t * 1e3:.0f} ms, {ratio:.2f}x import numpy+scipy.optimize "
-          f"(target <= 2x): {'MET' if ratio <= 2.0 else 'NOT MET'}")
+    print(
+        f"springdyn valve params FILE --json: {t * 1e3:.0f} ms, {ratio:.2f}x import numpy+scipy.optimize "
+        f"(target <= 2x): {'MET' if ratio <= 2.0 else 'NOT MET'}"
+    )
     return 0 if not failed and ratio <= 2.0 else 1
 
 

@@ -76,19 +76,30 @@ def main(argv=None) -> int:
         t, sim = _best(lambda s=s: simulate(s, cam, 3000.0, 2, check_elements=False), args.repeat)
         ref = simulate(s, cam, 3000.0, 2, rtol=1e-10, atol=1e-13, method="dopri5")  # tight, 5th order
         fset = s.internal_parameters()["Fset"]
-        err = max(abs(sim.summary[k] - ref.summary[k]) for k in
-                  ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")) / fset
+        err = (
+            max(
+                abs(sim.summary[k] - ref.summary[k])
+                for k in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")
+            )
+            / fset
+        )
         rows[name] = (t, sim.info["steps"])
-        print(f"  {name:12s} {t * 1e3:8.2f} ms  {sim.info['steps']:6d} steps ({sim.info['method']})  "
-              f"{len(s.chain.masses):3d} masses  "
-              f"error vs Dormand-Prince rtol 1e-10: {100 * err:.4f} % of Fset")
+        print(
+            f"  {name:12s} {t * 1e3:8.2f} ms  {sim.info['steps']:6d} steps ({sim.info['method']})  "
+            f"{len(s.chain.masses):3d} masses  "
+            f"error vs Dormand-Prince rtol 1e-10: {100 * err:.4f} % of Fset"
+        )
     ratio = rows["distributed"][0] / rows["type-c"][0]
     print(f"  ratio distributed / Type C: {ratio:.1f}x (target <= 8x): {met(ratio <= 8)}")
-    print(f"  of which steps {rows['distributed'][1] / rows['type-c'][1]:.2f}x and time per step "
-          f"{ratio * rows['type-c'][1] / rows['distributed'][1]:.2f}x")
+    print(
+        f"  of which steps {rows['distributed'][1] / rows['type-c'][1]:.2f}x and time per step "
+        f"{ratio * rows['type-c'][1] / rows['distributed'][1]:.2f}x"
+    )
     t_chk, sim_chk = _best(lambda: simulate(ds, cam, 3000.0, 2), max(2, args.repeat // 3))
-    print(f"  distributed with the clash check (coils {sim_chk.summary.get('clashing_coils')} clash here): "
-          f"{t_chk * 1e3:.2f} ms, {t_chk / rows['type-c'][0]:.1f}x Type C")
+    print(
+        f"  distributed with the clash check (coils {sim_chk.summary.get('clashing_coils')} clash here): "
+        f"{t_chk * 1e3:.2f} ms, {t_chk / rows['type-c'][0]:.1f}x Type C"
+    )
 
     print()
     print("stiffness of the explicit step (linearised at set-up; stability limit on the negative real axis:")
@@ -100,16 +111,18 @@ def main(argv=None) -> int:
         h = 2 * 0.02 / rows[name][1]
         print(f"  {name:12s} |lambda|max = {lam:.3g} 1/s, mean step {h * 1e6:.2f} us, |lambda| h = {lam * h:.2f}")
 
-    out = subprocess.run([sys.executable, "-c", SWEEP_CHILD.format(n=args.speeds)], capture_output=True, text=True,
-                         check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", SWEEP_CHILD.format(n=args.speeds)], capture_output=True, text=True, check=True
+    )
     wall, steps, maxrss_kb = out.stdout.split()
     wall, steps, rss_mb = float(wall), int(steps), int(maxrss_kb) / 1024
     print()
     print(f"sweep of {args.speeds} speeds, 300-4000 cam rpm, 2 revolutions each, distributed model, both cores")
-    print(f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.1f} ms per speed); target < 60 s: "
-          f"{met(wall < 60)}")
-    print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: "
-          f"{met(rss_mb < 1024)}")
+    print(
+        f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.1f} ms per speed); target < 60 s: "
+        f"{met(wall < 60)}"
+    )
+    print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: {met(rss_mb < 1024)}")
     return 0 if not missed else 1
 
 

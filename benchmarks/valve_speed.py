@@ -53,7 +53,9 @@ def main(argv=None) -> int:
     ap.add_argument("--speeds", type=int, default=1000, help="speeds in the sweep (default 1000)")
     ap.add_argument("--rounds", type=int, default=7, help="interleaved reference/engine rounds (default 7)")
     ap.add_argument("--repeat", type=int, default=40, help="runs of the compiled engine per round (default 40)")
-    ap.add_argument("--ref-repeat", type=int, default=3, help="repetitions of the SciPy reference per round (default 3)")
+    ap.add_argument(
+        "--ref-repeat", type=int, default=3, help="repetitions of the SciPy reference per round (default 3)"
+    )
     args = ap.parse_args(argv)
     missed = []
 
@@ -88,8 +90,11 @@ def main(argv=None) -> int:
 
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, NUMBA_CACHE_DIR=cache)
-        cold = float(subprocess.run([sys.executable, "-c", COMPILE_CHILD], capture_output=True, text=True, check=True,
-                                    env=env).stdout.split()[-1])
+        cold = float(
+            subprocess.run(
+                [sys.executable, "-c", COMPILE_CHILD], capture_output=True, text=True, check=True, env=env
+            ).stdout.split()[-1]
+        )
     print(f"import springdyn: {t_import:.2f} s")
     print(f"compile time of the engine with an empty numba cache: {cold:.2f} s (once; then cached on disk)")
     print(f"first call of the compiled engine: {first:.2f} s ({how}; paid once per process)")
@@ -130,8 +135,17 @@ def main(argv=None) -> int:
     eng = []
     for _ in range(args.repeat):
         t = time.perf_counter()
-        engine.run_speeds(setup.y0, [omega], 2, 1440, setup.args(omega), rtol=1e-6, atol=1e-9,
-                          max_step_fraction=MAX_STEP_FRACTION, atol_velocity=setup.atol_velocity(1e-9))
+        engine.run_speeds(
+            setup.y0,
+            [omega],
+            2,
+            1440,
+            setup.args(omega),
+            rtol=1e-6,
+            atol=1e-9,
+            max_step_fraction=MAX_STEP_FRACTION,
+            atol_velocity=setup.atol_velocity(1e-9),
+        )
         eng.append(time.perf_counter() - t)
     t_eng = min(eng)
     t_ref = float(np.median(ref_times))
@@ -141,41 +155,57 @@ def main(argv=None) -> int:
     print()
     print("one simulation, 2 revolutions at 3000 cam rpm (end to end: setup, integration, outputs)")
     med = float(np.median(ratios))
-    print(f"  SciPy DOP853 rtol=1e-8 atol=1e-12, pure-Python RHS (median of {args.rounds} rounds, best of "
-          f"{args.ref_repeat} each): {t_ref:8.3f} s  "
-          f"({ref.info['steps']} RHS calls)")
-    print(f"  springdyn compiled engine (median of {args.rounds} rounds, best of {block * (args.ref_repeat + 1)} "
-          f"each, in {args.ref_repeat + 1} blocks around the reference runs): "
-          f"{t_fast * 1e3:8.2f} ms  ({fast.info['steps']} steps)")
-    print(f"  ratio: median {med:.0f}x over {args.rounds} interleaved rounds (min {min(ratios):.0f}x, max "
-          f"{max(ratios):.0f}x; target >= 300x): {met(med >= 300)}")
-    print(f"  of which the compiled integration (with its output evaluation): {t_eng * 1e3:.2f} ms, "
-          f"{t_ref / t_eng:.0f}x the reference; the rest is setup (cam table, initial state) and outputs")
-    print(f"  peak retainer force: {peak_fast:.4f} N vs {peak_ref:.4f} N, difference {100 * diff:.5f} % of Fset "
-          f"(target < 0.05 %): {met(diff < 5e-4)}")
+    print(
+        f"  SciPy DOP853 rtol=1e-8 atol=1e-12, pure-Python RHS (median of {args.rounds} rounds, best of "
+        f"{args.ref_repeat} each): {t_ref:8.3f} s  "
+        f"({ref.info['steps']} RHS calls)"
+    )
+    print(
+        f"  springdyn compiled engine (median of {args.rounds} rounds, best of {block * (args.ref_repeat + 1)} "
+        f"each, in {args.ref_repeat + 1} blocks around the reference runs): "
+        f"{t_fast * 1e3:8.2f} ms  ({fast.info['steps']} steps)"
+    )
+    print(
+        f"  ratio: median {med:.0f}x over {args.rounds} interleaved rounds (min {min(ratios):.0f}x, max "
+        f"{max(ratios):.0f}x; target >= 300x): {met(med >= 300)}"
+    )
+    print(
+        f"  of which the compiled integration (with its output evaluation): {t_eng * 1e3:.2f} ms, "
+        f"{t_ref / t_eng:.0f}x the reference; the rest is setup (cam table, initial state) and outputs"
+    )
+    print(
+        f"  peak retainer force: {peak_fast:.4f} N vs {peak_ref:.4f} N, difference {100 * diff:.5f} % of Fset "
+        f"(target < 0.05 %): {met(diff < 5e-4)}"
+    )
     loose = []
     for _ in range(args.repeat):
         t = time.perf_counter()
         lo = simulate(spring, cam, 3000.0, 2, rtol=1e-5, atol=1e-8)
         loose.append(time.perf_counter() - t)
     d_lo = abs(lo.summary["max_retainer_force_N"] - peak_ref) / fset
-    print(f"  the trade-off: with rtol=1e-5, atol=1e-8 instead of the defaults (1e-6, 1e-9): {min(loose) * 1e3:.2f} ms, "
-          f"{t_ref / min(loose):.0f}x, peak difference {100 * d_lo:.4f} % of Fset")
+    print(
+        f"  the trade-off: with rtol=1e-5, atol=1e-8 instead of the defaults (1e-6, 1e-9): {min(loose) * 1e3:.2f} ms, "
+        f"{t_ref / min(loose):.0f}x, peak difference {100 * d_lo:.4f} % of Fset"
+    )
 
     # --- sweep, in a fresh process so that its peak memory is its own -----------------
-    out = subprocess.run([sys.executable, "-c", SWEEP_CHILD.format(n=args.speeds)], capture_output=True, text=True,
-                         check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", SWEEP_CHILD.format(n=args.speeds)], capture_output=True, text=True, check=True
+    )
     wall, steps, maxrss_kb = out.stdout.split()
     wall, steps, rss_mb = float(wall), int(steps), int(maxrss_kb) / 1024
     print()
     print(f"sweep of {args.speeds} speeds, 300-4000 cam rpm, 2 revolutions each (after compilation), both cores")
-    print(f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.2f} ms per speed); "
-          f"target < 5 s: {met(wall < 5)}")
-    print(f"  same work with the SciPy reference, estimated from the single run: "
-          f"{t_ref * args.speeds * (steps / args.speeds) / max(fast.info['steps'], 1) / 3600:.1f} h "
-          f"(ratio ~{t_ref * steps / fast.info['steps'] / wall:.0f}x)")
-    print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: "
-          f"{met(rss_mb < 1024)}")
+    print(
+        f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.2f} ms per speed); "
+        f"target < 5 s: {met(wall < 5)}"
+    )
+    print(
+        f"  same work with the SciPy reference, estimated from the single run: "
+        f"{t_ref * args.speeds * (steps / args.speeds) / max(fast.info['steps'], 1) / 3600:.1f} h "
+        f"(ratio ~{t_ref * steps / fast.info['steps'] / wall:.0f}x)"
+    )
+    print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: {met(rss_mb < 1024)}")
     return 0 if not missed else 1
 
 

@@ -31,8 +31,9 @@ SPEEDS = tuple(float(v) for v in sorted({*range(700, 4700, 400), 800, 1700, 2600
 def _cams(Cam) -> dict:
     """The study's cams: three laws without ramps (9 mm over 120 deg) and a polydyne with ramps."""
     out = {law: Cam(law=law, lift=9e-3, duration=math.radians(120)) for law in ("3-4-5", "cycloidal", "4-5-6-7")}
-    out["polydyne+ramps"] = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4,
-                                ramp_duration=math.radians(20))
+    out["polydyne+ramps"] = Cam(
+        law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4, ramp_duration=math.radians(20)
+    )
     return out
 
 
@@ -61,8 +62,9 @@ def main(argv=None) -> int:
         cases = [(s, c, rpm) for s in springs for c in cams for rpm in speeds]
         refs = {}
         for i, (s, c, rpm) in enumerate(cases):
-            refs[i] = simulate(s, cams[c], rpm, 2, rtol=1e-10, atol=1e-13, check_elements=False,
-                               method="dopri5").summary
+            refs[i] = simulate(
+                s, cams[c], rpm, 2, rtol=1e-10, atol=1e-13, check_elements=False, method="dopri5"
+            ).summary
         for pair in args.pairs:
             for s, c, rpm in cases[:2]:
                 simulate(s, cams[c], rpm, 2, check_elements=False, method=pair)  # compile / load from cache
@@ -74,7 +76,7 @@ def main(argv=None) -> int:
         sims = {}
         for rep in range(args.repeat):
             for i, (s, c, rpm) in enumerate(cases):
-                for pair in (args.pairs if rep % 2 == 0 else args.pairs[::-1]):
+                for pair in args.pairs if rep % 2 == 0 else args.pairs[::-1]:
                     t = time.perf_counter()
                     sims[i, pair] = simulate(s, cams[c], rpm, 2, check_elements=False, method=pair)
                     best[i, pair] = min(best[i, pair], time.perf_counter() - t)
@@ -93,8 +95,10 @@ def main(argv=None) -> int:
     print()
     from springdyn.numerics.erk import pair_arrays
 
-    print("stability interval on the negative real axis: "
-          + ", ".join(f"{p} [{-_real_stability(*pair_arrays(p)[:2]):.2f}, 0]" for p in args.pairs))
+    print(
+        "stability interval on the negative real axis: "
+        + ", ".join(f"{p} [{-_real_stability(*pair_arrays(p)[:2]):.2f}, 0]" for p in args.pairs)
+    )
     print("stability: largest |eigenvalue| of the linearised chain at set-up x mean step (3000 cam rpm, 3-4-5)")
     for model in args.models:
         s = ValveSpring.example("one-step").with_model(model)
@@ -104,8 +108,10 @@ def main(argv=None) -> int:
         top = lam[np.argmax(np.abs(lam))]
         sim = simulate(s, cams["3-4-5"], 3000.0, 2, check_elements=False)
         h = 2 * 0.02 / sim.info["steps"]
-        print(f"  {model:12s} ({dynamics.PAIR[model]}) top eigenvalue {top.real:.3g}{top.imag:+.3g}j 1/s, "
-              f"mean step {h * 1e6:.2f} us, |lambda| h = {abs(top) * h:.2f}")
+        print(
+            f"  {model:12s} ({dynamics.PAIR[model]}) top eigenvalue {top.real:.3g}{top.imag:+.3g}j 1/s, "
+            f"mean step {h * 1e6:.2f} us, |lambda| h = {abs(top) * h:.2f}"
+        )
     return 0
 
 

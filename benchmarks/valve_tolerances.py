@@ -32,10 +32,16 @@ def main(argv=None) -> int:
 
     cams = _cams(Cam)
     keys = ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")
-    cases = [(ValveSpring.example(n).with_model(args.model), c, r) for n in ("one-step", "two-step") for c in cams
-             for r in SPEEDS]
-    refs = [simulate(s, cams[c], r, 2, rtol=1e-10, atol=1e-13, check_elements=False, method="dopri5").summary
-            for s, c, r in cases]
+    cases = [
+        (ValveSpring.example(n).with_model(args.model), c, r)
+        for n in ("one-step", "two-step")
+        for c in cams
+        for r in SPEEDS
+    ]
+    refs = [
+        simulate(s, cams[c], r, 2, rtol=1e-10, atol=1e-13, check_elements=False, method="dopri5").summary
+        for s, c, r in cases
+    ]
     default = dynamics.VELOCITY_TOLERANCE_DIVISOR
     f1 = float(cases[0][0].internal_parameters()["f1"])
     print(f"{args.model}: {len(cases)} runs; velocity tolerance atol 2 pi f1 / D")
@@ -52,8 +58,10 @@ def main(argv=None) -> int:
             w = int(np.argmax(errs))
             name = f"{d:g}" if d < 1000 else "atol for all"
             mark = "  <- default" if d == default else ""
-            print(f"{name:>12s} {steps:9d} {errs.max():15.4f} {np.sort(errs)[-2]:8.4f}  "
-                  f"{cases[w][0].type} {cases[w][1]} {cases[w][2]:g} rpm{mark}")
+            print(
+                f"{name:>12s} {steps:9d} {errs.max():15.4f} {np.sort(errs)[-2]:8.4f}  "
+                f"{cases[w][0].type} {cases[w][1]} {cases[w][2]:g} rpm{mark}"
+            )
     finally:
         dynamics.VELOCITY_TOLERANCE_DIVISOR = default
     return 0

@@ -19,10 +19,12 @@ from springdyn.core.results import REPR_LINES, Result, unit_suffix, units_from_n
 
 #: A summary key ends with its unit, or is a count, flag, ratio or text; these words mark
 #: dimensionless or non-numeric keys.
-_UNITLESS = re.compile(r"(ratio|factor|margin|count|index|percent|order|flag|pcf|_n$|number|type|law|model|"
-                       r"name|periodic|liftoff|contact|feasible|dominated|notes|reason|status|error|bool|"
-                       r"which|kind|binding|warning|coverage|success|converged|orders|n_|revolutions|elements|"
-                       r"bounces|events|samples|points|records|speeds|leaves|packs|chambers)")
+_UNITLESS = re.compile(
+    r"(ratio|factor|margin|count|index|percent|order|flag|pcf|_n$|number|type|law|model|"
+    r"name|periodic|liftoff|contact|feasible|dominated|notes|reason|status|error|bool|"
+    r"which|kind|binding|warning|coverage|success|converged|orders|n_|revolutions|elements|"
+    r"bounces|events|samples|points|records|speeds|leaves|packs|chambers)"
+)
 
 
 #: A name ending in a unit then ``_s`` reads as seconds, not as per second
@@ -51,7 +53,8 @@ def check_result_interface(result, tmp_path: Path, *, plot: bool = True) -> None
             implied = units_from_name(str(name))
             if implied != "1":
                 assert unit_suffix(var.attrs["units"]) == unit_suffix(implied), (
-                    f"to_xarray(): {name!r} has units {var.attrs['units']!r}, its name says {implied!r}")
+                    f"to_xarray(): {name!r} has units {var.attrs['units']!r}, its name says {implied!r}"
+                )
     csv = result.to_csv(tmp_path / "result.csv")
     cols = read_csv_columns(csv)
     assert cols, "to_csv wrote no column"

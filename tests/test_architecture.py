@@ -87,7 +87,7 @@ def _cycle(graph):
             if node.startswith(nxt + "."):
                 continue
             if state.get(nxt) == 1:
-                return stack[stack.index(nxt):] + [nxt]
+                return stack[stack.index(nxt) :] + [nxt]
             if state.get(nxt) is None:
                 found = dfs(nxt)
                 if found:
@@ -111,8 +111,11 @@ def test_no_import_cycle_inside_springdyn():
 
 def test_physics_never_imports_the_application_layer_statically():
     graph = import_graph()
-    offenders = {m: sorted(d for d in deps if d.startswith("springdyn.app")) for m, deps in graph.items()
-                 if not m.startswith("springdyn.app")}
+    offenders = {
+        m: sorted(d for d in deps if d.startswith("springdyn.app"))
+        for m, deps in graph.items()
+        if not m.startswith("springdyn.app")
+    }
     offenders = {m: d for m, d in offenders.items() if d}
     assert not offenders, f"physics modules import the app layer: {offenders}"
 

@@ -39,8 +39,11 @@ def _public_functions(family):
 def _parameters_section(doc: str) -> list[tuple[str, str, str]]:
     lines = inspect.cleandoc(doc).splitlines()
     try:
-        start = next(i for i, l in enumerate(lines) if l.strip() == "Parameters"
-                     and i + 1 < len(lines) and set(lines[i + 1].strip()) == {"-"})
+        start = next(
+            i
+            for i, l in enumerate(lines)
+            if l.strip() == "Parameters" and i + 1 < len(lines) and set(lines[i + 1].strip()) == {"-"}
+        )
     except StopIteration:
         return []
     entries, i = [], start + 2
@@ -66,8 +69,9 @@ def _parameters_section(doc: str) -> list[tuple[str, str, str]]:
 def test_public_physics_functions_document_parameters_with_units(family):
     problems = []
     for qualname, func in _public_functions(family):
-        params = [p for p in inspect.signature(func).parameters.values()
-                  if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
+        params = [
+            p for p in inspect.signature(func).parameters.values() if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)
+        ]
         if not params:
             continue
         entries = _parameters_section(func.__doc__ or "")

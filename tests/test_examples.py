@@ -25,8 +25,11 @@ EXPECTED = {
         ["float_speed.json", "float_scan.csv", "float_speed.png"],
     ),
     "examples/cfcs/design_for_force.py": (
-        [r"FEASIBLE: design meets the stress limit", r"check with the CFCS model: force 19\.9\d* \.\. 20\.0",
-         r"stroke fraction 0\.4 .*not feasible"],
+        [
+            r"FEASIBLE: design meets the stress limit",
+            r"check with the CFCS model: force 19\.9\d* \.\. 20\.0",
+            r"stroke fraction 0\.4 .*not feasible",
+        ],
         ["designed_cfcs.toml", "design_curve.csv", "design_curve.png"],
     ),
     "examples/lsd/identify_from_csv.py": (
@@ -44,17 +47,21 @@ SLOW = {"examples/lsd/rotor_with_lsd.py"}
 def run_example(script: str, out: Path, *args: str) -> subprocess.CompletedProcess:
     """Run ``python <script> --out <out> [args]`` from ``out`` (so stray files land there)."""
     env = dict(os.environ, MPLBACKEND="Agg")
-    return subprocess.run([sys.executable, str(ROOT / script), "--out", str(out), *args], cwd=out, env=env,
-                          capture_output=True, text=True, timeout=300)
+    return subprocess.run(
+        [sys.executable, str(ROOT / script), "--out", str(out), *args],
+        cwd=out,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
 
 
 def test_every_example_is_covered():
     assert set(EXAMPLES) == set(EXPECTED), "add the new example script to EXPECTED in tests/test_examples.py"
 
 
-@pytest.mark.parametrize(
-    "script", [pytest.param(s, marks=pytest.mark.slow) if s in SLOW else s for s in EXAMPLES]
-)
+@pytest.mark.parametrize("script", [pytest.param(s, marks=pytest.mark.slow) if s in SLOW else s for s in EXAMPLES])
 def test_example_runs(script, tmp_path):
     if script == "examples/lsd/rotor_with_lsd.py":
         pytest.importorskip("ross")

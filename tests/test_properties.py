@@ -23,14 +23,18 @@ from springdyn.core.errors import InputError
 from springdyn.core.units import to_si
 
 ROOT = Path(__file__).resolve().parents[1]
-SETTINGS = settings(max_examples=150, deadline=None, derandomize=True,
-                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+SETTINGS = settings(
+    max_examples=150,
+    deadline=None,
+    derandomize=True,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
 
 UNITS = ["", " mm", "mm", " m", " um", " kg", " GPa", " rpm", " Hz", " %", " N", " deg", " cSt", " furlong", " s"]
 numbers = st.one_of(
     st.floats(allow_nan=True, allow_infinity=True),
-    st.integers(min_value=-(10 ** 30), max_value=10 ** 30),
-    st.sampled_from([0, -1, 5e-324, 1e-300, 1e300, 10 ** 400]),
+    st.integers(min_value=-(10**30), max_value=10**30),
+    st.sampled_from([0, -1, 5e-324, 1e-300, 1e300, 10**400]),
 )
 texts = st.one_of(
     st.text(max_size=30),
@@ -38,8 +42,14 @@ texts = st.one_of(
     st.builds(lambda a, b: f"{a},{b}", st.integers(), st.integers()),
     st.builds(lambda a, b, c: f"{a}:{b}:{c}", st.integers(-10, 5000), st.integers(-10, 5000), st.integers(-5, 500)),
 )
-values = st.one_of(numbers, texts, st.booleans(), st.none(), st.lists(st.integers(), max_size=3),
-                   st.dictionaries(st.text(max_size=3), st.integers(), max_size=2))
+values = st.one_of(
+    numbers,
+    texts,
+    st.booleans(),
+    st.none(),
+    st.lists(st.integers(), max_size=3),
+    st.dictionaries(st.text(max_size=3), st.integers(), max_size=2),
+)
 
 
 def _one_line_naming(exc: Exception, name: str) -> None:

@@ -69,7 +69,9 @@ def _rig(excitation="x"):
     from springdyn.lsd import simulate_rig
     from springdyn.lsd.rig import circular_orbit, linear_shake
 
-    tr = linear_shake(1000.0, 50e-6, excitation, 3, 5e3) if excitation in "xy" else circular_orbit(1000.0, 50e-6, 3, 5e3)
+    tr = (
+        linear_shake(1000.0, 50e-6, excitation, 3, 5e3) if excitation in "xy" else circular_orbit(1000.0, 50e-6, 3, 5e3)
+    )
     return simulate_rig(_lsd(), tr)
 
 
@@ -104,24 +106,34 @@ FACTORIES = {
     "springdyn.lsd.model.LSDCoefficients": lambda: _lsd().coefficients([500.0, 1000.0, 2000.0], amplitude=20e-6),
     "springdyn.lsd.rig.RigRecord": lambda: _rig("x"),
     "springdyn.lsd.identify.RigData": lambda: __import__("springdyn.lsd.identify", fromlist=["RigData"]).RigData(
-        *(getattr(_rig("y"), k) for k in ("time", "x", "y", "fx", "fy")), source="measured.csv"),
+        *(getattr(_rig("y"), k) for k in ("time", "x", "y", "fx", "fy")), source="measured.csv"
+    ),
     "springdyn.lsd.identify.IdentificationSeries": _identified,
     "springdyn.cfcs.results.StaticResult": lambda: _cfcs().static(),
     "springdyn.cfcs.results.DynamicResult": lambda: _cfcs().dynamic(14.7),
     "springdyn.cfcs.results.FrequencySweep": lambda: _cfcs().sweep(np.array([2.0, 10.0, 20.0])),
     "springdyn.cfcs.results.ForwardResult": lambda: _cfcs().forward(0.05, force=12.8),
     "springdyn.cfcs.design.DesignResult": lambda: __import__("springdyn.cfcs", fromlist=["design"]).design(
-        12.8, 0.02, 207e9, 1.5e9),
+        12.8, 0.02, 207e9, 1.5e9
+    ),
     "springdyn.valve.results.StaticCurve": lambda: _valve_spring().static_curve(points=50),
-    "springdyn.valve.results.Simulation": lambda: springdyn.valve.simulate(_valve_spring(), _valve_cam(), 2500, 2,
-                                                                           points_per_revolution=360),
+    "springdyn.valve.results.Simulation": lambda: springdyn.valve.simulate(
+        _valve_spring(), _valve_cam(), 2500, 2, points_per_revolution=360
+    ),
     "springdyn.valve.results.FloatSpeedResult": lambda: springdyn.valve.results.FloatSpeedResult(
-        [1000.0, 2000.0], [120.0, -5.0], 1800.0, [1500.0, 1800.0], 1.0),
-    "springdyn.valve.sweeps.SpeedSweep": lambda: springdyn.valve.sweep(_valve_spring(), _valve_cam(),
-                                                                       np.array([1000.0, 2000.0, 3000.0]),
-                                                                       revolutions=2, points_per_revolution=180, quiet=True),
+        [1000.0, 2000.0], [120.0, -5.0], 1800.0, [1500.0, 1800.0], 1.0
+    ),
+    "springdyn.valve.sweeps.SpeedSweep": lambda: springdyn.valve.sweep(
+        _valve_spring(),
+        _valve_cam(),
+        np.array([1000.0, 2000.0, 3000.0]),
+        revolutions=2,
+        points_per_revolution=180,
+        quiet=True,
+    ),
     "springdyn.valve.frf.FrequencyResponse": lambda: importlib.import_module("springdyn.valve.frf").dynamic_stiffness(
-        _valve_spring(), np.linspace(50.0, 2000.0, 40)),
+        _valve_spring(), np.linspace(50.0, 2000.0, 40)
+    ),
 }
 
 

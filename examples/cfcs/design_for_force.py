@@ -25,8 +25,9 @@ from springdyn.core.units import to_si
 def design_and_check(force: float, stroke: float, modulus: float, allowable: float, stroke_fraction: float = 0.1):
     """The design for ``force`` [N] over ``stroke`` [m] and the model's static result of it."""
     result = design(force, stroke, modulus, allowable, stroke_fraction=stroke_fraction)
-    params = result.to_params(crank_mass=0.02, coupler_mass=0.02, slider_mass=0.05,
-                              friction_model="none", axial_force=False)
+    params = result.to_params(
+        crank_mass=0.02, coupler_mass=0.02, slider_mass=0.05, friction_model="none", axial_force=False
+    )
     static = CFCS(params).static(stroke, offset=0.0)
     return result, static
 
@@ -45,26 +46,38 @@ def main(argv=None) -> int:
 
     result, static = design_and_check(force, stroke, modulus, allowable, args.stroke_fraction)
     s = result.summary
-    print(f"target {force:g} N over {stroke * 1e3:g} mm, spring steel (E 207 GPa, allowable 1.5 GPa, "
-          f"safety {result.summary['safety_factor_target']:g})")
-    print(f"  r2 + r3 = {s['total_length_m'] * 1e3:.1f} mm, r2/r3 = {s['ratio']:.4f}: "
-          f"r2 = {s['crank_length_m'] * 1e3:.2f} mm, r3 = {s['coupler_length_m'] * 1e3:.2f} mm")
-    print(f"  K3 = {s['torsional_stiffness_N_m_per_rad']:.4g} N*m/rad; flexure b x h x l = "
-          f"{s['pivot_width_m'] * 1e3:.3g} x {s['pivot_thickness_m'] * 1e3:.3g} x {s['pivot_length_m'] * 1e3:.3g} mm")
-    print(f"  design force {s['force_min_N']:.3f} .. {s['force_max_N']:.3f} N, PCF {s['pcf_percent']:.2f} %, "
-          f"max pivot stress {s['max_stress_Pa'] / 1e9:.3f} GPa (safety factor {s['safety_factor']:.2f})")
+    print(
+        f"target {force:g} N over {stroke * 1e3:g} mm, spring steel (E 207 GPa, allowable 1.5 GPa, "
+        f"safety {result.summary['safety_factor_target']:g})"
+    )
+    print(
+        f"  r2 + r3 = {s['total_length_m'] * 1e3:.1f} mm, r2/r3 = {s['ratio']:.4f}: "
+        f"r2 = {s['crank_length_m'] * 1e3:.2f} mm, r3 = {s['coupler_length_m'] * 1e3:.2f} mm"
+    )
+    print(
+        f"  K3 = {s['torsional_stiffness_N_m_per_rad']:.4g} N*m/rad; flexure b x h x l = "
+        f"{s['pivot_width_m'] * 1e3:.3g} x {s['pivot_thickness_m'] * 1e3:.3g} x {s['pivot_length_m'] * 1e3:.3g} mm"
+    )
+    print(
+        f"  design force {s['force_min_N']:.3f} .. {s['force_max_N']:.3f} N, PCF {s['pcf_percent']:.2f} %, "
+        f"max pivot stress {s['max_stress_Pa'] / 1e9:.3f} GPa (safety factor {s['safety_factor']:.2f})"
+    )
     c = static.summary
-    print(f"  check with the CFCS model: force {c['force_min_N']:.3f} .. {c['force_max_N']:.3f} N, "
-          f"PCF {c['pcf_percent']:.2f} %, peak stress {c['max_stress_Pa'] / 1e9:.3f} GPa ({c['flexure_model']} model; "
-          f"PRBM mean-curvature value {c['prbm_max_stress_Pa'] / 1e9:.3f} GPa)")
+    print(
+        f"  check with the CFCS model: force {c['force_min_N']:.3f} .. {c['force_max_N']:.3f} N, "
+        f"PCF {c['pcf_percent']:.2f} %, peak stress {c['max_stress_Pa'] / 1e9:.3f} GPa ({c['flexure_model']} model; "
+        f"PRBM mean-curvature value {c['prbm_max_stress_Pa'] / 1e9:.3f} GPa)"
+    )
     print(("FEASIBLE: " if result.feasible else "NOT FEASIBLE: ") + s["message"])
     result.to_toml(out / "designed_cfcs.toml")
     result.to_csv(out / "design_curve.csv")
     result.plot(out / "design_curve.png")
 
     long_stroke = design(force, stroke, modulus, allowable, stroke_fraction=0.4)
-    print(f"same target at stroke fraction 0.4 (the paper's 40 %): "
-          f"{'feasible' if long_stroke.feasible else 'not feasible'}: {long_stroke.summary['message']}")
+    print(
+        f"same target at stroke fraction 0.4 (the paper's 40 %): "
+        f"{'feasible' if long_stroke.feasible else 'not feasible'}: {long_stroke.summary['message']}"
+    )
     print(f"wrote {out / 'designed_cfcs.toml'}, design_curve.csv, design_curve.png")
     return 0
 

@@ -38,8 +38,12 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv", nargs="*", help="one or two rig CSV files (default: simulate and write two)")
     parser.add_argument("--out", default=None, help="output folder (default: a new temporary folder)")
-    parser.add_argument("--mass", type=float, default=None,
-                        help="moving mass removed from the forces [kg] (default: the Type C ring mass)")
+    parser.add_argument(
+        "--mass",
+        type=float,
+        default=None,
+        help="moving mass removed from the forces [kg] (default: the Type C ring mass)",
+    )
     args = parser.parse_args(argv)
     if len(args.csv) > 2:
         parser.error("give at most two CSV files (two independent excitations at one speed)")
@@ -53,10 +57,13 @@ def main(argv=None) -> int:
     records = [read_rig_data(p) for p in paths]
     mass = model.params.ring_mass if args.mass is None else args.mass
     ident = identify(records[0], records[1] if len(records) > 1 else None, mass=mass)
-    print(f"identified at {ident.rpm:.0f} rpm ({ident.frequency:.2f} Hz) from {ident.cycles} cycles, "
-          f"mode: {ident.mode}")
-    for label, M, U, unit, scale in (("K", ident.K, ident.K_uncertainty, "N/mm", 1e-3),
-                                     ("C", ident.C, ident.C_uncertainty, "N s/m", 1.0)):
+    print(
+        f"identified at {ident.rpm:.0f} rpm ({ident.frequency:.2f} Hz) from {ident.cycles} cycles, mode: {ident.mode}"
+    )
+    for label, M, U, unit, scale in (
+        ("K", ident.K, ident.K_uncertainty, "N/mm", 1e-3),
+        ("C", ident.C, ident.C_uncertainty, "N s/m", 1.0),
+    ):
         for (i, j), name in zip(np.ndindex(2, 2), ("xx", "xy", "yx", "yy")):
             if np.isfinite(M[i, j]):
                 print(f"  {label}{name} = {M[i, j] * scale:10.3f} +- {U[i, j] * scale:.3f} {unit}")
@@ -64,8 +71,10 @@ def main(argv=None) -> int:
         print(f"note: {ident.caveat}")
     if not args.csv:
         coeffs = model.coefficients([RPM], amplitude=AMPLITUDE)
-        print(f"model (coefficient formulas) at {RPM:.0f} rpm: Kxx = {coeffs.K[0][0, 0] * 1e-3:.3f} N/mm, "
-              f"Cxx = {coeffs.C[0][0, 0]:.1f} N s/m")
+        print(
+            f"model (coefficient formulas) at {RPM:.0f} rpm: Kxx = {coeffs.K[0][0, 0] * 1e-3:.3f} N/mm, "
+            f"Cxx = {coeffs.C[0][0, 0]:.1f} N s/m"
+        )
     path = write_json(out / "identified.json", ident.to_dict())
     print(f"wrote {path}")
     return 0

@@ -27,8 +27,10 @@ steel = rs.Material(name="steel_lsd_example", rho=7810, E=211e9, G_s=81.2e9)
 
 
 def rotor(b0, b1):
-    shaft = [rs.ShaftElement(0.1, 0.0, 0.08, material=steel, shear_effects=True, rotary_inertia=True,
-                             gyroscopic=True) for _ in range(2)]
+    shaft = [
+        rs.ShaftElement(0.1, 0.0, 0.08, material=steel, shear_effects=True, rotary_inertia=True, gyroscopic=True)
+        for _ in range(2)
+    ]
     disk = rs.DiskElement.from_geometry(n=1, material=steel, width=0.05, i_d=0.08, o_d=0.2)
     return rs.Rotor(shaft, [disk], [b0, b1])
 
@@ -43,6 +45,12 @@ for spin_rpm in (1000.0, 5000.0):
 for spin_rpm in (1000.0, 5000.0):
     wd, modal = whirl_consistent_mode(
         lambda w: rotor(bearing_at_frequency(model, 0, w, tag="a"), bearing_at_frequency(model, 2, w, tag="b")),
-        speed=2 * np.pi * spin_rpm / 60, omega_guess=2 * np.pi * spin_rpm / 60, mode=0, num_modes=8)
-    print(f"coefficients at the mode's own frequency, spin {spin_rpm:5.0f} rpm: damped frequency "
-          f"{wd / (2 * np.pi):.2f} Hz, log decrement {modal.log_dec[0]:.3f}")
+        speed=2 * np.pi * spin_rpm / 60,
+        omega_guess=2 * np.pi * spin_rpm / 60,
+        mode=0,
+        num_modes=8,
+    )
+    print(
+        f"coefficients at the mode's own frequency, spin {spin_rpm:5.0f} rpm: damped frequency "
+        f"{wd / (2 * np.pi):.2f} Hz, log decrement {modal.log_dec[0]:.3f}"
+    )

@@ -39,8 +39,10 @@ def plot(tables: dict, path: Path) -> Path:
     """Peak and minimum retainer force and surge amplitude vs speed for both springs."""
     fig, (ax1, ax2) = new_figure(2, 1, figsize=(8.0, 7.0), sharex=True)
     for name, t in tables.items():
-        line, = ax1.plot(t["cam_rpm"], t["max_retainer_force_N"], label=f"{name}: max (dynamic)")
-        ax1.plot(t["cam_rpm"], t["min_retainer_force_N"], ls="--", color=line.get_color(), label=f"{name}: min (dynamic)")
+        (line,) = ax1.plot(t["cam_rpm"], t["max_retainer_force_N"], label=f"{name}: max (dynamic)")
+        ax1.plot(
+            t["cam_rpm"], t["min_retainer_force_N"], ls="--", color=line.get_color(), label=f"{name}: min (dynamic)"
+        )
         ax1.plot(t["cam_rpm"], t["max_static_force_N"], ls=":", color=line.get_color(), label=f"{name}: max (static)")
         ax2.plot(t["cam_rpm"], t["retainer_surge_amplitude_N"], color=line.get_color(), label=name)
     ax1.set_ylabel("retainer force [N]")
@@ -63,16 +65,20 @@ def main(argv=None) -> int:
     out.mkdir(parents=True, exist_ok=True)
 
     tables = run_sweeps(args.step)
-    print(f"{'spring':9s} {'cam rpm':>8s} {'max F [N]':>10s} {'min F [N]':>10s} {'static max':>10s} "
-          f"{'surge [N]':>10s} {'seat min [N]':>12s} {'coil contact':>12s}")
+    print(
+        f"{'spring':9s} {'cam rpm':>8s} {'max F [N]':>10s} {'min F [N]':>10s} {'static max':>10s} "
+        f"{'surge [N]':>10s} {'seat min [N]':>12s} {'coil contact':>12s}"
+    )
     for name, t in tables.items():
         write_csv(out / f"sweep_{name}.csv", t)
         for rpm in SPEEDS_SHOWN:
             i = int(np.argmin(np.abs(t["cam_rpm"] - rpm)))
-            print(f"{name:9s} {t['cam_rpm'][i]:8.0f} {t['max_retainer_force_N'][i]:10.1f} "
-                  f"{t['min_retainer_force_N'][i]:10.1f} {t['max_static_force_N'][i]:10.1f} "
-                  f"{t['retainer_surge_amplitude_N'][i]:10.1f} {t['min_seat_force_N'][i]:12.1f} "
-                  f"{'yes' if t['coil_contact'][i] else 'no':>12s}")
+            print(
+                f"{name:9s} {t['cam_rpm'][i]:8.0f} {t['max_retainer_force_N'][i]:10.1f} "
+                f"{t['min_retainer_force_N'][i]:10.1f} {t['max_static_force_N'][i]:10.1f} "
+                f"{t['retainer_surge_amplitude_N'][i]:10.1f} {t['min_seat_force_N'][i]:12.1f} "
+                f"{'yes' if t['coil_contact'][i] else 'no':>12s}"
+            )
     for name, t in tables.items():
         i = int(np.argmax(t["retainer_surge_amplitude_N"]))
         print(f"{name}: largest surge {t['retainer_surge_amplitude_N'][i]:.1f} N at {t['cam_rpm'][i]:.0f} cam rpm")

@@ -28,8 +28,9 @@ def find_float_speed(spring_name: str) -> tuple[dict, ValveSpring, Cam, ValveTra
     spring = ValveSpring.example(spring_name)
     cam = Cam.from_toml(HERE / "cam_polydyne_ramps.toml")  # its ramps take up the train's lash
     train = ValveTrain.from_toml(HERE / "valve_train.toml")
-    result = float_speed(spring, cam, train, np.arange(1000.0, 6001.0, 250.0), revolutions=3, resolution=5.0,
-                         points_per_revolution=720)
+    result = float_speed(
+        spring, cam, train, np.arange(1000.0, 6001.0, 250.0), revolutions=3, resolution=5.0, points_per_revolution=720
+    )
     return result, spring, cam, train
 
 
@@ -42,13 +43,17 @@ def main(argv=None) -> int:
     out.mkdir(parents=True, exist_ok=True)
 
     result, spring, cam, train = find_float_speed(args.spring)
-    print(f"valve train: moving mass {train.moving_mass * 1e3:.0f} g, {args.spring} spring "
-          f"(Fset {spring.internal_parameters()['Fset']:.1f} N), cam {cam.law} {cam.max_lift * 1e3:.1f} mm")
+    print(
+        f"valve train: moving mass {train.moving_mass * 1e3:.0f} g, {args.spring} spring "
+        f"(Fset {spring.internal_parameters()['Fset']:.1f} N), cam {cam.law} {cam.max_lift * 1e3:.1f} mm"
+    )
     for rpm, f in zip(result["cam_rpm"], result["min_cam_contact_force_N"]):
         print(f"  {rpm:6.0f} cam rpm: minimum cam contact force {f:8.1f} N")
     write_json(out / "float_speed.json", result.to_dict())
-    write_csv(out / "float_scan.csv", {"cam_rpm": result["cam_rpm"],
-                                       "min_cam_contact_force_N": result["min_cam_contact_force_N"]})
+    write_csv(
+        out / "float_scan.csv",
+        {"cam_rpm": result["cam_rpm"], "min_cam_contact_force_N": result["min_cam_contact_force_N"]},
+    )
     if result["float_cam_rpm"] is None:
         print(f"no lift-off up to {result['cam_rpm'][-1]:.0f} cam rpm")
         return 0

@@ -32,6 +32,7 @@ def lazy_package(name: str, exports: dict) -> None:
     if shadowed:
         namespace = {}
         for attr in shadowed:
+
             def get(self, attr=attr):
                 return getattr(importlib.import_module(f"{name}.{attr}"), attr)
 

@@ -51,8 +51,10 @@ def test_examples_are_the_built_in_definitions():
 def test_report_on_example_files_gives_the_same(demo_dir, tmp_path):
     """``springdyn report`` on examples/report/*.toml reproduces the demo's results."""
     names = ["report_valve_two_step.toml", "lsd_type_c.toml"]
-    assert main(["report", *(str(ROOT / "examples" / "report" / n) for n in names), "--out", str(tmp_path),
-                 "--quiet"]) == 0
+    assert (
+        main(["report", *(str(ROOT / "examples" / "report" / n) for n in names), "--out", str(tmp_path), "--quiet"])
+        == 0
+    )
     for sub in ("valve-report_valve_two_step", "lsd-lsd_type_c"):
         mine = sorted(p.relative_to(tmp_path / sub) for p in (tmp_path / sub).rglob("*"))
         theirs = sorted(p.relative_to(demo_dir / sub) for p in (demo_dir / sub).rglob("*"))
@@ -82,10 +84,20 @@ def _chromium():
 
 
 def _render(exe, url, tmp_path, width):
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={tmp_path / f'profile{width}'}", "--virtual-time-budget=15000",
-             f"--window-size={width},1000", "--hide-scrollbars"]
+    flags = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={tmp_path / f'profile{width}'}",
+        "--virtual-time-budget=15000",
+        f"--window-size={width},1000",
+        "--hide-scrollbars",
+    ]
     dom = subprocess.run([exe, *flags, "--dump-dom", url], capture_output=True, text=True, timeout=180).stdout
     body = re.search(r"<body([^>]*)>", dom)
     assert body, "Chromium returned no DOM"
@@ -102,8 +114,9 @@ def test_report_renders_in_headless_chromium(demo_dir, tmp_path):
     screenshot is kept in test-artifacts/report.png."""
     exe = _chromium()
     if exe is None:
-        pytest.skip("Chromium is not installed here (.ci/run installs Debian's chromium); the report was built but "
-                    "not rendered")
+        pytest.skip(
+            "Chromium is not installed here (.ci/run installs Debian's chromium); the report was built but not rendered"
+        )
     url = (demo_dir / "index.html").resolve().as_uri()
     attrs, flags = _render(exe, url, tmp_path, 1400)
     ok, total = map(int, attrs["data-figures-loaded"].split("/"))
@@ -127,8 +140,13 @@ def test_report_renders_in_headless_chromium(demo_dir, tmp_path):
     "change",
     [
         {"allowable_stress": None},
-        {"torsional_stiffness": "2.5308 N*m/rad", "pivot_width": None, "pivot_thickness": None, "pivot_length": None,
-         "allowable_stress": None},
+        {
+            "torsional_stiffness": "2.5308 N*m/rad",
+            "pivot_width": None,
+            "pivot_thickness": None,
+            "pivot_length": None,
+            "allowable_stress": None,
+        },
     ],
     ids=["no-allowable-stress", "torsional-stiffness-only"],
 )

@@ -91,8 +91,9 @@ def test_plate_bending_default_by_width_ratio():
 def test_beam_needs_the_strip():
     p = CFCSParams.example("table1")
     with pytest.raises(InputError, match="flexure_model = 'beam' needs the strip"):
-        p.replace(torsional_stiffness=2.5, pivot_width=None, pivot_thickness=None, pivot_length=None,
-                  flexure_model="beam")
+        p.replace(
+            torsional_stiffness=2.5, pivot_width=None, pivot_thickness=None, pivot_length=None, flexure_model="beam"
+        )
 
 
 def test_beam_dynamics_use_the_prbm_inertia(table1):

@@ -20,12 +20,31 @@ def run(capsys, *argv):
 
 
 def test_static_json_and_files(capsys, tmp_path):
-    code, out, err = run(capsys, "cfcs", "static", "table1", "--stroke", "72mm", "--json",
-                         "--csv", str(tmp_path / "s.csv"), "--plot", str(tmp_path / "s.png"))
+    code, out, err = run(
+        capsys,
+        "cfcs",
+        "static",
+        "table1",
+        "--stroke",
+        "72mm",
+        "--json",
+        "--csv",
+        str(tmp_path / "s.csv"),
+        "--plot",
+        str(tmp_path / "s.png"),
+    )
     assert code == 0, err
     s = json.loads(out)
-    for key in ("force_at_zero_N", "force_max_N", "deflection_at_force_max_m", "force_min_N", "pcf_percent",
-                "stroke_m", "max_stress_Pa", "toggle_cutoff_rad"):
+    for key in (
+        "force_at_zero_N",
+        "force_max_N",
+        "deflection_at_force_max_m",
+        "force_min_N",
+        "pcf_percent",
+        "stroke_m",
+        "max_stress_Pa",
+        "toggle_cutoff_rad",
+    ):
         assert key in s
     # reading notes 2.3 with K3 from the flexure (2.53075 vs 2.5308: 2e-5 relative)
     assert s["force_max_N"] == pytest.approx(12.970, abs=1e-3)
@@ -42,8 +61,21 @@ def test_static_table(capsys):
 
 
 def test_dynamic(capsys, tmp_path):
-    code, out, err = run(capsys, "cfcs", "dynamic", str(ROOT / "examples/cfcs/table1.toml"), "--omega", "14.7",
-                         "--amplitude", "0.4", "--cycles", "2", "--json", "--csv", str(tmp_path / "d.csv"))
+    code, out, err = run(
+        capsys,
+        "cfcs",
+        "dynamic",
+        str(ROOT / "examples/cfcs/table1.toml"),
+        "--omega",
+        "14.7",
+        "--amplitude",
+        "0.4",
+        "--cycles",
+        "2",
+        "--json",
+        "--csv",
+        str(tmp_path / "d.csv"),
+    )
     assert code == 0, err
     s = json.loads(out)
     for key in ("mean_force_N", "median_force_N", "peak_to_peak_N", "pcf_percent", "toggle_cutoff_rad"):
@@ -63,8 +95,18 @@ def test_dynamic_from_csv_motion(capsys, tmp_path):
 
 
 def test_sweep(capsys, tmp_path):
-    code, out, err = run(capsys, "cfcs", "sweep", "table1", "--omega", "1:50:7", "--csv", str(tmp_path / "w.csv"),
-                         "--plot", str(tmp_path / "w.png"))
+    code, out, err = run(
+        capsys,
+        "cfcs",
+        "sweep",
+        "table1",
+        "--omega",
+        "1:50:7",
+        "--csv",
+        str(tmp_path / "w.csv"),
+        "--plot",
+        str(tmp_path / "w.png"),
+    )
     assert code == 0, err
     cols = read_csv_columns(tmp_path / "w.csv")
     np.testing.assert_allclose(cols["omega_rad_per_s"], [1, 8, 15, 22, 29, 36, 43, 50])
@@ -72,13 +114,39 @@ def test_sweep(capsys, tmp_path):
 
 
 def test_design_infeasible_and_feasible(capsys, tmp_path):
-    code, out, _ = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
-                       "207GPa", "--allowable-stress", "1.5GPa")
+    code, out, _ = run(
+        capsys,
+        "cfcs",
+        "design",
+        "--force",
+        "12.8N",
+        "--stroke",
+        "40mm",
+        "--material-modulus",
+        "207GPa",
+        "--allowable-stress",
+        "1.5GPa",
+    )
     assert code == 1
     assert "NO FEASIBLE DESIGN: no design meets the stress limit" in out
-    code, out, _ = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
-                       "207GPa", "--allowable-stress", "1.5GPa", "--length", "300mm", "--json",
-                       "--toml", str(tmp_path / "d.toml"))
+    code, out, _ = run(
+        capsys,
+        "cfcs",
+        "design",
+        "--force",
+        "12.8N",
+        "--stroke",
+        "40mm",
+        "--material-modulus",
+        "207GPa",
+        "--allowable-stress",
+        "1.5GPa",
+        "--length",
+        "300mm",
+        "--json",
+        "--toml",
+        str(tmp_path / "d.toml"),
+    )
     assert code == 0
     assert json.loads(out)["feasible"] is True
     code, out, err = run(capsys, "cfcs", "static", str(tmp_path / "d.toml"), "--stroke", "40mm", "--json")
@@ -90,32 +158,74 @@ def test_design_infeasible_and_feasible(capsys, tmp_path):
 
 
 def test_design_stroke_fraction_message(capsys):
-    code, out, err = run(capsys, "cfcs", "design", "--force", "12.8N", "--stroke", "40mm", "--material-modulus",
-                         "207GPa", "--allowable-stress", "1.5GPa", "--stroke-fraction", "0.95")
+    code, out, err = run(
+        capsys,
+        "cfcs",
+        "design",
+        "--force",
+        "12.8N",
+        "--stroke",
+        "40mm",
+        "--material-modulus",
+        "207GPa",
+        "--allowable-stress",
+        "1.5GPa",
+        "--stroke-fraction",
+        "0.95",
+    )
     assert code == 2 and "--stroke-fraction = 0.95 must not exceed 0.9" in err and "Traceback" not in err
 
 
 def test_forward(capsys, tmp_path):
-    code, out, err = run(capsys, "cfcs", "forward", "table1", "--t-end", "0.3s", "--base-stiffness", "2000N/m",
-                         "--base-omega", "10", "--base-amplitude", "0.2", "--csv", str(tmp_path / "f.csv"))
+    code, out, err = run(
+        capsys,
+        "cfcs",
+        "forward",
+        "table1",
+        "--t-end",
+        "0.3s",
+        "--base-stiffness",
+        "2000N/m",
+        "--base-omega",
+        "10",
+        "--base-amplitude",
+        "0.2",
+        "--csv",
+        str(tmp_path / "f.csv"),
+    )
     assert code == 0, err
     assert read_csv_columns(tmp_path / "f.csv")["time_s"].size == 2001
 
 
-@pytest.mark.parametrize("argv, match", [
-    (["cfcs", "static", "nope.toml"], "nope.toml: no such file"),
-    (["cfcs", "static", "table1", "--stroke", "150mm"], "beyond the kinematic limit"),
-    (["cfcs", "static", "table1", "--stroke", "7kg"], "wrong dimension"),
-    (["cfcs", "dynamic", "table1", "--omega", "0"], "omega = 0 rad/s must be positive"),
-    (["cfcs", "dynamic", "table1", "--omega", "-2"], "must be positive"),
-    (["cfcs", "dynamic", "table1", "--omega", "5", "--amplitude", "0.9"], "kinematic limit"),
-    (["cfcs", "dynamic", "table1", "--omega", "5", "--offset=-1mm"], "crosses the toggle"),
-    (["cfcs", "dynamic", "table1"], "omega is required"),
-    (["cfcs", "sweep", "table1", "--omega", "0:5:1"], "every omega must be positive"),
-    (["cfcs", "design", "--force=-1N", "--stroke", "40mm", "--material-modulus", "207GPa",
-      "--allowable-stress", "1.5GPa"], "force"),
-    (["cfcs", "forward", "table1", "--t-end", "1s"], "forward needs --force"),
-])
+@pytest.mark.parametrize(
+    "argv, match",
+    [
+        (["cfcs", "static", "nope.toml"], "nope.toml: no such file"),
+        (["cfcs", "static", "table1", "--stroke", "150mm"], "beyond the kinematic limit"),
+        (["cfcs", "static", "table1", "--stroke", "7kg"], "wrong dimension"),
+        (["cfcs", "dynamic", "table1", "--omega", "0"], "omega = 0 rad/s must be positive"),
+        (["cfcs", "dynamic", "table1", "--omega", "-2"], "must be positive"),
+        (["cfcs", "dynamic", "table1", "--omega", "5", "--amplitude", "0.9"], "kinematic limit"),
+        (["cfcs", "dynamic", "table1", "--omega", "5", "--offset=-1mm"], "crosses the toggle"),
+        (["cfcs", "dynamic", "table1"], "omega is required"),
+        (["cfcs", "sweep", "table1", "--omega", "0:5:1"], "every omega must be positive"),
+        (
+            [
+                "cfcs",
+                "design",
+                "--force=-1N",
+                "--stroke",
+                "40mm",
+                "--material-modulus",
+                "207GPa",
+                "--allowable-stress",
+                "1.5GPa",
+            ],
+            "force",
+        ),
+        (["cfcs", "forward", "table1", "--t-end", "1s"], "forward needs --force"),
+    ],
+)
 def test_bad_input_exit_2(capsys, argv, match):
     code, out, err = run(capsys, *argv)
     assert code == 2
@@ -125,17 +235,23 @@ def test_bad_input_exit_2(capsys, argv, match):
 
 def test_bad_config_files(capsys, tmp_path):
     bad = tmp_path / "bad.toml"
-    bad.write_text('[cfcs]\ncrank_length = "95 mm"\ncoupler_length = "85 mm"\ncrank_mass = 0.02\n'
-                   'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\n')
+    bad.write_text(
+        '[cfcs]\ncrank_length = "95 mm"\ncoupler_length = "85 mm"\ncrank_mass = 0.02\n'
+        "coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\n"
+    )
     code, _, err = run(capsys, "cfcs", "static", str(bad))
     assert code == 2 and "must be shorter than coupler_length" in err
-    bad.write_text('[cfcs]\ncrank_length = "85 mm"\ncoupler_length = "95 mm"\ncrank_mass = 0.02\n'
-                   'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\npivot_width = "25 mm"\n'
-                   'friction_model = "stribeck"\n')
+    bad.write_text(
+        '[cfcs]\ncrank_length = "85 mm"\ncoupler_length = "95 mm"\ncrank_mass = 0.02\n'
+        'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\npivot_width = "25 mm"\n'
+        'friction_model = "stribeck"\n'
+    )
     code, _, err = run(capsys, "cfcs", "static", str(bad))
     assert code == 2 and "friction_model = 'stribeck' is not allowed" in err
-    bad.write_text('[cfcs]\ncrank_length = "85 mm"\ncoupler_length = "95 mm"\ncrank_mass = 0.02\n'
-                   'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\npivot_width = "25 mm"\n')
+    bad.write_text(
+        '[cfcs]\ncrank_length = "85 mm"\ncoupler_length = "95 mm"\ncrank_mass = 0.02\n'
+        'coupler_mass = 0.02\nslider_mass = 0.05\ntorsional_stiffness = 2.5\npivot_width = "25 mm"\n'
+    )
     code, _, err = run(capsys, "cfcs", "static", str(bad))
     assert code == 2 and "both torsional_stiffness and pivot dimensions" in err
     out_csv = tmp_path / "never.csv"

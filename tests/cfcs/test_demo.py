@@ -15,8 +15,16 @@ def test_report_section_writes_every_file(tmp_path):
     assert all(Path(f).is_file() and Path(f).stat().st_size > 0 for f in sec.files)
     assert all(Path(f).is_file() for f, _ in sec.figures)
     names = {Path(f).name for f in sec.files} | {Path(f).name for f, _ in sec.figures}
-    assert {"static.csv", "static.png", "sweep.csv", "sweep.png", "pivot_stress.png", "summary.json",
-            "design.toml", "forward_base_spring.png"} <= names
+    assert {
+        "static.csv",
+        "static.png",
+        "sweep.csv",
+        "sweep.png",
+        "pivot_stress.png",
+        "summary.json",
+        "design.toml",
+        "forward_base_spring.png",
+    } <= names
     assert sum(n.startswith("dynamic_omega_") and n.endswith(".png") for n in names) == len(report.PAPER_OMEGAS)
     s = json.loads((tmp_path / "summary.json").read_text())
     assert s["static"]["pcf_percent"] == pytest.approx(97.0, abs=0.05)  # reading notes 2.3

@@ -11,8 +11,9 @@ from springdyn.core.errors import InputError
 
 def test_feasible_prbm_design_verified_through_the_model():
     # the PRBM design's PCF, force band and stress recomputed by the CFCS model built from it (independent path)
-    r = design(12.8, 0.040, 207e9, 1.5e9, stroke_fraction=0.2, flexure_model="prbm", safety_factor=1.0,
-               thickness_tolerance=0.0)
+    r = design(
+        12.8, 0.040, 207e9, 1.5e9, stroke_fraction=0.2, flexure_model="prbm", safety_factor=1.0, thickness_tolerance=0.0
+    )
     s = r.summary
     assert r.feasible
     assert s["pivot_width_m"] <= s["max_width_m"]
@@ -47,8 +48,16 @@ def test_beam_design_holds_when_reanalysed():
 def test_design_json_keys_and_tolerance():
     r = design(12.8, 0.040, 207e9, 1.5e9, total_length=0.3)
     s = r.summary
-    for key in ("flexure_model", "plate_bending", "poisson_ratio", "working_start_m", "working_end_m",
-                "binding_constraint", "buckling_load_N", "force_min_at_thickness_tolerance_N"):
+    for key in (
+        "flexure_model",
+        "plate_bending",
+        "poisson_ratio",
+        "working_start_m",
+        "working_end_m",
+        "binding_constraint",
+        "buckling_load_N",
+        "force_min_at_thickness_tolerance_N",
+    ):
         assert key in s
     # the force goes as h^3 at fixed geometry: +-5 % in h is -14.3 % / +15.8 %
     assert s["force_min_at_thickness_tolerance_N"] == pytest.approx(s["force_min_N"] * 0.95**3, rel=1e-12)
@@ -102,14 +111,17 @@ def test_min_ratio_reaches_the_stroke():
     assert kinematic_limit_deflection(rho * r3, r3) == pytest.approx(0.4, rel=1e-12)
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(force=-1.0), "force = -1.0 must be positive"),
-    (dict(stroke=0.0), "stroke"),
-    (dict(stroke_fraction=1.2), "stroke_fraction"),
-    (dict(min_pcf=100.0), "min_pcf"),
-    (dict(flexure_model="fem"), "flexure_model"),
-    (dict(total_length=0.03), "must exceed the stroke"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(force=-1.0), "force = -1.0 must be positive"),
+        (dict(stroke=0.0), "stroke"),
+        (dict(stroke_fraction=1.2), "stroke_fraction"),
+        (dict(min_pcf=100.0), "min_pcf"),
+        (dict(flexure_model="fem"), "flexure_model"),
+        (dict(total_length=0.03), "must exceed the stroke"),
+    ],
+)
 def test_bad_design_input(kwargs, match):
     args = dict(force=12.8, stroke=0.04, youngs_modulus=207e9, allowable_stress=1.5e9)
     args.update(kwargs)

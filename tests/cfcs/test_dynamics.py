@@ -16,8 +16,9 @@ M2, M3, MS = 0.025, 0.028, 0.087
 def test_generalized_mass_eq19_equals_compact_form():
     # reading notes 2.1: Eq. (19) as printed equals the compact form; agreement to round-off
     th = np.linspace(-1.5, 1.5, 301)
-    np.testing.assert_allclose(dyn.generalized_mass_eq19(th, M2, M3, MS, R2, R3),
-                               dyn.generalized_mass(th, M2, M3, MS, R2, R3), rtol=1e-13)
+    np.testing.assert_allclose(
+        dyn.generalized_mass_eq19(th, M2, M3, MS, R2, R3), dyn.generalized_mass(th, M2, M3, MS, R2, R3), rtol=1e-13
+    )
 
 
 def _kinetic_energy_from_points(th, m2, m3, ms, h=1e-6):
@@ -42,7 +43,8 @@ def _kinetic_energy_from_points(th, m2, m3, ms, h=1e-6):
 def test_generalized_mass_from_point_velocities(th):
     # Eq. (11) evaluated from the joint positions (no loop-closure formulas); FD error ~1e-10 relative
     assert dyn.generalized_mass(th, M2, M3, MS, R2, R3) == pytest.approx(
-        _kinetic_energy_from_points(th, M2, M3, MS), rel=1e-8)
+        _kinetic_energy_from_points(th, M2, M3, MS), rel=1e-8
+    )
 
 
 def test_mass_derivative_by_finite_differences():
@@ -66,6 +68,7 @@ def test_power_balance_frictionless(table1):
         x, xd, _ = mot(t)
         th = theta2_from_deflection(x, R2, R3)
         from springdyn.cfcs.kinematics import slider_jacobian
+
         return dyn.energy(th, xd / slider_jacobian(th, R2, R3), vals)
 
     h = 1e-4 * mot.period
@@ -93,9 +96,12 @@ def test_static_limit_as_omega_goes_to_zero(table1):
     p = table1
     th = theta2_from_deflection(r.deflection[up], R2, R3)
     fs = statics.static_force(th, p.k3, R2, R3)
-    comp = fs + statics.dissipative_torque(th, fs, p.pin_friction, p.friction_model, p.shear_angle,
-                                           p.axial_force, R2, R3) / statics.frozen_jacobian(
-        th, R2, R3, p.toggle_cutoff) + p.slider_friction
+    comp = (
+        fs
+        + statics.dissipative_torque(th, fs, p.pin_friction, p.friction_model, p.shear_angle, p.axial_force, R2, R3)
+        / statics.frozen_jacobian(th, R2, R3, p.toggle_cutoff)
+        + p.slider_friction
+    )
     np.testing.assert_allclose(r.force[up], comp, rtol=1e-6)
 
 
@@ -110,8 +116,16 @@ def test_hysteresis_equals_friction_work(table1, friction_model):
     ta, tb = theta2_from_deflection(off, R2, R3), theta2_from_deflection(off + amp, R2, R3)
 
     def tau(t):
-        return statics.dissipative_torque(t, statics.static_force(t, p.k3, R2, R3), p.pin_friction,
-                                          p.friction_model, p.shear_angle, p.axial_force, R2, R3)
+        return statics.dissipative_torque(
+            t,
+            statics.static_force(t, p.k3, R2, R3),
+            p.pin_friction,
+            p.friction_model,
+            p.shear_angle,
+            p.axial_force,
+            R2,
+            R3,
+        )
 
     work = 2 * quad(tau, ta, tb, epsabs=0, epsrel=1e-12)[0] + 2 * p.slider_friction * amp
     assert r.summary["hysteresis_energy_per_cycle_J"] == pytest.approx(work, rel=1e-5)
@@ -145,8 +159,9 @@ def test_forward_and_inverse_agree_with_friction(table1):
         return dyn.drive_force_components(x, xd, xdd, theta2_cutoff=p.toggle_cutoff, **vals)["force"][0]
 
     x0, v0, _ = mot(t0)
-    res = CFCS(p).forward(0.3 * mot.period, force=f_inv, x0=float(x0), v0=float(v0), n=51, sign_smoothing=1e-6,
-                          rtol=1e-10)
+    res = CFCS(p).forward(
+        0.3 * mot.period, force=f_inv, x0=float(x0), v0=float(v0), n=51, sign_smoothing=1e-6, rtol=1e-10
+    )
     np.testing.assert_allclose(res.deflection, mot(res.time + t0)[0], atol=1e-7)
 
 
@@ -237,8 +252,9 @@ def test_forward_and_inverse_agree_through_the_toggle(table1):
     t0 = 0.25 * mot.period
 
     def f_inv(t):
-        return dyn.inverse_dynamics(mot, np.atleast_1d(t + t0), mot.period, theta2_cutoff=p.toggle_cutoff,
-                                    **vals)["force"][0]
+        return dyn.inverse_dynamics(mot, np.atleast_1d(t + t0), mot.period, theta2_cutoff=p.toggle_cutoff, **vals)[
+            "force"
+        ][0]
 
     x0, v0, _ = mot(t0)
     res = CFCS(p).forward(mot.period, force=f_inv, x0=float(x0), v0=float(v0), n=201, rtol=1e-10)

@@ -39,8 +39,9 @@ def test_jacobian_matches_eq25_and_finite_differences():
     th = np.linspace(0.01, 1.55, 50)
     g = k.slider_jacobian(th, R2, R3)
     np.testing.assert_allclose(g, -k.dr1_dtheta2(th, R2, R3), rtol=1e-13)
-    np.testing.assert_allclose(g, k.slider_position(th, R2, R3) * R2 * np.sin(th) / k.coupler_root(th, R2, R3),
-                               rtol=1e-13)
+    np.testing.assert_allclose(
+        g, k.slider_position(th, R2, R3) * R2 * np.sin(th) / k.coupler_root(th, R2, R3), rtol=1e-13
+    )
     h = 1e-5  # truncation ~h^2 = 1e-10 relative, round-off ~1e-17/h / G < 1e-9
     fd = (k.deflection_from_theta2(th + h, R2, R3) - k.deflection_from_theta2(th - h, R2, R3)) / (2 * h)
     np.testing.assert_allclose(g, fd, rtol=1e-8)
@@ -53,8 +54,7 @@ def test_toggle_and_kinematic_limit():
     assert k.slider_position(0.0, R2, R3) == pytest.approx(R2 + R3, abs=1e-16)
     assert k.slider_jacobian(0.0, R2, R3) == 0.0
     assert k.kinematic_limit_deflection(R2, R3) == pytest.approx(0.180 - np.sqrt(0.095**2 - 0.085**2), rel=1e-14)
-    assert k.theta2_from_deflection(k.kinematic_limit_deflection(R2, R3), R2, R3) == pytest.approx(np.pi / 2,
-                                                                                                  abs=2e-8)
+    assert k.theta2_from_deflection(k.kinematic_limit_deflection(R2, R3), R2, R3) == pytest.approx(np.pi / 2, abs=2e-8)
     # the deflection grows monotonically up to the limit (G > 0 inside)
     assert np.all(k.slider_jacobian(np.linspace(1e-6, np.pi / 2, 500), R2, R3) > 0)
     # outside the range: NaN, never a silent wrong angle

@@ -6,8 +6,12 @@ from springdyn.cfcs import CFCS, CFCSParams
 from springdyn.core.errors import InputError
 
 BASE = {
-    "crank_length": "85 mm", "coupler_length": "95 mm", "crank_mass": "0.025 kg", "coupler_mass": "0.028 kg",
-    "slider_mass": "0.087 kg", "torsional_stiffness": "2.5308 N*m/rad",
+    "crank_length": "85 mm",
+    "coupler_length": "95 mm",
+    "crank_mass": "0.025 kg",
+    "coupler_mass": "0.028 kg",
+    "slider_mass": "0.087 kg",
+    "torsional_stiffness": "2.5308 N*m/rad",
 }
 
 
@@ -32,19 +36,22 @@ def test_defaults():
     assert p.pin_friction == 0.0 and p.friction_model == "paper"
 
 
-@pytest.mark.parametrize("changes, match", [
-    ({"crank_length": "95 mm"}, "crank_length = 95 mm must be shorter than coupler_length"),
-    ({"crank_length": "100 mm"}, "must be shorter"),
-    ({"coupler_length": "-95 mm"}, "coupler_length = -95 mm must be positive"),
-    ({"crank_mass": "0 kg"}, "crank_mass = 0 kg must be positive"),
-    ({"slider_mass": "-1 kg"}, "slider_mass"),
-    ({"friction_model": "viscous"}, "friction_model = 'viscous' is not allowed; choose one of 'paper'"),
-    ({"pivot_width": "25.4 mm"}, "both torsional_stiffness and pivot dimensions"),
-    ({"crank_length": "85 kg"}, "wrong dimension"),
-    ({"colour": "red"}, "unknown key 'colour'"),
-    ({"toggle_cutoff": "95 deg"}, "toggle_cutoff = 95 deg must be below 90 deg"),
-    ({"pin_friction": "-0.1 N*m"}, "pin_friction"),
-])
+@pytest.mark.parametrize(
+    "changes, match",
+    [
+        ({"crank_length": "95 mm"}, "crank_length = 95 mm must be shorter than coupler_length"),
+        ({"crank_length": "100 mm"}, "must be shorter"),
+        ({"coupler_length": "-95 mm"}, "coupler_length = -95 mm must be positive"),
+        ({"crank_mass": "0 kg"}, "crank_mass = 0 kg must be positive"),
+        ({"slider_mass": "-1 kg"}, "slider_mass"),
+        ({"friction_model": "viscous"}, "friction_model = 'viscous' is not allowed; choose one of 'paper'"),
+        ({"pivot_width": "25.4 mm"}, "both torsional_stiffness and pivot dimensions"),
+        ({"crank_length": "85 kg"}, "wrong dimension"),
+        ({"colour": "red"}, "unknown key 'colour'"),
+        ({"toggle_cutoff": "95 deg"}, "toggle_cutoff = 95 deg must be below 90 deg"),
+        ({"pin_friction": "-0.1 N*m"}, "pin_friction"),
+    ],
+)
 def test_bad_input(changes, match):
     with pytest.raises(InputError, match=match):
         CFCSParams.from_dict({**BASE, **changes})
@@ -69,16 +76,19 @@ def test_unknown_example():
         CFCSParams.example("nope")
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(omega=0.0), "omega = 0 rad/s must be positive"),
-    (dict(omega=-3.0), "must be positive"),
-    (dict(omega=5.0, amplitude=0.9), "beyond the kinematic limit"),
-    (dict(omega=5.0, amplitude="150 mm"), "beyond the kinematic limit"),
-    (dict(omega=5.0, offset=-0.002), "crosses the toggle"),
-    (dict(omega=5.0, amplitude=1.5), "1504.5 mm, beyond the kinematic limit"),  # bare numbers are metres
-    (dict(omega=5.0, amplitude="150 %"), "percentage of r2 \\+ r3 must lie in"),
-    (dict(), "omega is required"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(omega=0.0), "omega = 0 rad/s must be positive"),
+        (dict(omega=-3.0), "must be positive"),
+        (dict(omega=5.0, amplitude=0.9), "beyond the kinematic limit"),
+        (dict(omega=5.0, amplitude="150 mm"), "beyond the kinematic limit"),
+        (dict(omega=5.0, offset=-0.002), "crosses the toggle"),
+        (dict(omega=5.0, amplitude=1.5), "1504.5 mm, beyond the kinematic limit"),  # bare numbers are metres
+        (dict(omega=5.0, amplitude="150 %"), "percentage of r2 \\+ r3 must lie in"),
+        (dict(), "omega is required"),
+    ],
+)
 def test_bad_motion(model, kwargs, match):
     with pytest.raises(InputError, match=match):
         model.dynamic(**kwargs)
@@ -116,11 +126,14 @@ def test_amplitude_bare_numbers_are_metres_and_percent_is_a_fraction(model):
     assert c["peak_to_peak_N"] == pytest.approx(a["peak_to_peak_N"], rel=1e-12)
 
 
-@pytest.mark.parametrize("call, match", [
-    (lambda m: m.dynamic(1e308), "beyond 100000 rad/s"),
-    (lambda m: m.sweep([1.0, 1e306]), "beyond 100000 rad/s"),
-    (lambda m: m.params.replace(shear_angle=1.5), "shear_angle = 1.5 rad must lie within"),
-])
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda m: m.dynamic(1e308), "beyond 100000 rad/s"),
+        (lambda m: m.sweep([1.0, 1e306]), "beyond 100000 rad/s"),
+        (lambda m: m.params.replace(shear_angle=1.5), "shear_angle = 1.5 rad must lie within"),
+    ],
+)
 def test_issue11_reproducers_are_input_errors(model, call, match):
     """An omega of 1e308 and shear_angle = 1.5 rad gave NaN statistics; now one message each."""
     with pytest.raises(InputError, match=match):
@@ -135,11 +148,14 @@ def test_design_stroke_fraction_beyond_the_kinematic_range():
         design(12.8, 0.04, 207e9, 1.5e9, stroke_fraction=0.95)
 
 
-@pytest.mark.parametrize("changes,match", [
-    ({"pivot_thickness": "2**1000"}, "must be smaller than pivot_length"),  # the fuzz's OverflowError
-    ({"pivot_thickness": "12 mm"}, "pivot_thickness = 12 mm must be smaller than pivot_length"),
-    ({"pivot_width": "1e300 m"}, "overflows"),
-])
+@pytest.mark.parametrize(
+    "changes,match",
+    [
+        ({"pivot_thickness": "2**1000"}, "must be smaller than pivot_length"),  # the fuzz's OverflowError
+        ({"pivot_thickness": "12 mm"}, "pivot_thickness = 12 mm must be smaller than pivot_length"),
+        ({"pivot_width": "1e300 m"}, "overflows"),
+    ],
+)
 def test_flexure_strip_is_checked(table1, changes, match):
     base = {k: v for k, v in table1.__dict__.items() if not k.startswith("_") and v is not None}
     with pytest.raises(InputError, match=match):

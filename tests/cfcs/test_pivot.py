@@ -31,7 +31,8 @@ def test_max_stroke_for_stress_is_where_the_stress_equals_the_limit():
     assert x < 0.4 * (R2 + R3) / 5
     # a very strong material: the kinematic limit governs
     assert pivot.max_stroke_for_stress(1e15, 207e9, 0.38e-3, 9.5e-3, R2, R3) == pytest.approx(
-        deflection_from_theta2(np.pi / 2, R2, R3))
+        deflection_from_theta2(np.pi / 2, R2, R3)
+    )
 
 
 def test_safety_factor():

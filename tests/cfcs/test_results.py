@@ -30,8 +30,14 @@ def test_dynamic_outputs(model, tmp_path):
 def test_sweep_outputs(model, tmp_path):
     r = model.sweep([2.0, 10.0, 30.0], samples_per_cycle=100)
     cols = read_csv_columns(r.to_csv(tmp_path / "w.csv"))
-    assert {"omega_rad_per_s", "mean_force_N", "median_force_N", "peak_to_peak_N", "pcf_percent",
-            "pcf_no_dissipation_percent"} <= set(cols)
+    assert {
+        "omega_rad_per_s",
+        "mean_force_N",
+        "median_force_N",
+        "peak_to_peak_N",
+        "pcf_percent",
+        "pcf_no_dissipation_percent",
+    } <= set(cols)
     # the inertia grows with omega^2: the ideal peak-to-peak force grows with omega (Fig. 7 trend)
     assert np.all(np.diff(r.stats["peak_to_peak_no_dissipation_N"]) > 0)
     r.plot(tmp_path / "w.png")

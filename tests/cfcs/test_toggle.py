@@ -13,8 +13,15 @@ from springdyn.cfcs.statics import axial_force_torque
 
 CUTOFFS_DEG = (1.0, 2.0, 5.0, 10.0)
 STATIC_KEYS = ("pcf_compression_percent", "pcf_percent", "force_max_N", "pcf_working_percent")
-DYNAMIC_KEYS = ("mean_force_N", "median_force_N", "peak_to_peak_N", "pcf_percent", "force_max_N", "force_min_N",
-                "hysteresis_energy_per_cycle_J")
+DYNAMIC_KEYS = (
+    "mean_force_N",
+    "median_force_N",
+    "peak_to_peak_N",
+    "pcf_percent",
+    "force_max_N",
+    "force_min_N",
+    "hysteresis_energy_per_cycle_J",
+)
 
 
 def _at(table1, deg):

@@ -107,8 +107,16 @@ def test_percent_and_speeds(text, unit, expected):
     assert to_si(text, unit, "x") == pytest.approx(expected, rel=1e-12)
 
 
-@pytest.mark.parametrize("text, message", [("3000,5", "comma"), ("3,8mm", "comma"), ("4000:1000:250", "range"),
-                                           ("5e-324 m", "subnormal"), ("1e400 m", "finite")])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("3000,5", "comma"),
+        ("3,8mm", "comma"),
+        ("4000:1000:250", "range"),
+        ("5e-324 m", "subnormal"),
+        ("1e400 m", "finite"),
+    ],
+)
 def test_quantities_never_misread(text, message):
     with pytest.raises(InputError, match=message):
         to_si(text, "m", "x")

@@ -20,8 +20,12 @@ def _records(params, noise, seed=0, revolutions=10, rate=10e3):
     firsts, seconds = [], []
     for k, rpm in enumerate(SPEEDS):
         for axis, out in (("x", firsts), ("y", seconds)):
-            r = simulate_rig(m, linear_shake(rpm, 50e-6, axis, revolutions, rate), force_noise=noise,
-                             seed=seed + 10 * k + (axis == "y"))
+            r = simulate_rig(
+                m,
+                linear_shake(rpm, 50e-6, axis, revolutions, rate),
+                force_noise=noise,
+                seed=seed + 10 * k + (axis == "y"),
+            )
             out.append(RigData(r.time, r.x, r.y, r.fx, r.fy, source=f"{axis}{rpm:g}.csv"))
     return firsts, seconds
 
@@ -105,8 +109,23 @@ def test_cli_calibrate_json_and_toml(tmp_path, capsys):
             ps.append(str(p))
         paths.append(ps)
     out = tmp_path / "calibrated.toml"
-    rc = main(["lsd", "calibrate", "C", *paths[0], "--second", *paths[1], "--fit", "leakage_factor,leaf_friction",
-               "--toml", str(out), "--json", "--csv", str(tmp_path / "res.csv")])
+    rc = main(
+        [
+            "lsd",
+            "calibrate",
+            "C",
+            *paths[0],
+            "--second",
+            *paths[1],
+            "--fit",
+            "leakage_factor,leaf_friction",
+            "--toml",
+            str(out),
+            "--json",
+            "--csv",
+            str(tmp_path / "res.csv"),
+        ]
+    )
     assert rc == 0
     d = json.loads(capsys.readouterr().out)
     assert d["leakage_factor"] == pytest.approx(3.0, rel=0.01)

@@ -9,8 +9,17 @@ from springdyn.app.cli.main import main
 from springdyn.core.io import read_csv_columns
 from springdyn.lsd import LSDModel, LSDParameters
 
-COEFF_KEYS = ["rpm", "kxx_N_per_m", "kxy_N_per_m", "kyx_N_per_m", "kyy_N_per_m",
-              "cxx_Ns_per_m", "cxy_Ns_per_m", "cyx_Ns_per_m", "cyy_Ns_per_m"]
+COEFF_KEYS = [
+    "rpm",
+    "kxx_N_per_m",
+    "kxy_N_per_m",
+    "kyx_N_per_m",
+    "kyy_N_per_m",
+    "cxx_Ns_per_m",
+    "cxy_Ns_per_m",
+    "cyx_Ns_per_m",
+    "cyy_Ns_per_m",
+]
 
 
 def _json(capsys):
@@ -22,8 +31,22 @@ def test_coefficients_json_csv_plot(tmp_path, capsys):
     from importlib import resources
 
     cfg = resources.files("springdyn.data") / "lsd_type_c.toml"
-    rc = main(["lsd", "coefficients", str(cfg), "--rpm", "500:3000:500", "--amplitude", "50um", "--json",
-               "--csv", str(tmp_path / "c.csv"), "--plot", str(tmp_path / "c.png")])
+    rc = main(
+        [
+            "lsd",
+            "coefficients",
+            str(cfg),
+            "--rpm",
+            "500:3000:500",
+            "--amplitude",
+            "50um",
+            "--json",
+            "--csv",
+            str(tmp_path / "c.csv"),
+            "--plot",
+            str(tmp_path / "c.png"),
+        ]
+    )
     assert rc == 0
     d = _json(capsys)
     for k in COEFF_KEYS + ["pack_stiffness_N_per_m", "load_ratios"]:
@@ -49,14 +72,51 @@ def test_coefficients_table_and_warning(capsys):
 def test_rig_then_identify(tmp_path, capsys):
     x, y = tmp_path / "x.csv", tmp_path / "y.csv"
     for exc, path, seed in (("x", x, "1"), ("y", y, "2")):
-        assert main(["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--excitation", exc,
-                     "--revolutions", "10", "--sample-rate", "10kHz", "--noise", "2N", "--seed", seed,
-                     "--csv", str(path)]) == 0
+        assert (
+            main(
+                [
+                    "lsd",
+                    "rig",
+                    "C",
+                    "--rpm",
+                    "1000",
+                    "--eccentricity",
+                    "50um",
+                    "--excitation",
+                    exc,
+                    "--revolutions",
+                    "10",
+                    "--sample-rate",
+                    "10kHz",
+                    "--noise",
+                    "2N",
+                    "--seed",
+                    seed,
+                    "--csv",
+                    str(path),
+                ]
+            )
+            == 0
+        )
     capsys.readouterr()
     cols = read_csv_columns(x)
     assert list(cols) == ["time_s", "x_m", "y_m", "fx_N", "fy_N"] and cols["time_s"].size == 6000
-    rc = main(["lsd", "identify", str(x), "--second", str(y), "--mass", "0.5kg", "--json",
-               "--plot", str(tmp_path / "id.png"), "--model", "C"])
+    rc = main(
+        [
+            "lsd",
+            "identify",
+            str(x),
+            "--second",
+            str(y),
+            "--mass",
+            "0.5kg",
+            "--json",
+            "--plot",
+            str(tmp_path / "id.png"),
+            "--model",
+            "C",
+        ]
+    )
     assert rc == 0
     d = _json(capsys)
     model = LSDModel(LSDParameters.example("C"))
@@ -72,8 +132,26 @@ def test_rig_then_identify(tmp_path, capsys):
 
 def test_identify_single_orbit_prints_caveat(tmp_path, capsys):
     o = tmp_path / "o.csv"
-    assert main(["lsd", "rig", "C", "--rpm", "1500", "--eccentricity", "40um", "--revolutions", "5",
-                 "--csv", str(o), "--plot", str(tmp_path / "loops.png")]) == 0
+    assert (
+        main(
+            [
+                "lsd",
+                "rig",
+                "C",
+                "--rpm",
+                "1500",
+                "--eccentricity",
+                "40um",
+                "--revolutions",
+                "5",
+                "--csv",
+                str(o),
+                "--plot",
+                str(tmp_path / "loops.png"),
+            ]
+        )
+        == 0
+    )
     assert (tmp_path / "loops.png").is_file()
     capsys.readouterr()
     assert main(["lsd", "identify", str(o), "--rpm", "1500"]) == 0
@@ -104,8 +182,23 @@ def test_bad_inputs(tmp_path, capsys):
     _bad(capsys, ["lsd", "coefficients", str(tmp_path / "none.toml")], "no such file")
     _bad(capsys, ["lsd", "coefficients", "C", "--amplitude=-5um"], "amplitude")
     _bad(capsys, ["lsd", "coefficients", "C", "--rpm", "3000:500:500"], "STOP is below START")
-    _bad(capsys, ["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--sample-rate", "20Hz",
-                  "--csv", str(tmp_path / "r.csv")], "too low")
+    _bad(
+        capsys,
+        [
+            "lsd",
+            "rig",
+            "C",
+            "--rpm",
+            "1000",
+            "--eccentricity",
+            "50um",
+            "--sample-rate",
+            "20Hz",
+            "--csv",
+            str(tmp_path / "r.csv"),
+        ],
+        "too low",
+    )
     assert not (tmp_path / "r.csv").exists()  # nothing half-written
     nan = tmp_path / "nan.csv"
     nan.write_text("time_s,x_m,y_m,fx_N,fy_N\n0,0,0,0,0\n0.001,nan,0,0,0\n")
@@ -123,8 +216,24 @@ def test_rig_along_measured_path(tmp_path, capsys):
 
     tr = circular_orbit(1000, 50e-6, 3, 10e3)
     write_csv(tmp_path / "path.csv", {"time_s": tr.time, "x_m": tr.x, "y_m": tr.y})
-    assert main(["lsd", "rig", "C", "--path", str(tmp_path / "path.csv"), "--rpm", "1000",
-                 "--csv", str(tmp_path / "out.csv"), "--plot", str(tmp_path / "out.png")]) == 0
+    assert (
+        main(
+            [
+                "lsd",
+                "rig",
+                "C",
+                "--path",
+                str(tmp_path / "path.csv"),
+                "--rpm",
+                "1000",
+                "--csv",
+                str(tmp_path / "out.csv"),
+                "--plot",
+                str(tmp_path / "out.png"),
+            ]
+        )
+        == 0
+    )
     out = read_csv_columns(tmp_path / "out.csv")
     ref = simulate_rig(LSDModel(LSDParameters.example("C")), tr)
     inner = slice(5, -5)
@@ -136,8 +245,26 @@ def test_rig_along_measured_path(tmp_path, capsys):
 def test_issue11_reproducers(capsys, tmp_path):
     """A wrong --rpm, an all-zero record, an absurd rig request and a unit slip."""
     x = tmp_path / "x.csv"
-    assert main(["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--excitation", "x", "--revolutions", "5",
-                 "--csv", str(x)]) == 0
+    assert (
+        main(
+            [
+                "lsd",
+                "rig",
+                "C",
+                "--rpm",
+                "1000",
+                "--eccentricity",
+                "50um",
+                "--excitation",
+                "x",
+                "--revolutions",
+                "5",
+                "--csv",
+                str(x),
+            ]
+        )
+        == 0
+    )
     capsys.readouterr()
     assert main(["lsd", "identify", str(x), "--rpm", "3000", "--json"]) == 2
     assert "does not match the record" in capsys.readouterr().err
@@ -148,8 +275,24 @@ def test_issue11_reproducers(capsys, tmp_path):
     assert "nothing to identify" in capsys.readouterr().err
     assert main(["lsd", "rig", "C", "--rpm", "2.5", "--eccentricity", "50um", "--csv", str(tmp_path / "r.csv")]) == 2
     assert "samples, more than" in capsys.readouterr().err
-    assert main(["lsd", "rig", "C", "--rpm", "1000", "--eccentricity", "50um", "--revolutions", "inf",
-                 "--csv", str(tmp_path / "r.csv")]) == 2
+    assert (
+        main(
+            [
+                "lsd",
+                "rig",
+                "C",
+                "--rpm",
+                "1000",
+                "--eccentricity",
+                "50um",
+                "--revolutions",
+                "inf",
+                "--csv",
+                str(tmp_path / "r.csv"),
+            ]
+        )
+        == 2
+    )
     assert "finite" in capsys.readouterr().err
     assert main(["lsd", "coefficients", "C", "--rpm", "1000", "--amplitude", "50", "--json"]) == 0
     assert "did you mean 50 um" in capsys.readouterr().err
@@ -160,8 +303,26 @@ def test_a_frequency_is_revolutions_per_second_in_every_lsd_command(tmp_path, ca
     assert main(["lsd", "coefficients", "C", "--rpm", "50Hz,1000", "--json"]) == 0
     assert _json(capsys)["rpm"] == pytest.approx([3000.0, 1000.0])
     x = tmp_path / "x.csv"
-    assert main(["lsd", "rig", "C", "--rpm", "50Hz", "--eccentricity", "20um", "--excitation", "x",
-                 "--revolutions", "3", "--csv", str(x)]) == 0
+    assert (
+        main(
+            [
+                "lsd",
+                "rig",
+                "C",
+                "--rpm",
+                "50Hz",
+                "--eccentricity",
+                "20um",
+                "--excitation",
+                "x",
+                "--revolutions",
+                "3",
+                "--csv",
+                str(x),
+            ]
+        )
+        == 0
+    )
     assert "at 3000 rpm" in capsys.readouterr().out
     assert main(["lsd", "identify", str(x), "--rpm", "50 Hz", "--json"]) == 0
     assert _json(capsys)["rpm"] == pytest.approx(3000.0)

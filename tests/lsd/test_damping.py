@@ -90,7 +90,9 @@ def test_thesis_conductance_reproduces_lambda_3_6():
     assert lam == pytest.approx(639 * eta * Lh * B_RING**2 * L1**2 / (64 * np.pi * dh**4), rel=1e-12)
 
 
-@pytest.mark.parametrize("bo, ho, lo, hi", [(2.4e-3, 0.9e-3, 1.6, 1.8), (5.5e-3, 0.10e-3, 13, 15), (5.5e-3, 0.25e-3, 5, 7)])
+@pytest.mark.parametrize(
+    "bo, ho, lo, hi", [(2.4e-3, 0.9e-3, 1.6, 1.8), (5.5e-3, 0.10e-3, 13, 15), (5.5e-3, 0.25e-3, 5, 7)]
+)
 def test_exact_over_thesis_conductance(bo, ho, lo, hi):
     # READING-NOTES 3.2: the exact rectangular duct conducts 1.7-14x more than (2.17)
     # (Type C 1.7, Type B ~14; Type A lies between)
@@ -143,14 +145,18 @@ def test_model_damping_parts_add_up():
 def test_leakage_factor_scales_viscous_damping():
     base = LSDModel(LSDParameters.example("C"))
     leaky = LSDModel(LSDParameters.example("C").replace(leakage_factor=4.0))
-    np.testing.assert_allclose(leaky.viscous_damping, base.viscous_damping / 4.0, rtol=1e-12, atol=1e-12 * base.viscous_damping[0, 0])
+    np.testing.assert_allclose(
+        leaky.viscous_damping, base.viscous_damping / 4.0, rtol=1e-12, atol=1e-12 * base.viscous_damping[0, 0]
+    )
 
 
 def test_viscosity_scaling():
     # Stokes flow: C_visc is proportional to the dynamic viscosity
     base = LSDModel(LSDParameters.example("C"))
     thick = LSDModel(LSDParameters.example("C").replace(oil_viscosity=30 * base.params.oil_viscosity))
-    np.testing.assert_allclose(thick.viscous_damping, 30 * base.viscous_damping, rtol=1e-12, atol=1e-12 * thick.viscous_damping[0, 0])
+    np.testing.assert_allclose(
+        thick.viscous_damping, 30 * base.viscous_damping, rtol=1e-12, atol=1e-12 * thick.viscous_damping[0, 0]
+    )
 
 
 def test_compliant_chambers_limits():

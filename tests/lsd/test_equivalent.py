@@ -25,8 +25,9 @@ def test_circular_orbit_equals_the_closed_forms_on_the_same_friction_law():
         eq = m.equivalent_coefficients([rpm], amp, motion="circular")
         np.testing.assert_allclose(eq.K[0], closed.K[0], rtol=1e-9, atol=1e-9 * closed.K[0, 0, 0])
         for part in ("oring", "hysteresis", "viscous"):
-            np.testing.assert_allclose(eq.parts[part][0], closed.parts[part][0], rtol=1e-3,
-                                       atol=1e-3 * closed.C[0, 0, 0])
+            np.testing.assert_allclose(
+                eq.parts[part][0], closed.parts[part][0], rtol=1e-3, atol=1e-3 * closed.C[0, 0, 0]
+            )
     assert eq.summary["model"] == "describing function"
 
 
@@ -51,8 +52,12 @@ def test_describing_function_is_what_the_rig_identifies():
         for amp in (30e-6, 400e-6):
             rx = simulate_rig(m, linear_shake(1000, amp, "x", 5, 20e3))
             ry = simulate_rig(m, linear_shake(1000, amp, "y", 5, 20e3))
-            it = identify(RigData(rx.time, rx.x, rx.y, rx.fx, rx.fy), RigData(ry.time, ry.x, ry.y, ry.fx, ry.fy),
-                          mass=m.params.ring_mass, rpm=1000)
+            it = identify(
+                RigData(rx.time, rx.x, rx.y, rx.fx, rx.fy),
+                RigData(ry.time, ry.x, ry.y, ry.fx, ry.fy),
+                mass=m.params.ring_mass,
+                rpm=1000,
+            )
             eq = m.equivalent_coefficients([1000.0], amp)
             np.testing.assert_allclose(eq.K[0].diagonal(), it.K.diagonal(), rtol=5e-3)
             np.testing.assert_allclose(eq.C[0].diagonal(), it.C.diagonal(), rtol=5e-3)

@@ -1,6 +1,5 @@
 """Rig simulation and identification: round trips, friction equivalents, bad data."""
 
-
 import numpy as np
 import pytest
 
@@ -130,8 +129,9 @@ def test_coulomb_equivalent_recovered_from_time_domain():
     # reversals carry zero force, which shifts a Fourier coefficient of the square wave by
     # about 4 mu F_N / 1200 (0.33 % of mu F_N): allow 0.5 % of mu F_N on C w A and on dK A.
     mu_fn = 0.3 * 40.0
-    p = LSDParameters.example("C").replace(leaf_friction=0.0, oring_friction=0.3, oring_normal_force=40.0,
-                                           leakage_factor=1e12, ring_mass=0.0)
+    p = LSDParameters.example("C").replace(
+        leaf_friction=0.0, oring_friction=0.3, oring_normal_force=40.0, leakage_factor=1e12, ring_mass=0.0
+    )
     m = LSDModel(p)
     res = identify(_data(simulate_rig(m, linear_shake(RPM, AMP, "x", 10, 20e3))), rpm=RPM)
     assert abs(res.C[0, 0] - 4 * mu_fn / (np.pi * W * AMP)) * W * AMP < 5e-3 * mu_fn
@@ -242,7 +242,10 @@ def test_read_csv_round_trip(tmp_path):
         (lambda c: c.pop("fy_N"), r"missing column 'fy_N'"),
         (lambda c: c["x_m"].__setitem__(10, np.nan), r"row 12, column 'x_m'.*not a finite number"),
         (lambda c: c["time_s"].__setitem__(20, c["time_s"][18]), r"row 22, column 'time_s'.*must increase"),
-        (lambda c: c["time_s"].__setitem__(slice(30, None), c["time_s"][30:] + 1e-4), r"row 32, column 'time_s'.*irregular"),
+        (
+            lambda c: c["time_s"].__setitem__(slice(30, None), c["time_s"][30:] + 1e-4),
+            r"row 32, column 'time_s'.*irregular",
+        ),
     ],
 )
 def test_bad_csv(tmp_path, mutate, match):
@@ -266,8 +269,13 @@ def test_less_than_one_period(tmp_path):
 def test_frequency_not_found(tmp_path):
     rng = np.random.default_rng(5)
     t = np.arange(4000) / 5e3
-    noise = {"time_s": t, "x_m": rng.normal(0, 1e-6, t.size), "y_m": rng.normal(0, 1e-6, t.size),
-             "fx_N": rng.normal(0, 1, t.size), "fy_N": rng.normal(0, 1, t.size)}
+    noise = {
+        "time_s": t,
+        "x_m": rng.normal(0, 1e-6, t.size),
+        "y_m": rng.normal(0, 1e-6, t.size),
+        "fx_N": rng.normal(0, 1, t.size),
+        "fy_N": rng.normal(0, 1, t.size),
+    }
     with pytest.raises(InputError, match="no dominant frequency"):
         identify(read_rig_data(_csv(tmp_path, noise)))
     still = dict(noise, x_m=np.zeros(t.size), y_m=np.zeros(t.size))

@@ -13,8 +13,16 @@ import pytest
 from springdyn.core.errors import InputError
 from springdyn.lsd import LSDModel, LSDParameters
 
-NAMES = {"kxx": (0, 0), "kxy": (0, 1), "kyx": (1, 0), "kyy": (1, 1),
-         "cxx": (0, 0), "cxy": (0, 1), "cyx": (1, 0), "cyy": (1, 1)}
+NAMES = {
+    "kxx": (0, 0),
+    "kxy": (0, 1),
+    "kyx": (1, 0),
+    "kyy": (1, 1),
+    "cxx": (0, 0),
+    "cxy": (0, 1),
+    "cyx": (1, 0),
+    "cyy": (1, 1),
+}
 
 
 @pytest.fixture(scope="module")
@@ -88,8 +96,10 @@ def test_ross_rotor_modal_analysis_and_whirl_consistency(rs):
     steel = rs.Material(name="steel_lsd_test", rho=7810, E=211e9, G_s=81.2e9)
 
     def rotor_with(b0, b1):
-        shaft = [rs.ShaftElement(0.1, 0.0, 0.08, material=steel, shear_effects=True, rotary_inertia=True,
-                                 gyroscopic=True) for _ in range(2)]
+        shaft = [
+            rs.ShaftElement(0.1, 0.0, 0.08, material=steel, shear_effects=True, rotary_inertia=True, gyroscopic=True)
+            for _ in range(2)
+        ]
         disk = rs.DiskElement.from_geometry(n=1, material=steel, width=0.05, i_d=0.08, o_d=0.2)
         return rs.Rotor(shaft, [disk], [b0, b1])
 
@@ -109,7 +119,9 @@ def test_ross_rotor_modal_analysis_and_whirl_consistency(rs):
 
     # the mode vibrates at ~wd, not at 1000 rpm: coefficients at the mode's own frequency
     def build(omega):
-        return rotor_with(bearing_at_frequency(model, 0, omega, tag="a"), bearing_at_frequency(model, 2, omega, tag="b"))
+        return rotor_with(
+            bearing_at_frequency(model, 0, omega, tag="a"), bearing_at_frequency(model, 2, omega, tag="b")
+        )
 
     wd, modal2 = whirl_consistent_mode(build, speed, omega_guess=speed, mode=0, num_modes=8)
     c = model.coefficients(omega=[wd])
@@ -153,8 +165,9 @@ def test_nonlinear_force_callback_in_ross_time_response(rs):
         F[:, d] = 1e-4 * speed**2 * np.cos(speed * t)
         F[:, d + 1] = 1e-4 * speed**2 * np.sin(speed * t)
         _, ref, _ = lin.time_response(speed, F, t)
-        _, y, _ = free.time_response(speed, F, t, method="newmark",
-                                     add_to_RHS=lambda step, **kw: f0(step, **kw) + f2(step, **kw))
+        _, y, _ = free.time_response(
+            speed, F, t, method="newmark", add_to_RHS=lambda step, **kw: f0(step, **kw) + f2(step, **kw)
+        )
         errors.append(np.abs(y[:, d] - ref[:, d]).max() / np.abs(ref[:, d]).max())
     assert errors[1] < 0.03
     assert 3.0 < errors[0] / errors[1] < 5.0

@@ -26,7 +26,9 @@ def test_rotating_all_packs_rotates_K():
     phi = np.sort(rng.uniform(0, 2 * np.pi, 5))
     for alpha in (0.4, 2.0, -1.1):
         R = np.array([[np.cos(alpha), -np.sin(alpha)], [np.sin(alpha), np.cos(alpha)]])
-        np.testing.assert_allclose(stiffness_matrix(KS, phi + alpha), R @ stiffness_matrix(KS, phi) @ R.T, atol=1e-9 * KS)
+        np.testing.assert_allclose(
+            stiffness_matrix(KS, phi + alpha), R @ stiffness_matrix(KS, phi) @ R.T, atol=1e-9 * KS
+        )
     K = stiffness_matrix(KS, phi)
     assert np.trace(K) == pytest.approx(5 * KS, rel=1e-12)  # sum cos^2 + sin^2 = N
     np.testing.assert_allclose(K, K.T)

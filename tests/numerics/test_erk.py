@@ -126,8 +126,16 @@ def test_tsit5_interpolant_order_conditions():
     powers = np.arange(5)
     for th in (0.1, 0.37, 0.8, 1.0):
         b = dense @ th**powers  # b_i(theta)
-        res = [b.sum() - th, b @ c - th**2 / 2, b @ c**2 - th**3 / 3, b @ ac - th**3 / 6,
-               b @ c**3 - th**4 / 4, b @ (c * ac) - th**4 / 8, b @ (A @ c**2) - th**4 / 12, b @ (A @ ac) - th**4 / 24]
+        res = [
+            b.sum() - th,
+            b @ c - th**2 / 2,
+            b @ c**2 - th**3 / 3,
+            b @ ac - th**3 / 6,
+            b @ c**3 - th**4 / 4,
+            b @ (c * ac) - th**4 / 8,
+            b @ (A @ c**2) - th**4 / 12,
+            b @ (A @ ac) - th**4 / 24,
+        ]
         np.testing.assert_allclose(res, 0.0, atol=1e-13, err_msg=f"theta = {th}")
         basis = np.array([th, th * (1 - th), th**2 * (1 - th), th**2 * (1 - th) ** 2])
         np.testing.assert_allclose(p["d"].T @ basis, b, atol=1e-14)
@@ -142,8 +150,10 @@ def test_fused_kernels_equal_the_generic_ones(name):
     rng = np.random.default_rng(7)
     n = 13
     c, a, e, d, q = erk.pair_arrays(name)
-    stage, error, dense = {"dopri5": (erk.dopri5_stage_state, erk.dopri5_error_norm, erk.dopri5_dense_coefficients),
-                           "tsit5": (erk.tsit5_stage_state, erk.tsit5_error_norm, erk.tsit5_dense_coefficients)}[name]
+    stage, error, dense = {
+        "dopri5": (erk.dopri5_stage_state, erk.dopri5_error_norm, erk.dopri5_dense_coefficients),
+        "tsit5": (erk.tsit5_stage_state, erk.tsit5_error_norm, erk.tsit5_dense_coefficients),
+    }[name]
     y, k = rng.normal(size=n), rng.normal(size=(c.size, n))
     h = 0.37
     out_f, out_g = np.empty(n), np.empty(n)

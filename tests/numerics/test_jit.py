@@ -142,8 +142,11 @@ def test_no_writable_cache_folder_compiles_in_memory_and_says_so_once(tmp_path):
     for d in (root / "springdyn").rglob("*"):
         if d.is_dir():
             (d / "__pycache__").write_text("not a folder")  # numba's in-tree cache
-    env = {"NUMBA_CACHE_DIR": str(blocker / "cache"), "XDG_CACHE_HOME": str(blocker / "xdg"),
-           "HOME": str(blocker / "home")}
+    env = {
+        "NUMBA_CACHE_DIR": str(blocker / "cache"),
+        "XDG_CACHE_HOME": str(blocker / "xdg"),
+        "HOME": str(blocker / "home"),
+    }
     done = _run(root, RHS_PROBE, env)
     assert done.stdout.split()[0] == "True"
     lines = [ln for ln in done.stderr.splitlines() if ln.startswith("springdyn:")]

@@ -71,7 +71,9 @@ def test_table_cam_periodic_spline(tmp_path):
     cam = Cam(law="3-4-5", lift=9e-3, duration=DUR)
     deg = np.arange(0, 360, 0.5)
     f = tmp_path / "lift.csv"
-    f.write_text("cam_angle_deg,lift_mm\n" + "".join(f"{a},{float(cam.lift_at(math.radians(a))) * 1e3!r}\n" for a in deg))
+    f.write_text(
+        "cam_angle_deg,lift_mm\n" + "".join(f"{a},{float(cam.lift_at(math.radians(a))) * 1e3!r}\n" for a in deg)
+    )
     tab = Cam.from_dict({"law": "table", "file": str(f)})
     th = np.radians(np.linspace(0, 359.9, 3001))
     np.testing.assert_allclose(tab.lift_at(th), cam.lift_at(th), atol=2e-7)  # 0.5 deg cubic spline of a quintic
@@ -83,7 +85,9 @@ def test_table_cam_periodic_spline(tmp_path):
     f2 = tmp_path / "si.csv"
     rows = [(math.radians(a), float(cam.lift_at(math.radians(a)))) for a in np.append(deg, 360)]
     f2.write_text("cam_angle_rad,lift_m\n" + "".join(f"{a!r},{h!r}\n" for a, h in rows))
-    np.testing.assert_allclose(Cam.from_dict({"law": "table", "file": str(f2)}).lift_at(th), tab.lift_at(th), atol=1e-12)
+    np.testing.assert_allclose(
+        Cam.from_dict({"law": "table", "file": str(f2)}).lift_at(th), tab.lift_at(th), atol=1e-12
+    )
 
 
 def test_table_relative_to_toml(tmp_path):
@@ -112,7 +116,10 @@ def test_coarse_table_warns():
         ({"law": "3-4-5", "lift": "9 mm", "duration": "0 deg"}, r"duration = 0 deg must lie in \(0, 360\] deg"),
         ({"law": "3-4-5", "lift": "9 mm", "duration": "400 deg"}, r"duration = 400 deg must lie in \(0, 360\] deg"),
         ({"law": "3-4-5", "lift": "9 mm"}, r"law = '3-4-5' needs duration"),
-        ({"law": "3-4-5", "lift": "9 mm", "duration": "120 deg", "ramp_height": "0.3 mm"}, r"both zero or both positive"),
+        (
+            {"law": "3-4-5", "lift": "9 mm", "duration": "120 deg", "ramp_height": "0.3 mm"},
+            r"both zero or both positive",
+        ),
         ({"law": "3-4-5", "lift": "9 mm", "duraton": "120 deg"}, r"unknown key 'duraton'"),
         ({"law": "table"}, r'law = "table" needs file'),
     ],
@@ -157,10 +164,16 @@ def test_nan_in_lift_table_names_file_row_and_column(tmp_path, cell):
 @pytest.mark.parametrize(
     "angle,lift,pattern",
     [
-        (np.radians(np.arange(0, 360, 10.0)), np.where(np.arange(36) == 4, np.nan, 0.0),
-         r"table: row 6, column lift: nan is not a finite number"),
-        (np.where(np.arange(36) == 0, np.inf, np.radians(np.arange(0, 360, 10.0))), np.zeros(36),
-         r"table: row 2, column cam angle: inf is not a finite number"),
+        (
+            np.radians(np.arange(0, 360, 10.0)),
+            np.where(np.arange(36) == 4, np.nan, 0.0),
+            r"table: row 6, column lift: nan is not a finite number",
+        ),
+        (
+            np.where(np.arange(36) == 0, np.inf, np.radians(np.arange(0, 360, 10.0))),
+            np.zeros(36),
+            r"table: row 2, column cam angle: inf is not a finite number",
+        ),
         (np.radians(np.arange(0, 360, 10.0)), np.zeros(35), r"two flat arrays of the same length"),
         (np.radians(np.arange(0, 360, 10.0)), ["a"] * 36, r"arrays of numbers"),
     ],

@@ -37,11 +37,30 @@ def test_params_table(capsys):
 
 def test_curve_csv_and_plot(capsys, tmp_path):
     csv_path, png = tmp_path / "c.csv", tmp_path / "c.png"
-    code, _, _ = run(capsys, "valve", "curve", ONE, "--from", "48mm", "--to", "30mm", "--points", "50",
-                     "--csv", str(csv_path), "--plot", str(png))
+    code, _, _ = run(
+        capsys,
+        "valve",
+        "curve",
+        ONE,
+        "--from",
+        "48mm",
+        "--to",
+        "30mm",
+        "--points",
+        "50",
+        "--csv",
+        str(csv_path),
+        "--plot",
+        str(png),
+    )
     assert code == 0
     rows = list(csv.reader(open(csv_path)))
-    assert rows[0] == ["length_m", "force_N", "stiffness_N_per_m", "first_mode_frequency_Hz"]  # the first mode beside the force (distributed model)
+    assert rows[0] == [
+        "length_m",
+        "force_N",
+        "stiffness_N_per_m",
+        "first_mode_frequency_Hz",
+    ]  # the first mode beside the force (distributed model)
     assert len(rows) == 51
     assert float(rows[1][0]) == pytest.approx(0.048) and float(rows[-1][0]) == pytest.approx(0.030)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -120,8 +139,18 @@ def test_a_compiling_command_says_so_in_one_line_unless_quiet(tmp_path, quiet):
     env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
     env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
     cam = str(resources.files("springdyn.data") / "valve_cam_345.toml")
-    argv = [sys.executable, "-c", "import sys; from springdyn.app.cli.main import main; sys.exit(main())",
-            "valve", "simulate", ONE, "--cam", cam, "--cam-rpm", "3000"] + (["--quiet"] if quiet else [])
+    argv = [
+        sys.executable,
+        "-c",
+        "import sys; from springdyn.app.cli.main import main; sys.exit(main())",
+        "valve",
+        "simulate",
+        ONE,
+        "--cam",
+        cam,
+        "--cam-rpm",
+        "3000",
+    ] + (["--quiet"] if quiet else [])
     done = subprocess.run(argv, capture_output=True, text=True, env=env, timeout=300)
     assert done.returncode == 0, done.stderr
     assert "retainer force" in done.stdout

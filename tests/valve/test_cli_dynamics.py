@@ -21,8 +21,25 @@ def run(capsys, *argv):
 
 def test_simulate_csv_json_plot(capsys, tmp_path):
     c, p = tmp_path / "s.csv", tmp_path / "s.png"
-    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "3000", "--revolutions", "2",
-                       "--points-per-revolution", "360", "--csv", str(c), "--plot", str(p), "--json")
+    code, out, _ = run(
+        capsys,
+        "valve",
+        "simulate",
+        SPRING,
+        "--cam",
+        CAM,
+        "--cam-rpm",
+        "3000",
+        "--revolutions",
+        "2",
+        "--points-per-revolution",
+        "360",
+        "--csv",
+        str(c),
+        "--plot",
+        str(p),
+        "--json",
+    )
     assert code == 0
     s = json.loads(out)
     for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N", "coil_contact"):
@@ -35,18 +52,36 @@ def test_simulate_csv_json_plot(capsys, tmp_path):
 
 
 def test_engine_rpm_is_twice_cam_rpm(capsys):
-    _, a, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "2000", "--revolutions", "1", "--json")
-    _, b, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--engine-rpm", "4000", "--revolutions", "1", "--json")
+    _, a, _ = run(
+        capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "2000", "--revolutions", "1", "--json"
+    )
+    _, b, _ = run(
+        capsys, "valve", "simulate", SPRING, "--cam", CAM, "--engine-rpm", "4000", "--revolutions", "1", "--json"
+    )
     assert json.loads(a) == json.loads(b)
 
 
 def test_valve_train_reports_liftoff(capsys):
-    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAMR, "--cam-rpm", "3500", "--valve-train", VT,
-                       "--json")
+    code, out, _ = run(
+        capsys, "valve", "simulate", SPRING, "--cam", CAMR, "--cam-rpm", "3500", "--valve-train", VT, "--json"
+    )
     s = json.loads(out)
     assert code == 0 and s["liftoff"] and {"start_deg", "end_deg", "duration_s"} <= set(s["liftoff"][0])
-    code, out, _ = run(capsys, "valve", "float", SPRING, "--cam", CAMR, "--valve-train", VT, "--cam-rpm", "2000:4000:500",
-                       "--resolution", "5", "--json")
+    code, out, _ = run(
+        capsys,
+        "valve",
+        "float",
+        SPRING,
+        "--cam",
+        CAMR,
+        "--valve-train",
+        VT,
+        "--cam-rpm",
+        "2000:4000:500",
+        "--resolution",
+        "5",
+        "--json",
+    )
     res = json.loads(out)
     assert code == 0 and 3000 < res["float_cam_rpm"] < 3300
 
@@ -72,22 +107,60 @@ def test_bad_cam_file(capsys, tmp_path):
 
 
 def test_float_empty_range(capsys):
-    code, _, err = run(capsys, "valve", "float", SPRING, "--cam", CAM, "--valve-train", VT, "--cam-rpm", "4000:2000:500")
+    code, _, err = run(
+        capsys, "valve", "float", SPRING, "--cam", CAM, "--valve-train", VT, "--cam-rpm", "4000:2000:500"
+    )
     assert code == 2 and "is empty" in err
 
 
-@pytest.mark.parametrize("train,cam", [("valve_train.toml", "cam_polydyne_ramps.toml"),
-                                       ("finger_follower.toml", "cam_finger.toml"), ("pushrod.toml", "cam_pushrod.toml")])
+@pytest.mark.parametrize(
+    "train,cam",
+    [
+        ("valve_train.toml", "cam_polydyne_ramps.toml"),
+        ("finger_follower.toml", "cam_finger.toml"),
+        ("pushrod.toml", "cam_pushrod.toml"),
+    ],
+)
 def test_every_layout_runs_simulate_float_and_train_modes(capsys, tmp_path, train, cam):
     vt, cm = str(EX / train), str(EX / cam)
-    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", cm, "--valve-train", vt, "--cam-rpm", "1500",
-                       "--revolutions", "2", "--json")
+    code, out, _ = run(
+        capsys,
+        "valve",
+        "simulate",
+        SPRING,
+        "--cam",
+        cm,
+        "--valve-train",
+        vt,
+        "--cam-rpm",
+        "1500",
+        "--revolutions",
+        "2",
+        "--json",
+    )
     s = json.loads(out)
     assert code == 0 and isinstance(s["liftoff"], list)
     assert 0 < s["fatigue_safety_factor"] <= s["static_fatigue_safety_factor"] * 1.01
     c, p = tmp_path / "f.csv", tmp_path / "f.png"
-    code, out, _ = run(capsys, "valve", "float", SPRING, "--cam", cm, "--valve-train", vt, "--cam-rpm", "1000:4000:1000",
-                       "--resolution", "50", "--csv", str(c), "--plot", str(p), "--quiet")
+    code, out, _ = run(
+        capsys,
+        "valve",
+        "float",
+        SPRING,
+        "--cam",
+        cm,
+        "--valve-train",
+        vt,
+        "--cam-rpm",
+        "1000:4000:1000",
+        "--resolution",
+        "50",
+        "--csv",
+        str(c),
+        "--plot",
+        str(p),
+        "--quiet",
+    )
     assert code == 0 and "float speed" in out
     assert next(csv.reader(open(c))) == ["cam_rpm", "min_cam_contact_force_N"] and p.read_bytes()[:4] == b"\x89PNG"
     code, out, _ = run(capsys, "valve", "train-modes", SPRING, "--cam", cm, "--valve-train", vt, "--json")

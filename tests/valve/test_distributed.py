@@ -42,7 +42,9 @@ def test_coil_law_is_c1_and_reaches_the_contact_stiffness():
     law = coil_law(1e6, 2e-4, 1e8, 2e-5)
     for x in (2e-4, 2.2e-4):  # both breakpoints: force and slope continuous
         e = 1e-12
-        assert law_force(x - e, law) == pytest.approx(law_force(x + e, law), abs=1e-3)  # slope up to 1.01e8 N/m x 2e-12 m
+        assert law_force(x - e, law) == pytest.approx(
+            law_force(x + e, law), abs=1e-3
+        )  # slope up to 1.01e8 N/m x 2e-12 m
         assert law_stiffness(x - e, law) == pytest.approx(law_stiffness(x + e, law), abs=20.0)  # k_c/w x 2e-12
     assert law_stiffness(1e-4, law) == 1e6
     assert law_stiffness(3e-4, law) == pytest.approx(1e6 + 1e8)
@@ -64,8 +66,12 @@ def test_first_mode_near_the_continuum_surge_frequency(uniform):
     Wahl's open-coil compliance and the wire length), so f1 is 0.5-1 % below it."""
     p = uniform.internal_parameters()
     f_cont = p["f_continuum"]
-    assert f_cont == pytest.approx(uniform.wire_diameter / (2 * math.pi * 7.5 * uniform.mean_diameter**2)
-                                   * math.sqrt(uniform.shear_modulus / (2 * uniform.density)), rel=1e-12)
+    assert f_cont == pytest.approx(
+        uniform.wire_diameter
+        / (2 * math.pi * 7.5 * uniform.mean_diameter**2)
+        * math.sqrt(uniform.shear_modulus / (2 * uniform.density)),
+        rel=1e-12,
+    )
     assert 0.99 * f_cont < p["f1"] < f_cont
 
 
@@ -187,7 +193,9 @@ def test_profiles_from_toml_arrays_and_csv(tmp_path):
     d = {k: v for k, v in base.__dict__.items() if not k.startswith("_") and k != "spring_model" and v is not None}
     a = ValveSpring.from_dict({**d, "pitch_profile": pairs, "diameter_profile": [[0, "22 mm"], [7.5, "22 mm"]]})
     csv = tmp_path / "pitch.csv"
-    csv.write_text("turns,pitch_mm\n" + "\n".join(f"{float(s)!r},{float(p) * 1e3!r}" for s, p in zip(g.pitch_s, g.pitch_v)))
+    csv.write_text(
+        "turns,pitch_mm\n" + "\n".join(f"{float(s)!r},{float(p) * 1e3!r}" for s, p in zip(g.pitch_s, g.pitch_v))
+    )
     b = ValveSpring.from_dict({**d, "pitch_profile": "pitch.csv"}, base_dir=tmp_path)
     for s in (a, b):
         np.testing.assert_allclose(s.modes(s.installed_length, 3), base.modes(base.installed_length, 3), rtol=1e-9)
@@ -208,8 +216,9 @@ def test_quasi_static_limit(one_step):
     fset = one_step.internal_parameters()["Fset"]
     assert np.max(np.abs(sim.retainer_force - sim.static_force)) < 5e-3 * fset
     assert np.max(np.abs(sim.seat_force - sim.static_force)) < 5e-3 * fset
-    np.testing.assert_allclose(sim.static_force, one_step.static_force(one_step.installed_length - sim.lift),
-                               rtol=1e-10)
+    np.testing.assert_allclose(
+        sim.static_force, one_step.static_force(one_step.installed_length - sim.lift), rtol=1e-10
+    )
 
 
 def test_type_c_and_distributed_agree_at_low_speed():
@@ -257,8 +266,10 @@ def test_energy_balance_undamped(one_step):
 def test_no_tensile_end_force_at_any_speed(model):
     """MMS-7: the end contacts carry compression only, for both models, at the
     speeds of the issue (above valve float with a valve train; 4-5-6-7 two-step)."""
-    for name, cam, rpm, vt in (("one-step", CAM, 3600.0, VT),
-                               ("two-step", Cam(law="4-5-6-7", lift=8e-3, duration=math.radians(120)), 4250.0, None)):
+    for name, cam, rpm, vt in (
+        ("one-step", CAM, 3600.0, VT),
+        ("two-step", Cam(law="4-5-6-7", lift=8e-3, duration=math.radians(120)), 4250.0, None),
+    ):
         s = ValveSpring.example(name).with_model(model)
         sim = simulate(s, cam, rpm, 2, valve_train=vt, points_per_revolution=720)
         sm = sim.summary
@@ -289,8 +300,7 @@ def test_dense_extremes_catch_a_ringing_minimum_the_grid_misses():
     0.25 deg grid misses the retainer force's minimum by several N, the dense output finds
     the minimum of a 0.0025 deg grid to within 1e-4 Fset."""
     s = ValveSpring.example("one-step")
-    cam = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4,
-              ramp_duration=math.radians(20))
+    cam = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4, ramp_duration=math.radians(20))
     coarse = simulate(s, cam, 1000.0, 2)
     fine = simulate(s, cam, 1000.0, 2, points_per_revolution=100000)
     fset = s.internal_parameters()["Fset"]
@@ -319,8 +329,9 @@ def test_seat_impact_velocity_from_event_location():
     setup = prepare(s, CAM, VT)
     omega = rpm_to_omega(rpm)
     t = np.linspace(land[2] - 2e-5, land[2] + 2e-5, 40001)
-    st, info = engine.integrate(setup.y0, np.concatenate([[0.0], t]), setup.args(omega), rtol=1e-10, atol=1e-13,
-                                h_max=2 * math.pi / omega / 720)
+    st, info = engine.integrate(
+        setup.y0, np.concatenate([[0.0], t]), setup.args(omega), rtol=1e-10, atol=1e-13, h_max=2 * math.pi / omega / 720
+    )
     nm = s.chain.masses.size
     z, vz = st[1:, nm], st[1:, -1]
     i = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))[0]
@@ -355,8 +366,9 @@ def test_sweep_equals_simulate(one_step):
     for i, rpm in enumerate([2500.0, 3500.0]):
         sim = simulate(one_step, CAM, rpm, 2, points_per_revolution=360)
         np.testing.assert_allclose(res.data["retainer"][0, i], sim.retainer_force, rtol=1e-9)
-        assert res.summary_table()["max_retainer_force_N"][i] == pytest.approx(sim.summary["max_retainer_force_N"],
-                                                                                rel=1e-9)
+        assert res.summary_table()["max_retainer_force_N"][i] == pytest.approx(
+            sim.summary["max_retainer_force_N"], rel=1e-9
+        )
 
 
 def test_cli_frf_modes_and_bad_elements(capsys, tmp_path):
@@ -370,8 +382,13 @@ def test_cli_frf_modes_and_bad_elements(capsys, tmp_path):
     assert len(out["frequency_Hz"]) == 10
     assert main(["valve", "frf", str(ex), "--frequency", "100:1000:100", "--csv", str(tmp_path / "f.csv")]) == 0
     header = (tmp_path / "f.csv").read_text().splitlines()[0].split(",")
-    assert header == ["frequency_Hz", "retainer_dynamic_stiffness_N_per_m", "seat_dynamic_stiffness_N_per_m",
-                      "retainer_phase_deg", "seat_phase_deg"]
+    assert header == [
+        "frequency_Hz",
+        "retainer_dynamic_stiffness_N_per_m",
+        "seat_dynamic_stiffness_N_per_m",
+        "retainer_phase_deg",
+        "seat_phase_deg",
+    ]
     assert main(["valve", "modes", str(ex), "--model", "distributed", "--length", "38mm", "--json"]) == 0
     modes = json.loads(capsys.readouterr().out)
     assert len(modes["frequencies_Hz"]) == 5 and modes["frequencies_Hz"][0] > 400

@@ -19,7 +19,7 @@ def test_en13906_factor_is_bergstraesser(w):
 def test_corrected_stress_of_the_example_spring_by_hand():
     """Fset = 251.43 N on D = 22 mm, d = 3.5 mm: k = 6.7857/5.5357 = 1.22581, tau = k 8 F D/(pi d^3)."""
     k = (22 / 3.5 + 0.5) / (22 / 3.5 - 0.75)
-    by_hand = k * 8 * 251.43 * 0.022 / (math.pi * 0.0035 ** 3)
+    by_hand = k * 8 * 251.43 * 0.022 / (math.pi * 0.0035**3)
     assert du.corrected_shear_stress(251.43, 0.022, 0.0035) == pytest.approx(by_hand, rel=1e-12)
     assert by_hand == pytest.approx(402.7e6, rel=1e-4)  # the report prints it rounded: "403 MPa installed"
 

@@ -29,7 +29,9 @@ def test_quasi_static_limit(one_step):
     assert np.max(np.abs(sim.retainer_force - sim.static_force)) < 1e-3 * fset
     assert np.max(np.abs(sim.seat_force - sim.static_force)) < 1e-3 * fset
     # and the static force itself is the static curve at the same lift
-    np.testing.assert_allclose(sim.static_force, one_step.static_force(one_step.installed_length - sim.lift), rtol=1e-12)
+    np.testing.assert_allclose(
+        sim.static_force, one_step.static_force(one_step.installed_length - sim.lift), rtol=1e-12
+    )
 
 
 def test_static_force_along_the_cam_is_kept_per_cam(one_step):
@@ -44,10 +46,12 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
         again = simulate(spring, cam, 3500.0, revolutions=1, points_per_revolution=720)
         assert again.static_force is sim.static_force  # kept across speeds
         assert not sim.static_force.flags.writeable
-        np.testing.assert_allclose(sim.static_force, spring.static_force(spring.installed_length - sim.lift),
-                                   rtol=1e-12)
-        np.testing.assert_allclose(sim.static_force.max(), float(spring.static_force(spring.installed_length
-                                                                                       - cam.lift)), rtol=1e-12)
+        np.testing.assert_allclose(
+            sim.static_force, spring.static_force(spring.installed_length - sim.lift), rtol=1e-12
+        )
+        np.testing.assert_allclose(
+            sim.static_force.max(), float(spring.static_force(spring.installed_length - cam.lift)), rtol=1e-12
+        )
     coarse = simulate(spring, cams[0], 2000.0, revolutions=1, points_per_revolution=360)
     assert coarse.static_force.shape == (360,)
     for k in range(3 * simmod.SimulationSetup.STATIC_CACHE_SIZE):
@@ -169,7 +173,9 @@ def test_coil_contact_events():
     kh = [j for j, n in enumerate(s.chain.element_names) if n.startswith("Kh")]
     for j in kh:
         flagged = sim.element_contact[j]
-        np.testing.assert_array_equal(flagged, law_force(sim.element_compression[j], s.chain.laws[j]) >= fcon * (1 - 1e-12))
+        np.testing.assert_array_equal(
+            flagged, law_force(sim.element_compression[j], s.chain.laws[j]) >= fcon * (1 - 1e-12)
+        )
 
 
 def test_spectrum_harmonics_reconstruct_force(one_step):
@@ -230,7 +236,10 @@ def test_bad_speed(one_step, rpm):
 
 
 def test_lift_that_drives_spring_solid(one_step):
-    with pytest.warns(UserWarning, match=r"coil contact even statically: from cam angle [\d.]+ deg .* peaking at [\d.]+ N at 60\.0 deg"):
+    with pytest.warns(
+        UserWarning,
+        match=r"coil contact even statically: from cam angle [\d.]+ deg .* peaking at [\d.]+ N at 60\.0 deg",
+    ):
         prepare(one_step, Cam(law="3-4-5", lift=13e-3, duration=math.radians(120)))
     with pytest.raises(InputError, match=r"cam lift 25 mm at 60\.0 deg drives the spring solid"):
         prepare(one_step, Cam(law="3-4-5", lift=25e-3, duration=math.radians(120)))
@@ -239,12 +248,21 @@ def test_lift_that_drives_spring_solid(one_step):
 def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
     def broken(y0, omegas, revolutions, points, args, **kw):
         n = len(omegas)
-        return (np.full((n, points, len(engine.EXTRA)), np.nan), np.full((n, points), np.nan), np.full(n, 2),
-                np.full(n, 0.0123), np.full(n, 42), {})
+        return (
+            np.full((n, points, len(engine.EXTRA)), np.nan),
+            np.full((n, points), np.nan),
+            np.full(n, 2),
+            np.full(n, 0.0123),
+            np.full(n, 42),
+            {},
+        )
 
     monkeypatch.setattr(simmod, "run_speeds", broken)
-    with pytest.raises(SolverError, match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
-                                          r"collapsed; likely cause: the element stiffness"):
+    with pytest.raises(
+        SolverError,
+        match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
+        r"collapsed; likely cause: the element stiffness",
+    ):
         simulate(one_step, CAM, 3000)
 
 
@@ -254,14 +272,16 @@ def test_kernel_outputs_equal_numpy_postprocessing(one_step):
     setup = prepare(one_step, CAM, VT)
     omega = rpm_to_omega(2000)  # below float speed: no impacts to amplify round-off
     period = 2 * math.pi / omega
-    extra, previous, status, _, _ = engine.run_speeds(setup.y0, [omega], 2, 360, setup.args(omega), rtol=1e-6,
-                                                      atol=1e-9, max_step_fraction=1 / 720)
+    extra, previous, status, _, _ = engine.run_speeds(
+        setup.y0, [omega], 2, 360, setup.args(omega), rtol=1e-6, atol=1e-9, max_step_fraction=1 / 720
+    )
     assert extra.shape == (1, 360, engine.extra_layout(5)["size"]) and previous.shape == (1, 360)
     t = np.arange(720) * period / 360
     # run_speeds integrates the first revolution and then the monitored last one, landing a
     # step on the revolution boundary: a stop there gives integrate the same step sequence
-    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-6, atol=1e-9, h_max=period / 720,
-                                    stops=[period])
+    states, info = engine.integrate(
+        setup.y0, t, setup.args(omega), rtol=1e-6, atol=1e-9, h_max=period / 720, stops=[period]
+    )
     r = simmod.chain_response(setup, omega, omega * t, states)
     # the revolution before the last: the retainer force alone
     np.testing.assert_allclose(previous[0], r["force"][-1, :360], rtol=1e-7, atol=1e-6)

@@ -215,5 +215,4 @@ def test_chain_eigenvalues_of_one_damped_mass():
     m, k, c = 0.01, 1.0e6, 3.0
     lam = np.sort_complex(chain_eigenvalues([m], [k, k], [c, c]))
     root = np.sqrt(complex((2 * c) ** 2 - 4 * m * 2 * k))
-    np.testing.assert_allclose(lam, np.sort_complex([(-2 * c - root) / (2 * m), (-2 * c + root) / (2 * m)]),
-                               rtol=1e-12)
+    np.testing.assert_allclose(lam, np.sort_complex([(-2 * c - root) / (2 * m), (-2 * c + root) / (2 * m)]), rtol=1e-12)

@@ -16,8 +16,7 @@ from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, engine, simulate
 from springdyn.valve.dynamics import CAM_SAMPLES, prepare
 
-RAMPS = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4,
-            ramp_duration=math.radians(20))
+RAMPS = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4, ramp_duration=math.radians(20))
 CAM = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
 KEYS = ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")
 

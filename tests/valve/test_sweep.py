@@ -57,15 +57,33 @@ def test_threads_and_serial_identical(spring, local):
 def test_dask_local_cluster_bit_for_bit(spring, local, tmp_path):
     """A LocalCluster on loopback (2 worker processes) gives exactly the local results."""
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
         remote = sweep(spring, CAM, SPEEDS, valve_train=VT, points_per_revolution=360, client=client)
         address = cluster.scheduler_address
         for key in local.data:
             np.testing.assert_array_equal(remote.data[key], local.data[key])
         # and through the CLI with --scheduler
-        code = main(["valve", "sweep", str(EX / "one_step_spring.toml"), "--cam", str(EX / "cam_345.toml"),
-                     "--cam-rpm", "1000,3000", "--scheduler", address, "--out", str(tmp_path), "--quiet"])
+        code = main(
+            [
+                "valve",
+                "sweep",
+                str(EX / "one_step_spring.toml"),
+                "--cam",
+                str(EX / "cam_345.toml"),
+                "--cam-rpm",
+                "1000,3000",
+                "--scheduler",
+                address,
+                "--out",
+                str(tmp_path),
+                "--quiet",
+            ]
+        )
         assert code == 0 and (tmp_path / "sweep.nc").exists()
 
 
@@ -77,8 +95,14 @@ def test_float_speed_from_sweep(local):
 
 def test_vary_adds_a_dimension_and_skips_invalid(spring):
     with pytest.warns(UserWarning, match="installed_length = 20 mm skipped"):
-        res = sweep(spring, CAM, [1000.0, 2000.0], vary=("installed_length", np.array([0.020, 0.037, 0.039])),
-                    on_invalid="skip", points_per_revolution=180)
+        res = sweep(
+            spring,
+            CAM,
+            [1000.0, 2000.0],
+            vary=("installed_length", np.array([0.020, 0.037, 0.039])),
+            on_invalid="skip",
+            points_per_revolution=180,
+        )
     ds = res.to_xarray()
     assert ds["retainer_force"].dims == ("vary", "cam_rpm", "cam_angle")
     np.testing.assert_allclose(ds["vary"].values, [0.037, 0.039])
@@ -95,8 +119,14 @@ def test_vary_adds_a_dimension_and_skips_invalid(spring):
 def test_outputs(tmp_path, local):
     written = local.write(tmp_path)
     names = {p.name for p in written}
-    assert {"sweep.nc", "sweep_summary.csv", "sweep_forces.png", "sweep_map.png", "sweep_campbell.png",
-            "sweep_contact.png"} <= names
+    assert {
+        "sweep.nc",
+        "sweep_summary.csv",
+        "sweep_forces.png",
+        "sweep_map.png",
+        "sweep_campbell.png",
+        "sweep_contact.png",
+    } <= names
     import xarray as xr
 
     with xr.open_dataset(tmp_path / "sweep.nc") as ds:
@@ -104,12 +134,24 @@ def test_outputs(tmp_path, local):
         np.testing.assert_array_equal(ds["retainer_force"].values, local.data["retainer"][0])
     rows = list(csv.DictReader(open(tmp_path / "sweep_summary.csv")))
     assert len(rows) == SPEEDS.size
-    assert {"cam_rpm", "max_retainer_force_N", "min_retainer_force_N", "retainer_surge_amplitude_N", "coil_contact",
-            "liftoff"} <= set(rows[0])
+    assert {
+        "cam_rpm",
+        "max_retainer_force_N",
+        "min_retainer_force_N",
+        "retainer_surge_amplitude_N",
+        "coil_contact",
+        "liftoff",
+    } <= set(rows[0])
 
 
-@pytest.mark.parametrize("speeds,pattern", [([], "cam_rpm is empty"), ([1000.0, -5.0], "cam_rpm = -5 must be positive"),
-                                            ([0.0], "cam_rpm = 0 must be positive")])
+@pytest.mark.parametrize(
+    "speeds,pattern",
+    [
+        ([], "cam_rpm is empty"),
+        ([1000.0, -5.0], "cam_rpm = -5 must be positive"),
+        ([0.0], "cam_rpm = 0 must be positive"),
+    ],
+)
 def test_bad_speeds(spring, speeds, pattern):
     with pytest.raises(InputError, match=pattern):
         sweep(spring, CAM, speeds)
@@ -119,19 +161,47 @@ def test_unreachable_scheduler_fails_fast():
     import time
 
     t = time.monotonic()
-    with pytest.raises(InputError, match=r"scheduler = 'tcp://127.0.0.1:9': cannot reach a Dask scheduler there within 1 s"):
+    with pytest.raises(
+        InputError, match=r"scheduler = 'tcp://127.0.0.1:9': cannot reach a Dask scheduler there within 1 s"
+    ):
         connect("tcp://127.0.0.1:9", timeout=1.0)
     assert time.monotonic() - t < 10
 
 
 def test_cli_sweep(capsys, tmp_path):
-    code = main(["valve", "sweep", str(EX / "one_step_spring.toml"), "--cam", str(EX / "cam_345.toml"),
-                 "--engine-rpm", "2000:6000:2000", "--vary", "installed_length=37mm:39mm:1mm", "--out", str(tmp_path),
-                 "--points-per-revolution", "180", "--quiet"])
+    code = main(
+        [
+            "valve",
+            "sweep",
+            str(EX / "one_step_spring.toml"),
+            "--cam",
+            str(EX / "cam_345.toml"),
+            "--engine-rpm",
+            "2000:6000:2000",
+            "--vary",
+            "installed_length=37mm:39mm:1mm",
+            "--out",
+            str(tmp_path),
+            "--points-per-revolution",
+            "180",
+            "--quiet",
+        ]
+    )
     out, err = capsys.readouterr()
     assert code == 0, err
     assert "swept 3 speeds (1000-3000 cam rpm) x 3 values of installed_length" in out
     assert (tmp_path / "sweep.nc").exists() and (tmp_path / "sweep_map_2.png").exists()
-    code = main(["valve", "sweep", str(EX / "one_step_spring.toml"), "--cam", str(EX / "cam_345.toml"),
-                 "--cam-rpm", "3000:1000:100", "--out", str(tmp_path)])
+    code = main(
+        [
+            "valve",
+            "sweep",
+            str(EX / "one_step_spring.toml"),
+            "--cam",
+            str(EX / "cam_345.toml"),
+            "--cam-rpm",
+            "3000:1000:100",
+            "--out",
+            str(tmp_path),
+        ]
+    )
     assert code == 2 and "is empty" in capsys.readouterr().err

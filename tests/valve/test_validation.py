@@ -54,13 +54,18 @@ def test_base_is_valid_and_bare_numbers_are_si():
         ({"type": "two-step", "low_pitch_coils": 3.0, "high_pitch_coils": 1.0}, r"N2 - Nb = 1 - 1 must be positive"),
         ({"low_pitch_coils": 2.0}, r"low_pitch_coils = 2 must be 0 for a one-step spring"),
         ({"youngs_modulus": "0.004 GPa"}, r"contact stiffness K = .* must exceed 2 K1"),
-        ({"type": "two-step", "low_pitch_coils": 2.0, "high_pitch_coils": 6.0, "youngs_modulus": "0.007 GPa"},
-         r"must exceed 3 K2"),
+        (
+            {"type": "two-step", "low_pitch_coils": 2.0, "high_pitch_coils": 6.0, "youngs_modulus": "0.007 GPa"},
+            r"must exceed 3 K2",
+        ),
         ({"free_length": "500 mm"}, r"end mass me = -.* kg must be positive"),
         ({"installed_length": "28 mm"}, r"installed_length = 28 mm is at or below coil contact"),
         ({"installed_length": "27 mm"}, r"installed_length = 27 mm is at or below coil contact"),
         ({"damping_ratio": -0.1}, r"damping_ratio = -0\.1 must be zero or positive"),
-        ({"mean_diameter": "22 kg"}, r"mean_diameter = '22 kg' has the wrong dimension: expected a quantity convertible to m"),
+        (
+            {"mean_diameter": "22 kg"},
+            r"mean_diameter = '22 kg' has the wrong dimension: expected a quantity convertible to m",
+        ),
         ({"mean_diameter": "22 parsecs per fortnight x"}, r"mean_diameter = .* is not a quantity"),
         ({"type": "three-step"}, r"type = 'three-step' is not allowed; choose one of 'one-step', 'two-step'"),
         ({"dead_coils": "one"}, r"dead_coils = 'one' is not a quantity"),
@@ -75,7 +80,9 @@ def test_bad_input_one_clear_message(changes, pattern):
 
 def test_length_outside_curve_range():
     s = build()
-    with pytest.raises(InputError, match=r"length = 10 mm is outside the range of the spring: it must lie between 20\.08\d mm"):
+    with pytest.raises(
+        InputError, match=r"length = 10 mm is outside the range of the spring: it must lie between 20\.08\d mm"
+    ):
         s.static_force(0.010)
     with pytest.raises(InputError, match=r"length = 50 mm is outside the range.*free length Lf = 48 mm"):
         s.modes(0.050)
@@ -133,8 +140,11 @@ def test_float_speed_resolution_must_be_positive(one_step, resolution):
 def test_float_speed_bisection_is_bounded(one_step):
     """A resolution finer than 40 halvings of the scanned range can reach is refused before
     any simulation (the bisection loop runs at most 40 times)."""
-    with pytest.raises(InputError, match=r"resolution = 1e-12 rev/min is finer than the bisection reaches in 40 "
-                                         r"halvings .* at least 3\.6\de-09 rev/min"):
+    with pytest.raises(
+        InputError,
+        match=r"resolution = 1e-12 rev/min is finer than the bisection reaches in 40 "
+        r"halvings .* at least 3\.6\de-09 rev/min",
+    ):
         float_speed(one_step, CAM, VT, [2000.0, 4000.0], resolution=1e-12)
 
 
@@ -149,8 +159,10 @@ def test_float_speed_speeds(one_step, speeds):
 def test_tolerances_are_inputs(one_step, key, value):
     """``--rtol inf`` or ``-1`` ran up to 52 s and was reported as a
     solver failure; now it is refused at once, naming the allowed range."""
-    pattern = {"rtol": r"rtol = .* is outside the allowed range 1e-12 <= rtol <= 0\.01",
-               "atol": r"atol = .* is outside the allowed range 1e-15 <= atol <= 1e-05"}[key]
+    pattern = {
+        "rtol": r"rtol = .* is outside the allowed range 1e-12 <= rtol <= 0\.01",
+        "atol": r"atol = .* is outside the allowed range 1e-15 <= atol <= 1e-05",
+    }[key]
     with pytest.raises(InputError, match=pattern):
         simulate(one_step, CAM, 3000, **{key: value})
     with pytest.raises(InputError, match=pattern):
@@ -159,10 +171,19 @@ def test_tolerances_are_inputs(one_step, key, value):
 
 @pytest.mark.parametrize(
     "key,value",
-    [("revolutions", 2.5), ("revolutions", 0), ("revolutions", float("inf")), ("revolutions", float("nan")),
-     ("revolutions", 10_001), ("revolutions", True), ("revolutions", "3"),
-     ("points_per_revolution", 720.5), ("points_per_revolution", 8), ("points_per_revolution", 10**7),
-     ("points_per_revolution", None)],
+    [
+        ("revolutions", 2.5),
+        ("revolutions", 0),
+        ("revolutions", float("inf")),
+        ("revolutions", float("nan")),
+        ("revolutions", 10_001),
+        ("revolutions", True),
+        ("revolutions", "3"),
+        ("points_per_revolution", 720.5),
+        ("points_per_revolution", 8),
+        ("points_per_revolution", 10**7),
+        ("points_per_revolution", None),
+    ],
 )
 def test_whole_number_settings(one_step, key, value):
     """``revolutions`` and ``points_per_revolution`` are whole numbers in a stated range;
@@ -183,8 +204,11 @@ def test_whole_float_settings_still_accepted(one_step):
 @pytest.mark.parametrize("rpm", [0, -3000, float("nan"), float("inf"), True, "3000"])
 def test_design_figures_need_a_positive_speed(one_step, rpm):
     """``valve design --cam-rpm 0`` crashed; ``-3000`` gave a negative surge margin."""
-    with pytest.raises(InputError, match=r"cam_rpm = .* must be a positive, finite camshaft speed \[rev/min\]: "
-                                         r"the surge margin"):
+    with pytest.raises(
+        InputError,
+        match=r"cam_rpm = .* must be a positive, finite camshaft speed \[rev/min\]: "
+        r"the surge margin",
+    ):
         one_step.design_figures(0.009, rpm)
 
 
@@ -207,8 +231,11 @@ def test_low_speed_work_is_bounded(one_step, backend, rpm, limit):
     The number of periods of the chain's fastest mode (6633 Hz for the example) bounds the
     work: 2e4 for SciPy, 2e6 for the compiled engine (whose 1e7-step cap would otherwise
     end a long run in a misleading solver failure)."""
-    with pytest.raises(InputError, match=rf"cam_rpm = {rpm:g} is too slow for backend = '{backend}'.*"
-                                         rf"at least {limit} rev/min"):
+    with pytest.raises(
+        InputError,
+        match=rf"cam_rpm = {rpm:g} is too slow for backend = '{backend}'.*"
+        rf"at least {limit} rev/min",
+    ):
         simulate(one_step, CAM, rpm, 3, backend=backend)
 
 
@@ -216,8 +243,11 @@ def test_low_speed_work_is_bounded(one_step, backend, rpm, limit):
 @pytest.mark.parametrize(
     "changes,pattern",
     [
-        ({"mean_diameter": 1e-300}, r"mean_diameter = 1e-300 m is far smaller than any helical spring: it must "
-                                    r"lie between 1e-06 m and 1000 m"),
+        (
+            {"mean_diameter": 1e-300},
+            r"mean_diameter = 1e-300 m is far smaller than any helical spring: it must "
+            r"lie between 1e-06 m and 1000 m",
+        ),
         ({"mean_diameter": 1e300}, r"mean_diameter = 1e\+300 m is far larger than any helical spring"),
         ({"wire_diameter": 1e-300}, r"wire_diameter = 1e-300 m is far smaller"),
         ({"free_length": 1e300}, r"free_length = 1e\+300 m is far larger"),
@@ -227,8 +257,11 @@ def test_low_speed_work_is_bounded(one_step, backend, rpm, limit):
         ({"density": 1e300}, r"density = 1e\+300 kg/m\^3 is far larger than any solid"),
         ({"high_pitch_coils": 1e300}, r"high_pitch_coils = 1e\+300 is more coils than any spring has"),
         ({"damping_ratio": 5.0}, r"damping_ratio = 5 is above critical damping \(1\).*did you mean 5 % \(0\.05\)\?"),
-        ({"wire_diameter": 0.030}, r"spring index C = mean_diameter / wire_diameter = 22 mm / 30 mm = 0\.7333 must "
-                                   r"lie between 3 and 20 \(EN 13906-1 recommends 4 to 20"),
+        (
+            {"wire_diameter": 0.030},
+            r"spring index C = mean_diameter / wire_diameter = 22 mm / 30 mm = 0\.7333 must "
+            r"lie between 3 and 20 \(EN 13906-1 recommends 4 to 20",
+        ),
         ({"wire_diameter": 0.001}, r"spring index C = .* = 22 must lie between 3 and 20"),
     ],
 )
@@ -246,15 +279,25 @@ def test_random_extreme_springs_never_crash():
     over 600 decades either build with finite internal parameters or raise InputError."""
     rng = np.random.default_rng(2024)
     base = ValveSpring.example("one-step")
-    keys = ["mean_diameter", "wire_diameter", "free_length", "installed_length", "youngs_modulus",
-            "shear_modulus", "density"]
+    keys = [
+        "mean_diameter",
+        "wire_diameter",
+        "free_length",
+        "installed_length",
+        "youngs_modulus",
+        "shear_modulus",
+        "density",
+    ]
     built = 0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
         for _ in range(300):
             key = keys[rng.integers(len(keys))]
-            value = float(10.0 ** rng.uniform(-300, 300)) if rng.random() < 0.5 else getattr(base, key) * float(
-                10.0 ** rng.uniform(-4, 4))
+            value = (
+                float(10.0 ** rng.uniform(-300, 300))
+                if rng.random() < 0.5
+                else getattr(base, key) * float(10.0 ** rng.uniform(-4, 4))
+            )
             try:
                 s = base.replace(**{key: value})
             except InputError:
@@ -267,17 +310,29 @@ def test_random_extreme_springs_never_crash():
 @pytest.mark.parametrize(
     "changes,pattern",
     [
-        ({"mean_diameter": 22.0, "wire_diameter": 3.5, "free_length": 48.0, "installed_length": 38.0},
-         r"mean_diameter = 22 m is far larger than any valve spring \(5 mm to 100 mm\): did you mean 22 mm\?"),
+        (
+            {"mean_diameter": 22.0, "wire_diameter": 3.5, "free_length": 48.0, "installed_length": 38.0},
+            r"mean_diameter = 22 m is far larger than any valve spring \(5 mm to 100 mm\): did you mean 22 mm\?",
+        ),
         # the example scaled by 1/20 and by 8 (a uniform scale keeps the model valid)
-        ({"wire_diameter": 0.175e-3, "mean_diameter": 1.1e-3, "free_length": 2.4e-3, "installed_length": 1.9e-3},
-         r"wire_diameter = 0\.175 mm is far smaller than any valve spring \(0\.5 mm to 15 mm\)"),
-        ({"wire_diameter": 28e-3, "mean_diameter": 176e-3, "free_length": 384e-3, "installed_length": 304e-3},
-         r"free_length = 384 mm is far larger than any valve spring \(8 mm to 300 mm\)"),
-        ({"density": 7.85}, r"density = 7\.85 kg/m\^3 is far smaller than spring steel or titanium .*: did you mean "
-                            r"7850 kg/m\^3\?"),
-        ({"shear_modulus": 206e9, "youngs_modulus": 78.5e9}, r"shear_modulus = 206 GPa exceeds youngs_modulus = "
-                                                             r"78\.5 GPa: .* swapped"),
+        (
+            {"wire_diameter": 0.175e-3, "mean_diameter": 1.1e-3, "free_length": 2.4e-3, "installed_length": 1.9e-3},
+            r"wire_diameter = 0\.175 mm is far smaller than any valve spring \(0\.5 mm to 15 mm\)",
+        ),
+        (
+            {"wire_diameter": 28e-3, "mean_diameter": 176e-3, "free_length": 384e-3, "installed_length": 304e-3},
+            r"free_length = 384 mm is far larger than any valve spring \(8 mm to 300 mm\)",
+        ),
+        (
+            {"density": 7.85},
+            r"density = 7\.85 kg/m\^3 is far smaller than spring steel or titanium .*: did you mean "
+            r"7850 kg/m\^3\?",
+        ),
+        (
+            {"shear_modulus": 206e9, "youngs_modulus": 78.5e9},
+            r"shear_modulus = 206 GPa exceeds youngs_modulus = "
+            r"78\.5 GPa: .* swapped",
+        ),
         ({"damping_ratio": 0.5}, r"damping_ratio = 0\.5 is far above the damping of valve springs"),
     ],
 )
@@ -298,6 +353,9 @@ def test_the_examples_give_no_plausibility_warning():
 
 def test_a_model_error_carries_the_unit_slip():
     """206 MPa for 206 GPa breaks the model's K > 2 K1: the error says why it likely happened."""
-    with pytest.raises(InputError, match=r"must exceed 2 K1 .*note: youngs_modulus = 0\.206 GPa .* did you mean "
-                                         r"206 GPa\?"):
+    with pytest.raises(
+        InputError,
+        match=r"must exceed 2 K1 .*note: youngs_modulus = 0\.206 GPa .* did you mean "
+        r"206 GPa\?",
+    ):
         ValveSpring.example("one-step").replace(youngs_modulus=206e6)

@@ -29,10 +29,22 @@ def stiff_pushrod(**changes):
     from the reduced train falls as 1/k of those links (largest cam-force difference at
     1500 cam rpm: 7.0, 1.8, 0.36 N for 5e9, 2e10, 1e11 N/m; 3.4 N at 2600 rpm for 2e10):
     5e10 puts it below 1 % of Fset at both speeds."""
-    kw = dict(layout="pushrod", valve_mass=0.045, retainer_mass=0.010, follower_mass=0.040, pushrod_mass=0.050,
-              pushrod_stiffness=5e10, rocker_ratio=RATIO, rocker_inertia=14e-6, rocker_valve_arm=0.035,
-              rocker_stiffness=5e10, stem_stiffness=5e10, cam_contact_stiffness=50e6 * RATIO**2,
-              cam_contact_damping=200.0 * RATIO**2, link_damping=2000.0)
+    kw = dict(
+        layout="pushrod",
+        valve_mass=0.045,
+        retainer_mass=0.010,
+        follower_mass=0.040,
+        pushrod_mass=0.050,
+        pushrod_stiffness=5e10,
+        rocker_ratio=RATIO,
+        rocker_inertia=14e-6,
+        rocker_valve_arm=0.035,
+        rocker_stiffness=5e10,
+        stem_stiffness=5e10,
+        cam_contact_stiffness=50e6 * RATIO**2,
+        cam_contact_damping=200.0 * RATIO**2,
+        link_damping=2000.0,
+    )
     kw.update(changes)
     return ValveTrain(**kw)
 
@@ -123,8 +135,9 @@ def test_compiled_and_reference_backends_agree_for_a_finger_follower():
     vt = ValveTrain.example("finger-follower")
     cam = Cam.from_toml(ROOT / "examples/valve/cam_finger.toml")
     a = simulate(SPRING, cam, 1200.0, 1, valve_train=vt, points_per_revolution=360)
-    b = simulate(SPRING, cam, 1200.0, 1, valve_train=vt, points_per_revolution=360, backend="scipy", rtol=1e-9,
-                 atol=1e-12)
+    b = simulate(
+        SPRING, cam, 1200.0, 1, valve_train=vt, points_per_revolution=360, backend="scipy", rtol=1e-9, atol=1e-12
+    )
     assert np.max(np.abs(a.cam_contact_force - b.cam_contact_force)) < 0.01 * FSET
     assert np.max(np.abs(a.retainer_force - b.retainer_force)) < 0.01 * FSET
 
@@ -228,11 +241,14 @@ def _train_energy_error(vt, cam, rpm):
     return err
 
 
-@pytest.mark.parametrize("name,camfile,rpm", [
-    ("finger-follower", "examples/valve/cam_finger.toml", 1500.0),   # no lift-off
-    ("pushrod", "examples/valve/cam_pushrod.toml", 3000.0),          # lift-off and lash impacts
-    ("direct-acting", "examples/valve/cam_polydyne_ramps.toml", 3500.0),  # floats
-])
+@pytest.mark.parametrize(
+    "name,camfile,rpm",
+    [
+        ("finger-follower", "examples/valve/cam_finger.toml", 1500.0),  # no lift-off
+        ("pushrod", "examples/valve/cam_pushrod.toml", 3000.0),  # lift-off and lash impacts
+        ("direct-acting", "examples/valve/cam_polydyne_ramps.toml", 3500.0),  # floats
+    ],
+)
 def test_train_energy_balance_over_a_revolution(name, camfile, rpm):
     # tolerance: integration at rtol 1e-10 and trapezoid quadrature of the cam's work on
     # 40 000 intervals through contact impacts: 1e-4 of the peak elastic energy

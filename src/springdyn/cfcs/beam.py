@@ -197,15 +197,18 @@ def _shoot(p, theta2, x_clamp, length, rigid, r2, ei, steps):
     x, y, ph, xp, yp, pp, xt, yt, pt = st
     cp, sp = math.cos(ph), math.sin(ph)
     res = np.array([x + rigid * cp - r2 * c2, y + rigid * sp - r2 * s2])
-    jac = np.array([[xp - rigid * sp * pp, xt - rigid * sp * pt + r2 * s2],
-                    [yp + rigid * cp * pp, yt + rigid * cp * pt - r2 * c2]])
+    jac = np.array(
+        [[xp - rigid * sp * pp, xt - rigid * sp * pt + r2 * s2], [yp + rigid * cp * pp, yt + rigid * cp * pt - r2 * c2]]
+    )
     return res, jac, ph, kmax
 
 
 def _geometry(r2, r3, length):
     if not (length > 0 and length < 2.0 * r3):
-        raise InputError(f"pivot_length = {length * 1e3:.6g} mm must be positive and shorter than twice the coupler "
-                         f"length r3 = {r3 * 1e3:.6g} mm (the rigid part of the coupler is r3 - l/2)")
+        raise InputError(
+            f"pivot_length = {length * 1e3:.6g} mm must be positive and shorter than twice the coupler "
+            f"length r3 = {r3 * 1e3:.6g} mm (the rigid part of the coupler is r3 - l/2)"
+        )
     return r3 - 0.5 * length, r2 + r3 + 0.5 * length
 
 
@@ -347,7 +350,8 @@ def beam_force_curve(deflection, r2, r3, length, ei, *, steps=SHOOTING_STEPS):
         if sol is None:
             raise SolverError(
                 f"beam model: the continuation of the elastica lost the branch at x = {xq * 1e3:.4g} mm "
-                "(beyond the strip's kinematic limit, or too close to it): reduce the stroke")
+                "(beyond the strip's kinematic limit, or too close to it): reduce the stroke"
+            )
         p, th, ph, kmax = sol
         hist.append((xq, p, th))
         out["force"][i] = p * math.cos(th)
@@ -441,16 +445,21 @@ def chain_equilibrium(deflection, r2, r3, length, ei, *, links=200, guess=None):
         hess[idx, idx] += lam[0] * lev * c + lam[1] * lev * s  # -lam . d2B/dphi^2, d2B = -lev (c, s)
         jac[:n, :n] = hess
         jac[:n, n] = 0.0
-        jac[:n, n + 1:] = -db.T
+        jac[:n, n + 1 :] = -db.T
         jac[n, n] = -r2 * (lam @ e2)
-        jac[n, n + 1:] = r2 * de2
-        jac[n + 1:, :n] = db
-        jac[n + 1:, n] = -r2 * de2
+        jac[n, n + 1 :] = r2 * de2
+        jac[n + 1 :, :n] = db
+        jac[n + 1 :, n] = -r2 * de2
         step = np.linalg.solve(jac, -res)
         phi = phi + step[:n]
         th = th + step[n]
-        lam = lam + step[n + 1:]
-        if np.max(np.abs(step[:n + 1])) < 1e-13 and np.max(np.abs(step[n + 1:])) < 1e-12 * max(1.0, abs(lam[0])):
-            return {"force": float(lam[0]), "theta2": float(th), "end_rotation": float(np.pi - phi[-1]),
-                    "phi": phi, "lam": lam}
+        lam = lam + step[n + 1 :]
+        if np.max(np.abs(step[: n + 1])) < 1e-13 and np.max(np.abs(step[n + 1 :])) < 1e-12 * max(1.0, abs(lam[0])):
+            return {
+                "force": float(lam[0]),
+                "theta2": float(th),
+                "end_rotation": float(np.pi - phi[-1]),
+                "phi": phi,
+                "lam": lam,
+            }
     raise SolverError(f"beam model (chain): Newton did not converge at x = {deflection * 1e3:.4g} mm")

@@ -45,8 +45,9 @@ __all__ = ["design_flattest", "DesignResult", "design", "normalized_pcf", "min_r
 MAX_STROKE_FRACTION = 0.9
 
 
-def design_flattest(force, stroke, youngs_modulus, allowable_stress, *, max_total_length=None,
-                    **kwargs) -> DesignResult:
+def design_flattest(
+    force, stroke, youngs_modulus, allowable_stress, *, max_total_length=None, **kwargs
+) -> DesignResult:
     """:func:`design`, then again at the length it suggests when the first one does not hold or is not flat.
 
     When the design at the first size is not feasible, or its ratio is more than 1 point of
@@ -141,11 +142,16 @@ class DesignResult(Result):
         return {"deflection_m": self.deflection, "force_N": self.force, "stress_Pa": self.stress}
 
     def to_xarray(self) -> xr.Dataset:
-        ds = xr.Dataset({"force_N": ("deflection_m", self.force, {"units": "N"}),
-                         "stress_Pa": ("deflection_m", self.stress, {"units": "Pa"})},
-                        coords={"deflection_m": ("deflection_m", self.deflection, {"units": "m"})})
-        ds.attrs.update({k: v for k, v in self.summary.items()
-                         if isinstance(v, (int, float, str)) and not isinstance(v, bool)})
+        ds = xr.Dataset(
+            {
+                "force_N": ("deflection_m", self.force, {"units": "N"}),
+                "stress_Pa": ("deflection_m", self.stress, {"units": "Pa"}),
+            },
+            coords={"deflection_m": ("deflection_m", self.deflection, {"units": "m"})},
+        )
+        ds.attrs.update(
+            {k: v for k, v in self.summary.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
+        )
         return ds
 
     def to_params(self, crank_mass, coupler_mass, slider_mass, **extra):
@@ -153,14 +159,24 @@ class DesignResult(Result):
         from .params import CFCSParams
 
         s = self.summary
-        return CFCSParams(crank_length=s["crank_length_m"], coupler_length=s["coupler_length_m"],
-                          crank_mass=crank_mass, coupler_mass=coupler_mass, slider_mass=slider_mass,
-                          pivot_width=s["pivot_width_m"], pivot_thickness=s["pivot_thickness_m"],
-                          pivot_length=s["pivot_length_m"], youngs_modulus=s["youngs_modulus_Pa"],
-                          allowable_stress=s["allowable_stress_Pa"],
-                          **{"flexure_model": s.get("flexure_model", "prbm"),
-                             "plate_bending": s.get("plate_bending"), "poisson_ratio": s.get("poisson_ratio", 0.3),
-                             **extra})
+        return CFCSParams(
+            crank_length=s["crank_length_m"],
+            coupler_length=s["coupler_length_m"],
+            crank_mass=crank_mass,
+            coupler_mass=coupler_mass,
+            slider_mass=slider_mass,
+            pivot_width=s["pivot_width_m"],
+            pivot_thickness=s["pivot_thickness_m"],
+            pivot_length=s["pivot_length_m"],
+            youngs_modulus=s["youngs_modulus_Pa"],
+            allowable_stress=s["allowable_stress_Pa"],
+            **{
+                "flexure_model": s.get("flexure_model", "prbm"),
+                "plate_bending": s.get("plate_bending"),
+                "poisson_ratio": s.get("poisson_ratio", 0.3),
+                **extra,
+            },
+        )
 
     def to_toml(self, path) -> Path:
         """Write a ``[cfcs]`` table of the design (masses to be filled in by the user)."""
@@ -175,12 +191,12 @@ class DesignResult(Result):
             'crank_mass = "0.025 kg"\ncoupler_mass = "0.028 kg"\nslider_mass = "0.087 kg"\n'
             f"pivot_width = {mm(s['pivot_width_m'])}\npivot_thickness = {mm(s['pivot_thickness_m'])}\n"
             f"pivot_length = {mm(s['pivot_length_m'])}\n"
-            f"youngs_modulus = \"{s['youngs_modulus_Pa'] / 1e9:.6g} GPa\"\n"
-            f"allowable_stress = \"{s['allowable_stress_Pa'] / 1e9:.6g} GPa\"\n"
+            f'youngs_modulus = "{s["youngs_modulus_Pa"] / 1e9:.6g} GPa"\n'
+            f'allowable_stress = "{s["allowable_stress_Pa"] / 1e9:.6g} GPa"\n'
             'friction_model = "none"\naxial_force = false\n'
             f'flexure_model = "{s.get("flexure_model", "prbm")}"\n'
-            f'plate_bending = {"true" if s.get("plate_bending") else "false"}\n'
-            f'poisson_ratio = {s.get("poisson_ratio", 0.3):g}\n'
+            f"plate_bending = {'true' if s.get('plate_bending') else 'false'}\n"
+            f"poisson_ratio = {s.get('poisson_ratio', 0.3):g}\n"
             f"# working range {s.get('working_start_m', 0.0) * 1e3:.6g} .. "
             f"{s.get('working_end_m', s['stroke_m']) * 1e3:.6g} mm of deflection\n"
         )
@@ -195,8 +211,10 @@ class DesignResult(Result):
         ax.axhline(s["target_force_N"], ls=":", color="k", label="target")
         ax.set_xlabel("slider deflection [mm]")
         ax.set_ylabel("force [N]")
-        ax.set_title(f"CFCS design r2/r3 = {s['ratio']:.3f}, PCF {s['pcf_percent']:.1f} %, "
-                     f"{'feasible' if s['feasible'] else 'NOT feasible'}")
+        ax.set_title(
+            f"CFCS design r2/r3 = {s['ratio']:.3f}, PCF {s['pcf_percent']:.1f} %, "
+            f"{'feasible' if s['feasible'] else 'NOT feasible'}"
+        )
         ax.grid(True, alpha=0.3)
         ax.legend()
         return fig
@@ -224,14 +242,34 @@ DEFAULT_MIN_PCF = 90.0
 DEFAULT_THICKNESS_TOLERANCE = 0.05
 
 
-def _check_design_inputs(force, stroke, youngs_modulus, allowable_stress, pivot_length_ratio, safety_factor,
-                         max_width, min_pcf, thickness_tolerance, flexure_model, plate_bending, poisson_ratio,
-                         preload):
-    for name, v in (("force", force), ("stroke", stroke), ("youngs_modulus", youngs_modulus),
-                    ("allowable_stress", allowable_stress), ("pivot_length_ratio", pivot_length_ratio),
-                    ("safety_factor", safety_factor)):
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not (
-                np.isfinite(v) and v > 0):
+def _check_design_inputs(
+    force,
+    stroke,
+    youngs_modulus,
+    allowable_stress,
+    pivot_length_ratio,
+    safety_factor,
+    max_width,
+    min_pcf,
+    thickness_tolerance,
+    flexure_model,
+    plate_bending,
+    poisson_ratio,
+    preload,
+):
+    for name, v in (
+        ("force", force),
+        ("stroke", stroke),
+        ("youngs_modulus", youngs_modulus),
+        ("allowable_stress", allowable_stress),
+        ("pivot_length_ratio", pivot_length_ratio),
+        ("safety_factor", safety_factor),
+    ):
+        if (
+            isinstance(v, bool)
+            or not isinstance(v, (int, float, np.floating, np.integer))
+            or not (np.isfinite(v) and v > 0)
+        ):
             raise InputError(f"{name} = {v!r} must be positive (a number in SI units)")
     if max_width is not None and not max_width > 0:
         raise InputError(f"max_width = {max_width!r} must be positive")
@@ -240,8 +278,10 @@ def _check_design_inputs(force, stroke, youngs_modulus, allowable_stress, pivot_
     if not 0.0 <= thickness_tolerance < 0.5:
         raise InputError(f"thickness_tolerance = {thickness_tolerance!r} must lie in [0, 0.5) (a fraction of h)")
     if flexure_model not in FLEXURE_MODELS:
-        raise InputError(f"flexure_model = {flexure_model!r} is not allowed; choose one of "
-                         f"{', '.join(repr(m) for m in FLEXURE_MODELS)}")
+        raise InputError(
+            f"flexure_model = {flexure_model!r} is not allowed; choose one of "
+            f"{', '.join(repr(m) for m in FLEXURE_MODELS)}"
+        )
     if plate_bending not in (None, True, False):
         raise InputError(f"plate_bending = {plate_bending!r} must be true, false or None (chosen by b/l)")
     if not 0.0 <= poisson_ratio <= 0.49:
@@ -250,10 +290,25 @@ def _check_design_inputs(force, stroke, youngs_modulus, allowable_stress, pivot_
         raise InputError(f"preload = {preload!r} m must be zero or positive")
 
 
-def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0.4, total_length=None,
-           pivot_length_ratio=0.1, max_width=None, safety_factor=DEFAULT_SAFETY_FACTOR, n=401,
-           min_pcf=DEFAULT_MIN_PCF, thickness_tolerance=DEFAULT_THICKNESS_TOLERANCE, flexure_model="beam",
-           plate_bending=None, poisson_ratio=0.3, preload=0.0) -> DesignResult:
+def design(
+    force,
+    stroke,
+    youngs_modulus,
+    allowable_stress,
+    *,
+    stroke_fraction=0.4,
+    total_length=None,
+    pivot_length_ratio=0.1,
+    max_width=None,
+    safety_factor=DEFAULT_SAFETY_FACTOR,
+    n=401,
+    min_pcf=DEFAULT_MIN_PCF,
+    thickness_tolerance=DEFAULT_THICKNESS_TOLERANCE,
+    flexure_model="beam",
+    plate_bending=None,
+    poisson_ratio=0.3,
+    preload=0.0,
+) -> DesignResult:
     """Design a CFCS: r2/r3 for the flattest force, then K3 and the flexure (b, h, l), checked.
 
     The ratio and a first flexure come from the PRBM (module docstring); with
@@ -302,15 +357,29 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     preload : float
         Start of the working range [m] (default 0, the toggle).
     """
-    _check_design_inputs(force, stroke, youngs_modulus, allowable_stress, pivot_length_ratio, safety_factor,
-                         max_width, min_pcf, thickness_tolerance, flexure_model, plate_bending, poisson_ratio,
-                         preload)
+    _check_design_inputs(
+        force,
+        stroke,
+        youngs_modulus,
+        allowable_stress,
+        pivot_length_ratio,
+        safety_factor,
+        max_width,
+        min_pcf,
+        thickness_tolerance,
+        flexure_model,
+        plate_bending,
+        poisson_ratio,
+        preload,
+    )
     if not (isinstance(n, (int, np.integer)) and 5 <= n <= 100_000):
         raise InputError(f"n = {n!r} must be a whole number from 5 to 100000")
     if total_length is not None:
         if not total_length > stroke + preload:
-            raise InputError(f"total_length = {format_quantity(total_length, 'm', 'mm')} must exceed the stroke "
-                             f"{format_quantity(stroke + preload, 'm', 'mm')}")
+            raise InputError(
+                f"total_length = {format_quantity(total_length, 'm', 'mm')} must exceed the stroke "
+                f"{format_quantity(stroke + preload, 'm', 'mm')}"
+            )
         stroke_fraction = stroke / total_length
     if isinstance(stroke_fraction, bool) or not (np.isfinite(stroke_fraction) and 0 < stroke_fraction):
         raise InputError(f"stroke_fraction = {stroke_fraction!r} must be positive")
@@ -333,8 +402,9 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
         return max_width if max_width is not None else _geometry(ratio, length)[1]
 
     pcf = np.array([normalized_pcf(r, stroke_fraction, n, start_fraction) for r in ratios])
-    widths = np.array([_flexure(r, length, stroke, force, youngs_modulus, sigma, pivot_length_ratio, 3, preload)["b"]
-                       for r in ratios])
+    widths = np.array(
+        [_flexure(r, length, stroke, force, youngs_modulus, sigma, pivot_length_ratio, 3, preload)["b"] for r in ratios]
+    )
     ok = (widths <= np.array([width_limit(r) for r in ratios])) & (pcf >= min_pcf)
     any_ok = bool(np.any(ok))
     pool = np.where(ok, pcf, -np.inf) if any_ok else pcf
@@ -342,8 +412,12 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     best = ratios[i]
     a, b = ratios[max(i - 1, 0)], ratios[min(i + 1, ratios.size - 1)]
     if b > a:
-        res = minimize_scalar(lambda r: -normalized_pcf(r, stroke_fraction, n, start_fraction), bounds=(a, b),
-                              method="bounded", options={"xatol": 1e-6})
+        res = minimize_scalar(
+            lambda r: -normalized_pcf(r, stroke_fraction, n, start_fraction),
+            bounds=(a, b),
+            method="bounded",
+            options={"xatol": 1e-6},
+        )
         cand = _flexure(res.x, length, stroke, force, youngs_modulus, sigma, pivot_length_ratio, 3, preload)
         if -res.fun > pool[i] and (not any_ok or cand["b"] <= width_limit(res.x)):
             best = float(res.x)
@@ -351,22 +425,35 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     pcf_best = float(np.max(pcf))
     wmax = width_limit(best)
 
-    width, h, ei, e_eff, plate = _size_strip(d, force, sigma, youngs_modulus, flexure_model, plate_bending,
-                                             poisson_ratio)
+    width, h, ei, e_eff, plate = _size_strip(
+        d, force, sigma, youngs_modulus, flexure_model, plate_bending, poisson_ratio
+    )
     x = d["x"]
     # verification through the model built from the sizes (independent of the sizing algebra)
     from .model import CFCS
     from .params import CFCSParams
 
-    params = CFCSParams(crank_length=d["r2"], coupler_length=d["r3"], crank_mass=1.0, coupler_mass=1.0,
-                        slider_mass=1.0, pivot_width=width, pivot_thickness=h, pivot_length=d["l"],
-                        youngs_modulus=youngs_modulus, allowable_stress=allowable_stress, plate_bending=plate,
-                        poisson_ratio=poisson_ratio, flexure_model=flexure_model, friction_model="none",
-                        axial_force=False)
+    params = CFCSParams(
+        crank_length=d["r2"],
+        coupler_length=d["r3"],
+        crank_mass=1.0,
+        coupler_mass=1.0,
+        slider_mass=1.0,
+        pivot_width=width,
+        pivot_thickness=h,
+        pivot_length=d["l"],
+        youngs_modulus=youngs_modulus,
+        allowable_stress=allowable_stress,
+        plate_bending=plate,
+        poisson_ratio=poisson_ratio,
+        flexure_model=flexure_model,
+        friction_model="none",
+        axial_force=False,
+    )
     model = CFCS(params)
     if flexure_model == "beam":
         vc = model.beam_curve(np.concatenate([[0.0], x]) if x[0] > 0 else x)
-        f, stress, th_b = (vc[k][-x.size:] for k in ("force", "stress", "theta2"))
+        f, stress, th_b = (vc[k][-x.size :] for k in ("force", "stress", "theta2"))
         axial = f / np.cos(th_b)
     else:
         f = static_force(d["th"], params.k3, d["r2"], d["r3"])
@@ -389,62 +476,123 @@ def design(force, stroke, youngs_modulus, allowable_stress, *, stroke_fraction=0
     binding = max(failing, key=failing.get) if failing else None
     need = None
     if "width" in failing or pcf_here < pcf_best - 0.5:
-        need = _shortest_length_for_flattest(stroke, force, youngs_modulus, sigma, pivot_length_ratio, max_width,
-                                             length, n, flexure_model=flexure_model, plate_bending=plate_bending,
-                                             poisson_ratio=poisson_ratio, preload=preload)
-    suggestions = _suggestions(failing, width=width, wmax=wmax, sigma=sigma, pivot_length_ratio=pivot_length_ratio,
-                               need=need, stroke=stroke, pcf_best=pcf_best, min_pcf=min_pcf, n=n,
-                               safety_factor=safety_factor, tol=tol, allowable=allowable_stress,
-                               axial=float(np.max(axial)), buckling=buckling, start_fraction=start_fraction)
-    hint = (f"; at the flattest ratio a mechanism with r2 + r3 >= {need * 1e3:.4g} mm (stroke fraction <= "
-            f"{stroke / need:.3g}) would meet the stress limit" if need else "")
+        need = _shortest_length_for_flattest(
+            stroke,
+            force,
+            youngs_modulus,
+            sigma,
+            pivot_length_ratio,
+            max_width,
+            length,
+            n,
+            flexure_model=flexure_model,
+            plate_bending=plate_bending,
+            poisson_ratio=poisson_ratio,
+            preload=preload,
+        )
+    suggestions = _suggestions(
+        failing,
+        width=width,
+        wmax=wmax,
+        sigma=sigma,
+        pivot_length_ratio=pivot_length_ratio,
+        need=need,
+        stroke=stroke,
+        pcf_best=pcf_best,
+        min_pcf=min_pcf,
+        n=n,
+        safety_factor=safety_factor,
+        tol=tol,
+        allowable=allowable_stress,
+        axial=float(np.max(axial)),
+        buckling=buckling,
+        start_fraction=start_fraction,
+    )
+    hint = (
+        f"; at the flattest ratio a mechanism with r2 + r3 >= {need * 1e3:.4g} mm (stroke fraction <= "
+        f"{stroke / need:.3g}) would meet the stress limit"
+        if need
+        else ""
+    )
     if feasible:
-        message = (f"design meets the stress limit and every check ({flexure_model} model): peak flexure stress {smax / 1e9:.4g} GPa = "
-                   f"allowable / {allowable_stress / smax:.3g}, width {width * 1e3:.4g} mm <= {wmax * 1e3:.4g} mm, "
-                   f"PCF {pcf_here:.1f} % >= {min_pcf:g} %")
+        message = (
+            f"design meets the stress limit and every check ({flexure_model} model): peak flexure stress {smax / 1e9:.4g} GPa = "
+            f"allowable / {allowable_stress / smax:.3g}, width {width * 1e3:.4g} mm <= {wmax * 1e3:.4g} mm, "
+            f"PCF {pcf_here:.1f} % >= {min_pcf:g} %"
+        )
         if pcf_here < pcf_best - 0.5:
-            message += (f"; but only at r2/r3 = {best:.3g} with PCF {pcf_here:.1f} % (the flattest ratio, "
-                        f"PCF {pcf_best:.1f} %, does not fit){hint}")
+            message += (
+                f"; but only at r2/r3 = {best:.3g} with PCF {pcf_here:.1f} % (the flattest ratio, "
+                f"PCF {pcf_best:.1f} %, does not fit){hint}"
+            )
     elif "width" in failing:
-        message = (f"no design meets the stress limit: at {format_quantity(sigma, 'Pa', 'GPa')} the flexure must be "
-                   f"{h * 1e3:.3g} mm thick and {width * 1e3:.4g} mm wide, wider than the {wmax * 1e3:.4g} mm "
-                   f"allowed, for r2 + r3 = {length * 1e3:.4g} mm{hint}")
+        message = (
+            f"no design meets the stress limit: at {format_quantity(sigma, 'Pa', 'GPa')} the flexure must be "
+            f"{h * 1e3:.3g} mm thick and {width * 1e3:.4g} mm wide, wider than the {wmax * 1e3:.4g} mm "
+            f"allowed, for r2 + r3 = {length * 1e3:.4g} mm{hint}"
+        )
     else:
         message = f"no feasible design: the {binding.replace('_', ' ')} check fails"
     if not feasible:
         message += ". Smallest changes: " + "; ".join(suggestions)
     summary = {
-        "feasible": feasible, "message": message, "target_force_N": force, "stroke_m": stroke,
-        "total_length_m": length, "stroke_fraction": stroke_fraction, "ratio": best,
-        "crank_length_m": d["r2"], "coupler_length_m": d["r3"], "torsional_stiffness_N_m_per_rad": float(k3_check),
-        "pivot_width_m": width, "pivot_thickness_m": h, "pivot_length_m": d["l"],
-        "max_width_m": wmax, "youngs_modulus_Pa": youngs_modulus, "allowable_stress_Pa": allowable_stress,
-        "safety_factor_target": safety_factor, "max_stress_Pa": smax,
+        "feasible": feasible,
+        "message": message,
+        "target_force_N": force,
+        "stroke_m": stroke,
+        "total_length_m": length,
+        "stroke_fraction": stroke_fraction,
+        "ratio": best,
+        "crank_length_m": d["r2"],
+        "coupler_length_m": d["r3"],
+        "torsional_stiffness_N_m_per_rad": float(k3_check),
+        "pivot_width_m": width,
+        "pivot_thickness_m": h,
+        "pivot_length_m": d["l"],
+        "max_width_m": wmax,
+        "youngs_modulus_Pa": youngs_modulus,
+        "allowable_stress_Pa": allowable_stress,
+        "safety_factor_target": safety_factor,
+        "max_stress_Pa": smax,
         "safety_factor": allowable_stress / smax,
-        "force_min_N": float(np.min(f)), "force_max_N": float(np.max(f)),
-        "pcf_percent": pcf_here, "pcf_flattest_percent": pcf_best,
-        "suggested_total_length_m": need, "pcf_energy_percent": percent_constant_force_energy(x, f),
+        "force_min_N": float(np.min(f)),
+        "force_max_N": float(np.max(f)),
+        "pcf_percent": pcf_here,
+        "pcf_flattest_percent": pcf_best,
+        "suggested_total_length_m": need,
+        "pcf_energy_percent": percent_constant_force_energy(x, f),
         "kinematic_limit_m": float(kinematic_limit_deflection(d["r2"], d["r3"])),
-        "allowable_spring_angle_rad": float(allowable_spring_angle(allowable_stress, params.bending_modulus("prbm"),
-                                                                   h, d["l"])),
-        "flexure_model": flexure_model, "plate_bending": plate, "poisson_ratio": poisson_ratio,
-        "working_start_m": float(x[0]), "working_end_m": float(x[-1]),
-        "min_pcf_percent": min_pcf, "thickness_tolerance": tol,
+        "allowable_spring_angle_rad": float(
+            allowable_spring_angle(allowable_stress, params.bending_modulus("prbm"), h, d["l"])
+        ),
+        "flexure_model": flexure_model,
+        "plate_bending": plate,
+        "poisson_ratio": poisson_ratio,
+        "working_start_m": float(x[0]),
+        "working_end_m": float(x[-1]),
+        "min_pcf_percent": min_pcf,
+        "thickness_tolerance": tol,
         "force_min_at_thickness_tolerance_N": float(np.min(f)) * (1 - tol) ** 3,
         "force_max_at_thickness_tolerance_N": float(np.max(f)) * (1 + tol) ** 3,
         "max_stress_at_thickness_tolerance_Pa": stress_tol,
-        "axial_load_max_N": float(np.max(axial)), "buckling_load_N": float(buckling),
+        "axial_load_max_N": float(np.max(axial)),
+        "buckling_load_N": float(buckling),
         "buckling_safety_factor": float(buckling / np.max(axial)),
-        "binding_constraint": binding, "suggestions": suggestions,
+        "binding_constraint": binding,
+        "suggestions": suggestions,
     }
     return DesignResult(summary, x, f, stress)
 
 
 def _size_strip(d, force, sigma, youngs_modulus, flexure_model, plate_bending, poisson_ratio):
     """Width, thickness, EI, modulus and plate choice of the strip for a PRBM sizing ``d`` (see :func:`design`)."""
+
     def modulus_for(width, strip_length):
-        plate = plate_bending if plate_bending is not None else (
-            flexure_model == "beam" and default_plate_bending(width, strip_length))
+        plate = (
+            plate_bending
+            if plate_bending is not None
+            else (flexure_model == "beam" and default_plate_bending(width, strip_length))
+        )
         return (plate_modulus(youngs_modulus, poisson_ratio) if plate else youngs_modulus), bool(plate)
 
     e_eff, plate = modulus_for(d["b"], d["l"])
@@ -454,8 +602,8 @@ def _size_strip(d, force, sigma, youngs_modulus, flexure_model, plate_bending, p
     if flexure_model == "beam":
         for _ in range(3):  # the plate choice may follow the width; it settles in one or two rounds
             bc = beam_force_curve(np.concatenate([[0.0], x]) if x[0] > 0 else x, d["r2"], d["r3"], d["l"], ei)
-            fb = bc["force"][-x.size:]
-            kmax = bc["max_curvature"][-x.size:]
+            fb = bc["force"][-x.size :]
+            kmax = bc["max_curvature"][-x.size :]
             ei *= force / (0.5 * (np.min(fb) + np.max(fb)))  # the force scales with EI at fixed geometry
             h = 2.0 * sigma / (e_eff * float(np.max(kmax)))  # the curvature does not depend on EI
             width = 12.0 * ei / (e_eff * h**3)
@@ -468,22 +616,43 @@ def _size_strip(d, force, sigma, youngs_modulus, flexure_model, plate_bending, p
     return width, h, ei, e_eff, plate
 
 
-def _suggestions(failing, *, width, wmax, sigma, pivot_length_ratio, need, stroke, pcf_best, min_pcf, n,
-                 safety_factor, tol, allowable, axial, buckling, start_fraction):
+def _suggestions(
+    failing,
+    *,
+    width,
+    wmax,
+    sigma,
+    pivot_length_ratio,
+    need,
+    stroke,
+    pcf_best,
+    min_pcf,
+    n,
+    safety_factor,
+    tol,
+    allowable,
+    axial,
+    buckling,
+    start_fraction,
+):
     """The smallest change of one input that satisfies each failing check (scaling laws of the sizing)."""
     out = []
     if "width" in failing:
         q = width / wmax  # b ~ K3 E^2 theta^3 / (sigma^3 l^2)
         out.append(f"max_width >= {width * 1e3:.4g} mm")
         out.append(f"allowable_stress / safety_factor >= {sigma * q ** (1 / 3) / 1e9:.4g} GPa")
-        if pivot_length_ratio * q ** 0.5 <= 0.5:  # beyond, the strip is no small-length flexure
-            out.append(f"pivot_length_ratio >= {pivot_length_ratio * q ** 0.5:.3g}")
+        if pivot_length_ratio * q**0.5 <= 0.5:  # beyond, the strip is no small-length flexure
+            out.append(f"pivot_length_ratio >= {pivot_length_ratio * q**0.5:.3g}")
         if need:
             out.append(f"r2 + r3 >= {need * 1e3:.4g} mm (stroke fraction <= {stroke / need:.3g})")
     if "pcf" in failing:
         frac = _largest_fraction_for_pcf(min_pcf, n, start_fraction)
-        out.append(f"stroke fraction <= {frac:.3g} (the flattest ratio reaches {min_pcf:g} % there; here at best "
-                   f"{pcf_best:.1f} %)" if frac else f"min_pcf <= {pcf_best:.1f} %")
+        out.append(
+            f"stroke fraction <= {frac:.3g} (the flattest ratio reaches {min_pcf:g} % there; here at best "
+            f"{pcf_best:.1f} %)"
+            if frac
+            else f"min_pcf <= {pcf_best:.1f} %"
+        )
     if "buckling" in failing:
         # the Euler load goes as EI / l^2 = K3 / l at fixed K3
         out.append(f"pivot_length_ratio <= {pivot_length_ratio * buckling / (axial * safety_factor):.3g}")
@@ -494,6 +663,7 @@ def _suggestions(failing, *, width, wmax, sigma, pivot_length_ratio, need, strok
 
 def _largest_fraction_for_pcf(min_pcf, n, start_fraction=0.0):
     """Largest stroke fraction whose flattest ratio reaches ``min_pcf`` [%], or None."""
+
     def best(frac):
         return _flattest_pcf(frac, n, start_fraction) - min_pcf
 
@@ -520,8 +690,21 @@ def _flattest_ratio(stroke_fraction, n):
     return ratios[int(np.argmax([normalized_pcf(r, stroke_fraction, n) for r in ratios]))]
 
 
-def _shortest_length_for_flattest(stroke, force, modulus, sigma, ratio_l, max_width, length0, n, *,
-                                  flexure_model="prbm", plate_bending=None, poisson_ratio=0.3, preload=0.0):
+def _shortest_length_for_flattest(
+    stroke,
+    force,
+    modulus,
+    sigma,
+    ratio_l,
+    max_width,
+    length0,
+    n,
+    *,
+    flexure_model="prbm",
+    plate_bending=None,
+    poisson_ratio=0.3,
+    preload=0.0,
+):
     """Shortest r2 + r3 [m] above ``length0`` whose flattest design fits its width (bisection), or None.
 
     The strip is sized as :func:`design` sizes it (same flexure model), on a coarse curve.

@@ -136,9 +136,8 @@ def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
     d = coupler_root(theta2, r2, r3)
     u = r2 * c / d
     du = -r2 * s * (r3 * r3 - r2 * r2) / d**3
-    return (
-        m3 * (r2 * r2 * (2.0 * s * c * (1.0 + u) + s * s * du) + 2.0 * r3 * r3 * u * du / 3.0)
-        + ms * r2 * r2 * (2.0 * s * c * (1.0 + u) ** 2 + 2.0 * s * s * (1.0 + u) * du)
+    return m3 * (r2 * r2 * (2.0 * s * c * (1.0 + u) + s * s * du) + 2.0 * r3 * r3 * u * du / 3.0) + ms * r2 * r2 * (
+        2.0 * s * c * (1.0 + u) ** 2 + 2.0 * s * s * (1.0 + u) * du
     )
 
 
@@ -170,8 +169,25 @@ def kinetic_energy(theta2, theta2dot, m2, m3, ms, r2, r3):
 TOGGLE_FLOOR = 2e-3
 
 
-def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_friction, friction_model,
-                           shear_angle, axial_force, slider_friction, theta2_cutoff, spring_force=None):
+def drive_force_components(
+    x,
+    xdot,
+    xddot,
+    *,
+    r2,
+    r3,
+    m2,
+    m3,
+    ms,
+    k3,
+    pin_friction,
+    friction_model,
+    shear_angle,
+    axial_force,
+    slider_friction,
+    theta2_cutoff,
+    spring_force=None,
+):
     """Slider force needed to drive the mechanism along x(t) (inverse dynamics) [N].
 
     ``F = (M th2'' + M'/2 th2'^2 + dV/dth2 + tau_CF + tau_AF) / G + F_slider sgn(x')``,
@@ -236,9 +252,17 @@ def drive_force_components(x, xdot, xddot, *, r2, r3, m2, m3, ms, k3, pin_fricti
     f_slider = sgn * slider_friction
     force = f_static + f_inertia + f_pin + f_axial + f_slider
     return dict(
-        theta2=th, theta2dot=thd, theta2ddot=thdd, force_static=f_static, force_inertia=f_inertia,
-        force_pin=f_pin, force_axial=f_axial, force_slider=f_slider, force=force,
-        in_toggle_zone=th < theta2_cutoff, at_toggle=at_toggle,
+        theta2=th,
+        theta2dot=thd,
+        theta2ddot=thdd,
+        force_static=f_static,
+        force_inertia=f_inertia,
+        force_pin=f_pin,
+        force_axial=f_axial,
+        force_slider=f_slider,
+        force=force,
+        in_toggle_zone=th < theta2_cutoff,
+        at_toggle=at_toggle,
     )
 
 
@@ -276,8 +300,10 @@ def toggle_inertia_limit(motion, t0, period, *, r2, r3, m2, m3, ms):
         x, xd, xdd = motion(tt)
         th, thd, thdd, jac = crank_rates(np.clip(x, 0.0, None), xd, xdd, r2, r3)
         if np.all(th >= 2 * TOGGLE_FLOOR):
-            f = (generalized_mass(th, m2, m3, ms, r2, r3) * thdd
-                 + 0.5 * generalized_mass_derivative(th, m2, m3, ms, r2, r3) * thd * thd) / jac
+            f = (
+                generalized_mass(th, m2, m3, ms, r2, r3) * thdd
+                + 0.5 * generalized_mass_derivative(th, m2, m3, ms, r2, r3) * thd * thd
+            ) / jac
             return float((4.0 * (f[1] + f[2]) - (f[0] + f[3])) / 6.0)
         delta *= 2.0
     return 0.0
@@ -345,8 +371,9 @@ def forward_rhs(t, state, force_fn, p, sign_smoothing):
     smooth = np.tanh(thd / sign_smoothing)
     spring = p.get("spring_force")
     f_spring = static_force(th, p["k3"], r2, r3) if spring is None else float(spring(x))
-    tau_d = dissipative_torque(th, f_spring, p["pin_friction"], p["friction_model"],
-                               p["shear_angle"], p["axial_force"], r2, r3)
+    tau_d = dissipative_torque(
+        th, f_spring, p["pin_friction"], p["friction_model"], p["shear_angle"], p["axial_force"], r2, r3
+    )
     slider = p["slider_friction"] * np.tanh(xdot / (sign_smoothing * max(r2, 1e-300))) * g
     torque = spring_torque(th, p["k3"], r2, r3) if spring is None else f_spring * g
     rhs = f * g - 0.5 * dm * thd * thd - torque - tau_d * smooth - slider
@@ -394,8 +421,17 @@ def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smooth
         return np.pi / 2 - abs(y[0]) - 1e-9
 
     limit.terminal = True
-    sol = solve_ivp(forward_rhs, (t_eval[0], t_eval[-1]), [theta2_0, theta2dot_0], method="LSODA",
-                    t_eval=t_eval, args=(force_fn, p, sign_smoothing), rtol=rtol, atol=atol, events=limit)
+    sol = solve_ivp(
+        forward_rhs,
+        (t_eval[0], t_eval[-1]),
+        [theta2_0, theta2dot_0],
+        method="LSODA",
+        t_eval=t_eval,
+        args=(force_fn, p, sign_smoothing),
+        rtol=rtol,
+        atol=atol,
+        events=limit,
+    )
     if sol.status == 1:
         raise SolverError(
             f"forward dynamics: the crank reached the kinematic limit (theta2 = 90 deg) at "
@@ -421,4 +457,5 @@ def energy(theta2, theta2dot, p):
         The mechanism.
     """
     return kinetic_energy(theta2, theta2dot, p["m2"], p["m3"], p["ms"], p["r2"], p["r3"]) + spring_energy(
-        theta2, p["k3"], p["r2"], p["r3"])
+        theta2, p["k3"], p["r2"], p["r3"]
+    )

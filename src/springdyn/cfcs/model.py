@@ -77,8 +77,15 @@ def _double_cutoff(cutoff: float) -> float:
 
 
 #: Statistics of a dynamic result checked against the cut-off.
-_DYNAMIC_STATS = ("mean_force_N", "median_force_N", "peak_to_peak_N", "pcf_percent", "force_max_N", "force_min_N",
-                  "hysteresis_energy_per_cycle_J")
+_DYNAMIC_STATS = (
+    "mean_force_N",
+    "median_force_N",
+    "peak_to_peak_N",
+    "pcf_percent",
+    "force_max_N",
+    "force_min_N",
+    "hysteresis_energy_per_cycle_J",
+)
 
 
 class CFCS:
@@ -111,9 +118,11 @@ class CFCS:
 
     def __repr__(self) -> str:
         p = self.params
-        return (f"CFCS(r2={p.r2 * 1e3:.4g} mm, r3={p.r3 * 1e3:.4g} mm, K3={p.k3:.5g} N*m/rad, "
-                f"flexure_model={p.flexure_model!r}, friction={p.friction_model!r}, "
-                f"axial_force={p.axial_force})")
+        return (
+            f"CFCS(r2={p.r2 * 1e3:.4g} mm, r3={p.r3 * 1e3:.4g} mm, K3={p.k3:.5g} N*m/rad, "
+            f"flexure_model={p.flexure_model!r}, friction={p.friction_model!r}, "
+            f"axial_force={p.axial_force})"
+        )
 
     # -- helpers ------------------------------------------------------------------------
     @property
@@ -187,8 +196,10 @@ class CFCS:
         p = self.params
         notes = summary.setdefault("notes", [])
         if summary.get("max_stress_Pa") is None and "max_stress_Pa" in summary:
-            notes.append("stress figures need the flexure's dimensions (pivot_width, pivot_thickness, "
-                         "pivot_length, youngs_modulus); this definition gives torsional_stiffness")
+            notes.append(
+                "stress figures need the flexure's dimensions (pivot_width, pivot_thickness, "
+                "pivot_length, youngs_modulus); this definition gives torsional_stiffness"
+            )
         elif summary.get("safety_factor") is None and "safety_factor" in summary and p.allowable_stress is None:
             notes.append("safety_factor and max_stroke_for_stress_m need allowable_stress in [cfcs]")
         if "toggle_cutoff_rad" in summary and summary["toggle_cutoff_rad"] is None:
@@ -201,8 +212,9 @@ class CFCS:
         if not (p.has_flexure and p.allowable_stress is not None):
             return None
         if not self.beam:
-            return max_stroke_for_stress(p.allowable_stress, p.bending_modulus("prbm"), p.pivot_thickness,
-                                         p.pivot_length, p.r2, p.r3)
+            return max_stroke_for_stress(
+                p.allowable_stress, p.bending_modulus("prbm"), p.pivot_thickness, p.pivot_length, p.r2, p.r3
+            )
         lim = p.max_deflection
         x = np.linspace(0.0, lim, 401)
         s = self._beam_table(lim)["stress"](x)
@@ -217,9 +229,15 @@ class CFCS:
 
     def _common_summary(self) -> dict:
         p = self.params
-        out = {"toggle_cutoff_rad": p.toggle_cutoff, "friction_model": p.friction_model,
-               "axial_force": p.axial_force, "k3_N_m_per_rad": p.k3, "flexure_model": p.flexure_model,
-               "plate_bending": p.uses_plate_bending(), "poisson_ratio": p.poisson_ratio}
+        out = {
+            "toggle_cutoff_rad": p.toggle_cutoff,
+            "friction_model": p.friction_model,
+            "axial_force": p.axial_force,
+            "k3_N_m_per_rad": p.k3,
+            "flexure_model": p.flexure_model,
+            "plate_bending": p.uses_plate_bending(),
+            "poisson_ratio": p.poisson_ratio,
+        }
         if p.has_flexure:
             out["bending_stiffness_N_m2"] = p.bending_stiffness()
         return out
@@ -253,8 +271,10 @@ class CFCS:
             raise InputError(f"n = {n} must be a whole number >= 3")
         start = offset_to_si(offset, p.extended_length)
         if not 0.0 <= start < stroke:
-            raise InputError(f"offset = {format_quantity(start, 'm', 'mm')} must lie in [0, stroke) = "
-                             f"[0, {format_quantity(stroke, 'm', 'mm')})")
+            raise InputError(
+                f"offset = {format_quantity(start, 'm', 'mm')} must lie in [0, stroke) = "
+                f"[0, {format_quantity(stroke, 'm', 'mm')})"
+            )
         x = np.linspace(0.0, stroke, n)
         if start > 0:  # the start of the working range is a sample
             x = np.unique(np.concatenate([x, [start]]))
@@ -266,20 +286,23 @@ class CFCS:
             f, stress = bc["force"], bc["stress"]
             extra = {"force_prbm_N": f_prbm, "theta2_beam_rad": bc["theta2"], "end_rotation_rad": bc["end_rotation"]}
             if p.has_flexure:
-                extra["stress_prbm_Pa"] = bending_stress(spring_angle(th, p.r2, p.r3), p.bending_modulus("prbm"),
-                                                         p.pivot_thickness, p.pivot_length)
+                extra["stress_prbm_Pa"] = bending_stress(
+                    spring_angle(th, p.r2, p.r3), p.bending_modulus("prbm"), p.pivot_thickness, p.pivot_length
+                )
         else:
             f, stress = f_prbm, self.stress(th)
         work = x >= start
 
         def branches(cutoff):
-            tau = dissipative_torque(th, f, p.pin_friction, p.friction_model, p.shear_angle, p.axial_force,
-                                     p.r2, p.r3)
+            tau = dissipative_torque(th, f, p.pin_friction, p.friction_model, p.shear_angle, p.axial_force, p.r2, p.r3)
             return tau / frozen_jacobian(th, p.r2, p.r3, cutoff) + p.slider_friction
 
         fd = branches(p.toggle_cutoff)
-        fmax, xmax = _refined_max(x, f, None if self.beam else
-                                  (lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3)))
+        fmax, xmax = _refined_max(
+            x,
+            f,
+            None if self.beam else (lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3)),
+        )
         stats = {"pcf_compression_percent": percent_constant_force((f + fd)[work])}
         in_zone = bool(np.any(th[work] < p.toggle_cutoff))
         dominated, check = [], {}
@@ -287,8 +310,11 @@ class CFCS:
             fd2 = branches(_double_cutoff(p.toggle_cutoff))
             check = {"pcf_compression_percent": percent_constant_force((f + fd2)[work])}
             dominated = toggle_check(stats, check, stats)
-        f_zero = (beam_force_at_toggle(p.r2, p.r3, p.pivot_length, p.bending_stiffness("beam")) if self.beam
-                  else static_force_at_toggle(p.k3, p.r2, p.r3))
+        f_zero = (
+            beam_force_at_toggle(p.r2, p.r3, p.pivot_length, p.bending_stiffness("beam"))
+            if self.beam
+            else static_force_at_toggle(p.k3, p.r2, p.r3)
+        )
         summary = {
             "force_at_zero_N": float(f_zero),
             "force_max_N": float(fmax),
@@ -307,14 +333,18 @@ class CFCS:
             **self._toggle_summary(in_zone, dominated, check),
         }
         if self.beam:
-            pm, pxm = _refined_max(x, f_prbm, lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3,
-                                                                        p.r2, p.r3))
-            summary.update({
-                "prbm_force_max_N": float(pm), "prbm_deflection_at_force_max_m": float(pxm),
-                "prbm_pcf_percent": 100.0 * float(np.min(f_prbm)) / float(pm),
-                "max_force_difference_to_prbm_N": float(np.max(np.abs(f - f_prbm))),
-                "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
-            })
+            pm, pxm = _refined_max(
+                x, f_prbm, lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3)
+            )
+            summary.update(
+                {
+                    "prbm_force_max_N": float(pm),
+                    "prbm_deflection_at_force_max_m": float(pxm),
+                    "prbm_pcf_percent": 100.0 * float(np.min(f_prbm)) / float(pm),
+                    "max_force_difference_to_prbm_N": float(np.max(np.abs(f - f_prbm))),
+                    "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
+                }
+            )
         return StaticResult(x, th, f, f + fd, f - fd, stress, self._note_nulls(summary), extra)
 
     def _toggle_summary(self, in_zone: bool, dominated: list, check: dict) -> dict:
@@ -325,13 +355,17 @@ class CFCS:
             out["statistics_at_doubled_cutoff"] = dict(check)
         notes = []
         if dominated:
-            notes.append(f"toggle-dominated: {', '.join(dominated)} change by more than "
-                         f"{100 * TOGGLE_TOLERANCE:g} % when the toggle cut-off doubles; they depend on a numerical "
-                         "setting, not on the mechanism (start the motion from a preload offset inside the "
-                         "constant-force band)")
+            notes.append(
+                f"toggle-dominated: {', '.join(dominated)} change by more than "
+                f"{100 * TOGGLE_TOLERANCE:g} % when the toggle cut-off doubles; they depend on a numerical "
+                "setting, not on the mechanism (start the motion from a preload offset inside the "
+                "constant-force band)"
+            )
         elif in_zone:
-            notes.append("the motion enters the toggle zone, but no statistic changes by more than "
-                         f"{100 * TOGGLE_TOLERANCE:g} % when the cut-off doubles")
+            notes.append(
+                "the motion enters the toggle zone, but no statistic changes by more than "
+                f"{100 * TOGGLE_TOLERANCE:g} % when the cut-off doubles"
+            )
         out["notes"] = notes
         return out
 
@@ -353,8 +387,16 @@ class CFCS:
         check_stroke(lo, hi, p.max_deflection, f"the motion {mot.describe()}")
         return mot
 
-    def dynamic(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=DEFAULT_OFFSET, *, cycles: int = 2,
-                samples_per_cycle: int = 400, motion=None) -> DynamicResult:
+    def dynamic(
+        self,
+        omega=None,
+        amplitude=DEFAULT_AMPLITUDE,
+        offset=DEFAULT_OFFSET,
+        *,
+        cycles: int = 2,
+        samples_per_cycle: int = 400,
+        motion=None,
+    ) -> DynamicResult:
         """Slider force along a prescribed periodic motion (inverse dynamics, Eqs. (19)-(25)).
 
         Parameters
@@ -414,10 +456,19 @@ class CFCS:
             **self._toggle_summary(in_zone, dominated, check),
         }
         comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
-        return DynamicResult(t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], self._note_nulls(summary))
+        return DynamicResult(
+            t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], self._note_nulls(summary)
+        )
 
-    def sweep(self, omegas, amplitude=DEFAULT_AMPLITUDE, offset=DEFAULT_OFFSET, *, samples_per_cycle: int = 400,
-              quiet: bool = True) -> FrequencySweep:
+    def sweep(
+        self,
+        omegas,
+        amplitude=DEFAULT_AMPLITUDE,
+        offset=DEFAULT_OFFSET,
+        *,
+        samples_per_cycle: int = 400,
+        quiet: bool = True,
+    ) -> FrequencySweep:
         """Mean, median, peak-to-peak force and PCF vs omega (Figs. 5-7 of the CFCS paper).
 
         Each frequency is one whole cycle of the sinusoid (the inverse problem has no
@@ -429,14 +480,20 @@ class CFCS:
             bad = omegas[~(omegas > 0)] if omegas.size else omegas
             raise InputError(f"omega = {bad[0] if bad.size else 'empty'!r}: every omega must be positive")
         if np.any(omegas > MAX_OMEGA):
-            raise InputError(f"omega = {omegas.max():g} rad/s is beyond {MAX_OMEGA:g} rad/s: far above any motion of "
-                             "a constant-force mechanism (its inertia forces would overflow)")
+            raise InputError(
+                f"omega = {omegas.max():g} rad/s is beyond {MAX_OMEGA:g} rad/s: far above any motion of "
+                "a constant-force mechanism (its inertia forces would overflow)"
+            )
         ideal = CFCS(self.params.without_dissipation())
         names = ("mean_force", "median_force", "peak_to_peak", "pcf")
         stats = {f"{k}_{'percent' if k == 'pcf' else 'N'}": np.empty(omegas.size) for k in names}
         stats.update({f"{k}_no_dissipation_{'percent' if k == 'pcf' else 'N'}": np.empty(omegas.size) for k in names})
-        keys = {"mean_force": "mean_force_N", "median_force": "median_force_N", "peak_to_peak": "peak_to_peak_N",
-                "pcf": "pcf_percent"}
+        keys = {
+            "mean_force": "mean_force_N",
+            "median_force": "median_force_N",
+            "peak_to_peak": "peak_to_peak_N",
+            "pcf": "pcf_percent",
+        }
         zone = 0
         flags = np.zeros(omegas.size)
         dominated = set()
@@ -448,22 +505,49 @@ class CFCS:
                     stats[f"{k}{suffix}_{unit}"][i] = r.summary[src]
                 if r.summary["toggle_dominated"]:
                     flags[i] = 1.0
-                    dominated.update(f"{s[:-2]}{suffix}{s[-2:]}" if s.endswith("_N") else
-                                     s.replace("_percent", f"{suffix}_percent") if s.endswith("_percent") else s
-                                     for s in r.summary["toggle_dominated_statistics"])
+                    dominated.update(
+                        f"{s[:-2]}{suffix}{s[-2:]}"
+                        if s.endswith("_N")
+                        else s.replace("_percent", f"{suffix}_percent")
+                        if s.endswith("_percent")
+                        else s
+                        for s in r.summary["toggle_dominated_statistics"]
+                    )
                 zone = max(zone, r.summary["toggle_zone_samples"])
         stats["toggle_dominated"] = flags
-        notes = ([f"toggle-dominated at {int(flags.sum())} of {omegas.size} frequencies ({', '.join(sorted(dominated))}"
-                  " change by more than 1 % when the toggle cut-off doubles)"] if flags.any() else [])
-        summary = {"motion": r.summary["motion"].replace(f"{omegas[-1]:.6g} t", "w t"),
-                   "toggle_zone_samples_per_cycle": zone, "toggle_dominated": bool(flags.any()),
-                   "toggle_dominated_statistics": sorted(dominated), "notes": notes, **self._common_summary()}
+        notes = (
+            [
+                f"toggle-dominated at {int(flags.sum())} of {omegas.size} frequencies ({', '.join(sorted(dominated))}"
+                " change by more than 1 % when the toggle cut-off doubles)"
+            ]
+            if flags.any()
+            else []
+        )
+        summary = {
+            "motion": r.summary["motion"].replace(f"{omegas[-1]:.6g} t", "w t"),
+            "toggle_zone_samples_per_cycle": zone,
+            "toggle_dominated": bool(flags.any()),
+            "toggle_dominated_statistics": sorted(dominated),
+            "notes": notes,
+            **self._common_summary(),
+        }
         return FrequencySweep(omegas, stats, summary)
 
     # -- forward dynamics ---------------------------------------------------------------
-    def forward(self, t_end: float, *, force: float | Callable | None = None, base_motion: Callable | None = None,
-                base_stiffness: float | None = None, base_damping: float = 0.0, x0: float = 1e-3,
-                v0: float = 0.0, n: int = 2001, sign_smoothing: float = 1e-2, rtol: float = 1e-9) -> ForwardResult:
+    def forward(
+        self,
+        t_end: float,
+        *,
+        force: float | Callable | None = None,
+        base_motion: Callable | None = None,
+        base_stiffness: float | None = None,
+        base_damping: float = 0.0,
+        x0: float = 1e-3,
+        v0: float = 0.0,
+        n: int = 2001,
+        sign_smoothing: float = 1e-2,
+        rtol: float = 1e-9,
+    ) -> ForwardResult:
         """Integrate the slider's response to a force, or to a spring from a moving base.
 
         Parameters
@@ -504,6 +588,7 @@ class CFCS:
         if force is not None:
             force_fn = (lambda t, x, xd, f0=float(force): f0) if not callable(force) else (lambda t, x, xd: force(t))
         else:
+
             def force_fn(t, x, xd):
                 b = base_motion(t)
                 xb, vb = (b[0], b[1]) if isinstance(b, tuple) else (b, 0.0)
@@ -516,15 +601,24 @@ class CFCS:
         xd = slider_jacobian(th, p.r2, p.r3) * thd
         fspring = static_force(th, p.k3, p.r2, p.r3) if not self.beam else self.spring_force(x)
         fapplied = np.array([force_fn(ti, xi, vi) for ti, xi, vi in zip(t, x, xd)], dtype=float)
-        summary = {"sign_smoothing_rad_per_s": sign_smoothing, "x0_m": x0, "v0_m_per_s": v0,
-                   "max_deflection_m": float(np.max(x)), "min_deflection_m": float(np.min(x)),
-                   "toggle_crossings": int(np.count_nonzero(np.diff(np.sign(th)) != 0)),
-                   **self._stress_summary(th, x), **self._common_summary()}
+        summary = {
+            "sign_smoothing_rad_per_s": sign_smoothing,
+            "x0_m": x0,
+            "v0_m_per_s": v0,
+            "max_deflection_m": float(np.max(x)),
+            "min_deflection_m": float(np.min(x)),
+            "toggle_crossings": int(np.count_nonzero(np.diff(np.sign(th)) != 0)),
+            **self._stress_summary(th, x),
+            **self._common_summary(),
+        }
         summary["toggle_cutoff_rad"] = None  # the forward problem needs no cut-off
         self._note_nulls(summary)
         if self.beam:  # T + the strip's strain energy, the integral of its quasi-static force
-            e = (energy(th, thd, vals) - spring_energy(th, p.k3, p.r2, p.r3)
-                 + self._beam_table(p.max_deflection)["force"].antiderivative()(x))
+            e = (
+                energy(th, thd, vals)
+                - spring_energy(th, p.k3, p.r2, p.r3)
+                + self._beam_table(p.max_deflection)["force"].antiderivative()(x)
+            )
         else:
             e = energy(th, thd, vals)
         return ForwardResult(t, x, xd, th, thd, fapplied, fspring, e, summary)
@@ -546,8 +640,11 @@ class CFCS:
         # steel-like density assumed for the strip's mass (the [cfcs] table gives no density)
         mass_per_length = 7850.0 * p.pivot_width * p.pivot_thickness
         w1 = strip_first_frequency(ei, mass_per_length, p.pivot_length)
-        return {"strip_first_frequency_rad_per_s": w1, "strip_frequency_ratio": float(omega) / w1,
-                "strip_mass_kg": mass_per_length * p.pivot_length}
+        return {
+            "strip_first_frequency_rad_per_s": w1,
+            "strip_frequency_ratio": float(omega) / w1,
+            "strip_mass_kg": mass_per_length * p.pivot_length,
+        }
 
 
 def _refined_max(x, f, fun=None):
@@ -562,7 +659,7 @@ def _refined_max(x, f, fun=None):
             if -res.fun > fmax:
                 fmax, xmax = float(-res.fun), float(res.x)
         else:
-            coef = np.polyfit(x[i - 1:i + 2] - x[i], f[i - 1:i + 2], 2)
+            coef = np.polyfit(x[i - 1 : i + 2] - x[i], f[i - 1 : i + 2], 2)
             if coef[0] < 0:
                 dx = -coef[1] / (2 * coef[0])
                 if abs(dx) <= hi - lo:

@@ -45,8 +45,11 @@ def sinusoid(t, offset, amplitude, omega):
     """
     t = np.asarray(t, dtype=float)
     wt = omega * t
-    return (offset + 0.5 * amplitude * (1.0 - np.cos(wt)), 0.5 * amplitude * omega * np.sin(wt),
-            0.5 * amplitude * omega * omega * np.cos(wt))
+    return (
+        offset + 0.5 * amplitude * (1.0 - np.cos(wt)),
+        0.5 * amplitude * omega * np.sin(wt),
+        0.5 * amplitude * omega * omega * np.cos(wt),
+    )
 
 
 #: Largest input frequency springdyn accepts [rad/s] (about 16 kHz).
@@ -82,13 +85,18 @@ def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> 
     text = value.strip() if isinstance(value, str) else None
     length = to_si(value, "m", field)
     if not length > 0:
-        raise InputError(f"{field} = {value!r} must be a positive length, e.g. '72 mm', or a percentage of "
-                         "r2 + r3, e.g. '40 %'")
+        raise InputError(
+            f"{field} = {value!r} must be a positive length, e.g. '72 mm', or a percentage of r2 + r3, e.g. '40 %'"
+        )
     bare = not isinstance(value, str) or _is_number(text)
     if bare and extended_length <= length <= 1.0:
-        warnings.warn(f"{field} = {value!r} read as a fraction of r2 + r3 ({100 * length:g} %), as earlier versions "
-                      f"did: a bare number is metres ({length:g} m is beyond this mechanism); write "
-                      f"'{100 * length:g} %' instead", DeprecationWarning, stacklevel=3)
+        warnings.warn(
+            f"{field} = {value!r} read as a fraction of r2 + r3 ({100 * length:g} %), as earlier versions "
+            f"did: a bare number is metres ({length:g} m is beyond this mechanism); write "
+            f"'{100 * length:g} %' instead",
+            DeprecationWarning,
+            stacklevel=3,
+        )
         return length * extended_length
     return length
 
@@ -170,8 +178,10 @@ class SinusoidMotion:
         if not (np.isfinite(self.omega) and self.omega > 0):
             raise InputError(f"omega = {self.omega!r} rad/s must be positive")
         if self.omega > MAX_OMEGA:
-            raise InputError(f"omega = {self.omega:g} rad/s is beyond {MAX_OMEGA:g} rad/s: far above any motion of a "
-                             "constant-force mechanism (its inertia forces would overflow)")
+            raise InputError(
+                f"omega = {self.omega:g} rad/s is beyond {MAX_OMEGA:g} rad/s: far above any motion of a "
+                "constant-force mechanism (its inertia forces would overflow)"
+            )
         if not (np.isfinite(self.amplitude) and self.amplitude > 0):
             raise InputError(f"amplitude = {format_quantity(self.amplitude, 'm', 'mm')} must be positive")
 
@@ -187,8 +197,10 @@ class SinusoidMotion:
         return sinusoid(t, self.offset, self.amplitude, self.omega)
 
     def describe(self) -> str:
-        return (f"x(t) = {format_quantity(self.offset, 'm', 'mm')} + {format_quantity(self.amplitude, 'm', 'mm')}"
-                f" (1 - cos({self.omega:.6g} t))/2")
+        return (
+            f"x(t) = {format_quantity(self.offset, 'm', 'mm')} + {format_quantity(self.amplitude, 'm', 'mm')}"
+            f" (1 - cos({self.omega:.6g} t))/2"
+        )
 
 
 @dataclasses.dataclass(frozen=True)

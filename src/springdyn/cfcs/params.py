@@ -41,34 +41,56 @@ class CFCSParams(Parameters):
     crank_mass: float = param("kg", "crank mass", symbol="m2", positive=True)
     coupler_mass: float = param("kg", "coupler mass", symbol="m3", positive=True)
     slider_mass: float = param("kg", "slider mass", symbol="ms", positive=True)
-    torsional_stiffness: float | None = param("N*m/rad", "pivot torsional stiffness", default=None,
-                                              symbol="K3", positive=True)
-    pivot_width: float | None = param("m", "flexural pivot width", default=None, symbol="b", display="mm",
-                                      positive=True)
-    pivot_thickness: float | None = param("m", "flexural pivot thickness", default=None, symbol="h",
-                                          display="mm", positive=True)
-    pivot_length: float | None = param("m", "flexural pivot length", default=None, symbol="l", display="mm",
-                                       positive=True)
-    youngs_modulus: float | None = param("Pa", "Young's modulus of the pivot", default=None, symbol="E",
-                                         display="GPa", positive=True)
-    allowable_stress: float | None = param("Pa", "allowable bending stress of the pivot", default=None,
-                                           display="GPa", positive=True)
+    torsional_stiffness: float | None = param(
+        "N*m/rad", "pivot torsional stiffness", default=None, symbol="K3", positive=True
+    )
+    pivot_width: float | None = param(
+        "m", "flexural pivot width", default=None, symbol="b", display="mm", positive=True
+    )
+    pivot_thickness: float | None = param(
+        "m", "flexural pivot thickness", default=None, symbol="h", display="mm", positive=True
+    )
+    pivot_length: float | None = param(
+        "m", "flexural pivot length", default=None, symbol="l", display="mm", positive=True
+    )
+    youngs_modulus: float | None = param(
+        "Pa", "Young's modulus of the pivot", default=None, symbol="E", display="GPa", positive=True
+    )
+    allowable_stress: float | None = param(
+        "Pa", "allowable bending stress of the pivot", default=None, display="GPa", positive=True
+    )
     pin_friction: float = param("N*m", "Coulomb torque of a pin", default=0.0, symbol="C", nonnegative=True)
-    shear_angle: float = param("rad", "shear angle of the axial-force term", default=0.0, symbol="alpha",
-                               nonnegative=True)
+    shear_angle: float = param(
+        "rad", "shear angle of the axial-force term", default=0.0, symbol="alpha", nonnegative=True
+    )
     friction_model: str = param(None, "pin friction model", default="paper", kind="str", choices=FRICTION_MODELS)
     axial_force: bool = param(None, "include tau_AF (Eq. 22)", default=True, kind="bool")
     slider_friction: float = param("N", "Coulomb friction force of the slider", default=0.0, nonnegative=True)
-    flexure_model: str = param(None, "bending model of the flexure: 'prbm' (pin with K3 = EI/l, Eq. (1)) or 'beam' "
-                               "(large-deflection elastica of the strip)", default="prbm", kind="str",
-                               choices=FLEXURE_MODELS)
-    plate_bending: bool | None = param(None, "bend the strip as a plate, E/(1 - nu^2); default: true for the beam "
-                                       "model when pivot_width >= pivot_length, false for the PRBM (Eq. (1))",
-                                       default=None, kind="bool")
-    poisson_ratio: float = param("", "Poisson's ratio of the flexure (plate bending)", default=0.3, symbol="nu",
-                                 minimum=0.0, maximum=0.49)
-    toggle_cutoff: float = param("rad", "toggle zone: below this crank angle tau_CF, tau_AF use dx/dtheta2 at the cut-off",
-                                 default=float(np.radians(5.0)), display="deg", positive=True)
+    flexure_model: str = param(
+        None,
+        "bending model of the flexure: 'prbm' (pin with K3 = EI/l, Eq. (1)) or 'beam' "
+        "(large-deflection elastica of the strip)",
+        default="prbm",
+        kind="str",
+        choices=FLEXURE_MODELS,
+    )
+    plate_bending: bool | None = param(
+        None,
+        "bend the strip as a plate, E/(1 - nu^2); default: true for the beam "
+        "model when pivot_width >= pivot_length, false for the PRBM (Eq. (1))",
+        default=None,
+        kind="bool",
+    )
+    poisson_ratio: float = param(
+        "", "Poisson's ratio of the flexure (plate bending)", default=0.3, symbol="nu", minimum=0.0, maximum=0.49
+    )
+    toggle_cutoff: float = param(
+        "rad",
+        "toggle zone: below this crank angle tau_CF, tau_AF use dx/dtheta2 at the cut-off",
+        default=float(np.radians(5.0)),
+        display="deg",
+        positive=True,
+    )
 
     def _validate(self) -> None:
         r2, r3 = self.crank_length, self.coupler_length
@@ -96,7 +118,7 @@ class CFCSParams(Parameters):
             if len(missing) == len(_PIVOT_DIMENSIONS) + 1:
                 raise InputError(
                     "neither torsional_stiffness nor the pivot dimensions are given; give either "
-                    "torsional_stiffness = \"2.5308 N*m/rad\" or pivot_width, pivot_thickness, pivot_length "
+                    'torsional_stiffness = "2.5308 N*m/rad" or pivot_width, pivot_thickness, pivot_length '
                     "and youngs_modulus"
                 )
             if missing:
@@ -107,8 +129,10 @@ class CFCSParams(Parameters):
                 "youngs_modulus instead of torsional_stiffness"
             )
         if self.plate_bending and not self.has_flexure:
-            raise InputError("plate_bending = true needs the flexure dimensions (pivot_width, pivot_thickness, "
-                             "pivot_length, youngs_modulus), not torsional_stiffness")
+            raise InputError(
+                "plate_bending = true needs the flexure dimensions (pivot_width, pivot_thickness, "
+                "pivot_length, youngs_modulus), not torsional_stiffness"
+            )
         if self.has_flexure and not self.pivot_thickness < self.pivot_length:
             raise InputError(
                 f"pivot_thickness = {format_quantity(self.pivot_thickness, 'm', 'mm')} must be smaller than "
@@ -117,7 +141,11 @@ class CFCSParams(Parameters):
             )
         if self.has_flexure:
             with np.errstate(over="ignore"):
-                ei = np.float64(self.youngs_modulus) * np.float64(self.pivot_width) * np.float64(self.pivot_thickness) ** 3
+                ei = (
+                    np.float64(self.youngs_modulus)
+                    * np.float64(self.pivot_width)
+                    * np.float64(self.pivot_thickness) ** 3
+                )
             if not np.isfinite(ei / 12.0 / self.pivot_length):
                 raise InputError(
                     "youngs_modulus x pivot_width x pivot_thickness^3 overflows: the flexure's bending stiffness is "
@@ -158,8 +186,9 @@ class CFCSParams(Parameters):
         """
         if self.torsional_stiffness is not None:
             return self.torsional_stiffness
-        return float(flexure_stiffness(self.bending_modulus("prbm"), self.pivot_width, self.pivot_thickness,
-                                       self.pivot_length))
+        return float(
+            flexure_stiffness(self.bending_modulus("prbm"), self.pivot_width, self.pivot_thickness, self.pivot_length)
+        )
 
     def uses_plate_bending(self, model: str | None = None) -> bool:
         """Whether the strip bends as a plate in ``model`` (default: this mechanism's flexure model).
@@ -186,8 +215,9 @@ class CFCSParams(Parameters):
     def bending_stiffness(self, model: str | None = None) -> float:
         """EI [N*m^2] of the strip in ``model`` (``K3 l`` when only K3 is given)."""
         if not self.has_flexure:
-            raise InputError("the strip's bending stiffness needs pivot_width, pivot_thickness, pivot_length and "
-                             "youngs_modulus")
+            raise InputError(
+                "the strip's bending stiffness needs pivot_width, pivot_thickness, pivot_length and youngs_modulus"
+            )
         return float(bending_stiffness(self.bending_modulus(model), self.pivot_width, self.pivot_thickness))
 
     @property
@@ -208,9 +238,17 @@ class CFCSParams(Parameters):
     def values(self) -> dict:
         """The SI values the physics functions take (see :mod:`springdyn.cfcs.dynamics`)."""
         return dict(
-            r2=self.r2, r3=self.r3, m2=self.crank_mass, m3=self.coupler_mass, ms=self.slider_mass, k3=self.k3,
-            pin_friction=self.pin_friction, friction_model=self.friction_model, shear_angle=self.shear_angle,
-            axial_force=self.axial_force, slider_friction=self.slider_friction,
+            r2=self.r2,
+            r3=self.r3,
+            m2=self.crank_mass,
+            m3=self.coupler_mass,
+            ms=self.slider_mass,
+            k3=self.k3,
+            pin_friction=self.pin_friction,
+            friction_model=self.friction_model,
+            shear_angle=self.shear_angle,
+            axial_force=self.axial_force,
+            slider_friction=self.slider_friction,
         )
 
     def without_dissipation(self) -> CFCSParams:

@@ -52,10 +52,17 @@ class _Table(Result):
         cols = self.columns()
         first = next(iter(cols))
         coord = cols.pop(first)
-        ds = xr.Dataset({k: (dim, np.asarray(v), {"units": units_from_name(k)}) for k, v in cols.items()},
-                        coords={first: (dim, coord, {"units": units_from_name(first)})})
-        ds.attrs.update({k: (v if v is not None else "none") for k, v in self.summary.items()
-                         if isinstance(v, (int, float, str)) and not isinstance(v, bool)})
+        ds = xr.Dataset(
+            {k: (dim, np.asarray(v), {"units": units_from_name(k)}) for k, v in cols.items()},
+            coords={first: (dim, coord, {"units": units_from_name(first)})},
+        )
+        ds.attrs.update(
+            {
+                k: (v if v is not None else "none")
+                for k, v in self.summary.items()
+                if isinstance(v, (int, float, str)) and not isinstance(v, bool)
+            }
+        )
         return ds
 
 
@@ -73,8 +80,13 @@ class StaticResult(_Table):
     extra: dict = dataclasses.field(default_factory=dict)  # beam model: the PRBM beside it
 
     def columns(self) -> dict:
-        cols = {"deflection_m": self.deflection, "theta2_rad": self.theta2, "force_N": self.force,
-                "force_compression_N": self.force_compression, "force_extension_N": self.force_extension}
+        cols = {
+            "deflection_m": self.deflection,
+            "theta2_rad": self.theta2,
+            "force_N": self.force,
+            "force_compression_N": self.force_compression,
+            "force_extension_N": self.force_extension,
+        }
         if np.all(np.isfinite(self.stress)):
             cols["stress_Pa"] = self.stress
         cols.update(self.extra)
@@ -98,8 +110,10 @@ class StaticResult(_Table):
         ax.set_xlabel("slider deflection [mm]")
         ax.set_ylabel("force [N]")
         s = self.summary
-        ax.set_title(f"CFCS static force, PCF {s['pcf_percent']:.1f} % over {s['stroke_m'] * 1e3:.4g} mm "
-                     f"(toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg)")
+        ax.set_title(
+            f"CFCS static force, PCF {s['pcf_percent']:.1f} % over {s['stroke_m'] * 1e3:.4g} mm "
+            f"(toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg)"
+        )
         ax.grid(True, alpha=0.3)
         ax.legend()
         return fig
@@ -125,8 +139,14 @@ class DynamicResult(_Table):
         return running_pcf(self.force)
 
     def columns(self) -> dict:
-        cols = {"time_s": self.time, "deflection_m": self.deflection, "force_N": self.force,
-                "force_static_N": self.force_static, "velocity_m_per_s": self.velocity, "theta2_rad": self.theta2}
+        cols = {
+            "time_s": self.time,
+            "deflection_m": self.deflection,
+            "force_N": self.force,
+            "force_static_N": self.force_static,
+            "velocity_m_per_s": self.velocity,
+            "theta2_rad": self.theta2,
+        }
         for k, v in self.components.items():
             cols[f"{k}_N"] = v
         cols["pcf_running_percent"] = self.pcf_vs_time
@@ -147,12 +167,14 @@ class DynamicResult(_Table):
         ax.plot(self.time, self.force_static, "--", label="static force at the same deflection")
         ax.set_ylabel("slider force [N]")
         s = self.summary
-        ax.set_title(f"CFCS at omega = {s['omega_rad_per_s']:.4g} rad/s: mean {s['mean_force_N']:.4g} N, "
-                     f"p-p {s['peak_to_peak_N']:.3g} N, PCF {s['pcf_percent']:.1f} %\n"
-                     f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg "
-                     f"({s['toggle_zone_samples']} samples inside"
-                     + ("; TOGGLE-DOMINATED: the statistics depend on the cut-off)" if s.get("toggle_dominated")
-                        else ")"), fontsize=10)
+        ax.set_title(
+            f"CFCS at omega = {s['omega_rad_per_s']:.4g} rad/s: mean {s['mean_force_N']:.4g} N, "
+            f"p-p {s['peak_to_peak_N']:.3g} N, PCF {s['pcf_percent']:.1f} %\n"
+            f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg "
+            f"({s['toggle_zone_samples']} samples inside"
+            + ("; TOGGLE-DOMINATED: the statistics depend on the cut-off)" if s.get("toggle_dominated") else ")"),
+            fontsize=10,
+        )
         ax.grid(True, alpha=0.3)
         ax.legend()
         if ax2 is None:
@@ -183,8 +205,12 @@ class FrequencySweep(_Table):
     title = "constant-force spring: frequency sweep"
 
     def _plot(self, ax=None):
-        names = [("mean_force", "mean force [N]"), ("median_force", "median force [N]"),
-                 ("peak_to_peak", "peak-to-peak force [N]"), ("pcf", "PCF [%]")]
+        names = [
+            ("mean_force", "mean force [N]"),
+            ("median_force", "median force [N]"),
+            ("peak_to_peak", "peak-to-peak force [N]"),
+            ("pcf", "PCF [%]"),
+        ]
         if ax is None:
             fig, axes = new_figure(2, 2, figsize=(10.0, 7.0), sharex=True)
             pairs = list(zip(axes.flat, names))
@@ -222,9 +248,16 @@ class ForwardResult(_Table):
     summary: dict
 
     def columns(self) -> dict:
-        return {"time_s": self.time, "deflection_m": self.deflection, "velocity_m_per_s": self.velocity,
-                "theta2_rad": self.theta2, "theta2dot_rad_per_s": self.theta2dot, "force_N": self.force,
-                "force_static_N": self.force_static, "energy_J": self.energy}
+        return {
+            "time_s": self.time,
+            "deflection_m": self.deflection,
+            "velocity_m_per_s": self.velocity,
+            "theta2_rad": self.theta2,
+            "theta2dot_rad_per_s": self.theta2dot,
+            "force_N": self.force,
+            "force_static_N": self.force_static,
+            "energy_J": self.energy,
+        }
 
     def to_xarray(self) -> xr.Dataset:
         return self._dataset("time")
@@ -242,8 +275,9 @@ class ForwardResult(_Table):
         ax.plot(self.time, self.deflection * 1e3)
         ax.set_ylabel("slider deflection [mm]")
         ax.grid(True, alpha=0.3)
-        ax.set_title("CFCS forward dynamics (smoothed Coulomb sign, "
-                     f"v_s = {self.summary['sign_smoothing_rad_per_s']:.3g} rad/s)")
+        ax.set_title(
+            f"CFCS forward dynamics (smoothed Coulomb sign, v_s = {self.summary['sign_smoothing_rad_per_s']:.3g} rad/s)"
+        )
         ax2.plot(self.time, self.force, label="drive force")
         ax2.plot(self.time, self.force_static, "--", label="static force at the deflection")
         ax2.set_xlabel("time [s]")

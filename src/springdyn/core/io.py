@@ -18,8 +18,19 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["atomic_path", "atomic_open", "output_set", "direct_outputs", "check_output_file", "check_output_folder", "write_csv",
-           "write_json", "read_csv_columns", "to_jsonable", "NonFiniteOutputError"]
+__all__ = [
+    "atomic_path",
+    "atomic_open",
+    "output_set",
+    "direct_outputs",
+    "check_output_file",
+    "check_output_folder",
+    "write_csv",
+    "write_json",
+    "read_csv_columns",
+    "to_jsonable",
+    "NonFiniteOutputError",
+]
 
 #: Longest file name (one path component) most file systems take [bytes].
 MAX_NAME_BYTES = 255
@@ -109,8 +120,7 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
     path = Path(path)
     if path.parent and not path.parent.exists():
         path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:100]}.", suffix=suffix or path.suffix,
-                               dir=path.parent or ".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:100]}.", suffix=suffix or path.suffix, dir=path.parent or ".")
     os.close(fd)
     tmp = Path(tmp)
     try:

@@ -22,7 +22,18 @@ from typing import Any
 from .errors import InputError
 from .units import format_quantity, to_si
 
-__all__ = ["KNOWN_TABLES", "read_text_file", "decode_utf8", "Parameters", "param", "from_mapping", "check_fields", "load_toml", "field_specs", "describe_value"]
+__all__ = [
+    "KNOWN_TABLES",
+    "read_text_file",
+    "decode_utf8",
+    "Parameters",
+    "param",
+    "from_mapping",
+    "check_fields",
+    "load_toml",
+    "field_specs",
+    "describe_value",
+]
 
 REQUIRED = dataclasses.MISSING
 
@@ -105,7 +116,7 @@ def _convert(name: str, value: Any, meta: Mapping, where: str) -> Any:
         return to_si(value, meta["unit"], label, bare_unit=meta.get("bare_unit"))
     if kind == "quantity_list":
         if not isinstance(value, list) or not value:
-            raise InputError(f"{label} = {value!r} must be a non-empty list, e.g. [\"38 mm\", \"34 mm\"]")
+            raise InputError(f'{label} = {value!r} must be a non-empty list, e.g. ["38 mm", "34 mm"]')
         return [to_si(v, meta["unit"], f"{label}[{i}]") for i, v in enumerate(value)]
     if kind == "int":
         if isinstance(value, bool) or not isinstance(value, int):
@@ -146,8 +157,13 @@ def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
             raise InputError(f"{sub} = {shown} must be zero or positive ({meta.get('doc') or 'a size'})")
         lo, hi = meta.get("minimum"), meta.get("maximum")
         if (lo is not None and v < lo) or (hi is not None and v > hi):
-            rng = (f"from {lo:g} to {hi:g}" if lo is not None and hi is not None
-                   else f"at least {lo:g}" if lo is not None else f"at most {hi:g}")
+            rng = (
+                f"from {lo:g} to {hi:g}"
+                if lo is not None and hi is not None
+                else f"at least {lo:g}"
+                if lo is not None
+                else f"at most {hi:g}"
+            )
             raise InputError(f"{sub} = {shown} must be {rng} ({meta.get('doc') or 'a count'})")
 
 
@@ -159,16 +175,21 @@ def _check_type(name: str, value: Any, meta: Mapping, default: Any) -> None:
     unit = meta.get("unit") or "-"
     if kind == "quantity":
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
-            raise InputError(f"{name} = {value!r} must be a number in SI units [{unit}] (values with units such "
-                             "as '22 mm' are read by from_dict and from_toml)")
+            raise InputError(
+                f"{name} = {value!r} must be a number in SI units [{unit}] (values with units such "
+                "as '22 mm' are read by from_dict and from_toml)"
+            )
     elif kind == "int":
         if isinstance(value, bool) or not isinstance(value, numbers.Integral):
             raise InputError(f"{name} = {value!r} must be a whole number")
     elif kind == "quantity_list":
         if isinstance(value, (list, tuple)) and not value and default == []:
             return
-        if not isinstance(value, (list, tuple)) or not value or any(
-                isinstance(v, bool) or not isinstance(v, numbers.Real) for v in value):
+        if (
+            not isinstance(value, (list, tuple))
+            or not value
+            or any(isinstance(v, bool) or not isinstance(v, numbers.Real) for v in value)
+        ):
             raise InputError(f"{name} = {value!r} must be a non-empty list of numbers in SI units [{unit}]")
     elif kind == "str":
         if not isinstance(value, str):
@@ -182,8 +203,13 @@ def check_fields(obj) -> None:
     """Per-field type, range and choice checks on a parameter dataclass instance."""
     for f, meta in field_specs(type(obj)):
         value = getattr(obj, f.name)
-        default = (f.default if f.default is not dataclasses.MISSING
-                   else f.default_factory() if f.default_factory is not dataclasses.MISSING else REQUIRED)
+        default = (
+            f.default
+            if f.default is not dataclasses.MISSING
+            else f.default_factory()
+            if f.default_factory is not dataclasses.MISSING
+            else REQUIRED
+        )
         _check_type(f.name, value, meta, default)
         if meta["kind"] == "str" and meta.get("choices") and value not in meta["choices"]:
             allowed = ", ".join(repr(c) for c in meta["choices"])
@@ -207,9 +233,7 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
         k = unknown[0]
         close = difflib.get_close_matches(k, list(specs), n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
-        raise InputError(
-            f"{where}{prefix}unknown key {k!r}{hint}; allowed keys: {', '.join(specs)}"
-        )
+        raise InputError(f"{where}{prefix}unknown key {k!r}{hint}; allowed keys: {', '.join(specs)}")
     kwargs = {}
     for name, (f, meta) in specs.items():
         if name in mapping:
@@ -219,7 +243,7 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
             example = meta.get("display") or meta.get("unit")
             raise InputError(
                 f"{where}{prefix}missing key {name!r} ({meta.get('doc')}"
-                + (f", e.g. {name} = \"... {example}\")" if example else ")")
+                + (f', e.g. {name} = "... {example}")' if example else ")")
             )
     try:
         return cls(**kwargs)
@@ -261,8 +285,9 @@ def read_text_file(path: str | Path, what: str, *, max_bytes: int) -> tuple[Path
     try:
         size = path.stat().st_size
         if size > max_bytes:
-            raise InputError(f"{path}: {size} bytes is larger than any {what} file springdyn reads "
-                             f"({max_bytes} bytes at most)")
+            raise InputError(
+                f"{path}: {size} bytes is larger than any {what} file springdyn reads ({max_bytes} bytes at most)"
+            )
         data = path.read_bytes()
     except OSError as exc:
         raise InputError(f"{path}: cannot be read ({exc.strerror or exc})") from None
@@ -280,8 +305,9 @@ def decode_utf8(path: Path, data: bytes, what: str) -> str:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         line = data[: exc.start].count(b"\n") + 1
-        raise InputError(f"{path}: line {line} is not UTF-8 text (byte {data[exc.start]:#04x}); "
-                         f"save the {what} file as UTF-8") from None
+        raise InputError(
+            f"{path}: line {line} is not UTF-8 text (byte {data[exc.start]:#04x}); save the {what} file as UTF-8"
+        ) from None
 
 
 def load_toml(path: str | Path, section: str | None = None, *, allowed: tuple = KNOWN_TABLES) -> dict:
@@ -319,8 +345,9 @@ def load_toml(path: str | Path, section: str | None = None, *, allowed: tuple = 
         close = difflib.get_close_matches(k, list(allowed), n=1)
         hint = f" (did you mean [{close[0]}]?)" if close else ""
         what = "table" if isinstance(doc[k], dict) else "top-level key"
-        raise InputError(f"{path}: unknown {what} [{k}]{hint}; a definition holds "
-                         + ", ".join(f"[{t}]" for t in allowed))
+        raise InputError(
+            f"{path}: unknown {what} [{k}]{hint}; a definition holds " + ", ".join(f"[{t}]" for t in allowed)
+        )
     if section is None:
         return doc
     if section not in doc:
@@ -376,8 +403,9 @@ class Parameters:
         """Build from a mapping of the table's keys (values with units, or SI numbers)."""
         if not isinstance(mapping, Mapping):
             raise InputError(f"{source + ': ' if source else ''}[{cls.table}] must be a table of keys")
-        return from_mapping(cls, cls._prepare(dict(mapping), source=source, **context), section=cls.table,
-                            source=source)
+        return from_mapping(
+            cls, cls._prepare(dict(mapping), source=source, **context), section=cls.table, source=source
+        )
 
     @classmethod
     def _prepare(cls, mapping: dict, **context) -> dict:

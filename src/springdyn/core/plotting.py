@@ -32,8 +32,11 @@ def smallest_font_px(fig, dpi: float) -> float:
     dpi : float
         Resolution of the saved image [pixels per inch].
     """
-    sizes = [t.get_fontsize() for t in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "get_fontsize"))
-             if t.get_visible() and str(t.get_text()).strip()]
+    sizes = [
+        t.get_fontsize()
+        for t in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "get_fontsize"))
+        if t.get_visible() and str(t.get_text()).strip()
+    ]
     return min(sizes, default=10.0) * dpi / 72.0
 
 
@@ -46,8 +49,9 @@ def save_figure(fig, path: str | os.PathLike, *, dpi: int = 120, close: bool = T
     path = Path(path)
     try:
         with atomic_path(path, suffix=".png") as tmp:
-            fig.savefig(tmp, dpi=dpi, format="png",
-                        metadata={"springdyn:min-font-px": f"{smallest_font_px(fig, dpi):.2f}"})
+            fig.savefig(
+                tmp, dpi=dpi, format="png", metadata={"springdyn:min-font-px": f"{smallest_font_px(fig, dpi):.2f}"}
+            )
     finally:
         if close:
             plt.close(fig)

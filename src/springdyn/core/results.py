@@ -46,8 +46,9 @@ class Summary(dict):
     """
 
     def __call__(self) -> Summary:
-        warnings.warn("summary() is deprecated: summary is now an attribute (result.summary)",
-                      DeprecationWarning, stacklevel=2)
+        warnings.warn(
+            "summary() is deprecated: summary is now an attribute (result.summary)", DeprecationWarning, stacklevel=2
+        )
         return self
 
 
@@ -73,9 +74,24 @@ def unit_suffix(units: str | None) -> str:
     return out
 
 
-_SUFFIX_UNITS = {"N": "N", "m": "m", "s": "s", "Pa": "Pa", "Hz": "Hz", "kg": "kg", "deg": "deg", "rad": "rad",
-                 "rpm": "rpm", "percent": "%", "N_per_m": "N/m", "N_s_per_m": "N*s/m", "m_per_s": "m/s",
-                 "rad_per_s": "rad/s", "J": "J", "W": "W"}
+_SUFFIX_UNITS = {
+    "N": "N",
+    "m": "m",
+    "s": "s",
+    "Pa": "Pa",
+    "Hz": "Hz",
+    "kg": "kg",
+    "deg": "deg",
+    "rad": "rad",
+    "rpm": "rpm",
+    "percent": "%",
+    "N_per_m": "N/m",
+    "N_s_per_m": "N*s/m",
+    "m_per_s": "m/s",
+    "rad_per_s": "rad/s",
+    "J": "J",
+    "W": "W",
+}
 
 
 def units_from_name(name: str) -> str:
@@ -247,8 +263,9 @@ class Result:
 
     # ------------------------------------------------------------------ reprs
     def _scalar_items(self) -> list[tuple[str, Any]]:
-        return [(k, v) for k, v in self.summary.items()
-                if v is None or isinstance(v, (numbers.Number, bool, np.bool_, str))]
+        return [
+            (k, v) for k, v in self.summary.items() if v is None or isinstance(v, (numbers.Number, bool, np.bool_, str))
+        ]
 
     def __repr__(self) -> str:
         head = f"<{type(self).__name__}: {self.title}"
@@ -271,9 +288,11 @@ class Result:
             f"<td style='text-align:right'>{html.escape(format_value(v))}</td></tr>"
             for k, v in self._scalar_items()
         )
-        out = (f"<div><strong>{html.escape(type(self).__name__)}</strong>: {html.escape(self.title)}"
-               f"{', ' + html.escape(caption) if caption else ''}"
-               f"<table><thead><tr><th>summary</th><th>value (SI)</th></tr></thead><tbody>{rows}</tbody></table>")
+        out = (
+            f"<div><strong>{html.escape(type(self).__name__)}</strong>: {html.escape(self.title)}"
+            f"{', ' + html.escape(caption) if caption else ''}"
+            f"<table><thead><tr><th>summary</th><th>value (SI)</th></tr></thead><tbody>{rows}</tbody></table>"
+        )
         if self.cheap_plot:
             out += self._figure_html()
         return out + "</div>"

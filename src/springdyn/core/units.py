@@ -18,8 +18,16 @@ import numpy as np
 
 from .errors import InputError, fmt_value
 
-__all__ = ["ureg", "get_registry", "to_si", "format_quantity", "format_mm", "SI_UNITS", "rpm_to_omega",  # noqa: F822
-           "omega_to_rpm"]
+__all__ = [
+    "ureg",  # noqa: F822 (made on first use by the module's __getattr__)
+    "get_registry",
+    "to_si",
+    "format_quantity",
+    "format_mm",
+    "SI_UNITS",
+    "rpm_to_omega",
+    "omega_to_rpm",
+]
 
 #: Smallest magnitude springdyn accepts as a nonzero number: subnormal floats (5e-324)
 #: are never a physical input and break the formulas.
@@ -86,6 +94,7 @@ def format_mm(value: float) -> str:
     """
     return format_quantity(value, "m", "mm")
 
+
 #: The SI unit springdyn uses inside for each dimension it names.
 SI_UNITS = {
     "m": "m",
@@ -148,10 +157,7 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
     True
     """
     if isinstance(value, bool) or not isinstance(value, (Real, str)):
-        raise InputError(
-            f"{field} = {value!r} must be a number or a quantity with units such as "
-            f"'{_example(unit)}'"
-        )
+        raise InputError(f"{field} = {value!r} must be a number or a quantity with units such as '{_example(unit)}'")
     ureg = get_registry()
     target = _unit(unit)
     bare = _unit(bare_unit if bare_unit is not None else unit)
@@ -164,8 +170,10 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
     else:
         text = value.strip()
         if ":" in text:
-            raise InputError(f"{field} = {value!r}: a range START:STOP:STEP is not taken here; give one value "
-                             f"such as '{_example(unit)}'")
+            raise InputError(
+                f"{field} = {value!r}: a range START:STOP:STEP is not taken here; give one value "
+                f"such as '{_example(unit)}'"
+            )
         if "," in text:
             raise InputError(
                 f"{field} = {value!r}: a comma is neither a decimal point nor a thousands separator here; "
@@ -196,8 +204,7 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
             raise InputError(f"{field} = {value!r} cannot be converted to {unit or 'a number'}: {exc}") from None
         want = "dimensionless" if not unit else f"a quantity convertible to {unit}"
         raise InputError(
-            f"{field} = {value!r} has the wrong dimension: expected {want} "
-            f"(for example '{_example(unit)}')"
+            f"{field} = {value!r} has the wrong dimension: expected {want} (for example '{_example(unit)}')"
         ) from None
     try:
         mag = float(mag)
@@ -210,8 +217,18 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
     return mag
 
 
-_ANGLE_NAMES = ("radian", "degree", "revolution", "turn", "cycle", "revolutions_per_minute", "arcminute", "arcsecond",
-                "cam_degree", "gradian")
+_ANGLE_NAMES = (
+    "radian",
+    "degree",
+    "revolution",
+    "turn",
+    "cycle",
+    "revolutions_per_minute",
+    "arcminute",
+    "arcsecond",
+    "cam_degree",
+    "gradian",
+)
 
 
 def _is_angular_speed(unit) -> bool:

@@ -131,14 +131,24 @@ class Calibration(Result):
         data = {}
         for k in self.coefficients:
             unit, tag = ("N/m", "N_per_m") if k[0] == "k" else ("N*s/m", "Ns_per_m")
-            data[f"{k}_identified"] = ("rpm", np.array([r[f"{k}_identified_{tag}"] for r in self.residuals]),
-                                       {"units": unit, "long_name": f"{k} identified from the records"})
-            data[f"{k}_model"] = ("rpm", np.array([r[f"{k}_model_{tag}"] for r in self.residuals]),
-                                  {"units": unit, "long_name": f"{k} of the calibrated model"})
-            data[f"{k}_relative"] = ("rpm", np.array([r[f"{k}_relative"] for r in self.residuals]),
-                                     {"units": "", "long_name": f"model / identified - 1 for {k}"})
-        return xr.Dataset(data, coords={"rpm": ("rpm", rpm, {"units": "rpm"})},
-                          attrs={k: float(v) for k, v in self.values.items()})
+            data[f"{k}_identified"] = (
+                "rpm",
+                np.array([r[f"{k}_identified_{tag}"] for r in self.residuals]),
+                {"units": unit, "long_name": f"{k} identified from the records"},
+            )
+            data[f"{k}_model"] = (
+                "rpm",
+                np.array([r[f"{k}_model_{tag}"] for r in self.residuals]),
+                {"units": unit, "long_name": f"{k} of the calibrated model"},
+            )
+            data[f"{k}_relative"] = (
+                "rpm",
+                np.array([r[f"{k}_relative"] for r in self.residuals]),
+                {"units": "", "long_name": f"model / identified - 1 for {k}"},
+            )
+        return xr.Dataset(
+            data, coords={"rpm": ("rpm", rpm, {"units": "rpm"})}, attrs={k: float(v) for k, v in self.values.items()}
+        )
 
     def _plot(self, ax=None):
         from ..core.plotting import new_figure
@@ -166,9 +176,11 @@ class Calibration(Result):
             comments[name] = f"calibrated by springdyn lsd calibrate{rng}"
         sources = sorted({src for it in self.identified.items for src in it.sources})
         shown = ", ".join(sources[:6]) + (", ..." if len(sources) > 6 else "")
-        header = (f"# Calibrated by springdyn lsd calibrate on {len(self.identified.items)} speed(s) "
-                  f"({shown}): {', '.join(self.values)} fitted; rms relative residual "
-                  f"{self.rms_relative_residual:.3g}. Comments below that predate the calibration may be stale.\n")
+        header = (
+            f"# Calibrated by springdyn lsd calibrate on {len(self.identified.items)} speed(s) "
+            f"({shown}): {', '.join(self.values)} fitted; rms relative residual "
+            f"{self.rms_relative_residual:.3g}. Comments below that predate the calibration may be stale.\n"
+        )
         return header + update_toml_text(text, {k: float(v) for k, v in self.values.items()}, comments)
 
 
@@ -235,8 +247,9 @@ def _predict(model, omega, ph):
     return _solve_full(P[0], P[1], 0.0, omega, ["model", "model"])
 
 
-def calibrate(params: LSDParameters, records, seconds=None, *, fit=DEFAULT_FIT, mass=None, rpms=None,
-              confidence: float = 0.95) -> Calibration:
+def calibrate(
+    params: LSDParameters, records, seconds=None, *, fit=DEFAULT_FIT, mass=None, rpms=None, confidence: float = 0.95
+) -> Calibration:
     """Fit damper parameters to rig records at several speeds (least squares, Student-t intervals).
 
     Parameters
@@ -286,16 +299,20 @@ def calibrate(params: LSDParameters, records, seconds=None, *, fit=DEFAULT_FIT, 
     if rpms is not None and len(rpms) != len(records):
         raise InputError(f"{len(records)} records but {len(rpms)} speeds; give one speed per record")
     mass = params.ring_mass if mass is None else float(mass)
-    items = [identify(r, None if seconds is None else seconds[k], mass=mass, rpm=None if rpms is None else rpms[k])
-             for k, r in enumerate(records)]
+    items = [
+        identify(r, None if seconds is None else seconds[k], mass=mass, rpm=None if rpms is None else rpms[k])
+        for k, r in enumerate(records)
+    ]
     items.sort(key=lambda it: it.rpm)
     series = IdentificationSeries(items, name="identified")
     speeds = _record_phasors(records, seconds, rpms)
 
     start = np.array([float(getattr(params, n)) for n in names])
     scale = np.where(start > 0, np.abs(start), 1.0)
-    lower = np.array([(np.finfo(float).tiny if m["positive"] else 0.0 if m["nonnegative"] else -np.inf)
-                      for m in metas]) / scale
+    lower = (
+        np.array([(np.finfo(float).tiny if m["positive"] else 0.0 if m["nonnegative"] else -np.inf) for m in metas])
+        / scale
+    )
     minimum = np.array([-np.inf if m["minimum"] is None else m["minimum"] for m in metas]) / scale
     lower = np.maximum(lower, minimum)
     upper = np.array([np.inf if m["maximum"] is None else m["maximum"] for m in metas]) / scale
@@ -344,8 +361,9 @@ def calibrate(params: LSDParameters, records, seconds=None, *, fit=DEFAULT_FIT, 
         return np.concatenate(r)
 
     x0 = np.clip(x0, lower, upper)
-    sol = least_squares(residual, x0, bounds=(lower, upper), x_scale=1.0, max_nfev=200 * (len(names) + 1),
-                        diff_step=1e-4)
+    sol = least_squares(
+        residual, x0, bounds=(lower, upper), x_scale=1.0, max_nfev=200 * (len(names) + 1), diff_step=1e-4
+    )
     if not sol.success:
         raise SolverError(f"calibrate: the least-squares fit of {', '.join(names)} did not converge ({sol.message})")
     r = sol.fun
@@ -356,11 +374,15 @@ def calibrate(params: LSDParameters, records, seconds=None, *, fit=DEFAULT_FIT, 
     intervals = {nm: None for nm in names}
     J = sol.jac
     if dof <= 0:
-        notes.append(f"{m} residuals for {n} parameters: no degrees of freedom left for confidence intervals "
-                     "(record more speeds or a second excitation)")
+        notes.append(
+            f"{m} residuals for {n} parameters: no degrees of freedom left for confidence intervals "
+            "(record more speeds or a second excitation)"
+        )
     elif np.linalg.matrix_rank(J) < n:
-        notes.append("the fitted parameters are not separately identifiable from these records (singular Jacobian): "
-                     "no confidence intervals; fit fewer parameters")
+        notes.append(
+            "the fitted parameters are not separately identifiable from these records (singular Jacobian): "
+            "no confidence intervals; fit fewer parameters"
+        )
     else:
         s2 = float(r @ r) / dof
         cov = s2 * np.linalg.inv(J.T @ J)
@@ -380,6 +402,15 @@ def calibrate(params: LSDParameters, records, seconds=None, *, fit=DEFAULT_FIT, 
             row[f"{k}_model_{unit}"] = mdl
             row[f"{k}_relative"] = mdl / float(target[k][idx]) - 1.0
         residuals.append(row)
-    return Calibration(values=values, intervals=intervals, confidence=float(confidence), params=calibrated,
-                       identified=series, residuals=residuals, coefficients=keys, dof=int(dof),
-                       rms_relative_residual=float(np.sqrt(np.mean(r * r))), notes=notes)
+    return Calibration(
+        values=values,
+        intervals=intervals,
+        confidence=float(confidence),
+        params=calibrated,
+        identified=series,
+        residuals=residuals,
+        coefficients=keys,
+        dof=int(dof),
+        rms_relative_residual=float(np.sqrt(np.mean(r * r))),
+        notes=notes,
+    )

@@ -63,10 +63,11 @@ def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES) -> dict:
     vx, vy = np.real(1j * omega * X * e), np.real(1j * omega * Y * e)
     p = model.params
     fx, fy, loads = rig.pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
-    forces = {"spring": (fx, fy),
-              "leaf_friction": rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction,
-                                                             model.slip_factor, vx, vy),
-              "oring_friction": rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy)}
+    forces = {
+        "spring": (fx, fy),
+        "leaf_friction": rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy),
+        "oring_friction": rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy),
+    }
     Cv = model.viscous_damping
     forces["oil"] = (Cv[0, 0] * vx + Cv[0, 1] * vy, Cv[1, 0] * vx + Cv[1, 1] * vy)
     conj = np.conj(e) * (2.0 / n)

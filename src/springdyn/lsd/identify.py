@@ -55,7 +55,6 @@ CROSS_COUPLING_CAVEAT = (
 )
 
 
-
 class RigData(RigRecord):
     """A measured rig record: time [s], displacements [m], reaction forces [N].
 
@@ -65,15 +64,27 @@ class RigData(RigRecord):
     """
 
     def __init__(self, time, x, y, fx, fy, source: str = "<data>", row_offset: int = 2):
-        super().__init__(name=source, excitation="measured", rpm=float("nan"), time=time, x=x, y=y, fx=fx,
-                         fy=fy, source=source, row_offset=row_offset)
+        super().__init__(
+            name=source,
+            excitation="measured",
+            rpm=float("nan"),
+            time=time,
+            x=x,
+            y=y,
+            fx=fx,
+            fy=fy,
+            source=source,
+            row_offset=row_offset,
+        )
 
 
 def _read_tdms(path: Path) -> dict:
     try:
         from nptdms import TdmsFile
     except ImportError:
-        raise InputError(f"{path}: reading TDMS needs the optional package nptdms (pip install 'springdyn[tdms]')") from None
+        raise InputError(
+            f"{path}: reading TDMS needs the optional package nptdms (pip install 'springdyn[tdms]')"
+        ) from None
     try:
         tdms = TdmsFile.read(path)
     except Exception as exc:  # nptdms raises several types on bad files
@@ -109,8 +120,7 @@ def read_rig_data(path) -> RigData:
     missing = [c for c in RIG_COLUMNS if c not in cols]
     if missing:
         raise InputError(
-            f"{path}: missing column {missing[0]!r} (found: {', '.join(cols) or 'none'}; "
-            f"need {', '.join(RIG_COLUMNS)})"
+            f"{path}: missing column {missing[0]!r} (found: {', '.join(cols) or 'none'}; need {', '.join(RIG_COLUMNS)})"
         )
     return RigData(*(cols[c] for c in RIG_COLUMNS), source=str(path), row_offset=offset)
 
@@ -178,8 +188,7 @@ def estimate_frequency(time, signal, source="<data>", column="x_m") -> float:
         return float(np.sum((s - a * np.cos(2 * np.pi * f * t) - b * np.sin(2 * np.pi * f * t)) ** 2))
 
     df = freqs[1] - freqs[0]
-    res = minimize_scalar(residual, bounds=(f0 - 2 * df, f0 + 2 * df), method="bounded",
-                          options={"xatol": 1e-10 * f0})
+    res = minimize_scalar(residual, bounds=(f0 - 2 * df, f0 + 2 * df), method="bounded", options={"xatol": 1e-10 * f0})
     f = float(res.x)
     explained = 1.0 - residual(f) / float(np.sum(s * s))
     if explained < 0.5:
@@ -330,7 +339,9 @@ def _solve_single(P, mass, omega):
     return K, C, mode
 
 
-def identify(data: RigData, second: RigData | None = None, *, mass: float = 0.0, rpm: float | None = None) -> Identification:
+def identify(
+    data: RigData, second: RigData | None = None, *, mass: float = 0.0, rpm: float | None = None
+) -> Identification:
     """Identify K and C from one or two rig records at one speed.
 
     Parameters
@@ -368,8 +379,10 @@ def identify(data: RigData, second: RigData | None = None, *, mass: float = 0.0,
         p = _phasors(r, w[1][0], w[1][1], omega)
         scale = max(float(np.max(np.abs(np.column_stack([r.x, r.y])))), np.finfo(float).tiny)
         if not np.max(np.abs(p[:2])) > 1e-9 * scale or not np.max(np.abs(p[:2])) > 0:
-            raise InputError(f"{r.source}: the displacements have no component at {freq:.4g} Hz: there is "
-                             "nothing to identify (is the record all zeros, or the speed wrong?)")
+            raise InputError(
+                f"{r.source}: the displacements have no component at {freq:.4g} Hz: there is "
+                "nothing to identify (is the record all zeros, or the speed wrong?)"
+            )
 
     def solve(slices):
         P = [_phasors(r, a, b, omega) for r, (a, b) in zip(records, slices)]
@@ -388,8 +401,16 @@ def identify(data: RigData, second: RigData | None = None, *, mass: float = 0.0,
         K_unc = np.full((2, 2), np.nan)
         C_unc = np.full((2, 2), np.nan)
     return Identification(
-        rpm=60.0 * freq, frequency=freq, K=K, C=C, K_uncertainty=K_unc, C_uncertainty=C_unc,
-        mass=float(mass), cycles=n, mode=mode, sources=[r.source for r in records],
+        rpm=60.0 * freq,
+        frequency=freq,
+        K=K,
+        C=C,
+        K_uncertainty=K_unc,
+        C_uncertainty=C_unc,
+        mass=float(mass),
+        cycles=n,
+        mode=mode,
+        sources=[r.source for r in records],
         caveat=CROSS_COUPLING_CAVEAT if mode == "orbit" else "",
     )
 
@@ -459,15 +480,23 @@ class Identification:
         period) is ``None``, and ``notes`` says why; entries the excitation cannot separate
         are left out.
         """
-        d = {"rpm": self.rpm, "frequency_Hz": self.frequency, "mode": self.mode, "cycles": self.cycles,
-             "mass_kg": self.mass, "sources": list(self.sources)}
+        d = {
+            "rpm": self.rpm,
+            "frequency_Hz": self.frequency,
+            "mode": self.mode,
+            "cycles": self.cycles,
+            "mass_kg": self.mass,
+            "sources": list(self.sources),
+        }
         t = self.interval_factor()
         if np.isfinite(t):
             d["interval_factor"] = t
         notes = []
         idx = [(0, 0), (0, 1), (1, 0), (1, 1)]
-        for names, value, unc, unit in ((COEFFICIENT_NAMES[:4], self.K, self.K_uncertainty, "N_per_m"),
-                                        (COEFFICIENT_NAMES[4:], self.C, self.C_uncertainty, "Ns_per_m")):
+        for names, value, unc, unit in (
+            (COEFFICIENT_NAMES[:4], self.K, self.K_uncertainty, "N_per_m"),
+            (COEFFICIENT_NAMES[4:], self.C, self.C_uncertainty, "Ns_per_m"),
+        ):
             for name, (i, j) in zip(names, idx):
                 if np.isfinite(value[i, j]):
                     d[f"{name}_{unit}"] = float(value[i, j])
@@ -476,11 +505,15 @@ class Identification:
                     v = float(value[i, j])
                     d[f"{name}_{unit}_ci"] = [v - t * u, v + t * u] if np.isfinite(u * t) else None
                     if not np.isfinite(u) and not notes:
-                        notes.append("uncertainties need at least 2 periods of the record (they come from the "
-                                     "scatter between periods)")
+                        notes.append(
+                            "uncertainties need at least 2 periods of the record (they come from the "
+                            "scatter between periods)"
+                        )
         if any(not np.isfinite(v) for v in np.concatenate([self.K.ravel(), self.C.ravel()])):
-            notes.append("one excitation cannot separate the direct and cross-coupled terms: the entries it "
-                         "cannot give are left out (record a second, independent excitation)")
+            notes.append(
+                "one excitation cannot separate the direct and cross-coupled terms: the entries it "
+                "cannot give are left out (record a second, independent excitation)"
+            )
         if self.caveat:
             d["caveat"] = self.caveat
         if notes:
@@ -506,11 +539,15 @@ class IdentificationSeries(Result):
         return f"{self.name}, {len(self.items)} speeds"
 
     def _summary(self) -> dict:
-        s = dict(name=self.name, speeds=len(self.items), rpm_min=float(self.rpm.min()),
-                 rpm_max=float(self.rpm.max()), modes=", ".join(sorted({it.mode for it in self.items})))
+        s = dict(
+            name=self.name,
+            speeds=len(self.items),
+            rpm_min=float(self.rpm.min()),
+            rpm_max=float(self.rpm.max()),
+            modes=", ".join(sorted({it.mode for it in self.items})),
+        )
         cols = self.columns()
-        known = [k for k, v in cols.items() if k != "rpm" and not k.endswith("_uncertainty")
-                 and np.all(np.isfinite(v))]
+        known = [k for k, v in cols.items() if k != "rpm" and not k.endswith("_uncertainty") and np.all(np.isfinite(v))]
         s["known_coefficients"] = ", ".join(known)
         notes = [d for it in self.items for d in it.to_dict().get("notes", [])]
         if notes:
@@ -538,8 +575,9 @@ class IdentificationSeries(Result):
 
         cols = {k: v for k, v in self.columns().items() if np.all(np.isfinite(v))}
         rpm = cols.pop("rpm")
-        return xr.Dataset({k: ("rpm", v, {"units": ""}) for k, v in cols.items()},
-                          coords={"rpm": ("rpm", rpm, {"units": "rpm"})})
+        return xr.Dataset(
+            {k: ("rpm", v, {"units": ""}) for k, v in cols.items()}, coords={"rpm": ("rpm", rpm, {"units": "rpm"})}
+        )
 
     def to_xarray(self):
         import xarray as xr
@@ -548,9 +586,12 @@ class IdentificationSeries(Result):
         C = np.array([it.C for it in self.items])
         dims = ("rpm", "row", "col")
         return xr.Dataset(
-            {"K": (dims, K, {"units": "N/m"}), "C": (dims, C, {"units": "N*s/m"}),
-             "K_uncertainty": (dims, np.array([it.K_uncertainty for it in self.items]), {"units": "N/m"}),
-             "C_uncertainty": (dims, np.array([it.C_uncertainty for it in self.items]), {"units": "N*s/m"})},
+            {
+                "K": (dims, K, {"units": "N/m"}),
+                "C": (dims, C, {"units": "N*s/m"}),
+                "K_uncertainty": (dims, np.array([it.K_uncertainty for it in self.items]), {"units": "N/m"}),
+                "C_uncertainty": (dims, np.array([it.C_uncertainty for it in self.items]), {"units": "N*s/m"}),
+            },
             coords={"rpm": ("rpm", self.rpm, {"units": "rpm"}), "row": ["x", "y"], "col": ["x", "y"]},
             attrs={"name": self.name},
         )
@@ -565,7 +606,9 @@ class IdentificationSeries(Result):
             ku = np.nan_to_num(np.array([it.intervals()[0][i, j] for it in self.items]))
             c = np.array([it.C[i, j] for it in self.items])
             cu = np.nan_to_num(np.array([it.intervals()[1][i, j] for it in self.items]))
-            ax_k.errorbar(self.rpm, k / 1e3, yerr=ku / 1e3, fmt=markers[key], ms=5, capsize=2, label=f"K{key} {self.name}")
+            ax_k.errorbar(
+                self.rpm, k / 1e3, yerr=ku / 1e3, fmt=markers[key], ms=5, capsize=2, label=f"K{key} {self.name}"
+            )
             ax_c.errorbar(self.rpm, c, yerr=cu, fmt=markers[key], ms=5, capsize=2, label=f"C{key} {self.name}")
 
     def _plot(self, ax=None, model=None):

@@ -79,8 +79,7 @@ class JeffcottRotor:
             Forward-whirl coefficient of one damper, ``K + j omega C`` [N/m].
         """
         k, M, mb = self.shaft_stiffness, self.disk_mass, self.bearing_mass
-        A = np.array([[k - M * omega**2 + 1j * omega * self.disk_damping, -k],
-                      [-k, k - 2.0 * mb * omega**2 + 2.0 * H]])
+        A = np.array([[k - M * omega**2 + 1j * omega * self.disk_damping, -k], [-k, k - 2.0 * mb * omega**2 + 2.0 * H]])
         D, B = np.linalg.solve(A, np.array([self.unbalance * omega**2, 0.0]))
         return D, B
 
@@ -114,13 +113,18 @@ class UnbalanceResponse(Result):
 
     def to_dict(self) -> dict:
         """JSON-ready columns (SI, unit in the name) and the notes."""
+
         def clean(a):
             return [float(v) if np.isfinite(v) else None for v in a]
 
-        return {"rpm": self.rpm.tolist(), "disk_amplitude_m": self.disk_amplitude.tolist(),
-                "bearing_amplitude_m": self.bearing_amplitude.tolist(),
-                "damper_stiffness_N_per_m": clean(self.stiffness), "damper_damping_Ns_per_m": clean(self.damping),
-                "notes": list(self.notes)}
+        return {
+            "rpm": self.rpm.tolist(),
+            "disk_amplitude_m": self.disk_amplitude.tolist(),
+            "bearing_amplitude_m": self.bearing_amplitude.tolist(),
+            "damper_stiffness_N_per_m": clean(self.stiffness),
+            "damper_damping_Ns_per_m": clean(self.damping),
+            "notes": list(self.notes),
+        }
 
     @property
     def peak(self) -> tuple:
@@ -137,21 +141,35 @@ class UnbalanceResponse(Result):
     def _summary(self) -> dict:
         rpm, amp = self.peak
         locked = ~np.isfinite(self.stiffness)
-        return dict(peak_rpm=rpm, peak_disk_amplitude_m=amp,
-                    peak_bearing_amplitude_m=float(self.bearing_amplitude[int(np.argmax(self.disk_amplitude))]),
-                    speeds=int(self.rpm.size), speeds_locked=int(locked.sum()), notes=list(self.notes))
+        return dict(
+            peak_rpm=rpm,
+            peak_disk_amplitude_m=amp,
+            peak_bearing_amplitude_m=float(self.bearing_amplitude[int(np.argmax(self.disk_amplitude))]),
+            speeds=int(self.rpm.size),
+            speeds_locked=int(locked.sum()),
+            notes=list(self.notes),
+        )
 
     def to_xarray(self):
         """Amplitudes and the damper's equivalent coefficients per speed (NaN where it is locked)."""
         import xarray as xr
 
         return xr.Dataset(
-            {"disk_amplitude": ("rpm", self.disk_amplitude, {"units": "m", "long_name": "disk orbit radius"}),
-             "bearing_amplitude": ("rpm", self.bearing_amplitude, {"units": "m", "long_name": "damper orbit radius"}),
-             "damper_stiffness": ("rpm", self.stiffness, {"units": "N/m", "long_name": "equivalent stiffness"}),
-             "damper_damping": ("rpm", self.damping, {"units": "N*s/m", "long_name": "equivalent damping"}),
-             "locked": ("rpm", (~np.isfinite(self.stiffness)).astype(int),
-                        {"units": "", "long_name": "1 where friction holds the ring"})},
+            {
+                "disk_amplitude": ("rpm", self.disk_amplitude, {"units": "m", "long_name": "disk orbit radius"}),
+                "bearing_amplitude": (
+                    "rpm",
+                    self.bearing_amplitude,
+                    {"units": "m", "long_name": "damper orbit radius"},
+                ),
+                "damper_stiffness": ("rpm", self.stiffness, {"units": "N/m", "long_name": "equivalent stiffness"}),
+                "damper_damping": ("rpm", self.damping, {"units": "N*s/m", "long_name": "equivalent damping"}),
+                "locked": (
+                    "rpm",
+                    (~np.isfinite(self.stiffness)).astype(int),
+                    {"units": "", "long_name": "1 where friction holds the ring"},
+                ),
+            },
             coords={"rpm": ("rpm", np.asarray(self.rpm, dtype=float), {"units": "rpm"})},
         )
 
@@ -201,8 +219,10 @@ def _consistent(rotor, model, omega, samples, lo=1e-9, hi=1e-2, grid=40):
     if not roots:
         if gs[0] < 0:  # friction holds the ring: |B| < A down to 1 nm
             return [], count[0]
-        raise SolverError(f"unbalance_response: no consistent damper amplitude between {lo:g} m and {hi:g} m at "
-                          f"omega = {omega:.6g} rad/s")
+        raise SolverError(
+            f"unbalance_response: no consistent damper amplitude between {lo:g} m and {hi:g} m at "
+            f"omega = {omega:.6g} rad/s"
+        )
     return [float(np.exp(r)) for r in roots], count[0]
 
 
@@ -236,8 +256,10 @@ def unbalance_response(model: LSDModel, rotor: JeffcottRotor, rpm, *, samples: i
         w = float(rpm_to_omega(r))
         amps, n = _consistent(rotor, model, w, samples)
         if not amps:
-            notes.append(f"{r:g} rpm: the friction holds the damper ring (no amplitude above 1 nm is consistent): "
-                         "the supports act rigid; damper coefficients are not defined there")
+            notes.append(
+                f"{r:g} rpm: the friction holds the damper ring (no amplitude above 1 nm is consistent): "
+                "the supports act rigid; damper coefficients are not defined there"
+            )
             D, _ = rotor.response(w, 1e30)
             out["disk"].append(abs(D))
             out["bearing"].append(0.0)
@@ -246,8 +268,10 @@ def unbalance_response(model: LSDModel, rotor: JeffcottRotor, rpm, *, samples: i
             out["n"].append(n)
             continue
         if len(amps) > 1:
-            notes.append(f"{r:g} rpm: {len(amps)} consistent damper amplitudes "
-                         f"({', '.join(f'{a * 1e6:.3g} um' for a in amps)}); the smallest is reported")
+            notes.append(
+                f"{r:g} rpm: {len(amps)} consistent damper amplitudes "
+                f"({', '.join(f'{a * 1e6:.3g} um' for a in amps)}); the smallest is reported"
+            )
         a = amps[0]
         H = forward_whirl_coefficient(model, w, a, samples)
         D, B = rotor.response(w, H)
@@ -256,13 +280,26 @@ def unbalance_response(model: LSDModel, rotor: JeffcottRotor, rpm, *, samples: i
         out["K"].append(H.real)
         out["C"].append(H.imag / w)
         out["n"].append(n)
-    return UnbalanceResponse(rpm=rpm, disk_amplitude=np.array(out["disk"]), bearing_amplitude=np.array(out["bearing"]),
-                             stiffness=np.array(out["K"]), damping=np.array(out["C"]), iterations=np.array(out["n"]),
-                             notes=notes)
+    return UnbalanceResponse(
+        rpm=rpm,
+        disk_amplitude=np.array(out["disk"]),
+        bearing_amplitude=np.array(out["bearing"]),
+        stiffness=np.array(out["K"]),
+        damping=np.array(out["C"]),
+        iterations=np.array(out["n"]),
+        notes=notes,
+    )
 
 
-def simulate_time_response(model: LSDModel, rotor: JeffcottRotor, rpm: float, *, revolutions: float = 30.0,
-                           initial=None, steps_per_revolution: int = 2000):
+def simulate_time_response(
+    model: LSDModel,
+    rotor: JeffcottRotor,
+    rpm: float,
+    *,
+    revolutions: float = 30.0,
+    initial=None,
+    steps_per_revolution: int = 2000,
+):
     """Time-domain unbalance response of the rotor with the nonlinear damper forces.
 
     The damper force on each bearing is the rig's force law (:mod:`springdyn.lsd.rig`: pack
@@ -333,11 +370,16 @@ def simulate_time_response(model: LSDModel, rotor: JeffcottRotor, rpm: float, *,
     def rhs(t, st):
         xd, yd, xb, yb, vxd, vyd, vxb, vyb = st
         fx, fy = damper(xb, yb, vxb, vyb)
-        return (vxd, vyd, vxb, vyb,
-                (uw2 * math.cos(w * t) - cd * vxd - k * (xd - xb)) / M,
-                (uw2 * math.sin(w * t) - cd * vyd - k * (yd - yb)) / M,
-                (-k * (xb - xd) - 2.0 * fx) / (2.0 * mb),
-                (-k * (yb - yd) - 2.0 * fy) / (2.0 * mb))
+        return (
+            vxd,
+            vyd,
+            vxb,
+            vyb,
+            (uw2 * math.cos(w * t) - cd * vxd - k * (xd - xb)) / M,
+            (uw2 * math.sin(w * t) - cd * vyd - k * (yd - yb)) / M,
+            (-k * (xb - xd) - 2.0 * fx) / (2.0 * mb),
+            (-k * (yb - yd) - 2.0 * fy) / (2.0 * mb),
+        )
 
     n = int(round(revolutions * steps_per_revolution))
     h = 2.0 * math.pi / w / steps_per_revolution
@@ -356,6 +398,8 @@ def simulate_time_response(model: LSDModel, rotor: JeffcottRotor, rpm: float, *,
         t += h
         out[:, i + 1] = st
     if not np.all(np.isfinite(out[:, -1])):
-        raise SolverError(f"simulate_time_response at {rpm:g} rpm: the state diverged (step {h:.3g} s too large "
-                          "for the damper's oil time constant: raise steps_per_revolution)")
+        raise SolverError(
+            f"simulate_time_response at {rpm:g} rpm: the state diverged (step {h:.3g} s too large "
+            "for the damper's oil time constant: raise steps_per_revolution)"
+        )
     return np.arange(n + 1) * h, out

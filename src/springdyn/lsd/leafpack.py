@@ -34,8 +34,7 @@ def _leaves(lengths, flexural_rigidities):
         raise InputError("leaf_lengths is empty; a pack needs at least one leaf")
     if EI.shape != L.shape:
         raise InputError(
-            f"leaf_lengths has {L.size} entries but there are {EI.size} flexural rigidities; "
-            "give one per leaf"
+            f"leaf_lengths has {L.size} entries but there are {EI.size} flexural rigidities; give one per leaf"
         )
     if np.any(~np.isfinite(L)) or np.any(L <= 0):
         raise InputError(f"leaf_lengths = {L.tolist()} m must all be positive")

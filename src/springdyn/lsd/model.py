@@ -78,7 +78,9 @@ class LSDModel:
     def slip_factor(self) -> float:
         """Bracket ``S`` of Eq. (2.28) [-]."""
         p = self.params
-        return damping.interleaf_slip_factor(self.load_ratios, self.deflection_ratios, p.leaf_thicknesses, p.leaf_lengths)
+        return damping.interleaf_slip_factor(
+            self.load_ratios, self.deflection_ratios, p.leaf_thicknesses, p.leaf_lengths
+        )
 
     # ---------------------------------------------------------------- layout
     @cached_property
@@ -106,8 +108,13 @@ class LSDModel:
         """``C_D`` between neighbouring chambers [m^3/(s Pa)]."""
         p = self.params
         return damping.boundary_conductance(
-            p.passage_width, p.passage_clearance, p.passage_length, p.oil_viscosity,
-            passages=p.passages_per_boundary, model=p.conductance_model, leakage_factor=p.leakage_factor,
+            p.passage_width,
+            p.passage_clearance,
+            p.passage_length,
+            p.oil_viscosity,
+            passages=p.passages_per_boundary,
+            model=p.conductance_model,
+            leakage_factor=p.leakage_factor,
         )
 
     @cached_property
@@ -119,8 +126,9 @@ class LSDModel:
     def loss_factor(self, amplitude: float, normal_load: str | None = None) -> float:
         """Inter-leaf loss factor ``zeta`` at vibration amplitude ``amplitude`` [m], Eq. (2.28)."""
         p = self.params
-        return damping.leaf_loss_factor(p.leaf_friction, p.preload, amplitude, self.slip_factor,
-                                        normal_load or p.leaf_normal_load)
+        return damping.leaf_loss_factor(
+            p.leaf_friction, p.preload, amplitude, self.slip_factor, normal_load or p.leaf_normal_load
+        )
 
     def damping_matrix(self, omega, amplitude: float, motion: str = "linear", parts: bool = False):
         """Total damping ``C = C_f I + C_h + C_visc`` [N s/m], shape ``omega.shape + (2, 2)``.
@@ -149,8 +157,9 @@ class LSDModel:
             return total, {"oring": c_f, "hysteresis": c_h, "viscous": np.array(c_v)}
         return total
 
-    def coefficients(self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *,
-                     omega=None) -> LSDCoefficients:
+    def coefficients(
+        self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *, omega=None
+    ) -> LSDCoefficients:
         """K and C at the shaft speeds ``rpm`` [rev/min] (or vibration frequencies ``omega`` [rad/s]).
 
         On the thesis' rig the ring vibrates once per shaft revolution, so the vibration
@@ -173,19 +182,29 @@ class LSDModel:
         if not (np.isfinite(amplitude) and amplitude > 0):
             raise InputError(f"amplitude = {amplitude!r} m must be positive")
         if amplitude > 0.01:
-            warnings.warn(f"amplitude = {amplitude:g} m is far larger than any damper vibration (1 um to 1 mm): "
-                          f"did you mean {amplitude:g} um?", stacklevel=2)
+            warnings.warn(
+                f"amplitude = {amplitude:g} m is far larger than any damper vibration (1 um to 1 mm): "
+                f"did you mean {amplitude:g} um?",
+                stacklevel=2,
+            )
         unloads = stiffness.warn_if_unloading(amplitude, self.params.preload)
         C, parts = self.damping_matrix(w, amplitude, motion, parts=True)
         K = np.broadcast_to(self.stiffness_matrix, C.shape).copy()
         return LSDCoefficients(
-            name=self.params.name, rpm=rpm, amplitude=float(amplitude), K=K, C=C, parts=parts,
-            pack_stiffness=self.pack_stiffness, load_ratios=self.load_ratios.copy(),
+            name=self.params.name,
+            rpm=rpm,
+            amplitude=float(amplitude),
+            K=K,
+            C=C,
+            parts=parts,
+            pack_stiffness=self.pack_stiffness,
+            load_ratios=self.load_ratios.copy(),
             preload_exceeded=unloads,
         )
 
-    def equivalent_coefficients(self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *,
-                                omega=None, samples: int = 2048) -> LSDCoefficients:
+    def equivalent_coefficients(
+        self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *, omega=None, samples: int = 2048
+    ) -> LSDCoefficients:
         """K and C of the nonlinear force laws at this amplitude (describing function).
 
         Unlike :meth:`coefficients` (the closed forms of Chapters 2-3), every mechanism is
@@ -214,17 +233,37 @@ class LSDModel:
         mats = [equivalent_matrices(self, wi, amplitude, motion, samples) for wi in w]
         K = np.array([sum(m[k][0] for k in m) for m in mats])
         C = np.array([sum(m[k][1] for k in m) for m in mats])
-        parts = {"oring": np.array([m["oring_friction"][1] for m in mats]),
-                 "hysteresis": np.array([m["leaf_friction"][1] for m in mats]),
-                 "viscous": np.array([m["oil"][1] for m in mats])}
+        parts = {
+            "oring": np.array([m["oring_friction"][1] for m in mats]),
+            "hysteresis": np.array([m["leaf_friction"][1] for m in mats]),
+            "viscous": np.array([m["oil"][1] for m in mats]),
+        }
         return LSDCoefficients(
-            name=self.params.name, rpm=omega_to_rpm(w), amplitude=float(amplitude), K=K, C=C, parts=parts,
-            pack_stiffness=self.pack_stiffness, load_ratios=self.load_ratios.copy(),
-            preload_exceeded=bool(amplitude > self.params.preload), method="describing function",
+            name=self.params.name,
+            rpm=omega_to_rpm(w),
+            amplitude=float(amplitude),
+            K=K,
+            C=C,
+            parts=parts,
+            pack_stiffness=self.pack_stiffness,
+            load_ratios=self.load_ratios.copy(),
+            preload_exceeded=bool(amplitude > self.params.preload),
+            method="describing function",
         )
 
-    def to_ross(self, n: int, frequencies=None, amplitude: float = 50e-6, motion: str = "linear", *,
-                rpm_range=(0.0, 20000.0), points: int = 40, outside: str = "raise", omega=None, **kwargs):
+    def to_ross(
+        self,
+        n: int,
+        frequencies=None,
+        amplitude: float = 50e-6,
+        motion: str = "linear",
+        *,
+        rpm_range=(0.0, 20000.0),
+        points: int = 40,
+        outside: str = "raise",
+        omega=None,
+        **kwargs,
+    ):
         """A ``ross.BearingElement`` with the eight coefficients tabulated over ``rpm_range``.
 
         The table is dense (``points`` >= 30, log-spaced) and the element **never
@@ -262,8 +301,18 @@ class LSDModel:
         """
         from .rotordynamics import bearing_element
 
-        return bearing_element(self, n, frequencies, amplitude=amplitude, motion=motion, rpm_range=rpm_range,
-                               points=points, outside=outside, omega=omega, **kwargs)
+        return bearing_element(
+            self,
+            n,
+            frequencies,
+            amplitude=amplitude,
+            motion=motion,
+            rpm_range=rpm_range,
+            points=points,
+            outside=outside,
+            omega=omega,
+            **kwargs,
+        )
 
 
 def _names(prefix_k: bool, unit: str) -> str:
@@ -303,12 +352,20 @@ class LSDCoefficients(Result):
         return f"{self.name}, {self.rpm.size} speeds, {self.amplitude * 1e6:.3g} um amplitude"
 
     def _summary(self) -> dict:
-        s = dict(name=self.name, speeds=int(self.rpm.size), rpm_min=float(self.rpm.min()),
-                 rpm_max=float(self.rpm.max()), amplitude_m=float(self.amplitude),
-                 pack_stiffness_N_per_m=float(self.pack_stiffness),
-                 kxx_min_N_per_m=float(self.K[:, 0, 0].min()), kxx_max_N_per_m=float(self.K[:, 0, 0].max()),
-                 cxx_min_N_s_per_m=float(self.C[:, 0, 0].min()), cxx_max_N_s_per_m=float(self.C[:, 0, 0].max()),
-                 preload_exceeded=bool(self.preload_exceeded), model=self.method)
+        s = dict(
+            name=self.name,
+            speeds=int(self.rpm.size),
+            rpm_min=float(self.rpm.min()),
+            rpm_max=float(self.rpm.max()),
+            amplitude_m=float(self.amplitude),
+            pack_stiffness_N_per_m=float(self.pack_stiffness),
+            kxx_min_N_per_m=float(self.K[:, 0, 0].min()),
+            kxx_max_N_per_m=float(self.K[:, 0, 0].max()),
+            cxx_min_N_s_per_m=float(self.C[:, 0, 0].min()),
+            cxx_max_N_s_per_m=float(self.C[:, 0, 0].max()),
+            preload_exceeded=bool(self.preload_exceeded),
+            model=self.method,
+        )
         return s
 
     @property
@@ -342,8 +399,10 @@ class LSDCoefficients(Result):
             {
                 "K": (("rpm", "row", "col"), self.K, {"units": "N/m", "csv_columns": _names(True, "N_per_m")}),
                 "C": (("rpm", "row", "col"), self.C, {"units": "N*s/m", "csv_columns": _names(False, "Ns_per_m")}),
-                **{f"C_{k}": (("rpm", "row", "col"), np.asarray(v), {"units": "N*s/m", "csv": "no"})
-                   for k, v in self.parts.items()},
+                **{
+                    f"C_{k}": (("rpm", "row", "col"), np.asarray(v), {"units": "N*s/m", "csv": "no"})
+                    for k, v in self.parts.items()
+                },
             },
             coords=coords,
             attrs={"name": self.name, "amplitude_m": self.amplitude, "pack_stiffness_N_per_m": self.pack_stiffness},
@@ -380,7 +439,9 @@ class LSDCoefficients(Result):
             ax.legend(fontsize=8)
             return ax.figure
         return coefficients_figure(
-            f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude", draw, None,
+            f"{self.name}: coefficients at {self.amplitude * 1e6:.3g} um amplitude",
+            draw,
+            None,
             damping_linthresh=max(1.0, float(np.max(np.abs(self.C))) * 1e-3),
         )
 

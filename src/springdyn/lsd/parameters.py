@@ -32,8 +32,12 @@ class LSDParameters(Parameters):
     """
 
     packs: int = param("", "number of leaf spring packs", symbol="N", kind="int", minimum=2, maximum=MAX_PACKS)
-    leaf_lengths: list = param("m", "leaf lengths, longest first", symbol="L_i", kind="quantity_list", display="mm", positive=True)
-    leaf_thicknesses: list = param("m", "leaf thicknesses", symbol="t_i", kind="quantity_list", display="mm", positive=True)
+    leaf_lengths: list = param(
+        "m", "leaf lengths, longest first", symbol="L_i", kind="quantity_list", display="mm", positive=True
+    )
+    leaf_thicknesses: list = param(
+        "m", "leaf thicknesses", symbol="t_i", kind="quantity_list", display="mm", positive=True
+    )
     leaf_width: float = param("m", "leaf width", symbol="b_1", display="mm", positive=True)
     youngs_modulus: float = param("Pa", "Young's modulus of the leaves", symbol="E", display="GPa", positive=True)
     poisson_ratio: float = param("", "Poisson's ratio of the leaves", symbol="nu", nonnegative=True)
@@ -43,20 +47,48 @@ class LSDParameters(Parameters):
     passage_width: float = param("m", "oil passage width", symbol="b_o", display="mm", positive=True)
     passage_clearance: float = param("m", "oil passage clearance", symbol="h_o", display="mm", positive=True)
     passage_length: float = param("m", "oil passage length", symbol="L_h", display="mm", positive=True)
-    oil_viscosity: float = param("Pa*s", "dynamic oil viscosity (TOML may give kinematic, e.g. '100 cSt')", symbol="eta", display="Pa*s", positive=True)
+    oil_viscosity: float = param(
+        "Pa*s",
+        "dynamic oil viscosity (TOML may give kinematic, e.g. '100 cSt')",
+        symbol="eta",
+        display="Pa*s",
+        positive=True,
+    )
     oil_density: float = param("kg/m^3", "oil density", symbol="rho", positive=True)
-    first_pack_angle: float = param("rad", "angle of the first pack from the x axis", symbol="phi_1", display="deg", default=0.0)
-    pack_angles: list = param("rad", "explicit pack angles (empty: equally spaced)", kind="quantity_list", display="deg", default=[])
-    leaf_bending: str = param(None, "leaf rigidity in (2.8): 'plate' E/(1-nu^2) as printed, or 'beam' E (free anticlastic bending)",
-                              kind="str", choices=("plate", "beam"), default="plate")
-    clamp_overhang: float = param("m", "clamp overhang a of Fig. 2.3", symbol="a", display="mm", default=0.0, nonnegative=True)
+    first_pack_angle: float = param(
+        "rad", "angle of the first pack from the x axis", symbol="phi_1", display="deg", default=0.0
+    )
+    pack_angles: list = param(
+        "rad", "explicit pack angles (empty: equally spaced)", kind="quantity_list", display="deg", default=[]
+    )
+    leaf_bending: str = param(
+        None,
+        "leaf rigidity in (2.8): 'plate' E/(1-nu^2) as printed, or 'beam' E (free anticlastic bending)",
+        kind="str",
+        choices=("plate", "beam"),
+        default="plate",
+    )
+    clamp_overhang: float = param(
+        "m", "clamp overhang a of Fig. 2.3", symbol="a", display="mm", default=0.0, nonnegative=True
+    )
     ring_mass: float = param("kg", "mass of the inner ring", symbol="m", default=0.0, nonnegative=True)
-    passages_per_boundary: int = param("", "oil passages between two neighbouring chambers", kind="int", default=2,
-                                       minimum=1, maximum=100)
-    conductance_model: str = param(None, "passage conductance", kind="str", choices=("exact", "thesis"), default="exact")
+    passages_per_boundary: int = param(
+        "", "oil passages between two neighbouring chambers", kind="int", default=2, minimum=1, maximum=100
+    )
+    conductance_model: str = param(
+        None, "passage conductance", kind="str", choices=("exact", "thesis"), default="exact"
+    )
     leakage_factor: float = param("", "calibration factor on the passage conductance", default=1.0, positive=True)
-    leaf_friction: float = param("", "friction coefficient between leaves", symbol="mu_s", default=0.1, nonnegative=True)
-    leaf_normal_load: str = param(None, "normal load in the inter-leaf friction of the coefficient model", kind="str", choices=("peak", "instantaneous"), default="peak")
+    leaf_friction: float = param(
+        "", "friction coefficient between leaves", symbol="mu_s", default=0.1, nonnegative=True
+    )
+    leaf_normal_load: str = param(
+        None,
+        "normal load in the inter-leaf friction of the coefficient model",
+        kind="str",
+        choices=("peak", "instantaneous"),
+        default="peak",
+    )
     oring_friction: float = param("", "O-ring friction coefficient", symbol="mu_o", default=0.0, nonnegative=True)
     oring_normal_force: float = param("N", "O-ring normal force", symbol="F_N", default=0.0, nonnegative=True)
     name: str = param(None, "label used in plots", kind="str", default="LSD")
@@ -84,9 +116,7 @@ class LSDParameters(Parameters):
             raise InputError(f"passages_per_boundary = {self.passages_per_boundary} must be at least 1")
         if self.pack_angles:
             if len(self.pack_angles) != self.packs:
-                raise InputError(
-                    f"pack_angles has {len(self.pack_angles)} entries but packs = {self.packs}"
-                )
+                raise InputError(f"pack_angles has {len(self.pack_angles)} entries but packs = {self.packs}")
             a = np.asarray(self.pack_angles)
             if np.any(np.diff(a) <= 0) or a[-1] - a[0] >= 2 * np.pi:
                 raise InputError(
@@ -110,7 +140,9 @@ class LSDParameters(Parameters):
             try:
                 nu = to_si(text, "m^2/s", f"{where}oil_viscosity")
             except InputError:
-                table["oil_viscosity"] = to_si(text, "Pa*s", f"{where}oil_viscosity (kinematic like '100 cSt' or dynamic like '0.1 Pa*s')")
+                table["oil_viscosity"] = to_si(
+                    text, "Pa*s", f"{where}oil_viscosity (kinematic like '100 cSt' or dynamic like '0.1 Pa*s')"
+                )
             else:
                 if "oil_density" not in table:
                     raise InputError(f"{where}oil_viscosity = {text!r} is kinematic; give oil_density to convert it")

@@ -109,8 +109,17 @@ def circular_orbit(rpm, eccentricity, revolutions=20, sample_rate=20e3, directio
     c, s = np.cos(w * t), np.sin(w * t)
     d = 1.0 if direction >= 0 else -1.0
     e = eccentricity
-    return Trajectory(t, e * c, d * e * s, -e * w * s, d * e * w * c, -e * w * w * c, -d * e * w * w * s,
-                      excitation="orbit" if d > 0 else "backward-orbit", rpm=float(rpm))
+    return Trajectory(
+        t,
+        e * c,
+        d * e * s,
+        -e * w * s,
+        d * e * w * c,
+        -e * w * w * c,
+        -d * e * w * w * s,
+        excitation="orbit" if d > 0 else "backward-orbit",
+        rpm=float(rpm),
+    )
 
 
 def linear_shake(rpm, amplitude, axis="x", revolutions=20, sample_rate=20e3):
@@ -273,7 +282,9 @@ def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, di
     parts = {}
     fx, fy, loads = pack_spring_forces(model.angles, model.pack_stiffness, p.preload, tr.x, tr.y)
     parts["spring"] = (fx, fy)
-    parts["leaf_friction"] = interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, tr.vx, tr.vy)
+    parts["leaf_friction"] = interleaf_friction_forces(
+        model.angles, loads, p.leaf_friction, model.slip_factor, tr.vx, tr.vy
+    )
     parts["oring_friction"] = oring_friction_force(p.oring_friction, p.oring_normal_force, tr.vx, tr.vy)
     Cv = model.viscous_damping
     parts["oil"] = (Cv[0, 0] * tr.vx + Cv[0, 1] * tr.vy, Cv[1, 0] * tr.vx + Cv[1, 1] * tr.vy)
@@ -291,7 +302,14 @@ def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, di
     amplitude = float(np.max(np.hypot(tr.x - tr.x.mean(), tr.y - tr.y.mean())))
     warn_if_unloading(amplitude, p.preload)
     return RigRecord(
-        name=p.name, excitation=tr.excitation, rpm=tr.rpm, time=tr.time, x=x, y=y, fx=total_x, fy=total_y,
+        name=p.name,
+        excitation=tr.excitation,
+        rpm=tr.rpm,
+        time=tr.time,
+        x=x,
+        y=y,
+        fx=total_x,
+        fy=total_y,
         parts={k: (np.asarray(a), np.asarray(b)) for k, (a, b) in parts.items()},
         preload_exceeded=amplitude > p.preload,
     )
@@ -370,11 +388,17 @@ class RigRecord(Result):
         return f"{self.name}, {self.excitation} excitation, {speed}, {self.time.size} samples"
 
     def _summary(self) -> dict:
-        s = dict(name=self.name, excitation=self.excitation, samples=int(self.time.size),
-                 duration_s=float(self.time[-1] - self.time[0]) if self.time.size else 0.0,
-                 x_amplitude_m=float(np.ptp(self.x) / 2), y_amplitude_m=float(np.ptp(self.y) / 2),
-                 fx_amplitude_N=float(np.ptp(self.fx) / 2), fy_amplitude_N=float(np.ptp(self.fy) / 2),
-                 preload_exceeded=bool(self.preload_exceeded))
+        s = dict(
+            name=self.name,
+            excitation=self.excitation,
+            samples=int(self.time.size),
+            duration_s=float(self.time[-1] - self.time[0]) if self.time.size else 0.0,
+            x_amplitude_m=float(np.ptp(self.x) / 2),
+            y_amplitude_m=float(np.ptp(self.y) / 2),
+            fx_amplitude_N=float(np.ptp(self.fx) / 2),
+            fy_amplitude_N=float(np.ptp(self.fy) / 2),
+            preload_exceeded=bool(self.preload_exceeded),
+        )
         s["rpm"] = float(self.rpm) if np.isfinite(self.rpm) else None
         if s["rpm"] is None:
             s["notes"] = ["the shaft speed of a measured record is not known until it is identified"]
@@ -389,14 +413,22 @@ class RigRecord(Result):
         ``time_s, x_m, y_m, fx_N, fy_N``)."""
         import xarray as xr
 
-        data = {k: ("time", v, {"units": "m" if k in ("x", "y") else "N"})
-                for k, v in (("x", self.x), ("y", self.y), ("fx", self.fx), ("fy", self.fy))}
+        data = {
+            k: ("time", v, {"units": "m" if k in ("x", "y") else "N"})
+            for k, v in (("x", self.x), ("y", self.y), ("fx", self.fx), ("fy", self.fy))
+        }
         for k, (a, b) in self.parts.items():
             data[f"fx_{k}"] = ("time", a, {"units": "N", "csv": "no"})
             data[f"fy_{k}"] = ("time", b, {"units": "N", "csv": "no"})
-        return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
-                          attrs={"name": self.name, "excitation": self.excitation,
-                                 "rpm": self.rpm if np.isfinite(self.rpm) else "unknown"})
+        return xr.Dataset(
+            data,
+            coords={"time": ("time", self.time, {"units": "s"})},
+            attrs={
+                "name": self.name,
+                "excitation": self.excitation,
+                "rpm": self.rpm if np.isfinite(self.rpm) else "unknown",
+            },
+        )
 
     def _plot(self, ax=None, cycles=2):
         """Hysteresis loops ``F_x`` vs ``x`` and ``F_y`` vs ``y`` (like Figs. 5.3-5.26 of the thesis).

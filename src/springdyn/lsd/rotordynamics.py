@@ -146,9 +146,19 @@ def _table(rpm_range, points):
     return lo, hi, np.geomspace(first, hi, int(points))
 
 
-def bearing_element(model, n: int, frequencies=None, *, amplitude: float = 50e-6, motion: str = "linear",
-                    rpm_range=DEFAULT_RPM_RANGE, points: int = DEFAULT_POINTS, outside: str = "raise",
-                    omega=None, **kwargs):
+def bearing_element(
+    model,
+    n: int,
+    frequencies=None,
+    *,
+    amplitude: float = 50e-6,
+    motion: str = "linear",
+    rpm_range=DEFAULT_RPM_RANGE,
+    points: int = DEFAULT_POINTS,
+    outside: str = "raise",
+    omega=None,
+    **kwargs,
+):
     """``ross.BearingElement`` at node ``n`` from an :class:`~springdyn.lsd.LSDModel`, never extrapolating.
 
     Parameters
@@ -188,8 +198,12 @@ def bearing_element(model, n: int, frequencies=None, *, amplitude: float = 50e-6
     if outside not in ("raise", "clamp"):
         raise InputError(f"outside = {outside!r} is not allowed; choose 'raise' or 'clamp'")
     if frequencies is not None:
-        warnings.warn("to_ross(frequencies=...) is deprecated: give rpm_range=(start, stop) for a dense table, "
-                      "or omega=[...] [rad/s] for an explicit one", DeprecationWarning, stacklevel=3)
+        warnings.warn(
+            "to_ross(frequencies=...) is deprecated: give rpm_range=(start, stop) for a dense table, "
+            "or omega=[...] [rad/s] for an explicit one",
+            DeprecationWarning,
+            stacklevel=3,
+        )
         if omega is None:
             omega = frequencies
     if omega is not None:
@@ -208,8 +222,11 @@ def bearing_element(model, n: int, frequencies=None, *, amplitude: float = 50e-6
     values = {name: (K if name[0] == "k" else C)[(slice(None),) + _INDEX["k" + name[1:]]] for name in _NAMES}
     elem = ross.BearingElement(n=n, frequency=w, **values, **kwargs)
     for name in _NAMES:
-        setattr(elem, f"{name}_interpolated",
-                TableInterpolant(w, values[name], w_low, w_high, outside, f"{name} of {kwargs['tag']}"))
+        setattr(
+            elem,
+            f"{name}_interpolated",
+            TableInterpolant(w, values[name], w_low, w_high, outside, f"{name} of {kwargs['tag']}"),
+        )
     return elem
 
 
@@ -241,12 +258,30 @@ def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-
     c = model.coefficients(omega=[float(omega)], amplitude=amplitude, motion=motion)
     kwargs.setdefault("tag", f"LSD {model.params.name}")
     K, C = c.K[0], c.C[0]
-    return ross.BearingElement(n=n, kxx=K[0, 0], kxy=K[0, 1], kyx=K[1, 0], kyy=K[1, 1],
-                               cxx=C[0, 0], cxy=C[0, 1], cyx=C[1, 0], cyy=C[1, 1], **kwargs)
+    return ross.BearingElement(
+        n=n,
+        kxx=K[0, 0],
+        kxy=K[0, 1],
+        kyx=K[1, 0],
+        kyy=K[1, 1],
+        cxx=C[0, 0],
+        cxy=C[0, 1],
+        cyx=C[1, 0],
+        cyy=C[1, 1],
+        **kwargs,
+    )
 
 
-def whirl_consistent_mode(build_rotor, speed: float, omega_guess: float, *, mode: int = 0, num_modes: int = 12,
-                          rtol: float = 1e-4, max_iterations: int = 50):
+def whirl_consistent_mode(
+    build_rotor,
+    speed: float,
+    omega_guess: float,
+    *,
+    mode: int = 0,
+    num_modes: int = 12,
+    rtol: float = 1e-4,
+    max_iterations: int = 50,
+):
     """Modal analysis with the damper's coefficients at the mode's own frequency.
 
     Repeats ``rotor = build_rotor(omega)`` (the rotor with every damper built by
@@ -288,13 +323,17 @@ def whirl_consistent_mode(build_rotor, speed: float, omega_guess: float, *, mode
         modal = build_rotor(omega).run_modal(speed=speed, num_modes=num_modes)
         wd = float(modal.wd[mode])
         if not (np.isfinite(wd) and wd > 0):
-            raise SolverError(f"whirl_consistent_mode: mode {mode} has no damped frequency at omega = {omega:.6g} rad/s "
-                              "(overdamped); pick another mode")
+            raise SolverError(
+                f"whirl_consistent_mode: mode {mode} has no damped frequency at omega = {omega:.6g} rad/s "
+                "(overdamped); pick another mode"
+            )
         if abs(wd - omega) <= rtol * wd:
             return wd, modal
         omega = wd
-    raise SolverError(f"whirl_consistent_mode: mode {mode} did not settle in {max_iterations} iterations "
-                      f"(last omega {omega:.6g} rad/s, wd {wd:.6g} rad/s)")
+    raise SolverError(
+        f"whirl_consistent_mode: mode {mode} did not settle in {max_iterations} iterations "
+        f"(last omega {omega:.6g} rad/s, wd {wd:.6g} rad/s)"
+    )
 
 
 def nonlinear_force(model, rotor, n: int, *, count: int = 1):

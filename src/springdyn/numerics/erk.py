@@ -118,20 +118,43 @@ _TS_C = np.array([0.0, 0.161, 0.327, 0.9, 0.980025540904509685729810286287024595
 _TS_A = np.zeros((7, 6))
 _TS_A[1, 0] = 0.161
 _TS_A[2, :2] = [-0.8480655492356988544426874250230774675121e-2, 0.3354806554923569885444268742502307746751]
-_TS_A[3, :3] = [2.897153057105493432130432594192938764925, -6.359448489975074843148159912383825625953,
-                4.362295432869581411017727318190886861028]
-_TS_A[4, :4] = [5.325864828439256604428877920840511317836, -11.74888356406282787774717033978577296189,
-                7.495539342889836208304604784564358155659, -0.9249506636175524925650207933207191611350e-1]
-_TS_A[5, :5] = [5.861455442946420028659251486982647890394, -12.92096931784710929170611868178335939542,
-                8.159367898576158643180400794539253485182, -0.7158497328140099722453054252582973869127e-1,
-                -0.2826905039406838290900305721271224146718e-1]
-_TS_A[6, :6] = [0.9646076681806522951816731316512876333712e-1, 0.01, 0.4798896504144995747752495322905965199130,
-                1.379008574103741893192274821856872770756, -3.290069515436080679901047585711363850116,
-                2.324710524099773982415355918398765796109]
-_TS_BHAT = np.array([0.9468075576583945807478876255758922856118e-1, 0.9183565540343253096776363936645313759814e-2,
-                     0.4877705284247615707855642599631228241517, 1.234297566930478985655109673884237654036,
-                     -2.707712349983525454881109975059321670690, 1.866628418170587035753719399566211498666,
-                     1.0 / 66.0])
+_TS_A[3, :3] = [
+    2.897153057105493432130432594192938764925,
+    -6.359448489975074843148159912383825625953,
+    4.362295432869581411017727318190886861028,
+]
+_TS_A[4, :4] = [
+    5.325864828439256604428877920840511317836,
+    -11.74888356406282787774717033978577296189,
+    7.495539342889836208304604784564358155659,
+    -0.9249506636175524925650207933207191611350e-1,
+]
+_TS_A[5, :5] = [
+    5.861455442946420028659251486982647890394,
+    -12.92096931784710929170611868178335939542,
+    8.159367898576158643180400794539253485182,
+    -0.7158497328140099722453054252582973869127e-1,
+    -0.2826905039406838290900305721271224146718e-1,
+]
+_TS_A[6, :6] = [
+    0.9646076681806522951816731316512876333712e-1,
+    0.01,
+    0.4798896504144995747752495322905965199130,
+    1.379008574103741893192274821856872770756,
+    -3.290069515436080679901047585711363850116,
+    2.324710524099773982415355918398765796109,
+]
+_TS_BHAT = np.array(
+    [
+        0.9468075576583945807478876255758922856118e-1,
+        0.9183565540343253096776363936645313759814e-2,
+        0.4877705284247615707855642599631228241517,
+        1.234297566930478985655109673884237654036,
+        -2.707712349983525454881109975059321670690,
+        1.866628418170587035753719399566211498666,
+        1.0 / 66.0,
+    ]
+)
 _TS_DENSE = np.array(
     [
         [0.0, 1.0, -2.763706197274826, 2.9132554618219126, -1.0530884977290216],
@@ -155,8 +178,9 @@ def _monomial_to_rc(m: np.ndarray) -> np.ndarray:
     return np.array([r1, r2, r3, r4])
 
 
-TSIT5 = dict(c=_TS_C, a=_TS_A, e=np.append(_TS_A[6], 0.0) - _TS_BHAT, dense=_TS_DENSE,
-             d=_monomial_to_rc(_TS_DENSE), q=5.0)
+TSIT5 = dict(
+    c=_TS_C, a=_TS_A, e=np.append(_TS_A[6], 0.0) - _TS_BHAT, dense=_TS_DENSE, d=_monomial_to_rc(_TS_DENSE), q=5.0
+)
 #: The pairs by name.
 PAIRS = {"dopri5": DOPRI5, "bs3": BS3, "tsit5": TSIT5}
 
@@ -181,7 +205,7 @@ class DormandPrince(NamedTuple):
     a: np.ndarray  #: coupling matrix [-]
     e: np.ndarray  #: error weights [-]
     d: np.ndarray  #: dense-output weights [-]
-    q: float       #: controller order [-]
+    q: float  #: controller order [-]
 
 
 class BogackiShampine(NamedTuple):
@@ -191,7 +215,7 @@ class BogackiShampine(NamedTuple):
     a: np.ndarray  #: coupling matrix [-]
     e: np.ndarray  #: error weights [-]
     d: np.ndarray  #: dense-output weights [-] (zero: cubic Hermite)
-    q: float       #: controller order [-]
+    q: float  #: controller order [-]
 
 
 class Tsitouras(NamedTuple):
@@ -201,12 +225,15 @@ class Tsitouras(NamedTuple):
     a: np.ndarray  #: coupling matrix [-]
     e: np.ndarray  #: error weights [-]
     d: np.ndarray  #: dense-output matrix (4, stages) [-]
-    q: float       #: controller order [-]
+    q: float  #: controller order [-]
 
 
 #: The pairs' tableaus by name; the class of each selects its compiled kernels.
-TABLEAUS = {"dopri5": DormandPrince(*pair_arrays("dopri5")), "bs3": BogackiShampine(*pair_arrays("bs3")),
-            "tsit5": Tsitouras(*pair_arrays("tsit5"))}
+TABLEAUS = {
+    "dopri5": DormandPrince(*pair_arrays("dopri5")),
+    "bs3": BogackiShampine(*pair_arrays("bs3")),
+    "tsit5": Tsitouras(*pair_arrays("tsit5")),
+}
 
 
 @kernel(_nrt=False)
@@ -422,16 +449,28 @@ def tsit5_stage_state(y, h, k, row, out):
             out[i] = y[i] + h * (_TS_A[3, 0] * k[0, i] + _TS_A[3, 1] * k[1, i] + _TS_A[3, 2] * k[2, i])
     elif row == 4:
         for i in range(n):
-            out[i] = y[i] + h * (_TS_A[4, 0] * k[0, i] + _TS_A[4, 1] * k[1, i] + _TS_A[4, 2] * k[2, i]
-                                 + _TS_A[4, 3] * k[3, i])
+            out[i] = y[i] + h * (
+                _TS_A[4, 0] * k[0, i] + _TS_A[4, 1] * k[1, i] + _TS_A[4, 2] * k[2, i] + _TS_A[4, 3] * k[3, i]
+            )
     elif row == 5:
         for i in range(n):
-            out[i] = y[i] + h * (_TS_A[5, 0] * k[0, i] + _TS_A[5, 1] * k[1, i] + _TS_A[5, 2] * k[2, i]
-                                 + _TS_A[5, 3] * k[3, i] + _TS_A[5, 4] * k[4, i])
+            out[i] = y[i] + h * (
+                _TS_A[5, 0] * k[0, i]
+                + _TS_A[5, 1] * k[1, i]
+                + _TS_A[5, 2] * k[2, i]
+                + _TS_A[5, 3] * k[3, i]
+                + _TS_A[5, 4] * k[4, i]
+            )
     else:
         for i in range(n):
-            out[i] = y[i] + h * (_TS_A[6, 0] * k[0, i] + _TS_A[6, 1] * k[1, i] + _TS_A[6, 2] * k[2, i]
-                                 + _TS_A[6, 3] * k[3, i] + _TS_A[6, 4] * k[4, i] + _TS_A[6, 5] * k[5, i])
+            out[i] = y[i] + h * (
+                _TS_A[6, 0] * k[0, i]
+                + _TS_A[6, 1] * k[1, i]
+                + _TS_A[6, 2] * k[2, i]
+                + _TS_A[6, 3] * k[3, i]
+                + _TS_A[6, 4] * k[4, i]
+                + _TS_A[6, 5] * k[5, i]
+            )
 
 
 @kernel(_nrt=False)
@@ -441,8 +480,19 @@ def tsit5_error_norm(y, y_new, k, h, rtol, atol):
     acc = 0.0
     for i in range(n):
         sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
-        r = h * (_TS_E[0] * k[0, i] + _TS_E[1] * k[1, i] + _TS_E[2] * k[2, i] + _TS_E[3] * k[3, i]
-                 + _TS_E[4] * k[4, i] + _TS_E[5] * k[5, i] + _TS_E[6] * k[6, i]) / sc
+        r = (
+            h
+            * (
+                _TS_E[0] * k[0, i]
+                + _TS_E[1] * k[1, i]
+                + _TS_E[2] * k[2, i]
+                + _TS_E[3] * k[3, i]
+                + _TS_E[4] * k[4, i]
+                + _TS_E[5] * k[5, i]
+                + _TS_E[6] * k[6, i]
+            )
+            / sc
+        )
         acc += r * r
     return math.sqrt(acc / n)
 
@@ -454,6 +504,12 @@ def tsit5_dense_coefficients(y, k, h, rc):
     for i in range(n):
         rc[0, i] = y[i]
         for r in range(4):
-            rc[r + 1, i] = h * (_TS_D[r, 0] * k[0, i] + _TS_D[r, 1] * k[1, i] + _TS_D[r, 2] * k[2, i]
-                                + _TS_D[r, 3] * k[3, i] + _TS_D[r, 4] * k[4, i] + _TS_D[r, 5] * k[5, i]
-                                + _TS_D[r, 6] * k[6, i])
+            rc[r + 1, i] = h * (
+                _TS_D[r, 0] * k[0, i]
+                + _TS_D[r, 1] * k[1, i]
+                + _TS_D[r, 2] * k[2, i]
+                + _TS_D[r, 3] * k[3, i]
+                + _TS_D[r, 4] * k[4, i]
+                + _TS_D[r, 5] * k[5, i]
+                + _TS_D[r, 6] * k[6, i]
+            )

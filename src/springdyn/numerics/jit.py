@@ -162,8 +162,9 @@ class _Cache(_nc.FunctionCache):
             except Exception:
                 self.disable()
                 what = "the kernels compile in memory for this run"
-            _say_once("cache-read", f"the compile cache in {self.cache_path} could not be read "
-                                    f"({type(exc).__name__}): {what}")
+            _say_once(
+                "cache-read", f"the compile cache in {self.cache_path} could not be read ({type(exc).__name__}): {what}"
+            )
             return None
 
     def save_overload(self, sig, data):
@@ -171,8 +172,11 @@ class _Cache(_nc.FunctionCache):
             super().save_overload(sig, data)
         except Exception as exc:  # the folder became unwritable, the disk is full, ...
             self.disable()
-            _say_once("cache-write", f"the compile cache in {self.cache_path} could not be written "
-                                     f"({type(exc).__name__}); the engines compile in memory for this run")
+            _say_once(
+                "cache-write",
+                f"the compile cache in {self.cache_path} could not be written "
+                f"({type(exc).__name__}); the engines compile in memory for this run",
+            )
 
 
 #: numba options of every kernel unless a kernel says otherwise: NumPy's error model (a
@@ -206,8 +210,9 @@ def kernel(function=None, **options):
         try:
             dispatcher._cache = _Cache(dispatcher.py_func)
         except Exception as exc:  # no writable cache folder anywhere
-            _say_once("cache-none", f"no writable compile cache folder ({exc}); the engines compile in memory for "
-                                    "this run")
+            _say_once(
+                "cache-none", f"no writable compile cache folder ({exc}); the engines compile in memory for this run"
+            )
     KERNELS.append(dispatcher)
     return dispatcher
 
@@ -294,8 +299,9 @@ def _call(fn, args):
 #: per engine: each crossing maps and unmaps a chunk (measured: a million page faults, 6 s of
 #: system time in a 20 s compilation).  Called through this frame, the compilation runs in
 #: the big chunk this frame opens, and crosses no boundary.
-_call_deep = types.FunctionType(_call.__code__.replace(co_stacksize=_call.__code__.co_stacksize + 640_000),
-                                _call.__globals__, "_call_deep")
+_call_deep = types.FunctionType(
+    _call.__code__.replace(co_stacksize=_call.__code__.co_stacksize + 640_000), _call.__globals__, "_call_deep"
+)
 
 
 def call(fn, *args, compile_likely: bool = True):
@@ -326,8 +332,10 @@ def compiling(what: str, seconds: float):
     seconds : float
         About how long it takes on a 2-core machine [s] (measured, docs/performance.md).
     """
-    text = (f"compiling {what} for this machine: about {seconds:.0f} s, once per machine and springdyn version "
-            "(later runs load it from the cache)")
+    text = (
+        f"compiling {what} for this machine: about {seconds:.0f} s, once per machine and springdyn version "
+        "(later runs load it from the cache)"
+    )
     listener = _NoticeListener(text)
     with _ev.install_listener("numba:compile", listener):
         yield listener

@@ -29,14 +29,38 @@ from __future__ import annotations
 from .._lazy import lazy_package
 
 _EXPORTS = {
-    "ValveSpring": "spring", "Chain": "model", "SpringModel": "model", "TypeCModel": "model", "MODELS": "model",
-    "StaticCurve": "results", "Simulation": "results", "FloatSpeedResult": "results",
-    "Cam": "cam", "ValveTrain": "valvetrain", "simulate": "dynamics", "float_speed": "dynamics",
-    "sweep": "sweeps", "SpeedSweep": "sweeps",
+    "ValveSpring": "spring",
+    "Chain": "model",
+    "SpringModel": "model",
+    "TypeCModel": "model",
+    "MODELS": "model",
+    "StaticCurve": "results",
+    "Simulation": "results",
+    "FloatSpeedResult": "results",
+    "Cam": "cam",
+    "ValveTrain": "valvetrain",
+    "simulate": "dynamics",
+    "float_speed": "dynamics",
+    "sweep": "sweeps",
+    "SpeedSweep": "sweeps",
 }
 
-__all__ = ["ValveSpring", "SpringModel", "TypeCModel", "MODELS", "Chain", "StaticCurve", "Cam", "ValveTrain",
-           "simulate", "Simulation", "float_speed", "FloatSpeedResult", "sweep", "SpeedSweep"]
+__all__ = [
+    "ValveSpring",
+    "SpringModel",
+    "TypeCModel",
+    "MODELS",
+    "Chain",
+    "StaticCurve",
+    "Cam",
+    "ValveTrain",
+    "simulate",
+    "Simulation",
+    "float_speed",
+    "FloatSpeedResult",
+    "sweep",
+    "SpeedSweep",
+]
 
 
 lazy_package(__name__, _EXPORTS)

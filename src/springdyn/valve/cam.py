@@ -70,7 +70,11 @@ def cam_rpm_from_engine_rpm(engine_rpm, strokes: int = 4):
     """
     if strokes not in (2, 4):
         raise InputError(f"strokes = {strokes!r} must be 2 or 4")
-    return np.asarray(engine_rpm, dtype=float) * (2.0 / strokes) if np.ndim(engine_rpm) else float(engine_rpm) * 2.0 / strokes
+    return (
+        np.asarray(engine_rpm, dtype=float) * (2.0 / strokes)
+        if np.ndim(engine_rpm)
+        else float(engine_rpm) * 2.0 / strokes
+    )
 
 
 def polydyne_coefficients() -> np.ndarray:
@@ -157,9 +161,11 @@ class Cam(Parameters):
     law: str = param(None, "lift law", kind="str", choices=LAWS)
     lift: float = param("m", "maximum lift (including ramps)", display="mm", default=None)
     duration: float = param("rad", "main event duration in cam angle (excluding ramps)", display="deg", default=None)
-    ramp_height: float = param("m", "height of each constant-velocity ramp", display="mm", default=0.0, nonnegative=True)
+    ramp_height: float = param(
+        "m", "height of each constant-velocity ramp", display="mm", default=0.0, nonnegative=True
+    )
     ramp_duration: float = param("rad", "cam angle of each ramp", display="deg", default=0.0, nonnegative=True)
-    file: str = param(None, "lift table CSV (law = \"table\")", kind="str", default="")
+    file: str = param(None, 'lift table CSV (law = "table")', kind="str", default="")
     table_angle: np.ndarray = field(default=None, repr=False, compare=False)
     table_lift: np.ndarray = field(default=None, repr=False, compare=False)
 
@@ -199,7 +205,9 @@ class Cam(Parameters):
         if (self.ramp_height > 0) != (self.ramp_duration > 0):
             raise InputError("ramp_height and ramp_duration must be both zero or both positive")
         if self.ramp_height >= self.lift:
-            raise InputError(f"ramp_height = {format_mm(self.ramp_height)} must be smaller than lift = {format_mm(self.lift)}")
+            raise InputError(
+                f"ramp_height = {format_mm(self.ramp_height)} must be smaller than lift = {format_mm(self.lift)}"
+            )
 
     @classmethod
     def _prepare(cls, mapping: dict, *, base_dir: Path | str | None = None, **context) -> dict:
@@ -223,8 +231,11 @@ class Cam(Parameters):
         factor : float
             Lift factor [-], positive.
         """
-        if isinstance(factor, bool) or not isinstance(factor, (int, float, np.number)) or not (
-                math.isfinite(factor) and factor > 0):
+        if (
+            isinstance(factor, bool)
+            or not isinstance(factor, (int, float, np.number))
+            or not (math.isfinite(factor) and factor > 0)
+        ):
             raise InputError(f"factor = {factor!r} must be a positive, finite number")
         if self.law == "table":
             return Cam.from_table(self.table_angle, self.table_lift * factor, name=f"{self.file} x {factor:g}")
@@ -346,7 +357,6 @@ class Cam(Parameters):
             )
 
 
-
 _ANGLE_UNITS = {"cam_angle_deg": math.pi / 180.0, "cam_angle_rad": 1.0}
 _LIFT_UNITS = {"lift_mm": 1e-3, "lift_m": 1.0, "lift_um": 1e-6}
 
@@ -372,8 +382,10 @@ def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):
     except (TypeError, ValueError):
         raise InputError(f"{name}: cam angle and lift must be arrays of numbers") from None
     if angle.ndim != 1 or lift.shape != angle.shape:
-        raise InputError(f"{name}: cam angle and lift must be two flat arrays of the same length, "
-                         f"not of shapes {angle.shape} and {lift.shape}")
+        raise InputError(
+            f"{name}: cam angle and lift must be two flat arrays of the same length, "
+            f"not of shapes {angle.shape} and {lift.shape}"
+        )
     for column, values in (("cam angle", angle), ("lift", lift)):
         if not np.all(np.isfinite(values)):
             i = int(np.argmax(~np.isfinite(values)))

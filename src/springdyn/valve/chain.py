@@ -56,7 +56,6 @@ class Chain:
         return np.stack([damping_coefficient(x, law, c) for x, law, c in zip(compressions, self.laws, self.c0_array)])
 
 
-
 class SpringModel:
     """Interface of a valve-spring model (see the module docstring).
 
@@ -80,9 +79,11 @@ class SpringModel:
     def __repr__(self) -> str:
         p = self.internal_parameters()
         s = self.spring
-        return (f"<{type(self).__name__}: {self.description}; {s.type} spring, "
-                f"{len(self.chain.masses)} masses, K1 = {p['K1']:.6g} N/m, f1 = {p['f1']:.5g} Hz, "
-                f"Fset = {p['Fset']:.5g} N>")
+        return (
+            f"<{type(self).__name__}: {self.description}; {s.type} spring, "
+            f"{len(self.chain.masses)} masses, K1 = {p['K1']:.6g} N/m, f1 = {p['f1']:.5g} Hz, "
+            f"Fset = {p['Fset']:.5g} N>"
+        )
 
     # ------------------------------------------------------------------ to define
     def internal_parameters(self) -> dict:  # pragma: no cover - abstract
@@ -213,10 +214,15 @@ class SpringModel:
             ``shear_stress_Pa`` (Bergstraesser-corrected), ``surge_frequency_Hz`` (first
             mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
         """
-        if cam_rpm is not None and (isinstance(cam_rpm, bool) or not isinstance(cam_rpm, (int, float, np.number))
-                                    or not (np.isfinite(cam_rpm) and cam_rpm > 0)):
-            raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive, finite camshaft speed [rev/min]: the surge "
-                             "margin is the surge frequency over the camshaft frequency")
+        if cam_rpm is not None and (
+            isinstance(cam_rpm, bool)
+            or not isinstance(cam_rpm, (int, float, np.number))
+            or not (np.isfinite(cam_rpm) and cam_rpm > 0)
+        ):
+            raise InputError(
+                f"cam_rpm = {cam_rpm!r} must be a positive, finite camshaft speed [rev/min]: the surge "
+                "margin is the surge frequency over the camshaft frequency"
+            )
         p = self.internal_parameters()
         c = design.spring_index(self.spring.mean_diameter, self.spring.wire_diameter)
         kb = design.bergstraesser_factor(c)
@@ -254,7 +260,8 @@ class SpringModel:
             fat = fatigue_assessment(self.spring, out["installed"]["force_N"], out["open"]["force_N"])
             out["fatigue"] = dict(
                 static_fatigue_safety_factor=fat["fatigue_safety_factor"],
-                min_shear_stress_Pa=fat["min_shear_stress_Pa"], max_shear_stress_Pa=fat["max_shear_stress_Pa"],
+                min_shear_stress_Pa=fat["min_shear_stress_Pa"],
+                max_shear_stress_Pa=fat["max_shear_stress_Pa"],
                 endurance_shear_strength_Pa=fat["endurance_shear_strength_Pa"],
                 ultimate_shear_strength_Pa=fat["ultimate_shear_strength_Pa"],
                 strength_defaults=fat["strength_defaults"],

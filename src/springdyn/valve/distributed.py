@@ -135,9 +135,11 @@ class DistributedModel(SpringModel):
 
     def __repr__(self) -> str:
         p = self._parameters
-        return (f"<DistributedModel: {self.spring.type} spring, {self.spring.elements} elements over "
-                f"{self.geometry.turns - 2 * self.geometry.dead_coils:g} active turns, K1 = {p['K1']:.6g} N/m, "
-                f"f1 = {p['f1']:.5g} Hz, Fset = {p['Fset']:.5g} N>")
+        return (
+            f"<DistributedModel: {self.spring.type} spring, {self.spring.elements} elements over "
+            f"{self.geometry.turns - 2 * self.geometry.dead_coils:g} active turns, K1 = {p['K1']:.6g} N/m, "
+            f"f1 = {p['f1']:.5g} Hz, Fset = {p['Fset']:.5g} N>"
+        )
 
     # ------------------------------------------------------------------ geometry
     @cached_property
@@ -149,11 +151,20 @@ class DistributedModel(SpringModel):
             ps, pv = parse_profile(sp.pitch_profile, "pitch_profile", {"pitch_mm": 1e-3, "pitch_m": 1.0})
             check_profile_span(ps, n_total, "pitch_profile")
             if np.any(pv < sp.wire_diameter * (1 - 1e-9)):
-                raise InputError(f"pitch_profile: a pitch below the wire diameter {format_quantity(sp.wire_diameter, 'm', 'mm')} "
-                                 "is impossible (the coils would overlap)")
+                raise InputError(
+                    f"pitch_profile: a pitch below the wire diameter {format_quantity(sp.wire_diameter, 'm', 'mm')} "
+                    "is impossible (the coils would overlap)"
+                )
         else:
-            ps, pv = default_pitch_knots(n_total, sp.dead_coils, sp.wire_diameter, sp.free_length,
-                                         sp.installed_length, sp.low_pitch_coils if sp.two_step else 0.0, sp._field)
+            ps, pv = default_pitch_knots(
+                n_total,
+                sp.dead_coils,
+                sp.wire_diameter,
+                sp.free_length,
+                sp.installed_length,
+                sp.low_pitch_coils if sp.two_step else 0.0,
+                sp._field,
+            )
         if sp.diameter_profile:
             ds, dv = parse_profile(sp.diameter_profile, "diameter_profile", {"diameter_mm": 1e-3, "diameter_m": 1.0})
             check_profile_span(ds, n_total, "diameter_profile")
@@ -163,11 +174,15 @@ class DistributedModel(SpringModel):
             ds, dv = np.array([0.0, n_total]), np.full(2, sp.mean_diameter)
         g = CoilGeometry(n_total, sp.dead_coils, sp.wire_diameter, ps, pv, ds, dv)
         if sp.pitch_profile and abs(g.free_length - sp.free_length) > 0.005 * sp.free_length:
-            raise InputError(f"pitch_profile gives the free length Dw/2 + int p ds = {format_quantity(g.free_length, 'm', 'mm')}, "
-                             f"but {sp._field('free_length')}: they must agree within 0.5 %")
+            raise InputError(
+                f"pitch_profile gives the free length Dw/2 + int p ds = {format_quantity(g.free_length, 'm', 'mm')}, "
+                f"but {sp._field('free_length')}: they must agree within 0.5 %"
+            )
         if not sp.installed_length > g.solid_length:
-            raise InputError(f"{sp._field('installed_length')} must exceed the solid length (wire stack) "
-                             f"Dw (N1 + N2 + 1/2) = {format_quantity(g.solid_length, 'm', 'mm')}")
+            raise InputError(
+                f"{sp._field('installed_length')} must exceed the solid length (wire stack) "
+                f"Dw (N1 + N2 + 1/2) = {format_quantity(g.solid_length, 'm', 'mm')}"
+            )
         return g
 
     @cached_property
@@ -201,8 +216,10 @@ class DistributedModel(SpringModel):
         first = np.clip(dturn * (pmin - sp.wire_diameter), 0.0, gap)
         onset = np.maximum(CONTACT_ONSET * sp.wire_diameter * dturn, kc * (gap - first) / (2.0 * k))
         dead = np.linspace(0.0, g.dead_coils, 65)
-        dead_mass = [sp.density * area * float(np.trapezoid(wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
-                     for x in (dead, g.turns - dead[::-1])]
+        dead_mass = [
+            sp.density * area * float(np.trapezoid(wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
+            for x in (dead, g.turns - dead[::-1])
+        ]
         return dict(gap=gap, first=first, k=k, mass=mass, kc=kc, onset=onset, dead_mass=dead_mass, n=n)
 
     # ------------------------------------------------------------------ the chain
@@ -224,9 +241,15 @@ class DistributedModel(SpringModel):
         enames = ("seat",) + tuple(f"w{i + 1}" for i in range(n)) + ("retainer",)
         mnames = tuple(f"n{i}" for i in range(n + 1))
         return Chain(
-            element_names=enames, mass_names=mnames, masses=masses, laws=laws,
-            c0=beta * laws[:, 0, 2], setup_compressions=element_compressions(fset, laws), setup_force=fset,
-            free_length=sp.free_length, installed_length=sp.installed_length,
+            element_names=enames,
+            mass_names=mnames,
+            masses=masses,
+            laws=laws,
+            c0=beta * laws[:, 0, 2],
+            setup_compressions=element_compressions(fset, laws),
+            setup_force=fset,
+            free_length=sp.free_length,
+            installed_length=sp.installed_length,
         )
 
     @cached_property
@@ -286,12 +309,19 @@ class DistributedModel(SpringModel):
         active = g.turns - 2 * g.dead_coils
         return dict(
             K=float(formulas.contact_stiffness(sp.mean_diameter, sp.youngs_modulus)),
-            K1=float(k1), K2=float(kset), M=float(ch.masses.sum()),
-            f1=float(f_free), f2=float(f_set),
-            f_continuum=float(formulas.surge_frequency(sp.shear_modulus, sp.density, sp.wire_diameter,
-                                                       sp.mean_diameter, active)),
-            Lc=float(g.solid_length), Fset=float(ch.setup_force), Fcon=fcon,
-            elements=int(pc["n"]), beta=float(self._beta),
+            K1=float(k1),
+            K2=float(kset),
+            M=float(ch.masses.sum()),
+            f1=float(f_free),
+            f2=float(f_set),
+            f_continuum=float(
+                formulas.surge_frequency(sp.shear_modulus, sp.density, sp.wire_diameter, sp.mean_diameter, active)
+            ),
+            Lc=float(g.solid_length),
+            Fset=float(ch.setup_force),
+            Fcon=fcon,
+            elements=int(pc["n"]),
+            beta=float(self._beta),
             pitch_max=float(g.pitch_v.max()),
         )
 

@@ -103,7 +103,7 @@ def corrected_shear_stress(force, mean_diameter: float, wire_diameter: float):
         Shear stress [Pa].
     """
     k = stress_correction_factor(mean_diameter / wire_diameter)
-    return k * 8.0 * np.asarray(force, dtype=float) * mean_diameter / (math.pi * wire_diameter ** 3)
+    return k * 8.0 * np.asarray(force, dtype=float) * mean_diameter / (math.pi * wire_diameter**3)
 
 
 def ultimate_shear_strength(tensile_strength, fraction: float = ULTIMATE_SHEAR_FRACTION):
@@ -134,8 +134,10 @@ def zimmerli_endurance_shear_strength(ultimate_shear: float, peened: bool = True
     """
     s_sa, s_sm = ZIMMERLI_PEENED if peened else ZIMMERLI_UNPEENED
     if not ultimate_shear > s_sm:
-        raise InputError(f"ultimate shear strength {ultimate_shear / 1e6:.4g} MPa must exceed Zimmerli's mean "
-                         f"stress {s_sm / 1e6:.4g} MPa")
+        raise InputError(
+            f"ultimate shear strength {ultimate_shear / 1e6:.4g} MPa must exceed Zimmerli's mean "
+            f"stress {s_sm / 1e6:.4g} MPa"
+        )
     return s_sa / (1.0 - s_sm / ultimate_shear)
 
 
@@ -200,8 +202,12 @@ def spring_strengths(spring) -> dict:
     if tau_e is None:
         tau_e = zimmerli_endurance_shear_strength(tau_u, peened=True)
         defaults.append("endurance_shear_strength")
-    return dict(tensile_strength_Pa=float(rm), ultimate_shear_strength_Pa=float(tau_u),
-                endurance_shear_strength_Pa=float(tau_e), strength_defaults=defaults)
+    return dict(
+        tensile_strength_Pa=float(rm),
+        ultimate_shear_strength_Pa=float(tau_u),
+        endurance_shear_strength_Pa=float(tau_e),
+        strength_defaults=defaults,
+    )
 
 
 def fatigue_assessment(spring, force_min, force_max) -> dict:
@@ -230,10 +236,20 @@ def fatigue_assessment(spring, force_min, force_max) -> dict:
     tau_lo = corrected_shear_stress(np.maximum(lo, 0.0), dm, d)
     tau_hi = corrected_shear_stress(np.maximum(hi, 0.0), dm, d)
     st = spring_strengths(spring)
-    demand = (0.5 * (tau_hi - tau_lo) / st["endurance_shear_strength_Pa"]
-              + 0.5 * (tau_hi + tau_lo) / st["ultimate_shear_strength_Pa"])
+    demand = (
+        0.5 * (tau_hi - tau_lo) / st["endurance_shear_strength_Pa"]
+        + 0.5 * (tau_hi + tau_lo) / st["ultimate_shear_strength_Pa"]
+    )
     j = int(np.argmax(demand))
-    n = goodman_safety_factor(tau_lo[j], tau_hi[j], st["endurance_shear_strength_Pa"],
-                              st["ultimate_shear_strength_Pa"]) if demand[j] > 0 else None
-    return dict(min_shear_stress_Pa=float(tau_lo[j]), max_shear_stress_Pa=float(tau_hi[j]),
-                fatigue_safety_factor=n, critical_element=j, **st)
+    n = (
+        goodman_safety_factor(tau_lo[j], tau_hi[j], st["endurance_shear_strength_Pa"], st["ultimate_shear_strength_Pa"])
+        if demand[j] > 0
+        else None
+    )
+    return dict(
+        min_shear_stress_Pa=float(tau_lo[j]),
+        max_shear_stress_Pa=float(tau_hi[j]),
+        fatigue_safety_factor=n,
+        critical_element=j,
+        **st,
+    )

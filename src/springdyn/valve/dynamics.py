@@ -24,7 +24,18 @@ from .spring import ValveSpring
 from .statics import series_force
 from .valvetrain import KERNEL_SIZE, ValveTrain
 
-__all__ = ["simulate", "check_run_settings", "Simulation", "SimulationSetup", "prepare", "float_speed", "coil_contact_compressions", "chain_response", "DEFAULT_RTOL", "DEFAULT_ATOL"]
+__all__ = [
+    "simulate",
+    "check_run_settings",
+    "Simulation",
+    "SimulationSetup",
+    "prepare",
+    "float_speed",
+    "coil_contact_compressions",
+    "chain_response",
+    "DEFAULT_RTOL",
+    "DEFAULT_ATOL",
+]
 
 #: Default integration tolerances (relative; absolute on displacements [m] and velocities
 #: [m/s]).  Chosen by the refinement study of the tests: halving them changes peak forces
@@ -107,8 +118,18 @@ class SimulationSetup:
 
     def args(self, omega: float) -> tuple:
         ch = self.spring.chain
-        return (ch.masses, ch.laws, ch.setup_compressions, ch.c0_array, self.cam_h, self.cam_dh, self.cam_ddh,
-                self.dth, omega, self.vt)
+        return (
+            ch.masses,
+            ch.laws,
+            ch.setup_compressions,
+            ch.c0_array,
+            self.cam_h,
+            self.cam_dh,
+            self.cam_ddh,
+            self.dth,
+            omega,
+            self.vt,
+        )
 
     @property
     def n_masses(self) -> int:
@@ -124,11 +145,21 @@ class SimulationSetup:
         """Integrate the speeds ``omegas`` [rad/s] with the compiled engine, monitoring the
         last revolution (true extremes and events on the dense output, see
         :func:`springdyn.valve.engine.run_speeds`)."""
-        return run_speeds(self.y0, omegas, revolutions, points, self.args(0.0), rtol=rtol, atol=atol,
-                          max_step_fraction=MAX_STEP_FRACTION, gaps=coil_contact_compressions(self.spring),
-                          monitor=True, atol_velocity=self.atol_velocity(atol),
-                          method=self.method if method is None else method,
-                          stop_angles=stop_angles(self.cam.breakpoints, self.dth))
+        return run_speeds(
+            self.y0,
+            omegas,
+            revolutions,
+            points,
+            self.args(0.0),
+            rtol=rtol,
+            atol=atol,
+            max_step_fraction=MAX_STEP_FRACTION,
+            gaps=coil_contact_compressions(self.spring),
+            monitor=True,
+            atol_velocity=self.atol_velocity(atol),
+            method=self.method if method is None else method,
+            stop_angles=stop_angles(self.cam.breakpoints, self.dth),
+        )
 
     @property
     def method(self) -> str:
@@ -151,8 +182,9 @@ class SimulationSetup:
         on a ramp cam before the engine landed its steps on the ramps' ends).
         """
         out = np.full(self.nfree, float(atol))
-        out[: self.n_masses] = (atol * 2.0 * math.pi * float(self.spring.internal_parameters()["f1"])
-                                / VELOCITY_TOLERANCE_DIVISOR)
+        out[: self.n_masses] = (
+            atol * 2.0 * math.pi * float(self.spring.internal_parameters()["f1"]) / VELOCITY_TOLERANCE_DIVISOR
+        )
         return out
 
 
@@ -238,8 +270,10 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     if vt.hydraulic:
         f_h = vt.hla_force
         if not f_h < fset:
-            raise InputError(f"[valve_train] hla_preload = {f_h:g} N must be below the spring's set-up force "
-                             f"Fset = {fset:.1f} N: the adjuster would open the valve")
+            raise InputError(
+                f"[valve_train] hla_preload = {f_h:g} N must be below the spring's set-up force "
+                f"Fset = {fset:.1f} N: the adjuster would open the valve"
+            )
         z0 = brentq(lambda z: seat(z) + f_h - spring_force(z), z_lo, 1e-6, xtol=1e-16, rtol=1e-15)
         lash = r * lift0 - z0 - f_h / k_train
         force = f_h
@@ -278,6 +312,7 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
     dict
         ``cam_contact_force``, ``valve_seat_force``, ``valve_lift`` [N, N, m].
     """
+
     def contact(k, c, pen, rate):
         return np.where(pen > 0, np.maximum(k * pen + c * rate, 0.0), 0.0)
 
@@ -295,8 +330,9 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
 
 def _fastest_mode(spring: ValveSpring) -> float:
     """Highest natural frequency of the chain at installed length [Hz] (cached: a spring is immutable)."""
-    return spring.cached("fastest_mode",
-                         lambda: float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1]))
+    return spring.cached(
+        "fastest_mode", lambda: float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1])
+    )
 
 
 def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
@@ -314,16 +350,29 @@ def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
         Absolute tolerance [m, m/s], 1e-15 to 1e-5.
     """
     number = (int, float, np.integer, np.floating)
-    for name, value, lo, hi in (("revolutions", revolutions, 1, 1000),
-                                ("points_per_revolution", points_per_revolution, 16, 100_000)):
-        if (isinstance(value, bool) or not isinstance(value, number) or not math.isfinite(value)
-                or value != int(value) or not lo <= value <= hi):
+    for name, value, lo, hi in (
+        ("revolutions", revolutions, 1, 1000),
+        ("points_per_revolution", points_per_revolution, 16, 100_000),
+    ):
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, number)
+            or not math.isfinite(value)
+            or value != int(value)
+            or not lo <= value <= hi
+        ):
             raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
     for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
         if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
-            raise InputError(f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
-                             "(integration tolerance" + (": absolute, on displacements [m]; velocities get it times 2 pi f1/30)"
-                                                         if name == "atol" else ", relative)"))
+            raise InputError(
+                f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
+                "(integration tolerance"
+                + (
+                    ": absolute, on displacements [m]; velocities get it times 2 pi f1/30)"
+                    if name == "atol"
+                    else ", relative)"
+                )
+            )
 
 
 def simulate(
@@ -388,8 +437,10 @@ def simulate(
     if backend not in ("compiled", "scipy"):
         raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")
     if method is not None and (backend != "compiled" or method not in PAIRS):
-        raise InputError(f"method = {method!r}: the compiled backend's pairs are {sorted(PAIRS)}"
-                         + ("" if backend == "compiled" else f"; backend = {backend!r} has its own (DOP853)"))
+        raise InputError(
+            f"method = {method!r}: the compiled backend's pairs are {sorted(PAIRS)}"
+            + ("" if backend == "compiled" else f"; backend = {backend!r} has its own (DOP853)")
+        )
     revolutions, points_per_revolution = int(revolutions), int(points_per_revolution)
     # bound the work by the periods of the fastest mode: solve_ivp has no step cap (20 to
     # 70 right-hand-side calls per period: 2e4 periods take seconds to a minute); the
@@ -416,8 +467,7 @@ def simulate(
     n = points_per_revolution
     if backend == "compiled":
         method = setup.method if method is None else method
-        extra, prev, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol,
-                                                           method=method)
+        extra, prev, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol, method=method)
         info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]), method=method)
         if info["status"] != 0 or not (np.isfinite(extra).all() and np.isfinite(prev).all()):
             raise _solver_error(cam_rpm, omega, info)
@@ -430,11 +480,18 @@ def simulate(
     keep = min(2, revolutions)
     t_keep = (revolutions - keep) * period + np.arange(keep * n) * (period / n)
     t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
-    states, info = integrate_scipy(setup.y0, t_out, setup.args(omega), rtol=rtol, atol=atol,
-                                   h_max=period * MAX_STEP_FRACTION, atol_velocity=setup.atol_velocity(atol))
+    states, info = integrate_scipy(
+        setup.y0,
+        t_out,
+        setup.args(omega),
+        rtol=rtol,
+        atol=atol,
+        h_max=period * MAX_STEP_FRACTION,
+        atol_velocity=setup.atol_velocity(atol),
+    )
     if info["status"] != 0 or not np.all(np.isfinite(states)):
         raise _solver_error(cam_rpm, omega, info)
-    return _postprocess(setup, cam_rpm, revolutions, t_keep, states[-keep * n:], info, n, keep)
+    return _postprocess(setup, cam_rpm, revolutions, t_keep, states[-keep * n :], info, n, keep)
 
 
 def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rtol, atol) -> None:
@@ -446,11 +503,21 @@ def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rt
     if half == sp.elements:
         return
     coarse_spring = sp.cached(f"elements={half}", lambda: sp.replace(elements=half))  # its set-up is kept
-    coarse = simulate(coarse_spring, cam, cam_rpm, revolutions, valve_train=valve_train,
-                      points_per_revolution=points, rtol=rtol, atol=atol, check_elements=False,
-                      method=sim.info.get("method")).summary
-    sim.element_check = dict(elements=half, max_retainer_force_N=coarse["max_retainer_force_N"],
-                             max_seat_force_N=coarse["max_seat_force_N"])
+    coarse = simulate(
+        coarse_spring,
+        cam,
+        cam_rpm,
+        revolutions,
+        valve_train=valve_train,
+        points_per_revolution=points,
+        rtol=rtol,
+        atol=atol,
+        check_elements=False,
+        method=sim.info.get("method"),
+    ).summary
+    sim.element_check = dict(
+        elements=half, max_retainer_force_N=coarse["max_retainer_force_N"], max_seat_force_N=coarse["max_seat_force_N"]
+    )
     sim.__dict__.pop("_summary_cache", None)  # the summary now includes the check
 
 
@@ -460,7 +527,7 @@ def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
     why = STATUS.get(info["status"], info.get("message", "failed"))
     cause = {
         1: "the step size became very small for very long: the spring is driven deep into coil contact, or the "
-           "tolerances are too tight",
+        "tolerances are too tight",
         2: "the element stiffness became extreme (deep coil contact) or the contact parameters are inconsistent",
         3: "the response diverged: check masses, stiffnesses and contact parameters",
     }.get(info["status"], "see the message")
@@ -510,12 +577,17 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         u_top = np.broadcast_to(lift, lead + (n_t,))
         v_top = np.broadcast_to(dlift, lead + (n_t,))
     zeros = np.zeros(lead + (1, n_t))
-    x = chain.setup_compressions[:, None] + np.diff(np.concatenate([zeros, u[..., :nm, :], u_top[..., None, :]], axis=-2), axis=-2)
+    x = chain.setup_compressions[:, None] + np.diff(
+        np.concatenate([zeros, u[..., :nm, :], u_top[..., None, :]], axis=-2), axis=-2
+    )
     xd = np.diff(np.concatenate([zeros, v[..., :nm, :], v_top[..., None, :]], axis=-2), axis=-2)
     c0 = chain.c0_array
     force = np.stack(
-        [law_force(x[..., j, :], chain.laws[j]) + damping_coefficient(x[..., j, :], chain.laws[j], c0[j]) * xd[..., j, :]
-         for j in range(nm + 1)],
+        [
+            law_force(x[..., j, :], chain.laws[j])
+            + damping_coefficient(x[..., j, :], chain.laws[j], c0[j]) * xd[..., j, :]
+            for j in range(nm + 1)
+        ],
         axis=-2,
     )
     for j in (0, nm):  # unilateral end contacts (correction MMS-7 of docs/references.md)
@@ -544,12 +616,23 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous,
     else:
         static = setup.static_force(e[:, lay["top_displacement"]])
     sim = Simulation(
-        spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
-        time=time, cam_angle=output_angles(time.size), lift=lift,
-        retainer_force=force[-1], seat_force=force[0], static_force=static,
-        element_compression=x, element_force=force,
+        spring=setup.spring,
+        cam=setup.cam,
+        valve_train=setup.valve_train,
+        cam_rpm=cam_rpm,
+        revolutions=revolutions,
+        time=time,
+        cam_angle=output_angles(time.size),
+        lift=lift,
+        retainer_force=force[-1],
+        seat_force=force[0],
+        static_force=static,
+        element_compression=x,
+        element_force=force,
         element_contact=x >= coil_contact_compressions(setup.spring)[:, None],
-        mass_displacement=e[:, lay["displacement"]].T, periodicity_error=prev_err, info=info,
+        mass_displacement=e[:, lay["displacement"]].T,
+        periodicity_error=prev_err,
+        info=info,
     )
     if setup.valve_train is not None:
         sim.valve_lift = e[:, lay["top_displacement"]]
@@ -581,12 +664,23 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, i
     force = r["force"]
     prev_err = float(np.max(np.abs(force[-1, last] - force[-1, :n])) / fset) if keep == 2 else math.nan
     sim = Simulation(
-        spring=setup.spring, cam=setup.cam, valve_train=setup.valve_train, cam_rpm=cam_rpm, revolutions=revolutions,
-        time=t_keep[last], cam_angle=np.mod(theta[last], 2 * math.pi), lift=r["lift"][last],
-        retainer_force=force[-1, last], seat_force=force[0, last], static_force=r["static"][last],
-        element_compression=r["compression"][:, last], element_force=force[:, last],
-        element_contact=r["contact"][:, last], mass_displacement=r["displacement"][:, last],
-        periodicity_error=prev_err, info=info,
+        spring=setup.spring,
+        cam=setup.cam,
+        valve_train=setup.valve_train,
+        cam_rpm=cam_rpm,
+        revolutions=revolutions,
+        time=t_keep[last],
+        cam_angle=np.mod(theta[last], 2 * math.pi),
+        lift=r["lift"][last],
+        retainer_force=force[-1, last],
+        seat_force=force[0, last],
+        static_force=r["static"][last],
+        element_compression=r["compression"][:, last],
+        element_force=force[:, last],
+        element_contact=r["contact"][:, last],
+        mass_displacement=r["displacement"][:, last],
+        periodicity_error=prev_err,
+        info=info,
     )
     if setup.valve_train is not None:
         sim.valve_lift = r["valve_lift"][last]
@@ -644,18 +738,31 @@ def float_speed(
         raise InputError(f"cam_rpm = {cam_rpm!r} must be a speed or a list of speeds [rev/min]") from None
     if rpms.ndim != 1 or rpms.size == 0 or not np.all(np.isfinite(rpms)) or rpms[0] <= 0:
         raise InputError(f"cam_rpm = {cam_rpm!r} must hold at least one speed, all positive and finite [rev/min]")
-    if (isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating))
-            or not (math.isfinite(resolution) and resolution > 0)):
+    if (
+        isinstance(resolution, bool)
+        or not isinstance(resolution, (int, float, np.integer, np.floating))
+        or not (math.isfinite(resolution) and resolution > 0)
+    ):
         raise InputError(f"resolution = {resolution!r} must be a positive, finite speed [rev/min]")
     finest = max(float(rpms[-1] - rpms[0]), float(rpms[-1])) / 2.0**max_halvings
     if resolution < finest:
-        raise InputError(f"resolution = {resolution:g} rev/min is finer than the bisection reaches in {max_halvings} "
-                         f"halvings of the scanned range: it must be at least {finest:.3g} rev/min")
+        raise InputError(
+            f"resolution = {resolution:g} rev/min is finer than the bisection reaches in {max_halvings} "
+            f"halvings of the scanned range: it must be at least {finest:.3g} rev/min"
+        )
     setup = prepare(spring, cam, valve_train)
 
     def min_force(rpm):
-        sim = simulate(spring, cam, rpm, revolutions, valve_train=valve_train, setup=setup,
-                       points_per_revolution=points_per_revolution, check_elements=False)
+        sim = simulate(
+            spring,
+            cam,
+            rpm,
+            revolutions,
+            valve_train=valve_train,
+            setup=setup,
+            points_per_revolution=points_per_revolution,
+            check_elements=False,
+        )
         sm = sim.summary
         return sm["min_cam_contact_force_N"], bool(sm["liftoff"])
 
@@ -668,6 +775,7 @@ def float_speed(
         if lifted:
             first = len(scanned) - 1
             break
+
     def result(float_rpm, bracket):
         return FloatSpeedResult(scanned, forces, float_rpm, bracket, float(resolution))
 
@@ -710,7 +818,9 @@ def _frequencies(setup: SimulationSetup, theta: float, u: np.ndarray, dofs: np.n
         up, dn = u.copy(), u.copy()
         up[j] += h
         dn[j] -= h
-        jac[:, c] = (_static_accelerations(setup, theta, up)[dofs] - _static_accelerations(setup, theta, dn)[dofs]) / (2 * h)
+        jac[:, c] = (_static_accelerations(setup, theta, up)[dofs] - _static_accelerations(setup, theta, dn)[dofs]) / (
+            2 * h
+        )
     w2 = np.sort(np.real(eigvals(-jac)))
     w2 = w2[w2 > (2 * math.pi * 1.0) ** 2]  # rigid-body (unloaded) motions have none
     return [float(math.sqrt(v) / (2 * math.pi)) for v in w2[:count]]
@@ -751,8 +861,10 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     dofs = np.arange(nf)
     if valve_train is not None and not valve_train.hydraulic and valve_train.lash > 0 and nf > nm + 1:
         dofs = np.arange(nm + 1)
-        notes.append("base circle: the lash is open and the lever/lifter rest unloaded on the cam; only the spring "
-                     "and the seated valve are linearised there")
+        notes.append(
+            "base circle: the lash is open and the lever/lifter rest unloaded on the cam; only the spring "
+            "and the seated valve are linearised there"
+        )
     base = _frequencies(setup, 0.0, u0, dofs, count)
     i_max = int(np.argmax(setup.cam_h))
     theta = i_max * setup.dth
@@ -765,12 +877,13 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     else:
         f = float(setup.static_force(valve_train.ratio * h_max))
         z = valve_train.ratio * h_max - setup.vt[6] - f / valve_train.stiffness_at_valve
-        guess = np.concatenate([spring.initial_condition(sp_setup + z)["displacements"],
-                                valve_train.static_state(h_max, z, f)])
+        guess = np.concatenate(
+            [spring.initial_condition(sp_setup + z)["displacements"], valve_train.static_state(h_max, z, f)]
+        )
     scale = max(h_max, 1e-3)
     mass = np.asarray(spring.chain.masses, dtype=float)
     if valve_train is not None:
-        mass = np.concatenate([mass, [setup.vt[1], setup.vt[9], setup.vt[12]][:nf - nm]])
+        mass = np.concatenate([mass, [setup.vt[1], setup.vt[9], setup.vt[12]][: nf - nm]])
 
     def residual(x):  # forces [N]: better scaled than accelerations across light and heavy masses
         return _static_accelerations(setup, theta, x * scale) * mass

@@ -333,11 +333,7 @@ def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float
     ks = k * k1 * k2 / (k * k2 + k1 * k2 - k * k1)
     m2 = kh1 / (4.0 * math.pi**2 * f2**2)
     w1sq = (2.0 * math.pi * f1) ** 2
-    m1 = (
-        kh1
-        + ks
-        - kh1**2 * (kh1 + kh2 - m2 * w1sq) / ((kh1 + 2.0 * kh2 - m2 * w1sq) * (kh1 - m2 * w1sq))
-    ) / w1sq
+    m1 = (kh1 + ks - kh1**2 * (kh1 + kh2 - m2 * w1sq) / ((kh1 + 2.0 * kh2 - m2 * w1sq) * (kh1 - m2 * w1sq))) / w1sq
     return dict(Kh1=kh1, Kh2=kh2, Ks=ks, m1=m1, m2=m2, me=(m_total - 2.0 * m2 - m1) / 2.0)
 
 

@@ -44,13 +44,18 @@ class FrequencyResponse(Result):
     cheap_plot = True
 
     def _repr_caption(self) -> str:
-        return (f"{self.spring.type} spring, {self.model} model, at {self.length * 1e3:.3f} mm, "
-                f"{self.frequency[0]:g}-{self.frequency[-1]:g} Hz")
+        return (
+            f"{self.spring.type} spring, {self.model} model, at {self.length * 1e3:.3f} mm, "
+            f"{self.frequency[0]:g}-{self.frequency[-1]:g} Hz"
+        )
 
     def _summary(self) -> dict:
         return dict(
-            model=self.model, length_m=self.length, points=int(self.frequency.size),
-            frequency_min_Hz=float(self.frequency.min()), frequency_max_Hz=float(self.frequency.max()),
+            model=self.model,
+            length_m=self.length,
+            points=int(self.frequency.size),
+            frequency_min_Hz=float(self.frequency.min()),
+            frequency_max_Hz=float(self.frequency.max()),
             static_stiffness_N_per_m=self.static_stiffness,
             first_mode_Hz=float(self.modes[0]),
             max_retainer_dynamic_stiffness_N_per_m=float(np.abs(self.retainer).max()),
@@ -59,9 +64,11 @@ class FrequencyResponse(Result):
 
     def to_dict(self) -> dict:
         """The JSON of ``springdyn valve frf``: frequencies and magnitudes (SI)."""
-        return dict(frequency_Hz=self.frequency.tolist(),
-                    retainer_dynamic_stiffness_N_per_m=np.abs(self.retainer).tolist(),
-                    seat_dynamic_stiffness_N_per_m=np.abs(self.seat).tolist())
+        return dict(
+            frequency_Hz=self.frequency.tolist(),
+            retainer_dynamic_stiffness_N_per_m=np.abs(self.retainer).tolist(),
+            seat_dynamic_stiffness_N_per_m=np.abs(self.seat).tolist(),
+        )
 
     def to_xarray(self):
         import xarray as xr
@@ -69,10 +76,16 @@ class FrequencyResponse(Result):
         dims = ("frequency",)
         return xr.Dataset(
             {
-                "retainer_dynamic_stiffness": (dims, np.abs(self.retainer),
-                                               {"units": "N/m", "long_name": "|retainer force / retainer displacement|"}),
-                "seat_dynamic_stiffness": (dims, np.abs(self.seat),
-                                           {"units": "N/m", "long_name": "|seat force / retainer displacement|"}),
+                "retainer_dynamic_stiffness": (
+                    dims,
+                    np.abs(self.retainer),
+                    {"units": "N/m", "long_name": "|retainer force / retainer displacement|"},
+                ),
+                "seat_dynamic_stiffness": (
+                    dims,
+                    np.abs(self.seat),
+                    {"units": "N/m", "long_name": "|seat force / retainer displacement|"},
+                ),
                 "retainer_phase": (dims, np.degrees(np.angle(self.retainer)), {"units": "deg"}),
                 "seat_phase": (dims, np.degrees(np.angle(self.seat)), {"units": "deg"}),
             },
@@ -94,8 +107,10 @@ class FrequencyResponse(Result):
             if self.frequency[0] <= f <= self.frequency[-1]:
                 ax.axvline(f, color="0.6", lw=0.8)
         ax.set_ylabel("dynamic stiffness [N/mm]")
-        ax.set_title(f"{self.spring.type} spring, {self.model} model, at {self.length * 1e3:.2f} mm "
-                     "(seat fixed, retainer driven)")
+        ax.set_title(
+            f"{self.spring.type} spring, {self.model} model, at {self.length * 1e3:.2f} mm "
+            "(seat fixed, retainer driven)"
+        )
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
         if ax_p is not None:
@@ -155,5 +170,6 @@ def dynamic_stiffness(spring, frequency, length: float | None = None) -> Frequen
         seat[i] = z[0] * u[0]
     from .modes import chain_frequencies
 
-    return FrequencyResponse(spring, model.name, length, f, retainer, seat, float(kstat),
-                             chain_frequencies(m, k, min(5, n)))
+    return FrequencyResponse(
+        spring, model.name, length, f, retainer, seat, float(kstat), chain_frequencies(m, k, min(5, n))
+    )

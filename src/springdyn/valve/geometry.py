@@ -28,13 +28,18 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.units import format_mm
 
-__all__ = ["TRANSITION_TURNS", "CoilGeometry", "default_pitch_knots", "parse_profile", "turn_compliance",
-           "wire_length_per_turn"]
+__all__ = [
+    "TRANSITION_TURNS",
+    "CoilGeometry",
+    "default_pitch_knots",
+    "parse_profile",
+    "turn_compliance",
+    "wire_length_per_turn",
+]
 
 #: Turns over which the pitch rises from the closed dead coil to the active pitch (an
 #: assumption typical of coiled valve springs; give a ``pitch_profile`` for a measured one).
 TRANSITION_TURNS = 0.5
-
 
 
 def turn_compliance(mean_diameter, wire_diameter, pitch, shear_modulus, youngs_modulus):
@@ -58,8 +63,12 @@ def turn_compliance(mean_diameter, wire_diameter, pitch, shear_modulus, youngs_m
     """
     a = np.arctan2(pitch, np.pi * mean_diameter)
     ca, sa = np.cos(a), np.sin(a)
-    return 8.0 * mean_diameter**3 / (shear_modulus * wire_diameter**4 * ca) * (
-        ca * ca + 2.0 * shear_modulus / youngs_modulus * sa * sa)
+    return (
+        8.0
+        * mean_diameter**3
+        / (shear_modulus * wire_diameter**4 * ca)
+        * (ca * ca + 2.0 * shear_modulus / youngs_modulus * sa * sa)
+    )
 
 
 def wire_length_per_turn(mean_diameter, pitch):
@@ -97,8 +106,10 @@ def parse_profile(value: str, what: str, unit_columns: dict) -> tuple[np.ndarray
 
         cols = read_csv_columns(value)
         if "turns" not in cols:
-            raise InputError(f"{what} = {value!r}: the CSV needs a column 'turns' (wire position in turns from the "
-                             f"seat end) and one of {', '.join(unit_columns)}")
+            raise InputError(
+                f"{what} = {value!r}: the CSV needs a column 'turns' (wire position in turns from the "
+                f"seat end) and one of {', '.join(unit_columns)}"
+            )
         found = [c for c in unit_columns if c in cols]
         if not found:
             raise InputError(f"{what} = {value!r}: the CSV needs one of the columns {', '.join(unit_columns)}")
@@ -148,8 +159,9 @@ class CoilGeometry:
         return float(np.trapezoid(self.pitch(s) - self.wire_diameter, s))
 
 
-def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: float, installed_length: float,
-                        low_pitch: float, field) -> tuple[np.ndarray, np.ndarray]:
+def default_pitch_knots(
+    n_total: float, dead: float, dw: float, free_length: float, installed_length: float, low_pitch: float, field
+) -> tuple[np.ndarray, np.ndarray]:
     """Knots (turns, pitch [m]) of the default pitch profile (see the module docstring).
 
     Parameters
@@ -173,8 +185,10 @@ def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: flo
     if low_pitch <= 0:
         pa = (free_length - base - tr * dw) / (active - tr)
         if not pa > dw:
-            raise InputError(f"{field('free_length')} is too short for the coils: the active pitch would be "
-                             f"{format_mm(pa)}, not more than the wire diameter {format_mm(dw)}")
+            raise InputError(
+                f"{field('free_length')} is too short for the coils: the active pitch would be "
+                f"{format_mm(pa)}, not more than the wire diameter {format_mm(dw)}"
+            )
         if dead == 0:
             return np.array([0.0, n_total]), np.array([pa, pa])
         s = [0.0, dead, dead + tr, n_total - dead - tr, n_total - dead, n_total]
@@ -182,8 +196,10 @@ def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: flo
         return _dedupe(s, p)
     nl = low_pitch - dead  # low-pitch active coils
     if nl <= 0:
-        raise InputError(f"{field('low_pitch_coils')} must exceed {field('dead_coils')}: the low-pitch coils "
-                         "include the seat's dead coil")
+        raise InputError(
+            f"{field('low_pitch_coils')} must exceed {field('dead_coils')}: the low-pitch coils "
+            "include the seat's dead coil"
+        )
     rest = n_total - dead - low_pitch  # high-pitch active coils with their transitions
     trh = min(TRANSITION_TURNS, rest / 4.0)
     tre = trh if dead > 0 else 0.0
@@ -209,13 +225,17 @@ def default_pitch_knots(n_total: float, dead: float, dw: float, free_length: flo
     try:
         delta = brentq(closed_at_setup, 1e-9, hi, xtol=1e-12)
     except ValueError:
-        raise InputError(f"{field('installed_length')}: the low-pitch coils cannot be closed at the set-up length "
-                         "with the given free length and coil counts") from None
+        raise InputError(
+            f"{field('installed_length')}: the low-pitch coils cannot be closed at the set-up length "
+            "with the given free length and coil counts"
+        ) from None
     s, p = knots(delta)
     if not p[3] > p[2]:
-        raise InputError(f"two-step spring: the high-pitch coils' pitch {format_mm(p[3])} must exceed the low-pitch "
-                         f"coils' {format_mm(p[2])}; check {field('free_length')}, {field('installed_length')} and the "
-                         "coil counts")
+        raise InputError(
+            f"two-step spring: the high-pitch coils' pitch {format_mm(p[3])} must exceed the low-pitch "
+            f"coils' {format_mm(p[2])}; check {field('free_length')}, {field('installed_length')} and the "
+            "coil counts"
+        )
     return _dedupe(list(s), list(p))
 
 
@@ -228,5 +248,7 @@ def _dedupe(s, p):
 def check_profile_span(s: np.ndarray, n_total: float, what: str) -> None:
     """A profile must run from turn 0 to turn N1 + N2."""
     if abs(s[0]) > 1e-6 or abs(s[-1] - n_total) > 1e-6:
-        raise InputError(f"{what}: the turns must run from 0 to low_pitch_coils + high_pitch_coils = {n_total:g} "
-                         f"(seat end to retainer end), not {s[0]:g} to {s[-1]:g}")
+        raise InputError(
+            f"{what}: the turns must run from 0 to low_pitch_coils + high_pitch_coils = {n_total:g} "
+            f"(seat end to retainer end), not {s[0]:g} to {s[-1]:g}"
+        )

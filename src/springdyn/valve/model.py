@@ -182,8 +182,21 @@ class TypeCModel(SpringModel):
         if self.two_step:
             p["Ks"] = mv["Ks"]
         p.update(
-            m1=mv["m1"], m2=mv["m2"], me=mv["me"], M=m_total, f1=f1, f2=f2, n1p=n1p, n2p=n2p,
-            Pc=pc, Lc=lc, Fset=fset, F1=f_1, F2=f_2, Fcon=fcon, C0=float(c0),
+            m1=mv["m1"],
+            m2=mv["m2"],
+            me=mv["me"],
+            M=m_total,
+            f1=f1,
+            f2=f2,
+            n1p=n1p,
+            n2p=n2p,
+            Pc=pc,
+            Lc=lc,
+            Fset=fset,
+            F1=f_1,
+            F2=f_2,
+            Fcon=fcon,
+            C0=float(c0),
         )
         return p
 
@@ -219,8 +232,12 @@ class TypeCModel(SpringModel):
         by design from set-up on, so neither is ever flagged (``inf``).
         """
         fcon = self._parameters["Fcon"]
-        return np.array([float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
-                         for name, law in zip(self.chain.element_names, self.chain.laws)])
+        return np.array(
+            [
+                float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
+                for name, law in zip(self.chain.element_names, self.chain.laws)
+            ]
+        )
 
     @cached_property
     def chain(self) -> Chain:

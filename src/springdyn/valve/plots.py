@@ -31,8 +31,15 @@ def plot_closure_map(sim, path=None, ax=None):
     order = np.argsort(deg)
     edges = model.element_turns
     step = 360.0 / deg.size
-    ax.pcolormesh(np.append(deg[order], deg[order][-1] + step) - step / 2, edges, contact[:, order],
-                  shading="flat", cmap="Greys", vmin=0, vmax=1.3)
+    ax.pcolormesh(
+        np.append(deg[order], deg[order][-1] + step) - step / 2,
+        edges,
+        contact[:, order],
+        shading="flat",
+        cmap="Greys",
+        vmin=0,
+        vmax=1.3,
+    )
     ax2 = ax.twinx()
     ax2.plot(deg[order], sim.lift[order] * 1e3, color="C0", lw=1)
     ax2.set_ylabel("cam lift [mm]", color="C0")
@@ -40,8 +47,10 @@ def plot_closure_map(sim, path=None, ax=None):
     ax.set_xlabel("cam angle [deg]")
     ax.set_ylabel("position along the wire [turns from the seat]")
     ax.set_ylim(edges[0], edges[-1])
-    ax.set_title(f"coil closure (dark: closed), {sim.cam_rpm:.0f} cam rpm; clashing coils: "
-                 + (", ".join(map(str, clash)) if clash else "none"))
+    ax.set_title(
+        f"coil closure (dark: closed), {sim.cam_rpm:.0f} cam rpm; clashing coils: "
+        + (", ".join(map(str, clash)) if clash else "none")
+    )
     if path is not None:
         save_figure(fig, path, close=False)
     return fig
@@ -105,8 +114,6 @@ def plot_static_curve(curve, path=None, ax=None):
     return fig
 
 
-
-
 def plot_simulation(sim, path=None, ax=None):
     """Forces vs cam angle (dynamic against static), mass displacements and spectrum.
 
@@ -132,8 +139,10 @@ def plot_simulation(sim, path=None, ax=None):
     if sim.summary["coil_contact"]:
         ax.plot([], [], color="C3", alpha=0.3, lw=6, label="coil contact")
     ax.set_ylabel("force [N]")
-    ax.set_title(f"{sim.spring.type} spring, {sim.cam.law} cam, {sim.cam_rpm:.0f} cam rpm "
-                 f"(revolution {sim.revolutions} of {sim.revolutions})")
+    ax.set_title(
+        f"{sim.spring.type} spring, {sim.cam.law} cam, {sim.cam_rpm:.0f} cam rpm "
+        f"(revolution {sim.revolutions} of {sim.revolutions})"
+    )
     ax.legend(fontsize=8)
     if only_forces:
         ax.set_xlabel("cam angle [deg]")
@@ -158,8 +167,11 @@ def plot_simulation(sim, path=None, ax=None):
         if sim.summary["liftoff"]:
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="lift-off")
         sm = sim.summary
-        ax.set_title(f"seat impact velocity {sm['seat_impact_velocity_m_per_s']:.3f} m/s, "
-                     f"{sm['seat_landings']} landing(s), {sm['bounces']} bounce(s)", fontsize=9)
+        ax.set_title(
+            f"seat impact velocity {sm['seat_impact_velocity_m_per_s']:.3f} m/s, "
+            f"{sm['seat_landings']} landing(s), {sm['bounces']} bounce(s)",
+            fontsize=9,
+        )
         ax.set_ylabel("force [N]")
         ax.legend(fontsize=8)
         row = 3
@@ -172,8 +184,13 @@ def plot_simulation(sim, path=None, ax=None):
         t = sim.valve_train
         ax.plot(sim.lift[order] * 1e3, sim.valve_lift[order] * 1e3, color="C0", lw=1, label="valve lift (dynamic)")
         lobe = np.linspace(0.0, float(sim.lift.max()), 50)
-        ax.plot(lobe * 1e3, np.maximum(t.ratio * lobe - t.lash, 0.0) * 1e3, "k--", lw=1,
-                label=f"rigid train: {t.ratio:g} x lobe lift - lash")
+        ax.plot(
+            lobe * 1e3,
+            np.maximum(t.ratio * lobe - t.lash, 0.0) * 1e3,
+            "k--",
+            lw=1,
+            label=f"rigid train: {t.ratio:g} x lobe lift - lash",
+        )
         ax.set_xlabel("lobe lift at the follower [mm]")
         ax.set_ylabel("valve lift [mm]")
         ax.grid(True, alpha=0.3)
@@ -210,8 +227,15 @@ def plot_sweep_forces(result, ax=None):
         if nv == 1:
             ax.plot(rpm, table["max_seat_force_N"][sl], color="C1", lw=1, label="max seat force")
             ax.plot(rpm, table["min_seat_force_N"][sl], color="C1", lw=1, ls="-.", label="min seat force")
-        ax.plot(rpm, table["max_static_force_N"][sl], color=color, ls="--", lw=0.8, alpha=0.7,
-                label="static max / min" if k == 0 else None)
+        ax.plot(
+            rpm,
+            table["max_static_force_N"][sl],
+            color=color,
+            ls="--",
+            lw=0.8,
+            alpha=0.7,
+            label="static max / min" if k == 0 else None,
+        )
         ax.plot(rpm, table["min_static_force_N"][sl], color=color, ls="--", lw=0.8, alpha=0.7)
     ax.set_xlabel("cam speed [rpm]")
     ax.set_ylabel("force [N]")
@@ -243,8 +267,12 @@ def plot_sweep(result, out_dir, prefix="sweep"):
         fig, ax = new_figure(figsize=(9, 5))
         for k in range(nv):
             sl = slice(k * nr, (k + 1) * nr)
-            ax.plot(rpm, table["min_cam_contact_force_N"][sl], color=f"C{k % 10}", label="min cam contact force"
-                    + (f" ({_vary_label(result, k)})" if result.vary_name else ""))
+            ax.plot(
+                rpm,
+                table["min_cam_contact_force_N"][sl],
+                color=f"C{k % 10}",
+                label="min cam contact force" + (f" ({_vary_label(result, k)})" if result.vary_name else ""),
+            )
         for k, f in enumerate(result.float_speeds()):
             if np.isfinite(f):
                 ax.axvline(f, color=f"C{k % 10}", ls="--", lw=1, label=f"float speed ~ {f:.0f} rpm")
@@ -271,8 +299,13 @@ def _campbell(result, k, path, tag, max_order=30):
     fig, ax = new_figure(figsize=(9, 6))
     rr, oo = np.meshgrid(rpm, orders, indexing="ij")
     a = amp[:, orders]
-    sc = ax.scatter(rr.ravel(), (oo * rr / 60.0).ravel(), c=np.log10(np.maximum(a.ravel(), 1e-3)),
-                    s=4 + 40 * (a.ravel() / a.max()), cmap="magma_r")
+    sc = ax.scatter(
+        rr.ravel(),
+        (oo * rr / 60.0).ravel(),
+        c=np.log10(np.maximum(a.ravel(), 1e-3)),
+        s=4 + 40 * (a.ravel() / a.max()),
+        cmap="magma_r",
+    )
     fig.colorbar(sc, ax=ax, label="log10 retainer-force harmonic amplitude [N]")
     for o in orders[::5]:
         ax.annotate(f"{o}", (rpm[-1], o * rpm[-1] / 60.0), fontsize=7, color="0.4")

@@ -42,8 +42,11 @@ class StaticCurve(Result):
             force_max_N=float(self.force.max()),
             stiffness_min_N_per_m=float(self.stiffness.min()),
             stiffness_max_N_per_m=float(self.stiffness.max()),
-            **({} if self.frequency is None else dict(first_mode_min_Hz=float(self.frequency.min()),
-                                                       first_mode_max_Hz=float(self.frequency.max()))),
+            **(
+                {}
+                if self.frequency is None
+                else dict(first_mode_min_Hz=float(self.frequency.min()), first_mode_max_Hz=float(self.frequency.max()))
+            ),
         )
 
     def columns(self) -> dict:
@@ -60,8 +63,11 @@ class StaticCurve(Result):
             "stiffness": ("length", self.stiffness, {"units": "N/m", "long_name": "tangent stiffness -dF/dL"}),
         }
         if self.frequency is not None:
-            data["first_mode_frequency"] = ("length", self.frequency,
-                                            {"units": "Hz", "long_name": "first natural frequency, ends fixed"})
+            data["first_mode_frequency"] = (
+                "length",
+                self.frequency,
+                {"units": "Hz", "long_name": "first natural frequency, ends fixed"},
+            )
         return xr.Dataset(
             data,
             coords={"length": ("length", self.length, {"units": "m", "long_name": "spring length"})},
@@ -174,19 +180,34 @@ class Simulation(Result):
                 cam_contact_force=(dims, self.cam_contact_force, {"units": "N"}),
                 valve_seat_force=(dims, self.valve_seat_force, {"units": "N"}),
             )
-        data.update({
-            "element_compression": (("element",) + dims, self.element_compression,
-                                    {"units": "m", "csv_columns": per_element("compression_m")}),
-            "element_force": (("element",) + dims, self.element_force,
-                              {"units": "N", "csv_columns": per_element("force_N")}),
-            "element_contact": (("element",) + dims, self.element_contact.astype(np.int8),
-                                {"units": "1", "long_name": "element in coil contact",
-                                 "csv_columns": per_element("contact")}),
-            "mass_displacement": (("mass",) + dims, self.mass_displacement,
-                                  {"units": "m", "long_name": "displacement from set-up, towards the seat",
-                                   "csv_columns": ",".join(f"mass{i + 1}_{n}_displacement_m"
-                                                           for i, n in enumerate(mnames))}),
-        })
+        data.update(
+            {
+                "element_compression": (
+                    ("element",) + dims,
+                    self.element_compression,
+                    {"units": "m", "csv_columns": per_element("compression_m")},
+                ),
+                "element_force": (
+                    ("element",) + dims,
+                    self.element_force,
+                    {"units": "N", "csv_columns": per_element("force_N")},
+                ),
+                "element_contact": (
+                    ("element",) + dims,
+                    self.element_contact.astype(np.int8),
+                    {"units": "1", "long_name": "element in coil contact", "csv_columns": per_element("contact")},
+                ),
+                "mass_displacement": (
+                    ("mass",) + dims,
+                    self.mass_displacement,
+                    {
+                        "units": "m",
+                        "long_name": "displacement from set-up, towards the seat",
+                        "csv_columns": ",".join(f"mass{i + 1}_{n}_displacement_m" for i, n in enumerate(mnames)),
+                    },
+                ),
+            }
+        )
         return xr.Dataset(
             data,
             coords={
@@ -195,10 +216,16 @@ class Simulation(Result):
                 "element": enames,
                 "mass": mnames,
             },
-            attrs={"cam_rpm": self.cam_rpm, "revolutions": self.revolutions, "spring_type": self.spring.type,
-                   "model": getattr(self.spring, "model", "type-c"), "cam_law": self.cam.law,
-                   "periodicity_error": (self.periodicity_error if np.isfinite(self.periodicity_error)
-                                         else "n/a (1 revolution)")},
+            attrs={
+                "cam_rpm": self.cam_rpm,
+                "revolutions": self.revolutions,
+                "spring_type": self.spring.type,
+                "model": getattr(self.spring, "model", "type-c"),
+                "cam_law": self.cam.law,
+                "periodicity_error": (
+                    self.periodicity_error if np.isfinite(self.periodicity_error) else "n/a (1 revolution)"
+                ),
+            },
         )
 
     def _plot(self, ax=None):
@@ -221,8 +248,9 @@ class Simulation(Result):
         from .plots import plot_closure_map
 
         if not hasattr(self.spring.spring_model, "element_positions"):
-            raise InputError("the coil-closure map needs the distributed model (model = \"distributed\"): Type C "
-                             "has no coil geometry")
+            raise InputError(
+                'the coil-closure map needs the distributed model (model = "distributed"): Type C has no coil geometry'
+            )
         return plot_closure_map(self, path, ax)
 
 
@@ -237,8 +265,10 @@ def coil_contact_compressions(spring) -> np.ndarray:
     spring : ValveSpring
         The spring definition (its model decides).
     """
-    return spring.cached("coil_contact_compressions",
-                         lambda: np.ascontiguousarray(spring.spring_model.contact_compressions(), dtype=float))
+    return spring.cached(
+        "coil_contact_compressions",
+        lambda: np.ascontiguousarray(spring.spring_model.contact_compressions(), dtype=float),
+    )
 
 
 def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
@@ -295,7 +325,9 @@ def located_events(sim: Simulation) -> dict:
                 continue  # joined with the interval open at the end
             elif not np.isfinite(te):
                 end = at_start[0][1] if at_start else t0 + period
-                ivals.append((deg(ts), deg(end) % 360.0, (end + (period if at_start else 0.0) - ts) * omega * 180 / np.pi))
+                ivals.append(
+                    (deg(ts), deg(end) % 360.0, (end + (period if at_start else 0.0) - ts) * omega * 180 / np.pi)
+                )
             else:
                 ivals.append((deg(ts), deg(te), (te - ts) * omega * 180 / np.pi))
         out[key] = sorted(ivals)
@@ -344,13 +376,18 @@ def _summarise(sim: Simulation) -> dict:
         ext = mon["ext"]
         to_deg = lambda t: float(np.degrees(mon["omega"] * (t - mon["t0"])) % 360.0)  # noqa: E731
         # true extremes from the dense output; never less extreme than the grid samples
-        for key, ek, pick in (("max_retainer_force", "max_retainer_force", max), ("min_retainer_force", "min_retainer_force", min),
-                              ("max_seat_force", "max_seat_force", max), ("min_seat_force", "min_seat_force", min)):
+        for key, ek, pick in (
+            ("max_retainer_force", "max_retainer_force", max),
+            ("min_retainer_force", "min_retainer_force", min),
+            ("max_seat_force", "max_seat_force", max),
+            ("min_seat_force", "min_seat_force", min),
+        ):
             s[key + "_N"] = float(pick(ext[ek], s[key + "_N"]))
             s[key + "_cam_angle_deg"] = to_deg(ext["t_" + ek])
     else:
-        notes.append("extremes are samples of the output grid (the SciPy reference backend has no dense-output "
-                     "monitor)")
+        notes.append(
+            "extremes are samples of the output grid (the SciPy reference backend has no dense-output monitor)"
+        )
     s["max_retainer_force_ratio"] = s["max_retainer_force_N"] / s["max_static_force_N"]
     s["min_retainer_force_ratio"] = s["min_retainer_force_N"] / s["min_static_force_N"]
     s["max_seat_force_ratio"] = s["max_seat_force_N"] / s["max_static_force_N"]
@@ -365,26 +402,35 @@ def _summarise(sim: Simulation) -> dict:
         allv = [(a, b, c, j) for j, v in per_el.items() for a, b, c in v]
         for lo, hi in _union([(a, b, c) for a, b, c, _ in allv]):
             end = hi % 360.0 if hi > 360.0 else hi
-            elems = sorted({j for a, b, c, j in allv
-                            if any(lo - 1e-9 <= x <= hi + 1e-9 for x in (a, b if b >= a else b + 360.0))})
+            elems = sorted(
+                {j for a, b, c, j in allv if any(lo - 1e-9 <= x <= hi + 1e-9 for x in (a, b if b >= a else b + 360.0))}
+            )
             mask = _angle_mask(deg, lo, end)
             grid = sim.element_force[np.ix_(elems, np.flatnonzero(mask))] if mask.any() else np.empty((0, 0))
             gaps = coil_contact_compressions(sim.spring)
             at_touch = max(float(law_force_at(gaps[j], sim.spring.chain.laws[j])) for j in elems)
-            events.append(dict(
-                start_deg=float(lo), end_deg=float(end), duration_deg=float(hi - lo),
-                elements=[f"{j + 1}:{names[j]}" for j in elems],
-                peak_contact_force_N=float(max(grid.max(), at_touch)) if grid.size else at_touch,
-            ))
+            events.append(
+                dict(
+                    start_deg=float(lo),
+                    end_deg=float(end),
+                    duration_deg=float(hi - lo),
+                    elements=[f"{j + 1}:{names[j]}" for j in elems],
+                    peak_contact_force_N=float(max(grid.max(), at_touch)) if grid.size else at_touch,
+                )
+            )
     else:
         for a, b in _ranges(sim.element_contact.any(axis=0)):
             idx = np.arange(a, b + 1) if a <= b else np.concatenate([np.arange(a, deg.size), np.arange(0, b + 1)])
             elems = np.flatnonzero(sim.element_contact[:, idx].any(axis=1))
-            events.append(dict(
-                start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(idx.size * step_deg),
-                elements=[f"{j + 1}:{names[j]}" for j in elems],
-                peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
-            ))
+            events.append(
+                dict(
+                    start_deg=float(deg[a]),
+                    end_deg=float(deg[b]),
+                    duration_deg=float(idx.size * step_deg),
+                    elements=[f"{j + 1}:{names[j]}" for j in elems],
+                    peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
+                )
+            )
     s["coil_contact"] = events
     s.update(_durability(sim, s, notes))
     clash = sim.spring.spring_model.clashing_coils(sim) if hasattr(sim.spring.spring_model, "clashing_coils") else None
@@ -393,8 +439,13 @@ def _summarise(sim: Simulation) -> dict:
     if sim.element_check is not None:
         chk = sim.element_check
         fset = sim.spring.internal_parameters()["Fset"]
-        change = max(abs(s["max_retainer_force_N"] - chk["max_retainer_force_N"]),
-                     abs(s["max_seat_force_N"] - chk["max_seat_force_N"])) / fset
+        change = (
+            max(
+                abs(s["max_retainer_force_N"] - chk["max_retainer_force_N"]),
+                abs(s["max_seat_force_N"] - chk["max_seat_force_N"]),
+            )
+            / fset
+        )
         s["clash_force_element_sensitivity"] = change
         s["clash_forces_converged"] = bool(change <= sim.ELEMENT_TOL)
         if change > sim.ELEMENT_TOL:
@@ -402,7 +453,8 @@ def _summarise(sim: Simulation) -> dict:
                 f"coil clash: the peak end forces depend on the element count ({chk['elements']} elements give "
                 f"{chk['max_retainer_force_N']:.1f} / {chk['max_seat_force_N']:.1f} N at the retainer / seat against "
                 f"{s['max_retainer_force_N']:.1f} / {s['max_seat_force_N']:.1f} N, {100 * change:.1f} % of Fset): "
-                "treat the clash forces as indicative and compare designs at one element count")
+                "treat the clash forces as indicative and compare designs at one element count"
+            )
     sep = []
     for end_index, end_name in ((0, "seat"), (1, "retainer")):
         for a, b, c in located.get((0, end_index), []):
@@ -411,12 +463,21 @@ def _summarise(sim: Simulation) -> dict:
         for j, end_name in ((0, "seat"), (-1, "retainer")):
             for a, b in _ranges(sim.element_compression[j] <= 0.0):
                 count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
-                sep.append(dict(end=end_name, start_deg=float(deg[a]), end_deg=float(deg[b]),
-                                duration_deg=float(count * step_deg), duration_s=float(count * step_deg / (6.0 * rpm))))
+                sep.append(
+                    dict(
+                        end=end_name,
+                        start_deg=float(deg[a]),
+                        end_deg=float(deg[b]),
+                        duration_deg=float(count * step_deg),
+                        duration_s=float(count * step_deg / (6.0 * rpm)),
+                    )
+                )
     s["end_separation"] = sep
     if s["periodicity_error"] is None:
-        notes.append("periodicity_error needs at least 2 revolutions (the last one is compared with the one "
-                      "before): run 2 or more")
+        notes.append(
+            "periodicity_error needs at least 2 revolutions (the last one is compared with the one "
+            "before): run 2 or more"
+        )
     f_cam = sim.cam_rpm / 60.0
     orders, amp = sim.spectrum(40)
     top = np.argsort(amp[1:])[::-1][:8] + 1
@@ -431,7 +492,7 @@ def _summarise(sim: Simulation) -> dict:
         first_landing = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
         before = np.ones(z.size, dtype=bool)
         if first_landing.size:
-            before[first_landing[0] + 1:] = False
+            before[first_landing[0] + 1 :] = False
         in_event = (sim.lift > vt.lobe_lash + 1e-6) & (z > 0.0) & before
         lo = []
         if mon is not None:
@@ -441,8 +502,14 @@ def _summarise(sim: Simulation) -> dict:
             separated = in_event & (sim.cam_contact_force <= 0.0)
             for a, b in _ranges(separated):
                 count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
-                lo.append(dict(start_deg=float(deg[a]), end_deg=float(deg[b]), duration_deg=float(count * step_deg),
-                               duration_s=float(count * step_deg / (6.0 * sim.cam_rpm))))
+                lo.append(
+                    dict(
+                        start_deg=float(deg[a]),
+                        end_deg=float(deg[b]),
+                        duration_deg=float(count * step_deg),
+                        duration_s=float(count * step_deg / (6.0 * sim.cam_rpm)),
+                    )
+                )
         s["liftoff"] = lo
         grid_min = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
         if mon is not None and np.isfinite(mon["ext"]["min_cam_contact_force"]):
@@ -465,11 +532,13 @@ def _summarise(sim: Simulation) -> dict:
         if lo and s["seat_landings"]:
             # measured (tests/valve/test_distributed.py): the one-step spring's bucket train at
             # 3150-3250 cam rpm gives 0.2-0.9 % at rtol 1e-6 and 3e-7, 0.13 % at 1e-8, 0.007 % at 1e-9
-            notes.append("the valve floated: the landing after lift-off (seat impact velocity, bounces) depends on "
-                         "the tolerances, ~1 % at the default rtol = 1e-6; use rtol = 1e-9 for ~0.01 %")
+            notes.append(
+                "the valve floated: the landing after lift-off (seat impact velocity, bounces) depends on "
+                "the tolerances, ~1 % at the default rtol = 1e-6; use rtol = 1e-9 for ~0.01 %"
+            )
         after = np.zeros_like(z, dtype=bool)
         if landings.size:
-            after[landings[0] + 1:] = True
+            after[landings[0] + 1 :] = True
         s["max_bounce_height_m"] = float(np.max(np.where(after & ~(sim.lift > vt.lobe_lash + 1e-6), z, 0.0)))
     if mon is not None and mon["ext"]["events_lost"] > 0:
         notes.append(f"{int(mon['ext']['events_lost'])} events beyond the first {len(mon['events'])} were not located")
@@ -490,8 +559,6 @@ def law_force_at(x: float, law: np.ndarray) -> float:
     from .elements import law_force
 
     return float(law_force(x, law)) if np.isfinite(x) else 0.0
-
-
 
 
 @dataclass(repr=False)
@@ -517,19 +584,25 @@ class FloatSpeedResult(Result):
         return "no lift-off in the range" if self.float_cam_rpm is None else f"{self.float_cam_rpm:.1f} cam rpm"
 
     def _summary(self) -> dict:
-        s = dict(float_cam_rpm=self.float_cam_rpm,
-                 float_engine_rpm=None if self.float_cam_rpm is None else 2.0 * self.float_cam_rpm,
-                 resolution_rpm=self.resolution_rpm,
-                 speeds_scanned=len(self.cam_rpm))
-        s["bracket_low_cam_rpm"], s["bracket_high_cam_rpm"] = (self.bracket or [None, None])
+        s = dict(
+            float_cam_rpm=self.float_cam_rpm,
+            float_engine_rpm=None if self.float_cam_rpm is None else 2.0 * self.float_cam_rpm,
+            resolution_rpm=self.resolution_rpm,
+            speeds_scanned=len(self.cam_rpm),
+        )
+        s["bracket_low_cam_rpm"], s["bracket_high_cam_rpm"] = self.bracket or [None, None]
         if self.float_cam_rpm is None:
             s["notes"] = ["no lift-off at any scanned speed: the float speed is above the range"]
         return s
 
     def to_dict(self) -> dict:
         """The JSON of ``springdyn valve float``: the scan and the float speed (SI, rpm)."""
-        return dict(cam_rpm=list(self.cam_rpm), min_cam_contact_force_N=list(self.min_cam_contact_force_N),
-                    float_cam_rpm=self.float_cam_rpm, bracket=self.bracket)
+        return dict(
+            cam_rpm=list(self.cam_rpm),
+            min_cam_contact_force_N=list(self.min_cam_contact_force_N),
+            float_cam_rpm=self.float_cam_rpm,
+            bracket=self.bracket,
+        )
 
     def __getitem__(self, key):
         legacy = self.to_dict()
@@ -539,8 +612,13 @@ class FloatSpeedResult(Result):
         import xarray as xr
 
         return xr.Dataset(
-            {"min_cam_contact_force": ("cam_rpm", np.asarray(self.min_cam_contact_force_N, dtype=float),
-                                       {"units": "N", "long_name": "minimum cam-follower contact force in the event"})},
+            {
+                "min_cam_contact_force": (
+                    "cam_rpm",
+                    np.asarray(self.min_cam_contact_force_N, dtype=float),
+                    {"units": "N", "long_name": "minimum cam-follower contact force in the event"},
+                )
+            },
             coords={"cam_rpm": ("cam_rpm", np.asarray(self.cam_rpm, dtype=float), {"units": "rpm"})},
             attrs={"float_cam_rpm": "none" if self.float_cam_rpm is None else self.float_cam_rpm},
         )
@@ -580,15 +658,20 @@ def _durability(sim, s: dict, notes: list) -> dict:
     out = dict(
         static_fatigue_safety_factor=sta["fatigue_safety_factor"],
         fatigue_safety_factor=dyn["fatigue_safety_factor"],
-        static_min_shear_stress_Pa=sta["min_shear_stress_Pa"], static_max_shear_stress_Pa=sta["max_shear_stress_Pa"],
-        min_shear_stress_Pa=dyn["min_shear_stress_Pa"], max_shear_stress_Pa=dyn["max_shear_stress_Pa"],
+        static_min_shear_stress_Pa=sta["min_shear_stress_Pa"],
+        static_max_shear_stress_Pa=sta["max_shear_stress_Pa"],
+        min_shear_stress_Pa=dyn["min_shear_stress_Pa"],
+        max_shear_stress_Pa=dyn["max_shear_stress_Pa"],
         fatigue_critical_element=dyn["critical_element"] + 1,
         endurance_shear_strength_Pa=dyn["endurance_shear_strength_Pa"],
         ultimate_shear_strength_Pa=dyn["ultimate_shear_strength_Pa"],
     )
     if dyn["strength_defaults"]:
-        notes.append("fatigue: default wire strengths used for " + " and ".join(dyn["strength_defaults"])
-                     + " (oil-tempered, shot-peened Cr-Si valve-spring wire; give them in [spring] for your wire)")
+        notes.append(
+            "fatigue: default wire strengths used for "
+            + " and ".join(dyn["strength_defaults"])
+            + " (oil-tempered, shot-peened Cr-Si valve-spring wire; give them in [spring] for your wire)"
+        )
     if out["fatigue_safety_factor"] is None:
         notes.append("fatigue: the wire carries no stress over the cycle")
     # length to solid: the spring's length against its solid length

@@ -25,7 +25,6 @@ EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"
 MODEL_NAMES = ("type-c", "distributed")
 
 
-
 @dataclass(frozen=True)
 class ValveSpring(Parameters):
     """A helical valve spring for the MMS Type C model (one-step or two-step).
@@ -47,7 +46,9 @@ class ValveSpring(Parameters):
     mean_diameter: float = param("m", "mean coil diameter", symbol="Do", display="mm", positive=True)
     wire_diameter: float = param("m", "wire diameter", symbol="Dw", display="mm", positive=True)
     free_length: float = param("m", "free length", symbol="Lf", display="mm", positive=True)
-    installed_length: float = param("m", "set-up (installed) length, valve closed", symbol="Ls", display="mm", positive=True)
+    installed_length: float = param(
+        "m", "set-up (installed) length, valve closed", symbol="Ls", display="mm", positive=True
+    )
     dead_coils: float = param("", "dead coils per end", symbol="Nb", nonnegative=True)
     low_pitch_coils: float = param("", "low-pitch coils (0 for one-step)", symbol="N1", nonnegative=True)
     high_pitch_coils: float = param("", "high-pitch coils", symbol="N2", positive=True)
@@ -55,21 +56,44 @@ class ValveSpring(Parameters):
     shear_modulus: float = param("Pa", "shear modulus", symbol="G'", display="GPa", positive=True)
     density: float = param("kg/m^3", "density", symbol="rho'", positive=True)
     damping_ratio: float = param("", "damping ratio", symbol="Cps", nonnegative=True)
-    tensile_strength: float = param("Pa", "tensile strength of the wire (default 2000 MPa: oil-tempered Cr-Si "
-                                    "valve-spring wire, EN 10270-2 VDSiCr)", display="MPa", positive=True,
-                                    default=None)
-    endurance_shear_strength: float = param("Pa", "fully reversed torsional endurance strength of the wire "
-                                            "(default: Zimmerli's peened data on the Goodman line)", display="MPa",
-                                            positive=True, default=None)
-    model: str = param(None, "spring model: 'type-c' (the document's MMS Type C, 5 masses) or 'distributed' "
-                       "(coil by coil from the geometry)", kind="str", choices=MODEL_NAMES, default="type-c")
+    tensile_strength: float = param(
+        "Pa",
+        "tensile strength of the wire (default 2000 MPa: oil-tempered Cr-Si valve-spring wire, EN 10270-2 VDSiCr)",
+        display="MPa",
+        positive=True,
+        default=None,
+    )
+    endurance_shear_strength: float = param(
+        "Pa",
+        "fully reversed torsional endurance strength of the wire (default: Zimmerli's peened data on the Goodman line)",
+        display="MPa",
+        positive=True,
+        default=None,
+    )
+    model: str = param(
+        None,
+        "spring model: 'type-c' (the document's MMS Type C, 5 masses) or 'distributed' "
+        "(coil by coil from the geometry)",
+        kind="str",
+        choices=MODEL_NAMES,
+        default="type-c",
+    )
     elements: int = param("", "wire elements of the distributed model", kind="int", default=50, positive=True)
-    pitch_profile: str = param(None, "distributed model: pitch against turns from the seat end, a CSV file (columns "
-                               "turns, pitch_mm) or an array of [turns, pitch] pairs (default: from the keys above)",
-                               kind="str", default="")
-    diameter_profile: str = param(None, "distributed model: mean coil diameter against turns from the seat end, a "
-                                  "CSV file (columns turns, diameter_mm) or an array of [turns, diameter] pairs "
-                                  "(default: mean_diameter throughout)", kind="str", default="")
+    pitch_profile: str = param(
+        None,
+        "distributed model: pitch against turns from the seat end, a CSV file (columns "
+        "turns, pitch_mm) or an array of [turns, pitch] pairs (default: from the keys above)",
+        kind="str",
+        default="",
+    )
+    diameter_profile: str = param(
+        None,
+        "distributed model: mean coil diameter against turns from the seat end, a "
+        "CSV file (columns turns, diameter_mm) or an array of [turns, diameter] pairs "
+        "(default: mean_diameter throughout)",
+        kind="str",
+        default="",
+    )
 
     table = "spring"
     examples = EXAMPLES
@@ -89,9 +113,13 @@ class ValveSpring(Parameters):
             if isinstance(value, list):
                 rows = []
                 for i, row in enumerate(value):
-                    if not isinstance(row, list) or len(row) != 2 or isinstance(row[0], (bool, str)) \
-                            or not isinstance(row[0], (int, float)):
-                        raise InputError(f"{key}[{i}] = {row!r} must be a pair [turns, value], e.g. [1.5, \"7 mm\"]")
+                    if (
+                        not isinstance(row, list)
+                        or len(row) != 2
+                        or isinstance(row[0], (bool, str))
+                        or not isinstance(row[0], (int, float))
+                    ):
+                        raise InputError(f'{key}[{i}] = {row!r} must be a pair [turns, value], e.g. [1.5, "7 mm"]')
                     rows.append(f"{float(row[0])!r} {to_si(row[1], 'm', f'{key}[{i}][1]')!r}")
                 mapping[key] = "table: " + "; ".join(rows)
             elif isinstance(value, str) and value and base_dir is not None and not value.startswith("table:"):
@@ -115,9 +143,11 @@ class ValveSpring(Parameters):
 
             # attribute the warning to the caller's line, outside springdyn
             package, level, frame = str(Path(__file__).parents[1]), 1, sys._getframe(0)
-            while frame is not None and (frame.f_code.co_filename.startswith(package)
-                                         or frame.f_code.co_filename.endswith("dataclasses.py")
-                                         or frame.f_locals.get("self") is self):
+            while frame is not None and (
+                frame.f_code.co_filename.startswith(package)
+                or frame.f_code.co_filename.endswith("dataclasses.py")
+                or frame.f_locals.get("self") is self
+            ):
                 frame, level = frame.f_back, level + 1
         for message in unlikely:
             warnings.warn(message, UserWarning, stacklevel=level)
@@ -168,6 +198,7 @@ class ValveSpring(Parameters):
             "shear_modulus": ((1e5, 1e16), (20e9, 150e9), "any spring material", "spring steel or titanium"),
             "density": ((1.0, 1e6), (1000.0, 25000.0), "any solid", "spring steel or titanium"),
         }
+
         def show(value, unit, display):
             # in the display unit unless that needs many digits: 22 m, not 22000 mm
             in_display = value * {"mm": 1e3, "GPa": 1e-9}.get(display, 1.0)
@@ -203,15 +234,21 @@ class ValveSpring(Parameters):
         if self.damping_ratio > 1.0:
             raise InputError(
                 f"damping_ratio = {self.damping_ratio:g} is above critical damping (1), which no spring wire has"
-                + (f": did you mean {self.damping_ratio:g} % ({self.damping_ratio / 100:g})?"
-                   if self.damping_ratio <= 100 else "")
+                + (
+                    f": did you mean {self.damping_ratio:g} % ({self.damping_ratio / 100:g})?"
+                    if self.damping_ratio <= 100
+                    else ""
+                )
             )
         if self.damping_ratio > 0.2:
-            unlikely.append(f"damping_ratio = {self.damping_ratio:g} is far above the damping of valve springs "
-                            f"(a few %, e.g. 0.05)")
+            unlikely.append(
+                f"damping_ratio = {self.damping_ratio:g} is far above the damping of valve springs (a few %, e.g. 0.05)"
+            )
         if self.shear_modulus > self.youngs_modulus:
-            unlikely.append(f"{self._field('shear_modulus')} exceeds {self._field('youngs_modulus')}: for a metal "
-                            "G is about 0.4 E (are the two swapped?)")
+            unlikely.append(
+                f"{self._field('shear_modulus')} exceeds {self._field('youngs_modulus')}: for a metal "
+                "G is about 0.4 E (are the two swapped?)"
+            )
         index = self.mean_diameter / self.wire_diameter
         if not 3.0 <= index <= 20.0:
             raise InputError(
@@ -223,13 +260,11 @@ class ValveSpring(Parameters):
         if not math.isfinite(index):  # pragma: no cover - excluded by the ranges above
             raise InputError(f"spring index C = {index!r} is not finite")
         if self.installed_length >= self.free_length:
-            raise InputError(
-                f"{self._field('installed_length')} must be shorter than {self._field('free_length')}"
-            )
+            raise InputError(f"{self._field('installed_length')} must be shorter than {self._field('free_length')}")
         if not self.two_step and self.low_pitch_coils != 0:
             raise InputError(
                 f"{self._field('low_pitch_coils')} must be 0 for a one-step spring "
-                "(set type = \"two-step\" for a spring with low-pitch coils)"
+                '(set type = "two-step" for a spring with low-pitch coils)'
             )
         n1, n2, nb = self.low_pitch_coils, self.high_pitch_coils, self.dead_coils
         if formulas.active_coils_free(n1, n2, nb) <= 0:

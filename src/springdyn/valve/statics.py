@@ -93,9 +93,7 @@ def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, ma
         force = force + step
         if np.all(np.abs(step) <= rtol * np.maximum(np.abs(force), 1e-300) + 1e-300):
             return force
-    raise SolverError(
-        f"static equilibrium did not converge for total compression {np.atleast_1d(dl).max():.6g} m"
-    )
+    raise SolverError(f"static equilibrium did not converge for total compression {np.atleast_1d(dl).max():.6g} m")
 
 
 def series_state(total_compression, laws: np.ndarray):

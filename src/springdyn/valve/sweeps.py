@@ -46,8 +46,9 @@ __all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value
 SCHEDULER_TIMEOUT = 5.0
 
 
-def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, points: int, rtol: float,
-              atol: float) -> dict:
+def run_chunk(
+    setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, points: int, rtol: float, atol: float
+) -> dict:
     """Integrate a chunk of speeds and reduce each to its last revolution's forces.
 
     Parameters
@@ -88,11 +89,14 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, poi
         seat=f[:, last, 0],
         contact=contact.any(axis=2),
         contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
-        periodicity=(np.max(np.abs(f[:, last, ne - 1] - prev), axis=1) / fset if prev.shape[1]
-                     else np.full(cam_rpm.size, np.nan)),
+        periodicity=(
+            np.max(np.abs(f[:, last, ne - 1] - prev), axis=1) / fset if prev.shape[1] else np.full(cam_rpm.size, np.nan)
+        ),
         ext=mon["ext"],
         separation=np.sum(ev[:, :, 0] == 0.0, axis=1),
-        status=status, t=t_end, steps=steps,
+        status=status,
+        t=t_end,
+        steps=steps,
     )
     if setup.valve_train is not None:
         out["cam_contact"] = ex[:, last, lay["cam_contact_force"]]
@@ -120,9 +124,7 @@ def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
     try:
         from dask.distributed import Client
     except ImportError:
-        raise InputError(
-            f"scheduler = {address!r}: Dask is not installed; install springdyn[dask]"
-        ) from None
+        raise InputError(f"scheduler = {address!r}: Dask is not installed; install springdyn[dask]") from None
     try:
         return Client(address, timeout=f"{timeout}s")
     except (OSError, TimeoutError, ValueError) as exc:
@@ -151,8 +153,9 @@ def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
         chunks = _chunks(cam_rpm, 4 * n_workers, 10, max_size)
         remote_setup = client.scatter(setup, broadcast=True)
-        futures = [client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, pure=False)
-                   for c in chunks]
+        futures = [
+            client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, pure=False) for c in chunks
+        ]
         from dask.distributed import as_completed as dask_completed
 
         for _ in progress(dask_completed(futures), total=len(futures), desc=desc, quiet=quiet):
@@ -193,8 +196,10 @@ class SpeedSweep(Result):
     title = "valve spring speed sweep"
 
     def _repr_caption(self) -> str:
-        text = (f"{self.spring.type} spring, {self.cam.law} cam, {self.cam_rpm.size} speeds "
-                f"{self.cam_rpm.min():g}-{self.cam_rpm.max():g} cam rpm")
+        text = (
+            f"{self.spring.type} spring, {self.cam.law} cam, {self.cam_rpm.size} speeds "
+            f"{self.cam_rpm.min():g}-{self.cam_rpm.max():g} cam rpm"
+        )
         return text + (f", {self.vary_values.size} values of {self.vary_name}" if self.vary_name else "")
 
     def vary_label(self, k: int) -> str:
@@ -203,23 +208,29 @@ class SpeedSweep(Result):
 
     def _summary(self) -> dict:
         t = self.summary_table()
-        s = dict(speeds=int(self.cam_rpm.size), cam_rpm_min=float(self.cam_rpm.min()),
-                 cam_rpm_max=float(self.cam_rpm.max()), design_values=int(self.vary_values.size),
-                 vary=self.vary_name or "none",
-                 max_retainer_force_N=float(np.max(t["max_retainer_force_N"])),
-                 min_retainer_force_N=float(np.min(t["min_retainer_force_N"])),
-                 max_seat_force_N=float(np.max(t["max_seat_force_N"])),
-                 min_seat_force_N=float(np.min(t["min_seat_force_N"])),
-                 max_retainer_surge_amplitude_N=float(np.max(t["retainer_surge_amplitude_N"])),
-                 speeds_with_coil_contact=int(np.count_nonzero(t["coil_contact"])),
-                 skipped_design_values=len(self.skipped))
+        s = dict(
+            speeds=int(self.cam_rpm.size),
+            cam_rpm_min=float(self.cam_rpm.min()),
+            cam_rpm_max=float(self.cam_rpm.max()),
+            design_values=int(self.vary_values.size),
+            vary=self.vary_name or "none",
+            max_retainer_force_N=float(np.max(t["max_retainer_force_N"])),
+            min_retainer_force_N=float(np.min(t["min_retainer_force_N"])),
+            max_seat_force_N=float(np.max(t["max_seat_force_N"])),
+            min_seat_force_N=float(np.min(t["min_seat_force_N"])),
+            max_retainer_surge_amplitude_N=float(np.max(t["retainer_surge_amplitude_N"])),
+            speeds_with_coil_contact=int(np.count_nonzero(t["coil_contact"])),
+            skipped_design_values=len(self.skipped),
+        )
         if self.valve_train is not None:
             fl = self.float_speeds()
             s["lowest_float_cam_rpm"] = float(np.nanmin(fl)) if np.isfinite(fl).any() else None
         s["min_fatigue_safety_factor"] = float(np.min(t["fatigue_safety_factor"]))
         if self.spring.model == "distributed" and s["speeds_with_coil_contact"]:
-            s["notes"] = ["coil contact at some speeds: the distributed model's clash forces depend on the element "
-                          "count (docs/valve.md); valve simulate at such a speed measures how much"]
+            s["notes"] = [
+                "coil contact at some speeds: the distributed model's clash forces depend on the element "
+                "count (docs/valve.md); valve simulate at such a speed measures how much"
+            ]
         return s
 
     # ---------------------------------------------------------------- summary
@@ -243,7 +254,8 @@ class SpeedSweep(Result):
             min_retainer_force_N=np.minimum(ext[:, col["min_retainer_force"]], r.min(axis=1)),
             max_seat_force_N=np.maximum(ext[:, col["max_seat_force"]], s.max(axis=1)),
             min_seat_force_N=np.minimum(ext[:, col["min_seat_force"]], s.min(axis=1)),
-            max_static_force_N=st.max(axis=1), min_static_force_N=st.min(axis=1),
+            max_static_force_N=st.max(axis=1),
+            min_static_force_N=st.min(axis=1),
             retainer_surge_amplitude_N=np.abs(r - st).max(axis=1),
             seat_surge_amplitude_N=np.abs(s - st).max(axis=1),
             coil_contact=flat(d["contact"]).any(axis=1),
@@ -256,8 +268,12 @@ class SpeedSweep(Result):
             # the valve open (off its seat, the lobe past the lash): float, not ramp impacts
             # and before the valve's first landing in the revolution (then: seat bounces)
             z = flat(d["valve_lift"])
-            landed = np.cumsum(np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)],
-                                              axis=1), axis=1) > 0
+            landed = (
+                np.cumsum(
+                    np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)], axis=1), axis=1
+                )
+                > 0
+            )
             in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0) & ~landed
             cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
             cols["liftoff"] = (cc <= 0).any(axis=1) | (ext[:, col["min_cam_contact_force"]] <= 0.0)
@@ -276,11 +292,18 @@ class SpeedSweep(Result):
         dyn = np.empty(nv * nr)
         sta = np.empty(nv * nr)
         for i in range(nv):
-            sp = self.spring if not self.vary_name else self.spring.replace(**{self.vary_name: float(self.vary_values[i])})
+            sp = (
+                self.spring
+                if not self.vary_name
+                else self.spring.replace(**{self.vary_name: float(self.vary_values[i])})
+            )
             for j in range(nr):
                 k = i * nr + j
-                a = fatigue_assessment(sp, [cols["min_seat_force_N"][k], cols["min_retainer_force_N"][k]],
-                                       [cols["max_seat_force_N"][k], cols["max_retainer_force_N"][k]])
+                a = fatigue_assessment(
+                    sp,
+                    [cols["min_seat_force_N"][k], cols["min_retainer_force_N"][k]],
+                    [cols["max_seat_force_N"][k], cols["max_retainer_force_N"][k]],
+                )
                 b = fatigue_assessment(sp, cols["min_static_force_N"][k], cols["max_static_force_N"][k])
                 dyn[k] = a["fatigue_safety_factor"] if a["fatigue_safety_factor"] is not None else 0.0
                 sta[k] = b["fatigue_safety_factor"] if b["fatigue_safety_factor"] is not None else 0.0
@@ -307,13 +330,24 @@ class SpeedSweep(Result):
         data = {
             "retainer_force": (dims, d["retainer"], {"units": "N"}),
             "seat_force": (dims, d["seat"], {"units": "N"}),
-            "in_coil_contact": (dims, d["contact"].astype(np.int8), {"long_name": "a Kh element past its Fcon breakpoint"}),
-            "coil_contact_force": (dims, d["contact_force"], {"units": "N", "long_name": "largest force of an element in coil contact"}),
+            "in_coil_contact": (
+                dims,
+                d["contact"].astype(np.int8),
+                {"long_name": "a Kh element past its Fcon breakpoint"},
+            ),
+            "coil_contact_force": (
+                dims,
+                d["contact_force"],
+                {"units": "N", "long_name": "largest force of an element in coil contact"},
+            ),
             "lift": (("cam_angle",), self.lift, {"units": "m"}),
         }
         if np.all(np.isfinite(d["periodicity"])):
-            data["periodicity_error"] = (dims[:2], d["periodicity"],
-                                         {"units": "1", "long_name": "max change from the previous revolution / Fset"})
+            data["periodicity_error"] = (
+                dims[:2],
+                d["periodicity"],
+                {"units": "1", "long_name": "max change from the previous revolution / Fset"},
+            )
         if d["static"].ndim == 3:
             data["static_force"] = (dims, d["static"], {"units": "N"})
         else:
@@ -336,8 +370,12 @@ class SpeedSweep(Result):
                 "cam_rpm": ("cam_rpm", self.cam_rpm, {"units": "rpm"}),
                 "cam_angle": ("cam_angle", np.degrees(self.cam_angle), {"units": "deg"}),
             },
-            attrs={"spring_type": self.spring.type, "cam_law": self.cam.law, "vary_name": self.vary_name or "",
-                   "valve_train": int(self.valve_train is not None)},
+            attrs={
+                "spring_type": self.spring.type,
+                "cam_law": self.cam.law,
+                "vary_name": self.vary_name or "",
+                "valve_train": int(self.valve_train is not None),
+            },
         )
         return ds if self.vary_name else ds.isel(vary=0, drop=True)
 
@@ -352,8 +390,13 @@ class SpeedSweep(Result):
         import xarray as xr
 
         table = self.summary_table()
-        return xr.Dataset({k: ("row", (np.asarray(v).astype(int) if np.asarray(v).dtype == bool else np.asarray(v)),
-                                   {"units": ""}) for k, v in table.items()}, coords={})
+        return xr.Dataset(
+            {
+                k: ("row", (np.asarray(v).astype(int) if np.asarray(v).dtype == bool else np.asarray(v)), {"units": ""})
+                for k, v in table.items()
+            },
+            coords={},
+        )
 
     def _plot(self, ax=None):
         from .plots import plot_sweep_forces
@@ -368,8 +411,9 @@ class SpeedSweep(Result):
         (use :meth:`plot_all`).
         """
         if path is not None and Path(path).is_dir():
-            warnings.warn("SpeedSweep.plot(folder) is deprecated: use plot_all(folder)", DeprecationWarning,
-                          stacklevel=2)
+            warnings.warn(
+                "SpeedSweep.plot(folder) is deprecated: use plot_all(folder)", DeprecationWarning, stacklevel=2
+            )
             return self.plot_all(path, prefix)
         return super().plot(path, ax=ax)
 
@@ -393,8 +437,9 @@ class SpeedSweep(Result):
 
         if "_resonances" not in self.__dict__:  # a linearisation and a root search: once per sweep
             nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)
-            self.__dict__["_resonances"] = resonance_speeds(nat["full_lift_Hz"] or nat["base_circle_Hz"],
-                                                            float(np.min(self.cam_rpm)), float(np.max(self.cam_rpm)))
+            self.__dict__["_resonances"] = resonance_speeds(
+                nat["full_lift_Hz"] or nat["base_circle_Hz"], float(np.min(self.cam_rpm)), float(np.max(self.cam_rpm))
+            )
         return list(self.__dict__["_resonances"])
 
     def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
@@ -405,9 +450,17 @@ class SpeedSweep(Result):
         out_dir.mkdir(parents=True, exist_ok=True)
         written = [self.to_netcdf(out_dir / f"{prefix}.nc"), self.to_csv(out_dir / f"{prefix}_summary.csv")]
         rows = self.resonance_table()
-        written.append(write_csv(out_dir / f"{prefix}_resonances.csv", {
-            "mode": [r["mode"] for r in rows], "frequency_Hz": [r["frequency_Hz"] for r in rows],
-            "cam_order": [r["order"] for r in rows], "cam_rpm": [r["cam_rpm"] for r in rows]}))
+        written.append(
+            write_csv(
+                out_dir / f"{prefix}_resonances.csv",
+                {
+                    "mode": [r["mode"] for r in rows],
+                    "frequency_Hz": [r["frequency_Hz"] for r in rows],
+                    "cam_order": [r["order"] for r in rows],
+                    "cam_rpm": [r["cam_rpm"] for r in rows],
+                },
+            )
+        )
         return written + self.plot_all(out_dir, prefix)
 
 
@@ -499,8 +552,9 @@ def sweep(
             res["static"] = setup.static_force_along_cam(points)  # the same as a simulation's
         results.append(res)
     data = {key: np.stack([r[key] for r in results]) for key in results[0]}
-    return SpeedSweep(spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values,
-                       springs, data, skipped)
+    return SpeedSweep(
+        spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values, springs, data, skipped
+    )
 
 
 def describe_design_value(name: str, value: float) -> str:
@@ -539,10 +593,11 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
             kept.append(v)
         except InputError as exc:
             if on_invalid == "stop":
-                raise InputError(f"vary: {_describe(name, v)}: {exc} (on_invalid='skip' leaves such values out)") from None
+                raise InputError(
+                    f"vary: {_describe(name, v)}: {exc} (on_invalid='skip' leaves such values out)"
+                ) from None
             skipped.append((float(v), str(exc)))
             warnings.warn(f"vary: {_describe(name, v)} skipped: {exc}", stacklevel=3)
     if not springs:
         raise InputError(f"vary = {name!r}: every value makes the spring invalid")
     return springs, setups, np.asarray(kept), skipped
-

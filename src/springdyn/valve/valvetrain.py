@@ -46,8 +46,7 @@ from ..core.errors import InputError
 from ..core.params import Parameters, param
 from .engine.layout import VT_SIZE
 
-__all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "series_stiffness",
-           "KERNEL_SIZE"]
+__all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "series_stiffness", "KERNEL_SIZE"]
 
 LAYOUTS = ("direct-acting", "rocker", "pushrod")
 
@@ -61,26 +60,37 @@ DEFAULT_SOURCES = {
         "is E A / L = 49 N/um; the flat-face Hertz contact of a 14 mm wide cam is several times stiffer, so the "
         "stem governs); rocker and pushrod: 150 N/um for the cam-roller line contact alone (Hertz line contact "
         "of a 14 mm wide steel roller under 500-1500 N, secant stiffness 120-200 N/um), the stem being the "
-        "separate key stem_stiffness"),
+        "separate key stem_stiffness"
+    ),
     "stem_stiffness": "50 N/um: E A / L of a 5.5 mm steel valve stem of 100 mm (206 GPa)",
-    "rocker_stiffness": ("15 N/um at the valve tip: bending of a stamped-steel finger follower or cast rocker "
-                         "arm; with the stem and the cam contact in series the train stiffness at the valve "
-                         "falls in the 3.5-10.5 N/um that handbooks give for follower trains (Norton, Cam Design "
-                         "and Manufacturing Handbook, 2nd ed., ch. 15)"),
-    "pushrod_stiffness": ("no default (required for the pushrod layout): E A / L of the pushrod, e.g. 21 N/um "
-                          "for an 8 x 1.2 mm steel tube of 250 mm"),
+    "rocker_stiffness": (
+        "15 N/um at the valve tip: bending of a stamped-steel finger follower or cast rocker "
+        "arm; with the stem and the cam contact in series the train stiffness at the valve "
+        "falls in the 3.5-10.5 N/um that handbooks give for follower trains (Norton, Cam Design "
+        "and Manufacturing Handbook, 2nd ed., ch. 15)"
+    ),
+    "pushrod_stiffness": (
+        "no default (required for the pushrod layout): E A / L of the pushrod, e.g. 21 N/um "
+        "for an 8 x 1.2 mm steel tube of 250 mm"
+    ),
     "seat_stiffness": "50 N/um: valve head and seat insert in axial contact (same order as the stem)",
-    "damping": ("200 N s/m for each contact: a damping ratio of 0.05-0.1 of a contact of 10-50 N/um on "
-                "50-100 g, the range valve-train models use to reproduce measured seat bounce"),
-    "hla_stiffness": ("20 N/um referred to the valve: the oil column of a hydraulic lash adjuster under "
-                      "load (bulk modulus of aerated oil 1-1.5 GPa over a 10 mm plunger chamber of 2 mm)"),
+    "damping": (
+        "200 N s/m for each contact: a damping ratio of 0.05-0.1 of a contact of 10-50 N/um on "
+        "50-100 g, the range valve-train models use to reproduce measured seat bounce"
+    ),
+    "hla_stiffness": (
+        "20 N/um referred to the valve: the oil column of a hydraulic lash adjuster under "
+        "load (bulk modulus of aerated oil 1-1.5 GPa over a 10 mm plunger chamber of 2 mm)"
+    ),
     "hla_preload": "15 N referred to the valve: the plunger spring of an adjuster (10-30 N)",
 }
 
-HLA_NOT_MODELLED = ("the adjuster's leak-down (the plunger sinking under load: about 1-5 um per event at "
-                    "typical leak-down times of 5-20 s per mm under the valve load), its pump-up after a "
-                    "separation (it would take up any float gap between events: 'pump-up'), check-ball dynamics "
-                    "and oil aeration; within one event the adjuster is a stiffness with a fixed length")
+HLA_NOT_MODELLED = (
+    "the adjuster's leak-down (the plunger sinking under load: about 1-5 um per event at "
+    "typical leak-down times of 5-20 s per mm under the valve load), its pump-up after a "
+    "separation (it would take up any float gap between events: 'pump-up'), check-ball dynamics "
+    "and oil aeration; within one event the adjuster is a stiffness with a fixed length"
+)
 
 
 def series_stiffness(*stiffnesses: float) -> float:
@@ -111,44 +121,92 @@ class ValveTrain(Parameters):
 
     valve_mass: float = param("kg", "valve mass", display="g", positive=True)
     retainer_mass: float = param("kg", "retainer and keepers mass", display="g", nonnegative=True, default=0.0)
-    follower_mass: float = param("kg", "follower at the cam: bucket tappet, roller/pad on the lever, or lifter",
-                                 display="g", nonnegative=True, default=0.0)
+    follower_mass: float = param(
+        "kg",
+        "follower at the cam: bucket tappet, roller/pad on the lever, or lifter",
+        display="g",
+        nonnegative=True,
+        default=0.0,
+    )
     cam_contact_stiffness: float = param(
-        "N/m", "cam-follower contact stiffness (direct-acting: including the valve stem; default 50 N/um, rocker "
-        "and pushrod: the cam-roller contact alone, default 150 N/um)", display="N/um", positive=True, default=None)
+        "N/m",
+        "cam-follower contact stiffness (direct-acting: including the valve stem; default 50 N/um, rocker "
+        "and pushrod: the cam-roller contact alone, default 150 N/um)",
+        display="N/um",
+        positive=True,
+        default=None,
+    )
     cam_contact_damping: float = param("N*s/m", "cam-follower contact damping", nonnegative=True, default=200.0)
     seat_stiffness: float = param("N/m", "valve-seat contact stiffness", display="N/um", positive=True, default=5.0e7)
     seat_damping: float = param("N*s/m", "valve-seat contact damping", nonnegative=True, default=200.0)
-    lash: float = param("m", "valve lash: clearance at the valve side on the base circle", display="mm",
-                        nonnegative=True, default=0.0)
+    lash: float = param(
+        "m", "valve lash: clearance at the valve side on the base circle", display="mm", nonnegative=True, default=0.0
+    )
     layout: str = param(None, "valve-train layout", kind="str", choices=LAYOUTS, default="direct-acting")
-    rocker_ratio: float = param("", "rocker ratio: valve lift / follower (lobe) lift (rocker, pushrod)",
-                                default=None, minimum=0.2, maximum=5.0)
-    rocker_inertia: float = param("kg*m^2", "rocker or finger-follower inertia about its pivot (rocker, pushrod)",
-                                  display="kg*mm^2", nonnegative=True, default=None)
-    rocker_valve_arm: float = param("m", "rocker pivot to valve tip (rocker, pushrod)", display="mm",
-                                    positive=True, default=None)
-    rocker_stiffness: float = param("N/m", "rocker bending stiffness at the valve tip (rocker, pushrod; default "
-                                    "15 N/um)", display="N/um", positive=True, default=None)
-    stem_stiffness: float = param("N/m", "valve stem stiffness (rocker, pushrod: default 50 N/um; direct-acting: "
-                                  "in series with the cam contact if given)", display="N/um", positive=True,
-                                  default=None)
-    pushrod_mass: float = param("kg", "pushrod mass (pushrod), half at each end", display="g", nonnegative=True,
-                                default=None)
-    pushrod_stiffness: float = param("N/m", "pushrod axial stiffness (pushrod)", display="N/um", positive=True,
-                                     default=None)
-    link_damping: float = param("N*s/m", "damping of the rocker-tip and pushrod contacts", nonnegative=True,
-                                default=200.0)
-    lash_adjuster: str = param(None, "lash adjuster: none (mechanical lash) or hydraulic", kind="str",
-                               choices=("none", "hydraulic"), default="none")
-    hla_stiffness: float = param("N/m", "hydraulic lash adjuster stiffness referred to the valve (default "
-                                 "20 N/um)", display="N/um", positive=True, default=None)
-    hla_preload: float = param("N", "hydraulic lash adjuster plunger-spring force referred to the valve "
-                               "(default 15 N)", nonnegative=True, default=None)
+    rocker_ratio: float = param(
+        "", "rocker ratio: valve lift / follower (lobe) lift (rocker, pushrod)", default=None, minimum=0.2, maximum=5.0
+    )
+    rocker_inertia: float = param(
+        "kg*m^2",
+        "rocker or finger-follower inertia about its pivot (rocker, pushrod)",
+        display="kg*mm^2",
+        nonnegative=True,
+        default=None,
+    )
+    rocker_valve_arm: float = param(
+        "m", "rocker pivot to valve tip (rocker, pushrod)", display="mm", positive=True, default=None
+    )
+    rocker_stiffness: float = param(
+        "N/m",
+        "rocker bending stiffness at the valve tip (rocker, pushrod; default 15 N/um)",
+        display="N/um",
+        positive=True,
+        default=None,
+    )
+    stem_stiffness: float = param(
+        "N/m",
+        "valve stem stiffness (rocker, pushrod: default 50 N/um; direct-acting: "
+        "in series with the cam contact if given)",
+        display="N/um",
+        positive=True,
+        default=None,
+    )
+    pushrod_mass: float = param(
+        "kg", "pushrod mass (pushrod), half at each end", display="g", nonnegative=True, default=None
+    )
+    pushrod_stiffness: float = param(
+        "N/m", "pushrod axial stiffness (pushrod)", display="N/um", positive=True, default=None
+    )
+    link_damping: float = param(
+        "N*s/m", "damping of the rocker-tip and pushrod contacts", nonnegative=True, default=200.0
+    )
+    lash_adjuster: str = param(
+        None,
+        "lash adjuster: none (mechanical lash) or hydraulic",
+        kind="str",
+        choices=("none", "hydraulic"),
+        default="none",
+    )
+    hla_stiffness: float = param(
+        "N/m",
+        "hydraulic lash adjuster stiffness referred to the valve (default 20 N/um)",
+        display="N/um",
+        positive=True,
+        default=None,
+    )
+    hla_preload: float = param(
+        "N",
+        "hydraulic lash adjuster plunger-spring force referred to the valve (default 15 N)",
+        nonnegative=True,
+        default=None,
+    )
 
     table = "valve_train"
-    examples = {"direct-acting": "valve_train_direct_acting.toml", "finger-follower": "valve_train_finger.toml",
-                "pushrod": "valve_train_pushrod.toml"}
+    examples = {
+        "direct-acting": "valve_train_direct_acting.toml",
+        "finger-follower": "valve_train_finger.toml",
+        "pushrod": "valve_train_pushrod.toml",
+    }
     default_example = "direct-acting"
 
     def _validate(self) -> None:
@@ -163,22 +221,29 @@ class ValveTrain(Parameters):
         else:
             given = [k for k in lever_keys if getattr(self, k) is not None]
             if given:
-                raise InputError(f"[valve_train] {', '.join(given)} apply to layout = 'rocker' or 'pushrod', not "
-                                 f"{self.layout!r}: remove them or set the layout")
+                raise InputError(
+                    f"[valve_train] {', '.join(given)} apply to layout = 'rocker' or 'pushrod', not "
+                    f"{self.layout!r}: remove them or set the layout"
+                )
         if self.layout != "pushrod":
             given = [k for k in ("pushrod_mass", "pushrod_stiffness") if getattr(self, k) is not None]
             if given:
-                raise InputError(f"[valve_train] {', '.join(given)} apply to layout = 'pushrod' only, not "
-                                 f"{self.layout!r}")
+                raise InputError(
+                    f"[valve_train] {', '.join(given)} apply to layout = 'pushrod' only, not {self.layout!r}"
+                )
         if lever and self.rocker_mass <= 0.0:
-            raise InputError("[valve_train] rocker_inertia and follower_mass (and pushrod_mass) are all zero: the "
-                             "lever needs a mass; give rocker_inertia > 0")
+            raise InputError(
+                "[valve_train] rocker_inertia and follower_mass (and pushrod_mass) are all zero: the "
+                "lever needs a mass; give rocker_inertia > 0"
+            )
         if self.layout == "pushrod" and self.lifter_mass <= 0.0:
             raise InputError("[valve_train] follower_mass and pushrod_mass are zero: the lifter needs a mass")
         if self.lash_adjuster == "hydraulic":
             if self.lash != 0.0:
-                raise InputError(f"[valve_train] lash = {self.lash * 1e3:g} mm with lash_adjuster = 'hydraulic': "
-                                 "the adjuster takes the lash up; remove lash or set lash_adjuster = 'none'")
+                raise InputError(
+                    f"[valve_train] lash = {self.lash * 1e3:g} mm with lash_adjuster = 'hydraulic': "
+                    "the adjuster takes the lash up; remove lash or set lash_adjuster = 'none'"
+                )
         else:
             given = [k for k in ("hla_stiffness", "hla_preload") if getattr(self, k) is not None]
             if given:
@@ -232,8 +297,9 @@ class ValveTrain(Parameters):
         contact with the stem (if given separately) and the adjuster in series; lever
         layouts: the cam contact alone."""
         if self.layout == "direct-acting":
-            return series_stiffness(self.cam_stiffness, math.inf if self.stem_stiffness is None
-                                    else self.stem_stiffness, self.hla_k)
+            return series_stiffness(
+                self.cam_stiffness, math.inf if self.stem_stiffness is None else self.stem_stiffness, self.hla_k
+            )
         return self.cam_stiffness
 
     @property
@@ -292,9 +358,14 @@ class ValveTrain(Parameters):
         stiffnesses in series referred by strain energy (``k / r^2``): the reduction a
         rigid lever allows.  The cam lift must be multiplied by :attr:`ratio` to drive it.
         """
-        return ValveTrain(valve_mass=self.moving_mass, cam_contact_stiffness=self.stiffness_at_valve,
-                          cam_contact_damping=self.cam_contact_damping / self.ratio**2,
-                          seat_stiffness=self.seat_stiffness, seat_damping=self.seat_damping, lash=self.lash)
+        return ValveTrain(
+            valve_mass=self.moving_mass,
+            cam_contact_stiffness=self.stiffness_at_valve,
+            cam_contact_damping=self.cam_contact_damping / self.ratio**2,
+            seat_stiffness=self.seat_stiffness,
+            seat_damping=self.seat_damping,
+            lash=self.lash,
+        )
 
     def kernel_parameters(self, lash: float | None = None) -> np.ndarray:
         """The engine's parameter vector (:func:`springdyn.valve.engine.chain_rhs`, ``vt``; layout ``VT_*`` of :mod:`springdyn.valve.engine.layout`).
@@ -306,24 +377,50 @@ class ValveTrain(Parameters):
         """
         lash = self.lash if lash is None else lash
         lever = self.layout != "direct-acting"
-        return np.array([
-            1.0, self.valve_side_mass, self.cam_link_stiffness, self.cam_contact_damping, self.seat_stiffness,
-            self.seat_damping, lash, float(self.degrees_of_freedom), self.ratio,
-            self.rocker_mass if lever else 0.0, self.tip_stiffness if lever else 0.0,
-            self.link_damping if lever else 0.0, self.lifter_mass,
-            self.pushrod_stiffness if self.layout == "pushrod" else 0.0,
-            self.link_damping if self.layout == "pushrod" else 0.0, self.lobe_lash,
-        ])
+        return np.array(
+            [
+                1.0,
+                self.valve_side_mass,
+                self.cam_link_stiffness,
+                self.cam_contact_damping,
+                self.seat_stiffness,
+                self.seat_damping,
+                lash,
+                float(self.degrees_of_freedom),
+                self.ratio,
+                self.rocker_mass if lever else 0.0,
+                self.tip_stiffness if lever else 0.0,
+                self.link_damping if lever else 0.0,
+                self.lifter_mass,
+                self.pushrod_stiffness if self.layout == "pushrod" else 0.0,
+                self.link_damping if self.layout == "pushrod" else 0.0,
+                self.lobe_lash,
+            ]
+        )
 
     def highest_frequency(self) -> float:
         """An upper bound of the train's contact frequencies [Hz] (bounds the work of a run)."""
-        parts = [math.sqrt((self.cam_link_stiffness / self.ratio**2 + self.seat_stiffness
-                            + (self.tip_stiffness if math.isfinite(self.tip_stiffness) else 0.0))
-                           / self.valve_side_mass)]
+        parts = [
+            math.sqrt(
+                (
+                    self.cam_link_stiffness / self.ratio**2
+                    + self.seat_stiffness
+                    + (self.tip_stiffness if math.isfinite(self.tip_stiffness) else 0.0)
+                )
+                / self.valve_side_mass
+            )
+        ]
         if self.layout != "direct-acting" and self.rocker_mass > 0:
-            parts.append(math.sqrt((self.tip_stiffness + self.cam_stiffness / self.ratio**2
-                                    + (self.pushrod_stiffness / self.ratio**2 if self.layout == "pushrod" else 0.0))
-                                   / self.rocker_mass))
+            parts.append(
+                math.sqrt(
+                    (
+                        self.tip_stiffness
+                        + self.cam_stiffness / self.ratio**2
+                        + (self.pushrod_stiffness / self.ratio**2 if self.layout == "pushrod" else 0.0)
+                    )
+                    / self.rocker_mass
+                )
+            )
         if self.layout == "pushrod" and self.lifter_mass > 0:
             parts.append(math.sqrt((self.cam_stiffness + self.pushrod_stiffness) / self.lifter_mass))
         return max(parts) / (2 * math.pi)

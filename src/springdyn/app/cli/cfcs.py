@@ -28,43 +28,65 @@ DEFAULT_OFFSET = "2.5 %"
 __all__ = ["register"]
 
 #: Library argument -> CLI option, for the library's error messages.
-_OPTIONS = dict(omega="--omega", amplitude="--amplitude", offset="--offset", stroke="--stroke",
-                stroke_fraction="--stroke-fraction", force="--force", n="--points", cycles="--cycles",
-                samples_per_cycle="--samples")
+_OPTIONS = dict(
+    omega="--omega",
+    amplitude="--amplitude",
+    offset="--offset",
+    stroke="--stroke",
+    stroke_fraction="--stroke-fraction",
+    force="--force",
+    n="--points",
+    cycles="--cycles",
+    samples_per_cycle="--samples",
+)
 
 _CFG_HELP = f"mechanism TOML file with a [cfcs] table, or a built-in example ({', '.join(EXAMPLES)})"
-_TOGGLE_NOTE = ("The motion starts by default from a preload offset of 2.5%% of r2 + r3 inside the constant-force "
-                "band.  At the toggle (theta2 = 0) dx/dtheta2 vanishes and tau_AF / tau_CF turned into a slider "
-                "force diverge: inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) they use "
-                "dx/dtheta2 frozen at its cut-off value; a motion that enters the zone has its statistics computed "
-                "at the cut-off and at twice it, and those that change by more than 1%% are flagged "
-                "toggle-dominated.  The spring and inertia forces are finite there and computed exactly.")
+_TOGGLE_NOTE = (
+    "The motion starts by default from a preload offset of 2.5%% of r2 + r3 inside the constant-force "
+    "band.  At the toggle (theta2 = 0) dx/dtheta2 vanishes and tau_AF / tau_CF turned into a slider "
+    "force diverge: inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) they use "
+    "dx/dtheta2 frozen at its cut-off value; a motion that enters the zone has its statistics computed "
+    "at the cut-off and at twice it, and those that change by more than 1%% are flagged "
+    "toggle-dominated.  The spring and inertia forces are finite there and computed exactly."
+)
 
 
 def register(subparsers) -> None:
     """Add ``cfcs`` and its sub-commands to the ``springdyn`` parser."""
-    p = subparsers.add_parser("cfcs", help="constant-force compression springs (pseudo-rigid-body model)",
-                              description="Constant-force compression spring: statics, dynamics, sweeps, design. "
-                              + _TOGGLE_NOTE)
+    p = subparsers.add_parser(
+        "cfcs",
+        help="constant-force compression springs (pseudo-rigid-body model)",
+        description="Constant-force compression spring: statics, dynamics, sweeps, design. " + _TOGGLE_NOTE,
+    )
     sub = p.add_subparsers(dest="cfcs_command", metavar="ACTION", required=True)
 
     s = sub.add_parser("static", help="force-deflection curve, PCF and pivot stress")
     s.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
     s.add_argument("--stroke", help="stroke from the toggle (default 40%% of r2 + r3), e.g. 72mm")
     s.add_argument("--points", type=int, default=721, help="samples of the curve (default 721)")
-    s.add_argument("--offset", default=DEFAULT_OFFSET, help="start of the working range over which the dissipative "
-                   "branches are rated (default 2.5%% of r2 + r3, a preload), e.g. 5mm or 0")
+    s.add_argument(
+        "--offset",
+        default=DEFAULT_OFFSET,
+        help="start of the working range over which the dissipative "
+        "branches are rated (default 2.5%% of r2 + r3, a preload), e.g. 5mm or 0",
+    )
     _model_option(s)
     add_output_options(s)
     s.set_defaults(func=_static)
 
-    d = sub.add_parser("dynamic", help="slider force along a prescribed periodic motion (inverse dynamics)",
-                       description="Force needed to drive the slider along x(t) = offset + amplitude (1 - cos wt)/2 "
-                       "or a periodic motion from a CSV (columns time_s, deflection_m). " + _TOGGLE_NOTE)
+    d = sub.add_parser(
+        "dynamic",
+        help="slider force along a prescribed periodic motion (inverse dynamics)",
+        description="Force needed to drive the slider along x(t) = offset + amplitude (1 - cos wt)/2 "
+        "or a periodic motion from a CSV (columns time_s, deflection_m). " + _TOGGLE_NOTE,
+    )
     d.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
     _motion_options(d, omega_help="circular frequency [rad/s] of the input (required without --motion)")
-    d.add_argument("--motion", metavar="X.csv", help="periodic x(t) from a CSV (time_s, deflection_m); with "
-                   "--omega its period is rescaled to 2 pi/omega")
+    d.add_argument(
+        "--motion",
+        metavar="X.csv",
+        help="periodic x(t) from a CSV (time_s, deflection_m); with --omega its period is rescaled to 2 pi/omega",
+    )
     d.add_argument("--cycles", type=int, default=2, help="cycles to output (default 2)")
     d.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     d.add_argument("--no-dissipation", action="store_true", help="switch off tau_CF, tau_AF and slider friction")
@@ -74,8 +96,7 @@ def register(subparsers) -> None:
 
     w = sub.add_parser("sweep", help="mean/median/peak-to-peak force and PCF vs omega (Figs. 5-7)")
     w.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
-    _motion_options(w, omega_help="frequencies START:STOP:STEP or a comma list [rad/s], e.g. 1:50:0.5",
-                    required=True)
+    _motion_options(w, omega_help="frequencies START:STOP:STEP or a comma list [rad/s], e.g. 1:50:0.5", required=True)
     w.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     w.add_argument("--quiet", action="store_true", help="no progress bar")
     _model_option(w)
@@ -97,11 +118,14 @@ def register(subparsers) -> None:
     add_output_options(f)
     f.set_defaults(func=_forward)
 
-    g = sub.add_parser("design", help="choose r2/r3, K3 and the flexure for a target force and stroke",
-                       description="Sizes the strip with the beam (elastica) model by default and checks the "
-                       "stress (safety factor 1.5), the PCF, buckling of the strip and the thickness tolerance.  "
-                       "Exit status 1 when no design holds (the binding check and the smallest changes are "
-                       "printed).")
+    g = sub.add_parser(
+        "design",
+        help="choose r2/r3, K3 and the flexure for a target force and stroke",
+        description="Sizes the strip with the beam (elastica) model by default and checks the "
+        "stress (safety factor 1.5), the PCF, buckling of the strip and the thickness tolerance.  "
+        "Exit status 1 when no design holds (the binding check and the smallest changes are "
+        "printed).",
+    )
     g.add_argument("--force", required=True, help="target constant force, e.g. 12.8N")
     g.add_argument("--stroke", required=True, help="working stroke from the toggle, e.g. 40mm")
     g.add_argument("--material-modulus", required=True, help="Young's modulus of the flexure, e.g. 207GPa")
@@ -111,14 +135,19 @@ def register(subparsers) -> None:
     g.add_argument("--pivot-length-ratio", default="0.1", help="flexure length / r3 (default 0.1)")
     g.add_argument("--max-width", help="largest flexure width (default r3)")
     g.add_argument("--safety-factor", default="1.5", help="design stress = allowable / this (default 1.5)")
-    g.add_argument("--min-pcf", default="90", help="smallest percent constant force over the working range "
-                   "[%%] (default 90)")
-    g.add_argument("--thickness-tolerance", default="5%", help="strip thickness tolerance (default 5%%; the force "
-                   "goes as h^3)")
+    g.add_argument(
+        "--min-pcf", default="90", help="smallest percent constant force over the working range [%%] (default 90)"
+    )
+    g.add_argument(
+        "--thickness-tolerance", default="5%", help="strip thickness tolerance (default 5%%; the force goes as h^3)"
+    )
     g.add_argument("--preload", default="0", help="start of the working range (default 0, the toggle), e.g. 3mm")
-    g.add_argument("--plate-bending", choices=("auto", "true", "false"), default="auto",
-                   help="strip modulus E/(1 - nu^2) (true) or E (false); auto: plate when the width >= the length "
-                        "(beam model)")
+    g.add_argument(
+        "--plate-bending",
+        choices=("auto", "true", "false"),
+        default="auto",
+        help="strip modulus E/(1 - nu^2) (true) or E (false); auto: plate when the width >= the length (beam model)",
+    )
     g.add_argument("--poisson-ratio", default="0.3", help="Poisson's ratio of the strip (default 0.3)")
     _model_option(g, default="beam")
     g.add_argument("--toml", metavar="OUT.toml", help="write the design as a [cfcs] table")
@@ -127,25 +156,39 @@ def register(subparsers) -> None:
 
 
 def _model_option(p, default=None):
-    p.add_argument("--model", choices=("prbm", "beam"), default=default,
-                   help="flexure model: prbm (pin with K3 = EI/l) or beam (large-deflection elastica of the strip)"
-                        + ("" if default else "; default: flexure_model of the configuration (prbm)"))
+    p.add_argument(
+        "--model",
+        choices=("prbm", "beam"),
+        default=default,
+        help="flexure model: prbm (pin with K3 = EI/l) or beam (large-deflection elastica of the strip)"
+        + ("" if default else "; default: flexure_model of the configuration (prbm)"),
+    )
 
 
 def _motion_options(p, *, omega_help, required=False, prefix=""):
     if prefix:  # the base of the forward problem: no preload
         p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
-        p.add_argument(f"--{prefix}amplitude", default=DEFAULT_AMPLITUDE, help="stroke of the base sinusoid: a "
-                       "length such as 72mm or a percentage of r2 + r3 such as '40%%' (default 40%%)")
+        p.add_argument(
+            f"--{prefix}amplitude",
+            default=DEFAULT_AMPLITUDE,
+            help="stroke of the base sinusoid: a "
+            "length such as 72mm or a percentage of r2 + r3 such as '40%%' (default 40%%)",
+        )
         p.add_argument(f"--{prefix}offset", default="0", help="base position at t = 0 (default 0), e.g. 5mm")
         return
     p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
-    p.add_argument(f"--{prefix}amplitude", default=DEFAULT_AMPLITUDE,
-                   help="stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
-                        "r2 + r3 such as '40%%' (default 40%%)")
-    p.add_argument(f"--{prefix}offset", default=DEFAULT_OFFSET,
-                   help="deflection at t = 0: a preload, a length or a percentage of r2 + r3 (default 2.5%%); "
-                        "0 starts at the toggle")
+    p.add_argument(
+        f"--{prefix}amplitude",
+        default=DEFAULT_AMPLITUDE,
+        help="stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
+        "r2 + r3 such as '40%%' (default 40%%)",
+    )
+    p.add_argument(
+        f"--{prefix}offset",
+        default=DEFAULT_OFFSET,
+        help="deflection at t = 0: a preload, a length or a percentage of r2 + r3 (default 2.5%%); "
+        "0 starts at the toggle",
+    )
 
 
 def _q(text, unit: str, option: str) -> float:
@@ -200,42 +243,68 @@ def _static(args) -> int:
         print_json(s)
         return 0
     beam = s["flexure_model"] == "beam"
-    prbm_rows = [
-        ("PRBM maximum force", _fmt(s["prbm_force_max_N"], "N"),
-         f"at {_fmt(s['prbm_deflection_at_force_max_m'], 'm', 'mm')}"),
-        ("PRBM PCF Fmin/Fmax", _fmt(s["prbm_pcf_percent"], "%", digits=4), ""),
-        ("max |beam - PRBM| force", _fmt(s["max_force_difference_to_prbm_N"], "N"), ""),
-        ("PRBM max pivot stress", _fmt(s["prbm_max_stress_Pa"], "Pa", "GPa", 4), "mean curvature theta_K3/l"),
-    ] if beam else []
-    print_table([
-        ("flexure model", s["flexure_model"], ("elastica of the strip, " if beam else "pin with K3 = EI/l, ")
-         + ("plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E")),
-        ("stroke", _fmt(s["stroke_m"], "m", "mm"), ""),
-        ("force at the toggle", _fmt(s["force_at_zero_N"], "N"), ""),
-        ("maximum force", _fmt(s["force_max_N"], "N"), f"at {_fmt(s['deflection_at_force_max_m'], 'm', 'mm')}"),
-        ("minimum force", _fmt(s["force_min_N"], "N"), ""),
-        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), ""),
-        ("PCF energy-based", _fmt(s["pcf_energy_percent"], "%", digits=4), ""),
-        ("PCF compression branch", _fmt(s["pcf_compression_percent"], "%", digits=4),
-         f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}"),
-        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-         "largest curvature of the strip" if beam else "E (h/2) theta_K3 / l"),
-        ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
-        *prbm_rows,
-        ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
-        ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
-        ("working range", f"{_fmt(s['working_start_m'], 'm', 'mm')} .. {_fmt(s['working_end_m'], 'm', 'mm')}",
-         "PCF compression branch rated here"),
-        _cutoff_row(s),
-        _toggle_row(s),
-    ], headers=("quantity", "value", "note"))
+    prbm_rows = (
+        [
+            (
+                "PRBM maximum force",
+                _fmt(s["prbm_force_max_N"], "N"),
+                f"at {_fmt(s['prbm_deflection_at_force_max_m'], 'm', 'mm')}",
+            ),
+            ("PRBM PCF Fmin/Fmax", _fmt(s["prbm_pcf_percent"], "%", digits=4), ""),
+            ("max |beam - PRBM| force", _fmt(s["max_force_difference_to_prbm_N"], "N"), ""),
+            ("PRBM max pivot stress", _fmt(s["prbm_max_stress_Pa"], "Pa", "GPa", 4), "mean curvature theta_K3/l"),
+        ]
+        if beam
+        else []
+    )
+    print_table(
+        [
+            (
+                "flexure model",
+                s["flexure_model"],
+                ("elastica of the strip, " if beam else "pin with K3 = EI/l, ")
+                + ("plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E"),
+            ),
+            ("stroke", _fmt(s["stroke_m"], "m", "mm"), ""),
+            ("force at the toggle", _fmt(s["force_at_zero_N"], "N"), ""),
+            ("maximum force", _fmt(s["force_max_N"], "N"), f"at {_fmt(s['deflection_at_force_max_m'], 'm', 'mm')}"),
+            ("minimum force", _fmt(s["force_min_N"], "N"), ""),
+            ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), ""),
+            ("PCF energy-based", _fmt(s["pcf_energy_percent"], "%", digits=4), ""),
+            (
+                "PCF compression branch",
+                _fmt(s["pcf_compression_percent"], "%", digits=4),
+                f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}",
+            ),
+            (
+                "max pivot stress",
+                _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+                "largest curvature of the strip" if beam else "E (h/2) theta_K3 / l",
+            ),
+            ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
+            *prbm_rows,
+            ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
+            ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
+            (
+                "working range",
+                f"{_fmt(s['working_start_m'], 'm', 'mm')} .. {_fmt(s['working_end_m'], 'm', 'mm')}",
+                "PCF compression branch rated here",
+            ),
+            _cutoff_row(s),
+            _toggle_row(s),
+        ],
+        headers=("quantity", "value", "note"),
+    )
     return 0
 
 
 def _toggle_row(summary):
     dom = summary.get("toggle_dominated_statistics") or []
-    return ("toggle-dominated", "YES" if summary.get("toggle_dominated") else "no",
-            (", ".join(dom) + " move > 1 % when the cut-off doubles") if dom else "")
+    return (
+        "toggle-dominated",
+        "YES" if summary.get("toggle_dominated") else "no",
+        (", ".join(dom) + " move > 1 % when the cut-off doubles") if dom else "",
+    )
 
 
 def _dynamic(args) -> int:
@@ -254,19 +323,25 @@ def _dynamic(args) -> int:
     if args.json:
         print_json(s)
         return 0
-    print_table([
-        ("input", s["motion"], ""),
-        ("mean force", _fmt(s["mean_force_N"], "N"), ""),
-        ("median force", _fmt(s["median_force_N"], "N"), ""),
-        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
-        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over one cycle"),
-        ("hysteresis per cycle", _fmt(s["hysteresis_energy_per_cycle_J"], "J"), ""),
-        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-         f"safety factor {_fmt(s['safety_factor'], digits=3)}"),
-        _cutoff_row(s),
-        ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
-        _toggle_row(s),
-    ], headers=("quantity", "value", "note"))
+    print_table(
+        [
+            ("input", s["motion"], ""),
+            ("mean force", _fmt(s["mean_force_N"], "N"), ""),
+            ("median force", _fmt(s["median_force_N"], "N"), ""),
+            ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
+            ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over one cycle"),
+            ("hysteresis per cycle", _fmt(s["hysteresis_energy_per_cycle_J"], "J"), ""),
+            (
+                "max pivot stress",
+                _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+                f"safety factor {_fmt(s['safety_factor'], digits=3)}",
+            ),
+            _cutoff_row(s),
+            ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
+            _toggle_row(s),
+        ],
+        headers=("quantity", "value", "note"),
+    )
     return 0
 
 
@@ -278,16 +353,25 @@ def _sweep(args) -> int:
     if np.any(omegas <= 0):
         raise InputError(f"--omega = {args.omega!r}: every omega must be positive")
     with as_options(**_OPTIONS):
-        res = model.sweep(omegas, args.amplitude, args.offset,
-                          samples_per_cycle=args.samples, quiet=args.quiet or args.json)
+        res = model.sweep(
+            omegas, args.amplitude, args.offset, samples_per_cycle=args.samples, quiet=args.quiet or args.json
+        )
     _write_outputs(args, res)
     if args.json:
         print_json({**res.summary, **res.columns()})
         return 0
     st = res.stats
-    rows = [(f"{w:.4g}", f"{st['mean_force_N'][i]:.4f}", f"{st['median_force_N'][i]:.4f}",
-             f"{st['peak_to_peak_N'][i]:.4f}", f"{st['pcf_percent'][i]:.2f}", f"{st['pcf_no_dissipation_percent'][i]:.2f}")
-            for i, w in enumerate(res.omega)]
+    rows = [
+        (
+            f"{w:.4g}",
+            f"{st['mean_force_N'][i]:.4f}",
+            f"{st['median_force_N'][i]:.4f}",
+            f"{st['peak_to_peak_N'][i]:.4f}",
+            f"{st['pcf_percent'][i]:.2f}",
+            f"{st['pcf_no_dissipation_percent'][i]:.2f}",
+        )
+        for i, w in enumerate(res.omega)
+    ]
     print_table(rows, headers=("omega_rad_per_s", "mean_N", "median_N", "p2p_N", "pcf_%", "pcf_no_diss_%"))
     print(f"toggle cut-off {np.degrees(res.summary['toggle_cutoff_rad']):.4g} deg")
     if res.summary["toggle_dominated"]:
@@ -301,8 +385,12 @@ def _forward(args) -> int:
 
     model = CFCS(_load(args.config, args.model))
     t_end = _q(args.t_end, "s", "--t-end")
-    kw = dict(x0=_q(args.x0, "m", "--x0"), v0=_q(args.v0, "m/s", "--v0"), n=args.points,
-              sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing"))
+    kw = dict(
+        x0=_q(args.x0, "m", "--x0"),
+        v0=_q(args.v0, "m/s", "--v0"),
+        n=args.points,
+        sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing"),
+    )
     if args.force is not None:
         if args.base_stiffness is not None:
             raise InputError("give either --force or --base-stiffness (with --base-omega), not both")
@@ -310,30 +398,47 @@ def _forward(args) -> int:
     else:
         if args.base_stiffness is None or args.base_omega is None:
             raise InputError("forward needs --force, or --base-stiffness with --base-omega (and --base-amplitude)")
-        base = SinusoidMotion(_q(args.base_omega, "rad/s", "--base-omega"),
-                              amplitude_to_si(args.base_amplitude, model.params.extended_length, "--base-amplitude"),
-                              _q(args.base_offset, "m", "--base-offset"))
-        res = model.forward(t_end, base_motion=lambda t: base(t)[:2],
-                            base_stiffness=_q(args.base_stiffness, "N/m", "--base-stiffness"),
-                            base_damping=_q(args.base_damping, "N*s/m", "--base-damping"), **kw)
+        base = SinusoidMotion(
+            _q(args.base_omega, "rad/s", "--base-omega"),
+            amplitude_to_si(args.base_amplitude, model.params.extended_length, "--base-amplitude"),
+            _q(args.base_offset, "m", "--base-offset"),
+        )
+        res = model.forward(
+            t_end,
+            base_motion=lambda t: base(t)[:2],
+            base_stiffness=_q(args.base_stiffness, "N/m", "--base-stiffness"),
+            base_damping=_q(args.base_damping, "N*s/m", "--base-damping"),
+            **kw,
+        )
     _write_outputs(args, res)
     s = res.summary
     if args.json:
         print_json(s)
         return 0
-    print_table([
-        ("deflection range", f"{_fmt(s['min_deflection_m'], 'm', 'mm')} .. {_fmt(s['max_deflection_m'], 'm', 'mm')}", ""),
-        ("toggle crossings", str(s["toggle_crossings"]), ""),
-        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
-        ("sign smoothing", _fmt(s["sign_smoothing_rad_per_s"], "rad/s"), "tanh(theta2'/v_s)"),
-        _cutoff_row(s),
-    ], headers=("quantity", "value", "note"))
+    print_table(
+        [
+            (
+                "deflection range",
+                f"{_fmt(s['min_deflection_m'], 'm', 'mm')} .. {_fmt(s['max_deflection_m'], 'm', 'mm')}",
+                "",
+            ),
+            ("toggle crossings", str(s["toggle_crossings"]), ""),
+            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
+            ("sign smoothing", _fmt(s["sign_smoothing_rad_per_s"], "rad/s"), "tanh(theta2'/v_s)"),
+            _cutoff_row(s),
+        ],
+        headers=("quantity", "value", "note"),
+    )
     return 0
 
 
 #: design() argument -> CLI option, for the suggestions printed by the CLI.
-_DESIGN_OPTIONS = dict(max_width="--max-width", pivot_length_ratio="--pivot-length-ratio",
-                       safety_factor="--safety-factor", min_pcf="--min-pcf")
+_DESIGN_OPTIONS = dict(
+    max_width="--max-width",
+    pivot_length_ratio="--pivot-length-ratio",
+    safety_factor="--safety-factor",
+    min_pcf="--min-pcf",
+)
 
 
 def _cli_names(message: str) -> str:
@@ -352,7 +457,8 @@ def _design(args) -> int:
 
     with as_options(**_OPTIONS):
         res = design(
-            _q(args.force, "N", "--force"), _q(args.stroke, "m", "--stroke"),
+            _q(args.force, "N", "--force"),
+            _q(args.stroke, "m", "--stroke"),
             _q(args.material_modulus, "Pa", "--material-modulus"),
             _q(args.allowable_stress, "Pa", "--allowable-stress"),
             stroke_fraction=_q(args.stroke_fraction, "", "--stroke-fraction"),
@@ -374,27 +480,42 @@ def _design(args) -> int:
     if args.json:
         print_json(s)
     else:
-        print_table([
-            ("r2 + r3", _fmt(s["total_length_m"], "m", "mm"), f"stroke fraction {s['stroke_fraction']:.3g}"),
-            ("r2 / r3", f"{s['ratio']:.4f}", "flattest force over the stroke"),
-            ("crank r2", _fmt(s["crank_length_m"], "m", "mm"), ""),
-            ("coupler r3", _fmt(s["coupler_length_m"], "m", "mm"), ""),
-            ("K3", _fmt(s["torsional_stiffness_N_m_per_rad"], "N*m/rad"), ""),
-            ("pivot b x h x l", f"{s['pivot_width_m'] * 1e3:.4g} x {s['pivot_thickness_m'] * 1e3:.4g} x "
-             f"{s['pivot_length_m'] * 1e3:.4g} mm", ""),
-            ("force range", f"{s['force_min_N']:.4g} .. {s['force_max_N']:.4g} N", ""),
-            ("PCF", _fmt(s["pcf_percent"], "%", digits=4), f"energy-based {s['pcf_energy_percent']:.4g} %"),
-            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-             f"safety factor {s['safety_factor']:.3g} (target {s['safety_factor_target']:.3g}), "
-             + ("largest curvature of the elastica" if s["flexure_model"] == "beam" else "PRBM")),
-            ("flexure model", s["flexure_model"], "plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E"),
-            ("working range", f"{s['working_start_m'] * 1e3:.4g} .. {s['working_end_m'] * 1e3:.4g} mm", ""),
-            (f"force at h +-{100 * s['thickness_tolerance']:.3g} %",
-             f"{s['force_min_at_thickness_tolerance_N']:.4g} .. {s['force_max_at_thickness_tolerance_N']:.4g} N",
-             f"stress at +tolerance {s['max_stress_at_thickness_tolerance_Pa'] / 1e9:.4g} GPa"),
-            ("strip buckling", f"{s['buckling_load_N']:.4g} N", f"{s['buckling_safety_factor']:.3g} x the largest "
-             f"axial load {s['axial_load_max_N']:.4g} N"),
-            ("binding check", s["binding_constraint"] or "none", ""),
-        ], headers=("quantity", "value", "note"))
+        print_table(
+            [
+                ("r2 + r3", _fmt(s["total_length_m"], "m", "mm"), f"stroke fraction {s['stroke_fraction']:.3g}"),
+                ("r2 / r3", f"{s['ratio']:.4f}", "flattest force over the stroke"),
+                ("crank r2", _fmt(s["crank_length_m"], "m", "mm"), ""),
+                ("coupler r3", _fmt(s["coupler_length_m"], "m", "mm"), ""),
+                ("K3", _fmt(s["torsional_stiffness_N_m_per_rad"], "N*m/rad"), ""),
+                (
+                    "pivot b x h x l",
+                    f"{s['pivot_width_m'] * 1e3:.4g} x {s['pivot_thickness_m'] * 1e3:.4g} x "
+                    f"{s['pivot_length_m'] * 1e3:.4g} mm",
+                    "",
+                ),
+                ("force range", f"{s['force_min_N']:.4g} .. {s['force_max_N']:.4g} N", ""),
+                ("PCF", _fmt(s["pcf_percent"], "%", digits=4), f"energy-based {s['pcf_energy_percent']:.4g} %"),
+                (
+                    "max pivot stress",
+                    _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+                    f"safety factor {s['safety_factor']:.3g} (target {s['safety_factor_target']:.3g}), "
+                    + ("largest curvature of the elastica" if s["flexure_model"] == "beam" else "PRBM"),
+                ),
+                ("flexure model", s["flexure_model"], "plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E"),
+                ("working range", f"{s['working_start_m'] * 1e3:.4g} .. {s['working_end_m'] * 1e3:.4g} mm", ""),
+                (
+                    f"force at h +-{100 * s['thickness_tolerance']:.3g} %",
+                    f"{s['force_min_at_thickness_tolerance_N']:.4g} .. {s['force_max_at_thickness_tolerance_N']:.4g} N",
+                    f"stress at +tolerance {s['max_stress_at_thickness_tolerance_Pa'] / 1e9:.4g} GPa",
+                ),
+                (
+                    "strip buckling",
+                    f"{s['buckling_load_N']:.4g} N",
+                    f"{s['buckling_safety_factor']:.3g} x the largest axial load {s['axial_load_max_N']:.4g} N",
+                ),
+                ("binding check", s["binding_constraint"] or "none", ""),
+            ],
+            headers=("quantity", "value", "note"),
+        )
         print(("FEASIBLE: " if res.feasible else "NO FEASIBLE DESIGN: ") + _cli_names(s["message"]))
     return 0 if res.feasible else 1

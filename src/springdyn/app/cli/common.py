@@ -36,8 +36,9 @@ def quantity(text, unit: str, option: str, *, bare_unit: str | None = None) -> f
 MAX_RANGE_POINTS = 100_000
 
 
-def parse_range(text: str, unit: str, option: str, *, bare_unit: str | None = None,
-                max_points: int = MAX_RANGE_POINTS) -> np.ndarray:
+def parse_range(
+    text: str, unit: str, option: str, *, bare_unit: str | None = None, max_points: int = MAX_RANGE_POINTS
+) -> np.ndarray:
     """Parse a range or a list option into an SI array: the one syntax of every CLI option.
 
     - ``START:STOP:STEP``: START < STOP, STEP > 0; STOP is included when it falls on the
@@ -68,15 +69,19 @@ def parse_range(text: str, unit: str, option: str, *, bare_unit: str | None = No
         if not step > 0:
             raise InputError(f"{option} = {text!r}: the STEP must be positive")
         if not stop > start:
-            raise InputError(f"{option} = {text!r} is empty: STOP is below START (a range counts upwards, "
-                             "START:STOP:STEP with START < STOP)")
+            raise InputError(
+                f"{option} = {text!r} is empty: STOP is below START (a range counts upwards, "
+                "START:STOP:STEP with START < STOP)"
+            )
         count = (stop - start) / step
         if not np.isfinite(count) or count + 1 > max_points:
             raise InputError(f"{option} = {text!r} gives more than {max_points} values: use a larger STEP")
         n = int(np.floor(count + 1e-9)) + 1
         if n < 2:
-            raise InputError(f"{option} = {text!r} gives only one value (STEP is larger than STOP - START): "
-                             "use a smaller STEP, or give the one value alone")
+            raise InputError(
+                f"{option} = {text!r} gives only one value (STEP is larger than STOP - START): "
+                "use a smaller STEP, or give the one value alone"
+            )
         values = start + step * np.arange(n)
         if not np.all(np.isfinite(values)):
             raise InputError(f"{option} = {text!r} gives values that are not finite numbers")

@@ -20,8 +20,12 @@ def register(sub) -> None:
     p.add_argument("config", metavar="CFG.toml", help="damper definition ([lsd] table); or A, B, C for Table 4.1")
     p.add_argument("--rpm", default="500:3000:500", help="speeds, START:STOP:STEP or a list (default 500:3000:500)")
     p.add_argument("--amplitude", default="50um", help="vibration amplitude (default 50um; bare number: m)")
-    p.add_argument("--motion", choices=("linear", "circular"), default="linear",
-                   help="motion for the O-ring Coulomb equivalent (default linear, as Eq. (2.22))")
+    p.add_argument(
+        "--motion",
+        choices=("linear", "circular"),
+        default="linear",
+        help="motion for the O-ring Coulomb equivalent (default linear, as Eq. (2.22))",
+    )
     add_output_options(p)
     p.set_defaults(func=cmd_coefficients)
 
@@ -29,8 +33,9 @@ def register(sub) -> None:
     p.add_argument("config", metavar="CFG.toml", help="damper definition; or A, B, C")
     p.add_argument("--rpm", help="shaft speed in rpm (one orbit per revolution)")
     p.add_argument("--eccentricity", help="orbit radius or shake amplitude, e.g. 50um")
-    p.add_argument("--path", metavar="PATH.csv",
-                   help="move the ring along a measured path instead (CSV with time_s, x_m, y_m)")
+    p.add_argument(
+        "--path", metavar="PATH.csv", help="move the ring along a measured path instead (CSV with time_s, x_m, y_m)"
+    )
     p.add_argument("--excitation", choices=("orbit", "backward-orbit", "x", "y"), default="orbit")
     p.add_argument("--revolutions", type=float, default=20.0, help="number of revolutions (default 20)")
     p.add_argument("--sample-rate", default="20kHz", help="sampling rate (default 20kHz; bare number: Hz)")
@@ -42,7 +47,9 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_rig)
 
     p = lsub.add_parser("identify", help="identify K and C from rig records (CSV or TDMS)")
-    p.add_argument("data", metavar="DATA.csv", nargs="+", help="record(s) time_s, x_m, y_m, fx_N, fy_N; several = several speeds")
+    p.add_argument(
+        "data", metavar="DATA.csv", nargs="+", help="record(s) time_s, x_m, y_m, fx_N, fy_N; several = several speeds"
+    )
     p.add_argument("--second", metavar="DATA2.csv", nargs="+", help="second, independent excitation(s), same order")
     p.add_argument("--rpm", help="shaft speed(s) in rpm, one per record (default: found in the data)")
     p.add_argument("--mass", default="0kg", help="moving mass whose inertia is removed (default 0kg)")
@@ -55,8 +62,11 @@ def register(sub) -> None:
     p.add_argument("config", metavar="MODEL.toml", help="damper definition to calibrate; or A, B, C")
     p.add_argument("data", metavar="RECORDS.csv", nargs="+", help="rig record(s), one per speed (CSV or TDMS)")
     p.add_argument("--second", metavar="RECORDS2.csv", nargs="+", help="second, independent excitation(s), same order")
-    p.add_argument("--fit", default="leakage_factor",
-                   help="comma-separated [lsd] keys to fit (default leakage_factor), e.g. leakage_factor,leaf_friction")
+    p.add_argument(
+        "--fit",
+        default="leakage_factor",
+        help="comma-separated [lsd] keys to fit (default leakage_factor), e.g. leakage_factor,leaf_friction",
+    )
     p.add_argument("--rpm", help="shaft speed(s) in rpm, one per record (default: found in the data)")
     p.add_argument("--mass", help="moving mass whose inertia is removed (default: the model's ring_mass)")
     p.add_argument("--confidence", default="95%", help="confidence level of the intervals (default 95%%)")
@@ -101,16 +111,22 @@ def cmd_coefficients(args) -> int:
     if args.json:
         print_json(res.to_dict())
         return 0
-    print(f"{model.params.name}: k_s = {model.pack_stiffness / 1e3:.5g} N/mm per pack, "
-          f"load ratios {np.array2string(model.load_ratios, precision=4)}, amplitude {amplitude * 1e6:.4g} um")
+    print(
+        f"{model.params.name}: k_s = {model.pack_stiffness / 1e3:.5g} N/mm per pack, "
+        f"load ratios {np.array2string(model.load_ratios, precision=4)}, amplitude {amplitude * 1e6:.4g} um"
+    )
     # round-off (1e-16 of the direct terms) shown as 0 in the table; JSON/CSV keep the numbers
     K = np.where(np.abs(res.K) < 1e-12 * np.abs(res.K).max(), 0.0, res.K) / 1e3
     C = np.where(np.abs(res.C) < 1e-12 * np.abs(res.C).max(), 0.0, res.C)
     idx = ((0, 0), (0, 1), (1, 0), (1, 1))
-    rows = [(f"{r:g}", *(f"{K[i, a, b]:.5g}" for a, b in idx), *(f"{C[i, a, b]:.5g}" for a, b in idx))
-            for i, r in enumerate(res.rpm)]
-    print_table(rows, headers=("rpm", "Kxx N/mm", "Kxy N/mm", "Kyx N/mm", "Kyy N/mm",
-                               "Cxx Ns/m", "Cxy Ns/m", "Cyx Ns/m", "Cyy Ns/m"))
+    rows = [
+        (f"{r:g}", *(f"{K[i, a, b]:.5g}" for a, b in idx), *(f"{C[i, a, b]:.5g}" for a, b in idx))
+        for i, r in enumerate(res.rpm)
+    ]
+    print_table(
+        rows,
+        headers=("rpm", "Kxx N/mm", "Kxy N/mm", "Kyx N/mm", "Kyy N/mm", "Cxx Ns/m", "Cxy Ns/m", "Cyx Ns/m", "Cyy Ns/m"),
+    )
     return 0
 
 
@@ -139,8 +155,10 @@ def cmd_rig(args) -> int:
     rec.to_csv(args.csv)
     if args.plot:
         close_figure(rec.plot(args.plot))
-    print(f"{model.params.name}: {what}, {tr.time.size} samples -> {args.csv}; "
-          f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N")
+    print(
+        f"{model.params.name}: {what}, {tr.time.size} samples -> {args.csv}; "
+        f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N"
+    )
     return 0
 
 
@@ -184,16 +202,25 @@ def cmd_identify(args) -> int:
         print_json(dicts[0] if len(dicts) == 1 else dicts)
         return 0
     for it, d in zip(series.items, dicts):
-        print(f"{', '.join(it.sources)}: {it.rpm:.6g} rpm ({it.frequency:.6g} Hz), {it.cycles} whole periods, "
-              f"{it.mode}, mass {it.mass:g} kg")
+        print(
+            f"{', '.join(it.sources)}: {it.rpm:.6g} rpm ({it.frequency:.6g} Hz), {it.cycles} whole periods, "
+            f"{it.mode}, mass {it.mass:g} kg"
+        )
         rows = []
         for key, value in d.items():
             if key.endswith(("_N_per_m", "_Ns_per_m")):
                 unc = d.get(f"{key}_uncertainty")
                 ci = d.get(f"{key}_ci")
                 unit = "N/m" if key.endswith("_N_per_m") else "N*s/m"
-                rows.append((key.split("_")[0], f"{value:.6g}", "nan" if unc is None else f"{unc:.3g}",
-                             "-" if ci is None else f"+-{(ci[1] - ci[0]) / 2:.3g}", unit))
+                rows.append(
+                    (
+                        key.split("_")[0],
+                        f"{value:.6g}",
+                        "nan" if unc is None else f"{unc:.3g}",
+                        "-" if ci is None else f"+-{(ci[1] - ci[0]) / 2:.3g}",
+                        unit,
+                    )
+                )
         print_table(rows, headers=("coefficient", "value", "std. error", "95 % CI (Student t)", "unit"))
         if it.caveat:
             print(f"note: {it.caveat}")
@@ -227,7 +254,7 @@ def cmd_calibrate(args) -> int:
         text = str(exc)
         for key, option in (("fit", "--fit"), ("confidence", "--confidence"), ("mass", "--mass")):
             if text.startswith(f"{key} ") or text.startswith(f"{key}:"):
-                text = option + text[len(key):]
+                text = option + text[len(key) :]
         raise InputError(text) from None
     if args.toml:
         with atomic_open(args.toml) as fh:
@@ -238,8 +265,10 @@ def cmd_calibrate(args) -> int:
     if args.json:
         print_json(cal.to_dict())
         return 0
-    print(f"{params.name}: calibrated on {len(records)} speed(s) "
-          f"({'two excitations' if seconds else 'one excitation'} each), {cal.dof} degrees of freedom")
+    print(
+        f"{params.name}: calibrated on {len(records)} speed(s) "
+        f"({'two excitations' if seconds else 'one excitation'} each), {cal.dof} degrees of freedom"
+    )
     rows = []
     for name, value in cal.values.items():
         ci = cal.intervals[name]
@@ -249,8 +278,15 @@ def cmd_calibrate(args) -> int:
     for row in cal.residuals:
         for k in cal.coefficients:
             unit = "N_per_m" if k[0] == "k" else "Ns_per_m"
-            rows.append((f"{row['rpm']:.6g}", k, f"{row[f'{k}_identified_{unit}']:.6g}",
-                         f"{row[f'{k}_model_{unit}']:.6g}", f"{100 * row[f'{k}_relative']:+.2f} %"))
+            rows.append(
+                (
+                    f"{row['rpm']:.6g}",
+                    k,
+                    f"{row[f'{k}_identified_{unit}']:.6g}",
+                    f"{row[f'{k}_model_{unit}']:.6g}",
+                    f"{100 * row[f'{k}_relative']:+.2f} %",
+                )
+            )
     print_table(rows, headers=("rpm", "coefficient", "identified", "calibrated model", "difference"))
     for note in cal.notes:
         print(f"note: {note}")

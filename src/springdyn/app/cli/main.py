@@ -76,8 +76,8 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         prog="springdyn",
         description="Dynamics of springs and spring dampers in machines.",
         epilog="Quantities take units ('22 mm', '3000 rpm', '5 %'); bare numbers are SI unless an option says "
-               "otherwise. Ranges are START:STOP:STEP, lists a,b,c. Exit codes: 0 done, 2 bad input, "
-               "3 solver failure, 70 a bug in springdyn.",
+        "otherwise. Ranges are START:STOP:STEP, lists a,b,c. Exit codes: 0 done, 2 bad input, "
+        "3 solver failure, 70 a bug in springdyn.",
     )
     parser.add_argument("--version", action="version", version=f"springdyn {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
@@ -87,8 +87,9 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     demo.add_argument("--quiet", action="store_true", help="no progress bar, only the final line")
     demo.set_defaults(func=_run_demo)
 
-    rep = sub.add_parser("report", help="the HTML report for your own definitions (any mix of [spring]+[cam], "
-                                        "[cfcs], [lsd] TOML files)")
+    rep = sub.add_parser(
+        "report", help="the HTML report for your own definitions (any mix of [spring]+[cam], [cfcs], [lsd] TOML files)"
+    )
     rep.add_argument("definitions", nargs="+", metavar="FILE.toml")
     rep.add_argument("--out", default="springdyn-report", help="output folder (default: springdyn-report)")
     rep.add_argument("--quiet", action="store_true", help="no progress bar, only the final line")
@@ -129,8 +130,13 @@ def _run_demo(args) -> int:
     from springdyn.app.report.build import DEMO_LABEL, demo_definitions
 
     paths = demo_definitions()
-    return _report(paths, args.out, args.quiet, "springdyn demo: the built-in examples",
-                   labels=[DEMO_LABEL.format(p.name) for p in paths])
+    return _report(
+        paths,
+        args.out,
+        args.quiet,
+        "springdyn demo: the built-in examples",
+        labels=[DEMO_LABEL.format(p.name) for p in paths],
+    )
 
 
 def _run_report(args) -> int:
@@ -294,8 +300,11 @@ def main(argv=None) -> int:
         print(f"springdyn: solver failed: {exc}", file=sys.stderr)
         return EXIT_SOLVER
     except NonFiniteOutputError as exc:
-        print(f"springdyn: solver failed: the result holds a value that is not a finite number ({exc}); "
-              "no output was written", file=sys.stderr)
+        print(
+            f"springdyn: solver failed: the result holds a value that is not a finite number ({exc}); "
+            "no output was written",
+            file=sys.stderr,
+        )
         return EXIT_SOLVER
     except (KeyboardInterrupt, _Terminated) as exc:
         print("springdyn: interrupted; no partial output was left", file=sys.stderr)
@@ -329,8 +338,11 @@ def main(argv=None) -> int:
 def _bug(exc: BaseException) -> int:
     log = _write_bug_log(exc)
     where = f"the traceback is in {log}" if log else "no log file could be written"
-    print(f"springdyn: internal error (a bug in springdyn, please report it): {type(exc).__name__}: "
-          f"{str(exc).splitlines()[0] if str(exc) else ''}; {where}", file=sys.stderr)
+    print(
+        f"springdyn: internal error (a bug in springdyn, please report it): {type(exc).__name__}: "
+        f"{str(exc).splitlines()[0] if str(exc) else ''}; {where}",
+        file=sys.stderr,
+    )
     return EXIT_BUG
 
 

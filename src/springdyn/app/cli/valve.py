@@ -24,6 +24,7 @@ DEFAULT_ATOL = 1e-9
 
 __all__ = ["register"]
 
+
 def register(sub) -> None:
     valve = sub.add_parser("valve", help="valve springs: MMS Type C multi-mass or distributed coil-by-coil model")
     vsub = valve.add_subparsers(dest="valve_command", metavar="COMMAND", required=True)
@@ -51,14 +52,22 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_modes)
 
-    p = vsub.add_parser("train-modes", help="natural frequencies of spring + valve train (base circle, full lift) "
-                                            "and the cam-order resonance speeds")
+    p = vsub.add_parser(
+        "train-modes",
+        help="natural frequencies of spring + valve train (base circle, full lift) and the cam-order resonance speeds",
+    )
     p.add_argument("spring", metavar="SPRING.toml")
     _add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
-    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table (without: the spring alone)")
-    p.add_argument("--cam-rpm", default="500:8000:500", metavar="RANGE",
-                   help="speed range for the resonance table, START:STOP:STEP in cam rpm (default 500:8000:500)")
+    p.add_argument(
+        "--valve-train", metavar="VT.toml", help="file with a [valve_train] table (without: the spring alone)"
+    )
+    p.add_argument(
+        "--cam-rpm",
+        default="500:8000:500",
+        metavar="RANGE",
+        help="speed range for the resonance table, START:STOP:STEP in cam rpm (default 500:8000:500)",
+    )
     p.add_argument("--count", type=int, default=6, metavar="N", help="frequencies per state (1-20, default 6)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_train_modes)
@@ -66,8 +75,9 @@ def register(sub) -> None:
     p = vsub.add_parser("frf", help="linearised dynamic stiffness against frequency (seat fixed, retainer driven)")
     p.add_argument("spring", metavar="SPRING.toml")
     _add_model_option(p)
-    p.add_argument("--frequency", required=True, metavar="START:STOP:STEP",
-                   help="frequencies, e.g. 10:3000:5 (bare numbers: Hz)")
+    p.add_argument(
+        "--frequency", required=True, metavar="START:STOP:STEP", help="frequencies, e.g. 10:3000:5 (bare numbers: Hz)"
+    )
     p.add_argument("--length", metavar="L", help="spring length of the static state (default: installed length)")
     add_output_options(p)
     p.set_defaults(func=cmd_frf)
@@ -89,11 +99,23 @@ def register(sub) -> None:
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
     p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"relative tolerance (default {DEFAULT_RTOL:g})")
-    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 (default {DEFAULT_ATOL:g})")
-    p.add_argument("--backend", choices=("compiled", "scipy"), default="compiled",
-                   help="compiled engine (default) or the SciPy reference")
-    p.add_argument("--closure-map", metavar="PNG",
-                   help="distributed model: write the coil-closure map (cam angle x position along the wire)")
+    p.add_argument(
+        "--atol",
+        type=float,
+        default=DEFAULT_ATOL,
+        help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 (default {DEFAULT_ATOL:g})",
+    )
+    p.add_argument(
+        "--backend",
+        choices=("compiled", "scipy"),
+        default="compiled",
+        help="compiled engine (default) or the SciPy reference",
+    )
+    p.add_argument(
+        "--closure-map",
+        metavar="PNG",
+        help="distributed model: write the coil-closure map (cam angle x position along the wire)",
+    )
     add_output_options(p)
     p.set_defaults(func=cmd_simulate)
 
@@ -106,7 +128,9 @@ def register(sub) -> None:
     p.add_argument("--revolutions", type=int, default=3, metavar="N", help="cam revolutions per speed (default 3)")
     p.add_argument("--resolution", default="1", metavar="RPM", help="bisection resolution in cam rpm (default 1)")
     p.add_argument("--csv", metavar="FILE.csv", help="write the minimum cam contact force against speed")
-    p.add_argument("--plot", metavar="FILE.png", help="plot the minimum contact force against speed, float speed marked")
+    p.add_argument(
+        "--plot", metavar="FILE.png", help="plot the minimum contact force against speed, float speed marked"
+    )
     p.add_argument("--json", action="store_true", help="print JSON")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_float)
@@ -119,30 +143,48 @@ def register(sub) -> None:
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
     p.add_argument("--revolutions", type=int, default=2, metavar="N", help="cam revolutions per speed (default 2)")
     p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
-    p.add_argument("--vary", metavar="FIELD=START:STOP:STEP",
-                   help="also sweep a numeric spring field, e.g. installed_length=36mm:40mm:0.5mm")
-    p.add_argument("--on-invalid", choices=("stop", "skip"), default="stop",
-                   help="a --vary value that makes the spring invalid: stop (default) or skip it")
+    p.add_argument(
+        "--vary",
+        metavar="FIELD=START:STOP:STEP",
+        help="also sweep a numeric spring field, e.g. installed_length=36mm:40mm:0.5mm",
+    )
+    p.add_argument(
+        "--on-invalid",
+        choices=("stop", "skip"),
+        default="stop",
+        help="a --vary value that makes the spring invalid: stop (default) or skip it",
+    )
     p.add_argument("--out", default="valve-sweep", metavar="DIR", help="output folder (default valve-sweep)")
     p.add_argument("--workers", type=int, metavar="N", help="local threads (default: 2, both cores)")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786")
+    p.add_argument(
+        "--scheduler", metavar="ADDRESS", help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786"
+    )
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"relative tolerance (default {DEFAULT_RTOL:g})")
-    p.add_argument("--atol", type=float, default=DEFAULT_ATOL, help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 (default {DEFAULT_ATOL:g})")
+    p.add_argument(
+        "--atol",
+        type=float,
+        default=DEFAULT_ATOL,
+        help=f"absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 (default {DEFAULT_ATOL:g})",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
 
 
 def _add_model_option(p) -> None:
-    p.add_argument("--model", choices=MODEL_NAMES,
-                   help="spring model (default: the [spring] model key, else 'type-c', the document's MMS Type C)")
+    p.add_argument(
+        "--model",
+        choices=MODEL_NAMES,
+        help="spring model (default: the [spring] model key, else 'type-c', the document's MMS Type C)",
+    )
 
 
 def _add_speed_options(p, *, ranged: bool) -> None:
     g = p.add_mutually_exclusive_group(required=True)
     what = "START:STOP:STEP or a list" if ranged else "a speed"
     g.add_argument("--cam-rpm", metavar="RPM", help=f"camshaft speed, {what} (bare numbers: rpm)")
-    g.add_argument("--engine-rpm", metavar="RPM",
-                   help=f"engine speed, {what} (four-stroke: cam speed = engine speed / 2)")
+    g.add_argument(
+        "--engine-rpm", metavar="RPM", help=f"engine speed, {what} (four-stroke: cam speed = engine speed / 2)"
+    )
 
 
 def cam_rpm_from_args(args, *, ranged: bool):
@@ -201,8 +243,9 @@ def cmd_curve(args) -> int:
         step = max(1, len(curve.length) // 20)
         rows = [
             (f"{l * 1e3:.3f}", f"{f:.2f}", f"{k / 1e3:.2f}", f"{n:.1f}")
-            for l, f, k, n in zip(curve.length[::step], curve.force[::step], curve.stiffness[::step],
-                                  curve.frequency[::step])
+            for l, f, k, n in zip(
+                curve.length[::step], curve.force[::step], curve.stiffness[::step], curve.frequency[::step]
+            )
         ]
         print_table(rows, headers=("length [mm]", "force [N]", "stiffness [N/mm]", "first mode [Hz]"))
     return 0
@@ -236,18 +279,30 @@ def cmd_train_modes(args) -> int:
     if args.json:
         print_json({**res, "resonance_speeds": table})
         return 0
-    rows = [(str(i + 1), f"{b:.1f}" if i < len(res["base_circle_Hz"]) else "-",
-             f"{f:.1f}" if i < len(res["full_lift_Hz"]) else "-")
-            for i, (b, f) in enumerate(zip(res["base_circle_Hz"] + [0.0] * args.count,
-                                            res["full_lift_Hz"] + [0.0] * args.count))
-            if i < max(len(res["base_circle_Hz"]), len(res["full_lift_Hz"]))]
-    print_table(rows, headers=("mode", "base circle [Hz]", f"full lift ({res['full_lift_cam_angle_deg']:.0f} deg) [Hz]"))
+    rows = [
+        (
+            str(i + 1),
+            f"{b:.1f}" if i < len(res["base_circle_Hz"]) else "-",
+            f"{f:.1f}" if i < len(res["full_lift_Hz"]) else "-",
+        )
+        for i, (b, f) in enumerate(
+            zip(res["base_circle_Hz"] + [0.0] * args.count, res["full_lift_Hz"] + [0.0] * args.count)
+        )
+        if i < max(len(res["base_circle_Hz"]), len(res["full_lift_Hz"]))
+    ]
+    print_table(
+        rows, headers=("mode", "base circle [Hz]", f"full lift ({res['full_lift_cam_angle_deg']:.0f} deg) [Hz]")
+    )
     for note in res["notes"]:
         print("note: " + note)
-    print(f"cam-order resonances (cam rpm = 60 f / N, full-lift frequencies) from {rpms.min():g} to {rpms.max():g} "
-          "cam rpm:")
-    print_table([(str(r["mode"]), f"{r['frequency_Hz']:.1f}", str(r["order"]), f"{r['cam_rpm']:.0f}") for r in table],
-                headers=("mode", "f [Hz]", "order N", "cam rpm"))
+    print(
+        f"cam-order resonances (cam rpm = 60 f / N, full-lift frequencies) from {rpms.min():g} to {rpms.max():g} "
+        "cam rpm:"
+    )
+    print_table(
+        [(str(r["mode"]), f"{r['frequency_Hz']:.1f}", str(r["order"]), f"{r['cam_rpm']:.0f}") for r in table],
+        headers=("mode", "f [Hz]", "order N", "cam rpm"),
+    )
     return 0
 
 
@@ -268,10 +323,14 @@ def cmd_frf(args) -> int:
         return 0
     if not args.csv:
         step = max(1, res.frequency.size // 25)
-        rows = [(f"{f:.1f}", f"{abs(r) / 1e3:.3f}", f"{abs(st) / 1e3:.3f}")
-                for f, r, st in zip(res.frequency[::step], res.retainer[::step], res.seat[::step])]
-        print(f"{spring.type} spring, {res.model} model, at {res.length * 1e3:.3f} mm: static rate "
-              f"{res.static_stiffness / 1e3:.3f} N/mm, modes " + ", ".join(f"{f:.1f}" for f in res.modes) + " Hz")
+        rows = [
+            (f"{f:.1f}", f"{abs(r) / 1e3:.3f}", f"{abs(st) / 1e3:.3f}")
+            for f, r, st in zip(res.frequency[::step], res.retainer[::step], res.seat[::step])
+        ]
+        print(
+            f"{spring.type} spring, {res.model} model, at {res.length * 1e3:.3f} mm: static rate "
+            f"{res.static_stiffness / 1e3:.3f} N/mm, modes " + ", ".join(f"{f:.1f}" for f in res.modes) + " Hz"
+        )
         print_table(rows, headers=("frequency [Hz]", "retainer [N/mm]", "seat [N/mm]"))
     return 0
 
@@ -279,28 +338,55 @@ def cmd_frf(args) -> int:
 def cmd_design(args) -> int:
     spring = _spring(args)
     lift = quantity(args.lift, "m", "--lift") if args.lift is not None else None
-    rpm = quantity(args.cam_rpm, "rad/s", "--cam-rpm", bare_unit="rpm") * 60 / (2 * 3.141592653589793) if args.cam_rpm else None
-    with as_options(cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
+    rpm = (
+        quantity(args.cam_rpm, "rad/s", "--cam-rpm", bare_unit="rpm") * 60 / (2 * 3.141592653589793)
+        if args.cam_rpm
+        else None
+    )
+    with as_options(
+        cam_rpm="--cam-rpm",
+        revolutions="--revolutions",
+        rtol="--rtol",
+        atol="--atol",
+        points_per_revolution="--points-per-revolution",
+        resolution="--resolution",
+        lift="--lift",
+        backend="--backend",
+    ):
         fig = spring.design_figures(lift=lift, cam_rpm=rpm)
     if args.json:
         print_json(fig)
         return 0
-    print(f"spring index C = {fig['spring_index']:.3f}, Bergstraesser k = {fig['bergstraesser_factor']:.4f}, "
-          f"Wahl k = {fig['wahl_factor']:.4f}")
-    print(f"solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm, spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g")
+    print(
+        f"spring index C = {fig['spring_index']:.3f}, Bergstraesser k = {fig['bergstraesser_factor']:.4f}, "
+        f"Wahl k = {fig['wahl_factor']:.4f}"
+    )
+    print(
+        f"solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm, spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g"
+    )
     rows = []
     for state in ("installed", "open", "coil_contact"):
         if state in fig:
             s = fig[state]
-            rows.append((state, f"{s['length_m'] * 1e3:.3f}", f"{s['force_N']:.1f}", f"{s['shear_stress_Pa'] / 1e6:.0f}",
-                         f"{s['surge_frequency_Hz']:.1f}", f"{s['surge_margin']:.2f}" if "surge_margin" in s else "-"))
+            rows.append(
+                (
+                    state,
+                    f"{s['length_m'] * 1e3:.3f}",
+                    f"{s['force_N']:.1f}",
+                    f"{s['shear_stress_Pa'] / 1e6:.0f}",
+                    f"{s['surge_frequency_Hz']:.1f}",
+                    f"{s['surge_margin']:.2f}" if "surge_margin" in s else "-",
+                )
+            )
     print_table(rows, headers=("state", "length [mm]", "force [N]", "stress [MPa]", "surge [Hz]", "surge margin"))
     if "fatigue" in fig:
         f = fig["fatigue"]
-        print(f"fatigue (Goodman, installed -> open): safety factor {f['static_fatigue_safety_factor']:.2f}; "
-              f"endurance {f['endurance_shear_strength_Pa'] / 1e6:.0f} MPa, ultimate shear "
-              f"{f['ultimate_shear_strength_Pa'] / 1e6:.0f} MPa"
-              + (f" (defaults for {', '.join(f['strength_defaults'])})" if f["strength_defaults"] else ""))
+        print(
+            f"fatigue (Goodman, installed -> open): safety factor {f['static_fatigue_safety_factor']:.2f}; "
+            f"endurance {f['endurance_shear_strength_Pa'] / 1e6:.0f} MPa, ultimate shear "
+            f"{f['ultimate_shear_strength_Pa'] / 1e6:.0f} MPa"
+            + (f" (defaults for {', '.join(f['strength_defaults'])})" if f["strength_defaults"] else "")
+        )
     return 0
 
 
@@ -319,9 +405,27 @@ def cmd_simulate(args) -> int:
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpm = cam_rpm_from_args(args, ranged=False)
-    with as_options(cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
-        sim = simulate(spring, cam, rpm, args.revolutions, valve_train=vt, rtol=args.rtol, atol=args.atol,
-                       points_per_revolution=args.points_per_revolution, backend=args.backend)
+    with as_options(
+        cam_rpm="--cam-rpm",
+        revolutions="--revolutions",
+        rtol="--rtol",
+        atol="--atol",
+        points_per_revolution="--points-per-revolution",
+        resolution="--resolution",
+        lift="--lift",
+        backend="--backend",
+    ):
+        sim = simulate(
+            spring,
+            cam,
+            rpm,
+            args.revolutions,
+            valve_train=vt,
+            rtol=args.rtol,
+            atol=args.atol,
+            points_per_revolution=args.points_per_revolution,
+            backend=args.backend,
+        )
     if args.csv:
         sim.to_csv(args.csv)
     if args.plot:
@@ -335,44 +439,71 @@ def cmd_simulate(args) -> int:
     if s["periodicity_error"] is None:
         period = "periodicity n/a (1 revolution)"
     else:
-        period = (f"{'periodic' if s['periodic'] else 'NOT periodic'}: {100 * s['periodicity_error']:.2f} % of Fset "
-                  "change from the revolution before")
+        period = (
+            f"{'periodic' if s['periodic'] else 'NOT periodic'}: {100 * s['periodicity_error']:.2f} % of Fset "
+            "change from the revolution before"
+        )
     print(f"{spring.type} spring, {cam.law} cam at {rpm:g} cam rpm, last of {args.revolutions} revolutions ({period})")
     rows = [
-        ("retainer force", f"{s['max_retainer_force_N']:.1f}", f"{s['min_retainer_force_N']:.1f}",
-         f"{s['max_retainer_force_ratio']:.3f}", f"{s['retainer_surge_amplitude_N']:.1f}"),
-        ("seat force", f"{s['max_seat_force_N']:.1f}", f"{s['min_seat_force_N']:.1f}",
-         f"{s['max_seat_force_ratio']:.3f}", f"{s['seat_surge_amplitude_N']:.1f}"),
+        (
+            "retainer force",
+            f"{s['max_retainer_force_N']:.1f}",
+            f"{s['min_retainer_force_N']:.1f}",
+            f"{s['max_retainer_force_ratio']:.3f}",
+            f"{s['retainer_surge_amplitude_N']:.1f}",
+        ),
+        (
+            "seat force",
+            f"{s['max_seat_force_N']:.1f}",
+            f"{s['min_seat_force_N']:.1f}",
+            f"{s['max_seat_force_ratio']:.3f}",
+            f"{s['seat_surge_amplitude_N']:.1f}",
+        ),
         ("static force", f"{s['max_static_force_N']:.1f}", f"{s['min_static_force_N']:.1f}", "1", "0"),
     ]
     print_table(rows, headers=("", "max [N]", "min [N]", "max/static", "surge [N]"))
-    print(f"f1 = {s['f1_Hz']:.1f} Hz = cam order {s['f1_cam_order']:.2f}; strongest harmonics: "
-          + ", ".join(f"{h['order']}: {h['amplitude_N']:.1f} N" for h in sorted(s['spectrum'], key=lambda h: -h['amplitude_N'])[:4]))
+    print(
+        f"f1 = {s['f1_Hz']:.1f} Hz = cam order {s['f1_cam_order']:.2f}; strongest harmonics: "
+        + ", ".join(
+            f"{h['order']}: {h['amplitude_N']:.1f} N"
+            for h in sorted(s["spectrum"], key=lambda h: -h["amplitude_N"])[:4]
+        )
+    )
     if s["coil_contact"]:
         for ev in s["coil_contact"]:
-            print(f"coil contact {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg in {', '.join(ev['elements'])}, "
-                  f"peak {ev['peak_contact_force_N']:.1f} N")
+            print(
+                f"coil contact {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg in {', '.join(ev['elements'])}, "
+                f"peak {ev['peak_contact_force_N']:.1f} N"
+            )
     else:
         print("no coil contact")
     if "clashing_coils" in s:
         print("clashing coils (from the seat): " + (", ".join(map(str, s["clashing_coils"])) or "none"))
     for ev in s["end_separation"]:
-        print(f"END SEPARATION at the {ev['end']} {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg "
-              f"({ev['duration_s'] * 1e3:.3f} ms)")
+        print(
+            f"END SEPARATION at the {ev['end']} {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg "
+            f"({ev['duration_s'] * 1e3:.3f} ms)"
+        )
     if vt is not None:
         if s["liftoff"]:
             for ev in s["liftoff"]:
                 print(f"LIFT-OFF {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg ({ev['duration_s'] * 1e3:.3f} ms)")
         else:
             print(f"no lift-off: minimum cam contact force {s['min_cam_contact_force_N']:.1f} N")
-        print(f"seat impact velocity {s['seat_impact_velocity_m_per_s']:.3f} m/s, bounces {s['bounces']}, "
-              f"max bounce {s['max_bounce_height_m'] * 1e3:.3f} mm")
+        print(
+            f"seat impact velocity {s['seat_impact_velocity_m_per_s']:.3f} m/s, bounces {s['bounces']}, "
+            f"max bounce {s['max_bounce_height_m'] * 1e3:.3f} mm"
+        )
     fs, fd = s["static_fatigue_safety_factor"], s["fatigue_safety_factor"]
-    print("fatigue safety factor (Goodman): static " + (f"{fs:.2f}" if fs is not None else "-") + ", dynamic "
-          + (f"{fd:.2f}" if fd is not None else "-")
-          + f" (element {s['fatigue_critical_element']}, {s['min_shear_stress_Pa'] / 1e6:.0f}-"
-          f"{s['max_shear_stress_Pa'] / 1e6:.0f} MPa)"
-          + (f"; smallest coil gap {s['min_coil_gap_m'] * 1e3:.3f} mm" if s.get("min_coil_gap_m") is not None else ""))
+    print(
+        "fatigue safety factor (Goodman): static "
+        + (f"{fs:.2f}" if fs is not None else "-")
+        + ", dynamic "
+        + (f"{fd:.2f}" if fd is not None else "-")
+        + f" (element {s['fatigue_critical_element']}, {s['min_shear_stress_Pa'] / 1e6:.0f}-"
+        f"{s['max_shear_stress_Pa'] / 1e6:.0f} MPa)"
+        + (f"; smallest coil gap {s['min_coil_gap_m'] * 1e3:.3f} mm" if s.get("min_coil_gap_m") is not None else "")
+    )
     return 0
 
 
@@ -382,10 +513,25 @@ def cmd_float(args) -> int:
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpms = cam_rpm_from_args(args, ranged=True)
-    with as_options(cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
-        res = float_speed(spring, cam, vt, rpms, revolutions=args.revolutions,
-                          resolution=quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm"),
-                          progress_quiet=args.quiet)
+    with as_options(
+        cam_rpm="--cam-rpm",
+        revolutions="--revolutions",
+        rtol="--rtol",
+        atol="--atol",
+        points_per_revolution="--points-per-revolution",
+        resolution="--resolution",
+        lift="--lift",
+        backend="--backend",
+    ):
+        res = float_speed(
+            spring,
+            cam,
+            vt,
+            rpms,
+            revolutions=args.revolutions,
+            resolution=quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm"),
+            progress_quiet=args.quiet,
+        )
     if args.csv:
         res.to_csv(args.csv)
     if args.plot:
@@ -394,8 +540,10 @@ def cmd_float(args) -> int:
         print_json(res.to_dict())
         return 0
     if res["float_cam_rpm"] is None:
-        print(f"no lift-off up to {rpms.max():g} cam rpm (minimum cam contact force there "
-              f"{res['min_cam_contact_force_N'][-1]:.1f} N)")
+        print(
+            f"no lift-off up to {rpms.max():g} cam rpm (minimum cam contact force there "
+            f"{res['min_cam_contact_force_N'][-1]:.1f} N)"
+        )
     else:
         f = res["float_cam_rpm"]
         print(f"float speed: {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke)")
@@ -430,33 +578,70 @@ def cmd_sweep(args) -> int:
     with as_options(scheduler="--scheduler"):
         client = connect(args.scheduler) if args.scheduler else None
     try:
-        with as_options(vary="--vary", workers="--workers", cam_rpm="--cam-rpm", revolutions="--revolutions", rtol="--rtol", atol="--atol", points_per_revolution="--points-per-revolution", resolution="--resolution", lift="--lift", backend="--backend"):
-            res = sweep(spring, cam, rpms, revolutions=args.revolutions, valve_train=vt,
-                        points_per_revolution=args.points_per_revolution, rtol=args.rtol, atol=args.atol, vary=vary,
-                        on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet)
+        with as_options(
+            vary="--vary",
+            workers="--workers",
+            cam_rpm="--cam-rpm",
+            revolutions="--revolutions",
+            rtol="--rtol",
+            atol="--atol",
+            points_per_revolution="--points-per-revolution",
+            resolution="--resolution",
+            lift="--lift",
+            backend="--backend",
+        ):
+            res = sweep(
+                spring,
+                cam,
+                rpms,
+                revolutions=args.revolutions,
+                valve_train=vt,
+                points_per_revolution=args.points_per_revolution,
+                rtol=args.rtol,
+                atol=args.atol,
+                vary=vary,
+                on_invalid=args.on_invalid,
+                workers=args.workers,
+                client=client,
+                quiet=args.quiet,
+            )
     finally:
         if client is not None:
             client.close()
     written = res.write(Path(args.out))
     table = res.summary_table()
     where = "on " + args.scheduler if args.scheduler else "locally"
-    print(f"swept {rpms.size} speeds ({rpms.min():g}-{rpms.max():g} cam rpm)"
-          + (f" x {res.vary_values.size} values of {res.vary_name}" if vary else "") + f" {where}")
+    print(
+        f"swept {rpms.size} speeds ({rpms.min():g}-{rpms.max():g} cam rpm)"
+        + (f" x {res.vary_values.size} values of {res.vary_name}" if vary else "")
+        + f" {where}"
+    )
     k = int(np.argmax(table["max_retainer_force_N"]))
-    print(f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {table['cam_rpm'][k]:g} cam rpm "
-          f"(static peak {table['max_static_force_N'][k]:.1f} N); coil contact at "
-          f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs")
+    print(
+        f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {table['cam_rpm'][k]:g} cam rpm "
+        f"(static peak {table['max_static_force_N'][k]:.1f} N); coil contact at "
+        f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs"
+    )
     if vt is not None:
         for v, f in zip(res.vary_values, res.float_speeds()):
             tag = f"{describe_design_value(res.vary_name, v)}: " if vary else ""
-            print(f"{tag}float speed " + (f"~{f:g} cam rpm (first swept speed with lift-off; refine with "
-                                            "'springdyn valve float')" if np.isfinite(f) else "above the swept range"))
+            print(
+                f"{tag}float speed "
+                + (
+                    f"~{f:g} cam rpm (first swept speed with lift-off; refine with 'springdyn valve float')"
+                    if np.isfinite(f)
+                    else "above the swept range"
+                )
+            )
     for value, reason in res.skipped:
         print(f"skipped {describe_design_value(res.vary_name, value)}: {reason}")
     first = [r for r in res.resonance_table() if r["mode"] == 1]
     if first:
-        print(f"cam-order resonances of the first mode ({first[0]['frequency_Hz']:.0f} Hz at full lift): "
-              + ", ".join(f"N={r['order']} at {r['cam_rpm']:.0f}" for r in first) + " cam rpm (all modes: "
-              "sweep_resonances.csv)")
+        print(
+            f"cam-order resonances of the first mode ({first[0]['frequency_Hz']:.0f} Hz at full lift): "
+            + ", ".join(f"N={r['order']} at {r['cam_rpm']:.0f}" for r in first)
+            + " cam rpm (all modes: "
+            "sweep_resonances.csv)"
+        )
     print(f"wrote {len(written)} files to {Path(args.out).resolve()}")
     return 0

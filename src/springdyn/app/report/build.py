@@ -62,8 +62,9 @@ def _jobs(paths):
     return jobs
 
 
-def build_report(paths, out_dir, *, quiet: bool = False, title: str = "springdyn report",
-                 subtitle: str = "", labels=None) -> Path:
+def build_report(
+    paths, out_dir, *, quiet: bool = False, title: str = "springdyn report", subtitle: str = "", labels=None
+) -> Path:
     """Run every definition's analyses into ``out_dir`` and write ``out_dir/index.html``.
 
     Every definition is read and validated first, so a bad file fails before any work.
@@ -127,5 +128,9 @@ def _build(prepared, modules, out_dir, label_of, quiet, title, subtitle) -> Path
         sub = out_dir / name
         sub.mkdir(parents=True, exist_ok=True)
         sections.append(modules[family].section(model, source=label_of.get(path, str(path)), out_dir=sub, quiet=quiet))
-    return render_html(sections, out_dir / "index.html", title=title,
-                       subtitle=subtitle or f"{len(sections)} model definitions: " + ", ".join(s.title for s in sections))
+    return render_html(
+        sections,
+        out_dir / "index.html",
+        title=title,
+        subtitle=subtitle or f"{len(sections)} model definitions: " + ", ".join(s.title for s in sections),
+    )

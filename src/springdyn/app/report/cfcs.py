@@ -43,17 +43,30 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
     st = model.static()
     files.append(st.to_csv(out_dir / "static.csv"))
     plt.close(st.plot(out_dir / "static.png"))
-    figures.append((out_dir / "static.png", "Force-deflection by virtual work (CFCS paper Figs. 2-3), with the "
-                    "compression and extension branches of the dissipative terms"))
-    figures.append((_stress_plot(model, st, out_dir / "pivot_stress.png"), "Flexural-pivot bending stress along "
-                    "the stroke against the allowable stress"))
+    figures.append(
+        (
+            out_dir / "static.png",
+            "Force-deflection by virtual work (CFCS paper Figs. 2-3), with the "
+            "compression and extension branches of the dissipative terms",
+        )
+    )
+    figures.append(
+        (
+            _stress_plot(model, st, out_dir / "pivot_stress.png"),
+            "Flexural-pivot bending stress along the stroke against the allowable stress",
+        )
+    )
     dyn = {}
     for w in PAPER_OMEGAS:
         full, bare = model.dynamic(w), ideal.dynamic(w)
         tag = f"omega_{w:g}".replace(".", "p")
         files.append(full.to_csv(out_dir / f"dynamic_{tag}.csv"))
-        figures.append((_compare_plot(full, bare, out_dir / f"dynamic_{tag}.png"),
-                        f"Slider force at omega = {w:g} rad/s with and without tau_CF, tau_AF (paper Figs. 8-11)"))
+        figures.append(
+            (
+                _compare_plot(full, bare, out_dir / f"dynamic_{tag}.png"),
+                f"Slider force at omega = {w:g} rad/s with and without tau_CF, tau_AF (paper Figs. 8-11)",
+            )
+        )
         dyn[w] = (full.summary, bare.summary)
     sw = model.sweep(np.arange(1.0, 50.0 + 1e-9, 0.5), quiet=quiet)
     files.append(sw.to_csv(out_dir / "sweep.csv"))
@@ -67,9 +80,14 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
         beam = CFCS(p.replace(flexure_model="beam", plate_bending=p.uses_plate_bending("prbm")))
         bs = beam.static(s["stroke_m"], n=289)
         files.append(bs.to_csv(out_dir / "flexure_models.csv"))
-        figures.append((_flexure_plot(bs, out_dir / "flexure_models.png"), "The flexure as a pin (PRBM) and as "
-                        "its large-deflection elastica (beam), same modulus: force, running PCF and peak bending "
-                        "stress against the deflection"))
+        figures.append(
+            (
+                _flexure_plot(bs, out_dir / "flexure_models.png"),
+                "The flexure as a pin (PRBM) and as "
+                "its large-deflection elastica (beam), same modulus: force, running PCF and peak bending "
+                "stress against the deflection",
+            )
+        )
         comparison = bs.summary
         plate_factor = 1.0 / (1.0 - p.poisson_ratio**2)
     # the toggle: what the statistics would be if the motion started at the toggle (offset 0)
@@ -79,18 +97,32 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
     fw = ideal.forward(1.0, base_motion=lambda t: base(t)[:2], base_stiffness=2000.0, x0=1e-3)
     files.append(fw.to_csv(out_dir / "forward_base_spring.csv"))
     plt.close(fw.plot(out_dir / "forward_base_spring.png"))
-    figures.append((out_dir / "forward_base_spring.png", "Forward dynamics: the slider driven through a 2 N/mm "
-                    "spring by a base moving 36 mm at 10 rad/s (frictionless model)"))
+    figures.append(
+        (
+            out_dir / "forward_base_spring.png",
+            "Forward dynamics: the slider driven through a 2 N/mm "
+            "spring by a base moving 36 mm at 10 rad/s (frictionless model)",
+        )
+    )
     # design for this mechanism's force and stroke, in its material, within its stress limit
     allowable = p.allowable_stress or 1.5e9
     limited = s["safety_factor"] is not None and s["safety_factor"] < 1
     target_stroke = s["max_stroke_for_stress_m"] if limited else s["stroke_m"]
     dz = design_flattest(s["force_at_zero_N"], target_stroke, p.youngs_modulus, allowable, stroke_fraction=0.1)
     files.append(dz.to_toml(out_dir / "design.toml"))
-    files.append(write_json(out_dir / "summary.json", {"static": s, "dynamic": {f"{w:g}": v for w, v in dyn.items()},
-                                                       "dynamic_through_toggle": through,
-                                                       "flexure_models": comparison,
-                                                       "forward_base_spring": fw.summary, "design": dz.summary}))
+    files.append(
+        write_json(
+            out_dir / "summary.json",
+            {
+                "static": s,
+                "dynamic": {f"{w:g}": v for w, v in dyn.items()},
+                "dynamic_through_toggle": through,
+                "flexure_models": comparison,
+                "forward_base_spring": fw.summary,
+                "design": dz.summary,
+            },
+        )
+    )
     findings = [
         f"Over a {s['stroke_m'] * 1e3:.1f} mm stroke the static force stays between {s['force_min_N']:.3f} N and "
         f"{s['force_max_N']:.3f} N (maximum at {s['deflection_at_force_max_m'] * 1e3:.1f} mm): "
@@ -98,15 +130,18 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
         f"With pin friction and the axial-force term ({p.friction_model} friction model), the quasi-static "
         f"compression branch over the working range {s['working_start_m'] * 1e3:.1f}-{s['working_end_m'] * 1e3:.1f} mm "
         f"(from the preload offset) is {s['pcf_compression_percent']:.1f} % constant"
-        + (" (toggle-dominated: depends on the cut-off)." if s["toggle_dominated"] else
-           "; no statistic depends on the toggle cut-off."),
+        + (
+            " (toggle-dominated: depends on the cut-off)."
+            if s["toggle_dominated"]
+            else "; no statistic depends on the toggle cut-off."
+        ),
         f"The flexural pivot (K3 = {s['k3_N_m_per_rad']:.4g} N m/rad) reaches {s['max_stress_Pa'] / 1e9:.2f} GPa over the "
         f"stroke: safety factor {s['safety_factor']:.2f} against {p.allowable_stress / 1e9:.2f} GPa; the pivot allows "
         f"only {s['max_stroke_for_stress_m'] * 1e3:.1f} mm of stroke."
-        if p.allowable_stress and s["max_stress_Pa"] is not None else
-        f"The flexural pivot reaches {s['max_stress_Pa'] / 1e9:.2f} GPa over the stroke (no allowable stress given)."
-        if s["max_stress_Pa"] is not None else
-        f"The pivot is given by its stiffness K3 = {s['k3_N_m_per_rad']:.4g} N m/rad only: its stress is not known "
+        if p.allowable_stress and s["max_stress_Pa"] is not None
+        else f"The flexural pivot reaches {s['max_stress_Pa'] / 1e9:.2f} GPa over the stroke (no allowable stress given)."
+        if s["max_stress_Pa"] is not None
+        else f"The pivot is given by its stiffness K3 = {s['k3_N_m_per_rad']:.4g} N m/rad only: its stress is not known "
         "(give pivot_width, pivot_thickness and pivot_length for a stress check).",
     ]
     for w in (min(PAPER_OMEGAS), max(PAPER_OMEGAS)):
@@ -122,9 +157,12 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
         f"Started at the toggle instead (offset 0, omega = {through['omega_rad_per_s']:g} rad/s) the peak-to-peak force is "
         f"{through['peak_to_peak_N']:.1f} N with the {np.degrees(p.toggle_cutoff):.3g} deg cut-off and "
         f"{chk.get('peak_to_peak_N', through['peak_to_peak_N']):.1f} N with twice it: "
-        + ("toggle-dominated, a property of the numerical cut-off and not of the mechanism (the axial-force term "
-           "turned into a slider force grows as alpha/theta2 there); springdyn flags such results."
-           if through["toggle_dominated"] else "not toggle-dominated for this mechanism.")
+        + (
+            "toggle-dominated, a property of the numerical cut-off and not of the mechanism (the axial-force term "
+            "turned into a slider force grows as alpha/theta2 there); springdyn flags such results."
+            if through["toggle_dominated"]
+            else "not toggle-dominated for this mechanism."
+        )
     )
     if comparison is not None:
         c = comparison
@@ -146,53 +184,92 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
         f"Design for {d['target_force_N']:.2f} N over {d['stroke_m'] * 1e3:.1f} mm within {allowable / 1e9:.2f} GPa "
         f"over a safety factor {d['safety_factor_target']:g} ({d['flexure_model']} model, PCF >= "
         f"{d['min_pcf_percent']:g} %): "
-        + (f"r2 + r3 = {d['total_length_m'] * 1e3:.1f} mm: r2 = {d['crank_length_m'] * 1e3:.1f} mm, r3 = {d['coupler_length_m'] * 1e3:.1f} mm, flexure "
-           f"{d['pivot_width_m'] * 1e3:.2f} x {d['pivot_thickness_m'] * 1e3:.3f} x {d['pivot_length_m'] * 1e3:.2f} mm "
-           f"(b x h x l), PCF {d['pcf_percent']:.1f} %, safety factor {d['safety_factor']:.2f}, force "
-           f"{d['force_min_at_thickness_tolerance_N']:.2f}-{d['force_max_at_thickness_tolerance_N']:.2f} N for "
-           f"+-{100 * d['thickness_tolerance']:.0f} % strip thickness (design.toml)."
-           if d["feasible"] else f"no design meets the stress limit: {d['message']}")
+        + (
+            f"r2 + r3 = {d['total_length_m'] * 1e3:.1f} mm: r2 = {d['crank_length_m'] * 1e3:.1f} mm, r3 = {d['coupler_length_m'] * 1e3:.1f} mm, flexure "
+            f"{d['pivot_width_m'] * 1e3:.2f} x {d['pivot_thickness_m'] * 1e3:.3f} x {d['pivot_length_m'] * 1e3:.2f} mm "
+            f"(b x h x l), PCF {d['pcf_percent']:.1f} %, safety factor {d['safety_factor']:.2f}, force "
+            f"{d['force_min_at_thickness_tolerance_N']:.2f}-{d['force_max_at_thickness_tolerance_N']:.2f} N for "
+            f"+-{100 * d['thickness_tolerance']:.0f} % strip thickness (design.toml)."
+            if d["feasible"]
+            else f"no design meets the stress limit: {d['message']}"
+        )
     )
-    findings.append(f"The dynamic results start from a preload offset ({s['working_start_m'] * 1e3:.1f} mm, inside the "
-                    f"constant-force band), above the toggle zone (theta2 < {np.degrees(p.toggle_cutoff):.3g} deg) where "
-                    "the dissipative terms turned into a slider force diverge; a result that enters the zone is "
-                    "computed at the cut-off and at twice it and flagged when it moves by more than 1 %.")
+    findings.append(
+        f"The dynamic results start from a preload offset ({s['working_start_m'] * 1e3:.1f} mm, inside the "
+        f"constant-force band), above the toggle zone (theta2 < {np.degrees(p.toggle_cutoff):.3g} deg) where "
+        "the dissipative terms turned into a slider force diverge; a result that enters the zone is "
+        "computed at the cut-off and at twice it and flagged when it moves by more than 1 %."
+    )
     derived = [
         ("K3", fmt(s["k3_N_m_per_rad"], "N*m/rad"), "pivot torsional stiffness E I / l"),
         ("force at toggle", fmt(s["force_at_zero_N"], "N"), "static force as theta2 -> 0"),
         ("maximum force", fmt(s["force_max_N"], "N"), f"at {s['deflection_at_force_max_m'] * 1e3:.2f} mm"),
         ("PCF", fmt(s["pcf_percent"], "%", 4), "Fmin/Fmax over the stroke"),
         ("kinematic limit", fmt(s["kinematic_limit_m"] * 1e3, "mm"), "theta2 = 90 deg"),
-        ("max pivot stress", fmt(s["max_stress_Pa"] / 1e9, "GPa") if s["max_stress_Pa"] is not None else "n/a",
-         "E (h/2) theta_K3 / l"),
-        ("safety factor", fmt(s["safety_factor"], "", 3) if s["safety_factor"] is not None else "n/a",
-         "allowable / max stress"),
+        (
+            "max pivot stress",
+            fmt(s["max_stress_Pa"] / 1e9, "GPa") if s["max_stress_Pa"] is not None else "n/a",
+            "E (h/2) theta_K3 / l",
+        ),
+        (
+            "safety factor",
+            fmt(s["safety_factor"], "", 3) if s["safety_factor"] is not None else "n/a",
+            "allowable / max stress",
+        ),
     ]
     criteria = [
-        Criterion("percent constant force (PCF)", f"{s['pcf_percent']:.1f} %", f">= {PCF_MIN:g} %",
-                  bool(s["pcf_percent"] >= PCF_MIN), "Fmin/Fmax of the static force over the stroke"),
-        Criterion("pivot stress safety factor",
-                  f"{s['safety_factor']:.2f}" if s["safety_factor"] is not None else "n/a", ">= 1",
-                  None if s["safety_factor"] is None else bool(s["safety_factor"] >= 1.0),
-                  (f"allowable {p.allowable_stress / 1e9:.2f} GPa over {s['stroke_m'] * 1e3:.1f} mm"
-                   if s["safety_factor"] is not None else
-                   "needs allowable_stress and the pivot dimensions")),
-        Criterion("results independent of the toggle cut-off",
-                  "yes" if not (s["toggle_dominated"] or any(v[0]["toggle_dominated"] for v in dyn.values()))
-                  else "no (toggle-dominated)", "no statistic moves > 1 % when the cut-off doubles",
-                  not (s["toggle_dominated"] or any(v[0]["toggle_dominated"] for v in dyn.values())),
-                  f"motion from the preload offset {s['working_start_m'] * 1e3:.1f} mm"),
-        Criterion("design for this force and stroke", "feasible" if d["feasible"] else "not feasible", "feasible",
-                  bool(d["feasible"]), d.get("message", "") or "see the design finding"),
+        Criterion(
+            "percent constant force (PCF)",
+            f"{s['pcf_percent']:.1f} %",
+            f">= {PCF_MIN:g} %",
+            bool(s["pcf_percent"] >= PCF_MIN),
+            "Fmin/Fmax of the static force over the stroke",
+        ),
+        Criterion(
+            "pivot stress safety factor",
+            f"{s['safety_factor']:.2f}" if s["safety_factor"] is not None else "n/a",
+            ">= 1",
+            None if s["safety_factor"] is None else bool(s["safety_factor"] >= 1.0),
+            (
+                f"allowable {p.allowable_stress / 1e9:.2f} GPa over {s['stroke_m'] * 1e3:.1f} mm"
+                if s["safety_factor"] is not None
+                else "needs allowable_stress and the pivot dimensions"
+            ),
+        ),
+        Criterion(
+            "results independent of the toggle cut-off",
+            "yes"
+            if not (s["toggle_dominated"] or any(v[0]["toggle_dominated"] for v in dyn.values()))
+            else "no (toggle-dominated)",
+            "no statistic moves > 1 % when the cut-off doubles",
+            not (s["toggle_dominated"] or any(v[0]["toggle_dominated"] for v in dyn.values())),
+            f"motion from the preload offset {s['working_start_m'] * 1e3:.1f} mm",
+        ),
+        Criterion(
+            "design for this force and stroke",
+            "feasible" if d["feasible"] else "not feasible",
+            "feasible",
+            bool(d["feasible"]),
+            d.get("message", "") or "see the design finding",
+        ),
     ]
     return Section(
-        family="cfcs", title="Constant-force compression spring", source=source, criteria=criteria,
-        commands=[f"springdyn cfcs static {source} --plot static.png --json",
-                  f"springdyn cfcs dynamic {source} --omega 14.7 --plot dynamic.png --json",
-                  f"springdyn cfcs sweep {source} --omega 1:50:0.5 --plot sweep.png",
-                  f"springdyn cfcs design --force {d['target_force_N']:.4g}N --stroke {d['stroke_m'] * 1e3:.4g}mm "
-                  f"--material-modulus {p.youngs_modulus / 1e9:.4g}GPa --allowable-stress {allowable / 1e9:.4g}GPa"],
-        inputs=parameter_rows(p), derived=derived, findings=findings, figures=figures, files=files,
+        family="cfcs",
+        title="Constant-force compression spring",
+        source=source,
+        criteria=criteria,
+        commands=[
+            f"springdyn cfcs static {source} --plot static.png --json",
+            f"springdyn cfcs dynamic {source} --omega 14.7 --plot dynamic.png --json",
+            f"springdyn cfcs sweep {source} --omega 1:50:0.5 --plot sweep.png",
+            f"springdyn cfcs design --force {d['target_force_N']:.4g}N --stroke {d['stroke_m'] * 1e3:.4g}mm "
+            f"--material-modulus {p.youngs_modulus / 1e9:.4g}GPa --allowable-stress {allowable / 1e9:.4g}GPa",
+        ],
+        inputs=parameter_rows(p),
+        derived=derived,
+        findings=findings,
+        figures=figures,
+        files=files,
     )
 
 
@@ -227,8 +304,11 @@ def _compare_plot(full, bare, path) -> Path:
     ax.plot(bare.time, bare.force, "--", label="without")
     ax.plot(full.time, full.force_static, ":", color="k", label="static force")
     s = full.summary
-    ax.set_title(f"omega = {s['omega_rad_per_s']:g} rad/s, {s['motion']}\n"
-                 f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg", fontsize=10)
+    ax.set_title(
+        f"omega = {s['omega_rad_per_s']:g} rad/s, {s['motion']}\n"
+        f"toggle cut-off {np.degrees(s['toggle_cutoff_rad']):.3g} deg",
+        fontsize=10,
+    )
     ax.set_xlabel("time [s]")
     ax.set_ylabel("slider force [N]")
     ax.grid(True, alpha=0.3)
@@ -249,8 +329,11 @@ def _stress_plot(model, st, path) -> Path:
     ax.set_xlabel("slider deflection [mm]")
     ax.set_ylabel("pivot bending stress [GPa]")
     sf = st.summary["safety_factor"]
-    ax.set_title(f"Safety factor {sf:.3g} over {st.summary['stroke_m'] * 1e3:.3g} mm" if sf is not None else
-                 "pivot stress (no allowable stress, or the pivot is given by its stiffness only: stress unknown)")
+    ax.set_title(
+        f"Safety factor {sf:.3g} over {st.summary['stroke_m'] * 1e3:.3g} mm"
+        if sf is not None
+        else "pivot stress (no allowable stress, or the pivot is given by its stiffness only: stress unknown)"
+    )
     ax.grid(True, alpha=0.3)
     ax.legend()
     return save_figure(fig, path)

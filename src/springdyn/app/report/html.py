@@ -125,7 +125,12 @@ def parameter_rows(obj) -> list[tuple]:
         value = getattr(obj, f.name)
         if value is None or f.name.startswith("table_"):
             continue
-        if "kind" in meta and meta["kind"] == "quantity" and isinstance(value, (int, float)) and not isinstance(value, bool):
+        if (
+            "kind" in meta
+            and meta["kind"] == "quantity"
+            and isinstance(value, (int, float))
+            and not isinstance(value, bool)
+        ):
             shown = describe_value(value, meta)
         elif "kind" in meta and meta["kind"] == "quantity_list":
             shown = ", ".join(describe_value(v, {**meta, "kind": "quantity"}) for v in value)
@@ -142,8 +147,10 @@ def _table(rows, headers=("quantity", "value", "meaning")) -> str:
     head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
     body = []
     for r in rows:
-        cells = [f'<td class="v">{html.escape(str(c))}</td>' if i == 1 else f"<td>{html.escape(str(c))}</td>"
-                 for i, c in enumerate(r)]
+        cells = [
+            f'<td class="v">{html.escape(str(c))}</td>' if i == 1 else f"<td>{html.escape(str(c))}</td>"
+            for i, c in enumerate(r)
+        ]
         body.append("<tr>" + "".join(cells) + "</tr>")
     return f"<div class='scroll'><table><tr>{head}</tr>{''.join(body)}</table></div>"
 
@@ -152,8 +159,10 @@ def _criteria(criteria: list[Criterion]) -> str:
     rows = []
     for c in criteria:
         css = {"pass": "pass", "fail": "fail", "n/a": "na"}[c.verdict]
-        rows.append(f"<tr class='criterion {css}'><td>{html.escape(c.name)}</td><td class='v'>{html.escape(c.value)}</td>"
-                    f"<td>{html.escape(c.limit)}</td><td class='verdict'>{c.verdict}</td><td>{html.escape(c.note)}</td></tr>")
+        rows.append(
+            f"<tr class='criterion {css}'><td>{html.escape(c.name)}</td><td class='v'>{html.escape(c.value)}</td>"
+            f"<td>{html.escape(c.limit)}</td><td class='verdict'>{c.verdict}</td><td>{html.escape(c.note)}</td></tr>"
+        )
     head = "".join(f"<th>{h}</th>" for h in ("criterion", "value", "limit", "verdict", "note"))
     return f"<div class='scroll'><table class='criteria'><tr>{head}</tr>{''.join(rows)}</table></div>"
 
@@ -163,10 +172,10 @@ def png_min_font_px(path) -> float | None:
     data = Path(path).read_bytes()
     pos = 8
     while pos + 8 <= len(data):
-        length = int.from_bytes(data[pos:pos + 4], "big")
-        kind = data[pos + 4:pos + 8]
+        length = int.from_bytes(data[pos : pos + 4], "big")
+        kind = data[pos + 4 : pos + 8]
         if kind == b"tEXt":
-            key, _, value = data[pos + 8:pos + 8 + length].partition(b"\x00")
+            key, _, value = data[pos + 8 : pos + 8 + length].partition(b"\x00")
             if key == b"springdyn:min-font-px":
                 try:
                     return float(value)
@@ -189,12 +198,15 @@ def _img(path: Path, embed: bool, base: Path) -> str:
         src = f"data:image/png;base64,{data}"
     else:
         src = html.escape(str(rel))
-    return (f'<a href="{html.escape(str(rel))}" target="_blank" title="open the full-size figure">'
-            f'<img alt="{html.escape(path.stem)}" src="{src}"{font_attr}></a>')
+    return (
+        f'<a href="{html.escape(str(rel))}" target="_blank" title="open the full-size figure">'
+        f'<img alt="{html.escape(path.stem)}" src="{src}"{font_attr}></a>'
+    )
 
 
-def render_html(sections: list[Section], path, *, title: str = "springdyn report", embed: bool = True,
-                subtitle: str = "") -> Path:
+def render_html(
+    sections: list[Section], path, *, title: str = "springdyn report", embed: bool = True, subtitle: str = ""
+) -> Path:
     """Write the report page (figures embedded as data URIs unless ``embed=False``)."""
     path = Path(path)
     base = path.parent
@@ -206,28 +218,41 @@ def render_html(sections: list[Section], path, *, title: str = "springdyn report
         "SI units unless stated; files beside this page hold every table (CSV/JSON, SI, unit in the column name).</p></header>",
         "<main><nav><strong>Sections</strong><ul>",
     ]
-    parts += [f"<li><a href='#{s.anchor}'>{html.escape(s.title)}</a> <span class='src'>({html.escape(s.source)})</span></li>"
-              for s in sections]
+    parts += [
+        f"<li><a href='#{s.anchor}'>{html.escape(s.title)}</a> <span class='src'>({html.escape(s.source)})</span></li>"
+        for s in sections
+    ]
     parts.append("</ul></nav>")
     for s in sections:
         parts.append(f"<section id='{s.anchor}' data-family='{html.escape(s.family)}'><h2>{html.escape(s.title)}</h2>")
         parts.append(f"<p class='src'>definition: {html.escape(s.source)}</p>")
         parts.append("<h3>Criteria</h3>" + _criteria(s.criteria))
-        parts.append("<h3>Findings</h3><ul class='findings'>" + "".join(f"<li>{html.escape(f)}</li>" for f in s.findings)
-                     + "</ul>")
-        parts.append("<div class='two'><div><h3>Inputs</h3>" + _table(s.inputs) + "</div>"
-                     + "<div><h3>Derived parameters</h3>" + _table(s.derived) + "</div></div>")
+        parts.append(
+            "<h3>Findings</h3><ul class='findings'>"
+            + "".join(f"<li>{html.escape(f)}</li>" for f in s.findings)
+            + "</ul>"
+        )
+        parts.append(
+            "<div class='two'><div><h3>Inputs</h3>"
+            + _table(s.inputs)
+            + "</div>"
+            + "<div><h3>Derived parameters</h3>"
+            + _table(s.derived)
+            + "</div></div>"
+        )
         for caption, headers, rows in s.tables:
             parts.append(f"<h3>{html.escape(caption)}</h3>" + _table(rows, headers))
         parts.append("<h3>Figures</h3><p class='src'>Click a figure to open it full size.</p><div class='figs'>")
         for fig, caption in s.figures:
             parts.append(f"<figure>{_img(fig, embed, base)}<figcaption>{html.escape(caption)}</figcaption></figure>")
-        parts.append("</div><h3>Reproduce from the command line</h3><pre>"
-                     + html.escape("\n".join(s.commands)) + "</pre>")
+        parts.append(
+            "</div><h3>Reproduce from the command line</h3><pre>" + html.escape("\n".join(s.commands)) + "</pre>"
+        )
         if s.files:
             links = ", ".join(
                 f"<a href='{html.escape(str(Path(f).resolve().relative_to(base.resolve())))}'>{html.escape(Path(f).name)}</a>"
-                for f in s.files if Path(f).resolve().is_relative_to(base.resolve())
+                for f in s.files
+                if Path(f).resolve().is_relative_to(base.resolve())
             )
             parts.append(f"<p class='src'>data files: {links}</p>")
         parts.append("</section>")

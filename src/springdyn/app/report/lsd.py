@@ -47,32 +47,62 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
         warnings.simplefilter("ignore", PreloadExceededWarning)
         for rpm in LOOP_SPEEDS:
             for exc in ("orbit", "x"):
-                tr = (circular_orbit(rpm, AMPLITUDE, 10, 5e3) if exc == "orbit"
-                      else linear_shake(rpm, AMPLITUDE, "x", 10, 5e3))
+                tr = (
+                    circular_orbit(rpm, AMPLITUDE, 10, 5e3)
+                    if exc == "orbit"
+                    else linear_shake(rpm, AMPLITUDE, "x", 10, 5e3)
+                )
                 rec = simulate_rig(model, tr, force_noise=NOISE, seed=int(rpm))
                 png = out_dir / f"loops_{exc}_{rpm:.0f}rpm.png"
                 files.append(rec.to_csv(png.with_suffix(".csv")))
                 plt.close(rec.plot(png))
-                figures.append((png, f"Simulated rig, {'circular orbit' if exc == 'orbit' else 'x shake'} of "
-                                f"{AMPLITUDE * 1e6:.0f} um at {rpm:.0f} rpm: displacements, forces, hysteresis loops"))
+                figures.append(
+                    (
+                        png,
+                        f"Simulated rig, {'circular orbit' if exc == 'orbit' else 'x shake'} of "
+                        f"{AMPLITUDE * 1e6:.0f} um at {rpm:.0f} rpm: displacements, forces, hysteresis loops",
+                    )
+                )
         firsts, seconds = [], []
         for k, rpm in enumerate(SPEEDS):
-            firsts.append(_data(simulate_rig(model, linear_shake(rpm, AMPLITUDE, "x", 10, 5e3), force_noise=NOISE, seed=10 * k)))
-            seconds.append(_data(simulate_rig(model, linear_shake(rpm, AMPLITUDE, "y", 10, 5e3), force_noise=NOISE,
-                                              seed=10 * k + 1)))
+            firsts.append(
+                _data(simulate_rig(model, linear_shake(rpm, AMPLITUDE, "x", 10, 5e3), force_noise=NOISE, seed=10 * k))
+            )
+            seconds.append(
+                _data(
+                    simulate_rig(model, linear_shake(rpm, AMPLITUDE, "y", 10, 5e3), force_noise=NOISE, seed=10 * k + 1)
+                )
+            )
     ident = identify_series(firsts, seconds, mass=model.params.ring_mass, name="identified (simulated rig)")
     files.append(ident.to_csv(out_dir / "identified.csv"))
     png = out_dir / "coefficients.png"
     plt.close(coeffs.plot(png, identified=ident))
-    figures.insert(0, (png, "Stiffness and damping coefficients vs speed: model (lines) and identified from "
-                       "simulated x/y shakes (markers, 95 % Student-t intervals), like Figs. 5.9-5.10"))
+    figures.insert(
+        0,
+        (
+            png,
+            "Stiffness and damping coefficients vs speed: model (lines) and identified from "
+            "simulated x/y shakes (markers, 95 % Student-t intervals), like Figs. 5.9-5.10",
+        ),
+    )
     kxx_m, cxx_m = coeffs.K[:, 0, 0], coeffs.C[:, 0, 0]
     kxx_i = np.array([it.K[0, 0] for it in ident.items])
     cxx_i = np.array([it.C[0, 0] for it in ident.items])
-    files.append(write_json(out_dir / "summary.json", {
-        "pack_stiffness_N_per_m": model.pack_stiffness, "load_ratios": model.load_ratios,
-        "stiffness_factor": model.stiffness_factor, "rpm": SPEEDS, "kxx_model_N_per_m": kxx_m,
-        "cxx_model_Ns_per_m": cxx_m, "kxx_identified_N_per_m": kxx_i, "cxx_identified_Ns_per_m": cxx_i}))
+    files.append(
+        write_json(
+            out_dir / "summary.json",
+            {
+                "pack_stiffness_N_per_m": model.pack_stiffness,
+                "load_ratios": model.load_ratios,
+                "stiffness_factor": model.stiffness_factor,
+                "rpm": SPEEDS,
+                "kxx_model_N_per_m": kxx_m,
+                "cxx_model_Ns_per_m": cxx_m,
+                "kxx_identified_N_per_m": kxx_i,
+                "cxx_identified_Ns_per_m": cxx_i,
+            },
+        )
+    )
     p = model.params
     findings = [
         f"{p.packs} packs of {len(p.leaf_lengths)} leaves: load ratios {', '.join(f'{v:.4f}' for v in model.load_ratios)}, "
@@ -86,24 +116,34 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
         "instantaneous pack load while the closed form (2.27)-(2.28) uses the peak load.",
     ]
     if p.leakage_factor == 1.0:
-        findings.append("leakage_factor = 1: the damping shown is the raw, uncalibrated closed form, a comparison "
-                        "and not a prediction (correction LSD-6 of docs/references.md: it over-predicts the forces "
-                        "the thesis reports for Types A and B by one to two orders of magnitude; calibrated to them, "
-                        "Type A needs leakage_factor 11.9 and Type B 120, examples/lsd/type_a_calibrated.toml and "
-                        "type_b_calibrated.toml; calibrate on records with springdyn lsd calibrate).")
+        findings.append(
+            "leakage_factor = 1: the damping shown is the raw, uncalibrated closed form, a comparison "
+            "and not a prediction (correction LSD-6 of docs/references.md: it over-predicts the forces "
+            "the thesis reports for Types A and B by one to two orders of magnitude; calibrated to them, "
+            "Type A needs leakage_factor 11.9 and Type B 120, examples/lsd/type_a_calibrated.toml and "
+            "type_b_calibrated.toml; calibrate on records with springdyn lsd calibrate)."
+        )
     omega = SPEEDS * 2.0 * np.pi / 60.0
     loss = cxx_m * omega / kxx_m
     k = int(np.argmax(loss))
     criteria = [
-        Criterion("damping model calibrated", "no (leakage_factor = 1)" if p.leakage_factor == 1.0
-                  else f"leakage_factor = {p.leakage_factor:g}", "calibrated against measured forces",
-                  p.leakage_factor != 1.0,
-                  "the viscous closed form alone over-predicts measured damping (correction LSD-6)"
-                  if p.leakage_factor == 1.0 else "a calibrated leakage factor is set"),
-        Criterion(f"lock-up: loss factor Cxx w / Kxx, {SPEEDS[0]:.0f}-{SPEEDS[-1]:.0f} rpm",
-                  f"{loss[k]:.3g} at {SPEEDS[k]:.0f} rpm", "<= 1", bool(loss.max() <= 1.0),
-                  "above 1 the damping force exceeds the spring force: the oil locks the damper and a rotor "
-                  "support acts nearly rigid"),
+        Criterion(
+            "damping model calibrated",
+            "no (leakage_factor = 1)" if p.leakage_factor == 1.0 else f"leakage_factor = {p.leakage_factor:g}",
+            "calibrated against measured forces",
+            p.leakage_factor != 1.0,
+            "the viscous closed form alone over-predicts measured damping (correction LSD-6)"
+            if p.leakage_factor == 1.0
+            else "a calibrated leakage factor is set",
+        ),
+        Criterion(
+            f"lock-up: loss factor Cxx w / Kxx, {SPEEDS[0]:.0f}-{SPEEDS[-1]:.0f} rpm",
+            f"{loss[k]:.3g} at {SPEEDS[k]:.0f} rpm",
+            "<= 1",
+            bool(loss.max() <= 1.0),
+            "above 1 the damping force exceeds the spring force: the oil locks the damper and a rotor "
+            "support acts nearly rigid",
+        ),
     ]
     derived = [
         ("load ratios", ", ".join(f"{v:.4f}" for v in model.load_ratios), "P_i/P_1 from (2.7), typo fixed"),
@@ -112,10 +152,19 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
         ("Kxx = Kyy", fmt(kxx_m[0] / 1e3, "N/mm"), "(3.4)"),
     ] + [(f"Cxx at {r:.0f} rpm", fmt(c, "N*s/m"), f"model, {AMPLITUDE * 1e6:.0f} um") for r, c in zip(SPEEDS, cxx_m)]
     return Section(
-        family="lsd", title=f"Leaf spring damper: {p.name or Path(source).stem}", source=source, criteria=criteria,
-        commands=[f"springdyn lsd coefficients {source} --rpm 500:3000:500 --amplitude 50um --plot coefficients.png",
-                  f"springdyn lsd rig {source} --rpm 1000 --eccentricity 50um --excitation x --csv x.csv",
-                  f"springdyn lsd rig {source} --rpm 1000 --eccentricity 50um --excitation y --csv y.csv",
-                  f"springdyn lsd identify x.csv --second y.csv --mass {p.ring_mass * 1e3:g}g --json"],
-        inputs=parameter_rows(p), derived=derived, findings=findings, figures=figures, files=files,
+        family="lsd",
+        title=f"Leaf spring damper: {p.name or Path(source).stem}",
+        source=source,
+        criteria=criteria,
+        commands=[
+            f"springdyn lsd coefficients {source} --rpm 500:3000:500 --amplitude 50um --plot coefficients.png",
+            f"springdyn lsd rig {source} --rpm 1000 --eccentricity 50um --excitation x --csv x.csv",
+            f"springdyn lsd rig {source} --rpm 1000 --eccentricity 50um --excitation y --csv y.csv",
+            f"springdyn lsd identify x.csv --second y.csv --mass {p.ring_mass * 1e3:g}g --json",
+        ],
+        inputs=parameter_rows(p),
+        derived=derived,
+        findings=findings,
+        figures=figures,
+        files=files,
     )

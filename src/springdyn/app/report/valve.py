@@ -54,14 +54,21 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio
     cam = lobe if vt is None or vt.ratio == 1.0 else lobe.scaled(vt.ratio)
     if cam is not lobe:
-        findings.append(f"The spring-alone analyses drive the spring with the valve lift of the rigid train: the "
-                        f"lobe lift ({lobe.max_lift * 1e3:.3g} mm) times the rocker ratio {vt.ratio:g}.")
+        findings.append(
+            f"The spring-alone analyses drive the spring with the valve lift of the rigid train: the "
+            f"lobe lift ({lobe.max_lift * 1e3:.3g} mm) times the rocker ratio {vt.ratio:g}."
+        )
     files.append(write_json(out_dir / "params.json", p))
     curve = sp.static_curve()
     files.append(curve.to_csv(out_dir / "static_curve.csv"))
     plt.close(curve.plot(out_dir / "static_curve.png"))
-    figures.append((out_dir / "static_curve.png", "Static force and tangent stiffness vs length, with the set-up "
-                    "length and the breakpoint forces F1, F2, Fcon (document Figs. 40.34-40.36)"))
+    figures.append(
+        (
+            out_dir / "static_curve.png",
+            "Static force and tangent stiffness vs length, with the set-up "
+            "length and the breakpoint forces F1, F2, Fcon (document Figs. 40.34-40.36)",
+        )
+    )
     lift = cam.max_lift
     design = sp.design_figures(lift=lift, cam_rpm=max(REPORT_SPEEDS))
     files.append(write_json(out_dir / "design.json", design))
@@ -75,14 +82,25 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         files.append(sim.to_csv(stem.with_suffix(".csv")))
         files.append(write_json(stem.with_name(stem.name + "_summary.json"), sim.summary))
         plt.close(sim.plot(stem.with_suffix(".png")))
-        figures.append((stem.with_suffix(".png"), f"Spring alone at {rpm:.0f} cam rpm: retainer and seat force "
-                        "against the static (massless) force, mass displacements, cam-order spectrum"))
+        figures.append(
+            (
+                stem.with_suffix(".png"),
+                f"Spring alone at {rpm:.0f} cam rpm: retainer and seat force "
+                "against the static (massless) force, mass displacements, cam-order spectrum",
+            )
+        )
     sw = sweep(sp, cam, SWEEP_SPEEDS, quiet=quiet)
     written = sw.write(out_dir, "sweep")
     files += written[:2]
-    figures.append((out_dir / "sweep_forces.png", "Peak and minimum forces over the speed range against the static values"))
-    figures.append((out_dir / "sweep_campbell.png", "Campbell diagram: cam-order harmonics of the retainer force "
-                    "against f1 at installed and open length"))
+    figures.append(
+        (out_dir / "sweep_forces.png", "Peak and minimum forces over the speed range against the static values")
+    )
+    figures.append(
+        (
+            out_dir / "sweep_campbell.png",
+            "Campbell diagram: cam-order harmonics of the retainer force against f1 at installed and open length",
+        )
+    )
     figures.append((out_dir / "sweep_map.png", "Retainer force over cam speed and cam angle"))
 
     other_model = "distributed" if sp.model == "type-c" else "type-c"
@@ -94,15 +112,23 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     if sw_other is not None:
         png, sentence, table_other = _compare_models(sp, sw, sw_other, out_dir)
         files.append(sw_other.to_csv(out_dir / f"sweep_{other_model}_summary.csv"))
-        figures.append((png, "The same spring with both models over the speed range: peak and minimum retainer "
-                        "and seat forces, and the surge at the resonance orders"))
+        figures.append(
+            (
+                png,
+                "The same spring with both models over the speed range: peak and minimum retainer "
+                "and seat forces, and the surge at the resonance orders",
+            )
+        )
         findings.append(sentence)
 
     for rpm, sim in sims.items():
         s = sim.summary
-        contact = (f"coil contact from {s['coil_contact'][0]['start_deg']:.1f} to {s['coil_contact'][-1]['end_deg']:.1f} deg "
-                   f"(peak element force {max(e['peak_contact_force_N'] for e in s['coil_contact']):.0f} N)"
-                   if s["coil_contact"] else "no coil contact")
+        contact = (
+            f"coil contact from {s['coil_contact'][0]['start_deg']:.1f} to {s['coil_contact'][-1]['end_deg']:.1f} deg "
+            f"(peak element force {max(e['peak_contact_force_N'] for e in s['coil_contact']):.0f} N)"
+            if s["coil_contact"]
+            else "no coil contact"
+        )
         findings.append(
             f"At {rpm:.0f} cam rpm the peak retainer force is {s['max_retainer_force_N']:.1f} N, "
             f"{s['max_retainer_force_ratio']:.3f} times the static peak of {s['max_static_force_N']:.1f} N; the seat "
@@ -115,8 +141,11 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     findings.append(
         f"Over {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm the retainer force peaks at "
         f"{table['max_retainer_force_N'][k]:.1f} N at {SWEEP_SPEEDS[k]:.0f} rpm; "
-        + (f"coil clash occurs from {clash[0]:.0f} cam rpm on ({clash.size} of {SWEEP_SPEEDS.size} speeds)."
-           if clash.size else "no coil clash occurs in that range.")
+        + (
+            f"coil clash occurs from {clash[0]:.0f} cam rpm on ({clash.size} of {SWEEP_SPEEDS.size} speeds)."
+            if clash.size
+            else "no coil clash occurs in that range."
+        )
     )
     findings.append(
         f"First surge frequency f1 = {p['f1']:.1f} Hz (chain: {modes_free[0]:.1f} Hz at free length, "
@@ -145,26 +174,46 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"Valve train ({vt.layout}{', hydraulic lash adjuster' if vt.hydraulic else ''}): "
             f"{vt.moving_mass * 1e3:.1f} g referred to the valve, {vt.stiffness_at_valve / 1e6:.1f} N/um from cam to "
             f"valve; natural frequencies of spring and train on the base circle "
-            + ", ".join(f"{f:.0f}" for f in nat["base_circle_Hz"]) + " Hz, at full lift "
-            + (", ".join(f"{f:.0f}" for f in nat["full_lift_Hz"]) or "n/a") + " Hz.")
+            + ", ".join(f"{f:.0f}" for f in nat["base_circle_Hz"])
+            + " Hz, at full lift "
+            + (", ".join(f"{f:.0f}" for f in nat["full_lift_Hz"]) or "n/a")
+            + " Hz."
+        )
         res = float_speed(sp, lobe, vt, np.arange(1000.0, 6001.0, 250.0))
         files.append(write_json(out_dir / "float_speed.json", res.to_dict()))
         f = res["float_cam_rpm"]
         if f is None:
-            criteria.append(Criterion("float speed", f"above {res['cam_rpm'][-1]:.0f} cam rpm",
-                                      f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm", True,
-                                      "no lift-off in the scanned range"))
+            criteria.append(
+                Criterion(
+                    "float speed",
+                    f"above {res['cam_rpm'][-1]:.0f} cam rpm",
+                    f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm",
+                    True,
+                    "no lift-off in the scanned range",
+                )
+            )
             findings.append(f"The follower stays on the cam up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float).")
         else:
             above = simulate(sp, lobe, 1.05 * f, 3, valve_train=vt)
             s = above.summary
             plt.close(above.plot(out_dir / "valve_train_above_float.png"))
             files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
-            figures.append((out_dir / "valve_train_above_float.png", f"Valve train 5 % above the float speed "
-                            f"({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals"))
-            criteria.append(Criterion(
-                "float speed", f"{f:.0f} cam rpm", f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm",
-                bool(f > SWEEP_SPEEDS[-1]), "lowest cam speed at which the follower leaves the cam"))
+            figures.append(
+                (
+                    out_dir / "valve_train_above_float.png",
+                    f"Valve train 5 % above the float speed "
+                    f"({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals",
+                )
+            )
+            criteria.append(
+                Criterion(
+                    "float speed",
+                    f"{f:.0f} cam rpm",
+                    f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm",
+                    bool(f > SWEEP_SPEEDS[-1]),
+                    "lowest cam speed at which the follower leaves the cam",
+                )
+            )
             findings.append(
                 f"Valve float: the follower first leaves the cam at {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke). "
                 f"5 % above it, contact is lost for {sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the "
@@ -175,16 +224,31 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     if vt is not None:
         inputs += [(f"valve_train.{k}", v, m) for k, v, m in parameter_rows(vt)]
     derived = [(k, format_quantity(v, *PARAMETER_UNITS[k][:2]), PARAMETER_UNITS[k][2]) for k, v in p.items()]
-    derived.append(("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length"))
+    derived.append(
+        ("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length")
+    )
     derived.append(("spring index", f"{design['spring_index']:.3f}", "D/d"))
     if vt is None:
-        criteria.append(Criterion("float speed", "n/a", "above the top speed", None,
-                                  "the definition has no [valve_train]: the spring alone cannot float"))
+        criteria.append(
+            Criterion(
+                "float speed",
+                "n/a",
+                "above the top speed",
+                None,
+                "the definition has no [valve_train]: the spring alone cannot float",
+            )
+        )
     return Section(
-        family="valve", criteria=criteria,
+        family="valve",
+        criteria=criteria,
         title=f"Valve spring: {sp.type}" + (" with valve train" if vt is not None else ""),
-        source=source, commands=commands, inputs=inputs, derived=derived, findings=findings,
-        figures=figures, files=files,
+        source=source,
+        commands=commands,
+        inputs=inputs,
+        derived=derived,
+        findings=findings,
+        figures=figures,
+        files=files,
     )
 
 
@@ -224,11 +288,13 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
     fset = sp.with_model("type-c").internal_parameters()["Fset"]
     d_max = np.max(np.abs(tb["max_retainer_force_N"] - ta["max_retainer_force_N"])) / fset
     d_seat = np.max(tb["seat_surge_amplitude_N"] - ta["seat_surge_amplitude_N"])
-    sentence = (f"Type C and the distributed model differ by up to {100 * d_max:.0f} % of Fset in the peak retainer "
-                f"force over {rpm[0]:.0f}-{rpm[-1]:.0f} cam rpm (seat surge up to {d_seat:.0f} N larger in the "
-                "distributed model): the distributed model carries every surge mode and stiffens as its end "
-                "coils close one by one, while Type C has three surge modes on a fixed chain whose coil contact "
-                "comes only from its empirical element laws.")
+    sentence = (
+        f"Type C and the distributed model differ by up to {100 * d_max:.0f} % of Fset in the peak retainer "
+        f"force over {rpm[0]:.0f}-{rpm[-1]:.0f} cam rpm (seat surge up to {d_seat:.0f} N larger in the "
+        "distributed model): the distributed model carries every surge mode and stiffens as its end "
+        "coils close one by one, while Type C has three surge modes on a fixed chain whose coil contact "
+        "comes only from its empirical element laws."
+    )
     return png, sentence, b
 
 
@@ -246,28 +312,50 @@ def _criteria(p, design, table, sims) -> list[Criterion]:
     """The valve section's criteria: surge margin, coil clash, minimum retainer force, stress."""
     top = max(REPORT_SPEEDS)
     margin = design["installed"]["surge_margin"]
-    out = [Criterion(
-        f"surge margin at {top:.0f} cam rpm", f"{margin:.1f}", f">= {SURGE_MARGIN_MIN:g} (rule of thumb 10-13)",
-        bool(margin >= SURGE_MARGIN_MIN), "first natural frequency at installed length / camshaft frequency")]
+    out = [
+        Criterion(
+            f"surge margin at {top:.0f} cam rpm",
+            f"{margin:.1f}",
+            f">= {SURGE_MARGIN_MIN:g} (rule of thumb 10-13)",
+            bool(margin >= SURGE_MARGIN_MIN),
+            "first natural frequency at installed length / camshaft frequency",
+        )
+    ]
     clash = np.asarray(table["coil_contact"], bool)
-    out.append(Criterion(
-        f"coil clash, {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm",
-        f"{int(clash.sum())} of {clash.size} speeds", "none", bool(not clash.any()),
-        f"from {SWEEP_SPEEDS[clash][0]:.0f} cam rpm" if clash.any() else "no coil reaches its contact force"))
+    out.append(
+        Criterion(
+            f"coil clash, {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm",
+            f"{int(clash.sum())} of {clash.size} speeds",
+            "none",
+            bool(not clash.any()),
+            f"from {SWEEP_SPEEDS[clash][0]:.0f} cam rpm" if clash.any() else "no coil reaches its contact force",
+        )
+    )
     fmin = float(np.min(table["min_retainer_force_N"]))
     k = int(np.argmin(table["min_retainer_force_N"]))
-    out.append(Criterion(
-        "minimum retainer force (dynamic)", f"{fmin:.1f} N at {SWEEP_SPEEDS[k]:.0f} cam rpm", "> 0 N",
-        bool(fmin > 0.0), f"static minimum {float(np.min(table['min_static_force_N'])):.1f} N; at 0 N the spring "
-        "end leaves the retainer"))
+    out.append(
+        Criterion(
+            "minimum retainer force (dynamic)",
+            f"{fmin:.1f} N at {SWEEP_SPEEDS[k]:.0f} cam rpm",
+            "> 0 N",
+            bool(fmin > 0.0),
+            f"static minimum {float(np.min(table['min_static_force_N'])):.1f} N; at 0 N the spring "
+            "end leaves the retainer",
+        )
+    )
     dyn = np.asarray(table["fatigue_safety_factor"], dtype=float)
     k = int(np.argmin(dyn))
     fat = design.get("fatigue", {})
     defaults = fat.get("strength_defaults", [])
-    out.append(Criterion(
-        f"fatigue safety factor (Goodman), {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm",
-        f"{dyn[k]:.2f} at {SWEEP_SPEEDS[k]:.0f} cam rpm", f">= {FATIGUE_MIN:g}", bool(dyn[k] >= FATIGUE_MIN),
-        f"static (installed to open) {fat.get('static_fatigue_safety_factor', float('nan')):.2f}; the dynamic "
-        "factor uses the end coils' force range with surge"
-        + (f"; default wire strengths for {', '.join(defaults)}" if defaults else "")))
+    out.append(
+        Criterion(
+            f"fatigue safety factor (Goodman), {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm",
+            f"{dyn[k]:.2f} at {SWEEP_SPEEDS[k]:.0f} cam rpm",
+            f">= {FATIGUE_MIN:g}",
+            bool(dyn[k] >= FATIGUE_MIN),
+            f"static (installed to open) {fat.get('static_fatigue_safety_factor', float('nan')):.2f}; the dynamic "
+            "factor uses the end coils' force range with surge"
+            + (f"; default wire strengths for {', '.join(defaults)}" if defaults else ""),
+        )
+    )
     return out

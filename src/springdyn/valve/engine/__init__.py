@@ -25,12 +25,29 @@ from __future__ import annotations
 from ..._lazy import lazy_package
 
 _EXPORTS = {
-    "integrate": "api", "run_speeds": "api", "stop_angles": "api", "model_of": "equations", "train_of": "equations",
-    "COMPILE_SECONDS": "api", "integrate_scipy": "reference", "hermite_eval": "reference", "atol_vector": "reference",
-    "hermite5": "equations", "chain_rhs": "equations", "rhs_call": "equations", "NO_EXTRA": "equations",
-    "EngineModel": "equations", "series_force_compiled": "static_force", "extra_layout": "layout",
-    "STATUS": "layout", "EXTRA": "layout", "EXT": "layout", "N_EXT": "layout", "EVENT_KINDS": "layout",
-    "MAX_EVENTS": "layout", "VT_SIZE": "layout",
+    "integrate": "api",
+    "run_speeds": "api",
+    "stop_angles": "api",
+    "model_of": "equations",
+    "train_of": "equations",
+    "COMPILE_SECONDS": "api",
+    "integrate_scipy": "reference",
+    "hermite_eval": "reference",
+    "atol_vector": "reference",
+    "hermite5": "equations",
+    "chain_rhs": "equations",
+    "rhs_call": "equations",
+    "NO_EXTRA": "equations",
+    "EngineModel": "equations",
+    "series_force_compiled": "static_force",
+    "extra_layout": "layout",
+    "STATUS": "layout",
+    "EXTRA": "layout",
+    "EXT": "layout",
+    "N_EXT": "layout",
+    "EVENT_KINDS": "layout",
+    "MAX_EVENTS": "layout",
+    "VT_SIZE": "layout",
 }
 __all__ = sorted(_EXPORTS)
 

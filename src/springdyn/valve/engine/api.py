@@ -21,8 +21,14 @@ __all__ = ["integrate", "run_speeds", "stop_angles", "COMPILE_SECONDS"]
 #: the figure the compile notice quotes.  Measured with an empty cache by
 #: ``python benchmarks/cold_start.py --variants`` (2026-11-25: spring alone 5.7, 6.0, 6.2 s;
 #: valve train 8.6, 8.8, 9.9 s for dopri5, bs3, tsit5).
-COMPILE_SECONDS = {("spring alone", "dopri5"): 6.0, ("spring alone", "bs3"): 6.0, ("spring alone", "tsit5"): 6.0,
-                   ("valve train", "dopri5"): 9.0, ("valve train", "bs3"): 9.0, ("valve train", "tsit5"): 10.0}
+COMPILE_SECONDS = {
+    ("spring alone", "dopri5"): 6.0,
+    ("spring alone", "bs3"): 6.0,
+    ("spring alone", "tsit5"): 6.0,
+    ("valve train", "dopri5"): 9.0,
+    ("valve train", "bs3"): 9.0,
+    ("valve train", "tsit5"): 10.0,
+}
 _PAIR_NAMES = {"dopri5": "Dormand-Prince 5(4)", "bs3": "Bogacki-Shampine 3(2)", "tsit5": "Tsitouras 5(4)"}
 
 
@@ -81,8 +87,23 @@ def _angles(a) -> np.ndarray:
     return np.empty(0) if a is None else np.ascontiguousarray(a, dtype=float)
 
 
-def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fraction, max_steps=10_000_000,
-               gaps=None, monitor=False, atol_velocity=None, method="dopri5", stop_angles=None):
+def run_speeds(
+    y0,
+    omegas,
+    revolutions,
+    points,
+    args,
+    *,
+    rtol,
+    atol,
+    max_step_fraction,
+    max_steps=10_000_000,
+    gaps=None,
+    monitor=False,
+    atol_velocity=None,
+    method="dopri5",
+    stop_angles=None,
+):
     """Integrate several speeds in one compiled call (the GIL is released throughout).
 
     For each speed the last revolution is sampled at ``points`` per revolution, where the
@@ -152,17 +173,44 @@ def run_speeds(y0, omegas, revolutions, points, args, *, rtol, atol, max_step_fr
     gaps = np.full(m.laws.shape[0], np.inf) if gaps is None else np.ascontiguousarray(gaps, dtype=float)
     tol = Tolerances(float(rtol), atol_vector(len(y0), atol, atol_velocity), float(max_step_fraction), int(max_steps))
     if omegas.size:
-        _run(run_speeds_loop, vt, method, np.ascontiguousarray(y0, dtype=float), omegas, int(revolutions),
-             int(points), m, vt, tab, tol, _angles(stop_angles), gaps, extra, previous, status, t_end, steps, ext,
-             events, nev)
+        _run(
+            run_speeds_loop,
+            vt,
+            method,
+            np.ascontiguousarray(y0, dtype=float),
+            omegas,
+            int(revolutions),
+            int(points),
+            m,
+            vt,
+            tab,
+            tol,
+            _angles(stop_angles),
+            gaps,
+            extra,
+            previous,
+            status,
+            t_end,
+            steps,
+            ext,
+            events,
+            nev,
+        )
     if monitor:
-        return extra, previous, status, t_end, steps, dict(ext=ext, events=events[:omegas.size],
-                                                           n_events=nev[:omegas.size, 0].copy())
+        return (
+            extra,
+            previous,
+            status,
+            t_end,
+            steps,
+            dict(ext=ext, events=events[: omegas.size], n_events=nev[: omegas.size, 0].copy()),
+        )
     return extra, previous, status, t_end, steps
 
 
-def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None, method="dopri5",
-              stops=None):
+def integrate(
+    y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None, method="dopri5", stops=None
+):
     """Integrate with the compiled engine; states at ``t_out`` (ascending, from ``t_out[0]``).
 
     Parameters
@@ -203,7 +251,24 @@ def integrate(y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_
     off = new_monitor(np.empty(0), np.empty((0, 4)), np.zeros(1, dtype=np.int64), gaps, 0.0, vt)
     ws = workspace(y0.size, size, tab.c.shape[0])
     status, t, steps, rejected = _run(
-        integrate_kernel(tab, vt), vt, method, np.array(y0, dtype=float), float(t_out[0]), float(t_out[-1]), t_out, m,
-        float(args[8]), vt, tab, tol, np.array([0.0, 1e-4, 0.0]), _angles(stops), out, np.empty((0, size)),
-        np.empty(0), off, ws)
+        integrate_kernel(tab, vt),
+        vt,
+        method,
+        np.array(y0, dtype=float),
+        float(t_out[0]),
+        float(t_out[-1]),
+        t_out,
+        m,
+        float(args[8]),
+        vt,
+        tab,
+        tol,
+        np.array([0.0, 1e-4, 0.0]),
+        _angles(stops),
+        out,
+        np.empty((0, size)),
+        np.empty(0),
+        off,
+        ws,
+    )
     return out, dict(status=int(status), t=float(t), steps=int(steps), rejected=int(rejected))

@@ -59,8 +59,22 @@ from .layout import (
     X_TOP,
 )
 
-__all__ = ["EngineModel", "model_of", "train_of", "hermite5", "cam_at", "chain_forces", "spring_rhs", "train_rhs", "chain_rhs", "spring_rhs_hot",
-           "train_rhs_hot", "cam_at_hot", "rhs_call", "NO_EXTRA"]
+__all__ = [
+    "EngineModel",
+    "model_of",
+    "train_of",
+    "hermite5",
+    "cam_at",
+    "chain_forces",
+    "spring_rhs",
+    "train_rhs",
+    "chain_rhs",
+    "spring_rhs_hot",
+    "train_rhs_hot",
+    "cam_at_hot",
+    "rhs_call",
+    "NO_EXTRA",
+]
 
 #: Floating-point licences of the compiled kernels: fused multiply-add (``contract``),
 #: division by a reciprocal (``arcp``) and no signed zeros (``nsz``).  Each changes a result
@@ -76,14 +90,14 @@ NO_EXTRA = np.empty(0)
 class EngineModel(NamedTuple):
     """The speed-independent arrays of one spring and cam, as the compiled engine reads them."""
 
-    masses: np.ndarray   #: chain masses (N,) [kg]
-    laws: np.ndarray     #: element laws (N + 1, 3, 4): segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
-    xset: np.ndarray     #: element compressions at set-up (N + 1,) [m]
-    c0: np.ndarray       #: element damping at the initial rate (N + 1,) [N s/m]
-    cam_h: np.ndarray    #: lift table over one revolution (M,) [m]
-    cam_dh: np.ndarray   #: its first derivative [m/rad]
+    masses: np.ndarray  #: chain masses (N,) [kg]
+    laws: np.ndarray  #: element laws (N + 1, 3, 4): segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+    xset: np.ndarray  #: element compressions at set-up (N + 1,) [m]
+    c0: np.ndarray  #: element damping at the initial rate (N + 1,) [N s/m]
+    cam_h: np.ndarray  #: lift table over one revolution (M,) [m]
+    cam_dh: np.ndarray  #: its first derivative [m/rad]
     cam_ddh: np.ndarray  #: its second derivative [m/rad^2]
-    dth: float           #: table step [rad]
+    dth: float  #: table step [rad]
 
 
 def train_of(vt):
@@ -101,8 +115,13 @@ def train_of(vt):
 def _c0_array(c0, laws) -> np.ndarray:
     """The damping coefficients [N s/m], one per element, as a writable contiguous array
     (one array type for numba: a read-only one would compile the loop again)."""
-    if (isinstance(c0, np.ndarray) and c0.dtype == np.float64 and c0.shape == laws.shape[:1]
-            and c0.flags.c_contiguous and c0.flags.writeable):
+    if (
+        isinstance(c0, np.ndarray)
+        and c0.dtype == np.float64
+        and c0.shape == laws.shape[:1]
+        and c0.flags.c_contiguous
+        and c0.flags.writeable
+    ):
         return c0
     return np.array(np.broadcast_to(np.asarray(c0, dtype=float), (laws.shape[0],)))
 
@@ -174,8 +193,15 @@ def cam_at(theta, cam_h, cam_dh, cam_ddh, dth):
     if i0 >= n:
         i0 = n - 1
     i1 = i0 + 1 if i0 + 1 < n else 0
-    lift, slope = hermite5(th / dth - i0, cam_h[i0], cam_dh[i0] * dth, cam_ddh[i0] * dth * dth,
-                           cam_h[i1], cam_dh[i1] * dth, cam_ddh[i1] * dth * dth)
+    lift, slope = hermite5(
+        th / dth - i0,
+        cam_h[i0],
+        cam_dh[i0] * dth,
+        cam_ddh[i0] * dth * dth,
+        cam_h[i1],
+        cam_dh[i1] * dth,
+        cam_ddh[i1] * dth * dth,
+    )
     return lift, slope / dth
 
 
@@ -409,8 +435,9 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
     spring_rhs(t, s, m, omega, vt, out, extra)
 
 
-_TWINS = twins(globals(), ["hermite5", "cam_at", "chain_forces", "_record_tail", "spring_rhs", "train_rhs"],
-               fastmath=FASTMATH)
+_TWINS = twins(
+    globals(), ["hermite5", "cam_at", "chain_forces", "_record_tail", "spring_rhs", "train_rhs"], fastmath=FASTMATH
+)
 #: :func:`spring_rhs` and :func:`train_rhs` compiled to be inlined into the integration step
 #: (their one hot call site, :mod:`.stepping`, chooses by the type of ``vt``).
 spring_rhs_hot = _TWINS["spring_rhs"]

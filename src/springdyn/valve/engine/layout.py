@@ -12,35 +12,58 @@ from __future__ import annotations
 __all__ = ["VT_SIZE", "EXTRA", "EXT", "N_EXT", "EVENT_KINDS", "MAX_EVENTS", "STATUS", "extra_layout"]
 
 # --- valve-train parameters ------------------------------------------------------------
-VT_ENABLED = 0      #: 1 with a valve train, 0 for the spring alone [-]
-VT_MASS = 1         #: valve-side mass M_v [kg]
-VT_K_CAM = 2        #: cam-contact stiffness k_c [N/m]
-VT_C_CAM = 3        #: cam-contact damping c_c [N s/m]
-VT_K_SEAT = 4       #: valve-seat stiffness k_s [N/m]
-VT_C_SEAT = 5       #: valve-seat damping c_s [N s/m]
-VT_LASH = 6         #: lash at the valve side [m]
-VT_DOF = 7          #: the train's degrees of freedom (1 direct-acting, 2 lever, 3 pushrod) [-]
-VT_RATIO = 8        #: lever ratio r [-]
-VT_M_LEVER = 9      #: lever (rocker) mass at its tip M_r [kg]
-VT_K_TIP = 10       #: lever-tip contact stiffness k_t [N/m]
-VT_C_TIP = 11       #: lever-tip contact damping c_t [N s/m]
-VT_M_LIFTER = 12    #: lifter mass M_f [kg]
-VT_K_PUSH = 13      #: pushrod stiffness k_p [N/m]
-VT_C_PUSH = 14      #: pushrod damping c_p [N s/m]
-VT_LOBE_LASH = 15   #: lobe lift that starts the event [m]
+VT_ENABLED = 0  #: 1 with a valve train, 0 for the spring alone [-]
+VT_MASS = 1  #: valve-side mass M_v [kg]
+VT_K_CAM = 2  #: cam-contact stiffness k_c [N/m]
+VT_C_CAM = 3  #: cam-contact damping c_c [N s/m]
+VT_K_SEAT = 4  #: valve-seat stiffness k_s [N/m]
+VT_C_SEAT = 5  #: valve-seat damping c_s [N s/m]
+VT_LASH = 6  #: lash at the valve side [m]
+VT_DOF = 7  #: the train's degrees of freedom (1 direct-acting, 2 lever, 3 pushrod) [-]
+VT_RATIO = 8  #: lever ratio r [-]
+VT_M_LEVER = 9  #: lever (rocker) mass at its tip M_r [kg]
+VT_K_TIP = 10  #: lever-tip contact stiffness k_t [N/m]
+VT_C_TIP = 11  #: lever-tip contact damping c_t [N s/m]
+VT_M_LIFTER = 12  #: lifter mass M_f [kg]
+VT_K_PUSH = 13  #: pushrod stiffness k_p [N/m]
+VT_C_PUSH = 14  #: pushrod damping c_p [N s/m]
+VT_LOBE_LASH = 15  #: lobe lift that starts the event [m]
 VT_SIZE = 16
 
 # --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
-X_LIFT = 0          #: cam lift [m]
-X_DLIFT = 1         #: cam lift rate [m/s]
-X_CAM_FORCE = 2     #: cam contact force [N]
-X_SEAT_FORCE = 3    #: valve-seat force [N]
-X_TOP = 4           #: displacement of the retainer end (the valve lift with a train) [m]
-X_DISP = 5          #: first of the N mass displacements [m]; the cam gap follows them
+X_LIFT = 0  #: cam lift [m]
+X_DLIFT = 1  #: cam lift rate [m/s]
+X_CAM_FORCE = 2  #: cam contact force [N]
+X_SEAT_FORCE = 3  #: valve-seat force [N]
+X_TOP = 4  #: displacement of the retainer end (the valve lift with a train) [m]
+X_DISP = 5  #: first of the N mass displacements [m]; the cam gap follows them
 
 #: Names of the ``extra`` outputs for the 5-mass Type C chain (:func:`extra_layout` for any N).
-EXTRA = ("f1", "f2", "f3", "f4", "f5", "f6", "x1", "x2", "x3", "x4", "x5", "x6", "lift", "dlift",
-         "cam_contact_force", "valve_seat_force", "top_displacement", "u1", "u2", "u3", "u4", "u5", "cam_gap")
+EXTRA = (
+    "f1",
+    "f2",
+    "f3",
+    "f4",
+    "f5",
+    "f6",
+    "x1",
+    "x2",
+    "x3",
+    "x4",
+    "x5",
+    "x6",
+    "lift",
+    "dlift",
+    "cam_contact_force",
+    "valve_seat_force",
+    "top_displacement",
+    "u1",
+    "u2",
+    "u3",
+    "u4",
+    "u5",
+    "cam_gap",
+)
 
 
 def extra_layout(n_masses: int) -> dict:
@@ -60,17 +83,37 @@ def extra_layout(n_masses: int) -> dict:
     """
     ne = n_masses + 1
     b = 2 * ne
-    return dict(force=slice(0, ne), compression=slice(ne, b), lift=b + X_LIFT, dlift=b + X_DLIFT,
-                cam_contact_force=b + X_CAM_FORCE, valve_seat_force=b + X_SEAT_FORCE, top_displacement=b + X_TOP,
-                displacement=slice(b + X_DISP, b + X_DISP + n_masses), cam_gap=b + X_DISP + n_masses,
-                size=b + X_DISP + 1 + n_masses)
+    return dict(
+        force=slice(0, ne),
+        compression=slice(ne, b),
+        lift=b + X_LIFT,
+        dlift=b + X_DLIFT,
+        cam_contact_force=b + X_CAM_FORCE,
+        valve_seat_force=b + X_SEAT_FORCE,
+        top_displacement=b + X_TOP,
+        displacement=slice(b + X_DISP, b + X_DISP + n_masses),
+        cam_gap=b + X_DISP + n_masses,
+        size=b + X_DISP + 1 + n_masses,
+    )
 
 
 # --- the monitor's extremes per speed ----------------------------------------------------
-EXT = ("max_retainer_force", "t_max_retainer_force", "min_retainer_force", "t_min_retainer_force",
-       "max_seat_force", "t_max_seat_force", "min_seat_force", "t_min_seat_force",
-       "min_cam_contact_force", "t_min_cam_contact_force", "seat_impact_velocity", "t_seat_impact",
-       "seat_landings", "events_lost")
+EXT = (
+    "max_retainer_force",
+    "t_max_retainer_force",
+    "min_retainer_force",
+    "t_min_retainer_force",
+    "max_seat_force",
+    "t_max_seat_force",
+    "min_seat_force",
+    "t_min_seat_force",
+    "min_cam_contact_force",
+    "t_min_cam_contact_force",
+    "seat_impact_velocity",
+    "t_seat_impact",
+    "seat_landings",
+    "events_lost",
+)
 N_EXT = len(EXT)
 EXT_MAX_RETAINER = 0
 EXT_MIN_RETAINER = 2
@@ -94,10 +137,10 @@ N_SIG = 5
 # --- events --------------------------------------------------------------------------------
 #: Event kinds of the monitored integration (column :data:`EV_KIND` of the event table).
 EVENT_KINDS = {0: "end separation", 1: "coil contact", 2: "lift-off", 3: "valve landing"}
-EV_KIND = 0         #: column: the kind (a key of EVENT_KINDS)
-EV_INDEX = 1        #: column: the end (0 seat, 1 retainer) or the element
-EV_START = 2        #: column: start time [s]
-EV_END = 3          #: column: end time [s] (a landing: its impact velocity [m/s])
+EV_KIND = 0  #: column: the kind (a key of EVENT_KINDS)
+EV_INDEX = 1  #: column: the end (0 seat, 1 retainer) or the element
+EV_START = 2  #: column: start time [s]
+EV_END = 3  #: column: end time [s] (a landing: its impact velocity [m/s])
 KIND_SEPARATION = 0.0
 KIND_COIL_CONTACT = 1.0
 KIND_LIFT_OFF = 2.0

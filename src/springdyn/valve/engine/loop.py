@@ -26,8 +26,15 @@ from .equations import FASTMATH, rhs_call
 from .monitor import finish_monitor, monitor_step, new_monitor
 from .stepping import step_kernels
 
-__all__ = ["Tolerances", "Workspace", "workspace", "integrate_loop", "integrate_kernel", "run_speeds_loop",
-           "stop_times"]
+__all__ = [
+    "Tolerances",
+    "Workspace",
+    "workspace",
+    "integrate_loop",
+    "integrate_kernel",
+    "run_speeds_loop",
+    "stop_times",
+]
 
 #: The step and dense-output functions :func:`integrate_loop` calls: bound, per pair and
 #: model, to inlined twins of :mod:`.stepping` by :func:`integrate_kernel`.
@@ -37,25 +44,25 @@ attempt_step = dense_coefficients = None
 class Tolerances(NamedTuple):
     """Step control of a run."""
 
-    rtol: float           #: relative tolerance [-]
-    atol: np.ndarray      #: absolute tolerance per state component [m, m/s]
-    h_max: float          #: largest step [s] (run_speeds_loop: as a fraction of a revolution [-])
-    max_steps: int        #: step budget, accepted and rejected [-]
+    rtol: float  #: relative tolerance [-]
+    atol: np.ndarray  #: absolute tolerance per state component [m, m/s]
+    h_max: float  #: largest step [s] (run_speeds_loop: as a fraction of a revolution [-])
+    max_steps: int  #: step budget, accepted and rejected [-]
 
 
 class Workspace(NamedTuple):
     """Scratch arrays of :func:`integrate_loop` (allocated by its caller: the loop itself
     allocates nothing, so it runs without numba's reference counting)."""
 
-    k: np.ndarray         #: stage derivatives (stages, n)
-    ytmp: np.ndarray      #: the stage state, then the new solution (n,)
-    rc: np.ndarray        #: dense-output coefficients of the step (5, n)
-    rc_prev: np.ndarray   #: those of the previous step (5, n)
-    ybuf: np.ndarray      #: an interpolated state (n,)
-    dbuf: np.ndarray      #: its derivative (n,)
-    work: np.ndarray      #: scratch (n,)
-    ebuf: np.ndarray      #: extra outputs (extra size,)
-    eend: np.ndarray      #: extra outputs at the step's end (extra size,)
+    k: np.ndarray  #: stage derivatives (stages, n)
+    ytmp: np.ndarray  #: the stage state, then the new solution (n,)
+    rc: np.ndarray  #: dense-output coefficients of the step (5, n)
+    rc_prev: np.ndarray  #: those of the previous step (5, n)
+    ybuf: np.ndarray  #: an interpolated state (n,)
+    dbuf: np.ndarray  #: its derivative (n,)
+    work: np.ndarray  #: scratch (n,)
+    ebuf: np.ndarray  #: extra outputs (extra size,)
+    eend: np.ndarray  #: extra outputs at the step's end (extra size,)
     no_extra: np.ndarray  #: the empty array: no extra outputs (0,)
 
 
@@ -71,8 +78,18 @@ def workspace(n, size, stages):
     stages : int
         Stages of the pair [-] (its ``c.shape[0]``).
     """
-    return Workspace(np.empty((stages, n)), np.empty(n), np.empty((5, n)), np.empty((5, n)), np.empty(n),
-                     np.empty(n), np.empty(n), np.empty(size), np.empty(size), np.empty(0))
+    return Workspace(
+        np.empty((stages, n)),
+        np.empty(n),
+        np.empty((5, n)),
+        np.empty((5, n)),
+        np.empty(n),
+        np.empty(n),
+        np.empty(n),
+        np.empty(size),
+        np.empty(size),
+        np.empty(0),
+    )
 
 
 def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out, xout, fout, mon, ws):
@@ -293,8 +310,26 @@ def stop_times(stop_angles, omega, r0, r1):
     return ((2.0 * np.pi * r[:, None] + stop_angles[None, :]) / omega).ravel()
 
 
-def run_speeds_loop(y0, omegas, revolutions, points, m, vt, tab, tol, stop_angles, gaps, extra_out, prev_out,
-                    status, t_end, steps, ext, events, nev):
+def run_speeds_loop(
+    y0,
+    omegas,
+    revolutions,
+    points,
+    m,
+    vt,
+    tab,
+    tol,
+    stop_angles,
+    gaps,
+    extra_out,
+    prev_out,
+    status,
+    t_end,
+    steps,
+    ext,
+    events,
+    nev,
+):
     """Every speed of ``omegas`` [rad/s] from ``y0``: ``revolutions`` revolutions, the last
     sampled at ``points`` per revolution into ``extra_out`` and monitored into ``ext``,
     ``events``, ``nev``; the retainer force over the one before into ``prev_out``.  ``tol.h_max``
@@ -351,17 +386,46 @@ def run_speeds_loop(y0, omegas, revolutions, points, m, vt, tab, tol, stop_angle
         if revolutions > 1:
             # the revolutions before the last: the retainer force over the one before the
             # last only (for the periodicity check)
-            st, t, ns, nr = integrate(y, 0.0, t1, (revolutions - 2 + frac) * period, m, omega, vt, tab, tol_i,
-                                           ctl, stop_times(stop_angles, omega, 0, revolutions - 1), no_states,
-                                           no_extra, prev_out[i], off, ws)
+            st, t, ns, nr = integrate(
+                y,
+                0.0,
+                t1,
+                (revolutions - 2 + frac) * period,
+                m,
+                omega,
+                vt,
+                tab,
+                tol_i,
+                ctl,
+                stop_times(stop_angles, omega, 0, revolutions - 1),
+                no_states,
+                no_extra,
+                prev_out[i],
+                off,
+                ws,
+            )
         if st == 0:
             # the last revolution: every output, monitored
             mon = new_monitor(ext[i], events[i], nev[i], gaps, t1, vt)
             tol_l = Tolerances(tol.rtol, tol.atol, tol_i.h_max, tol.max_steps - ns - nr)
-            st, t, ns2, _ = integrate(y, t1, revolutions * period, (revolutions - 1 + frac) * period, m, omega,
-                                           vt, tab, tol_l, ctl, stop_times(stop_angles, omega, revolutions - 1,
-                                                                            revolutions), no_states, extra_out[i],
-                                           no_force, mon, ws)
+            st, t, ns2, _ = integrate(
+                y,
+                t1,
+                revolutions * period,
+                (revolutions - 1 + frac) * period,
+                m,
+                omega,
+                vt,
+                tab,
+                tol_l,
+                ctl,
+                stop_times(stop_angles, omega, revolutions - 1, revolutions),
+                no_states,
+                extra_out[i],
+                no_force,
+                mon,
+                ws,
+            )
             ns += ns2
         status[i] = st
         t_end[i] = t

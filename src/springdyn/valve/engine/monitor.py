@@ -57,32 +57,32 @@ from .layout import (
 __all__ = ["Monitor", "new_monitor", "monitor_step", "finish_monitor"]
 
 # scalars of the monitor's state (Monitor.sc)
-SC_HAVE_PREV = 0   #: 1 once a step has been monitored
-SC_STARTED = 1     #: 1 once the window's first sample is seen
-SC_Z_PREV = 2      #: the valve lift at the previous sample [m]
-SC_T_PREV = 3      #: start of the previous step [s]
-SC_H_PREV = 4      #: size of the previous step [s]
-SC_MID_PREV = 5    #: the previous step's interior sample [-]
-SC_OPEN_LIFT = 6   #: the lobe lift past which the valve train is open [m] (inf: spring alone)
-SC_T0 = 7          #: start of the window [s]
+SC_HAVE_PREV = 0  #: 1 once a step has been monitored
+SC_STARTED = 1  #: 1 once the window's first sample is seen
+SC_Z_PREV = 2  #: the valve lift at the previous sample [m]
+SC_T_PREV = 3  #: start of the previous step [s]
+SC_H_PREV = 4  #: size of the previous step [s]
+SC_MID_PREV = 5  #: the previous step's interior sample [-]
+SC_OPEN_LIFT = 6  #: the lobe lift past which the valve train is open [m] (inf: spring alone)
+SC_T0 = 7  #: start of the window [s]
 N_SC = 8
 
 
 class Monitor(NamedTuple):
     """The monitor's outputs and working arrays for one run (empty ``ext``: no monitor)."""
 
-    ext: np.ndarray       #: extremes (N_EXT,), layout EXT_*
-    events: np.ndarray    #: event table (rows, 4), columns EV_*
-    nev: np.ndarray       #: events written (1,) [-]
-    gaps: np.ndarray      #: compression of each element at which its coils touch (N + 1,) [m]
-    best: np.ndarray      #: record of each extreme signal (N_SIG,)
-    best_t: np.ndarray    #: its time [s]
-    sval: np.ndarray      #: the signals at the step's three samples (3, N_SIG)
-    slast: np.ndarray     #: the signals at the previous step's end (N_SIG,)
-    vprev: np.ndarray     #: event channels at the previous sample
-    vcur: np.ndarray      #: event channels at this sample
+    ext: np.ndarray  #: extremes (N_EXT,), layout EXT_*
+    events: np.ndarray  #: event table (rows, 4), columns EV_*
+    nev: np.ndarray  #: events written (1,) [-]
+    gaps: np.ndarray  #: compression of each element at which its coils touch (N + 1,) [m]
+    best: np.ndarray  #: record of each extreme signal (N_SIG,)
+    best_t: np.ndarray  #: its time [s]
+    sval: np.ndarray  #: the signals at the step's three samples (3, N_SIG)
+    slast: np.ndarray  #: the signals at the previous step's end (N_SIG,)
+    vprev: np.ndarray  #: event channels at the previous sample
+    vcur: np.ndarray  #: event channels at this sample
     open_row: np.ndarray  #: the open event's row per channel (-1: none)
-    sc: np.ndarray        #: scalars SC_*
+    sc: np.ndarray  #: scalars SC_*
 
 
 def new_monitor(ext, events, nev, gaps, t0, vt):
@@ -112,8 +112,20 @@ def new_monitor(ext, events, nev, gaps, t0, vt):
         sc[SC_OPEN_LIFT] = vt[VT_LOBE_LASH] + 1e-6
     sc[SC_T0] = t0
     ext[:] = 0.0
-    return Monitor(ext, events, nev, gaps, np.full(N_SIG, -np.inf), np.zeros(N_SIG), np.empty((3, N_SIG)),
-                   np.full(N_SIG, -np.inf), np.empty(nch), np.empty(nch), np.full(nch, -1, dtype=np.int64), sc)
+    return Monitor(
+        ext,
+        events,
+        nev,
+        gaps,
+        np.full(N_SIG, -np.inf),
+        np.zeros(N_SIG),
+        np.empty((3, N_SIG)),
+        np.full(N_SIG, -np.inf),
+        np.empty(nch),
+        np.empty(nch),
+        np.full(nch, -1, dtype=np.int64),
+        sc,
+    )
 
 
 @kernel(inline="always")
@@ -231,7 +243,9 @@ def _open_event(mon, c, t_start):
     if r >= mon.events.shape[0]:
         mon.ext[EXT_LOST] += 1.0
         return
-    mon.events[r, EV_KIND] = KIND_SEPARATION if c < CH_TRAIN else (KIND_LIFT_OFF if c == CH_TRAIN else KIND_COIL_CONTACT)
+    mon.events[r, EV_KIND] = (
+        KIND_SEPARATION if c < CH_TRAIN else (KIND_LIFT_OFF if c == CH_TRAIN else KIND_COIL_CONTACT)
+    )
     mon.events[r, EV_INDEX] = float(c if c < CH_TRAIN else (0 if c == CH_TRAIN else c - N_FIXED_CHANNELS))
     mon.events[r, EV_START] = t_start
     mon.events[r, EV_END] = np.nan
@@ -299,8 +313,9 @@ def monitor_step(mon, rc, rc_prev, t, h, t_new, th_m, mid_row, m, omega, vt, ybu
                     if mon.nev[0] >= mon.events.shape[0] and mon.open_row[c] < 0:
                         ext[EXT_LOST] += 1.0
                         continue
-                    fr = bisect_crossing(rc, t, h, lo, ths[isamp], c, False, m, omega, vt, open_lift, gaps, ybuf,
-                                         dbuf, ebuf)
+                    fr = bisect_crossing(
+                        rc, t, h, lo, ths[isamp], c, False, m, omega, vt, open_lift, gaps, ybuf, dbuf, ebuf
+                    )
                     tc = t + fr * h
                     if vcur[c] < 0.0:
                         _open_event(mon, c, tc)
@@ -309,8 +324,7 @@ def monitor_step(mon, rc, rc_prev, t, h, t_new, th_m, mid_row, m, omega, vt, ybu
                             mon.events[mon.open_row[c], EV_END] = tc
                         mon.open_row[c] = -1
             if vt is not None and vt[VT_ENABLED] > 0.5 and sc[SC_Z_PREV] > 0.0 and z_cur <= 0.0:
-                fr = bisect_crossing(rc, t, h, lo, ths[isamp], 0, True, m, omega, vt, open_lift, gaps, ybuf, dbuf,
-                                     ebuf)
+                fr = bisect_crossing(rc, t, h, lo, ths[isamp], 0, True, m, omega, vt, open_lift, gaps, ybuf, dbuf, ebuf)
                 erk.dense_eval(rc, fr, ybuf)
                 v_imp = -ybuf[nfree + nm]  # the valve's velocity
                 if ext[EXT_LANDINGS] == 0.0:
@@ -359,8 +373,9 @@ def monitor_step(mon, rc, rc_prev, t, h, t_new, th_m, mid_row, m, omega, vt, ybu
             best_t[sg] = t_new
         elif have_prev and va > vm and best_t[sg] == t:
             # the record sits at the step boundary: search both sides of it
-            v1, f1 = golden_max(rc_prev, t_prev, h_prev, sc[SC_MID_PREV], 1.0, sg, m, omega, vt, open_lift, ybuf,
-                                dbuf, ebuf)
+            v1, f1 = golden_max(
+                rc_prev, t_prev, h_prev, sc[SC_MID_PREV], 1.0, sg, m, omega, vt, open_lift, ybuf, dbuf, ebuf
+            )
             v2, f2 = golden_max(rc, t, h, 0.0, th_m, sg, m, omega, vt, open_lift, ybuf, dbuf, ebuf)
             if v1 > best[sg] and v1 >= v2:
                 best[sg] = v1

@@ -52,13 +52,21 @@ def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
     th = np.mod(theta, n * dth)
     i0 = np.minimum((th / dth).astype(np.intp), n - 1)
     i1 = (i0 + 1) % n
-    lift, slope = hermite5(th / dth - i0, cam_h[i0], cam_dh[i0] * dth, cam_ddh[i0] * dth**2,
-                           cam_h[i1], cam_dh[i1] * dth, cam_ddh[i1] * dth**2)
+    lift, slope = hermite5(
+        th / dth - i0,
+        cam_h[i0],
+        cam_dh[i0] * dth,
+        cam_ddh[i0] * dth**2,
+        cam_h[i1],
+        cam_dh[i1] * dth,
+        cam_ddh[i1] * dth**2,
+    )
     return lift, slope / dth
 
 
-def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rhs=False, h_max=np.inf,
-                    atol_velocity=None):
+def integrate_scipy(
+    y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rhs=False, h_max=np.inf, atol_velocity=None
+):
     """Reference backend: ``scipy.integrate.solve_ivp`` with the plain-Python right-hand side.
 
     With ``compiled_rhs=True`` the compiled right-hand side is used instead (same model,
@@ -98,8 +106,16 @@ def integrate_scipy(y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rh
         f(t, y, m, omega, vt, d, NO_EXTRA)
         return d
 
-    sol = solve_ivp(fun, (float(t_out[0]), float(t_out[-1])), np.asarray(y0, float), method=method, t_eval=t_out,
-                    rtol=rtol, atol=atol_vector(len(y0), atol, atol_velocity), max_step=h_max)
+    sol = solve_ivp(
+        fun,
+        (float(t_out[0]), float(t_out[-1])),
+        np.asarray(y0, float),
+        method=method,
+        t_eval=t_out,
+        rtol=rtol,
+        atol=atol_vector(len(y0), atol, atol_velocity),
+        max_step=h_max,
+    )
     out = np.full((t_out.size, len(y0)), np.nan)
     out[: sol.y.shape[1]] = sol.y.T
     status = 0 if sol.status == 0 else 2
