@@ -32,9 +32,9 @@ from ..core.io import atomic_open
 from ..core.plotting import new_figure
 from ..core.results import Result
 from ..core.units import format_quantity
-from .beam import FLEXURE_MODELS, beam_force_curve, default_plate_bending, plate_modulus, strip_buckling_load
+from .beam import beam_force_curve
 from .kinematics import kinematic_limit_deflection, spring_angle, theta2_from_deflection
-from .pivot import allowable_spring_angle
+from .pivot import FLEXURE_MODELS, allowable_spring_angle, default_plate_bending, plate_modulus, strip_buckling_load
 from .statics import percent_constant_force_energy, static_force
 
 __all__ = ["design_flattest", "DesignResult", "design", "normalized_pcf", "min_ratio_for_stroke"]

@@ -15,12 +15,12 @@ from scipy.optimize import minimize_scalar
 from ..core.errors import InputError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
-from .beam import beam_force_at_toggle, beam_force_curve, strip_first_frequency
+from .beam import beam_force_at_toggle, beam_force_curve
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
 from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke, offset_to_si
 from .params import CFCSParams
-from .pivot import bending_stress, max_stroke_for_stress, safety_factor
+from .pivot import bending_stress, max_stroke_for_stress, safety_factor, strip_first_frequency
 from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult
 from .statics import (
     dissipative_torque,

@@ -9,9 +9,8 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.params import Parameters, param
 from ..core.units import format_quantity
-from .beam import FLEXURE_MODELS, bending_stiffness, default_plate_bending, plate_modulus
 from .kinematics import kinematic_limit_deflection
-from .pivot import flexure_stiffness
+from .pivot import FLEXURE_MODELS, bending_stiffness, default_plate_bending, flexure_stiffness, plate_modulus
 from .statics import FRICTION_MODELS
 
 __all__ = ["CFCSParams", "EXAMPLES"]
@@ -194,7 +193,7 @@ class CFCSParams(Parameters):
         """Whether the strip bends as a plate in ``model`` (default: this mechanism's flexure model).
 
         An explicit ``plate_bending`` holds for both models; unset, the beam model chooses by
-        the width/length ratio (:func:`springdyn.cfcs.beam.default_plate_bending`) and the PRBM
+        the width/length ratio (:func:`springdyn.cfcs.pivot.default_plate_bending`) and the PRBM
         keeps Eq. (1) of [CFCS] (beam modulus).
         """
         model = model or self.flexure_model

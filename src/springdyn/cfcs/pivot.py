@@ -6,9 +6,15 @@ flexure.  A rectangular strip of width b and thickness h has ``I = b h^3 / 12``.
 surface bending stress at a pivot deflection ``theta_K3`` is
 ``sigma = E (h/2) theta_K3 / l`` (reference values of docs/references.md: 4.14 GPa per radian for Table 1,
 so the stress check belongs to every honest result).
+
+The strip's own properties live here too, for both flexure models (the pin and the
+elastica of :mod:`springdyn.cfcs.beam`): plate or beam modulus, bending stiffness, the
+Euler buckling load and the first bending frequency.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -21,7 +27,20 @@ __all__ = [
     "safety_factor",
     "allowable_spring_angle",
     "max_stroke_for_stress",
+    "FLEXURE_MODELS",
+    "PLATE_WIDTH_RATIO",
+    "plate_modulus",
+    "default_plate_bending",
+    "bending_stiffness",
+    "strip_buckling_load",
+    "strip_first_frequency",
 ]
+
+#: Allowed values of ``flexure_model``.
+FLEXURE_MODELS = ("prbm", "beam")
+
+#: Width/length ratio b/l from which a strip bends as a plate (E / (1 - nu^2)) by default.
+PLATE_WIDTH_RATIO = 1.0
 
 
 def second_moment_rectangle(width, thickness):
@@ -125,3 +144,89 @@ def max_stroke_for_stress(allowable_stress, youngs_modulus, thickness, length, r
         return float(kinematic_limit_deflection(r2, r3))
     theta2 = np.arcsin(r3 * np.sin(th_allow) / r2)
     return float(deflection_from_theta2(theta2, r2, r3))
+
+
+def plate_modulus(youngs_modulus, poisson_ratio):
+    """Plate (cylindrical bending) modulus ``E / (1 - nu^2)`` [Pa].
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    poisson_ratio : float
+        Poisson's ratio nu [-].
+    """
+    return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio)
+
+
+def default_plate_bending(width, length) -> bool:
+    """Whether a strip of width b and length l bends as a plate by default: ``b >= l``.
+
+    A wide strip cannot take its anticlastic curvature except in edge zones of width about
+    ``sqrt(R h)`` (R the bending radius), so most of its width is in cylindrical bending
+    (E / (1 - nu^2)); a narrow one bends as a beam (E).  For ``b >= l`` the edge zones are a
+    small part of the width at the curvatures a flexure reaches (R of the order of l), so the
+    plate value is the closer one.
+
+    Parameters
+    ----------
+    width : float
+        Strip width b [m].
+    length : float
+        Strip length l [m].
+    """
+    return bool(width >= PLATE_WIDTH_RATIO * length)
+
+
+def bending_stiffness(youngs_modulus, width, thickness, plate_bending=False, poisson_ratio=0.3):
+    """Bending stiffness ``EI = E' b h^3 / 12`` [N*m^2], E' = E or E/(1 - nu^2).
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    width, thickness : float
+        Strip width b and thickness h [m].
+    plate_bending : bool
+        Use the plate modulus E / (1 - nu^2).
+    poisson_ratio : float
+        nu [-].
+    """
+    e = plate_modulus(youngs_modulus, poisson_ratio) if plate_bending else youngs_modulus
+    return e * width * thickness**3 / 12.0
+
+
+def strip_buckling_load(ei, effective_length):
+    """Euler buckling load ``pi^2 EI / L_e^2`` [N] of the strip.
+
+    The design check takes the strip as a cantilever (clamped at the slider, its other end
+    free to sway and turn with the coupler): ``L_e = 2 l``, the lowest of the usual end
+    conditions and so the safe one.
+
+    Parameters
+    ----------
+    ei : float
+        Bending stiffness [N*m^2].
+    effective_length : float
+        Effective column length L_e [m] (2 l for a cantilever).
+    """
+    return math.pi**2 * ei / (effective_length * effective_length)
+
+
+def strip_first_frequency(ei, mass_per_length, length):
+    """First bending frequency ``1.875^2 sqrt(EI / (rho A)) / l^2`` [rad/s] of the strip as a cantilever.
+
+    The strip's own dynamics can be left out (its quasi-static force used with the PRBM's
+    inertia) while the motion's frequencies stay far below this value and the strip's mass is
+    small beside the link masses.
+
+    Parameters
+    ----------
+    ei : float
+        Bending stiffness [N*m^2].
+    mass_per_length : float
+        rho b h [kg/m].
+    length : float
+        Strip length l [m].
+    """
+    return 1.8751**2 * math.sqrt(ei / mass_per_length) / (length * length)
