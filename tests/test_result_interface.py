@@ -123,6 +123,9 @@ FACTORIES = {
     "springdyn.valve.results.FloatSpeedResult": lambda: springdyn.valve.results.FloatSpeedResult(
         [1000.0, 2000.0], [120.0, -5.0], 1800.0, [1500.0, 1800.0], 1.0
     ),
+    "springdyn.valve.results.NaturalFrequencies": lambda: springdyn.valve.ValveModel(
+        _valve_spring(), _valve_cam(), _valve_train()
+    ).natural_frequencies(4),
     "springdyn.valve.sweeps.SpeedSweep": lambda: springdyn.valve.sweep(
         _valve_spring(),
         _valve_cam(),

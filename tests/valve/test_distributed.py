@@ -9,7 +9,7 @@ import pytest
 from springdyn.app.cli.main import main
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, ValveTrain, engine, simulate
-from springdyn.valve.distributed import DEFAULT_ELEMENTS, coil_law, modal_damping
+from springdyn.valve.chains.distributed import DEFAULT_ELEMENTS, coil_law, modal_damping
 from springdyn.valve.dynamics import prepare, rpm_to_omega
 from springdyn.valve.elements import law_energy, law_force, law_stiffness
 from springdyn.valve.frf import dynamic_stiffness

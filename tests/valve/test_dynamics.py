@@ -56,7 +56,7 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
     assert coarse.static_force.shape == (360,)
     for k in range(3 * simmod.SimulationSetup.STATIC_CACHE_SIZE):
         prepare(spring, Cam(law="3-4-5", lift=5e-3 + 1e-5 * k, duration=math.radians(120))).static_force_along_cam(90)
-    assert len(spring.cached("static_force_along_cam", dict)) == simmod.SimulationSetup.STATIC_CACHE_SIZE
+    assert len(spring.spring_model.static_force_cache) == simmod.SimulationSetup.STATIC_CACHE_SIZE
 
 
 @pytest.mark.parametrize("name", ["one-step", "two-step"])

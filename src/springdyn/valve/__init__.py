@@ -1,24 +1,40 @@
-"""Valve springs: the MMS Type C multi-mass model (one-step and two-step).
+"""Valve springs: multi-mass models of helical valve springs driven by a cam through a valve train.
 
-Where to find each piece:
+Start here: :class:`ValveModel` (a spring, its cam and valve train, every analysis), built
+from the definitions :class:`ValveSpring` (``[spring]``), :class:`Cam` (``[cam]``) and
+:class:`ValveTrain` (``[valve_train]``).  Where each piece lives:
 
-- :mod:`~springdyn.valve.formulas` -- closed-form internal parameters and model variables;
-- :mod:`~springdyn.valve.elements` -- nonlinear element laws (linear / quadratic /
-  coil-contact quadratic) and the damping law;
+The definitions
+
+- :mod:`~springdyn.valve.spring` -- :class:`ValveSpring`, the ``[spring]`` table and its checks;
+- :mod:`~springdyn.valve.cam` -- cam lift laws and measured lift tables (``[cam]``);
+- :mod:`~springdyn.valve.valvetrain` -- layouts, masses, stiffnesses, lash (``[valve_train]``).
+
+The physics, one place per equation
+
+- :mod:`~springdyn.valve.formulas` -- closed-form internal parameters and model variables ([MMS]);
+- :mod:`~springdyn.valve.elements` -- the element force laws (linear, quadratic, coil contact)
+  and the damping law;
+- :mod:`~springdyn.valve.geometry` -- pitch and diameter profiles, open-coil compliance per turn;
 - :mod:`~springdyn.valve.statics` -- series equilibrium (static force, stiffness, set-up state);
 - :mod:`~springdyn.valve.modes` -- natural frequencies of the linearised chain;
 - :mod:`~springdyn.valve.design` -- spring index, corrected shear stress, surge margin;
-- :mod:`~springdyn.valve.spring` -- :class:`ValveSpring`, the definition (the ``[spring]`` table);
-- :mod:`~springdyn.valve.model` -- the spring models (:class:`TypeCModel`, the document's
-  MMS Type C chain) behind one interface, chosen by the ``model`` key;
-- :mod:`~springdyn.valve.results` -- :class:`StaticCurve`, :class:`Simulation`,
-  :class:`FloatSpeedResult` (the shared Result interface);
-- :mod:`~springdyn.valve.cam` -- cam lift laws and measured lift tables (``[cam]``);
-- :mod:`~springdyn.valve.valvetrain` -- valve body with cam and seat contacts (``[valve_train]``);
-- :mod:`~springdyn.valve.engine` -- equations of motion and the compiled integrator;
-- :mod:`~springdyn.valve.dynamics` -- :func:`simulate`, :class:`Simulation`, :func:`float_speed`;
+- :mod:`~springdyn.valve.durability` -- wire stress over a cycle, Goodman safety;
+- :mod:`~springdyn.valve.chains` -- the spring models: :class:`Chain`, :class:`SpringModel`,
+  :class:`TypeCModel` (the document's 5 masses), the distributed coil-by-coil chain;
+- :mod:`~springdyn.valve.engine` -- the equations of motion and the compiled integrator.
+
+The analyses and their results
+
+- :mod:`~springdyn.valve.model` -- :class:`ValveModel`;
+- :mod:`~springdyn.valve.dynamics` -- :func:`simulate`, :func:`float_speed`, natural
+  frequencies under the cam, the engine's set-up;
+- :mod:`~springdyn.valve.frf` -- the linearised dynamic stiffness;
 - :mod:`~springdyn.valve.sweeps` -- :func:`sweep` over speeds and design values, local or Dask
-  (:class:`SpeedSweep`).
+  (:class:`SpeedSweep`);
+- :mod:`~springdyn.valve.results` -- :class:`StaticCurve`, :class:`Simulation`,
+  :class:`FloatSpeedResult`, :class:`NaturalFrequencies` (the shared Result interface);
+- :mod:`~springdyn.valve.plots` -- their figures.
 
 The names below load their modules on first use, so that ``import springdyn.valve`` stays
 quick (the compiled engine, numba, loads only when a simulation needs it).
@@ -29,38 +45,25 @@ from __future__ import annotations
 from .._lazy import lazy_package
 
 _EXPORTS = {
+    "ValveModel": "model",
     "ValveSpring": "spring",
-    "Chain": "model",
-    "SpringModel": "model",
-    "TypeCModel": "model",
-    "MODELS": "model",
+    "Cam": "cam",
+    "ValveTrain": "valvetrain",
+    "Chain": "chains",
+    "SpringModel": "chains",
+    "TypeCModel": "chains",
+    "MODELS": "chains",
     "StaticCurve": "results",
     "Simulation": "results",
     "FloatSpeedResult": "results",
-    "Cam": "cam",
-    "ValveTrain": "valvetrain",
+    "NaturalFrequencies": "results",
     "simulate": "dynamics",
     "float_speed": "dynamics",
     "sweep": "sweeps",
     "SpeedSweep": "sweeps",
 }
 
-__all__ = [
-    "ValveSpring",
-    "SpringModel",
-    "TypeCModel",
-    "MODELS",
-    "Chain",
-    "StaticCurve",
-    "Cam",
-    "ValveTrain",
-    "simulate",
-    "Simulation",
-    "float_speed",
-    "FloatSpeedResult",
-    "sweep",
-    "SpeedSweep",
-]
+__all__ = list(_EXPORTS)
 
 
 lazy_package(__name__, _EXPORTS)

@@ -7,6 +7,7 @@ returns a :class:`Simulation` holding the last revolution and its summary.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -18,8 +19,18 @@ from ..core.units import rpm_to_omega
 from ..numerics.erk import PAIRS
 from .cam import Cam
 from .elements import damping_coefficient, law_force
-from .engine import STATUS, extra_layout, hermite_eval, integrate_scipy, run_speeds, series_force_compiled, stop_angles
-from .results import FloatSpeedResult, Simulation, coil_contact_compressions
+from .engine import (
+    STATUS,
+    extra_layout,
+    hermite_eval,
+    integrate_scipy,
+    run_speeds,
+    series_force_compiled,
+    stop_angles,
+    train_response,
+)
+from .engine.layout import VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS
+from .results import FloatSpeedResult, Simulation
 from .spring import ValveSpring
 from .statics import series_force
 from .valvetrain import KERNEL_SIZE, ValveTrain
@@ -31,7 +42,6 @@ __all__ = [
     "SimulationSetup",
     "prepare",
     "float_speed",
-    "coil_contact_compressions",
     "chain_response",
     "DEFAULT_RTOL",
     "DEFAULT_ATOL",
@@ -83,7 +93,7 @@ class SimulationSetup:
         lift = np.asarray(lift, dtype=float)
         dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
         force = np.empty_like(dl)
-        series_force_compiled(dl, sp.chain.laws, force, *self.spring.cached("series_force_table", self._force_table))
+        series_force_compiled(dl, sp.chain.laws, force, *sp.spring_model.force_table)
         return force.reshape(lift.shape)
 
     def static_force_along_cam(self, points: int) -> np.ndarray:
@@ -94,7 +104,7 @@ class SimulationSetup:
         spring keeps it for its last :attr:`STATIC_CACHE_SIZE` cams (a Newton solve per
         angle costs about 5 % of a Type C simulation).  Read-only: results share it.
         """
-        store = self.spring.cached("static_force_along_cam", dict)
+        store = self.spring.spring_model.static_force_cache
         key = (id(self.cam), int(points))  # the entry holds the cam: its id is not reused meanwhile
         hit = store.get(key)
         if hit is None:
@@ -108,13 +118,6 @@ class SimulationSetup:
 
     #: Cams per spring whose static force along the output grid is kept.
     STATIC_CACHE_SIZE = 8
-
-    def _force_table(self) -> tuple:
-        """Static force [N] at 129 total compressions [m] from zero to the model's limit: the
-        starts of the compiled Newton solver (two or three iterations instead of ten)."""
-        sp = self.spring
-        x = np.linspace(0.0, sp.free_length - sp.min_length, 129)
-        return x, np.asarray(series_force(x, sp.chain.laws), dtype=float)
 
     def args(self, omega: float) -> tuple:
         ch = self.spring.chain
@@ -154,7 +157,7 @@ class SimulationSetup:
             rtol=rtol,
             atol=atol,
             max_step_fraction=MAX_STEP_FRACTION,
-            gaps=coil_contact_compressions(self.spring),
+            gaps=self.spring.spring_model.contact_gaps,
             monitor=True,
             atol_velocity=self.atol_velocity(atol),
             method=self.method if method is None else method,
@@ -222,7 +225,7 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
             f"the static force reaches {spring.LIMIT_FORCE_FACTOR:g} Fcon"
         )
     # static force above Fcon <=> lift beyond the lift at which the static force is Fcon
-    lift_fcon = spring.cached("lift_fcon", lambda: spring.installed_length - spring.length_at_force(p["Fcon"]))
+    lift_fcon = spring.spring_model.lift_at_coil_contact
     if h[i_max] > lift_fcon:
         over = np.flatnonzero(h > lift_fcon)
         peak = float(series_force(spring.free_length - spring.installed_length + h[i_max], spring.chain.laws))
@@ -290,49 +293,6 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     u = spring.initial_condition(setup + z0)["displacements"]
     pos = vt.static_state(lift0, z0, force)
     return np.concatenate([u, pos, np.zeros(nm + pos.size)]), float(lash)
-
-
-def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
-    """Contact forces of the valve train from its states (vectorised NumPy).
-
-    The reference backend's evaluation, written apart from the compiled kernel
-    (:func:`springdyn.valve.engine.chain_rhs`); the tests compare the two.
-
-    Parameters
-    ----------
-    vt : ndarray (16,)
-        Engine parameters of the train (:meth:`ValveTrain.kernel_parameters`).
-    lift, dlift : ndarray (..., n_t)
-        Lobe lift [m] and its rate [m/s].
-    u, v : ndarray (..., dof, n_t)
-        Positions [m] and velocities [m/s] of valve, lever tip, lifter.
-
-    Returns
-    -------
-    dict
-        ``cam_contact_force``, ``valve_seat_force``, ``valve_lift`` [N, N, m].
-    """
-
-    def contact(k, c, pen, rate):
-        return np.where(pen > 0, np.maximum(k * pen + c * rate, 0.0), 0.0)
-
-    dof = int(vt[7])
-    z, zd = u[..., 0, :], v[..., 0, :]
-    seat = np.where(z < 0, np.maximum(-vt[4] * z - vt[5] * zd, 0.0), 0.0)
-    if dof == 1:
-        cam = contact(vt[2], vt[3], lift - z - vt[6], dlift - zd)
-    elif dof == 2:
-        cam = contact(vt[2], vt[3], lift - u[..., 1, :] / vt[8], dlift - v[..., 1, :] / vt[8])
-    else:
-        cam = contact(vt[2], vt[3], lift - u[..., 2, :], dlift - v[..., 2, :])
-    return dict(cam_contact_force=cam, valve_seat_force=seat, valve_lift=z)
-
-
-def _fastest_mode(spring: ValveSpring) -> float:
-    """Highest natural frequency of the chain at installed length [Hz] (cached: a spring is immutable)."""
-    return spring.cached(
-        "fastest_mode", lambda: float(spring.modes(spring.installed_length, len(spring.chain.masses))[-1])
-    )
 
 
 def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
@@ -446,7 +406,7 @@ def simulate(
     # 70 right-hand-side calls per period: 2e4 periods take seconds to a minute); the
     # compiled engine stops at 1e7 steps (3 to 5 steps per period)
     max_cycles = 2.0e4 if backend == "scipy" else 2.0e6
-    f_top = _fastest_mode(spring)
+    f_top = spring.spring_model.fastest_mode
     if valve_train is not None:
         f_top = max(f_top, valve_train.highest_frequency())
     cycles = revolutions * 60.0 / cam_rpm * f_top
@@ -502,7 +462,7 @@ def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rt
     half = max(sp.elements // 2, 10)
     if half == sp.elements:
         return
-    coarse_spring = sp.cached(f"elements={half}", lambda: sp.replace(elements=half))  # its set-up is kept
+    coarse_spring = _coarser(sp, half)  # its set-up is kept
     coarse = simulate(
         coarse_spring,
         cam,
@@ -519,6 +479,13 @@ def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rt
         elements=half, max_retainer_force_N=coarse["max_retainer_force_N"], max_seat_force_N=coarse["max_seat_force_N"]
     )
     sim.__dict__.pop("_summary_cache", None)  # the summary now includes the check
+
+
+@functools.lru_cache(maxsize=8)
+def _coarser(spring: ValveSpring, elements: int) -> ValveSpring:
+    """``spring`` with ``elements`` elements, kept for the last few springs (an explicit cache:
+    the coarse spring's model and set-up are reused by every run that checks it)."""
+    return spring.replace(elements=elements)
 
 
 def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
@@ -592,7 +559,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     )
     for j in (0, nm):  # unilateral end contacts (correction MMS-7 of docs/references.md)
         force[..., j, :] = np.where(x[..., j, :] > 0.0, np.maximum(force[..., j, :], 0.0), 0.0)
-    out = dict(lift=lift, compression=x, force=force, contact=x >= coil_contact_compressions(setup.spring)[:, None])
+    out = dict(lift=lift, compression=x, force=force, contact=x >= setup.spring.spring_model.contact_gaps[:, None])
     if nf > nm:
         out["static"] = setup.static_force(u_top)
         out.update(train_response(setup.vt, lift, dlift, u[..., nm:, :], v[..., nm:, :]))
@@ -629,7 +596,7 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous,
         static_force=static,
         element_compression=x,
         element_force=force,
-        element_contact=x >= coil_contact_compressions(setup.spring)[:, None],
+        element_contact=x >= setup.spring.spring_model.contact_gaps[:, None],
         mass_displacement=e[:, lay["displacement"]].T,
         periodicity_error=prev_err,
         info=info,
@@ -876,14 +843,14 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
         guess = spring.initial_condition(sp_setup + z)["displacements"]
     else:
         f = float(setup.static_force(valve_train.ratio * h_max))
-        z = valve_train.ratio * h_max - setup.vt[6] - f / valve_train.stiffness_at_valve
+        z = valve_train.ratio * h_max - setup.vt[VT_LASH] - f / valve_train.stiffness_at_valve
         guess = np.concatenate(
             [spring.initial_condition(sp_setup + z)["displacements"], valve_train.static_state(h_max, z, f)]
         )
     scale = max(h_max, 1e-3)
     mass = np.asarray(spring.chain.masses, dtype=float)
     if valve_train is not None:
-        mass = np.concatenate([mass, [setup.vt[1], setup.vt[9], setup.vt[12]][: nf - nm]])
+        mass = np.concatenate([mass, [setup.vt[VT_MASS], setup.vt[VT_M_LEVER], setup.vt[VT_M_LIFTER]][: nf - nm]])
 
     def residual(x):  # forces [N]: better scaled than accelerations across light and heavy masses
         return _static_accelerations(setup, theta, x * scale) * mass

@@ -1,7 +1,7 @@
 """Linearised dynamic stiffness of a valve spring: seat fixed, retainer driven.
 
 At a static length the chain is linearised (tangent stiffness and damping of every
-element, :class:`~springdyn.valve.model.Chain`); a harmonic retainer displacement
+element, :class:`~springdyn.valve.chains.Chain`); a harmonic retainer displacement
 ``X e^(i w t)`` then gives node displacements from the tridiagonal system
 ``(K - w^2 M + i w C) u = z_N X e_N``, ``z_j = k_j + i w c_j``, and the forces per unit
 retainer displacement

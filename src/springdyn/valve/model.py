@@ -1,286 +1,220 @@
-"""Spring models of a valve-spring definition: the document's MMS Type C chain.
+"""The valve family's model: a spring, optionally its cam and valve train, and every analysis.
 
-A :class:`~springdyn.valve.spring.ValveSpring` is the definition (geometry, material,
-damping, the ``model`` key); a model turns it into equations.  Every model offers the
-same interface, :class:`SpringModel`: the chain the dynamics engine integrates (masses,
-element laws, damping), the static force and stiffness against length, the natural
-frequencies, and the design figures.  :data:`MODELS` maps the ``[spring] model`` names to
-the classes; a new model is a new class registered there.
+:class:`ValveModel` is the valve counterpart of :class:`springdyn.cfcs.CFCS` and
+:class:`springdyn.lsd.LSDModel`: built from the definitions (:class:`ValveSpring`, :class:`Cam`,
+:class:`ValveTrain`), it runs the analyses and returns :class:`~springdyn.core.results.Result`
+objects.  What it derives once and reuses is visible: the spring's chain model
+(:attr:`chain_model`, :mod:`springdyn.valve.chains`) and the speed-independent set-up of the
+engine (:attr:`setup`), both cached properties of this (mutable) object.
+
+Where each analysis lives: statics and modes of the chain, :mod:`springdyn.valve.chains`; the
+frequency response, :mod:`springdyn.valve.frf`; simulation and natural frequencies under the
+cam, :mod:`springdyn.valve.dynamics`; speed sweeps, :mod:`springdyn.valve.sweeps`.
+
+Examples
+--------
+>>> from springdyn.valve import Cam, ValveModel, ValveSpring
+>>> model = ValveModel(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=2.0944))
+>>> round(model.internal_parameters()["Fset"], 2)
+251.43
 """
 
 from __future__ import annotations
 
 from functools import cached_property
 
-import numpy as np
-
 from ..core.errors import InputError
-from . import formulas
-from .chain import Chain, SpringModel
-from .elements import hardening_law, law_compression, linear_law, low_pitch_law
-from .statics import element_compressions
+from .cam import Cam
+from .spring import ValveSpring
+from .valvetrain import ValveTrain
 
-__all__ = ["SpringModel", "TypeCModel", "Chain", "MODELS", "make_model", "PARAMETER_UNITS"]
-
-ONE_STEP_ELEMENTS = ("K", "Kh1", "Kh2", "Kh2", "Kh1", "K")
-TWO_STEP_ELEMENTS = ("K", "Ks", "Kh1", "Kh2", "Kh1", "K")
-ONE_STEP_MASSES = ("me", "m1", "m2", "m1", "me")
-TWO_STEP_MASSES = ("me", "m1", "m2", "m2", "me")
+__all__ = ["ValveModel"]
 
 
-#: SI unit, display unit and meaning of each internal parameter of :meth:`TypeCModel.internal_parameters`.
-PARAMETER_UNITS = {
-    "K": ("N/m", "N/mm", "contact stiffness of a coil"),
-    "K1": ("N/m", "N/mm", "spring rate at free length"),
-    "K2": ("N/m", "N/mm", "spring rate at set-up length"),
-    "K3": ("N/m", "N/mm", "stiffened rate 1.15 K2"),
-    "Kh1": ("N/m", "N/mm", "chain element Kh1"),
-    "Kh2": ("N/m", "N/mm", "chain element Kh2"),
-    "Ks": ("N/m", "N/mm", "low-pitch element Ks"),
-    "m1": ("kg", "g", "chain mass m1"),
-    "m2": ("kg", "g", "chain mass m2"),
-    "me": ("kg", "g", "end mass me"),
-    "M": ("kg", "g", "spring mass"),
-    "f1": ("Hz", "Hz", "surge frequency, free length"),
-    "f2": ("Hz", "Hz", "surge frequency, set-up length"),
-    "n1p": ("", "", "pitch term n1'"),
-    "n2p": ("", "", "pitch term n2'"),
-    "Pc": ("m", "mm", "coil gap term"),
-    "Lc": ("m", "mm", "solid length"),
-    "Fset": ("N", "N", "set-up force"),
-    "F1": ("N", "N", "first nonlinear force"),
-    "F2": ("N", "N", "second nonlinear force"),
-    "Fcon": ("N", "N", "coil-contact force"),
-    "C0": ("N*s/m", "N*s/m", "element damping C0"),
-    "f_continuum": ("Hz", "Hz", "continuum surge frequency of the active coils"),
-    "elements": ("", "", "wire elements"),
-    "beta": ("s", "s", "stiffness-proportional damping (mode 1 at set-up gets damping_ratio)"),
-    "pitch_max": ("m", "mm", "largest pitch of the unloaded spring"),
-}
-
-
-class TypeCModel(SpringModel):
-    """The document's MMS Type C: 5 masses and 6 nonlinear spring-damper elements.
-
-    Closed-form parameters of [MMS] ("Internal parameters", "Model variables"), the
-    element laws with coil contact (corrections MMS-1 to MMS-9 of docs/references.md)
-    and the chain topology of one-step and two-step springs:
-
-    - one-step: ``seat -K- me -Kh1- m1 -Kh2- m2 -Kh2- m1 -Kh1- me -K- retainer``;
-    - two-step: ``seat -K- me -Ks- m1 -Kh1- m2 -Kh2- m2 -Kh1- me -K- retainer``.
-
-    Examples
-    --------
-    >>> from springdyn.valve import ValveSpring
-    >>> m = TypeCModel(ValveSpring.example("one-step"))
-    >>> round(m.internal_parameters()["Fset"], 2)
-    251.43
-    """
-
-    name = "type-c"
-    description = "MMS Type C (5 masses, 6 elements)"
-
-    def __init__(self, spring):
-        super().__init__(spring)
-        self.check()
-
-    @property
-    def two_step(self) -> bool:
-        return self.spring.two_step
-
-    def _field(self, name: str) -> str:
-        return self.spring._field(name)
-
-    def check(self) -> None:
-        """Conditions under which the closed-form parameters make a valid chain (raise InputError)."""
-        p = self.internal_parameters()
-        k = p["K"]
-        if self.two_step:
-            if k <= 3.0 * p["K2"]:
-                raise InputError(
-                    f"contact stiffness K = {k:.6g} N/m must exceed 3 K2 = {3 * p['K2']:.6g} N/m for a two-step "
-                    "spring (else Kh1, Kh2 are negative): increase mean_diameter or youngs_modulus"
-                )
-            if not 0 < p["Ks"] < np.inf:
-                raise InputError(
-                    f"low-pitch stiffness Ks = K K1 K2/(K K2 + K1 K2 - K K1) = {p['Ks']:.6g} N/m must be positive: "
-                    f"low_pitch_coils = {self.spring.low_pitch_coils:g} must exceed dead_coils = {self.spring.dead_coils:g}"
-                )
-        elif k <= 2.0 * p["K1"]:
-            raise InputError(
-                f"contact stiffness K = {k:.6g} N/m must exceed 2 K1 = {2 * p['K1']:.6g} N/m for a one-step "
-                "spring (else Kh1, Kh2 are negative): increase mean_diameter or youngs_modulus"
-            )
-        factor = 3.0 if self.two_step else 2.0
-        if k <= factor * p["K3"]:
-            raise InputError(
-                f"contact stiffness K = {k:.6g} N/m must exceed {factor:g} K3 = {factor * p['K3']:.6g} N/m "
-                "(else the stiffened rates Kh1', Kh2' are negative)"
-            )
-        for name in ("m1", "m2"):
-            if p[name] <= 0:
-                raise InputError(
-                    f"chain mass {name} = {p[name]:.6g} kg must be positive: the closed-form mass formulas of "
-                    f"the document break down for this spring (f1 = {p['f1']:.1f} Hz, f2 = {p['f2']:.1f} Hz); "
-                    "check the coil counts (low_pitch_coils, high_pitch_coils, dead_coils) and the lengths"
-                )
-        if p["me"] <= 0:
-            raise InputError(
-                f"end mass me = {p['me']:.6g} kg must be positive: the closed-form masses m1, m2 exceed the "
-                f"spring mass M = {p['M']:.6g} kg (check density, the coil counts and the diameters)"
-            )
-        if p["F1"] <= 0:
-            raise InputError(
-                f"first nonlinear force F1 = Fset + (Ls - Lc - Pc) K2 = {p['F1']:.6g} N must be positive: "
-                f"{self._field('installed_length')} is too close to coil contact"
-            )
-        if not p["Fcon"] > max(p["F1"], p["Fset"]):
-            raise InputError(
-                f"coil-contact force Fcon = {p['Fcon']:.6g} N must exceed F1 = {p['F1']:.6g} N and "
-                f"Fset = {p['Fset']:.6g} N: {self._field('installed_length')} is at or below coil contact"
-            )
-
-    # ------------------------------------------------------------------ parameters
-    def internal_parameters(self) -> dict:
-        """Internal parameters and model variables (SI), under the CLI's JSON keys.
-
-        ``K, K1, K2, K3, Kh1, Kh2, Ks`` (two-step only) [N/m], ``m1, m2, me, M`` [kg],
-        ``f1, f2`` [Hz], ``n1p, n2p`` [-], ``Pc, Lc`` [m], ``Fset, F1, F2, Fcon`` [N],
-        ``C0`` [N s/m].
-        """
-        return dict(self._parameters)
-
-    @cached_property
-    def _parameters(self) -> dict:
-        do, dw = self.spring.mean_diameter, self.spring.wire_diameter
-        lf, ls = self.spring.free_length, self.spring.installed_length
-        n1, n2, nb = self.spring.low_pitch_coils, self.spring.high_pitch_coils, self.spring.dead_coils
-        g, rho = self.spring.shear_modulus, self.spring.density
-        na1 = formulas.active_coils_free(n1, n2, nb)
-        na2 = formulas.active_coils_setup(n1, n2, nb, self.two_step)
-        k = formulas.contact_stiffness(do, self.spring.youngs_modulus)
-        k1 = formulas.free_length_stiffness(g, dw, do, na1)
-        k2 = formulas.setup_stiffness(g, dw, do, na2) if self.two_step else k1
-        n1p = formulas.pitch_correction_free(lf, dw, n1, n2, na1, do)
-        n2p = formulas.pitch_correction_setup(ls, dw, n1, n2, na2, do)
-        f1 = formulas.surge_frequency(g, rho, dw, do, na1 + n1p)
-        f2 = formulas.surge_frequency(g, rho, dw, do, na2 + n2p)
-        m_total = formulas.total_mass(rho, do, dw, n1, n2)
-        pc = formulas.coil_pitch(ls, dw, n1, n2)
-        lc = formulas.coil_contact_length(dw, n1, n2)
-        fset = formulas.setup_force(lf, ls, k1)
-        k3 = formulas.stiffened_rate(k2)
-        f_1 = formulas.first_nonlinear_force(fset, ls, lc, pc, k2)
-        f_2 = formulas.second_nonlinear_force(f_1, pc, k3)
-        fcon = formulas.coil_contact_force(k1, k2, lf, ls, dw, n1, n2)
-        if self.two_step:
-            mv = formulas.twostep_model_variables(k, k1, k2, f1, f2, m_total)
-        else:
-            mv = formulas.onestep_model_variables(k, k1, f1, m_total)
-        c0 = 2.0 * self.spring.damping_ratio * np.sqrt(m_total * k1)
-        p = dict(K=k, K1=k1, K2=k2, K3=k3, Kh1=mv["Kh1"], Kh2=mv["Kh2"])
-        if self.two_step:
-            p["Ks"] = mv["Ks"]
-        p.update(
-            m1=mv["m1"],
-            m2=mv["m2"],
-            me=mv["me"],
-            M=m_total,
-            f1=f1,
-            f2=f2,
-            n1p=n1p,
-            n2p=n2p,
-            Pc=pc,
-            Lc=lc,
-            Fset=fset,
-            F1=f_1,
-            F2=f_2,
-            Fcon=fcon,
-            C0=float(c0),
-        )
-        return p
-
-    def breakpoints(self) -> dict:
-        """Breakpoints of every nonlinear law [m] (and ``Kh1c``, ``Kh2c``, ``Kh1p``, ``Kh2p`` [N/m]).
-
-        Keys follow the document: ``x11..x14`` (Kh1), ``x21..x24`` (Kh2) and, for a
-        two-step spring, ``x1, x2`` (Ks).
-        """
-        return dict(self._laws[1])
-
-    @cached_property
-    def _laws(self):
-        p = self._parameters
-        kh1p, kh2p = formulas.stiffened_chain_rates(p["K"], p["K3"], self.two_step)
-        law_h1, b1 = hardening_law(p["Kh1"], kh1p, p["F1"], p["F2"], p["Fcon"], p["Pc"])
-        law_h2, b2 = hardening_law(p["Kh2"], kh2p, p["F1"], p["F2"], p["Fcon"], p["Pc"])
-        law_k = linear_law(p["K"])
-        bp = {f"x1{i}": b1[f"x{i}"] for i in range(1, 5)}
-        bp.update({f"x2{i}": b2[f"x{i}"] for i in range(1, 5)})
-        bp.update(Kh1p=kh1p, Kh2p=kh2p, Kh1c=b1["kc"], Kh2c=b2["kc"])
-        named = {"K": law_k, "Kh1": law_h1, "Kh2": law_h2}
-        if self.two_step:
-            named["Ks"], bs = low_pitch_law(p["Ks"], p["Fset"], self.spring.wire_diameter)
-            bp.update(x1=bs["x1"], x2=bs["x2"])
-        return named, bp
-
-    def contact_compressions(self) -> np.ndarray:
-        """Compression [m] of each element beyond which its coils touch: the Fcon breakpoint.
-
-        Only the Kh1/Kh2 elements have one (x13/x23 of [MMS], element force laws).  The end
-        elements K already stand for contacting coils and the low-pitch element Ks is closed
-        by design from set-up on, so neither is ever flagged (``inf``).
-        """
-        fcon = self._parameters["Fcon"]
-        return np.array(
-            [
-                float(law_compression(fcon, law)) if name.startswith("Kh") else np.inf
-                for name, law in zip(self.chain.element_names, self.chain.laws)
-            ]
-        )
-
-    @cached_property
-    def chain(self) -> Chain:
-        """The lumped 5-mass chain with its element laws and damping ([MMS], Figs. 40.32-40.33; topology in docs/valve.md)."""
-        p = self._parameters
-        named, _ = self._laws
-        enames = TWO_STEP_ELEMENTS if self.two_step else ONE_STEP_ELEMENTS
-        mnames = TWO_STEP_MASSES if self.two_step else ONE_STEP_MASSES
-        laws = np.stack([named[n] for n in enames])
-        return Chain(
-            element_names=enames,
-            mass_names=mnames,
-            masses=np.array([p[n] for n in mnames]),
-            laws=laws,
-            c0=p["C0"],
-            setup_compressions=element_compressions(p["Fset"], laws),
-            setup_force=p["Fset"],
-            free_length=self.spring.free_length,
-            installed_length=self.spring.installed_length,
-        )
-
-
-def _models() -> dict:
-    from .distributed import DistributedModel
-
-    return {TypeCModel.name: TypeCModel, DistributedModel.name: DistributedModel}
-
-
-#: The spring models, by their ``[spring] model`` name.
-MODELS = _models()
-
-
-def make_model(spring, name: str | None = None) -> SpringModel:
-    """The model ``name`` (default: the definition's ``model`` key) of a spring definition.
+class ValveModel:
+    """A valve spring with its cam and valve train, and the analyses of springdyn's valve family.
 
     Parameters
     ----------
     spring : ValveSpring
-        The spring definition.
-    name : str, optional
-        A key of :data:`MODELS`; overrides ``spring.model``.
+        The spring definition (its ``model`` key chooses Type C or the distributed chain).
+    cam : Cam, optional
+        The cam; needed by :meth:`simulate`, :meth:`sweep`, :meth:`float_speed` and
+        :meth:`natural_frequencies`.
+    valve_train : ValveTrain, optional
+        The valve train between cam and valve; without it the retainer follows the cam.
     """
-    name = spring.model if name is None else name
-    if name not in MODELS:
-        raise InputError(f"model = {name!r} is not a valve-spring model; choose one of {', '.join(map(repr, MODELS))}")
-    return MODELS[name](spring)
+
+    def __init__(self, spring: ValveSpring, cam: Cam | None = None, valve_train: ValveTrain | None = None):
+        if not isinstance(spring, ValveSpring):
+            raise InputError(f"spring = {spring!r} must be a ValveSpring (ValveSpring.from_toml(...) or .example())")
+        if cam is not None and not isinstance(cam, Cam):
+            raise InputError(f"cam = {cam!r} must be a Cam or None")
+        if valve_train is not None and not isinstance(valve_train, ValveTrain):
+            raise InputError(f"valve_train = {valve_train!r} must be a ValveTrain or None")
+        self.spring = spring
+        self.cam = cam
+        self.valve_train = valve_train
+
+    def __repr__(self) -> str:
+        parts = [f"{self.spring.type} spring, {self.spring.model} model"]
+        if self.cam is not None:
+            parts.append(f"{self.cam.law} cam")
+        if self.valve_train is not None:
+            parts.append(f"{self.valve_train.layout} valve train")
+        return f"<ValveModel: {', '.join(parts)}>"
+
+    # ------------------------------------------------------------------ derived once
+    @cached_property
+    def chain_model(self):
+        """The spring's chain model (:class:`~springdyn.valve.chains.SpringModel`)."""
+        return self.spring.spring_model
+
+    @cached_property
+    def setup(self):
+        """The engine's speed-independent set-up: cam table, initial state
+        (:func:`springdyn.valve.dynamics.prepare`)."""
+        from .dynamics import prepare
+
+        return prepare(self.spring, self._need_cam("the set-up"), self.valve_train)
+
+    def _need_cam(self, what: str) -> Cam:
+        if self.cam is None:
+            raise InputError(f"{what} needs a cam: ValveModel(spring, cam=Cam(...))")
+        return self.cam
+
+    # ------------------------------------------------------------------ the spring alone
+    def internal_parameters(self) -> dict:
+        """The model's internal parameters (K, K1, Kh1, m1, f1, Fset, ... [SI])."""
+        return self.chain_model.internal_parameters()
+
+    def static_force(self, length):
+        """Static force [N] at the spring length(s) [m].
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
+        """
+        return self.chain_model.static_force(length)
+
+    def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
+        """The static force and stiffness against length (:class:`~springdyn.valve.results.StaticCurve`).
+
+        Parameters
+        ----------
+        start, stop : float, optional
+            Lengths [m] (default: the free length down to the model's limit).
+        points : int
+            Samples [-].
+        """
+        return self.chain_model.static_curve(start, stop, points)
+
+    def modes(self, length: float, count: int = 5):
+        """Natural frequencies [Hz] of the chain at a length, both ends fixed.
+
+        Parameters
+        ----------
+        length : float
+            Spring length [m].
+        count : int
+            Frequencies [-].
+        """
+        return self.chain_model.modes(length, count)
+
+    def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:
+        """Spring index, corrected stresses, surge margin (:meth:`~springdyn.valve.chains.SpringModel.design_figures`).
+
+        Parameters
+        ----------
+        lift : float, optional
+            Valve lift [m] (default: the cam's).
+        cam_rpm : float, optional
+            Cam speed [rev/min] for the surge margin.
+        """
+        if lift is None and self.cam is not None:
+            lift = self.cam.lift
+        return self.chain_model.design_figures(lift, cam_rpm)
+
+    def dynamic_stiffness(self, frequency, length: float | None = None):
+        """The linearised dynamic stiffness of the spring (:class:`~springdyn.valve.frf.FrequencyResponse`).
+
+        Parameters
+        ----------
+        frequency : array_like
+            Frequencies [Hz].
+        length : float, optional
+            Spring length [m] (default: installed).
+        """
+        from .frf import dynamic_stiffness
+
+        return dynamic_stiffness(self.spring, frequency, length)
+
+    # ------------------------------------------------------------------ under the cam
+    def natural_frequencies(self, count: int = 8):
+        """Natural frequencies of spring and valve train on the base circle and at full lift
+        (:class:`~springdyn.valve.results.NaturalFrequencies`).
+
+        Parameters
+        ----------
+        count : int
+            Frequencies per state [-].
+        """
+        from .dynamics import natural_frequencies
+        from .results import NaturalFrequencies
+
+        out = natural_frequencies(self.spring, self._need_cam("natural_frequencies"), self.valve_train, count)
+        return NaturalFrequencies(
+            out["base_circle_Hz"], out["full_lift_Hz"], out["full_lift_cam_angle_deg"], out["notes"]
+        )
+
+    def simulate(self, cam_rpm: float, revolutions: int = 3, **options):
+        """The dynamic response at one cam speed (:class:`~springdyn.valve.results.Simulation`).
+
+        Parameters
+        ----------
+        cam_rpm : float
+            Cam speed [rev/min].
+        revolutions : int
+            Revolutions; the last is reported [-].
+        **options
+            Further options of :func:`springdyn.valve.dynamics.simulate` (tolerances, outputs
+            per revolution, backend, pair).
+        """
+        from .dynamics import simulate
+
+        self._need_cam("simulate")
+        return simulate(
+            self.spring, self.cam, cam_rpm, revolutions, valve_train=self.valve_train, setup=self.setup, **options
+        )
+
+    def sweep(self, cam_rpm, **options):
+        """Every cam speed of ``cam_rpm`` (:class:`~springdyn.valve.sweeps.SpeedSweep`).
+
+        Parameters
+        ----------
+        cam_rpm : array_like
+            Cam speeds [rev/min].
+        **options
+            Further options of :func:`springdyn.valve.sweeps.sweep` (revolutions, a design
+            variable, workers, a Dask client).
+        """
+        from .sweeps import sweep
+
+        return sweep(self.spring, self._need_cam("sweep"), cam_rpm, valve_train=self.valve_train, **options)
+
+    def float_speed(self, cam_rpm, **options):
+        """The float speed of the valve train (:class:`~springdyn.valve.results.FloatSpeedResult`).
+
+        Parameters
+        ----------
+        cam_rpm : array_like
+            Cam speeds to scan [rev/min].
+        **options
+            Further options of :func:`springdyn.valve.dynamics.float_speed`.
+        """
+        from .dynamics import float_speed
+
+        if self.valve_train is None:
+            raise InputError("float_speed needs a valve train: ValveModel(spring, cam, valve_train=ValveTrain(...))")
+        return float_speed(self.spring, self._need_cam("float_speed"), self.valve_train, cam_rpm, **options)

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..core.results import Result
 
-__all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "coil_contact_compressions"]
+__all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "NaturalFrequencies"]
 
 
 @dataclass(repr=False)
@@ -254,23 +254,6 @@ class Simulation(Result):
         return plot_closure_map(self, path, ax)
 
 
-def coil_contact_compressions(spring) -> np.ndarray:
-    """Compression [m] of each element beyond which its coils touch (``inf``: never flagged).
-
-    Type C: the Fcon breakpoint of the Kh elements; distributed: the element's coil gap
-    (:meth:`~springdyn.valve.model.SpringModel.contact_compressions`).
-
-    Parameters
-    ----------
-    spring : ValveSpring
-        The spring definition (its model decides).
-    """
-    return spring.cached(
-        "coil_contact_compressions",
-        lambda: np.ascontiguousarray(spring.spring_model.contact_compressions(), dtype=float),
-    )
-
-
 def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
     """Index ranges [start, end] of runs of True in a periodic boolean array."""
     if not mask.any():
@@ -407,7 +390,7 @@ def _summarise(sim: Simulation) -> dict:
             )
             mask = _angle_mask(deg, lo, end)
             grid = sim.element_force[np.ix_(elems, np.flatnonzero(mask))] if mask.any() else np.empty((0, 0))
-            gaps = coil_contact_compressions(sim.spring)
+            gaps = sim.spring.spring_model.contact_gaps
             at_touch = max(float(law_force_at(gaps[j], sim.spring.chain.laws[j])) for j in elems)
             events.append(
                 dict(
@@ -679,9 +662,76 @@ def _durability(sim, s: dict, notes: list) -> dict:
     length = sim.spring.free_length - sim.element_compression.sum(axis=0)
     out["min_length_to_solid_m"] = float(max(length.min() - p["Lc"], 0.0))
     if sim.spring.model == "distributed":
-        gaps = coil_contact_compressions(sim.spring)
+        gaps = sim.spring.spring_model.contact_gaps
         # the coils open at set-up (dead coils and closed transitions excluded)
         active = np.isfinite(gaps) & (gaps > sim.spring.chain.setup_compressions + 1e-12)
         gap = gaps[active, None] - sim.element_compression[active]
         out["min_coil_gap_m"] = float(max(gap.min(), 0.0)) if gap.size else None
     return out
+
+
+@dataclass(repr=False)
+class NaturalFrequencies(Result):
+    """Natural frequencies of a spring (and its valve train) linearised on the base circle and
+    at full lift (:func:`springdyn.valve.dynamics.natural_frequencies`)."""
+
+    base_circle_Hz: list  # ascending [Hz]
+    full_lift_Hz: list  # ascending [Hz]; empty when the full-lift equilibrium was not found
+    full_lift_cam_angle_deg: float  # [deg]
+    notes: list
+
+    title = "valve natural frequencies"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"first {self.base_circle_Hz[0]:.1f} Hz on the base circle" if self.base_circle_Hz else "none"
+
+    def _summary(self) -> dict:
+        s = dict(
+            first_base_circle_Hz=self.base_circle_Hz[0] if self.base_circle_Hz else None,
+            first_full_lift_Hz=self.full_lift_Hz[0] if self.full_lift_Hz else None,
+            full_lift_cam_angle_deg=self.full_lift_cam_angle_deg,
+            modes_count=len(self.base_circle_Hz),
+        )
+        if self.notes:
+            s["notes"] = list(self.notes)
+        return s
+
+    def to_xarray(self):
+        import xarray as xr
+
+        n = max(len(self.base_circle_Hz), len(self.full_lift_Hz))
+
+        def padded(values):
+            return np.array(list(values) + [np.nan] * (n - len(values)), dtype=float)
+
+        return xr.Dataset(
+            {
+                "base_circle_frequency": ("mode", padded(self.base_circle_Hz), {"units": "Hz"}),
+                "full_lift_frequency": ("mode", padded(self.full_lift_Hz), {"units": "Hz"}),
+            },
+            coords={"mode": ("mode", np.arange(1, n + 1), {"units": "1"})},
+            attrs={"full_lift_cam_angle_deg": self.full_lift_cam_angle_deg},
+        )
+
+    def _csv_dataset(self):
+        # a mode without a full-lift value is left out of the table (never NaN in a file)
+        ds = self.to_xarray()
+        keep = min(len(self.base_circle_Hz), len(self.full_lift_Hz)) or len(self.base_circle_Hz)
+        ds = ds.isel(mode=slice(0, keep))
+        return ds if self.full_lift_Hz else ds.drop_vars("full_lift_frequency")
+
+    def _plot(self, ax=None):
+        from ..core.plotting import new_figure
+
+        if ax is None:
+            fig, ax = new_figure(figsize=(8, 4.5))
+        for i, (values, label) in enumerate(((self.base_circle_Hz, "base circle"), (self.full_lift_Hz, "full lift"))):
+            if values:
+                ax.plot(np.arange(1, len(values) + 1), values, "o-", color=f"C{i}", label=label)
+        ax.set_xlabel("mode")
+        ax.set_ylabel("natural frequency [Hz]")
+        ax.set_yscale("log")
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        return ax.figure

@@ -1,7 +1,7 @@
 """The valve-spring definition: the ``[spring]`` keys, their validation, and its model.
 
 The definition holds geometry, material and damping; the ``model`` key chooses the
-equations (:mod:`springdyn.valve.model`).  The methods of the model (statics, modes,
+equations (:mod:`springdyn.valve.chains`).  The methods of the model (statics, modes,
 design figures, the chain) are available on the definition too.
 """
 
@@ -21,7 +21,7 @@ __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES"]
 #: Built-in example springs (the reference springs of docs/valve.md), shipped in ``springdyn/data``.
 EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"}
 
-#: Names of the spring models (:data:`springdyn.valve.model.MODELS`).
+#: Names of the spring models (:data:`springdyn.valve.chains.MODELS`).
 MODEL_NAMES = ("type-c", "distributed")
 
 
@@ -156,17 +156,10 @@ class ValveSpring(Parameters):
         """The same spring with another model (``None``: unchanged)."""
         return self if model is None or model == self.model else self.replace(model=model)
 
-    def cached(self, key: str, compute):
-        """``compute()`` once per spring (a definition is immutable), kept under ``key``."""
-        store = self.__dict__.setdefault("_derived", {})
-        if key not in store:
-            store[key] = compute()
-        return store[key]
-
     @cached_property
     def spring_model(self):
-        """The model of this definition (:class:`~springdyn.valve.model.SpringModel`)."""
-        from .model import make_model
+        """The model of this definition (:class:`~springdyn.valve.chains.SpringModel`)."""
+        from .chains import make_model
 
         return make_model(self)
 
@@ -296,7 +289,7 @@ class ValveSpring(Parameters):
 
     @property
     def chain(self):
-        """The model's chain of masses and elements (:class:`~springdyn.valve.model.Chain`)."""
+        """The model's chain of masses and elements (:class:`~springdyn.valve.chains.Chain`)."""
         return self.spring_model.chain
 
     @property

@@ -31,7 +31,6 @@ from .dynamics import (
     SimulationSetup,
     _solver_error,
     check_run_settings,
-    coil_contact_compressions,
     output_angles,
     prepare,
     rpm_to_omega,
@@ -82,7 +81,7 @@ def run_chunk(
     lay = extra_layout(setup.n_masses)
     ne = setup.n_masses + 1
     f = ex[:, :, lay["force"]]
-    contact = ex[:, last, lay["compression"]] >= coil_contact_compressions(setup.spring)
+    contact = ex[:, last, lay["compression"]] >= setup.spring.spring_model.contact_gaps
     ev = mon["events"]
     out = dict(
         retainer=f[:, last, ne - 1],

@@ -218,7 +218,7 @@ def cmd_params(args) -> int:
     if args.json:
         print_json(params)
         return 0
-    from springdyn.valve.model import PARAMETER_UNITS
+    from springdyn.valve.chains import PARAMETER_UNITS
 
     rows = []
     for key, value in params.items():

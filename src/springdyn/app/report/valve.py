@@ -13,8 +13,8 @@ from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity
 from springdyn.valve.cam import Cam
+from springdyn.valve.chains import PARAMETER_UNITS
 from springdyn.valve.dynamics import float_speed, natural_frequencies, simulate
-from springdyn.valve.model import PARAMETER_UNITS
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.sweeps import sweep
 from springdyn.valve.valvetrain import ValveTrain

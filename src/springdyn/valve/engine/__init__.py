@@ -36,6 +36,7 @@ _EXPORTS = {
     "atol_vector": "reference",
     "hermite5": "equations",
     "chain_rhs": "equations",
+    "train_response": "equations",
     "rhs_call": "equations",
     "NO_EXTRA": "equations",
     "EngineModel": "equations",

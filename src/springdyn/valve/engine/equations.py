@@ -68,6 +68,7 @@ __all__ = [
     "chain_forces",
     "spring_rhs",
     "train_rhs",
+    "train_response",
     "chain_rhs",
     "spring_rhs_hot",
     "train_rhs_hot",
@@ -395,6 +396,43 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     out[nm] = zd
     out[nfree + nm] = (f_valve + f_seat - f_spring) / vt[VT_MASS]
     _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
+
+
+def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
+    """Contact forces of the valve train from its states (vectorised NumPy).
+
+    The NumPy twin of the contact laws of :func:`train_rhs` (above), vectorised over
+    output samples for the reference backend's outputs; the tests compare the two.
+
+    Parameters
+    ----------
+    vt : ndarray (16,)
+        Engine parameters of the train [kg, N/m, N s/m, m, -] (layout ``VT_*``, :meth:`ValveTrain.kernel_parameters`).
+    lift, dlift : ndarray (..., n_t)
+        Lobe lift [m] and its rate [m/s].
+    u, v : ndarray (..., dof, n_t)
+        Positions [m] and velocities [m/s] of valve, lever tip, lifter.
+
+    Returns
+    -------
+    dict
+        ``cam_contact_force``, ``valve_seat_force``, ``valve_lift`` [N, N, m].
+    """
+
+    def contact(k, c, pen, rate):
+        return np.where(pen > 0, np.maximum(k * pen + c * rate, 0.0), 0.0)
+
+    dof = int(vt[VT_DOF])
+    z, zd = u[..., 0, :], v[..., 0, :]
+    seat = np.where(z < 0, np.maximum(-vt[VT_K_SEAT] * z - vt[VT_C_SEAT] * zd, 0.0), 0.0)
+    if dof == 1:
+        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - z - vt[VT_LASH], dlift - zd)
+    elif dof == 2:
+        r = vt[VT_RATIO]
+        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 1, :] / r, dlift - v[..., 1, :] / r)
+    else:
+        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 2, :], dlift - v[..., 2, :])
+    return dict(cam_contact_force=cam, valve_seat_force=seat, valve_lift=z)
 
 
 def chain_rhs(t, s, m, omega, vt, out, extra):

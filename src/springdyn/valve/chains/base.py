@@ -2,7 +2,7 @@
 
 :class:`Chain` holds masses, element laws and damping; :class:`SpringModel` derives
 statics, modes and design figures from it.  The models themselves live in
-:mod:`springdyn.valve.model` (Type C) and :mod:`springdyn.valve.distributed`.
+:mod:`.type_c` and :mod:`.distributed`.
 """
 
 from __future__ import annotations
@@ -12,12 +12,12 @@ from functools import cached_property
 
 import numpy as np
 
-from ..core.errors import InputError
-from ..core.units import format_mm
-from . import design
-from .elements import damping_coefficient, law_stiffness
-from .modes import chain_frequencies
-from .statics import element_compressions, series_state
+from ...core.errors import InputError
+from ...core.units import format_mm
+from .. import design
+from ..elements import damping_coefficient, law_stiffness
+from ..modes import chain_frequencies
+from ..statics import element_compressions, series_force, series_state
 
 __all__ = ["Chain", "SpringModel"]
 
@@ -75,6 +75,10 @@ class SpringModel:
 
     def __init__(self, spring):
         self.spring = spring
+        #: The static force along the output grid of recent cams, ``(id(cam), points) ->
+        #: (cam, force)``, kept by :meth:`springdyn.valve.dynamics.SimulationSetup.static_force_along_cam`
+        #: (an explicit, bounded cache: the force depends on the spring, the cam and the grid only).
+        self.static_force_cache: dict = {}
 
     def __repr__(self) -> str:
         p = self.internal_parameters()
@@ -96,6 +100,28 @@ class SpringModel:
     def contact_compressions(self) -> np.ndarray:  # pragma: no cover - abstract
         """Compression [m] of each element beyond which its coils touch (``inf``: never flagged)."""
         raise NotImplementedError
+
+    @cached_property
+    def contact_gaps(self) -> np.ndarray:
+        """:meth:`contact_compressions` as the engine reads it: a contiguous array [m] (``inf``: never)."""
+        return np.ascontiguousarray(self.contact_compressions(), dtype=float)
+
+    @cached_property
+    def fastest_mode(self) -> float:
+        """Highest natural frequency of the chain at installed length [Hz]."""
+        return float(self.modes(self.spring.installed_length, len(self.chain.masses))[-1])
+
+    @cached_property
+    def lift_at_coil_contact(self) -> float:
+        """Lift [m] from the installed length at which the static force reaches Fcon."""
+        return self.spring.installed_length - self.length_at_force(self._parameters["Fcon"])
+
+    @cached_property
+    def force_table(self) -> tuple:
+        """Static force [N] at 129 total compressions [m] from zero to the model's limit (the
+        starts of the engine's compiled Newton solver: two or three iterations instead of ten)."""
+        x = np.linspace(0.0, self.spring.free_length - self.min_length, 129)
+        return x, np.asarray(series_force(x, self.chain.laws), dtype=float)
 
     # ------------------------------------------------------------------ statics
     @cached_property
@@ -161,7 +187,7 @@ class SpringModel:
         Defaults: from the free length to the length where the force reaches three times
         the coil-contact force Fcon (well past coil contact).
         """
-        from .results import StaticCurve
+        from ..results import StaticCurve
 
         if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 2:
             raise InputError(f"points = {points!r} must be a whole number of at least 2")
@@ -255,7 +281,7 @@ class SpringModel:
                 st["surge_margin"] = design.surge_margin(f_surge, cam_rpm)
             out[name] = st
         if "open" in out:  # fatigue of the static cycle installed -> open (issue 13)
-            from .durability import fatigue_assessment
+            from ..durability import fatigue_assessment
 
             fat = fatigue_assessment(self.spring, out["installed"]["force_N"], out["open"]["force_N"])
             out["fatigue"] = dict(

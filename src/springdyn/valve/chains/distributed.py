@@ -6,7 +6,7 @@ mass of its wire at the local mean diameter and pitch (:mod:`springdyn.valve.geo
 its mass is lumped half to each end node.  The closed dead coils move with the end nodes
 (their mass is added there) and touch seat and retainer through the end contacts, as in
 Type C: ``seat -K- node 0 -k_1- node 1 ... node n -K- retainer``.  The same chain, laws and
-engine as Type C (:class:`~springdyn.valve.model.Chain`), so statics, modes, frequency
+engine as Type C (:class:`~springdyn.valve.chains.Chain`), so statics, modes, frequency
 response and dynamics are shared.
 
 **Element law** (piecewise quadratic, C1, :func:`coil_law`): the wire's rate
@@ -39,11 +39,10 @@ from functools import cached_property
 
 import numpy as np
 
-from ..core.errors import InputError
-from ..core.units import format_quantity
-from . import formulas
-from .chain import Chain, SpringModel
-from .geometry import (
+from ...core.errors import InputError
+from ...core.units import format_quantity
+from .. import formulas
+from ..geometry import (
     CoilGeometry,
     check_profile_span,
     default_pitch_knots,
@@ -51,8 +50,9 @@ from .geometry import (
     turn_compliance,
     wire_length_per_turn,
 )
-from .modes import chain_frequencies
-from .statics import element_compressions, series_force
+from ..modes import chain_frequencies
+from ..statics import element_compressions, series_force
+from .base import Chain, SpringModel
 
 __all__ = ["DistributedModel", "coil_law", "CONTACT_ONSET", "DEFAULT_ELEMENTS", "modal_damping"]
 
@@ -103,7 +103,7 @@ def modal_damping(masses, stiffness, damping) -> tuple[np.ndarray, np.ndarray]:
         As for ``chain_eigenvalues``: lumped masses [kg] (n), element stiffnesses [N/m]
         and damping coefficients [N s/m] (n + 1 each).
     """
-    from .modes import chain_eigenvalues
+    from ..modes import chain_eigenvalues
 
     lam = chain_eigenvalues(masses, stiffness, damping)
     lam = lam[lam.imag > 0]
