@@ -68,9 +68,11 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     import numpy as np
 
+    from springdyn.core.units import rpm_to_omega
     from springdyn.valve import ValveSpring, engine
     from springdyn.valve.cam import Cam
-    from springdyn.valve.dynamics import MAX_STEP_FRACTION, prepare, rpm_to_omega, simulate
+    from springdyn.valve.dynamics import simulate
+    from springdyn.valve.setup import MAX_STEP_FRACTION, prepare
 
     spring = ValveSpring.example("one-step")
     cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))

@@ -1,7 +1,7 @@
 """The velocity tolerance of the valve-spring engine (issue 12).  Run:  python benchmarks/valve_tolerances.py
 
 The displacements get the absolute tolerance ``atol`` [m]; the spring's velocities get
-``atol 2 pi f1 / D`` [m/s] (``D`` = :data:`springdyn.valve.dynamics.VELOCITY_TOLERANCE_DIVISOR`).
+``atol 2 pi f1 / D`` [m/s] (``D`` = :data:`springdyn.valve.setup.VELOCITY_TOLERANCE_DIVISOR`).
 For each ``D`` in 10, 30, 100 and "one tolerance for every component" (``D = 2 pi f1`` in
 1/s units, the earliest versions), over the runs of benchmarks/valve_stepping.py (two
 springs, four cams, 14 speeds), it prints the total steps and the worst error of the four

@@ -35,7 +35,7 @@ RHS_PROBE = """
 import math
 import numpy as np
 from springdyn.valve import Cam, ValveSpring
-from springdyn.valve.dynamics import prepare
+from springdyn.valve.setup import prepare
 from springdyn.valve.engine.equations import chain_rhs, model_of, rhs_call, train_of
 from springdyn.valve.engine.layout import extra_layout
 setup = prepare(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)))

@@ -8,11 +8,12 @@ import pytest
 
 from springdyn.app.cli.main import main
 from springdyn.core.errors import InputError
+from springdyn.core.units import rpm_to_omega
 from springdyn.valve import Cam, ValveSpring, ValveTrain, engine, simulate
 from springdyn.valve.chains.distributed import DEFAULT_ELEMENTS, coil_law, modal_damping
-from springdyn.valve.dynamics import prepare, rpm_to_omega
 from springdyn.valve.elements import law_energy, law_force, law_stiffness
 from springdyn.valve.frf import dynamic_stiffness
+from springdyn.valve.setup import prepare
 from springdyn.valve.sweeps import sweep
 
 from ..result_checks import check_result_interface
@@ -249,7 +250,7 @@ def test_energy_balance_undamped(one_step):
     t = np.linspace(0, 2 * math.pi / omega, 20001)
     states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-9, atol=1e-12, h_max=2e-5)
     assert info["status"] == 0
-    lift, dlift = engine.hermite_eval(omega * t, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
+    lift, dlift = setup.table.at(omega * t)
     ch = s.chain
     nm = ch.masses.size
     u = np.vstack([np.zeros_like(t), states[:, :nm].T, lift])

@@ -6,11 +6,15 @@ import numpy as np
 import pytest
 
 from springdyn.core.errors import InputError, SolverError
+from springdyn.core.units import rpm_to_omega
 from springdyn.valve import ValveSpring, engine
 from springdyn.valve import dynamics as simmod
+from springdyn.valve import setup as setupmod
 from springdyn.valve.cam import Cam
-from springdyn.valve.dynamics import float_speed, prepare, rpm_to_omega, simulate
+from springdyn.valve.dynamics import simulate
 from springdyn.valve.elements import law_energy, law_force
+from springdyn.valve.float_search import float_speed
+from springdyn.valve.setup import prepare
 from springdyn.valve.valvetrain import ValveTrain
 
 CAM = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
@@ -54,9 +58,9 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
         )
     coarse = simulate(spring, cams[0], 2000.0, revolutions=1, points_per_revolution=360)
     assert coarse.static_force.shape == (360,)
-    for k in range(3 * simmod.SimulationSetup.STATIC_CACHE_SIZE):
+    for k in range(3 * setupmod.SimulationSetup.STATIC_CACHE_SIZE):
         prepare(spring, Cam(law="3-4-5", lift=5e-3 + 1e-5 * k, duration=math.radians(120))).static_force_along_cam(90)
-    assert len(spring.spring_model.static_force_cache) == simmod.SimulationSetup.STATIC_CACHE_SIZE
+    assert len(spring.spring_model.static_force_cache) == setupmod.SimulationSetup.STATIC_CACHE_SIZE
 
 
 @pytest.mark.parametrize("name", ["one-step", "two-step"])
@@ -65,7 +69,7 @@ def test_refinement_study(name):
     s = ValveSpring.example(name)
     fset = s.internal_parameters()["Fset"]
     a = simulate(s, CAM, 3000, 2).summary
-    b = simulate(s, CAM, 3000, 2, rtol=simmod.DEFAULT_RTOL / 2, atol=simmod.DEFAULT_ATOL / 2).summary
+    b = simulate(s, CAM, 3000, 2, rtol=setupmod.DEFAULT_RTOL / 2, atol=setupmod.DEFAULT_ATOL / 2).summary
     for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
         assert abs(a[key] - b[key]) < 5e-4 * fset, key
 
@@ -115,7 +119,7 @@ def test_energy_balance_undamped_chain(one_step):
     t = np.linspace(0, 2 * math.pi / omega, 40001)
     states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-10, atol=1e-13, h_max=1e-5)
     assert info["status"] == 0
-    lift, dlift = engine.hermite_eval(omega * t, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
+    lift, dlift = setup.table.at(omega * t)
     dlift *= omega
     ch = s.chain
     u = np.vstack([np.zeros_like(t), states[:, :5].T, lift])
@@ -257,7 +261,7 @@ def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
             {},
         )
 
-    monkeypatch.setattr(simmod, "run_speeds", broken)
+    monkeypatch.setattr(setupmod, "run_speeds", broken)
     with pytest.raises(
         SolverError,
         match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "

@@ -14,7 +14,7 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, engine, simulate
-from springdyn.valve.dynamics import CAM_SAMPLES, prepare
+from springdyn.valve.setup import CAM_SAMPLES, prepare
 
 RAMPS = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4, ramp_duration=math.radians(20))
 CAM = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
@@ -37,8 +37,10 @@ def test_breakpoints_are_the_ramps_velocity_steps():
 
 
 def test_stop_angles_are_the_table_nodes_around_each_breakpoint():
-    dth = 2 * math.pi / CAM_SAMPLES
-    a = engine.stop_angles(RAMPS.breakpoints, dth)
+    table = engine.CamTable.of(RAMPS, CAM_SAMPLES)
+    dth = table.dth
+    assert dth == 2 * math.pi / CAM_SAMPLES
+    a = table.stop_angles(RAMPS.breakpoints)
     k = np.round(a / dth)
     np.testing.assert_allclose(a, k * dth)
     for b in RAMPS.breakpoints:

@@ -11,7 +11,7 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, float_speed, simulate
-from springdyn.valve.dynamics import prepare
+from springdyn.valve.setup import prepare
 from springdyn.valve.valvetrain import ValveTrain, series_stiffness
 
 #: The repository (the example files), wherever pytest runs from.
@@ -166,7 +166,7 @@ def test_examples_load_and_state_their_layouts():
 
 def test_natural_frequencies_of_the_spring_alone_equal_its_modes():
     # the linearisation of the simulation's own laws against the model's modal analysis
-    from springdyn.valve.dynamics import natural_frequencies
+    from springdyn.valve.train_modes import natural_frequencies
 
     res = natural_frequencies(SPRING, LOBE, None, count=5)
     assert res["base_circle_Hz"] == pytest.approx(list(SPRING.modes(SPRING.installed_length)), rel=1e-6)
@@ -174,7 +174,7 @@ def test_natural_frequencies_of_the_spring_alone_equal_its_modes():
 
 def test_valve_on_its_seat_has_the_seat_frequency():
     # a valve far heavier than the spring on a soft seat: f -> sqrt((k_seat + K) / m) / 2 pi
-    from springdyn.valve.dynamics import natural_frequencies
+    from springdyn.valve.train_modes import natural_frequencies
 
     vt = ValveTrain(valve_mass=5.0, seat_stiffness=1e6, lash=1e-3)  # lash beyond the 0.25 mm seat deflection
     res = natural_frequencies(SPRING, LOBE, vt, count=8)
@@ -184,7 +184,7 @@ def test_valve_on_its_seat_has_the_seat_frequency():
 
 
 def test_resonance_speeds_by_hand():
-    from springdyn.valve.dynamics import resonance_speeds
+    from springdyn.valve.train_modes import resonance_speeds
 
     rows = resonance_speeds([500.0], 2900, 3100)
     assert rows == [dict(mode=1, frequency_Hz=500.0, order=10, cam_rpm=3000.0)]
@@ -195,8 +195,8 @@ def _train_energy_error(vt, cam, rpm):
     mass and link (chain elements, cam contact, pushrod, rocker tip, seat) over a revolution.
     Returns the largest mismatch over the revolution relative to the peak elastic energy,
     and whether a link opened while the valve was open (lift-off)."""
+    from springdyn.core.units import rpm_to_omega
     from springdyn.valve import engine
-    from springdyn.valve.dynamics import rpm_to_omega
     from springdyn.valve.elements import law_energy
 
     s = SPRING.replace(damping_ratio=0.0)
@@ -205,7 +205,7 @@ def _train_energy_error(vt, cam, rpm):
     t = np.linspace(0, 2 * math.pi / omega, 40001)
     states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-10, atol=1e-13, h_max=2e-6)
     assert info["status"] == 0
-    lift, dlift = engine.hermite_eval(omega * t, setup.cam_h, setup.cam_dh, setup.cam_ddh, setup.dth)
+    lift, dlift = setup.table.at(omega * t)
     dlift *= omega
     p = setup.vt
     ch = s.chain

@@ -58,7 +58,7 @@ _EXPORTS = {
     "FloatSpeedResult": "results",
     "NaturalFrequencies": "results",
     "simulate": "dynamics",
-    "float_speed": "dynamics",
+    "float_speed": "float_search",
     "sweep": "sweeps",
     "SpeedSweep": "sweeps",
 }

@@ -73,8 +73,8 @@ class ValveModel:
     @cached_property
     def setup(self):
         """The engine's speed-independent set-up: cam table, initial state
-        (:func:`springdyn.valve.dynamics.prepare`)."""
-        from .dynamics import prepare
+        (:func:`springdyn.valve.setup.prepare`)."""
+        from .setup import prepare
 
         return prepare(self.spring, self._need_cam("the set-up"), self.valve_train)
 
@@ -160,8 +160,8 @@ class ValveModel:
         count : int
             Frequencies per state [-].
         """
-        from .dynamics import natural_frequencies
         from .results import NaturalFrequencies
+        from .train_modes import natural_frequencies
 
         out = natural_frequencies(self.spring, self._need_cam("natural_frequencies"), self.valve_train, count)
         return NaturalFrequencies(
@@ -211,9 +211,9 @@ class ValveModel:
         cam_rpm : array_like
             Cam speeds to scan [rev/min].
         **options
-            Further options of :func:`springdyn.valve.dynamics.float_speed`.
+            Further options of :func:`springdyn.valve.float_search.float_speed`.
         """
-        from .dynamics import float_speed
+        from .float_search import float_speed
 
         if self.valve_train is None:
             raise InputError("float_speed needs a valve train: ValveModel(spring, cam, valve_train=ValveTrain(...))")

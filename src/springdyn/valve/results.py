@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.results import Result
+from .elements import law_force
 
 __all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "NaturalFrequencies"]
 
@@ -391,7 +392,9 @@ def _summarise(sim: Simulation) -> dict:
             mask = _angle_mask(deg, lo, end)
             grid = sim.element_force[np.ix_(elems, np.flatnonzero(mask))] if mask.any() else np.empty((0, 0))
             gaps = sim.spring.spring_model.contact_gaps
-            at_touch = max(float(law_force_at(gaps[j], sim.spring.chain.laws[j])) for j in elems)
+            at_touch = max(
+                float(law_force(gaps[j], sim.spring.chain.laws[j])) if np.isfinite(gaps[j]) else 0.0 for j in elems
+            )
             events.append(
                 dict(
                     start_deg=float(lo),
@@ -529,21 +532,6 @@ def _summarise(sim: Simulation) -> dict:
     return s
 
 
-def law_force_at(x: float, law: np.ndarray) -> float:
-    """Element force [N] at compression ``x`` [m] (``nan``-free: 0 for an infinite ``x``).
-
-    Parameters
-    ----------
-    x : float
-        Compression [m].
-    law : ndarray, shape (3, 4)
-        Element law.
-    """
-    from .elements import law_force
-
-    return float(law_force(x, law)) if np.isfinite(x) else 0.0
-
-
 @dataclass(repr=False)
 class FloatSpeedResult(Result):
     """The float speed of a valve train: the lowest cam speed with follower lift-off.
@@ -673,7 +661,7 @@ def _durability(sim, s: dict, notes: list) -> dict:
 @dataclass(repr=False)
 class NaturalFrequencies(Result):
     """Natural frequencies of a spring (and its valve train) linearised on the base circle and
-    at full lift (:func:`springdyn.valve.dynamics.natural_frequencies`)."""
+    at full lift (:func:`springdyn.valve.train_modes.natural_frequencies`)."""
 
     base_circle_Hz: list  # ascending [Hz]
     full_lift_Hz: list  # ascending [Hz]; empty when the full-lift equilibrium was not found

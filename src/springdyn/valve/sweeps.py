@@ -24,18 +24,11 @@ from ..core.io import atomic_path
 from ..core.params import describe_value
 from ..core.progress import progress
 from ..core.results import Result, units_from_name
+from ..core.units import rpm_to_omega
 from .cam import Cam
-from .dynamics import (
-    DEFAULT_ATOL,
-    DEFAULT_RTOL,
-    SimulationSetup,
-    _solver_error,
-    check_run_settings,
-    output_angles,
-    prepare,
-    rpm_to_omega,
-)
+from .dynamics import _solver_error
 from .engine import EXT, extra_layout
+from .setup import DEFAULT_ATOL, DEFAULT_RTOL, SimulationSetup, check_run_settings, output_angles, prepare
 from .spring import ValveSpring
 from .valvetrain import ValveTrain
 
@@ -428,11 +421,11 @@ class SpeedSweep(Result):
         """Cam speeds in the swept range where a cam order meets a natural frequency.
 
         ``cam rpm = 60 f / N`` (N up to 20) for the modes of the spring (and valve train)
-        linearised at full lift (:func:`springdyn.valve.dynamics.natural_frequencies`; the
+        linearised at full lift (:func:`springdyn.valve.train_modes.natural_frequencies`; the
         base-circle modes where full lift has none).  Rows: ``mode``, ``frequency_Hz``,
         ``order``, ``cam_rpm``.
         """
-        from .dynamics import natural_frequencies, resonance_speeds
+        from .train_modes import natural_frequencies, resonance_speeds
 
         if "_resonances" not in self.__dict__:  # a linearisation and a root search: once per sweep
             nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)

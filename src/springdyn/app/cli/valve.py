@@ -17,7 +17,7 @@ from springdyn.core.errors import InputError
 from springdyn.core.units import format_quantity
 from springdyn.valve.spring import MODEL_NAMES, ValveSpring
 
-#: Default integration tolerances (the values of :mod:`springdyn.valve.dynamics`, kept here
+#: Default integration tolerances (the values of :mod:`springdyn.valve.setup`, kept here
 #: so that building the parser does not load the compiled engine; a test checks they agree).
 DEFAULT_RTOL = 1e-6
 DEFAULT_ATOL = 1e-9
@@ -266,7 +266,7 @@ def cmd_modes(args) -> int:
 
 
 def cmd_train_modes(args) -> int:
-    from springdyn.valve.dynamics import natural_frequencies, resonance_speeds
+    from springdyn.valve.train_modes import natural_frequencies, resonance_speeds
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
@@ -508,7 +508,7 @@ def cmd_simulate(args) -> int:
 
 
 def cmd_float(args) -> int:
-    from springdyn.valve.dynamics import float_speed
+    from springdyn.valve.float_search import float_speed
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)

@@ -14,9 +14,11 @@ from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity
 from springdyn.valve.cam import Cam
 from springdyn.valve.chains import PARAMETER_UNITS
-from springdyn.valve.dynamics import float_speed, natural_frequencies, simulate
+from springdyn.valve.dynamics import simulate
+from springdyn.valve.float_search import float_speed
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.sweeps import sweep
+from springdyn.valve.train_modes import natural_frequencies
 from springdyn.valve.valvetrain import ValveTrain
 
 __all__ = ["load", "section", "ValveDefinition", "REPORT_SPEEDS", "DEFAULT_CAM"]

@@ -76,7 +76,7 @@ class SpringModel:
     def __init__(self, spring):
         self.spring = spring
         #: The static force along the output grid of recent cams, ``(id(cam), points) ->
-        #: (cam, force)``, kept by :meth:`springdyn.valve.dynamics.SimulationSetup.static_force_along_cam`
+        #: (cam, force)``, kept by :meth:`springdyn.valve.setup.SimulationSetup.static_force_along_cam`
         #: (an explicit, bounded cache: the force depends on the spring, the cam and the grid only).
         self.static_force_cache: dict = {}
 

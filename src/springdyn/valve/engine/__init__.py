@@ -5,7 +5,9 @@ Module map (one reason to change each):
 - :mod:`.layout`: the named indices of every array the engine reads or writes.
 - :mod:`.equations`: the equations of motion, the cam the engine sees, the contact laws of
   the ends and of the valve train's links (plain Python, with their compiled twins).
-- :mod:`.stepping`: one Runge-Kutta step on the chain, typed on the pair's tableau.
+- :mod:`.cam_table`: :class:`CamTable`, the cam's sampled table, its interpolant on arrays
+  and the angles a step lands on.
+- :mod:`.stepping`: one Runge-Kutta step of each pair on the chain.
 - :mod:`.loop`: the integration loops (adaptive steps, breakpoints, outputs, many speeds).
 - :mod:`.monitor`: true extremes and events on the dense output.
 - :mod:`.reference`: the NumPy / SciPy twins the tests and benchmarks compare with.
@@ -27,12 +29,11 @@ from ..._lazy import lazy_package
 _EXPORTS = {
     "integrate": "api",
     "run_speeds": "api",
-    "stop_angles": "api",
     "model_of": "equations",
     "train_of": "equations",
     "COMPILE_SECONDS": "api",
     "integrate_scipy": "reference",
-    "hermite_eval": "reference",
+    "CamTable": "cam_table",
     "atol_vector": "reference",
     "hermite5": "equations",
     "chain_rhs": "equations",

@@ -3,8 +3,6 @@ calls into the compiled loops (:mod:`.loop`)."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ...numerics import erk as _ig
@@ -15,7 +13,7 @@ from .loop import Tolerances, integrate_kernel, run_speeds_loop, workspace
 from .monitor import new_monitor
 from .reference import atol_vector
 
-__all__ = ["integrate", "run_speeds", "stop_angles", "COMPILE_SECONDS"]
+__all__ = ["integrate", "run_speeds", "COMPILE_SECONDS"]
 
 #: About how long the engine takes to compile on a 2-core machine [s], per model and pair:
 #: the figure the compile notice quotes.  Measured with an empty cache by
@@ -53,34 +51,6 @@ def _run(loop, vt, method, *args):
         result = call(loop, *args)
     _RUN.add(key)
     return result
-
-
-def stop_angles(breakpoints, dth: float) -> np.ndarray:
-    """The cam-table nodes around each breakpoint, on which the engine lands its steps.
-
-    The table (step ``dth``) smooths a jump of the lift law over the interval that holds
-    it; landing on the nodes from one before to two after each breakpoint lets the
-    integrator take that interval as a step of its own.
-
-    Parameters
-    ----------
-    breakpoints : array_like
-        Cam angles [rad] where the lift law is not smooth (:attr:`springdyn.valve.cam.Cam.breakpoints`).
-    dth : float
-        Table step [rad].
-
-    Returns
-    -------
-    ndarray
-        Ascending cam angles [rad] in [0, 2 pi).
-    """
-    b = np.asarray(breakpoints, dtype=float)
-    if b.size == 0:
-        return np.empty(0)
-    n = int(round(2.0 * math.pi / dth))
-    k = np.floor(b / dth).astype(np.int64)
-    nodes = np.mod((k[:, None] + np.arange(-1, 3)[None, :]).ravel(), n)
-    return np.unique(nodes) * dth
 
 
 def _angles(a) -> np.ndarray:
@@ -142,7 +112,7 @@ def run_speeds(
         The embedded Runge-Kutta pair (:data:`springdyn.numerics.erk.TABLEAUS`).
     stop_angles : array_like, optional
         Cam angles [rad] in [0, 2 pi), ascending, on which a step lands in every revolution
-        (:func:`stop_angles` of the cam's breakpoints).
+        (:meth:`.cam_table.CamTable.stop_angles` of the cam's breakpoints).
 
     Returns
     -------

@@ -136,7 +136,7 @@ def model_of(args) -> EngineModel:
         ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``: masses [kg],
         element laws [m, N], set-up compressions [m], damping [N s/m], cam table [m, m/rad,
         m/rad^2], table step [rad], speed [rad/s] and valve-train parameters
-        (:meth:`springdyn.valve.dynamics.SimulationSetup.args`).
+        (:meth:`springdyn.valve.setup.SimulationSetup.args`).
     """
     masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth = args[:8]
     return EngineModel(masses, laws, xset, _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth))

@@ -1,6 +1,5 @@
 """The NumPy / SciPy twins of the compiled engine, the references its tests compare with.
 
-- :func:`hermite_eval`: the cam table interpolant of :func:`.equations.cam_at`, vectorised.
 - :func:`integrate_scipy`: ``scipy.integrate.solve_ivp`` with the plain-Python
   :func:`.equations.chain_rhs` (the same equations, run by the interpreter).
 """
@@ -9,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .equations import NO_EXTRA, chain_rhs, hermite5, model_of, rhs_call, train_of
+from .equations import NO_EXTRA, chain_rhs, model_of, rhs_call, train_of
 
-__all__ = ["hermite_eval", "integrate_scipy", "atol_vector"]
+__all__ = ["integrate_scipy", "atol_vector"]
 
 
 def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -> np.ndarray:
@@ -31,37 +30,6 @@ def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -
     out = np.full(n_state, float(atol))
     out[half:] = atol if atol_velocity is None else np.asarray(atol_velocity, dtype=float)
     return out
-
-
-def hermite_eval(theta, cam_h, cam_dh, cam_ddh, dth):
-    """Vectorised quintic Hermite evaluation of the cam table (the engine's :func:`.equations.cam_at`).
-
-    Returns lift [m], ``dh/dtheta`` [m/rad] at cam angles ``theta`` [rad].
-
-    Parameters
-    ----------
-    theta : float or array_like
-        Cam angles [rad].
-    cam_h, cam_dh, cam_ddh : ndarray
-        Lift [m], ``dh/dtheta`` [m/rad] and ``d2h/dtheta2`` [m/rad^2] at ``k * dth``.
-    dth : float
-        Table step [rad].
-    """
-    theta = np.asarray(theta, dtype=float)
-    n = cam_h.size
-    th = np.mod(theta, n * dth)
-    i0 = np.minimum((th / dth).astype(np.intp), n - 1)
-    i1 = (i0 + 1) % n
-    lift, slope = hermite5(
-        th / dth - i0,
-        cam_h[i0],
-        cam_dh[i0] * dth,
-        cam_ddh[i0] * dth**2,
-        cam_h[i1],
-        cam_dh[i1] * dth,
-        cam_ddh[i1] * dth**2,
-    )
-    return lift, slope / dth
 
 
 def integrate_scipy(

@@ -1,0 +1,327 @@
+"""The engine's set-up for one spring, cam and valve train: everything that does not depend
+on the speed (document, "Initial condition & position").
+
+:func:`prepare` samples the cam (:data:`CAM_SAMPLES` per revolution), checks the lift
+against coil contact and finds the initial state (static equilibrium on the base circle);
+:class:`SimulationSetup` holds the result and runs speeds with the compiled engine.  The
+run settings every analysis shares (tolerances, the largest step, the Runge-Kutta pair per
+model) are defined here.
+"""
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.errors import InputError
+from .cam import Cam
+from .engine import (
+    run_speeds,
+    series_force_compiled,
+)
+from .engine.cam_table import CamTable
+from .spring import ValveSpring
+from .statics import series_force
+from .valvetrain import KERNEL_SIZE, ValveTrain
+
+__all__ = [
+    "SimulationSetup",
+    "prepare",
+    "check_run_settings",
+    "output_angles",
+    "DEFAULT_RTOL",
+    "DEFAULT_ATOL",
+    "CAM_SAMPLES",
+    "MAX_STEP_FRACTION",
+    "VELOCITY_TOLERANCE_DIVISOR",
+    "PAIR",
+]
+
+#: Default integration tolerances (relative; absolute on displacements [m] and velocities
+#: [m/s]).  Chosen by the refinement study of the tests: halving them changes peak forces
+#: by far less than 0.05 %.
+DEFAULT_RTOL = 1e-6
+DEFAULT_ATOL = 1e-9
+#: Cam table resolution for the engine (samples per revolution, 0.05 deg).
+CAM_SAMPLES = 7200
+#: Maximum step [fraction of a revolution] so that no step can jump over a short event.
+MAX_STEP_FRACTION = 1.0 / 720.0
+#: The spring's velocities get the absolute tolerance ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR``
+#: [m/s] (:meth:`SimulationSetup.atol_velocity`; the study in docs/valve.md).
+VELOCITY_TOLERANCE_DIVISOR = 30.0
+#: The embedded Runge-Kutta pair of the compiled engine per spring model, chosen by
+#: measurement (docs/valve.md, "Stepping"): Type C's step is set by accuracy, where the
+#: 5th-order Dormand-Prince pair takes the fewest right-hand sides; the distributed chain's
+#: by the stability of its stiffness-proportionally damped top modes (real eigenvalues to
+#: -3.3e5 1/s for 50 elements), where the Bogacki-Shampine 3(2) pair takes 1.3x more steps
+#: for half the right-hand sides each, and still holds the end forces within 0.05 % of Fset.
+PAIR = {"type-c": "dopri5", "distributed": "bs3"}
+
+
+def output_angles(points: int) -> np.ndarray:
+    """The cam angles [rad] of the output samples of a revolution, ``2 pi j / points``.
+
+    Parameters
+    ----------
+    points : int
+        Samples per revolution [-].
+    """
+    return np.arange(int(points)) * (2.0 * math.pi / int(points))
+
+
+@dataclass
+class SimulationSetup:
+    """Everything the engine needs for one spring, cam and valve train (speed-independent)."""
+
+    spring: ValveSpring
+    cam: Cam
+    valve_train: ValveTrain | None
+    table: CamTable
+    vt: np.ndarray
+    y0: np.ndarray
+
+    def static_force(self, lift) -> np.ndarray:
+        """Static (massless) spring force [N] at cam or valve lift(s) [m]."""
+        sp = self.spring
+        lift = np.asarray(lift, dtype=float)
+        dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
+        force = np.empty_like(dl)
+        series_force_compiled(dl, sp.chain.laws, force, *sp.spring_model.force_table)
+        return force.reshape(lift.shape)
+
+    def static_force_along_cam(self, points: int) -> np.ndarray:
+        """Static (massless) force [N] of the spring alone at the cam angles ``2 pi j / points``,
+        ``j = 0 .. points - 1``: at the lift of the engine's cam table there.
+
+        It depends on the spring, the cam and ``points`` only, not on the speed, so the
+        spring keeps it for its last :attr:`STATIC_CACHE_SIZE` cams (a Newton solve per
+        angle costs about 5 % of a Type C simulation).  Read-only: results share it.
+        """
+        store = self.spring.spring_model.static_force_cache
+        key = (id(self.cam), int(points))  # the entry holds the cam: its id is not reused meanwhile
+        hit = store.get(key)
+        if hit is None:
+            lift = self.table.at(output_angles(points))[0]
+            force = self.static_force(lift)
+            force.flags.writeable = False
+            hit = store[key] = (self.cam, force)
+            while len(store) > self.STATIC_CACHE_SIZE:
+                store.pop(next(iter(store)), None)  # the oldest
+        return hit[1]
+
+    #: Cams per spring whose static force along the output grid is kept.
+    STATIC_CACHE_SIZE = 8
+
+    def args(self, omega: float) -> tuple:
+        ch = self.spring.chain
+        return (
+            ch.masses,
+            ch.laws,
+            ch.setup_compressions,
+            ch.c0_array,
+            self.table.h,
+            self.table.dh,
+            self.table.ddh,
+            self.table.dth,
+            omega,
+            self.vt,
+        )
+
+    @property
+    def n_masses(self) -> int:
+        """Masses of the spring's chain."""
+        return len(self.spring.chain.masses)
+
+    @property
+    def nfree(self) -> int:
+        """Degrees of freedom: the chain's masses, plus the valve train's (valve, lever, lifter)."""
+        return self.n_masses + (self.valve_train.degrees_of_freedom if self.valve_train is not None else 0)
+
+    def run(self, omegas, revolutions: int, points: int, *, rtol: float, atol: float, method: str | None = None):
+        """Integrate the speeds ``omegas`` [rad/s] with the compiled engine, monitoring the
+        last revolution (true extremes and events on the dense output, see
+        :func:`springdyn.valve.engine.run_speeds`)."""
+        return run_speeds(
+            self.y0,
+            omegas,
+            revolutions,
+            points,
+            self.args(0.0),
+            rtol=rtol,
+            atol=atol,
+            max_step_fraction=MAX_STEP_FRACTION,
+            gaps=self.spring.spring_model.contact_gaps,
+            monitor=True,
+            atol_velocity=self.atol_velocity(atol),
+            method=self.method if method is None else method,
+            stop_angles=self.table.stop_angles(self.cam.breakpoints),
+        )
+
+    @property
+    def method(self) -> str:
+        """The engine's Runge-Kutta pair for this spring model (:data:`PAIR`)."""
+        return PAIR[self.spring.model]
+
+    def atol_velocity(self, atol: float) -> np.ndarray:
+        """Absolute tolerances of the velocities [m/s] for ``atol`` [m] on the displacements.
+
+        The spring's masses: ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR`` (the velocity of
+        a displacement ``atol`` oscillating at a thirtieth of the first surge frequency);
+        the valve train's bodies keep ``atol`` (their stiff contacts make the contact forces
+        sensitive to velocity errors).
+
+        Measured (benchmarks/valve_tolerances.py, docs/valve.md): over 112 runs per model
+        (two springs, four cams, 14 speeds) the worst end-force extreme against a tight
+        reference is 0.014 % of Fset for Type C (0.0087 % with ``atol`` for every
+        component, which takes 1.4 times more steps) and 0.0035 % for the distributed
+        chain; ``/ 10`` reaches 0.028 %, a factor 1.8 to the 0.05 % target only (and 0.27 %
+        on a ramp cam before the engine landed its steps on the ramps' ends).
+        """
+        out = np.full(self.nfree, float(atol))
+        out[: self.n_masses] = (
+            atol * 2.0 * math.pi * float(self.spring.internal_parameters()["f1"]) / VELOCITY_TOLERANCE_DIVISOR
+        )
+        return out
+
+
+def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None) -> SimulationSetup:
+    """Sample the cam, check the lift against coil contact, and find the initial state.
+
+    Warns when the lift drives the spring into coil contact statically (force above
+    Fcon), naming the cam angle and the force; raises :class:`InputError` when it would
+    drive it beyond the model's range.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        The spring definition (its model gives the chain).
+    cam : Cam
+        The cam.
+    valve_train : ValveTrain, optional
+        Adds the valve body with cam and seat contacts.
+    """
+    table = CamTable.of(cam, CAM_SAMPLES)
+    h = table.h
+    deg = table.angle_deg
+
+    p = spring.internal_parameters()
+    if valve_train is not None and valve_train.ratio != 1.0:
+        h = h * valve_train.ratio  # the rigid valve lift checks the spring; the engine gets the lobe lift
+    i_max = int(np.argmax(h))
+    open_length = spring.installed_length - h[i_max]
+    if open_length < spring.min_length:
+        raise InputError(
+            f"cam lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} deg drives the spring solid: "
+            f"installed_length - lift = {open_length * 1e3:.4g} mm is below {spring.min_length * 1e3:.4g} mm, where "
+            f"the static force reaches {spring.LIMIT_FORCE_FACTOR:g} Fcon"
+        )
+    # static force above Fcon <=> lift beyond the lift at which the static force is Fcon
+    lift_fcon = spring.spring_model.lift_at_coil_contact
+    if h[i_max] > lift_fcon:
+        over = np.flatnonzero(h > lift_fcon)
+        peak = float(series_force(spring.free_length - spring.installed_length + h[i_max], spring.chain.laws))
+        warnings.warn(
+            f"the cam lift drives the spring into coil contact even statically: from cam angle "
+            f"{deg(over[0]):.1f} deg to {deg(over[-1]):.1f} deg the static force "
+            f"exceeds Fcon = {p['Fcon']:.1f} N, peaking at {peak:.1f} N at "
+            f"{deg(i_max):.1f} deg (lift {h[i_max] * 1e3:.3g} mm)",
+            stacklevel=3,
+        )
+    y0, lash = _initial_state(spring, table.h[0], valve_train)
+    vt = valve_train.kernel_parameters(lash=lash) if valve_train is not None else np.zeros(KERNEL_SIZE)
+    return SimulationSetup(spring, cam, valve_train, table, vt, y0)
+
+
+def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None):
+    """Static equilibrium at cam angle 0: displacements from set-up, zero velocities.
+
+    Returns the state and the lash the engine uses [m]: the train's own, or, with a
+    hydraulic adjuster, the one at which the train rests on the cam with the plunger
+    force (the seat carries the rest of the spring force).
+    """
+    setup = spring.free_length - spring.installed_length
+    nm = len(spring.chain.masses)
+    if valve_train is None:
+        if lift0 == 0.0:  # the set-up state itself: every displacement is zero by definition
+            return np.zeros(2 * nm), 0.0
+        u = spring.initial_condition(setup + lift0)["displacements"]
+        return np.concatenate([u, np.zeros(nm)]), 0.0
+    from scipy.optimize import brentq  # (imported here: scipy.optimize costs 0.2 s of start-up)
+
+    laws = spring.chain.laws
+    vt = valve_train
+    r = vt.ratio
+    k_train = vt.stiffness_at_valve
+    fset = spring.internal_parameters()["Fset"]
+
+    def seat(z):
+        return -vt.seat_stiffness * z if z < 0 else 0.0
+
+    def spring_force(z):
+        return float(series_force(setup + z, laws))
+
+    z_lo = -2.0 * (fset + 1.0) / vt.seat_stiffness
+    if vt.hydraulic:
+        f_h = vt.hla_force
+        if not f_h < fset:
+            raise InputError(
+                f"[valve_train] hla_preload = {f_h:g} N must be below the spring's set-up force "
+                f"Fset = {fset:.1f} N: the adjuster would open the valve"
+            )
+        z0 = brentq(lambda z: seat(z) + f_h - spring_force(z), z_lo, 1e-6, xtol=1e-16, rtol=1e-15)
+        lash = r * lift0 - z0 - f_h / k_train
+        force = f_h
+    else:
+        lash = vt.lash
+
+        def train(z):
+            pen = r * lift0 - z - lash
+            return k_train * pen if pen > 0 else 0.0
+
+        z_hi = max(r * lift0 - lash, 0.0) + 1e-6
+        z0 = brentq(lambda z: train(z) + seat(z) - spring_force(z), z_lo, z_hi, xtol=1e-16, rtol=1e-15)
+        force = train(z0)
+    u = spring.initial_condition(setup + z0)["displacements"]
+    pos = vt.static_state(lift0, z0, force)
+    return np.concatenate([u, pos, np.zeros(nm + pos.size)]), float(lash)
+
+
+def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
+    """Check the run settings of :func:`simulate` and the sweeps (raise :class:`InputError`).
+
+    Parameters
+    ----------
+    revolutions : int
+        Cam revolutions [-], 1 to 1000.
+    points_per_revolution : int
+        Output samples per revolution [-], 16 to 100 000.
+    rtol : float
+        Relative tolerance [-], 1e-12 to 1e-2.
+    atol : float
+        Absolute tolerance [m, m/s], 1e-15 to 1e-5.
+    """
+    number = (int, float, np.integer, np.floating)
+    for name, value, lo, hi in (
+        ("revolutions", revolutions, 1, 1000),
+        ("points_per_revolution", points_per_revolution, 16, 100_000),
+    ):
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, number)
+            or not math.isfinite(value)
+            or value != int(value)
+            or not lo <= value <= hi
+        ):
+            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
+    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
+        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
+            raise InputError(
+                f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
+                "(integration tolerance"
+                + (
+                    ": absolute, on displacements [m]; velocities get it times 2 pi f1/30)"
+                    if name == "atol"
+                    else ", relative)"
+                )
+            )
