@@ -9,6 +9,7 @@ counts as a cycle too.
 from __future__ import annotations
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -134,3 +135,66 @@ def test_the_cycle_finder_finds_a_cycle():
     """The check above can fail: a made-up graph with a cycle is caught."""
     assert _cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
     assert _cycle({"a": {"b"}, "b": set()}) is None
+
+
+# --------------------------------------------------------------------------- maps that stay true
+DOCS = PACKAGE.parents[1] / "docs"
+
+
+def _where_is_rows():
+    text = (DOCS / "architecture.md").read_text(encoding="utf-8")
+    section = text.split("## Where is X?", 1)[1].split("\n## ", 1)[0]
+    rows = []
+    for line in section.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 3 and cells[1].startswith("`") and cells[1].endswith(".py`"):
+            rows.append((cells[0], cells[1].strip("`"), re.findall(r"`([\w.]+)`", cells[2])))
+    return rows
+
+
+def _top_level_functions(path: Path) -> set:
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    return {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+
+
+def test_where_is_x_names_one_file_per_law():
+    """docs/architecture.md, "Where is X?": each law's file exists and defines its names, and
+    no other module defines a function or class of the same name (one place per equation)."""
+    rows = _where_is_rows()
+    assert len(rows) >= 20
+    defined = {p: _top_level_functions(p) for p in PACKAGE.rglob("*.py")}
+    for law, rel, names in rows:
+        path = PACKAGE / rel
+        assert path.is_file(), f"{law}: {rel} does not exist"
+        for name in names:
+            top = name.split(".")[0]
+            assert top in defined[path], f"{law}: {rel} defines no {top}"
+            if "." in name:
+                tree = ast.parse(path.read_text(encoding="utf-8"))
+                cls = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == top)
+                members = {n.name for n in cls.body if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))}
+                assert name.split(".")[1] in members, f"{law}: {name} is not in {rel}"
+            elsewhere = [str(p.relative_to(PACKAGE)) for p, names_ in defined.items() if p != path and top in names_]
+            assert not elsewhere, f"{law}: {top} is defined in {rel} and again in {elsewhere}"
+
+
+def test_every_package_docstring_lists_its_modules():
+    """A package's docstring is its map: it names every public module in it."""
+    for init in PACKAGE.rglob("__init__.py"):
+        folder = init.parent
+        doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))) or ""
+        modules = [p.stem for p in folder.glob("*.py") if not p.stem.startswith("_")]
+        modules += [p.name for p in folder.iterdir() if p.is_dir() and (p / "__init__.py").is_file()]
+        missing = [m for m in modules if not re.search(rf"\b{re.escape(m)}\b", doc)]
+        assert not missing, f"{folder.relative_to(PACKAGE.parent)}/__init__.py does not list {missing}"
+
+
+def test_the_valve_guide_lists_every_valve_module():
+    """docs/valve.md, "Where each piece lives", lists the modules of springdyn/valve (and no others)."""
+    text = (DOCS / "valve.md").read_text(encoding="utf-8")
+    section = text.split("## Where each piece lives", 1)[1].split("\n## ", 1)[0]
+    listed = set(re.findall(r"^\| `([\w/]+?)(?:\.py)?/?` \|", section, flags=re.M))
+    valve = PACKAGE / "valve"
+    actual = {p.stem for p in valve.glob("*.py") if not p.stem.startswith("_")}
+    actual |= {p.name for p in valve.iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
+    assert listed == actual, f"missing from the guide: {actual - listed}; listed but absent: {listed - actual}"

@@ -9,7 +9,8 @@ Model families, one subpackage each:
 Shared pieces: :mod:`springdyn.core` (units: pint at the edges, SI floats inside; params:
 TOML parameters with validation; io: atomic CSV/JSON; results; plotting; progress;
 errors) and :mod:`springdyn.numerics` (the compiled kernels and Runge-Kutta pairs).
-The command line and the report live in :mod:`springdyn.app`.
+The command line and the report live in :mod:`springdyn.app`; the built-in example
+definitions (TOML) in ``springdyn.data``.
 """
 
 from .core.errors import InputError, SolverError, SpringdynError
