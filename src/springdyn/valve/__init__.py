@@ -27,8 +27,11 @@ The physics, one place per equation
 The analyses and their results
 
 - :mod:`~springdyn.valve.model` -- :class:`ValveModel`;
-- :mod:`~springdyn.valve.dynamics` -- :func:`simulate`, :func:`float_speed`, natural
-  frequencies under the cam, the engine's set-up;
+- :mod:`~springdyn.valve.setup` -- the engine's set-up for a spring, cam and train (cam
+  table, initial state) and the run settings;
+- :mod:`~springdyn.valve.dynamics` -- :func:`simulate`;
+- :mod:`~springdyn.valve.float_search` -- :func:`float_speed`;
+- :mod:`~springdyn.valve.train_modes` -- natural frequencies under the cam, resonance speeds;
 - :mod:`~springdyn.valve.frf` -- the linearised dynamic stiffness;
 - :mod:`~springdyn.valve.sweeps` -- :func:`sweep` over speeds and design values, local or Dask
   (:class:`SpeedSweep`);
