@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 
 import numpy as np
@@ -9,7 +10,7 @@ import numpy as np
 from springdyn.app.cli.common import (
     add_output_options,
     as_options,
-    close_figure,
+    emit,
     parse_range,
     print_json,
     print_table,
@@ -219,10 +220,7 @@ def _fmt(value, unit="", display=None, digits=5):
 
 
 def _write_outputs(args, result) -> None:
-    if args.csv:
-        result.to_csv(args.csv)
-    if args.plot:
-        close_figure(result.plot(args.plot))
+    emit(result, argparse.Namespace(csv=args.csv, plot=args.plot))
 
 
 def _cutoff_row(summary):

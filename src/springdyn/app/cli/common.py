@@ -19,6 +19,7 @@ __all__ = [
     "quantity",
     "parse_range",
     "print_json",
+    "emit",
     "print_table",
     "add_output_options",
     "existing_file",
@@ -139,6 +140,25 @@ def as_options(**names):
             if new != text:
                 raise InputError(new) from None
         raise
+
+
+def emit(result, args, json_data=None) -> bool:
+    """The outputs every command offers for a result: ``--csv`` (:meth:`to_csv`), ``--plot``
+    (:meth:`plot`) and ``--json`` (``json_data``, else the result's ``to_dict()`` or summary).
+
+    Options a command does not have count as not given.  Returns True when JSON was printed
+    (the command then prints nothing else).
+    """
+    if getattr(args, "csv", None):
+        result.to_csv(args.csv)
+    if getattr(args, "plot", None):
+        close_figure(result.plot(args.plot))
+    if getattr(args, "json", False):
+        if json_data is None:
+            json_data = result.to_dict() if hasattr(result, "to_dict") else dict(result.summary)
+        print_json(json_data)
+        return True
+    return False
 
 
 def close_figure(fig) -> None:

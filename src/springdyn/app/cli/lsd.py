@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from springdyn.app.cli.common import add_output_options, close_figure, parse_range, print_json, print_table, quantity
+from springdyn.app.cli.common import (
+    add_output_options,
+    close_figure,
+    emit,
+    parse_range,
+    print_json,
+    print_table,
+    quantity,
+)
 from springdyn.core.errors import InputError
 from springdyn.core.io import read_csv_columns
 from springdyn.lsd.parameters import LSDParameters
@@ -104,12 +112,7 @@ def cmd_coefficients(args) -> int:
     rpm = parse_range(args.rpm, "rpm", "--rpm")
     amplitude = quantity(args.amplitude, "m", "--amplitude")
     res = model.coefficients(rpm, amplitude=amplitude, motion=args.motion)
-    if args.csv:
-        res.to_csv(args.csv)
-    if args.plot:
-        close_figure(res.plot(args.plot))
-    if args.json:
-        print_json(res.to_dict())
+    if emit(res, args):
         return 0
     print(
         f"{model.params.name}: k_s = {model.pack_stiffness / 1e3:.5g} N/mm per pack, "

@@ -8,6 +8,7 @@ from springdyn.app.cli.common import (
     add_output_options,
     as_options,
     close_figure,
+    emit,
     parse_range,
     print_json,
     print_table,
@@ -235,10 +236,7 @@ def cmd_curve(args) -> int:
     stop = quantity(args.stop, "m", "--to") if args.stop is not None else None
     with as_options(start="--from", stop="--to", points="--points"):
         curve = spring.static_curve(start, stop, args.points)
-    if args.csv:
-        curve.to_csv(args.csv)
-    if args.plot:
-        close_figure(curve.plot(args.plot))
+    emit(curve, args)
     if not args.csv:
         step = max(1, len(curve.length) // 20)
         rows = [
@@ -314,12 +312,7 @@ def cmd_frf(args) -> int:
     length = quantity(args.length, "m", "--length") if args.length is not None else None
     with as_options(length="--length", frequency="--frequency"):
         res = dynamic_stiffness(spring, freq, length)
-    if args.csv:
-        res.to_csv(args.csv)
-    if args.plot:
-        close_figure(res.plot(args.plot))
-    if args.json:
-        print_json(res.to_dict())
+    if emit(res, args):
         return 0
     if not args.csv:
         step = max(1, res.frequency.size // 25)
