@@ -106,7 +106,19 @@ CROSS_KEY_RULES = {
 REFERENCE_FILES = {
     "toml.md": "toml_reference",
     "cli.md": "cli_reference",
-    "api.md": "api_reference",
+    "api.md": "api_index",
+    "api-valve.md": "api_valve",
+    "api-cfcs.md": "api_cfcs",
+    "api-lsd.md": "api_lsd",
+    "api-core.md": "api_core",
+}
+
+#: The API reference by topic (as pvlib's): file -> (title, module name prefixes).
+API_TOPICS = {
+    "api-valve.md": ("Valve springs", ("springdyn.valve",)),
+    "api-cfcs.md": ("Constant-force compression springs", ("springdyn.cfcs",)),
+    "api-lsd.md": ("Leaf spring dampers", ("springdyn.lsd",)),
+    "api-core.md": ("Shared pieces: units, parameters, results, files, compiled numerics", ("springdyn",)),
 }
 
 #: Modules left out of the API reference: the command line and report layers (see cli.md).
@@ -550,8 +562,27 @@ def _document(name: str, obj, qualified: str) -> list[str]:
     return [f"#### `{qualified}`\n", f"Value: `{_cell(value)}`\n"]
 
 
-def api_reference() -> str:
-    """The Python API reference: each public module's ``__all__`` with docstrings.
+def _topic_of(modname: str) -> str:
+    """The API reference file that documents module ``modname``."""
+    for filename, (_, prefixes) in API_TOPICS.items():
+        if filename != "api-core.md" and any(modname == p or modname.startswith(p + ".") for p in prefixes):
+            return filename
+    return "api-core.md"
+
+
+def _link(modname: str, here: str) -> str:
+    anchor = "#" + modname.replace(".", "")
+    target = _topic_of(modname)
+    return anchor if target == here else target + anchor
+
+
+def api_reference(topic: str | None = None) -> str:
+    """The Python API reference of one topic: each public module's ``__all__`` with docstrings.
+
+    Parameters
+    ----------
+    topic : str, optional
+        A file of :data:`API_TOPICS` (default: every module, one page).
 
     Returns
     -------
@@ -559,21 +590,24 @@ def api_reference() -> str:
         Markdown: per module (packages first) the names of its ``__all__`` with
         signature, summary, and the Parameters/Returns/Raises/Attributes sections.  A
         name re-exported by a package is documented once, where it is defined, and the
-        package lists where.
+        package links there.
 
     Examples
     --------
-    >>> "#### class `springdyn.valve.spring.ValveSpring(" in api_reference()
+    >>> "#### class `springdyn.valve.spring.ValveSpring(" in api_reference("api-valve.md")
     True
     """
+    all_modules = _public_modules()
+    modules = all_modules if topic is None else [m for m in all_modules if _topic_of(m) == topic]
+    here = topic or ""
+    title = "Python API reference" + (f": {API_TOPICS[topic][0]}" if topic else "")
     out = [
-        _HEADER.format("api_reference"),
-        "# Python API reference\n",
+        _HEADER.format(f"api_reference({topic!r})" if topic else "api_reference"),
+        f"# {title}\n",
         "Generated from the docstrings of every module that declares `__all__` (the command-line",
-        "layer is in [cli.md](cli.md)).  Units are SI unless a docstring says otherwise; units are",
-        "given in brackets, source equation numbers in parentheses.\n",
+        "layer is in [cli.md](cli.md); the topics in [api.md](api.md)).  Units are SI unless a",
+        "docstring says otherwise; units are given in brackets, source equation numbers in parentheses.\n",
     ]
-    modules = _public_modules()
     out.append("Modules: " + ", ".join(f"[`{m}`](#{m.replace('.', '')})" for m in modules) + "\n")
     for modname in modules:
         module = importlib.import_module(modname)
@@ -587,10 +621,10 @@ def api_reference() -> str:
             if (
                 home
                 and home != modname
-                and home in modules
+                and home in all_modules
                 and name in getattr(importlib.import_module(home), "__all__", ())
             ):
-                out.append(f"- `{name}`: see [`{home}`](#{home.replace('.', '')})")
+                out.append(f"- `{name}`: see [`{home}`]({_link(home, here)})")
                 continue
             if out[-1].startswith("- `"):
                 out.append("")
@@ -600,9 +634,52 @@ def api_reference() -> str:
     return "\n".join(out).rstrip() + "\n"
 
 
+def api_index() -> str:
+    """The API reference's first page: the topics and their modules.
+
+    Examples
+    --------
+    >>> "[api-valve.md](api-valve.md)" in api_index()
+    True
+    """
+    out = [
+        _HEADER.format("api_index"),
+        "# Python API reference\n",
+        "By topic, as the model families are; each page is generated from the docstrings of",
+        "every module that declares `__all__`.\n",
+        "| topic | page | modules |",
+        "|---|---|---|",
+    ]
+    modules = _public_modules()
+    for filename, (title, _) in API_TOPICS.items():
+        mods = [m for m in modules if _topic_of(m) == filename]
+        out.append(f"| {title} | [{filename}]({filename}) | " + ", ".join(f"`{m}`" for m in mods) + " |")
+    return "\n".join(out) + "\n"
+
+
+def api_valve() -> str:
+    """The valve family's API reference page."""
+    return api_reference("api-valve.md")
+
+
+def api_cfcs() -> str:
+    """The CFCS family's API reference page."""
+    return api_reference("api-cfcs.md")
+
+
+def api_lsd() -> str:
+    """The LSD family's API reference page."""
+    return api_reference("api-lsd.md")
+
+
+def api_core() -> str:
+    """The shared pieces' API reference page."""
+    return api_reference("api-core.md")
+
+
 # ----------------------------------------------------------------------------- files
 def write_docs(out_dir: str | Path = "docs/reference") -> list[Path]:
-    """Write ``toml.md``, ``cli.md`` and ``api.md`` into ``out_dir`` (atomically).
+    """Write the reference files of :data:`REFERENCE_FILES` into ``out_dir`` (atomically).
 
     Parameters
     ----------

@@ -24,7 +24,7 @@ def register(subparsers) -> None:
     p = subparsers.add_parser(
         "docs",
         help="write the generated TOML, CLI and API references (Markdown; needs a source checkout)",
-        description="Write toml.md, cli.md and api.md, generated from the code, into a folder.",
+        description="Write toml.md, cli.md and the API reference (api.md and a page per topic), generated from the code, into a folder.",
     )
     p.add_argument("--out", default="docs/reference", help="output folder (default: docs/reference)")
     p.set_defaults(func=cmd_docs)
