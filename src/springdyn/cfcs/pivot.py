@@ -57,7 +57,11 @@ def second_moment_rectangle(width, thickness):
 
 
 def flexure_stiffness(youngs_modulus, width, thickness, length):
-    """Torsional stiffness ``K3 = E b h^3 / (12 l)`` [N*m/rad], Eq. (1) of the CFCS paper.
+    r"""Torsional stiffness ``K3 = E b h^3 / (12 l)`` [N*m/rad], Eq. (1) of the CFCS paper.
+
+    .. math::
+
+        K_3 = \frac{E\,b\,h^3}{12\,l}
 
     Parameters
     ----------
@@ -65,12 +69,26 @@ def flexure_stiffness(youngs_modulus, width, thickness, length):
         Young's modulus E [Pa].
     width, thickness, length : float
         Flexure width b, thickness h and length l [m].
+
+    Examples
+    --------
+    >>> round(flexure_stiffness(207e9, 10e-3, 0.3e-3, 9.5e-3), 4)
+    0.4903
+
+    References
+    ----------
+    .. [1] [CFCS] of docs/references.md: the compliant slider-crank paper, Eq. (1).
+    .. [2] L. L. Howell, *Compliant Mechanisms*, Wiley, 2001 (small-length flexural pivots).
     """
     return youngs_modulus * second_moment_rectangle(width, thickness) / length
 
 
 def bending_stress(spring_angle, youngs_modulus, thickness, length):
-    """Surface bending stress ``sigma = E (h/2) |theta_K3| / l`` [Pa] (reference values of docs/references.md).
+    r"""Surface bending stress ``sigma = E (h/2) |theta_K3| / l`` [Pa] (reference values of docs/references.md).
+
+    .. math::
+
+        \sigma = \frac{E\,h}{2\,l}\,\lvert\theta_{K3}\rvert
 
     Parameters
     ----------
@@ -80,6 +98,16 @@ def bending_stress(spring_angle, youngs_modulus, thickness, length):
         E [Pa].
     thickness, length : float
         Flexure thickness h and length l [m].
+
+    Examples
+    --------
+    >>> round(float(bending_stress(0.1, 207e9, 0.3e-3, 9.5e-3)) / 1e6, 1)
+    326.8
+
+    References
+    ----------
+    .. [1] [CFCS] of docs/references.md: the compliant slider-crank paper, Eq. (1).
+    .. [2] L. L. Howell, *Compliant Mechanisms*, Wiley, 2001 (small-length flexural pivots).
     """
     return youngs_modulus * 0.5 * thickness * np.abs(spring_angle) / length
 

@@ -37,7 +37,11 @@ def spring_index(do: float, dw: float) -> float:
 
 
 def bergstraesser_factor(c: float) -> float:
-    """Stress correction ``k = (4C + 2)/(4C - 3)`` [-] (Bergstraesser).
+    r"""Stress correction ``k = (4C + 2)/(4C - 3)`` [-] (Bergstraesser).
+
+    .. math::
+
+        k = \frac{4C + 2}{4C - 3}
 
     Parameters
     ----------
@@ -47,6 +51,16 @@ def bergstraesser_factor(c: float) -> float:
     Notes
     -----
     [EN 13906-1], stress correction factor k.
+
+    Examples
+    --------
+    >>> round(bergstraesser_factor(22 / 3.5), 4)
+    1.2258
+
+    References
+    ----------
+    .. [1] EN 13906-1:2013, *Cylindrical helical springs made from round wire and bar:
+       calculation and design*, compression springs ([EN 13906-1] of docs/references.md).
     """
     return (4.0 * c + 2.0) / (4.0 * c - 3.0)
 
@@ -67,7 +81,11 @@ def wahl_factor(c: float) -> float:
 
 
 def shear_stress(force, do: float, dw: float, correction: float = 1.0):
-    """Corrected torsional shear stress ``k 8 F D / (pi d^3)`` [Pa].
+    r"""Corrected torsional shear stress ``k 8 F D / (pi d^3)`` [Pa].
+
+    .. math::
+
+        \tau_k = k\,\frac{8\,D\,F}{\pi\,d^3}
 
     Parameters
     ----------
@@ -81,6 +99,18 @@ def shear_stress(force, do: float, dw: float, correction: float = 1.0):
     Notes
     -----
     [EN 13906-1], shear stress ``tau_k = k 8 D F / (pi d^3)``.
+
+    Examples
+    --------
+    500 N on the one-step example's wire (D/d = 6.29, Bergstraesser k = 1.226):
+
+    >>> round(shear_stress(500.0, 22e-3, 3.5e-3, bergstraesser_factor(22 / 3.5)) / 1e6, 1)
+    800.8
+
+    References
+    ----------
+    .. [1] EN 13906-1:2013, *Cylindrical helical springs made from round wire and bar:
+       calculation and design*, compression springs ([EN 13906-1] of docs/references.md).
     """
     return correction * 8.0 * force * do / (math.pi * dw**3)
 

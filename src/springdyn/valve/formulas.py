@@ -82,7 +82,11 @@ def active_coils_setup(n1: float, n2: float, nb: float, two_step: bool) -> float
 
 
 def contact_stiffness(do: float, e: float) -> float:
-    """Stiffness of a fully contacting coil, ``K = pi Do E / 1e3`` [N/m].
+    r"""Stiffness of a fully contacting coil, ``K = pi Do E / 1e3`` [N/m].
+
+    .. math::
+
+        K = \frac{\pi\,D_o\,E}{10^3}
 
     Parameters
     ----------
@@ -95,12 +99,25 @@ def contact_stiffness(do: float, e: float) -> float:
     -----
     [MMS], "Stiffness for fully contact".  The 1e3 is part of the empirical formula;
     with Do in m and E in Pa it gives N/m.
+
+    Examples
+    --------
+    >>> round(contact_stiffness(22e-3, 206e9))
+    14237698
+
+    References
+    ----------
+    .. [1] [MMS] of docs/references.md: the MMS Type C chapter, section 40.3.2.1.
     """
     return math.pi * do * e / 1e3
 
 
 def free_length_stiffness(g: float, dw: float, do: float, n_active: float) -> float:
-    """Helical spring rate ``G Dw^4 / (8 n Do^3)`` [N/m].
+    r"""Helical spring rate ``G Dw^4 / (8 n Do^3)`` [N/m].
+
+    .. math::
+
+        K = \frac{G\,D_w^4}{8\,n\,D_o^3}
 
     With ``n = N1 + N2 - 2 Nb`` this is K1 of [MMS], "Stiffness for free length"; with
     ``n = N2 - Nb`` it is K2, "Stiffness for set-up length" (two-step).
@@ -115,6 +132,18 @@ def free_length_stiffness(g: float, dw: float, do: float, n_active: float) -> fl
         Mean coil diameter [m].
     n_active : float
         Number of active coils [-].
+
+    Examples
+    --------
+    One-step example (Do 22 mm, Dw 3.5 mm, G 78.5 GPa, 6 active coils):
+
+    >>> round(free_length_stiffness(78.5e9, 3.5e-3, 22e-3, 6.0), 1)
+    23048.0
+
+    References
+    ----------
+    .. [1] [MMS] of docs/references.md: the MMS Type C chapter, section 40.3.2.1.
+    .. [2] A. M. Wahl, *Mechanical Springs*, 2nd ed., McGraw-Hill, 1963.
     """
     return g * dw**4 / (8.0 * n_active * do**3)
 
@@ -169,7 +198,11 @@ def pitch_correction_setup(ls: float, dw: float, n1: float, n2: float, n_active:
 
 
 def surge_frequency(g: float, rho: float, dw: float, do: float, n_eff: float) -> float:
-    """First surge frequency ``sqrt(G/(2 rho)) Dw / (2 pi n Do^2)`` [Hz].
+    r"""First surge frequency ``sqrt(G/(2 rho)) Dw / (2 pi n Do^2)`` [Hz].
+
+    .. math::
+
+        f = \frac{D_w}{2\pi\,n\,D_o^2}\sqrt{\frac{G}{2\rho}}
 
     The document's f1 uses ``n = N1 + N2 - 2 Nb + n1'`` and f2 uses
     ``n = N2 - Nb + n2'``; with the plain active coil count it is the textbook surge
@@ -186,6 +219,16 @@ def surge_frequency(g: float, rho: float, dw: float, do: float, n_eff: float) ->
         Wire and mean coil diameters [m].
     n_eff : float
         Effective number of coils [-].
+
+    Examples
+    --------
+    >>> round(surge_frequency(78.5e9, 7850.0, 3.5e-3, 22e-3, 6.0), 2)
+    428.92
+
+    References
+    ----------
+    .. [1] [MMS] of docs/references.md: the MMS Type C chapter, section 40.3.2.1.
+    .. [2] A. M. Wahl, *Mechanical Springs*, 2nd ed., McGraw-Hill, 1963.
     """
     return math.sqrt(g / (2.0 * rho)) * dw / (2.0 * math.pi * n_eff * do**2)
 
