@@ -116,3 +116,49 @@ def test_the_parameters_parser_reads_numpydoc():
     entries = _parameters_section(f.__doc__)
     assert [(n, t) for n, t, _ in entries] == [("x", "float"), ("name", "str")]
     assert not re.search(r"\[[^\]]*\]", entries[0][2])
+
+
+def _public_methods(family):
+    seen = {}
+    for module in _modules(family):
+        for name in getattr(module, "__all__", []):
+            cls = getattr(module, name, None)
+            if not (inspect.isclass(cls) and cls.__module__ == module.__name__):
+                continue
+            for mname, member in vars(cls).items():
+                if mname.startswith("_"):
+                    continue
+                if isinstance(member, (staticmethod, classmethod)):
+                    member = member.__func__
+                if inspect.isfunction(member):
+                    seen[f"{cls.__module__}.{cls.__name__}.{mname}"] = member
+    return sorted(seen.items())
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_public_methods_document_their_parameters(family):
+    """Every public method of a public class documents each parameter (numpydoc), with a unit
+    in brackets for numbers, and documents no parameter it does not have."""
+    problems = []
+    for qualname, func in _public_methods(family):
+        params = [
+            p.name
+            for p in inspect.signature(func).parameters.values()
+            if p.name not in ("self", "cls") and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)
+        ]
+        entries = _parameters_section(func.__doc__ or "")
+        documented = {n.strip() for names, _, _ in entries for n in names.split(",")}
+        documented.discard("**extra")
+        if params and not entries:
+            problems.append(f"{qualname}: no numpydoc Parameters section")
+            continue
+        missing = [p for p in params if p not in documented]
+        extra = sorted(documented - set(params) - {"**options", "**kwargs", "*args"})
+        if missing:
+            problems.append(f"{qualname}: parameters not documented: {', '.join(missing)}")
+        if extra:
+            problems.append(f"{qualname}: documents parameters it does not have: {', '.join(extra)}")
+        for names, typ, desc in entries:
+            if NUMERIC.search(typ) and not re.search(r"\[[^\]]*\]", desc):
+                problems.append(f"{qualname}: parameter {names!r} ({typ}) gives no [unit] in its description")
+    assert not problems, f"{len(problems)} docstring problems:\n" + "\n".join(problems)

@@ -155,7 +155,13 @@ class DesignResult(Result):
         return ds
 
     def to_params(self, crank_mass, coupler_mass, slider_mass, **extra):
-        """A :class:`~springdyn.cfcs.params.CFCSParams` of this design (masses are not designed)."""
+        """A :class:`~springdyn.cfcs.params.CFCSParams` of this design (masses are not designed).
+
+        Parameters
+        ----------
+        crank_mass, coupler_mass, slider_mass : float
+            Link masses [kg] (not designed).
+        """
         from .params import CFCSParams
 
         s = self.summary
@@ -179,7 +185,13 @@ class DesignResult(Result):
         )
 
     def to_toml(self, path) -> Path:
-        """Write a ``[cfcs]`` table of the design (masses to be filled in by the user)."""
+        """Write a ``[cfcs]`` table of the design (masses to be filled in by the user).
+
+        Parameters
+        ----------
+        path : str or Path
+            The TOML file to write [-].
+        """
         s = self.summary
         mm = lambda v: f'"{v * 1e3:.6g} mm"'  # noqa: E731
         text = (

@@ -110,10 +110,24 @@ class CFCS:
 
     @classmethod
     def from_toml(cls, path) -> CFCS:
+        """The mechanism of a TOML file's ``[cfcs]`` table.
+
+        Parameters
+        ----------
+        path : str or Path
+            A TOML file with a ``[cfcs]`` table [-].
+        """
         return cls(CFCSParams.from_toml(path))
 
     @classmethod
     def example(cls, name: str = "table1") -> CFCS:
+        """A built-in example mechanism.
+
+        Parameters
+        ----------
+        name : str
+            A built-in example (``table1``) [-].
+        """
         return cls(CFCSParams.example(name))
 
     def __repr__(self) -> str:
@@ -131,13 +145,24 @@ class CFCS:
         return self.params.flexure_model == "beam"
 
     def with_flexure_model(self, model: str) -> CFCS:
-        """The same mechanism with another flexure model ('prbm' or 'beam')."""
+        """The same mechanism with another flexure model ('prbm' or 'beam').
+
+        Parameters
+        ----------
+        model : str
+            ``prbm`` or ``beam`` [-].
+        """
         return CFCS(self.params.replace(flexure_model=model))
 
     def beam_curve(self, deflection) -> dict:
         """The elastica solution at increasing deflections [m] (see :func:`springdyn.cfcs.beam.beam_force_curve`).
 
         Adds ``stress`` [Pa], the peak bending stress ``E' (h/2) max|curvature|``.
+
+        Parameters
+        ----------
+        deflection : array_like
+            Slider deflections [m], increasing.
         """
         p = self.params
         c = beam_force_curve(deflection, p.r2, p.r3, p.pivot_length, p.bending_stiffness("beam"))
@@ -158,7 +183,15 @@ class CFCS:
         return table
 
     def spring_force(self, x, theta2=None):
-        """Quasi-static slider force [N] of the flexure model at deflections ``x`` [m]."""
+        """Quasi-static slider force [N] of the flexure model at deflections ``x`` [m].
+
+        Parameters
+        ----------
+        x : float or array_like
+            Slider deflections [m].
+        theta2 : float or array_like, optional
+            The crank angles of ``x`` [rad] (computed when omitted).
+        """
         p = self.params
         if self.beam:
             return self._beam_table(max(float(np.max(x)), 1e-9))["force"](np.asarray(x, dtype=float))
@@ -170,6 +203,13 @@ class CFCS:
 
         PRBM: ``E (h/2) theta_K3 / l``; beam model: ``E' (h/2) max|curvature|`` at the
         deflections (from the tabulated elastica).
+
+        Parameters
+        ----------
+        theta2 : float or array_like
+            Crank angles [rad].
+        deflection : float or array_like, optional
+            The slider deflections at ``theta2`` [m] (the beam model needs them).
         """
         p = self.params
         th_k3 = spring_angle(np.asarray(theta2, dtype=float), p.r2, p.r3)
@@ -264,6 +304,15 @@ class CFCS:
         offset :data:`DEFAULT_OFFSET` (a length [m] or a percentage of r2 + r3).  If the working
         range reaches into the toggle zone they are computed at the cut-off and at twice it,
         and ``toggle_dominated`` says whether they differ by more than 1 %.
+
+        Parameters
+        ----------
+        stroke : float, optional
+            Largest deflection [m] (default 40 % of r2 + r3).
+        n : int
+            Samples [-].
+        offset : float or str
+            Smallest deflection, a length or a fraction of r2 + r3 [m or %].
         """
         p = self.params
         stroke = self._stroke(stroke)
@@ -371,7 +420,19 @@ class CFCS:
 
     # -- inverse dynamics ---------------------------------------------------------------
     def motion(self, omega=None, amplitude=DEFAULT_AMPLITUDE, offset=DEFAULT_OFFSET, csv=None):
-        """Build the prescribed motion: the default sinusoid or a periodic CSV (see :mod:`.motion`)."""
+        """Build the prescribed motion: the default sinusoid or a periodic CSV (see :mod:`.motion`).
+
+        Parameters
+        ----------
+        omega : float, optional
+            Angular frequency of the motion [rad/s].
+        amplitude : float or str
+            Amplitude, a length or a fraction of r2 + r3 [m or %].
+        offset : float or str
+            Smallest deflection, a length or a fraction of r2 + r3 [m or %].
+        csv : str or Path, optional
+            A periodic motion table (``time_s, deflection_m``) [-].
+        """
         p = self.params
         if csv is not None:
             mot = TabulatedMotion.from_csv(csv, omega=omega)
@@ -412,7 +473,7 @@ class CFCS:
             (crank angle below ``toggle_cutoff``) has its statistics computed at the cut-off and
             at twice it; ``toggle_dominated`` flags those that change by more than 1 %.
         cycles, samples_per_cycle : int
-            Time grid; statistics use whole cycles.
+            Time grid [-]; statistics use whole cycles.
         motion : SinusoidMotion or TabulatedMotion, optional
             A ready-made motion (overrides omega/amplitude/offset).
         """
@@ -474,6 +535,19 @@ class CFCS:
         Each frequency is one whole cycle of the sinusoid (the inverse problem has no
         transient); the statistics are given as configured and without tau_CF, tau_AF
         and slider friction (``*_no_dissipation_*``).
+
+        Parameters
+        ----------
+        omegas : array_like
+            Angular frequencies [rad/s].
+        amplitude : float or str
+            Amplitude, a length or a fraction of r2 + r3 [m or %].
+        offset : float or str
+            Smallest deflection [m or %].
+        samples_per_cycle : int
+            Samples per cycle [-].
+        quiet : bool
+            No progress bar [-].
         """
         omegas = np.atleast_1d(np.asarray(omegas, dtype=float))
         if omegas.size == 0 or np.any(~np.isfinite(omegas)) or np.any(omegas <= 0):
@@ -565,9 +639,11 @@ class CFCS:
             Initial deflection [m] (> 0: the toggle is an equilibrium the slider cannot
             leave) and velocity [m/s].
         n : int
-            Output samples.
+            Output samples [-].
         sign_smoothing : float
             Velocity scale v_s [rad/s] of ``tanh(theta2'/v_s)`` replacing the Coulomb sign.
+        rtol : float
+            Relative tolerance of the integration [-].
         """
         p = self.params
         if (force is None) == (base_motion is None):

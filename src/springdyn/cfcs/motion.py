@@ -238,7 +238,15 @@ class TabulatedMotion:
 
     @classmethod
     def from_csv(cls, path: str | Path, omega: float | None = None) -> TabulatedMotion:
-        """Read ``time_s, deflection_m`` from a CSV; rescale time to period ``2 pi/omega`` if given."""
+        """Read ``time_s, deflection_m`` from a CSV; rescale time to period ``2 pi/omega`` if given.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file [-].
+        omega : float, optional
+            Angular frequency to rescale the period to [rad/s].
+        """
         cols = read_csv_columns(path)
         for name in ("time_s", "deflection_m"):
             if name not in cols:

@@ -195,6 +195,11 @@ class CFCSParams(Parameters):
         An explicit ``plate_bending`` holds for both models; unset, the beam model chooses by
         the width/length ratio (:func:`springdyn.cfcs.pivot.default_plate_bending`) and the PRBM
         keeps Eq. (1) of [CFCS] (beam modulus).
+
+        Parameters
+        ----------
+        model : str, optional
+            ``prbm`` or ``beam`` (default: this mechanism's) [-].
         """
         model = model or self.flexure_model
         if self.plate_bending is not None:
@@ -204,7 +209,13 @@ class CFCSParams(Parameters):
         return False
 
     def bending_modulus(self, model: str | None = None) -> float | None:
-        """E or E / (1 - nu^2) [Pa] of the strip in ``model``; None without the flexure."""
+        """E or E / (1 - nu^2) [Pa] of the strip in ``model``; None without the flexure.
+
+        Parameters
+        ----------
+        model : str, optional
+            ``prbm`` or ``beam`` (default: this mechanism's) [-].
+        """
         if self.youngs_modulus is None:
             return None
         if self.uses_plate_bending(model):
@@ -212,7 +223,13 @@ class CFCSParams(Parameters):
         return self.youngs_modulus
 
     def bending_stiffness(self, model: str | None = None) -> float:
-        """EI [N*m^2] of the strip in ``model`` (``K3 l`` when only K3 is given)."""
+        """EI [N*m^2] of the strip in ``model`` (``K3 l`` when only K3 is given).
+
+        Parameters
+        ----------
+        model : str, optional
+            ``prbm`` or ``beam`` (default: this mechanism's) [-].
+        """
         if not self.has_flexure:
             raise InputError(
                 "the strip's bending stiffness needs pivot_width, pivot_thickness, pivot_length and youngs_modulus"

@@ -68,7 +68,9 @@ def rpm_to_omega(rpm):
     """
     if not isinstance(rpm, Real):
         rpm = np.asarray(rpm, dtype=float)
-    return rpm * (2.0 * math.pi / 60.0)
+    # (in this order: the valve and rig speeds were always computed so, and an adaptive
+    # integration at another speed by one ulp takes other steps)
+    return rpm * 2.0 * math.pi / 60.0
 
 
 def omega_to_rpm(omega):

@@ -168,7 +168,13 @@ class Calibration(Result):
         return ax.figure
 
     def toml_text(self, text: str) -> str:
-        """``text`` (a TOML definition) with the fitted keys of ``[lsd]`` set to the calibrated values."""
+        """``text`` (a TOML definition) with the fitted keys of ``[lsd]`` set to the calibrated values.
+
+        Parameters
+        ----------
+        text : str
+            A TOML definition with an ``[lsd]`` table [-].
+        """
         comments = {}
         for name in self.values:
             ci = self.intervals[name]

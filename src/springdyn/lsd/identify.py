@@ -597,7 +597,13 @@ class IdentificationSeries(Result):
         )
 
     def plot_on(self, ax_k, ax_c):
-        """Draw the identified coefficients as markers with 95 % (Student-t) error bars on two axes."""
+        """Draw the identified coefficients as markers with 95 % (Student-t) error bars on two axes.
+
+        Parameters
+        ----------
+        ax_k, ax_c : matplotlib Axes
+            Axes of the stiffnesses and of the damping coefficients [-].
+        """
         markers = {"xx": "o", "yy": "s", "xy": "^", "yx": "v"}
         for key, (i, j) in {"xx": (0, 0), "yy": (1, 1), "xy": (0, 1), "yx": (1, 0)}.items():
             k = np.array([it.K[i, j] for it in self.items])

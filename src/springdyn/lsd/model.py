@@ -124,7 +124,15 @@ class LSDModel:
 
     # ---------------------------------------------------------------- damping
     def loss_factor(self, amplitude: float, normal_load: str | None = None) -> float:
-        """Inter-leaf loss factor ``zeta`` at vibration amplitude ``amplitude`` [m], Eq. (2.28)."""
+        """Inter-leaf loss factor ``zeta`` at vibration amplitude ``amplitude`` [m], Eq. (2.28).
+
+        Parameters
+        ----------
+        amplitude : float
+            Vibration amplitude [m].
+        normal_load : str, optional
+            How the leaves are pressed together [-] (default: the definition's).
+        """
         p = self.params
         return damping.leaf_loss_factor(
             p.leaf_friction, p.preload, amplitude, self.slip_factor, normal_load or p.leaf_normal_load
@@ -276,9 +284,9 @@ class LSDModel:
         Parameters
         ----------
         n : int
-            Rotor node of the damper.
+            Rotor node of the damper [-].
         frequencies : array_like, optional
-            Deprecated alias of ``omega``.
+            Deprecated alias of ``omega`` [rad/s].
         amplitude : float
             Vibration amplitude [m] for the amplitude-dependent friction terms.
         motion : {"linear", "circular"}

@@ -219,7 +219,17 @@ class Cam(Parameters):
 
     @classmethod
     def from_table(cls, angle, lift, name: str = "table") -> Cam:
-        """A cam from arrays: cam angle [rad] over one revolution and lift [m]."""
+        """A cam from arrays: cam angle [rad] over one revolution and lift [m].
+
+        Parameters
+        ----------
+        angle : array_like
+            Cam angles [rad] over one revolution, ascending.
+        lift : array_like
+            Lift at each angle [m].
+        name : str
+            What the cam is called (its source) [-].
+        """
         return cls(law="table", file=name, table_angle=np.asarray(angle), table_lift=np.asarray(lift))
 
     def scaled(self, factor: float) -> Cam:
@@ -282,7 +292,13 @@ class Cam(Parameters):
         return CubicSpline(a, h, bc_type="periodic")
 
     def evaluate(self, theta):
-        """Lift [m], ``dh/dtheta`` [m/rad] and ``d2h/dtheta2`` [m/rad^2] at cam angle(s) [rad]."""
+        """Lift [m], ``dh/dtheta`` [m/rad] and ``d2h/dtheta2`` [m/rad^2] at cam angle(s) [rad].
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Cam angles [rad], any real.
+        """
         theta = np.asarray(theta, dtype=float)
         if self.law == "table":
             a0 = self.table_angle[0]
@@ -321,16 +337,25 @@ class Cam(Parameters):
         return h, sign * dh, ddh
 
     def sampled(self, samples: int) -> tuple:
-        """Lift, ``dh/dtheta``, ``d2h/dtheta2`` at ``samples`` equal steps over one revolution
-        (cached: a cam is immutable)."""
-        cache = self.__dict__.setdefault("_sampled", {})
-        if samples not in cache:
-            theta = np.arange(samples) * (2 * math.pi / samples)
-            cache[samples] = tuple(np.ascontiguousarray(a) for a in self.evaluate(theta))
-        return cache[samples]
+        """Lift [m], ``dh/dtheta`` [m/rad], ``d2h/dtheta2`` [m/rad^2] at ``samples`` equal steps
+        over one revolution (the engine keeps them: :meth:`springdyn.valve.engine.CamTable.of`).
+
+        Parameters
+        ----------
+        samples : int
+            Steps per revolution [-].
+        """
+        theta = np.arange(samples) * (2 * math.pi / samples)
+        return tuple(np.ascontiguousarray(a) for a in self.evaluate(theta))
 
     def lift_at(self, theta):
-        """Lift [m] at cam angle(s) [rad]."""
+        """Lift [m] at cam angle(s) [rad].
+
+        Parameters
+        ----------
+        theta : float or array_like
+            Cam angles [rad], any real.
+        """
         return self.evaluate(theta)[0]
 
     def check_resolution(self, cam_rpm: float, frequency: float) -> None:
@@ -341,6 +366,13 @@ class Cam(Parameters):
         is excited by cam order ``frequency / (cam_rpm/60)``; when that order is beyond
         the table's Nyquist order, the acceleration that drives surge is not resolved and
         the response near the surge frequency comes from the spline, not from the cam.
+
+        Parameters
+        ----------
+        cam_rpm : float
+            Cam speed [rev/min].
+        frequency : float
+            The spring's first surge frequency [Hz].
         """
         if self.law != "table":
             return

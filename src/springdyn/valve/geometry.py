@@ -135,11 +135,23 @@ class CoilGeometry:
     diameter_v: np.ndarray  # mean diameter at the knots [m]
 
     def pitch(self, s):
-        """Pitch [m] at turns ``s`` from the seat end."""
+        """Pitch [m] at turns ``s`` from the seat end.
+
+        Parameters
+        ----------
+        s : float or array_like
+            Turns from the seat end [-].
+        """
         return np.interp(s, self.pitch_s, self.pitch_v)
 
     def diameter(self, s):
-        """Mean coil diameter [m] at turns ``s`` from the seat end."""
+        """Mean coil diameter [m] at turns ``s`` from the seat end.
+
+        Parameters
+        ----------
+        s : float or array_like
+            Turns from the seat end [-].
+        """
         return np.interp(s, self.diameter_s, self.diameter_v)
 
     @property
@@ -153,7 +165,13 @@ class CoilGeometry:
         return self.wire_diameter * (self.turns + 0.5)
 
     def gap_integral(self, a: float, b: float) -> float:
-        """``int_a^b (p(s) - Dw) ds`` [m]: the axial gap of the wire between ``a`` and ``b`` turns."""
+        """``int_a^b (p(s) - Dw) ds`` [m]: the axial gap of the wire between ``a`` and ``b`` turns.
+
+        Parameters
+        ----------
+        a, b : float
+            Turns from the seat end [-], ``a <= b``.
+        """
         knots = self.pitch_s[(self.pitch_s > a) & (self.pitch_s < b)]
         s = np.concatenate([[a], knots, [b]])
         return float(np.trapezoid(self.pitch(s) - self.wire_diameter, s))

@@ -142,7 +142,13 @@ class Simulation(Result):
         return _summarise(self)
 
     def spectrum(self, max_order: int = 40):
-        """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean)."""
+        """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean).
+
+        Parameters
+        ----------
+        max_order : int
+            Highest cam order [-].
+        """
         n = self.retainer_force.size
         coef = np.fft.rfft(self.retainer_force) / n
         amp = np.abs(coef) * 2.0

@@ -82,7 +82,13 @@ class SimulationSetup:
     y0: np.ndarray
 
     def static_force(self, lift) -> np.ndarray:
-        """Static (massless) spring force [N] at cam or valve lift(s) [m]."""
+        """Static (massless) spring force [N] at cam or valve lift(s) [m].
+
+        Parameters
+        ----------
+        lift : float or array_like
+            Cam (spring alone) or valve lift [m].
+        """
         sp = self.spring
         lift = np.asarray(lift, dtype=float)
         dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
@@ -97,6 +103,11 @@ class SimulationSetup:
         It depends on the spring, the cam and ``points`` only, not on the speed, so the
         spring keeps it for its last :attr:`STATIC_CACHE_SIZE` cams (a Newton solve per
         angle costs about 5 % of a Type C simulation).  Read-only: results share it.
+
+        Parameters
+        ----------
+        points : int
+            Samples per revolution [-].
         """
         store = self.spring.spring_model.static_force_cache
         key = (id(self.cam), int(points))  # the entry holds the cam: its id is not reused meanwhile
@@ -114,6 +125,13 @@ class SimulationSetup:
     STATIC_CACHE_SIZE = 8
 
     def args(self, omega: float) -> tuple:
+        """The engine's argument tuple (:func:`springdyn.valve.engine.model_of` reads it).
+
+        Parameters
+        ----------
+        omega : float
+            Cam speed [rad/s].
+        """
         ch = self.spring.chain
         return (
             ch.masses,
@@ -141,7 +159,23 @@ class SimulationSetup:
     def run(self, omegas, revolutions: int, points: int, *, rtol: float, atol: float, method: str | None = None):
         """Integrate the speeds ``omegas`` [rad/s] with the compiled engine, monitoring the
         last revolution (true extremes and events on the dense output, see
-        :func:`springdyn.valve.engine.run_speeds`)."""
+        :func:`springdyn.valve.engine.run_speeds`).
+
+        Parameters
+        ----------
+        omegas : array_like
+            Cam speeds [rad/s].
+        revolutions : int
+            Revolutions per speed [-].
+        points : int
+            Output samples per revolution [-].
+        rtol : float
+            Relative tolerance [-].
+        atol : float
+            Absolute tolerance of the displacements [m].
+        method : str, optional
+            Runge-Kutta pair (default: the model's, :data:`PAIR`) [-].
+        """
         return run_speeds(
             self.y0,
             omegas,
@@ -177,6 +211,11 @@ class SimulationSetup:
         component, which takes 1.4 times more steps) and 0.0035 % for the distributed
         chain; ``/ 10`` reaches 0.028 %, a factor 1.8 to the 0.05 % target only (and 0.27 %
         on a ramp cam before the engine landed its steps on the ramps' ends).
+
+        Parameters
+        ----------
+        atol : float
+            Absolute tolerance of the displacements [m].
         """
         out = np.full(self.nfree, float(atol))
         out[: self.n_masses] = (

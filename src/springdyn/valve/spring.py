@@ -153,7 +153,13 @@ class ValveSpring(Parameters):
             warnings.warn(message, UserWarning, stacklevel=level)
 
     def with_model(self, model: str | None) -> ValveSpring:
-        """The same spring with another model (``None``: unchanged)."""
+        """The same spring with another model (``None``: unchanged).
+
+        Parameters
+        ----------
+        model : str or None
+            A spring model name (:data:`MODEL_NAMES`) [-].
+        """
         return self if model is None or model == self.model else self.replace(model=model)
 
     @cached_property
@@ -302,33 +308,87 @@ class ValveSpring(Parameters):
         return self.spring_model.min_length
 
     def static_state(self, length):
-        """Static force [N], element compressions [m] and tangent stiffness [N/m] at a length [m]."""
+        """Static force [N], element compressions [m] and tangent stiffness [N/m] at a length [m].
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
+        """
         return self.spring_model.static_state(length)
 
     def static_force(self, length):
-        """Static (massless) spring force [N] at spring length ``length`` [m]."""
+        """Static (massless) spring force [N] at spring length ``length`` [m].
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
+        """
         return self.spring_model.static_force(length)
 
     def static_stiffness(self, length):
-        """Static tangent stiffness ``-dF/dL`` [N/m] at spring length ``length`` [m]."""
+        """Static tangent stiffness ``-dF/dL`` [N/m] at spring length ``length`` [m].
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
+        """
         return self.spring_model.static_stiffness(length)
 
     def length_at_force(self, force: float) -> float:
-        """Spring length [m] at which the static force is ``force`` [N]."""
+        """Spring length [m] at which the static force is ``force`` [N].
+
+        Parameters
+        ----------
+        force : float
+            Static force [N], from 0 to the model's limit.
+        """
         return self.spring_model.length_at_force(force)
 
     def initial_condition(self, total_compression: float):
-        """Static state at a total compression [m] (see the model)."""
+        """Static state at a total compression [m] (see the model).
+
+        Parameters
+        ----------
+        total_compression : float
+            Total compression ``(Lf - Ls) + lift`` [m].
+        """
         return self.spring_model.initial_condition(total_compression)
 
     def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
-        """Static force and stiffness against length (:class:`~springdyn.valve.results.StaticCurve`)."""
+        """Static force and stiffness against length (:class:`~springdyn.valve.results.StaticCurve`).
+
+        Parameters
+        ----------
+        start, stop : float, optional
+            Lengths [m] (default: the free length down to the model's limit).
+        points : int
+            Samples [-].
+        """
         return self.spring_model.static_curve(start, stop, points)
 
     def modes(self, length: float, count: int = 5):
-        """Natural frequencies [Hz], ascending, of the model linearised at ``length`` [m], ends fixed."""
+        """Natural frequencies [Hz], ascending, of the model linearised at ``length`` [m], ends fixed.
+
+        Parameters
+        ----------
+        length : float
+            Spring length [m].
+        count : int
+            Frequencies [-].
+        """
         return self.spring_model.modes(length, count)
 
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:
-        """Design figures at installed length, at maximum lift and at coil contact (see the model)."""
+        """Design figures at installed length, at maximum lift and at coil contact (see the model).
+
+        Parameters
+        ----------
+        lift : float, optional
+            Valve lift [m].
+        cam_rpm : float, optional
+            Cam speed [rev/min] for the surge margin.
+        """
         return self.spring_model.design_figures(lift, cam_rpm)

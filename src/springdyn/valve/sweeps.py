@@ -15,6 +15,7 @@ import os
 import warnings
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -195,7 +196,13 @@ class SpeedSweep(Result):
         return text + (f", {self.vary_values.size} values of {self.vary_name}" if self.vary_name else "")
 
     def vary_label(self, k: int) -> str:
-        """``'installed_length = 36 mm'`` for the design value ``k``."""
+        """``'installed_length = 36 mm'`` for the design value ``k``.
+
+        Parameters
+        ----------
+        k : int
+            Index of the design value [-].
+        """
         return describe_design_value(self.vary_name, self.vary_values[k]) if self.vary_name else ""
 
     def _summary(self) -> dict:
@@ -372,7 +379,13 @@ class SpeedSweep(Result):
         return ds if self.vary_name else ds.isel(vary=0, drop=True)
 
     def to_netcdf(self, path):
-        """Write :meth:`to_xarray` to NetCDF atomically."""
+        """Write :meth:`to_xarray` to NetCDF atomically.
+
+        Parameters
+        ----------
+        path : str or Path
+            The NetCDF file to write [-].
+        """
         with atomic_path(path, suffix=".nc") as tmp:
             self.to_xarray().to_netcdf(tmp)
         return Path(path)
@@ -401,6 +414,15 @@ class SpeedSweep(Result):
         Earlier versions took an output folder here and wrote every sweep figure into it:
         a path that is an existing folder still does that, with a DeprecationWarning
         (use :meth:`plot_all`).
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            The PNG file to write [-].
+        ax : matplotlib Axes, optional
+            Draw there [-].
+        prefix : str
+            File name prefix of a folder's figures [-].
         """
         if path is not None and Path(path).is_dir():
             warnings.warn(
@@ -410,7 +432,15 @@ class SpeedSweep(Result):
         return super().plot(path, ax=ax)
 
     def plot_all(self, out_dir, prefix: str = "sweep") -> list[Path]:
-        """Write every sweep figure as PNG into the folder ``out_dir``; returns their paths."""
+        """Write every sweep figure as PNG into the folder ``out_dir``; returns their paths.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            Output folder [-].
+        prefix : str
+            File name prefix [-].
+        """
         from .plots import plot_sweep
 
         out_dir = Path(out_dir)
@@ -425,17 +455,28 @@ class SpeedSweep(Result):
         base-circle modes where full lift has none).  Rows: ``mode``, ``frequency_Hz``,
         ``order``, ``cam_rpm``.
         """
+        return list(self._resonances)
+
+    @cached_property
+    def _resonances(self) -> list[dict]:
+        """:meth:`resonance_table`, computed once per sweep (a linearisation and a root search)."""
         from .train_modes import natural_frequencies, resonance_speeds
 
-        if "_resonances" not in self.__dict__:  # a linearisation and a root search: once per sweep
-            nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)
-            self.__dict__["_resonances"] = resonance_speeds(
-                nat["full_lift_Hz"] or nat["base_circle_Hz"], float(np.min(self.cam_rpm)), float(np.max(self.cam_rpm))
-            )
-        return list(self.__dict__["_resonances"])
+        nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)
+        return resonance_speeds(
+            nat["full_lift_Hz"] or nat["base_circle_Hz"], float(np.min(self.cam_rpm)), float(np.max(self.cam_rpm))
+        )
 
     def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
-        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``."""
+        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            Output folder [-].
+        prefix : str
+            File name prefix [-].
+        """
         from ..core.io import write_csv
 
         out_dir = Path(out_dir)

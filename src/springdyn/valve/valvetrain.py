@@ -374,6 +374,11 @@ class ValveTrain(Parameters):
         lobe_lash``: masses [kg], stiffnesses [N/m], dampings [N s/m], lash at the valve
         side [m] (``lash`` overrides it: the effective lash of an adjuster), lobe lift that
         starts the event [m].
+
+        Parameters
+        ----------
+        lash : float, optional
+            Lash at the valve side [m] (default: the train's).
         """
         lash = self.lash if lash is None else lash
         lever = self.layout != "direct-acting"

@@ -48,11 +48,23 @@ class Chain:
         return np.array(np.broadcast_to(np.asarray(self.c0, dtype=float), (self.laws.shape[0],)))
 
     def tangent_stiffness(self, compressions) -> np.ndarray:
-        """Element tangent stiffnesses [N/m] at the given compressions [m]."""
+        """Element tangent stiffnesses [N/m] at the given compressions [m].
+
+        Parameters
+        ----------
+        compressions : array_like
+            Element compressions [m], one per element.
+        """
         return np.stack([law_stiffness(x, law) for x, law in zip(compressions, self.laws)])
 
     def damping(self, compressions) -> np.ndarray:
-        """Element damping coefficients [N s/m] at the given compressions [m]."""
+        """Element damping coefficients [N s/m] at the given compressions [m].
+
+        Parameters
+        ----------
+        compressions : array_like
+            Element compressions [m], one per element.
+        """
         return np.stack([damping_coefficient(x, law, c) for x, law, c in zip(compressions, self.laws, self.c0_array)])
 
 
@@ -147,7 +159,13 @@ class SpringModel:
         return self.spring.free_length - length
 
     def static_state(self, length):
-        """Static force [N], element compressions [m] and tangent stiffness [N/m] at a length [m]."""
+        """Static force [N], element compressions [m] and tangent stiffness [N/m] at a length [m].
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
+        """
         return series_state(self._compression(length), self.chain.laws)
 
     def static_force(self, length):
@@ -155,19 +173,42 @@ class SpringModel:
 
         Series equilibrium of the six elements: equal force, compressions summing to
         ``Lf - length`` (correction MMS-10 of docs/references.md).  Valid from the free length down to :attr:`min_length`.
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
         """
         return self.static_state(length)[0]
 
     def static_stiffness(self, length):
-        """Static tangent stiffness ``-dF/dL`` [N/m] at spring length ``length`` [m]."""
+        """Static tangent stiffness ``-dF/dL`` [N/m] at spring length ``length`` [m].
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
+        """
         return self.static_state(length)[2]
 
     def length_at_force(self, force: float) -> float:
-        """Spring length [m] at which the static force is ``force`` [N]."""
+        """Spring length [m] at which the static force is ``force`` [N].
+
+        Parameters
+        ----------
+        force : float
+            Static force [N], from 0 to the model's limit.
+        """
         return float(self.spring.free_length - element_compressions(force, self.chain.laws).sum())
 
     def initial_condition(self, total_compression: float):
         """Static state at a total compression ``dL = (Lf - Ls) + lift`` [m] (correction MMS-10 of docs/references.md).
+
+        Parameters
+        ----------
+        total_compression : float
+            Total compression ``(Lf - Ls) + lift`` [m].
+
 
         Returns
         -------
@@ -186,6 +227,13 @@ class SpringModel:
 
         Defaults: from the free length to the length where the force reaches three times
         the coil-contact force Fcon (well past coil contact).
+
+        Parameters
+        ----------
+        start, stop : float, optional
+            Lengths [m] (default: the free length down to the model's limit).
+        points : int
+            Samples [-].
         """
         from ..results import StaticCurve
 
@@ -212,7 +260,7 @@ class SpringModel:
         length : float
             Spring length [m].
         count : int
-            How many, from the lowest (at most the number of masses).
+            How many, from the lowest (at most the number of masses) [-].
         """
         n = len(self.chain.masses)
         if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n:

@@ -10,13 +10,21 @@ compiled engine evaluates the same interpolant (:func:`.equations.hermite5`, thr
 from __future__ import annotations
 
 import math
+import threading
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
 
 from .equations import hermite5
 
-__all__ = ["CamTable"]
+__all__ = ["CamTable", "CACHE_SIZE"]
+
+#: Cams whose tables :meth:`CamTable.of` keeps.
+CACHE_SIZE = 16
+#: ``(id(cam), samples) -> (weak reference to the cam, table)``, oldest first.
+_CACHE: dict = {}
+_LOCK = threading.Lock()
 
 
 @dataclass(frozen=True, eq=False)
@@ -32,6 +40,10 @@ class CamTable:
     def of(cls, cam, samples: int) -> CamTable:
         """The table of ``cam`` with ``samples`` nodes per revolution.
 
+        Sampling a cam costs about as much as a Type C simulation, so the tables of the
+        last :data:`CACHE_SIZE` cams are kept (:data:`_CACHE`, keyed on the cam object: a
+        cam is immutable; a weak reference checks that the key's cam still exists).
+
         Parameters
         ----------
         cam : Cam
@@ -39,8 +51,20 @@ class CamTable:
         samples : int
             Nodes per revolution [-].
         """
+        key = (id(cam), int(samples))
+        with _LOCK:
+            hit = _CACHE.get(key)
+            if hit is not None and hit[0]() is cam:
+                return hit[1]
         h, dh, ddh = cam.sampled(samples)
-        return cls(np.ascontiguousarray(h), np.ascontiguousarray(dh), np.ascontiguousarray(ddh), 2 * math.pi / samples)
+        table = cls(np.ascontiguousarray(h), np.ascontiguousarray(dh), np.ascontiguousarray(ddh), 2 * math.pi / samples)
+        # (shared by every run of this cam; left writable: numba compiles read-only arrays
+        # as another type, and so the engine once more)
+        with _LOCK:
+            _CACHE[key] = (weakref.ref(cam), table)
+            while len(_CACHE) > CACHE_SIZE:
+                _CACHE.pop(next(iter(_CACHE)))  # the oldest
+        return table
 
     @property
     def samples(self) -> int:
