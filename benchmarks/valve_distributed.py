@@ -75,7 +75,7 @@ def main(argv=None) -> int:
     for name, s in (("type-c", tc), ("distributed", ds)):
         t, sim = _best(lambda s=s: simulate(s, cam, 3000.0, 2, check_elements=False), args.repeat)
         ref = simulate(s, cam, 3000.0, 2, rtol=1e-10, atol=1e-13, method="dopri5")  # tight, 5th order
-        fset = s.internal_parameters()["Fset"]
+        fset = s.spring_model.internal_parameters()["Fset"]
         err = (
             max(
                 abs(sim.summary[k] - ref.summary[k])
@@ -86,7 +86,7 @@ def main(argv=None) -> int:
         rows[name] = (t, sim.info["steps"])
         print(
             f"  {name:12s} {t * 1e3:8.2f} ms  {sim.info['steps']:6d} steps ({sim.info['method']})  "
-            f"{len(s.chain.masses):3d} masses  "
+            f"{len(s.spring_model.chain.masses):3d} masses  "
             f"error vs Dormand-Prince rtol 1e-10: {100 * err:.4f} % of Fset"
         )
     ratio = rows["distributed"][0] / rows["type-c"][0]
@@ -105,7 +105,7 @@ def main(argv=None) -> int:
     print("stiffness of the explicit step (linearised at set-up; stability limit on the negative real axis:")
     print("  Dormand-Prince ~3.3, Bogacki-Shampine ~2.5)")
     for name, s in (("type-c", tc), ("distributed", ds)):
-        ch = s.chain
+        ch = s.spring_model.chain
         x = ch.setup_compressions
         lam = np.abs(chain_eigenvalues(ch.masses, ch.tangent_stiffness(x), ch.damping(x))).max()
         h = 2 * 0.02 / rows[name][1]

@@ -76,7 +76,7 @@ def main(argv=None) -> int:
 
     spring = ValveSpring.example("one-step")
     cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
-    fset = spring.internal_parameters()["Fset"]
+    fset = spring.spring_model.internal_parameters()["Fset"]
     t_import = time.perf_counter() - t0
 
     t = time.perf_counter()

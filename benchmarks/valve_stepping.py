@@ -86,7 +86,7 @@ def main(argv=None) -> int:
             for i, (s, c, rpm) in enumerate(cases):
                 sim = sims[i, pair]
                 steps += sim.info["steps"]
-                fset = s.internal_parameters()["Fset"]
+                fset = s.spring_model.internal_parameters()["Fset"]
                 err = max(abs(sim.summary[k] - refs[i][k]) for k in keys) / fset
                 if err > worst:
                     worst, where = err, f"{s.type} {c} {rpm:g} rpm"
@@ -102,7 +102,7 @@ def main(argv=None) -> int:
     print("stability: largest |eigenvalue| of the linearised chain at set-up x mean step (3000 cam rpm, 3-4-5)")
     for model in args.models:
         s = ValveSpring.example("one-step").with_model(model)
-        ch = s.chain
+        ch = s.spring_model.chain
         x = ch.setup_compressions
         lam = chain_eigenvalues(ch.masses, ch.tangent_stiffness(x), ch.damping(x))
         top = lam[np.argmax(np.abs(lam))]

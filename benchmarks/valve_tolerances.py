@@ -43,7 +43,7 @@ def main(argv=None) -> int:
         for s, c, r in cases
     ]
     default = dynamics.VELOCITY_TOLERANCE_DIVISOR
-    f1 = float(cases[0][0].internal_parameters()["f1"])
+    f1 = float(cases[0][0].spring_model.internal_parameters()["f1"])
     print(f"{args.model}: {len(cases)} runs; velocity tolerance atol 2 pi f1 / D")
     print(f"{'D':>12s} {'steps':>9s} {'worst [% Fset]':>15s} {'2nd':>8s}  worst case")
     try:
@@ -53,7 +53,9 @@ def main(argv=None) -> int:
             for (s, c, r), ref in zip(cases, refs):
                 sim = simulate(s, cams[c], r, 2, check_elements=False)
                 steps += sim.info["steps"]
-                errs.append(max(abs(sim.summary[k] - ref[k]) for k in keys) / s.internal_parameters()["Fset"])
+                errs.append(
+                    max(abs(sim.summary[k] - ref[k]) for k in keys) / s.spring_model.internal_parameters()["Fset"]
+                )
             errs = 100 * np.array(errs)
             w = int(np.argmax(errs))
             name = f"{d:g}" if d < 1000 else "atol for all"

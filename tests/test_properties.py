@@ -89,9 +89,9 @@ def _valve(mapping):
     from springdyn.valve import ValveSpring
 
     s = ValveSpring.from_dict(mapping)
-    p = s.internal_parameters()
-    f = float(s.static_force(s.installed_length))
-    return [*p.values(), f, *s.modes(s.installed_length, 3)]
+    p = s.spring_model.internal_parameters()
+    f = float(s.spring_model.static_force(s.installed_length))
+    return [*p.values(), f, *s.spring_model.modes(s.installed_length, 3)]
 
 
 def _cam(mapping):

@@ -116,7 +116,7 @@ FACTORIES = {
     "springdyn.cfcs.design.DesignResult": lambda: __import__("springdyn.cfcs", fromlist=["design"]).design(
         12.8, 0.02, 207e9, 1.5e9
     ),
-    "springdyn.valve.results.StaticCurve": lambda: _valve_spring().static_curve(points=50),
+    "springdyn.valve.results.StaticCurve": lambda: _valve_spring().spring_model.static_curve(points=50),
     "springdyn.valve.results.Simulation": lambda: springdyn.valve.simulate(
         _valve_spring(), _valve_cam(), 2500, 2, points_per_revolution=360
     ),

@@ -45,7 +45,7 @@ def main(argv=None) -> int:
     result, spring, cam, train = find_float_speed(args.spring)
     print(
         f"valve train: moving mass {train.moving_mass * 1e3:.0f} g, {args.spring} spring "
-        f"(Fset {spring.internal_parameters()['Fset']:.1f} N), cam {cam.law} {cam.max_lift * 1e3:.1f} mm"
+        f"(Fset {spring.spring_model.internal_parameters()['Fset']:.1f} N), cam {cam.law} {cam.max_lift * 1e3:.1f} mm"
     )
     for rpm, f in zip(result["cam_rpm"], result["min_cam_contact_force_N"]):
         print(f"  {rpm:6.0f} cam rpm: minimum cam contact force {f:8.1f} N")

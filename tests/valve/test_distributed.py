@@ -57,7 +57,7 @@ def test_modes_form_the_harmonic_series(uniform):
     uniform fixed-fixed chain of n pieces has f_k/f_1 = sin(k pi/2n)/sin(pi/2n), 0.4 %
     below k at k = 5, n = 50)."""
     assert uniform.elements == DEFAULT_ELEMENTS
-    f = uniform.modes(uniform.installed_length, 5)
+    f = uniform.spring_model.modes(uniform.installed_length, 5)
     np.testing.assert_allclose(f / f[0], np.arange(1, 6), rtol=0.01)
 
 
@@ -65,7 +65,7 @@ def test_first_mode_near_the_continuum_surge_frequency(uniform):
     """f1 against d/(2 pi n D^2) sqrt(G/(2 rho)): the closed-coil continuum formula; the
     model's wire is open-coiled (pitch angle 6 deg: 0.9 % softer, 0.5 % heavier per turn by
     Wahl's open-coil compliance and the wire length), so f1 is 0.5-1 % below it."""
-    p = uniform.internal_parameters()
+    p = uniform.spring_model.internal_parameters()
     f_cont = p["f_continuum"]
     assert f_cont == pytest.approx(
         uniform.wire_diameter
@@ -81,7 +81,7 @@ def test_dynamic_stiffness_follows_the_continuum(uniform, tmp_path):
     retainer driven), theta = pi f/f1, within 2 % away from resonances and antiresonances
     (|sin|, |cos| > 0.3) up to 2 f1; beyond, the chain's dispersion shifts the resonances."""
     L = uniform.installed_length
-    f1 = uniform.modes(L, 1)[0]
+    f1 = uniform.spring_model.modes(L, 1)[0]
     r = dynamic_stiffness(uniform, np.linspace(5.0, 2 * f1, 400), L)
     k = r.static_stiffness
     th = np.pi * r.frequency / f1
@@ -104,7 +104,7 @@ def test_type_c_frf_low_frequency_limit():
 def test_damping_mode_one_gets_the_damping_ratio(one_step):
     """Mode 1 at set-up has exactly damping_ratio; higher modes proportionally more
     (stiffness-proportional damping: zeta_k = zeta f_k/f_1)."""
-    ch = one_step.chain
+    ch = one_step.spring_model.chain
     x = ch.setup_compressions
     f, z = modal_damping(ch.masses, ch.tangent_stiffness(x), ch.damping(x))
     assert z[0] == pytest.approx(one_step.damping_ratio, rel=1e-5)
@@ -115,9 +115,9 @@ def test_element_convergence(one_step):
     """Modes at set-up, where the transition coils are partly closed: the closing front
     inside an element converges slowly (first order); n = 50 is within 0.5 % of n = 200
     (measured 0.2-0.4 %) and closer than n = 25."""
-    ref = one_step.replace(elements=200).modes(one_step.installed_length, 3)
-    f50 = one_step.modes(one_step.installed_length, 3)
-    f25 = one_step.replace(elements=25).modes(one_step.installed_length, 3)
+    ref = one_step.replace(elements=200).spring_model.modes(one_step.installed_length, 3)
+    f50 = one_step.spring_model.modes(one_step.installed_length, 3)
+    f25 = one_step.replace(elements=25).spring_model.modes(one_step.installed_length, 3)
     np.testing.assert_allclose(f50, ref, rtol=5e-3)
     assert np.all(np.abs(f50 / ref - 1) < np.abs(f25 / ref - 1))
 
@@ -126,7 +126,7 @@ def test_element_convergence(one_step):
 def test_peak_forces_converge_in_elements(one_step):
     """Peak and minimum end forces at 3000 cam rpm (no coil clash)
     change by less than 0.75 % of Fset from 50 to 100 elements (measured 0.4 %)."""
-    fset = one_step.internal_parameters()["Fset"]
+    fset = one_step.spring_model.internal_parameters()["Fset"]
     a = simulate(one_step, CAM, 3000, 2).summary
     b = simulate(one_step.replace(elements=100), CAM, 3000, 2).summary
     for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
@@ -135,7 +135,7 @@ def test_peak_forces_converge_in_elements(one_step):
 
 # ---------------------------------------------------------------- statics
 def p_k1(spring):
-    return spring.internal_parameters()["K1"]
+    return spring.spring_model.internal_parameters()["K1"]
 
 
 def test_coils_close_one_by_one(one_step):
@@ -146,11 +146,13 @@ def test_coils_close_one_by_one(one_step):
     half = closing[: closing.size // 2]
     assert np.all(np.diff(half[:5]) > 0)  # seat-end transition: one by one
     assert closing[0] < m.internal_parameters()["Fset"] < closing.max()
-    curve = one_step.static_curve(one_step.free_length, one_step.length_at_force(0.999 * closing.max()), 800)
+    curve = one_step.spring_model.static_curve(
+        one_step.free_length, one_step.spring_model.length_at_force(0.999 * closing.max()), 800
+    )
     assert np.all(np.diff(curve.stiffness) >= -1e-6 * curve.stiffness[:-1])  # never softens
     # each closure adds stiffness: between successive closing forces the rate is higher
     mids = 0.5 * (half[:4] + half[1:5])
-    k = [float(one_step.static_stiffness(one_step.length_at_force(f))) for f in mids]
+    k = [float(one_step.spring_model.static_stiffness(one_step.spring_model.length_at_force(f))) for f in mids]
     assert np.all(np.diff(k) > 0) and k[0] > p_k1(one_step)
 
 
@@ -159,25 +161,27 @@ def test_solid_length_from_the_wire_stack(one_step):
     the contact compression of the coils closed before (penalty contact with the graded
     onset of the transition coils: 2.2 % of Lc here, 3 % allowed), and the stack only
     compresses by contact beyond."""
-    p = one_step.internal_parameters()
+    p = one_step.spring_model.internal_parameters()
     assert p["Lc"] == pytest.approx(one_step.wire_diameter * (7.5 + 0.5), rel=1e-12)
-    l_con = one_step.length_at_force(p["Fcon"])
+    l_con = one_step.spring_model.length_at_force(p["Fcon"])
     assert abs(l_con - p["Lc"]) < 0.03 * p["Lc"]
-    assert one_step.static_stiffness(one_step.length_at_force(3 * p["Fcon"])) > 20 * p["K1"]  # measured 32 K1
+    assert (
+        one_step.spring_model.static_stiffness(one_step.spring_model.length_at_force(3 * p["Fcon"])) > 20 * p["K1"]
+    )  # measured 32 K1
 
 
 def test_two_step_frequency_rises_as_low_pitch_coils_close(two_step):
     """The two-step spring's first mode rises steadily (no jump: < 2 % per 0.1 mm)
     while its low-pitch coils close from the seat, and they are all closed at set-up."""
     L = np.arange(two_step.free_length, two_step.installed_length - 1e-9, -1e-4)
-    f = np.array([two_step.modes(x, 1)[0] for x in L])
+    f = np.array([two_step.spring_model.modes(x, 1)[0] for x in L])
     assert np.all(np.diff(f) >= -1e-9)
     assert np.max(f[1:] / f[:-1]) < 1.02
     assert f[-1] > 1.15 * f[0]
     m = two_step.spring_model
     pos = m.element_positions
     low = pos < two_step.low_pitch_coils
-    closed = m.closing_forces() <= two_step.internal_parameters()["Fset"] * (1 + 1e-9)
+    closed = m.closing_forces() <= two_step.spring_model.internal_parameters()["Fset"] * (1 + 1e-9)
     assert np.all(closed[low])
     high = (pos > two_step.low_pitch_coils + 0.5) & (pos < 8 - two_step.dead_coils - 0.5)  # constant high pitch
     assert not np.any(closed[high])
@@ -199,9 +203,11 @@ def test_profiles_from_toml_arrays_and_csv(tmp_path):
     )
     b = ValveSpring.from_dict({**d, "pitch_profile": "pitch.csv"}, base_dir=tmp_path)
     for s in (a, b):
-        np.testing.assert_allclose(s.modes(s.installed_length, 3), base.modes(base.installed_length, 3), rtol=1e-9)
+        np.testing.assert_allclose(
+            s.spring_model.modes(s.installed_length, 3), base.spring_model.modes(base.installed_length, 3), rtol=1e-9
+        )
     conical = ValveSpring.from_dict({**d, "diameter_profile": [[0, "24 mm"], [7.5, "20 mm"]]})
-    assert conical.internal_parameters()["f1"] != base.internal_parameters()["f1"]
+    assert conical.spring_model.internal_parameters()["f1"] != base.spring_model.internal_parameters()["f1"]
     with pytest.raises(InputError, match="pitch_profile gives the free length"):
         ValveSpring.from_dict({**d, "pitch_profile": [[0, "5 mm"], [7.5, "5 mm"]]})
     with pytest.raises(InputError, match=r"pitch_profile\[0\] = .* must be a pair"):
@@ -214,11 +220,11 @@ def test_quasi_static_limit(one_step):
     cam's harmonics stay 20x below f1; the static force is the series statics of the same
     element laws)."""
     sim = simulate(one_step, CAM, 300.0, 1, points_per_revolution=720)
-    fset = one_step.internal_parameters()["Fset"]
+    fset = one_step.spring_model.internal_parameters()["Fset"]
     assert np.max(np.abs(sim.retainer_force - sim.static_force)) < 5e-3 * fset
     assert np.max(np.abs(sim.seat_force - sim.static_force)) < 5e-3 * fset
     np.testing.assert_allclose(
-        sim.static_force, one_step.static_force(one_step.installed_length - sim.lift), rtol=1e-10
+        sim.static_force, one_step.spring_model.static_force(one_step.installed_length - sim.lift), rtol=1e-10
     )
 
 
@@ -229,14 +235,14 @@ def test_type_c_and_distributed_agree_at_low_speed():
     empirical stiffening to 1.15 K2 beyond F1, which the geometric model does not have;
     0.5 % below F1: the open-coil pitch correction)."""
     s = ValveSpring.example("one-step").replace(dead_coils=0.0)
-    fset = s.internal_parameters()["Fset"]
+    fset = s.spring_model.internal_parameters()["Fset"]
     a = simulate(s, CAM, 500.0, 1, points_per_revolution=360)
     b = simulate(s.with_model("distributed"), CAM, 500.0, 1, points_per_revolution=360)
     for sim in (a, b):
         assert np.max(np.abs(sim.retainer_force - sim.static_force)) < 1.5e-2 * fset
         assert np.max(np.abs(sim.seat_force - sim.static_force)) < 1.5e-2 * fset
     np.testing.assert_allclose(b.static_force, a.static_force, rtol=0.03)
-    below = a.static_force < s.internal_parameters()["F1"]
+    below = a.static_force < s.spring_model.internal_parameters()["F1"]
     np.testing.assert_allclose(b.static_force[below], a.static_force[below], rtol=0.01)
 
 
@@ -251,7 +257,7 @@ def test_energy_balance_undamped(one_step):
     states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-9, atol=1e-12, h_max=2e-5)
     assert info["status"] == 0
     lift, dlift = setup.table.at(omega * t)
-    ch = s.chain
+    ch = s.spring_model.chain
     nm = ch.masses.size
     u = np.vstack([np.zeros_like(t), states[:, :nm].T, lift])
     x = ch.setup_compressions[:, None] + np.diff(u, axis=0)
@@ -304,7 +310,7 @@ def test_dense_extremes_catch_a_ringing_minimum_the_grid_misses():
     cam = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4, ramp_duration=math.radians(20))
     coarse = simulate(s, cam, 1000.0, 2)
     fine = simulate(s, cam, 1000.0, 2, points_per_revolution=100000)
-    fset = s.internal_parameters()["Fset"]
+    fset = s.spring_model.internal_parameters()["Fset"]
     grid_min = coarse.retainer_force.min()
     true_min = fine.retainer_force.min()
     assert grid_min - true_min > 1.0  # the grid misses it
@@ -333,7 +339,7 @@ def test_seat_impact_velocity_from_event_location():
     st, info = engine.integrate(
         setup.y0, np.concatenate([[0.0], t]), setup.args(omega), rtol=1e-10, atol=1e-13, h_max=2 * math.pi / omega / 720
     )
-    nm = s.chain.masses.size
+    nm = s.spring_model.chain.masses.size
     z, vz = st[1:, nm], st[1:, -1]
     i = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))[0]
     assert v == pytest.approx(-vz[i], rel=5e-4)

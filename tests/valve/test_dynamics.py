@@ -29,12 +29,12 @@ def one_step():
 def test_quasi_static_limit(one_step):
     """A 10 cam rpm drive reproduces the static force within 0.1 % of Fset."""
     sim = simulate(one_step, CAM, 10.0, revolutions=1, points_per_revolution=720)
-    fset = one_step.internal_parameters()["Fset"]
+    fset = one_step.spring_model.internal_parameters()["Fset"]
     assert np.max(np.abs(sim.retainer_force - sim.static_force)) < 1e-3 * fset
     assert np.max(np.abs(sim.seat_force - sim.static_force)) < 1e-3 * fset
     # and the static force itself is the static curve at the same lift
     np.testing.assert_allclose(
-        sim.static_force, one_step.static_force(one_step.installed_length - sim.lift), rtol=1e-12
+        sim.static_force, one_step.spring_model.static_force(one_step.installed_length - sim.lift), rtol=1e-12
     )
 
 
@@ -51,10 +51,12 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
         assert again.static_force is sim.static_force  # kept across speeds
         assert not sim.static_force.flags.writeable
         np.testing.assert_allclose(
-            sim.static_force, spring.static_force(spring.installed_length - sim.lift), rtol=1e-12
+            sim.static_force, spring.spring_model.static_force(spring.installed_length - sim.lift), rtol=1e-12
         )
         np.testing.assert_allclose(
-            sim.static_force.max(), float(spring.static_force(spring.installed_length - cam.lift)), rtol=1e-12
+            sim.static_force.max(),
+            float(spring.spring_model.static_force(spring.installed_length - cam.lift)),
+            rtol=1e-12,
         )
     coarse = simulate(spring, cams[0], 2000.0, revolutions=1, points_per_revolution=360)
     assert coarse.static_force.shape == (360,)
@@ -67,7 +69,7 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
 def test_refinement_study(name):
     """Halving the tolerances changes the peak forces by less than 0.05 % of Fset."""
     s = ValveSpring.example(name)
-    fset = s.internal_parameters()["Fset"]
+    fset = s.spring_model.internal_parameters()["Fset"]
     a = simulate(s, CAM, 3000, 2).summary
     b = simulate(s, CAM, 3000, 2, rtol=setupmod.DEFAULT_RTOL / 2, atol=setupmod.DEFAULT_ATOL / 2).summary
     for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
@@ -88,7 +90,7 @@ def test_compiled_engine_matches_scipy_reference(one_step):
     far better than 0.05 % of Fset over the whole revolution."""
     a = simulate(one_step, CAM, 3000, 1, rtol=1e-9, atol=1e-12)
     b = simulate(one_step, CAM, 3000, 1, rtol=1e-9, atol=1e-12, backend="scipy")
-    fset = one_step.internal_parameters()["Fset"]
+    fset = one_step.spring_model.internal_parameters()["Fset"]
     assert np.max(np.abs(a.retainer_force - b.retainer_force)) < 1e-5 * fset
 
 
@@ -98,7 +100,7 @@ def test_compiled_rhs_equals_numpy_element_laws(one_step):
     setup = prepare(one_step, CAM)
     args = setup.args(rpm_to_omega(3000))
     rng = np.random.default_rng(0)
-    ch = one_step.chain
+    ch = one_step.spring_model.chain
     for _ in range(20):
         s = np.concatenate([rng.normal(0, 2e-3, 5), np.zeros(5)])
         d = np.empty(10)
@@ -121,7 +123,7 @@ def test_energy_balance_undamped_chain(one_step):
     assert info["status"] == 0
     lift, dlift = setup.table.at(omega * t)
     dlift *= omega
-    ch = s.chain
+    ch = s.spring_model.chain
     u = np.vstack([np.zeros_like(t), states[:, :5].T, lift])
     x = ch.setup_compressions[:, None] + np.diff(u, axis=0)
     pe = sum(law_energy(x[j], ch.laws[j]) - law_energy(ch.setup_compressions[j], ch.laws[j]) for j in range(6))
@@ -132,7 +134,7 @@ def test_energy_balance_undamped_chain(one_step):
 
 
 def test_law_energy_is_integral_of_force(one_step):
-    for law in one_step.chain.laws:
+    for law in one_step.spring_model.chain.laws:
         xs = np.linspace(-1e-3, 9e-3, 200001)
         f = law_force(xs, law)
         num = np.concatenate([[0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(xs))])
@@ -155,7 +157,7 @@ def test_mode_frequencies_from_free_response(one_step):
     sig = states[:, 1] + states[:, 2] - states[:, 3]
     spec = np.abs(np.fft.rfft((sig - sig.mean()) * np.hanning(n)))
     freqs = np.fft.rfftfreq(n, 1 / fs)
-    expected = s.modes(s.installed_length, 3)
+    expected = s.spring_model.modes(s.installed_length, 3)
     for f0 in expected:
         k = int(np.argmax(np.where(np.abs(freqs - f0) < 20, spec, 0)))
         a, b, c = np.log(spec[k - 1 : k + 2])
@@ -169,16 +171,16 @@ def test_coil_contact_events():
     sim = simulate(s, high, 4000, 2)
     ev = sim.summary["coil_contact"]
     assert ev, "12 mm lift at 4000 rpm must reach coil contact"
-    fcon = s.internal_parameters()["Fcon"]
+    fcon = s.spring_model.internal_parameters()["Fcon"]
     for e in ev:
         assert e["peak_contact_force_N"] >= fcon
         assert all(name.split(":")[1].startswith("Kh") for name in e["elements"])
     # flags are exactly the Fcon breakpoints of the Kh elements
-    kh = [j for j, n in enumerate(s.chain.element_names) if n.startswith("Kh")]
+    kh = [j for j, n in enumerate(s.spring_model.chain.element_names) if n.startswith("Kh")]
     for j in kh:
         flagged = sim.element_contact[j]
         np.testing.assert_array_equal(
-            flagged, law_force(sim.element_compression[j], s.chain.laws[j]) >= fcon * (1 - 1e-12)
+            flagged, law_force(sim.element_compression[j], s.spring_model.chain.laws[j]) >= fcon * (1 - 1e-12)
         )
 
 
@@ -207,8 +209,8 @@ def test_liftoff_at_the_speed_where_contact_force_reaches_zero(one_step):
     # speed, but not by more than 15 % for this spring (f1 is ~9x the cam frequency).
     th = np.linspace(0, CAM.duration, 4001)
     h, _, ddh = CAM.evaluate(th)
-    m_eff = VT.moving_mass + one_step.internal_parameters()["M"] / 3
-    f_static = one_step.static_force(one_step.installed_length - h)
+    m_eff = VT.moving_mass + one_step.spring_model.internal_parameters()["M"] / 3
+    f_static = one_step.spring_model.static_force(one_step.installed_length - h)
     dec = ddh < 0
     w = math.sqrt(np.min(f_static[dec] / (m_eff * -ddh[dec])))
     rpm_qs = w * 60 / (2 * math.pi)
@@ -219,7 +221,7 @@ def test_valve_train_at_rest_is_static(one_step):
     """Far below float speed the valve follows the cam; at rest the spring preload is
     carried by the valve seat and, with zero lash, shared with the cam base circle
     (both contacts have the same stiffness here, so half each)."""
-    fset = one_step.internal_parameters()["Fset"]
+    fset = one_step.spring_model.internal_parameters()["Fset"]
     sim = simulate(one_step, CAM, 300, 2, valve_train=VT)
     closed = sim.lift == 0
     # the closing transient rings on the contacts for a few degrees: 1 % pointwise, 0.1 % mean

@@ -30,7 +30,7 @@ def test_quadratic_matches_document_matrix():
 
 
 def _breakpoints(spring, j):
-    law = spring.chain.laws[j]
+    law = spring.spring_model.chain.laws[j]
     return [x for x in law[1:, 0] if np.isfinite(x)]
 
 
@@ -39,7 +39,7 @@ def test_c1_continuity_at_every_breakpoint(name):
     """Force and slope continuous at each breakpoint: compare both one-sided limits
     evaluated 1e-12 m either side (slope error ~ 2a*h, force error ~ k*h)."""
     s = ValveSpring.example(name)
-    for j, law in enumerate(s.chain.laws):
+    for j, law in enumerate(s.spring_model.chain.laws):
         for xb in _breakpoints(s, j):
             h = 1e-12
             fl, fr = law_force(xb - h, law), law_force(xb + h, law)
@@ -58,8 +58,8 @@ def test_c1_continuity_at_every_breakpoint(name):
 @pytest.mark.parametrize("name", SPRINGS)
 def test_breakpoint_forces_are_the_document_ones(name):
     s = ValveSpring.example(name)
-    p, bp = s.internal_parameters(), s.breakpoints()
-    laws = dict(zip(s.chain.element_names, s.chain.laws))
+    p, bp = s.spring_model.internal_parameters(), s.spring_model.breakpoints()
+    laws = dict(zip(s.spring_model.chain.element_names, s.spring_model.chain.laws))
     for k, tag in (("Kh1", "1"), ("Kh2", "2")):
         law = laws[k]
         assert law_force(bp[f"x{tag}1"], law) == pytest.approx(p["F1"], rel=1e-12)
@@ -80,7 +80,7 @@ def test_breakpoint_forces_are_the_document_ones(name):
 def test_force_monotonic_and_inverse(name):
     s = ValveSpring.example(name)
     x = np.linspace(-2e-3, 12e-3, 20001)
-    for law in s.chain.laws:
+    for law in s.spring_model.chain.laws:
         f = law_force(x, law)
         assert np.all(np.diff(f) > 0)
         assert np.all(np.diff(law_stiffness(x, law)) >= -1e-6)  # stiffness never drops
@@ -90,11 +90,12 @@ def test_force_monotonic_and_inverse(name):
 def test_damping_law():
     """c(x) = C0 sqrt(k(x)/k(0)): C0 in the linear range, larger once the element stiffens."""
     s = ValveSpring.example("one-step")
-    law = s.chain.laws[1]
-    c0 = s.internal_parameters()["C0"]
+    law = s.spring_model.chain.laws[1]
+    c0 = s.spring_model.internal_parameters()["C0"]
     assert damping_coefficient(1e-4, law, c0) == pytest.approx(c0, rel=1e-15)
     x = 6.5e-3
     assert damping_coefficient(x, law, c0) == pytest.approx(c0 * np.sqrt(law_stiffness(x, law) / law[0, 2]), rel=1e-15)
-    assert s.internal_parameters()["C0"] == pytest.approx(
-        2 * 0.05 * np.sqrt(s.internal_parameters()["M"] * s.internal_parameters()["K1"]), rel=1e-15
+    assert s.spring_model.internal_parameters()["C0"] == pytest.approx(
+        2 * 0.05 * np.sqrt(s.spring_model.internal_parameters()["M"] * s.spring_model.internal_parameters()["K1"]),
+        rel=1e-15,
     )

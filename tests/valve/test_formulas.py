@@ -46,13 +46,13 @@ TWO_STEP = dict(
 
 @pytest.mark.parametrize("name,ref", [("one-step", ONE_STEP), ("two-step", TWO_STEP)])
 def test_reference_values(name, ref):
-    p = ValveSpring.example(name).internal_parameters()
+    p = ValveSpring.example(name).spring_model.internal_parameters()
     for key, value in ref.items():
         assert p[key] == pytest.approx(value, rel=REL), key
 
 
 def test_one_step_k2_equals_k1():
-    p = ValveSpring.example("one-step").internal_parameters()
+    p = ValveSpring.example("one-step").spring_model.internal_parameters()
     assert p["K2"] == p["K1"]
     assert p["K3"] == pytest.approx(1.15 * p["K2"], rel=1e-15)
 
@@ -65,7 +65,7 @@ def test_series_identities_of_the_chain(name):
     section takes the contact stiffness K of a fully contacting coil (3/K + 2/Kh1 + 1/Kh2
     = 1/K2); with Ks infinite the sum is 1/K2 - 1/K (0.2 % off for the example)."""
     s = ValveSpring.example(name)
-    p = s.internal_parameters()
+    p = s.spring_model.internal_parameters()
     if name == "one-step":
         total = 2 / p["K"] + 2 / p["Kh1"] + 2 / p["Kh2"]
         assert total == pytest.approx(1 / p["K1"], rel=1e-12)
@@ -74,20 +74,20 @@ def test_series_identities_of_the_chain(name):
         assert rest + 1 / p["Ks"] == pytest.approx(1 / p["K1"], rel=1e-12)
         assert rest + 1 / p["K"] == pytest.approx(1 / p["K2"], rel=1e-12)
     # and the chain's linear compliance (what statics uses) is the same sum
-    k0 = s.chain.laws[:, 0, 2]
+    k0 = s.spring_model.chain.laws[:, 0, 2]
     assert np.sum(1 / k0) == pytest.approx(1 / p["K1"], rel=1e-12)
 
 
 @pytest.mark.parametrize("name", ["one-step", "two-step"])
 def test_masses_sum_to_spring_mass(name):
     s = ValveSpring.example(name)
-    assert s.chain.masses.sum() == pytest.approx(s.internal_parameters()["M"], rel=1e-12)
+    assert s.spring_model.chain.masses.sum() == pytest.approx(s.spring_model.internal_parameters()["M"], rel=1e-12)
 
 
 def test_two_step_m2_is_in_phase_mode_of_m2_pair():
     """Notes 1.2: m2 = Kh1/(2 pi f2)^2 -- with m1 blocked, the two m2 masses (joined by
     Kh2) move in phase on the Kh1 springs at exactly f2."""
-    p = ValveSpring.example("two-step").internal_parameters()
+    p = ValveSpring.example("two-step").spring_model.internal_parameters()
     f = math.sqrt(p["Kh1"] / p["m2"]) / (2 * math.pi)
     assert f == pytest.approx(p["f2"], rel=1e-12)
 
@@ -96,7 +96,7 @@ def test_two_step_m1_is_dynamic_condensation_at_f1():
     """Notes 1.2: m1 is chosen so that the chain seen from m1 (Ks to ground on one side,
     Kh1-m2-Kh2-m2-Kh1 to a blocked end on the other) has a natural frequency at w1.
     Independent check: condense the m2 sub-chain at w1 numerically."""
-    p = ValveSpring.example("two-step").internal_parameters()
+    p = ValveSpring.example("two-step").spring_model.internal_parameters()
     w2 = (2 * math.pi * p["f1"]) ** 2
     kh1, kh2, m2 = p["Kh1"], p["Kh2"], p["m2"]
     # dynamic stiffness of [m2, m2] attached to m1 by Kh1 and to a fixed end by Kh1

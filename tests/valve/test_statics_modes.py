@@ -13,17 +13,19 @@ SPRINGS = ["one-step", "two-step"]
 @pytest.mark.parametrize("name", SPRINGS)
 def test_static_force_at_setup_is_fset(name):
     s = ValveSpring.example(name)
-    assert float(s.static_force(s.installed_length)) == pytest.approx(s.internal_parameters()["Fset"], rel=1e-12)
+    assert float(s.spring_model.static_force(s.installed_length)) == pytest.approx(
+        s.spring_model.internal_parameters()["Fset"], rel=1e-12
+    )
 
 
 @pytest.mark.parametrize("name", SPRINGS)
 def test_series_equilibrium_definition(name):
     """Same force in every element, compressions summing to Lf - L (exact to round-off)."""
     s = ValveSpring.example(name)
-    lengths = np.linspace(s.free_length, s.min_length, 57)
-    force, x, _ = s.static_state(lengths)
+    lengths = np.linspace(s.free_length, s.spring_model.min_length, 57)
+    force, x, _ = s.spring_model.static_state(lengths)
     np.testing.assert_allclose(x.sum(axis=0), s.free_length - lengths, rtol=1e-12, atol=1e-16)
-    for xj, law in zip(x, s.chain.laws):
+    for xj, law in zip(x, s.spring_model.chain.laws):
         np.testing.assert_allclose(law_force(xj, law), force, rtol=1e-11, atol=1e-9)
 
 
@@ -31,19 +33,19 @@ def test_series_equilibrium_definition(name):
 def test_linear_range_rate_is_k1(name):
     """Below F1 (and for two-step below Fset) every element is linear: rate = K1 exactly."""
     s = ValveSpring.example(name)
-    p = s.internal_parameters()
+    p = s.spring_model.internal_parameters()
     length = s.free_length - 0.5 * (s.free_length - s.installed_length)
-    assert float(s.static_stiffness(length)) == pytest.approx(p["K1"], rel=1e-12)
-    assert float(s.static_force(length)) == pytest.approx(p["K1"] * (s.free_length - length), rel=1e-12)
+    assert float(s.spring_model.static_stiffness(length)) == pytest.approx(p["K1"], rel=1e-12)
+    assert float(s.spring_model.static_force(length)) == pytest.approx(p["K1"] * (s.free_length - length), rel=1e-12)
 
 
 def test_two_step_rate_approaches_k2_after_low_pitch_closes():
     """Two-step: once Ks has stiffened (beyond set-up) the rate tends to K2 (Ks -> rigid)
     before the Kh elements stiffen at F1."""
     s = ValveSpring.example("two-step")
-    p = s.internal_parameters()
-    length = s.length_at_force(0.5 * (p["Fset"] + p["F1"])) + 0.0
-    k = float(s.static_stiffness(length))
+    p = s.spring_model.internal_parameters()
+    length = s.spring_model.length_at_force(0.5 * (p["Fset"] + p["F1"])) + 0.0
+    k = float(s.spring_model.static_stiffness(length))
     assert p["K1"] < k < p["K2"] * 1.001
     assert k == pytest.approx(p["K2"], rel=0.02)  # Ks is ~20x its initial rate there
 
@@ -52,49 +54,51 @@ def test_two_step_rate_approaches_k2_after_low_pitch_closes():
 def test_stiffness_is_derivative_of_force(name):
     """Tangent stiffness vs central difference of the force (h = 1 um, O(h^2) error)."""
     s = ValveSpring.example(name)
-    lengths = np.linspace(s.free_length - 1e-4, s.min_length + 1e-4, 41)
+    lengths = np.linspace(s.free_length - 1e-4, s.spring_model.min_length + 1e-4, 41)
     h = 1e-6
-    fd = (s.static_force(lengths - h) - s.static_force(lengths + h)) / (2 * h)
-    np.testing.assert_allclose(s.static_stiffness(lengths), fd, rtol=2e-3)
+    fd = (s.spring_model.static_force(lengths - h) - s.spring_model.static_force(lengths + h)) / (2 * h)
+    np.testing.assert_allclose(s.spring_model.static_stiffness(lengths), fd, rtol=2e-3)
 
 
 @pytest.mark.parametrize("name", SPRINGS)
 def test_force_continuous_and_monotonic_over_curve(name):
     s = ValveSpring.example(name)
-    c = s.static_curve(points=2000)
+    c = s.spring_model.static_curve(points=2000)
     assert np.all(np.diff(c.force) > 0)  # length decreasing -> force increasing
     assert c.force[0] == pytest.approx(0.0, abs=1e-9)
-    assert c.force[-1] == pytest.approx(3 * s.internal_parameters()["Fcon"], rel=1e-9)
+    assert c.force[-1] == pytest.approx(3 * s.spring_model.internal_parameters()["Fcon"], rel=1e-9)
 
 
 @pytest.mark.parametrize("name", SPRINGS)
 def test_initial_condition(name):
     s = ValveSpring.example(name)
-    p = s.internal_parameters()
-    ic = s.initial_condition(s.free_length - s.installed_length)
+    p = s.spring_model.internal_parameters()
+    ic = s.spring_model.initial_condition(s.free_length - s.installed_length)
     assert ic["force"] == pytest.approx(p["Fset"], rel=1e-12)
     np.testing.assert_allclose(ic["displacements"], 0.0, atol=1e-15)
     lift = 5e-3
-    ic = s.initial_condition(s.free_length - s.installed_length + lift)
-    assert ic["force"] == pytest.approx(float(s.static_force(s.installed_length - lift)), rel=1e-12)
+    ic = s.spring_model.initial_condition(s.free_length - s.installed_length + lift)
+    assert ic["force"] == pytest.approx(float(s.spring_model.static_force(s.installed_length - lift)), rel=1e-12)
     # displacement of the last mass + last element's extra compression = lift
-    dx_last = ic["compressions"][-1] - s.chain.setup_compressions[-1]
+    dx_last = ic["compressions"][-1] - s.spring_model.chain.setup_compressions[-1]
     assert ic["displacements"][-1] + dx_last == pytest.approx(lift, rel=1e-12)
 
 
 def test_chain_modes_one_step_reference():
     """Notes 1.6: 449.61 / 900.65 / 1352.18 Hz (printed to 2 decimals: half a unit, 0.005 Hz)."""
     s = ValveSpring.example("one-step")
-    f = s.modes(s.free_length, 3)
+    f = s.spring_model.modes(s.free_length, 3)
     np.testing.assert_allclose(f, [449.61, 900.65, 1352.18], rtol=0, atol=0.005)
     # surge series f1, 2 f1, 3 f1 of the continuous spring (notes 1.2), within 0.3 %
-    f1 = s.internal_parameters()["f1"]
+    f1 = s.spring_model.internal_parameters()["f1"]
     np.testing.assert_allclose(f / (f1 * np.arange(1, 4)), 1.0, atol=3e-3)
 
 
 def test_chain_mode_two_step_reference():
     s = ValveSpring.example("two-step")
-    assert s.modes(s.installed_length, 1)[0] == pytest.approx(415.28, abs=0.005)  # half the last printed digit
+    assert s.spring_model.modes(s.installed_length, 1)[0] == pytest.approx(
+        415.28, abs=0.005
+    )  # half the last printed digit
 
 
 def _random_valid_springs(kind, count, seed):
@@ -123,8 +127,8 @@ def _random_valid_springs(kind, count, seed):
 
 
 def _first_mode_error(s):
-    p = s.internal_parameters()
-    return abs(s.modes(s.free_length, 1)[0] / p["f1"] - 1), p
+    p = s.spring_model.internal_parameters()
+    return abs(s.spring_model.modes(s.free_length, 1)[0] / p["f1"] - 1), p
 
 
 def test_first_mode_within_2k1_over_k_of_f1_one_step():
@@ -158,7 +162,7 @@ def test_chain_reproduces_f1_as_contact_stiffness_grows(name):
         err, p = _first_mode_error(s)
         errors.append(err)
         if name == "one-step":
-            f = s.modes(s.free_length, 3)
+            f = s.spring_model.modes(s.free_length, 3)
             np.testing.assert_allclose(f / p["f1"], [1, 2, 3], rtol=30 * p["K1"] / p["K"])
     assert errors[2] < 1e-5
     np.testing.assert_allclose(errors[0] / errors[1], 10, rtol=0.01)
@@ -167,15 +171,15 @@ def test_chain_reproduces_f1_as_contact_stiffness_grows(name):
 
 def test_modes_stiffen_past_coil_contact():
     s = ValveSpring.example("one-step")
-    p = s.internal_parameters()
-    f_setup = s.modes(s.installed_length, 1)[0]
-    f_contact = s.modes(s.length_at_force(1.5 * p["Fcon"]), 1)[0]
+    p = s.spring_model.internal_parameters()
+    f_setup = s.spring_model.modes(s.installed_length, 1)[0]
+    f_contact = s.spring_model.modes(s.spring_model.length_at_force(1.5 * p["Fcon"]), 1)[0]
     assert f_contact > 1.2 * f_setup
 
 
 def test_design_figures():
     s = ValveSpring.example("one-step")
-    d = s.design_figures(lift=9e-3, cam_rpm=3000)
+    d = s.spring_model.design_figures(lift=9e-3, cam_rpm=3000)
     c = 22 / 3.5
     assert d["spring_index"] == pytest.approx(c)
     assert d["bergstraesser_factor"] == pytest.approx((4 * c + 2) / (4 * c - 3))
@@ -193,18 +197,18 @@ def test_compiled_series_force_equals_numpy(name):
     from springdyn.valve.statics import series_force
 
     s = ValveSpring.example(name)
-    dl = np.linspace(-1e-3, s.free_length - s.min_length, 3001)
-    exact = series_force(dl, s.chain.laws)
+    dl = np.linspace(-1e-3, s.free_length - s.spring_model.min_length, 3001)
+    exact = series_force(dl, s.spring_model.chain.laws)
     out = np.empty_like(dl)
-    series_force_compiled(dl, s.chain.laws, out, np.empty(0), np.empty(0))  # from the all-linear force
+    series_force_compiled(dl, s.spring_model.chain.laws, out, np.empty(0), np.empty(0))  # from the all-linear force
     np.testing.assert_allclose(out, exact, rtol=1e-12, atol=1e-9)
-    x = np.linspace(0.0, s.free_length - s.min_length, 129)  # from the interpolated table
-    series_force_compiled(dl, s.chain.laws, out, x, series_force(x, s.chain.laws))
+    x = np.linspace(0.0, s.free_length - s.spring_model.min_length, 129)  # from the interpolated table
+    series_force_compiled(dl, s.spring_model.chain.laws, out, x, series_force(x, s.spring_model.chain.laws))
     np.testing.assert_allclose(out, exact, rtol=1e-12, atol=1e-9)
     # each point's result is its own: the same from a shuffled array, bit for bit
     order = np.random.default_rng(1).permutation(dl.size)
     shuffled = np.empty_like(dl)
-    series_force_compiled(dl[order], s.chain.laws, shuffled, x, series_force(x, s.chain.laws))
+    series_force_compiled(dl[order], s.spring_model.chain.laws, shuffled, x, series_force(x, s.spring_model.chain.laws))
     np.testing.assert_array_equal(shuffled, out[order])
 
 

@@ -59,7 +59,7 @@ def test_landing_on_the_ramp_ends_keeps_the_default_accurate():
     others 0.01 %), so the test holds the engine as built, with its stops, to the target over
     that scan."""
     s = ValveSpring.example("one-step")
-    fset = s.internal_parameters()["Fset"]
+    fset = s.spring_model.internal_parameters()["Fset"]
     setup = prepare(s, RAMPS)
     for rpm in (3000.0, 3500.0, 4100.0, 4200.0):
         sim = simulate(s, RAMPS, rpm, 2, setup=setup)
@@ -77,7 +77,7 @@ def test_pairs_per_model_and_their_accuracy():
         sim = simulate(s, CAM, 3000.0, 2, check_elements=False)
         assert sim.info["method"] == pair
         ref = simulate(s, CAM, 3000.0, 2, rtol=1e-10, atol=1e-13, check_elements=False)
-        assert _worst(sim, ref, s.internal_parameters()["Fset"]) < 5e-4
+        assert _worst(sim, ref, s.spring_model.internal_parameters()["Fset"]) < 5e-4
 
 
 def test_distributed_chain_is_stability_bound():
@@ -90,7 +90,7 @@ def test_distributed_chain_is_stability_bound():
     out = {}
     for model in ("type-c", "distributed"):
         s = ValveSpring.example("one-step").with_model(model)
-        ch = s.chain
+        ch = s.spring_model.chain
         x = ch.setup_compressions
         lam = np.abs(chain_eigenvalues(ch.masses, ch.tangent_stiffness(x), ch.damping(x))).max()
         sim = simulate(s, CAM, 3000.0, 2, check_elements=False)

@@ -108,7 +108,7 @@ def test_vary_adds_a_dimension_and_skips_invalid(spring):
     np.testing.assert_allclose(ds["vary"].values, [0.037, 0.039])
     assert res.skipped and res.skipped[0][0] == 0.020
     # a longer installed length gives a smaller set-up force: static min follows Fset
-    fset = [s.internal_parameters()["Fset"] for s in res.springs]
+    fset = [s.spring_model.internal_parameters()["Fset"] for s in res.springs]
     np.testing.assert_allclose(ds["min_static_force_N"].values[:, 0], fset, rtol=1e-12)
     with pytest.raises(InputError, match=r"vary: installed_length = 20 mm: installed_length = 20 mm is at or below"):
         sweep(spring, CAM, [1000.0], vary=("installed_length", np.array([0.020])))

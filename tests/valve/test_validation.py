@@ -83,11 +83,11 @@ def test_length_outside_curve_range():
     with pytest.raises(
         InputError, match=r"length = 10 mm is outside the range of the spring: it must lie between 20\.08\d mm"
     ):
-        s.static_force(0.010)
+        s.spring_model.static_force(0.010)
     with pytest.raises(InputError, match=r"length = 50 mm is outside the range.*free length Lf = 48 mm"):
-        s.modes(0.050)
+        s.spring_model.modes(0.050)
     with pytest.raises(InputError, match=r"stop = 5 mm"):
-        s.static_curve(stop=0.005)
+        s.spring_model.static_curve(stop=0.005)
 
 
 def test_python_api_validates_too():
@@ -209,7 +209,7 @@ def test_design_figures_need_a_positive_speed(one_step, rpm):
         match=r"cam_rpm = .* must be a positive, finite camshaft speed \[rev/min\]: "
         r"the surge margin",
     ):
-        one_step.design_figures(0.009, rpm)
+        one_step.spring_model.design_figures(0.009, rpm)
 
 
 def test_surge_margin_function_refuses_a_standing_cam():
@@ -222,7 +222,7 @@ def test_surge_margin_function_refuses_a_standing_cam():
 def test_static_curve_points(one_step, points):
     """``static_curve(points=2.5)`` (checked: an InputError)."""
     with pytest.raises(InputError, match=r"points = .* must be a whole number of at least 2"):
-        one_step.static_curve(points=points)
+        one_step.spring_model.static_curve(points=points)
 
 
 @pytest.mark.parametrize("backend,rpm,limit", [("scipy", 1.0, r"59\.7"), ("compiled", 1e-3, r"0\.597")])
@@ -303,7 +303,7 @@ def test_random_extreme_springs_never_crash():
             except InputError:
                 continue
             built += 1
-            assert all(np.isfinite(v) for v in s.internal_parameters().values() if isinstance(v, float))
+            assert all(np.isfinite(v) for v in s.spring_model.internal_parameters().values() if isinstance(v, float))
     assert built > 10  # the property is not vacuous
 
 

@@ -18,7 +18,7 @@ from springdyn.valve.valvetrain import ValveTrain, series_stiffness
 ROOT = Path(__file__).resolve().parents[2]
 
 SPRING = ValveSpring.example("one-step")
-FSET = SPRING.internal_parameters()["Fset"]
+FSET = SPRING.spring_model.internal_parameters()["Fset"]
 LOBE = Cam(law="3-4-5", lift=6e-3, duration=math.radians(120))
 RATIO = 1.5
 
@@ -169,7 +169,7 @@ def test_natural_frequencies_of_the_spring_alone_equal_its_modes():
     from springdyn.valve.train_modes import natural_frequencies
 
     res = natural_frequencies(SPRING, LOBE, None, count=5)
-    assert res["base_circle_Hz"] == pytest.approx(list(SPRING.modes(SPRING.installed_length)), rel=1e-6)
+    assert res["base_circle_Hz"] == pytest.approx(list(SPRING.spring_model.modes(SPRING.installed_length)), rel=1e-6)
 
 
 def test_valve_on_its_seat_has_the_seat_frequency():
@@ -178,7 +178,7 @@ def test_valve_on_its_seat_has_the_seat_frequency():
 
     vt = ValveTrain(valve_mass=5.0, seat_stiffness=1e6, lash=1e-3)  # lash beyond the 0.25 mm seat deflection
     res = natural_frequencies(SPRING, LOBE, vt, count=8)
-    k_spring = SPRING.internal_parameters()["K1"]
+    k_spring = SPRING.spring_model.internal_parameters()["K1"]
     f = math.sqrt((1e6 + k_spring) / 5.0) / (2 * math.pi)
     assert min(abs(x - f) for x in res["base_circle_Hz"]) < 0.02 * f  # spring mass 35 g vs 5 kg
 
@@ -208,7 +208,7 @@ def _train_energy_error(vt, cam, rpm):
     lift, dlift = setup.table.at(omega * t)
     dlift *= omega
     p = setup.vt
-    ch = s.chain
+    ch = s.spring_model.chain
     nm, nf = setup.n_masses, setup.nfree
     u, v = states[:, :nf].T, states[:, nf:].T
     z = u[nm]

@@ -232,7 +232,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         with a valve train also ``valve_lift``, ``cam_contact_force``,
         ``valve_seat_force`` (..., n_t).
     """
-    chain = setup.spring.chain
+    chain = setup.spring.spring_model.chain
     nf = setup.nfree
     omega = np.asarray(omega, dtype=float)[..., None]
     lift, dlift_dth = setup.table.at(theta)
@@ -276,7 +276,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
 def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous, info) -> Simulation:
     """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)
     over the last revolution, ``e``; ``previous`` is the retainer force over the one before."""
-    fset = setup.spring.internal_parameters()["Fset"]
+    fset = setup.spring.spring_model.internal_parameters()["Fset"]
     lay = extra_layout(setup.n_masses)
     ne = setup.n_masses + 1
     force, x = e[:, lay["force"]].T, e[:, lay["compression"]].T
@@ -331,7 +331,7 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, i
     theta = omega * t_keep
     r = chain_response(setup, omega, theta, states)
     last = slice((keep - 1) * n, keep * n)
-    fset = setup.spring.internal_parameters()["Fset"]
+    fset = setup.spring.spring_model.internal_parameters()["Fset"]
     force = r["force"]
     prev_err = float(np.max(np.abs(force[-1, last] - force[-1, :n])) / fset) if keep == 2 else math.nan
     sim = Simulation(

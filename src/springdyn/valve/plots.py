@@ -71,7 +71,7 @@ def plot_static_curve(curve, path=None, ax=None):
         Axes for the force panel.
     """
     spring = curve.spring
-    p = spring.internal_parameters()
+    p = spring.spring_model.internal_parameters()
     if ax is None:
         fig, (ax_f, ax_k) = new_figure(2, 1, figsize=(8, 7), sharex=True)
     else:
@@ -96,7 +96,7 @@ def plot_static_curve(curve, path=None, ax=None):
             continue
         force = p[name]
         if force <= curve.force.max():
-            length = spring.length_at_force(force) * 1e3
+            length = spring.spring_model.length_at_force(force) * 1e3
             ax_f.axhline(force, color=color, ls=":", lw=1)
             ax_f.plot([length], [force], "o", color=color, label=f"{name} = {force:.1f} N at {length:.2f} mm")
     ax_f.set_ylabel("force [N]")
@@ -153,7 +153,7 @@ def plot_simulation(sim, path=None, ax=None):
     ax2.plot(deg[order], sim.lift[order] * 1e3, color="0.6", lw=0.8)
     ax2.set_ylabel("cam lift [mm]", color="0.5")
     ax = axes[1]
-    for i, name in enumerate(sim.spring.chain.mass_names):
+    for i, name in enumerate(sim.spring.spring_model.chain.mass_names):
         ax.plot(deg[order], sim.mass_displacement[i][order] * 1e3, lw=1, label=f"mass {i + 1} ({name})")
     ax.set_ylabel("displacement from set-up [mm]")
     ax.legend(fontsize=8, ncol=3)
@@ -309,11 +309,11 @@ def _campbell(result, k, path, tag, max_order=30):
     fig.colorbar(sc, ax=ax, label="log10 retainer-force harmonic amplitude [N]")
     for o in orders[::5]:
         ax.annotate(f"{o}", (rpm[-1], o * rpm[-1] / 60.0), fontsize=7, color="0.4")
-    f_inst = float(spring.modes(spring.installed_length, 1)[0])
+    f_inst = float(spring.spring_model.modes(spring.installed_length, 1)[0])
     ax.axhline(f_inst, color="C0", lw=1.5, label=f"f1 at installed length {f_inst:.0f} Hz")
     open_len = spring.installed_length - result.cam.max_lift
-    if open_len >= spring.min_length:
-        f_open = float(spring.modes(open_len, 1)[0])
+    if open_len >= spring.spring_model.min_length:
+        f_open = float(spring.spring_model.modes(open_len, 1)[0])
         ax.axhline(f_open, color="C3", lw=1.5, ls="--", label=f"f1 at open length {f_open:.0f} Hz")
     ax.set_ylim(0, max(2.5 * f_inst, 1.0))
     ax.set_xlabel("cam speed [rpm]")

@@ -169,8 +169,8 @@ class Simulation(Result):
         import xarray as xr
 
         dims = ("cam_angle",)
-        enames = list(self.spring.chain.element_names)
-        mnames = list(self.spring.chain.mass_names)
+        enames = list(self.spring.spring_model.chain.element_names)
+        mnames = list(self.spring.spring_model.chain.mass_names)
 
         def per_element(what):
             return ",".join(f"element{j + 1}_{n}_{what}" for j, n in enumerate(enames))
@@ -343,10 +343,10 @@ def _union(ivals: list) -> list:
 
 
 def _summarise(sim: Simulation) -> dict:
-    p = sim.spring.internal_parameters()
+    p = sim.spring.spring_model.internal_parameters()
     deg = sim.cam_angle_deg
     step_deg = 360.0 / sim.cam_angle.size
-    names = sim.spring.chain.element_names
+    names = sim.spring.spring_model.chain.element_names
     mon = sim.monitor
     s = dict(
         model=getattr(sim.spring, "model", "type-c"),
@@ -399,7 +399,8 @@ def _summarise(sim: Simulation) -> dict:
             grid = sim.element_force[np.ix_(elems, np.flatnonzero(mask))] if mask.any() else np.empty((0, 0))
             gaps = sim.spring.spring_model.contact_gaps
             at_touch = max(
-                float(law_force(gaps[j], sim.spring.chain.laws[j])) if np.isfinite(gaps[j]) else 0.0 for j in elems
+                float(law_force(gaps[j], sim.spring.spring_model.chain.laws[j])) if np.isfinite(gaps[j]) else 0.0
+                for j in elems
             )
             events.append(
                 dict(
@@ -430,7 +431,7 @@ def _summarise(sim: Simulation) -> dict:
         s["clashing_coils"] = clash
     if sim.element_check is not None:
         chk = sim.element_check
-        fset = sim.spring.internal_parameters()["Fset"]
+        fset = sim.spring.spring_model.internal_parameters()["Fset"]
         change = (
             max(
                 abs(s["max_retainer_force_N"] - chk["max_retainer_force_N"]),
@@ -652,13 +653,13 @@ def _durability(sim, s: dict, notes: list) -> dict:
     if out["fatigue_safety_factor"] is None:
         notes.append("fatigue: the wire carries no stress over the cycle")
     # length to solid: the spring's length against its solid length
-    p = sim.spring.internal_parameters()
+    p = sim.spring.spring_model.internal_parameters()
     length = sim.spring.free_length - sim.element_compression.sum(axis=0)
     out["min_length_to_solid_m"] = float(max(length.min() - p["Lc"], 0.0))
     if sim.spring.model == "distributed":
         gaps = sim.spring.spring_model.contact_gaps
         # the coils open at set-up (dead coils and closed transitions excluded)
-        active = np.isfinite(gaps) & (gaps > sim.spring.chain.setup_compressions + 1e-12)
+        active = np.isfinite(gaps) & (gaps > sim.spring.spring_model.chain.setup_compressions + 1e-12)
         gap = gaps[active, None] - sim.element_compression[active]
         out["min_coil_gap_m"] = float(max(gap.min(), 0.0)) if gap.size else None
     return out

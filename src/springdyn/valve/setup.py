@@ -93,7 +93,7 @@ class SimulationSetup:
         lift = np.asarray(lift, dtype=float)
         dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
         force = np.empty_like(dl)
-        series_force_compiled(dl, sp.chain.laws, force, *sp.spring_model.force_table)
+        series_force_compiled(dl, sp.spring_model.chain.laws, force, *sp.spring_model.force_table)
         return force.reshape(lift.shape)
 
     def static_force_along_cam(self, points: int) -> np.ndarray:
@@ -132,7 +132,7 @@ class SimulationSetup:
         omega : float
             Cam speed [rad/s].
         """
-        ch = self.spring.chain
+        ch = self.spring.spring_model.chain
         return (
             ch.masses,
             ch.laws,
@@ -149,7 +149,7 @@ class SimulationSetup:
     @property
     def n_masses(self) -> int:
         """Masses of the spring's chain."""
-        return len(self.spring.chain.masses)
+        return len(self.spring.spring_model.chain.masses)
 
     @property
     def nfree(self) -> int:
@@ -219,7 +219,11 @@ class SimulationSetup:
         """
         out = np.full(self.nfree, float(atol))
         out[: self.n_masses] = (
-            atol * 2.0 * math.pi * float(self.spring.internal_parameters()["f1"]) / VELOCITY_TOLERANCE_DIVISOR
+            atol
+            * 2.0
+            * math.pi
+            * float(self.spring.spring_model.internal_parameters()["f1"])
+            / VELOCITY_TOLERANCE_DIVISOR
         )
         return out
 
@@ -244,22 +248,24 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     h = table.h
     deg = table.angle_deg
 
-    p = spring.internal_parameters()
+    p = spring.spring_model.internal_parameters()
     if valve_train is not None and valve_train.ratio != 1.0:
         h = h * valve_train.ratio  # the rigid valve lift checks the spring; the engine gets the lobe lift
     i_max = int(np.argmax(h))
     open_length = spring.installed_length - h[i_max]
-    if open_length < spring.min_length:
+    if open_length < spring.spring_model.min_length:
         raise InputError(
             f"cam lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} deg drives the spring solid: "
-            f"installed_length - lift = {open_length * 1e3:.4g} mm is below {spring.min_length * 1e3:.4g} mm, where "
-            f"the static force reaches {spring.LIMIT_FORCE_FACTOR:g} Fcon"
+            f"installed_length - lift = {open_length * 1e3:.4g} mm is below {spring.spring_model.min_length * 1e3:.4g} mm, where "
+            f"the static force reaches {spring.spring_model.LIMIT_FORCE_FACTOR:g} Fcon"
         )
     # static force above Fcon <=> lift beyond the lift at which the static force is Fcon
     lift_fcon = spring.spring_model.lift_at_coil_contact
     if h[i_max] > lift_fcon:
         over = np.flatnonzero(h > lift_fcon)
-        peak = float(series_force(spring.free_length - spring.installed_length + h[i_max], spring.chain.laws))
+        peak = float(
+            series_force(spring.free_length - spring.installed_length + h[i_max], spring.spring_model.chain.laws)
+        )
         warnings.warn(
             f"the cam lift drives the spring into coil contact even statically: from cam angle "
             f"{deg(over[0]):.1f} deg to {deg(over[-1]):.1f} deg the static force "
@@ -280,7 +286,7 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     force (the seat carries the rest of the spring force).
     """
     setup = spring.free_length - spring.installed_length
-    nm = len(spring.chain.masses)
+    nm = len(spring.spring_model.chain.masses)
     if valve_train is None:
         if lift0 == 0.0:  # the set-up state itself: every displacement is zero by definition
             return np.zeros(2 * nm), 0.0
@@ -288,11 +294,11 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
         return np.concatenate([u, np.zeros(nm)]), 0.0
     from scipy.optimize import brentq  # (imported here: scipy.optimize costs 0.2 s of start-up)
 
-    laws = spring.chain.laws
+    laws = spring.spring_model.chain.laws
     vt = valve_train
     r = vt.ratio
     k_train = vt.stiffness_at_valve
-    fset = spring.internal_parameters()["Fset"]
+    fset = spring.spring_model.internal_parameters()["Fset"]
 
     def seat(z):
         return -vt.seat_stiffness * z if z < 0 else 0.0
@@ -321,7 +327,7 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
         z_hi = max(r * lift0 - lash, 0.0) + 1e-6
         z0 = brentq(lambda z: train(z) + seat(z) - spring_force(z), z_lo, z_hi, xtol=1e-16, rtol=1e-15)
         force = train(z0)
-    u = spring.initial_condition(setup + z0)["displacements"]
+    u = spring.spring_model.initial_condition(setup + z0)["displacements"]
     pos = vt.static_state(lift0, z0, force)
     return np.concatenate([u, pos, np.zeros(nm + pos.size)]), float(lash)
 

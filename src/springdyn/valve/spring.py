@@ -1,8 +1,9 @@
-"""The valve-spring definition: the ``[spring]`` keys, their validation, and its model.
+"""The valve-spring definition: the ``[spring]`` keys and their validation.
 
 The definition holds geometry, material and damping; the ``model`` key chooses the
-equations (:mod:`springdyn.valve.chains`).  The methods of the model (statics, modes,
-design figures, the chain) are available on the definition too.
+equations (:mod:`springdyn.valve.chains`), built once as :attr:`ValveSpring.spring_model`.
+The analyses (statics, modes, design figures, dynamics) are those of
+:class:`springdyn.valve.ValveModel` and of the spring model.
 """
 
 from __future__ import annotations
@@ -36,9 +37,9 @@ class ValveSpring(Parameters):
     Examples
     --------
     >>> s = ValveSpring.example("one-step")
-    >>> round(s.internal_parameters()["Fset"], 2)
-    251.43
-    >>> round(float(s.static_force(s.installed_length)), 2)
+    >>> s.mean_diameter, s.wire_diameter
+    (0.022, 0.0035)
+    >>> round(s.spring_model.internal_parameters()["Fset"], 2)
     251.43
     """
 
@@ -283,112 +284,3 @@ class ValveSpring(Parameters):
                 f"solid length Lc = Dw (N1 + N2 + 0.5) = {format_mm(lc)}"
             )
         return unlikely
-
-    # ------------------------------------------------------------------ the model's methods
-    def internal_parameters(self) -> dict:
-        """Internal parameters and model variables (SI) under the CLI's JSON keys (see the model)."""
-        return self.spring_model.internal_parameters()
-
-    def breakpoints(self) -> dict:
-        """Breakpoints of the model's nonlinear element laws (see the model)."""
-        return self.spring_model.breakpoints()
-
-    @property
-    def chain(self):
-        """The model's chain of masses and elements (:class:`~springdyn.valve.chains.Chain`)."""
-        return self.spring_model.chain
-
-    @property
-    def LIMIT_FORCE_FACTOR(self) -> float:  # noqa: N802 - kept name
-        return self.spring_model.LIMIT_FORCE_FACTOR
-
-    @property
-    def min_length(self) -> float:
-        """Shortest length [m] the model evaluates (where the static force is 10 Fcon)."""
-        return self.spring_model.min_length
-
-    def static_state(self, length):
-        """Static force [N], element compressions [m] and tangent stiffness [N/m] at a length [m].
-
-        Parameters
-        ----------
-        length : float or array_like
-            Spring length [m].
-        """
-        return self.spring_model.static_state(length)
-
-    def static_force(self, length):
-        """Static (massless) spring force [N] at spring length ``length`` [m].
-
-        Parameters
-        ----------
-        length : float or array_like
-            Spring length [m].
-        """
-        return self.spring_model.static_force(length)
-
-    def static_stiffness(self, length):
-        """Static tangent stiffness ``-dF/dL`` [N/m] at spring length ``length`` [m].
-
-        Parameters
-        ----------
-        length : float or array_like
-            Spring length [m].
-        """
-        return self.spring_model.static_stiffness(length)
-
-    def length_at_force(self, force: float) -> float:
-        """Spring length [m] at which the static force is ``force`` [N].
-
-        Parameters
-        ----------
-        force : float
-            Static force [N], from 0 to the model's limit.
-        """
-        return self.spring_model.length_at_force(force)
-
-    def initial_condition(self, total_compression: float):
-        """Static state at a total compression [m] (see the model).
-
-        Parameters
-        ----------
-        total_compression : float
-            Total compression ``(Lf - Ls) + lift`` [m].
-        """
-        return self.spring_model.initial_condition(total_compression)
-
-    def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
-        """Static force and stiffness against length (:class:`~springdyn.valve.results.StaticCurve`).
-
-        Parameters
-        ----------
-        start, stop : float, optional
-            Lengths [m] (default: the free length down to the model's limit).
-        points : int
-            Samples [-].
-        """
-        return self.spring_model.static_curve(start, stop, points)
-
-    def modes(self, length: float, count: int = 5):
-        """Natural frequencies [Hz], ascending, of the model linearised at ``length`` [m], ends fixed.
-
-        Parameters
-        ----------
-        length : float
-            Spring length [m].
-        count : int
-            Frequencies [-].
-        """
-        return self.spring_model.modes(length, count)
-
-    def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:
-        """Design figures at installed length, at maximum lift and at coil contact (see the model).
-
-        Parameters
-        ----------
-        lift : float, optional
-            Valve lift [m].
-        cam_rpm : float, optional
-            Cam speed [rev/min] for the surge margin.
-        """
-        return self.spring_model.design_figures(lift, cam_rpm)

@@ -70,7 +70,7 @@ def run_chunk(
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
     ex, prev, status, t_end, steps, mon = setup.run(rpm_to_omega(cam_rpm), revolutions, points, rtol=rtol, atol=atol)
-    fset = setup.spring.internal_parameters()["Fset"]
+    fset = setup.spring.spring_model.internal_parameters()["Fset"]
     last = slice(0, points)
     lay = extra_layout(setup.n_masses)
     ne = setup.n_masses + 1
@@ -569,7 +569,7 @@ def sweep(
     theta = output_angles(points)
     lift = cam.lift_at(theta)
     results = []
-    f1 = float(spring.modes(spring.installed_length, 1)[0])
+    f1 = float(spring.spring_model.modes(spring.installed_length, 1)[0])
     with warnings.catch_warnings():
         warnings.simplefilter("once")
         cam.check_resolution(float(cam_rpm.min()), f1)

@@ -95,15 +95,18 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     sp_setup = spring.free_length - spring.installed_length
     if valve_train is None:
         z = h_max
-        guess = spring.initial_condition(sp_setup + z)["displacements"]
+        guess = spring.spring_model.initial_condition(sp_setup + z)["displacements"]
     else:
         f = float(setup.static_force(valve_train.ratio * h_max))
         z = valve_train.ratio * h_max - setup.vt[VT_LASH] - f / valve_train.stiffness_at_valve
         guess = np.concatenate(
-            [spring.initial_condition(sp_setup + z)["displacements"], valve_train.static_state(h_max, z, f)]
+            [
+                spring.spring_model.initial_condition(sp_setup + z)["displacements"],
+                valve_train.static_state(h_max, z, f),
+            ]
         )
     scale = max(h_max, 1e-3)
-    mass = np.asarray(spring.chain.masses, dtype=float)
+    mass = np.asarray(spring.spring_model.chain.masses, dtype=float)
     if valve_train is not None:
         mass = np.concatenate([mass, [setup.vt[VT_MASS], setup.vt[VT_M_LEVER], setup.vt[VT_M_LIFTER]][: nf - nm]])
 
@@ -111,9 +114,9 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
         return _static_accelerations(setup, theta, x * scale) * mass
 
     sol = root(residual, guess / scale, method="hybr", options=dict(xtol=1e-14, maxfev=200 * (nf + 1)))
-    if not sol.success or np.max(np.abs(residual(sol.x))) > 1e-6 * spring.internal_parameters()["Fset"]:
+    if not sol.success or np.max(np.abs(residual(sol.x))) > 1e-6 * spring.spring_model.internal_parameters()["Fset"]:
         sol = root(residual, guess / scale, method="lm", options=dict(xtol=1e-15, ftol=1e-15, maxiter=200 * (nf + 1)))
-    if not sol.success or np.max(np.abs(residual(sol.x))) > 1e-6 * spring.internal_parameters()["Fset"]:
+    if not sol.success or np.max(np.abs(residual(sol.x))) > 1e-6 * spring.spring_model.internal_parameters()["Fset"]:
         notes.append(f"full lift: the static equilibrium was not found ({sol.message}); its frequencies are omitted")
         full = []
     else:

@@ -215,7 +215,7 @@ def _spring(args) -> ValveSpring:
 
 def cmd_params(args) -> int:
     spring = _spring(args)
-    params = spring.internal_parameters()
+    params = spring.spring_model.internal_parameters()
     if args.json:
         print_json(params)
         return 0
@@ -235,7 +235,7 @@ def cmd_curve(args) -> int:
     start = quantity(args.start, "m", "--from") if args.start is not None else None
     stop = quantity(args.stop, "m", "--to") if args.stop is not None else None
     with as_options(start="--from", stop="--to", points="--points"):
-        curve = spring.static_curve(start, stop, args.points)
+        curve = spring.spring_model.static_curve(start, stop, args.points)
     emit(curve, args)
     if not args.csv:
         step = max(1, len(curve.length) // 20)
@@ -253,8 +253,8 @@ def cmd_modes(args) -> int:
     spring = _spring(args)
     length = quantity(args.length, "m", "--length")
     with as_options(length="--length", count="--count"):
-        freqs = spring.modes(length, args.count)
-    force = float(spring.static_force(length))
+        freqs = spring.spring_model.modes(length, args.count)
+    force = float(spring.spring_model.static_force(length))
     if args.json:
         print_json({"length_m": length, "force_N": force, "frequencies_Hz": list(freqs)})
     else:
@@ -346,7 +346,7 @@ def cmd_design(args) -> int:
         lift="--lift",
         backend="--backend",
     ):
-        fig = spring.design_figures(lift=lift, cam_rpm=rpm)
+        fig = spring.spring_model.design_figures(lift=lift, cam_rpm=rpm)
     if args.json:
         print_json(fig)
         return 0

@@ -51,7 +51,7 @@ def load(doc: dict, path: Path) -> ValveDefinition:
 def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
     """Run the valve analyses of one definition into ``out_dir`` and describe them."""
     sp, lobe, vt = d.spring, d.cam, d.valve_train
-    p = sp.internal_parameters()
+    p = sp.spring_model.internal_parameters()
     files, figures, findings = [], [], []
     # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio
     cam = lobe if vt is None or vt.ratio == 1.0 else lobe.scaled(vt.ratio)
@@ -61,7 +61,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"lobe lift ({lobe.max_lift * 1e3:.3g} mm) times the rocker ratio {vt.ratio:g}."
         )
     files.append(write_json(out_dir / "params.json", p))
-    curve = sp.static_curve()
+    curve = sp.spring_model.static_curve()
     files.append(curve.to_csv(out_dir / "static_curve.csv"))
     plt.close(curve.plot(out_dir / "static_curve.png"))
     figures.append(
@@ -72,9 +72,9 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         )
     )
     lift = cam.max_lift
-    design = sp.design_figures(lift=lift, cam_rpm=max(REPORT_SPEEDS))
+    design = sp.spring_model.design_figures(lift=lift, cam_rpm=max(REPORT_SPEEDS))
     files.append(write_json(out_dir / "design.json", design))
-    modes_free = sp.modes(sp.free_length, 3)
+    modes_free = sp.spring_model.modes(sp.free_length, 3)
 
     sims = {}
     for rpm in REPORT_SPEEDS:
@@ -269,7 +269,7 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
         ax2.plot(rpm, t["seat_surge_amplitude_N"], "C2" + ls, label=f"seat surge, {name}")
     top = ax2.get_ylim()[1]
     for spring, name, ls in ((sw.spring, names[0], "-"), (sw_other.spring, names[1], "--")):
-        f1 = spring.modes(sp.installed_length, 1)[0]
+        f1 = spring.spring_model.modes(sp.installed_length, 1)[0]
         for order in (8, 10, 12):  # cam orders that meet f1 within the speed range
             r = 60 * f1 / order
             if rpm[0] <= r <= rpm[-1]:
@@ -287,7 +287,7 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
     fig.savefig(png, dpi=110)
     plt.close(fig)
     ta, tb = (a, b) if names[0] == "type-c" else (b, a)
-    fset = sp.with_model("type-c").internal_parameters()["Fset"]
+    fset = sp.with_model("type-c").spring_model.internal_parameters()["Fset"]
     d_max = np.max(np.abs(tb["max_retainer_force_N"] - ta["max_retainer_force_N"])) / fset
     d_seat = np.max(tb["seat_surge_amplitude_N"] - ta["seat_surge_amplitude_N"])
     sentence = (
