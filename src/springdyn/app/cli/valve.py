@@ -26,6 +26,19 @@ DEFAULT_ATOL = 1e-9
 __all__ = ["register"]
 
 
+#: The API arguments of a dynamic run and the options that set them (for error messages).
+RUN_OPTIONS = dict(
+    cam_rpm="--cam-rpm",
+    revolutions="--revolutions",
+    rtol="--rtol",
+    atol="--atol",
+    points_per_revolution="--points-per-revolution",
+    resolution="--resolution",
+    lift="--lift",
+    backend="--backend",
+)
+
+
 def register(sub) -> None:
     valve = sub.add_parser("valve", help="valve springs: MMS Type C multi-mass or distributed coil-by-coil model")
     vsub = valve.add_subparsers(dest="valve_command", metavar="COMMAND", required=True)
@@ -336,16 +349,7 @@ def cmd_design(args) -> int:
         if args.cam_rpm
         else None
     )
-    with as_options(
-        cam_rpm="--cam-rpm",
-        revolutions="--revolutions",
-        rtol="--rtol",
-        atol="--atol",
-        points_per_revolution="--points-per-revolution",
-        resolution="--resolution",
-        lift="--lift",
-        backend="--backend",
-    ):
+    with as_options(**RUN_OPTIONS):
         fig = spring.spring_model.design_figures(lift=lift, cam_rpm=rpm)
     if args.json:
         print_json(fig)
@@ -398,16 +402,7 @@ def cmd_simulate(args) -> int:
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpm = cam_rpm_from_args(args, ranged=False)
-    with as_options(
-        cam_rpm="--cam-rpm",
-        revolutions="--revolutions",
-        rtol="--rtol",
-        atol="--atol",
-        points_per_revolution="--points-per-revolution",
-        resolution="--resolution",
-        lift="--lift",
-        backend="--backend",
-    ):
+    with as_options(**RUN_OPTIONS):
         sim = simulate(
             spring,
             cam,
@@ -506,16 +501,7 @@ def cmd_float(args) -> int:
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpms = cam_rpm_from_args(args, ranged=True)
-    with as_options(
-        cam_rpm="--cam-rpm",
-        revolutions="--revolutions",
-        rtol="--rtol",
-        atol="--atol",
-        points_per_revolution="--points-per-revolution",
-        resolution="--resolution",
-        lift="--lift",
-        backend="--backend",
-    ):
+    with as_options(**RUN_OPTIONS):
         res = float_speed(
             spring,
             cam,
