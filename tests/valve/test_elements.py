@@ -99,3 +99,22 @@ def test_damping_law():
         2 * 0.05 * np.sqrt(s.spring_model.internal_parameters()["M"] * s.spring_model.internal_parameters()["K1"]),
         rel=1e-15,
     )
+
+
+def test_the_engines_element_force_is_the_element_law_with_its_damping():
+    """The compiled engine evaluates each element with equations.element_force; it must be
+    law_force + damping_coefficient * rate of elements.py (the one law), and zero in tension
+    for an end contact (MMS-7).  Tolerance: round-off (1e-12 relative)."""
+    from springdyn.valve.elements import damping_coefficient, law_force
+    from springdyn.valve.engine.equations import element_force
+
+    chain = ValveSpring.example("two-step").spring_model.chain
+    c0 = chain.c0_array
+    for j, law in enumerate(chain.laws):
+        for x in np.linspace(-1e-3, 1.2 * law[2, 0] if np.isfinite(law[2, 0]) else 5e-3, 37):
+            for rate in (-0.3, 0.0, 0.7):
+                want = float(law_force(x, law)) + float(damping_coefficient(x, law, c0[j])) * rate
+                got = element_force(chain.laws, c0, j, x, rate, False)
+                assert got == pytest.approx(want, rel=1e-12, abs=1e-9)
+                end = element_force(chain.laws, c0, j, x, rate, True)
+                assert end == (0.0 if (x <= 0.0 or want < 0.0) else pytest.approx(want, rel=1e-12, abs=1e-9))

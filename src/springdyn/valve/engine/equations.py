@@ -65,6 +65,7 @@ __all__ = [
     "train_of",
     "hermite5",
     "cam_at",
+    "element_force",
     "chain_forces",
     "spring_rhs",
     "train_rhs",
@@ -206,6 +207,47 @@ def cam_at(theta, cam_h, cam_dh, cam_ddh, dth):
     return lift, slope / dth
 
 
+def element_force(laws, c0, j, xj, rate, unilateral):
+    """The force [N] of element ``j`` at compression ``xj`` [m] and compression rate ``rate`` [m/s].
+
+    ``F_j(x) + c_j(x) x'``: the piecewise-quadratic law (:mod:`springdyn.valve.elements`)
+    and its damping, ``c0`` on the linear segment and ``c0 sqrt(k(x)/k0)`` beyond
+    (:func:`springdyn.valve.elements.damping_coefficient`): the scalar twin of
+    :func:`springdyn.valve.elements.law_force` for compiled code, which the tests compare
+    with it.  An end element is a contact (``unilateral``, MMS-7): compression only.
+
+    Parameters
+    ----------
+    laws : ndarray (N + 1, 3, 4)
+        Element laws [m, N/m^2, N/m, N].
+    c0 : ndarray (N + 1,)
+        Damping coefficients at the initial rate [N s/m].
+    j : int
+        The element [-].
+    xj : float
+        Its compression [m].
+    rate : float
+        Its compression rate [m/s].
+    unilateral : bool
+        An end contact (compression only) [-].
+    """
+    seg = 0
+    if xj >= laws[j, 1, 0]:
+        seg = 1
+        if xj >= laws[j, 2, 0]:
+            seg = 2
+    a = laws[j, seg, 1]
+    b = laws[j, seg, 2]
+    force = (a * xj + b) * xj + laws[j, seg, 3]
+    if seg == 0:
+        force += c0[j] * rate
+    else:
+        force += c0[j] * math.sqrt((2.0 * a * xj + b) / laws[j, 0, 2]) * rate
+    if unilateral and (xj <= 0.0 or force < 0.0):
+        force = 0.0
+    return force
+
+
 def chain_forces(s, m, nfree, u_top, v_top, out, extra):
     """The element forces of the chain and the accelerations of its masses ([MMS], MMS-7).
 
@@ -249,21 +291,7 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
             u_hi = u_top
             v_hi = v_top
         xj = xset[j] + u_hi - u_lo
-        seg = 0
-        if xj >= laws[j, 1, 0]:
-            seg = 1
-            if xj >= laws[j, 2, 0]:
-                seg = 2
-        a = laws[j, seg, 1]
-        b = laws[j, seg, 2]
-        force = (a * xj + b) * xj + laws[j, seg, 3]
-        if seg == 0:
-            force += c0[j] * (v_hi - v_lo)
-        else:
-            force += c0[j] * math.sqrt((2.0 * a * xj + b) / laws[j, 0, 2]) * (v_hi - v_lo)
-        if j == 0 or j == ne - 1:  # unilateral end contacts (MMS-7)
-            if xj <= 0.0 or force < 0.0:
-                force = 0.0
+        force = element_force(laws, c0, j, xj, v_hi - v_lo, j == 0 or j == ne - 1)
         if rec:
             extra[j] = force
             extra[ne + j] = xj
@@ -474,7 +502,17 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
 
 
 _TWINS = twins(
-    globals(), ["hermite5", "cam_at", "chain_forces", "_record_tail", "spring_rhs", "train_rhs"], fastmath=FASTMATH
+    globals(),
+    [
+        "hermite5",
+        "cam_at",
+        "element_force",
+        "chain_forces",
+        "_record_tail",
+        "spring_rhs",
+        "train_rhs",
+    ],
+    fastmath=FASTMATH,
 )
 #: :func:`spring_rhs` and :func:`train_rhs` compiled to be inlined into the integration step
 #: (their one hot call site, :mod:`.stepping`, chooses by the type of ``vt``).
