@@ -557,18 +557,7 @@ def cmd_sweep(args) -> int:
     with as_options(scheduler="--scheduler"):
         client = connect(args.scheduler) if args.scheduler else None
     try:
-        with as_options(
-            vary="--vary",
-            workers="--workers",
-            cam_rpm="--cam-rpm",
-            revolutions="--revolutions",
-            rtol="--rtol",
-            atol="--atol",
-            points_per_revolution="--points-per-revolution",
-            resolution="--resolution",
-            lift="--lift",
-            backend="--backend",
-        ):
+        with as_options(vary="--vary", workers="--workers", **RUN_OPTIONS):
             res = sweep(
                 spring,
                 cam,
