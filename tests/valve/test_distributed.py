@@ -112,14 +112,13 @@ def test_damping_mode_one_gets_the_damping_ratio(one_step):
 
 
 def test_element_convergence(one_step):
-    """Modes at set-up, where the transition coils are partly closed: the closing front
-    inside an element converges slowly (first order); n = 50 is within 0.5 % of n = 200
-    (measured 0.2-0.4 %) and closer than n = 25."""
+    """Modes at set-up, where the transition coils are partly closed (each element's law
+    follows its turn-slices closing in series, :func:`graded_coil_law`): n = 50 is within
+    0.5 % of n = 200 (measured 0.2-0.36 %); mode 1 against the continuum is in
+    test_continuum_reference.py."""
     ref = one_step.replace(elements=200).spring_model.modes(one_step.installed_length, 3)
     f50 = one_step.spring_model.modes(one_step.installed_length, 3)
-    f25 = one_step.replace(elements=25).spring_model.modes(one_step.installed_length, 3)
     np.testing.assert_allclose(f50, ref, rtol=5e-3)
-    assert np.all(np.abs(f50 / ref - 1) < np.abs(f25 / ref - 1))
 
 
 @pytest.mark.slow

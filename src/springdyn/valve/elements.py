@@ -156,7 +156,10 @@ def low_pitch_law(ks: float, fset: float, dw: float):
 
 def _segment(x, law):
     x = np.asarray(x, dtype=float)
-    return (x >= law[1, 0]).astype(np.intp) + (x >= law[2, 0]).astype(np.intp)
+    seg = np.zeros(x.shape, dtype=np.intp)
+    for start in law[1:, 0]:
+        seg += x >= start
+    return seg
 
 
 def law_force(x, law: np.ndarray):
@@ -217,7 +220,9 @@ def law_compression(force, law: np.ndarray):
     force = np.asarray(force, dtype=float)
     f_start = law_force(law[1:, 0], law)  # force at each later segment start (inf if unused)
     f_start = np.where(np.isfinite(law[1:, 0]), f_start, np.inf)
-    s = (force >= f_start[0]).astype(np.intp) + (force >= f_start[1]).astype(np.intp)
+    s = np.zeros(force.shape, dtype=np.intp)
+    for f in f_start:
+        s += force >= f
     a, b, c = law[s, 1], law[s, 2], law[s, 3]
     d = force - c
     return 2.0 * d / (b + np.sqrt(np.maximum(b * b + 4.0 * a * d, 0.0)))
@@ -258,7 +263,7 @@ def law_energy(x, law: np.ndarray):
     energy = np.where(x < 0, 0.5 * law[0, 2] * x * x, 0.0)
     xp = np.maximum(x, 0.0)
     starts = np.concatenate([[0.0], np.maximum(law[1:, 0], 0.0), [np.inf]])
-    for seg in range(3):
+    for seg in range(law.shape[0]):
         lo = starts[seg]
         hi = np.minimum(xp, starts[seg + 1])
         if not np.isfinite(lo):

@@ -93,6 +93,92 @@ def coil_law(k_wire: float, gap: float, k_contact: float, onset: float) -> np.nd
     return law
 
 
+#: Quadratic pieces with which an element's law follows the closing of its turn-slices
+#: (:func:`graded_coil_law`): the tangent stiffness at the knots rises geometrically from the
+#: open wire's to the closed coil's, so the compression error of the law against its
+#: slices in series is below 6 % of the element's gap spread ``int |p - p_mean| ds / 2``.
+CLOSING_PIECES = 8
+#: Turn-slices per element for its integrals and its closing law.
+SLICES = 64
+
+
+def slice_response(force, k_slice, gap, k_contact, onset):
+    """Compression [m] and tangent stiffness [N/m] of turn-slices in series at ``force``.
+
+    Each slice has the law of :func:`coil_law` (open rate, gap, contact stiffness built
+    up over its onset); in series they carry the same force, so their compressions add and
+    their compliances add.
+
+    Parameters
+    ----------
+    force : float or ndarray (...)
+        Axial force [N], ``>= 0``.
+    k_slice, gap, k_contact, onset : ndarray (n,)
+        Per slice: open rate [N/m], gap [m], contact stiffness [N/m], onset width [m].
+
+    Returns
+    -------
+    x : ndarray (...)
+        Compression of the slices together [m].
+    k : ndarray (...)
+        Their tangent stiffness in series [N/m].
+    """
+    f = np.asarray(force, dtype=float)[..., None]
+    d = f - k_slice * gap
+    u = 2.0 * d / (k_slice + np.sqrt(k_slice * k_slice + 2.0 * k_contact / onset * np.maximum(d, 0.0)))
+    closed = u >= onset
+    e = np.where(
+        d < 0, f / k_slice, np.where(closed, (f + k_contact * (gap + 0.5 * onset)) / (k_slice + k_contact), gap + u)
+    )
+    k = np.where(
+        d < 0, k_slice, np.where(closed, k_slice + k_contact, k_slice + k_contact * np.maximum(u, 0.0) / onset)
+    )
+    return e.sum(axis=-1), 1.0 / np.sum(1.0 / k, axis=-1)
+
+
+def graded_coil_law(k_slice, gap, k_contact, onset, pieces: int = CLOSING_PIECES) -> np.ndarray:
+    """Element law (``(pieces + 2, 4)``, the format of :mod:`springdyn.valve.elements`) of
+    turn-slices in series that close one after the other (:func:`slice_response`).
+
+    Linear at the open rate until the first slice touches; then ``pieces`` quadratics
+    whose tangent stiffness is exact at knots where it has risen by equal factors towards
+    the closed rate (knots at the exact compressions; C1, convex); then linear at the
+    closed rate.  A uniform element (every slice with the same gap) gives exactly
+    :func:`coil_law`.
+
+    Parameters
+    ----------
+    k_slice, gap, k_contact, onset : ndarray (n,)
+        Per slice: open rate [N/m], gap [m], contact stiffness [N/m], onset width [m].
+    pieces : int
+        Quadratic pieces over the closing [-].
+    """
+    k_open = 1.0 / np.sum(1.0 / k_slice)
+    k_closed = 1.0 / np.sum(1.0 / (k_slice + k_contact))
+    f_first = float(np.min(k_slice * gap))
+    f_last = float(np.max(k_slice * (gap + onset) + 0.5 * k_contact * onset))
+    f_grid = f_first + (f_last - f_first) * np.linspace(0.0, 1.0, 801) ** 3
+    k_grid = slice_response(f_grid, k_slice, gap, k_contact, onset)[1]
+    k_knots = k_open * (k_closed / k_open) ** (np.arange(pieces + 1) / pieces)
+    f_knots = np.interp(np.log(k_knots), np.log(np.maximum.accumulate(k_grid)), f_grid)
+    f_knots[0], f_knots[-1] = f_first, f_last
+    x_knots = slice_response(f_knots, k_slice, gap, k_contact, onset)[0]
+    law = np.empty((pieces + 2, 4))
+    law[0] = (-np.inf, 0.0, k_open, 0.0)
+    force = k_open * x_knots[0]
+    for j in range(pieces):
+        x0, x1, k0, k1 = x_knots[j], x_knots[j + 1], k_knots[j], k_knots[j + 1]
+        if not x1 > x0:  # a degenerate piece (uniform element): no width
+            law[j + 1] = (x0, 0.0, k0, force - k0 * x0)
+            continue
+        a = (k1 - k0) / (2.0 * (x1 - x0))
+        b = k0 - 2.0 * a * x0
+        law[j + 1] = (x0, a, b, force - (a * x0 + b) * x0)
+        force += 0.5 * (k0 + k1) * (x1 - x0)
+    law[-1] = (x_knots[-1], 0.0, k_closed, force - k_closed * x_knots[-1])
+    return law
+
+
 def modal_damping(masses, stiffness, damping) -> tuple[np.ndarray, np.ndarray]:
     """Natural frequencies [Hz] and damping ratios of a damped chain, ascending: its
     underdamped eigenvalues (:func:`springdyn.valve.modes.chain_eigenvalues`).
@@ -197,41 +283,51 @@ class DistributedModel(SpringModel):
         sp, g = self.spring, self.geometry
         edges = self.element_turns
         n = edges.size - 1
-        sub = 64  # midpoint samples per element for the compliance and mass integrals
+        sub = SLICES  # midpoint turn-slices per element: integrals and the closing law
         frac = (np.arange(sub) + 0.5) / sub
         s = edges[:-1, None] + (edges[1:] - edges[:-1])[:, None] * frac  # (n, sub)
         dsub = ((edges[1:] - edges[:-1]) / sub)[:, None]
         d, p = g.diameter(s), g.pitch(s)
-        comp = np.sum(turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * dsub, axis=1)
+        c_slice = turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * dsub
+        comp = np.sum(c_slice, axis=1)
         area = np.pi * sp.wire_diameter**2 / 4
         mass = sp.density * area * np.sum(wire_length_per_turn(d, p) * dsub, axis=1)
-        gap = np.maximum(np.array([g.gap_integral(a, b) for a, b in zip(edges[:-1], edges[1:])]), 0.0)
+        gap_slice = np.maximum(p - sp.wire_diameter, 0.0) * dsub
+        gap = np.sum(gap_slice, axis=1)
         dturn = edges[1:] - edges[:-1]
-        kc = formulas.contact_stiffness(d.mean(axis=1), sp.youngs_modulus) / dturn
-        k = 1.0 / comp
-        # graded gaps: the element's first turn-slice touches at x_a = ds min(p - Dw); it is
-        # closed throughout at x_b = int (p - Dw) ds, where the force is k (2 x_b - x_a)
-        # (linear gap along the element); the contact quadratic from x_a passes through it
-        pmin = np.minimum(np.minimum(p.min(axis=1), g.pitch(edges[:-1])), g.pitch(edges[1:]))
-        first = np.clip(dturn * (pmin - sp.wire_diameter), 0.0, gap)
-        onset = np.maximum(CONTACT_ONSET * sp.wire_diameter * dturn, kc * (gap - first) / (2.0 * k))
+        kc_slice = self.turn_contact_stiffness(d) / dsub
+        onset_slice = np.broadcast_to(CONTACT_ONSET * sp.wire_diameter * dsub, d.shape)
+        laws = [graded_coil_law(1.0 / c_slice[i], gap_slice[i], kc_slice[i], onset_slice[i]) for i in range(n)]
+        # the last turn-slice of the element touches: the element is closed throughout
+        closing = np.max(gap_slice / c_slice, axis=1)
         dead = np.linspace(0.0, g.dead_coils, 65)
         dead_mass = [
             sp.density * area * float(np.trapezoid(wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
             for x in (dead, g.turns - dead[::-1])
         ]
-        return dict(gap=gap, first=first, k=k, mass=mass, kc=kc, onset=onset, dead_mass=dead_mass, n=n)
+        return dict(
+            gap=gap,
+            k=1.0 / comp,
+            mass=mass,
+            kc=1.0 / np.sum(1.0 / kc_slice, axis=1),
+            laws=laws,
+            closing=closing,
+            dturn=dturn,
+            dead_mass=dead_mass,
+            n=n,
+        )
 
     # ------------------------------------------------------------------ the chain
     def _chain(self, beta: float) -> Chain:
         sp, g, pc = self.spring, self.geometry, self._pieces
         n = pc["n"]
-        k_seat = formulas.contact_stiffness(float(g.diameter(0.0)), sp.youngs_modulus)
-        k_ret = formulas.contact_stiffness(float(g.diameter(g.turns)), sp.youngs_modulus)
-        laws = [np.array([(-np.inf, 0.0, k_seat, 0.0), (np.inf,) * 4, (np.inf,) * 4])]
-        laws += [coil_law(k, gap, kc, w) for k, gap, kc, w in zip(pc["k"], pc["first"], pc["kc"], pc["onset"])]
-        laws.append(np.array([(-np.inf, 0.0, k_ret, 0.0), (np.inf,) * 4, (np.inf,) * 4]))
-        laws = np.stack(laws)
+        k_seat = float(self.turn_contact_stiffness(g.diameter(0.0)))
+        k_ret = float(self.turn_contact_stiffness(g.diameter(g.turns)))
+        rows = CLOSING_PIECES + 2
+        laws = np.full((n + 2, rows, 4), np.inf)
+        laws[0, 0] = (-np.inf, 0.0, k_seat, 0.0)
+        laws[1:-1] = np.stack(pc["laws"])
+        laws[-1, 0] = (-np.inf, 0.0, k_ret, 0.0)
         masses = np.zeros(n + 1)
         masses[:-1] += pc["mass"] / 2
         masses[1:] += pc["mass"] / 2
@@ -343,9 +439,23 @@ class DistributedModel(SpringModel):
 
     # ------------------------------------------------------------------ outputs
     def closing_forces(self) -> np.ndarray:
-        """Static force [N] at which each wire element is closed throughout, from the seat end."""
-        pc = self._pieces
-        return pc["k"] * (2.0 * pc["gap"] - pc["first"])
+        """Static force [N] at which each wire element is closed throughout (its last
+        turn-slice touches), from the seat end."""
+        return self._pieces["closing"]
+
+    def turn_contact_stiffness(self, mean_diameter):
+        """Contact stiffness of one closed turn [N/m] at a mean diameter [m]: the spring's
+        ``contact_stiffness``, or ``pi D E / 1e3`` ([MMS], :func:`formulas.contact_stiffness`).
+
+        Parameters
+        ----------
+        mean_diameter : float or ndarray
+            Mean coil diameter D [m].
+        """
+        given = getattr(self.spring, "contact_stiffness", None)
+        if given is not None:
+            return np.full(np.shape(mean_diameter), float(given))
+        return formulas.contact_stiffness(mean_diameter, self.spring.youngs_modulus)
 
     def clashing_coils(self, sim) -> list[int]:
         """Coils (1 = the seat's first coil) that clash: an element of the coil is closed at a

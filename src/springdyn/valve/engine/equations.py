@@ -93,7 +93,7 @@ class EngineModel(NamedTuple):
     """The speed-independent arrays of one spring and cam, as the compiled engine reads them."""
 
     masses: np.ndarray  #: chain masses (N,) [kg]
-    laws: np.ndarray  #: element laws (N + 1, 3, 4): segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
+    laws: np.ndarray  #: element laws (N + 1, S, 4): segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
     xset: np.ndarray  #: element compressions at set-up (N + 1,) [m]
     c0: np.ndarray  #: element damping at the initial rate (N + 1,) [N s/m]
     cam_h: np.ndarray  #: lift table over one revolution (M,) [m]
@@ -218,8 +218,8 @@ def element_force(laws, c0, j, xj, rate, unilateral):
 
     Parameters
     ----------
-    laws : ndarray (N + 1, 3, 4)
-        Element laws [m, N/m^2, N/m, N].
+    laws : ndarray (N + 1, S, 4)
+        Element laws [m, N/m^2, N/m, N], ``S >= 3`` segments each.
     c0 : ndarray (N + 1,)
         Damping coefficients at the initial rate [N s/m].
     j : int
@@ -232,10 +232,9 @@ def element_force(laws, c0, j, xj, rate, unilateral):
         An end contact (compression only) [-].
     """
     seg = 0
-    if xj >= laws[j, 1, 0]:
-        seg = 1
-        if xj >= laws[j, 2, 0]:
-            seg = 2
+    last = laws.shape[1] - 1
+    while seg < last and xj >= laws[j, seg + 1, 0]:
+        seg += 1
     a = laws[j, seg, 1]
     b = laws[j, seg, 2]
     force = (a * xj + b) * xj + laws[j, seg, 3]

@@ -56,7 +56,7 @@ def series_force_compiled(total_compression, laws, out, table_x, table_f):
             comp = 0.0
             for j in range(n_el):
                 seg = 0
-                for s in (1, 2):
+                for s in range(1, laws.shape[1]):
                     xs = laws[j, s, 0]
                     if xs < np.inf:
                         fs = (laws[j, s, 1] * xs + laws[j, s, 2]) * xs + laws[j, s, 3]
