@@ -1,6 +1,7 @@
 """Valve spring under cam drive: limits, energy, periodicity, modes, lift-off."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -69,9 +70,10 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
 def test_refinement_study(name):
     """Halving the tolerances changes the peak forces by less than 0.05 % of Fset."""
     s = ValveSpring.example(name)
+    cam = CAM if name == "one-step" else CAM.scaled(7.5 / 9.0)  # 9 mm drives the two-step spring past solid
     fset = s.spring_model.internal_parameters()["Fset"]
-    a = simulate(s, CAM, 3000, 2).summary
-    b = simulate(s, CAM, 3000, 2, rtol=setupmod.DEFAULT_RTOL / 2, atol=setupmod.DEFAULT_ATOL / 2).summary
+    a = simulate(s, cam, 3000, 2).summary
+    b = simulate(s, cam, 3000, 2, rtol=setupmod.DEFAULT_RTOL / 2, atol=setupmod.DEFAULT_ATOL / 2).summary
     for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
         assert abs(a[key] - b[key]) < 5e-4 * fset, key
 
@@ -166,7 +168,8 @@ def test_mode_frequencies_from_free_response(one_step):
 
 
 def test_coil_contact_events():
-    s = ValveSpring.example("one-step")
+    """Type C's coil-contact flags, driven 2 mm past solid on purpose (through_solid)."""
+    s = ValveSpring.example("one-step").replace(through_solid=True)
     high = Cam(law="3-4-5", lift=12e-3, duration=math.radians(120))
     sim = simulate(s, high, 4000, 2)
     ev = sim.summary["coil_contact"]
@@ -242,13 +245,32 @@ def test_bad_speed(one_step, rpm):
 
 
 def test_lift_that_drives_spring_solid(one_step):
+    """Issue 25: a cam that drives the spring past its solid length Dw (N + 1/2) = 28 mm is
+    refused (installed length, lift, solid length and shortfall named); below the coil-bind
+    clearance (EN 13906-1's Sa = 3.066 mm here) it warns; ``through_solid`` lets an expert
+    run it, and the model's own range (10 Fcon) still holds."""
+    cam = lambda lift: Cam(law="3-4-5", lift=lift, duration=math.radians(120))  # noqa: E731
+    with pytest.raises(
+        InputError, match=r"38 mm - lift 10\.5 mm = 27\.5 mm is 0\.5 mm below the solid length .* 28 mm"
+    ):
+        prepare(one_step, cam(10.5e-3))
+    with pytest.warns(
+        UserWarning, match=r"leaves 1 mm above the solid length 28 mm, less than the coil-bind clearance 3\.0659 mm"
+    ):
+        setup = prepare(one_step, cam(9e-3))
+    assert setup.coil_bind["coil_bind_margin_m"] == pytest.approx(1e-3) and not setup.coil_bind["coil_bind_ok"]
+    quiet = one_step.replace(min_coil_bind_clearance=0.5e-3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert prepare(quiet, cam(9e-3)).coil_bind["coil_bind_ok"]
+    expert = one_step.replace(through_solid=True)
     with pytest.warns(
         UserWarning,
         match=r"coil contact even statically: from cam angle [\d.]+ deg .* peaking at [\d.]+ N at 60\.0 deg",
     ):
-        prepare(one_step, Cam(law="3-4-5", lift=13e-3, duration=math.radians(120)))
+        assert prepare(expert, cam(13e-3)).coil_bind["through_solid"]
     with pytest.raises(InputError, match=r"cam lift 25 mm at 60\.0 deg drives the spring solid"):
-        prepare(one_step, Cam(law="3-4-5", lift=25e-3, duration=math.radians(120)))
+        prepare(expert, cam(25e-3))
 
 
 def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):

@@ -20,6 +20,7 @@ The physics, one place per equation
 - :mod:`~springdyn.valve.modes` -- natural frequencies of the linearised chain;
 - :mod:`~springdyn.valve.design` -- spring index, corrected shear stress, surge margin;
 - :mod:`~springdyn.valve.durability` -- wire stress over a cycle, Goodman safety;
+- :mod:`~springdyn.valve.coil_bind` -- solid length against the cam's lift, coil-bind clearance;
 - :mod:`~springdyn.valve.chains` -- the spring models: :class:`Chain`, :class:`SpringModel`,
   :class:`TypeCModel` (the document's 5 masses), the distributed coil-by-coil chain;
 - :mod:`~springdyn.valve.engine` -- the equations of motion and the compiled integrator.

@@ -304,6 +304,7 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous,
         mass_displacement=e[:, lay["displacement"]].T,
         periodicity_error=prev_err,
         info=info,
+        coil_bind=setup.coil_bind,
     )
     if setup.valve_train is not None:
         sim.valve_lift = e[:, lay["top_displacement"]]
@@ -352,6 +353,7 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, i
         mass_displacement=r["displacement"][:, last],
         periodicity_error=prev_err,
         info=info,
+        coil_bind=setup.coil_bind,
     )
     if setup.valve_train is not None:
         sim.valve_lift = r["valve_lift"][last]

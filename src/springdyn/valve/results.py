@@ -113,6 +113,8 @@ class Simulation(Result):
     #: elements (``elements``, ``max_retainer_force_N``, ``max_seat_force_N``), see
     #: :func:`springdyn.valve.simulate`.
     element_check: dict | None = None
+    #: Coil-bind figures of the cam's largest lift (:func:`springdyn.valve.coil_bind.check_coil_bind`).
+    coil_bind: dict | None = None
 
     PERIODIC_TOL = 0.01
     #: Change of the peak end forces with half the elements [fraction of Fset] above which
@@ -362,6 +364,21 @@ def _summarise(sim: Simulation) -> dict:
         min_static_force_N=float(sim.static_force.min()),
     )
     notes = []
+    if sim.coil_bind is not None:
+        cb = sim.coil_bind
+        s.update(cb)
+        if cb["through_solid"]:
+            notes.append(
+                f"THROUGH SOLID: the cam drives the spring {-cb['coil_bind_margin_m'] * 1e3:.3g} mm past its solid length "
+                f"{cb['solid_length_m'] * 1e3:.4g} mm (through_solid = true); the forces there rest on the contact "
+                "stiffness of closed coils"
+            )
+        elif not cb["coil_bind_ok"]:
+            notes.append(
+                f"coil bind: the cam leaves {cb['coil_bind_margin_m'] * 1e3:.3g} mm above the solid length "
+                f"{cb['solid_length_m'] * 1e3:.4g} mm, less than the coil-bind clearance "
+                f"{cb['coil_bind_clearance_m'] * 1e3:.3g} mm"
+            )
     if mon is not None:
         ext = mon["ext"]
         to_deg = lambda t: float(np.degrees(mon["omega"] * (t - mon["t0"])) % 360.0)  # noqa: E731

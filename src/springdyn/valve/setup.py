@@ -16,6 +16,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from .cam import Cam
+from .coil_bind import check_coil_bind
 from .engine import (
     run_speeds,
     series_force_compiled,
@@ -80,6 +81,8 @@ class SimulationSetup:
     table: CamTable
     vt: np.ndarray
     y0: np.ndarray
+    #: coil-bind figures of the cam's largest lift (:func:`springdyn.valve.coil_bind.check_coil_bind`)
+    coil_bind: dict | None = None
 
     def static_force(self, lift) -> np.ndarray:
         """Static (massless) spring force [N] at cam or valve lift(s) [m].
@@ -252,6 +255,13 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     if valve_train is not None and valve_train.ratio != 1.0:
         h = h * valve_train.ratio  # the rigid valve lift checks the spring; the engine gets the lobe lift
     i_max = int(np.argmax(h))
+    lash = valve_train.lash if valve_train is not None else 0.0
+    coil_bind = check_coil_bind(
+        spring,
+        max(float(h[i_max]) - lash, 0.0),
+        f"the cam (valve lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} deg"
+        + (f", less the lash {lash * 1e3:.4g} mm)" if lash else ")"),
+    )
     open_length = spring.installed_length - h[i_max]
     if open_length < spring.spring_model.min_length:
         raise InputError(
@@ -275,7 +285,7 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         )
     y0, lash = _initial_state(spring, table.h[0], valve_train)
     vt = valve_train.kernel_parameters(lash=lash) if valve_train is not None else np.zeros(KERNEL_SIZE)
-    return SimulationSetup(spring, cam, valve_train, table, vt, y0)
+    return SimulationSetup(spring, cam, valve_train, table, vt, y0, coil_bind)
 
 
 def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None):

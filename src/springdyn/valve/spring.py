@@ -71,6 +71,28 @@ class ValveSpring(Parameters):
         positive=True,
         default=None,
     )
+    contact_stiffness: float = param(
+        "N/m",
+        "stiffness of one closed turn in coil contact and of the end contacts (default pi Do E / 1e3, "
+        "the MMS document's 'stiffness for fully contact'; docs/valve.md shows its effect)",
+        display="N/mm",
+        positive=True,
+        default=None,
+    )
+    min_coil_bind_clearance: float = param(
+        "m",
+        "smallest allowed margin between the shortest working length and the solid length "
+        "(default: EN 13906-1's minimum sum of gaps Sa = (0.0015 D^2/d + 0.1 d) n, D and d in mm)",
+        display="mm",
+        nonnegative=True,
+        default=None,
+    )
+    through_solid: bool = param(
+        None,
+        "simulate a spring that the cam drives past its solid length (experts: every result says so)",
+        kind="bool",
+        default=False,
+    )
     model: str = param(
         None,
         "spring model: 'type-c' (the document's MMS Type C, 5 masses) or 'distributed' "

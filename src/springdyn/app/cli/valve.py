@@ -376,6 +376,15 @@ def cmd_design(args) -> int:
                 )
             )
     print_table(rows, headers=("state", "length [mm]", "force [N]", "stress [MPa]", "surge [Hz]", "surge margin"))
+    if "coil_bind" in fig:
+        cb = fig["coil_bind"]
+        verdict = "ok" if cb["coil_bind_ok"] else ("THROUGH SOLID" if cb["through_solid"] else "BELOW CLEARANCE")
+        print(
+            f"coil bind: {cb['coil_bind_margin_m'] * 1e3:.3f} mm above solid at full lift "
+            f"(clearance {cb['coil_bind_clearance_m'] * 1e3:.3f} mm): {verdict}"
+        )
+    if "coil_contact_note" in fig:
+        print(f"note: {fig['coil_contact_note']}")
     if "fatigue" in fig:
         f = fig["fatigue"]
         print(

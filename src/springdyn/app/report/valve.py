@@ -323,6 +323,19 @@ def _criteria(p, design, table, sims) -> list[Criterion]:
             "first natural frequency at installed length / camshaft frequency",
         )
     ]
+    cb = design.get("coil_bind")
+    if cb is not None:
+        out.append(
+            Criterion(
+                "coil-bind clearance at full lift",
+                f"{cb['coil_bind_margin_m'] * 1e3:.2f} mm above solid ({cb['solid_length_m'] * 1e3:.2f} mm)",
+                f">= {cb['coil_bind_clearance_m'] * 1e3:.2f} mm" + f" ({cb['coil_bind_clearance_source']})",
+                bool(cb["coil_bind_ok"]),
+                "THROUGH SOLID (through_solid = true): forces rest on the closed coils' contact stiffness"
+                if cb["through_solid"]
+                else "installed length - cam lift - solid length",
+            )
+        )
     clash = np.asarray(table["coil_contact"], bool)
     out.append(
         Criterion(

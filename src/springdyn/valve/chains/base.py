@@ -15,6 +15,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.units import format_mm
 from .. import design
+from ..coil_bind import check_coil_bind
 from ..elements import damping_coefficient, law_stiffness
 from ..modes import chain_frequencies
 from ..statics import element_compressions, series_force, series_state
@@ -315,7 +316,14 @@ class SpringModel:
             if not lift > 0:
                 raise InputError(f"lift = {format_mm(lift)} must be positive")
             states["open"] = self.spring.installed_length - lift
+            out["coil_bind"] = check_coil_bind(self.spring, lift, f"lift = {format_mm(lift)}")
         states["coil_contact"] = self.length_at_force(p["Fcon"])
+        if states["coil_contact"] < p["Lc"] - 1e-9:
+            out["coil_contact_note"] = (
+                f"the {self.name} model's coil-contact force Fcon = {p['Fcon']:.4g} N is reached at "
+                f"{format_mm(states['coil_contact'])}, {format_mm(p['Lc'] - states['coil_contact'])} below the solid "
+                f"length {format_mm(p['Lc'])}: its forces between the two lengths are not those of a solid spring"
+            )
         for name, length in states.items():
             force = float(self.static_force(length)) if name != "open" else float(self._open_force(length, lift))
             f_surge = float(self.modes(length, 1)[0])

@@ -404,7 +404,7 @@ class DistributedModel(SpringModel):
         kset = 1.0 / np.sum(1.0 / k_set)
         active = g.turns - 2 * g.dead_coils
         return dict(
-            K=float(formulas.contact_stiffness(sp.mean_diameter, sp.youngs_modulus)),
+            K=float(self.turn_contact_stiffness(sp.mean_diameter)),
             K1=float(k1),
             K2=float(kset),
             M=float(ch.masses.sum()),
@@ -452,7 +452,7 @@ class DistributedModel(SpringModel):
         mean_diameter : float or ndarray
             Mean coil diameter D [m].
         """
-        given = getattr(self.spring, "contact_stiffness", None)
+        given = self.spring.contact_stiffness
         if given is not None:
             return np.full(np.shape(mean_diameter), float(given))
         return formulas.contact_stiffness(mean_diameter, self.spring.youngs_modulus)

@@ -156,7 +156,7 @@ class TypeCModel(SpringModel):
         g, rho = self.spring.shear_modulus, self.spring.density
         na1 = formulas.active_coils_free(n1, n2, nb)
         na2 = formulas.active_coils_setup(n1, n2, nb, self.two_step)
-        k = formulas.contact_stiffness(do, self.spring.youngs_modulus)
+        k = self.spring.contact_stiffness or formulas.contact_stiffness(do, self.spring.youngs_modulus)
         k1 = formulas.free_length_stiffness(g, dw, do, na1)
         k2 = formulas.setup_stiffness(g, dw, do, na2) if self.two_step else k1
         n1p = formulas.pitch_correction_free(lf, dw, n1, n2, na1, do)
