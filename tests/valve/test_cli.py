@@ -154,7 +154,12 @@ def test_a_compiling_command_says_so_in_one_line_unless_quiet(tmp_path, quiet):
     done = subprocess.run(argv, capture_output=True, text=True, env=env, timeout=300)
     assert done.returncode == 0, done.stderr
     assert "retainer force" in done.stdout
-    notices = [ln for ln in done.stderr.splitlines() if ln.startswith("springdyn:")]
+    # compile notices only: warnings about the input (here the coil-bind clearance) stay under --quiet
+    notices = [
+        ln
+        for ln in done.stderr.splitlines()
+        if ln.startswith("springdyn:") and not ln.startswith("springdyn: warning:")
+    ]
     if quiet:
         assert notices == []
     else:
