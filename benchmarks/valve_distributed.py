@@ -1,17 +1,19 @@
-"""Distributed valve-spring model benchmark (issue 12).  Run:  python benchmarks/valve_distributed.py
+"""Distributed valve-spring model benchmark (issues 12 and 25).  Run:  python benchmarks/valve_distributed.py
 
 Measures in one run, on this machine, with the one-step example spring and a 3-4-5 cam of
 9 mm over 120 cam degrees:
 
 1. one simulation of 2 cam revolutions at 3000 cam rpm with the distributed model (50
-   elements) against Type C end to end (target: within 8x Type C's time), each with its
-   largest end-force extreme error against a Dormand-Prince run of the same model at rtol 1e-10;
+   elements) against Type C end to end, each with its largest end-force extreme error against
+   a Dormand-Prince run of the same model at rtol 1e-10; and the distributed run with its
+   clash check (a second run at half the elements, as coils clash here; target: within 8x
+   Type C's time);
 2. the stiffness that limits the explicit step: the largest eigenvalue of the linearised
    chain at set-up times the mean step, against the stability limit of the pair each model
    steps with (Dormand-Prince ~3.3 for Type C, Bogacki-Shampine ~2.5 for the distributed
    chain; benchmarks/valve_stepping.py compares both pairs on both models);
 3. a sweep of 1000 speeds from 300 to 4000 cam rpm, 2 revolutions each, distributed model,
-   both cores (target < 60 s) and the peak resident memory of that process (target < 1 GB).
+   both cores (target < 15 s) and the peak resident memory of that process (target < 1 GB).
 """
 
 from __future__ import annotations
@@ -90,7 +92,7 @@ def main(argv=None) -> int:
             f"error vs Dormand-Prince rtol 1e-10: {100 * err:.4f} % of Fset"
         )
     ratio = rows["distributed"][0] / rows["type-c"][0]
-    print(f"  ratio distributed / Type C: {ratio:.1f}x (target <= 8x): {met(ratio <= 8)}")
+    print(f"  ratio distributed / Type C: {ratio:.1f}x")
     print(
         f"  of which steps {rows['distributed'][1] / rows['type-c'][1]:.2f}x and time per step "
         f"{ratio * rows['type-c'][1] / rows['distributed'][1]:.2f}x"
@@ -98,7 +100,8 @@ def main(argv=None) -> int:
     t_chk, sim_chk = _best(lambda: simulate(ds, cam, 3000.0, 2), max(2, args.repeat // 3))
     print(
         f"  distributed with the clash check (coils {sim_chk.summary.get('clashing_coils')} clash here): "
-        f"{t_chk * 1e3:.2f} ms, {t_chk / rows['type-c'][0]:.1f}x Type C"
+        f"{t_chk * 1e3:.2f} ms, {t_chk / rows['type-c'][0]:.1f}x Type C (issue 25: target <= 8x with the check on): "
+        f"{met(t_chk / rows['type-c'][0] <= 8)}"
     )
 
     print()
@@ -119,8 +122,8 @@ def main(argv=None) -> int:
     print()
     print(f"sweep of {args.speeds} speeds, 300-4000 cam rpm, 2 revolutions each, distributed model, both cores")
     print(
-        f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.1f} ms per speed); target < 60 s: "
-        f"{met(wall < 60)}"
+        f"  wall time: {wall:.2f} s ({steps} steps, {wall / args.speeds * 1e3:.1f} ms per speed); target < 15 s (issue 25): "
+        f"{met(wall < 15)}"
     )
     print(f"  peak resident memory of the sweep process: {rss_mb:.0f} MB; target < 1024 MB: {met(rss_mb < 1024)}")
     return 0 if not missed else 1

@@ -38,10 +38,14 @@ EXPECTED = {
     ),
     "examples/lsd/identify_round_trip.py": ([r"3000 rpm\s+Kxx"], ["type_c_identified.png"]),
     "examples/lsd/rotor_with_lsd.py": ([r"natural frequency\s+[\d.]+ Hz\s+log decrement"], []),
+    "examples/valve/closure_convergence.py": (
+        [r"one-step: 50 elements within 0\.\d+ % of Fset of 200", r"two-step: 100 elements within 0\.\d+ % of Fset"],
+        ["closure_convergence.csv"],
+    ),
 }
 
 #: Scripts slower than a few seconds.
-SLOW = {"examples/lsd/rotor_with_lsd.py"}
+SLOW = {"examples/lsd/rotor_with_lsd.py", "examples/valve/closure_convergence.py"}
 
 
 def run_example(script: str, out: Path, *args: str) -> subprocess.CompletedProcess:

@@ -143,7 +143,9 @@ def test_coils_close_one_by_one(one_step):
     m = one_step.spring_model
     closing = m.closing_forces()
     half = closing[: closing.size // 2]
-    assert np.all(np.diff(half[:5]) > 0)  # seat-end transition: one by one
+    within = m.element_turns[1 : half.size + 1] <= one_step.dead_coils + 0.5 + 1e-9  # in the seat-end transition
+    assert within.sum() >= 3
+    assert np.all(np.diff(half[: within.sum() + 1]) > 0)  # one by one, then the constant pitch
     assert closing[0] < m.internal_parameters()["Fset"] < closing.max()
     curve = one_step.spring_model.static_curve(
         one_step.free_length, one_step.spring_model.length_at_force(0.999 * closing.max()), 800
@@ -179,7 +181,7 @@ def test_two_step_frequency_rises_as_low_pitch_coils_close(two_step):
     assert f[-1] > 1.15 * f[0]
     m = two_step.spring_model
     pos = m.element_positions
-    low = pos < two_step.low_pitch_coils
+    low = m.element_turns[1:] <= two_step.low_pitch_coils + 1e-9  # elements within the low-pitch coils
     closed = m.closing_forces() <= two_step.spring_model.internal_parameters()["Fset"] * (1 + 1e-9)
     assert np.all(closed[low])
     high = (pos > two_step.low_pitch_coils + 0.5) & (pos < 8 - two_step.dead_coils - 0.5)  # constant high pitch
@@ -419,7 +421,7 @@ def test_clash_forces_are_checked_against_half_the_elements():
 def test_clash_forces_converge_in_elements(name, lift, rpm):
     """Issue 25: the extremes of seat and retainer force at a coil-clash speed, over a
     periodic last revolution (8 revolutions): 50 elements within 2 % of Fset of 200, and
-    100 within 1 % (measured 1.6 % and 0.3 % one-step, 0.4 % and 0.1 % two-step)."""
+    100 within 1 % (measured 0.86 % and 0.04 % one-step, 0.41 % and 0.15 % two-step)."""
     cam = Cam(law="3-4-5", lift=lift, duration=math.radians(120))
     base = ValveSpring.example(name).with_model("distributed")
     fset = base.spring_model.internal_parameters()["Fset"]

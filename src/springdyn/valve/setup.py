@@ -37,6 +37,7 @@ __all__ = [
     "MAX_STEP_FRACTION",
     "VELOCITY_TOLERANCE_DIVISOR",
     "PAIR",
+    "BS3_MIN_ELEMENTS",
 ]
 
 #: Default integration tolerances (relative; absolute on displacements [m] and velocities
@@ -55,9 +56,14 @@ VELOCITY_TOLERANCE_DIVISOR = 30.0
 #: measurement (docs/valve.md, "Stepping"): Type C's step is set by accuracy, where the
 #: 5th-order Dormand-Prince pair takes the fewest right-hand sides; the distributed chain's
 #: by the stability of its stiffness-proportionally damped top modes (real eigenvalues to
-#: -3.3e5 1/s for 50 elements), where the Bogacki-Shampine 3(2) pair takes 1.3x more steps
+#: -2.7e5 1/s for 50 elements), where the Bogacki-Shampine 3(2) pair takes 1.3x more steps
 #: for half the right-hand sides each, and still holds the end forces within 0.05 % of Fset.
 PAIR = {"type-c": "dopri5", "distributed": "bs3"}
+#: Below this many elements the distributed chain's explicit step is set by accuracy, not by
+#: stability, and Dormand-Prince is the faster pair (measured, one-step example at 1500 and
+#: 3000 cam rpm: 25 elements 3.0 against 4.2 ms, 40 elements 6.2 against 6.7 ms, 50 elements
+#: 10.4 against 9.6 ms; docs/valve.md "Stepping").
+BS3_MIN_ELEMENTS = 40
 
 
 def output_angles(points: int) -> np.ndarray:
@@ -197,7 +203,10 @@ class SimulationSetup:
 
     @property
     def method(self) -> str:
-        """The engine's Runge-Kutta pair for this spring model (:data:`PAIR`)."""
+        """The engine's Runge-Kutta pair for this spring model (:data:`PAIR`); a distributed
+        chain of fewer than :data:`BS3_MIN_ELEMENTS` elements steps with Dormand-Prince."""
+        if self.spring.model == "distributed" and self.spring.elements < BS3_MIN_ELEMENTS:
+            return "dopri5"
         return PAIR[self.spring.model]
 
     def atol_velocity(self, atol: float) -> np.ndarray:

@@ -1,26 +1,27 @@
 """The distributed (coil-by-coil) valve-spring model.
 
 The active wire, from the seat's dead coils to the retainer's, is cut into ``elements``
-equal pieces of ``ds`` turns.  Each piece is an element with the axial stiffness and the
-mass of its wire at the local mean diameter and pitch (:mod:`springdyn.valve.geometry`);
+pieces (:attr:`DistributedModel.element_turns`): coils closed at set-up get pieces up to
+:data:`MAX_ELEMENT_STRETCH` times longer than the open coils' (length ~ sqrt of the
+tangent over the open rate, :func:`stiffness_graded_edges`), so that no piece limits the
+explicit step more than the others.  Each piece is an element with the axial stiffness and
+the mass of its wire at the local mean diameter and pitch (:mod:`springdyn.valve.geometry`);
 its mass is lumped half to each end node.  The closed dead coils move with the end nodes
 (their mass is added there) and touch seat and retainer through the end contacts, as in
 Type C: ``seat -K- node 0 -k_1- node 1 ... node n -K- retainer``.  The same chain, laws and
 engine as Type C (:class:`~springdyn.valve.chains.Chain`), so statics, modes, frequency
 response and dynamics are shared.
 
-**Element law** (piecewise quadratic, C1, :func:`coil_law`): the wire's rate
-``k_w = 1 / int c_turn ds`` (open-coil compliance per turn, Wahl) while the element's coil
-gap ``g = int (p - Dw) ds`` is open; when the compression reaches ``g`` the coils touch and
-the contact stiffness ``k_c = K / ds`` builds up linearly over the onset width
-``w = ds * CONTACT_ONSET * Dw``, then stays.  Where the pitch varies along the element
-(transitions, low-pitch coils) its turn-slices close one after the other: the contact
-quadratic then starts where the first slice touches and passes through the force at which
-the last one closes (exact for a gap varying linearly along the element), so the closing
-of graded coils converges with the element count.  ``K = pi D E / 1e3`` is the document's
-"stiffness for fully contact" of one coil ([MMS]), the stiffness Type C gives its end
-contacts: a closed turn compressed by ``delta`` carries ``K delta``, so a piece of ``ds``
-turns has ``K / ds``.
+**Element law** (:func:`graded_coil_law`): an element is :data:`SLICES` turn-slices in
+series (:func:`slice_states`).  A slice of ``ds`` turns has the open rate
+``1 / (c_turn ds)`` (open-coil compliance per turn, Wahl) while its gap ``(p - Dw) ds`` is
+open; when its compression reaches the gap its coils touch and the contact stiffness of a
+closed turn, ``K / ds``, acts in parallel with the wire, built up linearly over the onset
+``ds * CONTACT_ONSET * Dw`` (:func:`coil_law`).  The element's law follows the series of
+its slices exactly at :data:`CLOSING_PIECES` knots, so graded coils (transitions, low-pitch
+coils), whose slices close one after the other, converge with the element count.  ``K`` is
+the spring's ``contact_stiffness``, by default ``pi D E / 1e3``, the document's "stiffness
+for fully contact" of one coil ([MMS]), the stiffness Type C gives its end contacts.
 
 **End contacts**: linear ``K`` at the end diameters, compression only (correction MMS-7).
 
@@ -42,6 +43,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.units import format_quantity
 from .. import formulas
+from ..elements import law_force
 from ..geometry import (
     CoilGeometry,
     check_profile_span,
@@ -100,14 +102,50 @@ def coil_law(k_wire: float, gap: float, k_contact: float, onset: float) -> np.nd
 CLOSING_PIECES = 8
 #: Turn-slices per element for its integrals and its closing law.
 SLICES = 64
+#: Fine turn-slices over the active wire for the set-up state that places the element edges.
+MESH_SLICES = 4000
+#: Largest ratio of element lengths: coils closed at set-up get elements up to this much
+#: longer than the open coils' (:func:`stiffness_graded_edges`; docs/valve.md: 2 halves the
+#: explicit steps against equal lengths and keeps clash forces within 1 % of Fset of 4x the
+#: elements).
+MAX_ELEMENT_STRETCH = 2.0
+
+
+def slice_states(force, k_slice, gap, k_contact, onset) -> tuple[np.ndarray, np.ndarray]:
+    """Compression [m] and tangent stiffness [N/m] of each turn-slice at ``force``.
+
+    Each slice has the law of :func:`coil_law`: its open rate until its gap closes, then the
+    contact stiffness of the closed turn added in parallel, built up over its onset.
+
+    Parameters
+    ----------
+    force : float or ndarray (...)
+        Axial force [N], ``>= 0``.
+    k_slice, gap, k_contact, onset : ndarray (n,)
+        Per slice: open rate [N/m], gap [m], contact stiffness [N/m], onset width [m].
+
+    Returns
+    -------
+    e, k : ndarray (..., n)
+        Compression [m] and tangent stiffness [N/m] of every slice.
+    """
+    f = np.asarray(force, dtype=float)[..., None]
+    d = f - k_slice * gap
+    u = 2.0 * d / (k_slice + np.sqrt(k_slice * k_slice + 2.0 * k_contact / onset * np.maximum(d, 0.0)))
+    closed = u >= onset
+    e = np.where(
+        d < 0, f / k_slice, np.where(closed, (f + k_contact * (gap + 0.5 * onset)) / (k_slice + k_contact), gap + u)
+    )
+    k = np.where(
+        d < 0, k_slice, np.where(closed, k_slice + k_contact, k_slice + k_contact * np.maximum(u, 0.0) / onset)
+    )
+    return e, k
 
 
 def slice_response(force, k_slice, gap, k_contact, onset):
-    """Compression [m] and tangent stiffness [N/m] of turn-slices in series at ``force``.
-
-    Each slice has the law of :func:`coil_law` (open rate, gap, contact stiffness built
-    up over its onset); in series they carry the same force, so their compressions add and
-    their compliances add.
+    """Compression [m] and tangent stiffness [N/m] of turn-slices in series at ``force``
+    (:func:`slice_states`): they carry the same force, so their compressions add and their
+    compliances add.
 
     Parameters
     ----------
@@ -123,17 +161,32 @@ def slice_response(force, k_slice, gap, k_contact, onset):
     k : ndarray (...)
         Their tangent stiffness in series [N/m].
     """
-    f = np.asarray(force, dtype=float)[..., None]
-    d = f - k_slice * gap
-    u = 2.0 * d / (k_slice + np.sqrt(k_slice * k_slice + 2.0 * k_contact / onset * np.maximum(d, 0.0)))
-    closed = u >= onset
-    e = np.where(
-        d < 0, f / k_slice, np.where(closed, (f + k_contact * (gap + 0.5 * onset)) / (k_slice + k_contact), gap + u)
-    )
-    k = np.where(
-        d < 0, k_slice, np.where(closed, k_slice + k_contact, k_slice + k_contact * np.maximum(u, 0.0) / onset)
-    )
+    e, k = slice_states(force, k_slice, gap, k_contact, onset)
     return e.sum(axis=-1), 1.0 / np.sum(1.0 / k, axis=-1)
+
+
+def stiffness_graded_edges(turns: np.ndarray, stiffening: np.ndarray, elements: int, stretch: float) -> np.ndarray:
+    """Element edges [turns] whose lengths grow as ``sqrt(stiffening)``, at most ``stretch``
+    times the shortest.
+
+    An element of length ``L`` whose tangent stiffness is ``kappa`` times its open rate has
+    its fastest local mode at ``sqrt(kappa)/L`` times an open element's of unit length: with
+    ``L ~ sqrt(kappa)`` every element limits the explicit step alike.
+
+    Parameters
+    ----------
+    turns : ndarray (m + 1,)
+        Edges of fine slices [turns], ascending.
+    stiffening : ndarray (m,)
+        Tangent over open rate of each fine slice [-], ``>= 1``.
+    elements : int
+        Number of elements [-].
+    stretch : float
+        Largest ratio of element lengths [-], ``>= 1``.
+    """
+    density = np.maximum(stiffening**-0.5, 1.0 / stretch) * np.diff(turns)
+    measure = np.concatenate([[0.0], np.cumsum(density)])
+    return np.interp(np.linspace(0.0, measure[-1], elements + 1), measure, turns)
 
 
 def graded_coil_law(k_slice, gap, k_contact, onset, pieces: int = CLOSING_PIECES) -> np.ndarray:
@@ -273,9 +326,36 @@ class DistributedModel(SpringModel):
 
     @cached_property
     def element_turns(self) -> np.ndarray:
-        """Edges of the wire elements [turns from the seat end], ``elements + 1`` values."""
-        g = self.geometry
-        return np.linspace(g.dead_coils, g.turns - g.dead_coils, self.spring.elements + 1)
+        """Edges of the wire elements [turns from the seat end], ``elements + 1`` values.
+
+        Coils closed at set-up get longer elements (:func:`stiffness_graded_edges`, at most
+        :data:`MAX_ELEMENT_STRETCH` times the open coils'): the set-up state of
+        :data:`MESH_SLICES` turn-slices in series with the end contacts gives each slice's
+        tangent over open rate.
+        """
+        sp, g = self.spring, self.geometry
+        edges = np.linspace(g.dead_coils, g.turns - g.dead_coils, MESH_SLICES + 1)
+        s = 0.5 * (edges[:-1] + edges[1:])
+        dsl = np.diff(edges)
+        d, p = g.diameter(s), g.pitch(s)
+        k_slice = 1.0 / (turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * dsl)
+        gap = np.maximum(p - sp.wire_diameter, 0.0) * dsl
+        k_contact = self.turn_contact_stiffness(d) / dsl
+        onset = CONTACT_ONSET * sp.wire_diameter * dsl
+        ends = 1.0 / self.turn_contact_stiffness(g.diameter(0.0)) + 1.0 / self.turn_contact_stiffness(
+            g.diameter(g.turns)
+        )
+        setup = sp.free_length - sp.installed_length
+
+        def excess(force):
+            return slice_response(force, k_slice, gap, k_contact, onset)[0] + force * float(ends) - setup
+
+        from scipy.optimize import brentq
+
+        hi = setup * float(np.max(k_slice + k_contact))
+        force = brentq(excess, 0.0, hi, xtol=1e-9, rtol=1e-10)
+        stiffening = slice_states(force, k_slice, gap, k_contact, onset)[1] / k_slice
+        return stiffness_graded_edges(edges, stiffening, sp.elements, MAX_ELEMENT_STRETCH)
 
     @cached_property
     def _pieces(self) -> dict:
@@ -457,6 +537,15 @@ class DistributedModel(SpringModel):
             return np.full(np.shape(mean_diameter), float(given))
         return formulas.contact_stiffness(mean_diameter, self.spring.youngs_modulus)
 
+    @cached_property
+    def _contact_forces(self) -> np.ndarray:
+        """Static force [N] at which each element reaches its contact compression (``inf``
+        where it never counts as contact); the laws are strictly increasing."""
+        gaps = self.contact_compressions()
+        return np.array(
+            [float(law_force(x, law)) if np.isfinite(x) else np.inf for x, law in zip(gaps, self.chain.laws)]
+        )
+
     def clashing_coils(self, sim) -> list[int]:
         """Coils (1 = the seat's first coil) that clash: an element of the coil is closed at a
         cam angle where the static (massless) spring at the same lift has it open.  Coils
@@ -467,9 +556,8 @@ class DistributedModel(SpringModel):
         sim : Simulation
             A simulation of this model.
         """
-        gaps = self.contact_compressions()
-        static_x = element_compressions(sim.static_force, self.chain.laws)
-        clash = sim.element_contact & (static_x < gaps[:, None])
+        # the static element is open while the static force is below the force at its gap
+        clash = sim.element_contact & (sim.static_force[None, :] < self._contact_forces[:, None])
         closing = set(np.flatnonzero(clash.any(axis=1)).tolist())
         pos = self.element_positions
         return sorted({int(np.floor(pos[j - 1])) + 1 for j in closing if 1 <= j <= pos.size})
