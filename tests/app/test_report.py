@@ -36,6 +36,9 @@ def test_demo_report_is_complete(demo_dir):
         for uri in re.findall(r'src="data:image/png;base64,([^"]{16})', body):
             assert uri.startswith("iVBORw0KGgo"), anchor  # a PNG signature
     assert "float" in page.lower() and "constant force" in page and "identified" in page.lower()
+    for anchor, family, body in sections:  # issue 25: the solid length is a criterion of every valve section
+        if family == "valve":
+            assert "coil-bind clearance at full lift" in body and "EN 13906-1 Sa" in body, anchor
 
 
 def test_examples_are_the_built_in_definitions():

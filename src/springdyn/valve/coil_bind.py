@@ -13,6 +13,7 @@ import warnings
 
 from ..core.errors import InputError
 from ..core.units import format_mm
+from .formulas import coil_contact_length
 
 __all__ = ["min_sum_of_gaps", "solid_length", "check_coil_bind"]
 
@@ -42,13 +43,14 @@ def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: fl
 
 
 def solid_length(spring) -> float:
-    """Solid length ``Lc = Dw (N1 + N2 + 1/2)`` [m] ([MMS]; ends closed and ground).
+    """Solid length ``Lc = Dw (N1 + N2 + 1/2)`` [m] ([MMS]; ends closed and ground;
+    :func:`springdyn.valve.formulas.coil_contact_length`).
 
     Parameters
     ----------
     spring : ValveSpring
     """
-    return spring.wire_diameter * (spring.low_pitch_coils + spring.high_pitch_coils + 0.5)
+    return coil_contact_length(spring.wire_diameter, spring.low_pitch_coils, spring.high_pitch_coils)
 
 
 def check_coil_bind(spring, lift: float, source: str) -> dict:

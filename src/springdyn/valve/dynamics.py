@@ -81,8 +81,8 @@ def simulate(
     check_elements : bool
         Distributed model: when coils clash, run again with half the elements and report
         how much the peak end forces change (``clash_force_element_sensitivity``,
-        ``clash_forces_converged`` and a note in the summary): clash forces are a penalty
-        contact on the element scale and may not be converged.
+        ``clash_forces_converged`` and a note in the summary): an upper bound of the
+        discretisation error of the clash forces (docs/valve.md, convergence study).
     method : {"dopri5", "tsit5", "bs3"}, optional
         The compiled engine's Runge-Kutta pair; default the model's (:data:`PAIR`: Type C
         Dormand-Prince 5(4), distributed Bogacki-Shampine 3(2)).

@@ -1,6 +1,7 @@
 """Nonlinear force laws of the six chain elements ([MMS], "Nonlinear characteristics").
 
-A law is stored as a ``(3, 4)`` float array, one row per segment
+A law is stored as an ``(S, 4)`` float array (``S >= 3`` segments: 3 for Type C's laws,
+``CLOSING_PIECES + 2`` for the distributed model's), one row per segment
 ``(x_start, a, b, c)``: on ``x_start <= x < next x_start`` the element force is
 ``F = a x^2 + b x + c``.  The first segment starts at ``-inf`` and is linear (tension
 continues the linear law, correction MMS-9 of docs/references.md); unused rows have ``x_start = +inf``.  The same
@@ -71,7 +72,7 @@ def linear_law(k: float) -> np.ndarray:
 
     Returns
     -------
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
 
     Notes
     -----
@@ -108,7 +109,7 @@ def hardening_law(k0: float, k_prime: float, f1: float, f2: float, fcon: float, 
 
     Returns
     -------
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
     breakpoints : dict
         ``x1, x2, x3, x4`` [m] (the document's x11..x14 or x21..x24) and ``kc`` [N/m]
         (Kh1c or Kh2c).
@@ -141,7 +142,7 @@ def low_pitch_law(ks: float, fset: float, dw: float):
 
     Returns
     -------
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
     breakpoints : dict
         ``x1, x2`` [m].
     """
@@ -169,7 +170,7 @@ def law_force(x, law: np.ndarray):
     ----------
     x : float or array_like
         Element compression from its free state [m].
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
         Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
 
     Notes
@@ -189,7 +190,7 @@ def law_stiffness(x, law: np.ndarray):
     ----------
     x : float or array_like
         Element compression [m].
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
         Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
 
     Notes
@@ -209,7 +210,7 @@ def law_compression(force, law: np.ndarray):
     ----------
     force : float or array_like
         Element force [N].
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
         Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
 
     Notes
@@ -238,7 +239,7 @@ def damping_coefficient(x, law: np.ndarray, c0: float):
     ----------
     x : float or array_like
         Element compression [m].
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
         Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
     c0 : float
         Base damping coefficient C0 [N s/m].
@@ -256,7 +257,7 @@ def law_energy(x, law: np.ndarray):
     ----------
     x : float or array_like
         Element compression [m].
-    law : ndarray, shape (3, 4)
+    law : ndarray, shape (S, 4)
         Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
     """
     x = np.asarray(x, dtype=float)

@@ -164,18 +164,6 @@ class CoilGeometry:
         """Wire stack ``Dw (N + 1/2)`` [m]."""
         return self.wire_diameter * (self.turns + 0.5)
 
-    def gap_integral(self, a: float, b: float) -> float:
-        """``int_a^b (p(s) - Dw) ds`` [m]: the axial gap of the wire between ``a`` and ``b`` turns.
-
-        Parameters
-        ----------
-        a, b : float
-            Turns from the seat end [-], ``a <= b``.
-        """
-        knots = self.pitch_s[(self.pitch_s > a) & (self.pitch_s < b)]
-        s = np.concatenate([[a], knots, [b]])
-        return float(np.trapezoid(self.pitch(s) - self.wire_diameter, s))
-
 
 def default_pitch_knots(
     n_total: float, dead: float, dw: float, free_length: float, installed_length: float, low_pitch: float, field

@@ -27,7 +27,7 @@ def element_compressions(force, laws: np.ndarray) -> np.ndarray:
     ----------
     force : float or ndarray, shape (n,)
         Force carried by the chain [N].
-    laws : ndarray, shape (n_elements, 3, 4)
+    laws : ndarray, shape (n_elements, S, 4)
         Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
         (see :mod:`springdyn.valve.elements`).
 
@@ -46,7 +46,7 @@ def series_compliance(force, laws: np.ndarray):
     ----------
     force : float or ndarray
         Force carried by the chain [N].
-    laws : ndarray, shape (n_elements, 3, 4)
+    laws : ndarray, shape (n_elements, S, 4)
         Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
         (see :mod:`springdyn.valve.elements`).
     """
@@ -65,7 +65,7 @@ def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, ma
     ----------
     total_compression : float or ndarray
         ``Lf - L`` [m]; negative values (tension) follow the linear laws.
-    laws : ndarray, shape (n_elements, 3, 4)
+    laws : ndarray, shape (n_elements, S, 4)
         Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
         (see :mod:`springdyn.valve.elements`).
     rtol : float
@@ -103,7 +103,7 @@ def series_state(total_compression, laws: np.ndarray):
     ----------
     total_compression : float or ndarray
         ``Lf - L`` [m].
-    laws : ndarray, shape (n_elements, 3, 4)
+    laws : ndarray, shape (n_elements, S, 4)
         Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
         (see :mod:`springdyn.valve.elements`).
 
@@ -127,7 +127,7 @@ def element_forces(compressions, laws: np.ndarray) -> np.ndarray:
     ----------
     compressions : ndarray, shape (n_elements,) or (n_elements, n)
         Element compressions [m].
-    laws : ndarray, shape (n_elements, 3, 4)
+    laws : ndarray, shape (n_elements, S, 4)
         Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
         (see :mod:`springdyn.valve.elements`).
     """

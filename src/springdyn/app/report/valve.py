@@ -343,7 +343,8 @@ def _criteria(p, design, table, sims) -> list[Criterion]:
             f"{int(clash.sum())} of {clash.size} speeds",
             "none",
             bool(not clash.any()),
-            f"from {SWEEP_SPEEDS[clash][0]:.0f} cam rpm" if clash.any() else "no coil reaches its contact force",
+            (f"from {SWEEP_SPEEDS[clash][0]:.0f} cam rpm" if clash.any() else "no coil reaches its contact force")
+            + (f"; {design['coil_contact_note']}" if "coil_contact_note" in design else ""),
         )
     )
     fmin = float(np.min(table["min_retainer_force_N"]))

@@ -335,64 +335,60 @@ class DistributedModel(SpringModel):
         """
         sp, g = self.spring, self.geometry
         edges = np.linspace(g.dead_coils, g.turns - g.dead_coils, MESH_SLICES + 1)
-        s = 0.5 * (edges[:-1] + edges[1:])
-        dsl = np.diff(edges)
-        d, p = g.diameter(s), g.pitch(s)
-        k_slice = 1.0 / (turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * dsl)
-        gap = np.maximum(p - sp.wire_diameter, 0.0) * dsl
-        k_contact = self.turn_contact_stiffness(d) / dsl
-        onset = CONTACT_ONSET * sp.wire_diameter * dsl
+        sl = self._turn_slices(0.5 * (edges[:-1] + edges[1:]), np.diff(edges))
+        k_slice = 1.0 / sl["c"]
+        laws = (k_slice, sl["gap"], sl["kc"], sl["onset"])
         ends = 1.0 / self.turn_contact_stiffness(g.diameter(0.0)) + 1.0 / self.turn_contact_stiffness(
             g.diameter(g.turns)
         )
         setup = sp.free_length - sp.installed_length
 
         def excess(force):
-            return slice_response(force, k_slice, gap, k_contact, onset)[0] + force * float(ends) - setup
+            return slice_response(force, *laws)[0] + force * float(ends) - setup
 
         from scipy.optimize import brentq
 
-        hi = setup * float(np.max(k_slice + k_contact))
-        force = brentq(excess, 0.0, hi, xtol=1e-9, rtol=1e-10)
-        stiffening = slice_states(force, k_slice, gap, k_contact, onset)[1] / k_slice
+        force = brentq(excess, 0.0, setup * float(np.max(k_slice + sl["kc"])), xtol=1e-9, rtol=1e-10)
+        stiffening = slice_states(force, *laws)[1] / k_slice
         return stiffness_graded_edges(edges, stiffening, sp.elements, MAX_ELEMENT_STRETCH)
+
+    def _turn_slices(self, s, width) -> dict:
+        """Turn-slices of the wire at positions ``s`` [turns] of ``width`` [turns] (arrays of
+        one shape): open compliance ``c`` [m/N], ``gap`` [m], contact stiffness ``kc`` [N/m],
+        ``onset`` [m] (:func:`slice_states`), and wire ``length`` [m]."""
+        sp, g = self.spring, self.geometry
+        d, p = g.diameter(s), g.pitch(s)
+        return dict(
+            c=turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * width,
+            gap=np.maximum(p - sp.wire_diameter, 0.0) * width,
+            kc=self.turn_contact_stiffness(d) / width,
+            onset=np.broadcast_to(CONTACT_ONSET * sp.wire_diameter * width, np.shape(s)),
+            length=wire_length_per_turn(d, p) * width,
+        )
 
     @cached_property
     def _pieces(self) -> dict:
-        """Per wire element: gap [m], wire rate [N/m], wire mass [kg], contact stiffness [N/m]."""
+        """Per wire element: gap [m], wire mass [kg], law, closing force [N]; dead-coil masses [kg]."""
         sp, g = self.spring, self.geometry
         edges = self.element_turns
         n = edges.size - 1
-        sub = SLICES  # midpoint turn-slices per element: integrals and the closing law
-        frac = (np.arange(sub) + 0.5) / sub
-        s = edges[:-1, None] + (edges[1:] - edges[:-1])[:, None] * frac  # (n, sub)
-        dsub = ((edges[1:] - edges[:-1]) / sub)[:, None]
-        d, p = g.diameter(s), g.pitch(s)
-        c_slice = turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * dsub
-        comp = np.sum(c_slice, axis=1)
-        area = np.pi * sp.wire_diameter**2 / 4
-        mass = sp.density * area * np.sum(wire_length_per_turn(d, p) * dsub, axis=1)
-        gap_slice = np.maximum(p - sp.wire_diameter, 0.0) * dsub
-        gap = np.sum(gap_slice, axis=1)
-        dturn = edges[1:] - edges[:-1]
-        kc_slice = self.turn_contact_stiffness(d) / dsub
-        onset_slice = np.broadcast_to(CONTACT_ONSET * sp.wire_diameter * dsub, d.shape)
-        laws = [graded_coil_law(1.0 / c_slice[i], gap_slice[i], kc_slice[i], onset_slice[i]) for i in range(n)]
+        frac = (np.arange(SLICES) + 0.5) / SLICES  # midpoint turn-slices: integrals and the closing law
+        s = edges[:-1, None] + (edges[1:] - edges[:-1])[:, None] * frac  # (n, SLICES)
+        sl = self._turn_slices(s, np.broadcast_to(((edges[1:] - edges[:-1]) / SLICES)[:, None], s.shape))
+        laws = [graded_coil_law(1.0 / sl["c"][i], sl["gap"][i], sl["kc"][i], sl["onset"][i]) for i in range(n)]
         # the last turn-slice of the element touches: the element is closed throughout
-        closing = np.max(gap_slice / c_slice, axis=1)
+        closing = np.max(sl["gap"] / sl["c"], axis=1)
+        area = np.pi * sp.wire_diameter**2 / 4
         dead = np.linspace(0.0, g.dead_coils, 65)
         dead_mass = [
             sp.density * area * float(np.trapezoid(wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
             for x in (dead, g.turns - dead[::-1])
         ]
         return dict(
-            gap=gap,
-            k=1.0 / comp,
-            mass=mass,
-            kc=1.0 / np.sum(1.0 / kc_slice, axis=1),
+            gap=np.sum(sl["gap"], axis=1),
+            mass=sp.density * area * np.sum(sl["length"], axis=1),
             laws=laws,
             closing=closing,
-            dturn=dturn,
             dead_mass=dead_mass,
             n=n,
         )
