@@ -166,3 +166,32 @@ def test_a_compiling_command_says_so_in_one_line_unless_quiet(tmp_path, quiet):
         assert len(notices) == 1, done.stderr
         assert "compiling the valve engine (spring alone, Dormand-Prince 5(4))" in notices[0]
         assert "once per machine" in notices[0]
+
+
+def test_train_modes_with_the_cam_contact_open_prints_the_jump_frequency(capsys):
+    """``train-modes --cam-contact open``: the separated train's modes and jump frequency, the
+    library's figures (separated_frequencies); a wrong use is one line and exit 2."""
+    import warnings
+
+    from springdyn.valve import Cam, ValveSpring, ValveTrain
+    from springdyn.valve.train_modes import separated_frequencies
+
+    cam = str(resources.files("springdyn.data") / "valve_cam_345.toml")
+    vt = str(resources.files("springdyn.data") / "valve_train_direct_acting.toml")
+    base = ["valve", "train-modes", ONE, "--cam", cam, "--valve-train", vt, "--cam-contact", "open"]
+    code, out, _ = run(capsys, *base, "--valve-lift", "5mm", "--count", "3", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["cam_contact"] == "open" and data["valve_lift_m"] == pytest.approx(5e-3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the 9 mm cam's coil-bind clearance warning
+        ref = separated_frequencies(
+            ValveSpring.from_toml(ONE), Cam.from_toml(cam), ValveTrain.from_toml(vt), count=3, valve_lift=5e-3
+        )
+    assert data["jump_frequency_Hz"] == pytest.approx(ref["jump_frequency_Hz"], rel=1e-12)
+    assert data["frequencies_Hz"] == pytest.approx(ref["frequencies_Hz"], rel=1e-12)
+    code, out, _ = run(capsys, *base)
+    assert code == 0 and "jump frequency (first mode of the separated train):" in out
+    code, _, err = run(capsys, "valve", "train-modes", ONE, "--cam", cam, "--cam-contact", "open")
+    assert code == 2 and "need a valve train" in err and err.count("\n") == 1
+    code, _, err = run(capsys, *base, "--valve-lift", "0mm")
+    assert code == 2 and "--valve-lift = 0 mm must be above 0" in err

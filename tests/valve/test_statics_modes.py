@@ -220,3 +220,150 @@ def test_chain_eigenvalues_of_one_damped_mass():
     lam = np.sort_complex(chain_eigenvalues([m], [k, k], [c, c]))
     root = np.sqrt(complex((2 * c) ** 2 - 4 * m * 2 * k))
     np.testing.assert_allclose(lam, np.sort_complex([(-2 * c - root) / (2 * m), (-2 * c + root) / (2 * m)]), rtol=1e-12)
+
+
+# --- separated-train modes: the cam contact open (train_modes.separated_frequencies) ----------
+def _free_lifter_frequencies(spring, vt, valve_lift):
+    """The free-lifter hand model, built from the spring's and the train's own parameters
+    (independent of the engine's equations): the spring chain (its masses, and the tangent
+    rates of its element laws at the static compressions of ``valve_lift``) between the
+    fixed seat and the valve-side mass; for the lever layouts the lever tip (``rocker_mass``)
+    on the valve through the tip link, and the lifter (``lifter_mass``) on the lever through
+    the pushrod (strain energy ``k_p (z_f - z_r / r)^2 / 2``); the cam contact removed, the
+    seat open.  Undamped generalized eigenproblem ``K v = w^2 M v`` -> frequencies [Hz]."""
+    from scipy.linalg import eigh
+
+    from springdyn.valve.elements import law_stiffness
+
+    chain = spring.spring_model.chain
+    _, x, _ = spring.spring_model.static_state(spring.installed_length - valve_lift)
+    k = [float(law_stiffness(xj, law)) for xj, law in zip(x, chain.laws)]
+    masses = list(chain.masses) + [vt.valve_side_mass]
+    if vt.layout != "direct-acting":
+        masses.append(vt.rocker_mass)
+    if vt.layout == "pushrod":
+        masses.append(vt.lifter_mass)
+    n = len(masses)
+    big = np.zeros((n + 1, n + 1))  # node 0: the seat (fixed), node j + 1: mass j
+    for j, kj in enumerate(k):  # element j joins nodes j and j + 1; the last one ends on the valve
+        big[j : j + 2, j : j + 2] += kj * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    nv = len(chain.masses) + 1  # the valve's node
+    if vt.layout != "direct-acting":  # tip link between valve and lever tip
+        big[nv : nv + 2, nv : nv + 2] += vt.tip_stiffness * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    if vt.layout == "pushrod":  # pushrod between lever tip (z_r / r) and lifter
+        b = np.array([-1.0 / vt.ratio, 1.0])
+        big[nv + 1 : nv + 3, nv + 1 : nv + 3] += vt.pushrod_stiffness * np.outer(b, b)
+    w2 = eigh(big[1:, 1:], np.diag(masses), eigvals_only=True)
+    return np.sqrt(w2) / (2 * np.pi)
+
+
+SEP_CAM = dict(law="3-4-5", duration=np.radians(120))
+DIRECT = dict(valve_mass=0.045, retainer_mass=0.010, follower_mass=0.035)  # no lash: full lift = 6 mm - F / k
+
+
+@pytest.mark.parametrize(
+    "train,lobe_lift,valve_lift",
+    [("direct-acting", 6e-3, None), ("finger-follower", 4e-3, 3e-3), ("pushrod", 4e-3, None)],
+)
+def test_separated_train_equals_the_free_lifter_hand_model(train, lobe_lift, valve_lift):
+    """Reference: the free-lifter hand model (_free_lifter_frequencies): valve-side mass
+    (valve + retainer + follower for the bucket; lever and lifter masses for the lever
+    layouts) on the spring chain, cam contact removed, seat open.  Agreement 1e-6 relative
+    (the central differences are exact on the quadratic element laws up to round-off, ~1e-10;
+    one-step spring: jump frequency 78.580 Hz (bucket, full lift), 85.164 Hz (finger follower,
+    3 mm), 72.833 Hz (pushrod, full lift), engine and hand model alike)."""
+    from springdyn.valve import Cam, ValveTrain
+    from springdyn.valve.train_modes import separated_frequencies
+
+    spring = ValveSpring.example("one-step")
+    vt = ValveTrain(**DIRECT) if train == "direct-acting" else ValveTrain.example(train)
+    res = separated_frequencies(spring, Cam(lift=lobe_lift, **SEP_CAM), vt, count=20, valve_lift=valve_lift)
+    z = res["valve_lift_m"]
+    if valve_lift is None:  # full lift: the closed train's static equilibrium at the largest lift (mechanical lash)
+        assert z == pytest.approx(
+            vt.ratio * lobe_lift - vt.lash - res["spring_force_N"] / vt.stiffness_at_valve, rel=1e-9
+        )
+    else:
+        assert z == valve_lift
+    assert res["spring_force_N"] == pytest.approx(float(spring.spring_model.static_force(spring.installed_length - z)))
+    hand = _free_lifter_frequencies(spring, vt, z)
+    assert len(res["frequencies_Hz"]) == hand.size  # every degree of freedom, none rigid
+    np.testing.assert_allclose(res["frequencies_Hz"], hand, rtol=1e-6)
+    assert res["jump_frequency_Hz"] == res["frequencies_Hz"][0]
+    if train == "direct-acting":
+        assert res["jump_frequency_Hz"] == pytest.approx(78.580, abs=5e-4)
+
+
+def test_jump_frequency_of_a_massless_spring_is_the_mass_on_the_spring_rate():
+    """Limit: a spring of negligible mass (density 1 kg/m^3: 4.5 mg against 90 g) -> the jump
+    frequency is sqrt(k_t / M) / (2 pi), ``k_t`` the spring's static tangent rate at the
+    lift and ``M`` the valve-side mass.  Tolerance: the spring still adds a fraction of its
+    mass m_s to M -- one third for a uniform spring (Rayleigh), 1 - f / f0 ~ m_s / (6 M) =
+    8.4e-6 -- never more than all of it: 0 < 1 - f / f0 <= m_s / (2 M) = 2.5e-5 (the
+    finite-difference error, ~1e-10, is far below)."""
+    from springdyn.valve import Cam, ValveTrain
+    from springdyn.valve.train_modes import separated_frequencies
+
+    with pytest.warns(UserWarning, match="density"):  # implausible for steel, on purpose
+        spring = ValveSpring.example("one-step").replace(density=1.0)
+    vt = ValveTrain(**DIRECT)
+    res = separated_frequencies(spring, Cam(lift=6e-3, **SEP_CAM), vt, count=1)
+    k_t = float(spring.spring_model.static_stiffness(spring.installed_length - res["valve_lift_m"]))
+    f0 = np.sqrt(k_t / vt.valve_side_mass) / (2 * np.pi)  # 84.304 Hz
+    m_s = float(np.sum(spring.spring_model.chain.masses))
+    assert 0 < 1 - res["jump_frequency_Hz"] / f0 <= m_s / (2 * vt.valve_side_mass)
+
+
+def test_opening_the_cam_contact_lowers_the_first_frequency():
+    """Removing a stiffness (the cam contact) can only lower the eigenvalues (Rayleigh's
+    interlacing): the separated train's first mode lies below the closed train's at full
+    lift -- far below, since the cam contact (50 N/um) dwarfs the spring (~30 N/mm):
+    78.6 Hz against 450.4 Hz for the one-step spring on the bucket."""
+    from springdyn.valve import Cam, ValveTrain
+    from springdyn.valve.train_modes import natural_frequencies, separated_frequencies
+
+    spring = ValveSpring.example("one-step")
+    cam, vt = Cam(lift=6e-3, **SEP_CAM), ValveTrain(**DIRECT)
+    closed = natural_frequencies(spring, cam, vt, count=3)["full_lift_Hz"]
+    opened = separated_frequencies(spring, cam, vt, count=3)
+    assert opened["jump_frequency_Hz"] < 0.2 * closed[0]
+
+
+@pytest.mark.parametrize("train", ["finger-follower", "pushrod"])
+def test_lever_and_lifter_masses_enter_the_separated_train(train):
+    """The follower mass rides with the separated train (on the finger: m_f / r^2 at the
+    valve tip; the pushrod's lifter: m_f / r^2 through the pushrod): doubling it lowers the
+    jump frequency, and the train on the spring is heavier than the valve side alone.
+    Reference: the free-lifter mass on the spring rate, sqrt(k_t / M) / (2 pi), is an upper
+    bound that falls as M grows from the valve side to every moving mass referred to the valve;
+    with one third of the spring mass added (Rayleigh, uniform spring) the classic estimate
+    lies within 1.5 % (the chain's masses are not uniform, its links not rigid: 0.75 % for
+    the pushrod train, 1.0 % for the finger follower)."""
+    from springdyn.valve import Cam, ValveTrain
+    from springdyn.valve.train_modes import separated_frequencies
+
+    spring = ValveSpring.example("one-step")
+    cam = Cam(lift=4e-3, **SEP_CAM)
+    vt = ValveTrain.example(train)
+    base = separated_frequencies(spring, cam, vt, count=2)
+    heavy = separated_frequencies(spring, cam, vt.replace(follower_mass=2 * vt.follower_mass), count=2)
+    assert heavy["jump_frequency_Hz"] < base["jump_frequency_Hz"]
+    k_t = float(spring.spring_model.static_stiffness(spring.installed_length - base["valve_lift_m"]))
+    assert base["jump_frequency_Hz"] < np.sqrt(k_t / vt.moving_mass) / (2 * np.pi)
+    assert base["jump_frequency_Hz"] < 0.95 * np.sqrt(k_t / vt.valve_side_mass) / (2 * np.pi)
+    m_s = float(np.sum(spring.spring_model.chain.masses))
+    rayleigh = np.sqrt(k_t / (vt.moving_mass + m_s / 3)) / (2 * np.pi)
+    assert base["jump_frequency_Hz"] == pytest.approx(rayleigh, rel=0.015)
+
+
+def test_separated_train_needs_a_valve_train_and_an_open_seat():
+    from springdyn.valve import Cam, ValveTrain
+    from springdyn.valve.train_modes import separated_frequencies
+
+    spring, cam = ValveSpring.example("one-step"), Cam(lift=6e-3, **SEP_CAM)
+    with pytest.raises(InputError, match="need a valve train"):
+        separated_frequencies(spring, cam, None)
+    with pytest.raises(InputError, match="must be above 0"):
+        separated_frequencies(spring, cam, ValveTrain(**DIRECT), valve_lift=0.0)
+    with pytest.raises(InputError, match="too small for the separated train"):
+        separated_frequencies(spring, cam, ValveTrain(**DIRECT), valve_lift=1e-9)
