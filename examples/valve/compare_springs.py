@@ -30,7 +30,7 @@ def run_sweeps(step: float) -> dict:
     rpm = np.arange(500.0, 4000.0 + 0.5 * step, step)
     out = {}
     for name in ("one-step", "two-step"):
-        result = sweep(ValveSpring.example(name), cam, rpm, revolutions=2, points_per_revolution=720)
+        result = sweep(ValveSpring.example(name), cam, rpm, points_per_revolution=720)
         out[name] = result.summary_table()
     return out
 

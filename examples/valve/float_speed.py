@@ -61,7 +61,7 @@ def main(argv=None) -> int:
     lo, hi = result["bracket"]
     print(f"float speed: {f:.0f} cam rpm = {2 * f:.0f} engine rpm (four-stroke); bracket {lo:.1f} - {hi:.1f} cam rpm")
 
-    sim = simulate(spring, cam, f, 3, valve_train=train, points_per_revolution=1440)
+    sim = simulate(spring, cam, f, valve_train=train, points_per_revolution=1440)
     fig, ax = new_figure()
     ax.plot(sim.cam_angle_deg, sim.cam_contact_force, label="cam contact force")
     ax.axhline(0.0, color="k", lw=0.8)

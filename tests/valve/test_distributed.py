@@ -370,7 +370,7 @@ def test_coil_closure_map_and_clashing_coils(one_step, tmp_path):
 
 def test_sweep_equals_simulate(one_step):
     """Sweeps run the distributed model through the same engine: identical forces."""
-    res = sweep(one_step, CAM, [2500.0, 3500.0], points_per_revolution=360)
+    res = sweep(one_step, CAM, [2500.0, 3500.0], revolutions=2, points_per_revolution=360)
     for i, rpm in enumerate([2500.0, 3500.0]):
         sim = simulate(one_step, CAM, rpm, 2, points_per_revolution=360)
         np.testing.assert_allclose(res.data["retainer"][0, i], sim.retainer_force, rtol=1e-9)

@@ -32,9 +32,10 @@ def local(spring):
     return sweep(spring, CAM, SPEEDS, valve_train=VT, points_per_revolution=360)
 
 
-def test_sweep_matches_single_simulations(spring, local):
-    """The sweep's in-kernel force evaluation equals simulate()'s NumPy post-processing
-    (same engine, same steps: agreement to round-off, 1e-9 relative)."""
+def test_sweep_matches_single_simulations(spring):
+    """With a given number of revolutions from rest, the sweep's in-kernel force evaluation
+    equals simulate()'s (same engine, same steps: agreement to round-off, 1e-9 relative)."""
+    local = sweep(spring, CAM, SPEEDS, revolutions=2, valve_train=VT, points_per_revolution=360)
     for i, rpm in enumerate(SPEEDS):
         sim = simulate(spring, CAM, rpm, 2, valve_train=VT, points_per_revolution=360)
         np.testing.assert_allclose(local.data["retainer"][0, i], sim.retainer_force, rtol=1e-9)
@@ -45,6 +46,20 @@ def test_sweep_matches_single_simulations(spring, local):
         assert row["max_retainer_force_N"][i] == pytest.approx(s["max_retainer_force_N"], rel=1e-9)
         assert bool(row["liftoff"][i]) == bool(s["liftoff"])
         assert local.data["periodicity"][0, i] == pytest.approx(sim.periodicity_error, rel=1e-6, abs=1e-12)
+
+
+def test_periodic_sweep_agrees_with_single_simulations(spring, local):
+    """To the periodic steady state, a sweep continues each speed from the slower one before
+    it and simulate() starts from rest: both settle to the same periodic state, so their
+    extremes agree within the periodicity tolerance (0.2 % of Fset)."""
+    fset = spring.spring_model.internal_parameters()["Fset"]
+    row = local.summary_table()
+    for i, rpm in enumerate(SPEEDS[:2]):  # below float (3000 and 3700 cam rpm float and bounce)
+        sim = simulate(spring, CAM, rpm, valve_train=VT, points_per_revolution=360)
+        s = sim.summary
+        assert sim.periodic and row["periodic"][i]
+        for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
+            assert abs(row[key][i] - s[key]) <= 0.002 * fset, (rpm, key)
 
 
 def test_threads_and_serial_identical(spring, local):

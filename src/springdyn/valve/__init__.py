@@ -31,6 +31,10 @@ The analyses and their results
 - :mod:`~springdyn.valve.setup` -- the engine's set-up for a spring, cam and train (cam
   table, initial state) and the run settings;
 - :mod:`~springdyn.valve.dynamics` -- :func:`simulate`;
+- :mod:`~springdyn.valve.periodicity` -- the periodic steady state every result per speed is
+  (tolerance, most revolutions, band);
+- :mod:`~springdyn.valve.separation` -- lift-offs by cam phase, float over the nose, seat
+  bounce, the seating velocity band;
 - :mod:`~springdyn.valve.float_search` -- :func:`float_speed`;
 - :mod:`~springdyn.valve.train_modes` -- natural frequencies under the cam, resonance speeds;
 - :mod:`~springdyn.valve.frf` -- the linearised dynamic stiffness;

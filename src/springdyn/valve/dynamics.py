@@ -27,7 +27,9 @@ from .results import Simulation
 from .setup import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
+    MAX_REVOLUTIONS,
     MAX_STEP_FRACTION,
+    PERIODICITY_TOL,
     SimulationSetup,
     check_run_settings,
     output_angles,
@@ -43,7 +45,7 @@ def simulate(
     spring: ValveSpring,
     cam: Cam,
     cam_rpm: float,
-    revolutions: int = 3,
+    revolutions: int | None = None,
     *,
     valve_train: ValveTrain | None = None,
     points_per_revolution: int = 1440,
@@ -53,6 +55,8 @@ def simulate(
     setup: SimulationSetup | None = None,
     check_elements: bool = True,
     method: str | None = None,
+    periodicity_tol: float = PERIODICITY_TOL,
+    max_revolutions: int = MAX_REVOLUTIONS,
 ) -> Simulation:
     """Simulate the valve spring (or valve train) driven by the cam.
 
@@ -62,9 +66,13 @@ def simulate(
     cam : Cam
     cam_rpm : float
         Camshaft speed [rev/min] (half the engine speed of a four-stroke engine).
-    revolutions : int
+    revolutions : int, optional
         Cam revolutions [-] to integrate from static equilibrium; the last is reported and
-        compared with the one before to judge periodicity.
+        compared with the one before to judge periodicity.  Default: run to the periodic
+        steady state, until the seat, retainer, cam-contact and valve-seat forces of the last
+        two revolutions differ by at most ``periodicity_tol`` on the output grid, for at most
+        ``max_revolutions`` (one that does not settle reports the band of its extremes over
+        its last :data:`BAND_REVOLUTIONS`, ``Simulation.band``).
     valve_train : ValveTrain, optional
         Adds the valve body with cam and seat contacts (lift-off, bounce).
     points_per_revolution : int
@@ -86,6 +94,10 @@ def simulate(
     method : {"dopri5", "tsit5", "bs3"}, optional
         The compiled engine's Runge-Kutta pair; default the model's (:data:`PAIR`: Type C
         Dormand-Prince 5(4), distributed Bogacki-Shampine 3(2)).
+    periodicity_tol : float
+        Periodic steady state: tolerance [fraction of Fset] (default 0.2 %).
+    max_revolutions : int
+        Periodic steady state: the most revolutions [-].
 
     Raises
     ------
@@ -97,7 +109,7 @@ def simulate(
     number = (int, float, np.integer, np.floating)
     if isinstance(cam_rpm, bool) or not isinstance(cam_rpm, number) or not (cam_rpm > 0 and math.isfinite(cam_rpm)):
         raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive speed: a finite number [rev/min]")
-    check_run_settings(revolutions, points_per_revolution, rtol, atol)
+    check_run_settings(revolutions, points_per_revolution, rtol, atol, periodicity_tol, max_revolutions)
     if backend not in ("compiled", "scipy"):
         raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")
     if method is not None and (backend != "compiled" or method not in PAIRS):
@@ -105,7 +117,10 @@ def simulate(
             f"method = {method!r}: the compiled backend's pairs are {sorted(PAIRS)}"
             + ("" if backend == "compiled" else f"; backend = {backend!r} has its own (DOP853)")
         )
-    revolutions, points_per_revolution = int(revolutions), int(points_per_revolution)
+    periodic = revolutions is None
+    revolutions = None if periodic else int(revolutions)
+    points_per_revolution = int(points_per_revolution)
+    most = int(max_revolutions) if periodic else revolutions
     # bound the work by the periods of the fastest mode: solve_ivp has no step cap (20 to
     # 70 right-hand-side calls per period: 2e4 periods take seconds to a minute); the
     # compiled engine stops at 1e7 steps (3 to 5 steps per period)
@@ -113,14 +128,14 @@ def simulate(
     f_top = spring.spring_model.fastest_mode
     if valve_train is not None:
         f_top = max(f_top, valve_train.highest_frequency())
-    cycles = revolutions * 60.0 / cam_rpm * f_top
+    cycles = most * 60.0 / cam_rpm * f_top
     if cycles > max_cycles:
         raise InputError(
-            f"cam_rpm = {cam_rpm:g} is too slow for backend = {backend!r}: {revolutions} revolutions last "
-            f"{revolutions * 60.0 / cam_rpm:.4g} s, {cycles:.3g} periods of the fastest mode ({f_top:.0f} Hz), "
+            f"cam_rpm = {cam_rpm:g} is too slow for backend = {backend!r}: {most} revolutions last "
+            f"{most * 60.0 / cam_rpm:.4g} s, {cycles:.3g} periods of the fastest mode ({f_top:.0f} Hz), "
             f"more than the {max_cycles:g} this backend integrates in bounded time; "
             + ("use backend = 'compiled' or " if backend == "scipy" else "give fewer revolutions or ")
-            + f"at least {revolutions * 60.0 * f_top / max_cycles:.3g} rev/min"
+            + f"at least {most * 60.0 * f_top / max_cycles:.3g} rev/min"
         )
     if setup is None:
         setup = prepare(spring, cam, valve_train)
@@ -129,36 +144,84 @@ def simulate(
     omega = rpm_to_omega(cam_rpm)
     period = 2 * math.pi / omega
     n = points_per_revolution
+    run = dict(periodicity_tol=periodicity_tol, max_revolutions=most)
     if backend == "compiled":
         chosen, method = method, setup.method if method is None else method
-        extra, prev, status, t_end, steps, mon = setup.run([omega], revolutions, n, rtol=rtol, atol=atol, method=method)
-        info = dict(status=int(status[0]), t=float(t_end[0]), steps=int(steps[0]), method=method)
-        if info["status"] != 0 or not (np.isfinite(extra).all() and np.isfinite(prev).all()):
+        res = setup.run([omega], revolutions, n, rtol=rtol, atol=atol, method=method, **run)
+        info = dict(status=int(res["status"][0]), t=float(res["t_end"][0]), steps=int(res["steps"][0]), method=method)
+        if info["status"] != 0 or not np.isfinite(res["extra"]).all():
             raise _solver_error(cam_rpm, omega, info)
-        time = (revolutions - 1) * period + np.arange(n) * (period / n)
-        sim = _from_extra(setup, cam_rpm, revolutions, time, extra[0], prev[0], info)
-        sim.monitor = _monitor_record(mon, 0, omega, revolutions)
+        done = int(res["revolutions"][0])
+        time = (done - 1) * period + np.arange(n) * (period / n)
+        sim = _from_extra(setup, cam_rpm, done, time, res["extra"][0], float(res["periodicity"][0]), info)
+        sim.periodicity_tol = periodicity_tol
+        sim.monitor = _monitor_record(res, 0, omega, done)
+        if periodic and not res["settled"][0]:
+            sim.band = _band(res, 0)
         if check_elements:
-            _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol, chosen)
+            _check_element_count(
+                sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol, chosen, run
+            )
         return sim
-    keep = min(2, revolutions)
-    t_keep = (revolutions - keep) * period + np.arange(keep * n) * (period / n)
-    t_out = t_keep if t_keep[0] == 0.0 else np.concatenate([[0.0], t_keep])
-    states, info = integrate_scipy(
-        setup.y0,
-        t_out,
-        setup.args(omega),
-        rtol=rtol,
-        atol=atol,
-        h_max=period * MAX_STEP_FRACTION,
-        atol_velocity=setup.atol_velocity(atol),
+    sim = _simulate_scipy(setup, cam_rpm, revolutions, most, periodicity_tol, n, rtol, atol)
+    sim.periodicity_tol = periodicity_tol
+    return sim
+
+
+def _band(res: dict, i: int) -> dict:
+    """The band of each extreme over the monitored revolutions of speed ``i``: name -> (lo, hi)."""
+    from .engine import EXT
+    from .engine.layout import EXT_VALUES
+
+    return {EXT[k]: (float(res["band_lo"][i, k]), float(res["band_hi"][i, k])) for k in EXT_VALUES}
+
+
+def _simulate_scipy(setup, cam_rpm, revolutions, most, periodicity_tol, n, rtol, atol) -> Simulation:
+    """The SciPy reference, revolution by revolution: ``revolutions`` of them, or (None)
+    until the periodicity channels of two revolutions agree within ``periodicity_tol`` of
+    Fset (at most ``most``), as the compiled engine judges them (:func:`_check_forces`)."""
+    omega = rpm_to_omega(cam_rpm)
+    period = 2 * math.pi / omega
+    fset = setup.spring.spring_model.internal_parameters()["Fset"]
+    y = np.array(setup.y0, dtype=float)
+    before = None
+    err = math.nan
+    steps = 0
+    for r in range(most):
+        t_rev = r * period + np.arange(n + 1) * (period / n)
+        states, info = integrate_scipy(
+            y,
+            t_rev,
+            setup.args(omega),
+            rtol=rtol,
+            atol=atol,
+            h_max=period * MAX_STEP_FRACTION,
+            atol_velocity=setup.atol_velocity(atol),
+        )
+        steps += int(info["steps"])
+        if info["status"] != 0 or not np.all(np.isfinite(states)):
+            raise _solver_error(cam_rpm, omega, info)
+        y = states[-1]
+        forces = _check_forces(setup, omega, t_rev[:n], states[:n])
+        if before is not None:
+            err = float(np.max(np.abs(forces - before))) / fset
+        before = forces
+        if revolutions is None and r >= 1 and err <= periodicity_tol:
+            break
+    return _postprocess(setup, cam_rpm, r + 1, t_rev[:n], states[:n], dict(info, steps=steps), err)
+
+
+def _check_forces(setup: SimulationSetup, omega: float, t: np.ndarray, states: np.ndarray) -> np.ndarray:
+    """The periodicity channels (seat, retainer, cam-contact, valve-seat forces [N]) of the
+    reference's states, as :func:`springdyn.valve.engine.loop.check_channels` samples them."""
+    r = chain_response(setup, omega, omega * t, states)
+    zero = np.zeros(t.size)
+    return np.stack(
+        [r["force"][0], r["force"][-1], r.get("cam_contact_force", zero), r.get("valve_seat_force", zero)], axis=-1
     )
-    if info["status"] != 0 or not np.all(np.isfinite(states)):
-        raise _solver_error(cam_rpm, omega, info)
-    return _postprocess(setup, cam_rpm, revolutions, t_keep, states[-keep * n :], info, n, keep)
 
 
-def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rtol, atol, method) -> None:
+def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rtol, atol, method, run) -> None:
     """Distributed model with clashing coils: the peak end forces with half the elements
     (with the pair the caller chose, else the coarse chain's own, :attr:`SimulationSetup.method`)."""
     sp = sim.spring
@@ -179,6 +242,7 @@ def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rt
         atol=atol,
         check_elements=False,
         method=method,
+        **run,
     )
     ext = coarse.monitor["ext"]  # the true extremes of the dense output, as in the summary
     sim.element_check = dict(
@@ -277,14 +341,11 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     return out
 
 
-def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous, info) -> Simulation:
+def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err, info) -> Simulation:
     """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)
-    over the last revolution, ``e``; ``previous`` is the retainer force over the one before."""
-    fset = setup.spring.spring_model.internal_parameters()["Fset"]
+    over the last revolution, ``e``; ``prev_err`` is its periodicity error [fraction of Fset]."""
     lay = extra_layout(setup.n_masses)
-    ne = setup.n_masses + 1
     force, x = e[:, lay["force"]].T, e[:, lay["compression"]].T
-    prev_err = float(np.max(np.abs(e[:, ne - 1] - previous)) / fset) if previous.size else math.nan
     lift = e[:, lay["lift"]]
     if setup.valve_train is None:  # the lift of the cam table at the output angles: kept per cam
         static = setup.static_force_along_cam(time.size)
@@ -314,6 +375,7 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, previous,
         sim.valve_lift = e[:, lay["top_displacement"]]
         sim.cam_contact_force = e[:, lay["cam_contact_force"]]
         sim.valve_seat_force = e[:, lay["valve_seat_force"]]
+        sim.cam_gap = e[:, lay["cam_gap"]]
     return sim
 
 
@@ -326,26 +388,26 @@ def _monitor_record(mon: dict, i: int, omega: float, revolutions: int) -> dict:
     from .engine import EXT
 
     ext = dict(zip(EXT, mon["ext"][i].tolist()))
-    t0 = (revolutions - 1) * 2 * math.pi / omega
+    t0 = (revolutions - 1) * (2.0 * np.pi / omega)  # as the engine's loop computes it
     rows = mon["events"][i, : int(mon["n_events"][i])]
     return dict(ext=ext, events=rows.copy(), omega=omega, t0=t0)
 
 
-def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_keep, states, info, n, keep) -> Simulation:
+def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_last, states, info, prev_err) -> Simulation:
+    """The reference's results from the states ``states`` of the last revolution at the
+    times ``t_last`` [s]."""
     omega = rpm_to_omega(cam_rpm)
-    theta = omega * t_keep
+    theta = omega * t_last
     r = chain_response(setup, omega, theta, states)
-    last = slice((keep - 1) * n, keep * n)
-    fset = setup.spring.spring_model.internal_parameters()["Fset"]
+    last = slice(0, t_last.size)
     force = r["force"]
-    prev_err = float(np.max(np.abs(force[-1, last] - force[-1, :n])) / fset) if keep == 2 else math.nan
     sim = Simulation(
         spring=setup.spring,
         cam=setup.cam,
         valve_train=setup.valve_train,
         cam_rpm=cam_rpm,
         revolutions=revolutions,
-        time=t_keep[last],
+        time=t_last,
         cam_angle=np.mod(theta[last], 2 * math.pi),
         lift=r["lift"][last],
         retainer_force=force[-1, last],

@@ -1,7 +1,12 @@
-"""The float speed of a valve train: the lowest cam speed at which the follower leaves the cam.
+"""The float speed of a valve train, as valve-train engineers define it.
 
-A scan of the given speeds (the minimum cam contact force during the event at each), then
-a bisection between the last speed that holds and the first that lifts off.
+Float is the valve leaving the cam over the nose (:mod:`springdyn.valve.separation`): the
+float speed is the lowest speed from which the valve separates over the nose at every
+higher speed of the scan.  The scan is a speed sweep to the periodic steady state
+(:func:`springdyn.valve.sweeps.sweep`); a bisection then narrows the step below the float
+speed down to the resolution.  Beside it: the first speed with any lift-off and its phase
+(opening-side bounce at lash take-up comes much earlier), seat bounce and the seating
+velocity band per scanned speed.
 """
 
 import math
@@ -10,13 +15,31 @@ import numpy as np
 
 from ..core.errors import InputError
 from .cam import Cam
-from .dynamics import simulate
+from .periodicity import MAX_REVOLUTIONS, PERIODICITY_TOL
 from .results import FloatSpeedResult
-from .setup import prepare
 from .spring import ValveSpring
+from .sweeps import sweep
 from .valvetrain import ValveTrain
 
 __all__ = ["float_speed"]
+
+#: Columns of the sweep's summary table a float-speed result keeps per scanned speed.
+SCAN_COLUMNS = (
+    "min_cam_contact_force_N",
+    "liftoff",
+    "nose_separation",
+    "first_liftoff_phase",
+    "max_liftoff_gap_m",
+    "seat_landings",
+    "seat_rebound_height_m",
+    "seat_impact_velocity_m_per_s",
+    "seat_impact_velocity_min_m_per_s",
+    "seat_impact_velocity_median_m_per_s",
+    "seat_impact_velocity_max_m_per_s",
+    "periodicity_error",
+    "periodic",
+    "revolutions",
+)
 
 
 def float_speed(
@@ -25,16 +48,21 @@ def float_speed(
     valve_train: ValveTrain,
     cam_rpm,
     *,
-    revolutions: int = 3,
+    revolutions: int | None = None,
     resolution: float = 1.0,
     points_per_revolution: int = 1440,
     progress_quiet: bool = True,
+    periodicity_tol: float = PERIODICITY_TOL,
+    max_revolutions: int = MAX_REVOLUTIONS,
+    workers: int | None = None,
 ) -> FloatSpeedResult:
-    """Float speed: the lowest cam speed at which the follower separates from the cam.
+    """Float speed: the lowest cam speed from which the valve separates over the nose at
+    every higher scanned speed.
 
-    Scans the speeds ``cam_rpm`` (ascending), then bisects between the last speed without
-    lift-off and the first with it down to ``resolution`` [rev/min] (at most
-    ``MAX_HALVINGS`` halvings).
+    Scans the speeds ``cam_rpm`` (each to its periodic steady state, continued from the
+    slower speed before it), then bisects between the scanned speed below the float speed
+    and the float speed down to ``resolution`` [rev/min] (at most ``MAX_HALVINGS``
+    halvings); each bisection speed runs from rest.
 
     Parameters
     ----------
@@ -44,23 +72,29 @@ def float_speed(
         The valve body whose contact with the cam may open.
     cam_rpm : array_like
         Camshaft speeds to scan [rev/min], positive.
-    revolutions : int
-        Cam revolutions per simulation [-] (see :func:`simulate`).
+    revolutions : int, optional
+        Cam revolutions per speed from rest [-]; default: to the periodic steady state.
     resolution : float
         Width of the final bracket [rev/min], positive.
     points_per_revolution : int
-        Output resolution of each simulation [-].
+        Output resolution of each speed [-].
     progress_quiet : bool
         No progress bar.
+    periodicity_tol : float
+        Periodic steady state: tolerance [fraction of Fset].
+    max_revolutions : int
+        Periodic steady state: the most revolutions per speed [-].
+    workers : int, optional
+        Local threads of the scan [-].
 
     Returns
     -------
     FloatSpeedResult
-        ``float_cam_rpm`` (None if no lift-off in the range), ``bracket`` (speeds either
-        side), and per scanned speed ``cam_rpm`` and ``min_cam_contact_force_N``.
+        ``float_cam_rpm`` (None if the valve does not separate over the nose at the highest
+        scanned speed), ``bracket`` (speeds either side), ``first_separation`` (the lowest
+        scanned speed with any lift-off and its phase) and per scanned speed the columns
+        :data:`SCAN_COLUMNS`.
     """
-    from ..core.progress import progress
-
     max_halvings = 40
     try:
         rpms = np.sort(np.atleast_1d(np.asarray(cam_rpm, dtype=float)))
@@ -80,45 +114,46 @@ def float_speed(
             f"resolution = {resolution:g} rev/min is finer than the bisection reaches in {max_halvings} "
             f"halvings of the scanned range: it must be at least {finest:.3g} rev/min"
         )
-    setup = prepare(spring, cam, valve_train)
-
-    def min_force(rpm):
-        sim = simulate(
-            spring,
-            cam,
-            rpm,
-            revolutions,
-            valve_train=valve_train,
-            setup=setup,
-            points_per_revolution=points_per_revolution,
-            check_elements=False,
-        )
-        sm = sim.summary
-        return sm["min_cam_contact_force_N"], bool(sm["liftoff"])
-
-    scanned, forces = [], []
-    first = None
-    for rpm in progress(rpms, total=rpms.size, desc="float speed scan", quiet=progress_quiet):
-        f, lifted = min_force(rpm)
-        scanned.append(float(rpm))
-        forces.append(f)
-        if lifted:
-            first = len(scanned) - 1
-            break
+    run = dict(
+        valve_train=valve_train,
+        revolutions=revolutions,
+        points_per_revolution=points_per_revolution,
+        periodicity_tol=periodicity_tol,
+        max_revolutions=max_revolutions,
+    )
+    scan = sweep(spring, cam, rpms, quiet=progress_quiet, workers=workers, **run)
+    table = scan.summary_table()
+    columns = {k: table[k].tolist() for k in SCAN_COLUMNS if k in table}
+    first = scan.first_separation_speeds()[0]
+    first_separation = None
+    if np.isfinite(first):
+        i = int(np.flatnonzero(rpms == first)[0])
+        first_separation = dict(cam_rpm=float(first), phase=table["first_liftoff_phase"][i] or "over the whole event")
 
     def result(float_rpm, bracket):
-        return FloatSpeedResult(scanned, forces, float_rpm, bracket, float(resolution))
+        return FloatSpeedResult(
+            list(map(float, rpms)),
+            columns["min_cam_contact_force_N"],
+            float_rpm,
+            bracket,
+            float(resolution),
+            first_separation=first_separation,
+            scan=columns,
+            periodicity_tol=periodicity_tol,
+        )
 
-    if first is None:
+    f = scan.float_speeds()[0]
+    if not np.isfinite(f):
         return result(None, None)
-    if first == 0:
-        return result(scanned[0], [None, scanned[0]])
-    lo, hi = scanned[first - 1], scanned[first]
+    k = int(np.flatnonzero(rpms == f)[0])
+    if k == 0:
+        return result(float(f), [None, float(f)])
+    lo, hi = float(rpms[k - 1]), float(f)
     for _ in range(max_halvings):  # bounded: the check above makes this many enough
         if hi - lo <= resolution:
             break
         mid = 0.5 * (lo + hi)
-        if min_force(mid)[1]:
+        if bool(sweep(spring, cam, [mid], workers=1, **run).summary_table()["nose_separation"][0]):
             hi = mid
         else:
             lo = mid

@@ -168,18 +168,19 @@ class ValveModel:
             out["base_circle_Hz"], out["full_lift_Hz"], out["full_lift_cam_angle_deg"], out["notes"]
         )
 
-    def simulate(self, cam_rpm: float, revolutions: int = 3, **options):
+    def simulate(self, cam_rpm: float, revolutions: int | None = None, **options):
         """The dynamic response at one cam speed (:class:`~springdyn.valve.results.Simulation`).
 
         Parameters
         ----------
         cam_rpm : float
             Cam speed [rev/min].
-        revolutions : int
-            Revolutions; the last is reported [-].
+        revolutions : int, optional
+            Revolutions from rest; the last is reported [-].  Default: to the periodic
+            steady state.
         **options
-            Further options of :func:`springdyn.valve.dynamics.simulate` (tolerances, outputs
-            per revolution, backend, pair).
+            Further options of :func:`springdyn.valve.dynamics.simulate` (periodicity
+            tolerance, tolerances, outputs per revolution, backend, pair).
         """
         from .dynamics import simulate
 

@@ -12,6 +12,8 @@ import numpy as np
 
 from ..core.results import Result
 from .elements import law_force
+from .periodicity import is_periodic
+from .separation import cam_phases, liftoffs, separates_over_nose
 
 __all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "NaturalFrequencies"]
 
@@ -101,7 +103,9 @@ class Simulation(Result):
     element_force: np.ndarray  # (6, n) [N]
     element_contact: np.ndarray  # (6, n) bool
     mass_displacement: np.ndarray  # (5, n) [m]
-    periodicity_error: float  # max |F(last) - F(previous)| / Fset
+    #: Largest change of the seat, retainer, cam-contact and valve-seat forces from the
+    #: revolution before, on the output grid [fraction of Fset] (nan after one revolution).
+    periodicity_error: float
     info: dict
     valve_lift: np.ndarray | None = None  # [m]
     cam_contact_force: np.ndarray | None = None  # [N]
@@ -115,8 +119,16 @@ class Simulation(Result):
     element_check: dict | None = None
     #: Coil-bind figures of the cam's largest lift (:func:`springdyn.valve.coil_bind.check_coil_bind`).
     coil_bind: dict | None = None
+    #: The tolerance [fraction of Fset] on ``periodicity_error`` under which the last
+    #: revolution is the periodic steady state (None: :data:`springdyn.valve.periodicity.PERIODICITY_TOL`).
+    periodicity_tol: float | None = None
+    #: The signed cam-contact gap on the output grid [m] (positive in contact; valve train).
+    cam_gap: np.ndarray | None = None
+    #: A run that did not settle (``periodic`` False after the most revolutions): each
+    #: extreme's smallest and largest value over the last revolutions, name -> (lo, hi)
+    #: (names of :data:`springdyn.valve.engine.EXT`); None when periodic.
+    band: dict | None = None
 
-    PERIODIC_TOL = 0.01
     #: Change of the peak end forces with half the elements [fraction of Fset] above which
     #: the clash forces are flagged as not converged.
     ELEMENT_TOL = 0.01
@@ -132,11 +144,9 @@ class Simulation(Result):
 
     @property
     def periodic(self) -> bool | None:
-        """Whether the last revolution repeats the one before within 1 % of Fset
+        """Whether the last revolution repeats the one before within ``periodicity_tol``
         (``None`` after a single revolution: there is nothing to compare with)."""
-        if not np.isfinite(self.periodicity_error):
-            return None
-        return bool(self.periodicity_error <= self.PERIODIC_TOL)
+        return is_periodic(self.periodicity_error, self.periodicity_tol)
 
     # ------------------------------------------------------------------ summary
     def _summary(self) -> dict:
@@ -291,17 +301,31 @@ def located_events(sim: Simulation) -> dict:
         (``end_deg < start_deg``); one that lasts the whole revolution is ``(0, 360, 360)``.
     """
     mon = sim.monitor
-    out: dict = {"landings": []}
     if mon is None:
-        return out
-    omega, t0 = mon["omega"], mon["t0"]
+        return {"landings": []}
+    return locate_intervals(mon["events"], mon["omega"], mon["t0"])
+
+
+def locate_intervals(events: np.ndarray, omega: float, t0: float) -> dict:
+    """The monitor's event rows of one revolution as cam-angle intervals (see :func:`located_events`).
+
+    Parameters
+    ----------
+    events : ndarray (rows, 4)
+        The located events ``kind, index, t_start, t_end`` (:data:`springdyn.valve.engine.EVENT_KINDS`).
+    omega : float
+        Cam speed [rad/s].
+    t0 : float
+        Start of the revolution [s].
+    """
+    out: dict = {"landings": []}
     period = 2 * np.pi / omega
 
     def deg(t):
         return float(np.degrees(omega * (t - t0)))
 
     chans: dict = {}
-    for kind, index, ts, te in mon["events"]:
+    for kind, index, ts, te in events:
         if kind == 3:
             out["landings"].append((deg(ts), float(te)))
             continue
@@ -504,23 +528,21 @@ def _summarise(sim: Simulation) -> dict:
         if first_landing.size:
             before[first_landing[0] + 1 :] = False
         in_event = (sim.lift > vt.lobe_lash + 1e-6) & (z > 0.0) & before
-        lo = []
+        phases = cam_phases(sim.cam, vt.lobe_lash)
         if mon is not None:
-            for a, b, c in located.get((2, 0), []):
-                lo.append(dict(start_deg=a, end_deg=b, duration_deg=c, duration_s=c / (6.0 * rpm)))
+            intervals = located.get((2, 0), [])
         else:
             separated = in_event & (sim.cam_contact_force <= 0.0)
+            intervals = []
             for a, b in _ranges(separated):
                 count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
-                lo.append(
-                    dict(
-                        start_deg=float(deg[a]),
-                        end_deg=float(deg[b]),
-                        duration_deg=float(count * step_deg),
-                        duration_s=float(count * step_deg / (6.0 * sim.cam_rpm)),
-                    )
-                )
+                intervals.append((float(deg[a]), float(deg[b]), float(count * step_deg)))
+        lo = liftoffs(intervals, phases, sim.cam_rpm, sim.cam_angle, None if sim.cam_gap is None else -sim.cam_gap)
         s["liftoff"] = lo
+        # float as valve-train engineers read it: the valve leaves the cam over the nose
+        s["nose_separation"] = separates_over_nose(lo, phases, sim.cam_angle, sim.cam_contact_force, sim.valve_lift)
+        s["first_liftoff_phase"] = lo[0]["phase"] if lo else None
+        s["cam_phases_deg"] = phases.as_degrees()
         grid_min = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
         if mon is not None and np.isfinite(mon["ext"]["min_cam_contact_force"]):
             s["min_cam_contact_force_N"] = max(min(mon["ext"]["min_cam_contact_force"], grid_min), 0.0)
@@ -558,12 +580,16 @@ def _summarise(sim: Simulation) -> dict:
 
 @dataclass(repr=False)
 class FloatSpeedResult(Result):
-    """The float speed of a valve train: the lowest cam speed with follower lift-off.
+    """The float speed of a valve train: the lowest cam speed from which the valve
+    separates over the nose at every higher scanned speed (:mod:`springdyn.valve.separation`).
 
-    ``float_cam_rpm`` is ``None`` when no scanned speed lifts off; ``bracket`` gives the
-    speeds either side of the bisection; the scan lists the minimum cam contact force
-    during the event at each scanned speed.  ``result["float_cam_rpm"]`` works as for
-    the dict earlier versions returned.
+    ``float_cam_rpm`` is ``None`` when the valve does not separate over the nose at the
+    highest scanned speed; ``bracket`` gives the speeds either side of the bisection;
+    ``first_separation`` the lowest scanned speed with any lift-off and its phase; ``scan``
+    per scanned speed the minimum cam contact force during the event, lift-off, nose
+    separation, the first lift-off's phase, seat landings and rebound height, the seat
+    impact velocity and its band, and the periodicity.  ``result["float_cam_rpm"]`` works
+    as for the dict earlier versions returned.
     """
 
     cam_rpm: list  # scanned speeds [rev/min]
@@ -571,33 +597,64 @@ class FloatSpeedResult(Result):
     float_cam_rpm: float | None
     bracket: list | None
     resolution_rpm: float
+    first_separation: dict | None = None
+    scan: dict | None = None  # column -> list per scanned speed (float_search.SCAN_COLUMNS)
+    periodicity_tol: float | None = None
 
     title = "valve float speed"
     cheap_plot = True
 
     def _repr_caption(self) -> str:
-        return "no lift-off in the range" if self.float_cam_rpm is None else f"{self.float_cam_rpm:.1f} cam rpm"
+        return "no float in the range" if self.float_cam_rpm is None else f"{self.float_cam_rpm:.1f} cam rpm"
 
     def _summary(self) -> dict:
         s = dict(
             float_cam_rpm=self.float_cam_rpm,
             float_engine_rpm=None if self.float_cam_rpm is None else 2.0 * self.float_cam_rpm,
+            float_definition="the lowest speed from which the valve separates over the nose (the negative "
+            "acceleration around the peak) at every higher scanned speed",
             resolution_rpm=self.resolution_rpm,
             speeds_scanned=len(self.cam_rpm),
         )
         s["bracket_low_cam_rpm"], s["bracket_high_cam_rpm"] = self.bracket or [None, None]
+        fs = self.first_separation
+        s["first_separation_cam_rpm"] = fs["cam_rpm"] if fs else None
+        s["first_separation_phase"] = fs["phase"] if fs else None
+        notes = []
+        sc = self.scan or {}
+        if sc.get("periodic") is not None:
+            bad = [r for r, p in zip(self.cam_rpm, sc["periodic"]) if not p]
+            s["speeds_not_periodic"] = len(bad)
+            if bad:
+                notes.append(
+                    f"{len(bad)} scanned speeds did not settle (bounce that does not repeat from one revolution to "
+                    f"the next, from {min(bad):g} cam rpm): their seating velocity is a band over the last "
+                    "revolutions and the speeds within +-25 rpm"
+                )
         if self.float_cam_rpm is None:
-            s["notes"] = ["no lift-off at any scanned speed: the float speed is above the range"]
+            notes.append(
+                "the valve does not separate over the nose at the highest scanned speed: no float in the range"
+            )
+        if fs and (self.float_cam_rpm is None or fs["cam_rpm"] < self.float_cam_rpm):
+            notes.append(
+                f"lift-off from {fs['cam_rpm']:g} cam rpm ({fs['phase']}) is bounce, not float: the valve does not "
+                "leave the cam over the nose at every speed above it"
+            )
+        if notes:
+            s["notes"] = notes
         return s
 
     def to_dict(self) -> dict:
         """The JSON of ``springdyn valve float``: the scan and the float speed (SI, rpm)."""
-        return dict(
+        out = dict(
             cam_rpm=list(self.cam_rpm),
             min_cam_contact_force_N=list(self.min_cam_contact_force_N),
             float_cam_rpm=self.float_cam_rpm,
             bracket=self.bracket,
+            first_separation=self.first_separation,
         )
+        out.update({k: v for k, v in (self.scan or {}).items() if k not in out})
+        return out
 
     def __getitem__(self, key):
         legacy = self.to_dict()
@@ -606,14 +663,22 @@ class FloatSpeedResult(Result):
     def to_xarray(self):
         import xarray as xr
 
+        from ..core.results import units_from_name
+
+        data = {
+            "min_cam_contact_force": (
+                "cam_rpm",
+                np.asarray(self.min_cam_contact_force_N, dtype=float),
+                {"units": "N", "long_name": "minimum cam-follower contact force in the event"},
+            )
+        }
+        for k, v in (self.scan or {}).items():
+            if k == "min_cam_contact_force_N":
+                continue
+            a = np.asarray(v)
+            data[k] = ("cam_rpm", a.astype(np.int8) if a.dtype == bool else a, {"units": units_from_name(k)})
         return xr.Dataset(
-            {
-                "min_cam_contact_force": (
-                    "cam_rpm",
-                    np.asarray(self.min_cam_contact_force_N, dtype=float),
-                    {"units": "N", "long_name": "minimum cam-follower contact force in the event"},
-                )
-            },
+            data,
             coords={"cam_rpm": ("cam_rpm", np.asarray(self.cam_rpm, dtype=float), {"units": "rpm"})},
             attrs={"float_cam_rpm": "none" if self.float_cam_rpm is None else self.float_cam_rpm},
         )
@@ -624,6 +689,13 @@ class FloatSpeedResult(Result):
         if ax is None:
             fig, ax = new_figure(figsize=(8, 4.5))
         ax.plot(self.cam_rpm, self.min_cam_contact_force_N, "o-", color="C0", label="minimum cam contact force")
+        sc = self.scan or {}
+        if "nose_separation" in sc:
+            rpm = np.asarray(self.cam_rpm)
+            nose = np.asarray(sc["nose_separation"], dtype=bool)
+            other = np.asarray(sc["liftoff"], dtype=bool) & ~nose
+            ax.plot(rpm[other], np.zeros(other.sum()), "^", color="C1", label="lift-off off the nose (bounce)")
+            ax.plot(rpm[nose], np.zeros(nose.sum()), "v", color="C3", label="separation over the nose")
         ax.axhline(0.0, color="k", lw=0.8)
         if self.float_cam_rpm is not None:
             ax.axvline(self.float_cam_rpm, color="C3", ls="--", label=f"float speed {self.float_cam_rpm:.0f} cam rpm")

@@ -22,6 +22,7 @@ from .engine import (
     series_force_compiled,
 )
 from .engine.cam_table import CamTable
+from .periodicity import BAND_REVOLUTIONS, MAX_REVOLUTIONS, PERIODICITY_TOL
 from .spring import ValveSpring
 from .statics import series_force
 from .valvetrain import KERNEL_SIZE, ValveTrain
@@ -38,6 +39,9 @@ __all__ = [
     "VELOCITY_TOLERANCE_DIVISOR",
     "PAIR",
     "BS3_MIN_ELEMENTS",
+    "PERIODICITY_TOL",
+    "MAX_REVOLUTIONS",
+    "BAND_REVOLUTIONS",
 ]
 
 #: Default integration tolerances (relative; absolute on displacements [m] and velocities
@@ -165,17 +169,30 @@ class SimulationSetup:
         """Degrees of freedom: the chain's masses, plus the valve train's (valve, lever, lifter)."""
         return self.n_masses + (self.valve_train.degrees_of_freedom if self.valve_train is not None else 0)
 
-    def run(self, omegas, revolutions: int, points: int, *, rtol: float, atol: float, method: str | None = None):
-        """Integrate the speeds ``omegas`` [rad/s] with the compiled engine, monitoring the
-        last revolution (true extremes and events on the dense output, see
+    def run(
+        self,
+        omegas,
+        revolutions: int | None,
+        points: int,
+        *,
+        rtol: float,
+        atol: float,
+        method: str | None = None,
+        periodicity_tol: float = PERIODICITY_TOL,
+        max_revolutions: int = MAX_REVOLUTIONS,
+        warm_start: bool = False,
+    ) -> dict:
+        """Integrate the speeds ``omegas`` [rad/s] with the compiled engine to their periodic
+        steady state (``revolutions`` None) or for ``revolutions``, monitoring the last
+        revolution (true extremes and events on the dense output, see
         :func:`springdyn.valve.engine.run_speeds`).
 
         Parameters
         ----------
         omegas : array_like
             Cam speeds [rad/s].
-        revolutions : int
-            Revolutions per speed [-].
+        revolutions : int or None
+            Revolutions per speed [-]; None: until two revolutions repeat.
         points : int
             Output samples per revolution [-].
         rtol : float
@@ -184,22 +201,41 @@ class SimulationSetup:
             Absolute tolerance of the displacements [m].
         method : str, optional
             Runge-Kutta pair (default: the model's, :data:`PAIR`) [-].
+        periodicity_tol : float
+            Periodic steady state: the largest change of the seat, retainer, cam-contact and
+            valve-seat forces from one revolution to the next [fraction of Fset].
+        max_revolutions : int
+            Periodic steady state: the most revolutions per speed [-].
+        warm_start : bool
+            Start each speed from the state the one before ended in (speeds ascending).
+
+        Returns
+        -------
+        dict
+            :func:`springdyn.valve.engine.run_speeds`'s outputs, ``periodicity`` as a
+            fraction of Fset.
         """
-        return run_speeds(
+        fset = self.spring.spring_model.internal_parameters()["Fset"]
+        periodic = revolutions is None
+        res = run_speeds(
             self.y0,
             omegas,
-            revolutions,
+            max_revolutions if periodic else revolutions,
             points,
             self.args(0.0),
             rtol=rtol,
             atol=atol,
             max_step_fraction=MAX_STEP_FRACTION,
             gaps=self.spring.spring_model.contact_gaps,
-            monitor=True,
             atol_velocity=self.atol_velocity(atol),
             method=self.method if method is None else method,
             stop_angles=self.table.stop_angles(self.cam.breakpoints),
+            periodicity_tol=periodicity_tol * fset if periodic else 0.0,
+            warm_start=warm_start,
+            band_revolutions=BAND_REVOLUTIONS if periodic else 0,
         )
+        res["periodicity"] = res["periodicity"] / fset
+        return res
 
     @property
     def method(self) -> str:
@@ -351,23 +387,44 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     return np.concatenate([u, pos, np.zeros(nm + pos.size)]), float(lash)
 
 
-def check_run_settings(revolutions, points_per_revolution, rtol, atol) -> None:
+def check_run_settings(
+    revolutions, points_per_revolution, rtol, atol, periodicity_tol=PERIODICITY_TOL, max_revolutions=MAX_REVOLUTIONS
+) -> None:
     """Check the run settings of :func:`simulate` and the sweeps (raise :class:`InputError`).
 
     Parameters
     ----------
-    revolutions : int
-        Cam revolutions [-], 1 to 1000.
+    revolutions : int or None
+        Cam revolutions [-], 1 to 1000; None: to the periodic steady state.
     points_per_revolution : int
         Output samples per revolution [-], 16 to 100 000.
     rtol : float
         Relative tolerance [-], 1e-12 to 1e-2.
     atol : float
         Absolute tolerance [m, m/s], 1e-15 to 1e-5.
+    periodicity_tol : float
+        Periodic steady state: tolerance [fraction of Fset], 1e-7 to 0.5.
+    max_revolutions : int
+        Periodic steady state: the most revolutions [-], 2 to 1000.
     """
     number = (int, float, np.integer, np.floating)
+    if revolutions is None:
+        if (
+            isinstance(periodicity_tol, bool)
+            or not isinstance(periodicity_tol, number)
+            or not 1e-7 <= periodicity_tol <= 0.5
+        ):
+            raise InputError(
+                f"periodicity_tol = {periodicity_tol!r} must be a fraction of Fset from 1e-07 to 0.5 "
+                f"(default {PERIODICITY_TOL:g}, i.e. {100 * PERIODICITY_TOL:g} %)"
+            )
+        revolutions, name0 = max_revolutions, "max_revolutions"
+        if not isinstance(max_revolutions, bool) and isinstance(max_revolutions, number) and max_revolutions < 2:
+            raise InputError(f"max_revolutions = {max_revolutions!r} must be at least 2: two revolutions are compared")
+    else:
+        name0 = "revolutions"
     for name, value, lo, hi in (
-        ("revolutions", revolutions, 1, 1000),
+        (name0, revolutions, 1, 1000),
         ("points_per_revolution", points_per_revolution, 16, 100_000),
     ):
         if (

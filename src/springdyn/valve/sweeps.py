@@ -29,7 +29,18 @@ from ..core.units import rpm_to_omega
 from .cam import Cam
 from .dynamics import _solver_error
 from .engine import EXT, extra_layout
-from .setup import DEFAULT_ATOL, DEFAULT_RTOL, SimulationSetup, check_run_settings, output_angles, prepare
+from .results import locate_intervals
+from .separation import PHASES, cam_phases, float_speed_of_scan, liftoffs, neighbour_band, phase_mask
+from .setup import (
+    DEFAULT_ATOL,
+    DEFAULT_RTOL,
+    MAX_REVOLUTIONS,
+    PERIODICITY_TOL,
+    SimulationSetup,
+    check_run_settings,
+    output_angles,
+    prepare,
+)
 from .spring import ValveSpring
 from .valvetrain import ValveTrain
 
@@ -40,37 +51,64 @@ SCHEDULER_TIMEOUT = 5.0
 
 
 def run_chunk(
-    setup: SimulationSetup, cam_rpm: np.ndarray, revolutions: int, points: int, rtol: float, atol: float
+    setup: SimulationSetup,
+    cam_rpm: np.ndarray,
+    revolutions: int | None,
+    points: int,
+    rtol: float,
+    atol: float,
+    periodicity_tol: float = PERIODICITY_TOL,
+    max_revolutions: int = MAX_REVOLUTIONS,
 ) -> dict:
     """Integrate a chunk of speeds and reduce each to its last revolution's forces.
+
+    To the periodic steady state (``revolutions`` None) each speed starts from the state
+    the slower speed before it in the chunk ended in (a continuation: the chunk's speeds
+    ascending), the first from rest; ``revolutions`` runs every speed from rest.
 
     Parameters
     ----------
     setup : SimulationSetup
         Spring, cam and valve train prepared for the engine.
     cam_rpm : ndarray
-        Camshaft speeds [rev/min].
-    revolutions : int
-        Revolutions per speed [-].
+        Camshaft speeds [rev/min], ascending.
+    revolutions : int or None
+        Revolutions per speed [-]; None: to the periodic steady state.
     points : int
         Output points per revolution [-].
     rtol, atol : float
         Integration tolerances (absolute: [m] and [m/s]).
+    periodicity_tol : float
+        Periodic steady state: tolerance [fraction of Fset].
+    max_revolutions : int
+        Periodic steady state: the most revolutions per speed [-].
 
     Returns
     -------
     dict
         Arrays with a leading speed dimension: ``retainer``, ``seat``, ``contact`` (any
         element past its coil-contact compression), ``contact_force`` (largest force of
-        such an element), ``periodicity`` (max change of the retainer force from the
-        revolution before, / Fset), ``ext`` (true extremes of the last revolution from the
+        such an element), ``periodicity`` (the largest change of the seat, retainer,
+        cam-contact and valve-seat forces from the revolution before, / Fset),
+        ``revolutions`` (run), ``settled`` (periodic within the tolerance), ``band_lo``,
+        ``band_hi`` (the extremes' band over the last revolutions of a speed that does not
+        settle, layout :data:`springdyn.valve.engine.EXT`), ``ext`` (true extremes of the last revolution from the
         dense output, layout :data:`springdyn.valve.engine.EXT`), ``separation`` (end
         separation events located in the last revolution), ``status``, ``t``, ``steps``
         and, with a valve train, ``cam_contact``, ``valve_lift``, ``static``.
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
-    ex, prev, status, t_end, steps, mon = setup.run(rpm_to_omega(cam_rpm), revolutions, points, rtol=rtol, atol=atol)
-    fset = setup.spring.spring_model.internal_parameters()["Fset"]
+    mon = setup.run(
+        rpm_to_omega(cam_rpm),
+        revolutions,
+        points,
+        rtol=rtol,
+        atol=atol,
+        periodicity_tol=periodicity_tol,
+        max_revolutions=max_revolutions,
+        warm_start=revolutions is None,
+    )
+    ex, status = mon["extra"], mon["status"]
     last = slice(0, points)
     lay = extra_layout(setup.n_masses)
     ne = setup.n_masses + 1
@@ -82,18 +120,21 @@ def run_chunk(
         seat=f[:, last, 0],
         contact=contact.any(axis=2),
         contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
-        periodicity=(
-            np.max(np.abs(f[:, last, ne - 1] - prev), axis=1) / fset if prev.shape[1] else np.full(cam_rpm.size, np.nan)
-        ),
+        periodicity=mon["periodicity"],
+        revolutions=mon["revolutions"],
+        settled=mon["settled"],
+        band_lo=mon["band_lo"],
+        band_hi=mon["band_hi"],
         ext=mon["ext"],
         separation=np.sum(ev[:, :, 0] == 0.0, axis=1),
         status=status,
-        t=t_end,
-        steps=steps,
+        t=mon["t_end"],
+        steps=mon["steps"],
     )
     if setup.valve_train is not None:
         out["cam_contact"] = ex[:, last, lay["cam_contact_force"]]
         out["valve_lift"] = ex[:, last, lay["top_displacement"]]
+        out["liftoff"] = _liftoff_rows(setup, cam_rpm, mon, ex[:, last, lay["cam_gap"]], points)
     # copies, so that the chunk's full engine output (every element, every point) is freed
     out = {k: np.array(v, copy=True) for k, v in out.items()}
     if setup.valve_train is not None:
@@ -102,6 +143,31 @@ def run_chunk(
         static[valid] = setup.static_force(out["valve_lift"][valid])
         out["static"] = static
     return out
+
+
+#: Lift-offs kept per speed of a sweep (rows of ``data["liftoff"]``; more are counted).
+MAX_LIFTOFFS = 16
+#: Columns of ``data["liftoff"]``: start, end and duration [deg], the phase (index into
+#: :data:`springdyn.valve.separation.PHASES`, 5 the base circle) and the largest gap [m].
+LIFTOFF_COLUMNS = ("start_deg", "end_deg", "duration_deg", "phase", "max_gap_m")
+
+
+def _liftoff_rows(setup, cam_rpm, mon, gap, points) -> np.ndarray:
+    """The located lift-offs of each speed's last revolution, classified by phase
+    (:func:`springdyn.valve.separation.liftoffs`), NaN-padded to :data:`MAX_LIFTOFFS` rows."""
+    phases = cam_phases(setup.cam, setup.valve_train.lobe_lash)
+    names = {name: k for k, name in enumerate((*PHASES, "base circle"))}
+    rows = np.full((cam_rpm.size, MAX_LIFTOFFS, len(LIFTOFF_COLUMNS)), np.nan)
+    theta = output_angles(points)
+    for i, rpm in enumerate(cam_rpm):
+        omega = rpm_to_omega(rpm)
+        if mon["status"][i] != 0:
+            continue
+        t0 = (int(mon["revolutions"][i]) - 1) * (2.0 * np.pi / omega)
+        ivals = locate_intervals(mon["events"][i, : int(mon["n_events"][i])], omega, t0).get((2, 0), [])
+        for j, r in enumerate(liftoffs(ivals, phases, float(rpm), theta, -gap[i])[:MAX_LIFTOFFS]):
+            rows[i, j] = (r["start_deg"], r["end_deg"], r["duration_deg"], names[r["phase"]], r["max_gap_m"])
+    return rows
 
 
 def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
@@ -131,23 +197,33 @@ def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
 CHUNK_BYTES = 32 * 2**20
 
 
-def _chunks(cam_rpm: np.ndarray, n_parts: int, min_size: int, max_size: int | None = None) -> list[np.ndarray]:
-    size = max(min_size, math.ceil(cam_rpm.size / max(n_parts, 1)))
-    if max_size is not None:
-        size = max(1, min(size, max_size))
+#: Most speeds in a chunk: each chunk continues its speeds from one to the next, and the
+#: chunks are shared out to the workers.
+CHUNK_SPEEDS = 25
+#: Chunks a sweep is cut into at least, where it has the speeds.
+MIN_CHUNKS = 8
+
+
+def _chunks(cam_rpm: np.ndarray, max_size: int) -> list[np.ndarray]:
+    """The speeds (ascending) cut into chunks that depend on the speeds alone, not on the
+    workers: a local and a Dask sweep continue the same speeds from the same neighbours,
+    so their results agree bit for bit."""
+    size = max(1, min(math.ceil(cam_rpm.size / MIN_CHUNKS), CHUNK_SPEEDS, max_size))
     return [cam_rpm[i : i + size] for i in range(0, cam_rpm.size, size)]
 
 
-def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client, quiet, desc):
-    """Run all speeds for one setup; returns the chunk outputs concatenated in speed order."""
-    per_speed = 8 * points * (extra_layout(setup.n_masses)["size"] + 1)  # the last revolution, one force before
+def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client, quiet, desc, run):
+    """Run all speeds for one setup; returns the chunk outputs concatenated in the order of
+    ``cam_rpm`` (the chunks run them ascending)."""
+    per_speed = 8 * points * (extra_layout(setup.n_masses)["size"] + 1)  # the last revolution's outputs
     max_size = max(1, CHUNK_BYTES // per_speed)
+    order = np.argsort(cam_rpm, kind="stable")
+    chunks = _chunks(cam_rpm[order], max_size)
     if client is not None:
-        n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
-        chunks = _chunks(cam_rpm, 4 * n_workers, 10, max_size)
         remote_setup = client.scatter(setup, broadcast=True)
         futures = [
-            client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, pure=False) for c in chunks
+            client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, **run, pure=False)
+            for c in chunks
         ]
         from dask.distributed import as_completed as dask_completed
 
@@ -156,13 +232,14 @@ def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client
         parts = [f.result() for f in futures]
     else:
         workers = workers or min(os.cpu_count() or 1, 2)
-        chunks = _chunks(cam_rpm, 8 * workers, 1, max_size)
         with ThreadPoolExecutor(max_workers=workers) as pool:
-            futures = [pool.submit(run_chunk, setup, c, revolutions, points, rtol, atol) for c in chunks]
+            futures = [pool.submit(run_chunk, setup, c, revolutions, points, rtol, atol, **run) for c in chunks]
             for _ in progress(as_completed(futures), total=len(futures), desc=desc, quiet=quiet):
                 pass
             parts = [f.result() for f in futures]
-    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    return {k: np.concatenate([p[k] for p in parts])[back] for k in parts[0]}
 
 
 @dataclass(repr=False)
@@ -185,6 +262,8 @@ class SpeedSweep(Result):
     springs: list  # ValveSpring per vary value
     data: dict  # arrays (n_vary, n_rpm, ...) and static (n_vary, [n_rpm,] n_angle)
     skipped: list  # (value, reason) of invalid design values
+    #: The tolerance [fraction of Fset] under which a speed's last two revolutions repeat.
+    periodicity_tol: float = PERIODICITY_TOL
 
     title = "valve spring speed sweep"
 
@@ -221,15 +300,31 @@ class SpeedSweep(Result):
             speeds_with_coil_contact=int(np.count_nonzero(t["coil_contact"])),
             skipped_design_values=len(self.skipped),
         )
+        s["max_periodicity_error"] = float(np.max(t["periodicity_error"])) if "periodicity_error" in t else None
+        s["speeds_not_periodic"] = int(np.count_nonzero(~t["periodic"]))
+        s["max_revolutions_run"] = int(np.max(t["revolutions"]))
         if self.valve_train is not None:
             fl = self.float_speeds()
             s["lowest_float_cam_rpm"] = float(np.nanmin(fl)) if np.isfinite(fl).any() else None
+            first = self.first_separation_speeds()
+            s["lowest_first_separation_cam_rpm"] = float(np.nanmin(first)) if np.isfinite(first).any() else None
+            s["max_seat_landings"] = int(np.max(t["seat_landings"]))
+            s["max_seat_rebound_height_m"] = float(np.max(t["seat_rebound_height_m"]))
         s["min_fatigue_safety_factor"] = float(np.min(t["fatigue_safety_factor"]))
+        notes = []
+        if s["speeds_not_periodic"]:
+            notes.append(
+                f"{s['speeds_not_periodic']} speeds did not settle within their revolutions (the last two differ by "
+                f"more than {100 * self.periodicity_tol:g} % of Fset): their extremes are reported as bands over the "
+                "last revolutions (columns *_lo_N, *_hi_N)"
+            )
         if self.spring.model == "distributed" and s["speeds_with_coil_contact"]:
-            s["notes"] = [
+            notes.append(
                 "coil contact at some speeds: the distributed model's clash forces depend on the element "
                 "count (docs/valve.md); valve simulate at such a speed measures how much"
-            ]
+            )
+        if notes:
+            s["notes"] = notes
         return s
 
     # ---------------------------------------------------------------- summary
@@ -263,24 +358,75 @@ class SpeedSweep(Result):
         )
         if np.all(np.isfinite(d["periodicity"])):  # not with 1 revolution per speed: nothing to compare
             cols["periodicity_error"] = flat(d["periodicity"])
+        cols["revolutions"] = flat(d["revolutions"])
+        cols["periodic"] = flat(d["periodicity"]) <= self.periodicity_tol
+        # a speed that does not settle: the band of its extremes over its last revolutions
+        # (a settled one: the value itself)
+        lo, hi = flat(d["band_lo"]), flat(d["band_hi"])
+        for name in ("max_retainer_force", "min_retainer_force", "max_seat_force", "min_seat_force"):
+            k = col[name]
+            value = cols[f"{name}_N"]
+            cols[f"{name}_lo_N"] = np.where(cols["periodic"], value, np.minimum(lo[:, k], value))
+            cols[f"{name}_hi_N"] = np.where(cols["periodic"], value, np.maximum(hi[:, k], value))
         if self.valve_train is not None:
-            # the valve open (off its seat, the lobe past the lash): float, not ramp impacts
-            # and before the valve's first landing in the revolution (then: seat bounces)
-            z = flat(d["valve_lift"])
-            landed = (
-                np.cumsum(
-                    np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)], axis=1), axis=1
-                )
-                > 0
-            )
-            in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0) & ~landed
-            cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
-            cols["liftoff"] = (cc <= 0).any(axis=1) | (ext[:, col["min_cam_contact_force"]] <= 0.0)
-            dense = ext[:, col["min_cam_contact_force"]]
-            grid = np.where(np.isfinite(cc.min(axis=1)), cc.min(axis=1), 0.0)
-            cols["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, grid), 0.0)
+            cols.update(self._separation_columns(cols, ext, col, lo, hi, flat, nv, nr))
         cols.update(self._fatigue_columns(cols, nv, nr))
         return cols
+
+    def _separation_columns(self, cols, ext, col, lo, hi, flat, nv, nr) -> dict:
+        """Lift-off by phase, float (nose separation), seat bounce and the seating velocity
+        band per speed (:mod:`springdyn.valve.separation`)."""
+        d = self.data
+        rows = flat(d["liftoff"])
+        phase = rows[:, :, LIFTOFF_COLUMNS.index("phase")]
+        z = flat(d["valve_lift"])
+        out = {}
+        # the valve open (off its seat, the lobe past the lash)
+        in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0)
+        cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
+        dense = ext[:, col["min_cam_contact_force"]]
+        out["liftoff"] = np.isfinite(rows[:, :, 0]).any(axis=1) | (cc <= 0.0).any(axis=1) | (dense <= 0.0)
+        # the valve leaves the cam over the nose (separates_over_nose, vectorised)
+        nose = phase_mask(self.cam_angle, cam_phases(self.cam, self.valve_train.lobe_lash), "nose")
+        off_cam = (flat(d["cam_contact"]) <= 0.0) & (z > 0.0) & nose
+        out["nose_separation"] = (phase == PHASES.index("nose")).any(axis=1) | off_cam.any(axis=1)
+        first = np.where(np.isfinite(phase[:, 0]), phase[:, 0], -1).astype(int)
+        out["first_liftoff_phase"] = np.array([(*PHASES, "base circle")[k] if k >= 0 else "" for k in first])
+        out["max_liftoff_gap_m"] = np.nan_to_num(
+            np.nanmax(np.where(np.isfinite(rows[:, :, 4]), rows[:, :, 4], 0.0), axis=1)
+        )
+        grid = np.where(np.isfinite(cc.min(axis=1)), cc.min(axis=1), 0.0)
+        out["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, grid), 0.0)
+        # seat bounce: landings per revolution, the largest rebound off the seat after the
+        # first landing (the lobe back on its base circle)
+        landed = (
+            np.cumsum(
+                np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)], axis=1), axis=1
+            )
+            > 0
+        )
+        out["seat_landings"] = ext[:, col["seat_landings"]].astype(int)
+        out["seat_rebound_height_m"] = np.max(
+            np.where(landed & ~(self.lift > self.valve_train.lobe_lash + 1e-6), z, 0.0), axis=1
+        )
+        v = ext[:, col["seat_impact_velocity"]]
+        out["seat_impact_velocity_m_per_s"] = v
+        # the seating velocity band: over the speeds within SEATING_BAND_RPM and, for a speed
+        # that does not settle, over its last revolutions
+        k = col["seat_impact_velocity"]
+        vlo = np.where(cols["periodic"], v, np.minimum(lo[:, k], v))
+        vhi = np.where(cols["periodic"], v, np.maximum(hi[:, k], v))
+        blo, bmed, bhi = (np.empty(v.size) for _ in range(3))
+        for i in range(nv):
+            sl = slice(i * nr, (i + 1) * nr)
+            a, _, _ = neighbour_band(self.cam_rpm, vlo[sl])
+            _, m, _ = neighbour_band(self.cam_rpm, v[sl])
+            _, _, b = neighbour_band(self.cam_rpm, vhi[sl])
+            blo[sl], bmed[sl], bhi[sl] = a, m, b
+        out["seat_impact_velocity_min_m_per_s"] = blo
+        out["seat_impact_velocity_median_m_per_s"] = bmed
+        out["seat_impact_velocity_max_m_per_s"] = bhi
+        return out
 
     def _fatigue_columns(self, cols, nv, nr) -> dict:
         """Goodman fatigue factor against speed (issue 13): the end coils between the
@@ -309,14 +455,29 @@ class SpeedSweep(Result):
         return dict(fatigue_safety_factor=dyn, static_fatigue_safety_factor=sta)
 
     def float_speeds(self) -> np.ndarray:
-        """Lowest swept speed with lift-off per design value [rpm] (nan: none, or no valve train)."""
+        """Float speed per design value [rpm]: the lowest swept speed from which the valve
+        separates over the nose at every higher swept speed
+        (:func:`springdyn.valve.separation.float_speed_of_scan`; nan: not at the highest
+        speed, or no valve train)."""
+        out = np.full(self.vary_values.size, np.nan)
+        if self.valve_train is None:
+            return out
+        order = np.argsort(self.cam_rpm, kind="stable")
+        nose = self.summary_table()["nose_separation"].reshape(self.vary_values.size, self.cam_rpm.size)
+        for i, row in enumerate(nose):
+            f = float_speed_of_scan(self.cam_rpm[order], row[order])
+            out[i] = np.nan if f is None else f
+        return out
+
+    def first_separation_speeds(self) -> np.ndarray:
+        """Lowest swept speed with any lift-off (any phase) per design value [rpm] (nan: none)."""
         out = np.full(self.vary_values.size, np.nan)
         if self.valve_train is None:
             return out
         lo = self.summary_table()["liftoff"].reshape(self.vary_values.size, self.cam_rpm.size)
         for i, row in enumerate(lo):
             if row.any():
-                out[i] = self.cam_rpm[np.argmax(row)]
+                out[i] = np.min(self.cam_rpm[row])
         return out
 
     # ---------------------------------------------------------------- outputs
@@ -507,7 +668,7 @@ def sweep(
     cam: Cam,
     cam_rpm,
     *,
-    revolutions: int = 2,
+    revolutions: int | None = None,
     valve_train: ValveTrain | None = None,
     points_per_revolution: int = 720,
     rtol: float = DEFAULT_RTOL,
@@ -517,6 +678,8 @@ def sweep(
     workers: int | None = None,
     client=None,
     quiet: bool = True,
+    periodicity_tol: float = PERIODICITY_TOL,
+    max_revolutions: int = MAX_REVOLUTIONS,
 ) -> SpeedSweep:
     """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
 
@@ -530,8 +693,10 @@ def sweep(
         Camshaft speeds [rev/min], positive.
     valve_train : ValveTrain, optional
         Adds lift-off (see :func:`springdyn.valve.simulate`).
-    revolutions : int
-        Revolutions per speed [-] (the last is kept; the one before judges periodicity).
+    revolutions : int, optional
+        Revolutions per speed from rest [-] (the last is kept; the one before judges
+        periodicity).  Default: each speed to its periodic steady state, continued from the
+        slower speed before it (see :func:`run_chunk`).
     points_per_revolution : int
         Output samples per revolution [-].
     rtol, atol : float
@@ -547,6 +712,12 @@ def sweep(
         Run the chunks on this cluster instead.
     quiet : bool
         No progress bar.
+    periodicity_tol : float
+        Periodic steady state: the largest change of the seat, retainer, cam-contact and
+        valve-seat forces between the last two revolutions [fraction of Fset].
+    max_revolutions : int
+        Periodic steady state: the most revolutions per speed [-]; a speed that does not
+        settle is marked (``periodic`` False) and reports bands.
     """
     try:
         cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
@@ -559,7 +730,7 @@ def sweep(
     if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
         bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
         raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
-    check_run_settings(revolutions, points_per_revolution, rtol, atol)
+    check_run_settings(revolutions, points_per_revolution, rtol, atol, periodicity_tol, max_revolutions)
     if on_invalid not in ("stop", "skip"):
         raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
@@ -575,7 +746,19 @@ def sweep(
         cam.check_resolution(float(cam_rpm.min()), f1)
     for k, setup in enumerate(setups):
         desc = "valve sweep" + (f" {_describe(vary[0], values[k])}" if vary else "")
-        res = _run_speeds(setup, cam_rpm, int(revolutions), points, rtol, atol, workers, client, quiet, desc)
+        res = _run_speeds(
+            setup,
+            cam_rpm,
+            None if revolutions is None else int(revolutions),
+            points,
+            rtol,
+            atol,
+            workers,
+            client,
+            quiet,
+            desc,
+            dict(periodicity_tol=periodicity_tol, max_revolutions=max_revolutions),
+        )
         failed = np.flatnonzero(res["status"] != 0)
         if failed.size:
             i = int(failed[0])
@@ -586,7 +769,18 @@ def sweep(
         results.append(res)
     data = {key: np.stack([r[key] for r in results]) for key in results[0]}
     return SpeedSweep(
-        spring, cam, valve_train, cam_rpm, theta, lift, vary[0] if vary else None, values, springs, data, skipped
+        spring,
+        cam,
+        valve_train,
+        cam_rpm,
+        theta,
+        lift,
+        vary[0] if vary else None,
+        values,
+        springs,
+        data,
+        skipped,
+        periodicity_tol,
     )
 
 

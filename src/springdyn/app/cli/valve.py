@@ -16,6 +16,7 @@ from springdyn.app.cli.common import (
 )
 from springdyn.core.errors import InputError
 from springdyn.core.units import format_quantity
+from springdyn.valve.periodicity import MAX_REVOLUTIONS, PERIODICITY_TOL
 from springdyn.valve.spring import MODEL_NAMES, ValveSpring
 
 #: Default integration tolerances (the values of :mod:`springdyn.valve.setup`, kept here
@@ -30,6 +31,8 @@ __all__ = ["register"]
 RUN_OPTIONS = dict(
     cam_rpm="--cam-rpm",
     revolutions="--revolutions",
+    periodicity_tol="--periodicity-tol",
+    max_revolutions="--max-revolutions",
     rtol="--rtol",
     atol="--atol",
     points_per_revolution="--points-per-revolution",
@@ -83,6 +86,18 @@ def register(sub) -> None:
         help="speed range for the resonance table, START:STOP:STEP in cam rpm (default 500:8000:500)",
     )
     p.add_argument("--count", type=int, default=6, metavar="N", help="frequencies per state (1-20, default 6)")
+    p.add_argument(
+        "--cam-contact",
+        choices=("closed", "open"),
+        default="closed",
+        help="closed (default): the train on the cam; open: the separated train (follower off the cam, valve "
+        "off its seat) held at --valve-lift, its first mode the jump frequency (no resonance table)",
+    )
+    p.add_argument(
+        "--valve-lift",
+        metavar="L",
+        help="valve lift of the separated train (with --cam-contact open; default: full lift), e.g. 6mm",
+    )
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_train_modes)
 
@@ -109,7 +124,7 @@ def register(sub) -> None:
     _add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     _add_speed_options(p, ranged=False)
-    p.add_argument("--revolutions", type=int, default=3, metavar="N", help="cam revolutions to run (default 3)")
+    _add_revolution_options(p)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
     p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
     p.add_argument("--rtol", type=float, default=DEFAULT_RTOL, help=f"relative tolerance (default {DEFAULT_RTOL:g})")
@@ -133,13 +148,16 @@ def register(sub) -> None:
     add_output_options(p)
     p.set_defaults(func=cmd_simulate)
 
-    p = vsub.add_parser("float", help="float speed: lowest speed at which the follower leaves the cam")
+    p = vsub.add_parser(
+        "float",
+        help="float speed: lowest speed from which the valve leaves the cam over the nose; bounce and seating velocity",
+    )
     p.add_argument("spring", metavar="SPRING.toml")
     _add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     p.add_argument("--valve-train", required=True, metavar="VT.toml", help="file with a [valve_train] table")
     _add_speed_options(p, ranged=True)
-    p.add_argument("--revolutions", type=int, default=3, metavar="N", help="cam revolutions per speed (default 3)")
+    _add_revolution_options(p)
     p.add_argument("--resolution", default="1", metavar="RPM", help="bisection resolution in cam rpm (default 1)")
     p.add_argument("--csv", metavar="FILE.csv", help="write the minimum cam contact force against speed")
     p.add_argument(
@@ -155,7 +173,7 @@ def register(sub) -> None:
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     _add_speed_options(p, ranged=True)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
-    p.add_argument("--revolutions", type=int, default=2, metavar="N", help="cam revolutions per speed (default 2)")
+    _add_revolution_options(p)
     p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
     p.add_argument(
         "--vary",
@@ -182,6 +200,40 @@ def register(sub) -> None:
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
+
+
+def _add_revolution_options(p) -> None:
+    p.add_argument(
+        "--revolutions",
+        type=int,
+        metavar="N",
+        help="run exactly N cam revolutions from rest (default: to the periodic steady state)",
+    )
+    p.add_argument(
+        "--periodicity-tol",
+        default=f"{100 * PERIODICITY_TOL:g} %",
+        metavar="TOL",
+        help="periodic steady state: the last two revolutions' seat, retainer, cam-contact and valve-seat forces "
+        f"agree within TOL of Fset (default {100 * PERIODICITY_TOL:g} %%)",
+    )
+    p.add_argument(
+        "--max-revolutions",
+        type=int,
+        default=MAX_REVOLUTIONS,
+        metavar="N",
+        help=f"periodic steady state: at most N revolutions per speed (default {MAX_REVOLUTIONS})",
+    )
+
+
+def _run_length(args) -> dict:
+    """The API's run-length arguments from the options."""
+    if args.revolutions is not None and args.max_revolutions != MAX_REVOLUTIONS:
+        raise InputError("--revolutions runs a fixed number of revolutions: --max-revolutions applies without it")
+    return dict(
+        revolutions=args.revolutions,
+        periodicity_tol=quantity(args.periodicity_tol, "", "--periodicity-tol"),
+        max_revolutions=args.max_revolutions,
+    )
 
 
 def _add_model_option(p) -> None:
@@ -283,6 +335,10 @@ def cmd_train_modes(args) -> int:
     cam, vt = _load_cam_and_train(args)
     if not 1 <= args.count <= 20:
         raise InputError(f"--count = {args.count} must be from 1 to 20")
+    if args.cam_contact == "open":
+        return _train_modes_separated(args, spring, cam, vt)
+    if args.valve_lift is not None:
+        raise InputError("--valve-lift applies to --cam-contact open (the closed train is linearised at full lift)")
     rpms = cam_rpm_from_args(args, ranged=True)
     with as_options(count="--count"):
         res = natural_frequencies(spring, cam, vt, count=args.count)
@@ -314,6 +370,27 @@ def cmd_train_modes(args) -> int:
         [(str(r["mode"]), f"{r['frequency_Hz']:.1f}", str(r["order"]), f"{r['cam_rpm']:.0f}") for r in table],
         headers=("mode", "f [Hz]", "order N", "cam rpm"),
     )
+    return 0
+
+
+def _train_modes_separated(args, spring, cam, vt) -> int:
+    """``train-modes --cam-contact open``: the separated train and its jump frequency."""
+    from springdyn.valve.train_modes import separated_frequencies
+
+    lift = quantity(args.valve_lift, "m", "--valve-lift") if args.valve_lift is not None else None
+    with as_options(count="--count", valve_lift="--valve-lift"):
+        res = separated_frequencies(spring, cam, vt, count=args.count, valve_lift=lift)
+    if args.json:
+        print_json({"cam_contact": "open", **res})
+        return 0
+    print(
+        f"separated train (cam contact open, valve off its seat) at valve lift {res['valve_lift_m'] * 1e3:.3f} mm, "
+        f"static spring force {res['spring_force_N']:.1f} N"
+    )
+    print_table(
+        [(str(i + 1), f"{f:.1f}") for i, f in enumerate(res["frequencies_Hz"])], headers=("mode", "frequency [Hz]")
+    )
+    print(f"jump frequency (first mode of the separated train): {res['jump_frequency_Hz']:.1f} Hz")
     return 0
 
 
@@ -416,8 +493,8 @@ def cmd_simulate(args) -> int:
             spring,
             cam,
             rpm,
-            args.revolutions,
             valve_train=vt,
+            **_run_length(args),
             rtol=args.rtol,
             atol=args.atol,
             points_per_revolution=args.points_per_revolution,
@@ -440,7 +517,7 @@ def cmd_simulate(args) -> int:
             f"{'periodic' if s['periodic'] else 'NOT periodic'}: {100 * s['periodicity_error']:.2f} % of Fset "
             "change from the revolution before"
         )
-    print(f"{spring.type} spring, {cam.law} cam at {rpm:g} cam rpm, last of {args.revolutions} revolutions ({period})")
+    print(f"{spring.type} spring, {cam.law} cam at {rpm:g} cam rpm, last of {s['revolutions']} revolutions ({period})")
     rows = [
         (
             "retainer force",
@@ -516,9 +593,9 @@ def cmd_float(args) -> int:
             cam,
             vt,
             rpms,
-            revolutions=args.revolutions,
             resolution=quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm"),
             progress_quiet=args.quiet,
+            **_run_length(args),
         )
     if args.csv:
         res.to_csv(args.csv)
@@ -527,14 +604,56 @@ def cmd_float(args) -> int:
     if args.json:
         print_json(res.to_dict())
         return 0
-    if res["float_cam_rpm"] is None:
-        print(
-            f"no lift-off up to {rpms.max():g} cam rpm (minimum cam contact force there "
-            f"{res['min_cam_contact_force_N'][-1]:.1f} N)"
+    s = res.summary
+    sc = res.scan
+    rows = []
+    for i, rpm in enumerate(res.cam_rpm):
+        phase = sc["first_liftoff_phase"][i] or ("off the cam" if sc["liftoff"][i] else "-")
+        band = (
+            f"{sc['seat_impact_velocity_min_m_per_s'][i]:.2f}/{sc['seat_impact_velocity_median_m_per_s'][i]:.2f}/"
+            f"{sc['seat_impact_velocity_max_m_per_s'][i]:.2f}"
         )
+        rows.append(
+            (
+                f"{rpm:g}",
+                f"{sc['min_cam_contact_force_N'][i]:.1f}",
+                phase,
+                "yes" if sc["nose_separation"][i] else "no",
+                str(sc["seat_landings"][i]),
+                f"{1e3 * sc['seat_rebound_height_m'][i]:.3f}",
+                band,
+                "yes" if sc["periodic"][i] else f"no ({100 * sc['periodicity_error'][i]:.3g} %)",
+            )
+        )
+    print_table(
+        rows,
+        headers=(
+            "cam rpm",
+            "min cam force [N]",
+            "first lift-off",
+            "over the nose",
+            "seat landings",
+            "rebound [mm]",
+            "seating v min/med/max [m/s]",
+            "periodic",
+        ),
+    )
+    print("seating velocity band: min/median/max over the scanned speeds within +-25 rpm and, where a speed does not")
+    print("settle, over its last revolutions")
+    if s["first_separation_cam_rpm"] is not None:
+        print(f"first lift-off: {s['first_separation_cam_rpm']:g} cam rpm ({s['first_separation_phase']})")
+    else:
+        print(f"no lift-off up to {rpms.max():g} cam rpm")
+    if res["float_cam_rpm"] is None:
+        print(f"float speed: above {rpms.max():g} cam rpm (no separation over the nose at the highest speed)")
     else:
         f = res["float_cam_rpm"]
-        print(f"float speed: {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke)")
+        print(
+            f"float speed: {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke), the valve separating over the nose "
+            "at every higher scanned speed"
+        )
+    for note in s.get("notes", []):
+        print("note: " + note)
     return 0
 
 
@@ -571,8 +690,8 @@ def cmd_sweep(args) -> int:
                 spring,
                 cam,
                 rpms,
-                revolutions=args.revolutions,
                 valve_train=vt,
+                **_run_length(args),
                 points_per_revolution=args.points_per_revolution,
                 rtol=args.rtol,
                 atol=args.atol,

@@ -78,7 +78,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
 
     sims = {}
     for rpm in REPORT_SPEEDS:
-        sim = simulate(sp, cam, rpm, 3)
+        sim = simulate(sp, cam, rpm)
         sims[rpm] = sim
         stem = out_dir / f"simulate_{rpm:.0f}rpm"
         files.append(sim.to_csv(stem.with_suffix(".csv")))
@@ -196,7 +196,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             )
             findings.append(f"The follower stays on the cam up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float).")
         else:
-            above = simulate(sp, lobe, 1.05 * f, 3, valve_train=vt)
+            above = simulate(sp, lobe, 1.05 * f, valve_train=vt)
             s = above.summary
             plt.close(above.plot(out_dir / "valve_train_above_float.png"))
             files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))

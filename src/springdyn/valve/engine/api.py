@@ -8,8 +8,8 @@ import numpy as np
 from ...numerics import erk as _ig
 from ...numerics.jit import call, compiling
 from .equations import model_of, train_of
-from .layout import MAX_EVENTS, N_EXT, extra_layout
-from .loop import Tolerances, integrate_kernel, run_speeds_loop, workspace
+from .layout import MAX_EVENTS, N_CHECK, N_EXT, extra_layout
+from .loop import Revolutions, SpeedOutputs, Tolerances, integrate_kernel, run_speeds_loop, workspace
 from .monitor import new_monitor
 from .reference import atol_vector
 
@@ -69,18 +69,20 @@ def run_speeds(
     max_step_fraction,
     max_steps=10_000_000,
     gaps=None,
-    monitor=False,
     atol_velocity=None,
     method="dopri5",
     stop_angles=None,
+    periodicity_tol=0.0,
+    warm_start=False,
+    band_revolutions=0,
 ):
     """Integrate several speeds in one compiled call (the GIL is released throughout).
 
-    For each speed the last revolution is sampled at ``points`` per revolution, where the
-    right-hand side evaluates its ``extra`` outputs, and so is the revolution before it (with
-    two revolutions or more) for its retainer force alone, which judges periodicity.
-    The last revolution is also monitored on the integrator's dense output (true extremes
-    and events, :mod:`.monitor`).
+    Each speed runs revolution by revolution (:func:`.loop.run_speeds_loop`): ``revolutions``
+    of them, or with ``periodicity_tol`` until two revolutions repeat.  The last revolution
+    is sampled at ``points`` per revolution, where the right-hand side evaluates its
+    ``extra`` outputs, and monitored on the integrator's dense output (true extremes and
+    events, :mod:`.monitor`).
 
     Parameters
     ----------
@@ -89,7 +91,7 @@ def run_speeds(
     omegas : array_like
         Cam speeds [rad/s].
     revolutions : int
-        Revolutions to integrate per speed [-].
+        Revolutions to integrate per speed, or with ``periodicity_tol`` the most [-].
     points : int
         Output samples per revolution [-].
     args : tuple
@@ -103,8 +105,6 @@ def run_speeds(
     gaps : ndarray (N + 1,), optional
         Compression [m] of each element beyond which its coils touch (``inf``: never);
         crossings are located as coil-contact events.
-    monitor : bool
-        Also return the monitor outputs [-].
     atol_velocity : float or ndarray, optional
         Absolute tolerance of the velocities [m/s], one for all or one per velocity
         (default ``atol``).
@@ -113,69 +113,71 @@ def run_speeds(
     stop_angles : array_like, optional
         Cam angles [rad] in [0, 2 pi), ascending, on which a step lands in every revolution
         (:meth:`.cam_table.CamTable.stop_angles` of the cam's breakpoints).
+    periodicity_tol : float
+        Stop a speed once the seat, retainer, cam-contact and valve-seat forces of two
+        revolutions differ by at most this much on the output grid [N]; 0: run
+        ``revolutions``.
+    warm_start : bool
+        Start each speed from the state the speed before ended in (a continuation in speed).
+    band_revolutions : int
+        A speed that does not settle: revolutions monitored at its end for the band [-].
 
     Returns
     -------
-    extra : ndarray (n_speeds, points, extra size)
-        The last revolution's ``extra`` outputs (layout :func:`extra_layout`).
-    previous : ndarray (n_speeds, points) or (n_speeds, 0)
-        The retainer force [N] over the revolution before (none with one revolution).
-    status, t_end, steps : ndarray (n_speeds,)
-    monitor : dict, with ``monitor=True`` only
-        ``ext`` (n_speeds, :data:`N_EXT`) true extremes (layout :data:`EXT`), ``events``
-        (n_speeds, :data:`MAX_EVENTS`, 4) rows ``kind, index, t_start, t_end`` (a landing
-        has its impact velocity [m/s] in the last column), ``n_events`` (n_speeds,).
+    dict
+        The fields of :class:`.loop.SpeedOutputs` with a leading speed dimension: ``extra``
+        (n_speeds, points, extra size, layout :func:`extra_layout`), ``status``, ``t_end``,
+        ``steps``, ``ext`` (n_speeds, :data:`N_EXT`, layout :data:`EXT`), ``events``
+        (n_speeds, :data:`MAX_EVENTS`, 4; rows ``kind, index, t_start, t_end``, a landing
+        has its impact velocity [m/s] in the last column), ``n_events``, ``periodicity``
+        [N], ``revolutions``, ``settled`` (bool), ``band_lo``, ``band_hi`` (n_speeds,
+        :data:`N_EXT`) and ``state`` (the state each speed ended in).
     """
     tab = _tableau(method)
     omegas = np.ascontiguousarray(omegas, dtype=float)
     m = model_of(args)
     vt = train_of(args[9])
     size = extra_layout(m.masses.shape[0])["size"]
-    n = max(omegas.size, 1)
-    extra = np.empty((omegas.size, points, size))  # every row written, NaN on a failed speed
-    previous = np.empty((omegas.size, points if int(revolutions) > 1 else 0))
-    status = np.zeros(omegas.size, dtype=np.int64)
-    t_end = np.zeros(omegas.size)
-    steps = np.zeros(omegas.size, dtype=np.int64)
-    ext = np.zeros((omegas.size, N_EXT))
-    events = np.full((n, MAX_EVENTS, 4), np.nan)
-    nev = np.zeros((n, 1), dtype=np.int64)
+    k = omegas.size
+    out = SpeedOutputs(
+        extra=np.empty((k, points, size)),  # every row written, NaN on a failed speed
+        status=np.zeros(k, dtype=np.int64),
+        t_end=np.zeros(k),
+        steps=np.zeros(k, dtype=np.int64),
+        ext=np.zeros((k, N_EXT)),
+        events=np.full((max(k, 1), MAX_EVENTS, 4), np.nan),
+        nev=np.zeros((max(k, 1), 1), dtype=np.int64),
+        periodicity=np.full(k, np.nan),
+        revolutions=np.zeros(k, dtype=np.int64),
+        settled=np.zeros(k, dtype=bool),
+        band_lo=np.zeros((k, N_EXT)),
+        band_hi=np.zeros((k, N_EXT)),
+        state=np.zeros((k, len(y0))),
+    )
     gaps = np.full(m.laws.shape[0], np.inf) if gaps is None else np.ascontiguousarray(gaps, dtype=float)
     tol = Tolerances(float(rtol), atol_vector(len(y0), atol, atol_velocity), float(max_step_fraction), int(max_steps))
-    if omegas.size:
+    revs = Revolutions(int(revolutions), float(periodicity_tol), bool(warm_start), int(band_revolutions))
+    if k:
         _run(
             run_speeds_loop,
             vt,
             method,
             np.ascontiguousarray(y0, dtype=float),
             omegas,
-            int(revolutions),
             int(points),
             m,
             vt,
             tab,
             tol,
+            revs,
             _angles(stop_angles),
             gaps,
-            extra,
-            previous,
-            status,
-            t_end,
-            steps,
-            ext,
-            events,
-            nev,
+            out,
         )
-    if monitor:
-        return (
-            extra,
-            previous,
-            status,
-            t_end,
-            steps,
-            dict(ext=ext, events=events[: omegas.size], n_events=nev[: omegas.size, 0].copy()),
-        )
-    return extra, previous, status, t_end, steps
+    res = out._asdict()
+    res["n_events"] = res.pop("nev")[:k, 0].copy()
+    res["events"] = res["events"][:k]
+    return res
 
 
 def integrate(
@@ -237,7 +239,7 @@ def integrate(
         _angles(stops),
         out,
         np.empty((0, size)),
-        np.empty(0),
+        np.empty((0, N_CHECK)),
         off,
         ws,
     )

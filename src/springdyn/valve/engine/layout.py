@@ -5,11 +5,12 @@
   compressions (:func:`extra_layout`).
 - ``EXT_*``: the monitor's per-speed extremes (:data:`EXT`).
 - ``EV_*``: the columns and kinds of the monitor's event table (:data:`EVENT_KINDS`).
+- ``CHK_*``: the forces sampled every revolution to judge periodicity (:data:`N_CHECK`).
 """
 
 from __future__ import annotations
 
-__all__ = ["VT_SIZE", "EXTRA", "EXT", "N_EXT", "EVENT_KINDS", "MAX_EVENTS", "STATUS", "extra_layout"]
+__all__ = ["VT_SIZE", "EXTRA", "EXT", "N_EXT", "N_CHECK", "EVENT_KINDS", "MAX_EVENTS", "STATUS", "extra_layout"]
 
 # --- valve-train parameters ------------------------------------------------------------
 VT_ENABLED = 0  #: 1 with a valve train, 0 for the spring alone [-]
@@ -124,6 +125,24 @@ EXT_IMPACT_VELOCITY = 10
 EXT_IMPACT_TIME = 11
 EXT_LANDINGS = 12
 EXT_LOST = 13
+
+#: The extremes that are values (not times or counts): the periodicity bands cover them.
+EXT_VALUES = (
+    EXT_MAX_RETAINER,
+    EXT_MIN_RETAINER,
+    EXT_MAX_SEAT,
+    EXT_MIN_SEAT,
+    EXT_MIN_CAM,
+    EXT_IMPACT_VELOCITY,
+    EXT_LANDINGS,
+)
+
+# --- periodicity channels: the forces two revolutions must repeat ------------------------
+CHK_SEAT = 0  #: seat end force [N]
+CHK_RETAINER = 1  #: retainer end force [N]
+CHK_CAM = 2  #: cam contact force [N] (valve train)
+CHK_VALVE_SEAT = 3  #: valve-seat force [N] (valve train)
+N_CHECK = 4
 
 #: Extreme signals (maximised): retainer force, -retainer force, seat force, -seat force,
 #: -cam contact force while the valve is open.

@@ -7,10 +7,11 @@
 - :func:`integrate_kernel`: that loop compiled for one pair and one model (the spring
   alone, or the valve train), with the pair's step and the model's right-hand side
   inlined (:mod:`.stepping`): the only compiled variants, made on first use.
-- :func:`run_speeds_loop`: many speeds, each from the same initial state: the revolutions
-  before the last for the retainer force of the one before (periodicity), then the last
-  one with every output, monitored.  Plain Python around the compiled loop, which releases
-  the GIL (so threads run speeds in parallel).
+- :func:`run_speeds_loop`: many speeds, revolution by revolution: a given number of
+  revolutions, or until two revolutions repeat (the periodic steady state), each speed from
+  the initial state or from the state the speed before ended in; the last revolution with
+  every output, monitored.  Plain Python around the compiled loop, which releases the GIL
+  (so threads run speeds in parallel).
 """
 
 from __future__ import annotations
@@ -23,6 +24,17 @@ import numpy as np
 from ...numerics import erk
 from ...numerics.jit import kernel, rebind
 from .equations import FASTMATH, rhs_call
+from .layout import (
+    CHK_CAM,
+    CHK_RETAINER,
+    CHK_SEAT,
+    CHK_VALVE_SEAT,
+    EXT_VALUES,
+    N_CHECK,
+    N_EXT,
+    X_CAM_FORCE,
+    X_SEAT_FORCE,
+)
 from .monitor import finish_monitor, monitor_step, new_monitor
 from .stepping import step_kernels
 
@@ -33,6 +45,9 @@ __all__ = [
     "integrate_loop",
     "integrate_kernel",
     "run_speeds_loop",
+    "Revolutions",
+    "SpeedOutputs",
+    "MIN_PERIODIC_REVOLUTIONS",
     "stop_times",
 ]
 
@@ -103,7 +118,7 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
 
     The outputs at the times ``t_out`` (ascending, within [t0, t_end]) come from the dense
     output as the integration passes them: ``out`` (the states), ``xout`` (the right-hand
-    side's extra outputs) and ``fout`` (the retainer force alone) each have a row per time,
+    side's extra outputs) and ``fout`` (the periodicity channels, :func:`check_channels`) each have a row per time,
     or none.  With a non-empty ``mon.ext`` the run is monitored (:func:`.monitor.monitor_step`);
     an output time within a step then serves as the step's interior sample.  ``ws``: the
     scratch arrays (:func:`workspace`).
@@ -135,8 +150,8 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
     stops : ndarray
         Times [s] a step lands on, ascending.
     out, xout, fout : ndarray
-        Receive the states [m, m/s], extra outputs [N, m, m/s] and retainer force [N] at
-        ``t_out`` (empty: none).
+        Receive the states [m, m/s], extra outputs [N, m, m/s] and the periodicity channels
+        (:data:`.layout.N_CHECK` forces [N]) at ``t_out`` (empty: none).
     mon : Monitor
         The monitor's arrays (empty ``mon.ext``: not monitored) [N, s, m/s].
     ws : Workspace
@@ -149,7 +164,6 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
     """
     n = y.shape[0]
     ne = m.laws.shape[0]
-    nm = ne - 1
     last = tab.c.shape[0] - 1  # stages; the last is the step's end (FSAL)
     monitor = mon.ext.shape[0] > 0
     want_out = out.shape[0] > 0
@@ -184,9 +198,11 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
                 out[iout, i] = y[i]
         if want_x:
             rhs_call(t, y, m, omega, vt, dbuf, xout[iout])
-        if want_f:
+            if want_f:
+                check_channels(xout[iout], ne, fout[iout])
+        elif want_f:
             rhs_call(t, y, m, omega, vt, dbuf, ebuf)
-            fout[iout] = ebuf[nm]
+            check_channels(ebuf, ne, fout[iout])
         iout += 1
     istop = 0
     nstops = stops.shape[0]
@@ -227,13 +243,15 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
                         out[iout, i] = ybuf[i]
                 if want_x:
                     rhs_call(t_out[iout], ybuf, m, omega, vt, dbuf, xout[iout])
+                    if want_f:
+                        check_channels(xout[iout], ne, fout[iout])
                     # an output inside the step is its interior sample
                     if 0.0 < fr < 1.0 and (mid_row < 0 or abs(fr - 0.5) < abs(th_m - 0.5)):
                         mid_row = iout
                         th_m = fr
-                if want_f:
+                elif want_f:
                     rhs_call(t_out[iout], ybuf, m, omega, vt, dbuf, ebuf)
-                    fout[iout] = ebuf[nm]
+                    check_channels(ebuf, ne, fout[iout])
                 iout += 1
             if monitor:
                 monitor_step(mon, rc, rc_prev, t, h, t_new, th_m, mid_row, m, omega, vt, ybuf, dbuf, ebuf, eend, xout)
@@ -257,6 +275,18 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
     if monitor:
         finish_monitor(mon)
     return 0, t, nsteps, nrejected
+
+
+@kernel(inline="always")
+def check_channels(e, ne, row):
+    """The forces that judge periodicity (columns ``CHK_*`` of :mod:`.layout`) from the extra
+    outputs ``e`` of a chain of ``ne`` elements: seat and retainer end forces, cam contact
+    and valve-seat forces [N]."""
+    b = 2 * ne
+    row[CHK_SEAT] = e[0]
+    row[CHK_RETAINER] = e[ne - 1]
+    row[CHK_CAM] = e[b + X_CAM_FORCE]
+    row[CHK_VALVE_SEAT] = e[b + X_SEAT_FORCE]
 
 
 _METHOD_OF = {type(tab): name for name, tab in erk.TABLEAUS.items()}
@@ -310,34 +340,66 @@ def stop_times(stop_angles, omega, r0, r1):
     return ((2.0 * np.pi * r[:, None] + stop_angles[None, :]) / omega).ravel()
 
 
-def run_speeds_loop(
-    y0,
-    omegas,
-    revolutions,
-    points,
-    m,
-    vt,
-    tab,
-    tol,
-    stop_angles,
-    gaps,
-    extra_out,
-    prev_out,
-    status,
-    t_end,
-    steps,
-    ext,
-    events,
-    nev,
-):
-    """Every speed of ``omegas`` [rad/s] from ``y0``: ``revolutions`` revolutions, the last
-    sampled at ``points`` per revolution into ``extra_out`` and monitored into ``ext``,
-    ``events``, ``nev``; the retainer force over the one before into ``prev_out``.  ``tol.h_max``
-    is a fraction of a revolution here.  A failed speed has NaN outputs (no partial ones).
+class Revolutions(NamedTuple):
+    """How many revolutions each speed of :func:`run_speeds_loop` runs."""
 
-    Plain Python around two calls of :func:`integrate_loop` per speed, which release the GIL
-    (a compiled loop over the speeds would cost a second and a half of compilation for a few
-    microseconds a speed).
+    count: int  #: the revolutions (``tol`` 0), else the most [-]
+    tol: float  #: periodicity tolerance [N]: stop once two revolutions repeat within it; 0: run ``count``
+    warm: bool  #: start each speed from the state the speed before ended in (else every speed from ``y0``)
+    band: int  #: a speed that does not settle: its last ``band`` revolutions are monitored for the band [-]
+
+
+class SpeedOutputs(NamedTuple):
+    """What :func:`run_speeds_loop` writes per speed (leading dimension: the speed)."""
+
+    extra: np.ndarray  #: the last revolution's extra outputs (points, extra size) [N, m, m/s]
+    status: np.ndarray  #: status (:data:`.layout.STATUS`) [-]
+    t_end: np.ndarray  #: time reached [s]
+    steps: np.ndarray  #: accepted steps [-]
+    ext: np.ndarray  #: the monitor's extremes of the last revolution (N_EXT,) [N, s, m/s, -]
+    events: np.ndarray  #: its events (MAX_EVENTS, 4)
+    nev: np.ndarray  #: events written (1,) [-]
+    periodicity: np.ndarray  #: largest change of a periodicity channel from the revolution before [N]
+    revolutions: np.ndarray  #: revolutions run [-]
+    settled: np.ndarray  #: 1 if the last two revolutions repeat within ``tol`` (periodic mode) [-]
+    band_lo: np.ndarray  #: smallest value of each extreme over the monitored revolutions (N_EXT,)
+    band_hi: np.ndarray  #: largest value (N_EXT,)
+    state: np.ndarray  #: the state reached [m, m/s]
+
+
+#: Revolutions from which a periodic run may stop: the last one and the one before [-].
+MIN_PERIODIC_REVOLUTIONS = 2
+
+
+def _predicted_change(d, d_before):
+    """The next revolution's change [N] if the changes decay geometrically (``d`` the last
+    change, ``d_before`` the one before; ``nan`` when not yet known)."""
+    if not d == d:
+        return np.inf
+    if not d_before == d_before or d_before <= 0.0:
+        return d
+    return d * min(d / d_before, 1.0)
+
+
+def run_speeds_loop(y0, omegas, points, m, vt, tab, tol, revs, stop_angles, gaps, out):
+    """Every speed of ``omegas`` [rad/s], revolution by revolution, into ``out``.
+
+    Each revolution samples the periodicity channels (:func:`check_channels`) on the output
+    grid; the largest change from the revolution before is the speed's periodicity measure.
+    With ``revs.tol`` 0 a speed runs ``revs.count`` revolutions.  Else it runs until two
+    revolutions repeat within ``revs.tol`` (at least :data:`MIN_PERIODIC_REVOLUTIONS`, at
+    most ``revs.count``).  A revolution that may be the last (the first that could be, one
+    whose change is predicted within the tolerance from the decay of the changes before it,
+    and the last ``revs.band`` of a speed that does not settle) is also sampled into
+    ``out.extra`` and monitored (true extremes and events, :mod:`.monitor`); the monitored
+    revolutions' extremes give the band.  With ``revs.warm`` each speed starts from the state
+    the speed before ended in (a revolution's start: the cam at angle 0), else from ``y0``.
+    ``tol.h_max`` is a fraction of a revolution here.  A failed speed has NaN outputs (no
+    partial ones).
+
+    Plain Python around one call of :func:`integrate_loop` per revolution, which releases
+    the GIL (a compiled loop over the speeds would cost a second and a half of compilation
+    for a few microseconds a speed).
 
     Parameters
     ----------
@@ -345,8 +407,8 @@ def run_speeds_loop(
         Initial state [m, m/s].
     omegas : ndarray
         Cam speeds [rad/s].
-    revolutions, points : int
-        Revolutions per speed and output samples per revolution [-].
+    points : int
+        Output samples per revolution [-].
     m : EngineModel
         The chain and cam arrays [kg, m, N, N s/m, rad].
     vt : None or ndarray
@@ -355,81 +417,102 @@ def run_speeds_loop(
         The pair's tableau [-].
     tol : Tolerances
         Step control; ``h_max`` as a fraction of a revolution [-, m, m/s, -].
+    revs : Revolutions
+        How many revolutions [-, N].
     stop_angles : ndarray
         Cam angles [rad] a step lands on in every revolution.
     gaps : ndarray
         Coil-contact compressions [m] (``inf``: never).
-    extra_out, prev_out : ndarray
-        Receive the last revolution's extra outputs [N, m, m/s] and the retainer force [N]
-        over the one before.
-    status, t_end, steps : ndarray
-        Receive per speed the status [-], time reached [s] and steps [-].
-    ext, events, nev : ndarray
-        Receive the monitor's extremes, events and event counts [N, s, m/s, -].
+    out : SpeedOutputs
+        Receives the results.
     """
     n = y0.shape[0]
     no_states = np.empty((0, n))
-    no_extra = np.empty((0, extra_out.shape[2]))
-    no_force = np.empty(0)
-    off = new_monitor(np.empty(0), events[0], nev[0], gaps, 0.0, vt)
-    ws = workspace(n, extra_out.shape[2], tab.c.shape[0])
+    no_extra = np.empty((0, out.extra.shape[2]))
+    off = new_monitor(np.empty(0), out.events[0], out.nev[0], gaps, 0.0, vt)
+    ws = workspace(n, out.extra.shape[2], tab.c.shape[0])
     integrate = integrate_kernel(tab, vt)
     frac = np.arange(points) / points
+    check = np.empty((2, points, N_CHECK))
+    values = np.array(EXT_VALUES)
+    periodic = revs.tol > 0.0
+    have_start = False
     for i, omega in enumerate(omegas):
         omega = float(omega)
         period = 2.0 * np.pi / omega
-        tol_i = Tolerances(tol.rtol, tol.atol, period * tol.h_max, tol.max_steps)
-        y = y0.copy()
+        y = out.state[i - 1].copy() if (revs.warm and have_start) else y0.copy()
         ctl = np.array([0.0, 1e-4, 0.0])
-        t1 = (revolutions - 1) * period
-        st, t, ns, nr = 0, 0.0, 0, 0
-        if revolutions > 1:
-            # the revolutions before the last: the retainer force over the one before the
-            # last only (for the periodicity check)
+        st, t, nsteps, used = 0, 0.0, 0, 0
+        d = d_before = np.nan
+        lo = np.full(N_EXT, np.inf)
+        hi = np.full(N_EXT, -np.inf)
+        settled = False
+        r = 0
+        while r < revs.count:
+            if periodic:
+                final = (
+                    r + 1 == MIN_PERIODIC_REVOLUTIONS
+                    or r + 1 == revs.count
+                    or r >= revs.count - revs.band
+                    or (r >= MIN_PERIODIC_REVOLUTIONS and _predicted_change(d, d_before) <= revs.tol)
+                )
+            else:
+                final = r + 1 == revs.count
+            t0 = r * period
+            tol_r = Tolerances(tol.rtol, tol.atol, period * tol.h_max, tol.max_steps - used)
+            if final:
+                out.nev[i, 0] = 0
+                mon = new_monitor(out.ext[i], out.events[i], out.nev[i], gaps, t0, vt)
+                xo = out.extra[i]
+            else:
+                mon, xo = off, no_extra
             st, t, ns, nr = integrate(
                 y,
-                0.0,
-                t1,
-                (revolutions - 2 + frac) * period,
+                t0,
+                t0 + period,
+                (r + frac) * period,
                 m,
                 omega,
                 vt,
                 tab,
-                tol_i,
+                tol_r,
                 ctl,
-                stop_times(stop_angles, omega, 0, revolutions - 1),
+                stop_times(stop_angles, omega, r, r + 1),
                 no_states,
-                no_extra,
-                prev_out[i],
-                off,
-                ws,
-            )
-        if st == 0:
-            # the last revolution: every output, monitored
-            mon = new_monitor(ext[i], events[i], nev[i], gaps, t1, vt)
-            tol_l = Tolerances(tol.rtol, tol.atol, tol_i.h_max, tol.max_steps - ns - nr)
-            st, t, ns2, _ = integrate(
-                y,
-                t1,
-                revolutions * period,
-                (revolutions - 1 + frac) * period,
-                m,
-                omega,
-                vt,
-                tab,
-                tol_l,
-                ctl,
-                stop_times(stop_angles, omega, revolutions - 1, revolutions),
-                no_states,
-                extra_out[i],
-                no_force,
+                xo,
+                check[r % 2],
                 mon,
                 ws,
             )
-            ns += ns2
-        status[i] = st
-        t_end[i] = t
-        steps[i] = ns
-        if st != 0:  # no partial outputs
-            extra_out[i] = np.nan
-            prev_out[i] = np.nan
+            nsteps += ns
+            used += ns + nr
+            if st != 0:
+                break
+            if r >= 1:
+                d_before = d
+                d = float(np.max(np.abs(check[r % 2] - check[1 - r % 2])))
+            if final:
+                lo[values] = np.minimum(lo[values], out.ext[i, values])
+                hi[values] = np.maximum(hi[values], out.ext[i, values])
+            r += 1
+            if periodic and final and r >= MIN_PERIODIC_REVOLUTIONS and d <= revs.tol:
+                settled = True
+                break
+        out.status[i] = st
+        out.t_end[i] = t
+        out.steps[i] = nsteps
+        out.revolutions[i] = r
+        out.periodicity[i] = d
+        out.settled[i] = settled
+        if settled:  # a periodic state: its band is its value
+            lo[values] = out.ext[i, values]
+            hi[values] = out.ext[i, values]
+        out.band_lo[i] = lo
+        out.band_hi[i] = hi
+        out.state[i] = y
+        if st != 0:  # no partial outputs; the next speed starts from y0
+            out.extra[i] = np.nan
+            out.periodicity[i] = np.nan
+            have_start = False
+        else:
+            have_start = True
