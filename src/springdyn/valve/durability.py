@@ -190,7 +190,8 @@ def spring_strengths(spring) -> dict:
     -------
     dict
         ``tensile_strength_Pa``, ``ultimate_shear_strength_Pa`` (0.67 of the tensile),
-        ``endurance_shear_strength_Pa``, ``strength_defaults`` (the keys that took defaults).
+        ``endurance_shear_strength_Pa``, ``shear_stress_limit_Pa`` (``shear_yield_strength``,
+        else the ultimate shear strength), ``strength_defaults`` (the keys that took defaults).
     """
     defaults = []
     rm = getattr(spring, "tensile_strength", None)
@@ -202,10 +203,13 @@ def spring_strengths(spring) -> dict:
     if tau_e is None:
         tau_e = zimmerli_endurance_shear_strength(tau_u, peened=True)
         defaults.append("endurance_shear_strength")
+    limit = getattr(spring, "shear_yield_strength", None)
     return dict(
         tensile_strength_Pa=float(rm),
         ultimate_shear_strength_Pa=float(tau_u),
         endurance_shear_strength_Pa=float(tau_e),
+        shear_stress_limit_Pa=float(tau_u if limit is None else limit),
+        shear_stress_limit_source="ultimate shear strength" if limit is None else "shear_yield_strength",
         strength_defaults=defaults,
     )
 

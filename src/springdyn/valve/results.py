@@ -709,18 +709,32 @@ class FloatSpeedResult(Result):
 def _durability(sim, s: dict, notes: list) -> dict:
     """Fatigue of the wire over the simulated cycle, beside the static one (issue 13).
 
-    Dynamic: every element between its smallest and largest force of the last revolution
-    (the end elements from the true extremes); static: the static force's range over the
-    cycle (installed to open).  Also the smallest length to solid, and for the distributed
-    model the smallest coil gap.
+    Dynamic: every element's wire torsion (its force less what closed coils pass through
+    their contact, :meth:`SpringModel.wire_forces`) between its smallest and largest value
+    of the last revolution (the end elements of the Type C chain from the true extremes);
+    static: the static force's range over the cycle (installed to open).  A largest stress
+    above the limit (``shear_yield_strength``, else the ultimate) is a failure naming the
+    element.  Also the smallest length to solid, and for the distributed model the smallest
+    coil gap.
     """
     from .durability import fatigue_assessment
 
-    lo = sim.element_force.min(axis=1)
-    hi = sim.element_force.max(axis=1)
-    lo[0], hi[0] = min(lo[0], s["min_seat_force_N"]), max(hi[0], s["max_seat_force_N"])
-    lo[-1], hi[-1] = min(lo[-1], s["min_retainer_force_N"]), max(hi[-1], s["max_retainer_force_N"])
-    dyn = fatigue_assessment(sim.spring, lo, hi)
+    model = sim.spring.spring_model
+    wire = model.wire_forces(sim.element_compression, sim.element_force)
+    rows = np.flatnonzero(np.isfinite(wire).all(axis=1))
+    lo = wire.min(axis=1)
+    hi = wire.max(axis=1)
+    share = model.contact_share(
+        np.stack([law_force(sim.element_compression[j], law) for j, law in enumerate(model.chain.laws)])
+    )
+    if 0 in rows and not np.any(share[0]):
+        lo[0], hi[0] = min(lo[0], s["min_seat_force_N"]), max(hi[0], s["max_seat_force_N"])
+    last = sim.element_force.shape[0] - 1
+    if last in rows and not np.any(share[-1]):
+        lo[-1], hi[-1] = min(lo[-1], s["min_retainer_force_N"]), max(hi[-1], s["max_retainer_force_N"])
+    dyn = fatigue_assessment(sim.spring, lo[rows], hi[rows])
+    dyn["critical_element"] = int(rows[dyn["critical_element"]])
+    peak_share = np.nanmax(np.where(np.isfinite(share), share, 0.0), axis=1)
     sta = fatigue_assessment(sim.spring, s["min_static_force_N"], s["max_static_force_N"])
     out = dict(
         static_fatigue_safety_factor=sta["fatigue_safety_factor"],
@@ -732,7 +746,18 @@ def _durability(sim, s: dict, notes: list) -> dict:
         fatigue_critical_element=dyn["critical_element"] + 1,
         endurance_shear_strength_Pa=dyn["endurance_shear_strength_Pa"],
         ultimate_shear_strength_Pa=dyn["ultimate_shear_strength_Pa"],
+        shear_stress_limit_Pa=dyn["shear_stress_limit_Pa"],
+        max_wire_force_N=float(np.max(hi[rows])),
+        max_force_through_coil_contact_N=float(np.max(peak_share)),
     )
+    out["wire_stress_ok"] = bool(out["max_shear_stress_Pa"] <= out["shear_stress_limit_Pa"])
+    if not out["wire_stress_ok"]:
+        j = dyn["critical_element"]
+        notes.append(
+            f"WIRE OVERSTRESS: element {j + 1} ({model.chain.element_names[j]}) reaches "
+            f"{out['max_shear_stress_Pa'] / 1e6:.0f} MPa at {sim.cam_rpm:g} cam rpm, above the "
+            f"{dyn['shear_stress_limit_source']} {out['shear_stress_limit_Pa'] / 1e6:.0f} MPa"
+        )
     if dyn["strength_defaults"]:
         notes.append(
             "fatigue: default wire strengths used for "

@@ -71,6 +71,14 @@ class ValveSpring(Parameters):
         positive=True,
         default=None,
     )
+    shear_yield_strength: float = param(
+        "Pa",
+        "torsional stress the wire may not exceed in service (yield or relaxation limit; default the ultimate "
+        "shear strength, 0.67 of the tensile)",
+        display="MPa",
+        positive=True,
+        default=None,
+    )
     contact_stiffness: float = param(
         "N/m",
         "stiffness of one closed turn in coil contact and of the end contacts (default pi Do E / 1e3, "

@@ -88,7 +88,8 @@ def run_chunk(
     dict
         Arrays with a leading speed dimension: ``retainer``, ``seat``, ``contact`` (any
         element past its coil-contact compression), ``contact_force`` (largest force of
-        such an element), ``periodicity`` (the largest change of the seat, retainer,
+        such an element), ``wire_min``, ``wire_max`` (each element's wire torsion as an
+        axial force, :meth:`SpringModel.wire_forces`, NaN for no wire), ``periodicity`` (the largest change of the seat, retainer,
         cam-contact and valve-seat forces from the revolution before, / Fset),
         ``revolutions`` (run), ``settled`` (periodic within the tolerance), ``band_lo``,
         ``band_hi`` (the extremes' band over the last revolutions of a speed that does not
@@ -115,6 +116,10 @@ def run_chunk(
     f = ex[:, :, lay["force"]]
     contact = ex[:, last, lay["compression"]] >= setup.spring.spring_model.contact_gaps
     ev = mon["events"]
+    model = setup.spring.spring_model
+    wire = model.wire_forces(
+        np.moveaxis(ex[:, last, lay["compression"]], -1, 0), np.moveaxis(f[:, last], -1, 0)
+    )  # (N + 1, speeds, points)
     out = dict(
         retainer=f[:, last, ne - 1],
         seat=f[:, last, 0],
@@ -126,6 +131,8 @@ def run_chunk(
         band_lo=mon["band_lo"],
         band_hi=mon["band_hi"],
         ext=mon["ext"],
+        wire_min=wire.min(axis=2).T,
+        wire_max=wire.max(axis=2).T,
         separation=np.sum(ev[:, :, 0] == 0.0, axis=1),
         status=status,
         t=mon["t_end"],
@@ -311,7 +318,17 @@ class SpeedSweep(Result):
             s["max_seat_landings"] = int(np.max(t["seat_landings"]))
             s["max_seat_rebound_height_m"] = float(np.max(t["seat_rebound_height_m"]))
         s["min_fatigue_safety_factor"] = float(np.min(t["fatigue_safety_factor"]))
+        s["max_shear_stress_Pa"] = float(np.max(t["max_shear_stress_Pa"]))
+        bad = np.flatnonzero(~t["wire_stress_ok"])
+        s["speeds_with_wire_overstress"] = int(bad.size)
         notes = []
+        if bad.size:
+            k = int(bad[np.argmax(t["max_shear_stress_Pa"][bad])])
+            notes.append(
+                f"WIRE OVERSTRESS at {bad.size} speeds: the worst, element {t['max_shear_stress_element'][k]} at "
+                f"{t['cam_rpm'][k]:g} cam rpm, {t['max_shear_stress_Pa'][k] / 1e6:.0f} MPa above the wire's limit "
+                "(shear_yield_strength, else the ultimate shear strength)"
+            )
         if s["speeds_not_periodic"]:
             notes.append(
                 f"{s['speeds_not_periodic']} speeds did not settle within their revolutions (the last two differ by "
@@ -429,30 +446,42 @@ class SpeedSweep(Result):
         return out
 
     def _fatigue_columns(self, cols, nv, nr) -> dict:
-        """Goodman fatigue factor against speed (issue 13): the end coils between the
-        smallest and largest end force of the revolution (true extremes), and the static
-        cycle; per design value, from that variant's wire and strengths."""
+        """Goodman fatigue factor against speed (issue 13): every element's wire torsion
+        (its force less what closed coils pass through their contact) between its smallest
+        and largest value of the revolution (an end element without coil contact from the
+        true extremes of the end force), and the static cycle; per design value, from that
+        variant's wire and strengths.  Also the largest wire stress against the limit."""
         from .durability import fatigue_assessment
 
-        dyn = np.empty(nv * nr)
-        sta = np.empty(nv * nr)
+        d = self.data
+        wmin = d["wire_min"].reshape(nv * nr, -1).copy()
+        wmax = d["wire_max"].reshape(nv * nr, -1).copy()
+        dyn, sta, tau, limit, crit = (np.empty(nv * nr) for _ in range(5))
         for i in range(nv):
-            sp = (
-                self.spring
-                if not self.vary_name
-                else self.spring.replace(**{self.vary_name: float(self.vary_values[i])})
-            )
+            sp = self.springs[i]
+            plain = ~np.isfinite(sp.spring_model.contact_compressions())
+            for end, key in ((0, "seat"), (-1, "retainer")):
+                if plain[end] and np.isfinite(wmin[0, end]):
+                    sl = slice(i * nr, (i + 1) * nr)
+                    wmin[sl, end] = np.minimum(wmin[sl, end], cols[f"min_{key}_force_N"][sl])
+                    wmax[sl, end] = np.maximum(wmax[sl, end], cols[f"max_{key}_force_N"][sl])
             for j in range(nr):
                 k = i * nr + j
-                a = fatigue_assessment(
-                    sp,
-                    [cols["min_seat_force_N"][k], cols["min_retainer_force_N"][k]],
-                    [cols["max_seat_force_N"][k], cols["max_retainer_force_N"][k]],
-                )
+                rows = np.isfinite(wmin[k])
+                a = fatigue_assessment(sp, wmin[k, rows], wmax[k, rows])
                 b = fatigue_assessment(sp, cols["min_static_force_N"][k], cols["max_static_force_N"][k])
                 dyn[k] = a["fatigue_safety_factor"] if a["fatigue_safety_factor"] is not None else 0.0
                 sta[k] = b["fatigue_safety_factor"] if b["fatigue_safety_factor"] is not None else 0.0
-        return dict(fatigue_safety_factor=dyn, static_fatigue_safety_factor=sta)
+                fa = fatigue_assessment(sp, np.zeros(rows.sum()), wmax[k, rows])  # the largest stress
+                tau[k], limit[k] = fa["max_shear_stress_Pa"], fa["shear_stress_limit_Pa"]
+                crit[k] = np.flatnonzero(rows)[fa["critical_element"]] + 1
+        return dict(
+            fatigue_safety_factor=dyn,
+            static_fatigue_safety_factor=sta,
+            max_shear_stress_Pa=tau,
+            max_shear_stress_element=crit.astype(int),
+            wire_stress_ok=tau <= limit,
+        )
 
     def float_speeds(self) -> np.ndarray:
         """Float speed per design value [rpm]: the lowest swept speed from which the valve

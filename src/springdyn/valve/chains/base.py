@@ -16,7 +16,7 @@ from ...core.errors import InputError
 from ...core.units import format_mm
 from .. import design
 from ..coil_bind import check_coil_bind
-from ..elements import damping_coefficient, law_stiffness
+from ..elements import damping_coefficient, law_force, law_stiffness
 from ..modes import chain_frequencies
 from ..statics import element_compressions, series_force, series_state
 
@@ -113,6 +113,51 @@ class SpringModel:
     def contact_compressions(self) -> np.ndarray:  # pragma: no cover - abstract
         """Compression [m] of each element beyond which its coils touch (``inf``: never flagged)."""
         raise NotImplementedError
+
+    def contact_share(self, elastic_force) -> np.ndarray:
+        """The part of each element's elastic force [N] that closed coils pass through their
+        contact, not the wire in torsion (the wire's torsion is the rest).
+
+        Beyond an element's contact compression its coils touch: a further force goes
+        through the contact, so the wire's torsion stays at the force of first contact
+        (the Type C chain's ``Fcon``).  The distributed chain refines this per turn-slice.
+
+        Parameters
+        ----------
+        elastic_force : ndarray (N + 1, ...)
+            Elastic (law) force of each element [N].
+
+        Returns
+        -------
+        ndarray (N + 1, ...)
+            Force through the contact [N], ``>= 0``; NaN for an element that is no wire.
+        """
+        f = np.asarray(elastic_force, dtype=float)
+        out = np.zeros_like(f)
+        for j, (x, law) in enumerate(zip(self.contact_compressions(), self.chain.laws)):
+            if np.isfinite(x):
+                out[j] = np.maximum(f[j] - float(law_force(x, law)), 0.0)
+        return out
+
+    def wire_forces(self, compression, force) -> np.ndarray:
+        """The wire's torsion of each element, as an axial force [N]: the element force less
+        what closed coils pass through their contact (:meth:`contact_share`).
+
+        Parameters
+        ----------
+        compression : ndarray (N + 1, ...)
+            Element compressions [m].
+        force : ndarray (N + 1, ...)
+            Element forces [N] (elastic and damping).
+
+        Returns
+        -------
+        ndarray (N + 1, ...)
+            [N]; NaN for an element that is no wire (the distributed chain's end contacts).
+        """
+        x = np.asarray(compression, dtype=float)
+        elastic = np.stack([law_force(x[j], law) for j, law in enumerate(self.chain.laws)])
+        return np.asarray(force, dtype=float) - self.contact_share(elastic)
 
     @cached_property
     def contact_gaps(self) -> np.ndarray:

@@ -102,6 +102,8 @@ def coil_law(k_wire: float, gap: float, k_contact: float, onset: float) -> np.nd
 CLOSING_PIECES = 8
 #: Turn-slices per element for its integrals and its closing law.
 SLICES = 64
+#: Nodes of each element's table of the force through closed coils (:meth:`DistributedModel.contact_share`).
+SHARE_NODES = 400
 #: Fine turn-slices over the active wire for the set-up state that places the element edges.
 MESH_SLICES = 4000
 #: Largest ratio of element lengths: coils closed at set-up get elements up to this much
@@ -391,6 +393,7 @@ class DistributedModel(SpringModel):
             closing=closing,
             dead_mass=dead_mass,
             n=n,
+            slices=sl,
         )
 
     # ------------------------------------------------------------------ the chain
@@ -512,6 +515,41 @@ class DistributedModel(SpringModel):
     def breakpoints(self) -> dict:
         """Coil gap of every wire element [m] (``gap_1`` at the seat end ...)."""
         return {f"gap_{i + 1}": float(v) for i, v in enumerate(self._pieces["gap"])}
+
+    @cached_property
+    def _contact_share_tables(self) -> list:
+        """Per wire element: elastic forces [N] (geometric, from the first turn-slice's
+        closing to 100 Fset, :data:`SHARE_NODES`) and the force through the contact there."""
+        sl = self._pieces["slices"]
+        top = 100.0 * self.chain.setup_force
+        tables = []
+        for i in range(self._pieces["n"]):
+            k = 1.0 / sl["c"][i]
+            first = float(np.min(k * sl["gap"][i]))
+            f = np.concatenate([[0.0], np.geomspace(max(first, 1e-9), max(top, 2 * first), SHARE_NODES)])
+            e, _ = slice_states(f, k, sl["gap"][i], sl["kc"][i], sl["onset"][i])
+            tables.append((f, np.maximum(f - np.max(k * e, axis=-1), 0.0)))
+        return tables
+
+    def contact_share(self, elastic_force) -> np.ndarray:
+        """The force [N] closed coils pass through their contact, per element: the element's
+        force less the largest torsion of its turn-slices (:func:`slice_states`: an open
+        slice's wire carries the whole force, a closed one's no more than it did when it
+        closed, plus its share of a further compression); NaN for the end contacts.
+
+        Tabulated per element against the elastic force (:data:`SHARE_NODES` geometric nodes
+        up to 100 Fset, linear between; the tests check it against the slices).
+
+        Parameters
+        ----------
+        elastic_force : ndarray (N + 1, ...)
+            Elastic (law) force of each element [N].
+        """
+        f = np.asarray(elastic_force, dtype=float)
+        out = np.full_like(f, np.nan)
+        for i, (nodes, share) in enumerate(self._contact_share_tables):
+            out[i + 1] = np.interp(f[i + 1], nodes, share)
+        return out
 
     # ------------------------------------------------------------------ outputs
     def closing_forces(self) -> np.ndarray:
