@@ -97,3 +97,93 @@ def test_sweep_reports_the_factor_against_speed():
     t = _sweep(s, cam, [400.0, 3500.0], revolutions=2).summary_table()
     assert t["fatigue_safety_factor"][0] == pytest.approx(t["static_fatigue_safety_factor"][0], rel=5e-3)
     assert t["fatigue_safety_factor"][1] < t["fatigue_safety_factor"][0]
+
+
+# ---------------------------------------------------------------- wire torsion (issue 26)
+
+
+def _spring(model):
+    from springdyn.valve import ValveSpring
+
+    s = ValveSpring.example("one-step")
+    return s if model == "type_c" else s.with_model(model)
+
+
+def test_type_c_wire_torsion_stops_at_the_contact_force():
+    """Type C: beyond an element's contact compression (Fcon, [MMS]) the further force goes
+    through the touching coils; below it the wire carries the whole force."""
+    from springdyn.valve.elements import law_force
+
+    m = _spring("type_c").spring_model
+    x_con = m.contact_compressions()
+    j = int(np.flatnonzero(np.isfinite(x_con))[0])
+    law = m.chain.laws[j]
+    f_con = float(law_force(x_con[j], law))
+    x = np.array([0.5, 0.99, 1.01, 1.5]) * x_con[j]
+    comp = np.tile(x, (len(m.chain.laws), 1))
+    force = np.stack([law_force(comp[i], m.chain.laws[i]) for i in range(len(m.chain.laws))])
+    wire = m.wire_forces(comp, force)
+    np.testing.assert_allclose(wire[j, :2], force[j, :2], rtol=1e-14)
+    np.testing.assert_allclose(wire[j, 2:], f_con, rtol=1e-12)
+    assert np.all(force[j, 2:] > f_con)
+
+
+def test_distributed_contact_share_table_matches_the_turn_slices():
+    """The tabulated force through closed coils equals the turn-slice series
+    (slice_states: the force less the largest slice torsion) within 1e-3 of Fset (the
+    table's geometric nodes are 0.5 % apart; the share is piecewise smooth between the
+    slices' closings)."""
+    from springdyn.valve.chains.distributed import slice_states
+
+    m = _spring("distributed").spring_model
+    pc, sl = m._pieces, m._pieces["slices"]
+    fset = m.chain.setup_force
+    rng = np.random.default_rng(7)
+    for i in range(pc["n"]):
+        f = rng.uniform(0.0, 12 * fset, 100)
+        k = 1.0 / sl["c"][i]
+        e, _ = slice_states(f, k, sl["gap"][i], sl["kc"][i], sl["onset"][i])
+        exact = np.maximum(f - np.max(k * e, axis=-1), 0.0)
+        elastic = np.zeros((pc["n"] + 2, f.size))
+        elastic[i + 1] = f
+        share = m.contact_share(elastic)
+        assert np.max(np.abs(share[i + 1] - exact)) <= 1e-3 * fset
+        assert np.isnan(share[0]).all() and np.isnan(share[-1]).all()  # the end contacts are no wire
+
+
+@pytest.mark.parametrize("model", ["type_c", "distributed"])
+def test_clash_force_through_contact_is_not_wire_stress(model):
+    """At a clash speed the wire's torsion never exceeds the element force, and the largest
+    stress comes from the wire alone (the distributed chain passes most of the seat's clash
+    peak through closed coils: its wire force stays well below the peak seat force)."""
+    import math
+
+    from springdyn.valve import Cam, simulate
+
+    cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+    sim = simulate(_spring(model), cam, 4000.0)
+    s = sim.summary
+    wire = sim.spring.spring_model.wire_forces(sim.element_compression, sim.element_force)
+    rows = np.isfinite(wire).all(axis=1)
+    assert np.all(wire[rows] <= sim.element_force[rows] + 1e-9)
+    assert s["max_wire_force_N"] <= s["max_seat_force_N"] + 1e-9
+    tau = du.corrected_shear_stress(s["max_wire_force_N"], sim.spring.mean_diameter, sim.spring.wire_diameter)
+    if model == "distributed":
+        assert s["max_force_through_coil_contact_N"] > 0.2 * s["max_seat_force_N"]
+        assert s["max_wire_force_N"] < 0.9 * s["max_seat_force_N"]
+    assert s["peak_shear_stress_Pa"] == pytest.approx(tau, rel=1e-9)
+    assert s["peak_shear_stress_Pa"] >= s["max_shear_stress_Pa"]  # the Goodman-critical element's
+    assert s["wire_stress_ok"] is (s["peak_shear_stress_Pa"] <= s["shear_stress_limit_Pa"])
+
+
+def test_overstress_is_a_failure_naming_element_and_speed():
+    """A shear_yield_strength below the cycle's largest stress fails, naming the element."""
+    import math
+
+    from springdyn.valve import Cam, simulate
+
+    cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+    s = _spring("type_c").replace(shear_yield_strength=600e6)
+    sm = simulate(s, cam, 3000.0).summary
+    assert sm["shear_stress_limit_Pa"] == 600e6 and not sm["wire_stress_ok"]
+    assert any(n.startswith("WIRE OVERSTRESS: element") and "3000 cam rpm" in n for n in sm["notes"])

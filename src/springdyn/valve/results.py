@@ -12,7 +12,7 @@ import numpy as np
 
 from ..core.results import Result
 from .elements import law_force
-from .periodicity import is_periodic
+from .periodicity import PERIODICITY_TOL, is_periodic
 from .separation import cam_phases, liftoffs, separates_over_nose
 
 __all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "NaturalFrequencies"]
@@ -288,6 +288,10 @@ def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
     return runs
 
 
+def _tol(sim) -> float:
+    return PERIODICITY_TOL if sim.periodicity_tol is None else sim.periodicity_tol
+
+
 def located_events(sim: Simulation) -> dict:
     """Events of the last revolution located on the dense output, as cam-angle intervals.
 
@@ -512,6 +516,19 @@ def _summarise(sim: Simulation) -> dict:
             "periodicity_error needs at least 2 revolutions (the last one is compared with the one "
             "before): run 2 or more"
         )
+    elif not s["periodic"]:
+        notes.append(
+            f"NOT PERIODIC: the last two of {sim.revolutions} revolutions differ by {100 * s['periodicity_error']:.3g} % "
+            f"of Fset (more than {100 * _tol(sim):g} %)"
+            + (
+                ": the run did not settle (bounce that does not repeat); its extremes scatter from revolution to "
+                "revolution, see 'band' (over the last revolutions)"
+                if sim.band is not None
+                else "; the figures are a transient: run more revolutions or to the periodic steady state (the default)"
+            )
+        )
+    if sim.band is not None:
+        s["band"] = {f"{k}_N" if "force" in k else k: [lo, hi] for k, (lo, hi) in sim.band.items()}
     f_cam = sim.cam_rpm / 60.0
     orders, amp = sim.spectrum(40)
     top = np.argsort(amp[1:])[::-1][:8] + 1
@@ -750,12 +767,16 @@ def _durability(sim, s: dict, notes: list) -> dict:
         max_wire_force_N=float(np.max(hi[rows])),
         max_force_through_coil_contact_N=float(np.max(peak_share)),
     )
-    out["wire_stress_ok"] = bool(out["max_shear_stress_Pa"] <= out["shear_stress_limit_Pa"])
+    # the largest stress of any element (the Goodman-critical one above need not be it)
+    peak = fatigue_assessment(sim.spring, np.zeros(rows.size), hi[rows])
+    j = int(rows[peak["critical_element"]])
+    out["peak_shear_stress_Pa"] = peak["max_shear_stress_Pa"]
+    out["peak_shear_stress_element"] = j + 1
+    out["wire_stress_ok"] = bool(out["peak_shear_stress_Pa"] <= out["shear_stress_limit_Pa"])
     if not out["wire_stress_ok"]:
-        j = dyn["critical_element"]
         notes.append(
             f"WIRE OVERSTRESS: element {j + 1} ({model.chain.element_names[j]}) reaches "
-            f"{out['max_shear_stress_Pa'] / 1e6:.0f} MPa at {sim.cam_rpm:g} cam rpm, above the "
+            f"{out['peak_shear_stress_Pa'] / 1e6:.0f} MPa at {sim.cam_rpm:g} cam rpm, above the "
             f"{dyn['shear_stress_limit_source']} {out['shear_stress_limit_Pa'] / 1e6:.0f} MPa"
         )
     if dyn["strength_defaults"]:

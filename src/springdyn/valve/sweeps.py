@@ -318,15 +318,15 @@ class SpeedSweep(Result):
             s["max_seat_landings"] = int(np.max(t["seat_landings"]))
             s["max_seat_rebound_height_m"] = float(np.max(t["seat_rebound_height_m"]))
         s["min_fatigue_safety_factor"] = float(np.min(t["fatigue_safety_factor"]))
-        s["max_shear_stress_Pa"] = float(np.max(t["max_shear_stress_Pa"]))
+        s["peak_shear_stress_Pa"] = float(np.max(t["peak_shear_stress_Pa"]))
         bad = np.flatnonzero(~t["wire_stress_ok"])
         s["speeds_with_wire_overstress"] = int(bad.size)
         notes = []
         if bad.size:
-            k = int(bad[np.argmax(t["max_shear_stress_Pa"][bad])])
+            k = int(bad[np.argmax(t["peak_shear_stress_Pa"][bad])])
             notes.append(
-                f"WIRE OVERSTRESS at {bad.size} speeds: the worst, element {t['max_shear_stress_element'][k]} at "
-                f"{t['cam_rpm'][k]:g} cam rpm, {t['max_shear_stress_Pa'][k] / 1e6:.0f} MPa above the wire's limit "
+                f"WIRE OVERSTRESS at {bad.size} speeds: the worst, element {t['peak_shear_stress_element'][k]} at "
+                f"{t['cam_rpm'][k]:g} cam rpm, {t['peak_shear_stress_Pa'][k] / 1e6:.0f} MPa above the wire's limit "
                 "(shear_yield_strength, else the ultimate shear strength)"
             )
         if s["speeds_not_periodic"]:
@@ -478,8 +478,8 @@ class SpeedSweep(Result):
         return dict(
             fatigue_safety_factor=dyn,
             static_fatigue_safety_factor=sta,
-            max_shear_stress_Pa=tau,
-            max_shear_stress_element=crit.astype(int),
+            peak_shear_stress_Pa=tau,
+            peak_shear_stress_element=crit.astype(int),
             wire_stress_ok=tau <= limit,
         )
 

@@ -536,6 +536,19 @@ def cmd_simulate(args) -> int:
         ("static force", f"{s['max_static_force_N']:.1f}", f"{s['min_static_force_N']:.1f}", "1", "0"),
     ]
     print_table(rows, headers=("", "max [N]", "min [N]", "max/static", "surge [N]"))
+    if "band" in s:
+        b = s["band"]
+        print(
+            "did not settle: over the last revolutions the extremes scatter: max retainer "
+            f"{b['max_retainer_force_N'][0]:.1f}-{b['max_retainer_force_N'][1]:.1f} N, min retainer "
+            f"{b['min_retainer_force_N'][0]:.1f}-{b['min_retainer_force_N'][1]:.1f} N, max seat "
+            f"{b['max_seat_force_N'][0]:.1f}-{b['max_seat_force_N'][1]:.1f} N"
+            + (
+                f", seat impact velocity {b['seat_impact_velocity'][0]:.2f}-{b['seat_impact_velocity'][1]:.2f} m/s"
+                if vt is not None
+                else ""
+            )
+        )
     print(
         f"f1 = {s['f1_Hz']:.1f} Hz = cam order {s['f1_cam_order']:.2f}; strongest harmonics: "
         + ", ".join(
@@ -561,7 +574,16 @@ def cmd_simulate(args) -> int:
     if vt is not None:
         if s["liftoff"]:
             for ev in s["liftoff"]:
-                print(f"LIFT-OFF {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg ({ev['duration_s'] * 1e3:.3f} ms)")
+                gap = f", gap {ev['max_gap_m'] * 1e3:.3f} mm" if "max_gap_m" in ev else ""
+                print(
+                    f"LIFT-OFF {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg ({ev['duration_s'] * 1e3:.3f} ms{gap}) "
+                    f"on the {ev['phase']}"
+                )
+            print(
+                "FLOAT: the valve leaves the cam over the nose"
+                if s["nose_separation"]
+                else "bounce only: the valve stays on the cam over the nose (no float)"
+            )
         else:
             print(f"no lift-off: minimum cam contact force {s['min_cam_contact_force_N']:.1f} N")
         print(
@@ -578,6 +600,14 @@ def cmd_simulate(args) -> int:
         f"{s['max_shear_stress_Pa'] / 1e6:.0f} MPa)"
         + (f"; smallest coil gap {s['min_coil_gap_m'] * 1e3:.3f} mm" if s.get("min_coil_gap_m") is not None else "")
     )
+    print(
+        f"wire stress (torsion only; {s['max_force_through_coil_contact_N']:.1f} N passed through coil contact at most): "
+        f"peak {s['peak_shear_stress_Pa'] / 1e6:.0f} MPa in element {s['peak_shear_stress_element']}, limit "
+        f"{s['shear_stress_limit_Pa'] / 1e6:.0f} MPa: " + ("ok" if s["wire_stress_ok"] else "OVERSTRESS")
+    )
+    for note in s.get("notes", []):
+        if note.startswith(("NOT PERIODIC", "WIRE OVERSTRESS")):
+            print("note: " + note)
     return 0
 
 

@@ -103,7 +103,7 @@ CLOSING_PIECES = 8
 #: Turn-slices per element for its integrals and its closing law.
 SLICES = 64
 #: Nodes of each element's table of the force through closed coils (:meth:`DistributedModel.contact_share`).
-SHARE_NODES = 400
+SHARE_NODES = 1200
 #: Fine turn-slices over the active wire for the set-up state that places the element edges.
 MESH_SLICES = 4000
 #: Largest ratio of element lengths: coils closed at set-up get elements up to this much
