@@ -128,7 +128,11 @@ def float_speed(
     first_separation = None
     if np.isfinite(first):
         i = int(np.flatnonzero(rpms == first)[0])
-        first_separation = dict(cam_rpm=float(first), phase=table["first_liftoff_phase"][i] or "over the whole event")
+        first_separation = dict(
+            cam_rpm=float(first),
+            phase=str(table["first_liftoff_phase"][i])
+            or ("nose" if table["nose_separation"][i] else "event (not located)"),
+        )
 
     def result(float_rpm, bracket):
         return FloatSpeedResult(
@@ -157,4 +161,6 @@ def float_speed(
             hi = mid
         else:
             lo = mid
+    if first_separation is None or hi < first_separation["cam_rpm"]:
+        first_separation = dict(cam_rpm=hi, phase="nose")  # the bisection found it below the scanned speed
     return result(hi, [lo, hi])

@@ -87,7 +87,8 @@ def run_chunk(
     -------
     dict
         Arrays with a leading speed dimension: ``retainer``, ``seat``, ``contact`` (any
-        element past its coil-contact compression), ``contact_force`` (largest force of
+        element past its coil-contact compression), ``clash`` (such an element where the
+        static spring at the same lift has it open, :meth:`SpringModel.clash`), ``contact_force`` (largest force of
         such an element), ``wire_min``, ``wire_max`` (each element's wire torsion as an
         axial force, :meth:`SpringModel.wire_forces`, NaN for no wire), ``periodicity`` (the largest change of the seat, retainer,
         cam-contact and valve-seat forces from the revolution before, / Fset),
@@ -149,6 +150,10 @@ def run_chunk(
         static = np.full(out["valve_lift"].shape, np.nan)
         static[valid] = setup.static_force(out["valve_lift"][valid])
         out["static"] = static
+    else:
+        static = np.broadcast_to(setup.static_force_along_cam(points), out["retainer"].shape)
+    # coil clash: contact where the static spring at the same lift is open
+    out["clash"] = model.clash(np.moveaxis(contact, -1, 0), static).any(axis=0)
     return out
 
 
@@ -305,6 +310,7 @@ class SpeedSweep(Result):
             min_seat_force_N=float(np.min(t["min_seat_force_N"])),
             max_retainer_surge_amplitude_N=float(np.max(t["retainer_surge_amplitude_N"])),
             speeds_with_coil_contact=int(np.count_nonzero(t["coil_contact"])),
+            speeds_with_coil_clash=int(np.count_nonzero(t["coil_clash"])),
             skipped_design_values=len(self.skipped),
         )
         s["max_periodicity_error"] = float(np.max(t["periodicity_error"])) if "periodicity_error" in t else None
@@ -370,6 +376,7 @@ class SpeedSweep(Result):
             retainer_surge_amplitude_N=np.abs(r - st).max(axis=1),
             seat_surge_amplitude_N=np.abs(s - st).max(axis=1),
             coil_contact=flat(d["contact"]).any(axis=1),
+            coil_clash=flat(d["clash"]).any(axis=1),
             end_separation=flat(d["separation"]) > 0,
             peak_coil_contact_force_N=flat(d["contact_force"]).max(axis=1),
         )
@@ -398,8 +405,16 @@ class SpeedSweep(Result):
         phase = rows[:, :, LIFTOFF_COLUMNS.index("phase")]
         z = flat(d["valve_lift"])
         out = {}
-        # the valve open (off its seat, the lobe past the lash)
-        in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0)
+        # seat landings in the revolution: the valve's first return to its seat
+        landed = (
+            np.cumsum(
+                np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)], axis=1), axis=1
+            )
+            > 0
+        )
+        # the valve open (off its seat, the lobe past the lash) and before its first landing
+        # (later separations are seat bounces, the cam leaving a seated valve is no lift-off)
+        in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0) & ~landed
         cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
         dense = ext[:, col["min_cam_contact_force"]]
         out["liftoff"] = np.isfinite(rows[:, :, 0]).any(axis=1) | (cc <= 0.0).any(axis=1) | (dense <= 0.0)
@@ -416,12 +431,6 @@ class SpeedSweep(Result):
         out["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, grid), 0.0)
         # seat bounce: landings per revolution, the largest rebound off the seat after the
         # first landing (the lobe back on its base circle)
-        landed = (
-            np.cumsum(
-                np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)], axis=1), axis=1
-            )
-            > 0
-        )
         out["seat_landings"] = ext[:, col["seat_landings"]].astype(int)
         out["seat_rebound_height_m"] = np.max(
             np.where(landed & ~(self.lift > self.valve_train.lobe_lash + 1e-6), z, 0.0), axis=1

@@ -14,6 +14,7 @@ from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity
 from springdyn.valve.cam import Cam
 from springdyn.valve.chains import PARAMETER_UNITS
+from springdyn.valve.durability import spring_strengths
 from springdyn.valve.dynamics import simulate
 from springdyn.valve.float_search import float_speed
 from springdyn.valve.spring import ValveSpring
@@ -112,7 +113,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         findings.append(f"The {other_model} model cannot run this spring ({exc}); no model comparison.")
         sw_other = None
     if sw_other is not None:
-        png, sentence, table_other = _compare_models(sp, sw, sw_other, out_dir)
+        png, sentences, table_other = _compare_models(sp, sw, sw_other, out_dir)
         files.append(sw_other.to_csv(out_dir / f"sweep_{other_model}_summary.csv"))
         figures.append(
             (
@@ -121,7 +122,16 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                 "and seat forces, and the surge at the resonance orders",
             )
         )
-        findings.append(sentence)
+        findings += sentences
+    # the criteria come from the better model: the distributed chain (converged in its
+    # elements, every surge mode, coil closure turn by turn) whenever it runs this spring
+    by_model = {sp.model: sw} | ({sw_other.spring.model: sw_other} if sw_other is not None else {})
+    crit_sweep = by_model.get("distributed", sw)
+    beside = by_model.get("type-c") if crit_sweep is not by_model.get("type-c") else None
+    findings.append(
+        f"The criteria below come from the {_describe_model(crit_sweep)}"
+        + (f", with the Type C figure beside each ({_describe_model(beside)})." if beside is not None else ".")
+    )
 
     for rpm, sim in sims.items():
         s = sim.summary
@@ -132,16 +142,17 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             else "no coil contact"
         )
         findings.append(
-            f"At {rpm:.0f} cam rpm the peak retainer force is {s['max_retainer_force_N']:.1f} N, "
+            f"At {rpm:.0f} cam rpm ({_describe_model(sw).split(',')[0]}) the peak retainer force is {s['max_retainer_force_N']:.1f} N, "
             f"{s['max_retainer_force_ratio']:.3f} times the static peak of {s['max_static_force_N']:.1f} N; the seat "
             f"force swings from {s['min_seat_force_N']:.1f} to {s['max_seat_force_N']:.1f} N (surge amplitude "
             f"{s['seat_surge_amplitude_N']:.1f} N); {contact}."
         )
     table = sw.summary_table()
     k = int(np.argmax(table["max_retainer_force_N"]))
-    clash = SWEEP_SPEEDS[np.asarray(table["coil_contact"], bool)]
+    clash = SWEEP_SPEEDS[np.asarray(table["coil_clash"], bool)]
     findings.append(
-        f"Over {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm the retainer force peaks at "
+        f"Over {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm ({_describe_model(sw).split(',')[0]}) the retainer "
+        "force peaks at "
         f"{table['max_retainer_force_N'][k]:.1f} N at {SWEEP_SPEEDS[k]:.0f} rpm; "
         + (
             f"coil clash occurs from {clash[0]:.0f} cam rpm on ({clash.size} of {SWEEP_SPEEDS.size} speeds)."
@@ -160,7 +171,9 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         f"{design['installed']['shear_stress_Pa'] / 1e6:.0f} MPa installed, {design['open']['shear_stress_Pa'] / 1e6:.0f} MPa "
         f"at {lift * 1e3:.3g} mm lift, {design['coil_contact']['shear_stress_Pa'] / 1e6:.0f} MPa at coil contact."
     )
-    criteria = _criteria(p, design, table, sims)
+    criteria = _criteria(
+        p, design, crit_sweep.summary_table(), beside.summary_table() if beside is not None else None, crit_sweep
+    )
     if not d.cam_given:
         findings.append("The definition has no [cam] table: the built-in 3-4-5 cam (9 mm over 120 deg) was used.")
     commands = [
@@ -191,10 +204,15 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                     f"above {res['cam_rpm'][-1]:.0f} cam rpm",
                     f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm",
                     True,
-                    "no lift-off in the scanned range",
+                    "the valve does not leave the cam over the nose at the highest scanned speed"
+                    + _first_lift_off(res),
                 )
             )
-            findings.append(f"The follower stays on the cam up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float).")
+            findings.append(
+                f"The valve stays on the cam over the nose up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float)"
+                + _first_lift_off(res)
+                + "."
+            )
         else:
             above = simulate(sp, lobe, 1.05 * f, valve_train=vt)
             s = above.summary
@@ -213,13 +231,22 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                     f"{f:.0f} cam rpm",
                     f"above the analysed top speed {SWEEP_SPEEDS[-1]:.0f} cam rpm",
                     bool(f > SWEEP_SPEEDS[-1]),
-                    "lowest cam speed at which the follower leaves the cam",
+                    "lowest cam speed from which the valve leaves the cam over the nose at every higher scanned speed"
+                    + _first_lift_off(res),
                 )
             )
+            sc = res.scan
+            hi = [i for i, r in enumerate(res.cam_rpm) if r >= f]
+            v_lo = min(sc["seat_impact_velocity_min_m_per_s"][i] for i in hi)
+            v_hi = max(sc["seat_impact_velocity_max_m_per_s"][i] for i in hi)
+            landings = max(sc["seat_landings"][i] for i in hi)
             findings.append(
-                f"Valve float: the follower first leaves the cam at {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke). "
-                f"5 % above it, contact is lost for {sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the "
-                f"valve lands on its seat at {s['seat_impact_velocity_m_per_s']:.2f} m/s."
+                f"Valve float: the valve leaves the cam over the nose from {f:.0f} cam rpm ({2 * f:.0f} engine rpm, "
+                f"four-stroke) on{_first_lift_off(res)}. 5 % above it, contact is lost for "
+                f"{sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the valve lands on its seat at "
+                f"{s['seat_impact_velocity_m_per_s']:.2f} m/s; over the scanned speeds from the float speed on the seating "
+                f"velocity ranges {v_lo:.2f}-{v_hi:.2f} m/s (band over the speeds within 25 rpm and, where a speed does "
+                f"not settle, over its last revolutions) with up to {landings} seat landings per cycle."
             )
         commands.append(f"springdyn valve float {source} --cam {source} --valve-train {source} --cam-rpm 1000:6000:250")
     inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
@@ -288,16 +315,50 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
     plt.close(fig)
     ta, tb = (a, b) if names[0] == "type-c" else (b, a)
     fset = sp.with_model("type-c").spring_model.internal_parameters()["Fset"]
-    d_max = np.max(np.abs(tb["max_retainer_force_N"] - ta["max_retainer_force_N"])) / fset
-    d_seat = np.max(tb["seat_surge_amplitude_N"] - ta["seat_surge_amplitude_N"])
-    sentence = (
-        f"Type C and the distributed model differ by up to {100 * d_max:.0f} % of Fset in the peak retainer "
-        f"force over {rpm[0]:.0f}-{rpm[-1]:.0f} cam rpm (seat surge up to {d_seat:.0f} N larger in the "
-        "distributed model): the distributed model carries every surge mode and stiffens as its end "
-        "coils close one by one, while Type C has three surge modes on a fixed chain whose coil contact "
-        "comes only from its empirical element laws."
-    )
-    return png, sentence, b
+    parts = []
+    for key, label in (
+        ("max_retainer_force_N", "peak retainer"),
+        ("min_retainer_force_N", "minimum retainer"),
+        ("max_seat_force_N", "peak seat"),
+        ("min_seat_force_N", "minimum seat"),
+    ):
+        diff = (tb[key] - ta[key]) / fset
+        k = int(np.argmax(np.abs(diff)))
+        parts.append(f"{label} force {100 * diff[k]:+.0f} % of Fset at {rpm[k]:.0f} cam rpm")
+    clash_a, clash_b = (rpm[np.asarray(t["coil_clash"], bool)] for t in (ta, tb))
+    only_b = np.setdiff1d(clash_b, clash_a)
+    sentences = [
+        f"Distributed model against Type C over {rpm[0]:.0f}-{rpm[-1]:.0f} cam rpm, the largest differences "
+        "(distributed minus Type C; both to the periodic steady state): " + "; ".join(parts) + ".",
+        "Coil clash: "
+        + (f"Type C from {clash_a[0]:.0f} cam rpm ({clash_a.size} speeds)" if clash_a.size else "none in Type C")
+        + ", "
+        + (
+            f"distributed from {clash_b[0]:.0f} cam rpm ({clash_b.size} speeds)"
+            if clash_b.size
+            else "none in the distributed model"
+        )
+        + (
+            f"; Type C misses it at {only_b.size} speeds ({only_b[0]:.0f}-{only_b[-1]:.0f} cam rpm)"
+            if only_b.size
+            else ""
+        )
+        + ". The distributed model carries every surge mode and stiffens as its end coils close one by one; Type C "
+        "has three surge modes on a fixed chain whose coil contact comes only from its empirical element laws.",
+    ]
+    return png, sentences, b
+
+
+def _first_lift_off(res) -> str:
+    fs = res.first_separation
+    return "" if not fs else f" (first lift-off, bounce: {fs['cam_rpm']:.0f} cam rpm on the {fs['phase']})"
+
+
+def _describe_model(sw) -> str:
+    """Which model and settings produced a sweep's figures."""
+    s = sw.spring
+    name = f"distributed model ({s.elements} elements)" if s.model == "distributed" else "Type C model (5 masses)"
+    return f"{name}, each speed to its periodic steady state (last two revolutions within {100 * sw.periodicity_tol:g} % of Fset)"
 
 
 #: Surge margin f1 / cam frequency below which valve-spring surge is likely (rule of thumb
@@ -310,10 +371,18 @@ SURGE_MARGIN_MIN = 10.0
 FATIGUE_MIN = 1.1
 
 
-def _criteria(p, design, table, sims) -> list[Criterion]:
-    """The valve section's criteria: surge margin, coil clash, minimum retainer force, stress."""
+def _criteria(p, design, table, beside, sw) -> list[Criterion]:
+    """The valve section's criteria: surge margin, solid length and coil bind, coil clash,
+    minimum retainer force, wire stress and fatigue; over the sweep from ``table`` (the
+    better model's, ``sw``) with ``beside`` (Type C's) in the notes."""
     top = max(REPORT_SPEEDS)
     margin = design["installed"]["surge_margin"]
+    model = "distributed" if sw.spring.model == "distributed" else "Type C"
+    rng = f"{SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm, {model}"
+
+    def other(text):
+        return f"; Type C: {text}" if beside is not None else ""
+
     out = [
         Criterion(
             f"surge margin at {top:.0f} cam rpm",
@@ -327,6 +396,15 @@ def _criteria(p, design, table, sims) -> list[Criterion]:
     if cb is not None:
         out.append(
             Criterion(
+                "solid length",
+                f"{cb['solid_length_m'] * 1e3:.2f} mm",
+                f"below the open length {cb['open_length_m'] * 1e3:.2f} mm",
+                bool(cb["solid_length_m"] < cb["open_length_m"]),
+                "EN 13906-1 solid length of the drawing; the spring's length at full lift is the open length",
+            )
+        )
+        out.append(
+            Criterion(
                 "coil-bind clearance at full lift",
                 f"{cb['coil_bind_margin_m'] * 1e3:.2f} mm above solid ({cb['solid_length_m'] * 1e3:.2f} mm)",
                 f">= {cb['coil_bind_clearance_m'] * 1e3:.2f} mm" + f" ({cb['coil_bind_clearance_source']})",
@@ -336,27 +414,57 @@ def _criteria(p, design, table, sims) -> list[Criterion]:
                 else "installed length - cam lift - solid length",
             )
         )
-    clash = np.asarray(table["coil_contact"], bool)
+
+    def clash_text(t):
+        c = np.asarray(t["coil_clash"], bool)
+        return f"{int(c.sum())} of {c.size} speeds" + (f" from {SWEEP_SPEEDS[c][0]:.0f} cam rpm" if c.any() else "")
+
+    clash = np.asarray(table["coil_clash"], bool)
     out.append(
         Criterion(
-            f"coil clash, {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm",
-            f"{int(clash.sum())} of {clash.size} speeds",
+            f"coil clash, {rng}",
+            clash_text(table),
             "none",
             bool(not clash.any()),
-            (f"from {SWEEP_SPEEDS[clash][0]:.0f} cam rpm" if clash.any() else "no coil reaches its contact force")
+            (
+                "coils close where the static spring at the same lift is open"
+                if clash.any()
+                else "no coil closes beyond what the static spring closes at the same lift"
+            )
+            + other(clash_text(beside) if beside is not None else "")
             + (f"; {design['coil_contact_note']}" if "coil_contact_note" in design else ""),
         )
     )
-    fmin = float(np.min(table["min_retainer_force_N"]))
     k = int(np.argmin(table["min_retainer_force_N"]))
+    fmin = float(table["min_retainer_force_N"][k])
+    kb = int(np.argmin(beside["min_retainer_force_N"])) if beside is not None else 0
     out.append(
         Criterion(
-            "minimum retainer force (dynamic)",
+            f"minimum retainer force (dynamic), {rng}",
             f"{fmin:.1f} N at {SWEEP_SPEEDS[k]:.0f} cam rpm",
             "> 0 N",
             bool(fmin > 0.0),
-            f"static minimum {float(np.min(table['min_static_force_N'])):.1f} N; at 0 N the spring "
-            "end leaves the retainer",
+            f"static minimum {float(np.min(table['min_static_force_N'])):.1f} N; at 0 N the spring end leaves the "
+            "retainer"
+            + other(
+                f"{float(beside['min_retainer_force_N'][kb]):.1f} N at {SWEEP_SPEEDS[kb]:.0f} cam rpm"
+                if beside is not None
+                else ""
+            ),
+        )
+    )
+    peak = np.asarray(table["peak_shear_stress_Pa"], dtype=float)
+    k = int(np.argmax(peak))
+    limit = spring_strengths(sw.spring)["shear_stress_limit_Pa"]
+    out.append(
+        Criterion(
+            f"peak wire stress, {rng}",
+            f"{peak[k] / 1e6:.0f} MPa at {SWEEP_SPEEDS[k]:.0f} cam rpm (element {int(table['peak_shear_stress_element'][k])})",
+            f"<= {limit / 1e6:.0f} MPa",
+            bool(np.all(table["wire_stress_ok"])),
+            "EN 13906-1 corrected stress of the wire's torsion alone (force closed coils pass through their contact "
+            "excluded); limit: shear_yield_strength, else the ultimate shear strength"
+            + other(f"{float(np.max(beside['peak_shear_stress_Pa'])) / 1e6:.0f} MPa" if beside is not None else ""),
         )
     )
     dyn = np.asarray(table["fatigue_safety_factor"], dtype=float)
@@ -365,12 +473,13 @@ def _criteria(p, design, table, sims) -> list[Criterion]:
     defaults = fat.get("strength_defaults", [])
     out.append(
         Criterion(
-            f"fatigue safety factor (Goodman), {SWEEP_SPEEDS[0]:.0f}-{SWEEP_SPEEDS[-1]:.0f} cam rpm",
+            f"fatigue safety factor (Goodman), {rng}",
             f"{dyn[k]:.2f} at {SWEEP_SPEEDS[k]:.0f} cam rpm",
             f">= {FATIGUE_MIN:g}",
             bool(dyn[k] >= FATIGUE_MIN),
             f"static (installed to open) {fat.get('static_fatigue_safety_factor', float('nan')):.2f}; the dynamic "
-            "factor uses the end coils' force range with surge"
+            "factor uses every element's wire torsion range with surge"
+            + other(f"{float(np.min(beside['fatigue_safety_factor'])):.2f}" if beside is not None else "")
             + (f"; default wire strengths for {', '.join(defaults)}" if defaults else ""),
         )
     )

@@ -114,6 +114,43 @@ class SpringModel:
         """Compression [m] of each element beyond which its coils touch (``inf``: never flagged)."""
         raise NotImplementedError
 
+    @cached_property
+    def contact_forces(self) -> np.ndarray:
+        """Static force [N] at which each element reaches its contact compression (``inf``
+        where it never counts as contact); the laws are strictly increasing."""
+        return np.array(
+            [
+                float(law_force(x, law)) if np.isfinite(x) else np.inf
+                for x, law in zip(self.contact_compressions(), self.chain.laws)
+            ]
+        )
+
+    #: Coil clash needs the static spring at the same lift to hold the element open by at
+    #: least this much force [fraction of Fset]: a slow closing at the force of its gap, or
+    #: the surge of a few per cent of Fset at low speed, is contact, not clash.
+    CLASH_MARGIN = 0.05
+
+    def clash(self, contact, static_force) -> np.ndarray:
+        """Coil clash: an element in coil contact where the static (massless) spring at the
+        same lift holds it open, by :attr:`CLASH_MARGIN` of Fset or more.  Coils that close
+        quasi-statically (a two-step spring's transition at full lift) are contact, not clash.
+
+        Parameters
+        ----------
+        contact : ndarray of bool (N + 1, ...)
+            Each element past its contact compression [-].
+        static_force : ndarray (...)
+            The static spring force at the same instants [N].
+
+        Returns
+        -------
+        ndarray of bool (N + 1, ...)
+        """
+        shape = (-1,) + (1,) * np.ndim(static_force)
+        margin = self.CLASH_MARGIN * self.chain.setup_force
+        below = np.asarray(static_force)[None, ...] < self.contact_forces.reshape(shape) - margin
+        return np.asarray(contact, bool) & below
+
     def contact_share(self, elastic_force) -> np.ndarray:
         """The part of each element's elastic force [N] that closed coils pass through their
         contact, not the wire in torsion (the wire's torsion is the rest).

@@ -43,7 +43,6 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.units import format_quantity
 from .. import formulas
-from ..elements import law_force
 from ..geometry import (
     CoilGeometry,
     check_profile_span,
@@ -571,15 +570,6 @@ class DistributedModel(SpringModel):
             return np.full(np.shape(mean_diameter), float(given))
         return formulas.contact_stiffness(mean_diameter, self.spring.youngs_modulus)
 
-    @cached_property
-    def _contact_forces(self) -> np.ndarray:
-        """Static force [N] at which each element reaches its contact compression (``inf``
-        where it never counts as contact); the laws are strictly increasing."""
-        gaps = self.contact_compressions()
-        return np.array(
-            [float(law_force(x, law)) if np.isfinite(x) else np.inf for x, law in zip(gaps, self.chain.laws)]
-        )
-
     def clashing_coils(self, sim) -> list[int]:
         """Coils (1 = the seat's first coil) that clash: an element of the coil is closed at a
         cam angle where the static (massless) spring at the same lift has it open.  Coils
@@ -591,7 +581,7 @@ class DistributedModel(SpringModel):
             A simulation of this model.
         """
         # the static element is open while the static force is below the force at its gap
-        clash = sim.element_contact & (sim.static_force[None, :] < self._contact_forces[:, None])
+        clash = self.clash(sim.element_contact, sim.static_force)
         closing = set(np.flatnonzero(clash.any(axis=1)).tolist())
         pos = self.element_positions
         return sorted({int(np.floor(pos[j - 1])) + 1 for j in closing if 1 <= j <= pos.size})
