@@ -25,13 +25,12 @@ from .engine import (
 )
 from .results import Simulation
 from .setup import (
-    DEFAULT_ATOL,
-    DEFAULT_RTOL,
     MAX_REVOLUTIONS,
     MAX_STEP_FRACTION,
     PERIODICITY_TOL,
     SimulationSetup,
     check_run_settings,
+    default_tolerances,
     output_angles,
     prepare,
 )
@@ -49,8 +48,8 @@ def simulate(
     *,
     valve_train: ValveTrain | None = None,
     points_per_revolution: int = 1440,
-    rtol: float = DEFAULT_RTOL,
-    atol: float = DEFAULT_ATOL,
+    rtol: float | None = None,
+    atol: float | None = None,
     backend: str = "compiled",
     setup: SimulationSetup | None = None,
     check_elements: bool = True,
@@ -77,9 +76,11 @@ def simulate(
         Adds the valve body with cam and seat contacts (lift-off, bounce).
     points_per_revolution : int
         Output resolution [-] (1440: every 0.25 deg).
-    rtol, atol : float
+    rtol, atol : float, optional
         Integration tolerances: relative [-], and absolute on the displacements [m]; the
         velocities get ``atol 2 pi f1 / 30`` [m/s] (:meth:`SimulationSetup.atol_velocity`).
+        Default 1e-6 and 1e-9 m, with a valve train 1e-8 and 1e-11 m
+        (:func:`~springdyn.valve.setup.default_tolerances`).
     backend : {"compiled", "scipy"}
         ``"compiled"``: the numba engine (embedded Runge-Kutta pair per model, :data:`PAIR`);
         ``"scipy"``: ``solve_ivp`` (DOP853) with the plain-Python right-hand side, the reference.
@@ -109,6 +110,7 @@ def simulate(
     number = (int, float, np.integer, np.floating)
     if isinstance(cam_rpm, bool) or not isinstance(cam_rpm, number) or not (cam_rpm > 0 and math.isfinite(cam_rpm)):
         raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive speed: a finite number [rev/min]")
+    rtol, atol = default_tolerances(valve_train, rtol, atol)
     check_run_settings(revolutions, points_per_revolution, rtol, atol, periodicity_tol, max_revolutions)
     if backend not in ("compiled", "scipy"):
         raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")

@@ -583,7 +583,7 @@ def _summarise(sim: Simulation) -> dict:
             # 3150-3250 cam rpm gives 0.2-0.9 % at rtol 1e-6 and 3e-7, 0.13 % at 1e-8, 0.007 % at 1e-9
             notes.append(
                 "the valve floated: the landing after lift-off (seat impact velocity, bounces) depends on "
-                "the tolerances, ~1 % at the default rtol = 1e-6; use rtol = 1e-9 for ~0.01 %"
+                "the tolerances, ~0.1 % at the valve train's default rtol = 1e-8; use rtol = 1e-9 for ~0.01 %"
             )
         after = np.zeros_like(z, dtype=bool)
         if landings.size:

@@ -32,12 +32,11 @@ from .engine import EXT, extra_layout
 from .results import locate_intervals
 from .separation import PHASES, cam_phases, float_speed_of_scan, liftoffs, neighbour_band, phase_mask
 from .setup import (
-    DEFAULT_ATOL,
-    DEFAULT_RTOL,
     MAX_REVOLUTIONS,
     PERIODICITY_TOL,
     SimulationSetup,
     check_run_settings,
+    default_tolerances,
     output_angles,
     prepare,
 )
@@ -709,8 +708,8 @@ def sweep(
     revolutions: int | None = None,
     valve_train: ValveTrain | None = None,
     points_per_revolution: int = 720,
-    rtol: float = DEFAULT_RTOL,
-    atol: float = DEFAULT_ATOL,
+    rtol: float | None = None,
+    atol: float | None = None,
     vary: tuple[str, np.ndarray] | None = None,
     on_invalid: str = "stop",
     workers: int | None = None,
@@ -737,8 +736,9 @@ def sweep(
         slower speed before it (see :func:`run_chunk`).
     points_per_revolution : int
         Output samples per revolution [-].
-    rtol, atol : float
-        Relative [-] and absolute [m, m/s] integration tolerances.
+    rtol, atol : float, optional
+        Relative [-] and absolute [m, m/s] integration tolerances (default as for
+        :func:`springdyn.valve.simulate`: tighter with a valve train).
     vary : (str, array_like), optional
         A numeric :class:`ValveSpring` field and its values [SI unit of the field], an
         extra dimension.
@@ -768,6 +768,7 @@ def sweep(
     if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
         bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
         raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
+    rtol, atol = default_tolerances(valve_train, rtol, atol)
     check_run_settings(revolutions, points_per_revolution, rtol, atol, periodicity_tol, max_revolutions)
     if on_invalid not in ("stop", "skip"):
         raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
