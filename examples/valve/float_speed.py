@@ -29,7 +29,7 @@ def find_float_speed(spring_name: str) -> tuple[dict, ValveSpring, Cam, ValveTra
     cam = Cam.from_toml(HERE / "cam_polydyne_ramps.toml")  # its ramps take up the train's lash
     train = ValveTrain.from_toml(HERE / "valve_train.toml")
     result = float_speed(
-        spring, cam, train, np.arange(1000.0, 6001.0, 250.0), revolutions=3, resolution=5.0, points_per_revolution=720
+        spring, cam, train, np.arange(1000.0, 6001.0, 250.0), resolution=5.0, points_per_revolution=720
     )
     return result, spring, cam, train
 
@@ -60,6 +60,8 @@ def main(argv=None) -> int:
     f = result["float_cam_rpm"]
     lo, hi = result["bracket"]
     print(f"float speed: {f:.0f} cam rpm = {2 * f:.0f} engine rpm (four-stroke); bracket {lo:.1f} - {hi:.1f} cam rpm")
+    first = result.first_separation
+    print(f"first lift-off: {first['cam_rpm']:.0f} cam rpm on the {first['phase']} (bounce below the float speed)")
 
     sim = simulate(spring, cam, f, valve_train=train, points_per_revolution=1440)
     fig, ax = new_figure()

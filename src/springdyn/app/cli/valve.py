@@ -681,7 +681,7 @@ def cmd_float(args) -> int:
     print("seating velocity band: min/median/max over the scanned speeds within +-25 rpm and, where a speed does not")
     print("settle, over its last revolutions")
     if s["first_separation_cam_rpm"] is not None:
-        print(f"first lift-off: {s['first_separation_cam_rpm']:g} cam rpm ({s['first_separation_phase']})")
+        print(f"first lift-off: {s['first_separation_cam_rpm']:.0f} cam rpm ({s['first_separation_phase']})")
     else:
         print(f"no lift-off up to {rpms.max():g} cam rpm")
     if res["float_cam_rpm"] is None:
