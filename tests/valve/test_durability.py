@@ -174,6 +174,11 @@ def test_clash_force_through_contact_is_not_wire_stress(model):
     assert s["peak_shear_stress_Pa"] == pytest.approx(tau, rel=1e-9)
     assert s["peak_shear_stress_Pa"] >= s["max_shear_stress_Pa"]  # the Goodman-critical element's
     assert s["wire_stress_ok"] is (s["peak_shear_stress_Pa"] <= s["shear_stress_limit_Pa"])
+    # coil clash reported apart, as impacts: at this speed both models clash
+    cc = s["coil_clash"]
+    assert cc["impacts"] >= 1 and cc["duration_deg"] > 0
+    assert cc["peak_force_through_contact_N"] <= s["max_force_through_coil_contact_N"] + 1e-9
+    assert cc["impacts"] == sum(ev["clash"] for ev in s["coil_contact"])
 
 
 def test_overstress_is_a_failure_naming_element_and_speed():

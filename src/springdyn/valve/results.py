@@ -471,6 +471,7 @@ def _summarise(sim: Simulation) -> dict:
             )
     s["coil_contact"] = events
     s.update(_durability(sim, s, notes))
+    s["coil_clash"] = _clash_impacts(sim, events)
     clash = sim.spring.spring_model.clashing_coils(sim) if hasattr(sim.spring.spring_model, "clashing_coils") else None
     if clash is not None:
         s["clashing_coils"] = clash
@@ -721,6 +722,31 @@ class FloatSpeedResult(Result):
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
         return ax.figure
+
+
+def _clash_impacts(sim, events: list) -> dict:
+    """Coil clash as impacts, apart from the wire's stress: each coil-contact event gets the
+    largest force its closed coils pass through their contact and whether it is a clash
+    (:meth:`SpringModel.clash`); the summary counts the clash events, their total duration
+    and their peak force through contact."""
+    model = sim.spring.spring_model
+    x = sim.element_compression
+    elastic = np.stack([law_force(x[j], law) for j, law in enumerate(model.chain.laws)])
+    share = np.nan_to_num(model.contact_share(elastic))
+    clash = model.clash(sim.element_contact, sim.static_force)
+    deg = sim.cam_angle_deg
+    index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
+    count, duration, peak = 0, 0.0, 0.0
+    for ev in events:
+        rows = [index[e] for e in ev["elements"]]
+        mask = _angle_mask(deg, ev["start_deg"], ev["end_deg"])
+        ev["peak_force_through_contact_N"] = float(share[np.ix_(rows, mask)].max()) if mask.any() else 0.0
+        ev["clash"] = bool(clash[np.ix_(rows, mask)].any()) if mask.any() else False
+        if ev["clash"]:
+            count += 1
+            duration += ev["duration_deg"]
+            peak = max(peak, ev["peak_force_through_contact_N"])
+    return dict(impacts=count, duration_deg=duration, peak_force_through_contact_N=peak)
 
 
 def _durability(sim, s: dict, notes: list) -> dict:

@@ -576,6 +576,12 @@ def cmd_simulate(args) -> int:
         print("no coil contact")
     if "clashing_coils" in s:
         print("clashing coils (from the seat): " + (", ".join(map(str, s["clashing_coils"])) or "none"))
+    cc = s["coil_clash"]
+    if cc["impacts"]:
+        print(
+            f"coil clash: {cc['impacts']} impacts over {cc['duration_deg']:.1f} cam degrees, up to "
+            f"{cc['peak_force_through_contact_N']:.1f} N through the closed coils' contact"
+        )
     for ev in s["end_separation"]:
         print(
             f"END SEPARATION at the {ev['end']} {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg "
@@ -756,19 +762,37 @@ def cmd_sweep(args) -> int:
     print(
         f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {table['cam_rpm'][k]:g} cam rpm "
         f"(static peak {table['max_static_force_N'][k]:.1f} N); coil contact at "
-        f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs"
+        f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs, coil clash at "
+        f"{int(np.sum(table['coil_clash']))}"
+    )
+    sm = res.summary
+    print(
+        f"periodic steady state: {table['cam_rpm'].size - sm['speeds_not_periodic']} of {table['cam_rpm'].size} runs "
+        f"settled within {100 * res.periodicity_tol:g} % of Fset ({np.mean(table['revolutions']):.1f} revolutions on "
+        "average)"
+        + (
+            f"; {sm['speeds_not_periodic']} did not settle in {int(np.max(table['revolutions']))} revolutions: their "
+            "extremes are bands (*_lo_N, *_hi_N in sweep_summary.csv)"
+            if sm["speeds_not_periodic"]
+            else ""
+        )
     )
     if vt is not None:
-        for v, f in zip(res.vary_values, res.float_speeds()):
+        for v, f, first in zip(res.vary_values, res.float_speeds(), res.first_separation_speeds()):
             tag = f"{describe_design_value(res.vary_name, v)}: " if vary else ""
             print(
                 f"{tag}float speed "
                 + (
-                    f"~{f:g} cam rpm (first swept speed with lift-off; refine with 'springdyn valve float')"
+                    f"~{f:g} cam rpm (lowest swept speed from which the valve leaves the cam over the nose at every "
+                    "higher one; refine with 'springdyn valve float')"
                     if np.isfinite(f)
                     else "above the swept range"
                 )
+                + (f"; first lift-off at {first:g} cam rpm" if np.isfinite(first) else "")
             )
+    for note in sm.get("notes", []):
+        if note.startswith("WIRE OVERSTRESS"):
+            print("note: " + note)
     for value, reason in res.skipped:
         print(f"skipped {describe_design_value(res.vary_name, value)}: {reason}")
     first = [r for r in res.resonance_table() if r["mode"] == 1]

@@ -17,6 +17,7 @@ from springdyn.valve.chains import PARAMETER_UNITS
 from springdyn.valve.durability import spring_strengths
 from springdyn.valve.dynamics import simulate
 from springdyn.valve.float_search import float_speed
+from springdyn.valve.periodicity import PERIODICITY_TOL
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.sweeps import sweep
 from springdyn.valve.train_modes import natural_frequencies
@@ -88,7 +89,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         figures.append(
             (
                 stem.with_suffix(".png"),
-                f"Spring alone at {rpm:.0f} cam rpm: retainer and seat force "
+                f"Spring alone at {rpm:.0f} cam rpm ({_describe_model(sp)}): retainer and seat force "
                 "against the static (massless) force, mass displacements, cam-order spectrum",
             )
         )
@@ -96,15 +97,19 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     written = sw.write(out_dir, "sweep")
     files += written[:2]
     figures.append(
-        (out_dir / "sweep_forces.png", "Peak and minimum forces over the speed range against the static values")
+        (
+            out_dir / "sweep_forces.png",
+            f"Peak and minimum forces over the speed range against the static values ({_describe_model(sp)})",
+        )
     )
     figures.append(
         (
             out_dir / "sweep_campbell.png",
-            "Campbell diagram: cam-order harmonics of the retainer force against f1 at installed and open length",
+            "Campbell diagram: cam-order harmonics of the retainer force against f1 at installed and open length "
+            f"({_describe_model(sp)})",
         )
     )
-    figures.append((out_dir / "sweep_map.png", "Retainer force over cam speed and cam angle"))
+    figures.append((out_dir / "sweep_map.png", f"Retainer force over cam speed and cam angle ({_describe_model(sp)})"))
 
     other_model = "distributed" if sp.model == "type-c" else "type-c"
     try:
@@ -354,11 +359,13 @@ def _first_lift_off(res) -> str:
     return "" if not fs else f" (first lift-off, bounce: {fs['cam_rpm']:.0f} cam rpm on the {fs['phase']})"
 
 
-def _describe_model(sw) -> str:
-    """Which model and settings produced a sweep's figures."""
-    s = sw.spring
+def _describe_model(run) -> str:
+    """Which model and settings produced a figure: ``run`` a sweep, or a spring (its runs to
+    the default periodic steady state)."""
+    s = getattr(run, "spring", run)
+    tol = getattr(run, "periodicity_tol", PERIODICITY_TOL)
     name = f"distributed model ({s.elements} elements)" if s.model == "distributed" else "Type C model (5 masses)"
-    return f"{name}, each speed to its periodic steady state (last two revolutions within {100 * sw.periodicity_tol:g} % of Fset)"
+    return f"{name}, each speed to its periodic steady state (last two revolutions within {100 * tol:g} % of Fset)"
 
 
 #: Surge margin f1 / cam frequency below which valve-spring surge is likely (rule of thumb
