@@ -529,7 +529,8 @@ def _summarise(sim: Simulation) -> dict:
             )
         )
     if sim.band is not None:
-        s["band"] = {f"{k}_N" if "force" in k else k: [lo, hi] for k, (lo, hi) in sim.band.items()}
+        unit = {"force": "_N", "velocity": "_m_per_s"}
+        s["band"] = {k + next((u for w, u in unit.items() if w in k), ""): [lo, hi] for k, (lo, hi) in sim.band.items()}
     f_cam = sim.cam_rpm / 60.0
     orders, amp = sim.spectrum(40)
     top = np.argsort(amp[1:])[::-1][:8] + 1

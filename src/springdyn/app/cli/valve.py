@@ -554,7 +554,8 @@ def cmd_simulate(args) -> int:
             f"{b['min_retainer_force_N'][0]:.1f}-{b['min_retainer_force_N'][1]:.1f} N, max seat "
             f"{b['max_seat_force_N'][0]:.1f}-{b['max_seat_force_N'][1]:.1f} N"
             + (
-                f", seat impact velocity {b['seat_impact_velocity'][0]:.2f}-{b['seat_impact_velocity'][1]:.2f} m/s"
+                f", seat impact velocity {b['seat_impact_velocity_m_per_s'][0]:.2f}-"
+                f"{b['seat_impact_velocity_m_per_s'][1]:.2f} m/s"
                 if vt is not None
                 else ""
             )
