@@ -447,13 +447,13 @@ def check_run_settings(
                 f"periodicity_tol = {periodicity_tol!r} must be a fraction of Fset from 1e-07 to 0.5 "
                 f"(default {PERIODICITY_TOL:g}, i.e. {100 * PERIODICITY_TOL:g} %)"
             )
-        revolutions, name0 = max_revolutions, "max_revolutions"
         if not isinstance(max_revolutions, bool) and isinstance(max_revolutions, number) and max_revolutions < 2:
             raise InputError(f"max_revolutions = {max_revolutions!r} must be at least 2: two revolutions are compared")
+        count = ("max_revolutions", max_revolutions, 2, 1000)
     else:
-        name0 = "revolutions"
+        count = ("revolutions", revolutions, 1, 1000)
     for name, value, lo, hi in (
-        (name0, revolutions, 1, 1000),
+        count,
         ("points_per_revolution", points_per_revolution, 16, 100_000),
     ):
         if (
