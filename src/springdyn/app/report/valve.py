@@ -356,7 +356,11 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
 
 def _first_lift_off(res) -> str:
     fs = res.first_separation
-    return "" if not fs else f" (first lift-off, bounce: {fs['cam_rpm']:.0f} cam rpm on the {fs['phase']})"
+    if not fs:
+        return ""
+    if res.float_cam_rpm is not None and fs["cam_rpm"] >= res.float_cam_rpm:
+        return " (also the first lift-off)"
+    return f" (first lift-off, bounce: {fs['cam_rpm']:.0f} cam rpm on the {fs['phase']})"
 
 
 def _describe_model(run) -> str:
