@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 __all__ = [
+    "dumps_toml",
     "atomic_path",
     "atomic_open",
     "output_set",
@@ -351,3 +352,36 @@ def read_csv_columns(path: str | os.PathLike) -> dict[str, np.ndarray]:
                 raise InputError(f"{path}: row {lineno}, column {h!r}: {cell.strip()!r} is not a finite number")
             data_cols[h].append(value)
     return {h: np.asarray(v, dtype=float) for h, v in data_cols.items()}
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        if isinstance(v, float) and not math.isfinite(v):
+            raise ValueError(f"{v!r} has no TOML form here")
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)  # a JSON string is a TOML basic string
+    if isinstance(v, Mapping):
+        return "{ " + ", ".join(f"{k} = {_toml_value(x)}" for k, x in v.items()) + " }"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise TypeError(f"{type(v).__name__} has no TOML form here")
+
+
+def dumps_toml(doc: Mapping, header: str = "") -> str:
+    """A TOML document of top-level tables of plain values (strings, numbers, booleans,
+    arrays and inline tables), as springdyn's definitions are; ``header`` becomes comment lines.
+
+    Parameters
+    ----------
+    doc : Mapping
+        ``{table: {key: value}}``.
+    header : str
+        Text written as ``#`` comments first.
+    """
+    lines = [f"# {line}".rstrip() for line in header.splitlines()]
+    for name, table in doc.items():
+        lines += ["", f"[{name}]"] + [f"{k} = {_toml_value(v)}" for k, v in table.items()]
+    return "\n".join(lines).lstrip("\n") + "\n"

@@ -20,7 +20,10 @@ The physics, one place per equation
 - :mod:`~springdyn.valve.modes` -- natural frequencies of the linearised chain;
 - :mod:`~springdyn.valve.design` -- spring index, corrected shear stress, surge margin;
 - :mod:`~springdyn.valve.durability` -- wire stress over a cycle, Goodman safety;
-- :mod:`~springdyn.valve.coil_bind` -- solid length against the cam's lift, coil-bind clearance;
+- :mod:`~springdyn.valve.coil_bind` -- solid length (by the end type) against the cam's lift,
+  coil-bind clearance;
+- :mod:`~springdyn.valve.calibrate` -- the drawing's load points against the model, and a fit
+  of the shear modulus or the active coils to them;
 - :mod:`~springdyn.valve.chains` -- the spring models: :class:`Chain`, :class:`SpringModel`,
   :class:`TypeCModel` (the document's 5 masses), the distributed coil-by-coil chain;
 - :mod:`~springdyn.valve.engine` -- the equations of motion and the compiled integrator.

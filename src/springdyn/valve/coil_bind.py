@@ -15,7 +15,7 @@ from ..core.errors import InputError
 from ..core.units import format_mm
 from .formulas import coil_contact_length
 
-__all__ = ["min_sum_of_gaps", "solid_length", "check_coil_bind"]
+__all__ = ["min_sum_of_gaps", "en13906_solid_length", "solid_length", "check_coil_bind"]
 
 
 def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: float) -> float:
@@ -42,14 +42,42 @@ def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: fl
     return (1.5e-3 * mean_diameter**2 / wire_diameter + 0.1 * wire_diameter) * active_coils
 
 
+def en13906_solid_length(wire_diameter: float, total_coils: float, end_type: str) -> float:
+    """Solid length of a cold-coiled compression spring by its ends [m].
+
+    EN 13906-1:2013, solid length of cold-coiled springs: ends closed and ground
+    ``Lc = n_t d``, closed and not ground ``Lc = (n_t + 1.5) d``; open (plain) ends
+    ``Lc = (n_t + 1) d`` (Shigley, Table 10-1: the standard covers closed ends only).
+
+    Parameters
+    ----------
+    wire_diameter : float
+        Wire diameter d [m].
+    total_coils : float
+        Total coils n_t [-].
+    end_type : {"closed-ground", "closed", "open"}
+
+    Examples
+    --------
+    >>> round(en13906_solid_length(3.5e-3, 7.5, "closed-ground") * 1e3, 3)
+    26.25
+    """
+    extra = {"closed-ground": 0.0, "closed": 1.5, "open": 1.0}[end_type]
+    return wire_diameter * (total_coils + extra)
+
+
 def solid_length(spring) -> float:
-    """Solid length ``Lc = Dw (N1 + N2 + 1/2)`` [m] ([MMS]; ends closed and ground;
+    """Solid length [m]: by the spring's ``end_type`` (:func:`en13906_solid_length`), else
+    the MMS document's ``Lc = Dw (N1 + N2 + 1/2)`` ([MMS];
     :func:`springdyn.valve.formulas.coil_contact_length`).
 
     Parameters
     ----------
     spring : ValveSpring
     """
+    total = spring.low_pitch_coils + spring.high_pitch_coils
+    if getattr(spring, "end_type", ""):
+        return en13906_solid_length(spring.wire_diameter, total, spring.end_type)
     return coil_contact_length(spring.wire_diameter, spring.low_pitch_coils, spring.high_pitch_coils)
 
 

@@ -17,10 +17,19 @@ from ..core.params import Parameters, describe_value, param
 from ..core.units import format_mm, format_quantity
 from . import formulas
 
-__all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES"]
+__all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
 
 #: Built-in example springs (the reference springs of docs/valve.md), shipped in ``springdyn/data``.
 EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"}
+
+#: Coil end types of a drawing: dead coils per end (EN 13906-1, cold-coiled compression
+#: springs: ``n_t = n + 2`` for closed ends; open ends have no dead coil).  Their solid lengths:
+#: :func:`springdyn.valve.coil_bind.solid_length`.
+END_TYPES = {"closed-ground": 1.0, "closed": 1.0, "open": 0.0}
+
+#: Keys of a drawing that the ``[spring]`` table reads into the model's own keys
+#: (:meth:`ValveSpring._prepare`): they are not fields of the definition.
+DRAWING_KEYS = ("total_coils", "active_coils", "outer_diameter", "inner_diameter")
 
 #: Names of the spring models (:data:`springdyn.valve.chains.MODELS`).
 MODEL_NAMES = ("type-c", "distributed")
@@ -87,6 +96,21 @@ class ValveSpring(Parameters):
         positive=True,
         default=None,
     )
+    end_type: str = param(
+        None,
+        "coil ends as drawn: 'closed-ground', 'closed' (not ground) or 'open'; sets the dead coils and the "
+        "solid length per EN 13906-1 (default: the MMS document's solid length Dw (N1 + N2 + 0.5))",
+        kind="str",
+        choices=("", *END_TYPES),
+        default="",
+    )
+    load_points: str = param(
+        None,
+        "load points of the drawing to check the model against: a TOML array of tables "
+        '[{ length = "38 mm", force = "250 N", tolerance = "5 %" }, ...] (tolerance in % of the force or in N)',
+        kind="str",
+        default="",
+    )
     min_coil_bind_clearance: float = param(
         "m",
         "smallest allowed margin between the shortest working length and the solid length "
@@ -133,11 +157,14 @@ class ValveSpring(Parameters):
     # ------------------------------------------------------------------ construction
     @classmethod
     def _prepare(cls, mapping: dict, base_dir=None, **context) -> dict:
-        """Profiles: a TOML array of ``[turns, value]`` pairs becomes an inline table (SI); a
-        relative CSV path is taken from the TOML file's folder."""
+        """The drawing's keys become the model's (:meth:`_from_drawing`); load points and
+        profiles: a TOML array becomes an inline table (SI); a relative CSV path is taken from
+        the TOML file's folder."""
         from pathlib import Path
 
         from ..core.units import to_si
+
+        mapping = _from_drawing(mapping)
 
         for key in ("pitch_profile", "diameter_profile"):
             value = mapping.get(key)
@@ -182,6 +209,33 @@ class ValveSpring(Parameters):
                 frame, level = frame.f_back, level + 1
         for message in unlikely:
             warnings.warn(message, UserWarning, stacklevel=level)
+
+    @property
+    def total_coils(self) -> float:
+        """Total coils ``N1 + N2`` [-] (dead coils included)."""
+        return self.low_pitch_coils + self.high_pitch_coils
+
+    @property
+    def active_coils(self) -> float:
+        """Active coils at free length ``N1 + N2 - 2 Nb`` [-]."""
+        return formulas.active_coils_free(self.low_pitch_coils, self.high_pitch_coils, self.dead_coils)
+
+    @property
+    def solid_length(self) -> float:
+        """Solid length [m] (:func:`springdyn.valve.coil_bind.solid_length`: by the end type)."""
+        from .coil_bind import solid_length
+
+        return solid_length(self)
+
+    @property
+    def load_point_table(self) -> list[dict]:
+        """The drawing's load points: ``length`` [m], ``force`` [N], ``tolerance`` [N] (None: not given)."""
+        out = []
+        if self.load_points:
+            for row in self.load_points.removeprefix("table:").split(";"):
+                length, force, tol = (float(v) for v in row.split())
+                out.append(dict(length=length, force=force, tolerance=None if tol < 0 else tol))
+        return out
 
     def with_model(self, model: str | None) -> ValveSpring:
         """The same spring with another model (``None``: unchanged).
@@ -314,3 +368,123 @@ class ValveSpring(Parameters):
                 f"solid length Lc = Dw (N1 + N2 + 0.5) = {format_mm(lc)}"
             )
         return unlikely
+
+
+def _quantity(mapping: dict, key: str, unit: str) -> float:
+    from ..core.units import to_si
+
+    return to_si(mapping[key], unit, key)
+
+
+def _from_drawing(mapping: dict) -> dict:
+    """A ``[spring]`` table as a drawing or an EN 13906-1 calculator gives it, in the model's keys.
+
+    - ``outer_diameter`` / ``inner_diameter`` give ``mean_diameter`` (``D = De - d = Di + d``);
+    - ``end_type`` gives ``dead_coils`` (:data:`END_TYPES`);
+    - ``total_coils`` (dead coils included) or ``active_coils`` give ``high_pitch_coils``
+      (``N2 = n_t - N1``, ``n_t = n + 2 Nb``; a two-step spring needs ``low_pitch_coils``);
+    - ``load_points`` become an inline table (lengths [m], forces [N], tolerances [N]).
+
+    Keys that say the same twice must agree (1 um, 1e-9 coils), else :class:`InputError`
+    names both.
+    """
+    m = dict(mapping)
+    given = [k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if k in m]
+    if any(k != "mean_diameter" for k in given):
+        if "wire_diameter" not in m:
+            raise InputError(f"{given[-1]} needs wire_diameter to give the mean coil diameter")
+        d = _quantity(m, "wire_diameter", "m")
+        means = {
+            k: _quantity(m, k, "m") + {"mean_diameter": 0.0, "outer_diameter": -d, "inner_diameter": d}[k]
+            for k in given
+        }
+        first = given[0]
+        for k in given[1:]:
+            if abs(means[k] - means[first]) > 1e-6:
+                raise InputError(
+                    f"{first} and {k} disagree: they give mean coil diameters of {format_mm(means[first])} and "
+                    f"{format_mm(means[k])} (wire_diameter {format_mm(d)}); give one of them"
+                )
+        for k in given:
+            m.pop(k)
+        m["mean_diameter"] = round(means[first], 12)  # 25.5 mm - 3.5 mm is 22 mm, not 22.000000000000002
+    if m.get("end_type"):
+        end = m["end_type"]
+        if end not in END_TYPES:
+            raise InputError(f"end_type = {end!r} is not allowed; choose one of {', '.join(map(repr, END_TYPES))}")
+        nb = END_TYPES[end]
+        if "dead_coils" in m and abs(float(m["dead_coils"]) - nb) > 1e-9:
+            raise InputError(
+                f"dead_coils = {m['dead_coils']!r} disagrees with end_type = {end!r}, which has {nb:g} dead coil per "
+                "end (EN 13906-1); give one of them"
+            )
+        m["dead_coils"] = nb
+    coils = [k for k in ("total_coils", "active_coils") if k in m]
+    if coils:
+        if "dead_coils" not in m:
+            raise InputError(f"{coils[0]} needs dead_coils or end_type to count the dead coils")
+        nb = float(m["dead_coils"])
+        n1 = float(m.get("low_pitch_coils", 0.0))
+        if m.get("type") == "two-step" and "low_pitch_coils" not in m:
+            raise InputError(f"{coils[0]} of a two-step spring needs low_pitch_coils (the closely wound coils)")
+        totals = {}
+        for k in coils:
+            v = m.pop(k)
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise InputError(f"{k} = {v!r} must be a number of coils")
+            totals[k] = float(v) + (2 * nb if k == "active_coils" else 0.0)
+        if len(totals) == 2 and abs(totals["total_coils"] - totals["active_coils"]) > 1e-9:
+            raise InputError(
+                f"total_coils = {totals['total_coils']:g} and active_coils = {totals['active_coils'] - 2 * nb:g} "
+                f"disagree: with {nb:g} dead coil(s) per end the total is the active coils + {2 * nb:g}; give one of them"
+            )
+        n2 = next(iter(totals.values())) - n1
+        if "high_pitch_coils" in m and abs(float(m["high_pitch_coils"]) - n2) > 1e-9:
+            raise InputError(
+                f"high_pitch_coils = {m['high_pitch_coils']!r} disagrees with {' and '.join(coils)} "
+                f"(which give high_pitch_coils = {n2:g}); give one of them"
+            )
+        m["high_pitch_coils"] = n2
+        m.setdefault("low_pitch_coils", 0.0)
+    if "load_points" in m:
+        m["load_points"] = _load_points(m["load_points"])
+    return m
+
+
+def _load_points(value) -> str:
+    """``[{ length, force, tolerance }, ...]`` -> ``"table: L F tol; ..."`` in SI (tolerance in N, -1: none)."""
+    from ..core.units import to_si
+
+    if isinstance(value, str):
+        return value
+    if not isinstance(value, list) or not value:
+        raise InputError(
+            f'load_points = {value!r} must be an array of tables, e.g. [{{ length = "38 mm", force = "250 N", '
+            'tolerance = "5 %" }]'
+        )
+    rows = []
+    for i, row in enumerate(value):
+        if not isinstance(row, dict):
+            raise InputError(f"load_points[{i}] = {row!r} must be a table with length, force and tolerance")
+        unknown = sorted(set(row) - {"length", "force", "tolerance"})
+        if unknown or "length" not in row or "force" not in row:
+            raise InputError(
+                f"load_points[{i}] has "
+                + (f"unknown key(s) {', '.join(unknown)}" if unknown else "no length or no force")
+                + ": its keys are length, force and (optionally) tolerance"
+            )
+        length = to_si(row["length"], "m", f"load_points[{i}].length")
+        force = to_si(row["force"], "N", f"load_points[{i}].force")
+        if not (length > 0 and force > 0):
+            raise InputError(f"load_points[{i}]: length and force must be positive")
+        tol = -1.0
+        if "tolerance" in row:
+            t = row["tolerance"]
+            try:
+                tol = to_si(t, "N", f"load_points[{i}].tolerance")
+            except InputError:
+                tol = to_si(t, "", f"load_points[{i}].tolerance") * force  # a fraction: "5 %"
+            if not tol > 0:
+                raise InputError(f"load_points[{i}].tolerance = {t!r} must be positive (in % of the force or in N)")
+        rows.append(f"{length!r} {force!r} {tol!r}")
+    return "table: " + "; ".join(rows)

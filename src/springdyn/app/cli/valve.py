@@ -54,6 +54,17 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_params)
 
+    p = vsub.add_parser(
+        "calibrate", help="fit the shear modulus or the active coils to the drawing's load points (load_points)"
+    )
+    p.add_argument("spring", metavar="SPRING.toml")
+    p.add_argument(
+        "--fit", choices=("shear_modulus", "active_coils"), default="shear_modulus", help="what to fit (default G)"
+    )
+    p.add_argument("--out", metavar="FILE.toml", help="write the calibrated definition there")
+    p.add_argument("--json", action="store_true", help="print JSON (SI values)")
+    p.set_defaults(func=cmd_calibrate)
+
     p = vsub.add_parser("curve", help="static force and tangent stiffness vs spring length")
     p.add_argument("spring", metavar="SPRING.toml")
     _add_model_option(p)
@@ -301,7 +312,81 @@ def cmd_params(args) -> int:
         unit, display, doc = PARAMETER_UNITS[key]
         rows.append((key, format_quantity(value, unit, display), doc))
     print(f"{args.spring}: {spring.type} valve spring, {spring.spring_model.description}")
+    print(
+        f"coils: {spring.total_coils:g} total, {spring.active_coils:g} active ({spring.dead_coils:g} dead per end); "
+        f"solid length {spring.solid_length * 1e3:.3f} mm"
+        + (f" (EN 13906-1, ends {spring.end_type})" if spring.end_type else " (the MMS document's Dw (N1 + N2 + 0.5))")
+    )
     print_table(rows, headers=("parameter", "value", "meaning"))
+    if spring.load_points:
+        from springdyn.valve.calibrate import load_point_check
+
+        _print_load_points(load_point_check(spring))
+    return 0
+
+
+def _print_load_points(rows) -> None:
+    """The drawing's load points against the model's static forces."""
+    print("load points of the drawing against the model's static force:")
+    print_table(
+        [
+            (
+                f"{r['length_m'] * 1e3:.3f}",
+                f"{r['force_N']:.1f}",
+                f"{r['model_force_N']:.1f}",
+                f"{r['deviation_N']:+.1f} ({r['deviation_percent']:+.2f} %)",
+                "-" if r["tolerance_N"] is None else f"+-{r['tolerance_N']:.1f}",
+                {None: "-", True: "ok", False: "OUTSIDE"}[r["within_tolerance"]],
+            )
+            for r in rows
+        ],
+        headers=("length [mm]", "drawing [N]", "model [N]", "deviation [N]", "tolerance [N]", ""),
+    )
+
+
+def cmd_calibrate(args) -> int:
+    from springdyn.core.io import atomic_open, check_output_file, dumps_toml
+    from springdyn.core.params import load_toml
+    from springdyn.valve.calibrate import calibrate
+
+    spring = _spring(args)
+    out = check_output_file(args.out, "--out") if args.out else None
+    with as_options(fit="--fit"):
+        res = calibrate(spring, args.fit)
+    if args.json:
+        print_json({k: v for k, v in res.items() if k != "spring"})
+    else:
+        unit = ("Pa", "GPa") if args.fit == "shear_modulus" else ("", None)
+        print(
+            f"{args.fit}: {format_quantity(res['before'], *unit)} -> {format_quantity(res['after'], *unit)} "
+            f"(rms deviation over tolerance {res['rms_weighted_residual']:.3g})"
+        )
+        print("before:")
+        _print_load_points(res["load_points_before"])
+        print("after:")
+        _print_load_points(res["load_points_after"])
+    if out is not None:
+        doc = load_toml(args.spring)
+        table = dict(doc["spring"])
+        if args.fit == "shear_modulus":
+            table["shear_modulus"] = f"{res['after'] / 1e9:.6g} GPa"
+        else:
+            key = next((k for k in ("active_coils", "total_coils") if k in table), "high_pitch_coils")
+            value = res["spring"].active_coils if key == "active_coils" else res["spring"].total_coils
+            table[key] = round(value if key != "high_pitch_coils" else res["spring"].high_pitch_coils, 6)
+        doc["spring"] = table
+        header = (
+            f"{args.spring} calibrated by springdyn valve calibrate --fit {args.fit}: "
+            f"{res['before']:.6g} -> {res['after']:.6g}\n"
+            + "\n".join(
+                f"load point {r['length_m'] * 1e3:.4g} mm: drawing {r['force_N']:.2f} N, model {r['model_force_N']:.2f} N "
+                f"({r['deviation_percent']:+.2f} %)"
+                for r in res["load_points_after"]
+            )
+        )
+        with atomic_open(out, "w", encoding="utf-8") as fh:
+            fh.write(dumps_toml(doc, header))
+        print(f"wrote {out}")
     return 0
 
 
@@ -446,7 +531,9 @@ def cmd_design(args) -> int:
         f"Wahl k = {fig['wahl_factor']:.4f}"
     )
     print(
-        f"solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm, spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g"
+        f"coils: {fig['total_coils']:g} total, {fig['active_coils']:g} active ({fig['dead_coils_per_end']:g} dead per end); "
+        f"solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm ({fig['solid_length_source']}); "
+        f"spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g"
     )
     rows = []
     for state in ("installed", "open", "coil_contact"):
@@ -472,6 +559,8 @@ def cmd_design(args) -> int:
         )
     if "coil_contact_note" in fig:
         print(f"note: {fig['coil_contact_note']}")
+    if "load_points" in fig:
+        _print_load_points(fig["load_points"])
     if "fatigue" in fig:
         f = fig["fatigue"]
         print(

@@ -365,8 +365,10 @@ class SpringModel:
         Returns
         -------
         dict
-            ``spring_index``, ``bergstraesser_factor``, ``wahl_factor``, ``solid_length_m``,
-            ``spring_mass_kg``, ``rate_free_N_per_m`` and, per state (``installed``,
+            ``spring_index``, ``bergstraesser_factor``, ``wahl_factor``, ``solid_length_m``
+            (and its ``solid_length_source``), ``total_coils``, ``active_coils``,
+            ``dead_coils_per_end``, ``load_points`` (with load points,
+            :func:`springdyn.valve.calibrate.load_point_check`), ``spring_mass_kg``, ``rate_free_N_per_m`` and, per state (``installed``,
             ``open`` if lift is given, ``coil_contact``): ``length_m``, ``force_N``,
             ``shear_stress_Pa`` (Bergstraesser-corrected), ``surge_frequency_Hz`` (first
             mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
@@ -387,7 +389,15 @@ class SpringModel:
             spring_index=c,
             bergstraesser_factor=kb,
             wahl_factor=design.wahl_factor(c),
-            solid_length_m=p["Lc"],
+            solid_length_m=self.spring.solid_length,
+            solid_length_source=(
+                f"EN 13906-1, ends {self.spring.end_type}"
+                if self.spring.end_type
+                else "the MMS document, Dw (N1 + N2 + 0.5)"
+            ),
+            total_coils=self.spring.total_coils,
+            active_coils=self.spring.active_coils,
+            dead_coils_per_end=self.spring.dead_coils,
             spring_mass_kg=p["M"],
             rate_free_N_per_m=p["K1"],
             surge_frequency_free_Hz=p["f1"],
@@ -400,12 +410,17 @@ class SpringModel:
             states["open"] = self.spring.installed_length - lift
             out["coil_bind"] = check_coil_bind(self.spring, lift, f"lift = {format_mm(lift)}")
         states["coil_contact"] = self.length_at_force(p["Fcon"])
-        if states["coil_contact"] < p["Lc"] - 1e-9:
+        lc = out["solid_length_m"]
+        if states["coil_contact"] < lc - 1e-9:
             out["coil_contact_note"] = (
                 f"the {self.name} model's coil-contact force Fcon = {p['Fcon']:.4g} N is reached at "
-                f"{format_mm(states['coil_contact'])}, {format_mm(p['Lc'] - states['coil_contact'])} below the solid "
-                f"length {format_mm(p['Lc'])}: its forces between the two lengths are not those of a solid spring"
+                f"{format_mm(states['coil_contact'])}, {format_mm(lc - states['coil_contact'])} below the solid "
+                f"length {format_mm(lc)}: its forces between the two lengths are not those of a solid spring"
             )
+        if self.spring.load_points:
+            from ..calibrate import load_point_check
+
+            out["load_points"] = load_point_check(self.spring)
         for name, length in states.items():
             force = float(self.static_force(length)) if name != "open" else float(self._open_force(length, lift))
             f_surge = float(self.modes(length, 1)[0])
