@@ -134,6 +134,9 @@ FACTORIES = {
         points_per_revolution=180,
         quiet=True,
     ),
+    "springdyn.valve.cam_analysis.CamAnalysis": lambda: importlib.import_module(
+        "springdyn.valve.cam_analysis"
+    ).analyse_cam(_valve_cam(), _valve_train(), engine_rpm=6000.0),
     "springdyn.valve.frf.FrequencyResponse": lambda: importlib.import_module("springdyn.valve.frf").dynamic_stiffness(
         _valve_spring(), np.linspace(50.0, 2000.0, 40)
     ),

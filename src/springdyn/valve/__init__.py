@@ -8,6 +8,8 @@ The definitions
 
 - :mod:`~springdyn.valve.spring` -- :class:`ValveSpring`, the ``[spring]`` table and its checks;
 - :mod:`~springdyn.valve.cam` -- cam lift laws and measured lift tables (``[cam]``);
+- :mod:`~springdyn.valve.cam_analysis` -- the cam checked first: lift, velocity,
+  acceleration, jerk, timing at check heights, lobe centre, ramps;
 - :mod:`~springdyn.valve.valvetrain` -- layouts, masses, stiffnesses, lash (``[valve_train]``).
 
 The physics, one place per equation

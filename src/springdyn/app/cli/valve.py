@@ -55,6 +55,19 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_params)
 
     p = vsub.add_parser(
+        "cam", help="the cam first: lift, velocity, acceleration, jerk, timing at 0.050 in and 1 mm, lobe centre, ramps"
+    )
+    p.add_argument("cam", metavar="CAM.toml", help="file with a [cam] table")
+    p.add_argument("--valve-train", metavar="VT.toml", help="at the valve: the train's rocker ratio and lash")
+    p.add_argument(
+        "--engine-rpm",
+        metavar="RPM",
+        help="engine speed (four-stroke): crank-angle axes and the derivatives in time (bare number: rpm)",
+    )
+    add_output_options(p)
+    p.set_defaults(func=cmd_cam)
+
+    p = vsub.add_parser(
         "calibrate", help="fit the shear modulus or the active coils to the drawing's load points (load_points)"
     )
     p.add_argument("spring", metavar="SPRING.toml")
@@ -342,6 +355,75 @@ def _print_load_points(rows) -> None:
         ],
         headers=("length [mm]", "drawing [N]", "model [N]", "deviation [N]", "tolerance [N]", ""),
     )
+
+
+def cmd_cam(args) -> int:
+    from springdyn.valve.cam import Cam
+    from springdyn.valve.cam_analysis import analyse_cam
+    from springdyn.valve.valvetrain import ValveTrain
+
+    cam = Cam.from_toml(args.cam)
+    vt = ValveTrain.from_toml(args.valve_train) if args.valve_train else None
+    rpm = (
+        quantity(args.engine_rpm, "rad/s", "--engine-rpm", bare_unit="rpm") * 60 / (2 * 3.141592653589793)
+        if args.engine_rpm
+        else None
+    )
+    with as_options(engine_rpm="--engine-rpm"):
+        res = analyse_cam(cam, vt, rpm)
+    if emit(res, args, json_data=dict(res.summary)):
+        return 0
+    s = res.summary
+    crank = rpm is not None
+    ang = "crank" if crank else "cam"
+
+    def a(key):  # an angle in the axis the user asked for
+        v = s.get(key.replace("_deg", "_crank_deg") if crank else key)
+        return "-" if v is None else f"{v:.2f}"
+
+    print(
+        f"{cam.law} cam at the {'valve' if vt is not None else 'lobe'}: max lift {s['max_lift_m'] * 1e3:.3f} mm at "
+        f"{s['max_lift_cam_angle_deg']:.2f} cam deg"
+        + (f" (rocker ratio {s['rocker_ratio']:g}, lash {s['lash_m'] * 1e3:.3g} mm)" if vt is not None else "")
+    )
+    rows = [
+        ("event (lift > 0)", a("event_opening_deg"), a("event_closing_deg"), f"{s.get('event_duration_deg', 0):.2f}")
+    ]
+    for key, label in (("0050in", "0.050 in"), ("1mm", "1 mm")):
+        if s.get(f"duration_at_{key}_deg") is not None:
+            rows.append(
+                (
+                    f"at {label}",
+                    a(f"opening_at_{key}_deg"),
+                    a(f"closing_at_{key}_deg"),
+                    f"{s[f'duration_at_{key}_deg']:.2f}",
+                )
+            )
+        else:
+            rows.append((f"at {label}", "-", "-", "lift below the check height"))
+    print_table(rows, headers=("timing", f"opens [{ang} deg]", f"closes [{ang} deg]", "duration [cam deg]"))
+    print(f"lobe centre (mid-way between the 1 mm points): {a('lobe_centre_deg')} {ang} deg")
+    print(
+        f"velocity {s['min_velocity_m_per_rad'] * 1e3:.3f} to {s['max_velocity_m_per_rad'] * 1e3:.3f} mm/rad, "
+        f"acceleration {s['min_acceleration_m_per_rad2'] * 1e3:.3f} to {s['max_acceleration_m_per_rad2'] * 1e3:.3f} "
+        f"mm/rad^2, jerk up to {s['max_abs_jerk_m_per_rad3'] * 1e3:.2f} mm/rad^3"
+    )
+    if crank:
+        print(
+            f"at {rpm:g} engine rpm: velocity up to {s['max_velocity_m_per_s']:.3f} m/s, acceleration "
+            f"{s['min_acceleration_m_per_s2']:.0f} to {s['max_acceleration_m_per_s2']:.0f} m/s^2"
+        )
+    if "ramp_height_m" in s:
+        print(
+            f"ramps: {s['ramp_height_m'] * 1e3:.3f} mm over {s['ramp_duration_deg']:.2f} cam deg, "
+            f"{s['ramp_velocity_m_per_rad'] * 1e3:.4f} mm/rad"
+        )
+    for note in s.get("notes", []):
+        print("note: " + note)
+    for option in ("csv", "plot"):
+        if getattr(args, option):
+            print(f"wrote {getattr(args, option)}")
+    return 0
 
 
 def cmd_calibrate(args) -> int:
