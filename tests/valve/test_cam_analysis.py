@@ -75,3 +75,37 @@ def test_cli_cam(tmp_path, capsys):
     s = json.loads(capsys.readouterr().out)
     assert s["duration_at_1mm_deg"] == pytest.approx(89.15, abs=0.01)
     assert main(["valve", "cam", "examples/valve/cam_345.toml", "--engine-rpm", "-5"]) == 2
+
+
+def test_asymmetric_lobe_has_its_flanks_own_durations_and_laws():
+    """Opening flank 50 deg of 3-4-5, closing flank 70 deg of cycloidal: the nose at 50 deg,
+    lift and velocity continuous there (both laws end at rest, the acceleration at zero),
+    and the closing flank's 1 mm point where the cycloidal law's closed form puts it."""
+    cam = Cam(
+        law="3-4-5",
+        lift=L,
+        duration=math.radians(120),
+        closing_duration=math.radians(70),
+        closing_law="cycloidal",
+    )
+    assert cam.flank_durations == pytest.approx((math.radians(50), math.radians(70)))
+    th = np.radians([49.999, 50.0, 50.001])
+    h, dh, ddh = cam.evaluate(th)
+    assert h[1] == pytest.approx(L) and np.max(np.abs(dh)) < 1e-7 and np.max(np.abs(ddh)) < 1e-3
+    s = analyse_cam(cam).summary
+    u = brentq(lambda x: L * (x - math.sin(2 * math.pi * x) / (2 * math.pi)) - 1e-3, 0.0, 0.5)
+    assert s["closing_at_1mm_deg"] == pytest.approx(120.0 - math.degrees(u * math.radians(70)), abs=5e-3)
+    u = brentq(lambda x: L * p345(x) - 1e-3, 0.0, 0.5)
+    assert s["opening_at_1mm_deg"] == pytest.approx(math.degrees(u * math.radians(50)), abs=5e-3)
+    # symmetric by default: half the duration each, bit for bit
+    sym = Cam(law="3-4-5", lift=L, duration=2 * HALF, closing_duration=HALF)
+    np.testing.assert_array_equal(sym.evaluate(th)[0], CAM.evaluate(th)[0])
+
+
+def test_closing_flank_settings_are_checked():
+    from springdyn.core.errors import InputError
+
+    with pytest.raises(InputError, match="closing_duration = 130 deg must lie between 0 and the duration 120 deg"):
+        Cam(law="3-4-5", lift=L, duration=2 * HALF, closing_duration=math.radians(130))
+    with pytest.raises(InputError, match='closing_law = "table" is not a flank law'):
+        Cam(law="3-4-5", lift=L, duration=2 * HALF, closing_law="table")

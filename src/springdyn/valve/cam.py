@@ -165,6 +165,16 @@ class Cam(Parameters):
         "m", "height of each constant-velocity ramp", display="mm", default=0.0, nonnegative=True
     )
     ramp_duration: float = param("rad", "cam angle of each ramp", display="deg", default=0.0, nonnegative=True)
+    closing_duration: float = param(
+        "rad",
+        "cam angle of the closing flank, the fall from the nose (default: half the duration, a symmetric lobe); "
+        "the opening flank takes the rest of the duration",
+        display="deg",
+        default=None,
+    )
+    closing_law: str = param(
+        None, "lift law of the closing flank (default: law)", kind="str", choices=("", *LAWS), default=""
+    )
     file: str = param(None, 'lift table CSV (law = "table")', kind="str", default="")
     table_angle: np.ndarray = field(default=None, repr=False, compare=False)
     table_lift: np.ndarray = field(default=None, repr=False, compare=False)
@@ -208,6 +218,13 @@ class Cam(Parameters):
             raise InputError(
                 f"ramp_height = {format_mm(self.ramp_height)} must be smaller than lift = {format_mm(self.lift)}"
             )
+        if self.closing_duration is not None and not 0 < self.closing_duration < self.duration:
+            raise InputError(
+                f"closing_duration = {math.degrees(self.closing_duration):.6g} deg must lie between 0 and the duration "
+                f"{deg:.6g} deg (the opening flank takes the rest)"
+            )
+        if self.closing_law == "table":
+            raise InputError('closing_law = "table" is not a flank law; a measured lift table is law = "table"')
 
     @classmethod
     def _prepare(cls, mapping: dict, *, base_dir: Path | str | None = None, **context) -> dict:
@@ -307,12 +324,14 @@ class Cam(Parameters):
             return sp(th), sp(th, 1), sp(th, 2)
         th = np.mod(theta, TWO_PI)
         phi_r, h_r = self.ramp_duration, self.ramp_height
-        half = self.duration / 2.0
+        t_close = self.flank_durations[1]
+        t_open = self.duration - t_close
         total = self.duration + 2 * phi_r
-        # fold the fall onto the rise: the event is symmetric about total/2
-        mirrored = th > total / 2.0
-        s = np.where(mirrored, total - th, th)
-        sign = np.where(mirrored, -1.0, 1.0)
+        # the fall is the mirror image of a rise over its own duration, from the event's end
+        closing = th > phi_r + t_open
+        s = np.where(closing, total - th, th)
+        sign = np.where(closing, -1.0, 1.0)
+        half = np.where(closing, t_close, t_open)
         h = np.zeros_like(s)
         dh = np.zeros_like(s)
         ddh = np.zeros_like(s)
@@ -327,6 +346,9 @@ class Cam(Parameters):
         main = inside & (s >= phi_r)
         u = np.clip((s - phi_r) / half, 0.0, 1.0)
         p, dp, ddp = rise_law(self.law, u)
+        if self.closing_law and self.closing_law != self.law:
+            pc, dpc, ddpc = rise_law(self.closing_law, u)
+            p, dp, ddp = np.where(closing, pc, p), np.where(closing, dpc, dp), np.where(closing, ddpc, ddp)
         span = self.lift - h_r
         if v_r > 0:
             g, dg, ddg = _g(u)
@@ -335,6 +357,12 @@ class Cam(Parameters):
         dh = np.where(main, span * dp / half, dh)
         ddh = np.where(main, span * ddp / half**2, ddh)
         return h, sign * dh, ddh
+
+    @property
+    def flank_durations(self) -> tuple[float, float]:
+        """Cam angles [rad] of the opening and the closing flank (without the ramps)."""
+        close = self.duration / 2.0 if self.closing_duration is None else self.closing_duration
+        return self.duration - close, close
 
     def sampled(self, samples: int) -> tuple:
         """Lift [m], ``dh/dtheta`` [m/rad], ``d2h/dtheta2`` [m/rad^2] at ``samples`` equal steps
