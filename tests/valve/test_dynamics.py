@@ -323,3 +323,37 @@ def test_kernel_outputs_equal_numpy_postprocessing(one_step):
     np.testing.assert_allclose(e[:, 0:6].T, r["force"], rtol=1e-7, atol=1e-6)
     np.testing.assert_allclose(e[:, 14], r["cam_contact_force"], rtol=1e-7, atol=1e-6)
     np.testing.assert_allclose(e[:, 17:22].T, r["displacement"], rtol=1e-7, atol=1e-12)
+
+
+def test_speeds_beyond_reason_are_refused_or_flagged(capsys):
+    """A cam event shorter than one period of the spring's first surge mode (450 Hz: 2.2 ms,
+    a 120-deg event at 9000 cam rpm) is no valve-train operating point: refused with the
+    figures and, far above any engine, a typing slip suggested; computed and flagged on request."""
+    from springdyn.app.cli.main import main
+    from springdyn.valve import sweep
+
+    s = ValveSpring.example("one-step")
+    with pytest.raises(
+        InputError, match=r"cam_rpm = 60000: the cam event of 120 deg lasts 0.333 ms.*did you mean 6000\?"
+    ):
+        simulate(s, CAM, 60000.0)
+    with pytest.raises(InputError, match=r"cam_rpm = 9500.*\(2 speeds of the range are beyond it\)"):
+        sweep(s, CAM, [3000.0, 9500.0, 11000.0])
+    with pytest.warns(UserWarning, match="coil bind"):
+        sim = simulate(s, CAM, 20000.0, 2, allow_extreme_speeds=True)
+    assert sim.summary["notes"][0].startswith("EXTREME SPEED, computed on request: cam_rpm = 20000")
+    assert (
+        main(
+            [
+                "valve",
+                "simulate",
+                "examples/valve/one_step_spring.toml",
+                "--cam",
+                "examples/valve/cam_345.toml",
+                "--cam-rpm",
+                "60000",
+            ]
+        )
+        == 2
+    )
+    assert "did you mean 6000?" in capsys.readouterr().err

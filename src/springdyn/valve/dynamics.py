@@ -56,6 +56,7 @@ def simulate(
     method: str | None = None,
     periodicity_tol: float = PERIODICITY_TOL,
     max_revolutions: int = MAX_REVOLUTIONS,
+    allow_extreme_speeds: bool = False,
 ) -> Simulation:
     """Simulate the valve spring (or valve train) driven by the cam.
 
@@ -99,6 +100,10 @@ def simulate(
         Periodic steady state: tolerance [fraction of Fset] (default 0.2 %).
     max_revolutions : int
         Periodic steady state: the most revolutions [-].
+    allow_extreme_speeds : bool
+        Compute a speed at which the cam event is shorter than one period of the spring's
+        first surge mode (refused otherwise, :meth:`SimulationSetup.check_speeds`), flagged
+        in the summary's notes.
 
     Raises
     ------
@@ -143,6 +148,7 @@ def simulate(
         setup = prepare(spring, cam, valve_train)
         if cam.law == "table":
             cam.check_resolution(cam_rpm, float(spring.modes(spring.installed_length, 1)[0]))
+    extreme = setup.check_speeds(cam_rpm, allow_extreme_speeds)
     omega = rpm_to_omega(cam_rpm)
     period = 2 * math.pi / omega
     n = points_per_revolution
@@ -160,6 +166,7 @@ def simulate(
         sim.monitor = _monitor_record(res, 0, omega, done)
         if periodic and not res["settled"][0]:
             sim.band = _band(res, 0)
+        sim.flags = extreme
         if check_elements:
             _check_element_count(
                 sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol, chosen, run
@@ -167,6 +174,7 @@ def simulate(
         return sim
     sim = _simulate_scipy(setup, cam_rpm, revolutions, most, periodicity_tol, n, rtol, atol)
     sim.periodicity_tol = periodicity_tol
+    sim.flags = extreme
     return sim
 
 

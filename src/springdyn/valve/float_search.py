@@ -55,6 +55,7 @@ def float_speed(
     periodicity_tol: float = PERIODICITY_TOL,
     max_revolutions: int = MAX_REVOLUTIONS,
     workers: int | None = None,
+    allow_extreme_speeds: bool = False,
 ) -> FloatSpeedResult:
     """Float speed: the lowest cam speed from which the valve separates over the nose at
     every higher scanned speed.
@@ -86,6 +87,9 @@ def float_speed(
         Periodic steady state: the most revolutions per speed [-].
     workers : int, optional
         Local threads of the scan [-].
+    allow_extreme_speeds : bool
+        Scan speeds at which the cam event is shorter than one period of the spring's first
+        surge mode (refused otherwise).
 
     Returns
     -------
@@ -120,6 +124,7 @@ def float_speed(
         points_per_revolution=points_per_revolution,
         periodicity_tol=periodicity_tol,
         max_revolutions=max_revolutions,
+        allow_extreme_speeds=allow_extreme_speeds,
     )
     scan = sweep(spring, cam, rpms, quiet=progress_quiet, workers=workers, **run)
     table = scan.summary_table()

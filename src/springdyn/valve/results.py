@@ -6,6 +6,7 @@ simulated revolution under cam drive, with its summary), :class:`FloatSpeedResul
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -128,6 +129,8 @@ class Simulation(Result):
     #: extreme's smallest and largest value over the last revolutions, name -> (lo, hi)
     #: (names of :data:`springdyn.valve.engine.EXT`); None when periodic.
     band: dict | None = None
+    #: Notes on how the run was asked for (a speed beyond reason computed on request).
+    flags: list = dataclasses.field(default_factory=list)
 
     #: Change of the peak end forces with half the elements [fraction of Fset] above which
     #: the clash forces are flagged as not converged.
@@ -391,7 +394,7 @@ def _summarise(sim: Simulation) -> dict:
         max_static_force_N=float(sim.static_force.max()),
         min_static_force_N=float(sim.static_force.min()),
     )
-    notes = []
+    notes = list(sim.flags)
     if sim.coil_bind is not None:
         cb = sim.coil_bind
         s.update(cb)

@@ -59,6 +59,12 @@ DEFAULT_ATOL = 1e-9
 #: within 0.2 % in 4-5 revolutions (docs/valve.md, "Periodic steady state").
 TRAIN_RTOL = 1e-8
 TRAIN_ATOL = 1e-11
+#: The fewest periods of the spring's first surge mode a cam event may last for its speed to be
+#: an operating point (:meth:`SimulationSetup.check_speeds`).
+MIN_EVENT_SURGE_PERIODS = 1.0
+#: Cam speed [rev/min] above any engine's (a racing engine's 20 000 rpm is 10 000 cam rpm): a
+#: refused speed above it is likely a typing slip, and the message suggests a tenth of it.
+MAX_CAM_RPM = 12000.0
 #: Cam table resolution for the engine (samples per revolution, 0.05 deg).
 CAM_SAMPLES = 7200
 #: Maximum step [fraction of a revolution] so that no step can jump over a short event.
@@ -118,6 +124,49 @@ class SimulationSetup:
         force = np.empty_like(dl)
         series_force_compiled(dl, sp.spring_model.chain.laws, force, *sp.spring_model.force_table)
         return force.reshape(lift.shape)
+
+    def check_speeds(self, cam_rpm, allow_extreme: bool = False) -> list[str]:
+        """Refuse cam speeds outside physical reason: the cam event shorter than one period
+        of the spring's first surge mode at installed length (a surge margin below
+        :data:`MIN_EVENT_SURGE_PERIODS` periods per event; valve trains keep about 10 and more
+        cam orders below f1).  With ``allow_extreme`` such speeds run and the returned notes
+        flag them.
+
+        Parameters
+        ----------
+        cam_rpm : float or array_like
+            Cam speeds [rev/min].
+        allow_extreme : bool
+            Compute them anyway [-].
+
+        Returns
+        -------
+        list of str
+            Notes for the speeds computed beyond reason (empty when none).
+        """
+        rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+        h = self.table.h
+        event = 2.0 * math.pi * float(np.count_nonzero(h > 1e-9 * float(h.max()))) / h.size
+        f1 = float(self.spring.spring_model.modes(self.spring.installed_length, 1)[0])
+        t_event = event / (rpm * 2.0 * math.pi / 60.0)
+        bad = rpm[t_event * f1 < MIN_EVENT_SURGE_PERIODS]
+        if not bad.size:
+            return []
+        r = float(bad[0])
+        t = event / (r * 2.0 * math.pi / 60.0)
+        what = (
+            f"cam_rpm = {r:g}: the cam event of {math.degrees(event):.0f} deg lasts {t * 1e3:.3g} ms, shorter than one "
+            f"period of the spring's first surge mode ({f1:.0f} Hz, {1e3 / f1:.3g} ms): no valve spring follows such a "
+            "cam (valve trains run with the surge frequency some 10 cam orders or more above the cam speed)"
+        )
+        if not allow_extreme:
+            raise InputError(
+                what
+                + (f"; did you mean {r / 10:g}?" if r > MAX_CAM_RPM else "")
+                + " Set allow_extreme_speeds (--allow-extreme-speeds) to compute it anyway, flagged"
+                + (f" ({bad.size} speeds of the range are beyond it)" if bad.size > 1 else "")
+            )
+        return [f"EXTREME SPEED, computed on request: {what}" + (f" ({bad.size} speeds)" if bad.size > 1 else "")]
 
     def static_force_along_cam(self, points: int) -> np.ndarray:
         """Static (massless) force [N] of the spring alone at the cam angles ``2 pi j / points``,

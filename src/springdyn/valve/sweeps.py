@@ -275,6 +275,8 @@ class SpeedSweep(Result):
     skipped: list  # (value, reason) of invalid design values
     #: The tolerance [fraction of Fset] under which a speed's last two revolutions repeat.
     periodicity_tol: float = PERIODICITY_TOL
+    #: Notes on how the sweep was asked for (speeds beyond reason computed on request).
+    flags: list = dataclasses.field(default_factory=list)
 
     title = "valve spring speed sweep"
 
@@ -326,7 +328,7 @@ class SpeedSweep(Result):
         s["peak_shear_stress_Pa"] = float(np.max(t["peak_shear_stress_Pa"]))
         bad = np.flatnonzero(~t["wire_stress_ok"])
         s["speeds_with_wire_overstress"] = int(bad.size)
-        notes = []
+        notes = list(self.flags)
         if bad.size:
             k = int(bad[np.argmax(t["peak_shear_stress_Pa"][bad])])
             notes.append(
@@ -717,6 +719,7 @@ def sweep(
     quiet: bool = True,
     periodicity_tol: float = PERIODICITY_TOL,
     max_revolutions: int = MAX_REVOLUTIONS,
+    allow_extreme_speeds: bool = False,
 ) -> SpeedSweep:
     """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
 
@@ -756,6 +759,9 @@ def sweep(
     max_revolutions : int
         Periodic steady state: the most revolutions per speed [-]; a speed that does not
         settle is marked (``periodic`` False) and reports bands.
+    allow_extreme_speeds : bool
+        Compute speeds at which the cam event is shorter than one period of the spring's
+        first surge mode (refused otherwise), flagged in the summary's notes.
     """
     try:
         cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
@@ -775,6 +781,9 @@ def sweep(
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
         raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
     springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
+    flags = []
+    for setup in setups:
+        flags += [f for f in setup.check_speeds(cam_rpm, allow_extreme_speeds) if f not in flags]
     points = int(points_per_revolution)
     theta = output_angles(points)
     lift = cam.lift_at(theta)
@@ -820,6 +829,7 @@ def sweep(
         data,
         skipped,
         periodicity_tol,
+        flags,
     )
 
 

@@ -35,6 +35,7 @@ RUN_OPTIONS = dict(
     revolutions="--revolutions",
     periodicity_tol="--periodicity-tol",
     max_revolutions="--max-revolutions",
+    allow_extreme_speeds="--allow-extreme-speeds",
     rtol="--rtol",
     atol="--atol",
     points_per_revolution="--points-per-revolution",
@@ -257,6 +258,11 @@ def _add_revolution_options(p) -> None:
         metavar="N",
         help=f"periodic steady state: at most N revolutions per speed (default {MAX_REVOLUTIONS})",
     )
+    p.add_argument(
+        "--allow-extreme-speeds",
+        action="store_true",
+        help="compute speeds at which the cam event is shorter than one surge period (refused otherwise), flagged",
+    )
 
 
 def _run_length(args) -> dict:
@@ -267,6 +273,7 @@ def _run_length(args) -> dict:
         revolutions=args.revolutions,
         periodicity_tol=quantity(args.periodicity_tol, "", "--periodicity-tol"),
         max_revolutions=args.max_revolutions,
+        allow_extreme_speeds=args.allow_extreme_speeds,
     )
 
 
@@ -740,9 +747,12 @@ def cmd_simulate(args) -> int:
     )
     if s["coil_contact"]:
         for ev in s["coil_contact"]:
+            els = ev["elements"]
+            where = ", ".join(els) if len(els) <= 4 else f"{len(els)} elements, from {els[0]} to {els[-1]}"
             print(
-                f"coil contact {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg in {', '.join(ev['elements'])}, "
-                f"peak {ev['peak_contact_force_N']:.1f} N"
+                f"coil contact {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg in {where} (element number:name from the "
+                f"seat), peak element force {ev['peak_contact_force_N']:.1f} N"
+                + (", a clash" if ev.get("clash") else "")
             )
     else:
         print("no coil contact")
@@ -793,9 +803,8 @@ def cmd_simulate(args) -> int:
         f"peak {s['peak_shear_stress_Pa'] / 1e6:.0f} MPa in element {s['peak_shear_stress_element']}, limit "
         f"{s['shear_stress_limit_Pa'] / 1e6:.0f} MPa: " + ("ok" if s["wire_stress_ok"] else "OVERSTRESS")
     )
-    for note in s.get("notes", []):
-        if note.startswith(("NOT PERIODIC", "WIRE OVERSTRESS")):
-            print("note: " + note)
+    for note in s.get("notes", []):  # every caveat the JSON carries, in words
+        print("note: " + note)
     return 0
 
 
