@@ -36,6 +36,7 @@ def test_demo_report_is_complete(demo_dir):
         for uri in re.findall(r'src="data:image/png;base64,([^"]{16})', body):
             assert uri.startswith("iVBORw0KGgo"), anchor  # a PNG signature
     assert "float" in page.lower() and "constant force" in page and "identified" in page.lower()
+    assert "fail some criteria on purpose" in page  # the demo says its fails are intentional
     for anchor, family, body in sections:  # issue 25: the solid length is a criterion of every valve section
         if family == "valve":
             assert "coil-bind clearance at full lift" in body and "EN 13906-1 Sa" in body, anchor
@@ -171,3 +172,30 @@ def test_report_builds_for_documented_optional_cfcs_keys(tmp_path, change):
     sec = section_builder.section(model, source="def.toml", out_dir=out)
     assert sec.criteria and sec.findings and sec.figures
     assert any(c.passed is None for c in sec.criteria)  # the stress criterion says n/a, with a note
+
+
+def test_report_table_sets_the_engine_speeds_and_limits(tmp_path):
+    """A [report] table for an engine: the sweep spans its speeds, the criteria use its limits
+    and say so; the paragraph up front names the model the criteria use and its evidence."""
+    from springdyn.app.report.valve import ReportSettings, load, section
+
+    src = (ROOT / "examples" / "report" / "report_valve_two_step.toml").read_text()
+    f = tmp_path / "engine.toml"
+    f.write_text(
+        src + '\n[report]\nmin_engine_rpm = "2000 rpm"\nmax_engine_rpm = "5000 rpm"\nengine_rpm_step = "250 rpm"\n'
+        'models = "type-c"\nmin_surge_margin = 6\nmin_goodman_safety = 1.0\n'
+    )
+    import tomllib
+
+    d = load(tomllib.loads(f.read_text()), f)
+    assert d.settings.sweep_speeds[0] == pytest.approx(1000.0) and d.settings.sweep_speeds[-1] == pytest.approx(2500.0)
+    sec = section(d, source=str(f), out_dir=tmp_path / "out")
+    names = {c.name: c for c in sec.criteria}
+    surge = names["surge margin at 2500 cam rpm"]
+    assert surge.passed and "min_surge_margin" in surge.limit and surge.limit.startswith(">= 6")
+    assert any(n.startswith("coil clash, 1000-2500 cam rpm, Type C") for n in names)
+    assert sec.findings[0].startswith("The criteria below come from the Type C model")
+    with pytest.raises(InputError, match="max_engine_rpm"):
+        ReportSettings.from_dict({"min_engine_rpm": "6000 rpm", "max_engine_rpm": "5000 rpm"})
+    with pytest.raises(InputError, match=r"\[report\].*unknown key|unknown key.*max_engine_rmp"):
+        ReportSettings.from_dict({"max_engine_rmp": "5000 rpm"})

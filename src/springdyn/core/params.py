@@ -254,7 +254,7 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
 
 
 #: Every table a springdyn definition file may hold; any other table is an error.
-KNOWN_TABLES = ("spring", "cam", "valve_train", "cfcs", "lsd")
+KNOWN_TABLES = ("spring", "cam", "valve_train", "report", "cfcs", "lsd")
 #: Largest definition file springdyn reads [bytes]: definitions are a few kB.
 MAX_TOML_BYTES = 1_000_000
 
