@@ -45,6 +45,7 @@ PARAMETER_TABLES = {
     "spring": ("springdyn.valve.spring:ValveSpring", "valve_one_step.toml"),
     "cam": ("springdyn.valve.cam:Cam", "valve_cam_345.toml"),
     "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train_direct_acting.toml"),
+    "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
     "lsd": ("springdyn.lsd.parameters:LSDParameters", "lsd_type_c.toml"),
 }
@@ -76,6 +77,7 @@ CROSS_KEY_RULES = {
         ),
     ],
     "valve_train": [],
+    "report": [("`min_engine_rpm` < `max_engine_rpm`", {"min_engine_rpm": "9000 rpm"})],
     "cfcs": [
         ("`crank_length` < `coupler_length` (r2 < r3)", {"crank_length": "100 mm"}),
         (
@@ -334,6 +336,7 @@ def toml_reference() -> str:
         "spring": "`springdyn valve params/curve/modes/design/simulate/float/sweep`, `springdyn report`",
         "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
         "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",
+        "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",
         "lsd": "`springdyn lsd coefficients/rig`, `lsd identify --model`, `springdyn report`",
     }
