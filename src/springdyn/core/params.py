@@ -358,6 +358,13 @@ def load_toml(path: str | Path, section: str | None = None, *, allowed: tuple = 
     return doc[section]
 
 
+def _same(a, b) -> bool:
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):  # arrays
+        return False
+
+
 class Parameters:
     """Base of every parameter table (a frozen dataclass of :func:`param` fields).
 
@@ -390,6 +397,29 @@ class Parameters:
         for name in ("table", "examples", "default_example"):
             if name in cls.__dict__ and name in getattr(cls, "__annotations__", {}):  # pragma: no cover
                 raise TypeError(f"{cls.__name__}.{name} must not be annotated")
+        # the display repr, kept by the dataclass decorator (it does not replace a __repr__
+        # the class defines)
+        if "__repr__" not in cls.__dict__:
+            cls.__repr__ = Parameters._display_repr
+
+    def _display_repr(self) -> str:
+        """``Cam(law='3-4-5', lift='9 mm', duration='120 deg')``: the keys that differ from
+        their defaults, quantities in their display units (as a TOML table would say them)."""
+        parts = []
+        for f, meta in field_specs(type(self)):
+            value = getattr(self, f.name)
+            if f.default is not dataclasses.MISSING and _same(value, f.default):
+                continue
+            unitless = not (meta.get("unit") or meta.get("display"))
+            if meta.get("kind") == "quantity" and isinstance(value, (int, float)) and not isinstance(value, bool):
+                shown = f"{float(value):g}" if unitless else repr(describe_value(float(value), meta))
+                parts.append(f"{f.name}={shown}")
+            elif meta.get("kind") == "quantity_list" and isinstance(value, (list, tuple)) and not unitless:
+                shown = [describe_value(float(v), {**meta, "kind": "quantity"}) for v in value]
+                parts.append(f"{f.name}={shown!r}")
+            else:
+                parts.append(f"{f.name}={value!r}")
+        return f"{type(self).__name__}({', '.join(parts)})"
 
     def __post_init__(self):
         check_fields(self)
