@@ -35,5 +35,7 @@ def test_python_block_runs(info, code, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        warnings.filterwarnings("ignore", message="coil bind: .* less than the coil-bind clearance", category=UserWarning)
+        warnings.filterwarnings(
+            "ignore", message="coil bind: .* less than the coil-bind clearance", category=UserWarning
+        )
         exec(compiled, {"__name__": "__doc_block__"})

@@ -389,6 +389,7 @@ def test_cli_frf_modes_and_bad_elements(capsys, tmp_path):
     assert list(out) == ["frequency_Hz", "retainer_dynamic_stiffness_N_per_m", "seat_dynamic_stiffness_N_per_m"]
     assert len(out["frequency_Hz"]) == 10
     assert main(["valve", "frf", str(ex), "--frequency", "100:1000:100", "--csv", str(tmp_path / "f.csv")]) == 0
+    assert f"wrote {tmp_path / 'f.csv'}" in capsys.readouterr().out  # every written file is named
     header = (tmp_path / "f.csv").read_text().splitlines()[0].split(",")
     assert header == [
         "frequency_Hz",

@@ -15,6 +15,7 @@ import difflib
 import math
 import numbers
 import tomllib
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -248,9 +249,33 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
     try:
         return cls(**kwargs)
     except InputError as exc:
-        if source and not str(exc).startswith(where):
-            raise InputError(f"{where}{prefix}{exc}") from None
+        message = str(exc) + _bare_number_hint(cls, specs, mapping, kwargs)
+        if source and not message.startswith(where):
+            raise InputError(f"{where}{prefix}{message}") from None
+        if message != str(exc):
+            raise InputError(message) from None
         raise
+
+
+def _bare_number_hint(cls, specs, mapping, kwargs) -> str:
+    """When a bare number (read in SI) makes the table invalid and the same number in the
+    key's display unit makes it valid: ``"; a bare number is SI: did you mean '120 deg'?"``."""
+    for name, (_f, meta) in specs.items():
+        value = mapping.get(name)
+        display, unit = meta.get("display"), meta.get("unit")
+        if meta.get("kind") != "quantity" or isinstance(value, bool) or not isinstance(value, (int, float)):
+            continue
+        if not display or display == unit:
+            continue
+        try:
+            trial = {**kwargs, name: to_si(f"{value} {display}", unit, name)}
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                cls(**trial)
+        except (InputError, ValueError, TypeError):
+            continue
+        return f" (a bare number is read in SI: {name} = {value!r} is {value:g} {unit}; did you mean '{value:g} {display}'?)"
+    return ""
 
 
 #: Every table a springdyn definition file may hold; any other table is an error.

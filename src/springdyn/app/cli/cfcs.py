@@ -2,15 +2,15 @@
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import numpy as np
 
 from springdyn.app.cli.common import (
     add_output_options,
+    announce_written,
     as_options,
-    emit,
+    close_figure,
     parse_range,
     print_json,
     print_table,
@@ -43,11 +43,11 @@ _OPTIONS = dict(
 
 _CFG_HELP = f"mechanism TOML file with a [cfcs] table, or a built-in example ({', '.join(EXAMPLES)})"
 _TOGGLE_NOTE = (
-    "The motion starts by default from a preload offset of 2.5%% of r2 + r3 inside the constant-force "
+    "The motion starts by default from a preload offset of 2.5% of r2 + r3 inside the constant-force "
     "band.  At the toggle (theta2 = 0) dx/dtheta2 vanishes and tau_AF / tau_CF turned into a slider "
     "force diverge: inside the toggle zone (theta2 below toggle_cutoff, default 5 deg) they use "
     "dx/dtheta2 frozen at its cut-off value; a motion that enters the zone has its statistics computed "
-    "at the cut-off and at twice it, and those that change by more than 1%% are flagged "
+    "at the cut-off and at twice it, and those that change by more than 1% are flagged "
     "toggle-dominated.  The spring and inertia forces are finite there and computed exactly."
 )
 
@@ -220,7 +220,14 @@ def _fmt(value, unit="", display=None, digits=5):
 
 
 def _write_outputs(args, result) -> None:
-    emit(result, argparse.Namespace(csv=args.csv, plot=args.plot))
+    """Write ``--csv`` and ``--plot`` and name them (on stderr when stdout carries JSON)."""
+    written = []
+    if args.csv:
+        written.append(result.to_csv(args.csv))
+    if args.plot:
+        close_figure(result.plot(args.plot))
+        written.append(args.plot)
+    announce_written(written, args)
 
 
 def _cutoff_row(summary):

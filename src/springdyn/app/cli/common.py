@@ -142,6 +142,13 @@ def as_options(**names):
         raise
 
 
+def announce_written(paths, args) -> None:
+    """Name every written file: on stdout, or on stderr when stdout carries JSON."""
+    for path in paths:
+        if path:
+            print(f"wrote {path}", file=sys.stderr if getattr(args, "json", False) else sys.stdout)
+
+
 def emit(result, args, json_data=None) -> bool:
     """The outputs every command offers for a result: ``--csv`` (:meth:`to_csv`), ``--plot``
     (:meth:`plot`) and ``--json`` (``json_data``, else the result's ``to_dict()`` or summary).
@@ -149,10 +156,13 @@ def emit(result, args, json_data=None) -> bool:
     Options a command does not have count as not given.  Returns True when JSON was printed
     (the command then prints nothing else).
     """
+    written = []
     if getattr(args, "csv", None):
-        result.to_csv(args.csv)
+        written.append(result.to_csv(args.csv))
     if getattr(args, "plot", None):
         close_figure(result.plot(args.plot))
+        written.append(args.plot)
+    announce_written(written, args)
     if getattr(args, "json", False):
         if json_data is None:
             json_data = result.to_dict() if hasattr(result, "to_dict") else dict(result.summary)

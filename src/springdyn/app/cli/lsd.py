@@ -6,6 +6,7 @@ import numpy as np
 
 from springdyn.app.cli.common import (
     add_output_options,
+    announce_written,
     close_figure,
     emit,
     parse_range,
@@ -162,6 +163,7 @@ def cmd_rig(args) -> int:
         f"{model.params.name}: {what}, {tr.time.size} samples -> {args.csv}; "
         f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N"
     )
+    announce_written([args.csv, args.plot], args)
     return 0
 
 
@@ -200,6 +202,7 @@ def cmd_identify(args) -> int:
         if args.model:
             model = LSDModel(_params(args.model)).coefficients(series.rpm, quantity(args.amplitude, "m", "--amplitude"))
         close_figure(series.plot(args.plot, model=model))
+    announce_written([args.csv, args.plot], args)
     dicts = [it.to_dict() for it in series.items]
     if args.json:
         print_json(dicts[0] if len(dicts) == 1 else dicts)
@@ -265,6 +268,7 @@ def cmd_calibrate(args) -> int:
     if args.csv:
         cols = {k: np.array([row[k] for row in cal.residuals]) for k in cal.residuals[0]}
         write_csv(args.csv, cols)
+    announce_written([args.toml, args.csv], args)
     if args.json:
         print_json(cal.to_dict())
         return 0

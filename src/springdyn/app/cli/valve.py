@@ -6,6 +6,7 @@ import numpy as np
 
 from springdyn.app.cli.common import (
     add_output_options,
+    announce_written,
     as_options,
     close_figure,
     emit,
@@ -427,9 +428,6 @@ def cmd_cam(args) -> int:
         )
     for note in s.get("notes", []):
         print("note: " + note)
-    for option in ("csv", "plot"):
-        if getattr(args, option):
-            print(f"wrote {getattr(args, option)}")
     return 0
 
 
@@ -694,6 +692,7 @@ def cmd_simulate(args) -> int:
         close_figure(sim.plot(args.plot))
     if args.closure_map:
         close_figure(sim.plot_closure_map(args.closure_map))
+    announce_written([args.csv, args.plot, args.closure_map], args)
     s = sim.summary
     if args.json:
         print_json(s)
@@ -828,6 +827,7 @@ def cmd_float(args) -> int:
         res.to_csv(args.csv)
     if args.plot:
         close_figure(res.plot(args.plot))
+    announce_written([args.csv, args.plot], args)
     if args.json:
         print_json(res.to_dict())
         return 0
