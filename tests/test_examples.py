@@ -48,12 +48,12 @@ EXPECTED = {
 SLOW = {"examples/lsd/rotor_with_lsd.py", "examples/valve/closure_convergence.py"}
 
 
-def run_example(script: str, out: Path, *args: str) -> subprocess.CompletedProcess:
-    """Run ``python <script> --out <out> [args]`` from ``out`` (so stray files land there)."""
+def run_example(script: str, out: Path, *args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    """Run ``python <script> --out <out> [args]`` from ``cwd`` (default ``out``)."""
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run(
         [sys.executable, str(ROOT / script), "--out", str(out), *args],
-        cwd=out,
+        cwd=out if cwd is None else cwd,
         env=env,
         capture_output=True,
         text=True,
@@ -69,13 +69,18 @@ def test_every_example_is_covered():
 def test_example_runs(script, tmp_path):
     if script == "examples/lsd/rotor_with_lsd.py":
         pytest.importorskip("ross")
-    proc = run_example(script, tmp_path)
+    elsewhere = tmp_path / "cwd"  # run from another folder: an example writes only where --out says
+    elsewhere.mkdir()
+    out = tmp_path / "out"
+    out.mkdir()
+    proc = run_example(script, out, cwd=elsewhere)
     assert proc.returncode == 0, f"{script} failed:\n{proc.stdout}\n{proc.stderr}"
     patterns, files = EXPECTED[script]
     for pattern in patterns:
         assert re.search(pattern, proc.stdout), f"{script}: no match for {pattern!r} in\n{proc.stdout}"
     for name in files:
-        assert (tmp_path / name).is_file(), f"{script} did not write {name}"
+        assert (out / name).is_file(), f"{script} did not write {name}"
+    assert not list(elsewhere.iterdir()), f"{script} wrote {list(elsewhere.iterdir())} outside --out"
 
 
 def test_identify_from_a_given_csv_matches_the_written_one(tmp_path):

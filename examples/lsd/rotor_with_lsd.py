@@ -17,7 +17,12 @@ import numpy as np
 
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")
-    import ross as rs
+    try:
+        import ross as rs
+    except ModuleNotFoundError:
+        raise SystemExit(
+            "this example needs ROSS: pip install 'springdyn[ross]' (or .venv/bin/pip install -e '.[ross]')"
+        ) from None
 
 from springdyn.lsd import LSDModel, LSDParameters, bearing_at_frequency, whirl_consistent_mode
 
