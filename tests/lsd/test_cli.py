@@ -338,3 +338,21 @@ def test_library_speeds_are_rpm_or_omega():
     assert b.rpm[0] == pytest.approx(3000.0)
     with pytest.raises(ValueError, match="exactly one"):
         model.coefficients([3000.0], omega=[1.0])
+
+
+def test_amplitude_api_validates_like_the_cli():
+    """Issue 27: amplitude=None raised a numpy TypeError and 5e-324 gave infinite damping; a
+    length in mm read as m gets the um it likely meant."""
+    import warnings
+
+    from springdyn.core.errors import InputError
+    from springdyn.lsd import LSDModel, LSDParameters
+
+    m = LSDModel(LSDParameters.example("C"))
+    for bad, message in ((None, "must be a vibration amplitude in m"), (5e-324, "must be at least 1e-09 m")):
+        with pytest.raises(InputError, match=message):
+            m.coefficients([1000.0], amplitude=bad)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        m.coefficients([1000.0], amplitude=0.05)  # "50 mm" for 50 um
+    assert any("did you mean 50 um" in str(w.message) for w in seen)

@@ -19,6 +19,10 @@ __all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES"]
 #: The eight coefficients in ROSS order, with their SI unit suffix.
 COEFFICIENT_NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
 
+#: Smallest vibration amplitude [m] of the coefficients: 1 nm, below any measurable damper
+#: vibration (the friction equivalents grow as 1 / amplitude).
+MIN_AMPLITUDE = 1e-9
+
 
 class LSDModel:
     """Linearised stiffness and damping of a leaf spring damper (thesis, Chapters 2-3).
@@ -187,12 +191,19 @@ class LSDModel:
             Vibration frequencies [rad/s] instead of ``rpm``.
         """
         rpm, w = _speeds(rpm, omega)
-        if not (np.isfinite(amplitude) and amplitude > 0):
-            raise InputError(f"amplitude = {amplitude!r} m must be positive")
+        if isinstance(amplitude, bool) or not isinstance(amplitude, (int, float, np.integer, np.floating)):
+            raise InputError(f"amplitude = {amplitude!r} must be a vibration amplitude in m, e.g. 50e-6")
+        if not (np.isfinite(amplitude) and amplitude >= MIN_AMPLITUDE):
+            raise InputError(
+                f"amplitude = {amplitude!r} m must be at least {MIN_AMPLITUDE:g} m: the friction equivalents "
+                "grow as 1 / amplitude (a vanishing amplitude gives infinite damping)"
+            )
         if amplitude > 0.01:
             warnings.warn(
                 f"amplitude = {amplitude:g} m is far larger than any damper vibration (1 um to 1 mm): "
-                f"did you mean {amplitude:g} um?",
+                # a bare number is read in m (50 -> 50 m: meant 50 um); a length in mm is 1000
+                # times too large (50 mm -> 0.05 m: meant 50 um)
+                f"did you mean {amplitude if amplitude >= 1 else amplitude * 1e3:g} um?",
                 stacklevel=2,
             )
         unloads = stiffness.warn_if_unloading(amplitude, self.params.preload)

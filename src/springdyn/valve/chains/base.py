@@ -376,10 +376,10 @@ class SpringModel:
         if cam_rpm is not None and (
             isinstance(cam_rpm, bool)
             or not isinstance(cam_rpm, (int, float, np.number))
-            or not (np.isfinite(cam_rpm) and cam_rpm > 0)
+            or not (np.isfinite(cam_rpm) and cam_rpm >= 0.1)
         ):
             raise InputError(
-                f"cam_rpm = {cam_rpm!r} must be a positive, finite camshaft speed [rev/min]: the surge "
+                f"cam_rpm = {cam_rpm!r} must be a finite camshaft speed of at least 0.1 rev/min: the surge "
                 "margin is the surge frequency over the camshaft frequency"
             )
         p = self.internal_parameters()
