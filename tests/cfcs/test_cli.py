@@ -283,3 +283,15 @@ def test_toggle_flag_in_the_table(capsys):
     assert code == 0, err
     row = next(line for line in out.splitlines() if line.startswith("toggle-dominated"))
     assert row.split()[1] == "no"
+
+
+def test_forward_force_range_and_unloaded_safety(capsys):
+    """Issue 27: -13 MN ran for minutes (now refused, naming the mechanism's force scale); an
+    unloaded flexure has an unbounded safety factor, a result (null, with a note), not exit 3."""
+    import json
+
+    assert main(["cfcs", "forward", "table1", "--t-end", "0.05", "--force", "-13000000N"]) == 2
+    assert "beyond reason for this mechanism" in capsys.readouterr().err
+    assert main(["cfcs", "forward", "table1", "--t-end", "0.05", "--force", "0N", "--x0", "0mm", "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["summary"]["safety_factor"] is None if "summary" in s else s["safety_factor"] is None

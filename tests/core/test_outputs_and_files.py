@@ -121,3 +121,16 @@ def test_quantities_never_misread(text, message):
     with pytest.raises(InputError, match=message):
         to_si(text, "m", "x")
     assert np.isfinite(to_si("1e300 m", "m", "x"))
+
+
+def test_csv_cells_are_plain_numbers(tmp_path):
+    """Issue 27: Python's float() reads '4_2e-5' as 4.2e-4; measured data takes plain numbers only."""
+    from springdyn.core.errors import InputError
+    from springdyn.core.io import read_csv_columns
+
+    f = tmp_path / "u.csv"
+    f.write_text("time_s,x_m\n0,4_2e-5\n")
+    with pytest.raises(InputError, match="'4_2e-5' is not a plain number"):
+        read_csv_columns(f)
+    f.write_text("time_s,x_m\n0,-4.2e-5\n1,.5\n2,3.\n3,+1E3\n")
+    assert list(read_csv_columns(f)["x_m"]) == [-4.2e-5, 0.5, 3.0, 1000.0]

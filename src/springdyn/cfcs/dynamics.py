@@ -380,6 +380,14 @@ def forward_rhs(t, state, force_fn, p, sign_smoothing):
     return np.array([thd, rhs / m])
 
 
+#: Right-hand-side budget of a forward run (about a minute of LSODA on one core).
+MAX_FORWARD_CALLS = 2_000_000
+
+
+class _Budget(Exception):
+    """The forward run's right-hand-side budget is spent (at the time in ``args[0]``)."""
+
+
 def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smoothing=1e-2, rtol=1e-9, atol=1e-12):
     """Integrate the forward problem over ``t_eval`` (LSODA); stop at the kinematic limit.
 
@@ -421,17 +429,32 @@ def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smooth
         return np.pi / 2 - abs(y[0]) - 1e-9
 
     limit.terminal = True
-    sol = solve_ivp(
-        forward_rhs,
-        (t_eval[0], t_eval[-1]),
-        [theta2_0, theta2dot_0],
-        method="LSODA",
-        t_eval=t_eval,
-        args=(force_fn, p, sign_smoothing),
-        rtol=rtol,
-        atol=atol,
-        events=limit,
-    )
+    calls = [0]
+
+    def rhs(t, y, *args):
+        calls[0] += 1
+        if calls[0] > MAX_FORWARD_CALLS:
+            raise _Budget(t)
+        return forward_rhs(t, y, *args)
+
+    try:
+        sol = solve_ivp(
+            rhs,
+            (t_eval[0], t_eval[-1]),
+            [theta2_0, theta2dot_0],
+            method="LSODA",
+            t_eval=t_eval,
+            args=(force_fn, p, sign_smoothing),
+            rtol=rtol,
+            atol=atol,
+            events=limit,
+        )
+    except _Budget as exc:
+        raise SolverError(
+            f"forward dynamics: {MAX_FORWARD_CALLS} right-hand sides reached at t = {exc.args[0]:.6g} s of "
+            f"{t_eval[-1]:.6g} s; the drive makes the motion too fast to follow (a force far beyond the "
+            "mechanism's, or a very stiff base): check the force and its unit, or shorten t_end"
+        ) from None
     if sol.status == 1:
         raise SolverError(
             f"forward dynamics: the crank reached the kinematic limit (theta2 = 90 deg) at "

@@ -48,6 +48,10 @@ DEFAULT_OFFSET = "2.5 %"
 #: statistic is reported ``toggle_dominated``.
 TOGGLE_TOLERANCE = 0.01
 
+#: A constant forward-dynamics force may be at most this many times the mechanism's largest
+#: spring force (beyond it the slider hits the end of its travel within a step).
+FORCE_LIMIT_FACTOR = 1000.0
+
 
 def toggle_check(at_cutoff: dict, at_double: dict, keys) -> list:
     """Names of the statistics that change by more than :data:`TOGGLE_TOLERANCE` (relative)
@@ -226,7 +230,7 @@ class CFCS:
         if p.has_flexure:
             smax = float(np.max(self.stress(theta2, deflection) if stress is None else stress))
             out["max_stress_Pa"] = smax
-            if p.allowable_stress is not None:
+            if p.allowable_stress is not None and smax > 0:  # unloaded: no finite factor, a note says so
                 out["safety_factor"] = float(safety_factor(p.allowable_stress, smax))
                 out["max_stroke_for_stress_m"] = self.max_stroke_for_stress()
         return out
@@ -242,6 +246,8 @@ class CFCS:
             )
         elif summary.get("safety_factor") is None and "safety_factor" in summary and p.allowable_stress is None:
             notes.append("safety_factor and max_stroke_for_stress_m need allowable_stress in [cfcs]")
+        elif summary.get("safety_factor") is None and summary.get("max_stress_Pa") == 0.0:
+            notes.append("safety_factor: the flexure carries no stress over the motion (unbounded, not a failure)")
         if "toggle_cutoff_rad" in summary and summary["toggle_cutoff_rad"] is None:
             notes.append("toggle_cutoff_rad: the forward problem integrates through the toggle without a cut-off")
         return summary
@@ -661,6 +667,13 @@ class CFCS:
             raise InputError("x0 = 0 (the toggle) admits no slider velocity; start at x0 > 0")
         thd0 = v0 / g0 if g0 > 0 else 0.0
 
+        if force is not None and not callable(force):
+            scale = float(np.max(np.abs(self.static(p.max_deflection).force)))
+            if not (np.isfinite(force) and abs(force) <= FORCE_LIMIT_FACTOR * scale):
+                raise InputError(
+                    f"force = {force!r} N is beyond reason for this mechanism: it must be finite and within "
+                    f"{FORCE_LIMIT_FACTOR:g} times its largest spring force ({scale:.4g} N), i.e. +-{FORCE_LIMIT_FACTOR * scale:.4g} N"
+                )
         if force is not None:
             force_fn = (lambda t, x, xd, f0=float(force): f0) if not callable(force) else (lambda t, x, xd: force(t))
         else:

@@ -12,6 +12,7 @@ import csv
 import json
 import math
 import os
+import re
 import tempfile
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -305,6 +306,11 @@ def _cell(v):
 MAX_CSV_BYTES = 500_000_000
 
 
+#: A measured-data cell: a plain decimal number, optionally with an exponent (no digit
+#: underscores, hexadecimal or words, which Python's float() would take).
+PLAIN_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+
+
 def read_csv_columns(path: str | os.PathLike) -> dict[str, np.ndarray]:
     """Read a numeric CSV with a header row into a dict of float arrays.
 
@@ -348,6 +354,11 @@ def read_csv_columns(path: str | os.PathLike) -> dict[str, np.ndarray]:
                 value = float(cell)
             except ValueError:
                 raise InputError(f"{path}: row {lineno}, column {h!r}: {cell.strip()!r} is not a number") from None
+            if math.isfinite(value) and not PLAIN_NUMBER.fullmatch(cell.strip()):  # Python's "4_2e-5"
+                raise InputError(
+                    f"{path}: row {lineno}, column {h!r}: {cell.strip()!r} is not a plain number (like -4.2e-5; "
+                    "no digit underscores)"
+                )
             if not math.isfinite(value):
                 raise InputError(f"{path}: row {lineno}, column {h!r}: {cell.strip()!r} is not a finite number")
             data_cols[h].append(value)

@@ -147,6 +147,8 @@ class LSDParameters(Parameters):
                 if "oil_density" not in table:
                     raise InputError(f"{where}oil_viscosity = {text!r} is kinematic; give oil_density to convert it")
                 rho = to_si(table["oil_density"], "kg/m^3", f"{where}oil_density")
+                if not (isinstance(rho, float) and rho > 0):
+                    raise InputError(f"{where}oil_density = {table['oil_density']!r} must be positive (oil density)")
                 table["oil_viscosity"] = nu * rho
         return table
 

@@ -23,6 +23,10 @@ from ..statics import element_compressions, series_force, series_state
 __all__ = ["Chain", "SpringModel"]
 
 
+#: Most points of a static curve (:meth:`SpringModel.static_curve`): 0.1 um steps over 100 mm.
+MAX_CURVE_POINTS = 1_000_000
+
+
 @dataclass(frozen=True)
 class Chain:
     """A spring as a chain of point masses joined by nonlinear elements, SI throughout.
@@ -320,8 +324,11 @@ class SpringModel:
         """
         from ..results import StaticCurve
 
-        if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 2:
-            raise InputError(f"points = {points!r} must be a whole number of at least 2")
+        if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or not 2 <= points <= MAX_CURVE_POINTS:
+            raise InputError(
+                f"points = {points!r} must be a whole number of at least 2 and at most {MAX_CURVE_POINTS} (a curve "
+                "of more points shows nothing new and would not fit in memory)"
+            )
         start = self.spring.free_length if start is None else float(start)
         if stop is None:
             stop = self.length_at_force(3.0 * self.internal_parameters()["Fcon"])
