@@ -69,7 +69,8 @@ def test_curve_csv_and_plot(capsys, tmp_path):
 def test_modes_json(capsys):
     code, out, _ = run(capsys, "valve", "modes", ONE, "--length", "38 mm", "--count", "3", "--json")
     data = json.loads(out)
-    assert set(data) == {"length_m", "force_N", "frequencies_Hz"}
+    assert set(data) == {"length_m", "force_N", "frequencies_Hz", "modes"}
+    assert data["modes"] == ["surge 1", "surge 2", "surge 3"]
     assert data["frequencies_Hz"] == sorted(data["frequencies_Hz"])
     assert data["frequencies_Hz"][0] == pytest.approx(449.61, abs=0.005)
 

@@ -367,3 +367,15 @@ def test_separated_train_needs_a_valve_train_and_an_open_seat():
         separated_frequencies(spring, cam, ValveTrain(**DIRECT), valve_lift=0.0)
     with pytest.raises(InputError, match="too small for the separated train"):
         separated_frequencies(spring, cam, ValveTrain(**DIRECT), valve_lift=1e-9)
+
+
+def test_modes_are_labelled_surge_or_end_mass():
+    """Issue 27: Type C's two 6633 Hz modes are its end masses on the stiff end contacts
+    (K elements), the first three its surge modes; the distributed chain's are all surge
+    modes, in the harmonic order of a uniform spring (f_n about n f_1)."""
+    from springdyn.valve import ValveSpring
+
+    s = ValveSpring.example("one-step")
+    assert s.spring_model.mode_labels(s.installed_length, 5) == ["surge 1", "surge 2", "surge 3", "end mass", "end mass"]
+    d = s.with_model("distributed")
+    assert d.spring_model.mode_labels(d.installed_length, 6) == [f"surge {n}" for n in range(1, 7)]

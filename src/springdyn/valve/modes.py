@@ -70,6 +70,46 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
     return np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
 
 
+#: A mode whose kinetic energy lies at least this much in the chain's two end masses is an
+#: end-mass mode (the end masses bouncing on their stiff end contacts), not a surge mode.
+END_MASS_ENERGY = 0.5
+
+
+def mode_labels(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> list[str]:
+    """What each of the lowest natural modes of the chain is: ``"surge n"`` (the n-th
+    standing wave along the coils) or ``"end mass"`` (the end masses bouncing on their stiff
+    end contacts: at least :data:`END_MASS_ENERGY` of the kinetic energy in the two end masses).
+
+    Parameters
+    ----------
+    masses : ndarray, shape (n,)
+        Lumped masses [kg].
+    k : ndarray, shape (n + 1,)
+        Element tangent stiffnesses [N/m].
+    count : int, optional
+        Only the lowest ``count`` modes [-].
+
+    Examples
+    --------
+    >>> mode_labels(np.ones(3), np.array([1e6, 1.0, 1.0, 1e6]))  # heavy end contacts, soft middle
+    ['surge 1', 'end mass', 'end mass']
+    """
+    m = np.asarray(masses, dtype=float)
+    k = np.asarray(k, dtype=float)
+    d = (k[:-1] + k[1:]) / m
+    e = -k[1:-1] / np.sqrt(m[:-1] * m[1:])
+    _, vec = np.linalg.eigh(np.diag(d) + np.diag(e, 1) + np.diag(e, -1))  # mass-normalised shapes
+    labels, surge = [], 0
+    for j in range(vec.shape[1] if count is None else min(count, vec.shape[1])):
+        energy = vec[:, j] ** 2  # kinetic energy per mass of the mass-normalised shape
+        if m.size > 2 and (energy[0] + energy[-1]) / energy.sum() >= END_MASS_ENERGY:
+            labels.append("end mass")
+        else:
+            surge += 1
+            labels.append(f"surge {surge}")
+    return labels
+
+
 def chain_eigenvalues(masses, stiffness, damping) -> np.ndarray:
     """Eigenvalues [1/s] of the damped chain ``M u'' + C u' + K u = 0``, both ends fixed.
 

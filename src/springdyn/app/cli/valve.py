@@ -501,12 +501,21 @@ def cmd_modes(args) -> int:
     length = quantity(args.length, "m", "--length")
     with as_options(length="--length", count="--count"):
         freqs = spring.spring_model.modes(length, args.count)
+        labels = spring.spring_model.mode_labels(length, args.count)
     force = float(spring.spring_model.static_force(length))
     if args.json:
-        print_json({"length_m": length, "force_N": force, "frequencies_Hz": list(freqs)})
+        print_json({"length_m": length, "force_N": force, "frequencies_Hz": list(freqs), "modes": labels})
     else:
         print(f"length {length * 1e3:.3f} mm, static force {force:.2f} N")
-        print_table([(str(i + 1), f"{f:.2f}") for i, f in enumerate(freqs)], headers=("mode", "frequency [Hz]"))
+        print_table(
+            [(str(i + 1), f"{f:.2f}", label) for i, (f, label) in enumerate(zip(freqs, labels))],
+            headers=("mode", "frequency [Hz]", "what moves"),
+        )
+        if "end mass" in labels:
+            print(
+                "end mass: the chain's end masses bouncing on their stiff end contacts (a lumped model's mode, "
+                "not a surge of the coils)"
+            )
     return 0
 
 

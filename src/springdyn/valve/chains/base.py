@@ -358,6 +358,22 @@ class SpringModel:
         _, x, _ = self.static_state(float(length))
         return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x), count)
 
+    def mode_labels(self, length: float, count: int = 5) -> list[str]:
+        """What each of :meth:`modes` is: ``"surge n"`` or ``"end mass"``
+        (:func:`springdyn.valve.modes.mode_labels`).
+
+        Parameters
+        ----------
+        length : float
+            Spring length [m].
+        count : int
+            How many, from the lowest [-].
+        """
+        from ..modes import mode_labels
+
+        _, x, _ = self.static_state(float(length))
+        return mode_labels(self.chain.masses, self.chain.tangent_stiffness(x), count)
+
     # ------------------------------------------------------------------ design
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:
         """Design figures at installed length, at maximum lift and at coil contact.
