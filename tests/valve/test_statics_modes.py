@@ -376,6 +376,12 @@ def test_modes_are_labelled_surge_or_end_mass():
     from springdyn.valve import ValveSpring
 
     s = ValveSpring.example("one-step")
-    assert s.spring_model.mode_labels(s.installed_length, 5) == ["surge 1", "surge 2", "surge 3", "end mass", "end mass"]
+    assert s.spring_model.mode_labels(s.installed_length, 5) == [
+        "surge 1",
+        "surge 2",
+        "surge 3",
+        "end mass",
+        "end mass",
+    ]
     d = s.with_model("distributed")
     assert d.spring_model.mode_labels(d.installed_length, 6) == [f"surge {n}" for n in range(1, 7)]

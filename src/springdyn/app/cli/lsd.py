@@ -213,20 +213,25 @@ def cmd_identify(args) -> int:
             f"{it.mode}, mass {it.mass:g} kg"
         )
         rows = []
-        for key, value in d.items():
-            if key.endswith(("_N_per_m", "_Ns_per_m")):
-                unc = d.get(f"{key}_uncertainty")
-                ci = d.get(f"{key}_ci")
-                unit = "N/m" if key.endswith("_N_per_m") else "N*s/m"
-                rows.append(
-                    (
-                        key.split("_")[0],
-                        f"{value:.6g}",
-                        "nan" if unc is None else f"{unc:.3g}",
-                        "-" if ci is None else f"+-{(ci[1] - ci[0]) / 2:.3g}",
-                        unit,
-                    )
+        coeffs = {k: v for k, v in d.items() if k.endswith(("_N_per_m", "_Ns_per_m"))}
+        for key, value in coeffs.items():
+            unc = d.get(f"{key}_uncertainty")
+            ci = d.get(f"{key}_ci")
+            # one unit per quantity across the lsd commands: stiffness in N/mm, damping in Ns/m
+            stiff = key.endswith("_N_per_m")
+            scale, unit = (1e-3, "N/mm") if stiff else (1.0, "Ns/m")
+            same = [abs(v) for k, v in coeffs.items() if k.endswith("_N_per_m") == stiff]
+            if abs(value) < 1e-9 * max(same):  # round-off of the solver, not data
+                value = 0.0
+            rows.append(
+                (
+                    key.split("_")[0],
+                    f"{value * scale:.6g}",
+                    "nan" if unc is None else f"{unc * scale:.3g}",
+                    "-" if ci is None else f"+-{(ci[1] - ci[0]) / 2 * scale:.3g}",
+                    unit,
                 )
+            )
         print_table(rows, headers=("coefficient", "value", "std. error", "95 % CI (Student t)", "unit"))
         if it.caveat:
             print(f"note: {it.caveat}")
