@@ -134,3 +134,23 @@ def test_csv_cells_are_plain_numbers(tmp_path):
         read_csv_columns(f)
     f.write_text("time_s,x_m\n0,-4.2e-5\n1,.5\n2,3.\n3,+1E3\n")
     assert list(read_csv_columns(f)["x_m"]) == [-4.2e-5, 0.5, 3.0, 1000.0]
+
+
+def test_stale_temporaries_of_a_killed_run_are_removed(tmp_path):
+    """Issue 27: a run killed while writing leaves '.<name>.XXXX<suffix>' beside the file; the
+    next write of the same file removes it once it is older than an hour (a younger one may
+    belong to a run still going)."""
+    import os
+    import time
+
+    from springdyn.core.io import atomic_path
+
+    target = tmp_path / "out.csv"
+    old = tmp_path / ".out.csv.abc123.csv"
+    young = tmp_path / ".out.csv.def456.csv"
+    for f in (old, young):
+        f.write_text("partial")
+    os.utime(old, (time.time() - 7200, time.time() - 7200))
+    with atomic_path(target) as tmp:
+        tmp.write_text("a\n1\n")
+    assert target.read_text() == "a\n1\n" and not old.exists() and young.exists()

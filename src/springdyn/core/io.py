@@ -112,6 +112,35 @@ def direct_outputs():
         _SETS.pop()
 
 
+#: A temporary of :func:`atomic_path` older than this [s] was left by a killed run: the next
+#: write of the same file removes it.
+STALE_TEMPORARY_SECONDS = 3600.0
+
+
+def _remove_stale_temporaries(path: Path, suffix: str) -> None:
+    """Remove the temporaries a killed run left beside ``path`` (``.<name>.XXXXXXXX<suffix>``,
+    older than :data:`STALE_TEMPORARY_SECONDS`)."""
+    import time
+
+    folder = path.parent if str(path.parent) else Path(".")
+    now = time.time()
+    try:
+        candidates = list(folder.glob(f".{glob_escape(path.name[:100])}.*{glob_escape(suffix)}"))
+    except OSError:
+        return
+    for old in candidates:
+        with contextlib.suppress(OSError):
+            if old.is_file() and now - old.stat().st_mtime > STALE_TEMPORARY_SECONDS:
+                old.unlink()
+
+
+def glob_escape(text: str) -> str:
+    """``text`` with the glob characters escaped."""
+    import glob
+
+    return glob.escape(text)
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
@@ -122,6 +151,7 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
     path = Path(path)
     if path.parent and not path.parent.exists():
         path.parent.mkdir(parents=True, exist_ok=True)
+    _remove_stale_temporaries(path, suffix or path.suffix)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:100]}.", suffix=suffix or path.suffix, dir=path.parent or ".")
     os.close(fd)
     tmp = Path(tmp)

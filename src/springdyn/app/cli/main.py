@@ -77,7 +77,8 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
         description="Dynamics of springs and spring dampers in machines.",
         epilog="Quantities take units ('22 mm', '3000 rpm', '5 %'); bare numbers are SI unless an option says "
         "otherwise. Ranges are START:STOP:STEP, lists a,b,c. Exit codes: 0 done, 2 bad input, "
-        "3 solver failure, 70 a bug in springdyn.",
+        "3 solver failure, 70 a bug in springdyn (the traceback in a log file named on stderr), 74 an output "
+        "that cannot be written (disk full, closed pipe), 130 interrupted.",
     )
     parser.add_argument("--version", action="version", version=f"springdyn {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
