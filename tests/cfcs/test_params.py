@@ -151,9 +151,10 @@ def test_design_stroke_fraction_beyond_the_kinematic_range():
 @pytest.mark.parametrize(
     "changes,match",
     [
-        ({"pivot_thickness": "2**1000"}, "must be smaller than pivot_length"),  # the fuzz's OverflowError
+        ({"pivot_thickness": "2**1000"}, "beyond any machine element"),  # the fuzz's OverflowError
         ({"pivot_thickness": "12 mm"}, "pivot_thickness = 12 mm must be smaller than pivot_length"),
-        ({"pivot_width": "1e300 m"}, "overflows"),
+        ({"pivot_width": "1e300 m"}, "beyond any machine element"),
+        ({"pivot_width": "1e30 mm"}, r"pivot_width = 1e\+30 mm is beyond any machine element"),  # issue 27
     ],
 )
 def test_flexure_strip_is_checked(table1, changes, match):

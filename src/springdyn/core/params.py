@@ -140,7 +140,27 @@ def _convert(name: str, value: Any, meta: Mapping, where: str) -> Any:
     raise AssertionError(f"unknown field kind {kind}")
 
 
-def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
+#: The largest magnitude of a machine element's quantity by its SI unit (far above any spring,
+#: damper or valve train: a value beyond it is a unit slip or a typo, such as 1e30).
+PLAUSIBLE_MAX = {
+    "m": 1e3,
+    "kg": 1e5,
+    "Pa": 1e14,
+    "N": 1e10,
+    "N/m": 1e14,
+    "N*s/m": 1e10,
+    "N*m": 1e9,
+    "N*m/rad": 1e10,
+    "kg*m^2": 1e6,
+    "kg/m^3": 1e6,
+    "Pa*s": 1e6,
+    "rad": 1e4,
+    "rad/s": 1e7,
+    "m/s": 1e5,
+}
+
+
+def _check_one(name: str, value: Any, meta: Mapping, where: str = "", plausible: bool = True) -> None:
     label = f"{where}{name}"
     values = value if isinstance(value, list) else [value]
     for i, v in enumerate(values):
@@ -152,6 +172,13 @@ def _check_one(name: str, value: Any, meta: Mapping, where: str = "") -> None:
         shown = describe_value(v, {**meta, "kind": "quantity"}) if meta.get("unit") or meta.get("display") else repr(v)
         if not math.isfinite(v):
             raise InputError(f"{sub} = {shown} must be a finite number")
+        limit = PLAUSIBLE_MAX.get(meta.get("unit") or "")
+        if plausible and limit is not None and meta.get("kind") in ("quantity", "quantity_list") and abs(v) > limit:
+            bound = describe_value(limit, {**meta, "kind": "quantity"})
+            raise InputError(
+                f"{sub} = {shown} is beyond any machine element ({meta.get('doc') or 'a value'}): at most {bound} "
+                "in magnitude; check its unit"
+            )
         if meta.get("positive") and not v > 0:
             raise InputError(f"{sub} = {shown} must be positive ({meta.get('doc') or 'a size'})")
         if meta.get("nonnegative") and not v >= 0:
@@ -215,7 +242,7 @@ def check_fields(obj) -> None:
         if meta["kind"] == "str" and meta.get("choices") and value not in meta["choices"]:
             allowed = ", ".join(repr(c) for c in meta["choices"])
             raise InputError(f"{f.name} = {value!r} is not allowed; choose one of {allowed}")
-        _check_one(f.name, value, meta)
+        _check_one(f.name, value, meta, plausible=getattr(type(obj), "plausible_ranges", True))
 
 
 def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: str | None = None):
@@ -239,7 +266,7 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
     for name, (f, meta) in specs.items():
         if name in mapping:
             kwargs[name] = _convert(name, mapping[name], meta, f"{where}{prefix}")
-            _check_one(name, kwargs[name], meta, f"{where}{prefix}")
+            _check_one(name, kwargs[name], meta, f"{where}{prefix}", getattr(cls, "plausible_ranges", True))
         elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
             example = meta.get("display") or meta.get("unit")
             raise InputError(
@@ -415,11 +442,14 @@ class Parameters:
     examples: dict = {}
     #: Example returned by :meth:`example` without a name.
     default_example: str = ""
+    #: Refuse quantities beyond :data:`PLAUSIBLE_MAX` (a class with finer ranges of its own,
+    #: with did-you-mean hints, turns this off).
+    plausible_ranges: bool = True
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         # class attributes of the base are configuration, not dataclass fields
-        for name in ("table", "examples", "default_example"):
+        for name in ("table", "examples", "default_example", "plausible_ranges"):
             if name in cls.__dict__ and name in getattr(cls, "__annotations__", {}):  # pragma: no cover
                 raise TypeError(f"{cls.__name__}.{name} must not be annotated")
         # the display repr, kept by the dataclass decorator (it does not replace a __repr__

@@ -85,8 +85,19 @@ def _read_tdms(path: Path) -> dict:
         raise InputError(
             f"{path}: reading TDMS needs the optional package nptdms (pip install 'springdyn[tdms]')"
         ) from None
+    import logging
+    import warnings
+
     try:
-        tdms = TdmsFile.read(path)
+        # nptdms warns and logs about a garbage file before it fails: the message below says it once
+        nptdms_log = logging.getLogger("nptdms")
+        level, nptdms_log.level = nptdms_log.level, logging.CRITICAL
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                tdms = TdmsFile.read(path)
+        finally:
+            nptdms_log.setLevel(level)
     except Exception as exc:  # nptdms raises several types on bad files
         raise InputError(f"{path}: not a readable TDMS file: {exc}") from None
     found = {}

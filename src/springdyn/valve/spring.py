@@ -151,6 +151,7 @@ class ValveSpring(Parameters):
     )
 
     table = "spring"
+    plausible_ranges = False  # _check_geometry's ranges say more (the likely unit slip)
     examples = EXAMPLES
     default_example = "one-step"
 

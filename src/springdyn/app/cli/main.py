@@ -154,11 +154,17 @@ def _run_report(args) -> int:
 
 
 def _join_negative_values(argv) -> list[str]:
-    """``--lift -1mm`` -> ``--lift=-1mm``: a value starting with a minus sign and a digit
-    reaches the option's validator instead of being taken for an option by argparse."""
+    """``--lift -1mm`` -> ``--lift=-1mm``: a value starting with a minus sign and a digit (or
+    ``-inf``, ``-nan``) reaches the option's validator instead of being taken for an option by
+    argparse."""
     out: list[str] = []
     for token in argv:
-        if out and re.match(r"^-\.?\d", token) and out[-1].startswith("--") and "=" not in out[-1]:
+        if (
+            out
+            and re.match(r"^-(\.?\d|inf|nan|infinity)", token, re.IGNORECASE)
+            and out[-1].startswith("--")
+            and "=" not in out[-1]
+        ):
             out[-1] = f"{out[-1]}={token}"
         else:
             out.append(token)
