@@ -13,7 +13,7 @@ import numpy as np
 
 from ..core.errors import InputError
 
-__all__ = ["load_point_check", "calibrate", "FIT_PARAMETERS"]
+__all__ = ["load_point_check", "calibrate", "calibrate_trace", "FIT_PARAMETERS", "TRACE_PARAMETERS"]
 
 #: The cost of a value the spring's checks refuse (finite, so the minimiser's arithmetic stays finite).
 REFUSED = 1e30
@@ -126,4 +126,91 @@ def calibrate(spring, fit: str = "shear_modulus") -> dict:
         load_points_before=load_point_check(spring),
         load_points_after=load_point_check(fitted),
         rms_weighted_residual=float(np.sqrt(np.mean(r**2))),
+    )
+
+
+#: What :func:`calibrate_trace` can fit to a measured force trace (fitted in log space).
+TRACE_PARAMETERS = ("damping_ratio", "contact_stiffness")
+
+
+def calibrate_trace(
+    spring, cam, cam_rpm: float, cam_angle, retainer_force, fit=TRACE_PARAMETERS, valve_train=None
+) -> dict:
+    """Fit the damping and the contact stiffness to a measured retainer-force trace.
+
+    Least squares (``scipy.optimize.least_squares``, trust region, in the logarithms of the
+    parameters) of the simulated retainer force at the periodic steady state
+    (:func:`springdyn.valve.simulate`) against the measured one at its cam angles.  The
+    contact stiffness shows only where coils clash: measure at a clash speed to fit it.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    cam_rpm : float
+        Cam speed of the measurement [rev/min].
+    cam_angle : array_like
+        Cam angles of the samples [rad].
+    retainer_force : array_like
+        Measured retainer force [N].
+    fit : sequence of str
+        Parameters to fit, of :data:`TRACE_PARAMETERS` [-].
+    valve_train : ValveTrain, optional
+
+    Returns
+    -------
+    dict
+        ``values`` (fitted, SI), ``before`` (given or default values), ``rms_N`` (the rms
+        deviation after the fit) and ``rms_before_N`` [N], ``spring`` (the calibrated spring).
+    """
+    from scipy.optimize import least_squares
+
+    from .dynamics import simulate
+
+    fit = list(fit)
+    bad = [f for f in fit if f not in TRACE_PARAMETERS]
+    if bad or not fit:
+        raise InputError(f"fit = {fit!r}: a force trace fits {', '.join(TRACE_PARAMETERS)}")
+    theta = np.mod(np.asarray(cam_angle, dtype=float), 2 * np.pi)
+    measured = np.asarray(retainer_force, dtype=float)
+    if theta.shape != measured.shape or theta.size < 8 or not np.all(np.isfinite(measured)):
+        raise InputError("the trace needs at least 8 finite samples of cam angle and retainer force of one length")
+    start = {
+        "damping_ratio": spring.damping_ratio,
+        "contact_stiffness": float(spring.spring_model.turn_contact_stiffness(spring.mean_diameter))
+        if hasattr(spring.spring_model, "turn_contact_stiffness")
+        else (spring.contact_stiffness or float(spring.spring_model.internal_parameters()["K"])),
+    }
+    if start["damping_ratio"] <= 0:
+        start["damping_ratio"] = 0.02
+
+    def spring_of(logs):
+        return spring.replace(**{name: float(np.exp(v)) for name, v in zip(fit, logs)})
+
+    def residual(logs):
+        # periodic to 1e-6 of Fset: the finite differences of the fit see the parameters, not the
+        # revolution the run stopped at
+        sim = simulate(
+            spring_of(logs),
+            cam,
+            cam_rpm,
+            valve_train=valve_train,
+            check_elements=False,
+            periodicity_tol=1e-6,
+            points_per_revolution=720,
+        )
+        order = np.argsort(sim.cam_angle)
+        model = np.interp(theta, sim.cam_angle[order], sim.retainer_force[order], period=2 * np.pi)
+        return model - measured
+
+    x0 = np.log([start[name] for name in fit])
+    r0 = residual(x0)
+    res = least_squares(residual, x0, x_scale=1.0, diff_step=1e-2, xtol=1e-8, ftol=1e-10, max_nfev=200)
+    values = {name: float(np.exp(v)) for name, v in zip(fit, res.x)}
+    return dict(
+        values=values,
+        before={name: start[name] for name in fit},
+        rms_N=float(np.sqrt(np.mean(res.fun**2))),
+        rms_before_N=float(np.sqrt(np.mean(r0**2))),
+        spring=spring_of(res.x),
     )

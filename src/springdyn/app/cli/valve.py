@@ -77,6 +77,21 @@ def register(sub) -> None:
         "--fit", choices=("shear_modulus", "active_coils"), default="shear_modulus", help="what to fit (default G)"
     )
     p.add_argument("--out", metavar="FILE.toml", help="write the calibrated definition there")
+    p.add_argument(
+        "--trace",
+        metavar="TRACE.csv",
+        help="instead: fit damping_ratio and contact_stiffness to a measured retainer-force trace "
+        "(columns cam_angle_deg, retainer_force_N; needs --cam and --cam-rpm)",
+    )
+    p.add_argument(
+        "--trace-fit",
+        default="damping_ratio,contact_stiffness",
+        metavar="KEYS",
+        help="with --trace: what to fit, of damping_ratio and contact_stiffness (default both; the contact "
+        "stiffness shows only at a clash speed)",
+    )
+    p.add_argument("--cam", metavar="CAM.toml", help="with --trace: the cam of the measurement")
+    p.add_argument("--cam-rpm", metavar="RPM", help="with --trace: the cam speed of the measurement")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_calibrate)
 
@@ -431,6 +446,50 @@ def cmd_cam(args) -> int:
     return 0
 
 
+def _calibrate_trace(args, spring, out) -> int:
+    """``valve calibrate --trace``: damping and contact stiffness from a measured retainer force."""
+    import math
+
+    from springdyn.core.io import atomic_open, dumps_toml, read_csv_columns
+    from springdyn.core.params import load_toml
+    from springdyn.valve.calibrate import calibrate_trace
+    from springdyn.valve.cam import Cam
+
+    if not (args.cam and args.cam_rpm):
+        raise InputError("--trace needs --cam (the cam of the measurement) and --cam-rpm (its speed)")
+    cols = read_csv_columns(args.trace)
+    missing = [c for c in ("cam_angle_deg", "retainer_force_N") if c not in cols]
+    if missing:
+        raise InputError(f"{args.trace}: no column {missing[0]!r}; the trace has cam_angle_deg and retainer_force_N")
+    cam = Cam.from_toml(args.cam)
+    rpm = quantity(args.cam_rpm, "rad/s", "--cam-rpm", bare_unit="rpm") * 30 / math.pi
+    fit = [k.strip() for k in args.trace_fit.split(",") if k.strip()]
+    with as_options(fit="--trace-fit"):
+        res = calibrate_trace(spring, cam, rpm, np.radians(cols["cam_angle_deg"]), cols["retainer_force_N"], fit=fit)
+    if args.json:
+        print_json({k: v for k, v in res.items() if k != "spring"})
+    else:
+        for name, value in res["values"].items():
+            print(f"{name}: {res['before'][name]:.6g} -> {value:.6g}")
+        print(f"rms deviation from the trace: {res['rms_before_N']:.3f} N -> {res['rms_N']:.3f} N")
+    if out is not None:
+        doc = load_toml(args.spring)
+        table = dict(doc["spring"])
+        if "damping_ratio" in res["values"]:
+            table["damping_ratio"] = round(res["values"]["damping_ratio"], 8)
+        if "contact_stiffness" in res["values"]:
+            table["contact_stiffness"] = f"{res['values']['contact_stiffness'] / 1e3:.6g} N/mm"
+        doc["spring"] = table
+        header = (
+            f"{args.spring} calibrated by springdyn valve calibrate --trace {args.trace}: rms deviation "
+            f"{res['rms_before_N']:.3f} N -> {res['rms_N']:.3f} N"
+        )
+        with atomic_open(out, "w", encoding="utf-8") as fh:
+            fh.write(dumps_toml(doc, header))
+        announce_written([out], args)
+    return 0
+
+
 def cmd_calibrate(args) -> int:
     from springdyn.core.io import atomic_open, check_output_file, dumps_toml
     from springdyn.core.params import load_toml
@@ -438,6 +497,8 @@ def cmd_calibrate(args) -> int:
 
     spring = _spring(args)
     out = check_output_file(args.out, "--out") if args.out else None
+    if args.trace:
+        return _calibrate_trace(args, spring, out)
     with as_options(fit="--fit"):
         res = calibrate(spring, args.fit)
     if args.json:
