@@ -22,43 +22,15 @@ FIT_PARAMETERS = {"shear_modulus": (0.5, 2.0), "active_coils": (0.5, 2.0)}
 
 
 def load_point_check(spring) -> list[dict]:
-    """The model's static force at each load point of the drawing.
+    """The model's static force at each load point of the drawing
+    (:meth:`springdyn.valve.chains.SpringModel.load_point_check`).
 
     Parameters
     ----------
     spring : ValveSpring
         With ``load_points``.
-
-    Returns
-    -------
-    list of dict
-        ``length_m``, ``force_N`` (the drawing's), ``model_force_N``, ``deviation_N``
-        (model minus drawing), ``deviation_percent``, ``tolerance_N`` (None: not given) and
-        ``within_tolerance`` (None without a tolerance).
     """
-    rows = []
-    model = spring.spring_model
-    for p in spring.load_point_table:
-        if not model.min_length <= p["length"] <= spring.free_length:
-            raise InputError(
-                f"load point at {p['length'] * 1e3:.4g} mm lies outside the spring's range "
-                f"({model.min_length * 1e3:.4g} mm to the free length {spring.free_length * 1e3:.4g} mm)"
-            )
-        f = float(model.static_force(p["length"]))
-        dev = f - p["force"]
-        tol = p["tolerance"]
-        rows.append(
-            dict(
-                length_m=p["length"],
-                force_N=p["force"],
-                model_force_N=f,
-                deviation_N=dev,
-                deviation_percent=100.0 * dev / p["force"],
-                tolerance_N=tol,
-                within_tolerance=None if tol is None else bool(abs(dev) <= tol),
-            )
-        )
-    return rows
+    return spring.spring_model.load_point_check()
 
 
 def _weighted_residuals(spring) -> np.ndarray:

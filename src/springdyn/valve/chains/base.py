@@ -358,6 +358,39 @@ class SpringModel:
         _, x, _ = self.static_state(float(length))
         return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x), count)
 
+    def load_point_check(self) -> list[dict]:
+        """The model's static force at each load point of the drawing (``load_points``).
+
+        Returns
+        -------
+        list of dict
+            ``length_m``, ``force_N`` (the drawing's), ``model_force_N``, ``deviation_N``
+            (model minus drawing), ``deviation_percent``, ``tolerance_N`` (None: not given) and
+            ``within_tolerance`` (None without a tolerance).
+        """
+        rows = []
+        for p in self.spring.load_point_table:
+            if not self.min_length <= p["length"] <= self.spring.free_length:
+                raise InputError(
+                    f"load point at {p['length'] * 1e3:.4g} mm lies outside the spring's range "
+                    f"({self.min_length * 1e3:.4g} mm to the free length {self.spring.free_length * 1e3:.4g} mm)"
+                )
+            f = float(self.static_force(p["length"]))
+            dev = f - p["force"]
+            tol = p["tolerance"]
+            rows.append(
+                dict(
+                    length_m=p["length"],
+                    force_N=p["force"],
+                    model_force_N=f,
+                    deviation_N=dev,
+                    deviation_percent=100.0 * dev / p["force"],
+                    tolerance_N=tol,
+                    within_tolerance=None if tol is None else bool(abs(dev) <= tol),
+                )
+            )
+        return rows
+
     def mode_labels(self, length: float, count: int = 5) -> list[str]:
         """What each of :meth:`modes` is: ``"surge n"`` or ``"end mass"``
         (:func:`springdyn.valve.modes.mode_labels`).
@@ -441,9 +474,7 @@ class SpringModel:
                 f"length {format_mm(lc)}: its forces between the two lengths are not those of a solid spring"
             )
         if self.spring.load_points:
-            from ..calibrate import load_point_check
-
-            out["load_points"] = load_point_check(self.spring)
+            out["load_points"] = self.load_point_check()
         for name, length in states.items():
             force = float(self.static_force(length)) if name != "open" else float(self._open_force(length, lift))
             f_surge = float(self.modes(length, 1)[0])
