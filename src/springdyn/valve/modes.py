@@ -37,6 +37,13 @@ def chain_stiffness_matrix(k: np.ndarray) -> np.ndarray:
     return kmat
 
 
+def _mass_normalised(masses, k) -> tuple:
+    """The masses and the diagonal and off-diagonal of ``M^-1/2 K M^-1/2`` of the chain [kg, 1/s^2]."""
+    m = np.asarray(masses, dtype=float)
+    k = np.asarray(k, dtype=float)
+    return m, (k[:-1] + k[1:]) / m, -k[1:-1] / np.sqrt(m[:-1] * m[1:])
+
+
 def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> np.ndarray:
     """Natural frequencies [Hz], ascending, of the chain with both ends fixed.
 
@@ -54,10 +61,7 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
     count : int, optional
         Only the lowest ``count`` frequencies [-].
     """
-    m = np.asarray(masses, dtype=float)
-    k = np.asarray(k, dtype=float)
-    d = (k[:-1] + k[1:]) / m
-    e = -k[1:-1] / np.sqrt(m[:-1] * m[1:])
+    m, d, e = _mass_normalised(masses, k)
     if m.size <= _DENSE_MAX:  # small chains (Type C): NumPy's dense solver, no SciPy import
         w2 = np.linalg.eigvalsh(np.diag(d) + np.diag(e, 1) + np.diag(e, -1))[:count]
     else:
@@ -94,10 +98,7 @@ def mode_labels(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> 
     >>> mode_labels(np.ones(3), np.array([1e6, 1.0, 1.0, 1e6]))  # heavy end contacts, soft middle
     ['surge 1', 'end mass', 'end mass']
     """
-    m = np.asarray(masses, dtype=float)
-    k = np.asarray(k, dtype=float)
-    d = (k[:-1] + k[1:]) / m
-    e = -k[1:-1] / np.sqrt(m[:-1] * m[1:])
+    m, d, e = _mass_normalised(masses, k)
     _, vec = np.linalg.eigh(np.diag(d) + np.diag(e, 1) + np.diag(e, -1))  # mass-normalised shapes
     labels, surge = [], 0
     for j in range(vec.shape[1] if count is None else min(count, vec.shape[1])):
