@@ -125,6 +125,14 @@ class SimulationSetup:
         series_force_compiled(dl, sp.spring_model.chain.laws, force, *sp.spring_model.force_table)
         return force.reshape(lift.shape)
 
+    @property
+    def event_angle(self) -> float:
+        """Cam angle [rad] over which the cam lifts (its event), from the engine's cam table."""
+        if "_event" not in self.__dict__:
+            h = self.table.h
+            self.__dict__["_event"] = 2.0 * math.pi * float(np.count_nonzero(h > 1e-9 * float(h.max()))) / h.size
+        return self.__dict__["_event"]
+
     def check_speeds(self, cam_rpm, allow_extreme: bool = False) -> list[str]:
         """Refuse cam speeds outside physical reason: the cam event shorter than one period
         of the spring's first surge mode at installed length (a surge margin below
@@ -145,9 +153,8 @@ class SimulationSetup:
             Notes for the speeds computed beyond reason (empty when none).
         """
         rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
-        h = self.table.h
-        event = 2.0 * math.pi * float(np.count_nonzero(h > 1e-9 * float(h.max()))) / h.size
-        f1 = float(self.spring.spring_model.modes(self.spring.installed_length, 1)[0])
+        event = self.event_angle
+        f1 = self.spring.spring_model.first_mode_installed
         t_event = event / (rpm * 2.0 * math.pi / 60.0)
         bad = rpm[t_event * f1 < MIN_EVENT_SURGE_PERIODS]
         if not bad.size:

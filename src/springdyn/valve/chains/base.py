@@ -358,6 +358,11 @@ class SpringModel:
         _, x, _ = self.static_state(float(length))
         return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x), count)
 
+    @cached_property
+    def first_mode_installed(self) -> float:
+        """First natural frequency of the chain at installed length [Hz] (kept: every run checks it)."""
+        return float(self.modes(self.spring.installed_length, 1)[0])
+
     def load_point_check(self) -> list[dict]:
         """The model's static force at each load point of the drawing (``load_points``).
 
