@@ -169,7 +169,7 @@ class SimulationSetup:
         if not allow_extreme:
             raise InputError(
                 what
-                + (f"; did you mean {r / 10:g}?" if r > MAX_CAM_RPM else "")
+                + (f"; did you mean {r / 10:g}?" if r > MAX_CAM_RPM else ".")
                 + " Set allow_extreme_speeds (--allow-extreme-speeds) to compute it anyway, flagged"
                 + (f" ({bad.size} speeds of the range are beyond it)" if bad.size > 1 else "")
             )
