@@ -168,3 +168,13 @@ def test_every_layout_runs_simulate_float_and_train_modes(capsys, tmp_path, trai
     code, out, _ = run(capsys, "valve", "train-modes", SPRING, "--cam", cm, "--valve-train", vt, "--json")
     res = json.loads(out)
     assert code == 0 and len(res["full_lift_Hz"]) == 6 and res["resonance_speeds"]
+
+
+def test_engine_speed_gives_crank_angles(capsys, tmp_path):
+    """Issue 27: with --engine-rpm the outputs carry crank angles (four-stroke: twice the cam's)."""
+    c = tmp_path / "s.csv"
+    code, out, _ = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--engine-rpm", "6000", "--csv", str(c))
+    assert code == 0 and "3000 cam rpm" in out and f"wrote {c}" in out
+    rows = list(csv.reader(open(c)))
+    assert rows[0][:3] == ["time_s", "cam_angle_deg", "crank_angle_deg"]
+    assert float(rows[100][2]) == pytest.approx(2 * float(rows[100][1]))

@@ -125,28 +125,32 @@ def plot_simulation(sim, path=None, ax=None):
         fig, axes = ax.figure, [ax]
     else:
         fig, axes = new_figure(5 if vt else 3, 1, figsize=(9, 15 if vt else 10))
-    deg = sim.cam_angle_deg
+    # four-stroke crank angles (twice the cam angle) when the run asks for them
+    fx = 2.0 if sim.crank_angles else 1.0
+    deg = fx * sim.cam_angle_deg
+    axis = "crank angle [deg]" if sim.crank_angles else "cam angle [deg]"
     order = np.argsort(deg)
     ax = axes[0]
     ax.plot(deg[order], sim.retainer_force[order], color="C0", lw=1.5, label="retainer force (dynamic)")
     ax.plot(deg[order], sim.seat_force[order], color="C1", lw=1.0, label="seat force (dynamic)")
     ax.plot(deg[order], sim.static_force[order], color="k", ls="--", lw=1.2, label="static (massless) force")
     for ev in sim.summary["coil_contact"]:
-        a, b = ev["start_deg"], ev["end_deg"]
-        spans = [(a, b)] if a <= b else [(a, 360.0), (0.0, b)]
+        a, b = fx * ev["start_deg"], fx * ev["end_deg"]
+        spans = [(a, b)] if a <= b else [(a, fx * 360.0), (0.0, b)]
         for lo, hi in spans:
             ax.axvspan(lo, hi, color="C3", alpha=0.15)
     if sim.summary["coil_contact"]:
         ax.plot([], [], color="C3", alpha=0.3, lw=6, label="coil contact")
     ax.set_ylabel("force [N]")
     ax.set_title(
-        f"{sim.spring.type} spring, {sim.cam.law} cam, {sim.cam_rpm:.0f} cam rpm "
-        f"(revolution {sim.revolutions} of {sim.revolutions})"
+        f"{sim.spring.type} spring, {sim.cam.law} cam, {sim.cam_rpm:.0f} cam rpm"
+        + (f" ({2 * sim.cam_rpm:.0f} engine rpm)" if sim.crank_angles else "")
+        + f" (revolution {sim.revolutions} of {sim.revolutions})"
     )
     ax.legend(fontsize=8)
     if only_forces:
-        ax.set_xlabel("cam angle [deg]")
-        ax.set_xlim(0, 360)
+        ax.set_xlabel(axis)
+        ax.set_xlim(0, fx * 360)
         ax.grid(True, alpha=0.3)
         return fig
     ax2 = ax.twinx()
@@ -163,7 +167,7 @@ def plot_simulation(sim, path=None, ax=None):
         ax.plot(deg[order], sim.cam_contact_force[order], color="C2", label="cam-follower contact force")
         ax.plot(deg[order], sim.valve_seat_force[order], color="C4", label="valve-seat force")
         for ev in sim.summary["liftoff"]:
-            ax.axvspan(ev["start_deg"], ev["end_deg"], color="C3", alpha=0.2)
+            ax.axvspan(fx * ev["start_deg"], fx * ev["end_deg"], color="C3", alpha=0.2)
         if sim.summary["liftoff"]:
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="lift-off")
         sm = sim.summary
@@ -176,8 +180,8 @@ def plot_simulation(sim, path=None, ax=None):
         ax.legend(fontsize=8)
         row = 3
     for a in axes[:row]:
-        a.set_xlabel("cam angle [deg]")
-        a.set_xlim(0, 360)
+        a.set_xlabel(axis)
+        a.set_xlim(0, fx * 360)
         a.grid(True, alpha=0.3)
     if vt:  # valve lift against lobe lift: the train's ratio, lash and elastic deflection
         ax = axes[3]

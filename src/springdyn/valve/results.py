@@ -131,6 +131,9 @@ class Simulation(Result):
     band: dict | None = None
     #: Notes on how the run was asked for (a speed beyond reason computed on request).
     flags: list = dataclasses.field(default_factory=list)
+    #: Show crank angles (four-stroke: twice the cam angle) beside the cam angles in the
+    #: outputs and plots (the CLI sets it when the speed is given as an engine speed).
+    crank_angles: bool = False
 
     #: Change of the peak end forces with half the elements [fraction of Fset] above which
     #: the clash forces are flagged as not converged.
@@ -235,6 +238,7 @@ class Simulation(Result):
             coords={
                 "time": (dims, self.time, {"units": "s"}),
                 "cam_angle": (dims, self.cam_angle_deg, {"units": "deg"}),
+                **({"crank_angle": (dims, 2.0 * self.cam_angle_deg, {"units": "deg"})} if self.crank_angles else {}),
                 "element": enames,
                 "mass": mnames,
             },

@@ -756,6 +756,7 @@ def cmd_simulate(args) -> int:
             points_per_revolution=args.points_per_revolution,
             backend=args.backend,
         )
+    sim.crank_angles = args.engine_rpm is not None  # an engine speed: crank angles beside the cam's
     if args.csv:
         sim.to_csv(args.csv)
     if args.plot:
