@@ -295,3 +295,12 @@ def test_forward_force_range_and_unloaded_safety(capsys):
     assert main(["cfcs", "forward", "table1", "--t-end", "0.05", "--force", "0N", "--x0", "0mm", "--json"]) == 0
     s = json.loads(capsys.readouterr().out)
     assert s["summary"]["safety_factor"] is None if "summary" in s else s["safety_factor"] is None
+
+
+def test_kinematic_limit_hints_name_the_commands_own_options(capsys):
+    """Issue 27: the static and forward commands were told to 'reduce the amplitude or the
+    offset', options they lack."""
+    assert main(["cfcs", "static", "table1", "--stroke", "500mm"]) == 2
+    assert "give a shorter stroke" in capsys.readouterr().err
+    assert main(["cfcs", "forward", "table1", "--t-end", "0.1", "--force", "5N", "--x0", "500mm"]) == 2
+    assert "start at a smaller deflection x0" in capsys.readouterr().err

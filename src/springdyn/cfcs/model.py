@@ -293,7 +293,9 @@ class CFCS:
         value = 0.4 * p.extended_length if stroke is None else float(stroke)
         if not value > 0:
             raise InputError(f"stroke = {format_quantity(value, 'm', 'mm')} must be positive")
-        check_stroke(0.0, value, p.max_deflection, f"stroke = {format_quantity(value, 'm', 'mm')}")
+        check_stroke(
+            0.0, value, p.max_deflection, f"stroke = {format_quantity(value, 'm', 'mm')}", "give a shorter stroke"
+        )
         return value
 
     # -- statics ------------------------------------------------------------------------
@@ -660,7 +662,9 @@ class CFCS:
             raise InputError(f"t_end = {t_end!r} s must be positive")
         if not sign_smoothing > 0:
             raise InputError(f"sign_smoothing = {sign_smoothing!r} rad/s must be positive")
-        check_stroke(x0, x0, p.max_deflection, f"x0 = {format_quantity(x0, 'm', 'mm')}")
+        check_stroke(
+            x0, x0, p.max_deflection, f"x0 = {format_quantity(x0, 'm', 'mm')}", "start at a smaller deflection x0"
+        )
         th0 = float(theta2_from_deflection(x0, p.r2, p.r3))
         g0 = float(slider_jacobian(th0, p.r2, p.r3))
         if g0 == 0.0 and v0 != 0.0:

@@ -140,7 +140,9 @@ def _is_number(text: str) -> bool:
     return True
 
 
-def check_stroke(lowest: float, highest: float, max_deflection: float, what: str) -> None:
+def check_stroke(
+    lowest: float, highest: float, max_deflection: float, what: str, remedy: str = "reduce the amplitude or the offset"
+) -> None:
     """Raise InputError if the deflections leave ``[0, max_deflection]``.
 
     Parameters
@@ -153,6 +155,8 @@ def check_stroke(lowest: float, highest: float, max_deflection: float, what: str
         Kinematic limit deflection [m].
     what : str
         What the deflections belong to, for messages.
+    remedy : str
+        What to change, in the words of the caller's options.
     """
     if lowest < -1e-12:
         raise InputError(
@@ -162,7 +166,7 @@ def check_stroke(lowest: float, highest: float, max_deflection: float, what: str
     if highest > max_deflection * (1 + 1e-12):
         raise InputError(
             f"{what} reaches a deflection of {format_quantity(highest, 'm', 'mm')}, beyond the kinematic limit "
-            f"{format_quantity(max_deflection, 'm', 'mm')} (theta2 = 90 deg): reduce the amplitude or the offset"
+            f"{format_quantity(max_deflection, 'm', 'mm')} (theta2 = 90 deg): {remedy}"
         )
 
 
