@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -147,6 +148,14 @@ class Simulation(Result):
     @property
     def cam_angle_deg(self) -> np.ndarray:
         return np.degrees(self.cam_angle)
+
+    @cached_property
+    def contact_share(self) -> np.ndarray:
+        """The force [N] each element's closed coils pass through their contact over the
+        revolution (:meth:`SpringModel.contact_share`; NaN for an element that is no wire)."""
+        model = self.spring.spring_model
+        x = self.element_compression
+        return model.contact_share(np.stack([law_force(x[j], law) for j, law in enumerate(model.chain.laws)]))
 
     @property
     def periodic(self) -> bool | None:
@@ -738,9 +747,7 @@ def _clash_impacts(sim, events: list) -> dict:
     (:meth:`SpringModel.clash`); the summary counts the clash events, their total duration
     and their peak force through contact."""
     model = sim.spring.spring_model
-    x = sim.element_compression
-    elastic = np.stack([law_force(x[j], law) for j, law in enumerate(model.chain.laws)])
-    share = np.nan_to_num(model.contact_share(elastic))
+    share = np.nan_to_num(sim.contact_share)
     clash = model.clash(sim.element_contact, sim.static_force)
     deg = sim.cam_angle_deg
     index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
@@ -771,13 +778,11 @@ def _durability(sim, s: dict, notes: list) -> dict:
     from .durability import fatigue_assessment
 
     model = sim.spring.spring_model
-    wire = model.wire_forces(sim.element_compression, sim.element_force)
+    share = sim.contact_share
+    wire = sim.element_force - share  # SpringModel.wire_forces, with the share computed once
     rows = np.flatnonzero(np.isfinite(wire).all(axis=1))
     lo = wire.min(axis=1)
     hi = wire.max(axis=1)
-    share = model.contact_share(
-        np.stack([law_force(sim.element_compression[j], law) for j, law in enumerate(model.chain.laws)])
-    )
     if 0 in rows and not np.any(share[0]):
         lo[0], hi[0] = min(lo[0], s["min_seat_force_N"]), max(hi[0], s["max_seat_force_N"])
     last = sim.element_force.shape[0] - 1
