@@ -89,6 +89,9 @@ def test_design(capsys):
         (["valve", "curve", ONE, "--to", "5mm"], "--to = 5 mm is outside the range"),
         (["valve", "params", "nonexistent.toml"], "nonexistent.toml: no such file"),
         (["valve", "modes", ONE, "--length", "38mm", "--count", "9"], "--count = 9 must be a whole number from 1 to 5"),
+        # a literal '--' is named, not reported as a missing value or an unknown argument (issue 27)
+        (["valve", "modes", ONE, "--length", "--"], "a bare '--' after --length is not an argument"),
+        (["valve", "params", ONE, "--"], "a bare '--' is not an argument springdyn takes"),
     ],
 )
 def test_bad_input_exit_2(capsys, argv, message):

@@ -156,9 +156,17 @@ def _run_report(args) -> int:
 def _join_negative_values(argv) -> list[str]:
     """``--lift -1mm`` -> ``--lift=-1mm``: a value starting with a minus sign and a digit (or
     ``-inf``, ``-nan``) reaches the option's validator instead of being taken for an option by
-    argparse."""
+    argparse.  A bare ``--`` (argparse's end of options) is refused with its own message:
+    no springdyn argument starts with a minus sign, and argparse would report it as a
+    missing value or an unrecognized argument."""
     out: list[str] = []
     for token in argv:
+        if token == "--":
+            after = f" after {out[-1]}" if out and out[-1].startswith("-") and "=" not in out[-1] else ""
+            raise UsageError(
+                f"springdyn: a bare '--'{after} is not an argument springdyn takes: no file or value of it "
+                "starts with '-'; remove it (a negative value is written --option=-1)"
+            )
         if (
             out
             and re.match(r"^-(\.?\d|inf|nan|infinity)", token, re.IGNORECASE)
