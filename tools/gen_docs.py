@@ -44,6 +44,7 @@ __all__ = [
 PARAMETER_TABLES = {
     "spring": ("springdyn.valve.spring:ValveSpring", "valve_one_step.toml"),
     "cam": ("springdyn.valve.cam:Cam", "valve_cam_345.toml"),
+    "timing": ("springdyn.valve.timing:Timing", "valve_cam_timing.toml"),
     "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train_direct_acting.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
@@ -75,6 +76,10 @@ CROSS_KEY_RULES = {
             '`file` only with `law = "table"`, and `law = "table"` takes no `lift`, `duration` or ramps',
             {"file": "lift.csv"},
         ),
+    ],
+    "timing": [
+        ("`lobe_centre` from 0 to half the cycle (360 deg for a four-stroke)", {"lobe_centre": "400 deg"}),
+        ("`strokes` 4 or 2", {"strokes": 3}),
     ],
     "valve_train": [],
     "report": [("`min_engine_rpm` < `max_engine_rpm`", {"min_engine_rpm": "9000 rpm"})],
@@ -335,6 +340,7 @@ def toml_reference() -> str:
     users = {
         "spring": "`springdyn valve params/curve/modes/design/simulate/float/sweep`, `springdyn report`",
         "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
+        "timing": "beside `[cam]`: crank angles from TDC in `springdyn valve cam/simulate/sweep`, `springdyn report`",
         "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",
         "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",

@@ -269,7 +269,7 @@ def test_lift_that_drives_spring_solid(one_step):
         match=r"coil contact even statically: from cam angle [\d.]+ deg .* peaking at [\d.]+ N at 60\.0 deg",
     ):
         assert prepare(expert, cam(13e-3)).coil_bind["through_solid"]
-    with pytest.raises(InputError, match=r"cam lift 25 mm at 60\.0 deg drives the spring solid"):
+    with pytest.raises(InputError, match=r"cam lift 25 mm at 60\.0 cam deg drives the spring solid"):
         prepare(expert, cam(25e-3))
 
 

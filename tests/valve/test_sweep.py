@@ -204,7 +204,7 @@ def test_cli_sweep(capsys, tmp_path):
     )
     out, err = capsys.readouterr()
     assert code == 0, err
-    assert "swept 3 speeds (1000-3000 cam rpm) x 3 values of installed_length" in out
+    assert "swept 3 speeds (1000-3000 cam rpm, 2000-6000 engine rpm) x 3 values of installed_length" in out
     assert (tmp_path / "sweep.nc").exists() and (tmp_path / "sweep_map_2.png").exists()
     code = main(
         [

@@ -10,6 +10,8 @@ The definitions
 - :mod:`~springdyn.valve.cam` -- cam lift laws and measured lift tables (``[cam]``);
 - :mod:`~springdyn.valve.cam_analysis` -- the cam checked first: lift, velocity,
   acceleration, jerk, timing at check heights, lobe centre, ramps;
+- :mod:`~springdyn.valve.timing` -- the ``[timing]`` table: cam angles as crank angles from TDC
+  ("12.0 deg BTDC") for every valve output;
 - :mod:`~springdyn.valve.valvetrain` -- layouts, masses, stiffnesses, lash (``[valve_train]``).
 
 The physics, one place per equation

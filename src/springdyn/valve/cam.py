@@ -277,6 +277,23 @@ class Cam(Parameters):
         return self.lift
 
     @property
+    def peak_angle(self) -> float:
+        """Cam angle [rad] of the maximum lift, the lobe centre of the valve timing
+        (:mod:`springdyn.valve.timing`): after the opening ramp and flank; for a table, where
+        the spline's slope vanishes at its largest lift."""
+        if self.law != "table":
+            return self.ramp_duration + self.flank_durations[0]
+        grid = np.linspace(0.0, TWO_PI, 7201)
+        i = int(np.argmax(self._spline(grid)))
+        d = self._spline.derivative()
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, 7200)]
+        if d(lo) > 0 > d(hi):
+            from scipy.optimize import brentq
+
+            return float(brentq(d, lo, hi, xtol=1e-12)) % TWO_PI
+        return float(grid[i]) % TWO_PI
+
+    @property
     def event_duration(self) -> float:
         """Cam angle [rad] of the whole event including ramps (the table: 2 pi)."""
         if self.law == "table":

@@ -5,7 +5,8 @@ the timing at check heights, the lobe centre, the ramps.
 (optionally at the valve: rocker ratio and lash); :func:`check_height_timing` finds where the
 lift crosses a check height on the opening and the closing side; :func:`analyse_cam` gathers
 everything into a :class:`CamAnalysis` (the Result interface: summary, xarray, CSV, plot),
-with crank-angle axes and derivatives in time when an engine speed is given.
+with crank-angle axes (:mod:`springdyn.valve.timing`) when an engine speed or a ``[timing]``
+table is given, and derivatives in time with an engine speed.
 """
 
 from __future__ import annotations
@@ -122,7 +123,9 @@ def check_height_timing(cam_angle, lift, height: float) -> dict | None:
     )
 
 
-def analyse_cam(cam, valve_train=None, engine_rpm: float | None = None, samples: int = SAMPLES) -> CamAnalysis:
+def analyse_cam(
+    cam, valve_train=None, engine_rpm: float | None = None, samples: int = SAMPLES, timing=None
+) -> CamAnalysis:
     """The cam's lift, derivatives and timing, at the valve when a valve train is given.
 
     Parameters
@@ -135,13 +138,21 @@ def analyse_cam(cam, valve_train=None, engine_rpm: float | None = None, samples:
         and the derivatives in time (velocity [m/s], acceleration [m/s^2], jerk [m/s^3]).
     samples : int
         Samples per revolution [-].
+    timing : Timing, optional
+        The ``[timing]`` table (:mod:`springdyn.valve.timing`): crank angles from the
+        gas-exchange TDC and the timing in words ("10.0 deg BTDC").
     """
+    from .timing import crank_axis
+
     if engine_rpm is not None and not (isinstance(engine_rpm, (int, float)) and 0 < engine_rpm < 1e5):
         raise InputError(f"engine_rpm = {engine_rpm!r} must be an engine speed between 0 and 100000 rev/min")
     ratio = 1.0 if valve_train is None else valve_train.ratio
     lash = 0.0 if valve_train is None else valve_train.lash
     d = cam_derivatives(cam, samples, ratio, lash)
-    return CamAnalysis(cam=cam, at_valve=valve_train is not None, ratio=ratio, lash=lash, engine_rpm=engine_rpm, **d)
+    axis = crank_axis(cam, timing) if (timing is not None or engine_rpm is not None) else None
+    return CamAnalysis(
+        cam=cam, at_valve=valve_train is not None, ratio=ratio, lash=lash, engine_rpm=engine_rpm, axis=axis, **d
+    )
 
 
 @dataclass(repr=False)
@@ -154,6 +165,7 @@ class CamAnalysis(Result):
     ratio: float
     lash: float
     engine_rpm: float | None
+    axis: object  # CrankAxis (crank angles) or None
     cam_angle: np.ndarray  # [rad]
     lift: np.ndarray  # [m]
     velocity: np.ndarray  # [m/rad]
@@ -215,12 +227,26 @@ class CamAnalysis(Result):
         if self.engine_rpm is not None:
             w = self.cam_omega
             s["engine_rpm"] = self.engine_rpm
-            s["crank_angle_per_cam_angle"] = 2.0
             s["max_velocity_m_per_s"] = s["max_velocity_m_per_rad"] * w
             s["max_acceleration_m_per_s2"] = s["max_acceleration_m_per_rad2"] * w**2
             s["min_acceleration_m_per_s2"] = s["min_acceleration_m_per_rad2"] * w**2
-            for key in [k for k in s if k.endswith("_deg") and ("opening" in k or "closing" in k or "centre" in k)]:
-                s[key.replace("_deg", "_crank_deg")] = 2.0 * s[key]
+        if self.axis is not None:
+            ax = self.axis
+            s["crank_angle_per_cam_angle"] = ax.per_cam
+            s["crank_angle_origin"] = "gas-exchange TDC" if ax.referenced else "cam angle 0 (no [timing] table)"
+            keys = [k for k in s if k.endswith("_deg") and ("opening" in k or "closing" in k or "centre" in k)]
+            keys.append("max_lift_cam_angle_deg")
+            for key in keys:
+                if s[key] is not None:
+                    s[key.replace("_cam_angle_deg", "_deg").replace("_deg", "_crank_deg")] = ax.crank_deg(s[key])
+            if ax.referenced:
+                s["timing"] = {
+                    k.replace("_cam_angle_deg", "").replace("_deg", ""): ax.words(
+                        s[k], from_tdc=k.startswith("max_lift")
+                    )
+                    for k in keys
+                    if s[k] is not None and ("opening_at" in k or "closing_at" in k or k == "max_lift_cam_angle_deg")
+                }
         return s
 
     def to_xarray(self):
@@ -233,12 +259,13 @@ class CamAnalysis(Result):
             "jerk": ("cam_angle", self.jerk, {"units": "m/rad^3"}),
         }
         coords = {"cam_angle": ("cam_angle", np.degrees(self.cam_angle), {"units": "deg"})}
+        if self.axis is not None:
+            coords["crank_angle"] = ("cam_angle", self.axis.crank_deg(np.degrees(self.cam_angle)), {"units": "deg"})
         if self.engine_rpm is not None:
             w = self.cam_omega
             data["velocity_time"] = ("cam_angle", self.velocity * w, {"units": "m/s"})
             data["acceleration_time"] = ("cam_angle", self.acceleration * w**2, {"units": "m/s^2"})
             data["jerk_time"] = ("cam_angle", self.jerk * w**3, {"units": "m/s^3"})
-            coords["crank_angle"] = ("cam_angle", 2.0 * np.degrees(self.cam_angle), {"units": "deg"})
         return xr.Dataset(data, coords=coords, attrs={"law": self.cam.law, "at_valve": int(self.at_valve)})
 
     def _plot(self, ax=None):
@@ -249,8 +276,10 @@ class CamAnalysis(Result):
             fig, axes = ax.figure, [ax]
         else:
             fig, axes = plt.subplots(4, 1, figsize=(8, 9), sharex=True)
-        crank = self.engine_rpm is not None
-        x = np.degrees(self.cam_angle) * (2.0 if crank else 1.0)
+        crank = self.engine_rpm is not None  # derivatives in time
+        deg = np.degrees(self.cam_angle)
+        order = np.arange(deg.size) if self.axis is None else self.axis.plot_order(deg)
+        x = (deg if self.axis is None else self.axis.crank_deg(deg))[order]
         w = self.cam_omega if crank else 1.0
         rows = (
             (self.lift * 1e3, "lift [mm]"),
@@ -262,7 +291,7 @@ class CamAnalysis(Result):
             (self.jerk * w**3 * (1.0 if crank else 1e3), "jerk [m/s^3]" if crank else "jerk [mm/rad^3]"),
         )
         for a, (y, label) in zip(axes, rows[: len(axes)]):
-            a.plot(x, y, "C0")
+            a.plot(x, y[order], "C0")
             a.axhline(0.0, color="k", lw=0.6)
             a.set_ylabel(label)
             a.grid(True, alpha=0.3)
@@ -271,7 +300,7 @@ class CamAnalysis(Result):
             axes[0].text(
                 x[-1], h * 1e3, {"0050in": "0.050 in", "1mm": "1 mm"}[name], fontsize=7, va="bottom", ha="right"
             )
-        axes[-1].set_xlabel("crank angle [deg]" if crank else "cam angle [deg]")
+        axes[-1].set_xlabel("cam angle [deg]" if self.axis is None else self.axis.label)
         axes[0].set_title(
             f"{self.cam.law} cam at the {'valve' if self.at_valve else 'lobe'}"
             + (f", {self.engine_rpm:g} engine rpm" if crank else "")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.plotting import new_figure, save_figure
+from .timing import CrankAxis
 
 __all__ = ["plot_static_curve", "plot_closure_map"]
 
@@ -125,32 +126,29 @@ def plot_simulation(sim, path=None, ax=None):
         fig, axes = ax.figure, [ax]
     else:
         fig, axes = new_figure(5 if vt else 3, 1, figsize=(9, 15 if vt else 10))
-    # four-stroke crank angles (twice the cam angle) when the run asks for them
-    fx = 2.0 if sim.crank_angles else 1.0
-    deg = fx * sim.cam_angle_deg
-    axis = "crank angle [deg]" if sim.crank_angles else "cam angle [deg]"
-    order = np.argsort(deg)
+    # crank angles (springdyn.valve.timing) when the run asks for them
+    axis = sim.crank_axis if sim.crank_axis is not None else CrankAxis.cam()
+    deg = axis.crank_deg(sim.cam_angle_deg)
+    order = np.argsort(deg, kind="stable")
     ax = axes[0]
     ax.plot(deg[order], sim.retainer_force[order], color="C0", lw=1.5, label="retainer force (dynamic)")
     ax.plot(deg[order], sim.seat_force[order], color="C1", lw=1.0, label="seat force (dynamic)")
     ax.plot(deg[order], sim.static_force[order], color="k", ls="--", lw=1.2, label="static (massless) force")
     for ev in sim.summary["coil_contact"]:
-        a, b = fx * ev["start_deg"], fx * ev["end_deg"]
-        spans = [(a, b)] if a <= b else [(a, fx * 360.0), (0.0, b)]
-        for lo, hi in spans:
+        for lo, hi in axis.spans(ev["start_deg"], ev["end_deg"]):
             ax.axvspan(lo, hi, color="C3", alpha=0.15)
     if sim.summary["coil_contact"]:
         ax.plot([], [], color="C3", alpha=0.3, lw=6, label="coil contact")
     ax.set_ylabel("force [N]")
     ax.set_title(
         f"{sim.spring.type} spring, {sim.cam.law} cam, {sim.cam_rpm:.0f} cam rpm"
-        + (f" ({2 * sim.cam_rpm:.0f} engine rpm)" if sim.crank_angles else "")
+        + (f" ({axis.per_cam * sim.cam_rpm:.0f} engine rpm)" if axis.kind == "crank" else "")
         + f" (revolution {sim.revolutions} of {sim.revolutions})"
     )
     ax.legend(fontsize=8)
     if only_forces:
-        ax.set_xlabel(axis)
-        ax.set_xlim(0, fx * 360)
+        ax.set_xlabel(axis.label)
+        ax.set_xlim(*axis.limits)
         ax.grid(True, alpha=0.3)
         return fig
     ax2 = ax.twinx()
@@ -167,7 +165,8 @@ def plot_simulation(sim, path=None, ax=None):
         ax.plot(deg[order], sim.cam_contact_force[order], color="C2", label="cam-follower contact force")
         ax.plot(deg[order], sim.valve_seat_force[order], color="C4", label="valve-seat force")
         for ev in sim.summary["liftoff"]:
-            ax.axvspan(fx * ev["start_deg"], fx * ev["end_deg"], color="C3", alpha=0.2)
+            for lo, hi in axis.spans(ev["start_deg"], ev["end_deg"]):
+                ax.axvspan(lo, hi, color="C3", alpha=0.2)
         if sim.summary["liftoff"]:
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="lift-off")
         sm = sim.summary
@@ -180,8 +179,8 @@ def plot_simulation(sim, path=None, ax=None):
         ax.legend(fontsize=8)
         row = 3
     for a in axes[:row]:
-        a.set_xlabel(axis)
-        a.set_xlim(0, fx * 360)
+        a.set_xlabel(axis.label)
+        a.set_xlim(*axis.limits)
         a.grid(True, alpha=0.3)
     if vt:  # valve lift against lobe lift: the train's ratio, lash and elastic deflection
         ax = axes[3]
@@ -219,7 +218,7 @@ def plot_sweep_forces(result, ax=None):
     """Peak and minimum retainer (and seat) forces against speed, with the static values."""
     table = result.summary_table()
     nv, nr = result.vary_values.size, result.cam_rpm.size
-    rpm = result.cam_rpm
+    rpm, speed_label = _speed_axis(result)
     if ax is None:
         fig, ax = new_figure(figsize=(9, 5.5))
     for k in range(nv):
@@ -241,7 +240,7 @@ def plot_sweep_forces(result, ax=None):
             label="static max / min" if k == 0 else None,
         )
         ax.plot(rpm, table["min_static_force_N"][sl], color=color, ls="--", lw=0.8, alpha=0.7)
-    ax.set_xlabel("cam speed [rpm]")
+    ax.set_xlabel(speed_label)
     ax.set_ylabel("force [N]")
     ax.set_title(f"{result.spring.type} spring, {result.cam.law} cam: forces over the speed range")
     ax.grid(True, alpha=0.3)
@@ -252,42 +251,53 @@ def plot_sweep_forces(result, ax=None):
 def plot_sweep(result, out_dir, prefix="sweep"):
     """Peak/min forces vs speed, speed x cam-angle map, Campbell diagram (and contact force)."""
     table = result.summary_table()
-    nv, nr, rpm = result.vary_values.size, result.cam_rpm.size, result.cam_rpm
+    nv, nr = result.vary_values.size, result.cam_rpm.size
     written = [save_figure(plot_sweep_forces(result), out_dir / f"{prefix}_forces.png")]
-    deg = np.degrees(result.cam_angle)
+    axis = result.crank_axis if result.crank_axis is not None else CrankAxis.cam()
+    deg = axis.crank_deg(np.degrees(result.cam_angle))
+    order = np.argsort(deg, kind="stable")
+    speed, speed_label = _speed_axis(result)
     for k in range(nv):
         suffix = f"_{k}" if nv > 1 else ""
         tag = f", {_vary_label(result, k)}" if result.vary_name else ""
         force = result.data["retainer"][k]
         fig, ax = new_figure(figsize=(9, 5.5))
-        mesh = ax.pcolormesh(deg, rpm, force, shading="auto", cmap="viridis")
+        mesh = ax.pcolormesh(deg[order], speed, force[:, order], shading="auto", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label="retainer force [N]")
-        ax.set_xlabel("cam angle [deg]")
-        ax.set_ylabel("cam speed [rpm]")
-        ax.set_title(f"retainer force over speed and cam angle{tag}")
+        ax.set_xlabel(axis.label)
+        ax.set_ylabel(speed_label)
+        ax.set_title(f"retainer force over speed and {axis.kind} angle{tag}")
         written.append(save_figure(fig, out_dir / f"{prefix}_map{suffix}.png"))
         written.append(_campbell(result, k, out_dir / f"{prefix}_campbell{suffix}.png", tag))
     if result.valve_train is not None:
+        per_cam = 1.0 if result.crank_axis is None else result.crank_axis.per_cam
         fig, ax = new_figure(figsize=(9, 5))
         for k in range(nv):
             sl = slice(k * nr, (k + 1) * nr)
             ax.plot(
-                rpm,
+                speed,
                 table["min_cam_contact_force_N"][sl],
                 color=f"C{k % 10}",
                 label="min cam contact force" + (f" ({_vary_label(result, k)})" if result.vary_name else ""),
             )
         for k, f in enumerate(result.float_speeds()):
             if np.isfinite(f):
-                ax.axvline(f, color=f"C{k % 10}", ls="--", lw=1, label=f"float speed ~ {f:.0f} rpm")
+                ax.axvline(per_cam * f, color=f"C{k % 10}", ls="--", lw=1, label=f"float speed ~ {per_cam * f:.0f} rpm")
         ax.axhline(0, color="k", lw=0.8)
-        ax.set_xlabel("cam speed [rpm]")
+        ax.set_xlabel(speed_label)
         ax.set_ylabel("force [N]")
         ax.set_title("cam-follower contact during the event")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
         written.append(save_figure(fig, out_dir / f"{prefix}_contact.png"))
     return written
+
+
+def _speed_axis(result):
+    """The sweep's speeds and their label: engine speeds when the sweep has crank angles."""
+    if result.crank_axis is not None:
+        return result.engine_rpm, "engine speed [rpm]"
+    return result.cam_rpm, "cam speed [rpm]"
 
 
 def _vary_label(result, k):

@@ -132,9 +132,10 @@ class Simulation(Result):
     band: dict | None = None
     #: Notes on how the run was asked for (a speed beyond reason computed on request).
     flags: list = dataclasses.field(default_factory=list)
-    #: Show crank angles (four-stroke: twice the cam angle) beside the cam angles in the
-    #: outputs and plots (the CLI sets it when the speed is given as an engine speed).
-    crank_angles: bool = False
+    #: Crank angles beside the cam angles in the outputs and plots: a
+    #: :class:`~springdyn.valve.timing.CrankAxis` (:func:`~springdyn.valve.timing.crank_axis`),
+    #: None for cam angles only (the CLI sets it for an engine speed or a ``[timing]`` table).
+    crank_axis: object = None
 
     #: Change of the peak end forces with half the elements [fraction of Fset] above which
     #: the clash forces are flagged as not converged.
@@ -165,8 +166,23 @@ class Simulation(Result):
 
     # ------------------------------------------------------------------ summary
     def _summary(self) -> dict:
-        """Peak forces, ratios to static, surge, coil-contact and lift-off events, spectrum."""
-        return _summarise(self)
+        """Peak forces, ratios to static, surge, coil-contact and lift-off events, spectrum;
+        with a :attr:`crank_axis`, every event's crank angles beside its cam angles."""
+        s = _summarise(self)
+        if self.crank_axis is not None:
+            _add_crank_angles(s, self.crank_axis)
+        return s
+
+    def set_crank_axis(self, axis) -> None:
+        """Show crank angles in the outputs (:attr:`crank_axis`; the summary is rebuilt).
+
+        Parameters
+        ----------
+        axis : CrankAxis or None
+            :func:`springdyn.valve.timing.crank_axis` of the cam (None: cam angles only).
+        """
+        self.crank_axis = axis
+        self.__dict__.pop("_summary_cache", None)
 
     def spectrum(self, max_order: int = 40):
         """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean).
@@ -247,7 +263,11 @@ class Simulation(Result):
             coords={
                 "time": (dims, self.time, {"units": "s"}),
                 "cam_angle": (dims, self.cam_angle_deg, {"units": "deg"}),
-                **({"crank_angle": (dims, 2.0 * self.cam_angle_deg, {"units": "deg"})} if self.crank_angles else {}),
+                **(
+                    {"crank_angle": (dims, self.crank_axis.crank_deg(self.cam_angle_deg), {"units": "deg"})}
+                    if self.crank_axis is not None
+                    else {}
+                ),
                 "element": enames,
                 "mass": mnames,
             },
@@ -386,6 +406,22 @@ def _union(ivals: list) -> list:
         else:
             merged.append([s, e])
     return merged
+
+
+#: Summary lists of events with ``start_deg``/``end_deg`` cam angles (crank angles added
+#: beside them by :func:`_add_crank_angles`).
+EVENT_LISTS = ("coil_contact", "end_separation", "liftoff")
+
+
+def _add_crank_angles(s: dict, axis) -> None:
+    """``start_crank_deg``/``end_crank_deg`` (and timing words from TDC) beside the cam angles."""
+    s["crank_angle_origin"] = "gas-exchange TDC" if axis.referenced else "cam angle 0 (no [timing] table)"
+    for key in EVENT_LISTS:
+        for ev in s.get(key, []):
+            ev["start_crank_deg"] = axis.crank_deg(ev["start_deg"])
+            ev["end_crank_deg"] = axis.crank_deg(ev["end_deg"])
+            if axis.referenced:
+                ev["start_timing"], ev["end_timing"] = axis.words(ev["start_deg"]), axis.words(ev["end_deg"])
 
 
 def _summarise(sim: Simulation) -> dict:

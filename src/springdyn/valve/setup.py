@@ -370,13 +370,13 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     coil_bind = check_coil_bind(
         spring,
         max(float(h[i_max]) - lash, 0.0),
-        f"the cam (valve lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} deg"
+        f"the cam (valve lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} cam deg"
         + (f", less the lash {lash * 1e3:.4g} mm)" if lash else ")"),
     )
     open_length = spring.installed_length - h[i_max]
     if open_length < spring.spring_model.min_length:
         raise InputError(
-            f"cam lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} deg drives the spring solid: "
+            f"cam lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} cam deg drives the spring solid: "
             f"installed_length - lift = {open_length * 1e3:.4g} mm is below {spring.spring_model.min_length * 1e3:.4g} mm, where "
             f"the static force reaches {spring.spring_model.LIMIT_FORCE_FACTOR:g} Fcon"
         )

@@ -277,8 +277,27 @@ class SpeedSweep(Result):
     periodicity_tol: float = PERIODICITY_TOL
     #: Notes on how the sweep was asked for (speeds beyond reason computed on request).
     flags: list = dataclasses.field(default_factory=list)
+    #: Crank angles and engine speeds beside the cam's (:mod:`springdyn.valve.timing`; the
+    #: CLI sets it for an engine speed or a ``[timing]`` table): None for cam angles only.
+    crank_axis: object = None
 
     title = "valve spring speed sweep"
+
+    def set_crank_axis(self, axis) -> None:
+        """Show crank angles and engine speeds in the outputs (:attr:`crank_axis`).
+
+        Parameters
+        ----------
+        axis : CrankAxis or None
+            :func:`springdyn.valve.timing.crank_axis` of the cam (None: cam angles only).
+        """
+        self.crank_axis = axis
+        self.__dict__.pop("_summary_cache", None)
+
+    @property
+    def engine_rpm(self) -> np.ndarray | None:
+        """Engine speeds [rev/min] of the sweep's cam speeds (None without a crank axis)."""
+        return None if self.crank_axis is None else self.crank_axis.per_cam * self.cam_rpm
 
     def _repr_caption(self) -> str:
         text = (
@@ -362,6 +381,8 @@ class SpeedSweep(Result):
             unit = _field_unit(self.vary_name)
             cols[f"{self.vary_name}_{unit}" if unit else self.vary_name] = np.repeat(self.vary_values, nr)
         cols["cam_rpm"] = np.tile(self.cam_rpm, nv)
+        if self.crank_axis is not None:
+            cols["engine_rpm"] = np.tile(self.engine_rpm, nv)
         flat = lambda a: a.reshape(nv * nr, *a.shape[2:])  # noqa: E731
         r, s, st = flat(d["retainer"]), flat(d["seat"]), flat(np.ascontiguousarray(static))
         ext = flat(d["ext"])
@@ -556,7 +577,7 @@ class SpeedSweep(Result):
             data["valve_lift"] = (dims, d["valve_lift"], {"units": "m"})
             data["float_cam_rpm"] = (("vary",), self.float_speeds(), {"units": "rpm"})
         for key, values in self.summary_table().items():
-            if key in ("cam_rpm",) or (self.vary_name and key.startswith(self.vary_name)):
+            if key in ("cam_rpm", "engine_rpm") or (self.vary_name and key.startswith(self.vary_name)):
                 continue
             values = np.asarray(values).reshape(self.vary_values.size, self.cam_rpm.size)
             if values.dtype == bool:
@@ -568,6 +589,21 @@ class SpeedSweep(Result):
                 "vary": ("vary", self.vary_values, {"long_name": self.vary_name or "none"}),
                 "cam_rpm": ("cam_rpm", self.cam_rpm, {"units": "rpm"}),
                 "cam_angle": ("cam_angle", np.degrees(self.cam_angle), {"units": "deg"}),
+                **(
+                    {
+                        "engine_rpm": ("cam_rpm", self.engine_rpm, {"units": "rpm"}),
+                        "crank_angle": (
+                            "cam_angle",
+                            self.crank_axis.crank_deg(np.degrees(self.cam_angle)),
+                            {
+                                "units": "deg",
+                                "origin": "gas-exchange TDC" if self.crank_axis.referenced else "cam angle 0",
+                            },
+                        ),
+                    }
+                    if self.crank_axis is not None
+                    else {}
+                ),
             },
             attrs={
                 "spring_type": self.spring.type,

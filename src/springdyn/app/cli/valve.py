@@ -386,6 +386,7 @@ def cmd_cam(args) -> int:
     from springdyn.valve.valvetrain import ValveTrain
 
     cam = Cam.from_toml(args.cam)
+    timing = _timing(args.cam)
     vt = ValveTrain.from_toml(args.valve_train) if args.valve_train else None
     rpm = (
         quantity(args.engine_rpm, "rad/s", "--engine-rpm", bare_unit="rpm") * 60 / (2 * 3.141592653589793)
@@ -393,12 +394,12 @@ def cmd_cam(args) -> int:
         else None
     )
     with as_options(engine_rpm="--engine-rpm"):
-        res = analyse_cam(cam, vt, rpm)
+        res = analyse_cam(cam, vt, rpm, timing=timing)
     if emit(res, args, json_data=dict(res.summary)):
         return 0
     s = res.summary
-    crank = rpm is not None
-    ang = "crank" if crank else "cam"
+    crank = res.axis is not None
+    ang = res.axis.unit if crank else "cam deg"
 
     def a(key):  # an angle in the axis the user asked for
         v = s.get(key.replace("_deg", "_crank_deg") if crank else key)
@@ -424,14 +425,27 @@ def cmd_cam(args) -> int:
             )
         else:
             rows.append((f"at {label}", "-", "-", "lift below the check height"))
-    print_table(rows, headers=("timing", f"opens [{ang} deg]", f"closes [{ang} deg]", "duration [cam deg]"))
-    print(f"lobe centre (mid-way between the 1 mm points): {a('lobe_centre_deg')} {ang} deg")
+    print_table(rows, headers=("timing", f"opens [{ang}]", f"closes [{ang}]", "duration [cam deg]"))
+    print(f"lobe centre (mid-way between the 1 mm points): {a('lobe_centre_deg')} {ang}")
+    if "timing" in s:
+        t = s["timing"]
+        v = "intake" if timing.valve == "intake" else "exhaust"
+        print(
+            f"{v} valve timing ([timing] lobe centre {t['max_lift']} at the maximum lift): "
+            + "; ".join(
+                f"at {label} opens {t[f'opening_at_{key}']}, closes {t[f'closing_at_{key}']}"
+                for key, label in (("0050in", "0.050 in"), ("1mm", "1 mm"))
+                if f"opening_at_{key}" in t
+            )
+        )
+    elif crank:
+        print("crank angles count from the start of the cam's event: give a [timing] table to count them from TDC")
     print(
         f"velocity {s['min_velocity_m_per_rad'] * 1e3:.3f} to {s['max_velocity_m_per_rad'] * 1e3:.3f} mm/rad, "
         f"acceleration {s['min_acceleration_m_per_rad2'] * 1e3:.3f} to {s['max_acceleration_m_per_rad2'] * 1e3:.3f} "
         f"mm/rad^2, jerk up to {s['max_abs_jerk_m_per_rad3'] * 1e3:.2f} mm/rad^3"
     )
-    if crank:
+    if rpm is not None:
         print(
             f"at {rpm:g} engine rpm: velocity up to {s['max_velocity_m_per_s']:.3f} m/s, acceleration "
             f"{s['min_acceleration_m_per_s2']:.0f} to {s['max_acceleration_m_per_s2']:.0f} m/s^2"
@@ -729,6 +743,23 @@ def cmd_design(args) -> int:
     return 0
 
 
+def _crank_axis(args, cam):
+    """Crank angles for the outputs: with an engine speed or the cam file's ``[timing]`` table."""
+    from springdyn.valve.timing import crank_axis
+
+    timing = _timing(args.cam)
+    if getattr(args, "engine_rpm", None) is None and timing is None:
+        return None
+    return crank_axis(cam, timing)
+
+
+def _timing(cam_file):
+    """The cam file's ``[timing]`` table, or None."""
+    from springdyn.valve.timing import Timing
+
+    return Timing.in_file(cam_file)
+
+
 def _load_cam_and_train(args):
     from springdyn.valve.cam import Cam
     from springdyn.valve.valvetrain import ValveTrain
@@ -756,7 +787,16 @@ def cmd_simulate(args) -> int:
             points_per_revolution=args.points_per_revolution,
             backend=args.backend,
         )
-    sim.crank_angles = args.engine_rpm is not None  # an engine speed: crank angles beside the cam's
+    sim.set_crank_axis(_crank_axis(args, cam))  # crank angles beside the cam's
+
+    def angles(ev):  # an event's cam angles, and its crank angles when the run has them
+        text = f"{ev['start_deg']:.2f}-{ev['end_deg']:.2f} cam deg"
+        if "start_timing" in ev:
+            return f"{text} ({ev['start_timing']} to {ev['end_timing']})"
+        if "start_crank_deg" in ev:
+            return f"{text} ({ev['start_crank_deg']:.1f}-{ev['end_crank_deg']:.1f} crank deg)"
+        return text
+
     if args.csv:
         sim.to_csv(args.csv)
     if args.plot:
@@ -820,7 +860,7 @@ def cmd_simulate(args) -> int:
             els = ev["elements"]
             where = ", ".join(els) if len(els) <= 4 else f"{len(els)} elements, from {els[0]} to {els[-1]}"
             print(
-                f"coil contact {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg in {where} (element number:name from the "
+                f"coil contact {angles(ev)} in {where} (element number:name from the "
                 f"seat), peak element force {ev['peak_contact_force_N']:.1f} N"
                 + (", a clash" if ev.get("clash") else "")
             )
@@ -835,18 +875,12 @@ def cmd_simulate(args) -> int:
             f"{cc['peak_force_through_contact_N']:.1f} N through the closed coils' contact"
         )
     for ev in s["end_separation"]:
-        print(
-            f"END SEPARATION at the {ev['end']} {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg "
-            f"({ev['duration_s'] * 1e3:.3f} ms)"
-        )
+        print(f"END SEPARATION at the {ev['end']} {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms)")
     if vt is not None:
         if s["liftoff"]:
             for ev in s["liftoff"]:
                 gap = f", gap {ev['max_gap_m'] * 1e3:.3f} mm" if "max_gap_m" in ev else ""
-                print(
-                    f"LIFT-OFF {ev['start_deg']:.2f}-{ev['end_deg']:.2f} deg ({ev['duration_s'] * 1e3:.3f} ms{gap}) "
-                    f"on the {ev['phase']}"
-                )
+                print(f"LIFT-OFF {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms{gap}) on the {ev['phase']}")
             print(
                 "FLOAT: the valve leaves the cam over the nose"
                 if s["nose_separation"]
@@ -1002,17 +1036,24 @@ def cmd_sweep(args) -> int:
     finally:
         if client is not None:
             client.close()
+    res.set_crank_axis(_crank_axis(args, cam))
+    engine = res.crank_axis is not None
+
+    def speed(rpm):  # a cam speed, with the engine's beside it when the sweep has crank angles
+        return f"{rpm:g} cam rpm" + (f" ({res.crank_axis.per_cam * rpm:g} engine rpm)" if engine else "")
+
     written = res.write(Path(args.out))
     table = res.summary_table()
     where = "on " + args.scheduler if args.scheduler else "locally"
     print(
-        f"swept {rpms.size} speeds ({rpms.min():g}-{rpms.max():g} cam rpm)"
+        f"swept {rpms.size} speeds ({rpms.min():g}-{rpms.max():g} cam rpm"
+        + (f", {res.engine_rpm.min():g}-{res.engine_rpm.max():g} engine rpm)" if engine else ")")
         + (f" x {res.vary_values.size} values of {res.vary_name}" if vary else "")
         + f" {where}"
     )
     k = int(np.argmax(table["max_retainer_force_N"]))
     print(
-        f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {table['cam_rpm'][k]:g} cam rpm "
+        f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {speed(table['cam_rpm'][k])} "
         f"(static peak {table['max_static_force_N'][k]:.1f} N); coil contact at "
         f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs, coil clash at "
         f"{int(np.sum(table['coil_clash']))}"
@@ -1035,12 +1076,12 @@ def cmd_sweep(args) -> int:
             print(
                 f"{tag}float speed "
                 + (
-                    f"~{f:g} cam rpm (lowest swept speed from which the valve leaves the cam over the nose at every "
+                    f"~{speed(f)} (lowest swept speed from which the valve leaves the cam over the nose at every "
                     "higher one; refine with 'springdyn valve float')"
                     if np.isfinite(f)
                     else "above the swept range"
                 )
-                + (f"; first lift-off at {first:g} cam rpm" if np.isfinite(first) else "")
+                + (f"; first lift-off at {speed(first)}" if np.isfinite(first) else "")
             )
     for note in sm.get("notes", []):
         if note.startswith("WIRE OVERSTRESS"):

@@ -22,6 +22,7 @@ from springdyn.valve.float_search import float_speed
 from springdyn.valve.periodicity import PERIODICITY_TOL
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.sweeps import sweep
+from springdyn.valve.timing import Timing, crank_axis
 from springdyn.valve.train_modes import natural_frequencies
 from springdyn.valve.valvetrain import ValveTrain
 
@@ -111,6 +112,8 @@ class ValveDefinition:
     valve_train: ValveTrain | None
     cam_given: bool
     settings: ReportSettings = dataclasses.field(default_factory=ReportSettings)
+    #: The ``[timing]`` table: crank angles from TDC (else from the start of the cam's event).
+    timing: Timing | None = None
 
 
 def load(doc: dict, path: Path) -> ValveDefinition:
@@ -120,7 +123,8 @@ def load(doc: dict, path: Path) -> ValveDefinition:
     cam = Cam.from_dict(doc["cam"] if cam_given else DEFAULT_CAM, source=str(path), base_dir=Path(path).parent)
     vt = ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
     settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path))
-    return ValveDefinition(spring, cam, vt, cam_given, settings)
+    timing = Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
+    return ValveDefinition(spring, cam, vt, cam_given, settings, timing)
 
 
 def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
@@ -132,6 +136,8 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     top = report_speeds[-1]
     p = sp.spring_model.internal_parameters()
     files, figures, findings = [], [], []
+    # the report is set for an engine: crank angles and engine speeds beside the cam's
+    axis = crank_axis(lobe, d.timing)
     # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio
     cam = lobe if vt is None or vt.ratio == 1.0 else lobe.scaled(vt.ratio)
     if cam is not lobe:
@@ -158,6 +164,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     sims = {}
     for rpm in report_speeds:
         sim = simulate(sp, cam, rpm)
+        sim.set_crank_axis(axis)
         sims[rpm] = sim
         stem = out_dir / f"simulate_{rpm:.0f}rpm"
         files.append(sim.to_csv(stem.with_suffix(".csv")))
@@ -166,11 +173,13 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         figures.append(
             (
                 stem.with_suffix(".png"),
-                f"Spring alone at {rpm:.0f} cam rpm ({_describe_model(sp)}): retainer and seat force "
-                "against the static (massless) force, mass displacements, cam-order spectrum",
+                f"Spring alone at {axis.per_cam * rpm:.0f} engine rpm ({rpm:.0f} cam rpm, {_describe_model(sp)}): "
+                "retainer and seat force against the static (massless) force over the crank angle, mass "
+                "displacements, cam-order spectrum",
             )
         )
     sw = sweep(sp, cam, sweep_speeds, quiet=quiet)
+    sw.set_crank_axis(axis)
     written = sw.write(out_dir, "sweep")
     files += written[:2]
     figures.append(
@@ -186,7 +195,9 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"({_describe_model(sp)})",
         )
     )
-    figures.append((out_dir / "sweep_map.png", f"Retainer force over cam speed and cam angle ({_describe_model(sp)})"))
+    figures.append(
+        (out_dir / "sweep_map.png", f"Retainer force over engine speed and crank angle ({_describe_model(sp)})")
+    )
 
     other_model = "distributed" if sp.model == "type-c" else "type-c"
     sw_other = None
@@ -216,13 +227,14 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     for rpm, sim in sims.items():
         s = sim.summary
         contact = (
-            f"coil contact from {s['coil_contact'][0]['start_deg']:.1f} to {s['coil_contact'][-1]['end_deg']:.1f} deg "
+            f"coil contact from {axis.words(s['coil_contact'][0]['start_deg'])} to "
+            f"{axis.words(s['coil_contact'][-1]['end_deg'])} "
             f"(peak element force {max(e['peak_contact_force_N'] for e in s['coil_contact']):.0f} N)"
             if s["coil_contact"]
             else "no coil contact"
         )
         findings.append(
-            f"At {rpm:.0f} cam rpm ({_describe_model(sw).split(',')[0]}) the peak retainer force is {s['max_retainer_force_N']:.1f} N, "
+            f"At {axis.per_cam * rpm:.0f} engine rpm ({rpm:.0f} cam rpm, {_describe_model(sw).split(',')[0]}) the peak retainer force is {s['max_retainer_force_N']:.1f} N, "
             f"{s['max_retainer_force_ratio']:.3f} times the static peak of {s['max_static_force_N']:.1f} N; the seat "
             f"force swings from {s['min_seat_force_N']:.1f} to {s['max_seat_force_N']:.1f} N (surge amplitude "
             f"{s['seat_surge_amplitude_N']:.1f} N); {contact}."
@@ -296,6 +308,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             )
         else:
             above = simulate(sp, lobe, 1.05 * f, valve_train=vt)
+            above.set_crank_axis(axis)
             s = above.summary
             plt.close(above.plot(out_dir / "valve_train_above_float.png"))
             files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
