@@ -184,6 +184,7 @@ def test_report_table_sets_the_engine_speeds_and_limits(tmp_path):
     f.write_text(
         src + '\n[report]\nmin_engine_rpm = "2000 rpm"\nmax_engine_rpm = "5000 rpm"\nengine_rpm_step = "250 rpm"\n'
         'models = "type-c"\nmin_surge_margin = 6\nmin_goodman_safety = 1.0\n'
+        '[timing]\nlobe_centre = "110 deg"\n'
     )
     import tomllib
 
@@ -195,6 +196,16 @@ def test_report_table_sets_the_engine_speeds_and_limits(tmp_path):
     assert surge.passed and "min_surge_margin" in surge.limit and surge.limit.startswith(">= 6")
     assert any(n.startswith("coil clash, 1000-2500 cam rpm, Type C") for n in names)
     assert sec.findings[0].startswith("The criteria below come from the Type C model")
+    # set for an engine with its [timing]: engine speeds and crank angles from TDC (issue 27)
+    assert any(f.startswith("At 5000 engine rpm (2500 cam rpm") for f in sec.findings)
+    assert any(f.startswith("Over 2000-5000 engine rpm (1000-2500 cam rpm") for f in sec.findings)
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "out" / "sweep.nc") as ds:
+        assert (
+            float(ds["engine_rpm"][-1]) == pytest.approx(5000.0)
+            and ds["crank_angle"].attrs["origin"] == "gas-exchange TDC"
+        )
     with pytest.raises(InputError, match="max_engine_rpm"):
         ReportSettings.from_dict({"min_engine_rpm": "6000 rpm", "max_engine_rpm": "5000 rpm"})
     with pytest.raises(InputError, match=r"\[report\].*unknown key|unknown key.*max_engine_rmp"):

@@ -243,11 +243,13 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     k = int(np.argmax(table["max_retainer_force_N"]))
     clash = sweep_speeds[np.asarray(table["coil_clash"], bool)]
     findings.append(
-        f"Over {sweep_speeds[0]:.0f}-{sweep_speeds[-1]:.0f} cam rpm ({_describe_model(sw).split(',')[0]}) the retainer "
+        f"Over {axis.per_cam * sweep_speeds[0]:.0f}-{axis.per_cam * sweep_speeds[-1]:.0f} engine rpm "
+        f"({sweep_speeds[0]:.0f}-{sweep_speeds[-1]:.0f} cam rpm, {_describe_model(sw).split(',')[0]}) the retainer "
         "force peaks at "
-        f"{table['max_retainer_force_N'][k]:.1f} N at {sweep_speeds[k]:.0f} rpm; "
+        f"{table['max_retainer_force_N'][k]:.1f} N at {axis.per_cam * sweep_speeds[k]:.0f} engine rpm; "
         + (
-            f"coil clash occurs from {clash[0]:.0f} cam rpm on ({clash.size} of {sweep_speeds.size} speeds)."
+            f"coil clash occurs from {axis.per_cam * clash[0]:.0f} engine rpm on ({clash.size} of {sweep_speeds.size} "
+            "speeds)."
             if clash.size
             else "no coil clash occurs in that range."
         )
