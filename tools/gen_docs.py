@@ -366,6 +366,13 @@ def toml_reference() -> str:
                 f"Fields {names} of `{name}` are not TOML keys: they are set from Python only "
                 f"(e.g. by a classmethod such as `{name}.from_table`) and are rejected in a TOML file.\n"
             )
+        drawing = getattr(importlib.import_module(module), "DRAWING_KEYS", ()) if table == "spring" else ()
+        if drawing:
+            out.append(
+                "Keys of a drawing that `[spring]` also reads and turns into the keys above: "
+                + ", ".join(f"`{k}`" for k in drawing)
+                + " (with `end_type` and `load_points`; see [the valve guide](../valve.md#the-spring-as-its-drawing-gives-it)).\n"
+            )
         rules = CROSS_KEY_RULES.get(table, [])
         if rules:
             out.append("Checks across keys (an `InputError` names the keys and values):\n")

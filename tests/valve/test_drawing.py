@@ -39,6 +39,99 @@ def test_drawing_keys_give_the_example_spring(keys):
     assert s.spring_model.internal_parameters()["Fset"] == ref.spring_model.internal_parameters()["Fset"]
 
 
+def test_one_step_pitch_gives_the_example_spring():
+    """The example's free length 48 mm is Dw/2 + 2 Nb Dw (dead coils) + 2 x 0.5 turn x (Dw + p)/2
+    (transitions) + (7.5 - 2 - 1) p (the rest) = 10.5 mm + 5 p: p = 7.5 mm; the
+    drawing's pitch 7.5 mm gives that free length and, in the distributed model, the same
+    profile as the default: the same Fset to 1e-12."""
+    keys = {k: v for k, v in BASE.items() if k != "free_length"}
+    s = ValveSpring.from_dict(
+        {**keys, "mean_diameter": "22 mm", "end_type": "closed-ground", "total_coils": 7.5, "pitch": "7.5 mm"}
+    )
+    assert s.free_length == pytest.approx(0.048, abs=1e-12)
+    ref = ValveSpring.example("one-step")
+    for model in ("type-c", "distributed"):
+        a = s.with_model(model).spring_model.internal_parameters()["Fset"]
+        b = ref.with_model(model).spring_model.internal_parameters()["Fset"]
+        assert a == pytest.approx(b, rel=1e-12)
+
+
+def test_two_step_pitches_give_the_free_length_by_hand():
+    """Two-step, 1 dead coil per end, N1 = 2 (with the seat's dead coil), N = 8, low pitch p1,
+    high pitch p2: Dw/2 + Dw (seat dead coil) + 0.5 (Dw + p1)/2 + 0.5 p1 (rest of the low
+    section) + 0.5 (p1 + p2)/2 + 4 p2 + 0.5 (p2 + Dw)/2 + Dw (retainer dead coil): 45.75 mm."""
+    dw, p1, p2 = 3.5, 4.2, 6.9
+    by_hand = dw / 2 + dw + 0.25 * (dw + p1) + 0.5 * p1 + 0.25 * (p1 + p2) + 4.0 * p2 + 0.25 * (p2 + dw) + dw
+    keys = {k: v for k, v in BASE.items() if k != "free_length"}
+    s = ValveSpring.from_dict(
+        {
+            **keys,
+            "type": "two-step",
+            "mean_diameter": "22 mm",
+            "end_type": "closed-ground",
+            "total_coils": 8,
+            "low_pitch_coils": 2,
+            "low_pitch": f"{p1} mm",
+            "high_pitch": f"{p2} mm",
+            "installed_length": "36 mm",
+        }
+    )
+    assert s.free_length == pytest.approx(by_hand * 1e-3, abs=1e-12)
+    # a low-pitch gap larger than the coils' deflection at set-up: Type C's reading fails, and says so
+    with pytest.warns(UserWarning, match="the low-pitch coils are not closed at the installed length"):
+        ValveSpring.from_dict(
+            {
+                **keys,
+                "type": "two-step",
+                "mean_diameter": "22 mm",
+                "end_type": "closed-ground",
+                "total_coils": 8,
+                "low_pitch_coils": 2,
+                "low_pitch": "6 mm",
+                "high_pitch": "8 mm",
+                "installed_length": "42 mm",
+            }
+        )
+    assert s.with_model("distributed").spring_model.internal_parameters()["Fset"] > 0
+    # a given free length must agree within 0.5 % (the distributed model's rule for a pitch profile)
+    with pytest.raises(
+        InputError, match=r"free_length = 48 mm and the pitches .* disagree: the pitches give a free length of"
+    ):
+        ValveSpring.from_dict(
+            {
+                **BASE,
+                "type": "two-step",
+                "mean_diameter": "22 mm",
+                "end_type": "closed-ground",
+                "total_coils": 8,
+                "low_pitch_coils": 2,
+                "low_pitch": f"{p1} mm",
+                "high_pitch": f"{p2} mm",
+            }
+        )
+
+
+@pytest.mark.parametrize(
+    ("keys", "message"),
+    [
+        ({"type": "one-step", "low_pitch": "4 mm"}, "a one-step spring's drawing gives pitch"),
+        ({"pitch": "3 mm"}, "pitch = 3 mm must exceed the wire diameter 3.5 mm"),
+        ({"pitch": "7.5 mm", "pitch_profile": [[0, "7 mm"], [7.5, "7 mm"]]}, "both give the pitch"),
+        (
+            {"pitch": "7.5 mm", "end_type": None, "total_coils": None, "high_pitch_coils": 7.5},
+            r"pitch needs dead_coils \(or end_type\)",
+        ),
+    ],
+)
+def test_bad_pitches(keys, message):
+    d = {**BASE, "mean_diameter": "22 mm", "end_type": "closed-ground", "total_coils": 7.5}
+    d.pop("free_length")
+    d.update(keys)
+    d = {k: v for k, v in d.items() if v is not None}
+    with pytest.raises(InputError, match=message):
+        ValveSpring.from_dict(d)
+
+
 def test_two_step_total_coils_need_the_low_pitch_coils():
     ref = ValveSpring.example("two-step")
     keys = {**BASE, "type": "two-step", "mean_diameter": "22 mm", "end_type": "closed", "total_coils": 8}

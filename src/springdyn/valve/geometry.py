@@ -32,6 +32,7 @@ __all__ = [
     "TRANSITION_TURNS",
     "CoilGeometry",
     "default_pitch_knots",
+    "drawing_pitch_knots",
     "parse_profile",
     "turn_compliance",
     "wire_length_per_turn",
@@ -243,6 +244,52 @@ def default_pitch_knots(
             "coil counts"
         )
     return _dedupe(list(s), list(p))
+
+
+def drawing_pitch_knots(
+    n_total: float, dead: float, dw: float, low_coils: float, pitch: float, low_pitch: float | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Knots (turns, pitch [m]) of a spring whose drawing gives the pitch of its sections.
+
+    The dead coils are closed (pitch ``Dw``); the pitch rises to the active pitch over
+    :data:`TRANSITION_TURNS` turns at each end of the active coils (as in
+    :func:`default_pitch_knots`); a two-step spring's ``N1 - Nb`` low-pitch active coils next
+    to the seat's dead coil have the pitch ``low_pitch``, then a transition of the same length
+    leads to the high-pitch coils' ``pitch``.  The free length is then
+    ``Dw/2 + int p ds`` (:attr:`CoilGeometry.free_length`).
+
+    Parameters
+    ----------
+    n_total : float
+        Total turns N1 + N2 [-].
+    dead : float
+        Dead coils per end Nb [-].
+    dw : float
+        Wire diameter [m].
+    low_coils : float
+        N1, the low-pitch coils with the seat's dead coil (0 for a one-step spring) [-].
+    pitch : float
+        Pitch of the (high-pitch) active coils [m].
+    low_pitch : float, optional
+        Pitch of the low-pitch active coils [m] (two-step).
+    """
+    active = n_total - 2 * dead
+    if low_pitch is None:
+        if dead == 0:  # open ends: the active pitch throughout
+            return np.array([0.0, n_total]), np.array([pitch, pitch])
+        tr = min(TRANSITION_TURNS, active / 4.0)
+        s = [0.0, dead, dead + tr, n_total - dead - tr, n_total - dead, n_total]
+        p = [dw, dw, pitch, pitch, dw, dw]
+        return _dedupe(s, p)
+    nl = low_coils - dead  # low-pitch active coils
+    rest = n_total - dead - low_coils  # high-pitch active coils
+    trh = min(TRANSITION_TURNS, rest / 4.0)
+    if dead == 0:
+        return _dedupe([0.0, low_coils, low_coils + trh, n_total], [low_pitch, low_pitch, pitch, pitch])
+    tr = min(TRANSITION_TURNS, nl / 2.0)
+    s = [0.0, dead, dead + tr, low_coils, low_coils + trh, n_total - dead - trh, n_total - dead, n_total]
+    p = [dw, dw, low_pitch, low_pitch, pitch, pitch, dw, dw]
+    return _dedupe(s, p)
 
 
 def _dedupe(s, p):

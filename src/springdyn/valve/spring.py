@@ -29,7 +29,12 @@ END_TYPES = {"closed-ground": 1.0, "closed": 1.0, "open": 0.0}
 
 #: Keys of a drawing that the ``[spring]`` table reads into the model's own keys
 #: (:meth:`ValveSpring._prepare`): they are not fields of the definition.
-DRAWING_KEYS = ("total_coils", "active_coils", "outer_diameter", "inner_diameter")
+DRAWING_KEYS = ("total_coils", "active_coils", "outer_diameter", "inner_diameter", "pitch", "low_pitch", "high_pitch")
+#: The drawing's pitches of the active coils [m]: ``pitch`` (one-step), ``low_pitch`` and
+#: ``high_pitch`` (two-step); they become the ``pitch_profile`` (:func:`_pitches`).
+PITCH_KEYS = ("pitch", "low_pitch", "high_pitch")
+#: How the pitches are joined (for messages): :data:`springdyn.valve.geometry.TRANSITION_TURNS`.
+TRANSITION_TURNS_TEXT = "a transition of half a turn between sections"
 
 #: Names of the spring models (:data:`springdyn.valve.chains.MODELS`).
 MODEL_NAMES = ("type-c", "distributed")
@@ -447,9 +452,93 @@ def _from_drawing(mapping: dict) -> dict:
             )
         m["high_pitch_coils"] = n2
         m.setdefault("low_pitch_coils", 0.0)
+    if any(k in m for k in PITCH_KEYS):
+        _pitches(m)
     if "load_points" in m:
         m["load_points"] = _load_points(m["load_points"])
     return m
+
+
+def _pitches(m: dict) -> None:
+    """The drawing's pitches -> ``pitch_profile`` (and ``free_length`` when not given).
+
+    The profile is :func:`springdyn.valve.geometry.drawing_pitch_knots`; a given free length
+    must agree with the one the pitches give within 0.5 % (the distributed model's rule for a
+    ``pitch_profile``).
+    """
+    import numpy as np
+
+    from .geometry import drawing_pitch_knots
+
+    given = [k for k in PITCH_KEYS if k in m]
+    two = m.get("type") == "two-step"
+    need = ("low_pitch", "high_pitch") if two else ("pitch",)
+    if set(given) != set(need):
+        kind = "a two-step" if two else "a one-step"
+        raise InputError(
+            f"{', '.join(given)}: {kind} spring's drawing gives {' and '.join(need)} "
+            + (
+                "(the pitches of the low- and the high-pitch active coils)"
+                if two
+                else "(the pitch of the active coils)"
+            )
+        )
+    if m.get("pitch_profile"):
+        raise InputError(f"{given[0]} and pitch_profile both give the pitch: give one of them")
+    missing = [k for k in ("wire_diameter", "dead_coils", "high_pitch_coils") if k not in m]
+    if missing:
+        raise InputError(
+            f"{given[0]} needs {missing[0]}"
+            + (" (or end_type)" if missing[0] == "dead_coils" else "")
+            + (" (or total_coils / active_coils)" if missing[0] == "high_pitch_coils" else "")
+            + " to give the free length"
+        )
+    dw = _quantity(m, "wire_diameter", "m")
+    pitch = {k: _quantity(m, k, "m") for k in given}
+    for k, v in pitch.items():
+        if not v > dw:
+            raise InputError(f"{k} = {format_mm(v)} must exceed the wire diameter {format_mm(dw)} (open coils)")
+    if two and not pitch["high_pitch"] > pitch["low_pitch"]:
+        raise InputError(
+            f"high_pitch = {format_mm(pitch['high_pitch'])} must exceed low_pitch = {format_mm(pitch['low_pitch'])}"
+        )
+    nb, n1 = float(m["dead_coils"]), float(m.get("low_pitch_coils", 0.0))
+    n_total = n1 + float(m["high_pitch_coils"])
+    if two and not n1 > nb:
+        raise InputError(
+            f"low_pitch_coils = {n1:g} must exceed dead_coils = {nb:g}: the low-pitch coils include the seat's dead coil"
+        )
+    s, p = drawing_pitch_knots(
+        n_total, nb, dw, n1, pitch["high_pitch" if two else "pitch"], pitch["low_pitch"] if two else None
+    )
+    lf = 0.5 * dw + float(np.trapezoid(p, s))
+    if "free_length" in m:
+        given_lf = _quantity(m, "free_length", "m")
+        if abs(given_lf - lf) > 0.005 * given_lf:
+            raise InputError(
+                f"free_length = {format_mm(given_lf)} and the pitches ({', '.join(f'{k} = {format_mm(v)}' for k, v in pitch.items())}) "
+                f"disagree: the pitches give a free length of {format_mm(lf)} (dead coils closed, {TRANSITION_TURNS_TEXT}); "
+                "they must agree within 0.5 %: give one of them"
+            )
+    else:
+        m["free_length"] = round(lf, 12)
+    if two and "installed_length" in m:
+        # open coils of equal diameter deflect alike: each by (Lf - Ls) / n at set-up, if none closed
+        per_coil = (_quantity(m, "free_length", "m") - _quantity(m, "installed_length", "m")) / (n_total - 2 * nb)
+        if per_coil < pitch["low_pitch"] - dw:
+            import warnings
+
+            warnings.warn(
+                f"low_pitch = {format_mm(pitch['low_pitch'])}: the low-pitch coils are not closed at the installed "
+                f"length (each open coil deflects about {format_mm(per_coil)} there, their gap is "
+                f"{format_mm(pitch['low_pitch'] - dw)}); the Type C model reads a two-step spring with them closed: "
+                'use model = "distributed", which follows the pitch coil by coil',
+                UserWarning,
+                stacklevel=4,
+            )
+    for k in given:
+        m.pop(k)
+    m["pitch_profile"] = "table: " + "; ".join(f"{a!r} {b!r}" for a, b in zip(s.tolist(), p.tolist()))
 
 
 def _load_points(value) -> str:

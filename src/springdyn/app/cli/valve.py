@@ -352,6 +352,8 @@ def cmd_params(args) -> int:
         f"coils: {spring.total_coils:g} total, {spring.active_coils:g} active ({spring.dead_coils:g} dead per end); "
         f"solid length {spring.solid_length * 1e3:.3f} mm"
         + (f" (EN 13906-1, ends {spring.end_type})" if spring.end_type else " (the MMS document's Dw (N1 + N2 + 0.5))")
+        + f"; free length {spring.free_length * 1e3:.3f} mm"
+        + (", pitch profile given" if spring.pitch_profile else "")
     )
     print_table(rows, headers=("parameter", "value", "meaning"))
     if spring.load_points:
