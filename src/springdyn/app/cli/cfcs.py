@@ -13,6 +13,7 @@ from springdyn.app.cli.common import (
     close_figure,
     parse_range,
     print_json,
+    print_notes,
     print_table,
     quantity,
 )
@@ -300,6 +301,7 @@ def _static(args) -> int:
         ],
         headers=("quantity", "value", "note"),
     )
+    print_notes(s)
     return 0
 
 
@@ -347,6 +349,7 @@ def _dynamic(args) -> int:
         ],
         headers=("quantity", "value", "note"),
     )
+    print_notes(s)
     return 0
 
 
@@ -381,6 +384,7 @@ def _sweep(args) -> int:
     print(f"toggle cut-off {np.degrees(res.summary['toggle_cutoff_rad']):.4g} deg")
     if res.summary["toggle_dominated"]:
         print("TOGGLE-DOMINATED: " + res.summary["notes"][0])
+    print_notes(res.summary, skip=("toggle-dominated at",))
     return 0
 
 
@@ -434,6 +438,7 @@ def _forward(args) -> int:
         ],
         headers=("quantity", "value", "note"),
     )
+    print_notes(s)
     return 0
 
 

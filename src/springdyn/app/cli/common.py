@@ -118,6 +118,22 @@ def print_table(rows, headers=("quantity", "value", "unit")) -> None:
         print("  ".join(c.ljust(w) for c, w in zip(r, widths)))
 
 
+def print_notes(summary, skip=()) -> None:
+    """Every caveat of a result's summary (its ``notes``) in words, one ``note:`` line each:
+    the text output carries what the JSON carries.
+
+    Parameters
+    ----------
+    summary : Mapping
+        The result's summary (its ``notes`` list, if any, is printed).
+    skip : tuple of str
+        Notes already printed in another form (by their first words).
+    """
+    for note in summary.get("notes") or []:
+        if not any(note.startswith(prefix) for prefix in skip):
+            print("note: " + note)
+
+
 def add_output_options(p: argparse.ArgumentParser, *, csv=True, plot=True, json=True) -> None:
     if csv:
         p.add_argument("--csv", metavar="OUT.csv", help="write the table as CSV (SI, unit in column names)")

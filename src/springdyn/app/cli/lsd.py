@@ -11,6 +11,7 @@ from springdyn.app.cli.common import (
     emit,
     parse_range,
     print_json,
+    print_notes,
     print_table,
     quantity,
 )
@@ -131,6 +132,7 @@ def cmd_coefficients(args) -> int:
         rows,
         headers=("rpm", "Kxx N/mm", "Kxy N/mm", "Kyx N/mm", "Kyy N/mm", "Cxx Ns/m", "Cxy Ns/m", "Cyx Ns/m", "Cyy Ns/m"),
     )
+    print_notes(res.summary)
     return 0
 
 
@@ -164,6 +166,7 @@ def cmd_rig(args) -> int:
         f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N"
     )
     announce_written([args.csv, args.plot], args)
+    print_notes(rec.summary)
     return 0
 
 
@@ -235,6 +238,7 @@ def cmd_identify(args) -> int:
         print_table(rows, headers=("coefficient", "value", "std. error", "95 % CI (Student t)", "unit"))
         if it.caveat:
             print(f"note: {it.caveat}")
+        print_notes(d, skip=(it.caveat,) if it.caveat else ())
     return 0
 
 

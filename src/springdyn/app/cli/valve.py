@@ -12,6 +12,7 @@ from springdyn.app.cli.common import (
     emit,
     parse_range,
     print_json,
+    print_notes,
     print_table,
     quantity,
 )
@@ -1085,9 +1086,8 @@ def cmd_sweep(args) -> int:
                 )
                 + (f"; first lift-off at {speed(first)}" if np.isfinite(first) else "")
             )
-    for note in sm.get("notes", []):
-        if note.startswith("WIRE OVERSTRESS"):
-            print("note: " + note)
+    # every caveat (the periodicity one is the line above)
+    print_notes(sm, skip=(f"{sm['speeds_not_periodic']} speeds did not settle",))
     for value, reason in res.skipped:
         print(f"skipped {describe_design_value(res.vary_name, value)}: {reason}")
     first = [r for r in res.resonance_table() if r["mode"] == 1]
