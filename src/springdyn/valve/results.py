@@ -432,6 +432,7 @@ def _summarise(sim: Simulation) -> dict:
     mon = sim.monitor
     s = dict(
         model=getattr(sim.spring, "model", "type-c"),
+        spring=sim.spring.coil_facts,  # the coils and solid length the run used
         cam_rpm=sim.cam_rpm,
         revolutions=sim.revolutions,
         periodic=sim.periodic,

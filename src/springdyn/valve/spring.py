@@ -234,6 +234,22 @@ class ValveSpring(Parameters):
         return solid_length(self)
 
     @property
+    def coil_facts(self) -> dict:
+        """The coils and the solid length every output states: ``total_coils``,
+        ``active_coils``, ``dead_coils_per_end`` [-], ``solid_length_m`` [m] and its
+        ``solid_length_source``, ``free_length_m`` [m]."""
+        return dict(
+            total_coils=self.total_coils,
+            active_coils=self.active_coils,
+            dead_coils_per_end=self.dead_coils,
+            solid_length_m=self.solid_length,
+            solid_length_source=(
+                f"EN 13906-1, ends {self.end_type}" if self.end_type else "the MMS document, Dw (N1 + N2 + 0.5)"
+            ),
+            free_length_m=self.free_length,
+        )
+
+    @property
     def load_point_table(self) -> list[dict]:
         """The drawing's load points: ``length`` [m], ``force`` [N], ``tolerance`` [N] (None: not given)."""
         out = []

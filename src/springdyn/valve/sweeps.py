@@ -319,6 +319,7 @@ class SpeedSweep(Result):
     def _summary(self) -> dict:
         t = self.summary_table()
         s = dict(
+            spring=self.spring.coil_facts,  # the coils and solid length the sweep used
             speeds=int(self.cam_rpm.size),
             cam_rpm_min=float(self.cam_rpm.min()),
             cam_rpm_max=float(self.cam_rpm.max()),

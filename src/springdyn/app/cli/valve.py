@@ -364,6 +364,15 @@ def cmd_params(args) -> int:
     return 0
 
 
+def _print_coils(facts) -> None:
+    """The coils and the solid length a run used (:attr:`ValveSpring.coil_facts`)."""
+    print(
+        f"spring: {facts['total_coils']:g} coils, {facts['active_coils']:g} active; solid length "
+        f"{facts['solid_length_m'] * 1e3:.3f} mm ({facts['solid_length_source']}); free length "
+        f"{facts['free_length_m'] * 1e3:.3f} mm"
+    )
+
+
 def _print_load_points(rows) -> None:
     """The drawing's load points against the model's static forces."""
     print("load points of the drawing against the model's static force:")
@@ -819,6 +828,7 @@ def cmd_simulate(args) -> int:
             "change from the revolution before"
         )
     print(f"{spring.type} spring, {cam.law} cam at {rpm:g} cam rpm, last of {s['revolutions']} revolutions ({period})")
+    _print_coils(s["spring"])
     rows = [
         (
             "retainer force",
@@ -941,6 +951,7 @@ def cmd_float(args) -> int:
         return 0
     s = res.summary
     sc = res.scan
+    _print_coils(spring.coil_facts)
     rows = []
     for i, rpm in enumerate(res.cam_rpm):
         phase = sc["first_liftoff_phase"][i] or ("off the cam" if sc["liftoff"][i] else "-")
@@ -1048,6 +1059,7 @@ def cmd_sweep(args) -> int:
     written = res.write(Path(args.out))
     table = res.summary_table()
     where = "on " + args.scheduler if args.scheduler else "locally"
+    _print_coils(spring.coil_facts)
     print(
         f"swept {rpms.size} speeds ({rpms.min():g}-{rpms.max():g} cam rpm"
         + (f", {res.engine_rpm.min():g}-{res.engine_rpm.max():g} engine rpm)" if engine else ")")

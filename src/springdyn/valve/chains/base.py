@@ -450,15 +450,7 @@ class SpringModel:
             spring_index=c,
             bergstraesser_factor=kb,
             wahl_factor=design.wahl_factor(c),
-            solid_length_m=self.spring.solid_length,
-            solid_length_source=(
-                f"EN 13906-1, ends {self.spring.end_type}"
-                if self.spring.end_type
-                else "the MMS document, Dw (N1 + N2 + 0.5)"
-            ),
-            total_coils=self.spring.total_coils,
-            active_coils=self.spring.active_coils,
-            dead_coils_per_end=self.spring.dead_coils,
+            **{k: v for k, v in self.spring.coil_facts.items() if k != "free_length_m"},
             spring_mass_kg=p["M"],
             rate_free_N_per_m=p["K1"],
             surge_frequency_free_Hz=p["f1"],
