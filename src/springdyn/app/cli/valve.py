@@ -760,13 +760,15 @@ def _crank_axis(args, cam):
     from springdyn.valve.timing import crank_axis
 
     timing = _timing(args.cam)
+    if timing is None and getattr(args, "spring", None):  # one file may hold the whole definition
+        timing = _timing(args.spring)
     if getattr(args, "engine_rpm", None) is None and timing is None:
         return None
     return crank_axis(cam, timing)
 
 
 def _timing(cam_file):
-    """The cam file's ``[timing]`` table, or None."""
+    """The file's ``[timing]`` table (the cam's, or the definition's), or None."""
     from springdyn.valve.timing import Timing
 
     return Timing.in_file(cam_file)
