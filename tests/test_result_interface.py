@@ -137,6 +137,21 @@ FACTORIES = {
     "springdyn.valve.cam_analysis.CamAnalysis": lambda: importlib.import_module(
         "springdyn.valve.cam_analysis"
     ).analyse_cam(_valve_cam(), _valve_train(), engine_rpm=6000.0),
+    "springdyn.valve.cam_check.CamCheck": lambda: importlib.import_module("springdyn.valve.cam_check").check_cam(
+        _valve_cam(),
+        springdyn.valve.ValveTrain.from_toml("examples/valve/valve_train_with_follower.toml"),
+        importlib.import_module("springdyn.valve.follower").Follower.in_file(
+            "examples/valve/valve_train_with_follower.toml"
+        ),
+        _valve_spring(),
+        cam_rpm=3000.0,
+    ),
+    "springdyn.valve.cam_from_lift.CamFromLift": lambda: importlib.import_module(
+        "springdyn.valve.cam_from_lift"
+    ).cam_from_card(
+        importlib.import_module("springdyn.valve.cam_from_lift").CamCard.from_toml("examples/valve/cam_card.toml"),
+        springdyn.valve.ValveTrain.from_toml("examples/valve/valve_train_with_follower.toml"),
+    ),
     "springdyn.valve.frf.FrequencyResponse": lambda: importlib.import_module("springdyn.valve.frf").dynamic_stiffness(
         _valve_spring(), np.linspace(50.0, 2000.0, 40)
     ),

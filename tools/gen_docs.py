@@ -46,6 +46,8 @@ PARAMETER_TABLES = {
     "cam": ("springdyn.valve.cam:Cam", "valve_cam_345.toml"),
     "timing": ("springdyn.valve.timing:Timing", "valve_cam_timing.toml"),
     "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train_direct_acting.toml"),
+    "follower": ("springdyn.valve.follower:Follower", "valve_train_follower.toml"),
+    "cam_card": ("springdyn.valve.cam_from_lift:CamCard", "valve_cam_card.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
     "lsd": ("springdyn.lsd.parameters:LSDParameters", "lsd_type_c.toml"),
@@ -82,6 +84,35 @@ CROSS_KEY_RULES = {
         ("`strokes` 4 or 2", {"strokes": 3}),
     ],
     "valve_train": [],
+    "follower": [
+        ('`roller_radius` for `kind = "roller"` only', {"roller_radius": "9 mm"}),
+        (
+            '`face_radius`, `edge_margin` and `lateral_offset` for `kind = "flat"` only; a roller needs `roller_radius`',
+            {"kind": "roller", "roller_radius": "9 mm"},
+        ),
+        ("`edge_margin` < `face_radius`", {"edge_margin": "20 mm"}),
+        ("`|lateral_offset|` + `width`/2 < `face_radius`", {"lateral_offset": "12 mm"}),
+        (
+            "a roller's `|offset|` < `base_circle_radius` + `roller_radius`",
+            {
+                "kind": "roller",
+                "roller_radius": "9 mm",
+                "offset": "30 mm",
+                "face_radius": None,
+                "edge_margin": None,
+                "lateral_offset": None,
+            },
+        ),
+        ("Poisson's ratios below 0.5", {"cam_poisson_ratio": 0.5}),
+    ],
+    "cam_card": [
+        ("`duration` below 720 crank deg (360 cam deg)", {"duration": "800 deg"}),
+        ("`check_height` < `lift` when both are measured at the same place", {"check_height": "9 mm"}),
+        (
+            "`ramp_velocity` only with ramps (`ramp_height` > 0)",
+            {"ramp_height": "0 mm", "ramp_velocity": "0.01 mm/deg"},
+        ),
+    ],
     "report": [("`min_engine_rpm` < `max_engine_rpm`", {"min_engine_rpm": "9000 rpm"})],
     "cfcs": [
         ("`crank_length` < `coupler_length` (r2 < r3)", {"crank_length": "100 mm"}),
@@ -342,6 +373,8 @@ def toml_reference() -> str:
         "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
         "timing": "beside `[cam]`: crank angles from TDC in `springdyn valve cam/simulate/sweep`, `springdyn report`",
         "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",
+        "follower": "beside `[valve_train]`: `springdyn valve cam-check --valve-train`, `cam-from-lift --valve-train`",
+        "cam_card": "`springdyn valve cam-from-lift --card` (with a `[timing]` table beside it)",
         "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",
         "lsd": "`springdyn lsd coefficients/rig`, `lsd identify --model`, `springdyn report`",

@@ -12,7 +12,16 @@ The definitions
   acceleration, jerk, timing at check heights, lobe centre, ramps;
 - :mod:`~springdyn.valve.timing` -- the ``[timing]`` table: cam angles as crank angles from TDC
   ("12.0 deg BTDC") for every valve output;
-- :mod:`~springdyn.valve.valvetrain` -- layouts, masses, stiffnesses, lash (``[valve_train]``).
+- :mod:`~springdyn.valve.valvetrain` -- layouts, masses, stiffnesses, lash (``[valve_train]``);
+- :mod:`~springdyn.valve.follower` -- the follower at the cam: flat face or roller, base
+  circle, contact width, crown, materials, allowable contact stress (``[follower]``).
+
+The cam designer's tools
+
+- :mod:`~springdyn.valve.cam_from_lift` -- the lobe a wanted valve lift or a cam card
+  (``[cam_card]``) needs through the train (the backward solution), with lash ramps;
+- :mod:`~springdyn.valve.cam_check` -- radius of curvature and undercut, flat-tappet contact
+  excursion, pressure angle, Hertz stress along the cam, the cam's profile.
 
 The physics, one place per equation
 

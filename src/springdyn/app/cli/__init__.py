@@ -2,7 +2,8 @@
 
 - :mod:`.main` -- the entry point: the parser, exit codes, one line per outcome;
 - :mod:`.common` -- what every family's commands share (outputs, ranges, tables);
-- :mod:`.valve`, :mod:`.cfcs`, :mod:`.lsd` -- each family's commands;
+- :mod:`.valve`, :mod:`.cfcs`, :mod:`.lsd` -- each family's commands (:mod:`.valve_cam_design`:
+  the valve commands that design and check a cam, ``cam-from-lift`` and ``cam-check``);
 - :mod:`.docs_cmd` -- ``springdyn docs``, the generated references.
 """
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springdyn.app.cli import valve_cam_design
 from springdyn.app.cli.common import (
     add_output_options,
     announce_written,
@@ -252,6 +253,8 @@ def register(sub) -> None:
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
+
+    valve_cam_design.register(vsub)  # cam-from-lift, cam-check
 
 
 def _add_revolution_options(p) -> None:
