@@ -46,6 +46,7 @@ PARAMETER_TABLES = {
     "cam": ("springdyn.valve.cam:Cam", "valve_cam_345.toml"),
     "timing": ("springdyn.valve.timing:Timing", "valve_cam_timing.toml"),
     "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train_direct_acting.toml"),
+    "hla": ("springdyn.valve.hla:HLA", "valve_train_finger_hla.toml"),
     "follower": ("springdyn.valve.follower:Follower", "valve_train_follower.toml"),
     "cam_card": ("springdyn.valve.cam_from_lift:CamCard", "valve_cam_card.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
@@ -84,6 +85,12 @@ CROSS_KEY_RULES = {
         ("`strokes` 4 or 2", {"strokes": 3}),
     ],
     "valve_train": [],
+    "hla": [
+        ("`eccentricity` < 1", {"eccentricity": 1.2}),
+        ("`oil_viscosity_100` < `oil_viscosity_40`", {"oil_viscosity_100": "80 mm^2/s"}),
+        ("`oil_temperature` from -40 to 170 degC", {"oil_temperature": 600}),
+        ("`chamber_volume` above the volume the plunger sweeps over `collapse_travel`", {"chamber_volume": "100 mm^3"}),
+    ],
     "follower": [
         ('`roller_radius` for `kind = "roller"` only', {"roller_radius": "9 mm"}),
         (
@@ -373,6 +380,7 @@ def toml_reference() -> str:
         "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
         "timing": "beside `[cam]`: crank angles from TDC in `springdyn valve cam/simulate/sweep`, `springdyn report`",
         "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",
+        "hla": "beside `[valve_train]` (a finger follower on a hydraulic lash adjuster): `springdyn valve simulate/float/sweep`, `springdyn report`",
         "follower": "beside `[valve_train]`: `springdyn valve cam-check --valve-train`, `cam-from-lift --valve-train`",
         "cam_card": "`springdyn valve cam-from-lift --card` (with a `[timing]` table beside it)",
         "report": "`springdyn report` (beside a `[spring]` table)",

@@ -184,8 +184,10 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
         if len(text) > 200:
             raise InputError(f"{field} = {text[:40]!r}... is too long to be a quantity")
         text = re.sub(r"%", " percent", text)
+        offset = re.fullmatch(r"([-+]?[\d.]+(?:[eE][-+]?\d+)?)\s*(degC|degF|°C|°F|celsius|fahrenheit)", text)
         try:
-            q = ureg.Quantity(text)
+            # a temperature on an offset scale ("90 degC"): pint reads "90 * degC" as a product
+            q = ureg.Quantity(float(offset[1]), offset[2].replace("°", "deg")) if offset else ureg.Quantity(text)
         except Exception as exc:  # pint raises several types for bad text
             raise InputError(
                 f"{field} = {value!r} is not a quantity springdyn can read "

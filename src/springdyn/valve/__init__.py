@@ -13,6 +13,7 @@ The definitions
 - :mod:`~springdyn.valve.timing` -- the ``[timing]`` table: cam angles as crank angles from TDC
   ("12.0 deg BTDC") for every valve output;
 - :mod:`~springdyn.valve.valvetrain` -- layouts, masses, stiffnesses, lash (``[valve_train]``);
+- :mod:`~springdyn.valve.hla` -- the hydraulic lash adjuster's plunger, chamber and oil (``[hla]``);
 - :mod:`~springdyn.valve.follower` -- the follower at the cam: flat face or roller, base
   circle, contact width, crown, materials, allowable contact stress (``[follower]``).
 

@@ -386,6 +386,8 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err,
         sim.cam_contact_force = e[:, lay["cam_contact_force"]]
         sim.valve_seat_force = e[:, lay["valve_seat_force"]]
         sim.cam_gap = e[:, lay["cam_gap"]]
+        if setup.valve_train.hla is not None:
+            sim.hla = {k: e[:, lay[f"hla_{k}" if k != "socket_force" else k]] for k in HLA_OUTPUTS}
     return sim
 
 
@@ -435,4 +437,10 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_last, states, i
         sim.valve_lift = r["valve_lift"][last]
         sim.cam_contact_force = r["cam_contact_force"][last]
         sim.valve_seat_force = r["valve_seat_force"][last]
+        if setup.valve_train.hla is not None:
+            sim.hla = {k: r[f"hla_{k}" if k != "socket_force" else k][last] for k in HLA_OUTPUTS}
     return sim
+
+
+#: The adjuster's outputs of a simulation (:attr:`Simulation.hla`).
+HLA_OUTPUTS = ("collapse", "pressure", "socket_force", "inflow", "leak")

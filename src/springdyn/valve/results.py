@@ -126,6 +126,11 @@ class Simulation(Result):
     periodicity_tol: float | None = None
     #: The signed cam-contact gap on the output grid [m] (positive in contact; valve train).
     cam_gap: np.ndarray | None = None
+    #: A train on a hydraulic lash adjuster (``[hla]``): ``collapse`` [m, from the base-circle
+    #: position], ``pressure`` [Pa above the supply], ``socket_force`` [N], ``inflow`` and
+    #: ``leak`` (oil volumes through the check valve and the clearance since the run's start,
+    #: m^3) on the output grid.
+    hla: dict | None = None
     #: A run that did not settle (``periodic`` False after the most revolutions): each
     #: extreme's smallest and largest value over the last revolutions, name -> (lo, hi)
     #: (names of :data:`springdyn.valve.engine.EXT`); None when periodic.
@@ -229,6 +234,16 @@ class Simulation(Result):
                 valve_lift=(dims, self.valve_lift, {"units": "m"}),
                 cam_contact_force=(dims, self.cam_contact_force, {"units": "N"}),
                 valve_seat_force=(dims, self.valve_seat_force, {"units": "N"}),
+            )
+        if self.hla is not None:
+            data.update(
+                hla_collapse=(dims, self.hla["collapse"], {"units": "m"}),
+                hla_pressure=(
+                    dims,
+                    self.hla["pressure"],
+                    {"units": "Pa", "long_name": "chamber pressure above the supply"},
+                ),
+                socket_force=(dims, self.hla["socket_force"], {"units": "N"}),
             )
         data.update(
             {
@@ -422,6 +437,48 @@ def _add_crank_angles(s: dict, axis) -> None:
             ev["end_crank_deg"] = axis.crank_deg(ev["end_deg"])
             if axis.referenced:
                 ev["start_timing"], ev["end_timing"] = axis.words(ev["start_deg"]), axis.words(ev["end_deg"])
+
+
+def _hla_summary(sim: Simulation, notes: list) -> dict:
+    """The adjuster over the last revolution: its collapse and length change, pressure, the
+    oil volumes in and out (their balance), socket hop and pump-up (:mod:`springdyn.valve.hla`)."""
+    h, vt = sim.hla, sim.valve_train
+    hla = vt.hla
+    n = sim.time.size
+    per_rev = n / (n - 1.0)  # the grid's last sample is one step before the revolution's end
+    inflow = float(h["inflow"][-1] - h["inflow"][0]) * per_rev
+    leak = float(h["leak"][-1] - h["leak"][0]) * per_rev
+    change = float(h["collapse"][-1] - h["collapse"][0]) * per_rev
+    base = ~(sim.lift > 1e-9)  # the lobe on its base circle
+    open_on_base = float(sim.valve_lift[base].min()) if base.any() else 0.0
+    hop = sim.hla["socket_force"] <= 0.0
+    out = dict(
+        collapse_min_m=float(h["collapse"].min()),
+        collapse_max_m=float(h["collapse"].max()),
+        collapse_range_m=float(h["collapse"].max() - h["collapse"].min()),
+        length_change_per_revolution_m=-change,
+        peak_pressure_Pa=float(h["pressure"].max()),
+        min_pressure_Pa=float(h["pressure"].min()),
+        inflow_per_revolution_m3=inflow,
+        leak_per_revolution_m3=leak,
+        # a periodic revolution returns the chamber's oil: in = out (the leak-volume balance)
+        volume_balance_m3=inflow - leak,
+        socket_hop=bool(hop.any()),
+        socket_hop_deg=float(hop.sum() * 360.0 / n),
+        valve_held_open_m=max(open_on_base, 0.0),
+    )
+    if out["valve_held_open_m"] > 1e-6:
+        notes.append(
+            f"PUMP-UP: the adjuster holds the valve open by {out['valve_held_open_m'] * 1e3:.3f} mm on the base "
+            "circle (it extended after a lift-off; the valve fails to close)"
+        )
+    if out["socket_hop"]:
+        notes.append(
+            f"SOCKET HOP: the finger leaves the adjuster's plunger for {out['socket_hop_deg']:.1f} cam degrees"
+        )
+    if hla is not None and out["collapse_max_m"] > hla.collapse_travel:
+        notes.append("the plunger bottoms in the adjuster's body (collapse_travel)")
+    return out
 
 
 def _summarise(sim: Simulation) -> dict:
@@ -644,6 +701,8 @@ def _summarise(sim: Simulation) -> dict:
         if landings.size:
             after[landings[0] + 1 :] = True
         s["max_bounce_height_m"] = float(np.max(np.where(after & ~(sim.lift > vt.lobe_lash + 1e-6), z, 0.0)))
+        if sim.hla is not None:
+            s["hla"] = _hla_summary(sim, notes)
     if mon is not None and mon["ext"]["events_lost"] > 0:
         notes.append(f"{int(mon['ext']['events_lost'])} events beyond the first {len(mon['events'])} were not located")
     s["notes"] = notes

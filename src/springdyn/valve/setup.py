@@ -436,7 +436,9 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
                 f"Fset = {fset:.1f} N: the adjuster would open the valve"
             )
         z0 = brentq(lambda z: seat(z) + f_h - spring_force(z), z_lo, 1e-6, xtol=1e-16, rtol=1e-15)
-        lash = r * lift0 - z0 - f_h / k_train
+        # the preloaded plunger: the lash at which the rigid train rests on the cam with f_h;
+        # the [hla] dynamics: no lash, the plunger's position takes it up (ValveTrain.static_state)
+        lash = 0.0 if vt.hla is not None else r * lift0 - z0 - f_h / k_train
         force = f_h
     else:
         lash = vt.lash

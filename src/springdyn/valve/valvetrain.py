@@ -38,7 +38,7 @@ Defaults and their sources are listed in :data:`DEFAULT_SOURCES` (and in docs/va
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -52,6 +52,12 @@ LAYOUTS = ("direct-acting", "rocker", "pushrod")
 
 #: Length of the engine's valve-train parameter vector (see :meth:`ValveTrain.kernel_parameters`).
 KERNEL_SIZE = VT_SIZE
+
+#: Damping ratio of the plunger on its oil column (and at its travel stops) [-]: the oil's
+#: viscous losses in the clearance, the check valve and the aerated oil, which the lumped
+#: model does not resolve (an assumption; it damps the 10-20 kHz oil-spring ringing and
+#: carries no volume).
+HLA_PLUNGER_DAMPING_RATIO = 0.2
 
 #: Where each default comes from (stated in messages, docs and the generated TOML reference).
 DEFAULT_SOURCES = {
@@ -201,6 +207,11 @@ class ValveTrain(Parameters):
         default=None,
     )
 
+    #: The adjuster's dynamics, from the ``[hla]`` table beside ``[valve_train]``
+    #: (:class:`springdyn.valve.hla.HLA`; :meth:`from_toml` reads it); None: the preloaded
+    #: plunger of ``lash_adjuster = "hydraulic"``, or no adjuster.
+    hla: object = field(default=None, repr=False, compare=False)
+
     table = "valve_train"
     examples = {
         "direct-acting": "valve_train_direct_acting.toml",
@@ -238,6 +249,28 @@ class ValveTrain(Parameters):
             )
         if self.layout == "pushrod" and self.lifter_mass <= 0.0:
             raise InputError("[valve_train] follower_mass and pushrod_mass are zero: the lifter needs a mass")
+        if self.hla is not None:
+            if self.layout != "rocker":
+                raise InputError(
+                    f"[hla]: the adjuster's dynamics are modelled at the pivot of a finger follower (layout = "
+                    f"'rocker'), not for layout = {self.layout!r}: remove [hla] and use lash_adjuster = 'hydraulic' "
+                    "(a preloaded plunger)"
+                )
+            if self.lash_adjuster != "hydraulic":
+                raise InputError(
+                    "[hla] describes a hydraulic lash adjuster: set lash_adjuster = 'hydraulic' in [valve_train]"
+                )
+            given = [k for k in ("hla_stiffness", "hla_preload") if getattr(self, k) is not None]
+            if given:
+                raise InputError(
+                    f"[valve_train] {', '.join(given)} describe the preloaded plunger; with an [hla] table the "
+                    "adjuster's own plunger, chamber and oil carry the load: remove them"
+                )
+            if not self.ratio > 1.0:
+                raise InputError(
+                    f"[hla] at a finger follower's pivot needs rocker_ratio > 1 (the pivot carries 1 - 1/r of "
+                    f"the cam force), not {self.ratio:g}"
+                )
         if self.lash_adjuster == "hydraulic":
             if self.lash != 0.0:
                 raise InputError(
@@ -269,8 +302,9 @@ class ValveTrain(Parameters):
 
     @property
     def hla_k(self) -> float:
-        """Adjuster stiffness referred to the valve [N/m] (``inf`` without an adjuster)."""
-        if not self.hydraulic:
+        """Adjuster stiffness referred to the valve [N/m] (``inf`` without an adjuster, and
+        with the ``[hla]`` dynamics, whose oil column is a degree of freedom of its own)."""
+        if not self.hydraulic or self.hla is not None:
             return math.inf
         return 2.0e7 if self.hla_stiffness is None else self.hla_stiffness
 
@@ -279,6 +313,8 @@ class ValveTrain(Parameters):
         """Adjuster plunger-spring force referred to the valve [N] (0 without an adjuster)."""
         if not self.hydraulic:
             return 0.0
+        if self.hla is not None:  # the plunger spring on the pivot: F_s = F_valve (r - 1)
+            return self.hla.plunger_spring_force / (self.ratio - 1.0)
         return 15.0 if self.hla_preload is None else self.hla_preload
 
     @property
@@ -348,7 +384,11 @@ class ValveTrain(Parameters):
 
     @property
     def degrees_of_freedom(self) -> int:
-        """Degrees of freedom of the train: 1 direct-acting, 2 rocker, 3 pushrod."""
+        """Degrees of freedom of the train: 1 direct-acting, 2 rocker, 3 pushrod; 7 for a
+        finger follower on an ``[hla]`` (pivot end, plunger, and the chamber pressure and
+        the oil volumes in and out as first-order states)."""
+        if self.hla is not None:
+            return 7
         return LAYOUTS.index(self.layout) + 1
 
     def equivalent_direct_acting(self) -> ValveTrain:
@@ -400,8 +440,73 @@ class ValveTrain(Parameters):
                 self.pushrod_stiffness if self.layout == "pushrod" else 0.0,
                 self.link_damping if self.layout == "pushrod" else 0.0,
                 self.lobe_lash,
+                *self._hla_parameters(),
             ]
         )
+
+    def _hla_parameters(self) -> list:
+        """The ``VT_HLA*`` entries of :meth:`kernel_parameters` (zeros without ``[hla]``)."""
+        from .engine.layout import VT_HLA, VT_SIZE
+
+        h = self.hla
+        if h is None:
+            return [0.0] * (VT_SIZE - VT_HLA)
+        from .hla import P_ATM
+
+        pivot = self.hla_pivot_state()
+        mass = h.plunger_mass
+        k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
+        return [
+            1.0,
+            h.area,
+            h.chamber_volume,
+            pivot["plunger"],
+            mass,
+            h.pivot_mass,
+            h.plunger_spring_force,
+            h.socket_stiffness,
+            self.link_damping,
+            h.conductance(),
+            0.5 * math.pi * h.plunger_diameter * h.radial_clearance,
+            P_ATM + h.supply_pressure,
+            h.cracking_pressure,
+            h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.density()),
+            h.oil_bulk_modulus,
+            h.air_fraction,
+            h.polytropic_index,
+            h.collapse_travel,
+            -h.extension_travel,
+            10.0 * k_oil,
+            HLA_PLUNGER_DAMPING_RATIO * 2.0 * math.sqrt(k_oil * mass),
+        ]
+
+    def hla_pivot_state(
+        self, valve_force: float | None = None, lobe_lift: float = 0.0, valve_lift: float = 0.0
+    ) -> dict:
+        """Positions of the finger's pivot end and of the plunger [m] in static equilibrium
+        with the valve-side force ``valve_force`` [N] (default: the base circle's,
+        :attr:`hla_force`), at the chamber's supply pressure.
+
+        The finger is a rigid bar: with the roller at ``y_b`` and the tip at ``y_c``, the
+        pivot end is at ``(r y_b - y_c) / (r - 1)``; the socket carries ``F_s = r F_v (1 - 1/r)``.
+
+        Parameters
+        ----------
+        valve_force : float, optional
+            Force of the tip on the valve [N].
+        lobe_lift : float
+            Cam lift at the roller [m].
+        valve_lift : float
+            Valve position [m].
+        """
+        r = self.ratio
+        f_v = self.hla_force if valve_force is None else valve_force
+        f_cam = r * f_v
+        tip = valve_lift + f_v / self.tip_stiffness
+        roller = lobe_lift - f_cam / self.cam_stiffness
+        pivot = (r * roller - tip) / (r - 1.0)
+        socket = f_cam * (1.0 - 1.0 / r)
+        return dict(tip=tip, pivot=pivot, plunger=pivot - socket / self.hla.socket_stiffness)
 
     def highest_frequency(self) -> float:
         """An upper bound of the train's contact frequencies [Hz] (bounds the work of a run)."""
@@ -428,7 +533,44 @@ class ValveTrain(Parameters):
             )
         if self.layout == "pushrod" and self.lifter_mass > 0:
             parts.append(math.sqrt((self.cam_stiffness + self.pushrod_stiffness) / self.lifter_mass))
+        if self.hla is not None:
+            h = self.hla
+            k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
+            parts.append(math.sqrt((h.socket_stiffness + k_oil) / h.plunger_mass))
+            parts.append(math.sqrt((h.socket_stiffness + self.cam_stiffness) / h.pivot_mass))
         return max(parts) / (2 * math.pi)
+
+    @classmethod
+    def from_toml(cls, path):
+        """Read ``[valve_train]`` of a TOML file, and its ``[hla]`` table when it has one.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The definition file.
+        """
+        from ..core.params import load_toml
+
+        vt = super().from_toml(path)
+        doc = load_toml(path)
+        return vt.with_hla(doc["hla"], source=str(path)) if "hla" in doc else vt
+
+    def with_hla(self, table, source: str | None = None) -> ValveTrain:
+        """The same train with the adjuster's dynamics of an ``[hla]`` table (or an :class:`~springdyn.valve.hla.HLA`).
+
+        Parameters
+        ----------
+        table : dict or HLA
+            The ``[hla]`` table's keys, or the adjuster.
+        source : str, optional
+            The file, for messages.
+        """
+        import dataclasses
+
+        from .hla import HLA
+
+        h = table if isinstance(table, HLA) else HLA.from_dict(table, source=source)
+        return dataclasses.replace(self, hla=h)
 
     def static_state(self, lobe_lift: float, valve_lift: float, valve_force: float) -> np.ndarray:
         """Positions of the train's degrees of freedom in static equilibrium [m].
@@ -452,6 +594,13 @@ class ValveTrain(Parameters):
         if self.layout == "direct-acting":
             return np.array([valve_lift])
         f_cam = r * valve_force
+        if self.hla is not None:
+            from .hla import P_ATM
+
+            st = self.hla_pivot_state(valve_force, lobe_lift, valve_lift)
+            return np.array(
+                [valve_lift, st["tip"], st["pivot"], st["plunger"], P_ATM + self.hla.supply_pressure, 0.0, 0.0]
+            )
         if self.layout == "rocker":
             tip = r * (lobe_lift - f_cam / self.cam_stiffness)
             return np.array([valve_lift, tip])

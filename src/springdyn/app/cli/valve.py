@@ -906,6 +906,16 @@ def cmd_simulate(args) -> int:
             )
         else:
             print(f"no lift-off: minimum cam contact force {s['min_cam_contact_force_N']:.1f} N")
+        if "hla" in s:
+            h = s["hla"]
+            print(
+                f"hydraulic lash adjuster: collapse {h['collapse_min_m'] * 1e6:.1f} to {h['collapse_max_m'] * 1e6:.1f} um, "
+                f"length change {h['length_change_per_revolution_m'] * 1e6:+.3f} um per revolution, chamber up to "
+                f"{h['peak_pressure_Pa'] / 1e5:.1f} bar above the supply; oil in {h['inflow_per_revolution_m3'] * 1e9:.4f}, "
+                f"out {h['leak_per_revolution_m3'] * 1e9:.4f} mm^3 per revolution"
+                + (f"; valve held open {h['valve_held_open_m'] * 1e3:.3f} mm" if h["valve_held_open_m"] > 1e-6 else "")
+                + (f"; socket hop {h['socket_hop_deg']:.1f} deg" if h["socket_hop"] else "")
+            )
         print(
             f"seat impact velocity {s['seat_impact_velocity_m_per_s']:.3f} m/s, bounces {s['bounces']}, "
             f"max bounce {s['max_bounce_height_m'] * 1e3:.3f} mm"

@@ -122,6 +122,10 @@ def load(doc: dict, path: Path) -> ValveDefinition:
     cam_given = "cam" in doc
     cam = Cam.from_dict(doc["cam"] if cam_given else DEFAULT_CAM, source=str(path), base_dir=Path(path).parent)
     vt = ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
+    if "hla" in doc:
+        if vt is None:
+            raise InputError(f"{path}: [hla] needs a [valve_train] table in the same file")
+        vt = vt.with_hla(doc["hla"], source=str(path))
     settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path))
     timing = Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
     return ValveDefinition(spring, cam, vt, cam_given, settings, timing)

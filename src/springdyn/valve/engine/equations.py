@@ -42,6 +42,26 @@ from .layout import (
     VT_C_TIP,
     VT_DOF,
     VT_ENABLED,
+    VT_HLA_AIR,
+    VT_HLA_AREA,
+    VT_HLA_BETA,
+    VT_HLA_CS,
+    VT_HLA_CSTOP,
+    VT_HLA_DRAG,
+    VT_HLA_FS,
+    VT_HLA_G,
+    VT_HLA_KCV,
+    VT_HLA_KS,
+    VT_HLA_KSTOP,
+    VT_HLA_MA,
+    VT_HLA_MP,
+    VT_HLA_N,
+    VT_HLA_PCRACK,
+    VT_HLA_PS,
+    VT_HLA_V0,
+    VT_HLA_Y0,
+    VT_HLA_YMAX,
+    VT_HLA_YMIN,
     VT_K_CAM,
     VT_K_PUSH,
     VT_K_SEAT,
@@ -76,6 +96,8 @@ __all__ = [
     "cam_at_hot",
     "rhs_call",
     "NO_EXTRA",
+    "air_oil_bulk_modulus",
+    "hla_forces",
 ]
 
 #: Floating-point licences of the compiled kernels: fused multiply-add (``contract``),
@@ -316,6 +338,109 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
         extra[b + X_DISP + nm] = gap
 
 
+def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak):
+    if extra.shape[0] > 0:
+        b = 2 * ne + X_DISP + nm
+        extra[b + 1] = collapse
+        extra[b + 2] = pressure
+        extra[b + 3] = socket
+        extra[b + 4] = inflow
+        extra[b + 5] = leak
+
+
+def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
+    """Bulk modulus [Pa] of oil with free air at an absolute pressure: the scalar twin of
+    :func:`springdyn.valve.hla.effective_bulk_modulus` for compiled code (the tests compare
+    them).
+
+    Parameters
+    ----------
+    p_abs : float
+        Absolute pressure [Pa].
+    beta_oil : float
+        Bulk modulus of the air-free oil [Pa].
+    air : float
+        Free-air volume fraction at atmospheric pressure [-].
+    n : float
+        Polytropic index [-].
+    """
+    p = p_abs if p_abs > 2000.0 else 2000.0
+    v_air = air * (101325.0 / p) ** (1.0 / n)
+    v_oil = 1.0 - air
+    return (v_oil + v_air) / (v_oil / beta_oil + v_air / (n * p))
+
+
+def hla_forces(s, nm, nfree, vt, out):
+    """The hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.hla`).
+
+    States (after the chain's, the valve's and the lever tip's): the finger's pivot end
+    ``y_a`` (its collapse direction positive), the plunger ``y_p``, then three first-order
+    states: the chamber pressure ``p`` [Pa, absolute] and the oil volumes that entered
+    through the check valve and left through the clearance since the start [m^3].  The
+    socket (the finger on the plunger) is a unilateral contact; the plunger carries the
+    socket force against the chamber pressure and its spring, between its travel stops;
+    the chamber follows oil continuity (:func:`springdyn.valve.hla.chamber_pressure_rate`)
+    with the check valve as an orifice and laminar leakage.  Writes the derivatives of the
+    adjuster's states into ``out`` and returns the socket force [N] on the finger's pivot end.
+
+    Parameters
+    ----------
+    s : ndarray
+        State [m, m/s, Pa, m^3].
+    nm : int
+        Chain masses [-].
+    nfree : int
+        Degrees of freedom [-].
+    vt : ndarray (VT_SIZE,)
+        The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
+    """
+    ya = s[nm + 2]
+    yp = s[nm + 3]
+    p = s[nm + 4]
+    yad = s[nfree + nm + 2]
+    ypd = s[nfree + nm + 3]
+    # the socket: the finger's pivot end on the plunger (compression only)
+    pen = ya - yp
+    sock = vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (yad - ypd)
+    if pen <= 0.0 or sock < 0.0:
+        sock = 0.0
+    # the plunger between its travel stops (collapse measured from its initial position)
+    y = yp - vt[VT_HLA_Y0]
+    stop = -vt[VT_HLA_CSTOP] * ypd
+    if y > vt[VT_HLA_YMAX]:
+        stop -= vt[VT_HLA_KSTOP] * (y - vt[VT_HLA_YMAX])
+    elif y < vt[VT_HLA_YMIN]:
+        stop += vt[VT_HLA_KSTOP] * (vt[VT_HLA_YMIN] - y)
+    ps = vt[VT_HLA_PS]
+    area = vt[VT_HLA_AREA]
+    out[nfree + nm + 3] = (sock - (p - ps) * area - vt[VT_HLA_FS] + stop) / vt[VT_HLA_MP]
+    out[nm + 3] = ypd
+    # the chamber: check-valve inflow, leakage, the plunger's displacement of oil
+    dp_cv = ps - vt[VT_HLA_PCRACK] - p
+    q_in = 0.0
+    if dp_cv > 0.0:
+        if dp_cv < 2000.0:  # laminarised (springdyn.valve.hla.CHECK_VALVE_TRANSITION)
+            q_in = vt[VT_HLA_KCV] * dp_cv / math.sqrt(2000.0)
+        else:
+            q_in = vt[VT_HLA_KCV] * math.sqrt(dp_cv)
+    q_leak = vt[VT_HLA_G] * (p - ps) - vt[VT_HLA_DRAG] * ypd
+    volume = vt[VT_HLA_V0] - area * y
+    beta = air_oil_bulk_modulus(p, vt[VT_HLA_BETA], vt[VT_HLA_AIR], vt[VT_HLA_N])
+    dp = beta / volume * (area * ypd + q_in - q_leak)
+    if p <= 2000.0 and dp < 0.0:  # cavitation: the pressure holds (springdyn.valve.hla.P_CAVITATION)
+        dp = 0.0
+    out[nm + 4] = dp
+    out[nm + 5] = q_in
+    out[nm + 6] = q_leak
+    out[nfree + nm + 4] = 0.0
+    out[nfree + nm + 5] = 0.0
+    out[nfree + nm + 6] = 0.0
+    out[nm + 2] = yad
+    return sock
+
+
 def spring_rhs(t, s, m, omega, vt, out, extra):
     """Right-hand side of the spring alone: the retainer end follows the cam, ``u_(N+1) = h(omega t)``.
 
@@ -341,6 +466,7 @@ def spring_rhs(t, s, m, omega, vt, out, extra):
     dlift = slope * omega
     chain_forces(s, m, nm, lift, dlift, out, extra)
     _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
+    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 def train_rhs(t, s, m, omega, vt, out, extra):
@@ -372,6 +498,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     z = s[nm]
     zd = s[nfree + nm]
     f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
+    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0)  # an adjuster overwrites them
     r = vt[VT_RATIO]
     f_cam = 0.0
     f_seat = 0.0
@@ -395,13 +522,33 @@ def train_rhs(t, s, m, omega, vt, out, extra):
         if pen_t > 0.0:
             f_valve = raw_t if raw_t > 0.0 else 0.0
         gap = min(pen_t, raw_t / vt[VT_K_TIP])
-        if ntr == 2:  # finger follower / rocker: the follower rides on the lever
-            pen = lift - zr / r
-            raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zrd / r)
+        if ntr == 2 or ntr == 7:  # finger follower / rocker: the follower rides on the lever
+            if ntr == 7:  # on a hydraulic lash adjuster: its pivot end moves
+                ya = s[nm + 2]
+                yad = s[nfree + nm + 2]
+                pen = lift - (zr + (r - 1.0) * ya) / r
+                raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - (zrd + (r - 1.0) * yad) / r)
+            else:
+                pen = lift - zr / r
+                raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zrd / r)
             if pen > 0.0:
                 f_cam = raw if raw > 0.0 else 0.0
             gap = min(gap, min(pen, raw / vt[VT_K_CAM]))
             f_lever = f_cam / r
+            if ntr == 7:
+                # the finger's pivot end: the cam's share (1 - 1/r) against the socket
+                sock = hla_forces(s, nm, nfree, vt, out)
+                out[nfree + nm + 2] = (f_cam * (1.0 - 1.0 / r) - sock) / vt[VT_HLA_MA]
+                _record_hla(
+                    extra,
+                    nm + 1,
+                    nm,
+                    s[nm + 3] - vt[VT_HLA_Y0],
+                    s[nm + 4] - vt[VT_HLA_PS],
+                    sock,
+                    s[nm + 5],
+                    s[nm + 6],
+                )
         else:  # pushrod: lifter on the cam, pushrod to the lever
             zf = s[nm + 2]
             zfd = s[nfree + nm + 2]
@@ -443,7 +590,9 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
     Returns
     -------
     dict
-        ``cam_contact_force``, ``valve_seat_force``, ``valve_lift`` [N, N, m].
+        ``cam_contact_force``, ``valve_seat_force``, ``valve_lift`` [N, N, m]; with a
+        hydraulic lash adjuster also ``hla_collapse`` [m], ``hla_pressure`` [Pa above the
+        supply], ``socket_force`` [N], ``hla_inflow`` and ``hla_leak`` [m^3].
     """
 
     def contact(k, c, pen, rate):
@@ -457,6 +606,22 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
     elif dof == 2:
         r = vt[VT_RATIO]
         cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 1, :] / r, dlift - v[..., 1, :] / r)
+    elif dof == 7:  # the finger on a hydraulic lash adjuster: its pivot end moves
+        r = vt[VT_RATIO]
+        yb = (u[..., 1, :] + (r - 1.0) * u[..., 2, :]) / r
+        ybd = (v[..., 1, :] + (r - 1.0) * v[..., 2, :]) / r
+        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - yb, dlift - ybd)
+        socket = contact(vt[VT_HLA_KS], vt[VT_HLA_CS], u[..., 2, :] - u[..., 3, :], v[..., 2, :] - v[..., 3, :])
+        return dict(
+            cam_contact_force=cam,
+            valve_seat_force=seat,
+            valve_lift=z,
+            hla_collapse=u[..., 3, :] - vt[VT_HLA_Y0],
+            hla_pressure=u[..., 4, :] - vt[VT_HLA_PS],
+            socket_force=socket,
+            hla_inflow=u[..., 5, :],
+            hla_leak=u[..., 6, :],
+        )
     else:
         cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 2, :], dlift - v[..., 2, :])
     return dict(cam_contact_force=cam, valve_seat_force=seat, valve_lift=z)
@@ -508,6 +673,9 @@ _TWINS = twins(
         "element_force",
         "chain_forces",
         "_record_tail",
+        "_record_hla",
+        "air_oil_bulk_modulus",
+        "hla_forces",
         "spring_rhs",
         "train_rhs",
     ],

@@ -29,7 +29,29 @@ VT_M_LIFTER = 12  #: lifter mass M_f [kg]
 VT_K_PUSH = 13  #: pushrod stiffness k_p [N/m]
 VT_C_PUSH = 14  #: pushrod damping c_p [N s/m]
 VT_LOBE_LASH = 15  #: lobe lift that starts the event [m]
-VT_SIZE = 16
+# hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.hla`; zeros without one)
+VT_HLA = 16  #: 1 with the adjuster's dynamics (layout rocker, dof 7), 0 without [-]
+VT_HLA_AREA = 17  #: plunger area A_p [m^2]
+VT_HLA_V0 = 18  #: chamber volume at the initial plunger position [m^3]
+VT_HLA_Y0 = 19  #: initial plunger position (collapse) [m]
+VT_HLA_MP = 20  #: plunger mass [kg]
+VT_HLA_MA = 21  #: lever mass at the socket (the pivot end) [kg]
+VT_HLA_FS = 22  #: plunger-spring force [N]
+VT_HLA_KS = 23  #: socket contact stiffness [N/m]
+VT_HLA_CS = 24  #: socket contact damping [N s/m]
+VT_HLA_G = 25  #: leakage conductance [m^3/(s Pa)]
+VT_HLA_DRAG = 26  #: Couette drag area pi D c / 2 [m^2]
+VT_HLA_PS = 27  #: supply pressure, absolute [Pa]
+VT_HLA_PCRACK = 28  #: check-valve cracking pressure [Pa]
+VT_HLA_KCV = 29  #: check-valve flow coefficient Cd A sqrt(2 / rho) [m^3/(s Pa^0.5)]
+VT_HLA_BETA = 30  #: bulk modulus of air-free oil [Pa]
+VT_HLA_AIR = 31  #: free-air volume fraction at atmospheric pressure [-]
+VT_HLA_N = 32  #: polytropic index of the air [-]
+VT_HLA_YMAX = 33  #: plunger travel into the body to its bottom (from the initial position) [m]
+VT_HLA_YMIN = 34  #: plunger travel out of the body to its clip (negative) [m]
+VT_HLA_KSTOP = 35  #: stiffness of the plunger's travel stops [N/m]
+VT_HLA_CSTOP = 36  #: damping of the plunger in its bore and stops [N s/m]
+VT_SIZE = 37
 
 # --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
 X_LIFT = 0  #: cam lift [m]
@@ -37,7 +59,10 @@ X_DLIFT = 1  #: cam lift rate [m/s]
 X_CAM_FORCE = 2  #: cam contact force [N]
 X_SEAT_FORCE = 3  #: valve-seat force [N]
 X_TOP = 4  #: displacement of the retainer end (the valve lift with a train) [m]
-X_DISP = 5  #: first of the N mass displacements [m]; the cam gap follows them
+X_DISP = 5  #: first of the N mass displacements [m]; the cam gap follows them, then the adjuster's
+#: outputs (:func:`extra_layout`: ``hla_collapse``, ``hla_pressure``, ``socket_force``,
+#: ``hla_inflow``, ``hla_leak``; zeros without an adjuster)
+N_HLA_EXTRA = 5
 
 #: Names of the ``extra`` outputs for the 5-mass Type C chain (:func:`extra_layout` for any N).
 EXTRA = (
@@ -64,6 +89,11 @@ EXTRA = (
     "u4",
     "u5",
     "cam_gap",
+    "hla_collapse",
+    "hla_pressure",
+    "socket_force",
+    "hla_inflow",
+    "hla_leak",
 )
 
 
@@ -80,7 +110,9 @@ def extra_layout(n_masses: int) -> dict:
     dict
         ``force`` and ``compression`` (slices over the ``n_masses + 1`` elements), ``lift``,
         ``dlift``, ``cam_contact_force``, ``valve_seat_force``, ``top_displacement`` (ints),
-        ``displacement`` (slice over the masses), ``cam_gap`` (int) and ``size``.
+        ``displacement`` (slice over the masses), ``cam_gap``, the adjuster's ``hla_collapse``
+        [m], ``hla_pressure`` [Pa], ``socket_force`` [N], ``hla_inflow`` and ``hla_leak``
+        (volumes since the start [m^3]) (ints) and ``size``.
     """
     ne = n_masses + 1
     b = 2 * ne
@@ -94,7 +126,12 @@ def extra_layout(n_masses: int) -> dict:
         top_displacement=b + X_TOP,
         displacement=slice(b + X_DISP, b + X_DISP + n_masses),
         cam_gap=b + X_DISP + n_masses,
-        size=b + X_DISP + 1 + n_masses,
+        hla_collapse=b + X_DISP + n_masses + 1,
+        hla_pressure=b + X_DISP + n_masses + 2,
+        socket_force=b + X_DISP + n_masses + 3,
+        hla_inflow=b + X_DISP + n_masses + 4,
+        hla_leak=b + X_DISP + n_masses + 5,
+        size=b + X_DISP + 1 + n_masses + N_HLA_EXTRA,
     )
 
 
