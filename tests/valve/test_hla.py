@@ -189,3 +189,21 @@ def test_compiled_kernel_matches_the_reference_backend():
     fset = _spring().spring_model.internal_parameters()["Fset"]
     assert np.max(np.abs(a.retainer_force - b.retainer_force)) < 1e-3 * fset
     assert np.max(np.abs(a.hla["pressure"] - b.hla["pressure"])) < 1e-3 * a.hla["pressure"].max()
+
+
+def test_train_modes_take_the_adjusters_oil_column():
+    """The linearised train (natural frequencies) takes the adjuster as its oil column at the
+    supply pressure, beta_e A_p^2 / V referred to the valve by (r - 1)^2, and says so."""
+    from springdyn.valve.train_modes import natural_frequencies, separated_frequencies
+
+    vt = ValveTrain.from_toml(TRAIN)
+    eq = vt.without_hla_dynamics()
+    h = vt.hla
+    beta = effective_bulk_modulus(P_ATM + h.supply_pressure, h.oil_bulk_modulus, h.air_fraction)
+    k_oil = beta * h.area**2 / h.chamber_volume
+    k_pivot = 1.0 / (1.0 / k_oil + 1.0 / h.socket_stiffness)
+    assert eq.hla_stiffness == pytest.approx(k_pivot / (vt.ratio - 1.0) ** 2, rel=1e-12)
+    assert eq.hla_force == pytest.approx(vt.hla_force, rel=1e-12)
+    res = natural_frequencies(_spring(), Cam.from_toml(CAM), vt, 4)
+    assert len(res["base_circle_Hz"]) == 4 and "oil column" in res["notes"][0]
+    assert separated_frequencies(_spring(), Cam.from_toml(CAM), vt, 2)["jump_frequency_Hz"] > 0

@@ -82,10 +82,16 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     """
     from scipy.optimize import root
 
+    notes = []
+    if valve_train is not None and valve_train.hla is not None:
+        valve_train = valve_train.without_hla_dynamics()
+        notes.append(
+            "the hydraulic lash adjuster is linearised as its oil column at the supply pressure (stiffness "
+            f"{valve_train.hla_stiffness / 1e6:.3g} N/um at the valve) with the plunger-spring preload"
+        )
     setup = prepare(spring, cam, valve_train)
     nf = setup.nfree
     nm = setup.n_masses
-    notes = []
     u0 = setup.y0[:nf]
     dofs = np.arange(nf)
     if valve_train is not None and not valve_train.hydraulic and valve_train.lash > 0 and nf > nm + 1:
@@ -215,6 +221,7 @@ def separated_frequencies(
         )
     if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
         raise InputError(f"count = {count!r} must be a whole number of at least 1")
+    valve_train = valve_train.without_hla_dynamics()  # linearised: the adjuster's oil column
     setup = prepare(spring, cam, valve_train)
     nf = setup.nfree
     nm = setup.n_masses

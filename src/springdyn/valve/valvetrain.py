@@ -555,6 +555,27 @@ class ValveTrain(Parameters):
         doc = load_toml(path)
         return vt.with_hla(doc["hla"], source=str(path)) if "hla" in doc else vt
 
+    def without_hla_dynamics(self) -> ValveTrain:
+        """The preloaded-plunger train of the same base-circle force and oil-column stiffness.
+
+        For analyses that linearise the train (natural frequencies): ``hla_preload`` the
+        plunger spring's force at the valve, ``F_s / (r - 1)``, and ``hla_stiffness`` the oil
+        column ``beta_e A_p^2 / V`` at the supply pressure referred to the valve,
+        ``/ (r - 1)^2``, in series with the socket.  Without ``[hla]``: the train itself.
+        """
+        import dataclasses
+
+        if self.hla is None:
+            return self
+        from .hla import P_ATM, effective_bulk_modulus
+
+        h, r = self.hla, self.ratio
+        beta = effective_bulk_modulus(P_ATM + h.supply_pressure, h.oil_bulk_modulus, h.air_fraction, h.polytropic_index)
+        k_pivot = series_stiffness(beta * h.area**2 / h.chamber_volume, h.socket_stiffness)
+        return dataclasses.replace(
+            self, hla=None, hla_stiffness=k_pivot / (r - 1.0) ** 2, hla_preload=h.plunger_spring_force / (r - 1.0)
+        )
+
     def with_hla(self, table, source: str | None = None) -> ValveTrain:
         """The same train with the adjuster's dynamics of an ``[hla]`` table (or an :class:`~springdyn.valve.hla.HLA`).
 
