@@ -322,8 +322,7 @@ class HLA(Parameters):
             )
         if not 233.15 <= self.oil_temperature <= 443.15:
             raise InputError(
-                f"oil_temperature = {self.oil_temperature - 273.15:.6g} degC must lie from -40 to 170 degC "
-                "(bare numbers are kelvin: write '90 degC')"
+                f"oil_temperature = {self.oil_temperature - 273.15:.6g} degC must lie from -40 to 170 degC"
             )
         if not self.radial_clearance < 0.05 * self.plunger_diameter:
             raise InputError(

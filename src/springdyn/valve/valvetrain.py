@@ -591,7 +591,10 @@ class ValveTrain(Parameters):
         from .hla import HLA
 
         h = table if isinstance(table, HLA) else HLA.from_dict(table, source=source)
-        return dataclasses.replace(self, hla=h)
+        try:
+            return dataclasses.replace(self, hla=h)
+        except InputError as exc:
+            raise InputError(f"{source}: {exc}" if source else str(exc)) from None
 
     def static_state(self, lobe_lift: float, valve_lift: float, valve_force: float) -> np.ndarray:
         """Positions of the train's degrees of freedom in static equilibrium [m].
