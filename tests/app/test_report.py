@@ -210,3 +210,27 @@ def test_report_table_sets_the_engine_speeds_and_limits(tmp_path):
         ReportSettings.from_dict({"min_engine_rpm": "6000 rpm", "max_engine_rpm": "5000 rpm"})
     with pytest.raises(InputError, match=r"\[report\].*unknown key|unknown key.*max_engine_rmp"):
         ReportSettings.from_dict({"max_engine_rmp": "5000 rpm"})
+
+
+@pytest.mark.slow  # a valve-train report with the adjuster's dynamics (~10 s)
+def test_report_of_a_train_on_a_hydraulic_lash_adjuster(tmp_path):
+    """A definition with [hla]: the report states the adjuster at the top speed, judges
+    pump-up there, and lists the [hla] inputs (issue 28, part 1)."""
+    import tomllib
+
+    from springdyn.app.report.valve import load, section
+
+    spring = (ROOT / "examples" / "report" / "report_valve_one_step.toml").read_text().split("[cam]")[0]
+    f = tmp_path / "hla.toml"
+    f.write_text(
+        spring
+        + (ROOT / "examples" / "valve" / "cam_finger.toml").read_text()
+        + (ROOT / "examples" / "valve" / "finger_follower_hla.toml").read_text()
+        + '\n[report]\nmax_engine_rpm = "6000 rpm"\nmodels = "type-c"\n'
+    )
+    d = load(tomllib.loads(f.read_text()), f)
+    sec = section(d, source=str(f), out_dir=tmp_path / "out")
+    names = {c.name: c for c in sec.criteria}
+    assert names["valve closes at 3000 cam rpm (no pump-up)"].passed
+    assert any(x.startswith("Hydraulic lash adjuster at the top speed (6000 engine rpm)") for x in sec.findings)
+    assert any("holds the valve" in x and "(pump-up)" in x for x in sec.findings)  # 5 % above the float speed

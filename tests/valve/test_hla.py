@@ -89,7 +89,10 @@ def test_bulk_modulus_limits_and_the_compiled_twin():
     ("table", "message"),
     [
         ({"eccentricity": 1.0}, "eccentricity = 1 must be below 1"),
-        ({"oil_temperature": 90}, r"oil_temperature = -183.15 degC must lie from -40 to 170 degC .*did you mean '90 degC'"),
+        (
+            {"oil_temperature": 90},
+            r"oil_temperature = -183.15 degC must lie from -40 to 170 degC .*did you mean '90 degC'",
+        ),
         ({"chamber_volume": "100 mm^3"}, "chamber_volume = 100 mm\\^3 must exceed"),
         ({"plunger_diametre": "12 mm"}, "unknown key 'plunger_diametre'"),
     ],

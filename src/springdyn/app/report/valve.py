@@ -348,6 +348,37 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                 f"velocity ranges {v_lo:.2f}-{v_hi:.2f} m/s (band over the speeds within 25 rpm and, where a speed does "
                 f"not settle, over its last revolutions) with up to {landings} seat landings per cycle."
             )
+        if vt.hla is not None:  # the adjuster at the top speed: leak-down, pump-up, socket hop
+            at_top = simulate(sp, lobe, top, valve_train=vt).summary
+            h = at_top["hla"]
+            findings.append(
+                f"Hydraulic lash adjuster at the top speed ({axis.per_cam * top:.0f} engine rpm): it collapses "
+                f"{h['collapse_min_m'] * 1e6:.1f} to {h['collapse_max_m'] * 1e6:.1f} um over the cycle under up to "
+                f"{h['peak_pressure_Pa'] / 1e5:.0f} bar above the supply; {h['leak_per_revolution_m3'] * 1e9:.3f} mm^3 "
+                f"leaks out and {h['inflow_per_revolution_m3'] * 1e9:.3f} mm^3 refills per cycle"
+                + (
+                    f"; the finger leaves its socket for {h['socket_hop_deg']:.1f} cam degrees"
+                    if h["socket_hop"]
+                    else ""
+                )
+                + "."
+            )
+            criteria.append(
+                Criterion(
+                    f"valve closes at {top:.0f} cam rpm (no pump-up)",
+                    f"held open {h['valve_held_open_m'] * 1e3:.3f} mm",
+                    "0 mm on the base circle",
+                    bool(h["valve_held_open_m"] <= 1e-6),
+                    "the hydraulic lash adjuster must not extend into a lift-off and hold the valve open",
+                )
+            )
+            if f is not None and "hla" in s:
+                findings.append(
+                    f"5 % above the float speed the adjuster holds the valve {s['hla']['valve_held_open_m'] * 1e3:.3f} mm "
+                    "open on the base circle (pump-up)."
+                    if s["hla"]["valve_held_open_m"] > 1e-6
+                    else "5 % above the float speed the adjuster does not pump up: the valve still closes."
+                )
         sc = res.scan or {}
         upto = [i for i, r in enumerate(res.cam_rpm) if r <= top + 1e-9]
         if upto and "seat_impact_velocity_max_m_per_s" in sc:
@@ -369,6 +400,8 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
     if vt is not None:
         inputs += [(f"valve_train.{k}", v, m) for k, v, m in parameter_rows(vt)]
+        if vt.hla is not None:
+            inputs += [(f"hla.{k}", v, m) for k, v, m in parameter_rows(vt.hla)]
     derived = [(k, format_quantity(v, *PARAMETER_UNITS[k][:2]), PARAMETER_UNITS[k][2]) for k, v in p.items()]
     derived.append(
         ("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length")
