@@ -14,6 +14,8 @@ The definitions
   ("12.0 deg BTDC") for every valve output;
 - :mod:`~springdyn.valve.valvetrain` -- layouts, masses, stiffnesses, lash (``[valve_train]``);
 - :mod:`~springdyn.valve.hla` -- the hydraulic lash adjuster's plunger, chamber and oil (``[hla]``);
+- :mod:`~springdyn.valve.gas_force` -- the cylinder's gas force on the valve head, phased by
+  the cam's ``[timing]``;
 - :mod:`~springdyn.valve.follower` -- the follower at the cam: flat face or roller, base
   circle, contact width, crown, materials, allowable contact stress (``[follower]``).
 

@@ -57,6 +57,7 @@ def simulate(
     periodicity_tol: float = PERIODICITY_TOL,
     max_revolutions: int = MAX_REVOLUTIONS,
     allow_extreme_speeds: bool = False,
+    gas_force=None,
 ) -> Simulation:
     """Simulate the valve spring (or valve train) driven by the cam.
 
@@ -104,6 +105,9 @@ def simulate(
         Compute a speed at which the cam event is shorter than one period of the spring's
         first surge mode (refused otherwise, :meth:`SimulationSetup.check_speeds`), flagged
         in the summary's notes.
+    gas_force : GasForce, optional
+        The cylinder's gas force on the valve over the revolution [N]
+        (:class:`springdyn.valve.gas_force.GasForce`; needs a valve train).
 
     Raises
     ------
@@ -148,6 +152,7 @@ def simulate(
         setup = prepare(spring, cam, valve_train)
         if cam.law == "table":
             cam.check_resolution(cam_rpm, float(spring.modes(spring.installed_length, 1)[0]))
+    setup = setup.with_gas_force(gas_force)
     extreme = setup.check_speeds(cam_rpm, allow_extreme_speeds)
     omega = rpm_to_omega(cam_rpm)
     period = 2 * math.pi / omega
@@ -169,12 +174,14 @@ def simulate(
         sim.flags = extreme
         if check_elements:
             _check_element_count(
-                sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol, chosen, run
+                sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol, chosen, run, gas_force
             )
+        _add_gas_force(sim, gas_force)
         return sim
     sim = _simulate_scipy(setup, cam_rpm, revolutions, most, periodicity_tol, n, rtol, atol)
     sim.periodicity_tol = periodicity_tol
     sim.flags = extreme
+    _add_gas_force(sim, gas_force)
     return sim
 
 
@@ -231,7 +238,15 @@ def _check_forces(setup: SimulationSetup, omega: float, t: np.ndarray, states: n
     )
 
 
-def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rtol, atol, method, run) -> None:
+def _add_gas_force(sim: Simulation, gas) -> None:
+    """The gas force on the output grid and its peak in the summary's terms."""
+    if gas is not None:
+        sim.gas_force = gas.at(sim.cam_angle)
+
+
+def _check_element_count(
+    sim, cam, cam_rpm, revolutions, valve_train, points, rtol, atol, method, run, gas_force=None
+) -> None:
     """Distributed model with clashing coils: the peak end forces with half the elements
     (with the pair the caller chose, else the coarse chain's own, :attr:`SimulationSetup.method`)."""
     sp = sim.spring
@@ -252,6 +267,7 @@ def _check_element_count(sim, cam, cam_rpm, revolutions, valve_train, points, rt
         atol=atol,
         check_elements=False,
         method=method,
+        gas_force=gas_force,
         **run,
     )
     ext = coarse.monitor["ext"]  # the true extremes of the dense output, as in the summary

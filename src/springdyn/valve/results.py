@@ -131,6 +131,9 @@ class Simulation(Result):
     #: ``leak`` (oil volumes through the check valve and the clearance since the run's start,
     #: m^3) on the output grid.
     hla: dict | None = None
+    #: The cylinder's gas force on the valve on the output grid [N] (towards the seat;
+    #: :mod:`springdyn.valve.gas_force`), None without one.
+    gas_force: np.ndarray | None = None
     #: A run that did not settle (``periodic`` False after the most revolutions): each
     #: extreme's smallest and largest value over the last revolutions, name -> (lo, hi)
     #: (names of :data:`springdyn.valve.engine.EXT`); None when periodic.
@@ -235,6 +238,8 @@ class Simulation(Result):
                 cam_contact_force=(dims, self.cam_contact_force, {"units": "N"}),
                 valve_seat_force=(dims, self.valve_seat_force, {"units": "N"}),
             )
+        if self.gas_force is not None:
+            data.update(gas_force=(dims, self.gas_force, {"units": "N", "long_name": "gas force on the valve"}))
         if self.hla is not None:
             data.update(
                 hla_collapse=(dims, self.hla["collapse"], {"units": "m"}),
@@ -703,6 +708,12 @@ def _summarise(sim: Simulation) -> dict:
         s["max_bounce_height_m"] = float(np.max(np.where(after & ~(sim.lift > vt.lobe_lash + 1e-6), z, 0.0)))
         if sim.hla is not None:
             s["hla"] = _hla_summary(sim, notes)
+        if sim.gas_force is not None:
+            k = int(np.argmax(sim.gas_force))
+            opening = int(np.argmax(sim.valve_lift > 0.0))  # the first sample off the seat
+            s["max_gas_force_N"] = float(sim.gas_force[k])
+            s["max_gas_force_cam_angle_deg"] = float(deg[k])
+            s["gas_force_at_opening_N"] = float(sim.gas_force[opening])
     if mon is not None and mon["ext"]["events_lost"] > 0:
         notes.append(f"{int(mon['ext']['events_lost'])} events beyond the first {len(mon['events'])} were not located")
     s["notes"] = notes

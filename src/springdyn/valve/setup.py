@@ -203,6 +203,29 @@ class SimulationSetup:
     #: Cams per spring whose static force along the output grid is kept.
     STATIC_CACHE_SIZE = 8
 
+    def with_gas_force(self, gas) -> "SimulationSetup":
+        """The same set-up with the gas force on the valve (:class:`springdyn.valve.gas_force.GasForce`).
+
+        Parameters
+        ----------
+        gas : GasForce or None
+            The force over one camshaft revolution [N] (None: the set-up itself).
+        """
+        import dataclasses
+
+        from .engine.layout import VT_GAS_N, VT_SIZE
+
+        if gas is None:
+            return self
+        if self.valve_train is None:
+            raise InputError(
+                "a gas force acts on the valve: it needs a valve train (--valve-train / [valve_train]); the spring "
+                "alone has no valve"
+            )
+        vt = np.concatenate([self.vt[:VT_SIZE], gas.force])
+        vt[VT_GAS_N] = float(gas.force.size)
+        return dataclasses.replace(self, vt=vt)
+
     def args(self, omega: float) -> tuple:
         """The engine's argument tuple (:func:`springdyn.valve.engine.model_of` reads it).
 

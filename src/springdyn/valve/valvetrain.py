@@ -186,6 +186,13 @@ class ValveTrain(Parameters):
     link_damping: float = param(
         "N*s/m", "damping of the rocker-tip and pushrod contacts", nonnegative=True, default=200.0
     )
+    seat_diameter: float = param(
+        "m",
+        "valve seat diameter: the area the cylinder pressure acts on (a gas force, springdyn.valve.gas_force)",
+        display="mm",
+        positive=True,
+        default=None,
+    )
     lash_adjuster: str = param(
         None,
         "lash adjuster: none (mechanical lash) or hydraulic",
@@ -441,16 +448,17 @@ class ValveTrain(Parameters):
                 self.link_damping if self.layout == "pushrod" else 0.0,
                 self.lobe_lash,
                 *self._hla_parameters(),
+                0.0,  # VT_GAS_N: no gas force (SimulationSetup.with_gas_force adds its samples)
             ]
         )
 
     def _hla_parameters(self) -> list:
         """The ``VT_HLA*`` entries of :meth:`kernel_parameters` (zeros without ``[hla]``)."""
-        from .engine.layout import VT_HLA, VT_SIZE
+        from .engine.layout import VT_GAS_N, VT_HLA
 
         h = self.hla
         if h is None:
-            return [0.0] * (VT_SIZE - VT_HLA)
+            return [0.0] * (VT_GAS_N - VT_HLA)
         from .hla import P_ATM
 
         pivot = self.hla_pivot_state()

@@ -11,6 +11,7 @@ from springdyn.app.cli.common import (
     as_options,
     close_figure,
     emit,
+    existing_file,
     parse_range,
     print_json,
     print_notes,
@@ -171,6 +172,18 @@ def register(sub) -> None:
     _add_speed_options(p, ranged=False)
     _add_revolution_options(p)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
+    p.add_argument(
+        "--gas-pressure",
+        metavar="P.csv",
+        help="cylinder pressure against crank angle (columns crank_angle_deg, pressure_bar|_Pa|_kPa|_MPa, absolute): "
+        "its force on the valve head over [valve_train] seat_diameter, phased by the cam's [timing]",
+    )
+    p.add_argument(
+        "--port-pressure",
+        default="1 atm",
+        metavar="P",
+        help="pressure behind the valve head, absolute (default 1 atm; bare number: Pa)",
+    )
     p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
     p.add_argument(
         "--rtol",
@@ -758,6 +771,32 @@ def cmd_design(args) -> int:
     return 0
 
 
+def _gas_force(args, cam, vt):
+    """``--gas-pressure``: the trace's force on the valve, phased by the cam's ``[timing]``."""
+    if not args.gas_pressure:
+        return None
+    from springdyn.valve.gas_force import GasForce
+    from springdyn.valve.timing import crank_axis
+
+    if vt is None:
+        raise InputError("--gas-pressure acts on the valve: give --valve-train (the spring alone has no valve)")
+    if vt.seat_diameter is None:
+        raise InputError(f"--gas-pressure needs the valve's seat_diameter in [valve_train] ({args.valve_train})")
+    timing = _timing(args.cam) or _timing(args.spring)
+    if timing is None:
+        raise InputError(
+            "--gas-pressure is against crank angle: the cam file needs a [timing] table (lobe_centre, valve) to phase it"
+        )
+    port = quantity(args.port_pressure, "Pa", "--port-pressure")
+    with as_options(path="--gas-pressure"):
+        return GasForce.from_file(
+            existing_file(args.gas_pressure, "--gas-pressure"),
+            axis=crank_axis(cam, timing),
+            seat_diameter=vt.seat_diameter,
+            port_pressure=port,
+        )
+
+
 def _crank_axis(args, cam):
     """Crank angles for the outputs: with an engine speed or the cam file's ``[timing]`` table."""
     from springdyn.valve.timing import crank_axis
@@ -792,6 +831,7 @@ def cmd_simulate(args) -> int:
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
     rpm = cam_rpm_from_args(args, ranged=False)
+    gas = _gas_force(args, cam, vt)
     with as_options(**RUN_OPTIONS):
         sim = simulate(
             spring,
@@ -803,6 +843,7 @@ def cmd_simulate(args) -> int:
             atol=args.atol,
             points_per_revolution=args.points_per_revolution,
             backend=args.backend,
+            gas_force=gas,
         )
     sim.set_crank_axis(_crank_axis(args, cam))  # crank angles beside the cam's
 
@@ -906,6 +947,11 @@ def cmd_simulate(args) -> int:
             )
         else:
             print(f"no lift-off: minimum cam contact force {s['min_cam_contact_force_N']:.1f} N")
+        if "max_gas_force_N" in s:
+            print(
+                f"gas force on the valve: up to {s['max_gas_force_N']:.0f} N, {s['gas_force_at_opening_N']:.0f} N as it "
+                "leaves its seat"
+            )
         if "hla" in s:
             h = s["hla"]
             print(

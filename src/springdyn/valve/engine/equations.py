@@ -42,6 +42,7 @@ from .layout import (
     VT_C_TIP,
     VT_DOF,
     VT_ENABLED,
+    VT_GAS_N,
     VT_HLA_AIR,
     VT_HLA_AREA,
     VT_HLA_BETA,
@@ -71,6 +72,7 @@ from .layout import (
     VT_M_LIFTER,
     VT_MASS,
     VT_RATIO,
+    VT_SIZE,
     X_CAM_FORCE,
     X_DISP,
     X_DLIFT,
@@ -98,6 +100,7 @@ __all__ = [
     "NO_EXTRA",
     "air_oil_bulk_modulus",
     "hla_forces",
+    "gas_force_at",
 ]
 
 #: Floating-point licences of the compiled kernels: fused multiply-add (``contract``),
@@ -348,6 +351,31 @@ def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak):
         extra[b + 5] = leak
 
 
+def gas_force_at(vt, theta):
+    """The gas force on the valve [N] at the cam angle ``theta`` [rad]: linear and periodic in
+    the samples after the train's parameters (:class:`springdyn.valve.gas_force.GasForce`);
+    0 without them.
+
+    Parameters
+    ----------
+    vt : ndarray
+        The train's parameters [mixed units], the force samples [N] after ``VT_SIZE``.
+    theta : float
+        Cam angle [rad].
+    """
+    n = int(vt[VT_GAS_N])
+    if n == 0:
+        return 0.0
+    x = theta / (2.0 * math.pi)
+    x = (x - math.floor(x)) * n
+    i0 = int(x)
+    if i0 >= n:
+        i0 = n - 1
+    i1 = i0 + 1 if i0 + 1 < n else 0
+    frac = x - i0
+    return vt[VT_SIZE + i0] * (1.0 - frac) + vt[VT_SIZE + i1] * frac
+
+
 def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
     """Bulk modulus [Pa] of oil with free air at an absolute pressure: the scalar twin of
     :func:`springdyn.valve.hla.effective_bulk_modulus` for compiled code (the tests compare
@@ -568,7 +596,8 @@ def train_rhs(t, s, m, omega, vt, out, extra):
         out[nm + 1] = zrd
         out[nfree + nm + 1] = (f_lever - f_valve) / vt[VT_M_LEVER]
     out[nm] = zd
-    out[nfree + nm] = (f_valve + f_seat - f_spring) / vt[VT_MASS]
+    # the gas force pushes the valve towards its seat (springdyn.valve.gas_force)
+    out[nfree + nm] = (f_valve + f_seat - f_spring - gas_force_at(vt, omega * t)) / vt[VT_MASS]
     _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
 
 
@@ -674,6 +703,7 @@ _TWINS = twins(
         "chain_forces",
         "_record_tail",
         "_record_hla",
+        "gas_force_at",
         "air_oil_bulk_modulus",
         "hla_forces",
         "spring_rhs",

@@ -51,7 +51,10 @@ VT_HLA_YMAX = 33  #: plunger travel into the body to its bottom (from the initia
 VT_HLA_YMIN = 34  #: plunger travel out of the body to its clip (negative) [m]
 VT_HLA_KSTOP = 35  #: stiffness of the plunger's travel stops [N/m]
 VT_HLA_CSTOP = 36  #: damping of the plunger in its bore and stops [N s/m]
-VT_SIZE = 37
+#: samples of the gas force on the valve over one revolution (0: none); the samples follow
+#: the vector's fixed entries (:mod:`springdyn.valve.gas_force`) [-]
+VT_GAS_N = 37
+VT_SIZE = 38
 
 # --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
 X_LIFT = 0  #: cam lift [m]
