@@ -152,6 +152,16 @@ FACTORIES = {
         importlib.import_module("springdyn.valve.cam_from_lift").CamCard.from_toml("examples/valve/cam_card.toml"),
         springdyn.valve.ValveTrain.from_toml("examples/valve/valve_train_with_follower.toml"),
     ),
+    "springdyn.valve.run_up.RunUp": lambda: importlib.import_module("springdyn.valve.run_up").speed_ramp(
+        _valve_spring(),
+        _valve_cam(),
+        _valve_train(),
+        3000.0,
+        3300.0,
+        3000.0,
+        points_per_revolution=360,
+        float_scan=False,
+    ),
     "springdyn.valve.frf.FrequencyResponse": lambda: importlib.import_module("springdyn.valve.frf").dynamic_stiffness(
         _valve_spring(), np.linspace(50.0, 2000.0, 40)
     ),

@@ -16,6 +16,7 @@ The definitions
 - :mod:`~springdyn.valve.hla` -- the hydraulic lash adjuster's plunger, chamber and oil (``[hla]``);
 - :mod:`~springdyn.valve.gas_force` -- the cylinder's gas force on the valve head, phased by
   the cam's ``[timing]``;
+- :mod:`~springdyn.valve.run_up` -- speed ramps: lift-off and float against the momentary speed;
 - :mod:`~springdyn.valve.follower` -- the follower at the cam: flat face or roller, base
   circle, contact width, crown, materials, allowable contact stress (``[follower]``).
 

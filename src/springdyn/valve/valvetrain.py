@@ -449,6 +449,7 @@ class ValveTrain(Parameters):
                 self.lobe_lash,
                 *self._hla_parameters(),
                 0.0,  # VT_GAS_N: no gas force (SimulationSetup.with_gas_force adds its samples)
+                0.0,  # VT_ALPHA: constant speed (springdyn.valve.run_up sets a ramp's acceleration)
             ]
         )
 

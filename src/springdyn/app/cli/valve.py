@@ -169,7 +169,7 @@ def register(sub) -> None:
     p.add_argument("spring", metavar="SPRING.toml")
     _add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
-    _add_speed_options(p, ranged=False)
+    _add_speed_options(p, ranged=False, ramp=True)
     _add_revolution_options(p)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
     p.add_argument(
@@ -318,13 +318,21 @@ def _add_model_option(p) -> None:
     )
 
 
-def _add_speed_options(p, *, ranged: bool) -> None:
+def _add_speed_options(p, *, ranged: bool, ramp: bool = False) -> None:
     g = p.add_mutually_exclusive_group(required=True)
     what = "START:STOP:STEP or a list" if ranged else "a speed"
     g.add_argument("--cam-rpm", metavar="RPM", help=f"camshaft speed, {what} (bare numbers: rpm)")
     g.add_argument(
         "--engine-rpm", metavar="RPM", help=f"engine speed, {what} (four-stroke: cam speed = engine speed / 2)"
     )
+    if ramp:
+        g.add_argument(
+            "--speed-ramp",
+            metavar="START:END:RATE",
+            help="a cam-speed ramp (a run-up, or a run-down when END < START): cam speeds and the rate of the cam "
+            "speed (bare numbers: rpm and rpm/s), from the periodic steady state at START; lift-off, float and "
+            "seat landings per revolution against the momentary speed (needs --valve-train)",
+        )
 
 
 def cam_rpm_from_args(args, *, ranged: bool):
@@ -825,11 +833,64 @@ def _load_cam_and_train(args):
     return cam, vt
 
 
+def cmd_speed_ramp(args, spring, cam, vt) -> int:
+    """``valve simulate --speed-ramp START:END:RATE``: the run-up (:func:`springdyn.valve.run_up.speed_ramp`)."""
+    from springdyn.valve.run_up import speed_ramp
+
+    parts = args.speed_ramp.split(":")
+    if len(parts) != 3:
+        raise InputError(f"--speed-ramp = {args.speed_ramp!r} must be START:END:RATE, e.g. 2500:3500:2000")
+    start, end = (quantity(x, "rpm", "--speed-ramp", bare_unit="rpm") for x in parts[:2])
+    rate = quantity(parts[2], "rad/s**2", "--speed-ramp", bare_unit="rpm/s") * 60.0 / (2.0 * 3.141592653589793)
+    with as_options(start="--speed-ramp", end="--speed-ramp", rate_rpm_per_s="--speed-ramp"):
+        res = speed_ramp(spring, cam, vt, start, end, rate, rtol=args.rtol, atol=args.atol)
+    if emit(res, args, json_data=dict(res.summary)):
+        return 0
+    s = res.summary
+    _print_coils(spring.coil_facts)
+    print(
+        f"speed ramp {start:g} -> {end:g} cam rpm at {rate:g} rpm/s: {s['duration_s']:.3f} s, {s['revolutions']} "
+        "revolutions, each judged at its mean speed"
+    )
+    t = res.revolutions()
+    print_table(
+        [
+            (
+                f"{t['cam_rpm'][i]:.0f}",
+                "FLOAT" if t["nose_separation"][i] else ("lift-off" if t["liftoff"][i] else "-"),
+                str(t["seat_landings"][i]),
+                f"{t['min_cam_contact_force_N'][i]:.1f}",
+                f"{t['max_retainer_force_N'][i]:.1f}",
+            )
+            for i in range(t["cam_rpm"].size)
+        ],
+        headers=("cam rpm", "separation", "seat landings", "min cam force [N]", "max retainer force [N]"),
+    )
+    onset, steady = s["float_onset_cam_rpm"], s["steady_float_cam_rpm"]
+    print(
+        (
+            "float (lift-off over the nose) from " + f"{onset:.0f} cam rpm of the ramp"
+            if onset
+            else "no float in the ramp"
+        )
+        + (f"; steady-state float speed {steady:.0f} cam rpm" if steady else "; no steady-state float in the range")
+    )
+    print_notes(s)
+    return 0
+
+
 def cmd_simulate(args) -> int:
     from springdyn.valve.dynamics import simulate
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
+    if getattr(args, "speed_ramp", None):
+        given = [o for o, v in (("--gas-pressure", args.gas_pressure), ("--revolutions", args.revolutions)) if v]
+        if given:
+            raise InputError(
+                f"--speed-ramp runs from the periodic steady state at its start: {given[0]} does not apply"
+            )
+        return cmd_speed_ramp(args, spring, cam, vt)
     rpm = cam_rpm_from_args(args, ranged=False)
     gas = _gas_force(args, cam, vt)
     with as_options(**RUN_OPTIONS):

@@ -36,6 +36,7 @@ import numpy as np
 
 from ...numerics.jit import kernel, rebind, twins
 from .layout import (
+    VT_ALPHA,
     VT_C_CAM,
     VT_C_PUSH,
     VT_C_SEAT,
@@ -521,8 +522,11 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     nm = m.masses.shape[0]
     ntr = int(vt[VT_DOF])
     nfree = nm + ntr
-    lift, slope = cam_at(omega * t, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
-    dlift = slope * omega
+    # the cam angle and speed: constant speed, or a speed ramp of acceleration alpha
+    alpha = vt[VT_ALPHA]
+    theta = omega * t + 0.5 * alpha * t * t
+    lift, slope = cam_at(theta, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
+    dlift = slope * (omega + alpha * t)
     z = s[nm]
     zd = s[nfree + nm]
     f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
@@ -597,7 +601,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
         out[nfree + nm + 1] = (f_lever - f_valve) / vt[VT_M_LEVER]
     out[nm] = zd
     # the gas force pushes the valve towards its seat (springdyn.valve.gas_force)
-    out[nfree + nm] = (f_valve + f_seat - f_spring - gas_force_at(vt, omega * t)) / vt[VT_MASS]
+    out[nfree + nm] = (f_valve + f_seat - f_spring - gas_force_at(vt, theta)) / vt[VT_MASS]
     _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
 
 

@@ -54,7 +54,10 @@ VT_HLA_CSTOP = 36  #: damping of the plunger in its bore and stops [N s/m]
 #: samples of the gas force on the valve over one revolution (0: none); the samples follow
 #: the vector's fixed entries (:mod:`springdyn.valve.gas_force`) [-]
 VT_GAS_N = 37
-VT_SIZE = 38
+#: cam angular acceleration alpha [rad/s^2] of a speed ramp: the cam angle is
+#: ``omega t + alpha t^2 / 2`` (0: constant speed; :mod:`springdyn.valve.run_up`)
+VT_ALPHA = 38
+VT_SIZE = 39
 
 # --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
 X_LIFT = 0  #: cam lift [m]
