@@ -16,6 +16,7 @@ from ..core.results import Result
 from .elements import law_force
 from .periodicity import PERIODICITY_TOL, is_periodic
 from .separation import cam_phases, liftoffs, separates_over_nose
+from .timing import CrankAngles
 
 __all__ = ["StaticCurve", "Simulation", "FloatSpeedResult", "NaturalFrequencies"]
 
@@ -87,7 +88,7 @@ class StaticCurve(Result):
 
 
 @dataclass(repr=False)
-class Simulation(Result):
+class Simulation(CrankAngles, Result):
     """The last simulated revolution and its summary (SI; angles in rad, ``*_deg`` in degrees)."""
 
     spring: object  # ValveSpring
@@ -180,17 +181,6 @@ class Simulation(Result):
         if self.crank_axis is not None:
             _add_crank_angles(s, self.crank_axis)
         return s
-
-    def set_crank_axis(self, axis) -> None:
-        """Show crank angles in the outputs (:attr:`crank_axis`; the summary is rebuilt).
-
-        Parameters
-        ----------
-        axis : CrankAxis or None
-            :func:`springdyn.valve.timing.crank_axis` of the cam (None: cam angles only).
-        """
-        self.crank_axis = axis
-        self.__dict__.pop("_summary_cache", None)
 
     def spectrum(self, max_order: int = 40):
         """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean).

@@ -41,6 +41,7 @@ from .setup import (
     prepare,
 )
 from .spring import ValveSpring
+from .timing import CrankAngles
 from .valvetrain import ValveTrain
 
 __all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
@@ -254,7 +255,7 @@ def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client
 
 
 @dataclass(repr=False)
-class SpeedSweep(Result):
+class SpeedSweep(CrankAngles, Result):
     """Results of a speed sweep, optionally over a design variable (SI).
 
     ``plot(path)`` draws the forces against speed; :meth:`plot_all` writes every sweep
@@ -282,17 +283,6 @@ class SpeedSweep(Result):
     crank_axis: object = None
 
     title = "valve spring speed sweep"
-
-    def set_crank_axis(self, axis) -> None:
-        """Show crank angles and engine speeds in the outputs (:attr:`crank_axis`).
-
-        Parameters
-        ----------
-        axis : CrankAxis or None
-            :func:`springdyn.valve.timing.crank_axis` of the cam (None: cam angles only).
-        """
-        self.crank_axis = axis
-        self.__dict__.pop("_summary_cache", None)
 
     @property
     def engine_rpm(self) -> np.ndarray | None:

@@ -31,7 +31,7 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.params import Parameters, load_toml, param
 
-__all__ = ["VALVES", "Timing", "CrankAxis", "crank_axis", "crank_words"]
+__all__ = ["VALVES", "Timing", "CrankAxis", "CrankAngles", "crank_axis", "crank_words"]
 
 #: The valves a ``[timing]`` table can describe: the sign of the lobe centreline.
 VALVES = ("intake", "exhaust")
@@ -221,3 +221,21 @@ def crank_axis(cam, timing: Timing | None = None) -> CrankAxis:
     centre = math.degrees(timing.lobe_centre) * (1.0 if timing.valve == "intake" else -1.0)
     offset = centre - k * math.degrees(cam.peak_angle)
     return CrankAxis(per_cam=k, offset_deg=offset, referenced=True, cycle_deg=180.0 * timing.strokes)
+
+
+class CrankAngles:
+    """Mixin of the valve results that show crank angles beside cam angles: their
+    ``crank_axis`` field (a :class:`CrankAxis`, or None for cam angles only)."""
+
+    crank_axis = None
+
+    def set_crank_axis(self, axis) -> None:
+        """Show crank angles in the outputs (``crank_axis``; the summary is rebuilt).
+
+        Parameters
+        ----------
+        axis : CrankAxis or None
+            :func:`crank_axis` of the cam (None: cam angles only).
+        """
+        self.crank_axis = axis
+        self.__dict__.pop("_summary_cache", None)

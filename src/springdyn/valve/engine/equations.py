@@ -380,7 +380,8 @@ def gas_force_at(vt, theta):
 def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
     """Bulk modulus [Pa] of oil with free air at an absolute pressure: the scalar twin of
     :func:`springdyn.valve.hla.effective_bulk_modulus` for compiled code (the tests compare
-    them).
+    them; a compiled kernel calls code of the engine's folder only, whose contents key its
+    cache, :func:`springdyn.numerics.jit.source_group`).
 
     Parameters
     ----------
