@@ -98,3 +98,23 @@ def test_cli_prints_the_gas_force(capsys):
     assert main([*argv, "--engine-rpm", "6000", "--gas-pressure", TRACE, "--port-pressure", "1.1 bar"]) == 0
     out = capsys.readouterr().out
     assert "gas force on the valve: up to 2314 N" in out
+
+
+def test_a_sweep_carries_the_gas_force_like_simulate():
+    """The sweep's speed and the simulation at that speed see the same gas force: their
+    minimum cam contact forces agree to the periodicity tolerance (0.2 % of Fset), and the
+    gas force changes them (the exhaust opening against the blow-down)."""
+    from springdyn.valve.sweeps import sweep
+
+    spring, cam, vt, axis = _exhaust()
+    g = GasForce.from_file(TRACE, axis=axis, seat_diameter=vt.seat_diameter, port_pressure=1.1e5)
+    sw = sweep(spring, cam, [2500.0], valve_train=vt, gas_force=g)
+    sim = simulate(spring, cam, 2500.0, valve_train=vt, gas_force=g)
+    plain = simulate(spring, cam, 2500.0, valve_train=vt)
+    fset = spring.spring_model.internal_parameters()["Fset"]
+    row = sw.summary_table()
+    assert row["min_cam_contact_force_N"][0] == pytest.approx(sim.summary["min_cam_contact_force_N"], abs=0.004 * fset)
+    assert row["max_retainer_force_N"][0] == pytest.approx(sim.summary["max_retainer_force_N"], abs=0.004 * fset)
+    # the firing pressure presses the closed valve onto its seat: ~2300 N more
+    assert sim.valve_seat_force.max() > plain.valve_seat_force.max() + 2000.0
+    assert any("gas force" in n for n in sw.summary["notes"])

@@ -747,6 +747,7 @@ def sweep(
     periodicity_tol: float = PERIODICITY_TOL,
     max_revolutions: int = MAX_REVOLUTIONS,
     allow_extreme_speeds: bool = False,
+    gas_force=None,
 ) -> SpeedSweep:
     """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
 
@@ -789,6 +790,9 @@ def sweep(
     allow_extreme_speeds : bool
         Compute speeds at which the cam event is shorter than one period of the spring's
         first surge mode (refused otherwise), flagged in the summary's notes.
+    gas_force : GasForce, optional
+        The cylinder's gas force on the valve over the revolution [N], the same at every
+        speed (:class:`springdyn.valve.gas_force.GasForce`; needs a valve train).
     """
     try:
         cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
@@ -808,7 +812,13 @@ def sweep(
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
         raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
     springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
+    setups = [setup.with_gas_force(gas_force) for setup in setups]
     flags = []
+    if gas_force is not None:
+        flags.append(
+            f"with the gas force on the valve{' of ' + gas_force.source if gas_force.source else ''} "
+            f"(up to {float(gas_force.force.max()):.0f} N), the same trace against crank angle at every speed"
+        )
     for setup in setups:
         flags += [f for f in setup.check_speeds(cam_rpm, allow_extreme_speeds) if f not in flags]
     points = int(points_per_revolution)

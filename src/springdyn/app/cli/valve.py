@@ -172,18 +172,7 @@ def register(sub) -> None:
     _add_speed_options(p, ranged=False, ramp=True)
     _add_revolution_options(p)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
-    p.add_argument(
-        "--gas-pressure",
-        metavar="P.csv",
-        help="cylinder pressure against crank angle (columns crank_angle_deg, pressure_bar|_Pa|_kPa|_MPa, absolute): "
-        "its force on the valve head over [valve_train] seat_diameter, phased by the cam's [timing]",
-    )
-    p.add_argument(
-        "--port-pressure",
-        default="1 atm",
-        metavar="P",
-        help="pressure behind the valve head, absolute (default 1 atm; bare number: Pa)",
-    )
+    _add_gas_options(p)
     p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
     p.add_argument(
         "--rtol",
@@ -235,6 +224,7 @@ def register(sub) -> None:
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     _add_speed_options(p, ranged=True)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
+    _add_gas_options(p)
     _add_revolution_options(p)
     p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
     p.add_argument(
@@ -315,6 +305,21 @@ def _add_model_option(p) -> None:
         "--model",
         choices=MODEL_NAMES,
         help="spring model (default: the [spring] model key, else 'type-c', the document's MMS Type C)",
+    )
+
+
+def _add_gas_options(p) -> None:
+    p.add_argument(
+        "--gas-pressure",
+        metavar="P.csv",
+        help="cylinder pressure against crank angle (columns crank_angle_deg, pressure_bar|_Pa|_kPa|_MPa, absolute): "
+        "its force on the valve head over [valve_train] seat_diameter, phased by the cam's [timing]",
+    )
+    p.add_argument(
+        "--port-pressure",
+        default="1 atm",
+        metavar="P",
+        help="pressure behind the valve head, absolute (default 1 atm; bare number: Pa)",
     )
 
 
@@ -1148,6 +1153,7 @@ def cmd_sweep(args) -> int:
     cam, vt = _load_cam_and_train(args)
     rpms = cam_rpm_from_args(args, ranged=True)
     vary = parse_vary(args.vary, spring) if args.vary else None
+    gas = _gas_force(args, cam, vt)
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers = {args.workers} must be at least 1")
     with as_options(scheduler="--scheduler"):
@@ -1168,6 +1174,7 @@ def cmd_sweep(args) -> int:
                 workers=args.workers,
                 client=client,
                 quiet=args.quiet,
+                gas_force=gas,
             )
     finally:
         if client is not None:
