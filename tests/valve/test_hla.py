@@ -210,3 +210,17 @@ def test_train_modes_take_the_adjusters_oil_column():
     res = natural_frequencies(_spring(), Cam.from_toml(CAM), vt, 4)
     assert len(res["base_circle_Hz"]) == 4 and "oil column" in res["notes"][0]
     assert separated_frequencies(_spring(), Cam.from_toml(CAM), vt, 2)["jump_frequency_Hz"] > 0
+
+
+def test_a_sweep_reports_pump_up_per_speed():
+    """The sweep's valve_held_open_m column is the simulation's figure at that speed: 0 below
+    the float speed, the pump-up above it (the same engine and steady state; to the
+    periodicity band of the pumped-up speed, which does not settle: 20 %)."""
+    from springdyn.valve.sweeps import sweep
+
+    vt = ValveTrain.from_toml(TRAIN)
+    sw = sweep(_spring(), Cam.from_toml(CAM), [1000.0, 3600.0], valve_train=vt)
+    held = sw.summary_table()["valve_held_open_m"]
+    assert held[0] == 0.0
+    one = simulate(_spring(), Cam.from_toml(CAM), 3600.0, valve_train=vt).summary["hla"]["valve_held_open_m"]
+    assert held[1] == pytest.approx(one, rel=0.2) and held[1] > 0.1e-3

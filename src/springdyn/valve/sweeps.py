@@ -448,6 +448,10 @@ class SpeedSweep(CrankAngles, Result):
         out["seat_rebound_height_m"] = np.max(
             np.where(landed & ~(self.lift > self.valve_train.lobe_lash + 1e-6), z, 0.0), axis=1
         )
+        if self.valve_train.hla is not None:
+            # pump-up: the adjuster holds the valve off its seat on the base circle
+            base = ~(self.lift > 1e-9)
+            out["valve_held_open_m"] = np.maximum(np.min(np.where(base, z, np.inf), axis=1), 0.0)
         v = ext[:, col["seat_impact_velocity"]]
         out["seat_impact_velocity_m_per_s"] = v
         # the seating velocity band: over the speeds within SEATING_BAND_RPM and, for a speed

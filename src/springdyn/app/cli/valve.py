@@ -1227,6 +1227,15 @@ def cmd_sweep(args) -> int:
                 )
                 + (f"; first lift-off at {speed(first)}" if np.isfinite(first) else "")
             )
+    if "valve_held_open_m" in table:
+        pumped = np.flatnonzero(np.asarray(table["valve_held_open_m"]) > 1e-6)
+        if pumped.size:
+            i = int(pumped[0])
+            print(
+                f"PUMP-UP: the hydraulic lash adjuster holds the valve open on the base circle from "
+                f"{speed(table['cam_rpm'][i])} (up to {np.max(table['valve_held_open_m']) * 1e3:.3f} mm; "
+                "column valve_held_open_m)"
+            )
     # every caveat (the periodicity one is the line above)
     print_notes(sm, skip=(f"{sm['speeds_not_periodic']} speeds did not settle",))
     for value, reason in res.skipped:
