@@ -441,15 +441,34 @@ _LIFT_UNITS = {"lift_mm": 1e-3, "lift_m": 1.0, "lift_um": 1e-6}
 def read_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
     """Read a lift table CSV: ``cam_angle_deg`` (or ``cam_angle_rad``) and ``lift_mm``
     (or ``lift_m``, ``lift_um``).  Returns SI arrays (rad, m)."""
+    return read_angle_table(path, _LIFT_UNITS)
+
+
+def read_angle_table(path, value_columns: dict) -> tuple[np.ndarray, np.ndarray]:
+    """A CSV of a quantity against cam angle, each column named with its unit.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file: ``cam_angle_deg`` or ``cam_angle_rad``, and one of ``value_columns``.
+    value_columns : dict
+        Accepted value columns and their factor to SI, e.g. ``{"lift_mm": 1e-3, "lift_m": 1.0}``.
+
+    Returns
+    -------
+    angle, value : ndarray
+        Cam angle [rad] and the value [SI].
+    """
     cols = read_csv_columns(path)
     a_key = next((k for k in _ANGLE_UNITS if k in cols), None)
-    l_key = next((k for k in _LIFT_UNITS if k in cols), None)
-    if a_key is None or l_key is None:
+    v_key = next((k for k in value_columns if k in cols), None)
+    if a_key is None or v_key is None:
+        first, *rest = value_columns
         raise InputError(
-            f"{path}: needs columns cam_angle_deg (or cam_angle_rad) and lift_mm (or lift_m, lift_um); "
+            f"{path}: needs columns cam_angle_deg (or cam_angle_rad) and {first} (or {', '.join(rest)}); "
             f"found {', '.join(cols)}"
         )
-    return cols[a_key] * _ANGLE_UNITS[a_key], cols[l_key] * _LIFT_UNITS[l_key]
+    return cols[a_key] * _ANGLE_UNITS[a_key], cols[v_key] * value_columns[v_key]
 
 
 def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):

@@ -317,7 +317,6 @@ class CamCard(Parameters):
 
 
 # ----------------------------------------------------------------------------- tables
-_ANGLE_COLUMNS = {"cam_angle_deg": math.pi / 180.0, "cam_angle_rad": 1.0}
 _LIFT_COLUMNS = {"valve_lift_m": 1.0, "valve_lift_mm": 1e-3}
 
 
@@ -330,17 +329,9 @@ def read_valve_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
     path : str or path-like
         The CSV file.
     """
-    from ..core.io import read_csv_columns
+    from .cam import read_angle_table
 
-    cols = read_csv_columns(path)
-    a_key = next((k for k in _ANGLE_COLUMNS if k in cols), None)
-    l_key = next((k for k in _LIFT_COLUMNS if k in cols), None)
-    if a_key is None or l_key is None:
-        raise InputError(
-            f"{path}: needs columns cam_angle_deg (or cam_angle_rad) and valve_lift_m (or valve_lift_mm); "
-            f"found {', '.join(cols)}"
-        )
-    return cols[a_key] * _ANGLE_COLUMNS[a_key], cols[l_key] * _LIFT_COLUMNS[l_key]
+    return read_angle_table(path, _LIFT_COLUMNS)
 
 
 def _train(valve_train):

@@ -9,6 +9,7 @@ from springdyn.app.cli.common import (
     announce_written,
     as_options,
     close_figure,
+    emit,
     print_json,
     print_notes,
     print_table,
@@ -289,17 +290,9 @@ def cmd_cam_check(args) -> int:
     spring = ValveSpring.from_toml(args.spring).with_model(args.model) if args.spring else None
     with as_options(cam_rpm="--cam-rpm"):
         res = check_cam(cam, vt, follower, spring=spring, cam_rpm=rpm)
-    written = []
-    if args.csv:
-        written.append(res.to_csv(args.csv))
-    if args.plot:
-        close_figure(res.plot(args.plot))
-        written.append(args.plot)
-    announce_written(written, args)
-    s = res.summary
-    if args.json:
-        print_json(dict(s))
+    if emit(res, args, json_data=dict(res.summary)):
         return 0
+    s = res.summary
     f = follower
     what = "flat face" if f.kind == "flat" else f"roller of {f.roller_radius * 1e3:g} mm"
     print(
