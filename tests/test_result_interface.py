@@ -100,6 +100,20 @@ def _unbalance():
     return unbalance_response(_lsd(), rotor, [1000.0, 2000.0])
 
 
+def _friction():
+    """Friction of the bucket train with its [follower] and [friction] at two speeds."""
+    fr = importlib.import_module("springdyn.valve.friction")
+    path = "examples/valve/valve_train_with_follower.toml"
+    vt = springdyn.valve.ValveTrain.from_toml(path)
+    follower = importlib.import_module("springdyn.valve.follower").Follower.in_file(path)
+    friction = fr.Friction.from_dict(importlib.import_module("springdyn.core.params").load_toml(path)["friction"])
+    cam = springdyn.valve.Cam.from_toml("examples/valve/cam_polydyne_ramps.toml")
+    return [
+        fr.simulation_friction(springdyn.valve.simulate(_valve_spring(), cam, rpm, valve_train=vt), follower, friction)
+        for rpm in (1500.0, 3000.0)
+    ]
+
+
 FACTORIES = {
     "springdyn.lsd.calibrate.Calibration": _calibration,
     "springdyn.lsd.jeffcott.UnbalanceResponse": _unbalance,
@@ -146,6 +160,13 @@ FACTORIES = {
         _valve_spring(),
         cam_rpm=3000.0,
     ),
+    "springdyn.valve.friction.FrictionAnalysis": lambda: _friction()[0],
+    "springdyn.valve.friction.FrictionSweep": lambda: importlib.import_module(
+        "springdyn.valve.friction"
+    ).friction_over_speed(_friction()),
+    "springdyn.valve.lever.LeverTable": lambda: springdyn.valve.ValveTrain.from_toml(
+        "examples/valve/finger_follower_geometry.toml"
+    ).geometry.over_cam(springdyn.valve.Cam.from_toml("examples/valve/cam_finger.toml"), points=720),
     "springdyn.valve.cam_from_lift.CamFromLift": lambda: importlib.import_module(
         "springdyn.valve.cam_from_lift"
     ).cam_from_card(

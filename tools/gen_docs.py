@@ -48,6 +48,8 @@ PARAMETER_TABLES = {
     "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train_direct_acting.toml"),
     "hla": ("springdyn.valve.hla:HLA", "valve_train_finger_hla.toml"),
     "follower": ("springdyn.valve.follower:Follower", "valve_train_follower.toml"),
+    "geometry": ("springdyn.valve.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
+    "friction": ("springdyn.valve.friction:Friction", "valve_train_follower.toml"),
     "cam_card": ("springdyn.valve.cam_from_lift:CamCard", "valve_cam_card.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
@@ -111,6 +113,17 @@ CROSS_KEY_RULES = {
             },
         ),
         ("Poisson's ratios below 0.5", {"cam_poisson_ratio": 0.5}),
+    ],
+    "geometry": [
+        (
+            "the pad moves along the valve axis (its moment arm about the pivot at least 0.1 of its distance)",
+            {"valve_angle": "0 deg"},
+        ),
+        ("`|valve_axis_offset|` < `stem_diameter` / 2", {"valve_axis_offset": "3 mm"}),
+    ],
+    "friction": [
+        ("`fluid_friction` <= `boundary_friction`", {"fluid_friction": 0.2}),
+        ("`oil_viscosity` or the Walther keys (`oil_temperature`, ...), not both", {"oil_viscosity": "8 mPa*s"}),
     ],
     "cam_card": [
         ("`duration` below 720 crank deg (360 cam deg)", {"duration": "800 deg"}),
@@ -382,6 +395,8 @@ def toml_reference() -> str:
         "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",
         "hla": "beside `[valve_train]` (a finger follower on a hydraulic lash adjuster): `springdyn valve simulate/float/sweep`, `springdyn report`",
         "follower": "beside `[valve_train]`: `springdyn valve cam-check --valve-train`, `cam-from-lift --valve-train`",
+        "geometry": "beside `[valve_train]` (layout `rocker`) and a roller `[follower]`: `springdyn valve kinematics`, `simulate/float/sweep/cam-from-lift --valve-train`, `springdyn report`",
+        "friction": "beside `[valve_train]` and `[follower]`: `springdyn valve friction --valve-train`",
         "cam_card": "`springdyn valve cam-from-lift --card` (with a `[timing]` table beside it)",
         "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",

@@ -306,7 +306,20 @@ def _bare_number_hint(cls, specs, mapping, kwargs) -> str:
 
 
 #: Every table a springdyn definition file may hold; any other table is an error.
-KNOWN_TABLES = ("spring", "cam", "timing", "valve_train", "hla", "follower", "cam_card", "report", "cfcs", "lsd")
+KNOWN_TABLES = (
+    "spring",
+    "cam",
+    "timing",
+    "valve_train",
+    "hla",
+    "follower",
+    "geometry",
+    "friction",
+    "cam_card",
+    "report",
+    "cfcs",
+    "lsd",
+)
 #: Largest definition file springdyn reads [bytes]: definitions are a few kB.
 MAX_TOML_BYTES = 1_000_000
 

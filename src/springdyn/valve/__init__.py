@@ -17,6 +17,10 @@ The definitions
 - :mod:`~springdyn.valve.gas_force` -- the cylinder's gas force on the valve head, phased by
   the cam's ``[timing]``;
 - :mod:`~springdyn.valve.run_up` -- speed ramps: lift-off and float against the momentary speed;
+- :mod:`~springdyn.valve.lever` -- a rocker arm or finger follower drawn in 2-D (``[geometry]``):
+  the lift-dependent ratio, moment arms, contact points and mass at the valve;
+- :mod:`~springdyn.valve.friction` -- friction at the cam, the roller, the stem guide and the
+  pivot: the camshaft drive torque and the friction power (``[friction]``);
 - :mod:`~springdyn.valve.follower` -- the follower at the cam: flat face or roller, base
   circle, contact width, crown, materials, allowable contact stress (``[follower]``).
 

@@ -334,6 +334,18 @@ def read_valve_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
     return read_angle_table(path, _LIFT_COLUMNS)
 
 
+def _lobe_height(height: float, measure: str, valve_train) -> float:
+    """:func:`lobe_height` through the train: a constant ratio, or a drawn lever's kinematics
+    (the same lever angle on both sides, :meth:`springdyn.valve.lever.LeverKinematics.lobe_lift_at_valve_lift`)."""
+    ratio, lash = _train(valve_train)
+    kin = None if valve_train is None else valve_train.geometry
+    if kin is None or measure == "lobe":
+        return lobe_height(height, measure, ratio, lash)
+    if measure not in LIFT_MEASURES:
+        raise InputError(f"measure = {measure!r} must be one of {', '.join(LIFT_MEASURES)}")
+    return float(kin.lobe_lift_at_valve_lift(height + (lash if measure == "valve" else 0.0)))
+
+
 def _train(valve_train):
     """Ratio and lash at the valve of a train (None: 1 and 0)."""
     if valve_train is None:
@@ -380,10 +392,53 @@ def cam_from_valve_lift(cam_angle, valve_lift, valve_train=None, ramp_angle: flo
     -------
     CamFromLift
     """
-    from .cam import Cam, _normalise_table
+    from .cam import _normalise_table
 
     theta, z = _normalise_table(cam_angle, valve_lift, name)
     ratio, lash = _train(valve_train)
+    kin = None if valve_train is None else valve_train.geometry
+    if kin is None:
+        cam, out = _lobe_from_table(theta, z, ratio, lash, ramp_angle, name)
+    else:
+        # a drawn lever (springdyn.valve.lever): each open row's lever angle gives the lobe's lift
+        # and the cam angle at which the lobe must hold it; the lash ramps are built at the lobe
+        # (ratio 1, the lobe's lash height) on the lobe's own angles
+        lt, lz = _lobe_space_table(kin, theta, z, lash)
+        lobe_lash = float(kin.lobe_lift_at_valve_lift(lash)) if lash > 0 else 0.0
+        cam, out = _lobe_from_table(lt, lz, 1.0, lobe_lash, ramp_angle, name)
+        out.update(ratio=ratio, lash=lash, input_angle=theta, input_valve_lift=z)
+    result = CamFromLift(cam=cam, valve_train=valve_train, **out)
+    result.round_trip_error_m = float(np.abs(result.forward_valve_lift(theta) - z).max())
+    return result
+
+
+def _lobe_space_table(kin, theta, z, lash):
+    """A drawn lever's wanted valve lift as a lobe-side table: the lobe lift above its lash
+    height on the lobe's angles (open rows), zero on the closed rows outside them."""
+    open_ = z > 0.0
+    ang, h = kin.lobe_of_valve_lift(theta[open_], z[open_] + lash)
+    h = h - (float(kin.lobe_lift_at_valve_lift(lash)) if lash > 0 else 0.0)
+    ang = np.mod(ang, _TWO_PI)
+    # closed rows that the shifted event now covers are dropped (angles relative to the event)
+    mid = ang[len(ang) // 2]
+
+    def rel(a):
+        return (a - mid + math.pi) % _TWO_PI - math.pi
+
+    lo, hi = rel(ang).min(), rel(ang).max()
+    closed = ~open_
+    keep = closed & ~((rel(theta) >= lo) & (rel(theta) <= hi))
+    angles = np.concatenate([ang, theta[keep]])
+    lifts = np.concatenate([np.maximum(h, 0.0), np.zeros(int(keep.sum()))])
+    order = np.argsort(angles)
+    return angles[order], lifts[order]
+
+
+def _lobe_from_table(theta, z, ratio, lash, ramp_angle, name):
+    """The lobe of a normalised valve-lift table through a constant ratio (the body of
+    :func:`cam_from_valve_lift`): the ``table`` cam and the result's fields."""
+    from .cam import Cam
+
     if ramp_angle is not None and not (math.isfinite(ramp_angle) and 0 < ramp_angle < math.pi):
         raise InputError(f"ramp_angle = {math.degrees(ramp_angle):.6g} deg must lie between 0 and 180 deg")
     open_ = z > 0.0
@@ -469,9 +524,8 @@ def cam_from_valve_lift(cam_angle, valve_lift, valve_train=None, ramp_angle: flo
         fig["opening_ramp_start_deg"] = math.degrees((ramps["opening"][0] - ramps["opening"][1]) % _TWO_PI)
         fig["closing_ramp_end_deg"] = math.degrees((ramps["closing"][0] + ramps["closing"][1]) % _TWO_PI)
     cam = Cam.from_table(theta, h, name=name)
-    forward = valve_lift_from_lobe_lift(cam.lift_at(theta), ratio, lash)
-    out["round_trip_error_m"] = float(np.abs(forward - z).max())
-    return CamFromLift(cam=cam, valve_train=valve_train, **out)
+    out["round_trip_error_m"] = math.nan  # the caller's forward check
+    return cam, out
 
 
 def cam_from_card(card: CamCard, valve_train=None, timing=None) -> CamFromLift:
@@ -509,9 +563,16 @@ def cam_from_card(card: CamCard, valve_train=None, timing=None) -> CamFromLift:
             )
     per_cam = (timing.strokes if timing is not None else 4) / 2.0
     target = card.duration / per_cam if card.duration_angle == "crank" else card.duration
-    lobe_lash = lash / ratio
-    h_max = lobe_height(card.lift, card.lift_at, ratio, lash)
-    h_check = lobe_height(card.check_height, card.check_at, ratio, lash)
+    kin = None if valve_train is None else valve_train.geometry
+
+    def lobe_of(height, measure):  # through the constant ratio, or the drawn lever's kinematics
+        if kin is None or measure == "lobe":
+            return lobe_height(height, measure, ratio, lash)
+        return float(kin.lobe_lift_at_valve_lift(height + (lash if measure == "valve" else 0.0)))
+
+    lobe_lash = lobe_of(lash, "gross") if lash > 0 else 0.0
+    h_max = lobe_of(card.lift, card.lift_at)
+    h_check = lobe_of(card.check_height, card.check_at)
     if card.ramp_height is None:
         h_r = lobe_lash + DEFAULT_RAMP_MARGIN if lobe_lash > 0 else 0.0
     else:
@@ -561,7 +622,8 @@ def cam_from_card(card: CamCard, valve_train=None, timing=None) -> CamFromLift:
     main = brentq(lambda d: duration_at_check(d) - target, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps)
     cam = make(main)
     achieved = duration_at_check(main)
-    lift_now = {"valve": ratio * h_max - lash, "gross": ratio * h_max, "lobe": h_max}[card.lift_at]
+    gross = ratio * h_max if kin is None else float(kin.valve_lift_at_lobe_lift(h_max))
+    lift_now = {"valve": gross - lash, "gross": gross, "lobe": h_max}[card.lift_at]
     figures = dict(
         law=card.law,
         main_duration_deg=math.degrees(main),
@@ -666,16 +728,34 @@ class CamFromLift(Result):
     def _repr_caption(self) -> str:
         return f"{self.cam.law} lobe from {self.source}"
 
+    def forward_valve_lift(self, cam_angle) -> np.ndarray:
+        """The rigid train's valve lift on this lobe [m] at the cam angles ``cam_angle`` [rad]:
+        ``max(r h - lash, 0)``, or through a drawn lever's kinematics (:mod:`springdyn.valve.lever`).
+
+        Parameters
+        ----------
+        cam_angle : array_like
+            Cam angles [rad].
+        """
+        theta = np.asarray(cam_angle, dtype=float)
+        kin = None if self.valve_train is None else self.valve_train.geometry
+        if kin is None:
+            return valve_lift_from_lobe_lift(self.cam.lift_at(theta), self.ratio, self.lash)
+        from .engine.cam_table import CamTable
+
+        gross = kin.solve(theta, CamTable.of(self.cam, _SAMPLES).at)["valve_lift"]
+        return np.maximum(gross - self.lash, 0.0)
+
     def _summary(self) -> dict:
         theta = np.arange(_SAMPLES) * (_TWO_PI / _SAMPLES)
         h = self.cam.lift_at(theta)
-        z = valve_lift_from_lobe_lift(h, self.ratio, self.lash)
+        z = self.forward_valve_lift(theta)
         s = dict(
             source=self.source,
             law=self.cam.law,
             rocker_ratio=self.ratio,
             lash_m=self.lash,
-            lobe_lash_m=self.lash / self.ratio,
+            lobe_lash_m=_lobe_height(self.lash, "gross", self.valve_train) if self.lash else 0.0,
             max_lobe_lift_m=float(h.max()),
             max_valve_lift_m=float(z.max()),
             max_lift_cam_angle_deg=math.degrees(self.cam.peak_angle),
@@ -685,7 +765,7 @@ class CamFromLift(Result):
         from .cam_analysis import CHECK_HEIGHTS
 
         for key, height in CHECK_HEIGHTS.items():
-            c = event_crossings(self.cam, lobe_height(height, "valve", self.ratio, self.lash))
+            c = event_crossings(self.cam, _lobe_height(height, "valve", self.valve_train))
             s[f"duration_at_{key}_deg"] = None if c is None else math.degrees(c[2])
             if c is not None:
                 s[f"opening_at_{key}_deg"], s[f"closing_at_{key}_deg"] = math.degrees(c[0]), math.degrees(c[1])
@@ -703,7 +783,7 @@ class CamFromLift(Result):
             "lobe_lift": (dims, np.asarray(h, dtype=float), {"units": "m"}),
             "lobe_velocity": (dims, np.asarray(dh, dtype=float), {"units": "m/rad"}),
             "lobe_acceleration": (dims, np.asarray(ddh, dtype=float), {"units": "m/rad^2"}),
-            "valve_lift": (dims, valve_lift_from_lobe_lift(h, self.ratio, self.lash), {"units": "m"}),
+            "valve_lift": (dims, self.forward_valve_lift(theta), {"units": "m"}),
         }
         coords = {"cam_angle": (dims, np.degrees(theta), {"units": "deg"})}
         return xr.Dataset(data, coords=coords, attrs={"source": self.source, "law": self.cam.law})
@@ -720,7 +800,7 @@ class CamFromLift(Result):
         h, _, ddh = self.cam.evaluate(theta)
         deg = np.degrees(theta)
         a = axes[0]
-        a.plot(deg, valve_lift_from_lobe_lift(h, self.ratio, self.lash) * 1e3, "C0", label="valve lift of the lobe")
+        a.plot(deg, self.forward_valve_lift(theta) * 1e3, "C0", label="valve lift of the lobe")
         a.plot(deg, np.asarray(h) * 1e3, "C1", lw=0.8, label="lobe lift")
         if self.input_angle is not None:
             a.plot(np.degrees(self.input_angle), self.input_valve_lift * 1e3, "k.", ms=2, label="wanted valve lift")

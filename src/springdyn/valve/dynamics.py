@@ -360,7 +360,7 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     out = dict(lift=lift, compression=x, force=force, contact=x >= setup.spring.spring_model.contact_gaps[:, None])
     if nf > nm:
         out["static"] = setup.static_force(u_top)
-        out.update(train_response(setup.vt, lift, dlift, u[..., nm:, :], v[..., nm:, :]))
+        out.update(train_response(setup.vt, lift, dlift, u[..., nm:, :], v[..., nm:, :], theta=theta, omega=omega))
     else:
         out["static"] = setup.static_force(lift)
     out["displacement"] = u[..., :nm, :]

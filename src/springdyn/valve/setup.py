@@ -109,6 +109,15 @@ class SimulationSetup:
     y0: np.ndarray
     #: coil-bind figures of the cam's largest lift (:func:`springdyn.valve.coil_bind.check_coil_bind`)
     coil_bind: dict | None = None
+    #: Cam angles [rad] where the engine's lift table is not smooth: the cam's breakpoints, or
+    #: where a lever's roller meets them (:meth:`springdyn.valve.lever.LeverKinematics.breakpoint_angles`);
+    #: None: the cam's.
+    lobe_breakpoints: np.ndarray | None = None
+
+    @property
+    def breakpoints(self) -> np.ndarray:
+        """Cam angles [rad] where the engine's lift table is not smooth (its steps land on them)."""
+        return np.asarray(self.cam.breakpoints if self.lobe_breakpoints is None else self.lobe_breakpoints)
 
     def static_force(self, lift) -> np.ndarray:
         """Static (massless) spring force [N] at cam or valve lift(s) [m].
@@ -222,7 +231,8 @@ class SimulationSetup:
                 "a gas force acts on the valve: it needs a valve train (--valve-train / [valve_train]); the spring "
                 "alone has no valve"
             )
-        vt = np.concatenate([self.vt[:VT_SIZE], gas.force])
+        n_gas = int(self.vt[VT_GAS_N])
+        vt = np.concatenate([self.vt[:VT_SIZE], gas.force, self.vt[VT_SIZE + n_gas :]])  # a lever table follows
         vt[VT_GAS_N] = float(gas.force.size)
         return dataclasses.replace(self, vt=vt)
 
@@ -318,7 +328,7 @@ class SimulationSetup:
             gaps=self.spring.spring_model.contact_gaps,
             atol_velocity=self.atol_velocity(atol),
             method=self.method if method is None else method,
-            stop_angles=self.table.stop_angles(self.cam.breakpoints),
+            stop_angles=self.table.stop_angles(self.breakpoints),
             periodicity_tol=periodicity_tol * fset if periodic else 0.0,
             warm_start=warm_start,
             band_revolutions=BAND_REVOLUTIONS if periodic else 0,
@@ -382,6 +392,14 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         Adds the valve body with cam and seat contacts.
     """
     table = CamTable.of(cam, CAM_SAMPLES)
+    lever = None
+    if valve_train is not None and valve_train.geometry is not None:
+        # the lever's geometry: the engine's table is the equivalent lobe lift s(phi_k) / r_0
+        # (springdyn.valve.lever), and a table of the ratio's change follows the train's parameters
+        kin = valve_train.geometry
+        lever = kin.engine_tables(table)
+        lever["breakpoints"] = kin.breakpoint_angles(cam.breakpoints, table.at)
+        table = CamTable(lever["h"], lever["dh"], lever["ddh"], table.dth)
     h = table.h
     deg = table.angle_deg
 
@@ -419,7 +437,13 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         )
     y0, lash = _initial_state(spring, table.h[0], valve_train)
     vt = valve_train.kernel_parameters(lash=lash) if valve_train is not None else np.zeros(KERNEL_SIZE)
-    return SimulationSetup(spring, cam, valve_train, table, vt, y0, coil_bind)
+    if lever is None:
+        return SimulationSetup(spring, cam, valve_train, table, vt, y0, coil_bind)
+    from .engine.layout import VT_GEOM_N
+
+    vt = np.concatenate([vt, lever["geometry"]])
+    vt[VT_GEOM_N] = float(lever["geometry"].size // 4)
+    return SimulationSetup(spring, cam, valve_train, table, vt, y0, coil_bind, lever["breakpoints"])
 
 
 def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None):

@@ -20,8 +20,9 @@ through a unilateral contact; the cam drives it through one of three layouts:
 Every link is a unilateral contact (compression only): cam-follower, pushrod ends,
 rocker tip on the valve, valve on its seat.  The lever is rigid in its kinematics (the
 lift at the valve is exactly ``r`` times the lift at the follower for a rigid train: the
-small-rotation lever with contact points on the lever's line; the arc of the contact point
-is not modelled), flexible through ``rocker_stiffness`` at the tip.  Masses are referred to
+small-rotation lever with contact points on the lever's line; a lever drawn in a
+``[geometry]`` table has its real arcs, :mod:`springdyn.valve.lever`), flexible through
+``rocker_stiffness`` at the tip.  Masses are referred to
 the coordinate they move with by kinetic energy (``m_f / r^2`` and ``J / arm^2`` at the
 valve side of the lever), stiffnesses by strain energy (``k / r^2``).
 
@@ -218,6 +219,11 @@ class ValveTrain(Parameters):
     #: (:class:`springdyn.valve.hla.HLA`; :meth:`from_toml` reads it); None: the preloaded
     #: plunger of ``lash_adjuster = "hydraulic"``, or no adjuster.
     hla: object = field(default=None, repr=False, compare=False)
+    #: The lever's kinematics from its drawing, the ``[geometry]`` table beside
+    #: ``[valve_train]`` and ``[follower]`` (:class:`springdyn.valve.lever.LeverKinematics`;
+    #: :meth:`from_toml` reads it; it sets ``rocker_ratio`` and ``rocker_valve_arm``); None:
+    #: the constant-ratio lever.
+    geometry: object = field(default=None, repr=False, compare=False)
 
     table = "valve_train"
     examples = {
@@ -256,6 +262,11 @@ class ValveTrain(Parameters):
             )
         if self.layout == "pushrod" and self.lifter_mass <= 0.0:
             raise InputError("[valve_train] follower_mass and pushrod_mass are zero: the lifter needs a mass")
+        if self.geometry is not None and self.layout != "rocker":
+            raise InputError(
+                f"[geometry]: the lever's drawing applies to layout = 'rocker' (a rocker arm or a finger follower "
+                f"with a roller on the cam), not to {self.layout!r}"
+            )
         if self.hla is not None:
             if self.layout != "rocker":
                 raise InputError(
@@ -358,11 +369,22 @@ class ValveTrain(Parameters):
         half the pushrod ``m_p / (2 r^2)``)."""
         if self.layout == "direct-acting":
             return 0.0
+        if self.geometry is not None:  # the roller turns with the lever about its pivot
+            return self.lever_inertia / self.geometry.valve_arm_at_rest**2
         r = self.ratio
         m = self.rocker_inertia / self.rocker_valve_arm**2
         if self.layout == "rocker":
             return m + self.follower_mass / r**2
         return m + 0.5 * self.pushrod_mass / r**2
+
+    @property
+    def lever_inertia(self) -> float:
+        """The lever's moment of inertia about its pivot with its roller [kg m^2] (a drawn
+        lever, ``[geometry]``: ``J + m_f |C_0 - O|^2``; the constant-ratio lever:
+        :attr:`rocker_mass` times the valve arm squared)."""
+        if self.geometry is not None:
+            return self.geometry.inertia(self.rocker_inertia, self.follower_mass)
+        return self.rocker_mass * self.rocker_valve_arm**2 if self.layout != "direct-acting" else 0.0
 
     @property
     def lifter_mass(self) -> float:
@@ -450,8 +472,18 @@ class ValveTrain(Parameters):
                 *self._hla_parameters(),
                 0.0,  # VT_GAS_N: no gas force (SimulationSetup.with_gas_force adds its samples)
                 0.0,  # VT_ALPHA: constant speed (springdyn.valve.run_up sets a ramp's acceleration)
+                *self._lever_parameters(),
             ]
         )
+
+    def _lever_parameters(self) -> list:
+        """The ``VT_GEOM*`` entries of :meth:`kernel_parameters`: the drawn lever's pad and
+        inertia (zeros for the constant ratio; :func:`springdyn.valve.setup.prepare` appends
+        the ratio table and sets ``VT_GEOM_N``)."""
+        if self.geometry is None:
+            return [0.0] * 5
+        a, b, _ = self.geometry.geometry.pad_arms()
+        return [1.0, a, a * a + b * b, self.lever_inertia, 0.0]
 
     def _hla_parameters(self) -> list:
         """The ``VT_HLA*`` entries of :meth:`kernel_parameters` (zeros without ``[hla]``)."""
@@ -560,9 +592,64 @@ class ValveTrain(Parameters):
         """
         from ..core.params import load_toml
 
-        vt = super().from_toml(path)
         doc = load_toml(path)
+        if "geometry" in doc:
+            vt = cls.with_lever_drawing(doc, source=str(path))
+        else:
+            vt = super().from_toml(path)
         return vt.with_hla(doc["hla"], source=str(path)) if "hla" in doc else vt
+
+    @classmethod
+    def with_lever_drawing(cls, doc: dict, source: str | None = None) -> ValveTrain:
+        """The train of a definition holding ``[valve_train]``, ``[follower]`` and ``[geometry]``:
+        its lever's ratio and valve arm come from the drawing (:mod:`springdyn.valve.lever`).
+
+        Parameters
+        ----------
+        doc : dict
+            The definition's tables (``load_toml``).
+        source : str, optional
+            The file, for messages.
+        """
+        import dataclasses
+
+        from .follower import Follower
+        from .lever import LeverGeometry
+
+        where = f"{source}: " if source else ""
+        table = dict(doc.get("valve_train", {}))
+        given = [k for k in ("rocker_ratio", "rocker_valve_arm") if k in table]
+        if given:
+            raise InputError(
+                f"{where}[valve_train] {', '.join(given)}: with a [geometry] table the lever's ratio and valve arm "
+                "come from the drawing; remove them (or remove [geometry] for the constant-ratio lever)"
+            )
+        geom = LeverGeometry.from_dict(doc["geometry"], source=source)
+        follower = Follower.from_dict(doc["follower"], source=source) if "follower" in doc else None
+        try:
+            kin = geom.kinematics(follower)
+        except InputError as exc:
+            raise InputError(f"{where}{exc}") from None
+        table["rocker_ratio"] = kin.ratio_at_rest
+        table["rocker_valve_arm"] = kin.valve_arm_at_rest
+        vt = cls.from_dict(table, source=source)
+        try:
+            return dataclasses.replace(vt, geometry=kin)
+        except InputError as exc:
+            raise InputError(f"{where}{exc}") from None
+
+    def without_geometry(self) -> ValveTrain:
+        """The constant-ratio lever of the same ratio, valve arm and inertia at rest (no ``[geometry]``)."""
+        import dataclasses
+
+        if self.geometry is None:
+            return self
+        j = self.lever_inertia
+        r = self.ratio
+        # the constant-ratio lever's mass J / arm^2 + m_f / r^2 must equal J_total / B^2
+        return dataclasses.replace(
+            self, geometry=None, rocker_inertia=j - self.follower_mass * (self.rocker_valve_arm / r) ** 2
+        )
 
     def without_hla_dynamics(self) -> ValveTrain:
         """The preloaded-plunger train of the same base-circle force and oil-column stiffness.

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springdyn.app.cli import valve_cam_design
+from springdyn.app.cli import valve_cam_design, valve_friction
 from springdyn.app.cli.common import (
     add_output_options,
     announce_written,
@@ -257,7 +257,8 @@ def register(sub) -> None:
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
 
-    valve_cam_design.register(vsub)  # cam-from-lift, cam-check
+    valve_cam_design.register(vsub)  # cam-from-lift, cam-check, kinematics
+    valve_friction.register(vsub, _add_speed_options, _add_model_option, cam_rpm_from_args)
 
 
 def _add_revolution_options(p) -> None:

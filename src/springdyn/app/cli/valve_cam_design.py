@@ -1,6 +1,7 @@
-"""``springdyn valve cam-from-lift`` and ``springdyn valve cam-check``: the cam designer's
-commands (thin layer over :mod:`springdyn.valve.cam_from_lift` and
-:mod:`springdyn.valve.cam_check`)."""
+"""``springdyn valve cam-from-lift``, ``springdyn valve cam-check`` and ``springdyn valve
+kinematics``: the cam and lever designer's commands (thin layer over
+:mod:`springdyn.valve.cam_from_lift`, :mod:`springdyn.valve.cam_check` and
+:mod:`springdyn.valve.lever`)."""
 
 from __future__ import annotations
 
@@ -18,7 +19,7 @@ from springdyn.app.cli.common import (
 from springdyn.core.errors import InputError
 from springdyn.valve.spring import MODEL_NAMES
 
-__all__ = ["register", "cmd_cam_from_lift", "cmd_cam_check"]
+__all__ = ["register", "cmd_cam_from_lift", "cmd_cam_check", "cmd_kinematics"]
 
 
 def register(vsub) -> None:
@@ -88,6 +89,21 @@ def register(vsub) -> None:
     )
     add_output_options(p)
     p.set_defaults(func=cmd_cam_check)
+
+    p = vsub.add_parser(
+        "kinematics",
+        help="a drawn lever's kinematics over the cam: ratio, moment arms, valve lift, pad travel on the stem, "
+        "mass at the valve (the [geometry] table)",
+    )
+    p.add_argument("cam", metavar="CAM.toml", help="file with a [cam] table (the lobe)")
+    p.add_argument(
+        "--valve-train",
+        required=True,
+        metavar="VT.toml",
+        help="file with [valve_train], [follower] (a roller) and [geometry] (the lever drawn at rest)",
+    )
+    add_output_options(p)
+    p.set_defaults(func=cmd_kinematics)
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -319,5 +335,44 @@ def cmd_cam_check(args) -> int:
             f"{s['contact_half_width_at_max_stress_m'] * 1e3:.3f} mm" + allow
         )
     print("checks: " + ("all passed" if s["ok"] else "FAILED: " + ", ".join(s["checks_failed"])))
+    print_notes(s)
+    return 0
+
+
+def cmd_kinematics(args) -> int:
+    """``springdyn valve kinematics``: the drawn lever over the cam."""
+    from springdyn.valve.cam import Cam
+    from springdyn.valve.valvetrain import ValveTrain
+
+    cam = Cam.from_toml(args.cam)
+    vt = ValveTrain.from_toml(args.valve_train)
+    if vt.geometry is None:
+        raise InputError(
+            f"{args.valve_train}: no [geometry] table: the lever's kinematics need its drawing beside [valve_train] "
+            "and [follower] (see examples/valve/finger_follower_geometry.toml); without it the ratio is the constant "
+            f"{vt.ratio:g}"
+        )
+    lash = 0.0 if vt.hydraulic else vt.lash
+    res = vt.geometry.over_cam(cam, lash=lash, inertia=vt.lever_inertia)
+    if emit(res, args, json_data=dict(res.summary)):
+        return 0
+    s = res.summary
+    print(
+        f"lever drawn in {args.valve_train} on the {cam.law} lobe: ratio {s['ratio_at_rest']:.4f} at rest, "
+        f"{s['ratio_min']:.4f} to {s['ratio_max']:.4f} over the event ({s['ratio_change']:.1%} of the ratio at rest), "
+        f"{s['ratio_at_max_lift']:.4f} at the largest lift"
+    )
+    print(
+        f"max valve lift {s['max_valve_lift_m'] * 1e3:.4f} mm at {s['max_lift_cam_angle_deg']:.2f} cam deg (constant "
+        f"ratio: {s['constant_ratio_valve_lift_m'] * 1e3:.4f} mm); the lever turns {s['max_lever_angle_deg']:.2f} deg"
+    )
+    lo, hi = s["pad_travel_m"]
+    line = f"pad contact on the stem tip travels {lo * 1e3:+.3f} to {hi * 1e3:+.3f} mm from its place at rest"
+    if "pad_on_stem_margin_m" in s:
+        line += f" (margin to the tip's edge {s['pad_on_stem_margin_m'] * 1e3:.3f} mm)"
+    print(line)
+    if "mass_at_valve_kg" in s:
+        m0, m1 = s["mass_at_valve_kg"]
+        print(f"lever mass at the valve (J / L_v^2, roller included): {m0 * 1e3:.2f} to {m1 * 1e3:.2f} g")
     print_notes(s)
     return 0

@@ -21,7 +21,15 @@ __all__ = ["build_report", "demo_definitions", "DEMO_DEFINITIONS", "DEMO_LABEL",
 #: Top-level table that makes a definition belong to a family, in report order.
 MODEL_TABLES = {"spring": "valve", "cfcs": "cfcs", "lsd": "lsd"}
 #: Tables that only complete another one.
-SUPPORT_TABLES = {"cam": "spring", "timing": "spring", "valve_train": "spring", "hla": "spring", "report": "spring"}
+SUPPORT_TABLES = {
+    "cam": "spring",
+    "timing": "spring",
+    "valve_train": "spring",
+    "hla": "spring",
+    "follower": "spring",
+    "geometry": "spring",
+    "report": "spring",
+}
 #: Built-in definitions of ``springdyn demo`` (shipped in springdyn/data, copies in examples/report).
 DEMO_DEFINITIONS = (
     "report_valve_one_step.toml",

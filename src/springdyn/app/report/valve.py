@@ -121,7 +121,13 @@ def load(doc: dict, path: Path) -> ValveDefinition:
     spring = ValveSpring.from_dict(doc["spring"], source=str(path))
     cam_given = "cam" in doc
     cam = Cam.from_dict(doc["cam"] if cam_given else DEFAULT_CAM, source=str(path), base_dir=Path(path).parent)
-    vt = ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
+    for table in ("follower", "geometry"):
+        if table in doc and "valve_train" not in doc:
+            raise InputError(f"{path}: [{table}] needs a [valve_train] table in the same file")
+    if "geometry" in doc:  # a drawn lever (springdyn.valve.lever): its ratio comes from the drawing
+        vt = ValveTrain.with_lever_drawing(doc, source=str(path))
+    else:
+        vt = ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
     if "hla" in doc:
         if vt is None:
             raise InputError(f"{path}: [hla] needs a [valve_train] table in the same file")
@@ -144,7 +150,19 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     axis = crank_axis(lobe, d.timing)
     # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio
     cam = lobe if vt is None or vt.ratio == 1.0 else lobe.scaled(vt.ratio)
-    if cam is not lobe:
+    if vt is not None and vt.geometry is not None:
+        lever = vt.geometry.over_cam(lobe, inertia=vt.lever_inertia)
+        ls = lever.summary
+        cam = Cam.from_table(
+            lever.cam_angle, np.maximum(lever.solution["valve_lift"], 0.0), name="valve lift of the lever"
+        )
+        findings.append(
+            f"The lever is drawn ([geometry]): its ratio runs from {ls['ratio_min']:.3f} to {ls['ratio_max']:.3f} over "
+            f"the event ({ls['ratio_change']:.1%} of {ls['ratio_at_rest']:.3f} at rest), the valve lifts "
+            f"{ls['max_valve_lift_m'] * 1e3:.3f} mm (constant ratio: {ls['constant_ratio_valve_lift_m'] * 1e3:.3f} mm); "
+            "the spring-alone analyses are driven by this valve lift."
+        )
+    elif cam is not lobe:
         findings.append(
             f"The spring-alone analyses drive the spring with the valve lift of the rigid train: the "
             f"lobe lift ({lobe.max_lift * 1e3:.3g} mm) times the rocker ratio {vt.ratio:g}."

@@ -44,6 +44,8 @@ from .layout import (
     VT_DOF,
     VT_ENABLED,
     VT_GAS_N,
+    VT_GEOM,
+    VT_GEOM_N,
     VT_HLA_AIR,
     VT_HLA_AREA,
     VT_HLA_BETA,
@@ -69,9 +71,12 @@ from .layout import (
     VT_K_SEAT,
     VT_K_TIP,
     VT_LASH,
+    VT_LEVER_J,
     VT_M_LEVER,
     VT_M_LIFTER,
     VT_MASS,
+    VT_PAD_A,
+    VT_PAD_R2,
     VT_RATIO,
     VT_SIZE,
     X_CAM_FORCE,
@@ -377,6 +382,64 @@ def gas_force_at(vt, theta):
     return vt[VT_SIZE + i0] * (1.0 - frac) + vt[VT_SIZE + i1] * frac
 
 
+def lever_ratio_at(vt, theta):
+    """The lever's ratio correction ``c = r_0 / r``, ``dc/dtheta`` [1/rad], the pivot factor
+    ``n . d`` and its derivative [1/rad] at the cam angle ``theta`` [rad]: cubic Hermite and
+    periodic in the table after the gas force's samples (:mod:`springdyn.valve.lever`).
+
+    Parameters
+    ----------
+    vt : ndarray
+        The train's parameters [mixed units], the table after ``VT_SIZE`` and the gas samples.
+    theta : float
+        Cam angle [rad].
+    """
+    n = int(vt[VT_GEOM_N])
+    base = VT_SIZE + int(vt[VT_GAS_N])
+    step = 2.0 * math.pi / n
+    x = theta / (2.0 * math.pi)
+    x = (x - math.floor(x)) * n
+    i0 = int(x)
+    if i0 >= n:
+        i0 = n - 1
+    i1 = i0 + 1 if i0 + 1 < n else 0
+    u = x - i0
+    j0 = base + 4 * i0
+    j1 = base + 4 * i1
+    # cubic Hermite basis and its derivative (per unit u)
+    h00 = (1.0 + 2.0 * u) * (1.0 - u) * (1.0 - u)
+    h10 = u * (1.0 - u) * (1.0 - u)
+    h01 = u * u * (3.0 - 2.0 * u)
+    h11 = u * u * (u - 1.0)
+    d00 = 6.0 * u * (u - 1.0)
+    d10 = (1.0 - u) * (1.0 - 3.0 * u)
+    d11 = u * (3.0 * u - 2.0)
+    c = h00 * vt[j0] + h10 * step * vt[j0 + 1] + h01 * vt[j1] + h11 * step * vt[j1 + 1]
+    dc = (d00 * vt[j0] + d10 * step * vt[j0 + 1] - d00 * vt[j1] + d11 * step * vt[j1 + 1]) / step
+    k = h00 * vt[j0 + 2] + h10 * step * vt[j0 + 3] + h01 * vt[j1 + 2] + h11 * step * vt[j1 + 3]
+    dk = (d00 * vt[j0 + 2] + d10 * step * vt[j0 + 3] - d00 * vt[j1 + 2] + d11 * step * vt[j1 + 3]) / step
+    return c, dc, k, dk
+
+
+def lever_mass(vt, x):
+    """The lever's mass at its valve-side tip [kg] and ``dM/dx`` [kg/m] at the tip's lift ``x`` [m]
+    relative to the pivot: ``M = J / L_v^2``, ``L_v^2 = A^2 + B^2 - (x + A)^2``
+    (:func:`springdyn.valve.lever.lever_mass_at_valve`); the constant ``M_r`` without geometry.
+
+    Parameters
+    ----------
+    vt : ndarray
+        The train's parameters [mixed units].
+    x : float
+        The tip's lift relative to the pivot [m].
+    """
+    if vt[VT_GEOM] < 0.5:
+        return vt[VT_M_LEVER], 0.0
+    xa = x + vt[VT_PAD_A]
+    lv2 = vt[VT_PAD_R2] - xa * xa
+    return vt[VT_LEVER_J] / lv2, 2.0 * vt[VT_LEVER_J] * xa / (lv2 * lv2)
+
+
 def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
     """Bulk modulus [Pa] of oil with free air at an absolute pressure: the scalar twin of
     :func:`springdyn.valve.hla.effective_bulk_modulus` for compiled code (the tests compare
@@ -556,22 +619,34 @@ def train_rhs(t, s, m, omega, vt, out, extra):
             f_valve = raw_t if raw_t > 0.0 else 0.0
         gap = min(pen_t, raw_t / vt[VT_K_TIP])
         if ntr == 2 or ntr == 7:  # finger follower / rocker: the follower rides on the lever
+            ya = 0.0
+            yad = 0.0
             if ntr == 7:  # on a hydraulic lash adjuster: its pivot end moves
                 ya = s[nm + 2]
                 yad = s[nfree + nm + 2]
-                pen = lift - (zr + (r - 1.0) * ya) / r
-                raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - (zrd + (r - 1.0) * yad) / r)
-            else:
-                pen = lift - zr / r
-                raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zrd / r)
+            # the lever's geometry (springdyn.valve.lever): the ratio correction c = r_0 / r(theta)
+            # and the pivot's share n . d of the contact normal; 1 for the constant ratio
+            c = 1.0
+            dc = 0.0
+            kap = 1.0
+            dkap = 0.0
+            if vt[VT_GEOM] > 0.5:
+                c, dc, kap, dkap = lever_ratio_at(vt, theta)
+            thd = omega + alpha * t
+            q = lift - (zr - ya) / r
+            pen = c * q - kap * ya
+            raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (
+                c * (dlift - (zrd - yad) / r) + dc * thd * q - kap * yad - dkap * thd * ya
+            )
             if pen > 0.0:
                 f_cam = raw if raw > 0.0 else 0.0
             gap = min(gap, min(pen, raw / vt[VT_K_CAM]))
-            f_lever = f_cam / r
+            m_lever, dm_lever = lever_mass(vt, zr - ya)
+            f_lever = f_cam * c / r - 0.5 * dm_lever * (zrd - yad) * (zrd - yad)
             if ntr == 7:
-                # the finger's pivot end: the cam's share (1 - 1/r) against the socket
+                # the finger's pivot end: the cam's share (n . d - c/r) against the socket
                 sock = hla_forces(s, nm, nfree, vt, out)
-                out[nfree + nm + 2] = (f_cam * (1.0 - 1.0 / r) - sock) / vt[VT_HLA_MA]
+                out[nfree + nm + 2] = (f_cam * (kap - c / r) - sock) / vt[VT_HLA_MA]
                 _record_hla(
                     extra,
                     nm + 1,
@@ -582,6 +657,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
                     s[nm + 5],
                     s[nm + 6],
                 )
+            out[nfree + nm + 1] = (f_lever - f_valve) / m_lever
         else:  # pushrod: lifter on the cam, pushrod to the lever
             zf = s[nm + 2]
             zfd = s[nfree + nm + 2]
@@ -597,16 +673,15 @@ def train_rhs(t, s, m, omega, vt, out, extra):
             gap = min(gap, min(min(pen, raw / vt[VT_K_CAM]), min(xp, raw_p / vt[VT_K_PUSH])))
             out[nm + 2] = zfd
             out[nfree + nm + 2] = (f_cam - f_push) / vt[VT_M_LIFTER]
-            f_lever = f_push / r
+            out[nfree + nm + 1] = (f_push / r - f_valve) / vt[VT_M_LEVER]
         out[nm + 1] = zrd
-        out[nfree + nm + 1] = (f_lever - f_valve) / vt[VT_M_LEVER]
     out[nm] = zd
     # the gas force pushes the valve towards its seat (springdyn.valve.gas_force)
     out[nfree + nm] = (f_valve + f_seat - f_spring - gas_force_at(vt, theta)) / vt[VT_MASS]
     _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
 
 
-def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
+def train_response(vt: np.ndarray, lift, dlift, u, v, theta=None, omega=None) -> dict:
     """Contact forces of the valve train from its states (vectorised NumPy).
 
     The NumPy twin of the contact laws of :func:`train_rhs` (above), vectorised over
@@ -620,6 +695,10 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
         Lobe lift [m] and its rate [m/s].
     u, v : ndarray (..., dof, n_t)
         Positions [m] and velocities [m/s] of valve, lever tip, lifter.
+    theta : ndarray (n_t,), optional
+        Cam angles [rad] (needed with a lever's geometry, ``vt[VT_GEOM]``).
+    omega : float or ndarray (..., 1), optional
+        Cam speed [rad/s] (needed with a lever's geometry).
 
     Returns
     -------
@@ -637,14 +716,20 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
     seat = np.where(z < 0, np.maximum(-vt[VT_K_SEAT] * z - vt[VT_C_SEAT] * zd, 0.0), 0.0)
     if dof == 1:
         cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - z - vt[VT_LASH], dlift - zd)
-    elif dof == 2:
+    elif dof == 3:  # pushrod: the lifter on the cam
+        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 2, :], dlift - v[..., 2, :])
+    else:  # the lever; on a hydraulic lash adjuster (dof 7) its pivot end moves
         r = vt[VT_RATIO]
-        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 1, :] / r, dlift - v[..., 1, :] / r)
-    elif dof == 7:  # the finger on a hydraulic lash adjuster: its pivot end moves
-        r = vt[VT_RATIO]
-        yb = (u[..., 1, :] + (r - 1.0) * u[..., 2, :]) / r
-        ybd = (v[..., 1, :] + (r - 1.0) * v[..., 2, :]) / r
-        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - yb, dlift - ybd)
+        ya = u[..., 2, :] if dof == 7 else 0.0
+        yad = v[..., 2, :] if dof == 7 else 0.0
+        c, dc, kap, dkap = 1.0, 0.0, 1.0, 0.0
+        if vt[VT_GEOM] > 0.5:
+            c, dc, kap, dkap = np.array([lever_ratio_at(vt, th) for th in np.ravel(theta)]).T
+        thd = 0.0 if omega is None else omega
+        q = lift - (u[..., 1, :] - ya) / r
+        rate = c * (dlift - (v[..., 1, :] - yad) / r) + dc * thd * q - kap * yad - dkap * thd * ya
+        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], c * q - kap * ya, rate)
+    if dof == 7:
         socket = contact(vt[VT_HLA_KS], vt[VT_HLA_CS], u[..., 2, :] - u[..., 3, :], v[..., 2, :] - v[..., 3, :])
         return dict(
             cam_contact_force=cam,
@@ -656,8 +741,6 @@ def train_response(vt: np.ndarray, lift, dlift, u, v) -> dict:
             hla_inflow=u[..., 5, :],
             hla_leak=u[..., 6, :],
         )
-    else:
-        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 2, :], dlift - v[..., 2, :])
     return dict(cam_contact_force=cam, valve_seat_force=seat, valve_lift=z)
 
 
@@ -709,6 +792,7 @@ _TWINS = twins(
         "_record_tail",
         "_record_hla",
         "gas_force_at",
+        "lever_mass",
         "air_oil_bulk_modulus",
         "hla_forces",
         "spring_rhs",
@@ -721,6 +805,10 @@ _TWINS = twins(
 # cost 2.4 s of the train engine's compilation (11.4 against 9 s)
 _TWINS["__globals__"]["hla_forces"] = kernel(
     rebind(hla_forces, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
+)
+# the same for the drawn lever's table (springdyn.valve.lever), used by lever trains only
+_TWINS["__globals__"]["lever_ratio_at"] = kernel(
+    rebind(lever_ratio_at, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
 )
 #: :func:`spring_rhs` and :func:`train_rhs` compiled to be inlined into the integration step
 #: (their one hot call site, :mod:`.stepping`, chooses by the type of ``vt``).

@@ -57,7 +57,15 @@ VT_GAS_N = 37
 #: cam angular acceleration alpha [rad/s^2] of a speed ramp: the cam angle is
 #: ``omega t + alpha t^2 / 2`` (0: constant speed; :mod:`springdyn.valve.run_up`)
 VT_ALPHA = 38
-VT_SIZE = 39
+# lever kinematics from the 2-D geometry (:mod:`springdyn.valve.lever`; zeros: the constant ratio)
+VT_GEOM = 39  #: 1 with the lever's geometry (layout rocker), 0 for the constant ratio [-]
+VT_PAD_A = 40  #: the pad's A = (P_0 - O) . d [m] (:func:`springdyn.valve.lever.valve_side_lift`)
+VT_PAD_R2 = 41  #: A^2 + B^2 [m^2]
+VT_LEVER_J = 42  #: the lever's inertia about its pivot, roller included [kg m^2]
+#: samples of the lever's ratio table ``c, dc/dtheta, n . d, d(n . d)/dtheta`` over a
+#: revolution, after the gas force's samples (0: none) [-]
+VT_GEOM_N = 43
+VT_SIZE = 44
 
 # --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
 X_LIFT = 0  #: cam lift [m]
