@@ -224,3 +224,30 @@ def test_a_sweep_reports_pump_up_per_speed():
     assert held[0] == 0.0
     one = simulate(_spring(), Cam.from_toml(CAM), 3600.0, valve_train=vt).summary["hla"]["valve_held_open_m"]
     assert held[1] == pytest.approx(one, rel=0.2) and held[1] > 0.1e-3
+
+
+def test_a_creeping_adjuster_is_not_a_steady_state():
+    """The adjuster's length is a periodicity channel (layout.CHK_HLA): at 3400 cam rpm the
+    finger example's adjuster pumps up some 2.6 um per revolution without any lift-off while
+    its forces repeat within 0.2 % of Fset; the run is not called periodic, carries the band
+    of its last revolutions and flags the creep.  At 1000 cam rpm it settles (the channel
+    does not hold back a steady adjuster).  Both backends judge it alike: the reference's
+    periodicity channels include the adjuster (dynamics._check_forces)."""
+    import warnings
+
+    from springdyn.valve import ValveSpring, simulate
+    from springdyn.valve.cam import Cam
+    from springdyn.valve.valvetrain import ValveTrain
+
+    sp = ValveSpring.from_toml("examples/valve/one_step_spring.toml")
+    cam = Cam.from_toml(CAM)
+    vt = ValveTrain.from_toml(TRAIN)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        creeping = simulate(sp, cam, 3400, valve_train=vt)
+        steady = simulate(sp, cam, 1000, valve_train=vt)
+    assert steady.periodic
+    assert not creeping.periodic and creeping.band is not None
+    s = creeping.summary
+    assert s["hla"]["length_change_per_revolution_m"] > 1e-6
+    assert any("still changes" in n for n in s["notes"])

@@ -233,8 +233,12 @@ def _check_forces(setup: SimulationSetup, omega: float, t: np.ndarray, states: n
     reference's states, as :func:`springdyn.valve.engine.loop.check_channels` samples them."""
     r = chain_response(setup, omega, omega * t, states)
     zero = np.zeros(t.size)
+    from .engine.layout import VT_HLA_KCHK
+
+    hla = r.get("hla_collapse", zero) * setup.vt[VT_HLA_KCHK] if setup.valve_train is not None else zero
     return np.stack(
-        [r["force"][0], r["force"][-1], r.get("cam_contact_force", zero), r.get("valve_seat_force", zero)], axis=-1
+        [r["force"][0], r["force"][-1], r.get("cam_contact_force", zero), r.get("valve_seat_force", zero), hla],
+        axis=-1,
     )
 
 

@@ -436,7 +436,7 @@ def _add_crank_angles(s: dict, axis) -> None:
 
 #: Length change of the adjuster per revolution [m] above which its figures are flagged as
 #: not settled: a tenth of a micrometre (its leak-down per cycle is some 0.3 um at 1000 cam
-#: rpm; the forces, which judge periodicity, move by less than 0.2 % of Fset with it).
+#: rpm); the periodicity channel of the adjuster's length (``CHK_HLA``) judges it as well.
 HLA_CREEP_TOL = 0.1e-6
 
 
@@ -477,7 +477,7 @@ def _hla_summary(sim: Simulation, notes: list) -> dict:
         notes.append(
             f"the adjuster's length still changes by {out['length_change_per_revolution_m'] * 1e6:+.2f} um per "
             "revolution (oil in and out do not balance): its figures are those of this revolution, not of a "
-            "steady state (the forces repeat within the periodicity tolerance)"
+            "steady state"
         )
     if out["socket_hop"]:
         notes.append(

@@ -473,8 +473,19 @@ class ValveTrain(Parameters):
                 0.0,  # VT_GAS_N: no gas force (SimulationSetup.with_gas_force adds its samples)
                 0.0,  # VT_ALPHA: constant speed (springdyn.valve.run_up sets a ramp's acceleration)
                 *self._lever_parameters(),
+                self.hla_check_stiffness,
             ]
         )
+
+    @property
+    def hla_check_stiffness(self) -> float:
+        """The force per metre of an adjuster's collapse that judges periodicity [N/m]
+        (``VT_HLA_KCHK``, :data:`springdyn.valve.engine.layout.CHK_HLA`): a collapse ``y``
+        at the finger's pivot moves the valve's closed position by ``(r - 1) y``, which the
+        train's stiffness at the valve turns into a force; 0 without ``[hla]`` dynamics."""
+        if self.hla is None:
+            return 0.0
+        return (self.ratio - 1.0) * self.stiffness_at_valve
 
     def _lever_parameters(self) -> list:
         """The ``VT_GEOM*`` entries of :meth:`kernel_parameters`: the drawn lever's pad and

@@ -54,6 +54,7 @@ from .layout import (
     VT_HLA_DRAG,
     VT_HLA_FS,
     VT_HLA_G,
+    VT_HLA_KCHK,
     VT_HLA_KCV,
     VT_HLA_KS,
     VT_HLA_KSTOP,
@@ -347,7 +348,7 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
         extra[b + X_DISP + nm] = gap
 
 
-def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak):
+def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak, check):
     if extra.shape[0] > 0:
         b = 2 * ne + X_DISP + nm
         extra[b + 1] = collapse
@@ -355,6 +356,7 @@ def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak):
         extra[b + 3] = socket
         extra[b + 4] = inflow
         extra[b + 5] = leak
+        extra[b + 6] = check
 
 
 def gas_force_at(vt, theta):
@@ -559,7 +561,7 @@ def spring_rhs(t, s, m, omega, vt, out, extra):
     dlift = slope * omega
     chain_forces(s, m, nm, lift, dlift, out, extra)
     _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
-    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0)
+    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 def train_rhs(t, s, m, omega, vt, out, extra):
@@ -594,7 +596,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     z = s[nm]
     zd = s[nfree + nm]
     f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
-    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0)  # an adjuster overwrites them
+    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # an adjuster overwrites them
     r = vt[VT_RATIO]
     f_cam = 0.0
     f_seat = 0.0
@@ -656,6 +658,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
                     sock,
                     s[nm + 5],
                     s[nm + 6],
+                    (s[nm + 3] - vt[VT_HLA_Y0]) * vt[VT_HLA_KCHK],
                 )
             out[nfree + nm + 1] = (f_lever - f_valve) / m_lever
         else:  # pushrod: lifter on the cam, pushrod to the lever

@@ -65,7 +65,10 @@ VT_LEVER_J = 42  #: the lever's inertia about its pivot, roller included [kg m^2
 #: samples of the lever's ratio table ``c, dc/dtheta, n . d, d(n . d)/dtheta`` over a
 #: revolution, after the gas force's samples (0: none) [-]
 VT_GEOM_N = 43
-VT_SIZE = 44
+#: the adjuster's collapse as a periodicity force: the force [N] per metre of collapse that the
+#: train would see through it (:meth:`springdyn.valve.valvetrain.ValveTrain.hla_check_stiffness`) [N/m]
+VT_HLA_KCHK = 44
+VT_SIZE = 45
 
 # --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
 X_LIFT = 0  #: cam lift [m]
@@ -75,8 +78,8 @@ X_SEAT_FORCE = 3  #: valve-seat force [N]
 X_TOP = 4  #: displacement of the retainer end (the valve lift with a train) [m]
 X_DISP = 5  #: first of the N mass displacements [m]; the cam gap follows them, then the adjuster's
 #: outputs (:func:`extra_layout`: ``hla_collapse``, ``hla_pressure``, ``socket_force``,
-#: ``hla_inflow``, ``hla_leak``; zeros without an adjuster)
-N_HLA_EXTRA = 5
+#: ``hla_inflow``, ``hla_leak``, ``hla_check``; zeros without an adjuster)
+N_HLA_EXTRA = 6
 
 #: Names of the ``extra`` outputs for the 5-mass Type C chain (:func:`extra_layout` for any N).
 EXTRA = (
@@ -108,6 +111,7 @@ EXTRA = (
     "socket_force",
     "hla_inflow",
     "hla_leak",
+    "hla_check",
 )
 
 
@@ -126,7 +130,8 @@ def extra_layout(n_masses: int) -> dict:
         ``dlift``, ``cam_contact_force``, ``valve_seat_force``, ``top_displacement`` (ints),
         ``displacement`` (slice over the masses), ``cam_gap``, the adjuster's ``hla_collapse``
         [m], ``hla_pressure`` [Pa], ``socket_force`` [N], ``hla_inflow`` and ``hla_leak``
-        (volumes since the start [m^3]) (ints) and ``size``.
+        (volumes since the start [m^3]), ``hla_check`` (the collapse as a periodicity force
+        [N], :data:`CHK_HLA`) (ints) and ``size``.
     """
     ne = n_masses + 1
     b = 2 * ne
@@ -145,6 +150,7 @@ def extra_layout(n_masses: int) -> dict:
         socket_force=b + X_DISP + n_masses + 3,
         hla_inflow=b + X_DISP + n_masses + 4,
         hla_leak=b + X_DISP + n_masses + 5,
+        hla_check=b + X_DISP + n_masses + 6,
         size=b + X_DISP + 1 + n_masses + N_HLA_EXTRA,
     )
 
@@ -193,7 +199,11 @@ CHK_SEAT = 0  #: seat end force [N]
 CHK_RETAINER = 1  #: retainer end force [N]
 CHK_CAM = 2  #: cam contact force [N] (valve train)
 CHK_VALVE_SEAT = 3  #: valve-seat force [N] (valve train)
-N_CHECK = 4
+#: a hydraulic lash adjuster's collapse times :data:`VT_HLA_KCHK` [N]: an adjuster that creeps
+#: (pumps up or leaks down from revolution to revolution) is not a steady state even where
+#: the forces repeat
+CHK_HLA = 4
+N_CHECK = 5
 
 #: Extreme signals (maximised): retainer force, -retainer force, seat force, -seat force,
 #: -cam contact force while the valve is open.

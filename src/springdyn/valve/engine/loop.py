@@ -25,7 +25,9 @@ from ...numerics import erk
 from ...numerics.jit import kernel, rebind
 from .equations import FASTMATH, rhs_call
 from .layout import (
+    X_DISP,
     CHK_CAM,
+    CHK_HLA,
     CHK_RETAINER,
     CHK_SEAT,
     CHK_VALVE_SEAT,
@@ -281,12 +283,13 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
 def check_channels(e, ne, row):
     """The forces that judge periodicity (columns ``CHK_*`` of :mod:`.layout`) from the extra
     outputs ``e`` of a chain of ``ne`` elements: seat and retainer end forces, cam contact
-    and valve-seat forces [N]."""
+    and valve-seat forces, an adjuster's collapse as a force [N]."""
     b = 2 * ne
     row[CHK_SEAT] = e[0]
     row[CHK_RETAINER] = e[ne - 1]
     row[CHK_CAM] = e[b + X_CAM_FORCE]
     row[CHK_VALVE_SEAT] = e[b + X_SEAT_FORCE]
+    row[CHK_HLA] = e[b + X_DISP + ne + 5]  # the adjuster's collapse as a force (layout.extra_layout)
 
 
 _METHOD_OF = {type(tab): name for name, tab in erk.TABLEAUS.items()}
