@@ -25,7 +25,6 @@ from ...numerics import erk
 from ...numerics.jit import kernel, rebind
 from .equations import FASTMATH, rhs_call
 from .layout import (
-    X_DISP,
     CHK_CAM,
     CHK_HLA,
     CHK_RETAINER,
@@ -35,6 +34,7 @@ from .layout import (
     N_CHECK,
     N_EXT,
     X_CAM_FORCE,
+    X_DISP,
     X_SEAT_FORCE,
 )
 from .monitor import finish_monitor, monitor_step, new_monitor
