@@ -393,7 +393,7 @@ def toml_reference() -> str:
         "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
         "timing": "beside `[cam]`: crank angles from TDC in `springdyn valve cam/simulate/sweep`, `springdyn report`",
         "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",
-        "hla": "beside `[valve_train]` (a finger follower on a hydraulic lash adjuster): `springdyn valve simulate/float/sweep`, `springdyn report`",
+        "hla": "beside `[valve_train]` (a finger follower on a hydraulic lash adjuster, or a hydraulic bucket): `springdyn valve simulate/float/sweep`, `springdyn report`",
         "follower": "beside `[valve_train]`: `springdyn valve cam-check --valve-train`, `cam-from-lift --valve-train`",
         "geometry": "beside `[valve_train]` (layout `rocker`) and a roller `[follower]`: `springdyn valve kinematics`, `simulate/float/sweep/cam-from-lift --valve-train`, `springdyn report`",
         "friction": "beside `[valve_train]` and `[follower]`: `springdyn valve friction --valve-train`",

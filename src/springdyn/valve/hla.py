@@ -298,10 +298,18 @@ class HLA(Parameters):
         "", "polytropic index of the air bubbles (1 isothermal)", positive=True, default=1.0
     )
     socket_stiffness: float = param(
-        "N/m", "contact stiffness of the lever's socket on the plunger", display="N/um", positive=True, default=1.0e8
+        "N/m",
+        "contact stiffness of the lever's socket on the plunger (a hydraulic bucket: the plunger on the stem)",
+        display="N/um",
+        positive=True,
+        default=1.0e8,
     )
     pivot_mass: float = param(
-        "kg", "lever mass carried at the socket (the finger's pivot end)", display="g", positive=True, default=10e-3
+        "kg",
+        "lever mass carried at the socket (the finger's pivot end; a bucket's body is [valve_train] follower_mass)",
+        display="g",
+        positive=True,
+        default=10e-3,
     )
 
     table = "hla"

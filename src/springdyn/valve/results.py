@@ -471,7 +471,7 @@ def _hla_summary(sim: Simulation, notes: list) -> dict:
     if out["valve_held_open_m"] > 1e-6:
         notes.append(
             f"PUMP-UP: the adjuster holds the valve open by {out['valve_held_open_m'] * 1e3:.3f} mm on the base "
-            "circle (it extends whenever the finger unloads it, after a lift-off or a bounce; the valve fails to close)"
+            "circle (it extends whenever the train unloads it, after a lift-off or a bounce; the valve fails to close)"
         )
     if abs(out["length_change_per_revolution_m"]) > HLA_CREEP_TOL:
         notes.append(
@@ -480,9 +480,8 @@ def _hla_summary(sim: Simulation, notes: list) -> dict:
             "steady state"
         )
     if out["socket_hop"]:
-        notes.append(
-            f"SOCKET HOP: the finger leaves the adjuster's plunger for {out['socket_hop_deg']:.1f} cam degrees"
-        )
+        who = "the plunger leaves the valve stem" if vt.bucket_hla else "the finger leaves the adjuster's plunger"
+        notes.append(f"SOCKET HOP: {who} for {out['socket_hop_deg']:.1f} cam degrees")
     if hla is not None and out["collapse_max_m"] > hla.collapse_travel:
         notes.append("the plunger bottoms in the adjuster's body (collapse_travel)")
     return out

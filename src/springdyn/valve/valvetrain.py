@@ -31,7 +31,9 @@ lever layouts, between cam and bucket for the direct-acting one.  A hydraulic la
 adjuster (``lash_adjuster = "hydraulic"``) takes it up: on the base circle the train rests
 on the cam with the plunger-spring force ``hla_preload`` and the seat carries the rest of
 the spring preload; during the event the adjuster is a stiffness ``hla_stiffness`` in
-series.  Its leak-down and pump-up are not modelled (see :data:`HLA_NOT_MODELLED`).
+series.  Its leak-down and pump-up are not modelled (see :data:`HLA_NOT_MODELLED`); an
+``[hla]`` table gives the adjuster's dynamics at a finger follower's pivot or inside a
+hydraulic bucket (:mod:`springdyn.valve.hla`).
 
 Defaults and their sources are listed in :data:`DEFAULT_SOURCES` (and in docs/valve.md).
 """
@@ -268,11 +270,16 @@ class ValveTrain(Parameters):
                 f"with a roller on the cam), not to {self.layout!r}"
             )
         if self.hla is not None:
-            if self.layout != "rocker":
+            if self.layout == "pushrod":
                 raise InputError(
-                    f"[hla]: the adjuster's dynamics are modelled at the pivot of a finger follower (layout = "
-                    f"'rocker'), not for layout = {self.layout!r}: remove [hla] and use lash_adjuster = 'hydraulic' "
-                    "(a preloaded plunger)"
+                    "[hla]: the adjuster's dynamics are modelled at the pivot of a finger follower (layout = "
+                    "'rocker') and inside a hydraulic bucket (layout = 'direct-acting'), not for layout = 'pushrod': "
+                    "remove [hla] and use lash_adjuster = 'hydraulic' (a preloaded plunger)"
+                )
+            if self.layout == "direct-acting" and not self.follower_mass > 0.0:
+                raise InputError(
+                    "[valve_train] follower_mass = 0 with [hla] under a bucket: the bucket body (on the cam, over the "
+                    "adjuster's chamber) needs its mass (25-40 g for a 30-35 mm bucket)"
                 )
             if self.lash_adjuster != "hydraulic":
                 raise InputError(
@@ -284,7 +291,7 @@ class ValveTrain(Parameters):
                     f"[valve_train] {', '.join(given)} describe the preloaded plunger; with an [hla] table the "
                     "adjuster's own plunger, chamber and oil carry the load: remove them"
                 )
-            if not self.ratio > 1.0:
+            if self.layout == "rocker" and not self.ratio > 1.0:
                 raise InputError(
                     f"[hla] at a finger follower's pivot needs rocker_ratio > 1 (the pivot carries 1 - 1/r of "
                     f"the cam force), not {self.ratio:g}"
@@ -331,9 +338,16 @@ class ValveTrain(Parameters):
         """Adjuster plunger-spring force referred to the valve [N] (0 without an adjuster)."""
         if not self.hydraulic:
             return 0.0
+        if self.hla is not None and self.bucket_hla:  # the plunger spring on the stem
+            return self.hla.plunger_spring_force
         if self.hla is not None:  # the plunger spring on the pivot: F_s = F_valve (r - 1)
             return self.hla.plunger_spring_force / (self.ratio - 1.0)
         return 15.0 if self.hla_preload is None else self.hla_preload
+
+    @property
+    def bucket_hla(self) -> bool:
+        """A hydraulic bucket: ``[hla]`` dynamics inside a direct-acting train's bucket."""
+        return self.hla is not None and self.layout == "direct-acting"
 
     @property
     def tip_stiffness(self) -> float:
@@ -360,7 +374,7 @@ class ValveTrain(Parameters):
     def valve_side_mass(self) -> float:
         """Mass moving with the valve [kg]: valve + retainer (+ follower for direct-acting)."""
         m = self.valve_mass + self.retainer_mass
-        return m + self.follower_mass if self.layout == "direct-acting" else m
+        return m + self.follower_mass if self.layout == "direct-acting" and not self.bucket_hla else m
 
     @property
     def rocker_mass(self) -> float:
@@ -415,9 +429,10 @@ class ValveTrain(Parameters):
     def degrees_of_freedom(self) -> int:
         """Degrees of freedom of the train: 1 direct-acting, 2 rocker, 3 pushrod; 7 for a
         finger follower on an ``[hla]`` (pivot end, plunger, and the chamber pressure and
-        the oil volumes in and out as first-order states)."""
+        the oil volumes in and out as first-order states); 6 for a hydraulic bucket (bucket
+        body, plunger, chamber pressure, oil in and out)."""
         if self.hla is not None:
-            return 7
+            return 6 if self.bucket_hla else 7
         return LAYOUTS.index(self.layout) + 1
 
     def equivalent_direct_acting(self) -> ValveTrain:
@@ -485,6 +500,8 @@ class ValveTrain(Parameters):
         train's stiffness at the valve turns into a force; 0 without ``[hla]`` dynamics."""
         if self.hla is None:
             return 0.0
+        if self.bucket_hla:  # the collapse moves the valve's closed position one to one
+            return self.stiffness_at_valve
         return (self.ratio - 1.0) * self.stiffness_at_valve
 
     def _lever_parameters(self) -> list:
@@ -505,16 +522,19 @@ class ValveTrain(Parameters):
             return [0.0] * (VT_GAS_N - VT_HLA)
         from .hla import P_ATM
 
-        pivot = self.hla_pivot_state()
+        if self.bucket_hla:  # the collapse's origin: the body less the plunger on the base circle
+            origin, carried = self.bucket_hla_state()["collapse"], self.follower_mass
+        else:  # the plunger's position in its fixed body
+            origin, carried = self.hla_pivot_state()["plunger"], h.pivot_mass
         mass = h.plunger_mass
         k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
         return [
             1.0,
             h.area,
             h.chamber_volume,
-            pivot["plunger"],
+            origin,
             mass,
-            h.pivot_mass,
+            carried,
             h.plunger_spring_force,
             h.socket_stiffness,
             self.link_damping,
@@ -560,6 +580,27 @@ class ValveTrain(Parameters):
         socket = f_cam * (1.0 - 1.0 / r)
         return dict(tip=tip, pivot=pivot, plunger=pivot - socket / self.hla.socket_stiffness)
 
+    def bucket_hla_state(
+        self, valve_force: float | None = None, lobe_lift: float = 0.0, valve_lift: float = 0.0
+    ) -> dict:
+        """Positions of a hydraulic bucket's body and plunger [m] in static equilibrium with the
+        force ``valve_force`` [N] on the valve (default: the plunger spring's,
+        :attr:`hla_force`) at the chamber's supply pressure, and its collapse ``body - plunger``.
+
+        Parameters
+        ----------
+        valve_force : float, optional
+            Force of the plunger on the stem [N].
+        lobe_lift : float
+            Cam lift [m].
+        valve_lift : float
+            Valve position [m].
+        """
+        f = self.hla_force if valve_force is None else valve_force
+        body = lobe_lift - f / self.cam_link_stiffness
+        plunger = valve_lift + f / self.hla.socket_stiffness
+        return dict(body=body, plunger=plunger, collapse=body - plunger)
+
     def highest_frequency(self) -> float:
         """An upper bound of the train's contact frequencies [Hz] (bounds the work of a run)."""
         parts = [
@@ -589,7 +630,10 @@ class ValveTrain(Parameters):
             h = self.hla
             k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
             parts.append(math.sqrt((h.socket_stiffness + k_oil) / h.plunger_mass))
-            parts.append(math.sqrt((h.socket_stiffness + self.cam_stiffness) / h.pivot_mass))
+            if self.bucket_hla:  # the bucket body between the cam and the oil
+                parts.append(math.sqrt((self.cam_link_stiffness + k_oil) / self.follower_mass))
+            else:
+                parts.append(math.sqrt((h.socket_stiffness + self.cam_stiffness) / h.pivot_mass))
         return max(parts) / (2 * math.pi)
 
     @classmethod
@@ -679,6 +723,8 @@ class ValveTrain(Parameters):
         h, r = self.hla, self.ratio
         beta = effective_bulk_modulus(P_ATM + h.supply_pressure, h.oil_bulk_modulus, h.air_fraction, h.polytropic_index)
         k_pivot = series_stiffness(beta * h.area**2 / h.chamber_volume, h.socket_stiffness)
+        if self.bucket_hla:  # the oil column under the bucket, in series with the stem contact
+            return dataclasses.replace(self, hla=None, hla_stiffness=k_pivot, hla_preload=h.plunger_spring_force)
         return dataclasses.replace(
             self, hla=None, hla_stiffness=k_pivot / (r - 1.0) ** 2, hla_preload=h.plunger_spring_force / (r - 1.0)
         )
@@ -722,6 +768,11 @@ class ValveTrain(Parameters):
             Valve, then lever tip [m] and lifter [m] as the layout has them.
         """
         r = self.ratio
+        if self.bucket_hla:
+            from .hla import P_ATM
+
+            st = self.bucket_hla_state(valve_force, lobe_lift, valve_lift)
+            return np.array([valve_lift, st["body"], st["plunger"], P_ATM + self.hla.supply_pressure, 0.0, 0.0])
         if self.layout == "direct-acting":
             return np.array([valve_lift])
         f_cam = r * valve_force

@@ -375,7 +375,8 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                 f"{h['peak_pressure_Pa'] / 1e5:.0f} bar above the supply; {h['leak_per_revolution_m3'] * 1e9:.3f} mm^3 "
                 f"leaks out and {h['inflow_per_revolution_m3'] * 1e9:.3f} mm^3 refills per cycle"
                 + (
-                    f"; the finger leaves its socket for {h['socket_hop_deg']:.1f} cam degrees"
+                    f"; {'the plunger leaves the stem' if vt.bucket_hla else 'the finger leaves its socket'} for "
+                    f"{h['socket_hop_deg']:.1f} cam degrees"
                     if h["socket_hop"]
                     else ""
                 )

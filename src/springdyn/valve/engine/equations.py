@@ -465,18 +465,73 @@ def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
     return (v_oil + v_air) / (v_oil / beta_oil + v_air / (n * p))
 
 
+def hla_chamber(vt, y, yd, p, out, k, kv):
+    """The adjuster's chamber, plunger spring and travel stops (:mod:`springdyn.valve.hla`).
+
+    The plunger's collapse ``y`` (its travel into the body from the initial position, the
+    direction that loses valve lift) and collapse rate ``yd``; the chamber pressure ``p``
+    [Pa, absolute].  The chamber follows oil continuity
+    (:func:`springdyn.valve.hla.chamber_pressure_rate`) with the check valve as an orifice and
+    laminar leakage with the Couette drag of the moving plunger; it holds at the cavitation
+    pressure.  Writes ``dp/dt`` and the flows in and out [m^3/s] into ``out[k:k + 3]`` (the
+    first-order states; zeros into ``out[kv:kv + 3]``) and returns the force that pushes the
+    plunger out of its body [N]: the chamber's pressure above the supply, the plunger spring,
+    less the travel stops and the plunger's damping.
+
+    Parameters
+    ----------
+    vt : ndarray (VT_SIZE,)
+        The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
+    y, yd : float
+        Collapse [m] and its rate [m/s].
+    p : float
+        Chamber pressure, absolute [Pa].
+    out : ndarray
+        Receives the rates [Pa/s, m^3/s].
+    k, kv : int
+        Index of the pressure in the state and of its (unused) velocity slot [-].
+    """
+    stop = -vt[VT_HLA_CSTOP] * yd
+    if y > vt[VT_HLA_YMAX]:
+        stop -= vt[VT_HLA_KSTOP] * (y - vt[VT_HLA_YMAX])
+    elif y < vt[VT_HLA_YMIN]:
+        stop += vt[VT_HLA_KSTOP] * (vt[VT_HLA_YMIN] - y)
+    ps = vt[VT_HLA_PS]
+    area = vt[VT_HLA_AREA]
+    # the chamber: check-valve inflow, leakage, the plunger's displacement of oil
+    dp_cv = ps - vt[VT_HLA_PCRACK] - p
+    q_in = 0.0
+    if dp_cv > 0.0:
+        if dp_cv < 2000.0:  # laminarised (springdyn.valve.hla.CHECK_VALVE_TRANSITION)
+            q_in = vt[VT_HLA_KCV] * dp_cv / math.sqrt(2000.0)
+        else:
+            q_in = vt[VT_HLA_KCV] * math.sqrt(dp_cv)
+    q_leak = vt[VT_HLA_G] * (p - ps) - vt[VT_HLA_DRAG] * yd
+    volume = vt[VT_HLA_V0] - area * y
+    beta = air_oil_bulk_modulus(p, vt[VT_HLA_BETA], vt[VT_HLA_AIR], vt[VT_HLA_N])
+    dp = beta / volume * (area * yd + q_in - q_leak)
+    if p <= 2000.0 and dp < 0.0:  # cavitation: the pressure holds (springdyn.valve.hla.P_CAVITATION)
+        dp = 0.0
+    out[k] = dp
+    out[k + 1] = q_in
+    out[k + 2] = q_leak
+    out[kv] = 0.0
+    out[kv + 1] = 0.0
+    out[kv + 2] = 0.0
+    return (p - ps) * area + vt[VT_HLA_FS] - stop
+
+
 def hla_forces(s, nm, nfree, vt, out):
     """The hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.hla`).
 
     States (after the chain's, the valve's and the lever tip's): the finger's pivot end
-    ``y_a`` (its collapse direction positive), the plunger ``y_p``, then three first-order
-    states: the chamber pressure ``p`` [Pa, absolute] and the oil volumes that entered
-    through the check valve and left through the clearance since the start [m^3].  The
-    socket (the finger on the plunger) is a unilateral contact; the plunger carries the
-    socket force against the chamber pressure and its spring, between its travel stops;
-    the chamber follows oil continuity (:func:`springdyn.valve.hla.chamber_pressure_rate`)
-    with the check valve as an orifice and laminar leakage.  Writes the derivatives of the
-    adjuster's states into ``out`` and returns the socket force [N] on the finger's pivot end.
+    ``y_a`` (its collapse direction positive), the plunger ``y_p`` in its fixed body, then
+    three first-order states: the chamber pressure ``p`` [Pa, absolute] and the oil volumes
+    that entered through the check valve and left through the clearance since the start
+    [m^3].  The socket (the finger on the plunger) is a unilateral contact; the plunger
+    carries the socket force against the chamber (:func:`hla_chamber`).  Writes the
+    derivatives of the adjuster's states into ``out`` and returns the socket force [N] on
+    the finger's pivot end.
 
     Parameters
     ----------
@@ -493,7 +548,6 @@ def hla_forces(s, nm, nfree, vt, out):
     """
     ya = s[nm + 2]
     yp = s[nm + 3]
-    p = s[nm + 4]
     yad = s[nfree + nm + 2]
     ypd = s[nfree + nm + 3]
     # the socket: the finger's pivot end on the plunger (compression only)
@@ -501,38 +555,52 @@ def hla_forces(s, nm, nfree, vt, out):
     sock = vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (yad - ypd)
     if pen <= 0.0 or sock < 0.0:
         sock = 0.0
-    # the plunger between its travel stops (collapse measured from its initial position)
-    y = yp - vt[VT_HLA_Y0]
-    stop = -vt[VT_HLA_CSTOP] * ypd
-    if y > vt[VT_HLA_YMAX]:
-        stop -= vt[VT_HLA_KSTOP] * (y - vt[VT_HLA_YMAX])
-    elif y < vt[VT_HLA_YMIN]:
-        stop += vt[VT_HLA_KSTOP] * (vt[VT_HLA_YMIN] - y)
-    ps = vt[VT_HLA_PS]
-    area = vt[VT_HLA_AREA]
-    out[nfree + nm + 3] = (sock - (p - ps) * area - vt[VT_HLA_FS] + stop) / vt[VT_HLA_MP]
+    f_out = hla_chamber(vt, yp - vt[VT_HLA_Y0], ypd, s[nm + 4], out, nm + 4, nfree + nm + 4)
+    out[nfree + nm + 3] = (sock - f_out) / vt[VT_HLA_MP]
     out[nm + 3] = ypd
-    # the chamber: check-valve inflow, leakage, the plunger's displacement of oil
-    dp_cv = ps - vt[VT_HLA_PCRACK] - p
-    q_in = 0.0
-    if dp_cv > 0.0:
-        if dp_cv < 2000.0:  # laminarised (springdyn.valve.hla.CHECK_VALVE_TRANSITION)
-            q_in = vt[VT_HLA_KCV] * dp_cv / math.sqrt(2000.0)
-        else:
-            q_in = vt[VT_HLA_KCV] * math.sqrt(dp_cv)
-    q_leak = vt[VT_HLA_G] * (p - ps) - vt[VT_HLA_DRAG] * ypd
-    volume = vt[VT_HLA_V0] - area * y
-    beta = air_oil_bulk_modulus(p, vt[VT_HLA_BETA], vt[VT_HLA_AIR], vt[VT_HLA_N])
-    dp = beta / volume * (area * ypd + q_in - q_leak)
-    if p <= 2000.0 and dp < 0.0:  # cavitation: the pressure holds (springdyn.valve.hla.P_CAVITATION)
-        dp = 0.0
-    out[nm + 4] = dp
-    out[nm + 5] = q_in
-    out[nm + 6] = q_leak
-    out[nfree + nm + 4] = 0.0
-    out[nfree + nm + 5] = 0.0
-    out[nfree + nm + 6] = 0.0
     out[nm + 2] = yad
+    return sock
+
+
+def bucket_hla_forces(s, nm, nfree, vt, out):
+    """A hydraulic bucket tappet (:mod:`springdyn.valve.hla`): the adjuster inside the bucket.
+
+    States (after the chain's and the valve's ``z``): the bucket body ``y_b`` on the cam, the
+    plunger ``y_p`` on the valve stem (both in the valve's opening direction), then the
+    chamber pressure and the oil volumes in and out.  The chamber lies between body and
+    plunger: the collapse is ``y_b - y_p`` from its initial value.  The plunger pushes the
+    stem through a unilateral contact (the socket).  Writes the body's and the plunger's
+    derivatives (the body's acceleration without the cam force, which the caller adds) and
+    the chamber's, and returns the socket force on the valve [N].
+
+    Parameters
+    ----------
+    s : ndarray
+        State [m, m/s, Pa, m^3].
+    nm : int
+        Chain masses [-].
+    nfree : int
+        Degrees of freedom [-].
+    vt : ndarray (VT_SIZE,)
+        The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
+    """
+    z = s[nm]
+    yb = s[nm + 1]
+    yp = s[nm + 2]
+    zd = s[nfree + nm]
+    ybd = s[nfree + nm + 1]
+    ypd = s[nfree + nm + 2]
+    pen = yp - z  # the plunger on the stem tip (compression only)
+    sock = vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (ypd - zd)
+    if pen <= 0.0 or sock < 0.0:
+        sock = 0.0
+    f_out = hla_chamber(vt, yb - yp - vt[VT_HLA_Y0], ybd - ypd, s[nm + 3], out, nm + 3, nfree + nm + 3)
+    out[nm + 1] = ybd
+    out[nm + 2] = ypd
+    out[nfree + nm + 1] = -f_out / vt[VT_HLA_MA]  # the cam's force follows (train_rhs)
+    out[nfree + nm + 2] = (f_out - sock) / vt[VT_HLA_MP]
     return sock
 
 
@@ -611,6 +679,30 @@ def train_rhs(t, s, m, omega, vt, out, extra):
             f_cam = raw if raw > 0.0 else 0.0
         gap = min(pen, raw / vt[VT_K_CAM])
         f_valve = f_cam
+    elif ntr == 6:  # a hydraulic bucket: the cam on the bucket body, the adjuster's plunger on the stem
+        yb = s[nm + 1]
+        ybd = s[nfree + nm + 1]
+        pen = lift - yb
+        raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - ybd)
+        if pen > 0.0:
+            f_cam = raw if raw > 0.0 else 0.0
+        f_valve = bucket_hla_forces(s, nm, nfree, vt, out)
+        out[nfree + nm + 1] += f_cam / vt[VT_HLA_MA]
+        pen_s = s[nm + 2] - z
+        raw_s = vt[VT_HLA_KS] * pen_s + vt[VT_HLA_CS] * (s[nfree + nm + 2] - zd)
+        gap = min(min(pen, raw / vt[VT_K_CAM]), min(pen_s, raw_s / vt[VT_HLA_KS]))
+        collapse = yb - s[nm + 2] - vt[VT_HLA_Y0]
+        _record_hla(
+            extra,
+            nm + 1,
+            nm,
+            collapse,
+            s[nm + 3] - vt[VT_HLA_PS],
+            f_valve,
+            s[nm + 4],
+            s[nm + 5],
+            collapse * vt[VT_HLA_KCHK],
+        )
     else:
         zr = s[nm + 1]
         zrd = s[nfree + nm + 1]
@@ -719,6 +811,19 @@ def train_response(vt: np.ndarray, lift, dlift, u, v, theta=None, omega=None) ->
     seat = np.where(z < 0, np.maximum(-vt[VT_K_SEAT] * z - vt[VT_C_SEAT] * zd, 0.0), 0.0)
     if dof == 1:
         cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - z - vt[VT_LASH], dlift - zd)
+    elif dof == 6:  # a hydraulic bucket: body, plunger, chamber
+        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 1, :], dlift - v[..., 1, :])
+        socket = contact(vt[VT_HLA_KS], vt[VT_HLA_CS], u[..., 2, :] - z, v[..., 2, :] - zd)
+        return dict(
+            cam_contact_force=cam,
+            valve_seat_force=seat,
+            valve_lift=z,
+            hla_collapse=u[..., 1, :] - u[..., 2, :] - vt[VT_HLA_Y0],
+            hla_pressure=u[..., 3, :] - vt[VT_HLA_PS],
+            socket_force=socket,
+            hla_inflow=u[..., 4, :],
+            hla_leak=u[..., 5, :],
+        )
     elif dof == 3:  # pushrod: the lifter on the cam
         cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 2, :], dlift - v[..., 2, :])
     else:  # the lever; on a hydraulic lash adjuster (dof 7) its pivot end moves
@@ -797,7 +902,9 @@ _TWINS = twins(
         "gas_force_at",
         "lever_mass",
         "air_oil_bulk_modulus",
+        "hla_chamber",
         "hla_forces",
+        "bucket_hla_forces",
         "spring_rhs",
         "train_rhs",
     ],
@@ -806,9 +913,10 @@ _TWINS = twins(
 # the adjuster's equations are called, not inlined: the integration step evaluates the
 # right-hand side at every stage, and inlining this rarely used branch into each of them
 # cost 2.4 s of the train engine's compilation (11.4 against 9 s)
-_TWINS["__globals__"]["hla_forces"] = kernel(
-    rebind(hla_forces, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
-)
+for _name in ("hla_forces", "bucket_hla_forces"):
+    _TWINS["__globals__"][_name] = kernel(
+        rebind(globals()[_name], _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
+    )
 # the same for the drawn lever's table (springdyn.valve.lever), used by lever trains only
 _TWINS["__globals__"]["lever_ratio_at"] = kernel(
     rebind(lever_ratio_at, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
