@@ -234,3 +234,55 @@ def test_report_of_a_train_on_a_hydraulic_lash_adjuster(tmp_path):
     assert names["valve closes at 3000 cam rpm (no pump-up)"].passed
     assert any(x.startswith("Hydraulic lash adjuster at the top speed (6000 engine rpm)") for x in sec.findings)
     assert any("holds the valve" in x and "(pump-up)" in x for x in sec.findings)  # 5 % above the float speed
+
+
+def test_report_of_a_drawn_lever_with_friction(tmp_path):
+    """A definition with [follower], [geometry] and [friction] (issue 28, parts 2, 4 and 6):
+    the report states the lever's ratio over the lift, the friction over speed (a figure and
+    its CSV) and a run-up through the float speed against the steady-state float speed."""
+    import tomllib
+
+    from springdyn.app.report.valve import load, section
+
+    spring = (ROOT / "examples" / "report" / "report_valve_one_step.toml").read_text().split("[cam]")[0]
+    f = tmp_path / "lever.toml"
+    f.write_text(
+        spring
+        + (ROOT / "examples" / "valve" / "cam_finger.toml").read_text()
+        + (ROOT / "examples" / "valve" / "finger_follower_geometry.toml").read_text()
+        + '\n[friction]\noil_temperature = "100 degC"\n'
+        + '\n[report]\nmax_engine_rpm = "6000 rpm"\nmodels = "type-c"\nrun_up_rate = "5000 rpm/s"\n'
+    )
+    d = load(tomllib.loads(f.read_text()), f)
+    out = tmp_path / "out"
+    sec = section(d, source=str(f), out_dir=out)
+    assert any(
+        x.startswith("The lever is drawn ([geometry]): its ratio runs from 1.613 to 1.796") for x in sec.findings
+    )
+    assert any(x.startswith("Friction of one valve's train ([follower])") for x in sec.findings)
+    assert any(x.startswith("Run-up through the float speed at 5000 engine rpm/s") for x in sec.findings)
+    assert (out / "friction.png").exists() and (out / "run_up.csv").exists()
+
+
+def test_report_of_an_exhaust_valve_with_gas_force(tmp_path):
+    """[report] cylinder_pressure (issue 28, part 5): the gas force on the valve at the top
+    speed against the run without it; without [timing] the definition is refused."""
+    import shutil
+    import tomllib
+
+    from springdyn.app.report.valve import load, section
+
+    spring = (ROOT / "examples" / "report" / "report_valve_one_step.toml").read_text().split("[cam]")[0]
+    shutil.copy(ROOT / "examples" / "valve" / "cylinder_pressure.csv", tmp_path / "p.csv")
+    body = (ROOT / "examples" / "valve" / "exhaust_valve.toml").read_text()
+    report = '\n[report]\nmax_engine_rpm = "6000 rpm"\nmodels = "type-c"\ncylinder_pressure = "p.csv"\n'
+    f = tmp_path / "exhaust.toml"
+    f.write_text(spring + body + report)
+    sec = section(load(tomllib.loads(f.read_text()), f), source=str(f), out_dir=tmp_path / "out")
+    gas = [x for x in sec.findings if x.startswith("Gas force on the valve head")]
+    assert gas and "as the valve leaves its seat" in gas[0]
+    no_timing = re.sub(r"\n\[timing\]\n(?:[^\[\n].*\n)*", "\n", body)
+    assert "\nlobe_centre" not in no_timing and "\n[valve_train]" in no_timing
+    f.write_text(spring + no_timing + report)
+    with pytest.raises(InputError, match="cylinder_pressure needs \\[timing\\]"):
+        load(tomllib.loads(f.read_text()), f)

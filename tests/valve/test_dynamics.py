@@ -357,3 +357,19 @@ def test_speeds_beyond_reason_are_refused_or_flagged(capsys):
         == 2
     )
     assert "did you mean 6000?" in capsys.readouterr().err
+
+
+def test_a_lift_table_cam_simulates():
+    """Regression: a ``law = "table"`` cam checks its resolution against the spring's first
+    surge mode before the run (simulate once asked the spring itself for its modes)."""
+    import warnings
+
+    from springdyn.valve import Cam, ValveSpring, simulate
+
+    cam = Cam.from_toml("examples/valve/cam_table.toml")
+    assert cam.law == "table"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sim = simulate(ValveSpring.from_toml("examples/valve/one_step_spring.toml"), cam, 2000.0)
+    # at 2000 cam rpm the peak force is the static one less the nose's inertia, within 10 %
+    assert sim.periodic and abs(sim.retainer_force.max() / sim.static_force.max() - 1.0) < 0.1

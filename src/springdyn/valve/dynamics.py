@@ -151,7 +151,7 @@ def simulate(
     if setup is None:
         setup = prepare(spring, cam, valve_train)
         if cam.law == "table":
-            cam.check_resolution(cam_rpm, float(spring.modes(spring.installed_length, 1)[0]))
+            cam.check_resolution(cam_rpm, float(spring.spring_model.first_mode_installed))
     setup = setup.with_gas_force(gas_force)
     extreme = setup.check_speeds(cam_rpm, allow_extreme_speeds)
     omega = rpm_to_omega(cam_rpm)

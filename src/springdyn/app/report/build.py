@@ -28,6 +28,7 @@ SUPPORT_TABLES = {
     "hla": "spring",
     "follower": "spring",
     "geometry": "spring",
+    "friction": "spring",
     "report": "spring",
 }
 #: Built-in definitions of ``springdyn demo`` (shipped in springdyn/data, copies in examples/report).

@@ -80,6 +80,32 @@ class ReportSettings(Parameters):
         positive=True,
     )
 
+    run_up_rate: float = param(
+        "1/s^2",
+        "engine acceleration of the run-up through the float speed (a run-up in a low gear: some 3000-10000 "
+        "engine rpm per second)",
+        display="rpm/s",
+        bare_unit="rpm/s",
+        default=5000.0 * np.pi / 30,
+        positive=True,
+    )
+
+    cylinder_pressure: str = param(
+        None,
+        "cylinder pressure against crank angle (a CSV beside the definition: crank_angle_deg and pressure_bar, _Pa, "
+        "_kPa or _MPa): "
+        "the gas force on the valve at the top speed (needs [timing] and [valve_train] seat_diameter)",
+        kind="str",
+        default=None,
+    )
+    port_pressure: float = param(
+        "Pa",
+        "pressure behind the valve head, absolute (with cylinder_pressure)",
+        display="bar",
+        default=101325.0,
+        positive=True,
+    )
+
     table = "report"
 
     def _validate(self) -> None:
@@ -114,6 +140,11 @@ class ValveDefinition:
     settings: ReportSettings = dataclasses.field(default_factory=ReportSettings)
     #: The ``[timing]`` table: crank angles from TDC (else from the start of the cam's event).
     timing: Timing | None = None
+    #: The ``[follower]`` and ``[friction]`` tables: the train's friction over speed.
+    follower: object = None
+    friction: object = None
+    #: The gas force of ``[report] cylinder_pressure`` (:class:`springdyn.valve.gas_force.GasForce`).
+    gas_force: object = None
 
 
 def load(doc: dict, path: Path) -> ValveDefinition:
@@ -134,7 +165,107 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         vt = vt.with_hla(doc["hla"], source=str(path))
     settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path))
     timing = Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
-    return ValveDefinition(spring, cam, vt, cam_given, settings, timing)
+    from springdyn.valve.follower import Follower
+    from springdyn.valve.friction import Friction
+
+    follower = Follower.from_dict(doc["follower"], source=str(path)) if "follower" in doc else None
+    if "friction" in doc and follower is None:
+        raise InputError(f"{path}: [friction] needs a [follower] table in the same file (the contact at the cam)")
+    friction = Friction.from_dict(doc["friction"], source=str(path)) if "friction" in doc else None
+    gas = None
+    if settings.cylinder_pressure is not None:
+        from springdyn.valve.gas_force import GasForce
+        from springdyn.valve.timing import crank_axis
+
+        need = [t for t, ok in (("[valve_train]", vt is not None), ("[timing]", timing is not None)) if not ok]
+        if vt is not None and vt.seat_diameter is None:
+            need.append("[valve_train] seat_diameter")
+        if need:
+            raise InputError(
+                f"{path}: [report] cylinder_pressure needs {', '.join(need)} (the force on the valve head)"
+            )
+        trace = Path(settings.cylinder_pressure)
+        trace = trace if trace.is_absolute() else Path(path).parent / trace
+        if not trace.is_file():
+            raise InputError(f"{path}: [report] cylinder_pressure = {settings.cylinder_pressure!r}: no such file")
+        gas = GasForce.from_file(
+            trace, axis=crank_axis(cam, timing), seat_diameter=vt.seat_diameter, port_pressure=settings.port_pressure
+        )
+    return ValveDefinition(spring, cam, vt, cam_given, settings, timing, follower, friction, gas)
+
+
+def _run_up_finding(sp, lobe, vt, f, rs, axis, out_dir, files, figures) -> str:
+    """A run-up through the float speed f [cam rpm] at [report] run_up_rate: where the valve
+    first floats against the momentary speed (springdyn.valve.run_up)."""
+    from springdyn.valve.run_up import speed_ramp
+
+    rate = rs.cam_rpm(rs.run_up_rate)  # cam rpm per second
+    ramp = speed_ramp(sp, lobe, vt, 0.85 * f, 1.1 * f, rate, float_scan=False)
+    r = ramp.summary
+    plt.close(ramp.plot(out_dir / "run_up.png"))
+    files.append(ramp.to_csv(out_dir / "run_up.csv"))
+    figures.append(
+        (
+            out_dir / "run_up.png",
+            f"Run-up from {0.85 * f:.0f} to {1.1 * f:.0f} cam rpm at {rate:.0f} cam rpm/s: lift-off and float "
+            "against the momentary speed",
+        )
+    )
+    onset = r["float_onset_cam_rpm"]
+    where = (
+        f"the valve first floats at {onset:.0f} cam rpm ({axis.per_cam * onset:.0f} engine rpm), "
+        f"{abs(onset - f):.0f} cam rpm {'above' if onset >= f else 'below'} the steady-state float speed {f:.0f} cam rpm"
+        if onset is not None
+        else "the valve does not float over the nose within the ramp"
+    )
+    return (
+        f"Run-up through the float speed at {axis.per_cam * rate:.0f} engine rpm/s ([report] run_up_rate): {where}"
+        + (f"; the first lift-off at {r['first_liftoff_cam_rpm']:.0f} cam rpm" if r["first_liftoff_cam_rpm"] else "")
+        + f"; up to {r['max_seat_landings']} seat landings per revolution."
+    )
+
+
+def _gas_finding(sp, lobe, vt, d, top, axis) -> str:
+    """The gas force on the valve at the top speed, against the run without it."""
+    with_gas = simulate(sp, lobe, top, valve_train=vt, gas_force=d.gas_force).summary
+    without = simulate(sp, lobe, top, valve_train=vt).summary
+    return (
+        f"Gas force on the valve head ([report] cylinder_pressure, seat {vt.seat_diameter * 1e3:.1f} mm) at "
+        f"{axis.per_cam * top:.0f} engine rpm: up to {with_gas['max_gas_force_N']:.0f} N, "
+        f"{with_gas['gas_force_at_opening_N']:.0f} N as the valve leaves its seat; the largest cam contact force is "
+        f"{with_gas['max_cam_contact_force_N']:.0f} N against {without['max_cam_contact_force_N']:.0f} N without it"
+        + ("; the valve lifts off the cam" if with_gas["nose_separation"] else "")
+        + "."
+    )
+
+
+def _friction_finding(sp, lobe, vt, d, report_speeds, axis, out_dir, files, figures) -> str:
+    """The train's friction over speed up to the top speed (springdyn.valve.friction)."""
+    from springdyn.valve.friction import friction_over_speed, simulation_friction
+
+    speeds = np.linspace(report_speeds[0], report_speeds[-1], 5)
+    analyses = [
+        simulation_friction(simulate(sp, lobe, float(r), valve_train=vt), d.follower, d.friction) for r in speeds
+    ]
+    sweep = friction_over_speed(analyses)
+    plt.close(sweep.plot(out_dir / "friction.png"))
+    files.append(sweep.to_csv(out_dir / "friction.csv"))
+    figures.append(
+        (out_dir / "friction.png", "Camshaft drive torque over the cam angle and friction power over speed (one valve)")
+    )
+    top = analyses[-1].summary
+    parts = ", ".join(
+        f"{k.replace('_', ' ')} {top[f'friction_power_{k}_W']:.1f} W"
+        for k in ("cam", "roller_bearing", "guide", "pivot")
+        if top[f"friction_power_{k}_W"] >= 0.05
+    )
+    return (
+        f"Friction of one valve's train ([follower]{'' if d.friction is not None else ', [friction] defaults'}): "
+        f"{analyses[0].summary['friction_power_W']:.1f} W at {axis.per_cam * speeds[0]:.0f} engine rpm to "
+        f"{top['friction_power_W']:.1f} W at {axis.per_cam * speeds[-1]:.0f} engine rpm ({parts}); mean camshaft "
+        f"drive torque {top['mean_drive_torque_N_m']:.2f} N m, peaks {top['min_drive_torque_N_m']:.1f} / "
+        f"{top['max_drive_torque_N_m']:.1f} N m; smallest film parameter {top.get('min_film_parameter', float('nan')):.2g}."
+    )
 
 
 def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
@@ -366,6 +497,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                 f"velocity ranges {v_lo:.2f}-{v_hi:.2f} m/s (band over the speeds within 25 rpm and, where a speed does "
                 f"not settle, over its last revolutions) with up to {landings} seat landings per cycle."
             )
+            findings.append(_run_up_finding(sp, lobe, vt, f, rs, axis, out_dir, files, figures))
         if vt.hla is not None:  # the adjuster at the top speed: leak-down, pump-up, socket hop
             at_top = simulate(sp, lobe, top, valve_train=vt).summary
             h = at_top["hla"]
@@ -411,6 +543,14 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                     "the valve's impact on its seat, the largest of the band over the scanned speeds within 25 rpm "
                     "and, where a speed does not settle, its last revolutions",
                 )
+            )
+        if d.gas_force is not None:
+            findings.append(_gas_finding(sp, lobe, vt, d, top, axis))
+        if d.follower is not None:
+            findings.append(_friction_finding(sp, lobe, vt, d, report_speeds, axis, out_dir, files, figures))
+            commands.append(
+                f"springdyn valve friction {source} --cam {source} --valve-train {source} "
+                f"--cam-rpm {report_speeds[0]:.0f}:{top:.0f}:{(top - report_speeds[0]) / 4:.0f}"
             )
         commands.append(
             f"springdyn valve float {source} --cam {source} --valve-train {source} "
