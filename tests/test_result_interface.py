@@ -164,6 +164,19 @@ FACTORIES = {
     "springdyn.valve.friction.FrictionSweep": lambda: importlib.import_module(
         "springdyn.valve.friction"
     ).friction_over_speed(_friction()),
+    "springdyn.valve.synthesis.Synthesis": lambda: importlib.import_module("springdyn.valve.synthesis").synthesize(
+        importlib.import_module("springdyn.valve.synthesis").Requirements.from_dict(
+            dict(
+                installed_length="38 mm",
+                installed_force="250 N",
+                lift="9 mm",
+                open_force="460 N",
+                max_outer_diameter="27 mm",
+                min_inner_diameter="16 mm",
+            )
+        ),
+        per_kind=1,
+    ),
     "springdyn.valve.lever.LeverTable": lambda: springdyn.valve.ValveTrain.from_toml(
         "examples/valve/finger_follower_geometry.toml"
     ).geometry.over_cam(springdyn.valve.Cam.from_toml("examples/valve/cam_finger.toml"), points=720),

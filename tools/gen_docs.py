@@ -50,6 +50,7 @@ PARAMETER_TABLES = {
     "follower": ("springdyn.valve.follower:Follower", "valve_train_follower.toml"),
     "geometry": ("springdyn.valve.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
     "friction": ("springdyn.valve.friction:Friction", "valve_train_follower.toml"),
+    "requirements": ("springdyn.valve.synthesis:Requirements", "valve_requirements.toml"),
     "cam_card": ("springdyn.valve.cam_from_lift:CamCard", "valve_cam_card.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
@@ -124,6 +125,13 @@ CROSS_KEY_RULES = {
     "friction": [
         ("`fluid_friction` <= `boundary_friction`", {"fluid_friction": 0.2}),
         ("`oil_viscosity` or the Walther keys (`oil_temperature`, ...), not both", {"oil_viscosity": "8 mPa*s"}),
+    ],
+    "requirements": [
+        ("`open_force` > `installed_force`", {"open_force": "100 N"}),
+        ("`lift` < `installed_length`", {"lift": "50 mm"}),
+        ("`min_inner_diameter` < `max_outer_diameter`", {"min_inner_diameter": "30 mm"}),
+        ("`min_float_cam_rpm` needs `cam` and `valve_train`", {"min_float_cam_rpm": "4000 rpm"}),
+        ('`material = "custom"` needs the four material values', {"material": "custom"}),
     ],
     "cam_card": [
         ("`duration` below 720 crank deg (360 cam deg)", {"duration": "800 deg"}),
@@ -397,6 +405,7 @@ def toml_reference() -> str:
         "follower": "beside `[valve_train]`: `springdyn valve cam-check --valve-train`, `cam-from-lift --valve-train`",
         "geometry": "beside `[valve_train]` (layout `rocker`) and a roller `[follower]`: `springdyn valve kinematics`, `simulate/float/sweep/cam-from-lift --valve-train`, `springdyn report`",
         "friction": "beside `[valve_train]` and `[follower]`: `springdyn valve friction --valve-train`",
+        "requirements": "`springdyn valve synthesize` (a file of its own)",
         "cam_card": "`springdyn valve cam-from-lift --card` (with a `[timing]` table beside it)",
         "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",

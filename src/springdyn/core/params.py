@@ -315,6 +315,7 @@ KNOWN_TABLES = (
     "follower",
     "geometry",
     "friction",
+    "requirements",
     "cam_card",
     "report",
     "cfcs",

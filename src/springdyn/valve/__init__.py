@@ -24,6 +24,14 @@ The definitions
 - :mod:`~springdyn.valve.follower` -- the follower at the cam: flat face or roller, base
   circle, contact width, crown, materials, allowable contact stress (``[follower]``).
 
+The spring designer's tools
+
+- :mod:`~springdyn.valve.synthesis` -- valve springs from requirements (``[requirements]``):
+  the lightest one-step and two-step springs that meet load points, space, Goodman, surge
+  and float speed, ranked with their margins;
+- :mod:`~springdyn.valve.materials` -- named spring wires (G, E, density, tensile strength
+  against diameter), relaxation, load-spectrum life.
+
 The cam designer's tools
 
 - :mod:`~springdyn.valve.cam_from_lift` -- the lobe a wanted valve lift or a cam card

@@ -151,9 +151,9 @@ def goodman_safety_factor(tau_min, tau_max, endurance_shear: float, ultimate_she
     ----------
     tau_min, tau_max : float or array_like
         Smallest and largest shear stress of the cycle [Pa].
-    endurance_shear : float
+    endurance_shear : float or array_like
         Fully reversed torsional endurance strength [Pa].
-    ultimate_shear : float
+    ultimate_shear : float or array_like
         Torsional ultimate strength [Pa].
 
     Examples
@@ -166,7 +166,7 @@ def goodman_safety_factor(tau_min, tau_max, endurance_shear: float, ultimate_she
     lo, hi = np.asarray(tau_min, dtype=float), np.asarray(tau_max, dtype=float)
     if np.any(hi < lo):
         raise InputError("tau_max must not be below tau_min")
-    if not (endurance_shear > 0 and ultimate_shear > 0):
+    if not (np.all(np.asarray(endurance_shear) > 0) and np.all(np.asarray(ultimate_shear) > 0)):
         raise InputError("endurance_shear and ultimate_shear must be positive")
     mean, amp = 0.5 * (hi + lo), 0.5 * (hi - lo)
     demand = amp / endurance_shear + np.maximum(mean, 0.0) / ultimate_shear

@@ -4,7 +4,8 @@
 - :mod:`.common` -- what every family's commands share (outputs, ranges, tables);
 - :mod:`.valve`, :mod:`.cfcs`, :mod:`.lsd` -- each family's commands (:mod:`.valve_cam_design`:
   the valve commands that design and check a cam and a lever, ``cam-from-lift``, ``cam-check``
-  and ``kinematics``; :mod:`.valve_friction`: ``friction``, the drive torque and friction power);
+  and ``kinematics``; :mod:`.valve_friction`: ``friction``, the drive torque and friction power;
+  :mod:`.valve_synthesis`: ``synthesize``, springs from requirements);
 - :mod:`.docs_cmd` -- ``springdyn docs``, the generated references.
 """
 

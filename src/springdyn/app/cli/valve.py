@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springdyn.app.cli import valve_cam_design, valve_friction
+from springdyn.app.cli import valve_cam_design, valve_friction, valve_synthesis
 from springdyn.app.cli.common import (
     add_output_options,
     announce_written,
@@ -259,6 +259,7 @@ def register(sub) -> None:
 
     valve_cam_design.register(vsub)  # cam-from-lift, cam-check, kinematics
     valve_friction.register(vsub, _add_speed_options, _add_model_option, cam_rpm_from_args)
+    valve_synthesis.register(vsub)
 
 
 def _add_revolution_options(p) -> None:
