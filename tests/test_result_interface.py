@@ -177,6 +177,20 @@ FACTORIES = {
         ),
         per_kind=1,
     ),
+    "springdyn.valve.tolerances.ToleranceStudy": lambda: importlib.import_module(
+        "springdyn.valve.tolerances"
+    ).tolerance_study(
+        _valve_spring(),
+        _valve_cam(),
+        {
+            "wire_diameter": importlib.import_module("springdyn.valve.tolerances").parse_tolerance(
+                "wire_diameter", "+-0.02 mm"
+            )
+        },
+        count=8,
+        seed=1,
+        speeds=[2000.0],
+    ),
     "springdyn.valve.lever.LeverTable": lambda: springdyn.valve.ValveTrain.from_toml(
         "examples/valve/finger_follower_geometry.toml"
     ).geometry.over_cam(springdyn.valve.Cam.from_toml("examples/valve/cam_finger.toml"), points=720),

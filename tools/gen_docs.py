@@ -51,6 +51,7 @@ PARAMETER_TABLES = {
     "geometry": ("springdyn.valve.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
     "friction": ("springdyn.valve.friction:Friction", "valve_train_follower.toml"),
     "requirements": ("springdyn.valve.synthesis:Requirements", "valve_requirements.toml"),
+    "criteria": ("springdyn.valve.tolerances:Criteria", "valve_tolerances.toml"),
     "cam_card": ("springdyn.valve.cam_from_lift:CamCard", "valve_cam_card.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
@@ -133,6 +134,7 @@ CROSS_KEY_RULES = {
         ("`min_float_cam_rpm` needs `cam` and `valve_train`", {"min_float_cam_rpm": "4000 rpm"}),
         ('`material = "custom"` needs the four material values', {"material": "custom"}),
     ],
+    "criteria": [],
     "cam_card": [
         ("`duration` below 720 crank deg (360 cam deg)", {"duration": "800 deg"}),
         ("`check_height` < `lift` when both are measured at the same place", {"check_height": "9 mm"}),
@@ -406,6 +408,7 @@ def toml_reference() -> str:
         "geometry": "beside `[valve_train]` (layout `rocker`) and a roller `[follower]`: `springdyn valve kinematics`, `simulate/float/sweep/cam-from-lift --valve-train`, `springdyn report`",
         "friction": "beside `[valve_train]` and `[follower]`: `springdyn valve friction --valve-train`",
         "requirements": "`springdyn valve synthesize` (a file of its own)",
+        "criteria": "beside `[tolerances]`: `springdyn valve tolerance --tolerances`",
         "cam_card": "`springdyn valve cam-from-lift --card` (with a `[timing]` table beside it)",
         "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",

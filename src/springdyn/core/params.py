@@ -316,6 +316,8 @@ KNOWN_TABLES = (
     "geometry",
     "friction",
     "requirements",
+    "tolerances",
+    "criteria",
     "cam_card",
     "report",
     "cfcs",

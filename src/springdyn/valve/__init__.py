@@ -29,6 +29,8 @@ The spring designer's tools
 - :mod:`~springdyn.valve.synthesis` -- valve springs from requirements (``[requirements]``):
   the lightest one-step and two-step springs that meet load points, space, Goodman, surge
   and float speed, ranked with their margins;
+- :mod:`~springdyn.valve.tolerances` -- a spring across its manufacturing tolerances
+  (``[tolerances]``, ``[criteria]``): Sobol or Monte Carlo variants, percentiles, failing shares;
 - :mod:`~springdyn.valve.materials` -- named spring wires (G, E, density, tensile strength
   against diameter), relaxation, load-spectrum life.
 

@@ -260,6 +260,7 @@ def register(sub) -> None:
     valve_cam_design.register(vsub)  # cam-from-lift, cam-check, kinematics
     valve_friction.register(vsub, _add_speed_options, _add_model_option, cam_rpm_from_args)
     valve_synthesis.register(vsub)
+    valve_synthesis.register_tolerance(vsub, _add_model_option, cam_rpm_from_args)
 
 
 def _add_revolution_options(p) -> None:

@@ -1,5 +1,6 @@
-"""``springdyn valve synthesize``: valve springs from requirements (thin layer over
-:mod:`springdyn.valve.synthesis`)."""
+"""``springdyn valve synthesize`` and ``springdyn valve tolerance``: valve springs from
+requirements and proven across tolerances (thin layer over :mod:`springdyn.valve.synthesis`
+and :mod:`springdyn.valve.tolerances`)."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from springdyn.app.cli.common import (
 )
 from springdyn.core.errors import InputError
 
-__all__ = ["register", "cmd_synthesize"]
+__all__ = ["register", "register_tolerance", "cmd_synthesize", "cmd_tolerance"]
 
 
 def register(vsub) -> None:
@@ -97,4 +98,110 @@ def cmd_synthesize(args) -> int:
     )
     print(f"the candidates' spring files and candidates.csv are in {args.out_dir}")
     print_notes(res.summary)
+    return 0
+
+
+def register_tolerance(vsub, add_model_option, cam_speeds) -> None:
+    """Add ``tolerance`` to the ``springdyn valve`` sub-commands ``vsub``."""
+    p = vsub.add_parser(
+        "tolerance",
+        help="a spring across its manufacturing tolerances ([tolerances], [criteria]): Monte Carlo or Sobol "
+        "variants swept over the speeds; variants.nc, percentiles, failing shares, histograms (resumable)",
+    )
+    p.add_argument("spring", metavar="SPRING.toml", help="file with a [spring] table")
+    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    p.add_argument("--tolerances", required=True, metavar="TOL.toml", help="file with [tolerances] (and [criteria])")
+    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table (float speed, lash)")
+    p.add_argument("--samples", required=True, metavar="N", help="variants (a power of 2 for Sobol points)")
+    p.add_argument(
+        "--seed", default="0", metavar="S", help="seed of the sampling (default 0): the same seed, the same variants"
+    )
+    p.add_argument(
+        "--method", choices=("sobol", "monte-carlo"), default="sobol", help="scrambled Sobol (default) or Monte Carlo"
+    )
+    p.add_argument("--cam-rpm", required=True, metavar="START:STOP:STEP", help="cam speeds of each variant's sweep")
+    p.add_argument("--out", dest="out_dir", required=True, metavar="DIR", help="folder: variants.nc, chunks/ (resumes)")
+    p.add_argument(
+        "--scheduler", metavar="ADDRESS", help="run the chunks on a Dask scheduler, e.g. tcp://127.0.0.1:8786"
+    )
+    p.set_defaults(engine_rpm=None)
+    add_model_option(p)
+    add_output_options(p)
+    p.set_defaults(func=cmd_tolerance, cam_speeds=cam_speeds)
+
+
+def cmd_tolerance(args) -> int:
+    """``springdyn valve tolerance``: sample, run in chunks, summarise."""
+    from pathlib import Path
+
+    from springdyn.app.cli.common import as_options, quantity
+    from springdyn.core.progress import progress
+    from springdyn.valve.cam import Cam
+    from springdyn.valve.spring import ValveSpring
+    from springdyn.valve.tolerances import FIGURES, OUTPUTS, read_tolerances, tolerance_study
+    from springdyn.valve.valvetrain import ValveTrain
+
+    count = quantity(args.samples, "", "--samples")
+    if count != int(count) or not 1 <= count <= 10_000_000:
+        raise InputError(f"--samples = {args.samples!r} must be a whole number from 1 to 10000000")
+    seed = quantity(args.seed, "", "--seed")
+    if seed != int(seed) or seed < 0:
+        raise InputError(f"--seed = {args.seed!r} must be a whole number, 0 or more")
+    spring = ValveSpring.from_toml(args.spring).with_model(args.model)
+    cam = Cam.from_toml(args.cam)
+    vt = ValveTrain.from_toml(args.valve_train) if args.valve_train else None
+    tols, criteria = read_tolerances(args.tolerances)
+    if "lash" in tols and vt is None:
+        raise InputError("[tolerances] lash is the valve train's: give --valve-train")
+    speeds = args.cam_speeds(args, ranged=True)
+    client = None
+    if args.scheduler:
+        from springdyn.valve.sweeps import connect
+
+        with as_options(scheduler="--scheduler"):
+            client = connect(args.scheduler)
+
+    def bar(items, total=None, desc=""):
+        return progress(items, total=total, desc=desc, quiet=args.quiet)
+
+    res = tolerance_study(
+        spring,
+        cam,
+        tols,
+        criteria,
+        count=int(count),
+        seed=int(seed),
+        speeds=speeds,
+        valve_train=vt,
+        method=args.method,
+        out_dir=args.out_dir,
+        client=client,
+        progress=bar,
+    )
+    written = [Path(args.out_dir) / "variants.nc"]
+    plot = args.plot or str(Path(args.out_dir) / "histograms.png")
+    close_figure(res.plot(plot))
+    written.append(plot)
+    if args.csv:
+        written.append(res.to_csv(args.csv))
+    announce_written(written, args)
+    s = res.summary
+    if args.json:
+        print_json(dict(s, written=[str(p) for p in written]))
+        return 0
+    print(
+        f"{s['variants']} variants ({s['method']}, seed {s['seed']}"
+        + (f", {s['resumed_variants']} read back from {args.out_dir}/chunks" if s["resumed_variants"] else "")
+        + f") of {args.spring} over {speeds[0]:g}-{speeds[-1]:g} cam rpm"
+    )
+    rows = []
+    for k in FIGURES:
+        if f"{k}_p50" not in s:
+            continue
+        qs = ("0.135", "2.5", "50", "97.5", "99.865")
+        rows.append((k, OUTPUTS[k], f"{s[f'nominal_{k}']:.4g}", *(f"{s[f'{k}_p{q}']:.4g}" for q in qs)))
+    print_table(rows, headers=("output", "unit", "nominal", "0.135 %", "2.5 %", "50 %", "97.5 %", "99.865 %"))
+    fails = [(k[len("fail_share_") :], f"{v:.1%}") for k, v in s.items() if k.startswith("fail_share_")]
+    print_table(fails, headers=("criterion", "variants failing"))
+    print_notes(s)
     return 0

@@ -1,0 +1,562 @@
+"""A spring proven across its manufacturing tolerances: the ``[tolerances]`` table and
+:func:`tolerance_study`.
+
+**The table** names the parameters under their own names (:data:`TOLERANCED`): the spring's
+``wire_diameter``, ``mean_diameter``, ``free_length``, ``installed_length``,
+``shear_modulus``, ``youngs_modulus``, ``density``, the cam's ``lift`` and the valve train's
+``lash``.  A value is a band, uniform between its limits (``wire_diameter = "+-0.02 mm"``,
+``shear_modulus = "+-2 %"``), or a distribution (``wire_diameter = { distribution =
+"normal", sigma = "0.01 mm" }``; ``"uniform"`` takes ``limits``).  A ``[criteria]`` table
+beside it sets the limits each variant is judged against (:class:`Criteria`).
+
+**Sampling** (:func:`sample`): scrambled Sobol points (``scipy.stats.qmc.Sobol``, a
+low-discrepancy sequence: percentiles converge faster than with random points) or Monte
+Carlo (``numpy.random.default_rng``), both reproducible from the seed; a point ``u`` in the
+unit cube becomes ``nominal + (2u - 1) band`` (uniform) or ``nominal + sigma Phi^-1(u)``
+(normal, ``scipy.special.ndtri``).
+
+**Each variant** (:func:`run_variant`) is the spring, cam and train with the sampled values,
+swept over the speed range (:func:`springdyn.valve.sweep`, every speed to its periodic
+steady state): ``Fset`` and ``f1`` (the model's), the float speed (the lowest swept speed
+from which the valve leaves the cam over the nose at every higher one), the peak retainer
+force, the lowest speed with coil clash, and the smallest Goodman safety over the speeds.
+
+**Outputs**: ``variants.nc`` (dimension ``variant``: the inputs under their names and the
+outputs), percentiles, the share of variants that fail each criterion, histograms.  The
+variants run in chunks written to ``DIR/chunks/`` as they finish: a killed run resumes from
+them (a chunk belongs to its sample: the seed, the count, the method and the table).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..core.errors import InputError
+from ..core.params import Parameters, load_toml, param
+from ..core.results import Result
+from ..core.units import to_si
+
+__all__ = [
+    "TOLERANCED",
+    "Tolerance",
+    "Criteria",
+    "read_tolerances",
+    "sample",
+    "run_variant",
+    "tolerance_study",
+    "ToleranceStudy",
+    "OUTPUTS",
+]
+
+#: The parameters a ``[tolerances]`` table may name, with their SI unit and where they live.
+TOLERANCED = {
+    "wire_diameter": ("m", "spring"),
+    "mean_diameter": ("m", "spring"),
+    "free_length": ("m", "spring"),
+    "installed_length": ("m", "spring"),
+    "shear_modulus": ("Pa", "spring"),
+    "youngs_modulus": ("Pa", "spring"),
+    "density": ("kg/m^3", "spring"),
+    "lift": ("m", "cam"),
+    "lash": ("m", "valve_train"),
+}
+#: The outputs per variant, with their units.  A float speed or clash onset beyond the speed
+#: range is the range's top speed (a lower bound) with ``float_in_range`` / ``clash_in_range``
+#: 0; a variant the model refuses has ``refused`` 1 and zeros (no NaN in an output).
+OUTPUTS = {
+    "Fset": "N",
+    "f1": "Hz",
+    "float_cam_rpm": "rpm",
+    "max_retainer_force": "N",
+    "clash_onset_cam_rpm": "rpm",
+    "goodman_safety": "1",
+    "float_in_range": "1",
+    "clash_in_range": "1",
+    "refused": "1",
+}
+#: The outputs that are figures (percentiles and histograms); the others are flags.
+FIGURES = ("Fset", "f1", "float_cam_rpm", "max_retainer_force", "clash_onset_cam_rpm", "goodman_safety")
+#: Percentiles reported of every output [%].
+PERCENTILES = (0.135, 2.5, 50.0, 97.5, 99.865)
+#: Variants per chunk on disk (a killed run loses at most one chunk's work).
+CHUNK = 50
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """One toleranced parameter: ``kind`` "uniform" (``half_width``) or "normal" (``sigma``), in SI."""
+
+    name: str
+    kind: str
+    half_width: float = 0.0
+    sigma: float = 0.0
+
+    def values(self, nominal: float, u: np.ndarray) -> np.ndarray:
+        """Sampled values [SI] from points ``u`` in (0, 1).
+
+        Parameters
+        ----------
+        nominal : float
+            Nominal value [SI].
+        u : ndarray
+            Points in (0, 1) [-].
+        """
+        if self.kind == "uniform":
+            return nominal + (2.0 * u - 1.0) * self.half_width
+        from scipy.special import ndtri
+
+        return nominal + self.sigma * ndtri(np.clip(u, 1e-12, 1.0 - 1e-12))
+
+
+def _quantity(text, unit: str, field_name: str, nominal_percent: bool):
+    """A tolerance width: ``"0.02 mm"`` [unit] or ``"2 %"`` (a fraction, flagged)."""
+    if isinstance(text, str) and text.strip().endswith("%"):
+        return float(to_si(text, "", field_name)), True
+    return float(to_si(text, unit, field_name)), False
+
+
+def parse_tolerance(name: str, value) -> tuple[Tolerance, bool]:
+    """A ``[tolerances]`` entry: the tolerance and whether its width is relative (a %).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`TOLERANCED`.
+    value : str or dict
+        ``"+-0.02 mm"``, ``"+-2 %"``, or ``{distribution = "normal", sigma = "0.01 mm"}``.
+    """
+    where = f"[tolerances] {name}"
+    if name not in TOLERANCED:
+        raise InputError(f"{where}: not a toleranced parameter; allowed: {', '.join(TOLERANCED)}")
+    unit = TOLERANCED[name][0]
+    if isinstance(value, str):
+        text = value.strip()
+        for prefix in ("+-", "±", "+/-"):
+            if text.startswith(prefix):
+                width, rel = _quantity(text[len(prefix) :].strip(), unit, where, True)
+                if not width > 0:
+                    raise InputError(f"{where} = {value!r}: the band must be positive")
+                return Tolerance(name, "uniform", half_width=width), rel
+        raise InputError(
+            f'{where} = {value!r}: give a band "+-0.02 mm" (or "+-2 %") or a table {{ distribution = "normal", sigma = "0.01 mm" }}'
+        )
+    if isinstance(value, dict):
+        dist = value.get("distribution")
+        extra = sorted(set(value) - {"distribution", "sigma", "limits"})
+        if extra:
+            raise InputError(
+                f"{where}: unknown key {extra[0]!r}; allowed: distribution, sigma (normal), limits (uniform)"
+            )
+        if dist == "normal":
+            if "sigma" not in value:
+                raise InputError(f'{where}: distribution = "normal" needs sigma (e.g. sigma = "0.01 mm")')
+            sigma, rel = _quantity(value["sigma"], unit, f"{where}.sigma", True)
+            if not sigma > 0:
+                raise InputError(f"{where}.sigma must be positive")
+            return Tolerance(name, "normal", sigma=sigma), rel
+        if dist == "uniform":
+            if "limits" not in value:
+                raise InputError(f'{where}: distribution = "uniform" needs limits (e.g. limits = "+-0.02 mm")')
+            return parse_tolerance(name, value["limits"])
+        raise InputError(f'{where}: distribution = {dist!r} must be "normal" or "uniform"')
+    raise InputError(f"{where} = {value!r}: give a band string or a distribution table")
+
+
+@dataclass(frozen=True)
+class Criteria(Parameters):
+    """The ``[criteria]`` table beside ``[tolerances]``: what a variant must meet."""
+
+    min_goodman_safety: float = param("", "smallest Goodman safety over the speeds", positive=True, default=1.1)
+    min_float_cam_rpm: float = param(
+        "rad/s",
+        "smallest float speed (default: the top of the speed range: no float within it)",
+        display="rpm",
+        bare_unit="rpm",
+        positive=True,
+        default=None,
+    )
+    no_coil_clash: bool = param(None, "no coil clash within the speed range", kind="bool", default=True)
+    max_retainer_force: float = param(
+        "N", "largest retainer force over the speeds (optional)", positive=True, default=None
+    )
+    installed_force_band: float = param(
+        "",
+        "largest deviation of Fset from the nominal spring's (a fraction, e.g. '10 %'; optional)",
+        positive=True,
+        default=None,
+    )
+
+    table = "criteria"
+
+
+def read_tolerances(path) -> tuple[dict, Criteria]:
+    """The ``[tolerances]`` (name -> (Tolerance, relative)) and ``[criteria]`` tables of a file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The tolerance file.
+    """
+    doc = load_toml(path, allowed=("tolerances", "criteria"))
+    if "tolerances" not in doc or not doc["tolerances"]:
+        raise InputError(f'{path}: no [tolerances] table (e.g. wire_diameter = "+-0.02 mm")')
+    tols = {k: parse_tolerance(k, v) for k, v in doc["tolerances"].items()}
+    return tols, Criteria.from_dict(doc.get("criteria", {}), source=str(path))
+
+
+def nominal_values(spring, cam, valve_train) -> dict:
+    """The nominal value of every toleranced parameter [SI] (:data:`TOLERANCED`).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain or None
+    """
+    out = {k: float(getattr(spring, k)) for k, (_, where) in TOLERANCED.items() if where == "spring"}
+    out["lift"] = float(cam.max_lift)
+    out["lash"] = float(valve_train.lash) if valve_train is not None else 0.0
+    return out
+
+
+def sample(tolerances: dict, nominal: dict, count: int, seed: int, method: str = "sobol") -> dict:
+    """Sampled values of the toleranced parameters [SI], reproducible from the seed.
+
+    Parameters
+    ----------
+    tolerances : dict
+        name -> (Tolerance, relative) (:func:`read_tolerances`).
+    nominal : dict
+        name -> nominal value [SI] (:func:`nominal_values`).
+    count : int
+        Variants [-].
+    seed : int
+        Seed of the generator [-].
+    method : {"sobol", "monte-carlo"}
+        Scrambled Sobol points or pseudo-random ones.
+    """
+    names = list(tolerances)
+    if method == "sobol":
+        import warnings
+
+        from scipy.stats import qmc
+
+        with warnings.catch_warnings():  # balanced at powers of 2; ToleranceStudy notes it
+            warnings.simplefilter("ignore")
+            u = qmc.Sobol(d=len(names), scramble=True, seed=seed).random(count)
+    elif method == "monte-carlo":
+        u = np.random.default_rng(seed).random((count, len(names)))
+    else:
+        raise InputError(f"method = {method!r} must be 'sobol' or 'monte-carlo'")
+    out = {}
+    for j, name in enumerate(names):
+        tol, rel = tolerances[name]
+        scale = nominal[name] if rel else 1.0
+        t = dataclasses.replace(tol, half_width=tol.half_width * scale, sigma=tol.sigma * scale)
+        out[name] = t.values(nominal[name], u[:, j])
+    return out
+
+
+def variant(spring, cam, valve_train, values: dict):
+    """The spring, cam and train with the values ``values`` [SI] (name -> value).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain or None
+    values : dict
+        Values of toleranced parameters [SI].
+    """
+    import warnings
+
+    spring_changes = {k: float(v) for k, v in values.items() if TOLERANCED[k][1] == "spring"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sp = dataclasses.replace(spring, **spring_changes) if spring_changes else spring
+    c = cam.scaled(float(values["lift"]) / cam.max_lift) if "lift" in values else cam
+    vt = valve_train
+    if "lash" in values and vt is not None:
+        vt = dataclasses.replace(vt, lash=max(float(values["lash"]), 0.0))
+    return sp, c, vt
+
+
+def run_variant(spring, cam, valve_train, speeds) -> dict:
+    """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min].
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain or None
+    speeds : array_like
+        Cam speeds [rev/min], ascending.
+    """
+    import warnings
+
+    from .separation import float_speed_of_scan
+    from .sweeps import sweep
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sw = sweep(spring, cam, speeds, valve_train=valve_train)
+    t = sw.summary_table()
+    rpm = np.asarray(t["cam_rpm"], dtype=float)
+    p = spring.spring_model.internal_parameters()
+    clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
+    f = float_speed_of_scan(rpm, t["nose_separation"]) if valve_train is not None else None
+    return dict(
+        Fset=float(p["Fset"]),
+        f1=float(spring.spring_model.first_mode_installed),
+        float_cam_rpm=float(rpm[-1]) if f is None else f,
+        max_retainer_force=float(np.max(t["max_retainer_force_N"])),
+        clash_onset_cam_rpm=float(rpm[clash[0]]) if clash.size else float(rpm[-1]),
+        goodman_safety=float(np.min(t["fatigue_safety_factor"])),
+        float_in_range=float(f is not None),
+        clash_in_range=float(clash.size > 0),
+        refused=0.0,
+    )
+
+
+def _key(tolerances, count, seed, method, speeds) -> str:
+    """The sample's fingerprint: chunks on disk belong to it."""
+    spec = {k: [t.kind, t.half_width, t.sigma, rel] for k, (t, rel) in tolerances.items()}
+    text = json.dumps([spec, count, seed, method, [float(s) for s in speeds]], sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _run_chunk(spring, cam, valve_train, speeds, values: dict, lo: int, hi: int) -> dict:
+    rows = {k: [] for k in OUTPUTS}
+    for i in range(lo, hi):
+        try:
+            sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
+            r = run_variant(sp, c, vt, speeds)
+        except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
+            r = dict({k: 0.0 for k in OUTPUTS}, refused=1.0)
+        for k in OUTPUTS:
+            rows[k].append(r[k])
+    return {k: np.asarray(v, dtype=float) for k, v in rows.items()}
+
+
+def tolerance_study(
+    spring,
+    cam,
+    tolerances: dict,
+    criteria: Criteria | None = None,
+    *,
+    count: int,
+    seed: int,
+    speeds,
+    valve_train=None,
+    method: str = "sobol",
+    out_dir=None,
+    client=None,
+    progress=None,
+) -> ToleranceStudy:
+    """The spring across its tolerances (module docstring).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    tolerances : dict
+        name -> (Tolerance, relative) (:func:`read_tolerances`).
+    criteria : Criteria, optional
+        The limits (default: :class:`Criteria`'s).
+    count : int
+        Variants [-].
+    seed : int
+        Seed [-].
+    speeds : array_like
+        Cam speeds of each variant's sweep [rev/min].
+    valve_train : ValveTrain, optional
+        The train (float speed, lash).
+    method : {"sobol", "monte-carlo"}
+    out_dir : path-like, optional
+        Folder of the chunks (resumable) and of ``variants.nc``.
+    client : dask.distributed.Client, optional
+        Runs the chunks on a Dask cluster.
+    progress : callable, optional
+        ``progress(iterable, total=, desc=)`` wrapper.
+    """
+    import xarray as xr
+
+    criteria = Criteria() if criteria is None else criteria
+    if not isinstance(count, int) or not 1 <= count <= 10_000_000:
+        raise InputError(f"count = {count!r} must be a whole number of variants from 1 to 10000000")
+    speeds = np.sort(np.atleast_1d(np.asarray(speeds, dtype=float)))
+    nominal = nominal_values(spring, cam, valve_train)
+    values = sample(tolerances, nominal, count, seed, method)
+    key = _key(tolerances, count, seed, method, speeds)
+    chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
+    if chunk_dir is not None:
+        chunk_dir.mkdir(parents=True, exist_ok=True)
+    bounds = [(lo, min(lo + CHUNK, count)) for lo in range(0, count, CHUNK)]
+    done, resumed = {}, 0
+    for lo, hi in bounds:
+        f = None if chunk_dir is None else chunk_dir / f"{key}_{lo:08d}.npz"
+        if f is not None and f.exists():
+            with np.load(f) as z:
+                done[lo] = {k: z[k] for k in OUTPUTS}
+            resumed += hi - lo
+    todo = [(lo, hi) for lo, hi in bounds if lo not in done]
+
+    def store(lo, res):
+        done[lo] = res
+        if chunk_dir is not None:
+            from ..core.io import atomic_path
+
+            with atomic_path(chunk_dir / f"{key}_{lo:08d}.npz") as tmp:
+                with open(tmp, "wb") as fh:
+                    np.savez(fh, **res)
+
+    if client is not None and todo:
+        futures = [
+            client.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, pure=False) for lo, hi in todo
+        ]
+        from dask.distributed import as_completed
+
+        where = {f.key: lo for f, (lo, _) in zip(futures, todo)}
+        it = as_completed(futures)
+        for fut in progress(it, total=len(futures), desc="variants") if progress else it:
+            store(where[fut.key], fut.result())
+    else:
+        it = todo
+        for lo, hi in progress(it, total=len(todo), desc="variants") if progress else it:
+            store(lo, _run_chunk(spring, cam, valve_train, speeds, values, lo, hi))
+    outputs = {k: np.concatenate([done[lo][k] for lo, _ in bounds]) for k in OUTPUTS}
+    units = {k: TOLERANCED[k][0] for k in values}
+    data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
+    data.update({k: ("variant", v, {"units": OUTPUTS[k]}) for k, v in outputs.items()})
+    ds = xr.Dataset(
+        data,
+        coords={"variant": ("variant", np.arange(count))},
+        attrs=dict(method=method, seed=int(seed), count=int(count), sample_key=key),
+    )
+    nominal_out = run_variant(spring, cam, valve_train, speeds)
+    study = ToleranceStudy(
+        dataset=ds,
+        criteria=criteria,
+        nominal=nominal_out,
+        speeds=speeds,
+        resumed=resumed,
+        floats=valve_train is not None,
+        tolerances={k: (t.kind, t.half_width, t.sigma, rel) for k, (t, rel) in tolerances.items()},
+    )
+    if out_dir is not None:
+        from ..core.io import atomic_path
+
+        with atomic_path(Path(out_dir) / "variants.nc") as tmp:
+            ds.to_netcdf(tmp)
+    return study
+
+
+@dataclass(frozen=True, repr=False)
+class ToleranceStudy(Result):
+    """The variants of a tolerance study (:func:`tolerance_study`): inputs, outputs, percentiles, failures."""
+
+    dataset: object  #: xarray Dataset over ``variant``
+    criteria: Criteria
+    nominal: dict  #: the nominal spring's outputs
+    speeds: np.ndarray  #: [rev/min]
+    resumed: int = 0  #: variants read back from chunks on disk
+    tolerances: dict = field(default_factory=dict)
+    #: False for the spring alone (no float speed), True with a valve train.
+    floats: bool = True
+
+    title = "tolerance study"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.dataset.sizes['variant']} variants"
+
+    def failures(self) -> dict:
+        """Per criterion the boolean array of the variants that fail it (a refused variant fails all)."""
+        ds, c = self.dataset, self.criteria
+        refused = ds["refused"].values > 0.5
+        out = {}
+        g = ds["goodman_safety"].values
+        out["goodman"] = refused | ~(g >= c.min_goodman_safety)
+        if self.floats:
+            need = c.min_float_cam_rpm * 30.0 / math.pi if c.min_float_cam_rpm is not None else float(self.speeds[-1])
+            f = ds["float_cam_rpm"].values
+            out["float_speed"] = refused | ((ds["float_in_range"].values > 0.5) & (f < need))
+        if c.no_coil_clash:
+            out["coil_clash"] = refused | (ds["clash_in_range"].values > 0.5)
+        if c.max_retainer_force is not None:
+            out["retainer_force"] = refused | ~(ds["max_retainer_force"].values <= c.max_retainer_force)
+        if c.installed_force_band is not None:
+            dev = np.abs(ds["Fset"].values / self.nominal["Fset"] - 1.0)
+            out["installed_force"] = refused | ~(dev <= c.installed_force_band)
+        return out
+
+    def _summary(self) -> dict:
+        ds = self.dataset
+        n = ds.sizes["variant"]
+        s = dict(variants=int(n), method=ds.attrs["method"], seed=ds.attrs["seed"], resumed_variants=int(self.resumed))
+        ok = ds["refused"].values < 0.5
+        for k in FIGURES:
+            if k == "float_cam_rpm" and not self.floats:
+                continue
+            v = ds[k].values
+            s[f"nominal_{k}"] = float(self.nominal[k])
+            if ok.any():
+                for q, val in zip(PERCENTILES, np.percentile(v[ok], PERCENTILES)):
+                    s[f"{k}_p{q:g}"] = float(val)
+        s["float_in_range_share"] = float(ds["float_in_range"].values[ok].mean()) if ok.any() else 0.0
+        s["clash_in_range_share"] = float(ds["clash_in_range"].values[ok].mean()) if ok.any() else 0.0
+        fails = self.failures()
+        for k, f in fails.items():
+            s[f"fail_share_{k}"] = float(np.mean(f))
+        s["fail_share_any"] = float(np.mean(np.any(np.stack(list(fails.values())), axis=0))) if fails else 0.0
+        notes = []
+        if not ok.all():
+            notes.append(f"{int((~ok).sum())} variants refused by the model (counted as failing)")
+        top = float(self.speeds[-1])
+        if self.floats and s["float_in_range_share"] < 1.0:
+            notes.append(
+                f"the float speed of {1 - s['float_in_range_share']:.0%} of the variants lies above the range: they count "
+                f"as {top:g} cam rpm (a lower bound)"
+            )
+        if s["clash_in_range_share"] < 1.0:
+            notes.append(f"a clash onset beyond the range counts as its top speed {top:g} cam rpm (no clash within it)")
+        if n < 100:
+            notes.append(f"{n} variants: the outer percentiles (0.135 %, 99.865 %) need some thousands")
+        if ds.attrs["method"] == "sobol" and n & (n - 1):
+            notes.append(f"Sobol points are balanced at powers of 2 (e.g. {2 ** int(math.log2(n) + 1)} variants)")
+        s["notes"] = notes
+        return s
+
+    def to_xarray(self):
+        return self.dataset
+
+    def _plot(self, ax=None):
+        from ..core.plotting import plt
+
+        ds = self.dataset
+        names = [k for k in FIGURES if self.floats or k != "float_cam_rpm"]
+        if ax is not None:
+            fig, axes = ax.figure, [ax]
+            names = names[:1]
+        else:
+            cols = 3
+            rows = math.ceil(len(names) / cols)
+            fig, grid = plt.subplots(rows, cols, figsize=(11, 3.2 * rows))
+            axes = list(np.ravel(grid))
+            for a in axes[len(names) :]:
+                a.set_visible(False)
+        for a, k in zip(axes, names):
+            v = ds[k].values
+            a.hist(v[ds["refused"].values < 0.5], bins=30, color="C0", alpha=0.8)
+            a.axvline(self.nominal[k], color="k", lw=1, label="nominal")
+            a.set_xlabel(f"{k} [{OUTPUTS[k]}]")
+            a.set_ylabel("variants")
+        fig.tight_layout()
+        return fig

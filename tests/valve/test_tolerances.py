@@ -1,0 +1,125 @@
+"""A spring across its tolerances (springdyn.valve.tolerances, issue 29 part 2)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from springdyn.core.errors import InputError
+from springdyn.valve import Cam, ValveSpring
+from springdyn.valve.tolerances import Criteria, parse_tolerance, run_variant, sample, tolerance_study, variant
+
+SPRING = "examples/valve/one_step_spring.toml"
+CAM = "examples/valve/cam_345.toml"
+
+
+def _tols(**kw):
+    return {k: parse_tolerance(k, v) for k, v in kw.items()}
+
+
+def test_tolerance_forms_and_messages():
+    t, rel = parse_tolerance("wire_diameter", "+-0.02 mm")
+    assert (t.kind, t.half_width, rel) == ("uniform", pytest.approx(2e-5), False)
+    t, rel = parse_tolerance("shear_modulus", "+-2 %")
+    assert (t.kind, t.half_width, rel) == ("uniform", pytest.approx(0.02), True)
+    t, rel = parse_tolerance("free_length", {"distribution": "normal", "sigma": "0.1 mm"})
+    assert (t.kind, t.sigma) == ("normal", pytest.approx(1e-4))
+    with pytest.raises(InputError, match="allowed: wire_diameter"):
+        parse_tolerance("wire_diamter", "+-0.02 mm")
+    with pytest.raises(InputError, match='give a band "\\+-0.02 mm"'):
+        parse_tolerance("wire_diameter", "0.02 mm")
+    with pytest.raises(InputError, match="needs sigma"):
+        parse_tolerance("wire_diameter", {"distribution": "normal"})
+    with pytest.raises(InputError, match='must be "normal" or "uniform"'):
+        parse_tolerance("wire_diameter", {"distribution": "weibull"})
+
+
+def test_sampling_is_reproducible_and_follows_the_distributions():
+    """The same seed gives the same variants; uniform values stay inside the band and spread
+    over it; normal values have the stated sigma (4096 Monte Carlo points: the standard
+    error of a standard deviation is 1/sqrt(2n) = 1.1 %, the test allows 5 %)."""
+    tols = _tols(wire_diameter="+-0.02 mm", free_length={"distribution": "normal", "sigma": "0.1 mm"})
+    nominal = {"wire_diameter": 3.5e-3, "free_length": 48e-3}
+    a = sample(tols, nominal, 4096, seed=7, method="monte-carlo")
+    b = sample(tols, nominal, 4096, seed=7, method="monte-carlo")
+    np.testing.assert_array_equal(a["wire_diameter"], b["wire_diameter"])
+    assert np.all(np.abs(a["wire_diameter"] - 3.5e-3) <= 2e-5)
+    assert np.ptp(a["wire_diameter"]) > 1.9 * 2e-5
+    assert np.std(a["free_length"]) == pytest.approx(1e-4, rel=0.05)
+    s = sample(tols, nominal, 1024, seed=7, method="sobol")
+    assert np.mean(s["wire_diameter"]) == pytest.approx(3.5e-3, abs=2e-5 / 100)  # balanced Sobol points
+    rel = sample(_tols(shear_modulus="+-2 %"), {"shear_modulus": 80e9}, 64, seed=1)
+    assert np.all(np.abs(rel["shear_modulus"] / 80e9 - 1) <= 0.02)
+
+
+def test_variant_outputs_are_the_variants_own():
+    """A variant is the spring with the sampled values: its Fset and f1 are those of the
+    spring built directly with them, and the cam lift scales the lobe."""
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    values = {"wire_diameter": 3.52e-3, "free_length": 48.2e-3, "lift": 9.05e-3}
+    v_sp, v_cam, _ = variant(sp, cam, None, values)
+    direct = sp.replace(wire_diameter=3.52e-3, free_length=48.2e-3)
+    out = run_variant(v_sp, v_cam, None, [1500.0, 2500.0])
+    assert out["Fset"] == pytest.approx(direct.spring_model.internal_parameters()["Fset"], rel=1e-12)
+    assert out["f1"] == pytest.approx(direct.spring_model.first_mode_installed, rel=1e-12)
+    assert v_cam.max_lift == pytest.approx(9.05e-3, rel=1e-12)
+    assert out["float_in_range"] == 0.0  # the spring alone does not float
+
+
+def test_study_resumes_from_its_chunks(tmp_path):
+    """A killed run resumes: with a chunk removed, the second run reads the others back and
+    computes only that one; the variants are the same to the bit."""
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    tols = _tols(wire_diameter="+-0.02 mm", mean_diameter="+-0.1 mm")
+    kw = dict(count=60, seed=5, speeds=[1500.0, 2500.0], out_dir=tmp_path)
+    first = tolerance_study(sp, cam, tols, **kw)
+    chunks = sorted((tmp_path / "chunks").glob("*.npz"))
+    assert len(chunks) == 2 and (tmp_path / "variants.nc").exists()
+    chunks[1].unlink()
+    again = tolerance_study(sp, cam, tols, **kw)
+    assert again.resumed == 50
+    np.testing.assert_array_equal(first.dataset["Fset"].values, again.dataset["Fset"].values)
+    s = again.summary
+    assert s["variants"] == 60 and s["Fset_p2.5"] < s["nominal_Fset"] < s["Fset_p97.5"]
+
+
+def test_criteria_and_failing_shares():
+    """A retainer-force limit below every variant's fails them all; Goodman's default 1.1
+    judges the same variants as the Goodman outputs say."""
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    tols = _tols(wire_diameter="+-0.02 mm")
+    st = tolerance_study(sp, cam, tols, Criteria(max_retainer_force=10.0), count=8, seed=2, speeds=[2000.0])
+    s = st.summary
+    assert s["fail_share_retainer_force"] == 1.0
+    g = st.dataset["goodman_safety"].values
+    assert s["fail_share_goodman"] == pytest.approx(np.mean(g < 1.1))
+
+
+def test_cli_tolerance(capsys, tmp_path):
+    from springdyn.app.cli.main import main
+
+    tol = tmp_path / "tol.toml"
+    tol.write_text('[tolerances]\nwire_diameter = "+-0.02 mm"\n\n[criteria]\nmin_goodman_safety = 1.0\n')
+    args = [
+        "valve",
+        "tolerance",
+        SPRING,
+        "--cam",
+        CAM,
+        "--tolerances",
+        str(tol),
+        "--samples",
+        "4",
+        "--cam-rpm",
+        "1500:2500:1000",
+        "--out",
+        str(tmp_path / "o"),
+    ]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "variants failing" in out and (tmp_path / "o" / "variants.nc").exists()
+    assert main(args[:-4] + ["--samples", "2.5", "--cam-rpm", "1500", "--out", str(tmp_path / "o")]) == 2
+    assert "--samples" in capsys.readouterr().err
+    tol.write_text('[tolerances]\nlash = "+-0.02 mm"\n')
+    assert main(args) == 2
+    assert "give --valve-train" in capsys.readouterr().err
