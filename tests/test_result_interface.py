@@ -191,6 +191,13 @@ FACTORIES = {
         seed=1,
         speeds=[2000.0],
     ),
+    "springdyn.valve.life.ServiceLife": lambda: importlib.import_module("springdyn.valve.life").service_life(
+        _valve_spring(),
+        _valve_cam(),
+        importlib.import_module("springdyn.valve.life").LoadSpectrum.from_dict(
+            {"cam_rpm": ["1000 rpm", "2000 rpm"], "share": [0.5, 0.5]}
+        ),
+    ),
     "springdyn.valve.lever.LeverTable": lambda: springdyn.valve.ValveTrain.from_toml(
         "examples/valve/finger_follower_geometry.toml"
     ).geometry.over_cam(springdyn.valve.Cam.from_toml("examples/valve/cam_finger.toml"), points=720),

@@ -150,8 +150,12 @@ def test_dynamic_checks_with_a_cam_and_train(tmp_path):
         )
     )
     res = synthesize(req, per_kind=1)
-    assert all("float_cam_rpm" in r for r in res.rows)
+    assert all("float_cam_rpm" in r and "dynamic_goodman_safety" in r for r in res.rows)
     assert any("no candidate reaches the float speed" in n for n in res.summary["notes"])
     sp = res.springs[0].with_model("distributed")
-    again = float_speed(sp, Cam.from_toml(req.cam), ValveTrain.from_toml(req.valve_train), req.speeds())
+    f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+    assert res.rows[0]["distributed_installed_force_N"] == pytest.approx(f[0], rel=1e-12)
+    scan = np.linspace(req.speeds()[0], 1.15 * 3900.0, req.speeds().size)
+    again = float_speed(sp, Cam.from_toml(req.cam), ValveTrain.from_toml(req.valve_train), scan, resolution=5.0)
     assert res.rows[0]["float_cam_rpm"] == again["float_cam_rpm"]
+    assert not res.rows[0]["meets_all"] and res.rows[0]["margin_float"] < 0

@@ -318,6 +318,7 @@ KNOWN_TABLES = (
     "requirements",
     "tolerances",
     "criteria",
+    "spectrum",
     "cam_card",
     "report",
     "cfcs",

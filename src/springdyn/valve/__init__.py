@@ -31,6 +31,8 @@ The spring designer's tools
   and float speed, ranked with their margins;
 - :mod:`~springdyn.valve.tolerances` -- a spring across its manufacturing tolerances
   (``[tolerances]``, ``[criteria]``): Sobol or Monte Carlo variants, percentiles, failing shares;
+- :mod:`~springdyn.valve.life` -- relaxation at the service temperature and the life against a
+  load spectrum (``[spectrum]``);
 - :mod:`~springdyn.valve.materials` -- named spring wires (G, E, density, tensile strength
   against diameter), relaxation, load-spectrum life.
 

@@ -64,6 +64,7 @@ __all__ = [
     "read_requirements",
     "spring_table",
     "write_candidates",
+    "meet_load_points",
 ]
 
 #: Low-pitch coils of the two-step candidates beyond the seat's dead coils [-] (the low-pitch
@@ -496,6 +497,11 @@ class Synthesis(Result):
 _UNITS = {"_m": "m", "_kg": "kg", "_N": "N", "_Hz": "Hz", "_rpm": "rpm", "_Pa": "Pa"}
 
 
+#: Searches with a raised static Goodman safety (the surge allowance) when no candidate keeps
+#: the Goodman safety at speed [-].
+SURGE_ITERATIONS = 3
+#: Resolution of the candidates' float speeds [rev/min] (a bisection after the scan).
+FLOAT_RESOLUTION = 5.0
 #: Secant steps that make the model's static forces at both lengths the load points.
 LOAD_POINT_ITERATIONS = 12
 
@@ -505,9 +511,7 @@ def _spring(req: Requirements, table: dict, i: int):
     the closed-form coils and free length, then secant steps on the model's own static force
     (its rate from the installed to the open length sets the coils, its installed force the
     free length)."""
-    import dataclasses
 
-    n1 = float(table["low_pitch_coils"][i])
     n2 = float(table["high_pitch_coils"][i])
     try:
         sp = _valve_spring(req, table, i, n2, float(table["free_length"][i]))
@@ -515,13 +519,30 @@ def _spring(req: Requirements, table: dict, i: int):
         # the Type C closed forms do not hold for it (e.g. a negative end mass of a two-step
         # spring): the distributed model, coil by coil from the geometry, describes it
         sp = _valve_spring(req, table, i, n2, float(table["free_length"][i]), model="distributed")
-    nb = req.dead_coils
+    return meet_load_points(sp, req)
+
+
+def meet_load_points(sp, req: Requirements):
+    """The spring with its coils and free length set so that its model's static force meets
+    both load points (secant steps: the model's rate between the lengths sets the coils, its
+    installed force the free length; to 1e-9 in a few steps).
+
+    Parameters
+    ----------
+    sp : ValveSpring
+        A spring near the load points (any model).
+    req : Requirements
+        The load points.
+    """
+    import dataclasses
+
+    n1, n2 = float(sp.low_pitch_coils), float(sp.high_pitch_coils)
+    fixed = req.dead_coils if n1 > 0 else 2.0 * req.dead_coils
     for _ in range(LOAD_POINT_ITERATIONS):
         f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
         if abs(f[0] / req.installed_force - 1.0) < 1e-9 and abs(f[1] / req.open_force - 1.0) < 1e-9:
             break
-        active = n2 - (nb if n1 > 0 else 2.0 * nb)
-        n2 = active * (f[1] - f[0]) / (req.open_force - req.installed_force) + (nb if n1 > 0 else 2.0 * nb)
+        n2 = (n2 - fixed) * (f[1] - f[0]) / (req.open_force - req.installed_force) + fixed
         sp = dataclasses.replace(sp, high_pitch_coils=float(n2))
         f0 = float(sp.spring_model.static_force(req.installed_length))
         k1 = sp.spring_model.internal_parameters()["K1"]
@@ -581,12 +602,60 @@ def synthesize(
     InputError
         When no candidate meets the requirements (:func:`infeasibility`).
     """
+    import dataclasses
+
+    allowance, kept = 1.0, None
+    for _ in range(SURGE_ITERATIONS):
+        screen = (
+            req if allowance == 1.0 else dataclasses.replace(req, min_goodman_safety=req.min_goodman_safety * allowance)
+        )
+        table = candidate_table(screen)
+        if not np.any(table["worst"] >= 0.0):
+            if kept is None:
+                raise InputError(infeasibility(table, req))
+            kept[2].append(
+                f"with the static Goodman safety raised to {screen.min_goodman_safety:.3g} for the surge no spring meets "
+                "the requirements: the candidates above are those of the allowance before"
+            )
+            break
+        try:
+            springs, rows, notes = _select(req, screen, table, per_kind)
+        except InputError:
+            if kept is None:
+                raise
+            kept[2].append(
+                f"with the static Goodman safety raised to {screen.min_goodman_safety:.3g} for the surge the spring "
+                "model refuses every candidate: the candidates above are those of the allowance before"
+            )
+            break
+        if allowance != 1.0:
+            notes.append(
+                f"the static Goodman safety between the load points was raised to {screen.min_goodman_safety:.3g} "
+                f"(a surge allowance of {allowance:.3g}: the distributed model's dynamic wire stress at speed)"
+            )
+        kept = (springs, rows, notes, table)
+        if not (dynamics and req.cam):
+            break
+        _dynamics(req, springs, rows, base_dir, progress, notes)
+        dyn = [r["dynamic_goodman_safety"] for r in rows]
+        if any(r["meets_all"] for r in rows) or min(r["margin_goodman_dynamic"] for r in rows) >= 0.0:
+            break
+        allowance *= min(req.min_goodman_safety / max(g, 1e-6) for g in dyn) * 1.02
+    springs, rows, notes, table = kept
+    order = sorted(range(len(rows)), key=lambda k: (not rows[k]["meets_all"], rows[k]["mass_kg"]))
+    rows = [rows[k] for k in order]
+    springs = [springs[k] for k in order]
+    for rank, r in enumerate(rows, 1):
+        r["rank"] = rank
+    return Synthesis(requirements=req, springs=springs, rows=rows, searched=int(table["physical"].sum()), notes=notes)
+
+
+def _select(req: Requirements, screen: Requirements, table: dict, per_kind: int):
+    """The lightest candidates of each kind that meet the screen's margins, built and checked
+    against the load points; their rows judged against the requirements ``req``."""
     import warnings
 
-    table = candidate_table(req)
     feasible = np.flatnonzero(table["worst"] >= 0.0)
-    if feasible.size == 0:
-        raise InputError(infeasibility(table, req))
     springs, rows, notes = [], [], []
     for kind in (0, 1):
         mine = feasible[table["kind"][feasible] == kind]
@@ -602,15 +671,18 @@ def synthesize(
             try:
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore")
-                    sp = _spring(req, table, int(i))
+                    sp = _spring(screen, table, int(i))
             except InputError:
                 continue  # the model refuses it (its equations do not hold): the next
             f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
             err = max(abs(f[0] / req.installed_force - 1.0), abs(f[1] / req.open_force - 1.0))
             if err > 0.01:  # the model's force differs from the closed form (e.g. coil contact before open)
                 continue
+            row = _row(req, sp, f, kind)
+            if row["smallest_margin"] < 0.0:  # the model's coils (e.g. the distributed fallback) miss a margin
+                continue
             springs.append(sp)
-            rows.append(_row(req, sp, f, kind))
+            rows.append(row)
             taken += 1
             if taken == per_kind:
                 break
@@ -624,14 +696,7 @@ def synthesize(
             "[requirements]: the candidates that meet the margins are refused by the spring model (its coils touch "
             "before the open length or its equations do not hold): relax the lift or the space"
         )
-    if dynamics and req.cam:
-        _dynamics(req, springs, rows, base_dir, progress, notes)
-    order = sorted(range(len(rows)), key=lambda k: (not rows[k]["meets_all"], rows[k]["mass_kg"]))
-    rows = [rows[k] for k in order]
-    springs = [springs[k] for k in order]
-    for rank, r in enumerate(rows, 1):
-        r["rank"] = rank
-    return Synthesis(requirements=req, springs=springs, rows=rows, searched=int(table["physical"].sum()), notes=notes)
+    return springs, rows, notes
 
 
 def _kind_note(table: dict, kind: int) -> str:
@@ -679,8 +744,9 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
     """The distributed model of each candidate over the speed range (module docstring, 5)."""
     import warnings
 
-    from . import float_speed, simulate
     from .cam import Cam
+    from .float_search import float_speed
+    from .sweeps import sweep
     from .valvetrain import ValveTrain
 
     base = Path(base_dir) if base_dir is not None else Path(".")
@@ -695,23 +761,39 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
     items = list(zip(springs, rows))
     it = progress(items, desc="dynamics") if progress is not None else items
     for sp, row in it:
+        # the candidate as designed (the standard's rate, EN 13906-1, which the Type C model
+        # keeps) run coil by coil: the distributed model's static forces differ by a few per
+        # cent (its end coils), which the row states
         model = sp.with_model("distributed")
+        f = model.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+        row["distributed_installed_force_N"], row["distributed_open_force_N"] = float(f[0]), float(f[1])
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            top = simulate(model, cam, float(speeds[-1]), valve_train=vt)
-            row["max_retainer_force_N"] = float(top.retainer_force.max())
-            row["dynamic_factor"] = float(top.retainer_force.max() / top.static_force.max())
-            row["coil_clash_at_top"] = bool(top.element_contact[1:-1].any())
+            t = sweep(model, cam, speeds, valve_train=vt).summary_table()
+            row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
+            row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
+            row["margin_goodman_dynamic"] = row["dynamic_goodman_safety"] / req.min_goodman_safety - 1.0
+            clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
+            row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
             if vt is not None:
-                res = float_speed(model, cam, vt, speeds)
+                need = None if req.min_float_cam_rpm is None else req.min_float_cam_rpm * 30.0 / math.pi
+                scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
+                res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION)
                 row["float_cam_rpm"] = res["float_cam_rpm"]
-                if req.min_float_cam_rpm is not None:
-                    need = req.min_float_cam_rpm * 30.0 / math.pi
-                    f = res["float_cam_rpm"]
-                    row["margin_float"] = 1.0 if f is None else f / need - 1.0
-                    row["smallest_margin"] = min(row["smallest_margin"], row["margin_float"])
-                    row["meets_all"] = row["margin_float"] >= 0.0
-    if req.min_float_cam_rpm is not None and not any(r["meets_all"] for r in rows):
+                if need is not None:
+                    fl = res["float_cam_rpm"]
+                    # no float up to the scan's top: at least that (a lower bound of the margin)
+                    row["margin_float"] = (scan[-1] if fl is None else fl) / need - 1.0
+        row["smallest_margin"] = min(v for key, v in row.items() if key.startswith("margin_"))
+        row["meets_all"] = row["smallest_margin"] >= 0.0
+    if not any(r["margin_goodman_dynamic"] >= 0 for r in rows):
+        best = max(r["dynamic_goodman_safety"] for r in rows)
+        notes.append(
+            f"no candidate keeps the Goodman safety {req.min_goodman_safety:g} over the speed range with its surge "
+            f"(the distributed model's wire stress): the best reaches {best:.3g}; the static margin between the load "
+            "points is not enough at speed (a lower stress: a larger wire or a lower open force)"
+        )
+    if req.min_float_cam_rpm is not None and not any(r.get("margin_float", -1.0) >= 0.0 for r in rows):
         notes.append(
             f"no candidate reaches the float speed {req.min_float_cam_rpm * 30 / math.pi:.0f} cam rpm: the best "
             f"reaches {max((r.get('float_cam_rpm') or 0.0) for r in rows):.0f} cam rpm (a stiffer spring: raise the "

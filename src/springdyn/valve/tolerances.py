@@ -288,8 +288,9 @@ def variant(spring, cam, valve_train, values: dict):
     return sp, c, vt
 
 
-def run_variant(spring, cam, valve_train, speeds) -> dict:
-    """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min].
+def run_variant(spring, cam, valve_train, speeds, rated_rpm: float | None = None) -> dict:
+    """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]; the Goodman
+    safety and the peak retainer force over the speeds up to ``rated_rpm`` (default: all).
 
     Parameters
     ----------
@@ -298,6 +299,9 @@ def run_variant(spring, cam, valve_train, speeds) -> dict:
     valve_train : ValveTrain or None
     speeds : array_like
         Cam speeds [rev/min], ascending.
+    rated_rpm : float, optional
+        The highest speed in service [rev/min] (the criteria's float speed: above it the
+        valve may float and the spring is not loaded in service).
     """
     import warnings
 
@@ -312,13 +316,14 @@ def run_variant(spring, cam, valve_train, speeds) -> dict:
     p = spring.spring_model.internal_parameters()
     clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
     f = float_speed_of_scan(rpm, t["nose_separation"]) if valve_train is not None else None
+    service = rpm <= (rpm[-1] if rated_rpm is None else max(rated_rpm, rpm[0]))
     return dict(
         Fset=float(p["Fset"]),
         f1=float(spring.spring_model.first_mode_installed),
         float_cam_rpm=float(rpm[-1]) if f is None else f,
-        max_retainer_force=float(np.max(t["max_retainer_force_N"])),
+        max_retainer_force=float(np.max(np.asarray(t["max_retainer_force_N"])[service])),
         clash_onset_cam_rpm=float(rpm[clash[0]]) if clash.size else float(rpm[-1]),
-        goodman_safety=float(np.min(t["fatigue_safety_factor"])),
+        goodman_safety=float(np.min(np.asarray(t["fatigue_safety_factor"])[service])),
         float_in_range=float(f is not None),
         clash_in_range=float(clash.size > 0),
         refused=0.0,
@@ -332,12 +337,12 @@ def _key(tolerances, count, seed, method, speeds) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _run_chunk(spring, cam, valve_train, speeds, values: dict, lo: int, hi: int) -> dict:
+def _run_chunk(spring, cam, valve_train, speeds, values: dict, lo: int, hi: int, rated=None) -> dict:
     rows = {k: [] for k in OUTPUTS}
     for i in range(lo, hi):
         try:
             sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
-            r = run_variant(sp, c, vt, speeds)
+            r = run_variant(sp, c, vt, speeds, rated)
         except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
             r = dict({k: 0.0 for k in OUTPUTS}, refused=1.0)
         for k in OUTPUTS:
@@ -394,7 +399,10 @@ def tolerance_study(
     speeds = np.sort(np.atleast_1d(np.asarray(speeds, dtype=float)))
     nominal = nominal_values(spring, cam, valve_train)
     values = sample(tolerances, nominal, count, seed, method)
-    key = _key(tolerances, count, seed, method, speeds)
+    # in service up to the float speed the criteria ask for: the Goodman safety and the peak
+    # force are judged there (above it the valve may float)
+    rated = None if criteria.min_float_cam_rpm is None else criteria.min_float_cam_rpm * 30.0 / math.pi
+    key = _key(tolerances, count, seed, method, speeds) + ("" if rated is None else f"r{rated:.0f}")
     chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
     if chunk_dir is not None:
         chunk_dir.mkdir(parents=True, exist_ok=True)
@@ -419,7 +427,8 @@ def tolerance_study(
 
     if client is not None and todo:
         futures = [
-            client.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, pure=False) for lo, hi in todo
+            client.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, rated, pure=False)
+            for lo, hi in todo
         ]
         from dask.distributed import as_completed
 
@@ -430,7 +439,7 @@ def tolerance_study(
     else:
         it = todo
         for lo, hi in progress(it, total=len(todo), desc="variants") if progress else it:
-            store(lo, _run_chunk(spring, cam, valve_train, speeds, values, lo, hi))
+            store(lo, _run_chunk(spring, cam, valve_train, speeds, values, lo, hi, rated))
     outputs = {k: np.concatenate([done[lo][k] for lo, _ in bounds]) for k in OUTPUTS}
     units = {k: TOLERANCED[k][0] for k in values}
     data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
@@ -440,7 +449,7 @@ def tolerance_study(
         coords={"variant": ("variant", np.arange(count))},
         attrs=dict(method=method, seed=int(seed), count=int(count), sample_key=key),
     )
-    nominal_out = run_variant(spring, cam, valve_train, speeds)
+    nominal_out = run_variant(spring, cam, valve_train, speeds, rated)
     study = ToleranceStudy(
         dataset=ds,
         criteria=criteria,

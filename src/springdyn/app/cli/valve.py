@@ -261,6 +261,7 @@ def register(sub) -> None:
     valve_friction.register(vsub, _add_speed_options, _add_model_option, cam_rpm_from_args)
     valve_synthesis.register(vsub)
     valve_synthesis.register_tolerance(vsub, _add_model_option, cam_rpm_from_args)
+    valve_synthesis.register_life(vsub, _add_model_option)
 
 
 def _add_revolution_options(p) -> None:

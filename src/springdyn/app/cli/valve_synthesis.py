@@ -1,6 +1,6 @@
-"""``springdyn valve synthesize`` and ``springdyn valve tolerance``: valve springs from
-requirements and proven across tolerances (thin layer over :mod:`springdyn.valve.synthesis`
-and :mod:`springdyn.valve.tolerances`)."""
+"""``springdyn valve synthesize``, ``tolerance`` and ``life``: valve springs from requirements,
+proven across tolerances, relaxed and loaded by a spectrum (thin layer over
+:mod:`springdyn.valve.synthesis`, :mod:`springdyn.valve.tolerances` and :mod:`springdyn.valve.life`)."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from springdyn.app.cli.common import (
 )
 from springdyn.core.errors import InputError
 
-__all__ = ["register", "register_tolerance", "cmd_synthesize", "cmd_tolerance"]
+__all__ = ["register", "register_tolerance", "register_life", "cmd_synthesize", "cmd_tolerance", "cmd_life"]
 
 
 def register(vsub) -> None:
@@ -203,5 +203,66 @@ def cmd_tolerance(args) -> int:
     print_table(rows, headers=("output", "unit", "nominal", "0.135 %", "2.5 %", "50 %", "97.5 %", "99.865 %"))
     fails = [(k[len("fail_share_") :], f"{v:.1%}") for k, v in s.items() if k.startswith("fail_share_")]
     print_table(fails, headers=("criterion", "variants failing"))
+    print_notes(s)
+    return 0
+
+
+def register_life(vsub, add_model_option) -> None:
+    """Add ``life`` to the ``springdyn valve`` sub-commands ``vsub``."""
+    p = vsub.add_parser(
+        "life",
+        help="relaxation at the service temperature and life against a load spectrum ([spectrum]: speeds and time "
+        "shares), from each speed's dynamic Goodman safety",
+    )
+    p.add_argument("spring", metavar="SPRING.toml", help="file with a [spring] table")
+    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    p.add_argument("--spectrum", required=True, metavar="SPECTRUM.toml", help="file with a [spectrum] table")
+    p.add_argument(
+        "--valve-train", metavar="VT.toml", help="file with a [valve_train] table (float speed, new and relaxed)"
+    )
+    add_model_option(p)
+    add_output_options(p)
+    p.set_defaults(func=cmd_life)
+
+
+def cmd_life(args) -> int:
+    """``springdyn valve life``: relaxation and spectrum life."""
+    from springdyn.app.cli.common import emit
+    from springdyn.core.params import load_toml
+    from springdyn.valve.cam import Cam
+    from springdyn.valve.life import LoadSpectrum, service_life
+    from springdyn.valve.spring import ValveSpring
+    from springdyn.valve.valvetrain import ValveTrain
+
+    spring = ValveSpring.from_toml(args.spring).with_model(args.model)
+    cam = Cam.from_toml(args.cam)
+    vt = ValveTrain.from_toml(args.valve_train) if args.valve_train else None
+    spec = LoadSpectrum.from_dict(load_toml(args.spectrum, "spectrum"), source=str(args.spectrum))
+    res = service_life(spring, cam, spec, vt)
+    if emit(res, args, json_data=dict(res.summary)):
+        return 0
+    s = res.summary
+    print(
+        f"{args.spring} ({s['material']}): after {s['relaxation_hours']:g} h at {s['temperature_degC']:g} degC the "
+        f"installed force relaxes by {s['relaxation_loss']:.2%}, {s['installed_force_N']:.1f} N to "
+        f"{s['relaxed_installed_force_N']:.1f} N"
+    )
+    if "float_cam_rpm_new" in s:
+        new, old = s["float_cam_rpm_new"], s["float_cam_rpm_relaxed"]
+        fmt = lambda v: "above the scan" if v is None else f"{v:.0f} cam rpm"  # noqa: E731
+        print(f"float speed: new {fmt(new)}, relaxed {fmt(old)}")
+    cols = res.columns()
+    print_table(
+        [
+            (f"{r:.0f}", f"{p:.3g}", f"{g:.3f}", f"{d:.1%}")
+            for r, p, g, d in zip(cols["cam_rpm"], cols["share"], cols["goodman_safety"], cols["damage_share"])
+        ],
+        headers=("cam rpm", "time share", "Goodman (dynamic)", "share of the damage"),
+    )
+    print(
+        "life: infinite (every speed at or below the endurance strength)"
+        if s["infinite_life"]
+        else f"life: {s['life_hours']:.4g} h (Miner, damage {s['damage_per_hour']:.3g} per hour)"
+    )
     print_notes(s)
     return 0
