@@ -123,3 +123,48 @@ def test_cli_tolerance(capsys, tmp_path):
     tol.write_text('[tolerances]\nlash = "+-0.02 mm"\n')
     assert main(args) == 2
     assert "give --valve-train" in capsys.readouterr().err
+
+
+@pytest.mark.slow  # a LocalCluster of 2 processes (~20 s)
+def test_dask_cluster_gives_the_local_variants(tmp_path):
+    """The chunks on a Dask LocalCluster (2 worker processes on loopback) give exactly the
+    local variants, and the CLI's --scheduler reaches it."""
+    distributed = pytest.importorskip("distributed")
+    from springdyn.app.cli.main import main
+
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    tols = _tols(wire_diameter="+-0.02 mm")
+    kw = dict(count=60, seed=4, speeds=[1500.0, 2500.0])
+    local = tolerance_study(sp, cam, tols, **kw)
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        remote = tolerance_study(sp, cam, tols, client=client, **kw)
+        for k in local.dataset.data_vars:
+            np.testing.assert_array_equal(local.dataset[k].values, remote.dataset[k].values)
+        tol = tmp_path / "tol.toml"
+        tol.write_text('[tolerances]\nwire_diameter = "+-0.02 mm"\n')
+        code = main(
+            [
+                "valve",
+                "tolerance",
+                SPRING,
+                "--cam",
+                CAM,
+                "--tolerances",
+                str(tol),
+                "--samples",
+                "8",
+                "--cam-rpm",
+                "1500,2500",
+                "--out",
+                str(tmp_path / "o"),
+                "--scheduler",
+                cluster.scheduler_address,
+                "--quiet",
+            ]
+        )
+        assert code == 0 and (tmp_path / "o" / "variants.nc").exists()
