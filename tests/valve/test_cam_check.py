@@ -5,7 +5,6 @@ sphere and line limits, the kinematic load by hand; and the failures they must f
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 from pathlib import Path
@@ -321,34 +320,10 @@ def test_result_interface(tmp_path):
 
 
 # ----------------------------------------------------------------------------- CLI
-def cli_main():
-    """``springdyn.app.cli.main.main``, with the cam-design commands wired into ``springdyn
-    valve`` until springdyn.app.cli.valve registers them itself."""
-    from springdyn.app.cli import valve, valve_cam_design
-    from springdyn.app.cli.main import build_parser, main
-
-    vparser = build_parser("valve")._subparsers._group_actions[0].choices["valve"]
-    if "cam-check" in next(a for a in vparser._actions if isinstance(a, argparse._SubParsersAction)).choices:
-        return main
-    original = valve.register
-
-    def register(sub):
-        original(sub)
-        vsub = next(a for a in sub.choices["valve"]._actions if isinstance(a, argparse._SubParsersAction))
-        valve_cam_design.register(vsub)
-
-    def wired(argv):
-        valve.register = register
-        try:
-            return main(argv)
-        finally:
-            valve.register = original
-
-    return wired
-
-
 def run(capsys, *argv):
-    code = cli_main()(list(map(str, argv)))
+    from springdyn.app.cli.main import main
+
+    code = main(list(map(str, argv)))
     out, err = capsys.readouterr()
     return code, out, err
 

@@ -4,7 +4,6 @@ and the 3-4-5 closed form, the files written, the CLI and its bad input."""
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 from pathlib import Path
@@ -253,34 +252,10 @@ def test_written_files_read_back(tmp_path):
 
 
 # ----------------------------------------------------------------------------- CLI
-def cli_main():
-    """``springdyn.app.cli.main.main``, with the cam-design commands wired into ``springdyn
-    valve`` until springdyn.app.cli.valve registers them itself."""
-    from springdyn.app.cli import valve, valve_cam_design
-    from springdyn.app.cli.main import build_parser, main
-
-    vparser = build_parser("valve")._subparsers._group_actions[0].choices["valve"]
-    if "cam-from-lift" in next(a for a in vparser._actions if isinstance(a, argparse._SubParsersAction)).choices:
-        return main
-    original = valve.register
-
-    def register(sub):
-        original(sub)
-        vsub = next(a for a in sub.choices["valve"]._actions if isinstance(a, argparse._SubParsersAction))
-        valve_cam_design.register(vsub)
-
-    def wired(argv):
-        valve.register = register
-        try:
-            return main(argv)
-        finally:
-            valve.register = original
-
-    return wired
-
-
 def run(capsys, *argv):
-    code = cli_main()(list(map(str, argv)))
+    from springdyn.app.cli.main import main
+
+    code = main(list(map(str, argv)))
     out, err = capsys.readouterr()
     return code, out, err
 

@@ -534,6 +534,12 @@ class ToleranceStudy(Result):
                 f"the float speed of {1 - s['float_in_range_share']:.0%} of the variants lies above the range: they count "
                 f"as {top:g} cam rpm (a lower bound)"
             )
+        if self.speeds.size > 1:
+            step = float(np.max(np.diff(self.speeds)))
+            notes.append(
+                f"float speeds and clash onsets are swept speeds: resolved to {step:g} cam rpm (the --cam-rpm step; "
+                "springdyn valve float bisects one spring to 1 rpm)"
+            )
         if s["clash_in_range_share"] < 1.0:
             notes.append(f"a clash onset beyond the range counts as its top speed {top:g} cam rpm (no clash within it)")
         if n < 100:
