@@ -15,6 +15,7 @@ from springdyn.valve.separation import (
     float_speed_of_scan,
     liftoffs,
     neighbour_band,
+    phase_mask,
     phase_of,
 )
 
@@ -49,6 +50,21 @@ def test_phase_of_walks_the_event_in_order():
     names = [phase_of(math.radians(a), ph) for a in (10.0, 60.0, 100.0, 200.0)]
     assert names == ["opening flank", "nose", "closing flank", "base circle"]
     assert phase_of(math.radians(60.0) + 2 * math.pi, ph) == "nose"  # any real angle
+
+
+def test_phase_mask_is_phase_of_on_every_angle():
+    """The vectorised mask equals phase_of angle by angle (random reals, a revolution's grid
+    and the bounds themselves) for four cams, with and without lash."""
+    rng = np.random.default_rng(0)
+    for name in ("cam_polydyne_ramps", "cam_345", "cam_finger", "cam_table"):
+        cam = Cam.from_toml(EX + f"{name}.toml")
+        for lash in (0.0, 2e-4):
+            ph = cam_phases(cam, lash)
+            angles = np.concatenate([rng.uniform(-10.0, 10.0, 2000), np.radians(np.arange(0.0, 360.0, 0.25))])
+            angles = np.concatenate([angles, list(ph.__dict__.values())])
+            for phase in (*PHASES, "base circle"):
+                expected = np.array([phase_of(a, ph) == phase for a in angles])
+                np.testing.assert_array_equal(phase_mask(angles, ph, phase), expected, err_msg=f"{name} {phase}")
 
 
 def test_liftoffs_take_the_phase_of_their_start_and_the_largest_gap():

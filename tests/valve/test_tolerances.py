@@ -7,7 +7,15 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring
-from springdyn.valve.tolerances import Criteria, parse_tolerance, run_variant, sample, tolerance_study, variant
+from springdyn.valve.tolerances import (
+    CHUNK,
+    Criteria,
+    parse_tolerance,
+    run_variant,
+    sample,
+    tolerance_study,
+    variant,
+)
 
 SPRING = "examples/valve/one_step_spring.toml"
 CAM = "examples/valve/cam_345.toml"
@@ -71,16 +79,48 @@ def test_study_resumes_from_its_chunks(tmp_path):
     computes only that one; the variants are the same to the bit."""
     sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
     tols = _tols(wire_diameter="+-0.02 mm", mean_diameter="+-0.1 mm")
-    kw = dict(count=60, seed=5, speeds=[1500.0, 2500.0], out_dir=tmp_path)
+    kw = dict(count=2 * CHUNK + 10, seed=5, speeds=[1500.0, 2500.0], out_dir=tmp_path)
     first = tolerance_study(sp, cam, tols, **kw)
     chunks = sorted((tmp_path / "chunks").glob("*.npz"))
-    assert len(chunks) == 2 and (tmp_path / "variants.nc").exists()
+    assert len(chunks) == 3 and (tmp_path / "variants.nc").exists()
     chunks[1].unlink()
     again = tolerance_study(sp, cam, tols, **kw)
-    assert again.resumed == 50
+    assert again.resumed == CHUNK + 10
     np.testing.assert_array_equal(first.dataset["Fset"].values, again.dataset["Fset"].values)
     s = again.summary
-    assert s["variants"] == 60 and s["Fset_p2.5"] < s["nominal_Fset"] < s["Fset_p97.5"]
+    assert s["variants"] == 2 * CHUNK + 10 and s["Fset_p2.5"] < s["nominal_Fset"] < s["Fset_p97.5"]
+
+
+def test_float_only_study_finds_each_variants_float_speed():
+    """A float-speed study (issue 29 part 3) searches each variant's float speed from the
+    nominal's: it agrees with the full study's (a sweep of the range, then the search within
+    the swept bracket) within the resolution plus 1.5 rpm (the two start their searches from
+    different speeds; test_float_search), runs 3-8 speeds a variant against the sweep's
+    7 + 2-4, and local threads give the variants to the bit of one thread."""
+    from springdyn.valve import ValveTrain
+
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml("examples/valve/cam_polydyne_ramps.toml")
+    vt = ValveTrain.from_toml("examples/valve/valve_train.toml")
+    tols = _tols(wire_diameter="+-0.015 mm", free_length="+-0.3 mm", lash="+-0.03 mm")
+    speeds = np.arange(2800.0, 3401.0, 100.0)
+    kw = dict(count=8, seed=3, speeds=speeds, valve_train=vt)
+    fast = tolerance_study(sp, cam, tols, float_only=True, **kw)
+    one = tolerance_study(sp, cam, tols, float_only=True, workers=1, **kw)
+    full = tolerance_study(sp, cam, tols, **kw)
+    f, g = fast.dataset["float_cam_rpm"].values, full.dataset["float_cam_rpm"].values
+    np.testing.assert_array_equal(f, one.dataset["float_cam_rpm"].values)
+    assert np.all(np.abs(f - g) <= 5.0 + 1.5), (f, g)
+    assert np.all(fast.dataset["float_in_range"].values == 1.0)
+    sims = fast.dataset["simulations"].values
+    assert np.all((sims >= 3) & (sims <= 8)) and np.all(full.dataset["simulations"].values >= speeds.size)
+    assert "goodman_safety" not in fast.dataset and "goodman_safety" in full.dataset
+    s = fast.summary
+    assert s["study"] == "float speed" and s["max_periodicity"] <= 0.002
+    assert abs(s["nominal_float_cam_rpm"] - s["nominal_float_cam_rpm_scan"]) <= 5.0 + 1.5
+    assert set(fast.failures()) == {"float_speed"}
+    assert any("not computed" in n for n in s["notes"])
+    with pytest.raises(InputError, match="needs a valve train"):
+        tolerance_study(sp, cam, tols, float_only=True, count=2, seed=0, speeds=speeds)
 
 
 def test_criteria_and_failing_shares():
@@ -120,6 +160,15 @@ def test_cli_tolerance(capsys, tmp_path):
     assert "variants failing" in out and (tmp_path / "o" / "variants.nc").exists()
     assert main(args[:-4] + ["--samples", "2.5", "--cam-rpm", "1500", "--out", str(tmp_path / "o")]) == 2
     assert "--samples" in capsys.readouterr().err
+    assert main(args + ["--float-only"]) == 2
+    assert "--float-only needs --valve-train" in capsys.readouterr().err
+    train = ["--valve-train", "examples/valve/valve_train.toml"]
+    for bad, msg in ((["--resolution", "0"], "--resolution"), (["--workers", "1.5"], "--workers")):
+        assert main(args + train + ["--float-only", *bad]) == 2
+        assert msg in capsys.readouterr().err
+    assert main(args + train + ["--float-only", "--resolution", "10 rpm", "--workers", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "float speeds only" in out and "float_cam_rpm" in out and "goodman" not in out
     tol.write_text('[tolerances]\nlash = "+-0.02 mm"\n')
     assert main(args) == 2
     assert "give --valve-train" in capsys.readouterr().err

@@ -163,7 +163,21 @@ def phase_mask(cam_angle, phases: CamPhases, name: str) -> np.ndarray:
     name : str
         One of :data:`PHASES` or ``"base circle"``.
     """
-    return np.array([phase_of(a, phases) == name for a in np.ravel(cam_angle)], dtype=bool)
+    s = phases.start
+    a = (np.ravel(np.asarray(cam_angle, dtype=float)) - s) % _TWO_PI
+    end = (phases.end - s) % _TWO_PI or _TWO_PI
+    base = a > end
+    if name == "base circle":
+        return base
+    # phase_of's walk through the bounds, on every angle at once
+    bounds = [(b - s) % _TWO_PI for b in (phases.ramp_end, phases.nose_start, phases.nose_end, phases.ramp_start)]
+    index = np.full(a.shape, len(PHASES) - 1)
+    open_ = np.ones(a.shape, dtype=bool)
+    for k, b in enumerate(bounds):
+        hit = open_ & (a < b)
+        index[hit] = k
+        open_ &= ~hit
+    return ~base & (index == PHASES.index(name))
 
 
 def separates_over_nose(rows, phases: CamPhases, cam_angle, cam_contact_force, valve_lift) -> bool:

@@ -33,6 +33,7 @@ import dataclasses
 import hashlib
 import json
 import math
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -42,6 +43,7 @@ from ..core.errors import InputError
 from ..core.params import Parameters, load_toml, param
 from ..core.results import Result
 from ..core.units import to_si
+from .float_search import FLOAT_RESOLUTION, float_speed_near
 
 __all__ = [
     "TOLERANCED",
@@ -50,9 +52,11 @@ __all__ = [
     "read_tolerances",
     "sample",
     "run_variant",
+    "run_variant_float",
     "tolerance_study",
     "ToleranceStudy",
     "OUTPUTS",
+    "FLOAT_OUTPUTS",
 ]
 
 #: The parameters a ``[tolerances]`` table may name, with their SI unit and where they live.
@@ -69,7 +73,10 @@ TOLERANCED = {
 }
 #: The outputs per variant, with their units.  A float speed or clash onset beyond the speed
 #: range is the range's top speed (a lower bound) with ``float_in_range`` / ``clash_in_range``
-#: 0; a variant the model refuses has ``refused`` 1 and zeros (no NaN in an output).
+#: 0; a variant the model refuses has ``refused`` 1 and zeros (no NaN in an output);
+#: ``periodicity`` is the largest change between the last two revolutions of any speed the
+#: variant ran [fraction of Fset] (the residual beside its figures), ``simulations`` the speeds
+#: it ran, each to its periodic steady state.
 OUTPUTS = {
     "Fset": "N",
     "f1": "Hz",
@@ -80,13 +87,18 @@ OUTPUTS = {
     "float_in_range": "1",
     "clash_in_range": "1",
     "refused": "1",
+    "periodicity": "1",
+    "simulations": "1",
 }
+#: The outputs of a float-speed study (``float_only``): the statics and the float speed.
+FLOAT_OUTPUTS = ("Fset", "f1", "float_cam_rpm", "float_in_range", "refused", "periodicity", "simulations")
 #: The outputs that are figures (percentiles and histograms); the others are flags.
 FIGURES = ("Fset", "f1", "float_cam_rpm", "max_retainer_force", "clash_onset_cam_rpm", "goodman_safety")
 #: Percentiles reported of every output [%].
 PERCENTILES = (0.135, 2.5, 50.0, 97.5, 99.865)
-#: Variants per chunk on disk (a killed run loses at most one chunk's work).
-CHUNK = 50
+#: Variants per chunk on disk (a killed run loses at most one chunk's work; the chunks run
+#: in parallel on the local threads or the Dask workers).
+CHUNK = 25
 
 
 @dataclass(frozen=True)
@@ -288,9 +300,16 @@ def variant(spring, cam, valve_train, values: dict):
     return sp, c, vt
 
 
-def run_variant(spring, cam, valve_train, speeds, rated_rpm: float | None = None) -> dict:
+def run_variant(
+    spring, cam, valve_train, speeds, rated_rpm: float | None = None, resolution: float = FLOAT_RESOLUTION
+) -> dict:
     """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]; the Goodman
     safety and the peak retainer force over the speeds up to ``rated_rpm`` (default: all).
+
+    The speeds are swept (:func:`springdyn.valve.sweep`); the float speed, the lowest swept
+    speed from which the valve leaves the cam over the nose at every higher one, is then
+    narrowed to ``resolution`` between it and the swept speed below
+    (:func:`springdyn.valve.float_search.float_speed_near`).
 
     Parameters
     ----------
@@ -302,20 +321,33 @@ def run_variant(spring, cam, valve_train, speeds, rated_rpm: float | None = None
     rated_rpm : float, optional
         The highest speed in service [rev/min] (the criteria's float speed: above it the
         valve may float and the spring is not loaded in service).
+    resolution : float
+        Width of the float speed's final bracket [rev/min].
     """
     import warnings
 
     from .separation import float_speed_of_scan
+    from .setup import prepare
     from .sweeps import sweep
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        sw = sweep(spring, cam, speeds, valve_train=valve_train)
+        sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1)
     t = sw.summary_table()
     rpm = np.asarray(t["cam_rpm"], dtype=float)
     p = spring.spring_model.internal_parameters()
     clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
     f = float_speed_of_scan(rpm, t["nose_separation"]) if valve_train is not None else None
+    periodicity = float(np.max(np.asarray(t["periodicity_error"], dtype=float)))
+    k = -1 if f is None else int(np.flatnonzero(rpm == f)[0])
+    runs = rpm.size
+    if k > 0 and f - rpm[k - 1] > resolution:
+        near = float_speed_near(
+            prepare(spring, cam, valve_train), 0.5 * (rpm[k - 1] + f), rpm[k - 1], f, resolution=resolution
+        )
+        f = near["float_cam_rpm"]
+        periodicity = max(periodicity, near["periodicity"])
+        runs += near["evaluations"]
     service = rpm <= (rpm[-1] if rated_rpm is None else max(rated_rpm, rpm[0]))
     return dict(
         Fset=float(p["Fset"]),
@@ -327,25 +359,74 @@ def run_variant(spring, cam, valve_train, speeds, rated_rpm: float | None = None
         float_in_range=float(f is not None),
         clash_in_range=float(clash.size > 0),
         refused=0.0,
+        periodicity=periodicity,
+        simulations=float(runs),
     )
 
 
-def _key(tolerances, count, seed, method, speeds) -> str:
+def run_variant_float(spring, cam, valve_train, speeds, guess_rpm: float, resolution: float = FLOAT_RESOLUTION) -> dict:
+    """The outputs of :data:`FLOAT_OUTPUTS` of one variant: its statics and its float speed,
+    found near ``guess_rpm`` (the nominal's) within the speed range by
+    :func:`springdyn.valve.float_search.float_speed_near` (four to five speeds, not a sweep).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain
+    speeds : array_like
+        Cam speeds [rev/min], ascending: the range searched is ``speeds[0]`` to ``speeds[-1]``.
+    guess_rpm : float
+        Where the search starts [rev/min].
+    resolution : float
+        Width of the float speed's final bracket [rev/min].
+    """
+    from .setup import prepare
+
+    near = float_speed_near(
+        prepare(spring, cam, valve_train),
+        guess_rpm,
+        float(speeds[0]),
+        float(speeds[-1]),
+        resolution=resolution,
+    )
+    return dict(
+        Fset=float(spring.spring_model.internal_parameters()["Fset"]),
+        f1=float(spring.spring_model.first_mode_installed),
+        float_cam_rpm=near["float_cam_rpm"],
+        float_in_range=float(near["in_range"]),
+        refused=0.0,
+        periodicity=near["periodicity"],
+        simulations=float(near["evaluations"]),
+    )
+
+
+def _key(tolerances, count, seed, method, speeds, *extra) -> str:
     """The sample's fingerprint: chunks on disk belong to it."""
     spec = {k: [t.kind, t.half_width, t.sigma, rel] for k, (t, rel) in tolerances.items()}
-    text = json.dumps([spec, count, seed, method, [float(s) for s in speeds]], sort_keys=True)
+    text = json.dumps([spec, count, seed, method, [float(s) for s in speeds], CHUNK, *extra], sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _run_chunk(spring, cam, valve_train, speeds, values: dict, lo: int, hi: int, rated=None) -> dict:
-    rows = {k: [] for k in OUTPUTS}
+def _run_chunk(spring, cam, valve_train, speeds, values: dict, lo: int, hi: int, run: dict) -> dict:
+    """Variants ``lo`` to ``hi`` of the sample: :func:`run_variant_float` with ``run["guess"]``,
+    else :func:`run_variant`."""
+    import warnings
+
+    names = FLOAT_OUTPUTS if run.get("guess") is not None else tuple(OUTPUTS)
+    rows = {k: [] for k in names}
     for i in range(lo, hi):
         try:
-            sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
-            r = run_variant(sp, c, vt, speeds, rated)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
+                if run.get("guess") is not None:
+                    r = run_variant_float(sp, c, vt, speeds, run["guess"], run["resolution"])
+                else:
+                    r = run_variant(sp, c, vt, speeds, run["rated"], run["resolution"])
         except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
-            r = dict({k: 0.0 for k in OUTPUTS}, refused=1.0)
-        for k in OUTPUTS:
+            r = dict({k: 0.0 for k in names}, refused=1.0)
+        for k in names:
             rows[k].append(r[k])
     return {k: np.asarray(v, dtype=float) for k, v in rows.items()}
 
@@ -364,6 +445,9 @@ def tolerance_study(
     out_dir=None,
     client=None,
     progress=None,
+    float_only: bool = False,
+    resolution: float = FLOAT_RESOLUTION,
+    workers: int | None = None,
 ) -> ToleranceStudy:
     """The spring across its tolerances (module docstring).
 
@@ -380,7 +464,8 @@ def tolerance_study(
     seed : int
         Seed [-].
     speeds : array_like
-        Cam speeds of each variant's sweep [rev/min].
+        Cam speeds of each variant's sweep [rev/min]; a float-speed study searches between
+        the first and the last.
     valve_train : ValveTrain, optional
         The train (float speed, lash).
     method : {"sobol", "monte-carlo"}
@@ -390,19 +475,46 @@ def tolerance_study(
         Runs the chunks on a Dask cluster.
     progress : callable, optional
         ``progress(iterable, total=, desc=)`` wrapper.
+    float_only : bool
+        A float-speed study: each variant's statics and float speed only
+        (:func:`run_variant_float`, searched from the nominal's), no sweep; Goodman safety,
+        peak force and coil clash are not computed.
+    resolution : float
+        Width of the float speeds' final bracket [rev/min].
+    workers : int, optional
+        Local threads the chunks run on [-] (default: the cores, at most 2).
     """
     import xarray as xr
 
     criteria = Criteria() if criteria is None else criteria
     if not isinstance(count, int) or not 1 <= count <= 10_000_000:
         raise InputError(f"count = {count!r} must be a whole number of variants from 1 to 10000000")
+    if float_only and valve_train is None:
+        raise InputError("a float-speed study (float_only) needs a valve train: the spring alone does not float")
+    if not (isinstance(resolution, (int, float)) and math.isfinite(resolution) and resolution > 0):
+        raise InputError(f"resolution = {resolution!r} must be a positive speed [rev/min]")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
     speeds = np.sort(np.atleast_1d(np.asarray(speeds, dtype=float)))
     nominal = nominal_values(spring, cam, valve_train)
     values = sample(tolerances, nominal, count, seed, method)
     # in service up to the float speed the criteria ask for: the Goodman safety and the peak
     # force are judged there (above it the valve may float)
     rated = None if criteria.min_float_cam_rpm is None else criteria.min_float_cam_rpm * 30.0 / math.pi
-    key = _key(tolerances, count, seed, method, speeds) + ("" if rated is None else f"r{rated:.0f}")
+    run = dict(rated=rated, resolution=float(resolution), guess=None)
+    if float_only:
+        # the nominal's float speed from a scan of the range (the definition), then by the
+        # variants' search from there: its float speed starts every search
+        from .float_search import float_speed
+
+        scan = float_speed(spring, cam, valve_train, speeds, resolution=float(resolution))
+        scanned = float(speeds[-1] if scan.float_cam_rpm is None else scan.float_cam_rpm)
+        nominal_out = run_variant_float(spring, cam, valve_train, speeds, scanned, float(resolution))
+        nominal_out["float_cam_rpm_scan"] = scanned
+        run["guess"] = nominal_out["float_cam_rpm"]
+    names = FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)
+    key = _key(tolerances, count, seed, method, speeds, float(resolution), bool(float_only))
+    key += "" if (rated is None or float_only) else f"r{rated:.0f}"
     chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
     if chunk_dir is not None:
         chunk_dir.mkdir(parents=True, exist_ok=True)
@@ -412,7 +524,7 @@ def tolerance_study(
         f = None if chunk_dir is None else chunk_dir / f"{key}_{lo:08d}.npz"
         if f is not None and f.exists():
             with np.load(f) as z:
-                done[lo] = {k: z[k] for k in OUTPUTS}
+                done[lo] = {k: z[k] for k in names}
             resumed += hi - lo
     todo = [(lo, hi) for lo, hi in bounds if lo not in done]
 
@@ -427,7 +539,7 @@ def tolerance_study(
 
     if client is not None and todo:
         futures = [
-            client.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, rated, pure=False)
+            client.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, run, pure=False)
             for lo, hi in todo
         ]
         from dask.distributed import as_completed
@@ -436,20 +548,37 @@ def tolerance_study(
         it = as_completed(futures)
         for fut in progress(it, total=len(futures), desc="variants") if progress else it:
             store(where[fut.key], fut.result())
-    else:
-        it = todo
-        for lo, hi in progress(it, total=len(todo), desc="variants") if progress else it:
-            store(lo, _run_chunk(spring, cam, valve_train, speeds, values, lo, hi, rated))
-    outputs = {k: np.concatenate([done[lo][k] for lo, _ in bounds]) for k in OUTPUTS}
+    elif todo:
+        # the engine releases the GIL: the chunks run on threads, each its variants in turn
+        from concurrent.futures import ThreadPoolExecutor
+        from concurrent.futures import as_completed as completed
+
+        threads = workers or min(os.cpu_count() or 1, 2)
+        with ThreadPoolExecutor(max_workers=threads) as pool:
+            futures = {
+                pool.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, run): lo for lo, hi in todo
+            }
+            it = completed(futures)
+            for fut in progress(it, total=len(futures), desc="variants") if progress else it:
+                store(futures[fut], fut.result())
+    outputs = {k: np.concatenate([done[lo][k] for lo, _ in bounds]) for k in names}
     units = {k: TOLERANCED[k][0] for k in values}
     data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
     data.update({k: ("variant", v, {"units": OUTPUTS[k]}) for k, v in outputs.items()})
     ds = xr.Dataset(
         data,
         coords={"variant": ("variant", np.arange(count))},
-        attrs=dict(method=method, seed=int(seed), count=int(count), sample_key=key),
+        attrs=dict(
+            method=method,
+            seed=int(seed),
+            count=int(count),
+            sample_key=key,
+            study="float speed" if float_only else "full",
+            float_resolution_rpm=float(resolution),
+        ),
     )
-    nominal_out = run_variant(spring, cam, valve_train, speeds, rated)
+    if not float_only:
+        nominal_out = run_variant(spring, cam, valve_train, speeds, rated, float(resolution))
     study = ToleranceStudy(
         dataset=ds,
         criteria=criteria,
@@ -458,6 +587,7 @@ def tolerance_study(
         resumed=resumed,
         floats=valve_train is not None,
         tolerances={k: (t.kind, t.half_width, t.sigma, rel) for k, (t, rel) in tolerances.items()},
+        float_only=bool(float_only),
     )
     if out_dir is not None:
         from ..core.io import atomic_path
@@ -479,6 +609,8 @@ class ToleranceStudy(Result):
     tolerances: dict = field(default_factory=dict)
     #: False for the spring alone (no float speed), True with a valve train.
     floats: bool = True
+    #: A float-speed study: statics and float speed only (:data:`FLOAT_OUTPUTS`).
+    float_only: bool = False
 
     title = "tolerance study"
     cheap_plot = True
@@ -491,41 +623,59 @@ class ToleranceStudy(Result):
         ds, c = self.dataset, self.criteria
         refused = ds["refused"].values > 0.5
         out = {}
-        g = ds["goodman_safety"].values
-        out["goodman"] = refused | ~(g >= c.min_goodman_safety)
+        if not self.float_only:
+            g = ds["goodman_safety"].values
+            out["goodman"] = refused | ~(g >= c.min_goodman_safety)
         if self.floats:
             need = c.min_float_cam_rpm * 30.0 / math.pi if c.min_float_cam_rpm is not None else float(self.speeds[-1])
             f = ds["float_cam_rpm"].values
             out["float_speed"] = refused | ((ds["float_in_range"].values > 0.5) & (f < need))
-        if c.no_coil_clash:
+        if c.no_coil_clash and not self.float_only:
             out["coil_clash"] = refused | (ds["clash_in_range"].values > 0.5)
-        if c.max_retainer_force is not None:
+        if c.max_retainer_force is not None and not self.float_only:
             out["retainer_force"] = refused | ~(ds["max_retainer_force"].values <= c.max_retainer_force)
         if c.installed_force_band is not None:
             dev = np.abs(ds["Fset"].values / self.nominal["Fset"] - 1.0)
             out["installed_force"] = refused | ~(dev <= c.installed_force_band)
         return out
 
+    def _figures(self) -> list:
+        """The outputs that are figures in this study."""
+        return [k for k in FIGURES if k in self.dataset and (self.floats or k != "float_cam_rpm")]
+
     def _summary(self) -> dict:
         ds = self.dataset
         n = ds.sizes["variant"]
-        s = dict(variants=int(n), method=ds.attrs["method"], seed=ds.attrs["seed"], resumed_variants=int(self.resumed))
+        s = dict(
+            variants=int(n),
+            study=str(ds.attrs.get("study", "full")),
+            method=ds.attrs["method"],
+            seed=ds.attrs["seed"],
+            resumed_variants=int(self.resumed),
+        )
         ok = ds["refused"].values < 0.5
-        for k in FIGURES:
-            if k == "float_cam_rpm" and not self.floats:
-                continue
+        for k in self._figures():
             v = ds[k].values
             s[f"nominal_{k}"] = float(self.nominal[k])
             if ok.any():
                 for q, val in zip(PERCENTILES, np.percentile(v[ok], PERCENTILES)):
                     s[f"{k}_p{q:g}"] = float(val)
+        if "float_cam_rpm_scan" in self.nominal:
+            s["nominal_float_cam_rpm_scan"] = float(self.nominal["float_cam_rpm_scan"])
         s["float_in_range_share"] = float(ds["float_in_range"].values[ok].mean()) if ok.any() else 0.0
-        s["clash_in_range_share"] = float(ds["clash_in_range"].values[ok].mean()) if ok.any() else 0.0
+        if not self.float_only:
+            s["clash_in_range_share"] = float(ds["clash_in_range"].values[ok].mean()) if ok.any() else 0.0
+        s["max_periodicity"] = float(ds["periodicity"].values[ok].max()) if ok.any() else 0.0
         fails = self.failures()
         for k, f in fails.items():
             s[f"fail_share_{k}"] = float(np.mean(f))
         s["fail_share_any"] = float(np.mean(np.any(np.stack(list(fails.values())), axis=0))) if fails else 0.0
         notes = []
+        if self.float_only:
+            notes.append(
+                "a float-speed study: each variant's statics and float speed, searched from the nominal's; "
+                "Goodman safety, peak force and coil clash are not computed (run without --float-only)"
+            )
         if not ok.all():
             notes.append(f"{int((~ok).sum())} variants refused by the model (counted as failing)")
         top = float(self.speeds[-1])
@@ -534,13 +684,15 @@ class ToleranceStudy(Result):
                 f"the float speed of {1 - s['float_in_range_share']:.0%} of the variants lies above the range: they count "
                 f"as {top:g} cam rpm (a lower bound)"
             )
-        if self.speeds.size > 1:
-            step = float(np.max(np.diff(self.speeds)))
+        if self.floats:
             notes.append(
-                f"float speeds and clash onsets are swept speeds: resolved to {step:g} cam rpm (the --cam-rpm step; "
-                "springdyn valve float bisects one spring to 1 rpm)"
+                f"float speeds are resolved to {float(ds.attrs.get('float_resolution_rpm', FLOAT_RESOLUTION)):g} cam rpm "
+                "(the final bracket of each search)"
             )
-        if s["clash_in_range_share"] < 1.0:
+        if self.speeds.size > 1 and not self.float_only:
+            step = float(np.max(np.diff(self.speeds)))
+            notes.append(f"clash onsets are swept speeds: resolved to {step:g} cam rpm (the --cam-rpm step)")
+        if not self.float_only and s["clash_in_range_share"] < 1.0:
             notes.append(f"a clash onset beyond the range counts as its top speed {top:g} cam rpm (no clash within it)")
         if n < 100:
             notes.append(f"{n} variants: the outer percentiles (0.135 %, 99.865 %) need some thousands")
@@ -556,7 +708,7 @@ class ToleranceStudy(Result):
         from ..core.plotting import plt
 
         ds = self.dataset
-        names = [k for k in FIGURES if self.floats or k != "float_cam_rpm"]
+        names = self._figures()
         if ax is not None:
             fig, axes = ax.figure, [ax]
             names = names[:1]

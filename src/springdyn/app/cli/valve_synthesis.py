@@ -106,7 +106,8 @@ def register_tolerance(vsub, add_model_option, cam_speeds) -> None:
     p = vsub.add_parser(
         "tolerance",
         help="a spring across its manufacturing tolerances ([tolerances], [criteria]): Monte Carlo or Sobol "
-        "variants swept over the speeds; variants.nc, percentiles, failing shares, histograms (resumable)",
+        "variants swept over the speeds (or, with --float-only, each variant's float speed searched from the "
+        "nominal's); variants.nc, percentiles, failing shares, histograms (resumable)",
     )
     p.add_argument("spring", metavar="SPRING.toml", help="file with a [spring] table")
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
@@ -121,6 +122,16 @@ def register_tolerance(vsub, add_model_option, cam_speeds) -> None:
     )
     p.add_argument("--cam-rpm", required=True, metavar="START:STOP:STEP", help="cam speeds of each variant's sweep")
     p.add_argument("--out", dest="out_dir", required=True, metavar="DIR", help="folder: variants.nc, chunks/ (resumes)")
+    p.add_argument(
+        "--float-only",
+        action="store_true",
+        help="a float-speed study: each variant's statics and float speed, searched from the nominal's (4-5 speeds "
+        "a variant, not a sweep; Goodman, peak force and clash are not computed)",
+    )
+    p.add_argument(
+        "--resolution", default="5", metavar="RPM", help="final bracket of each float speed in cam rpm (default 5)"
+    )
+    p.add_argument("--workers", metavar="N", help="local threads the chunks run on (default: 2, both cores)")
     p.add_argument(
         "--scheduler", metavar="ADDRESS", help="run the chunks on a Dask scheduler, e.g. tcp://127.0.0.1:8786"
     )
@@ -154,6 +165,17 @@ def cmd_tolerance(args) -> int:
     if "lash" in tols and vt is None:
         raise InputError("[tolerances] lash is the valve train's: give --valve-train")
     speeds = args.cam_speeds(args, ranged=True)
+    if args.float_only and vt is None:
+        raise InputError("--float-only needs --valve-train: the spring alone does not float")
+    resolution = quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm")
+    if not resolution > 0:
+        raise InputError(f"--resolution = {args.resolution!r} must be a positive speed (cam rpm)")
+    workers = None
+    if args.workers is not None:
+        workers = quantity(args.workers, "", "--workers")
+        if workers != int(workers) or workers < 1:
+            raise InputError(f"--workers = {args.workers!r} must be a whole number of at least 1")
+        workers = int(workers)
     client = None
     if args.scheduler:
         from springdyn.valve.sweeps import connect
@@ -177,6 +199,9 @@ def cmd_tolerance(args) -> int:
         out_dir=args.out_dir,
         client=client,
         progress=bar,
+        float_only=args.float_only,
+        resolution=resolution,
+        workers=workers,
     )
     written = [Path(args.out_dir) / "variants.nc"]
     plot = args.plot or str(Path(args.out_dir) / "histograms.png")
@@ -193,6 +218,7 @@ def cmd_tolerance(args) -> int:
         f"{s['variants']} variants ({s['method']}, seed {s['seed']}"
         + (f", {s['resumed_variants']} read back from {args.out_dir}/chunks" if s["resumed_variants"] else "")
         + f") of {args.spring} over {speeds[0]:g}-{speeds[-1]:g} cam rpm"
+        + (": float speeds only" if args.float_only else "")
     )
     rows = []
     for k in FIGURES:
