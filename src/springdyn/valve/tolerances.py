@@ -408,14 +408,14 @@ def _key(tolerances, count, seed, method, speeds, *extra) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _run_chunk(spring, cam, valve_train, speeds, values: dict, lo: int, hi: int, run: dict) -> dict:
-    """Variants ``lo`` to ``hi`` of the sample: :func:`run_variant_float` with ``run["guess"]``,
-    else :func:`run_variant`."""
+def _run_chunk(spring, cam, valve_train, speeds, values: dict, run: dict) -> dict:
+    """The variants of ``values`` (a chunk's slice of the sample: only it travels to a Dask
+    worker): :func:`run_variant_float` with ``run["guess"]``, else :func:`run_variant`."""
     import warnings
 
     names = FLOAT_OUTPUTS if run.get("guess") is not None else tuple(OUTPUTS)
     rows = {k: [] for k in names}
-    for i in range(lo, hi):
+    for i in range(len(next(iter(values.values())))):
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -528,6 +528,9 @@ def tolerance_study(
             resumed += hi - lo
     todo = [(lo, hi) for lo, hi in bounds if lo not in done]
 
+    def part(lo, hi):
+        return {k: v[lo:hi].copy() for k, v in values.items()}
+
     def store(lo, res):
         done[lo] = res
         if chunk_dir is not None:
@@ -539,7 +542,7 @@ def tolerance_study(
 
     if client is not None and todo:
         futures = [
-            client.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, run, pure=False)
+            client.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), run, pure=False)
             for lo, hi in todo
         ]
         from dask.distributed import as_completed
@@ -556,7 +559,7 @@ def tolerance_study(
         threads = workers or min(os.cpu_count() or 1, 2)
         with ThreadPoolExecutor(max_workers=threads) as pool:
             futures = {
-                pool.submit(_run_chunk, spring, cam, valve_train, speeds, values, lo, hi, run): lo for lo, hi in todo
+                pool.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), run): lo for lo, hi in todo
             }
             it = completed(futures)
             for fut in progress(it, total=len(futures), desc="variants") if progress else it:
