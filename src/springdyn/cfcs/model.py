@@ -12,15 +12,22 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..core.errors import InputError
+from ..core.errors import InputError, SolverError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
-from .beam import beam_force_at_toggle, beam_force_curve
+from .beam import beam_force_at_toggle, beam_force_curve, prbm_error
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
 from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke, offset_to_si
 from .params import CFCSParams
-from .pivot import bending_stress, max_stroke_for_stress, safety_factor, strip_first_frequency
+from .pivot import (
+    bending_stress,
+    default_plate_bending,
+    max_stroke_for_stress,
+    plate_modulus,
+    safety_factor,
+    strip_first_frequency,
+)
 from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult
 from .statics import (
     dissipative_torque,
@@ -32,7 +39,11 @@ from .statics import (
     static_force_at_toggle,
 )
 
-__all__ = ["CFCS", "DEFAULT_AMPLITUDE", "DEFAULT_OFFSET", "TOGGLE_TOLERANCE", "toggle_check"]
+__all__ = ["BEAM_CHECK_SAMPLES", "CFCS", "DEFAULT_AMPLITUDE", "DEFAULT_OFFSET", "TOGGLE_TOLERANCE", "toggle_check"]
+
+#: Samples of the elastica in the beam check of a PRBM result (a test halves and doubles them:
+#: the band error moves by less than 1e-4 of itself).
+BEAM_CHECK_SAMPLES = 401
 
 #: Default sinusoid amplitude: 40 % of r2 + r3 (the paper's "40 % mechanism deflection",
 #: correction CFCS-4 of docs/references.md).
@@ -288,6 +299,97 @@ class CFCS:
             out["bending_stiffness_N_m2"] = p.bending_stiffness()
         return out
 
+    def beam_check(self, hi: float, lo: float = 0.0, working: float | None = None, n: int = BEAM_CHECK_SAMPLES) -> dict:
+        """The PRBM's static force against the elastica of the same strip over ``[lo, hi]`` [m].
+
+        The check every PRBM result carries (issue 30): the elastica of :mod:`.beam` with the
+        PRBM's own modulus (so that it measures the pin, not the modulus), on ``n`` samples of
+        ``[0, hi]`` plus ``lo`` and ``working``.  Keys (None, with a note saying why, when the
+        elastica cannot be evaluated: no strip dimensions, or a continuation that fails):
+
+        - ``beam_force_min_N``, ``beam_force_max_N``: the elastica's force band over ``[lo, hi]``;
+        - ``beam_band_error_percent``: ``100 (B_prbm - B_beam) / B_beam`` over ``[lo, hi]``
+          (:func:`springdyn.cfcs.beam.prbm_error`);
+        - ``beam_force_error_percent``: ``100 max |F_prbm - F_beam| / F0`` over ``[lo, hi]``, F0 the
+          elastica's force at the toggle;
+        - with ``working``: ``beam_working_band_error_percent`` over ``[working, hi]``.
+
+        Parameters
+        ----------
+        hi : float
+            Largest deflection [m].
+        lo : float
+            Smallest deflection [m].
+        working : float, optional
+            Start of a working range [m] rated separately.
+        n : int
+            Samples of ``[0, hi]`` [-].
+        """
+        key = (float(hi), float(lo), working, n)
+        cache = self.__dict__.setdefault("_beam_check_cache", {})
+        if key not in cache:
+            extra = [v for v in (lo, working) if v is not None and v > 0]
+            x = np.unique(np.concatenate([np.linspace(0.0, hi, n), extra]))
+            cache[key] = self._beam_check_on(x, lo, working)[0]
+        out = dict(cache[key])
+        out["notes"] = list(out["notes"])
+        return out
+
+    def _beam_check_on(self, x, lo: float = 0.0, working: float | None = None):
+        """:meth:`beam_check` on the samples ``x`` (from 0, increasing); also the elastica's force there (or None)."""
+        p = self.params
+        keys = ["beam_force_min_N", "beam_force_max_N", "beam_band_error_percent", "beam_force_error_percent"]
+        if working is not None:
+            keys.append("beam_working_band_error_percent")
+        out = dict.fromkeys(keys)
+        notes = []
+        out["notes"] = notes
+        if not p.has_flexure:
+            notes.append(
+                "beam check: the elastica needs the strip (pivot_width, pivot_thickness, pivot_length, "
+                "youngs_modulus); this definition gives torsional_stiffness only, so the PRBM's error is not known"
+            )
+            return out, None
+        try:
+            fb = beam_force_curve(x, p.r2, p.r3, p.pivot_length, p.bending_stiffness("prbm"))["force"]
+        except SolverError as exc:
+            notes.append(f"beam check not available: {exc}")
+            return out, None
+        fp = static_force(theta2_from_deflection(x, p.r2, p.r3), p.k3, p.r2, p.r3)
+        sel = x >= lo
+        e = prbm_error(x[sel], fp[sel], fb[sel], fb[0])
+        out.update(
+            beam_force_min_N=float(np.min(fb[sel])),
+            beam_force_max_N=float(np.min(fb[sel]) + e["band_beam"]),
+            beam_band_error_percent=_finite(100.0 * e["band_error"]),
+            beam_force_error_percent=100.0 * e["force_error"],
+        )
+        if working is not None:
+            w = x >= working
+            out["beam_working_band_error_percent"] = _finite(
+                100.0 * prbm_error(x[w], fp[w], fb[w], fb[0])["band_error"]
+            )
+        if out["beam_band_error_percent"] is None:
+            notes.append("beam check: the range is a single deflection, so there is no force band to compare")
+        if p.plate_bending is None and default_plate_bending(p.pivot_width, p.pivot_length):
+            factor = plate_modulus(p.youngs_modulus, p.poisson_ratio) / p.youngs_modulus
+            notes.append(
+                f"beam check: the strip (b/l = {p.pivot_width / p.pivot_length:.3g}) bends as a plate, "
+                f"{100 * (factor - 1):.3g} % stiffer than Eq. (1) gives (the beam model's default, "
+                "plate_bending = true); the check uses the PRBM's modulus E and measures the pin alone"
+            )
+        return out, fb
+
+    def _add_beam_check(self, summary: dict, hi: float, lo: float = 0.0, working: float | None = None) -> dict:
+        """Add :meth:`beam_check` to a PRBM result's summary (nothing for the beam model)."""
+        if self.beam:
+            return summary
+        check = self.beam_check(hi, lo, working)
+        notes = check.pop("notes")
+        summary.update(check)
+        summary.setdefault("notes", []).extend(notes)
+        return summary
+
     def _stroke(self, stroke) -> float:
         p = self.params
         value = 0.4 * p.extended_length if stroke is None else float(stroke)
@@ -402,6 +504,12 @@ class CFCS:
                     "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
                 }
             )
+        if not self.beam:
+            check, fb = self._beam_check_on(x, 0.0, start)
+            summary.setdefault("notes", []).extend(check.pop("notes"))
+            summary.update(check)
+            if fb is not None:
+                extra["force_beam_N"] = fb
         return StaticResult(x, th, f, f + fd, f - fd, stress, self._note_nulls(summary), extra)
 
     def _toggle_summary(self, in_zone: bool, dominated: list, check: dict) -> dict:
@@ -524,6 +632,7 @@ class CFCS:
             **self._beam_dynamics_summary(mot.omega),
             **self._toggle_summary(in_zone, dominated, check),
         }
+        self._add_beam_check(summary, float(np.max(x)), float(np.min(x)))
         comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
         return DynamicResult(
             t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], self._note_nulls(summary)
@@ -613,6 +722,8 @@ class CFCS:
             "notes": notes,
             **self._common_summary(),
         }
+        lo, hi = self.motion(omegas[-1], amplitude, offset).bounds
+        self._add_beam_check(summary, hi, lo)
         return FrequencySweep(omegas, stats, summary)
 
     # -- forward dynamics ---------------------------------------------------------------
@@ -672,7 +783,8 @@ class CFCS:
         thd0 = v0 / g0 if g0 > 0 else 0.0
 
         if force is not None and not callable(force):
-            scale = float(np.max(np.abs(self.static(p.max_deflection).force)))
+            x_all = np.linspace(0.0, p.max_deflection, 721)
+            scale = float(np.max(np.abs(static_force(theta2_from_deflection(x_all, p.r2, p.r3), p.k3, p.r2, p.r3))))
             if not (np.isfinite(force) and abs(force) <= FORCE_LIMIT_FACTOR * scale):
                 raise InputError(
                     f"force = {force!r} N is beyond reason for this mechanism: it must be finite and within "
@@ -705,6 +817,7 @@ class CFCS:
             **self._common_summary(),
         }
         summary["toggle_cutoff_rad"] = None  # the forward problem needs no cut-off
+        self._add_beam_check(summary, float(np.max(x)), float(np.min(x)))
         self._note_nulls(summary)
         if self.beam:  # T + the strip's strain energy, the integral of its quasi-static force
             e = (
@@ -738,6 +851,11 @@ class CFCS:
             "strip_frequency_ratio": float(omega) / w1,
             "strip_mass_kg": mass_per_length * p.pivot_length,
         }
+
+
+def _finite(value: float) -> float | None:
+    """``value``, or None when it is not a finite number."""
+    return float(value) if np.isfinite(value) else None
 
 
 def _refined_max(x, f, fun=None):

@@ -289,6 +289,7 @@ def _static(args) -> int:
             ),
             ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
             *prbm_rows,
+            *_beam_check_rows(s),
             ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
             ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
             (
@@ -303,6 +304,30 @@ def _static(args) -> int:
     )
     print_notes(s)
     return 0
+
+
+def _beam_check_rows(summary) -> list:
+    """The beam check of a PRBM result (empty for the beam model)."""
+    if "beam_band_error_percent" not in summary:
+        return []
+    s = summary
+    if s["beam_band_error_percent"] is None:
+        return [("beam check", "n/a", "see the notes")]
+    working = s.get("beam_working_band_error_percent")
+    return [
+        (
+            "beam check: elastica band",
+            f"{s['beam_force_min_N']:.5g} .. {s['beam_force_max_N']:.5g} N",
+            "the strip as an elastica, same modulus",
+        ),
+        (
+            "PRBM band error",
+            f"{s['beam_band_error_percent']:+.3g} %",
+            "(band PRBM - band elastica) / band elastica"
+            + (f"; working range {working:+.3g} %" if working is not None else ""),
+        ),
+        ("PRBM force error", f"{s['beam_force_error_percent']:.3g} % of F0", "max |F PRBM - F elastica| / F0"),
+    ]
 
 
 def _toggle_row(summary):
@@ -343,6 +368,7 @@ def _dynamic(args) -> int:
                 _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
                 f"safety factor {_fmt(s['safety_factor'], digits=3)}",
             ),
+            *_beam_check_rows(s),
             _cutoff_row(s),
             ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
             _toggle_row(s),
@@ -434,6 +460,7 @@ def _forward(args) -> int:
             ("toggle crossings", str(s["toggle_crossings"]), ""),
             ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
             ("sign smoothing", _fmt(s["sign_smoothing_rad_per_s"], "rad/s"), "tanh(theta2'/v_s)"),
+            *_beam_check_rows(s),
             _cutoff_row(s),
         ],
         headers=("quantity", "value", "note"),
