@@ -537,7 +537,8 @@ class CFCS:
                 f"toggle-dominated: {', '.join(dominated)} change by more than "
                 f"{100 * TOGGLE_TOLERANCE:g} % when the toggle cut-off doubles; they depend on a numerical "
                 "setting, not on the mechanism (start the motion from a preload offset inside the "
-                "constant-force band)"
+                "constant-force band, or give the drive's stiffness, drive_stiffness / --drive-stiffness, to "
+                "integrate the crank through the toggle with its inertia: CFCS.driven)"
             )
         elif in_zone:
             notes.append(
