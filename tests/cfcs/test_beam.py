@@ -182,3 +182,29 @@ def test_a_prbm_without_strip_dimensions_says_why_there_is_no_beam_check(table1_
     s = CFCS(table1_k3).static(0.072).summary
     assert s["beam_band_error_percent"] is None and s["beam_force_error_percent"] is None
     assert any("torsional_stiffness only" in n for n in s["notes"])
+
+
+def _doc_table(after: str) -> np.ndarray:
+    """The band/force error table of docs/cfcs.md that follows the line containing ``after``."""
+    from pathlib import Path
+
+    lines = (Path(__file__).resolve().parents[2] / "docs" / "cfcs.md").read_text(encoding="utf-8").splitlines()
+    start = next(i for i, line in enumerate(lines) if after in line)
+    rows = []
+    for line in lines[start + 1 :]:
+        if line.startswith("| 0.") or line.startswith("| 0"):
+            cells = [c.strip() for c in line.strip("|").split("|")][1:]
+            rows.append([[float(v) for v in c.split("/")] for c in cells])
+        elif rows:
+            break
+    return np.array(rows)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("start, after", [(0.0, "Strokes from the toggle, r2/r3"), (0.025, "(`start_fraction=0.025`)")])
+def test_the_error_map_of_the_docs_is_current(start, after):
+    # docs/cfcs.md prints the map to 0.1 % (band) and 0.01 % (force): recomputed, each figure within half a digit
+    table = _doc_table(after)
+    m = beam.prbm_error_map(85 / 95, [0.05, 0.1, 0.2, 0.3, 0.5], [0.05, 0.1, 0.2, 0.3, 0.4], start_fraction=start)
+    np.testing.assert_allclose(100 * m["band_error"], table[:, :, 0], atol=0.051)
+    np.testing.assert_allclose(100 * m["force_error"], table[:, :, 1], atol=0.0051)

@@ -313,7 +313,9 @@ def test_static_carries_the_beam_check(capsys, tmp_path):
     row = next(line for line in out.splitlines() if line.startswith("PRBM band error"))
     assert "+18.6 %" in row
     assert any(line.startswith("PRBM force error") for line in out.splitlines())
-    code, out, err = run(capsys, "cfcs", "static", "table1", "--stroke", "72mm", "--json", "--csv", str(tmp_path / "s.csv"))
+    code, out, err = run(
+        capsys, "cfcs", "static", "table1", "--stroke", "72mm", "--json", "--csv", str(tmp_path / "s.csv")
+    )
     s = json.loads(out)
     assert s["beam_band_error_percent"] == pytest.approx(18.63, abs=0.05)
     assert s["beam_force_error_percent"] == pytest.approx(0.965, abs=0.005)
