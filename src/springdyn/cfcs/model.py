@@ -590,6 +590,10 @@ class CFCS:
     ) -> DynamicResult:
         """Slider force along a prescribed periodic motion (inverse dynamics, Eqs. (19)-(25)).
 
+        The slider follows the motion rigidly (``drive_stiffness`` of the parameters is not used
+        here: :meth:`driven` is the same motion through the compliant drive, and the CLI's
+        ``cfcs dynamic`` switches to it when a drive stiffness is given).
+
         Parameters
         ----------
         omega : float, optional

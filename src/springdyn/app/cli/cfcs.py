@@ -465,7 +465,7 @@ def _driven(args, model, mot) -> int:
                 f"{s['periodicity_change_percent']:.3g} %",
                 "change of the statistics from the period before",
             ),
-            ("energy balance", f"{s['energy_balance_relative']:.2g}", "max |W - dE - D| / total actuator work"),
+            ("energy balance", f"{s['energy_balance_relative']:.2g}", "max |W - dE - D| / gross actuator work"),
             (
                 "max pivot stress",
                 _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
