@@ -127,6 +127,9 @@ FACTORIES = {
     "springdyn.cfcs.results.DynamicResult": lambda: _cfcs().dynamic(14.7),
     "springdyn.cfcs.results.FrequencySweep": lambda: _cfcs().sweep(np.array([2.0, 10.0, 20.0])),
     "springdyn.cfcs.results.ForwardResult": lambda: _cfcs().forward(0.05, force=12.8),
+    "springdyn.cfcs.results.DrivenResult": lambda: _cfcs().driven(
+        14.7, drive_stiffness=2e4, periods=2, samples_per_period=200
+    ),
     "springdyn.cfcs.design.DesignResult": lambda: __import__("springdyn.cfcs", fromlist=["design"]).design(
         12.8, 0.02, 207e9, 1.5e9
     ),

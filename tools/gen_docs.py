@@ -154,6 +154,7 @@ CROSS_KEY_RULES = {
             {"torsional_stiffness": "2.5 N*m/rad"},
         ),
         ("`toggle_cutoff` < 90 deg", {"toggle_cutoff": "95 deg"}),
+        ("`drive_damping` needs `drive_stiffness`", {"drive_damping": "5 N*s/m"}),
     ],
     "lsd": [
         ("`packs` >= 2", {"packs": 1}),

@@ -304,3 +304,56 @@ def test_kinematic_limit_hints_name_the_commands_own_options(capsys):
     assert "give a shorter stroke" in capsys.readouterr().err
     assert main(["cfcs", "forward", "table1", "--t-end", "0.1", "--force", "5N", "--x0", "500mm"]) == 2
     assert "start at a smaller deflection x0" in capsys.readouterr().err
+
+
+def test_static_carries_the_beam_check(capsys, tmp_path):
+    """Issue 30 part 1: a PRBM result shows its error against the elastica in text, JSON and CSV."""
+    code, out, err = run(capsys, "cfcs", "static", "table1", "--stroke", "72mm")
+    assert code == 0, err
+    row = next(line for line in out.splitlines() if line.startswith("PRBM band error"))
+    assert "+18.6 %" in row
+    assert any(line.startswith("PRBM force error") for line in out.splitlines())
+    code, out, err = run(
+        capsys, "cfcs", "static", "table1", "--stroke", "72mm", "--json", "--csv", str(tmp_path / "s.csv")
+    )
+    s = json.loads(out)
+    assert s["beam_band_error_percent"] == pytest.approx(18.63, abs=0.05)
+    assert s["beam_force_error_percent"] == pytest.approx(0.965, abs=0.005)
+    assert "force_beam_N" in read_csv_columns(tmp_path / "s.csv")
+
+
+def test_dynamic_with_a_compliant_drive(capsys, tmp_path):
+    """Issue 30 part 2: --drive-stiffness integrates through the toggle; no cut-off, a finite peak."""
+    code, out, err = run(
+        capsys,
+        "cfcs",
+        "dynamic",
+        "table1",
+        "--omega",
+        "14.7",
+        "--offset",
+        "0",
+        "--drive-stiffness",
+        "20 kN/m",
+        "--drive-damping",
+        "5 N*s/m",
+        "--periods",
+        "3",
+        "--samples",
+        "500",
+        "--json",
+        "--csv",
+        str(tmp_path / "d.csv"),
+        "--plot",
+        str(tmp_path / "d.png"),
+    )
+    assert code == 0, err
+    s = json.loads(out)
+    assert s["drive_stiffness_N_per_m"] == 2e4 and s["drive_damping_N_s_per_m"] == 5.0
+    assert s["toggle_cutoff_rad"] is None and s["periods"] == 3 and s["samples_per_period"] == 500
+    assert 300 < s["peak_to_peak_N"] < 450  # 367 N at the default settings (docs/cfcs.md)
+    cols = read_csv_columns(tmp_path / "d.csv")
+    assert {"drive_position_m", "force_N", "energy_residual_J"} <= set(cols)
+    assert (tmp_path / "d.png").is_file()
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "14.7", "--periods", "3")
+    assert code == 2 and "--drive-stiffness" in err

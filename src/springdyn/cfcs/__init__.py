@@ -7,6 +7,7 @@ Where to find each equation:
 - :mod:`.kinematics` -- loop closure, exact inverse x -> theta2, Jacobian (Eq. (25)), toggle.
 - :mod:`.statics` -- spring energy (17), static force by virtual work, tau_CF (21), tau_AF (22), PCF.
 - :mod:`.dynamics` -- generalized mass (19), velocity term, inverse and forward dynamics.
+- :mod:`.drive` -- forward dynamics through a compliant drive (spring and damper), through the toggle.
 - :mod:`.pivot` -- flexure stiffness (1), bending stress, allowable stroke.
 - :mod:`.motion` -- sinusoidal and tabulated slider motions.
 - :mod:`.beam` -- the flexure as an elastica (shooting on the beam equations) and as a Hencky chain.
@@ -28,6 +29,7 @@ _EXPORTS = {
     "SinusoidMotion": "motion",
     "TabulatedMotion": "motion",
     "CFCSParams": "params",
+    "DrivenResult": "results",
     "DynamicResult": "results",
     "ForwardResult": "results",
     "FrequencySweep": "results",
@@ -40,6 +42,7 @@ __all__ = [
     "CFCSParams",
     "DEFAULT_AMPLITUDE",
     "DesignResult",
+    "DrivenResult",
     "DynamicResult",
     "ForwardResult",
     "SinusoidMotion",

@@ -12,16 +12,24 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..core.errors import InputError
+from ..core.errors import InputError, SolverError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
-from .beam import beam_force_at_toggle, beam_force_curve
+from .beam import beam_force_at_toggle, beam_force_curve, prbm_error
+from .drive import DRIVE_SIGN_SMOOTHING, drive_force, energy_balance, integrate_driven
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
 from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke, offset_to_si
 from .params import CFCSParams
-from .pivot import bending_stress, max_stroke_for_stress, safety_factor, strip_first_frequency
-from .results import DynamicResult, ForwardResult, FrequencySweep, StaticResult
+from .pivot import (
+    bending_stress,
+    default_plate_bending,
+    max_stroke_for_stress,
+    plate_modulus,
+    safety_factor,
+    strip_first_frequency,
+)
+from .results import DrivenResult, DynamicResult, ForwardResult, FrequencySweep, StaticResult
 from .statics import (
     dissipative_torque,
     frozen_jacobian,
@@ -32,7 +40,11 @@ from .statics import (
     static_force_at_toggle,
 )
 
-__all__ = ["CFCS", "DEFAULT_AMPLITUDE", "DEFAULT_OFFSET", "TOGGLE_TOLERANCE", "toggle_check"]
+__all__ = ["BEAM_CHECK_SAMPLES", "CFCS", "DEFAULT_AMPLITUDE", "DEFAULT_OFFSET", "TOGGLE_TOLERANCE", "toggle_check"]
+
+#: Samples of the elastica in the beam check of a PRBM result (a test halves and doubles them:
+#: the band error moves by less than 1e-4 of itself).
+BEAM_CHECK_SAMPLES = 401
 
 #: Default sinusoid amplitude: 40 % of r2 + r3 (the paper's "40 % mechanism deflection",
 #: correction CFCS-4 of docs/references.md).
@@ -47,6 +59,17 @@ DEFAULT_OFFSET = "2.5 %"
 #: Relative change of a statistic [-] between the toggle cut-off and twice it above which the
 #: statistic is reported ``toggle_dominated``.
 TOGGLE_TOLERANCE = 0.01
+
+#: Defaults of the driven model (:meth:`CFCS.driven`): periods integrated, output samples per period,
+#: relative tolerance.  Halving and doubling each moves the statistics of the seed's case by less than
+#: 1 % (tests/cfcs/test_drive.py).
+DRIVEN_PERIODS = 6
+DRIVEN_SAMPLES = 2000
+DRIVEN_RTOL = 1e-8
+
+#: Largest change of the driven statistics between the last two periods [-] (relative to the
+#: peak-to-peak force) beyond which the result says it is not periodic yet.
+DRIVEN_PERIODICITY = 0.01
 
 #: A constant forward-dynamics force may be at most this many times the mechanism's largest
 #: spring force (beyond it the slider hits the end of its travel within a step).
@@ -288,6 +311,98 @@ class CFCS:
             out["bending_stiffness_N_m2"] = p.bending_stiffness()
         return out
 
+    def beam_check(self, hi: float, lo: float = 0.0, working: float | None = None, n: int = BEAM_CHECK_SAMPLES) -> dict:
+        """The PRBM's static force against the elastica of the same strip over ``[lo, hi]`` [m].
+
+        The check every PRBM result carries (issue 30): the elastica of :mod:`.beam` with the
+        PRBM's own modulus (so that it measures the pin, not the modulus), on ``n`` samples of
+        ``[0, hi]`` plus ``lo`` and ``working``.  Keys (None, with a note saying why, when the
+        elastica cannot be evaluated: no strip dimensions, or a continuation that fails):
+
+        - ``beam_force_min_N``, ``beam_force_max_N``: the elastica's force band over ``[lo, hi]``;
+        - ``beam_band_error_percent``: ``100 (B_prbm - B_beam) / B_beam`` over ``[lo, hi]``
+          (:func:`springdyn.cfcs.beam.prbm_error`);
+        - ``beam_force_error_percent``: ``100 max |F_prbm - F_beam| / F0`` over ``[lo, hi]``, F0 the
+          elastica's force at the toggle;
+        - with ``working``: ``beam_working_band_error_percent`` over ``[working, hi]``.
+
+        Parameters
+        ----------
+        hi : float
+            Largest deflection [m].
+        lo : float
+            Smallest deflection [m].
+        working : float, optional
+            Start of a working range [m] rated separately.
+        n : int
+            Samples of ``[0, hi]`` [-].
+        """
+        lo = 0.0 if lo <= hi / (n - 1) else float(lo)  # within a grid step of the toggle: from the toggle
+        key = (float(hi), lo, working, n)
+        cache = self.__dict__.setdefault("_beam_check_cache", {})
+        if key not in cache:
+            extra = [v for v in (lo, working) if v is not None and v > 0]
+            x = np.unique(np.concatenate([np.linspace(0.0, hi, n), extra]))
+            cache[key] = self._beam_check_on(x, lo, working)[0]
+        out = dict(cache[key])
+        out["notes"] = list(out["notes"])
+        return out
+
+    def _beam_check_on(self, x, lo: float = 0.0, working: float | None = None):
+        """:meth:`beam_check` on the samples ``x`` (from 0, increasing); also the elastica's force there (or None)."""
+        p = self.params
+        keys = ["beam_force_min_N", "beam_force_max_N", "beam_band_error_percent", "beam_force_error_percent"]
+        if working is not None:
+            keys.append("beam_working_band_error_percent")
+        out = dict.fromkeys(keys)
+        notes = []
+        out["notes"] = notes
+        if not p.has_flexure:
+            notes.append(
+                "beam check: the elastica needs the strip (pivot_width, pivot_thickness, pivot_length, "
+                "youngs_modulus); this definition gives torsional_stiffness only, so the PRBM's error is not known"
+            )
+            return out, None
+        try:
+            fb = beam_force_curve(x, p.r2, p.r3, p.pivot_length, p.bending_stiffness("prbm"))["force"]
+        except SolverError as exc:
+            notes.append(f"beam check not available: {exc}")
+            return out, None
+        fp = static_force(theta2_from_deflection(x, p.r2, p.r3), p.k3, p.r2, p.r3)
+        sel = x >= lo
+        e = prbm_error(x[sel], fp[sel], fb[sel], fb[0])
+        out.update(
+            beam_force_min_N=float(np.min(fb[sel])),
+            beam_force_max_N=float(np.min(fb[sel]) + e["band_beam"]),
+            beam_band_error_percent=_finite(100.0 * e["band_error"]),
+            beam_force_error_percent=100.0 * e["force_error"],
+        )
+        if working is not None:
+            w = x >= working
+            out["beam_working_band_error_percent"] = _finite(
+                100.0 * prbm_error(x[w], fp[w], fb[w], fb[0])["band_error"]
+            )
+        if out["beam_band_error_percent"] is None:
+            notes.append("beam check: the range is a single deflection, so there is no force band to compare")
+        if p.plate_bending is None and default_plate_bending(p.pivot_width, p.pivot_length):
+            factor = plate_modulus(p.youngs_modulus, p.poisson_ratio) / p.youngs_modulus
+            notes.append(
+                f"beam check: the strip (b/l = {p.pivot_width / p.pivot_length:.3g}) bends as a plate, "
+                f"{100 * (factor - 1):.3g} % stiffer than Eq. (1) gives (the beam model's default, "
+                "plate_bending = true); the check uses the PRBM's modulus E and measures the pin alone"
+            )
+        return out, fb
+
+    def _add_beam_check(self, summary: dict, hi: float, lo: float = 0.0, working: float | None = None) -> dict:
+        """Add :meth:`beam_check` to a PRBM result's summary (nothing for the beam model)."""
+        if self.beam:
+            return summary
+        check = self.beam_check(hi, lo, working)
+        notes = check.pop("notes")
+        summary.update(check)
+        summary.setdefault("notes", []).extend(notes)
+        return summary
+
     def _stroke(self, stroke) -> float:
         p = self.params
         value = 0.4 * p.extended_length if stroke is None else float(stroke)
@@ -402,6 +517,12 @@ class CFCS:
                     "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
                 }
             )
+        if not self.beam:
+            check, fb = self._beam_check_on(x, 0.0, start)
+            summary.setdefault("notes", []).extend(check.pop("notes"))
+            summary.update(check)
+            if fb is not None:
+                extra["force_beam_N"] = fb
         return StaticResult(x, th, f, f + fd, f - fd, stress, self._note_nulls(summary), extra)
 
     def _toggle_summary(self, in_zone: bool, dominated: list, check: dict) -> dict:
@@ -416,7 +537,8 @@ class CFCS:
                 f"toggle-dominated: {', '.join(dominated)} change by more than "
                 f"{100 * TOGGLE_TOLERANCE:g} % when the toggle cut-off doubles; they depend on a numerical "
                 "setting, not on the mechanism (start the motion from a preload offset inside the "
-                "constant-force band)"
+                "constant-force band, or give the drive's stiffness, drive_stiffness / --drive-stiffness, to "
+                "integrate the crank through the toggle with its inertia: CFCS.driven)"
             )
         elif in_zone:
             notes.append(
@@ -467,6 +589,10 @@ class CFCS:
         motion=None,
     ) -> DynamicResult:
         """Slider force along a prescribed periodic motion (inverse dynamics, Eqs. (19)-(25)).
+
+        The slider follows the motion rigidly (``drive_stiffness`` of the parameters is not used
+        here: :meth:`driven` is the same motion through the compliant drive, and the CLI's
+        ``cfcs dynamic`` switches to it when a drive stiffness is given).
 
         Parameters
         ----------
@@ -524,6 +650,7 @@ class CFCS:
             **self._beam_dynamics_summary(mot.omega),
             **self._toggle_summary(in_zone, dominated, check),
         }
+        self._add_beam_check(summary, float(np.max(x)), float(np.min(x)))
         comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
         return DynamicResult(
             t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], self._note_nulls(summary)
@@ -613,7 +740,155 @@ class CFCS:
             "notes": notes,
             **self._common_summary(),
         }
+        lo, hi = self.motion(omegas[-1], amplitude, offset).bounds
+        self._add_beam_check(summary, hi, lo)
         return FrequencySweep(omegas, stats, summary)
+
+    # -- forward dynamics through a compliant drive ----------------------------------------
+    def driven(
+        self,
+        omega=None,
+        amplitude=DEFAULT_AMPLITUDE,
+        offset=DEFAULT_OFFSET,
+        *,
+        motion=None,
+        drive_stiffness: float | None = None,
+        drive_damping: float | None = None,
+        periods: int = DRIVEN_PERIODS,
+        samples_per_period: int = DRIVEN_SAMPLES,
+        rtol: float = DRIVEN_RTOL,
+        max_step: float | None = None,
+        sign_smoothing: float = DRIVE_SIGN_SMOOTHING,
+    ) -> DrivenResult:
+        """The slider driven along x_d(t) through a drive spring and damper (forward dynamics).
+
+        The motion is that of :meth:`dynamic` (the sinusoid, or ``motion``) but it moves the far
+        end of the drive, which pushes the slider with ``k_d (x_d - x) + c_d (x_d' - x')``
+        (:mod:`springdyn.cfcs.drive`).  The crank angle is integrated, signed, through the toggle
+        with the links' inertia, with no cut-off; the statistics are those of the drive force over
+        the last of ``periods`` periods, and ``periodicity_change_percent`` says how much they
+        moved from the period before (a note when more than 1 %).  The energy balance
+        ``W = Delta(T + V + V_d) + D_f + D_c`` is reported with its residual.
+
+        Parameters
+        ----------
+        omega : float, optional
+            Circular frequency of the sinusoid [rad/s] (required unless ``motion`` is given).
+        amplitude : float or str
+            Stroke of the sinusoid, a length or a percentage of r2 + r3 [m or %].
+        offset : float or str
+            Drive position at t = 0, a length or a percentage of r2 + r3 [m or %]; 0 works the
+            mechanism through its toggle.
+        motion : SinusoidMotion or TabulatedMotion, optional
+            A ready-made motion of the drive (overrides omega/amplitude/offset) [m].
+        drive_stiffness : float, optional
+            k_d [N/m] (default: ``drive_stiffness`` of the parameters; one of the two is required).
+        drive_damping : float, optional
+            c_d [N*s/m] (default: ``drive_damping`` of the parameters).
+        periods : int
+            Periods integrated [-]; statistics over the last one.
+        samples_per_period : int
+            Output samples per period [-] (the statistics are taken on them).
+        rtol : float
+            Relative tolerance of the integrator [-].
+        max_step : float, optional
+            Largest integration step [s] (default period / 400).
+        sign_smoothing : float
+            Speed v_s of the smoothed Coulomb sign tanh(theta2'/v_s) [rad/s].
+        """
+        p = self.params
+        k_d = p.drive_stiffness if drive_stiffness is None else float(drive_stiffness)
+        c_d = p.drive_damping if drive_damping is None else float(drive_damping)
+        if k_d is None:
+            raise InputError(
+                "the compliant drive needs drive_stiffness (the stiffness of what pushes the slider, e.g. "
+                '"20 kN/m") in [cfcs] or as an argument'
+            )
+        if not (np.isfinite(k_d) and k_d > 0):
+            raise InputError(f"drive_stiffness = {k_d!r} N/m must be a positive number")
+        if not (np.isfinite(c_d) and c_d >= 0):
+            raise InputError(f"drive_damping = {c_d!r} N*s/m must be zero or positive")
+        if not (isinstance(periods, (int, np.integer)) and periods >= 2):
+            raise InputError(f"periods = {periods!r} must be a whole number >= 2 (the last two are compared)")
+        if not (isinstance(samples_per_period, (int, np.integer)) and samples_per_period >= 50):
+            raise InputError(f"samples_per_period = {samples_per_period!r} must be a whole number >= 50")
+        if not (0 < rtol < 1e-2):
+            raise InputError(f"rtol = {rtol!r} must lie in (0, 0.01)")
+        if not sign_smoothing > 0:
+            raise InputError(f"sign_smoothing = {sign_smoothing!r} rad/s must be positive")
+        mot = motion if motion is not None else self.motion(omega, amplitude, offset)
+        if motion is not None:
+            lo, hi = mot.bounds
+            check_stroke(lo, hi, p.max_deflection, f"the motion {mot.describe()}")
+        period = mot.period
+        h = period / 400.0 if max_step is None else float(max_step)
+        if not h > 0:
+            raise InputError(f"max_step = {max_step!r} s must be positive")
+        vals = self._values(hi=p.max_deflection if self.beam else None)
+        # start at rest where the drive balances the static force at t = 0 (away from the toggle)
+        xd0 = float(mot(np.array([0.0]))[0][0])
+        floor = 1e-4 * p.extended_length
+        x0 = xd0 - float(self.spring_force(max(xd0, floor))) / k_d
+        x0 = min(max(x0, floor), p.max_deflection)
+        th0 = float(theta2_from_deflection(x0, p.r2, p.r3))
+        t = np.arange(periods * samples_per_period + 1) * (period / samples_per_period)
+        f_ref = float(static_force_at_toggle(p.k3, p.r2, p.r3))
+        e_scale = f_ref * p.extended_length
+        y = integrate_driven(
+            mot, k_d, c_d, vals, t, th0, 0.0, sign_smoothing=sign_smoothing, rtol=rtol, max_step=h, energy_scale=e_scale
+        )
+        th, thd = y[0], y[1]
+        x = deflection_from_theta2(th, p.r2, p.r3)
+        v = slider_jacobian(th, p.r2, p.r3) * thd
+        xd_all = mot(t)
+        xd, vd = np.asarray(xd_all[0], dtype=float), np.asarray(xd_all[1], dtype=float)
+        f = drive_force(xd, vd, x, v, k_d, c_d)
+        fs = self.spring_force(x) if self.beam else static_force(th, p.k3, p.r2, p.r3)
+        strain = self._beam_table(p.max_deflection)["force"].antiderivative() if self.beam else None
+        residual = energy_balance(th, thd, xd, y[2], y[3], y[4], k_d, vals, strain)
+        n = samples_per_period
+        last, prev = slice(len(t) - 1 - n, len(t)), slice(len(t) - 1 - 2 * n, len(t) - n)
+        stats = _dynamic_stats(t[last], f[last], v[last], n)
+        before = _dynamic_stats(t[prev], f[prev], v[prev], n)
+        scale = max(stats["peak_to_peak_N"], 1e-12 * f_ref)
+        change = max(
+            abs(stats[k] - before[k]) for k in ("mean_force_N", "peak_to_peak_N", "force_max_N", "force_min_N")
+        )
+        work_total = float(y[2][-1] - y[2][0])
+        gross = float(np.sum(np.abs(np.diff(y[2])))) or e_scale
+        summary = {
+            "omega_rad_per_s": float(mot.omega),
+            "motion": "drive " + mot.describe().replace("x(t)", "x_d(t)"),
+            "drive_stiffness_N_per_m": float(k_d),
+            "drive_damping_N_s_per_m": float(c_d),
+            **stats,
+            "actuator_work_per_cycle_J": float(y[2][-1] - y[2][-1 - n]),
+            "periodicity_change_percent": 100.0 * change / scale,
+            "energy_balance_residual_J": float(np.max(np.abs(residual))),
+            "energy_balance_relative": float(np.max(np.abs(residual))) / gross,
+            "actuator_work_J": work_total,
+            "deflection_min_m": float(np.min(x[last])),
+            "deflection_max_m": float(np.max(x[last])),
+            "drive_lag_max_m": float(np.max(np.abs(xd[last] - x[last]))),
+            "toggle_crossings_per_period": int(np.count_nonzero(np.diff(np.sign(th[last])) != 0)),
+            "periods": int(periods),
+            "samples_per_period": int(n),
+            "rtol": float(rtol),
+            "max_step_s": float(h),
+            "sign_smoothing_rad_per_s": float(sign_smoothing),
+            **self._stress_summary(th[last], x[last]),
+            **self._common_summary(),
+            **self._beam_dynamics_summary(mot.omega),
+        }
+        summary["toggle_cutoff_rad"] = None  # integrated through the toggle: no cut-off
+        notes = summary.setdefault("notes", [])
+        if summary["periodicity_change_percent"] > 100 * DRIVEN_PERIODICITY:
+            notes.append(
+                f"not periodic yet: the statistics moved by {summary['periodicity_change_percent']:.3g} % of the "
+                f"peak-to-peak force from period {periods - 1} to {periods}; integrate more periods"
+            )
+        self._add_beam_check(summary, float(np.max(x[last])), float(np.min(x[last])))
+        return DrivenResult(t, xd, x, v, th, thd, f, fs, y[2], y[3], y[4], residual, self._note_nulls(summary))
 
     # -- forward dynamics ---------------------------------------------------------------
     def forward(
@@ -672,7 +947,8 @@ class CFCS:
         thd0 = v0 / g0 if g0 > 0 else 0.0
 
         if force is not None and not callable(force):
-            scale = float(np.max(np.abs(self.static(p.max_deflection).force)))
+            x_all = np.linspace(0.0, p.max_deflection, 721)
+            scale = float(np.max(np.abs(static_force(theta2_from_deflection(x_all, p.r2, p.r3), p.k3, p.r2, p.r3))))
             if not (np.isfinite(force) and abs(force) <= FORCE_LIMIT_FACTOR * scale):
                 raise InputError(
                     f"force = {force!r} N is beyond reason for this mechanism: it must be finite and within "
@@ -705,6 +981,7 @@ class CFCS:
             **self._common_summary(),
         }
         summary["toggle_cutoff_rad"] = None  # the forward problem needs no cut-off
+        self._add_beam_check(summary, float(np.max(x)), float(np.min(x)))
         self._note_nulls(summary)
         if self.beam:  # T + the strip's strain energy, the integral of its quasi-static force
             e = (
@@ -738,6 +1015,11 @@ class CFCS:
             "strip_frequency_ratio": float(omega) / w1,
             "strip_mass_kg": mass_per_length * p.pivot_length,
         }
+
+
+def _finite(value: float) -> float | None:
+    """``value``, or None when it is not a finite number."""
+    return float(value) if np.isfinite(value) else None
 
 
 def _refined_max(x, f, fun=None):

@@ -83,6 +83,17 @@ class CFCSParams(Parameters):
     poisson_ratio: float = param(
         "", "Poisson's ratio of the flexure (plate bending)", default=0.3, symbol="nu", minimum=0.0, maximum=0.49
     )
+    drive_stiffness: float | None = param(
+        "N/m",
+        "stiffness of what drives the slider (the compliant drive of the driven model, "
+        "springdyn.cfcs.drive); unset: the slider follows x(t) rigidly (inverse dynamics)",
+        default=None,
+        symbol="k_d",
+        positive=True,
+    )
+    drive_damping: float = param(
+        "N*s/m", "damping of what drives the slider (with drive_stiffness)", default=0.0, symbol="c_d", nonnegative=True
+    )
     toggle_cutoff: float = param(
         "rad",
         "toggle zone: below this crank angle tau_CF, tau_AF use dx/dtheta2 at the cut-off",
@@ -156,6 +167,11 @@ class CFCSParams(Parameters):
                 f"pivot_length = {format_quantity(self.pivot_length, 'm', 'mm')} must be shorter than twice "
                 f"coupler_length = {format_quantity(self.coupler_length, 'm', 'mm')} (the PRBM pin sits at the middle "
                 "of the strip)"
+            )
+        if self.drive_damping > 0 and self.drive_stiffness is None:
+            raise InputError(
+                f"drive_damping = {self.drive_damping:g} N*s/m needs drive_stiffness (the drive's spring, e.g. "
+                '"20 kN/m"): a drive of damping alone does not hold the slider'
             )
         if not self.toggle_cutoff < np.pi / 2:
             raise InputError(

@@ -90,8 +90,23 @@ def register(subparsers) -> None:
         help="periodic x(t) from a CSV (time_s, deflection_m); with --omega its period is rescaled to 2 pi/omega",
     )
     d.add_argument("--cycles", type=int, default=2, help="cycles to output (default 2)")
-    d.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
+    d.add_argument(
+        "--samples", type=int, help="samples per cycle (default 400; 2000 with a compliant drive, per period)"
+    )
     d.add_argument("--no-dissipation", action="store_true", help="switch off tau_CF, tau_AF and slider friction")
+    d.add_argument(
+        "--drive-stiffness",
+        help="stiffness of what pushes the slider, e.g. '20 kN/m': the motion then moves the drive's far end and "
+        "the crank is integrated through the toggle with its inertia (forward dynamics, no cut-off); default "
+        "drive_stiffness of the configuration, unset: the slider follows the motion rigidly",
+    )
+    d.add_argument("--drive-damping", help="damping of the drive, e.g. '5 N*s/m' (default drive_damping, 0)")
+    d.add_argument("--periods", type=int, help="compliant drive: periods integrated, statistics over the last (6)")
+    d.add_argument("--rtol", help="compliant drive: relative tolerance of the integrator (default 1e-8)")
+    d.add_argument("--max-step", help="compliant drive: largest integration step (default period/400), e.g. 1ms")
+    d.add_argument(
+        "--sign-smoothing", help="compliant drive: speed v_s of tanh(theta2'/v_s), the Coulomb sign [rad/s] (0.001)"
+    )
     _model_option(d)
     add_output_options(d)
     d.set_defaults(func=_dynamic)
@@ -289,6 +304,7 @@ def _static(args) -> int:
             ),
             ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
             *prbm_rows,
+            *_beam_check_rows(s),
             ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
             ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
             (
@@ -303,6 +319,30 @@ def _static(args) -> int:
     )
     print_notes(s)
     return 0
+
+
+def _beam_check_rows(summary) -> list:
+    """The beam check of a PRBM result (empty for the beam model)."""
+    if "beam_band_error_percent" not in summary:
+        return []
+    s = summary
+    if s["beam_band_error_percent"] is None:
+        return [("beam check", "n/a", "see the notes")]
+    working = s.get("beam_working_band_error_percent")
+    return [
+        (
+            "beam check: elastica band",
+            f"{s['beam_force_min_N']:.5g} .. {s['beam_force_max_N']:.5g} N",
+            "the strip as an elastica, same modulus",
+        ),
+        (
+            "PRBM band error",
+            f"{s['beam_band_error_percent']:+.3g} %",
+            "(band PRBM - band elastica) / band elastica"
+            + (f"; working range {working:+.3g} %" if working is not None else ""),
+        ),
+        ("PRBM force error", f"{s['beam_force_error_percent']:.3g} % of F0", "max |F PRBM - F elastica| / F0"),
+    ]
 
 
 def _toggle_row(summary):
@@ -322,9 +362,26 @@ def _dynamic(args) -> int:
         params = params.without_dissipation()
     model = CFCS(params)
     omega = _q(args.omega, "rad/s", "--omega") if args.omega else None
+    driven = args.drive_stiffness is not None or params.drive_stiffness is not None
+    if not driven:
+        given = [
+            o
+            for o, v in (
+                ("--drive-damping", args.drive_damping),
+                ("--periods", args.periods),
+                ("--rtol", args.rtol),
+                ("--max-step", args.max_step),
+                ("--sign-smoothing", args.sign_smoothing),
+            )
+            if v is not None
+        ]
+        if given:
+            raise InputError(f"{', '.join(given)} need a compliant drive: give --drive-stiffness (e.g. '20 kN/m')")
     with as_options(**_OPTIONS):
         mot = model.motion(omega, args.amplitude, args.offset, csv=args.motion)
-        res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples)
+        if driven:
+            return _driven(args, model, mot)
+        res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples or 400)
     _write_outputs(args, res)
     s = res.summary
     if args.json:
@@ -343,9 +400,85 @@ def _dynamic(args) -> int:
                 _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
                 f"safety factor {_fmt(s['safety_factor'], digits=3)}",
             ),
+            *_beam_check_rows(s),
             _cutoff_row(s),
             ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
             _toggle_row(s),
+        ],
+        headers=("quantity", "value", "note"),
+    )
+    print_notes(s)
+    return 0
+
+
+def _driven(args, model, mot) -> int:
+    """``cfcs dynamic`` with a compliant drive: forward dynamics through the toggle."""
+    from springdyn.cfcs.drive import DRIVE_SIGN_SMOOTHING
+    from springdyn.cfcs.model import DRIVEN_PERIODS, DRIVEN_RTOL, DRIVEN_SAMPLES
+
+    kw = dict(
+        drive_stiffness=_q(args.drive_stiffness, "N/m", "--drive-stiffness") if args.drive_stiffness else None,
+        drive_damping=_q(args.drive_damping, "N*s/m", "--drive-damping") if args.drive_damping else None,
+        periods=args.periods or DRIVEN_PERIODS,
+        samples_per_period=args.samples or DRIVEN_SAMPLES,
+        rtol=_q(args.rtol, "", "--rtol") if args.rtol else DRIVEN_RTOL,
+        max_step=_q(args.max_step, "s", "--max-step") if args.max_step else None,
+        sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing")
+        if args.sign_smoothing
+        else DRIVE_SIGN_SMOOTHING,
+    )
+    with as_options(periods="--periods", samples_per_period="--samples", rtol="--rtol", max_step="--max-step"):
+        res = model.driven(motion=mot, **kw)
+    _write_outputs(args, res)
+    s = res.summary
+    if args.json:
+        print_json(s)
+        return 0
+    print_table(
+        [
+            ("input", s["motion"], "moves the drive's far end"),
+            (
+                "drive",
+                f"k_d {_fmt(s['drive_stiffness_N_per_m'], 'N/m', 'kN/m')}, "
+                f"c_d {_fmt(s['drive_damping_N_s_per_m'], 'N*s/m')}",
+                "force k_d (x_d - x) + c_d (x_d' - x')",
+            ),
+            ("mean force", _fmt(s["mean_force_N"], "N"), f"last of {s['periods']} periods"),
+            ("median force", _fmt(s["median_force_N"], "N"), ""),
+            ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
+            ("force range", f"{_fmt(s['force_min_N'], 'N')} .. {_fmt(s['force_max_N'], 'N')}", ""),
+            ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over the last period"),
+            (
+                "slider range",
+                f"{_fmt(s['deflection_min_m'], 'm', 'mm')} .. {_fmt(s['deflection_max_m'], 'm', 'mm')}",
+                f"largest drive lag {_fmt(s['drive_lag_max_m'], 'm', 'mm')}",
+            ),
+            ("toggle crossings", str(s["toggle_crossings_per_period"]), "per period, through the crank's inertia"),
+            (
+                "friction heat per cycle",
+                _fmt(s["hysteresis_energy_per_cycle_J"], "J"),
+                "work of the drive on the slider",
+            ),
+            ("actuator work per cycle", _fmt(s["actuator_work_per_cycle_J"], "J"), "includes the drive's damper"),
+            (
+                "periodicity",
+                f"{s['periodicity_change_percent']:.3g} %",
+                "change of the statistics from the period before",
+            ),
+            ("energy balance", f"{s['energy_balance_relative']:.2g}", "max |W - dE - D| / gross actuator work"),
+            (
+                "max pivot stress",
+                _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+                f"safety factor {_fmt(s['safety_factor'], digits=3)}",
+            ),
+            *_beam_check_rows(s),
+            (
+                "numerics",
+                f"rtol {s['rtol']:.2g}, max step {_fmt(s['max_step_s'], 's', 'ms', 3)}, "
+                f"{s['samples_per_period']} samples/period, v_s {s['sign_smoothing_rad_per_s']:.2g} rad/s",
+                "",
+            ),
+            _cutoff_row(s),
         ],
         headers=("quantity", "value", "note"),
     )
@@ -434,6 +567,7 @@ def _forward(args) -> int:
             ("toggle crossings", str(s["toggle_crossings"]), ""),
             ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
             ("sign smoothing", _fmt(s["sign_smoothing_rad_per_s"], "rad/s"), "tanh(theta2'/v_s)"),
+            *_beam_check_rows(s),
             _cutoff_row(s),
         ],
         headers=("quantity", "value", "note"),
