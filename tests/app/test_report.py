@@ -286,3 +286,51 @@ def test_report_of_an_exhaust_valve_with_gas_force(tmp_path):
     f.write_text(spring + no_timing + report)
     with pytest.raises(InputError, match="cylinder_pressure needs \\[timing\\]"):
         load(tomllib.loads(f.read_text()), f)
+
+
+@pytest.mark.slow  # a synthesis and a tolerance study in a report (~13 s)
+def test_report_synthesises_a_new_spring_and_proves_it_across_tolerances(tmp_path):
+    """[report] requirements and tolerances (issue 29, part 5, the worked example's report):
+    the best synthesised candidate is written and judged; it, not the definition's spring,
+    goes through the tolerance study, whose variants, histograms and failing share the report
+    states; missing files are named."""
+    import tomllib
+
+    from springdyn.app.report.valve import load, section
+
+    spring = (ROOT / "examples" / "report" / "report_valve_one_step.toml").read_text().split("[cam]")[0]
+    (tmp_path / "req.toml").write_text(
+        '[requirements]\ninstalled_length = "38 mm"\ninstalled_force = "250 N"\nlift = "9 mm"\n'
+        'open_force = "460 N"\nmax_outer_diameter = "27 mm"\nmin_inner_diameter = "15 mm"\nmaterial = "SiCr"\n'
+    )
+    (tmp_path / "tol.toml").write_text('[tolerances]\nwire_diameter = "+-0.015 mm"\nlash = "+-0.03 mm"\n')
+    f = tmp_path / "new.toml"
+    f.write_text(
+        spring
+        + (ROOT / "examples" / "valve" / "cam_polydyne_ramps.toml").read_text()
+        + (ROOT / "examples" / "valve" / "valve_train.toml").read_text()
+        + '\n[report]\nmin_engine_rpm = "4000 rpm"\nmax_engine_rpm = "5000 rpm"\nengine_rpm_step = "500 rpm"\n'
+        'models = "type-c"\nrequirements = "req.toml"\ntolerances = "tol.toml"\ntolerance_samples = 4\n'
+    )
+    d = load(tomllib.loads(f.read_text()), f)
+    out = tmp_path / "out"
+    sec = section(d, source=str(f), out_dir=out)
+    names = {c.name: c for c in sec.criteria}
+    assert names["new spring meets its requirements"].passed
+    assert names["across tolerances"].value.endswith("of 4 variants fail")
+    new = [x for x in sec.findings if x.startswith("A new spring for [report] requirements (req.toml)")]
+    assert new and "the best is one-step" in new[0]
+    across = [x for x in sec.findings if x.startswith("The synthesised spring across its tolerances")]
+    assert across and "float speed" in across[0]
+    assert (out / "new_spring" / "candidates.csv").exists() and (out / "tolerances" / "variants.nc").exists()
+    import xarray as xr
+
+    from springdyn.valve import ValveSpring
+
+    best = ValveSpring.from_toml(out / "new_spring" / "candidate_01_one-step.toml")
+    with xr.open_dataset(out / "tolerances" / "variants.nc") as ds:  # the new spring's variants, not the old one's
+        assert abs(float(ds["wire_diameter"].mean()) - best.wire_diameter) < 15e-6
+        assert abs(float(ds["wire_diameter"].mean()) - d.spring.wire_diameter) > 15e-6
+    f.write_text(f.read_text().replace('tolerances = "tol.toml"', 'tolerances = "missing.toml"'))
+    with pytest.raises(InputError, match=r"\[report\] tolerances = 'missing.toml': no such file"):
+        load(tomllib.loads(f.read_text()), f)

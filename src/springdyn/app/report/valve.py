@@ -105,10 +105,29 @@ class ReportSettings(Parameters):
         default=101325.0,
         positive=True,
     )
+    requirements: str = param(
+        None,
+        "requirements of a new spring (a file beside the definition with a [requirements] table): the report "
+        "synthesises it (springdyn valve synthesize) and, with tolerances, proves the best candidate across them",
+        kind="str",
+        default=None,
+    )
+    tolerances: str = param(
+        None,
+        "manufacturing tolerances (a file beside the definition with [tolerances] and [criteria]): the spring, or "
+        "the one synthesised for requirements, across them (springdyn valve tolerance)",
+        kind="str",
+        default=None,
+    )
+    tolerance_samples: int = param(
+        "", "variants of the tolerance study (Sobol points: a power of 2)", kind="int", default=64, positive=True
+    )
 
     table = "report"
 
     def _validate(self) -> None:
+        if self.tolerance_samples > 100_000:
+            raise InputError(f"[report] tolerance_samples = {self.tolerance_samples} must be at most 100000")
         if not self.min_engine_rpm < self.max_engine_rpm:
             raise InputError("[report] min_engine_rpm must be below max_engine_rpm")
         if (self.max_engine_rpm - self.min_engine_rpm) / self.engine_rpm_step > 2000:
@@ -145,6 +164,19 @@ class ValveDefinition:
     friction: object = None
     #: The gas force of ``[report] cylinder_pressure`` (:class:`springdyn.valve.gas_force.GasForce`).
     gas_force: object = None
+    #: ``[report] requirements``: (Requirements, the file's folder), or None.
+    requirements: object = None
+    #: ``[report] tolerances``: (tolerances, Criteria), or None.
+    tolerances: object = None
+
+
+def _beside(path: Path, name: str, key: str) -> Path:
+    """The file ``name`` of ``[report] key``, relative to the definition's folder."""
+    f = Path(name)
+    f = f if f.is_absolute() else Path(path).parent / f
+    if not f.is_file():
+        raise InputError(f"{path}: [report] {key} = {name!r}: no such file")
+    return f
 
 
 def load(doc: dict, path: Path) -> ValveDefinition:
@@ -191,7 +223,20 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         gas = GasForce.from_file(
             trace, axis=crank_axis(cam, timing), seat_diameter=vt.seat_diameter, port_pressure=settings.port_pressure
         )
-    return ValveDefinition(spring, cam, vt, cam_given, settings, timing, follower, friction, gas)
+    requirements = tolerances = None
+    if settings.requirements is not None:
+        from springdyn.valve.synthesis import read_requirements
+
+        requirements = read_requirements(_beside(path, settings.requirements, "requirements"))
+    if settings.tolerances is not None:
+        from springdyn.valve.tolerances import read_tolerances
+
+        tolerances = read_tolerances(_beside(path, settings.tolerances, "tolerances"))
+        if "lash" in tolerances[0] and vt is None:
+            raise InputError(f"{path}: [report] tolerances: lash is the valve train's: give a [valve_train] table")
+    return ValveDefinition(
+        spring, cam, vt, cam_given, settings, timing, follower, friction, gas, requirements, tolerances
+    )
 
 
 def _run_up_finding(sp, lobe, vt, f, rs, axis, out_dir, files, figures) -> str:
@@ -556,6 +601,8 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"springdyn valve float {source} --cam {source} --valve-train {source} "
             f"--cam-rpm {res.cam_rpm[0]:.0f}:{res.cam_rpm[-1]:.0f}:{res.cam_rpm[1] - res.cam_rpm[0]:.0f}"
         )
+    if d.requirements is not None or d.tolerances is not None:
+        _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet)
     inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
     if vt is not None:
         inputs += [(f"valve_train.{k}", v, m) for k, v, m in parameter_rows(vt)]
@@ -587,6 +634,115 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         findings=findings,
         figures=figures,
         files=files,
+    )
+
+
+#: Speeds of a report's tolerance study, about: from the report's lowest to 10 % past the float
+#: speed it asks for.
+TOLERANCE_SPEEDS = 12
+
+
+def _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet):
+    """``[report] requirements``: a new spring synthesised for them (the best candidate);
+    ``[report] tolerances``: that spring, else the definition's, across its tolerances."""
+    from springdyn.core.progress import progress
+    from springdyn.valve.synthesis import synthesize, write_candidates
+    from springdyn.valve.tolerances import tolerance_study
+
+    rs, vt = d.settings, d.valve_train
+    spring = d.spring
+    model = "type-c" if rs.models == "type-c" else "distributed"
+
+    def bar(items, total=None, desc=""):
+        return progress(items, total=total, desc=desc, quiet=quiet)
+
+    if d.requirements is not None:
+        req, base = d.requirements
+        syn = synthesize(req, base_dir=base, progress=bar)  # infeasible: an InputError naming the binding ones
+        folder = out_dir / "new_spring"
+        files += write_candidates(syn, folder, source=rs.requirements)
+        files.append(syn.to_csv(folder / "candidates.csv"))
+        plot = folder / "candidates.png"
+        plt.close(syn.plot(plot))
+        figures.append((plot, "Force against length of the synthesised candidates, with the two load points"))
+        best, spring = syn.rows[0], syn.springs[0]
+        meets = best["meets_all"]
+        binding = min((k for k in best if k.startswith("margin_")), key=lambda k: best[k])[len("margin_") :]
+        float_text = f", floats at {best['float_cam_rpm']:.0f} cam rpm" if best.get("float_cam_rpm") else ""
+        findings.append(
+            f"A new spring for [report] requirements ({rs.requirements}): of {syn.searched} geometries searched, "
+            f"{len(syn.rows)} candidates are ranked (new_spring/candidates.csv); the best is {best['kind']}, "
+            f"{best['wire_diameter_m'] * 1e3:.2f} mm wire on {best['mean_diameter_m'] * 1e3:.2f} mm, "
+            f"{best['mass_kg'] * 1e3:.1f} g{float_text}; its smallest margin is {best['smallest_margin']:+.1%} "
+            f"({binding})." + (" " + " ".join(syn.notes) if syn.notes else "")
+        )
+        criteria.append(
+            Criterion(
+                "new spring meets its requirements",
+                "yes" if meets else f"no: {binding} {best['smallest_margin']:+.1%}",
+                "every margin of [report] requirements >= 0",
+                bool(meets),
+                "the best synthesised candidate (springdyn valve synthesize), with the distributed model's dynamic "
+                "checks where the requirements name a cam",
+            )
+        )
+        commands.append(f"springdyn valve synthesize {rs.requirements} --out new_spring")
+    if d.tolerances is None:
+        return
+    tols, crit = d.tolerances
+    lo = rs.report_speeds[0]
+    # up to 10 % past the float speed the report asks for (the variants' float speeds inside
+    # the range), in a round step of about a twelfth of it
+    hi = 1.1 * top * (1.0 + rs.float_margin) if vt is not None else top
+    step = max(50.0, 50.0 * round((hi - lo) / (TOLERANCE_SPEEDS - 1) / 50.0))
+    speeds = np.arange(lo, hi + step, step)
+    which = "the synthesised spring" if d.requirements is not None else "the spring"
+    st = tolerance_study(
+        spring.with_model(model),
+        lobe,
+        tols,
+        crit,
+        count=int(rs.tolerance_samples),
+        seed=0,
+        speeds=speeds,
+        valve_train=vt,
+        out_dir=out_dir / "tolerances",
+        progress=bar,
+    )
+    plot = out_dir / "tolerances" / "histograms.png"
+    plt.close(st.plot(plot))
+    files.append(out_dir / "tolerances" / "variants.nc")
+    figures.append((plot, f"{which.capitalize()} across its tolerances: histograms of the variants' outputs"))
+    s = st.summary
+
+    def band(k, scale=1.0, fmt=".0f"):
+        return f"{s[f'{k}_p2.5'] * scale:{fmt}}-{s[f'{k}_p97.5'] * scale:{fmt}}"
+
+    fails = {k[len("fail_share_") :]: v for k, v in s.items() if k.startswith("fail_share_") and k != "fail_share_any"}
+    findings.append(
+        f"{which.capitalize()} across its tolerances ([report] tolerances, {s['variants']} Sobol variants, "
+        f"{model} model, {speeds[0]:.0f}-{speeds[-1]:.0f} cam rpm; 2.5-97.5 %): Fset {band('Fset', fmt='.1f')} N, "
+        f"f1 {band('f1')} Hz"
+        + (f", float speed {band('float_cam_rpm')} cam rpm" if vt is not None else "")
+        + f", Goodman safety {band('goodman_safety', fmt='.3f')}, peak retainer force {band('max_retainer_force')} N; "
+        + "variants failing: "
+        + ", ".join(f"{k.replace('_', ' ')} {v:.1%}" for k, v in fails.items())
+        + "."
+    )
+    criteria.append(
+        Criterion(
+            "across tolerances",
+            f"{s['fail_share_any']:.1%} of {s['variants']} variants fail",
+            "no sampled variant fails [criteria]",
+            bool(s["fail_share_any"] == 0.0),
+            "; ".join(s["notes"]),
+        )
+    )
+    commands.append(
+        f"springdyn valve tolerance SPRING.toml --model {model} --cam {source}"
+        + (f" --valve-train {source}" if vt is not None else "")
+        + f" --tolerances {rs.tolerances} --samples {s['variants']} --seed 0 "
+        f"--cam-rpm {speeds[0]:.0f}:{speeds[-1]:.0f}:{step:.0f} --out tolerances"
     )
 
 
