@@ -19,7 +19,12 @@ COEFF_KEYS = [
     "cxy_Ns_per_m",
     "cyx_Ns_per_m",
     "cyy_Ns_per_m",
+    "mxx_kg",
+    "mxy_kg",
+    "myx_kg",
+    "myy_kg",
 ]
+FILM_KEYS = ["squeeze_reynolds", "inertia_ratio", "pressure_amplitude_Pa", "cavitation_margin_Pa", "notes"]
 
 
 def _json(capsys):
@@ -49,7 +54,7 @@ def test_coefficients_json_csv_plot(tmp_path, capsys):
     )
     assert rc == 0
     d = _json(capsys)
-    for k in COEFF_KEYS + ["pack_stiffness_N_per_m", "load_ratios"]:
+    for k in COEFF_KEYS + FILM_KEYS + ["pack_stiffness_N_per_m", "load_ratios"]:
         assert k in d
     assert d["rpm"] == [500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0]
     # k_s of Type C (READING-NOTES 3.1, 106.9 N/mm) and Kxx = 3 k_s (3.4)
