@@ -126,7 +126,7 @@ def test_time_domain_rig_identifies_the_complex_coefficient():
         ry = simulate_rig(m, linear_shake(rpm, 20e-6, "y", 6, 40e3), film=True)
         n = int(round(4 * 60 / rpm * 40e3))
 
-        def d(r):
+        def d(r, n=n):
             return RigData(r.time[-n:], r.x[-n:], r.y[-n:], r.fx[-n:], r.fy[-n:])
 
         res = identify(d(rx), d(ry), mass=m.params.ring_mass, rpm=rpm)

@@ -197,7 +197,6 @@ class FilmNetwork:
             Absolute chamber pressures at the end of the step (``>= p_cav``) [Pa].
         """
         beta, M, U = self._matrices(dt)
-        n = self.chambers
         h = beta * self.inertance / dt * self.flow  # flow carried over by inertia
         squeeze = self.volume_matrix @ np.asarray(velocity, dtype=float)
         pc = self.cavitation_pressure
