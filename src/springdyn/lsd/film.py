@@ -181,6 +181,45 @@ class FilmNetwork:
         """
         return np.linalg.pinv(self._D) @ (self.volume_matrix @ np.asarray(velocity, dtype=float))
 
+    def step_terms(self, dt):
+        """The step's linear complementarity data without the squeeze term.
+
+        ``void_(n+1) = M (p - p_cav) + base - dt B v_(n+1)`` and ``q_(n+1) = beta D^T p + h``.
+
+        Parameters
+        ----------
+        dt : float
+            Time step [s].
+
+        Returns
+        -------
+        tuple
+            ``(M [m^3/Pa], base [m^3], beta [m^3/(s Pa)], h [m^3/s])``.
+        """
+        beta, M, _ = self._matrices(dt)
+        h = beta * self.inertance / dt * self.flow  # flow carried over by inertia
+        base = self.void + dt * (
+            self._D @ h - self.feed_conductance * (self.supply_pressure - self.cavitation_pressure)
+        )
+        return M, base, beta, h
+
+    def commit(self, pressures, void, beta, h):
+        """Take the step's solution: pressures [Pa], voids [m^3] and the passage flows that follow.
+
+        Parameters
+        ----------
+        pressures : numpy.ndarray
+            Absolute chamber pressures [Pa].
+        void : numpy.ndarray
+            Void volumes [m^3].
+        beta : float
+            From :meth:`step_terms` [m^3/(s Pa)].
+        h : numpy.ndarray
+            From :meth:`step_terms` [m^3/s].
+        """
+        self.void = np.maximum(void, 0.0)
+        self.flow = beta * (self._D.T @ pressures) + h
+
     def step(self, velocity, dt):
         """Advance one step of ``dt`` [s] to ring velocity ``velocity`` [m/s]; return the pressures [Pa].
 
@@ -196,17 +235,13 @@ class FilmNetwork:
         numpy.ndarray
             Absolute chamber pressures at the end of the step (``>= p_cav``) [Pa].
         """
-        beta, M, U = self._matrices(dt)
-        h = beta * self.inertance / dt * self.flow  # flow carried over by inertia
-        squeeze = self.volume_matrix @ np.asarray(velocity, dtype=float)
-        pc = self.cavitation_pressure
-        # void_(n+1) = void_n + dt (-B v + D q + g_f (pbar - p_s)), q = beta D^T p + h
-        r = self.void + dt * (-squeeze + self._D @ h - self.feed_conductance * (self.supply_pressure - pc))
+        M, base, beta, h = self.step_terms(dt)
+        U = self._matrices(dt)[2]
+        r = base - dt * (self.volume_matrix @ np.asarray(velocity, dtype=float))
         b = -np.linalg.solve(U.T, r)
         u, _ = nnls(U, b)
-        p = pc + u
-        self.void = np.maximum(M @ u + r, 0.0)
-        self.flow = beta * (self._D.T @ p) + h
+        p = self.cavitation_pressure + u
+        self.commit(p, M @ u + r, beta, h)
         return p
 
     def force(self, pressures):
