@@ -37,6 +37,7 @@ import numpy as np
 from scipy.optimize import brentq, nnls
 
 from ..core.errors import InputError, SolverError
+from ..core.results import Result
 from .damping import chamber_pressures
 
 __all__ = [
@@ -47,6 +48,8 @@ __all__ = [
     "simulate_film",
     "FilmHistory",
     "film_harmonic",
+    "film_effect_map",
+    "FilmMap",
     "DEFAULT_FEED_RATIO",
     "DEFAULT_STEPS_PER_CYCLE",
 ]
@@ -448,3 +451,212 @@ def film_harmonic(
         history=FilmHistory(hist.time[last], hist.pressures[last], hist.voids[last], hist.fx[last], hist.fy[last]),
     )
     return Fx, Fy, info
+
+
+# ---------------------------------------------------------------- where the film effects matter
+
+
+def film_effect_map(model, rpm, amplitudes, *, steps: int = DEFAULT_STEPS_PER_CYCLE, progress=None):
+    """Where fluid inertia and where cavitation change the oil force, over speed and orbit.
+
+    On forward circular orbits (the unbalance response of a rotor) of radius ``A`` at the
+    vibration frequency ``omega = 2 pi rpm / 60``:
+
+    - **inertia**: ``|H_inertial - H_visc| / |H_visc| = omega tau`` (the lumped passage; the
+      same for every orbit while the film is whole), against the thesis' inertia-free
+      ``H_visc = j omega C_visc``;
+    - **cavitation**: ``|H_film - H_lin| / |H_lin|``, the film network's first harmonic at its
+      periodic steady state (:func:`film_harmonic`) against the linear network with inertia
+      ``H_lin = j omega C_visc (1 + j omega tau)``;
+    - **both** against the thesis' network: ``|H_film - H_visc| / |H_visc|``.
+
+    Parameters
+    ----------
+    model : LSDModel
+        The damper.
+    rpm : array_like
+        Vibration frequencies as shaft speeds [rev/min].
+    amplitudes : array_like
+        Orbit radii [m].
+    steps : int
+        Time steps per period of the film simulations [-].
+    progress : callable, optional
+        Wraps the iterable of speed indices (e.g. :func:`springdyn.core.progress.progress`).
+
+    Returns
+    -------
+    FilmMap
+    """
+    from ..core.units import rpm_to_omega
+
+    rpm = np.atleast_1d(np.asarray(rpm, dtype=float))
+    amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
+    if rpm.ndim != 1 or np.any(~np.isfinite(rpm)) or np.any(rpm <= 0):
+        raise InputError(f"rpm = {rpm.tolist()} must be positive speeds")
+    if amps.ndim != 1 or np.any(~np.isfinite(amps)) or np.any(amps <= 0):
+        raise InputError(f"amplitudes = {amps.tolist()} m must be positive")
+    w = rpm_to_omega(rpm)
+    tau = model.film_time_constant
+    cv = model.viscous_damping
+    cav = np.zeros((rpm.size, amps.size))
+    both = np.zeros_like(cav)
+    residual = np.zeros_like(cav)
+    p_amp = np.zeros_like(cav)
+    min_p = np.zeros_like(cav)
+    diag = model.film_diagnostics(w, 1.0)
+    for i in (progress or iter)(range(w.size)):
+        wi = w[i]
+        h_visc = 1j * wi * (cv[0, 0] + 1j * cv[0, 1])  # forward whirl of the isotropic network
+        h_lin = h_visc * (1.0 + 1j * wi * tau)
+        for j, a in enumerate(amps):
+            fx, fy, info = film_harmonic(model, a, -1j * a, wi, steps=steps)
+            h = (fx + 1j * fy) / (2.0 * a)
+            cav[i, j] = abs(h - h_lin) / abs(h_lin)
+            both[i, j] = abs(h - h_visc) / abs(h_visc)
+            residual[i, j] = info["mean_pressure_residual_Pa"]
+            min_p[i, j] = info["min_pressure_Pa"]
+            p_amp[i, j] = diag["pressure_amplitude_Pa"][i] * a
+    p = model.params
+    return FilmMap(
+        name=p.name,
+        rpm=rpm,
+        amplitude=amps,
+        inertia_change=w * tau,
+        cavitation_change=cav,
+        total_change=both,
+        squeeze_reynolds=diag["squeeze_reynolds"],
+        pressure_amplitude=p_amp,
+        min_pressure=min_p,
+        mean_pressure_residual=residual,
+        supply_pressure=p.supply_pressure_absolute,
+        cavitation_pressure=p.cavitation_pressure,
+        steps=int(steps),
+        time_constant=float(tau),
+    )
+
+
+@dataclasses.dataclass(repr=False)
+class FilmMap(Result):
+    """Relative change of the oil force by fluid inertia and by cavitation over speed and orbit [-]."""
+
+    name: str
+    rpm: np.ndarray
+    amplitude: np.ndarray
+    inertia_change: np.ndarray
+    cavitation_change: np.ndarray
+    total_change: np.ndarray
+    squeeze_reynolds: np.ndarray
+    pressure_amplitude: np.ndarray
+    min_pressure: np.ndarray
+    mean_pressure_residual: np.ndarray
+    supply_pressure: float
+    cavitation_pressure: float
+    steps: int = DEFAULT_STEPS_PER_CYCLE
+    threshold: float = 0.10
+    time_constant: float = 0.0
+
+    title = "leaf spring damper film effects"
+
+    def _repr_caption(self) -> str:
+        return f"{self.name}, {self.rpm.size} speeds x {self.amplitude.size} orbits"
+
+    def inertia_onset_rpm(self):
+        """Speed where inertia changes the oil force by the threshold, ``omega tau = 0.1`` [rev/min].
+
+        None when that is above the mapped speeds.
+        """
+        if not self.time_constant > 0:
+            return None
+        rpm = self.threshold / self.time_constant * 30.0 / np.pi
+        return float(rpm) if rpm <= self.rpm.max() else None
+
+    def cavitation_onset_rpm(self):
+        """Per orbit, the lowest speed where cavitation changes the force by more than the threshold [rev/min].
+
+        ``nan`` where it never does over the mapped speeds.
+        """
+        over = self.cavitation_change > self.threshold
+        return np.array([self.rpm[np.argmax(c)] if np.any(c) else np.nan for c in over.T])
+
+    def _summary(self) -> dict:
+        onset = self.cavitation_onset_rpm()
+        s = dict(
+            name=self.name,
+            rpm_min=float(self.rpm.min()),
+            rpm_max=float(self.rpm.max()),
+            amplitude_min_m=float(self.amplitude.min()),
+            amplitude_max_m=float(self.amplitude.max()),
+            supply_pressure_abs_Pa=float(self.supply_pressure),
+            cavitation_pressure_abs_Pa=float(self.cavitation_pressure),
+            threshold=float(self.threshold),
+            inertia_onset_rpm=self.inertia_onset_rpm(),
+            inertia_change_max=float(self.inertia_change.max()),
+            squeeze_reynolds_max=float(self.squeeze_reynolds.max()),
+            cavitation_change_max=float(self.cavitation_change.max()),
+            cavitation_onset_rpm_smallest_orbit=None if np.isnan(onset[0]) else float(onset[0]),
+            cavitation_onset_rpm_largest_orbit=None if np.isnan(onset[-1]) else float(onset[-1]),
+            mean_pressure_residual_max_Pa=float(np.abs(self.mean_pressure_residual).max()),
+            steps_per_period=int(self.steps),
+        )
+        return s
+
+    def to_xarray(self):
+        """``xarray.Dataset`` over ``(rpm, amplitude)``; the CSV has one row per speed and orbit."""
+        import xarray as xr
+
+        return xr.Dataset(
+            {
+                "inertia_change": ("rpm", self.inertia_change, {"units": "1"}),
+                "squeeze_reynolds": ("rpm", self.squeeze_reynolds, {"units": "1"}),
+                "cavitation_change": (("rpm", "amplitude"), self.cavitation_change, {"units": "1"}),
+                "total_change": (("rpm", "amplitude"), self.total_change, {"units": "1"}),
+                "pressure_amplitude": (("rpm", "amplitude"), self.pressure_amplitude, {"units": "Pa"}),
+                "min_pressure": (("rpm", "amplitude"), self.min_pressure, {"units": "Pa"}),
+            },
+            coords={
+                "rpm": ("rpm", self.rpm, {"units": "rpm"}),
+                "amplitude": ("amplitude", self.amplitude, {"units": "m"}),
+            },
+            attrs={
+                "name": self.name,
+                "supply_pressure_abs_Pa": self.supply_pressure,
+                "cavitation_pressure_abs_Pa": self.cavitation_pressure,
+            },
+        )
+
+    def _csv_dataset(self):
+        ds = self.to_xarray()
+        return ds.stack(point=("rpm", "amplitude")).reset_index("point")
+
+    def _plot(self, ax=None):
+        """Map: cavitation's change of the oil force (colour, 10 % contour), inertia's 10 % speed."""
+        from ..core.plotting import new_figure
+
+        if ax is None:
+            fig, ax = new_figure(1, 1, figsize=(7.5, 5))
+        else:
+            fig = ax.figure
+        R, A = np.meshgrid(self.rpm, self.amplitude * 1e6, indexing="ij")
+        if self.rpm.size > 1 and self.amplitude.size > 1:
+            cs = ax.contourf(
+                R, A, 100 * self.cavitation_change, levels=[0, 1, 5, 10, 20, 40, 60, 80, 100], cmap="Blues"
+            )
+            fig.colorbar(cs, ax=ax, label="cavitation: change of the oil force [%]")
+            ax.contour(R, A, self.cavitation_change, levels=[self.threshold], colors="C3", linewidths=1.5)
+            margin = self.supply_pressure - self.cavitation_pressure
+            ax.contour(R, A, self.pressure_amplitude / margin, levels=[1.0], colors="k", linestyles=":")
+        else:
+            ax.scatter(R.ravel(), A.ravel(), c=100 * self.cavitation_change.ravel(), cmap="Blues")
+        onset = self.inertia_onset_rpm()
+        if onset is not None:
+            ax.axvline(onset, color="C1", ls="--", label=f"inertia > {self.threshold:.0%} from {onset:.0f} rpm")
+        ax.plot([], [], color="C3", label=f"cavitation > {self.threshold:.0%}")
+        ax.plot([], [], color="k", ls=":", label="linear pressure amplitude = p_s - p_cav")
+        ax.set_xlabel("speed (whirl frequency) [rpm]")
+        ax.set_ylabel("orbit radius [um]")
+        ax.set_title(
+            f"{self.name}: film effects (p_s {self.supply_pressure / 1e5:.3g} bar abs, "
+            f"p_cav {self.cavitation_pressure / 1e5:.3g} bar abs)"
+        )
+        ax.legend(fontsize=8, loc="upper left")
+        return fig
