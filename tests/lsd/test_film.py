@@ -225,3 +225,33 @@ def test_network_input_checks():
     net = FilmNetwork(B, 1e-10, 1e6, 2e5, 0.0, 1e-12)
     with pytest.raises(InputError):
         simulate_film(net, [0.0, 1.0, 3.0], [0, 0, 0], [0, 0, 0])
+
+
+def test_inertia_free_cavitated_film_depends_only_on_speed_times_orbit():
+    # without inertia the network is rate-independent in shape: the pressures scale with omega A, so the
+    # describing function H / (j omega C_visc) is a function of omega A alone (a property of the model;
+    # tolerance 2e-3: the first-order step at 512 steps per period is the same for both, the Brent
+    # tolerance on the gas inventory is 1e-6 of the swept volume)
+    m = _model()
+    h = []
+    for rpm, A in ((6000.0, 100e-6), (12000.0, 50e-6)):
+        w = _w(rpm)
+        fx, fy, info = film_harmonic(m, A, -1j * A, w, inertia=False)
+        assert info["cavitated"]
+        h.append((fx + 1j * fy) / (2 * A) / (1j * w * m.viscous_damping[0, 0]))
+    assert h[0] == pytest.approx(h[1], rel=2e-3)
+    assert abs(h[0]) < 0.9
+
+
+def test_film_map_result():
+    from springdyn.lsd.film import film_effect_map
+
+    fm = film_effect_map(_model(), [3000.0, 14100.0], [20e-6, 100e-6], steps=256)
+    np.testing.assert_allclose(fm.inertia_change, _w(np.array([3000.0, 14100.0])) * _model().film_time_constant)
+    assert fm.cavitation_change[0].max() < 1e-9  # 3000 rpm: the film stays whole
+    assert fm.cavitation_change[1, 1] > 0.5  # 14100 rpm, 100 um: most of the force lost
+    assert fm.inertia_onset_rpm() == pytest.approx(0.1 / _model().film_time_constant * 30 / np.pi)
+    onset = fm.cavitation_onset_rpm()
+    assert np.isnan(onset[0]) or onset[0] == 14100.0
+    assert onset[1] == 14100.0
+    assert fm.summary["mean_pressure_residual_max_Pa"] < 1e-3 * 1e5
