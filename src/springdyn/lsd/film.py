@@ -62,7 +62,7 @@ DEFAULT_STEPS_PER_CYCLE = 512
 
 
 class FilmWarning(UserWarning):
-    """Fluid inertia or cavitation changes the oil force by more than 10 %."""
+    """The film cavitates: the linear oil coefficients overstate its force."""
 
 
 def solve_lcp(M, r):

@@ -373,6 +373,7 @@ class LSDModel:
         points: int = 40,
         outside: str = "raise",
         omega=None,
+        added_mass: bool = True,
         **kwargs,
     ):
         """A ``ross.BearingElement`` with the eight coefficients tabulated over ``rpm_range``.
@@ -403,6 +404,8 @@ class LSDModel:
             Beyond the range: raise (default) or clamp.
         omega : array_like, optional
             Explicit table [rad/s] instead of ``rpm_range``.
+        added_mass : bool
+            Also give ROSS the oil's added mass (``mxx`` ... [kg], :attr:`added_mass`).
         **kwargs
             Passed to ``BearingElement`` (``tag``, ``n_link``, ...).
 
@@ -422,6 +425,7 @@ class LSDModel:
             points=points,
             outside=outside,
             omega=omega,
+            added_mass=added_mass,
             **kwargs,
         )
 
@@ -639,10 +643,16 @@ def _film_notes(film: dict, rpm) -> list:
 
 
 def _warn_film(film: dict, rpm) -> None:
+    """Warn where the film cavitates: the linear oil coefficients are then wrong.
+
+    Inertia is only noted (``summary["notes"]``, printed by the CLI): its added mass is part
+    of the result (``M``) and of the ROSS elements.
+    """
     from .film import FilmWarning
 
     for note in _film_notes(film, rpm):
-        warnings.warn(note, FilmWarning, stacklevel=3)
+        if not note.startswith("fluid inertia"):
+            warnings.warn(note, FilmWarning, stacklevel=3)
 
 
 def _speeds(rpm, omega) -> tuple:

@@ -158,6 +158,7 @@ def bearing_element(
     points: int = DEFAULT_POINTS,
     outside: str = "raise",
     omega=None,
+    added_mass: bool = True,
     **kwargs,
 ):
     """``ross.BearingElement`` at node ``n`` from an :class:`~springdyn.lsd.LSDModel`, never extrapolating.
@@ -186,6 +187,9 @@ def bearing_element(
     omega : array_like, optional
         Explicit table frequencies [rad/s] instead of ``rpm_range`` (the range is then the
         table's span).
+    added_mass : bool
+        Give ROSS the added mass of the oil in the passages, ``mxx ... myy`` =
+        :attr:`~springdyn.lsd.LSDModel.added_mass` [kg] (constant in frequency).
     **kwargs
         Passed on (``tag``, ``n_link``, ``scale_factor``...).
 
@@ -194,7 +198,9 @@ def bearing_element(
     ross.BearingElement
         Its ``frequency`` is the **vibration frequency** [rad/s] (equal to the spin speed in
         ROSS 2.3's synchronous analyses); ``kxx_interpolated`` ... are
-        :class:`TableInterpolant` objects.
+        :class:`TableInterpolant` objects; ``film_notes`` says from which speed the film would
+        cavitate at ``amplitude`` (the linear oil coefficients hold while it is whole: see
+        ``springdyn lsd film`` for the orbits the rotor reaches).
     """
     if outside not in ("raise", "clamp"):
         raise InputError(f"outside = {outside!r} is not allowed; choose 'raise' or 'clamp'")
@@ -217,10 +223,18 @@ def bearing_element(
         w = rpm_to_omega(rpm)
         w_low, w_high = float(rpm_to_omega(lo)), float(rpm_to_omega(hi))
     ross = _import_ross()
-    coeffs = model.coefficients(omega=w, amplitude=amplitude, motion=motion)
+    from .film import FilmWarning
+
+    with warnings.catch_warnings():
+        # a wide table reaches speeds where the film would rupture at this amplitude; that is
+        # said in elem.film_notes, not warned at every export (the amplitude is the friction's)
+        warnings.simplefilter("ignore", FilmWarning)
+        coeffs = model.coefficients(omega=w, amplitude=amplitude, motion=motion)
     K, C = coeffs.K, coeffs.C
     kwargs.setdefault("tag", f"LSD {model.params.name}")
     values = {name: (K if name[0] == "k" else C)[(slice(None),) + _INDEX["k" + name[1:]]] for name in _NAMES}
+    if added_mass:
+        kwargs.update(_mass_kwargs(model))
     elem = ross.BearingElement(n=n, frequency=w, **values, **kwargs)
     for name in _NAMES:
         setattr(
@@ -228,10 +242,18 @@ def bearing_element(
             f"{name}_interpolated",
             TableInterpolant(w, values[name], w_low, w_high, outside, f"{name} of {kwargs['tag']}"),
         )
+    elem.film_notes = coeffs.summary.get("notes", [])
     return elem
 
 
-def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-6, motion: str = "linear", **kwargs):
+def _mass_kwargs(model) -> dict:
+    M = model.added_mass
+    return {"mxx": M[0, 0], "mxy": M[0, 1], "myx": M[1, 0], "myy": M[1, 1]}
+
+
+def bearing_at_frequency(
+    model, n: int, omega: float, *, amplitude: float = 50e-6, motion: str = "linear", added_mass: bool = True, **kwargs
+):
     """``ross.BearingElement`` with the coefficients at one vibration frequency ``omega`` [rad/s].
 
     Constant coefficients (no table), so ROSS uses them at every spin speed: the element
@@ -250,6 +272,8 @@ def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-
         Vibration amplitude [m].
     motion : {"linear", "circular"}
         Motion for the O-ring Coulomb equivalent.
+    added_mass : bool
+        Include the oil's added mass ``mxx ... myy`` [kg].
     **kwargs
         Passed on to ``ross.BearingElement``.
     """
@@ -259,6 +283,8 @@ def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-
     c = model.coefficients(omega=[float(omega)], amplitude=amplitude, motion=motion)
     kwargs.setdefault("tag", f"LSD {model.params.name}")
     K, C = c.K[0], c.C[0]
+    if added_mass:
+        kwargs.update(_mass_kwargs(model))
     return ross.BearingElement(
         n=n,
         kxx=K[0, 0],
