@@ -2,6 +2,7 @@
 
 import json
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -390,3 +391,15 @@ def test_coefficients_with_the_film(capsys):
     assert main(["lsd", "coefficients", "C", "--rpm", "14100", "--amplitude", "50um"]) == 0
     out = capsys.readouterr()
     assert "Mxx kg" in out.out and "cavitates" in out.out + out.err
+
+
+def test_rig_with_the_film(tmp_path, capsys):
+    # a 100 um orbit at 3000 rpm of Type C with air release at 0.9 bar: the pressures stop at 0.9 bar
+    cfg = tmp_path / "c.toml"
+    text = (Path(__file__).resolve().parents[2] / "examples/lsd/type_c.toml").read_text()
+    cfg.write_text(text.replace("[lsd]", '[lsd]\ncavitation_pressure = "0.9 bar"'))
+    args = ["lsd", "rig", str(cfg), "--rpm", "3000", "--eccentricity", "100um", "--revolutions", "4"]
+    assert main(args + ["--film", "--csv", str(tmp_path / "r.csv")]) == 0
+    out = capsys.readouterr().out
+    m = re.search(r"lowest chamber pressure ([\d.]+) bar absolute", out)
+    assert m and float(m.group(1)) == pytest.approx(0.9, abs=1e-6)

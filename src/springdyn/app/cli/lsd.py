@@ -74,6 +74,9 @@ def register(sub) -> None:
     p.add_argument("--noise", default="0N", help="force sensor noise, standard deviation (default 0N)")
     p.add_argument("--displacement-noise", default="0um", help="displacement sensor noise (default 0um)")
     p.add_argument("--seed", type=int, default=None, help="seed of the noise generator")
+    p.add_argument(
+        "--film", action="store_true", help="oil from the film network in time (passage inertia, cavitation)"
+    )
     p.add_argument("--csv", metavar="OUT.csv", required=True, help="write time_s, x_m, y_m, fx_N, fy_N")
     p.add_argument("--plot", metavar="OUT.png", help="hysteresis loops as PNG")
     p.set_defaults(func=cmd_rig)
@@ -273,7 +276,7 @@ def cmd_rig(args) -> int:
         else:
             tr = linear_shake(rpm, ecc, args.excitation, args.revolutions, fs)
         what = f"{args.excitation} at {rpm:g} rpm, {ecc * 1e6:.4g} um"
-    rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
+    rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed, film=args.film)
     rec.to_csv(args.csv)
     if args.plot:
         close_figure(rec.plot(args.plot))
@@ -282,6 +285,12 @@ def cmd_rig(args) -> int:
         f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N"
     )
     announce_written([args.csv, args.plot], args)
+    if rec.film is not None:
+        print(
+            f"film: lowest chamber pressure {rec.film.min_pressure / 1e5:.4g} bar absolute "
+            f"(cavitation at {model.params.cavitation_pressure / 1e5:.4g} bar), "
+            f"largest void {rec.film.voids.max() * 1e9:.4g} mm^3"
+        )
     print_notes(rec.summary)
     return 0
 
