@@ -158,6 +158,8 @@ def test_runup_large_orbit_cavitation_raises_the_response(runup):
     rpm = speed * 30 / np.pi
     late = (rpm > 2900) & (rpm < 3100)
     assert nl[late].max() > 1.15 * ref[late].max()
+    with pytest.raises(InputError, match="non-zero coefficients"):  # the damper would count twice
+        rotor_time_response(runup["linear"], {0: model, 2: model}, speed[:10], F[:10], t[:10])
     early = rpm < 1000
     assert np.abs(nl[early] - ref[early]).max() < 5e-3 * ref[early].max()
     assert res.pressures[0].min() >= 0.9e5 - 1e-6 * 1e5

@@ -506,7 +506,8 @@ def film_effect_map(model, rpm, amplitudes, *, steps: int = DEFAULT_STEPS_PER_CY
     diag = model.film_diagnostics(w, 1.0)
     for i in (progress or iter)(range(w.size)):
         wi = w[i]
-        h_visc = 1j * wi * (cv[0, 0] + 1j * cv[0, 1])  # forward whirl of the isotropic network
+        # forward whirl z = A e^(jwt) of the linear network: (F_x + j F_y) / (2 A) for x = Re(A e^(jwt)), y = Re(-j A e^(jwt))
+        h_visc = 1j * wi * (cv[0, 0] + cv[1, 1] + 1j * (cv[1, 0] - cv[0, 1])) / 2.0
         h_lin = h_visc * (1.0 + 1j * wi * tau)
         for j, a in enumerate(amps):
             fx, fy, info = film_harmonic(model, a, -1j * a, wi, steps=steps)

@@ -177,6 +177,15 @@ def rotor_time_response(
     G = np.array(rotor.G(), dtype=float)
     Ksdt = np.array(rotor.Ksdt(), dtype=float)
 
+    w_ref = float(np.mean(w))
+    for brg in getattr(rotor, "bearing_elements", []):
+        if int(getattr(brg, "n", -1)) in {int(k) for k in dampers}:
+            coeffs = [np.abs(np.asarray(f(w_ref), dtype=float)).max() for f in (brg.K, brg.C, brg.M)]
+            if max(coeffs) > 0:
+                raise InputError(
+                    f"the rotor's bearing element at damper node {brg.n} has non-zero coefficients: build it "
+                    "with zeros (ross.BearingElement(n, kxx=0, cxx=0)); rotor_time_response adds the damper"
+                )
     items = []
     for node, spec in dampers.items():
         model, count = spec if isinstance(spec, tuple) else (spec, 1)
