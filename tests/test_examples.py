@@ -38,6 +38,10 @@ EXPECTED = {
     ),
     "examples/lsd/identify_round_trip.py": ([r"3000 rpm\s+Kxx"], ["type_c_identified.png"]),
     "examples/lsd/rotor_with_lsd.py": ([r"natural frequency\s+[\d.]+ Hz\s+log decrement"], []),
+    "examples/lsd/runup_with_film.py": (
+        [r"unbalance 1 g m", r"3000-3500\s+[\d.]+\s+[\d.]+\s+[\d.]+\s+1\.[12]"],
+        ["runup_with_film.png", "runup_with_film.csv"],
+    ),
     "examples/valve/closure_convergence.py": (
         [r"one-step: 50 elements within 0\.\d+ % of Fset of 200", r"two-step: 100 elements within 0\.\d+ % of Fset"],
         ["closure_convergence.csv"],
@@ -45,7 +49,7 @@ EXPECTED = {
 }
 
 #: Scripts slower than a few seconds.
-SLOW = {"examples/lsd/rotor_with_lsd.py", "examples/valve/closure_convergence.py"}
+SLOW = {"examples/lsd/rotor_with_lsd.py", "examples/lsd/runup_with_film.py", "examples/valve/closure_convergence.py"}
 
 
 def run_example(script: str, out: Path, *args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
@@ -67,7 +71,7 @@ def test_every_example_is_covered():
 
 @pytest.mark.parametrize("script", [pytest.param(s, marks=pytest.mark.slow) if s in SLOW else s for s in EXAMPLES])
 def test_example_runs(script, tmp_path):
-    if script == "examples/lsd/rotor_with_lsd.py":
+    if script in ("examples/lsd/rotor_with_lsd.py", "examples/lsd/runup_with_film.py"):
         pytest.importorskip("ross")
     elsewhere = tmp_path / "cwd"  # run from another folder: an example writes only where --out says
     elsewhere.mkdir()

@@ -114,8 +114,15 @@ def _friction():
     ]
 
 
+def _film_map():
+    from springdyn.lsd.film import film_effect_map
+
+    return film_effect_map(_lsd(), [3000.0, 14100.0], [20e-6, 100e-6], steps=128)
+
+
 FACTORIES = {
     "springdyn.lsd.calibrate.Calibration": _calibration,
+    "springdyn.lsd.film.FilmMap": _film_map,
     "springdyn.lsd.jeffcott.UnbalanceResponse": _unbalance,
     "springdyn.lsd.model.LSDCoefficients": lambda: _lsd().coefficients([500.0, 1000.0, 2000.0], amplitude=20e-6),
     "springdyn.lsd.rig.RigRecord": lambda: _rig("x"),

@@ -165,6 +165,10 @@ CROSS_KEY_RULES = {
         ("`leaf_lengths` non-increasing (longest first)", {"leaf_lengths": ["20 mm", "30 mm", "40 mm"]}),
         ("`poisson_ratio` < 0.5", {"poisson_ratio": 0.6}),
         ("`passages_per_boundary` >= 1", {"passages_per_boundary": 0}),
+        (
+            "`supply_pressure` (gauge) + 1.01325 bar > `cavitation_pressure` (absolute)",
+            {"supply_pressure": "-1.5 bar"},
+        ),
         ("`pack_angles`, when given, one per pack, increasing, spanning less than 360 deg", {"pack_angles": ["0 deg"]}),
         (
             'a kinematic `oil_viscosity` ("100 cSt") needs `oil_density`',

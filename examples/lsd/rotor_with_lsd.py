@@ -5,7 +5,8 @@
 2. The same mode with the coefficients at the mode's own frequency
    (``whirl_consistent_mode``): the damper's coefficients depend on the vibration
    frequency, so this is the answer to use.  At 1000 rpm the spin-speed coefficients
-   overstate the damping of the 30 Hz mode (log decrement 1.17 against 0.83); at 5000 rpm
+   overstate the damping of the 30 Hz mode (log decrement 1.16 against 0.82, with the oil's
+   added mass that ``to_ross`` passes as ``mxx``); at 5000 rpm
    the gyroscopic effect splits the modes and mode 0 is the lower (backward) one.
 
 Run:  python examples/lsd/rotor_with_lsd.py

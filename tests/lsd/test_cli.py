@@ -1,6 +1,8 @@
 """``springdyn lsd ...`` commands: outputs, JSON keys, bad input (exit 2, one line)."""
 
 import json
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,7 +21,12 @@ COEFF_KEYS = [
     "cxy_Ns_per_m",
     "cyx_Ns_per_m",
     "cyy_Ns_per_m",
+    "mxx_kg",
+    "mxy_kg",
+    "myx_kg",
+    "myy_kg",
 ]
+FILM_KEYS = ["squeeze_reynolds", "inertia_ratio", "pressure_amplitude_Pa", "cavitation_margin_Pa", "notes"]
 
 
 def _json(capsys):
@@ -49,7 +56,7 @@ def test_coefficients_json_csv_plot(tmp_path, capsys):
     )
     assert rc == 0
     d = _json(capsys)
-    for k in COEFF_KEYS + ["pack_stiffness_N_per_m", "load_ratios"]:
+    for k in COEFF_KEYS + FILM_KEYS + ["pack_stiffness_N_per_m", "load_ratios"]:
         assert k in d
     assert d["rpm"] == [500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0]
     # k_s of Type C (READING-NOTES 3.1, 106.9 N/mm) and Kxx = 3 k_s (3.4)
@@ -356,3 +363,43 @@ def test_amplitude_api_validates_like_the_cli():
         warnings.simplefilter("always")
         m.coefficients([1000.0], amplitude=0.05)  # "50 mm" for 50 um
     assert any("did you mean 50 um" in str(w.message) for w in seen)
+
+
+def test_film_map_command(tmp_path, capsys):
+    # a 2 x 2 map of Type C: inertia from ~1401 rpm (omega tau = 0.1), cavitation at 14100 rpm, 100 um
+    args = ["lsd", "film", "C", "--rpm", "3000,14100", "--amplitude", "20um,100um", "--steps", "128", "--quiet"]
+    assert main(args + ["--csv", str(tmp_path / "m.csv"), "--plot", str(tmp_path / "m.png")]) == 0
+    out = capsys.readouterr().out
+    assert "inertia changes the oil force by more than 10 % from 1401 rpm" in out
+    assert re.search(r"at 100 um from 14100 rpm", out)
+    cols = read_csv_columns(tmp_path / "m.csv")
+    assert len(cols["rpm"]) == 4 and "cavitation_change" in cols
+    assert (tmp_path / "m.png").stat().st_size > 10_000
+    assert main(args + ["--json"]) == 0
+    d = _json(capsys)
+    assert d["inertia_onset_rpm"] == pytest.approx(1401, abs=1)
+    assert d["cavitation_change"][1][1] > 0.5 and d["cavitation_onset_rpm"][1] == 14100.0
+    assert main(["lsd", "film", "C", "--steps", "8"]) == 2
+
+
+def test_coefficients_with_the_film(capsys):
+    # --film: describing function of the film network; at 14100 rpm, 100 um it has cavitated
+    assert main(["lsd", "coefficients", "C", "--rpm", "3000,14100", "--amplitude", "100um", "--film", "--json"]) == 0
+    d = _json(capsys)
+    assert d["cavitated"] == [False, True]
+    assert d["mxx_kg"][1] < 0.5 * d["mxx_kg"][0] and min(d["min_pressure_Pa"]) >= 0.0
+    assert main(["lsd", "coefficients", "C", "--rpm", "14100", "--amplitude", "50um"]) == 0
+    out = capsys.readouterr()
+    assert "Mxx kg" in out.out and "cavitates" in out.out + out.err
+
+
+def test_rig_with_the_film(tmp_path, capsys):
+    # a 100 um orbit at 3000 rpm of Type C with air release at 0.9 bar: the pressures stop at 0.9 bar
+    cfg = tmp_path / "c.toml"
+    text = (Path(__file__).resolve().parents[2] / "examples/lsd/type_c.toml").read_text()
+    cfg.write_text(text.replace("[lsd]", '[lsd]\ncavitation_pressure = "0.9 bar"'))
+    args = ["lsd", "rig", str(cfg), "--rpm", "3000", "--eccentricity", "100um", "--revolutions", "4"]
+    assert main(args + ["--film", "--csv", str(tmp_path / "r.csv")]) == 0
+    out = capsys.readouterr().out
+    m = re.search(r"lowest chamber pressure ([\d.]+) bar absolute", out)
+    assert m and float(m.group(1)) == pytest.approx(0.9, abs=1e-6)

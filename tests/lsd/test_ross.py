@@ -110,8 +110,9 @@ def test_ross_rotor_modal_analysis_and_whirl_consistency(rs):
     # wn = sqrt(2 Kxx / M), zeta = 2 Cxx / (2 sqrt(2 Kxx M)), log dec = 2 pi zeta / sqrt(1 - zeta^2),
     # with the coefficients at the spin speed (what ROSS 2.3 uses). Tolerances 1 % / 2 %: the
     # 0.2 m, 80 mm shaft is nearly rigid (bending modes far higher)
+    # (M: the rotor and the passages' oil, the added mass M_a that to_ross gives ROSS as mxx)
     c = model.coefficients([1000.0])
-    K, C, M = c.K[0, 0, 0], c.C[0, 0, 0], rotor.m
+    K, C, M = c.K[0, 0, 0], c.C[0, 0, 0], rotor.m + 2 * model.added_mass[0, 0]
     wn = np.sqrt(2 * K / M)
     zeta = 2 * C / (2 * np.sqrt(2 * K * M))
     assert modal.wn[0] == pytest.approx(wn, rel=0.01)

@@ -6,7 +6,10 @@ spaces between the packs are oil chambers joined by narrow passages.  Modules:
 - :mod:`~springdyn.lsd.leafpack` -- load sharing between leaves, pack stiffness (2.4)-(2.10);
 - :mod:`~springdyn.lsd.stiffness` -- stiffness matrix of packs at any angles (3.4), preload check;
 - :mod:`~springdyn.lsd.damping` -- O-ring and inter-leaf friction (2.21)-(2.28), the oil
-  network ``C_visc = B^T G^+ B`` and (3.5)-(3.6), passage conductance (2.17);
+  network ``C_visc = B^T G^+ B`` and (3.5)-(3.6), passage conductance (2.17), passage
+  inertance, duct impedance and the squeeze Reynolds number;
+- :mod:`~springdyn.lsd.film` -- the oil network in time: passage inertia, film rupture
+  (cavitation) against the supply pressure, its describing function and the speed x orbit map;
 - :mod:`~springdyn.lsd.parameters` -- :class:`LSDParameters` (TOML ``[lsd]`` table, Types A-C);
 - :mod:`~springdyn.lsd.model` -- :class:`LSDModel`, :class:`LSDCoefficients` (K, C vs rpm);
 - :mod:`~springdyn.lsd.rig` -- time-domain test-rig simulation (Chapter 4), :class:`RigRecord`;
@@ -14,7 +17,9 @@ spaces between the packs are oil chambers joined by narrow passages.  Modules:
 - :mod:`~springdyn.lsd.equivalent` -- describing-function coefficients of the nonlinear laws at an amplitude;
 - :mod:`~springdyn.lsd.calibrate` -- fit parameters (``leakage_factor`` ...) to rig records;
 - :mod:`~springdyn.lsd.jeffcott` -- amplitude-consistent unbalance response of a simple rotor;
-- :mod:`~springdyn.lsd.rotordynamics` -- the damper as a ``ross.BearingElement`` (never extrapolating);
+- :mod:`~springdyn.lsd.rotordynamics` -- the damper as a ``ross.BearingElement`` (never extrapolating),
+  its nonlinear force in ROSS's time response;
+- :mod:`~springdyn.lsd.rotor_time` -- time response of a ROSS rotor with the film solved implicitly;
 - :mod:`~springdyn.lsd.plots` -- the figures of the results.
 
 The names below load their modules on first use, so that ``import springdyn.lsd`` stays quick.
@@ -34,6 +39,20 @@ _EXPORTS = {
     "passage_conductance_thesis": "damping",
     "viscous_damping_matrix": "damping",
     "viscous_damping_thesis": "damping",
+    "passage_inertance": "damping",
+    "squeeze_reynolds_number": "damping",
+    "duct_profile_factor": "damping",
+    "duct_impedance_ratio": "damping",
+    "FilmMap": "film",
+    "FilmNetwork": "film",
+    "FilmWarning": "film",
+    "film_effect_map": "film",
+    "film_harmonic": "film",
+    "film_network": "film",
+    "simulate_film": "film",
+    "rotor_time_response": "rotor_time",
+    "unbalance_runup": "rotor_time",
+    "small_orbit_element": "rotordynamics",
     "Calibration": "calibrate",
     "calibrate": "calibrate",
     "equivalent_matrices": "equivalent",
@@ -118,6 +137,20 @@ __all__ = [
     "bearing_at_frequency",
     "whirl_consistent_mode",
     "nonlinear_force",
+    "small_orbit_element",
+    "passage_inertance",
+    "squeeze_reynolds_number",
+    "duct_profile_factor",
+    "duct_impedance_ratio",
+    "FilmMap",
+    "FilmNetwork",
+    "FilmWarning",
+    "film_effect_map",
+    "film_harmonic",
+    "film_network",
+    "simulate_film",
+    "rotor_time_response",
+    "unbalance_runup",
 ]
 
 

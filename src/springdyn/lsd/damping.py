@@ -32,7 +32,16 @@ __all__ = [
     "viscous_damping_matrix",
     "viscous_damping_thesis",
     "compliant_chamber_coefficients",
+    "duct_flow_series",
+    "duct_profile_factor",
+    "duct_impedance_ratio",
+    "passage_inertance",
+    "squeeze_reynolds_number",
+    "ATMOSPHERIC_PRESSURE",
 ]
+
+#: Standard atmosphere [Pa]: gauge + ATMOSPHERIC_PRESSURE = absolute.
+ATMOSPHERIC_PRESSURE = 101325.0
 
 
 def coulomb_equivalent_damping(friction_coefficient, normal_force, omega, amplitude, motion="linear"):
@@ -315,11 +324,12 @@ def chamber_pressures(volume_matrix, conductance, velocity):
     conductance : float
         ``C_D`` [m^3/(s Pa)].
     velocity : array_like
-        ``(vx, vy)`` [m/s], or shape ``(T, 2)``.
+        ``(vx, vy)`` [m/s], or shape ``(T, 2)``; complex phasors are kept complex.
     """
     B = np.asarray(volume_matrix, dtype=float)
     Gp = np.linalg.pinv(chamber_laplacian(B.shape[0], conductance))
-    v = np.asarray(velocity, dtype=float)
+    v = np.asarray(velocity)
+    v = v.astype(complex if np.iscomplexobj(v) else float)
     return v @ (Gp @ B).T
 
 
@@ -429,3 +439,142 @@ def compliant_chamber_coefficients(volume_matrix, conductance, chamber_complianc
     A = G + 1j * omega * chamber_compliance * np.eye(B.shape[0])
     H = 1j * omega * B.T @ np.linalg.solve(A, B)
     return H.real, H.imag / omega
+
+
+# ---------------------------------------------------------------- fluid inertia in the passages
+
+
+def duct_flow_series(width, clearance, terms=101):
+    """Weights and eigenvalues of the laminar flow in a rectangular duct [-], [1/m^2].
+
+    The velocity of a flow driven by a pressure gradient in a ``b x h`` duct (no slip on the
+    walls) expands in the eigenfunctions ``sin(m pi y/b) sin(n pi z/h)`` (``m, n`` odd) of the
+    Laplacian, with eigenvalues ``lambda_mn = pi^2 (m^2/b^2 + n^2/h^2)`` and weights
+    ``w_mn = 64 / (pi^4 m^2 n^2)``.  Steady flow: ``Q = (A dp / (mu L)) sum w/lambda``;
+    oscillating flow of frequency ``omega``: each term becomes ``w / (lambda (1 + j omega /
+    (nu lambda)))`` (every mode is a parallel resistance-inertance branch; the plane-channel
+    limit is the classical solution of Womersley type, e.g. White, *Viscous Fluid Flow*,
+    3rd ed., 2006, Sec. 3-4.2).
+
+    Parameters
+    ----------
+    width, clearance : float
+        Sides of the duct ``b``, ``h`` [m].
+    terms : int
+        Odd terms per direction [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(w, lambda)``, flattened.
+    """
+    if not (width > 0 and clearance > 0):
+        raise InputError(f"duct sides {width!r} m x {clearance!r} m must be positive")
+    k = 2.0 * np.arange(int(terms)) + 1.0
+    m, n = np.meshgrid(k, k, indexing="ij")
+    w = 64.0 / (np.pi**4 * m**2 * n**2)
+    lam = np.pi**2 * (m**2 / width**2 + n**2 / clearance**2)
+    return w.ravel(), lam.ravel()
+
+
+def duct_profile_factor(width, clearance, terms=101):
+    """Inertance factor ``kappa = A int(u^2) dA / (int u dA)^2`` of laminar duct flow [-].
+
+    The kinetic energy of the Poiseuille profile is ``kappa`` times that of a plug flow of the
+    same rate, so a slowly oscillating flow sees the inertance ``kappa rho L / A``
+    (low-frequency limit of the exact impedance, :func:`duct_impedance_ratio`).
+    ``kappa = 6/5`` between parallel plates (``b >> h``) and ``4/3`` in a circular pipe
+    (e.g. Bruus, *Theoretical Microfluidics*, 2008, Sec. 4.5 on hydraulic inertance); for a
+    rectangular duct ``kappa = S2 / S1^2`` with the sums ``S1 = sum w/lambda`` and
+    ``S2 = sum w/lambda^2`` of :func:`duct_flow_series` (``int u dA = A S1 dp/(mu L)``,
+    ``int u^2 dA = A S2 (dp/(mu L))^2``).
+
+    Parameters
+    ----------
+    width, clearance : float
+        Sides of the duct [m].
+    terms : int
+        Odd terms per direction [-].
+    """
+    w, lam = duct_flow_series(width, clearance, terms)
+    s1, s2 = np.sum(w / lam), np.sum(w / lam**2)
+    return float(s2 / s1**2)
+
+
+def duct_impedance_ratio(width, clearance, kinematic_viscosity, omega, terms=101):
+    """Exact oscillating-flow impedance of a rectangular duct over its steady resistance ``Z/R`` [-].
+
+    ``Z(omega)/R = sum(w/lambda) / sum(w / (lambda + j omega/nu))`` (:func:`duct_flow_series`).
+    Low frequency: ``1 + j omega tau`` with ``tau = kappa rho L / (A R)``, the lumped
+    resistance-inertance passage of springdyn's film model; at high frequency the profile
+    flattens (Stokes layers), the resistance rises and the inertance falls to ``rho L / A``.
+
+    Parameters
+    ----------
+    width, clearance : float
+        Sides of the duct [m].
+    kinematic_viscosity : float
+        ``nu = mu / rho`` [m^2/s].
+    omega : float or array
+        Frequency [rad/s].
+    terms : int
+        Odd terms per direction [-].
+    """
+    w, lam = duct_flow_series(width, clearance, terms)
+    om = np.asarray(omega, dtype=float)
+    steady = np.sum(w / lam)
+    osc = np.sum(w / (lam + 1j * om[..., None] / kinematic_viscosity), axis=-1)
+    return steady / osc
+
+
+def passage_inertance(width, clearance, length, density, passages=2, leakage_factor=1.0):
+    """Inertance ``I`` of the passages between two neighbouring chambers [Pa s^2/m^3].
+
+    One passage: ``kappa rho L_h / (b_o h_o)`` with the profile factor ``kappa`` of
+    :func:`duct_profile_factor` (6/5 for a thin slot); ``passages`` in parallel divide it,
+    and so does the calibration ``leakage_factor``, read as that many equivalent parallel
+    passages (so that the time constant ``I C_D`` of the boundary, and with it the
+    importance of inertia, is a property of the passage geometry and the oil only).  The
+    pressure drop is ``R q + I dq/dt`` with ``R = 1 / C_D``.
+
+    Parameters
+    ----------
+    width : float
+        Passage width b_o [m].
+    clearance : float
+        Passage clearance h_o [m].
+    length : float
+        Passage length L_h [m].
+    density : float
+        Oil density rho [kg/m^3].
+    passages : int
+        Parallel passages between two chambers [-].
+    leakage_factor : float
+        Calibration factor on the conductance [-].
+    """
+    kappa = duct_profile_factor(width, clearance)
+    return kappa * density * length / (width * clearance) / (passages * leakage_factor)
+
+
+def squeeze_reynolds_number(density, viscosity, omega, clearance):
+    """Squeeze Reynolds number of the passage flow ``Re_s = rho omega h^2 / mu`` [-].
+
+    The usual measure of fluid inertia in squeeze-film dampers (San Andres, *Squeeze film
+    dampers*, lecture notes, Texas A&M, 2010, Eq. (4)), here with the passage clearance
+    ``h_o``: the ratio of the local (temporal) inertia to the viscous term across the gap.
+    Between plates the inertial pressure drop is ``omega tau = Re_s / 10`` of the viscous
+    one (``kappa/12 = 1/10``); for the thesis' rectangular passages see
+    :func:`duct_profile_factor`.
+
+    Parameters
+    ----------
+    density : float
+        Oil density rho [kg/m^3].
+    viscosity : float
+        Dynamic oil viscosity mu [Pa s].
+    omega : float or array
+        Vibration frequency [rad/s].
+    clearance : float
+        Passage clearance h_o [m].
+    """
+    return density * np.asarray(omega, dtype=float) * clearance**2 / viscosity

@@ -32,7 +32,7 @@ MECHANISMS = ("spring", "leaf_friction", "oring_friction", "oil")
 DEFAULT_SAMPLES = 2048
 
 
-def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES) -> dict:
+def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES, film: bool = False) -> dict:
     """First-harmonic force phasors of each mechanism along ``x = Re(X e^(jwt)), y = Re(Y e^(jwt))``.
 
     Parameters
@@ -45,6 +45,11 @@ def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES) -> dict:
         Vibration frequency [rad/s].
     samples : int
         Quadrature points per period [-].
+    film : bool
+        Oil force from the film network with passage inertia and cavitation at its
+        periodic steady state (:func:`springdyn.lsd.film.film_harmonic`; its details under
+        the key ``"film"``); otherwise the thesis' incompressible, inertia-free network
+        ``j omega C_visc X`` (as the default rig, :func:`springdyn.lsd.rig.simulate_rig`).
 
     Returns
     -------
@@ -68,13 +73,23 @@ def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES) -> dict:
         "leaf_friction": rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy),
         "oring_friction": rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy),
     }
-    Cv = model.viscous_damping
-    forces["oil"] = (Cv[0, 0] * vx + Cv[0, 1] * vy, Cv[1, 0] * vx + Cv[1, 1] * vy)
     conj = np.conj(e) * (2.0 / n)
-    return {k: (complex(np.sum(a * conj)), complex(np.sum(b * conj))) for k, (a, b) in forces.items()}
+    out = {k: (complex(np.sum(a * conj)), complex(np.sum(b * conj))) for k, (a, b) in forces.items()}
+    if film:
+        from .film import film_harmonic
+
+        fx_oil, fy_oil, info = film_harmonic(model, X, Y, omega)
+        out["oil"] = (fx_oil, fy_oil)
+        out["film"] = info
+    else:
+        f = 1j * omega * model.viscous_damping @ np.array([X, Y], dtype=complex)
+        out["oil"] = (complex(f[0]), complex(f[1]))
+    return out
 
 
-def equivalent_matrices(model, omega, amplitude, motion: str = "linear", samples: int = DEFAULT_SAMPLES):
+def equivalent_matrices(
+    model, omega, amplitude, motion: str = "linear", samples: int = DEFAULT_SAMPLES, film: bool = False
+):
     """Equivalent K and C (2 x 2) at vibration frequency ``omega`` and amplitude, per mechanism.
 
     Parameters
@@ -89,11 +104,15 @@ def equivalent_matrices(model, omega, amplitude, motion: str = "linear", samples
         x and y shakes, or forward and backward orbits.
     samples : int
         Quadrature points per period [-].
+    film : bool
+        Oil from the film network with inertia and cavitation (:func:`harmonic_forces`).
 
     Returns
     -------
     dict
-        ``{mechanism: (K, C)}`` [N/m], [N s/m]; the totals are the sums.
+        ``{mechanism: (K, C)}`` [N/m], [N s/m]; the totals are the sums (the oil's ``K`` is
+        its added mass times ``-omega^2``).  With ``film``, ``"film"`` holds
+        ``cavitated`` (either motion) and ``min_pressure_Pa`` (absolute, lowest of both).
     """
     if not (np.isfinite(amplitude) and amplitude > 0):
         raise InputError(f"amplitude = {amplitude!r} m must be positive")
@@ -103,9 +122,14 @@ def equivalent_matrices(model, omega, amplitude, motion: str = "linear", samples
         X = np.array([[amplitude, amplitude], [-1j * amplitude, 1j * amplitude]])
     else:
         raise InputError(f"motion = {motion!r} is not allowed; choose 'linear' or 'circular'")
-    cols = [harmonic_forces(model, X[0, k], X[1, k], omega, samples) for k in range(2)]
+    cols = [harmonic_forces(model, X[0, k], X[1, k], omega, samples, film=film) for k in range(2)]
     Xinv = np.linalg.inv(X)
     out = {}
+    if film:
+        out["film"] = {
+            "cavitated": any(c["film"]["cavitated"] for c in cols),
+            "min_pressure_Pa": min(c["film"]["min_pressure_Pa"] for c in cols),
+        }
     for mech in MECHANISMS:
         F = np.array([[cols[0][mech][0], cols[1][mech][0]], [cols[0][mech][1], cols[1][mech][1]]])
         H = F @ Xinv
@@ -134,6 +158,6 @@ def forward_whirl_coefficient(model, omega, amplitude, samples: int = DEFAULT_SA
     if not (np.isfinite(amplitude) and amplitude > 0):
         raise InputError(f"amplitude = {amplitude!r} m must be positive")
     f = harmonic_forces(model, amplitude, -1j * amplitude, omega, samples)
-    Fx = sum(v[0] for v in f.values())
-    Fy = sum(v[1] for v in f.values())
+    Fx = sum(f[k][0] for k in MECHANISMS)
+    Fy = sum(f[k][1] for k in MECHANISMS)
     return (Fx + 1j * Fy) / (2.0 * amplitude)

@@ -14,7 +14,7 @@ from ..core.units import omega_to_rpm, rpm_to_omega
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
 
-__all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES"]
+__all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "MASS_NAMES", "FILM_EFFECT_THRESHOLD"]
 
 #: The eight coefficients in ROSS order, with their SI unit suffix.
 COEFFICIENT_NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
@@ -126,6 +126,66 @@ class LSDModel:
         """``C_visc = B^T G^+ B`` (2 x 2) [N s/m], independent of frequency."""
         return damping.viscous_damping_matrix(self.volume_matrix, self.conductance)
 
+    @cached_property
+    def inertance(self) -> float:
+        """Inertance ``I`` of the passages between two chambers [Pa s^2/m^3] (:func:`damping.passage_inertance`)."""
+        p = self.params
+        return damping.passage_inertance(
+            p.passage_width,
+            p.passage_clearance,
+            p.passage_length,
+            p.oil_density,
+            passages=p.passages_per_boundary,
+            leakage_factor=p.leakage_factor,
+        )
+
+    @cached_property
+    def film_time_constant(self) -> float:
+        """``tau = I C_D`` of the passages [s]: the oil force is ``C_visc (1 + j omega tau) j omega X``."""
+        return self.inertance * self.conductance
+
+    @cached_property
+    def added_mass(self) -> np.ndarray:
+        """Added mass of the oil in the passages ``M_a = tau C_visc`` (2 x 2) [kg].
+
+        With identical passages ``R + j omega I`` the network's coefficient is
+        ``j omega B^T G^+ B (1 + j omega tau) = j omega C_visc - omega^2 tau C_visc``: the damping
+        is unchanged and the inertia adds the mass ``tau C_visc`` (a negative stiffness
+        ``-omega^2 M_a``).
+        """
+        return self.film_time_constant * self.viscous_damping
+
+    def film_diagnostics(self, omega, amplitude: float) -> dict:
+        """Squeeze Reynolds number, inertia ratio and linear pressure amplitude at ``omega`` [rad/s].
+
+        Parameters
+        ----------
+        omega : float or array
+            Vibration frequency [rad/s].
+        amplitude : float
+            Orbit radius or shake amplitude [m]; the pressure amplitude is the larger of a
+            forward orbit's and the x and y shakes' (the orbit's for three or more packs).
+
+        Returns
+        -------
+        dict
+            ``squeeze_reynolds`` (``rho omega h_o^2 / mu``), ``inertia_ratio`` (``omega tau``:
+            inertial over viscous pressure drop in the passages, the relative change of the oil
+            force by inertia), ``pressure_amplitude_Pa`` (largest chamber pressure amplitude of
+            the inertial linear network), ``cavitation_margin_Pa`` (``p_s - p_cav``, absolute).
+        """
+        p = self.params
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        z = 1.0 + 1j * w * self.film_time_constant
+        motions = np.array([[1.0, 1j], [1.0, 0.0], [0.0, 1.0]], dtype=complex) * amplitude
+        per_unit = np.abs(damping.chamber_pressures(self.volume_matrix, self.conductance, motions)).max()
+        return {
+            "squeeze_reynolds": damping.squeeze_reynolds_number(p.oil_density, p.oil_viscosity, w, p.passage_clearance),
+            "inertia_ratio": w * self.film_time_constant,
+            "pressure_amplitude_Pa": per_unit * w * np.abs(z),
+            "cavitation_margin_Pa": p.supply_pressure_absolute - p.cavitation_pressure,
+        }
+
     # ---------------------------------------------------------------- damping
     def loss_factor(self, amplitude: float, normal_load: str | None = None) -> float:
         """Inter-leaf loss factor ``zeta`` at vibration amplitude ``amplitude`` [m], Eq. (2.28).
@@ -209,6 +269,8 @@ class LSDModel:
         unloads = stiffness.warn_if_unloading(amplitude, self.params.preload)
         C, parts = self.damping_matrix(w, amplitude, motion, parts=True)
         K = np.broadcast_to(self.stiffness_matrix, C.shape).copy()
+        film = self.film_diagnostics(w, amplitude)
+        _warn_film(film, rpm)
         return LSDCoefficients(
             name=self.params.name,
             rpm=rpm,
@@ -219,12 +281,21 @@ class LSDModel:
             pack_stiffness=self.pack_stiffness,
             load_ratios=self.load_ratios.copy(),
             preload_exceeded=unloads,
+            M=np.broadcast_to(self.added_mass, C.shape).copy(),
+            film=film,
         )
 
     def equivalent_coefficients(
-        self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *, omega=None, samples: int = 2048
+        self,
+        rpm=None,
+        amplitude: float = 50e-6,
+        motion: str = "linear",
+        *,
+        omega=None,
+        samples: int = 2048,
+        film: bool = False,
     ) -> LSDCoefficients:
-        """K and C of the nonlinear force laws at this amplitude (describing function).
+        """K, C and M of the nonlinear force laws at this amplitude (describing function).
 
         Unlike :meth:`coefficients` (the closed forms of Chapters 2-3), every mechanism is
         evaluated with the force laws of the time-domain rig (lift-off of the packs,
@@ -245,13 +316,32 @@ class LSDModel:
             Vibration frequencies [rad/s] instead of ``rpm``.
         samples : int
             Quadrature points per period [-].
+        film : bool
+            Oil force from the time-domain film network with passage inertia and cavitation
+            at its periodic steady state (:func:`springdyn.lsd.film.film_harmonic`), instead
+            of the linear network with inertia (``j omega C_visc - omega^2 M_a``).  Then the
+            oil's damping and added mass depend on amplitude and speed.
         """
         from .equivalent import equivalent_matrices
 
-        _, w = _speeds(rpm, omega)
-        mats = [equivalent_matrices(self, wi, amplitude, motion, samples) for wi in w]
-        K = np.array([sum(m[k][0] for k in m) for m in mats])
-        C = np.array([sum(m[k][1] for k in m) for m in mats])
+        rpm_, w = _speeds(rpm, omega)
+        mats = [equivalent_matrices(self, wi, amplitude, motion, samples, film=film) for wi in w]
+        # the film's real part is its added mass (-omega^2 M); the rest of K is the packs'.
+        # Without the film network the oil is linear: its added mass is exactly tau C_visc.
+        if film:
+            M = np.array([-m["oil"][0] / wi**2 for m, wi in zip(mats, w)])
+        else:
+            M = np.broadcast_to(self.added_mass, (w.size, 2, 2)).copy()
+        from .equivalent import MECHANISMS
+
+        K = np.array([sum(m[k][0] for k in MECHANISMS if k != "oil") for m in mats])
+        C = np.array([sum(m[k][1] for k in MECHANISMS) for m in mats])
+        diag = self.film_diagnostics(w, amplitude)
+        if film:
+            diag["cavitated"] = np.array([m["film"]["cavitated"] for m in mats])
+            diag["min_pressure_Pa"] = np.array([m["film"]["min_pressure_Pa"] for m in mats])
+        else:
+            _warn_film(diag, rpm_)
         parts = {
             "oring": np.array([m["oring_friction"][1] for m in mats]),
             "hysteresis": np.array([m["leaf_friction"][1] for m in mats]),
@@ -267,7 +357,9 @@ class LSDModel:
             pack_stiffness=self.pack_stiffness,
             load_ratios=self.load_ratios.copy(),
             preload_exceeded=bool(amplitude > self.params.preload),
-            method="describing function",
+            method="describing function, film network" if film else "describing function",
+            M=M,
+            film=diag,
         )
 
     def to_ross(
@@ -281,6 +373,7 @@ class LSDModel:
         points: int = 40,
         outside: str = "raise",
         omega=None,
+        added_mass: bool = True,
         **kwargs,
     ):
         """A ``ross.BearingElement`` with the eight coefficients tabulated over ``rpm_range``.
@@ -311,6 +404,8 @@ class LSDModel:
             Beyond the range: raise (default) or clamp.
         omega : array_like, optional
             Explicit table [rad/s] instead of ``rpm_range``.
+        added_mass : bool
+            Also give ROSS the oil's added mass (``mxx`` ... [kg], :attr:`added_mass`).
         **kwargs
             Passed to ``BearingElement`` (``tag``, ``n_link``, ...).
 
@@ -330,6 +425,7 @@ class LSDModel:
             points=points,
             outside=outside,
             omega=omega,
+            added_mass=added_mass,
             **kwargs,
         )
 
@@ -363,8 +459,16 @@ class LSDCoefficients(Result):
     load_ratios: np.ndarray
     preload_exceeded: bool = False
     method: str = "closed form"
+    M: np.ndarray | None = None
+    film: dict | None = None
 
     title = "leaf spring damper coefficients"
+
+    def __post_init__(self):
+        if self.M is None:
+            self.M = np.zeros_like(np.asarray(self.K, dtype=float))
+        self.film = dict(self.film or {})
+
     cheap_plot = True
 
     def _repr_caption(self) -> str:
@@ -384,7 +488,17 @@ class LSDCoefficients(Result):
             cxx_max_N_s_per_m=float(self.C[:, 0, 0].max()),
             preload_exceeded=bool(self.preload_exceeded),
             model=self.method,
+            added_mass_xx_max_kg=float(self.M[:, 0, 0].max()),
         )
+        f = self.film
+        if f:
+            s["squeeze_reynolds_max"] = float(np.max(f["squeeze_reynolds"]))
+            s["inertia_ratio_max"] = float(np.max(f["inertia_ratio"]))
+            s["pressure_amplitude_max_Pa"] = float(np.max(f["pressure_amplitude_Pa"]))
+            s["cavitation_margin_Pa"] = float(f["cavitation_margin_Pa"])
+            notes = _film_notes(f, self.rpm)
+            if notes:
+                s["notes"] = notes
         return s
 
     @property
@@ -398,6 +512,16 @@ class LSDCoefficients(Result):
             out[f"{k}_N_per_m"] = self.K[:, i, j]
         for k, (i, j) in zip(COEFFICIENT_NAMES[4:], [(0, 0), (0, 1), (1, 0), (1, 1)]):
             out[f"{k}_Ns_per_m"] = self.C[:, i, j]
+        for k, (i, j) in zip(MASS_NAMES, [(0, 0), (0, 1), (1, 0), (1, 1)]):
+            out[f"{k}_kg"] = self.M[:, i, j]
+        f = self.film
+        for key, col in (
+            ("squeeze_reynolds", "squeeze_reynolds"),
+            ("inertia_ratio", "inertia_ratio"),
+            ("pressure_amplitude_Pa", "pressure_amplitude_Pa"),
+        ):
+            if key in f:
+                out[col] = np.broadcast_to(np.asarray(f[key], dtype=float), self.rpm.shape)
         return out
 
     def to_dict(self) -> dict:
@@ -407,6 +531,12 @@ class LSDCoefficients(Result):
         d["load_ratios"] = self.load_ratios.tolist()
         d["amplitude_m"] = self.amplitude
         d["preload_exceeded"] = self.preload_exceeded
+        if "cavitation_margin_Pa" in self.film:
+            d["cavitation_margin_Pa"] = float(self.film["cavitation_margin_Pa"])
+        if "cavitated" in self.film:
+            d["cavitated"] = np.asarray(self.film["cavitated"]).tolist()
+            d["min_pressure_Pa"] = np.asarray(self.film["min_pressure_Pa"]).tolist()
+        d["notes"] = _film_notes(self.film, self.rpm)
         return d
 
     def to_xarray(self):
@@ -418,6 +548,11 @@ class LSDCoefficients(Result):
             {
                 "K": (("rpm", "row", "col"), self.K, {"units": "N/m", "csv_columns": _names(True, "N_per_m")}),
                 "C": (("rpm", "row", "col"), self.C, {"units": "N*s/m", "csv_columns": _names(False, "Ns_per_m")}),
+                "M": (
+                    ("rpm", "row", "col"),
+                    self.M,
+                    {"units": "kg", "csv_columns": ",".join(f"{n}_kg" for n in MASS_NAMES)},
+                ),
                 **{
                     f"C_{k}": (("rpm", "row", "col"), np.asarray(v), {"units": "N*s/m", "csv": "no"})
                     for k, v in self.parts.items()
@@ -463,6 +598,61 @@ class LSDCoefficients(Result):
             None,
             damping_linthresh=max(1.0, float(np.max(np.abs(self.C))) * 1e-3),
         )
+
+
+#: The added-mass coefficients, ROSS order.
+MASS_NAMES = ("mxx", "mxy", "myx", "myy")
+#: Relative change of the oil force [-] beyond which the film warnings speak (10 %).
+FILM_EFFECT_THRESHOLD = 0.10
+
+
+def _film_notes(film: dict, rpm) -> list:
+    """Plain-language notes where fluid inertia or cavitation change the oil force."""
+    notes = []
+    if not film:
+        return notes
+    rpm = np.atleast_1d(rpm)
+    ratio = np.broadcast_to(np.asarray(film["inertia_ratio"], dtype=float), rpm.shape)
+    over = ratio > FILM_EFFECT_THRESHOLD
+    if np.any(over):
+        i = int(np.argmax(over))
+        re_s = np.broadcast_to(np.asarray(film["squeeze_reynolds"], dtype=float), rpm.shape)
+        notes.append(
+            f"fluid inertia changes the oil force by more than {FILM_EFFECT_THRESHOLD:.0%} from {rpm[i]:g} rpm "
+            f"(omega tau = {ratio[i]:.3g}, squeeze Reynolds number {re_s[i]:.3g}; up to {ratio.max():.3g} at "
+            f"{rpm[int(np.argmax(ratio))]:g} rpm): the added mass M is part of the damper's force"
+        )
+    amp = np.broadcast_to(np.asarray(film["pressure_amplitude_Pa"], dtype=float), rpm.shape)
+    margin = float(film["cavitation_margin_Pa"])
+    cav = amp > margin
+    if "cavitated" in film:
+        cav = np.asarray(film["cavitated"], dtype=bool)
+        if np.any(cav):
+            notes.append(
+                f"the film cavitates from {rpm[int(np.argmax(cav))]:g} rpm: coefficients from the film "
+                "network's first harmonic (they depend on amplitude and speed)"
+            )
+    elif np.any(cav):
+        i = int(np.argmax(cav))
+        notes.append(
+            f"from {rpm[i]:g} rpm the linear chamber pressure amplitude ({amp[i] / 1e5:.3g} bar) exceeds "
+            f"p_s - p_cav = {margin / 1e5:.3g} bar: the film cavitates and the linear oil coefficients "
+            "overstate its force; use equivalent_coefficients(..., film=True) (CLI --film)"
+        )
+    return notes
+
+
+def _warn_film(film: dict, rpm) -> None:
+    """Warn where the film cavitates: the linear oil coefficients are then wrong.
+
+    Inertia is only noted (``summary["notes"]``, printed by the CLI): its added mass is part
+    of the result (``M``) and of the ROSS elements.
+    """
+    from .film import FilmWarning
+
+    for note in _film_notes(film, rpm):
+        if not note.startswith("fluid inertia"):
+            warnings.warn(note, FilmWarning, stacklevel=3)
 
 
 def _speeds(rpm, omega) -> tuple:

@@ -9,6 +9,7 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.params import Parameters, param
 from ..core.units import to_si
+from .damping import ATMOSPHERIC_PRESSURE
 
 __all__ = ["LSDParameters", "EXAMPLES"]
 
@@ -89,6 +90,21 @@ class LSDParameters(Parameters):
         choices=("peak", "instantaneous"),
         default="peak",
     )
+    supply_pressure: float = param(
+        "Pa",
+        "supply (mean chamber) pressure, gauge: above the atmosphere's 1.01325 bar",
+        symbol="p_s",
+        display="bar",
+        default=0.0,
+    )
+    cavitation_pressure: float = param(
+        "Pa",
+        "absolute pressure at which the oil film ruptures or releases gas (0 bar: vapour limit)",
+        symbol="p_cav",
+        display="bar",
+        default=0.0,
+        nonnegative=True,
+    )
     oring_friction: float = param("", "O-ring friction coefficient", symbol="mu_o", default=0.0, nonnegative=True)
     oring_normal_force: float = param("N", "O-ring normal force", symbol="F_N", default=0.0, nonnegative=True)
     name: str = param(None, "label used in plots", kind="str", default="LSD")
@@ -112,6 +128,13 @@ class LSDParameters(Parameters):
             )
         if not self.poisson_ratio < 0.5:
             raise InputError(f"poisson_ratio = {self.poisson_ratio} must be below 0.5")
+        if not self.supply_pressure + ATMOSPHERIC_PRESSURE > self.cavitation_pressure:
+            raise InputError(
+                f"supply_pressure = {self.supply_pressure / 1e5:g} bar (gauge) is "
+                f"{(self.supply_pressure + ATMOSPHERIC_PRESSURE) / 1e5:g} bar absolute, not above "
+                f"cavitation_pressure = {self.cavitation_pressure / 1e5:g} bar (absolute): the chambers "
+                "would be cavitated at rest; raise the supply pressure"
+            )
         if self.passages_per_boundary < 1:
             raise InputError(f"passages_per_boundary = {self.passages_per_boundary} must be at least 1")
         if self.pack_angles:
@@ -159,6 +182,11 @@ class LSDParameters(Parameters):
         return str(name).upper().removeprefix("TYPE").strip(" _-")
 
     # ----------------------------------------------------------------- derived
+    @property
+    def supply_pressure_absolute(self) -> float:
+        """Supply pressure, absolute [Pa]."""
+        return self.supply_pressure + ATMOSPHERIC_PRESSURE
+
     @property
     def kinematic_viscosity(self) -> float:
         """``eta / rho`` [m^2/s]."""

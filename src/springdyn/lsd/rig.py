@@ -11,7 +11,9 @@ model, not with the linearised coefficients:
   ``1.5 mu_s S P_i sign(d delta_i/dt)`` along the pack, with the instantaneous pack load
   ``P_i`` (Eqs. (2.25)-(2.27) of the thesis, per unit tip deflection rate);
 - the O-rings give a Coulomb force ``mu_o F_N`` opposing the ring velocity (2.21);
-- the oil network gives ``B^T G^+ B v`` (incompressible oil, docs/references.md);
+- the oil network gives ``B^T G^+ B v`` (incompressible oil, docs/references.md), or with
+  ``film=True`` the time-domain network with passage inertia and cavitation
+  (:mod:`springdyn.lsd.film`);
 - the ring's inertia adds ``m a``.
 
 Optional Gaussian sensor noise is added to the measured forces and displacements.
@@ -256,8 +258,16 @@ def oring_friction_force(friction_coefficient, normal_force, vx, vy):
     return scale * vx, scale * vy
 
 
-def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, displacement_noise=0.0, seed=None):
+def simulate_rig(
+    model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, displacement_noise=0.0, seed=None, film=False
+):
     """Reaction forces of the damper along a prescribed ring path.
+
+    By default the oil is the thesis' incompressible, inertia-free network
+    (``C_visc v``).  With ``film=True`` the oil network is integrated in time with the
+    passage inertia and film rupture (:mod:`springdyn.lsd.film`; pressures absolute, never
+    below ``cavitation_pressure``), starting full at the supply pressure; the chamber
+    pressures and voids are in ``record.film``.
 
     Parameters
     ----------
@@ -270,6 +280,8 @@ def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, di
         Standard deviation of Gaussian noise added to each displacement channel [m].
     seed : int, optional
         Seed of the noise generator [-].
+    film : bool
+        Integrate the oil network with inertia and cavitation (needs uniform time steps).
 
     Returns
     -------
@@ -286,8 +298,15 @@ def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, di
         model.angles, loads, p.leaf_friction, model.slip_factor, tr.vx, tr.vy
     )
     parts["oring_friction"] = oring_friction_force(p.oring_friction, p.oring_normal_force, tr.vx, tr.vy)
-    Cv = model.viscous_damping
-    parts["oil"] = (Cv[0, 0] * tr.vx + Cv[0, 1] * tr.vy, Cv[1, 0] * tr.vx + Cv[1, 1] * tr.vy)
+    history = None
+    if film:
+        from .film import film_network, simulate_film
+
+        history = simulate_film(film_network(model), tr.time, tr.vx, tr.vy)
+        parts["oil"] = (history.fx, history.fy)
+    else:
+        Cv = model.viscous_damping
+        parts["oil"] = (Cv[0, 0] * tr.vx + Cv[0, 1] * tr.vy, Cv[1, 0] * tr.vx + Cv[1, 1] * tr.vy)
     parts["inertia"] = (p.ring_mass * tr.ax, p.ring_mass * tr.ay)
     total_x = sum(v[0] for v in parts.values())
     total_y = sum(v[1] for v in parts.values())
@@ -312,6 +331,7 @@ def simulate_rig(model: LSDModel, trajectory: Trajectory, *, force_noise=0.0, di
         fy=total_y,
         parts={k: (np.asarray(a), np.asarray(b)) for k, (a, b) in parts.items()},
         preload_exceeded=amplitude > p.preload,
+        film=history,
     )
 
 
@@ -336,6 +356,7 @@ class RigRecord(Result):
     preload_exceeded: bool = False
     source: str = ""
     row_offset: int = 2  # file row of sample 0 (CSV: header is row 1)
+    film: object = None  # FilmHistory of a film=True simulation (pressures, voids)
 
     title = "leaf spring damper rig record"
 
@@ -399,6 +420,9 @@ class RigRecord(Result):
             fy_amplitude_N=float(np.ptp(self.fy) / 2),
             preload_exceeded=bool(self.preload_exceeded),
         )
+        if self.film is not None:
+            s["min_chamber_pressure_Pa"] = self.film.min_pressure
+            s["max_void_volume_m3"] = float(self.film.voids.max())
         s["rpm"] = float(self.rpm) if np.isfinite(self.rpm) else None
         if s["rpm"] is None:
             s["notes"] = ["the shaft speed of a measured record is not known until it is identified"]

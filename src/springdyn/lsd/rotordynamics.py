@@ -40,6 +40,7 @@ __all__ = [
     "bearing_at_frequency",
     "whirl_consistent_mode",
     "nonlinear_force",
+    "small_orbit_element",
     "TableInterpolant",
     "DEFAULT_RPM_RANGE",
     "DEFAULT_POINTS",
@@ -157,6 +158,7 @@ def bearing_element(
     points: int = DEFAULT_POINTS,
     outside: str = "raise",
     omega=None,
+    added_mass: bool = True,
     **kwargs,
 ):
     """``ross.BearingElement`` at node ``n`` from an :class:`~springdyn.lsd.LSDModel`, never extrapolating.
@@ -185,6 +187,9 @@ def bearing_element(
     omega : array_like, optional
         Explicit table frequencies [rad/s] instead of ``rpm_range`` (the range is then the
         table's span).
+    added_mass : bool
+        Give ROSS the added mass of the oil in the passages, ``mxx ... myy`` =
+        :attr:`~springdyn.lsd.LSDModel.added_mass` [kg] (constant in frequency).
     **kwargs
         Passed on (``tag``, ``n_link``, ``scale_factor``...).
 
@@ -193,7 +198,9 @@ def bearing_element(
     ross.BearingElement
         Its ``frequency`` is the **vibration frequency** [rad/s] (equal to the spin speed in
         ROSS 2.3's synchronous analyses); ``kxx_interpolated`` ... are
-        :class:`TableInterpolant` objects.
+        :class:`TableInterpolant` objects; ``film_notes`` says from which speed the film would
+        cavitate at ``amplitude`` (the linear oil coefficients hold while it is whole: see
+        ``springdyn lsd film`` for the orbits the rotor reaches).
     """
     if outside not in ("raise", "clamp"):
         raise InputError(f"outside = {outside!r} is not allowed; choose 'raise' or 'clamp'")
@@ -216,10 +223,18 @@ def bearing_element(
         w = rpm_to_omega(rpm)
         w_low, w_high = float(rpm_to_omega(lo)), float(rpm_to_omega(hi))
     ross = _import_ross()
-    coeffs = model.coefficients(omega=w, amplitude=amplitude, motion=motion)
+    from .film import FilmWarning
+
+    with warnings.catch_warnings():
+        # a wide table reaches speeds where the film would rupture at this amplitude; that is
+        # said in elem.film_notes, not warned at every export (the amplitude is the friction's)
+        warnings.simplefilter("ignore", FilmWarning)
+        coeffs = model.coefficients(omega=w, amplitude=amplitude, motion=motion)
     K, C = coeffs.K, coeffs.C
     kwargs.setdefault("tag", f"LSD {model.params.name}")
     values = {name: (K if name[0] == "k" else C)[(slice(None),) + _INDEX["k" + name[1:]]] for name in _NAMES}
+    if added_mass:
+        kwargs.update(_mass_kwargs(model))
     elem = ross.BearingElement(n=n, frequency=w, **values, **kwargs)
     for name in _NAMES:
         setattr(
@@ -227,10 +242,18 @@ def bearing_element(
             f"{name}_interpolated",
             TableInterpolant(w, values[name], w_low, w_high, outside, f"{name} of {kwargs['tag']}"),
         )
+    elem.film_notes = coeffs.summary.get("notes", [])
     return elem
 
 
-def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-6, motion: str = "linear", **kwargs):
+def _mass_kwargs(model) -> dict:
+    M = model.added_mass
+    return {"mxx": M[0, 0], "mxy": M[0, 1], "myx": M[1, 0], "myy": M[1, 1]}
+
+
+def bearing_at_frequency(
+    model, n: int, omega: float, *, amplitude: float = 50e-6, motion: str = "linear", added_mass: bool = True, **kwargs
+):
     """``ross.BearingElement`` with the coefficients at one vibration frequency ``omega`` [rad/s].
 
     Constant coefficients (no table), so ROSS uses them at every spin speed: the element
@@ -249,6 +272,8 @@ def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-
         Vibration amplitude [m].
     motion : {"linear", "circular"}
         Motion for the O-ring Coulomb equivalent.
+    added_mass : bool
+        Include the oil's added mass ``mxx ... myy`` [kg].
     **kwargs
         Passed on to ``ross.BearingElement``.
     """
@@ -258,6 +283,8 @@ def bearing_at_frequency(model, n: int, omega: float, *, amplitude: float = 50e-
     c = model.coefficients(omega=[float(omega)], amplitude=amplitude, motion=motion)
     kwargs.setdefault("tag", f"LSD {model.params.name}")
     K, C = c.K[0], c.C[0]
+    if added_mass:
+        kwargs.update(_mass_kwargs(model))
     return ross.BearingElement(
         n=n,
         kxx=K[0, 0],
@@ -336,16 +363,72 @@ def whirl_consistent_mode(
     )
 
 
-def nonlinear_force(model, rotor, n: int, *, count: int = 1):
+def small_orbit_element(model, n: int, **kwargs):
+    """``ross.BearingElement`` with the damper's small-orbit linearisation, constant in frequency.
+
+    Pack stiffness ``K`` (3.4), oil damping ``C_visc`` and the passages' added mass
+    ``M_a = tau C_visc`` (:attr:`~springdyn.lsd.LSDModel.added_mass`): the exact linearisation
+    of the packs and of the film network (with inertia) while no pack lifts off and the film
+    does not cavitate.  Friction is left out (its equivalent grows without bound as the
+    amplitude falls).  Pair it with :func:`nonlinear_force` ``(..., residual=True)``, which adds
+    the rest of the nonlinear force.
+
+    Parameters
+    ----------
+    model : LSDModel
+        The damper.
+    n : int
+        Rotor node number [-].
+    **kwargs
+        Passed on to ``ross.BearingElement`` (``tag`` ...).
+    """
+    ross = _import_ross()
+    K, C, M = model.stiffness_matrix, model.viscous_damping, model.added_mass
+    kwargs.setdefault("tag", f"LSD {model.params.name} (small orbit)")
+    return ross.BearingElement(
+        n=n,
+        kxx=K[0, 0],
+        kxy=K[0, 1],
+        kyx=K[1, 0],
+        kyy=K[1, 1],
+        cxx=C[0, 0],
+        cxy=C[0, 1],
+        cyx=C[1, 0],
+        cyy=C[1, 1],
+        mxx=M[0, 0],
+        mxy=M[0, 1],
+        myx=M[1, 0],
+        myy=M[1, 1],
+        **kwargs,
+    )
+
+
+def nonlinear_force(
+    model, rotor, n: int, *, count: int = 1, film: bool = False, residual: bool = False, inertia: bool = True
+):
     """The damper's nonlinear force as an ``add_to_RHS`` callback of ROSS's time response.
 
     ROSS 2.3's ``rotor.run_time_response(speed, F, t, add_to_RHS=f)`` adds ``f(step,
-    disp_resp=..., velc_resp=..., ...)`` to the right-hand side at every step.  The callback
-    returned here evaluates the rig's force laws (:mod:`springdyn.lsd.rig`: pack springs with
-    lift-off, inter-leaf and O-ring Coulomb friction, oil) at the x, y displacement and
-    velocity of node ``n`` and returns minus that force (the damper pushes back) on the node's
-    x and y degrees of freedom.  Build the rotor **without** a linear element for this damper
-    (or with zero coefficients at node ``n``), so it is not counted twice.
+    disp_resp=..., velc_resp=..., accl_resp=..., time_step=...)`` to the right-hand side at
+    every step.  The callback evaluates the rig's force laws (:mod:`springdyn.lsd.rig`: pack
+    springs with lift-off, inter-leaf and O-ring Coulomb friction, oil) at the x, y
+    displacement and velocity of node ``n`` and returns minus that force (the damper pushes
+    back) on the node's x and y degrees of freedom.
+
+    - ``film=False``: the oil is the thesis' linear, inertia-free ``C_visc v``.
+    - ``film=True``: the oil is the time-domain film network (:mod:`springdyn.lsd.film`:
+      passage inertia, cavitation at ``cavitation_pressure``, supply at ``supply_pressure``),
+      integrated along the node's velocity history, one network step per ROSS step (the
+      callback keeps the network's state; call ``f.reset()`` before reusing it for a new run).
+    - ``residual=False``: build the rotor **without** a linear element for this damper (or with
+      zero coefficients at node ``n``), so it is not counted twice.
+    - ``residual=True``: the rotor carries :func:`small_orbit_element` at node ``n`` (implicit in
+      ROSS's Newmark scheme) and the callback adds only the rest,
+      ``F_nonlinear - (K x + C_visc v + M_a a)``, small while the orbit is small.
+
+    ROSS evaluates the callback with the state of the step before, so the callback's part of
+    the force lags by one step (first order in the step): with ``residual=True`` that lag only
+    touches the nonlinear remainder.
 
     Parameters
     ----------
@@ -357,13 +440,22 @@ def nonlinear_force(model, rotor, n: int, *, count: int = 1):
         Node of the damper [-].
     count : int
         Identical dampers acting on that node [-].
+    film : bool
+        Oil from the film network (inertia and cavitation).
+    residual : bool
+        Return only the part beyond :func:`small_orbit_element`.
+    inertia : bool
+        Passage inertia in the film network (with ``film``).
 
     Returns
     -------
     callable
-        ``f(step, disp_resp=None, velc_resp=None, **kwargs) -> ndarray (rotor.ndof,)`` [N].
+        ``f(step, disp_resp=None, velc_resp=None, accl_resp=None, time_step=None, **kwargs) ->
+        ndarray (rotor.ndof,)`` [N]; ``f.network`` is the film network (or None), ``f.history``
+        the node's oil pressures per step (absolute, [Pa]) when ``film``.
     """
     from . import rig
+    from .film import film_network
 
     ndof, per_node = int(rotor.ndof), int(rotor.number_dof)
     ix, iy = per_node * int(n), per_node * int(n) + 1
@@ -371,8 +463,26 @@ def nonlinear_force(model, rotor, n: int, *, count: int = 1):
         raise InputError(f"n = {n!r} is not a node of the rotor ({ndof // per_node} nodes)")
     p = model.params
     Cv = model.viscous_damping
+    K_lin, M_lin = model.stiffness_matrix, model.added_mass
+    network = film_network(model, inertia=inertia) if film else None
+    state = {"step": None, "out": None, "started": False, "v": None}
 
-    def force(step, disp_resp=None, velc_resp=None, **kwargs):
+    def oil(v, dt):
+        if network is None:
+            return Cv @ v
+        if not state["started"]:
+            network.reset()
+            network.flow = network.kinematic_flows(v)
+            state["started"] = True
+        if not (dt and dt > 0):
+            return Cv @ v
+        pressures = network.step(v, dt)
+        force.history.append(pressures)
+        return network.force(pressures)
+
+    def force(step, disp_resp=None, velc_resp=None, accl_resp=None, time_step=None, **kwargs):
+        if step == state["step"]:
+            return state["out"].copy()  # the same step asked twice: the network advances once
         out = np.zeros(ndof)
         if disp_resp is None or velc_resp is None:
             return out
@@ -381,8 +491,27 @@ def nonlinear_force(model, rotor, n: int, *, count: int = 1):
         fx, fy, loads = rig.pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
         lx, ly = rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy)
         ox, oy = rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy)
-        out[ix] = -count * float((fx + lx + ox + Cv[0, 0] * vx + Cv[0, 1] * vy)[0])
-        out[iy] = -count * float((fy + ly + oy + Cv[1, 0] * vx + Cv[1, 1] * vy)[0])
-        return out
+        v = np.array([vx[0], vy[0]])
+        f = np.array([fx[0] + lx[0] + ox[0], fy[0] + ly[0] + oy[0]]) + oil(v, time_step)
+        if residual:
+            # the acceleration as the film network sees it (its backward difference), so that the
+            # remainder vanishes exactly while the film is linear; Newmark's own acceleration
+            # oscillates step to step and would feed that oscillation back through M_a
+            if film and time_step:
+                a = (v - state["v"]) / time_step if state["v"] is not None else np.zeros(2)
+            else:
+                a = np.zeros(2) if accl_resp is None else np.array([accl_resp[ix], accl_resp[iy]])
+            f = f - (K_lin @ np.array([x[0], y[0]]) + Cv @ v + M_lin @ a)
+        state["v"] = v
+        out[ix], out[iy] = -count * f[0], -count * f[1]
+        state["step"], state["out"] = step, out
+        return out.copy()
 
+    def reset():
+        state.update(step=None, out=None, started=False, v=None)
+        force.history = []
+
+    force.network = network
+    force.history = []
+    force.reset = reset
     return force

@@ -36,8 +36,30 @@ def register(sub) -> None:
         default="linear",
         help="motion for the O-ring Coulomb equivalent (default linear, as Eq. (2.22))",
     )
+    p.add_argument(
+        "--film",
+        action="store_true",
+        help="oil from the film network with inertia and cavitation (describing function at --amplitude)",
+    )
     add_output_options(p)
     p.set_defaults(func=cmd_coefficients)
+
+    p = lsub.add_parser("film", help="where fluid inertia and cavitation change the oil force (speed x orbit map)")
+    p.add_argument("config", metavar="CFG.toml", help="damper definition; or A, B, C")
+    p.add_argument(
+        "--rpm",
+        default="500,1000,2000,3000,4000,6000,8000,10000,12000,14100",
+        help="speeds (whirl frequencies), START:STOP:STEP or a list (default 500 to 14100 rpm, 10 speeds)",
+    )
+    p.add_argument(
+        "--amplitude",
+        default="5um,10um,20um,30um,50um,70um,100um",
+        help="orbit radii, a list or START:STOP:STEP (default 5um to 100um, 7 orbits)",
+    )
+    p.add_argument("--steps", type=int, default=512, help="time steps per period of the film simulation (default 512)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_output_options(p)
+    p.set_defaults(func=cmd_film)
 
     p = lsub.add_parser("rig", help="simulate the thesis' test rig (eccentric shaft or shakes)")
     p.add_argument("config", metavar="CFG.toml", help="damper definition; or A, B, C")
@@ -52,6 +74,9 @@ def register(sub) -> None:
     p.add_argument("--noise", default="0N", help="force sensor noise, standard deviation (default 0N)")
     p.add_argument("--displacement-noise", default="0um", help="displacement sensor noise (default 0um)")
     p.add_argument("--seed", type=int, default=None, help="seed of the noise generator")
+    p.add_argument(
+        "--film", action="store_true", help="oil from the film network in time (passage inertia, cavitation)"
+    )
     p.add_argument("--csv", metavar="OUT.csv", required=True, help="write time_s, x_m, y_m, fx_N, fy_N")
     p.add_argument("--plot", metavar="OUT.png", help="hysteresis loops as PNG")
     p.set_defaults(func=cmd_rig)
@@ -113,7 +138,10 @@ def cmd_coefficients(args) -> int:
     model = LSDModel(_params(args.config))
     rpm = parse_range(args.rpm, "rpm", "--rpm")
     amplitude = quantity(args.amplitude, "m", "--amplitude")
-    res = model.coefficients(rpm, amplitude=amplitude, motion=args.motion)
+    if args.film:
+        res = model.equivalent_coefficients(rpm, amplitude=amplitude, motion=args.motion, film=True)
+    else:
+        res = model.coefficients(rpm, amplitude=amplitude, motion=args.motion)
     if emit(res, args):
         return 0
     print(
@@ -124,16 +152,107 @@ def cmd_coefficients(args) -> int:
     K = np.where(np.abs(res.K) < 1e-12 * np.abs(res.K).max(), 0.0, res.K) / 1e3
     C = np.where(np.abs(res.C) < 1e-12 * np.abs(res.C).max(), 0.0, res.C)
     idx = ((0, 0), (0, 1), (1, 0), (1, 1))
+    re_s = np.broadcast_to(res.film["squeeze_reynolds"], res.rpm.shape)
     rows = [
-        (f"{r:g}", *(f"{K[i, a, b]:.5g}" for a, b in idx), *(f"{C[i, a, b]:.5g}" for a, b in idx))
+        (
+            f"{r:g}",
+            *(f"{K[i, a, b]:.5g}" for a, b in idx),
+            *(f"{C[i, a, b]:.5g}" for a, b in idx),
+            f"{res.M[i, 0, 0]:.4g}",
+            f"{res.M[i, 1, 1]:.4g}",
+            f"{re_s[i]:.3g}",
+        )
         for i, r in enumerate(res.rpm)
     ]
     print_table(
         rows,
-        headers=("rpm", "Kxx N/mm", "Kxy N/mm", "Kyx N/mm", "Kyy N/mm", "Cxx Ns/m", "Cxy Ns/m", "Cyx Ns/m", "Cyy Ns/m"),
+        headers=(
+            "rpm",
+            "Kxx N/mm",
+            "Kxy N/mm",
+            "Kyx N/mm",
+            "Kyy N/mm",
+            "Cxx Ns/m",
+            "Cxy Ns/m",
+            "Cyx Ns/m",
+            "Cyy Ns/m",
+            "Mxx kg",
+            "Myy kg",
+            "Re_s",
+        ),
     )
     print_notes(res.summary)
     return 0
+
+
+def cmd_film(args) -> int:
+    from springdyn.core.progress import progress
+    from springdyn.lsd.film import film_effect_map
+    from springdyn.lsd.model import LSDModel
+
+    model = LSDModel(_params(args.config))
+    rpm = parse_range(args.rpm, "rpm", "--rpm")
+    amps = parse_range(args.amplitude, "m", "--amplitude")
+    if args.steps < 32:
+        raise InputError(f"--steps = {args.steps} must be at least 32")
+    res = film_effect_map(
+        model,
+        rpm,
+        amps,
+        steps=args.steps,
+        progress=lambda it: progress(it, total=rpm.size, desc="film map", quiet=args.quiet),
+    )
+    if emit(res, args, json_data=_film_map_json(res)):
+        return 0
+    p = model.params
+    print(
+        f"{p.name}: oil force changed by fluid inertia and by cavitation (forward orbits; supply "
+        f"{res.supply_pressure / 1e5:.4g} bar abs, cavitation {res.cavitation_pressure / 1e5:.4g} bar abs); "
+        "percent of the oil force"
+    )
+    rows = [
+        (
+            f"{r:g}",
+            f"{res.squeeze_reynolds[i]:.3g}",
+            f"{100 * res.inertia_change[i]:.3g}",
+            *(f"{_percent(res.cavitation_change[i, j])}" for j in range(amps.size)),
+        )
+        for i, r in enumerate(res.rpm)
+    ]
+    print_table(rows, headers=("rpm", "Re_s", "inertia %", *(f"cav {a * 1e6:.3g}um %" for a in amps)))
+    onset = res.inertia_onset_rpm()
+    print(
+        "inertia changes the oil force by more than 10 % "
+        + (f"from {onset:.0f} rpm (omega tau = 0.1)" if onset is not None else "nowhere in the mapped speeds")
+    )
+    for a, r in zip(amps, res.cavitation_onset_rpm()):
+        where = f"from {r:g} rpm" if np.isfinite(r) else "nowhere in the mapped speeds"
+        print(f"cavitation changes it by more than 10 % at {a * 1e6:.3g} um {where}")
+    return 0
+
+
+def _percent(change: float) -> str:
+    """A relative change in percent; round-off (below 1e-6 %) shown as 0."""
+    return "0" if abs(change) < 1e-8 else f"{100 * change:.3g}"
+
+
+def _film_map_json(res) -> dict:
+    d = {
+        "rpm": res.rpm.tolist(),
+        "amplitude_m": res.amplitude.tolist(),
+        "squeeze_reynolds": res.squeeze_reynolds.tolist(),
+        "inertia_change": res.inertia_change.tolist(),
+        "cavitation_change": res.cavitation_change.tolist(),
+        "total_change": res.total_change.tolist(),
+        "pressure_amplitude_Pa": res.pressure_amplitude.tolist(),
+        "min_pressure_Pa": res.min_pressure.tolist(),
+        "inertia_onset_rpm": res.inertia_onset_rpm(),
+        "cavitation_onset_rpm": [None if not np.isfinite(v) else float(v) for v in res.cavitation_onset_rpm()],
+        "supply_pressure_abs_Pa": res.supply_pressure,
+        "cavitation_pressure_abs_Pa": res.cavitation_pressure,
+        "threshold": res.threshold,
+    }
+    return d
 
 
 def cmd_rig(args) -> int:
@@ -157,7 +276,7 @@ def cmd_rig(args) -> int:
         else:
             tr = linear_shake(rpm, ecc, args.excitation, args.revolutions, fs)
         what = f"{args.excitation} at {rpm:g} rpm, {ecc * 1e6:.4g} um"
-    rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed)
+    rec = simulate_rig(model, tr, force_noise=noise, displacement_noise=dnoise, seed=args.seed, film=args.film)
     rec.to_csv(args.csv)
     if args.plot:
         close_figure(rec.plot(args.plot))
@@ -166,6 +285,12 @@ def cmd_rig(args) -> int:
         f"peak |Fx| {np.max(np.abs(rec.fx)):.4g} N, peak |Fy| {np.max(np.abs(rec.fy)):.4g} N"
     )
     announce_written([args.csv, args.plot], args)
+    if rec.film is not None:
+        print(
+            f"film: lowest chamber pressure {rec.film.min_pressure / 1e5:.4g} bar absolute "
+            f"(cavitation at {model.params.cavitation_pressure / 1e5:.4g} bar), "
+            f"largest void {rec.film.voids.max() * 1e9:.4g} mm^3"
+        )
     print_notes(rec.summary)
     return 0
 
