@@ -3,8 +3,9 @@
 
 **The table** names the parameters under their own names (:data:`TOLERANCED`): the spring's
 ``wire_diameter``, ``mean_diameter``, ``free_length``, ``installed_length``,
-``shear_modulus``, ``youngs_modulus``, ``density``, the cam's ``lift`` and the valve train's
-``lash``.  A value is a band, uniform between its limits (``wire_diameter = "+-0.02 mm"``,
+``shear_modulus``, ``youngs_modulus``, ``density``, the coils' ``pitch`` (the mean pitch of the
+active coils, :func:`mean_active_pitch`: the coiling tool's systematic error, which shows as
+free length), the cam's ``lift`` and the valve train's ``lash``.  A value is a band, uniform between its limits (``wire_diameter = "+-0.02 mm"``,
 ``shear_modulus = "+-2 %"``), or a distribution (``wire_diameter = { distribution =
 "normal", sigma = "0.01 mm" }``; ``"uniform"`` takes ``limits``).  A ``[criteria]`` table
 beside it sets the limits each variant is judged against (:class:`Criteria`).
@@ -48,6 +49,7 @@ from .float_search import FLOAT_RESOLUTION, float_speed_near
 __all__ = [
     "TOLERANCED",
     "Tolerance",
+    "mean_active_pitch",
     "Criteria",
     "read_tolerances",
     "sample",
@@ -68,6 +70,7 @@ TOLERANCED = {
     "shear_modulus": ("Pa", "spring"),
     "youngs_modulus": ("Pa", "spring"),
     "density": ("kg/m^3", "spring"),
+    "pitch": ("m", "coiling"),
     "lift": ("m", "cam"),
     "lash": ("m", "valve_train"),
 }
@@ -96,6 +99,10 @@ FLOAT_OUTPUTS = ("Fset", "f1", "float_cam_rpm", "float_in_range", "refused", "pe
 FIGURES = ("Fset", "f1", "float_cam_rpm", "max_retainer_force", "clash_onset_cam_rpm", "goodman_safety")
 #: Percentiles reported of every output [%].
 PERCENTILES = (0.135, 2.5, 50.0, 97.5, 99.865)
+#: Halvings of the speed step around the swept speeds with the smallest Goodman safety and the
+#: largest retainer force (:func:`run_variant`): both are a resonance's, which can lie between
+#: two swept speeds.
+REFINEMENTS = 2
 #: Variants per chunk on disk (a killed run loses at most one chunk's work; the chunks run
 #: in parallel on the local threads or the Dask workers).
 CHUNK = 25
@@ -233,9 +240,29 @@ def nominal_values(spring, cam, valve_train) -> dict:
     valve_train : ValveTrain or None
     """
     out = {k: float(getattr(spring, k)) for k, (_, where) in TOLERANCED.items() if where == "spring"}
+    out["pitch"] = mean_active_pitch(spring)
     out["lift"] = float(cam.max_lift)
     out["lash"] = float(valve_train.lash) if valve_train is not None else 0.0
     return out
+
+
+def mean_active_pitch(spring) -> float:
+    """The mean pitch of the active coils of the unloaded spring [m]:
+    ``(Lf - (2 Nb + 1) Dw) / (N1 + N2 - 2 Nb)`` (the free length less the dead coils' and the
+    end wire's height, over the active coils of :func:`springdyn.valve.formulas.active_coils_free`).
+
+    A pitch tolerance is the coiling tool's systematic error of this pitch: every active coil
+    longer by ``dp`` makes the spring ``(N1 + N2 - 2 Nb) dp`` longer (:func:`variant`).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        The spring (its free length [m], wire diameter [m] and coil counts [-]).
+    """
+    from .formulas import active_coils_free
+
+    na = active_coils_free(spring.low_pitch_coils, spring.high_pitch_coils, spring.dead_coils)
+    return (spring.free_length - (2.0 * spring.dead_coils + 1.0) * spring.wire_diameter) / na
 
 
 def sample(tolerances: dict, nominal: dict, count: int, seed: int, method: str = "sobol") -> dict:
@@ -290,6 +317,16 @@ def variant(spring, cam, valve_train, values: dict):
     import warnings
 
     spring_changes = {k: float(v) for k, v in values.items() if TOLERANCED[k][1] == "spring"}
+    if "pitch" in values:  # the coils' pitch error shows as free length (mean_active_pitch)
+        if spring.pitch_profile:
+            raise InputError(
+                "[tolerances] pitch: the spring has a pitch_profile; tolerance its profile's own values instead"
+            )
+        from .formulas import active_coils_free
+
+        na = active_coils_free(spring.low_pitch_coils, spring.high_pitch_coils, spring.dead_coils)
+        lf = spring_changes.get("free_length", spring.free_length)
+        spring_changes["free_length"] = lf + na * (float(values["pitch"]) - mean_active_pitch(spring))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         sp = dataclasses.replace(spring, **spring_changes) if spring_changes else spring
@@ -309,7 +346,10 @@ def run_variant(
     The speeds are swept (:func:`springdyn.valve.sweep`); the float speed, the lowest swept
     speed from which the valve leaves the cam over the nose at every higher one, is then
     narrowed to ``resolution`` between it and the swept speed below
-    (:func:`springdyn.valve.float_search.float_speed_near`).
+    (:func:`springdyn.valve.float_search.float_speed_near`); the smallest Goodman safety and
+    the largest retainer force come from the swept speeds up to ``rated_rpm``, ``rated_rpm``
+    itself and, around the worst of each, the step halved :data:`REFINEMENTS` times (a
+    resonance between two swept speeds).
 
     Parameters
     ----------
@@ -349,13 +389,43 @@ def run_variant(
         periodicity = max(periodicity, near["periodicity"])
         runs += near["evaluations"]
     service = rpm <= (rpm[-1] if rated_rpm is None else max(rated_rpm, rpm[0]))
+    worst = {
+        float(r): (float(g), float(x))
+        for r, g, x in zip(
+            rpm[service],
+            np.asarray(t["fatigue_safety_factor"], dtype=float)[service],
+            np.asarray(t["max_retainer_force_N"], dtype=float)[service],
+        )
+    }
+    # a resonance between two swept speeds: the worst speeds' neighbourhoods halved twice; the
+    # rated speed itself, the end of the service range (where the stress is often highest)
+    rated = None if rated_rpm is None else float(rated_rpm)
+    for level in range(REFINEMENTS):
+        known = sorted(worst)
+        new = (
+            {rated} if (level == 0 and rated is not None and rpm[0] < rated < rpm[-1] and rated not in worst) else set()
+        )
+        for r in {min(worst, key=lambda r: worst[r][0]), max(worst, key=lambda r: worst[r][1])}:
+            i = known.index(r)
+            new |= {0.5 * (r + known[j]) for j in (i - 1, i + 1) if 0 <= j < len(known)}
+        if not new:
+            break
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            more = sweep(spring, cam, sorted(new), valve_train=valve_train, workers=1).summary_table()
+        worst |= {
+            float(r): (float(g), float(x))
+            for r, g, x in zip(more["cam_rpm"], more["fatigue_safety_factor"], more["max_retainer_force_N"])
+        }
+        periodicity = max(periodicity, float(np.max(np.asarray(more["periodicity_error"], dtype=float))))
+        runs += len(new)
     return dict(
         Fset=float(p["Fset"]),
         f1=float(spring.spring_model.first_mode_installed),
         float_cam_rpm=float(rpm[-1]) if f is None else f,
-        max_retainer_force=float(np.max(np.asarray(t["max_retainer_force_N"])[service])),
+        max_retainer_force=max(v[1] for v in worst.values()),
         clash_onset_cam_rpm=float(rpm[clash[0]]) if clash.size else float(rpm[-1]),
-        goodman_safety=float(np.min(np.asarray(t["fatigue_safety_factor"])[service])),
+        goodman_safety=min(v[0] for v in worst.values()),
         float_in_range=float(f is not None),
         clash_in_range=float(clash.size > 0),
         refused=0.0,
