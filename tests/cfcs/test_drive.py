@@ -106,7 +106,7 @@ def test_seed_case_statistics_converge_in_every_numerical_setting(model, seed_ca
     # the requirement: every statistic within 1 % when a numerical setting is halved or doubled
     # (measured: at most 0.39 %, from the sign smoothing)
     ref = seed_case.summary
-    s = model.driven(**SEED, **setting).summary
+    s = model.driven(**SEED, **setting, compare_without_axial_friction=False).summary
     for k in STATS:
         assert s[k] == pytest.approx(ref[k], abs=0.01 * ref["peak_to_peak_N"]), (k, setting)
 
