@@ -352,8 +352,38 @@ def test_dynamic_with_a_compliant_drive(capsys, tmp_path):
     assert s["drive_stiffness_N_per_m"] == 2e4 and s["drive_damping_N_s_per_m"] == 5.0
     assert s["toggle_cutoff_rad"] is None and s["periods"] == 3 and s["samples_per_period"] == 500
     assert 300 < s["peak_to_peak_N"] < 450  # 367 N at the default settings (docs/cfcs.md)
+    # the crank sticks within the shear angle: flagged, and the run without tau_AF is given beside it
+    assert s["toggle_sticking"] is True and abs(s["toggle_stop_angle_rad"]) < 0.045
+    assert s["peak_to_peak_without_axial_friction_N"] < 0.2 * s["peak_to_peak_N"]
     cols = read_csv_columns(tmp_path / "d.csv")
     assert {"drive_position_m", "force_N", "energy_residual_J"} <= set(cols)
     assert (tmp_path / "d.png").is_file()
     code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "14.7", "--periods", "3")
     assert code == 2 and "--drive-stiffness" in err
+
+
+def test_driven_text_output_says_the_crank_sticks(capsys):
+    """The text table names the sticking and the figure without tau_AF; a note says what sets the peak."""
+    code, out, err = run(
+        capsys,
+        "cfcs",
+        "dynamic",
+        "table1",
+        "--omega",
+        "14.7",
+        "--offset",
+        "0",
+        "--drive-stiffness",
+        "20 kN/m",
+        "--drive-damping",
+        "5 N*s/m",
+        "--periods",
+        "3",
+        "--samples",
+        "500",
+    )
+    assert code == 0, err
+    row = next(line for line in out.splitlines() if line.startswith("toggle sticking"))
+    assert "YES" in row and "alpha" in row
+    assert any(line.startswith("p-p without tau_AF") and " N" in line for line in out.splitlines())
+    assert "TOGGLE STICKING" in out and "F_static inside the shear angle" in out

@@ -4,7 +4,9 @@ References: the virtual-work static force (equilibrium of the right-hand side on
 the toggle), the linearised oscillation of the crank about the toggle (closed form
 ``omega0^2 = 3 K3 / ((m2 + m3) r3^2)``), the energy balance of the augmented state, the rigid
 inverse dynamics of springdyn.cfcs.dynamics as the limit of a stiff drive, and halving/doubling
-every numerical setting for the seed's case through the toggle.
+every numerical setting for the seed's case through the toggle.  Sticking at the toggle: the static
+balance of the held crank (tau_AF + tau_CF + V' = F G from springdyn.cfcs.statics) at the reported
+stop angle, the run without tau_AF against the frictionless run, and cases that avoid the toggle.
 """
 
 import numpy as np
@@ -12,8 +14,8 @@ import pytest
 
 from springdyn.cfcs import CFCS, SinusoidMotion
 from springdyn.cfcs import drive as drv
-from springdyn.cfcs.kinematics import deflection_from_theta2
-from springdyn.cfcs.statics import static_force
+from springdyn.cfcs.kinematics import deflection_from_theta2, slider_jacobian
+from springdyn.cfcs.statics import dissipative_torque, spring_torque, static_force
 from springdyn.core.errors import InputError
 
 from .conftest import R2, R3
@@ -104,7 +106,7 @@ def test_seed_case_statistics_converge_in_every_numerical_setting(model, seed_ca
     # the issue's requirement: every statistic within 1 % when a numerical setting is halved or doubled
     # (measured: at most 0.39 %, from the sign smoothing)
     ref = seed_case.summary
-    s = model.driven(**SEED, **setting).summary
+    s = model.driven(**SEED, **setting, compare_without_axial_friction=False).summary
     for k in STATS:
         assert s[k] == pytest.approx(ref[k], abs=0.01 * ref["peak_to_peak_N"]), (k, setting)
 
@@ -183,3 +185,124 @@ def test_drive_keys_read_with_units(tmp_path):
     path.write_text(text, encoding="utf-8")
     p = CFCS.from_toml(path).params
     assert p.drive_stiffness == pytest.approx(2e4) and p.drive_damping == pytest.approx(5.0)
+
+
+def test_toggle_sticking_counts_resting_samples_within_the_shear_angle():
+    # by construction: 4 of 10 samples inside alpha and at rest (one inside alpha but moving, one at rest
+    # outside it); their median angle and largest force
+    th = np.array([0.1, 0.03, -0.002, -0.002, -0.0021, -0.0019, 0.01, -0.2, 0.3, 0.05])
+    thd = np.array([1.0, 5.0, 0.0, 1e-4, -1e-4, 2e-4, 3.0, 0.0, 2.0, 0.0])
+    f = np.arange(10.0)
+    share, stop, release = drv.toggle_sticking(th, thd, f, 0.045, 1e-2)
+    assert share == pytest.approx(0.4)
+    assert stop == pytest.approx(-0.002) and release == 5.0
+    assert drv.toggle_sticking(th, thd + 1.0, f, 0.045, 1e-2) == (0.0, None, None)
+
+
+def test_seed_case_sticks_at_the_toggle_until_the_drive_overcomes_tau_af(table1, seed_case):
+    # the seed's crank stops inside the shear angle and is held while the drive winds up: it leaves when
+    # F |G| exceeds tau_AF + tau_CF + |dV/dth2| at the stop angle (static balance, springdyn.cfcs.statics).
+    # The reported release force is the largest force while at rest (|th2'| < 10 v_s): the balance plus
+    # the few samples the crank takes to reach that speed, so it lies between the balance less one sample's
+    # rise of the force and the balance plus four
+    s = seed_case.summary
+    alpha = table1.shear_angle
+    assert s["toggle_sticking"] and 0.01 < s["toggle_sticking_share"] < 0.5
+    th = s["toggle_stop_angle_rad"]
+    assert 0 < abs(th) < alpha and s["toggle_stop_angle_over_shear_angle"] == pytest.approx(abs(th) / alpha)
+    g = abs(slider_jacobian(th, R2, R3))
+    fs = static_force(th, table1.k3, R2, R3)
+    tau = dissipative_torque(th, fs, table1.pin_friction, table1.friction_model, alpha, True, R2, R3)
+    balance = (tau + abs(spring_torque(th, table1.k3, R2, R3))) / g
+    n = s["samples_per_period"]
+    f = seed_case.force[-n - 1 :]
+    i = int(np.argmin(np.abs(f - s["toggle_release_force_N"])))
+    step = abs(f[i] - f[i - 1])
+    assert balance - step <= s["toggle_release_force_N"] <= balance + 4 * step
+    assert balance > 5 * fs  # held far above the spring's force: that is tau_AF's doing
+    assert any("TOGGLE STICKING" in note and "(22)" in note for note in s["notes"])
+
+
+def test_without_axial_friction_is_near_the_frictionless_run(model, table1, seed_case):
+    # without tau_AF the crank does not stick and the drive force is the spring's plus the ringing of the
+    # drive: its peak-to-peak lies near the frictionless run's (what is left, tau_CF of the paper's form and
+    # no slider friction, is C (2 + u) / (r2 (1 + u)) = 0.31 N of slider force on each branch, plus its
+    # effect on the ringing: measured 36.4 against 34.8 N, 4.4 %; asked: 10 %) and an order of magnitude
+    # below the headline with tau_AF; it is the same run with axial_force = false (the wiring)
+    s = seed_case.summary
+    pp = s["peak_to_peak_without_axial_friction_N"]
+    assert s["toggle_sticking_without_axial_friction"] is False
+    assert s["periodicity_change_without_axial_friction_percent"] < 1.0
+    free = CFCS(table1.without_dissipation()).driven(**SEED).summary
+    assert pp == pytest.approx(free["peak_to_peak_N"], rel=0.1)
+    assert pp < 0.2 * s["peak_to_peak_N"]
+    alone = CFCS(table1.replace(axial_force=False)).driven(**SEED).summary
+    assert alone["toggle_sticking"] is False and alone["peak_to_peak_without_axial_friction_N"] is None
+    for k in STATS:
+        name, unit = k.rsplit("_", 1)
+        assert s[f"{name}_without_axial_friction_{unit}"] == alone[k]
+
+
+def test_no_sticking_from_the_preload(model):
+    # from the 2.5 % preload the crank never comes within alpha of the toggle: no flag, no stop angle, and the
+    # run without tau_AF is not repeated (a note says why)
+    s = model.driven(14.7, drive_stiffness=2e4, drive_damping=5.0).summary
+    assert s["toggle_sticking"] is False and s["toggle_sticking_share"] == 0.0 and s["toggle_zone_share"] == 0.0
+    assert s["toggle_stop_angle_rad"] is None and s["toggle_release_force_N"] is None
+    assert s["peak_to_peak_without_axial_friction_N"] is None
+    assert any("not repeated" in note for note in s["notes"])
+
+
+@pytest.mark.parametrize(
+    "k_d", [2e4, pytest.param(1e6, marks=pytest.mark.slow)], ids=["20 kN/m at 30 rad/s", "1 MN/m at 14.7 rad/s"]
+)
+def test_crossing_the_toggle_without_stopping_is_not_sticking(model, k_d):
+    # at 30 rad/s (20 kN/m) the crank crosses the toggle without stopping; with a 1 MN/m drive at 14.7 rad/s
+    # it is slowed to about 2.5 rad/s inside alpha but not stopped: no flag, but the run without tau_AF is
+    # repeated since the crank comes within alpha, and where tau_AF changes the peak-to-peak by more than
+    # 10 % a note says so (1 MN/m: 422 N with it, 145 N without)
+    omega = 30.0 if k_d == 2e4 else 14.7
+    s = model.driven(omega, offset=0.0, drive_stiffness=k_d, drive_damping=5.0).summary
+    assert s["toggle_crossings_per_period"] >= 1 and s["toggle_zone_share"] > 0
+    assert s["toggle_sticking"] is False and s["toggle_stop_angle_rad"] is None
+    free = s["peak_to_peak_without_axial_friction_N"]
+    assert free is not None and s["toggle_sticking_without_axial_friction"] is False
+    noted = any("without stopping" in note for note in s["notes"])
+    assert noted == (abs(s["peak_to_peak_N"] - free) > 0.1 * free)
+    if k_d == 1e6:
+        assert noted and s["peak_to_peak_N"] > 2 * free
+
+
+def _doc_sensitivity_table() -> dict:
+    """(parameter, value) -> row of the sensitivity table of docs/cfcs.md (floats; '-' for none)."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "cfcs.md").read_text(encoding="utf-8")
+    block = text.split("| varied | value | peak-to-peak [N]")[1].split("\n\n")[0]
+    rows = [[c.strip() for c in line.strip("|").split("|")] for line in block.splitlines()[2:] if line.startswith("|")]
+    return {(r[0], float(r[1])): r[2:] for r in rows}
+
+
+@pytest.mark.slow
+def test_sensitivity_to_the_shear_angle_and_the_speed_is_current_in_the_docs(model, table1):
+    # docs/cfcs.md tabulates the seed's case with alpha and omega varied: peak-to-peak and max with tau_AF,
+    # the stop angle over alpha, the share of the period stuck, the peak-to-peak without tau_AF and the
+    # periodicity change; recomputed, each printed figure within half its last digit (the periodicity change,
+    # printed to two digits, within 5 % or 0.01 %)
+    table = _doc_sensitivity_table()
+    assert len(table) >= 9
+    for (what, value), row in table.items():
+        if what == "alpha":
+            s = CFCS(table1.replace(shear_angle=value)).driven(**SEED).summary
+        else:
+            s = model.driven(**{**SEED, "omega": value}).summary
+        pp, fmax, ratio, share, free, change = row
+        assert s["peak_to_peak_N"] == pytest.approx(float(pp), abs=0.051), (what, value)
+        assert s["force_max_N"] == pytest.approx(float(fmax), abs=0.051), (what, value)
+        if ratio == "-":
+            assert not s["toggle_sticking"], (what, value)
+        else:
+            assert s["toggle_stop_angle_over_shear_angle"] == pytest.approx(float(ratio), abs=0.0051), (what, value)
+            assert 100 * s["toggle_sticking_share"] == pytest.approx(float(share), abs=0.051), (what, value)
+        assert s["peak_to_peak_without_axial_friction_N"] == pytest.approx(float(free), abs=0.051), (what, value)
+        assert s["periodicity_change_percent"] == pytest.approx(float(change), rel=0.05, abs=0.01), (what, value)

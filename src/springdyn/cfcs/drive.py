@@ -23,6 +23,13 @@ Energy: the state carries three running integrals, the work the actuator does on
 F_s sgn~ x') dt`` and that of the drive's damper ``D_c = int c_d (x_d' - x')^2 dt``, so that
 ``W = Delta(T + V + V_d) + D_f + D_c`` with ``V_d = k_d (x_d - x)^2 / 2`` closes to the
 integrator's tolerance (:func:`energy_balance`).
+
+Sticking at the toggle: a slider force F turns into a crank torque only through ``G ~ r2 (1 +
+r2/r3) th2``, so a crank that stops within the shear angle alpha of the toggle is held there by
+the axial-force torque tau_AF of Eq. (22) until ``F |G(th2)| = tau_AF + tau_CF + |dV/dth2|``,
+about ``F_static alpha / |th2|`` (docs/cfcs.md).  Inside alpha (22) is not a model of the mechanism
+(read as a friction angle it would lock it), so a driven run whose crank rests there has a peak set
+by that reading; :func:`toggle_sticking` measures it.
 """
 
 from __future__ import annotations
@@ -42,6 +49,8 @@ __all__ = [
     "driven_rhs",
     "integrate_driven",
     "energy_balance",
+    "toggle_sticking",
+    "TOGGLE_REST_FACTOR",
 ]
 
 #: Default speed v_s [rad/s] of the smoothed Coulomb sign in the driven model: halving and doubling it
@@ -130,6 +139,46 @@ def driven_rhs(t, y, motion, k_d, c_d, p, sign_smoothing):
     )
     acc = (f * g - 0.5 * dm * thd * thd - torque - friction) / m
     return np.array([thd, acc, f * vd, friction * thd, c_d * (vd - v) ** 2])
+
+
+#: The crank is "at rest" when ``|theta2'|`` is below this many times the sign smoothing v_s (the smoothed
+#: Coulomb sign lets a held crank creep at speeds of order v_s; the seed's case rests at 1e-4 rad/s and
+#: leaves at 1-10 rad/s, so the share of the period it sticks moves from 0.079 to 0.097 between 1 and
+#: 150 times v_s).
+TOGGLE_REST_FACTOR = 10.0
+
+
+def toggle_sticking(theta2, theta2dot, force, shear_angle, rest_speed):
+    """Where the crank rests within the shear angle of the toggle: share, stop angle, release force.
+
+    A sample sticks when ``|theta2| < alpha`` and ``|theta2'| < rest_speed``.  The stop angle is the
+    median crank angle of those samples (signed); the release force the largest drive force on them
+    (the force at which the crank leaves: it rises while the crank is held).
+
+    Parameters
+    ----------
+    theta2 : array_like
+        Crank angle over the samples (equally spaced in time) [rad].
+    theta2dot : array_like
+        Crank speed [rad/s].
+    force : array_like
+        Drive force on the slider [N].
+    shear_angle : float
+        Shear angle alpha of Eq. (22) [rad].
+    rest_speed : float
+        Crank speed below which the crank is at rest [rad/s].
+
+    Returns
+    -------
+    tuple
+        Share of the samples that stick [-], stop angle [rad] and release force [N] (both ``None``
+        when no sample sticks).
+    """
+    th = np.asarray(theta2, dtype=float)
+    stuck = (np.abs(th) < abs(shear_angle)) & (np.abs(np.asarray(theta2dot, dtype=float)) < rest_speed)
+    if not np.any(stuck):
+        return 0.0, None, None
+    return float(np.mean(stuck)), float(np.median(th[stuck])), float(np.max(np.asarray(force)[stuck]))
 
 
 #: Right-hand-side budget of a driven run.

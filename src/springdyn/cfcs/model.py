@@ -16,7 +16,14 @@ from ..core.errors import InputError, SolverError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
 from .beam import beam_force_at_toggle, beam_force_curve, prbm_error
-from .drive import DRIVE_SIGN_SMOOTHING, drive_force, energy_balance, integrate_driven
+from .drive import (
+    DRIVE_SIGN_SMOOTHING,
+    TOGGLE_REST_FACTOR,
+    drive_force,
+    energy_balance,
+    integrate_driven,
+    toggle_sticking,
+)
 from .dynamics import energy, integrate_forward, inverse_dynamics
 from .kinematics import deflection_from_theta2, slider_jacobian, spring_angle, theta2_from_deflection
 from .motion import MAX_OMEGA, SinusoidMotion, TabulatedMotion, amplitude_to_si, check_stroke, offset_to_si
@@ -70,6 +77,17 @@ DRIVEN_RTOL = 1e-8
 #: Largest change of the driven statistics between the last two periods [-] (relative to the
 #: peak-to-peak force) beyond which the result says it is not periodic yet.
 DRIVEN_PERIODICITY = 0.01
+
+#: Share of the last period [-] the crank must rest within the shear angle of the toggle for a driven
+#: result to be flagged ``toggle_sticking`` (a crank that only turns round there rests for a few samples).
+TOGGLE_STICKING_SHARE = 0.01
+
+#: Relative change of the peak-to-peak force [-] by tau_AF beyond which a driven run whose crank passes
+#: within the shear angle without stopping gets a note.
+AXIAL_FRICTION_EFFECT = 0.1
+
+#: Statistics of the driven run repeated without tau_AF (``<name>_without_axial_friction_<unit>``).
+_WITHOUT_AF = ("mean_force_N", "peak_to_peak_N", "force_max_N", "force_min_N")
 
 #: A constant forward-dynamics force may be at most this many times the mechanism's largest
 #: spring force (beyond it the slider hits the end of its travel within a step).
@@ -759,6 +777,7 @@ class CFCS:
         rtol: float = DRIVEN_RTOL,
         max_step: float | None = None,
         sign_smoothing: float = DRIVE_SIGN_SMOOTHING,
+        compare_without_axial_friction: bool | None = None,
     ) -> DrivenResult:
         """The slider driven along x_d(t) through a drive spring and damper (forward dynamics).
 
@@ -769,6 +788,14 @@ class CFCS:
         the last of ``periods`` periods, and ``periodicity_change_percent`` says how much they
         moved from the period before (a note when more than 1 %).  The energy balance
         ``W = Delta(T + V + V_d) + D_f + D_c`` is reported with its residual.
+
+        A crank that rests within the shear angle alpha of the toggle for more than 1 % of the last
+        period is flagged ``toggle_sticking`` (share, stop angle, release force): it is held there by
+        tau_AF of Eq. (22) taken with the static force, which inside alpha is not a model of the
+        mechanism, and the peak force is set by that term.  Whenever the crank comes within alpha
+        the same run without tau_AF (pin and slider friction only) is repeated and its statistics
+        reported beside the headline (``peak_to_peak_without_axial_friction_N`` etc.; about 1.3 s
+        more for the seed's case), with a note when tau_AF changes the peak-to-peak by more than 10 %.
 
         Parameters
         ----------
@@ -795,6 +822,9 @@ class CFCS:
             Largest integration step [s] (default period / 400).
         sign_smoothing : float
             Speed v_s of the smoothed Coulomb sign tanh(theta2'/v_s) [rad/s].
+        compare_without_axial_friction : bool, optional
+            Repeat the run without tau_AF: ``None`` (default) when the crank comes within the shear
+            angle of the toggle and tau_AF is on, ``True`` whenever tau_AF is on, ``False`` never [-].
         """
         p = self.params
         k_d = p.drive_stiffness if drive_stiffness is None else float(drive_stiffness)
@@ -882,6 +912,86 @@ class CFCS:
         }
         summary["toggle_cutoff_rad"] = None  # integrated through the toggle: no cut-off
         notes = summary.setdefault("notes", [])
+        rest = TOGGLE_REST_FACTOR * sign_smoothing
+        share, stop, release = toggle_sticking(th[last], thd[last], f[last], p.shear_angle, rest)
+        sticking = share > TOGGLE_STICKING_SHARE
+        summary.update(
+            toggle_sticking=bool(sticking),
+            toggle_sticking_share=share,
+            toggle_stop_angle_rad=stop,
+            toggle_stop_angle_over_shear_angle=None if stop is None else abs(stop) / p.shear_angle,
+            toggle_release_force_N=release,
+            toggle_rest_speed_rad_per_s=float(rest),
+            toggle_zone_share=float(np.mean(np.abs(th[last]) < p.shear_angle)),
+        )
+        held_by = (
+            "the axial-force friction term tau_AF of Eq. (22), taken with the static force F_static inside the "
+            "shear angle, where docs/cfcs.md says (22) is not a model of the mechanism (it would lock it)"
+            if p.axial_force
+            else "the pin friction (the axial-force term is off)"
+        )
+        if sticking:
+            notes.append(
+                f"TOGGLE STICKING: the crank rests at theta2 = {stop * 1e3:.3g} mrad ({abs(stop) / p.shear_angle:.2g} "
+                f"of the shear angle alpha = {p.shear_angle:g} rad) for {100 * share:.3g} % of the period, held by "
+                f"{held_by}, until the drive reaches {release:.4g} N; the peak force is set by that term, not by "
+                "the mechanism"
+            )
+        if stop is None:
+            notes.append(
+                "toggle_stop_angle_rad, toggle_release_force_N: null, the crank never rests within the shear angle "
+                "of the toggle"
+            )
+        entered = summary["toggle_zone_share"] > 0
+        compare = entered if compare_without_axial_friction is None else bool(compare_without_axial_friction)
+        compare = compare and p.axial_force
+        other = None
+        if compare:
+            other = (
+                self.__class__(p.replace(axial_force=False))
+                .driven(
+                    motion=mot,
+                    drive_stiffness=k_d,
+                    drive_damping=c_d,
+                    periods=periods,
+                    samples_per_period=samples_per_period,
+                    rtol=rtol,
+                    max_step=h,
+                    sign_smoothing=sign_smoothing,
+                    compare_without_axial_friction=False,
+                )
+                .summary
+            )
+        for k in _WITHOUT_AF:
+            name, unit = k.rsplit("_", 1)
+            summary[f"{name}_without_axial_friction_{unit}"] = None if other is None else other[k]
+        summary["periodicity_change_without_axial_friction_percent"] = (
+            None if other is None else other["periodicity_change_percent"]
+        )
+        summary["toggle_sticking_without_axial_friction"] = None if other is None else other["toggle_sticking"]
+        if other is not None:
+            notes.append(
+                f"without tau_AF (pin friction tau_CF and slider friction only) the same run gives "
+                f"{other['force_min_N']:.4g} .. {other['force_max_N']:.4g} N, peak-to-peak "
+                f"{other['peak_to_peak_N']:.4g} N" + (" (its crank sticks too)" if other["toggle_sticking"] else "")
+            )
+            change = abs(stats["peak_to_peak_N"] - other["peak_to_peak_N"]) / max(other["peak_to_peak_N"], 1e-12)
+            if not sticking and entered and change > AXIAL_FRICTION_EFFECT:
+                notes.append(
+                    f"the crank passes within the shear angle alpha = {p.shear_angle:g} rad of the toggle without "
+                    f"stopping, but tau_AF of Eq. (22), taken with F_static there, changes the peak-to-peak force "
+                    f"by {100 * change:.3g} % ({other['peak_to_peak_N']:.4g} N without it): inside alpha (22) is not "
+                    "a model of the mechanism"
+                )
+        elif not p.axial_force:
+            notes.append(
+                "*_without_axial_friction_*: axial_force is off, the statistics above are already without tau_AF"
+            )
+        else:
+            notes.append(
+                "*_without_axial_friction_*: the crank never comes within the shear angle of the toggle, so the run "
+                "without tau_AF is not repeated (compare_without_axial_friction=True repeats it)"
+            )
         if summary["periodicity_change_percent"] > 100 * DRIVEN_PERIODICITY:
             notes.append(
                 f"not periodic yet: the statistics moved by {summary['periodicity_change_percent']:.3g} % of the "

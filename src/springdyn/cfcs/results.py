@@ -343,7 +343,13 @@ class DrivenResult(_Table):
         ax.set_title(
             f"CFCS driven at omega = {s['omega_rad_per_s']:.4g} rad/s through k_d = "
             f"{s['drive_stiffness_N_per_m'] / 1e3:.4g} kN/m, c_d = {s['drive_damping_N_s_per_m']:.3g} N s/m\n"
-            f"last period: p-p {s['peak_to_peak_N']:.4g} N, mean {s['mean_force_N']:.4g} N (no toggle cut-off)",
+            f"last period: p-p {s['peak_to_peak_N']:.4g} N, mean {s['mean_force_N']:.4g} N (no toggle cut-off)"
+            + (
+                f"\ncrank sticks at the toggle (tau_AF with F_static inside alpha); without tau_AF p-p "
+                f"{s['peak_to_peak_without_axial_friction_N']:.4g} N"
+                if s.get("toggle_sticking") and s.get("peak_to_peak_without_axial_friction_N") is not None
+                else ""
+            ),
             fontsize=10,
         )
         ax.grid(True, alpha=0.3)

@@ -411,6 +411,20 @@ def _dynamic(args) -> int:
     return 0
 
 
+def _sticking_row(s: dict) -> tuple:
+    """The driven table's row on the crank resting within the shear angle of the toggle."""
+    if s["toggle_stop_angle_rad"] is None:
+        return ("toggle sticking", "no", "the crank never rests within the shear angle")
+    stop = (
+        f"{100 * s['toggle_sticking_share']:.3g} % of the period at theta2 {s['toggle_stop_angle_rad'] * 1e3:.3g} mrad"
+    )
+    return (
+        "toggle sticking",
+        ("YES: " if s["toggle_sticking"] else "no: ") + stop,
+        f"{s['toggle_stop_angle_over_shear_angle']:.2g} alpha, released at {_fmt(s['toggle_release_force_N'], 'N')}",
+    )
+
+
 def _driven(args, model, mot) -> int:
     """``cfcs dynamic`` with a compliant drive: forward dynamics through the toggle."""
     from springdyn.cfcs.drive import DRIVE_SIGN_SMOOTHING
@@ -454,6 +468,14 @@ def _driven(args, model, mot) -> int:
                 f"largest drive lag {_fmt(s['drive_lag_max_m'], 'm', 'mm')}",
             ),
             ("toggle crossings", str(s["toggle_crossings_per_period"]), "per period, through the crank's inertia"),
+            _sticking_row(s),
+            (
+                "p-p without tau_AF",
+                _fmt(s["peak_to_peak_without_axial_friction_N"], "N"),
+                "same run, pin and slider friction only"
+                if s["peak_to_peak_without_axial_friction_N"] is not None
+                else "not repeated (see notes)",
+            ),
             (
                 "friction heat per cycle",
                 _fmt(s["hysteresis_energy_per_cycle_J"], "J"),
