@@ -35,10 +35,8 @@ by that reading; :func:`toggle_sticking` measures it.
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
-from ..core.errors import InputError, SolverError
-from .dynamics import generalized_mass, generalized_mass_derivative, kinetic_energy
+from .dynamics import generalized_mass, generalized_mass_derivative, integrate_crank, kinetic_energy
 from .kinematics import deflection_from_theta2, slider_jacobian
 from .statics import dissipative_torque, spring_energy, spring_torque, static_force
 
@@ -185,10 +183,6 @@ def toggle_sticking(theta2, theta2dot, force, shear_angle, rest_speed):
 MAX_DRIVEN_CALLS = 4_000_000
 
 
-class _Budget(Exception):
-    """The run's right-hand-side budget is spent (at the time in ``args[0]``)."""
-
-
 def integrate_driven(
     motion, k_d, c_d, p, t_eval, theta2_0, theta2dot_0, *, sign_smoothing, rtol, max_step, energy_scale
 ):
@@ -225,53 +219,21 @@ def integrate_driven(
     ndarray
         The state at ``t_eval``, shape (5, n): theta2 [rad], theta2' [rad/s], W, D_f, D_c [J].
     """
-    t_eval = np.asarray(t_eval, dtype=float)
-    if t_eval.size < 2 or np.any(np.diff(t_eval) <= 0):
-        raise InputError("driven dynamics: the time grid must hold at least two increasing times")
-
-    def limit(t, y, *args):
-        return np.pi / 2 - abs(y[0]) - 1e-9
-
-    limit.terminal = True
-    calls = [0]
-
-    def rhs(t, y, *args):
-        calls[0] += 1
-        if calls[0] > MAX_DRIVEN_CALLS:
-            raise _Budget(t)
-        return driven_rhs(t, y, *args)
-
-    atol = rtol * 1e-3 * np.array([1.0, 1.0, energy_scale, energy_scale, energy_scale])
-    try:
-        sol = solve_ivp(
-            rhs,
-            (t_eval[0], t_eval[-1]),
-            [theta2_0, theta2dot_0, 0.0, 0.0, 0.0],
-            method="LSODA",
-            t_eval=t_eval,
-            args=(motion, k_d, c_d, p, sign_smoothing),
-            rtol=rtol,
-            atol=atol,
-            max_step=max_step,
-            events=limit,
-        )
-    except _Budget as exc:
-        raise SolverError(
-            f"driven dynamics: {MAX_DRIVEN_CALLS} right-hand sides reached at t = {exc.args[0]:.6g} s of "
-            f"{t_eval[-1]:.6g} s; the drive is too stiff for the motion to be followed (check drive_stiffness "
-            "and its unit) or the run too long"
-        ) from None
-    if sol.status == 1:
-        raise SolverError(
-            f"driven dynamics: the crank reached the kinematic limit (theta2 = 90 deg) at "
-            f"t = {sol.t_events[0][0]:.6g} s: the drive pushes the slider past the end of its travel "
-            "(a smaller amplitude, or a stiffer drive that follows the motion more closely)"
-        )
-    if not sol.success:
-        raise SolverError(f"driven dynamics: the integrator failed near t = {sol.t[-1]:.6g} s: {sol.message}")
-    if not np.all(np.isfinite(sol.y)):
-        raise SolverError("driven dynamics: the solution became NaN")
-    return sol.y
+    return integrate_crank(
+        driven_rhs,
+        [theta2_0, theta2dot_0, 0.0, 0.0, 0.0],
+        t_eval,
+        (motion, k_d, c_d, p, sign_smoothing),
+        rtol=rtol,
+        atol=rtol * 1e-3 * np.array([1.0, 1.0, energy_scale, energy_scale, energy_scale]),
+        max_step=max_step,
+        budget=MAX_DRIVEN_CALLS,
+        what="driven dynamics",
+        too_long="the drive is too stiff for the motion to be followed (check drive_stiffness and its unit) or the "
+        "run too long",
+        past_limit="the drive pushes the slider past the end of its travel (a smaller amplitude, or a stiffer drive "
+        "that follows the motion more closely)",
+    )
 
 
 def energy_balance(theta2, theta2dot, x_d, work, heat_friction, heat_damper, k_d, p, strain_energy=None):

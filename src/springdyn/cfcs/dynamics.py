@@ -385,7 +385,86 @@ MAX_FORWARD_CALLS = 2_000_000
 
 
 class _Budget(Exception):
-    """The forward run's right-hand-side budget is spent (at the time in ``args[0]``)."""
+    """A run's right-hand-side budget is spent (at the time in ``args[0]``)."""
+
+
+def integrate_crank(rhs_fn, y0, t_eval, args, *, rtol, atol, max_step=np.inf, budget, what, too_long, past_limit):
+    """Integrate a crank's equations ``rhs_fn(t, y, *args)`` (state ``theta2, theta2', ...``)
+    over ``t_eval`` with LSODA, stopping at the kinematic limit ``|theta2| = pi/2``: the one
+    integration of the forward (:func:`integrate_forward`) and the driven
+    (:func:`springdyn.cfcs.drive.integrate_driven`) problems.
+
+    Parameters
+    ----------
+    rhs_fn : callable
+        ``rhs_fn(t, y, *args)`` [rad/s, rad/s^2, ...].
+    y0 : array_like
+        Initial state [rad, rad/s, ...].
+    t_eval : array_like
+        Output times [s], increasing, at least two.
+    args : tuple
+        Extra arguments of ``rhs_fn``.
+    rtol : float
+        Relative tolerance [-].
+    atol : float or array_like
+        Absolute tolerances [rad, rad/s, ...].
+    max_step : float
+        Largest step [s].
+    budget : int
+        Most right-hand-side calls [-].
+    what : str
+        The problem's name in messages ("forward dynamics").
+    too_long, past_limit : str
+        What a spent budget and the kinematic limit mean, for the messages.
+
+    Returns
+    -------
+    ndarray
+        The state at ``t_eval``, shape (len(y0), len(t_eval)).
+    """
+    t_eval = np.asarray(t_eval, dtype=float)
+    if t_eval.size < 2 or np.any(np.diff(t_eval) <= 0):
+        raise InputError(f"{what}: the time grid must hold at least two increasing times")
+
+    def limit(t, y, *args):
+        return np.pi / 2 - abs(y[0]) - 1e-9
+
+    limit.terminal = True
+    calls = [0]
+
+    def rhs(t, y, *args):
+        calls[0] += 1
+        if calls[0] > budget:
+            raise _Budget(t)
+        return rhs_fn(t, y, *args)
+
+    try:
+        sol = solve_ivp(
+            rhs,
+            (t_eval[0], t_eval[-1]),
+            np.asarray(y0, dtype=float),
+            method="LSODA",
+            t_eval=t_eval,
+            args=args,
+            rtol=rtol,
+            atol=atol,
+            max_step=max_step,
+            events=limit,
+        )
+    except _Budget as exc:
+        raise SolverError(
+            f"{what}: {budget} right-hand sides reached at t = {exc.args[0]:.6g} s of {t_eval[-1]:.6g} s; {too_long}"
+        ) from None
+    if sol.status == 1:
+        raise SolverError(
+            f"{what}: the crank reached the kinematic limit (theta2 = 90 deg) at t = {sol.t_events[0][0]:.6g} s; "
+            f"{past_limit}"
+        )
+    if not sol.success:
+        raise SolverError(f"{what}: the integrator failed near t = {sol.t[-1]:.6g} s: {sol.message}")
+    if not np.all(np.isfinite(sol.y)):
+        raise SolverError(f"{what}: the solution became NaN")
+    return sol.y
 
 
 def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smoothing=1e-2, rtol=1e-9, atol=1e-12):
@@ -421,50 +500,20 @@ def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smooth
         The integrator failed, or the crank reached the kinematic limit ``|theta2| = pi/2``
         (the slider was pushed past the end of its travel).
     """
-    t_eval = np.asarray(t_eval, dtype=float)
-    if t_eval.size < 2 or np.any(np.diff(t_eval) <= 0):
-        raise InputError("forward dynamics: the time grid must hold at least two increasing times")
-
-    def limit(t, y, *args):
-        return np.pi / 2 - abs(y[0]) - 1e-9
-
-    limit.terminal = True
-    calls = [0]
-
-    def rhs(t, y, *args):
-        calls[0] += 1
-        if calls[0] > MAX_FORWARD_CALLS:
-            raise _Budget(t)
-        return forward_rhs(t, y, *args)
-
-    try:
-        sol = solve_ivp(
-            rhs,
-            (t_eval[0], t_eval[-1]),
-            [theta2_0, theta2dot_0],
-            method="LSODA",
-            t_eval=t_eval,
-            args=(force_fn, p, sign_smoothing),
-            rtol=rtol,
-            atol=atol,
-            events=limit,
-        )
-    except _Budget as exc:
-        raise SolverError(
-            f"forward dynamics: {MAX_FORWARD_CALLS} right-hand sides reached at t = {exc.args[0]:.6g} s of "
-            f"{t_eval[-1]:.6g} s; the drive makes the motion too fast to follow (a force far beyond the "
-            "mechanism's, or a very stiff base): check the force and its unit, or shorten t_end"
-        ) from None
-    if sol.status == 1:
-        raise SolverError(
-            f"forward dynamics: the crank reached the kinematic limit (theta2 = 90 deg) at "
-            f"t = {sol.t_events[0][0]:.6g} s; the drive pushes the slider past the end of its travel"
-        )
-    if not sol.success:
-        raise SolverError(f"forward dynamics: the integrator failed near t = {sol.t[-1]:.6g} s: {sol.message}")
-    if not np.all(np.isfinite(sol.y)):
-        raise SolverError("forward dynamics: the solution became NaN")
-    return sol.y[0], sol.y[1]
+    y = integrate_crank(
+        forward_rhs,
+        [theta2_0, theta2dot_0],
+        t_eval,
+        (force_fn, p, sign_smoothing),
+        rtol=rtol,
+        atol=atol,
+        budget=MAX_FORWARD_CALLS,
+        what="forward dynamics",
+        too_long="the drive makes the motion too fast to follow (a force far beyond the mechanism's, or a very "
+        "stiff base): check the force and its unit, or shorten t_end",
+        past_limit="the drive pushes the slider past the end of its travel",
+    )
+    return y[0], y[1]
 
 
 def energy(theta2, theta2dot, p):

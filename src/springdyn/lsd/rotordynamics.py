@@ -246,9 +246,13 @@ def bearing_element(
     return elem
 
 
+def _matrix_kwargs(prefix: str, A) -> dict:
+    """``ross.BearingElement``'s keywords of a 2 x 2 matrix: ``{prefix}xx`` ... ``{prefix}yy``."""
+    return {f"{prefix}{a}{b}": A[i, j] for i, a in enumerate("xy") for j, b in enumerate("xy")}
+
+
 def _mass_kwargs(model) -> dict:
-    M = model.added_mass
-    return {"mxx": M[0, 0], "mxy": M[0, 1], "myx": M[1, 0], "myy": M[1, 1]}
+    return _matrix_kwargs("m", model.added_mass)
 
 
 def bearing_at_frequency(
@@ -285,18 +289,7 @@ def bearing_at_frequency(
     K, C = c.K[0], c.C[0]
     if added_mass:
         kwargs.update(_mass_kwargs(model))
-    return ross.BearingElement(
-        n=n,
-        kxx=K[0, 0],
-        kxy=K[0, 1],
-        kyx=K[1, 0],
-        kyy=K[1, 1],
-        cxx=C[0, 0],
-        cxy=C[0, 1],
-        cyx=C[1, 0],
-        cyy=C[1, 1],
-        **kwargs,
-    )
+    return ross.BearingElement(n=n, **_matrix_kwargs("k", K), **_matrix_kwargs("c", C), **kwargs)
 
 
 def whirl_consistent_mode(
@@ -386,20 +379,7 @@ def small_orbit_element(model, n: int, **kwargs):
     K, C, M = model.stiffness_matrix, model.viscous_damping, model.added_mass
     kwargs.setdefault("tag", f"LSD {model.params.name} (small orbit)")
     return ross.BearingElement(
-        n=n,
-        kxx=K[0, 0],
-        kxy=K[0, 1],
-        kyx=K[1, 0],
-        kyy=K[1, 1],
-        cxx=C[0, 0],
-        cxy=C[0, 1],
-        cyx=C[1, 0],
-        cyy=C[1, 1],
-        mxx=M[0, 0],
-        mxy=M[0, 1],
-        myx=M[1, 0],
-        myy=M[1, 1],
-        **kwargs,
+        n=n, **_matrix_kwargs("k", K), **_matrix_kwargs("c", C), **_matrix_kwargs("m", M), **kwargs
     )
 
 
