@@ -376,7 +376,10 @@ def _dynamic(args) -> int:
             if v is not None
         ]
         if given:
-            raise InputError(f"{', '.join(given)} need a compliant drive: give --drive-stiffness (e.g. '20 kN/m')")
+            raise InputError(
+                f"{', '.join(given)} {'needs' if len(given) == 1 else 'need'} a compliant drive: give "
+                "--drive-stiffness (e.g. '20 kN/m')"
+            )
     with as_options(**_OPTIONS):
         mot = model.motion(omega, args.amplitude, args.offset, csv=args.motion)
         if driven:
