@@ -19,13 +19,19 @@ unit cube becomes ``nominal + (2u - 1) band`` (uniform) or ``nominal + sigma Phi
 **Each variant** (:func:`run_variant`) is the spring, cam and train with the sampled values,
 swept over the speed range (:func:`springdyn.valve.sweep`, every speed to its periodic
 steady state): ``Fset`` and ``f1`` (the model's), the float speed (the lowest swept speed
-from which the valve leaves the cam over the nose at every higher one), the peak retainer
-force, the lowest speed with coil clash, and the smallest Goodman safety over the speeds.
+from which the valve leaves the cam over the nose at every higher one, narrowed to the
+resolution), the peak retainer force, the lowest speed with coil clash, and the smallest
+Goodman safety over the speeds (both extremes also at the rated speed and refined around the
+worst swept speeds).  A **float-speed study** (``float_only``, :func:`run_variant_float`)
+runs no sweep: each variant's float speed is searched from the nominal's
+(:func:`springdyn.valve.float_search.float_speed_near`, four to five speeds a variant).
 
 **Outputs**: ``variants.nc`` (dimension ``variant``: the inputs under their names and the
 outputs), percentiles, the share of variants that fail each criterion, histograms.  The
-variants run in chunks written to ``DIR/chunks/`` as they finish: a killed run resumes from
-them (a chunk belongs to its sample: the seed, the count, the method and the table).
+variants run in chunks of :data:`CHUNK`, on the local threads or a Dask cluster, written to
+``DIR/chunks/`` as they finish: a killed run resumes from them (a chunk belongs to its
+sample: the seed, the count, the method, the table, the speeds, the resolution and the kind
+of study).
 """
 
 from __future__ import annotations
