@@ -32,3 +32,15 @@ def test_report_section_writes_every_file(tmp_path):
     assert s["design"]["feasible"] is True and s["design"]["safety_factor"] >= 1.0 - 1e-9
     assert s["design"]["pcf_percent"] > 95.0  # a constant-force design, not just a feasible one
     assert any("Design for" in f for f in sec.findings)
+    # without a drive stiffness the report says what makes the through-toggle force finite
+    assert any(f.startswith("Through the toggle the force is finite only with") for f in sec.findings)
+
+
+@pytest.mark.slow
+def test_report_section_drives_through_the_toggle_with_a_drive_stiffness(tmp_path):
+    """With [cfcs] drive_stiffness the section runs the driven model from the toggle and says
+    that the crank sticks there and what the force is without tau_AF (docs/cfcs.md)."""
+    model = CFCS(CFCS.example("table1").params.replace(drive_stiffness=20e3, drive_damping=5.0))
+    sec = report.section(model, source="table1", out_dir=tmp_path)
+    driven = [f for f in sec.findings if f.startswith("Through the toggle with the drive's compliance")]
+    assert driven and "peak-to-peak 367.4 N" in driven[0] and "without tau_AF 36.4 N" in driven[0]

@@ -64,3 +64,8 @@ def test_report_section_type_c(tmp_path):
     assert summary["pack_stiffness_N_per_m"] == pytest.approx(106.9e3, abs=50)  # reading notes 3.1
     # identified (simulated x and y shakes, 2 N noise) Kxx within 1 % of the model at every speed
     np.testing.assert_allclose(summary["kxx_identified_N_per_m"], summary["kxx_model_N_per_m"], rtol=0.01)
+    # the oil film (issue 30 part 3): Type C's passages add 2.92 kg; at 50 um its film stays whole
+    # up to 3000 rpm (0.40 bar against 1.01 bar, docs/lsd.md)
+    film = [f for f in sec.findings if f.startswith("The oil in the passages adds a mass of 2.92 kg")]
+    assert film and film[0].endswith("the film stays whole.")
+    assert {c.name: c.passed for c in sec.criteria}["oil film whole at 50 um, 500-3000 rpm"] is True

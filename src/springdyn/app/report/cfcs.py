@@ -164,6 +164,26 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
             else "not toggle-dominated for this mechanism."
         )
     )
+    if p.drive_stiffness is not None:  # the same start through the toggle, forward, with the drive's compliance
+        dr = model.driven(max(PAPER_OMEGAS[:3]), offset=0.0).summary
+        findings.append(
+            f"Through the toggle with the drive's compliance ([cfcs] drive_stiffness {p.drive_stiffness / 1e3:g} kN/m, "
+            f"drive_damping {p.drive_damping:g} N s/m; forward dynamics, no cut-off): peak-to-peak "
+            f"{dr['peak_to_peak_N']:.1f} N"
+            + (
+                f"; the crank sticks inside the shear angle for {dr['toggle_sticking_share']:.1%} of the period, held by "
+                "tau_AF (22) taken with the static force, which is not a model of the mechanism there: without tau_AF "
+                f"{dr['peak_to_peak_without_axial_friction_N']:.1f} N (docs/cfcs.md)."
+                if dr.get("toggle_sticking")
+                else "."
+            )
+        )
+    else:
+        findings.append(
+            "Through the toggle the force is finite only with the compliance of what drives the slider: give "
+            "[cfcs] drive_stiffness (and drive_damping) for the forward dynamics without a cut-off "
+            "(springdyn cfcs dynamic --drive-stiffness; docs/cfcs.md)."
+        )
     if comparison is not None:
         c = comparison
         f0 = c["force_at_zero_N"]

@@ -41,7 +41,11 @@ def load(doc: dict, path: Path) -> LSDModel:
 def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
     """Coefficients vs speed, rig hysteresis loops and identification against the model."""
     files, figures = [], []
-    coeffs = model.coefficients(SPEEDS, AMPLITUDE)
+    from springdyn.lsd.film import FilmWarning
+
+    with warnings.catch_warnings():  # the section states the film's state (criterion below)
+        warnings.simplefilter("ignore", FilmWarning)
+        coeffs = model.coefficients(SPEEDS, AMPLITUDE)
     files.append(coeffs.to_csv(out_dir / "coefficients.csv"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PreloadExceededWarning)
@@ -123,6 +127,23 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
             "Type A needs leakage_factor 11.9 and Type B 120, examples/lsd/type_a_calibrated.toml and "
             "type_b_calibrated.toml; calibrate on records with springdyn lsd calibrate)."
         )
+    cs = coeffs.summary
+    film = coeffs.film
+    amp = np.asarray(film.get("pressure_amplitude_Pa", np.zeros(len(SPEEDS))), dtype=float) * np.ones(len(SPEEDS))
+    margin = float(film.get("cavitation_margin_Pa", np.inf))
+    findings.append(
+        f"The oil in the passages adds a mass of {cs['added_mass_xx_max_kg']:.3g} kg (Mxx; inertance over resistance "
+        f"times C_visc); the squeeze Reynolds number reaches {cs.get('squeeze_reynolds_max', 0.0):.3g} and fluid "
+        f"inertia changes the oil force by up to {100 * cs.get('inertia_ratio_max', 0.0):.3g} % at {SPEEDS[-1]:.0f} rpm. "
+        f"On a {AMPLITUDE * 1e6:.0f} um orbit the chamber pressure swings up to {amp.max() / 1e5:.3g} bar against "
+        f"{margin / 1e5:.3g} bar between the supply and the cavitation pressure"
+        + (
+            f": the film ruptures from {SPEEDS[int(np.argmax(amp > margin))]:.0f} rpm and the linear oil coefficients "
+            "overstate its force there (springdyn lsd coefficients --film; docs/lsd.md, 'The oil film')."
+            if np.any(amp > margin)
+            else ": the film stays whole."
+        )
+    )
     omega = SPEEDS * 2.0 * np.pi / 60.0
     loss = cxx_m * omega / kxx_m
     k = int(np.argmax(loss))
@@ -135,6 +156,14 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
             "the viscous closed form alone over-predicts measured damping (correction LSD-6)"
             if p.leakage_factor == 1.0
             else "a calibrated leakage factor is set",
+        ),
+        Criterion(
+            f"oil film whole at {AMPLITUDE * 1e6:.0f} um, {SPEEDS[0]:.0f}-{SPEEDS[-1]:.0f} rpm",
+            f"pressure amplitude {amp.max() / 1e5:.3g} bar",
+            f"<= p_s - p_cav = {margin / 1e5:.3g} bar",
+            bool(np.all(amp <= margin)),
+            "beyond it the film ruptures (supply_pressure, cavitation_pressure) and the linear oil coefficients "
+            "overstate the force: use the film's coefficients at the orbit (--film)",
         ),
         Criterion(
             f"lock-up: loss factor Cxx w / Kxx, {SPEEDS[0]:.0f}-{SPEEDS[-1]:.0f} rpm",
