@@ -229,6 +229,10 @@ def cmd_tolerance(args) -> int:
     print_table(rows, headers=("output", "unit", "nominal", "0.135 %", "2.5 %", "50 %", "97.5 %", "99.865 %"))
     fails = [(k[len("fail_share_") :], f"{v:.1%}") for k, v in s.items() if k.startswith("fail_share_")]
     print_table(fails, headers=("criterion", "variants failing"))
+    print(
+        f"periodic steady state: the last two revolutions of every speed run agree within "
+        f"{100 * s['max_periodicity']:.3g} % of Fset (largest residual over the variants)"
+    )
     print_notes(s)
     return 0
 
