@@ -16,7 +16,7 @@ import pytest
 from springdyn.core.errors import InputError
 from springdyn.valve import ValveSpring
 from springdyn.valve import materials as mt
-from springdyn.valve.durability import spring_strengths, zimmerli_endurance_shear_strength
+from springdyn.valve.stress import spring_strengths, zimmerli_endurance_shear_strength
 
 MPA = 1e6
 MM = 1e-3

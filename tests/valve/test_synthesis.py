@@ -3,7 +3,7 @@
 Every candidate is checked by routes independent of the search's closed forms: the spring
 model's own static force at both lengths, EN 13906-1's solid length and sum of gaps from
 springdyn.valve.coil_bind on the built spring, the Goodman safety of
-springdyn.valve.durability.fatigue_assessment on the built spring's strengths, and the
+springdyn.valve.stress.fatigue_assessment on the built spring's strengths, and the
 model's surge frequency.
 """
 
@@ -14,7 +14,7 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve.coil_bind import min_sum_of_gaps, solid_length
-from springdyn.valve.durability import fatigue_assessment
+from springdyn.valve.stress import fatigue_assessment
 from springdyn.valve.synthesis import Requirements, candidate_table, spring_table, synthesize
 
 REQ = dict(

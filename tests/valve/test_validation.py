@@ -119,7 +119,8 @@ import warnings
 
 import numpy as np
 
-from springdyn.valve import Cam, ValveTrain, design, float_speed, simulate, sweep
+from springdyn.valve import Cam, ValveTrain, float_speed, simulate, sweep
+from springdyn.valve.modes import surge_margin
 
 CAM = Cam(law="3-4-5", lift=0.009, duration=math.radians(120))
 VT = ValveTrain(valve_mass=0.05)
@@ -214,8 +215,8 @@ def test_design_figures_need_a_positive_speed(one_step, rpm):
 
 def test_surge_margin_function_refuses_a_standing_cam():
     with pytest.raises(InputError, match=r"cam_speed_rpm = 0 must be a positive"):
-        design.surge_margin(450.0, 0)
-    assert design.surge_margin(450.0, 3000.0) == pytest.approx(9.0, rel=1e-15)
+        surge_margin(450.0, 0)
+    assert surge_margin(450.0, 3000.0) == pytest.approx(9.0, rel=1e-15)
 
 
 @pytest.mark.parametrize("points", [2.5, 1, "400", None])

@@ -20,6 +20,7 @@ __all__ = [
     "contact_stiffness",
     "free_length_stiffness",
     "setup_stiffness",
+    "active_coils_for_rate",
     "pitch_correction_free",
     "pitch_correction_setup",
     "surge_frequency",
@@ -149,6 +150,33 @@ def free_length_stiffness(g: float, dw: float, do: float, n_active: float) -> fl
 
 
 setup_stiffness = free_length_stiffness
+
+
+def active_coils_for_rate(g, dw, do, rate):
+    r"""The active coils ``n = G Dw^4 / (8 Do^3 K)`` [-] that give the rate ``K``: the spring
+    rate :func:`free_length_stiffness` solved for ``n``.
+
+    .. math::
+
+        n = \frac{G\,D_w^4}{8\,D_o^3\,K}
+
+    Parameters
+    ----------
+    g : float or array_like
+        Shear modulus G' [Pa].
+    dw : float or array_like
+        Wire diameter [m].
+    do : float or array_like
+        Mean coil diameter [m].
+    rate : float or array_like
+        Spring rate [N/m].
+
+    Examples
+    --------
+    >>> round(active_coils_for_rate(78.5e9, 3.5e-3, 22e-3, free_length_stiffness(78.5e9, 3.5e-3, 22e-3, 6.0)), 12)
+    6.0
+    """
+    return g * dw**4 / (8.0 * do**3 * rate)
 
 
 def pitch_correction_free(lf: float, dw: float, n1: float, n2: float, n_active: float, do: float) -> float:

@@ -26,7 +26,7 @@ strength check; a measured strength from the wire's certificate is better and is
 ``tensile_strength`` in the ``[spring]`` table.
 
 Fatigue: the fully reversed torsional endurance strength of shot-peened wire is Zimmerli's
-(:func:`springdyn.valve.durability.zimmerli_endurance_shear_strength`, Shigley Sec. 10-9: one
+(:func:`springdyn.valve.stress.zimmerli_endurance_shear_strength`, Shigley Sec. 10-9: one
 set of data for peened springs of every spring steel up to 10 mm), at this material's
 ultimate shear strength (0.67 Rm, Shigley Sec. 10-4).  No public source gave grade-specific
 endurance values (EN 13906-1's Goodman diagrams for shot-peened VDSiCr and VDSiCrV were not
@@ -41,8 +41,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.errors import InputError, fmt_value
-from .design import shear_stress
-from .durability import ULTIMATE_SHEAR_FRACTION, ultimate_shear_strength, zimmerli_endurance_shear_strength
+from .stress import (
+    ULTIMATE_SHEAR_FRACTION,
+    nominal_shear_stress,
+    ultimate_shear_strength,
+    zimmerli_endurance_shear_strength,
+)
 
 __all__ = [
     "Material",
@@ -195,7 +199,7 @@ class Material:
         """Fully reversed torsional endurance strength of shot-peened wire [Pa] at 10^7 cycles.
 
         Zimmerli's peened data through the Goodman line at this wire's ultimate shear strength
-        (:func:`springdyn.valve.durability.zimmerli_endurance_shear_strength`; Shigley Sec. 10-9).
+        (:func:`springdyn.valve.stress.zimmerli_endurance_shear_strength`; Shigley Sec. 10-9).
         Zimmerli's point is one for every steel, so a weaker wire gets a *larger* fully reversed
         intercept (a steeper Goodman line); compare grades by the safety factor at the working
         stresses, not by this value.
@@ -229,7 +233,7 @@ class Material:
         endurance : bool
             Add ``endurance_shear_strength`` (:meth:`endurance_shear_strength`).  Off by default:
             it is Zimmerli's value at this tensile strength, the one
-            :func:`springdyn.valve.durability.spring_strengths` takes by itself when the key is
+            :func:`springdyn.valve.stress.spring_strengths` takes by itself when the key is
             absent (and then reports as a default, which it is: no grade-specific value).
 
         Returns
@@ -505,8 +509,8 @@ def relaxation_loss(
         Spring temperature [K].
     shear_stress : float or array_like
         Initial shear stress at the held length [Pa], **uncorrected** ``8 F D / (pi d^3)`` as
-        EN 13906-1's relaxation charts (:func:`springdyn.valve.design.shear_stress` with
-        ``correction=1``; :func:`relaxed_force` computes it from the force).
+        EN 13906-1's relaxation charts (:func:`springdyn.valve.stress.nominal_shear_stress`;
+        :func:`relaxed_force` computes it from the force).
     hours : float or array_like
         Holding time [h] (48 h: the table itself).
     time_constant : float
@@ -564,7 +568,7 @@ def relaxed_force(
     """Force of a spring held at its length for a time at a temperature [N].
 
     ``F (1 - loss)`` with the loss of :func:`relaxation_loss` at the uncorrected initial stress
-    ``8 F D / (pi d^3)`` (:func:`springdyn.valve.design.shear_stress`, ``correction=1``).
+    ``8 F D / (pi d^3)`` (:func:`springdyn.valve.stress.nominal_shear_stress`).
 
     Parameters
     ----------
@@ -589,7 +593,7 @@ def relaxed_force(
     f = np.asarray(force, dtype=float)
     if np.any(~np.isfinite(f)) or np.any(f <= 0):
         raise InputError(f"force = {force!r} must be a positive, finite force [N]")
-    tau = shear_stress(f, mean_diameter, wire_diameter, 1.0)
+    tau = nominal_shear_stress(f, mean_diameter, wire_diameter)
     out = f * (1.0 - np.asarray(relaxation_loss(material, temperature, tau, hours, time_constant)))
     return float(out) if out.ndim == 0 else out
 
@@ -661,7 +665,7 @@ def spectrum_life(
     Per operating point ``i`` (a speed): its share of the running time ``p_i``, its load cycles
     per second ``f_i`` (the cam's revolutions per second: one valve event per revolution), and
     the load of the worst wire element there (the caller takes it from
-    :func:`springdyn.valve.durability.fatigue_assessment`), either as
+    :func:`springdyn.valve.stress.fatigue_assessment`), either as
 
     - ``amplitude`` and ``mean`` [Pa]: the Goodman-equivalent fully reversed amplitude
       ``tau_ar = tau_a / (1 - tau_m / tau_u)`` (Shigley Sec. 6-14, the Goodman line as

@@ -7,9 +7,13 @@ with the tangent stiffnesses of its "Nonlinear characteristics".
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["chain_stiffness_matrix", "chain_frequencies", "chain_eigenvalues"]
+from ..core.errors import InputError
+
+__all__ = ["chain_stiffness_matrix", "chain_frequencies", "chain_eigenvalues", "mode_labels", "surge_margin"]
 
 #: Largest chain [-] solved as a dense matrix (LAPACK's symmetric solver; above it, the
 #: tridiagonal solver of SciPy, which selects the lowest modes).
@@ -136,3 +140,26 @@ def chain_eigenvalues(masses, stiffness, damping) -> np.ndarray:
     a[n:, :n] = -minv * chain_stiffness_matrix(stiffness)
     a[n:, n:] = -minv * chain_stiffness_matrix(damping)
     return np.linalg.eigvals(a)
+
+
+def surge_margin(surge_frequency: float, cam_speed_rpm: float) -> float:
+    """Ratio of the spring's surge frequency to the camshaft frequency [-].
+
+    A common rule of thumb of valve-train practice (not in [MMS]) asks for 10-13 or more:
+    cam-order harmonics up to that order then stay below the first surge mode.
+
+    Parameters
+    ----------
+    surge_frequency : float
+        First surge frequency of the spring [Hz] ([Wahl]; [MMS], f1 and f2).
+    cam_speed_rpm : float
+        Camshaft speed [rev/min], positive.
+
+    Raises
+    ------
+    InputError
+        ``cam_speed_rpm`` is not a positive, finite speed (the margin needs a rotating cam).
+    """
+    if not (math.isfinite(cam_speed_rpm) and cam_speed_rpm > 0):
+        raise InputError(f"cam_speed_rpm = {cam_speed_rpm!r} must be a positive, finite speed [rev/min]")
+    return surge_frequency / (cam_speed_rpm / 60.0)

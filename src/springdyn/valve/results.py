@@ -14,6 +14,7 @@ import numpy as np
 
 from ..core.results import Result
 from .elements import law_force
+from .stress import fatigue_assessment
 from .periodicity import PERIODICITY_TOL, is_periodic
 from .separation import cam_phases, liftoffs, separates_over_nose
 from .timing import CrankAngles
@@ -883,8 +884,6 @@ def _durability(sim, s: dict, notes: list) -> dict:
     element.  Also the smallest length to solid, and for the distributed model the smallest
     coil gap.
     """
-    from .durability import fatigue_assessment
-
     model = sim.spring.spring_model
     share = sim.contact_share
     wire = sim.element_force - share  # SpringModel.wire_forces, with the share computed once

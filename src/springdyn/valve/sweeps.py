@@ -41,6 +41,7 @@ from .setup import (
     prepare,
 )
 from .spring import ValveSpring
+from .stress import fatigue_assessment
 from .timing import CrankAngles
 from .valvetrain import ValveTrain
 
@@ -477,8 +478,6 @@ class SpeedSweep(CrankAngles, Result):
         and largest value of the revolution (an end element without coil contact from the
         true extremes of the end force), and the static cycle; per design value, from that
         variant's wire and strengths.  Also the largest wire stress against the limit."""
-        from .durability import fatigue_assessment
-
         d = self.data
         wmin = d["wire_min"].reshape(nv * nr, -1).copy()
         wmax = d["wire_max"].reshape(nv * nr, -1).copy()

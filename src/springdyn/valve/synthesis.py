@@ -17,7 +17,7 @@ A spring engineer starts from two load points and the space, not from a spring. 
    is checked against the load points.
 3. **Requirements as margins** (:data:`MARGINS`, each a fraction, >= 0 where met): the
    space, the coil-bind clearance at the open length (EN 13906-1's minimum sum of gaps by
-   default), the Goodman safety between the two load points (:mod:`springdyn.valve.durability`,
+   default), the Goodman safety between the two load points (:mod:`springdyn.valve.stress`,
    the material's strengths), the stress at solid length against EN 13906-1's permissible
    ``0.5 Rm`` (cold-coiled springs), the spring index ``4 <= D/d <= 16``, and the surge
    frequency when asked.
@@ -45,8 +45,9 @@ from ..core.results import Result
 from ..core.units import format_mm
 from . import formulas
 from .coil_bind import en13906_solid_length, min_sum_of_gaps
-from .durability import (
+from .stress import (
     corrected_shear_stress,
+    nominal_shear_stress,
     goodman_safety_factor,
     ultimate_shear_strength,
     zimmerli_endurance_shear_strength,
@@ -306,7 +307,7 @@ def candidate_table(req: Requirements) -> dict:
     g = req.wire(d)["shear_modulus"]
     nb = req.dead_coils
     # the working rate: one-step N1 + N2 - 2 Nb active coils, two-step N2 - Nb ([MMS] K2)
-    n_work = g * d**4 / (8.0 * dm**3 * req.rate)
+    n_work = formulas.active_coils_for_rate(g, d, dm, req.rate)
     n2 = np.where(two, n_work + nb, n_work + 2.0 * nb)
     k1 = formulas.free_length_stiffness(g, d, dm, np.maximum(n1 + n2 - 2.0 * nb, 1e-9))
     lf = req.installed_length + req.installed_force / k1  # F_set = K1 (Lf - Ls), formulas.setup_force
@@ -335,7 +336,7 @@ def evaluate(req: Requirements, d, dm, n1, n2, lf) -> dict:
     nb = req.dead_coils
     n_work = np.where(two, n2 - nb, n1 + n2 - 2.0 * nb)
     total = n1 + n2
-    mass = np.pi**2 / 4.0 * rho * dm * d**2 * (total - 0.7)  # formulas.total_mass
+    mass = formulas.total_mass(rho, dm, d, n1, n2)
     solid = en13906_solid_length(d, total, req.end_type)
     clearance = (
         req.min_coil_bind_clearance if req.min_coil_bind_clearance is not None else min_sum_of_gaps(dm, d, n_work)
@@ -347,7 +348,7 @@ def evaluate(req: Requirements, d, dm, n1, n2, lf) -> dict:
     tau_e = np.vectorize(lambda u: zimmerli_endurance_shear_strength(u, peened=True))(tau_u)
     goodman = goodman_safety_factor(tau_lo, tau_hi, tau_e, tau_u)
     f_solid = req.installed_force + req.rate * (req.installed_length - solid)  # the working rate to solid
-    tau_solid = 8.0 * f_solid * dm / (np.pi * d**3)  # uncorrected (EN 13906-1 at solid length)
+    tau_solid = nominal_shear_stress(f_solid, dm, d)  # uncorrected (EN 13906-1 at solid length)
     surge = formulas.surge_frequency(g, rho, d, dm, n_work)
     margins = dict(
         outer_diameter=(req.max_outer_diameter - (dm + d)) / req.max_outer_diameter,

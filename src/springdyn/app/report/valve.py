@@ -16,7 +16,7 @@ from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity
 from springdyn.valve.cam import Cam
 from springdyn.valve.chains import PARAMETER_UNITS
-from springdyn.valve.durability import spring_strengths
+from springdyn.valve.stress import spring_strengths
 from springdyn.valve.dynamics import simulate
 from springdyn.valve.float_search import float_speed
 from springdyn.valve.periodicity import PERIODICITY_TOL

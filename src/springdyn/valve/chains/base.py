@@ -14,10 +14,10 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.units import format_mm
-from .. import design
+from .. import stress
 from ..coil_bind import check_coil_bind
 from ..elements import damping_coefficient, law_force, law_stiffness
-from ..modes import chain_frequencies
+from ..modes import chain_frequencies, mode_labels, surge_margin
 from ..statics import element_compressions, series_force, series_state
 
 __all__ = ["Chain", "SpringModel"]
@@ -407,8 +407,6 @@ class SpringModel:
         count : int
             How many, from the lowest [-].
         """
-        from ..modes import mode_labels
-
         _, x, _ = self.static_state(float(length))
         return mode_labels(self.chain.masses, self.chain.tangent_stiffness(x), count)
 
@@ -444,12 +442,12 @@ class SpringModel:
                 "margin is the surge frequency over the camshaft frequency"
             )
         p = self.internal_parameters()
-        c = design.spring_index(self.spring.mean_diameter, self.spring.wire_diameter)
-        kb = design.bergstraesser_factor(c)
+        c = stress.spring_index(self.spring.mean_diameter, self.spring.wire_diameter)
+        kb = stress.bergstraesser_factor(c)
         out = dict(
             spring_index=c,
             bergstraesser_factor=kb,
-            wahl_factor=design.wahl_factor(c),
+            wahl_factor=stress.wahl_factor(c),
             **{k: v for k, v in self.spring.coil_facts.items() if k != "free_length_m"},
             spring_mass_kg=p["M"],
             rate_free_N_per_m=p["K1"],
@@ -478,16 +476,16 @@ class SpringModel:
             st = dict(
                 length_m=length,
                 force_N=force,
-                shear_stress_Pa=design.shear_stress(force, self.spring.mean_diameter, self.spring.wire_diameter, kb),
+                shear_stress_Pa=float(
+                    stress.corrected_shear_stress(force, self.spring.mean_diameter, self.spring.wire_diameter)
+                ),
                 surge_frequency_Hz=f_surge,
             )
             if cam_rpm is not None:
-                st["surge_margin"] = design.surge_margin(f_surge, cam_rpm)
+                st["surge_margin"] = surge_margin(f_surge, cam_rpm)
             out[name] = st
         if "open" in out:  # fatigue of the static cycle installed -> open (issue 13)
-            from ..durability import fatigue_assessment
-
-            fat = fatigue_assessment(self.spring, out["installed"]["force_N"], out["open"]["force_N"])
+            fat = stress.fatigue_assessment(self.spring, out["installed"]["force_N"], out["open"]["force_N"])
             out["fatigue"] = dict(
                 static_fatigue_safety_factor=fat["fatigue_safety_factor"],
                 min_shear_stress_Pa=fat["min_shear_stress_Pa"],

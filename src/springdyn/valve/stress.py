@@ -1,10 +1,14 @@
-"""Fatigue of the spring wire: corrected shear stress and the Goodman safety factor.
+"""The stress in the spring wire and its fatigue: one home for the stress laws.
 
-The wire of a helical spring is loaded in torsion. Its shear stress, corrected for the
-curvature of the coil and the direct shear (EN 13906-1, Eq. (22); identical to
-Bergstraesser's factor), is
+The wire of a helical spring is loaded in torsion. Its nominal shear stress is
+``8 F D / (pi d^3)`` (:func:`nominal_shear_stress`); corrected for the curvature of the coil
+and the direct shear (EN 13906-1, Eq. (22); Bergstraesser's factor) it is
 
-    tau = k 8 F D / (pi d^3),   k = (w + 0.5) / (w - 0.75),   w = D / d.
+    tau = k 8 F D / (pi d^3),   k = (w + 0.5) / (w - 0.75) = (4w + 2) / (4w - 3),   w = D / d
+
+(:func:`corrected_shear_stress`, :func:`bergstraesser_factor`).  Wahl's factor
+(:func:`wahl_factor`) is given beside it for comparison; every stress springdyn judges is
+Bergstraesser's.
 
 A stress cycle between ``tau_min`` and ``tau_max`` has the mean ``tau_m`` and the
 amplitude ``tau_a``; the modified Goodman line between the fully reversed torsional
@@ -38,7 +42,10 @@ import numpy as np
 from ..core.errors import InputError
 
 __all__ = [
-    "stress_correction_factor",
+    "spring_index",
+    "bergstraesser_factor",
+    "wahl_factor",
+    "nominal_shear_stress",
     "corrected_shear_stress",
     "ultimate_shear_strength",
     "zimmerli_endurance_shear_strength",
@@ -63,19 +70,42 @@ ZIMMERLI_PEENED = (398e6, 534e6)
 ZIMMERLI_UNPEENED = (241e6, 379e6)
 
 
-def stress_correction_factor(spring_index):
-    """Stress correction factor ``k = (w + 0.5)/(w - 0.75)`` of EN 13906-1.
+def spring_index(mean_diameter, wire_diameter):
+    """Spring index ``w = D/d`` [-] (mean coil diameter over wire diameter).
 
-    It equals Bergstraesser's ``(4w + 2)/(4w - 3)``.
+    Parameters
+    ----------
+    mean_diameter : float or array_like
+        Mean coil diameter ``D`` [m].
+    wire_diameter : float or array_like
+        Wire diameter ``d`` [m].
+
+    Notes
+    -----
+    [EN 13906-1], spring index ``w = D/d``.
+    """
+    return mean_diameter / wire_diameter
+
+
+def bergstraesser_factor(spring_index):
+    r"""Stress correction factor ``k = (w + 0.5)/(w - 0.75)`` [-] of EN 13906-1 (Bergstraesser).
+
+    .. math::
+
+        k = \frac{w + 0.5}{w - 0.75} = \frac{4w + 2}{4w - 3}
 
     Parameters
     ----------
     spring_index : float or array_like
         Spring index ``w = D/d`` [-], larger than 0.75.
 
+    Notes
+    -----
+    [EN 13906-1], Eq. (22), stress correction factor k.
+
     Examples
     --------
-    >>> round(stress_correction_factor(22 / 3.5), 4)
+    >>> round(bergstraesser_factor(22 / 3.5), 4)
     1.2258
     """
     w = np.asarray(spring_index, dtype=float)
@@ -85,24 +115,77 @@ def stress_correction_factor(spring_index):
     return float(k) if k.ndim == 0 else k
 
 
-def corrected_shear_stress(force, mean_diameter: float, wire_diameter: float):
-    """Corrected torsional shear stress of the wire ``k 8 F D / (pi d^3)``.
+def wahl_factor(spring_index):
+    """Wahl stress correction ``(4w - 1)/(4w - 4) + 0.615/w`` [-], for comparison with
+    :func:`bergstraesser_factor` (springdyn judges Bergstraesser's).
+
+    Parameters
+    ----------
+    spring_index : float or array_like
+        Spring index ``w = D/d`` [-].
+
+    Notes
+    -----
+    [Wahl], the curvature correction of torsional shear stress.
+    """
+    return (4.0 * spring_index - 1.0) / (4.0 * spring_index - 4.0) + 0.615 / spring_index
+
+
+def nominal_shear_stress(force, mean_diameter, wire_diameter):
+    r"""Nominal (uncorrected) torsional shear stress of the wire ``8 F D / (pi d^3)`` [Pa].
+
+    .. math::
+
+        \tau = \frac{8\,D\,F}{\pi\,d^3}
+
+    EN 13906-1 states its relaxation charts and the permissible stress at solid length in it.
 
     Parameters
     ----------
     force : float or array_like
         Axial spring force [N] (compression positive).
-    mean_diameter : float
+    mean_diameter : float or array_like
         Mean coil diameter ``D`` [m].
-    wire_diameter : float
+    wire_diameter : float or array_like
+        Wire diameter ``d`` [m].
+
+    Notes
+    -----
+    [EN 13906-1], shear stress ``tau = 8 D F / (pi d^3)``.
+    """
+    return 8.0 * np.asarray(force, dtype=float) * mean_diameter / (math.pi * wire_diameter**3)
+
+
+def corrected_shear_stress(force, mean_diameter, wire_diameter):
+    """Corrected torsional shear stress of the wire ``k 8 F D / (pi d^3)`` [Pa]
+    (:func:`bergstraesser_factor` times :func:`nominal_shear_stress`).
+
+    Parameters
+    ----------
+    force : float or array_like
+        Axial spring force [N] (compression positive).
+    mean_diameter : float or array_like
+        Mean coil diameter ``D`` [m].
+    wire_diameter : float or array_like
         Wire diameter ``d`` [m].
 
     Returns
     -------
     float or ndarray
         Shear stress [Pa].
+
+    Notes
+    -----
+    [EN 13906-1], Eq. (22), ``tau_k = k 8 D F / (pi d^3)``.
+
+    Examples
+    --------
+    500 N on the one-step example's wire (D/d = 6.29, k = 1.226):
+
+    >>> round(float(corrected_shear_stress(500.0, 22e-3, 3.5e-3)) / 1e6, 1)
+    800.8
     """
-    k = stress_correction_factor(mean_diameter / wire_diameter)
+    k = bergstraesser_factor(spring_index(mean_diameter, wire_diameter))
     return k * 8.0 * np.asarray(force, dtype=float) * mean_diameter / (math.pi * wire_diameter**3)
 
 
