@@ -52,7 +52,7 @@ def main(argv=None) -> int:
     import numpy as np
 
     from springdyn.valve import Cam, ValveSpring, simulate
-    from springdyn.valve.modes import chain_eigenvalues
+    from springdyn.valve.spring.modes import chain_eigenvalues
 
     cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
     tc = ValveSpring.example("one-step")

@@ -38,8 +38,8 @@ SWEEP_CHILD = """
 import math, resource, sys, time
 import numpy as np
 from springdyn.valve import ValveSpring
-from springdyn.valve.cam import Cam
-from springdyn.valve.sweeps import sweep
+from springdyn.valve.cam.definition import Cam
+from springdyn.valve.run.sweeps import sweep
 s = ValveSpring.example("one-step")
 if "{model}" != "type-c":
     s = s.with_model("{model}")
@@ -104,9 +104,9 @@ def main(argv=None) -> int:
 
     from springdyn.core.units import rpm_to_omega
     from springdyn.valve import ValveSpring, engine
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.dynamics import simulate
-    from springdyn.valve.setup import MAX_STEP_FRACTION, prepare
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.run.setup import MAX_STEP_FRACTION, prepare
+    from springdyn.valve.run.simulate import simulate
 
     spring = ValveSpring.example("one-step")
     cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))

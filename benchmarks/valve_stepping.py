@@ -49,8 +49,9 @@ def main(argv=None) -> int:
 
     import numpy as np
 
-    from springdyn.valve import Cam, ValveSpring, dynamics, simulate
-    from springdyn.valve.modes import chain_eigenvalues
+    from springdyn.valve import Cam, ValveSpring, simulate
+    from springdyn.valve.run import simulate as dynamics
+    from springdyn.valve.spring.modes import chain_eigenvalues
 
     cams = _cams(Cam)
     speeds = (1700.0, 3500.0) if args.quick else SPEEDS

@@ -1,7 +1,7 @@
 """The velocity tolerance of the valve-spring engine (issue 12).  Run:  python benchmarks/valve_tolerances.py
 
 The displacements get the absolute tolerance ``atol`` [m]; the spring's velocities get
-``atol 2 pi f1 / D`` [m/s] (``D`` = :data:`springdyn.valve.setup.VELOCITY_TOLERANCE_DIVISOR`).
+``atol 2 pi f1 / D`` [m/s] (``D`` = :data:`springdyn.valve.run.setup.VELOCITY_TOLERANCE_DIVISOR`).
 For each ``D`` in 10, 30, 100 and "one tolerance for every component" (``D = 2 pi f1`` in
 1/s units, the earliest versions), over the runs of benchmarks/valve_stepping.py (two
 springs, four cams, 14 speeds), it prints the total steps and the worst error of the four
@@ -28,7 +28,8 @@ def main(argv=None) -> int:
     sys.path.insert(0, str(__import__("pathlib").Path(__file__).parent))
     from valve_stepping import SPEEDS, _cams
 
-    from springdyn.valve import Cam, ValveSpring, dynamics, simulate
+    from springdyn.valve import Cam, ValveSpring, simulate
+    from springdyn.valve.run import simulate as dynamics
 
     cams = _cams(Cam)
     keys = ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")

@@ -53,7 +53,7 @@ def main(argv=None) -> int:
     import numpy as np
 
     from springdyn.valve import Cam, ValveSpring, ValveTrain, simulate
-    from springdyn.valve.tolerances import parse_tolerance, tolerance_study
+    from springdyn.valve.design.tolerances import parse_tolerance, tolerance_study
 
     root = os.path.join(os.path.dirname(__file__), "..", "examples", "valve")
     spring = ValveSpring.from_toml(os.path.join(root, "one_step_spring.toml"))

@@ -62,7 +62,7 @@ def _imports(path: Path, name: str, modules: set[str]) -> set[str]:
     visit(tree)
     out = set()
     for target in found:
-        while target and target not in modules:  # springdyn.valve.cam.Cam -> springdyn.valve.cam
+        while target and target not in modules:  # springdyn.valve.cam.definition.Cam -> springdyn.valve.cam.definition
             target = target.rsplit(".", 1)[0] if "." in target else ""
         if target and target != name:
             out.add(target)

@@ -20,8 +20,8 @@ from springdyn.app.cli import docs_cmd
 from springdyn.app.cli.main import build_parser
 from springdyn.core.errors import InputError
 from springdyn.core.params import load_toml
+from tests.paths import ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "docs" / "reference"
 
 
@@ -216,7 +216,7 @@ def test_doctests(modname):
 def test_doctest_runner_finds_examples():
     import doctest
 
-    for modname in ("springdyn.valve.spring", "springdyn.valve.cam", "springdyn.core.units"):
+    for modname in ("springdyn.valve.spring.definition", "springdyn.valve.cam.definition", "springdyn.core.units"):
         module = importlib.import_module(modname)
         tests = doctest.DocTestFinder(exclude_empty=True).find(module, modname)
         assert sum(len(t.examples) for t in tests) > 0, modname

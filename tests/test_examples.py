@@ -11,20 +11,22 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "examples").rglob("*.py"))
+from tests.paths import EXAMPLES as EXAMPLES_DIR
+
+#: The scripts, by their path below examples/.
+EXAMPLES = sorted(p.relative_to(EXAMPLES_DIR).as_posix() for p in EXAMPLES_DIR.rglob("*.py"))
 
 #: Output each script must print (regular expressions) and files it must write into --out.
 EXPECTED = {
-    "examples/valve/compare_springs.py": (
+    "valve/compare_springs.py": (
         [r"one-step\s+4000\s", r"two-step\s+4000\s", r"one-step: largest surge [\d.]+ N at \d+ cam rpm"],
         ["compare_springs.png", "sweep_one-step.csv", "sweep_two-step.csv"],
     ),
-    "examples/valve/float_speed.py": (
+    "valve/float_speed.py": (
         [r"float speed: \d+ cam rpm = \d+ engine rpm"],
         ["float_speed.json", "float_scan.csv", "float_speed.png"],
     ),
-    "examples/cfcs/design_for_force.py": (
+    "cfcs/design_for_force.py": (
         [
             r"FEASIBLE: design meets the stress limit",
             r"check with the CFCS model: force 19\.9\d* \.\. 20\.0",
@@ -32,31 +34,31 @@ EXPECTED = {
         ],
         ["designed_cfcs.toml", "design_curve.csv", "design_curve.png"],
     ),
-    "examples/lsd/identify_from_csv.py": (
+    "lsd/identify_from_csv.py": (
         [r"mode: two excitations", r"Kxx =\s+[\d.]+ \+- [\d.]+ N/mm", r"Cyy =\s+[\d.]+ \+- [\d.]+ N s/m"],
         ["identified.json", "rig_x_shake_1000rpm.csv", "rig_y_shake_1000rpm.csv"],
     ),
-    "examples/lsd/identify_round_trip.py": ([r"3000 rpm\s+Kxx"], ["type_c_identified.png"]),
-    "examples/lsd/rotor_with_lsd.py": ([r"natural frequency\s+[\d.]+ Hz\s+log decrement"], []),
-    "examples/lsd/runup_with_film.py": (
+    "lsd/identify_round_trip.py": ([r"3000 rpm\s+Kxx"], ["type_c_identified.png"]),
+    "lsd/rotor_with_lsd.py": ([r"natural frequency\s+[\d.]+ Hz\s+log decrement"], []),
+    "lsd/runup_with_film.py": (
         [r"unbalance 1 g m", r"3000-3500\s+[\d.]+\s+[\d.]+\s+[\d.]+\s+1\.[12]"],
         ["runup_with_film.png", "runup_with_film.csv"],
     ),
-    "examples/valve/closure_convergence.py": (
+    "valve/closure_convergence.py": (
         [r"one-step: 50 elements within 0\.\d+ % of Fset of 200", r"two-step: 100 elements within 0\.\d+ % of Fset"],
         ["closure_convergence.csv"],
     ),
 }
 
 #: Scripts slower than a few seconds.
-SLOW = {"examples/lsd/rotor_with_lsd.py", "examples/lsd/runup_with_film.py", "examples/valve/closure_convergence.py"}
+SLOW = {"lsd/rotor_with_lsd.py", "lsd/runup_with_film.py", "valve/closure_convergence.py"}
 
 
 def run_example(script: str, out: Path, *args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     """Run ``python <script> --out <out> [args]`` from ``cwd`` (default ``out``)."""
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run(
-        [sys.executable, str(ROOT / script), "--out", str(out), *args],
+        [sys.executable, str(EXAMPLES_DIR / script), "--out", str(out), *args],
         cwd=out if cwd is None else cwd,
         env=env,
         capture_output=True,
@@ -71,7 +73,7 @@ def test_every_example_is_covered():
 
 @pytest.mark.parametrize("script", [pytest.param(s, marks=pytest.mark.slow) if s in SLOW else s for s in EXAMPLES])
 def test_example_runs(script, tmp_path):
-    if script in ("examples/lsd/rotor_with_lsd.py", "examples/lsd/runup_with_film.py"):
+    if script in ("lsd/rotor_with_lsd.py", "lsd/runup_with_film.py"):
         pytest.importorskip("ross")
     elsewhere = tmp_path / "cwd"  # run from another folder: an example writes only where --out says
     elsewhere.mkdir()
@@ -89,7 +91,7 @@ def test_example_runs(script, tmp_path):
 
 def test_identify_from_a_given_csv_matches_the_written_one(tmp_path):
     """The CSV path route reads what the API route wrote: same x-shake coefficients."""
-    script = "examples/lsd/identify_from_csv.py"
+    script = "lsd/identify_from_csv.py"
     (tmp_path / "a").mkdir()
     first = run_example(script, tmp_path / "a")
     assert first.returncode == 0, first.stderr
@@ -107,5 +109,5 @@ def test_identify_from_a_given_csv_matches_the_written_one(tmp_path):
 
 
 def test_example_scripts_reject_bad_input(tmp_path):
-    proc = run_example("examples/lsd/identify_from_csv.py", tmp_path, "a.csv", "b.csv", "c.csv")
+    proc = run_example("lsd/identify_from_csv.py", tmp_path, "a.csv", "b.csv", "c.csv")
     assert proc.returncode == 2 and "at most two CSV files" in proc.stderr

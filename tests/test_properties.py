@@ -21,8 +21,8 @@ from hypothesis import strategies as st
 from springdyn.app.cli.common import parse_range
 from springdyn.core.errors import InputError
 from springdyn.core.units import to_si
+from tests.paths import ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
 SETTINGS = settings(
     max_examples=150,
     deadline=None,

@@ -17,8 +17,8 @@ import pytest
 
 import springdyn
 from springdyn.core.results import Result
-
-from .result_checks import check_result_interface
+from tests.paths import example
+from tests.result_checks import check_result_interface
 
 
 def _result_like_classes():
@@ -102,14 +102,16 @@ def _unbalance():
 
 def _friction():
     """Friction of the bucket train with its [follower] and [friction] at two speeds."""
-    fr = importlib.import_module("springdyn.valve.friction")
-    path = "examples/valve/valve_train_with_follower.toml"
+    fr = importlib.import_module("springdyn.valve.train.friction")
+    path = example("valve/valve_train_with_follower.toml")
     vt = springdyn.valve.ValveTrain.from_toml(path)
-    follower = importlib.import_module("springdyn.valve.follower").Follower.in_file(path)
+    follower = importlib.import_module("springdyn.valve.cam.follower").Follower.in_file(path)
     friction = fr.Friction.from_dict(importlib.import_module("springdyn.core.params").load_toml(path)["friction"])
-    cam = springdyn.valve.Cam.from_toml("examples/valve/cam_polydyne_ramps.toml")
+    cam = springdyn.valve.Cam.from_toml(example("valve/cam_polydyne_ramps.toml"))
     return [
-        fr.simulation_friction(springdyn.valve.simulate(_valve_spring(), cam, rpm, valve_train=vt), follower, friction)
+        importlib.import_module("springdyn.valve.run.friction").simulation_friction(
+            springdyn.valve.simulate(_valve_spring(), cam, rpm, valve_train=vt), follower, friction
+        )
         for rpm in (1500.0, 3000.0)
     ]
 
@@ -140,17 +142,17 @@ FACTORIES = {
     "springdyn.cfcs.design.DesignResult": lambda: __import__("springdyn.cfcs", fromlist=["design"]).design(
         12.8, 0.02, 207e9, 1.5e9
     ),
-    "springdyn.valve.results.StaticCurve": lambda: _valve_spring().spring_model.static_curve(points=50),
-    "springdyn.valve.results.Simulation": lambda: springdyn.valve.simulate(
+    "springdyn.valve.spring.results.StaticCurve": lambda: _valve_spring().spring_model.static_curve(points=50),
+    "springdyn.valve.run.results.Simulation": lambda: springdyn.valve.simulate(
         _valve_spring(), _valve_cam(), 2500, 2, points_per_revolution=360
     ),
-    "springdyn.valve.results.FloatSpeedResult": lambda: springdyn.valve.results.FloatSpeedResult(
+    "springdyn.valve.run.results.FloatSpeedResult": lambda: springdyn.valve.run.results.FloatSpeedResult(
         [1000.0, 2000.0], [120.0, -5.0], 1800.0, [1500.0, 1800.0], 1.0
     ),
-    "springdyn.valve.results.NaturalFrequencies": lambda: springdyn.valve.ValveModel(
+    "springdyn.valve.run.results.NaturalFrequencies": lambda: springdyn.valve.ValveModel(
         _valve_spring(), _valve_cam(), _valve_train()
     ).natural_frequencies(4),
-    "springdyn.valve.sweeps.SpeedSweep": lambda: springdyn.valve.sweep(
+    "springdyn.valve.run.sweeps.SpeedSweep": lambda: springdyn.valve.sweep(
         _valve_spring(),
         _valve_cam(),
         np.array([1000.0, 2000.0, 3000.0]),
@@ -158,24 +160,26 @@ FACTORIES = {
         points_per_revolution=180,
         quiet=True,
     ),
-    "springdyn.valve.cam_analysis.CamAnalysis": lambda: importlib.import_module(
-        "springdyn.valve.cam_analysis"
+    "springdyn.valve.cam.analysis.CamAnalysis": lambda: importlib.import_module(
+        "springdyn.valve.cam.analysis"
     ).analyse_cam(_valve_cam(), _valve_train(), engine_rpm=6000.0),
-    "springdyn.valve.cam_check.CamCheck": lambda: importlib.import_module("springdyn.valve.cam_check").check_cam(
+    "springdyn.valve.cam.checks.CamCheck": lambda: importlib.import_module("springdyn.valve.cam.checks").check_cam(
         _valve_cam(),
-        springdyn.valve.ValveTrain.from_toml("examples/valve/valve_train_with_follower.toml"),
-        importlib.import_module("springdyn.valve.follower").Follower.in_file(
-            "examples/valve/valve_train_with_follower.toml"
+        springdyn.valve.ValveTrain.from_toml(example("valve/valve_train_with_follower.toml")),
+        importlib.import_module("springdyn.valve.cam.follower").Follower.in_file(
+            example("valve/valve_train_with_follower.toml")
         ),
         _valve_spring(),
         cam_rpm=3000.0,
     ),
-    "springdyn.valve.friction.FrictionAnalysis": lambda: _friction()[0],
-    "springdyn.valve.friction.FrictionSweep": lambda: importlib.import_module(
-        "springdyn.valve.friction"
+    "springdyn.valve.train.friction.FrictionAnalysis": lambda: _friction()[0],
+    "springdyn.valve.run.friction.FrictionSweep": lambda: importlib.import_module(
+        "springdyn.valve.run.friction"
     ).friction_over_speed(_friction()),
-    "springdyn.valve.synthesis.Synthesis": lambda: importlib.import_module("springdyn.valve.synthesis").synthesize(
-        importlib.import_module("springdyn.valve.synthesis").Requirements.from_dict(
+    "springdyn.valve.design.synthesis.Synthesis": lambda: importlib.import_module(
+        "springdyn.valve.design.synthesis"
+    ).synthesize(
+        importlib.import_module("springdyn.valve.design.synthesis").Requirements.from_dict(
             dict(
                 installed_length="38 mm",
                 installed_force="250 N",
@@ -187,13 +191,13 @@ FACTORIES = {
         ),
         per_kind=1,
     ),
-    "springdyn.valve.tolerances.ToleranceStudy": lambda: importlib.import_module(
-        "springdyn.valve.tolerances"
+    "springdyn.valve.design.tolerances.ToleranceStudy": lambda: importlib.import_module(
+        "springdyn.valve.design.tolerances"
     ).tolerance_study(
         _valve_spring(),
         _valve_cam(),
         {
-            "wire_diameter": importlib.import_module("springdyn.valve.tolerances").parse_tolerance(
+            "wire_diameter": importlib.import_module("springdyn.valve.design.tolerances").parse_tolerance(
                 "wire_diameter", "+-0.02 mm"
             )
         },
@@ -201,23 +205,25 @@ FACTORIES = {
         seed=1,
         speeds=[2000.0],
     ),
-    "springdyn.valve.life.ServiceLife": lambda: importlib.import_module("springdyn.valve.life").service_life(
+    "springdyn.valve.design.life.ServiceLife": lambda: importlib.import_module(
+        "springdyn.valve.design.life"
+    ).service_life(
         _valve_spring(),
         _valve_cam(),
-        importlib.import_module("springdyn.valve.life").LoadSpectrum.from_dict(
+        importlib.import_module("springdyn.valve.design.life").LoadSpectrum.from_dict(
             {"cam_rpm": ["1000 rpm", "2000 rpm"], "share": [0.5, 0.5]}
         ),
     ),
-    "springdyn.valve.lever.LeverTable": lambda: springdyn.valve.ValveTrain.from_toml(
-        "examples/valve/finger_follower_geometry.toml"
-    ).geometry.over_cam(springdyn.valve.Cam.from_toml("examples/valve/cam_finger.toml"), points=720),
-    "springdyn.valve.cam_from_lift.CamFromLift": lambda: importlib.import_module(
-        "springdyn.valve.cam_from_lift"
+    "springdyn.valve.train.lever.LeverTable": lambda: springdyn.valve.ValveTrain.from_toml(
+        example("valve/finger_follower_geometry.toml")
+    ).geometry.over_cam(springdyn.valve.Cam.from_toml(example("valve/cam_finger.toml")), points=720),
+    "springdyn.valve.cam.from_lift.CamFromLift": lambda: importlib.import_module(
+        "springdyn.valve.cam.from_lift"
     ).cam_from_card(
-        importlib.import_module("springdyn.valve.cam_from_lift").CamCard.from_toml("examples/valve/cam_card.toml"),
-        springdyn.valve.ValveTrain.from_toml("examples/valve/valve_train_with_follower.toml"),
+        importlib.import_module("springdyn.valve.cam.from_lift").CamCard.from_toml(example("valve/cam_card.toml")),
+        springdyn.valve.ValveTrain.from_toml(example("valve/valve_train_with_follower.toml")),
     ),
-    "springdyn.valve.run_up.RunUp": lambda: importlib.import_module("springdyn.valve.run_up").speed_ramp(
+    "springdyn.valve.run.run_up.RunUp": lambda: importlib.import_module("springdyn.valve.run.run_up").speed_ramp(
         _valve_spring(),
         _valve_cam(),
         _valve_train(),
@@ -227,9 +233,9 @@ FACTORIES = {
         points_per_revolution=360,
         float_scan=False,
     ),
-    "springdyn.valve.frf.FrequencyResponse": lambda: importlib.import_module("springdyn.valve.frf").dynamic_stiffness(
-        _valve_spring(), np.linspace(50.0, 2000.0, 40)
-    ),
+    "springdyn.valve.spring.frf.FrequencyResponse": lambda: importlib.import_module(
+        "springdyn.valve.spring.frf"
+    ).dynamic_stiffness(_valve_spring(), np.linspace(50.0, 2000.0, 40)),
 }
 
 
@@ -244,7 +250,7 @@ def test_every_result_class_is_a_result_with_a_factory():
 
 @pytest.mark.parametrize("name", sorted(FACTORIES))
 def test_result_interface(name, tmp_path):
-    import springdyn.valve.results  # noqa: F401  (the factories use the module attributes)
+    import springdyn.valve.run.results  # noqa: F401  (the factories use the module attributes)
 
     result = FACTORIES[name]()
     check_result_interface(result, tmp_path)

@@ -42,18 +42,18 @@ __all__ = [
 
 #: TOML table -> (parameter class ``module:qualname``, built-in example file in ``springdyn/data``).
 PARAMETER_TABLES = {
-    "spring": ("springdyn.valve.spring:ValveSpring", "valve_one_step.toml"),
-    "cam": ("springdyn.valve.cam:Cam", "valve_cam_345.toml"),
-    "timing": ("springdyn.valve.timing:Timing", "valve_cam_timing.toml"),
-    "valve_train": ("springdyn.valve.valvetrain:ValveTrain", "valve_train_direct_acting.toml"),
-    "hla": ("springdyn.valve.hla:HLA", "valve_train_finger_hla.toml"),
-    "follower": ("springdyn.valve.follower:Follower", "valve_train_follower.toml"),
-    "geometry": ("springdyn.valve.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
-    "friction": ("springdyn.valve.friction:Friction", "valve_train_follower.toml"),
-    "requirements": ("springdyn.valve.synthesis:Requirements", "valve_requirements.toml"),
-    "criteria": ("springdyn.valve.tolerances:Criteria", "valve_tolerances.toml"),
-    "spectrum": ("springdyn.valve.life:LoadSpectrum", "valve_spectrum.toml"),
-    "cam_card": ("springdyn.valve.cam_from_lift:CamCard", "valve_cam_card.toml"),
+    "spring": ("springdyn.valve.spring.definition:ValveSpring", "valve_one_step.toml"),
+    "cam": ("springdyn.valve.cam.definition:Cam", "valve_cam_345.toml"),
+    "timing": ("springdyn.valve.cam.timing:Timing", "valve_cam_timing.toml"),
+    "valve_train": ("springdyn.valve.train.definition:ValveTrain", "valve_train_direct_acting.toml"),
+    "hla": ("springdyn.valve.train.hla:HLA", "valve_train_finger_hla.toml"),
+    "follower": ("springdyn.valve.cam.follower:Follower", "valve_train_follower.toml"),
+    "geometry": ("springdyn.valve.train.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
+    "friction": ("springdyn.valve.train.friction:Friction", "valve_train_follower.toml"),
+    "requirements": ("springdyn.valve.design.synthesis:Requirements", "valve_requirements.toml"),
+    "criteria": ("springdyn.valve.design.tolerances:Criteria", "valve_tolerances.toml"),
+    "spectrum": ("springdyn.valve.design.life:LoadSpectrum", "valve_spectrum.toml"),
+    "cam_card": ("springdyn.valve.cam.from_lift:CamCard", "valve_cam_card.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
     "lsd": ("springdyn.lsd.parameters:LSDParameters", "lsd_type_c.toml"),
@@ -686,7 +686,7 @@ def api_reference(topic: str | None = None) -> str:
 
     Examples
     --------
-    >>> "#### class `springdyn.valve.spring.ValveSpring(" in api_reference("api-valve.md")
+    >>> "#### class `springdyn.valve.spring.definition.ValveSpring(" in api_reference("api-valve.md")
     True
     """
     all_modules = _public_modules()

@@ -7,9 +7,10 @@ import json
 import pytest
 
 from springdyn.app.cli.main import main
+from tests.paths import example
 
 ONE = "src/springdyn/data/valve_one_step.toml"
-CAM = "examples/valve/cam_345.toml"
+CAM = example("valve/cam_345.toml")
 TRAIN = "src/springdyn/data/valve_train_direct_acting.toml"
 
 CASES = [
@@ -39,8 +40,8 @@ def test_every_json_note_is_in_the_text(argv, capsys):
 def test_every_sweep_note_is_in_the_text(capsys, tmp_path):
     """valve sweep writes no JSON: its summary's notes, from the API, against its text."""
     from springdyn.valve import ValveSpring
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.sweeps import sweep
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.run.sweeps import sweep
 
     res = sweep(ValveSpring.from_toml(ONE), Cam.from_toml(CAM), [3000.0, 3400.0], revolutions=2, quiet=True)
     notes = res.summary.get("notes", [])

@@ -5,15 +5,14 @@ import json
 import re
 import shutil
 import subprocess
-from pathlib import Path
 
 import pytest
 
 from springdyn.app.cli.main import main
 from springdyn.app.report import DEMO_DEFINITIONS, build_report, demo_definitions
 from springdyn.core.errors import InputError
+from tests.paths import ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = ROOT / "test-artifacts"
 
 

@@ -12,6 +12,7 @@ from springdyn.cfcs import CFCS, CFCSParams, beam
 from springdyn.cfcs.kinematics import spring_angle, theta2_from_deflection
 from springdyn.cfcs.statics import static_force, static_force_at_toggle
 from springdyn.core.errors import InputError
+from tests.paths import DOCS
 
 R2, R3, L = 0.085, 0.095, 0.0095
 EI = 207e9 * 0.0254 * 0.00038**3 / 12  # Table 1 strip, beam modulus: K3 = EI/l = 2.5308 N*m/rad
@@ -116,7 +117,7 @@ def test_beam_forward_conserves_energy(table1):
 
 
 def test_beam_results_offer_the_result_interface(table1, tmp_path):
-    from ..result_checks import check_result_interface
+    from tests.result_checks import check_result_interface
 
     m = CFCS(table1.replace(flexure_model="beam"))
     st = m.static(0.05, n=101)
@@ -186,9 +187,8 @@ def test_a_prbm_without_strip_dimensions_says_why_there_is_no_beam_check(table1_
 
 def _doc_table(after: str) -> np.ndarray:
     """The band/force error table of docs/cfcs.md that follows the line containing ``after``."""
-    from pathlib import Path
 
-    lines = (Path(__file__).resolve().parents[2] / "docs" / "cfcs.md").read_text(encoding="utf-8").splitlines()
+    lines = (DOCS / "cfcs.md").read_text(encoding="utf-8").splitlines()
     start = next(i for i, line in enumerate(lines) if after in line)
     rows = []
     for line in lines[start + 1 :]:

@@ -1,7 +1,6 @@
 """``springdyn cfcs ...`` through springdyn.app.cli.main.main (exit codes, stderr, files)."""
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,7 +9,7 @@ from springdyn.app.cli.main import main
 from springdyn.core.io import read_csv_columns, write_csv
 
 #: The repository (the example files), wherever pytest runs from.
-ROOT = Path(__file__).resolve().parents[2]
+from tests.paths import ROOT, example
 
 
 def run(capsys, *argv):
@@ -65,7 +64,7 @@ def test_dynamic(capsys, tmp_path):
         capsys,
         "cfcs",
         "dynamic",
-        str(ROOT / "examples/cfcs/table1.toml"),
+        str(ROOT / example("cfcs/table1.toml")),
         "--omega",
         "14.7",
         "--amplitude",

@@ -17,6 +17,7 @@ from springdyn.cfcs import drive as drv
 from springdyn.cfcs.kinematics import deflection_from_theta2, slider_jacobian
 from springdyn.cfcs.statics import dissipative_torque, spring_torque, static_force
 from springdyn.core.errors import InputError
+from tests.paths import DOCS, example
 
 from .conftest import R2, R3
 
@@ -137,9 +138,8 @@ def test_stiff_drive_with_friction_keeps_the_rigid_mean(model):
 
 def _doc_drive_table() -> dict:
     """k_d [kN/m] -> peak-to-peak [N] of the drive-stiffness table of docs/cfcs.md."""
-    from pathlib import Path
 
-    text = (Path(__file__).resolve().parents[2] / "docs" / "cfcs.md").read_text(encoding="utf-8")
+    text = (DOCS / "cfcs.md").read_text(encoding="utf-8")
     block = text.split("| k_d [kN/m] | peak-to-peak [N]")[1].split("\n\n")[0]
     rows = [line.strip("|").split("|") for line in block.splitlines()[2:] if line.startswith("|")]
     return {float(r[0]): float(r[1]) for r in rows}
@@ -178,7 +178,7 @@ def test_drive_inputs_are_checked(model, table1):
 
 def test_drive_keys_read_with_units(tmp_path):
     text = (
-        open("examples/cfcs/table1.toml", encoding="utf-8").read()
+        open(example("cfcs/table1.toml"), encoding="utf-8").read()
         + 'drive_stiffness = "20 kN/m"\ndrive_damping = "5 N*s/m"\n'
     )
     path = tmp_path / "d.toml"
@@ -275,9 +275,8 @@ def test_crossing_the_toggle_without_stopping_is_not_sticking(model, k_d):
 
 def _doc_sensitivity_table() -> dict:
     """(parameter, value) -> row of the sensitivity table of docs/cfcs.md (floats; '-' for none)."""
-    from pathlib import Path
 
-    text = (Path(__file__).resolve().parents[2] / "docs" / "cfcs.md").read_text(encoding="utf-8")
+    text = (DOCS / "cfcs.md").read_text(encoding="utf-8")
     block = text.split("| varied | value | peak-to-peak [N]")[1].split("\n\n")[0]
     rows = [[c.strip() for c in line.strip("|").split("|")] for line in block.splitlines()[2:] if line.startswith("|")]
     return {(r[0], float(r[1])): r[2:] for r in rows}

@@ -4,6 +4,7 @@ import pytest
 
 from springdyn.cfcs import CFCS, CFCSParams
 from springdyn.core.errors import InputError
+from tests.paths import EXAMPLES
 
 BASE = {
     "crank_length": "85 mm",
@@ -24,9 +25,8 @@ def test_table1_example_loads_with_units(table1):
 
 
 def test_examples_folder_matches_builtin(table1):
-    from pathlib import Path
 
-    path = Path(__file__).resolve().parents[2] / "examples" / "cfcs" / "table1.toml"
+    path = EXAMPLES / "cfcs" / "table1.toml"
     assert CFCSParams.from_toml(path) == table1
 
 

@@ -5,7 +5,6 @@ import json
 import math
 import os
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,8 +13,7 @@ from springdyn.core.errors import InputError
 from springdyn.core.io import atomic_open, read_csv_columns, write_csv, write_json
 from springdyn.core.params import check_fields, from_mapping, param
 from springdyn.core.units import to_si
-
-ROOT = Path(__file__).resolve().parents[2]
+from tests.paths import ROOT
 
 
 @pytest.mark.parametrize(

@@ -10,6 +10,7 @@ from springdyn.app.cli.main import main
 from springdyn.core.errors import InputError
 from springdyn.lsd import LSDModel, LSDParameters, RigData, linear_shake, simulate_rig
 from springdyn.lsd.calibrate import calibrate, update_toml_text
+from tests.paths import ROOT
 
 SPEEDS = (500.0, 1000.0, 2000.0, 3000.0)
 TRUE = dict(leakage_factor=3.0, leaf_friction=0.15)
@@ -148,11 +149,10 @@ def test_calibrated_examples_reproduce_the_thesis_forces(kind, force):
     # examples/lsd/type_{a,b}_calibrated.toml: leakage_factor solved so that the first
     # harmonic of the damper force on the rig's 50 um orbit at 500 rpm is the force the
     # thesis reports (docs/lsd.md); 1 %: the factor is written with 3 digits
-    from pathlib import Path
 
     from springdyn.lsd import forward_whirl_coefficient
 
-    root = Path(__file__).resolve().parents[2]
+    root = ROOT
     p = LSDParameters.from_toml(root / "examples" / "lsd" / f"type_{kind}_calibrated.toml")
     raw = LSDParameters.from_toml(root / "examples" / "lsd" / f"type_{kind}.toml")
     assert p.replace(leakage_factor=1.0, name=raw.name) == raw  # only the calibration differs

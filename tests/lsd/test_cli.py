@@ -2,7 +2,6 @@
 
 import json
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,6 +9,7 @@ import pytest
 from springdyn.app.cli.main import main
 from springdyn.core.io import read_csv_columns
 from springdyn.lsd import LSDModel, LSDParameters
+from tests.paths import EXAMPLES
 
 COEFF_KEYS = [
     "rpm",
@@ -396,7 +396,7 @@ def test_coefficients_with_the_film(capsys):
 def test_rig_with_the_film(tmp_path, capsys):
     # a 100 um orbit at 3000 rpm of Type C with air release at 0.9 bar: the pressures stop at 0.9 bar
     cfg = tmp_path / "c.toml"
-    text = (Path(__file__).resolve().parents[2] / "examples/lsd/type_c.toml").read_text()
+    text = (EXAMPLES / "lsd/type_c.toml").read_text()
     cfg.write_text(text.replace("[lsd]", '[lsd]\ncavitation_pressure = "0.9 bar"'))
     args = ["lsd", "rig", str(cfg), "--rpm", "3000", "--eccentricity", "100um", "--revolutions", "4"]
     assert main(args + ["--film", "--csv", str(tmp_path / "r.csv")]) == 0

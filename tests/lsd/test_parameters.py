@@ -5,6 +5,7 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.lsd import LSDParameters
+from tests.paths import EXAMPLES
 
 C_TOML = """
 [lsd]
@@ -102,9 +103,8 @@ def test_unknown_example():
 
 def test_example_files_load():
     # every TOML under examples/lsd/ reads; the Type files equal the built-in examples
-    from pathlib import Path
 
-    folder = Path(__file__).resolve().parents[2] / "examples" / "lsd"
+    folder = EXAMPLES / "lsd"
     files = sorted(folder.glob("*.toml"))
     assert len(files) == 7  # Types A-C, C with two thicker oils, A and B calibrated
     for f in files:

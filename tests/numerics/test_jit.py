@@ -35,7 +35,7 @@ RHS_PROBE = """
 import math
 import numpy as np
 from springdyn.valve import Cam, ValveSpring
-from springdyn.valve.setup import prepare
+from springdyn.valve.run.setup import prepare
 from springdyn.valve.engine.equations import chain_rhs, model_of, rhs_call, train_of
 from springdyn.valve.engine.layout import extra_layout
 setup = prepare(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)))
@@ -132,7 +132,7 @@ def test_the_stamp_changes_with_every_file_of_the_group(tmp_path):
     files = jit.source_group(PACKAGE / "valve" / "engine" / "loop.py")
     names = {f.relative_to(PACKAGE).as_posix() for f in files}
     assert {"valve/engine/equations.py", "valve/engine/monitor.py", "numerics/erk.py", "numerics/jit.py"} <= names
-    assert "valve/dynamics.py" not in names  # the Python around the engine does not key it
+    assert "valve/run/simulate.py" not in names  # the Python around the engine does not key it
 
 
 def test_no_writable_cache_folder_compiles_in_memory_and_says_so_once(tmp_path):

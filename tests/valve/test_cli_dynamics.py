@@ -2,13 +2,13 @@
 
 import csv
 import json
-from pathlib import Path
 
 import pytest
 
 from springdyn.app.cli.main import main
+from tests.paths import EXAMPLES
 
-EX = Path(__file__).resolve().parents[2] / "examples" / "valve"
+EX = EXAMPLES / "valve"
 SPRING, CAM, VT = str(EX / "one_step_spring.toml"), str(EX / "cam_345.toml"), str(EX / "valve_train.toml")
 CAMR = str(EX / "cam_polydyne_ramps.toml")  # the valve train's lash is taken up by these ramps
 

@@ -8,7 +8,7 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveModel, ValveSpring, ValveTrain, simulate
-from springdyn.valve.train_modes import natural_frequencies
+from springdyn.valve.run.train_modes import natural_frequencies
 
 
 @pytest.fixture(scope="module")

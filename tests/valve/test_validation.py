@@ -120,7 +120,7 @@ import warnings
 import numpy as np
 
 from springdyn.valve import Cam, ValveTrain, float_speed, simulate, sweep
-from springdyn.valve.modes import surge_margin
+from springdyn.valve.spring.modes import surge_margin
 
 CAM = Cam(law="3-4-5", lift=0.009, duration=math.radians(120))
 VT = ValveTrain(valve_mass=0.05)

@@ -4,12 +4,12 @@
 :class:`springdyn.lsd.LSDModel`: built from the definitions (:class:`ValveSpring`, :class:`Cam`,
 :class:`ValveTrain`), it runs the analyses and returns :class:`~springdyn.core.results.Result`
 objects.  What it derives once and reuses is visible: the spring's chain model
-(:attr:`chain_model`, :mod:`springdyn.valve.chains`) and the speed-independent set-up of the
+(:attr:`chain_model`, :mod:`springdyn.valve.spring.chains`) and the speed-independent set-up of the
 engine (:attr:`setup`), both cached properties of this (mutable) object.
 
-Where each analysis lives: statics and modes of the chain, :mod:`springdyn.valve.chains`; the
-frequency response, :mod:`springdyn.valve.frf`; simulation and natural frequencies under the
-cam, :mod:`springdyn.valve.dynamics`; speed sweeps, :mod:`springdyn.valve.sweeps`.
+Where each analysis lives: statics and modes of the chain, :mod:`springdyn.valve.spring.chains`; the
+frequency response, :mod:`springdyn.valve.spring.frf`; simulation and natural frequencies under the
+cam, :mod:`springdyn.valve.run.simulate`; speed sweeps, :mod:`springdyn.valve.run.sweeps`.
 
 Examples
 --------
@@ -24,9 +24,9 @@ from __future__ import annotations
 from functools import cached_property
 
 from ..core.errors import InputError
-from .cam import Cam
-from .spring import ValveSpring
-from .valvetrain import ValveTrain
+from .cam.definition import Cam
+from .spring.definition import ValveSpring
+from .train.definition import ValveTrain
 
 __all__ = ["ValveModel"]
 
@@ -67,14 +67,14 @@ class ValveModel:
     # ------------------------------------------------------------------ derived once
     @cached_property
     def chain_model(self):
-        """The spring's chain model (:class:`~springdyn.valve.chains.SpringModel`)."""
+        """The spring's chain model (:class:`~springdyn.valve.spring.chains.SpringModel`)."""
         return self.spring.spring_model
 
     @cached_property
     def setup(self):
         """The engine's speed-independent set-up: cam table, initial state
-        (:func:`springdyn.valve.setup.prepare`)."""
-        from .setup import prepare
+        (:func:`springdyn.valve.run.setup.prepare`)."""
+        from .run.setup import prepare
 
         return prepare(self.spring, self._need_cam("the set-up"), self.valve_train)
 
@@ -99,7 +99,7 @@ class ValveModel:
         return self.chain_model.static_force(length)
 
     def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
-        """The static force and stiffness against length (:class:`~springdyn.valve.results.StaticCurve`).
+        """The static force and stiffness against length (:class:`~springdyn.valve.run.results.StaticCurve`).
 
         Parameters
         ----------
@@ -123,7 +123,7 @@ class ValveModel:
         return self.chain_model.modes(length, count)
 
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:
-        """Spring index, corrected stresses, surge margin (:meth:`~springdyn.valve.chains.SpringModel.design_figures`).
+        """Spring index, corrected stresses, surge margin (:meth:`~springdyn.valve.spring.chains.SpringModel.design_figures`).
 
         Parameters
         ----------
@@ -137,7 +137,7 @@ class ValveModel:
         return self.chain_model.design_figures(lift, cam_rpm)
 
     def dynamic_stiffness(self, frequency, length: float | None = None):
-        """The linearised dynamic stiffness of the spring (:class:`~springdyn.valve.frf.FrequencyResponse`).
+        """The linearised dynamic stiffness of the spring (:class:`~springdyn.valve.spring.frf.FrequencyResponse`).
 
         Parameters
         ----------
@@ -146,22 +146,22 @@ class ValveModel:
         length : float, optional
             Spring length [m] (default: installed).
         """
-        from .frf import dynamic_stiffness
+        from .spring.frf import dynamic_stiffness
 
         return dynamic_stiffness(self.spring, frequency, length)
 
     # ------------------------------------------------------------------ under the cam
     def natural_frequencies(self, count: int = 8):
         """Natural frequencies of spring and valve train on the base circle and at full lift
-        (:class:`~springdyn.valve.results.NaturalFrequencies`).
+        (:class:`~springdyn.valve.run.results.NaturalFrequencies`).
 
         Parameters
         ----------
         count : int
             Frequencies per state [-].
         """
-        from .results import NaturalFrequencies
-        from .train_modes import natural_frequencies
+        from .run.results import NaturalFrequencies
+        from .run.train_modes import natural_frequencies
 
         out = natural_frequencies(self.spring, self._need_cam("natural_frequencies"), self.valve_train, count)
         return NaturalFrequencies(
@@ -169,7 +169,7 @@ class ValveModel:
         )
 
     def simulate(self, cam_rpm: float, revolutions: int | None = None, **options):
-        """The dynamic response at one cam speed (:class:`~springdyn.valve.results.Simulation`).
+        """The dynamic response at one cam speed (:class:`~springdyn.valve.run.results.Simulation`).
 
         Parameters
         ----------
@@ -179,10 +179,10 @@ class ValveModel:
             Revolutions from rest; the last is reported [-].  Default: to the periodic
             steady state.
         **options
-            Further options of :func:`springdyn.valve.dynamics.simulate` (periodicity
+            Further options of :func:`springdyn.valve.run.simulate.simulate` (periodicity
             tolerance, tolerances, outputs per revolution, backend, pair).
         """
-        from .dynamics import simulate
+        from .run.simulate import simulate
 
         self._need_cam("simulate")
         return simulate(
@@ -190,31 +190,31 @@ class ValveModel:
         )
 
     def sweep(self, cam_rpm, **options):
-        """Every cam speed of ``cam_rpm`` (:class:`~springdyn.valve.sweeps.SpeedSweep`).
+        """Every cam speed of ``cam_rpm`` (:class:`~springdyn.valve.run.sweeps.SpeedSweep`).
 
         Parameters
         ----------
         cam_rpm : array_like
             Cam speeds [rev/min].
         **options
-            Further options of :func:`springdyn.valve.sweeps.sweep` (revolutions, a design
+            Further options of :func:`springdyn.valve.run.sweeps.sweep` (revolutions, a design
             variable, workers, a Dask client).
         """
-        from .sweeps import sweep
+        from .run.sweeps import sweep
 
         return sweep(self.spring, self._need_cam("sweep"), cam_rpm, valve_train=self.valve_train, **options)
 
     def float_speed(self, cam_rpm, **options):
-        """The float speed of the valve train (:class:`~springdyn.valve.results.FloatSpeedResult`).
+        """The float speed of the valve train (:class:`~springdyn.valve.run.results.FloatSpeedResult`).
 
         Parameters
         ----------
         cam_rpm : array_like
             Cam speeds to scan [rev/min].
         **options
-            Further options of :func:`springdyn.valve.float_search.float_speed`.
+            Further options of :func:`springdyn.valve.run.float_search.float_speed`.
         """
-        from .float_search import float_speed
+        from .run.float_search import float_speed
 
         if self.valve_train is None:
             raise InputError("float_speed needs a valve train: ValveModel(spring, cam, valve_train=ValveTrain(...))")

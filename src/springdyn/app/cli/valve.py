@@ -20,10 +20,10 @@ from springdyn.app.cli.common import (
 )
 from springdyn.core.errors import InputError
 from springdyn.core.units import format_quantity
-from springdyn.valve.periodicity import MAX_REVOLUTIONS, PERIODICITY_TOL
-from springdyn.valve.spring import MODEL_NAMES, ValveSpring
+from springdyn.valve.run.periodicity import MAX_REVOLUTIONS, PERIODICITY_TOL
+from springdyn.valve.spring.definition import MODEL_NAMES, ValveSpring
 
-#: Default integration tolerances (the values of :mod:`springdyn.valve.setup`, kept here
+#: Default integration tolerances (the values of :mod:`springdyn.valve.run.setup`, kept here
 #: so that building the parser does not load the compiled engine; a test checks they agree).
 DEFAULT_RTOL = 1e-6
 DEFAULT_ATOL = 1e-9
@@ -349,7 +349,7 @@ def cam_rpm_from_args(args, *, ranged: bool):
     option = "--cam-rpm" if args.cam_rpm is not None else "--engine-rpm"
     text = args.cam_rpm if args.cam_rpm is not None else args.engine_rpm
 
-    from springdyn.valve.cam import cam_rpm_from_engine_rpm
+    from springdyn.valve.cam.definition import cam_rpm_from_engine_rpm
 
     def cam(rpm):
         return rpm if args.cam_rpm is not None else cam_rpm_from_engine_rpm(rpm)
@@ -375,7 +375,7 @@ def cmd_params(args) -> int:
     if args.json:
         print_json(params)
         return 0
-    from springdyn.valve.chains import PARAMETER_UNITS
+    from springdyn.valve.spring.chains import PARAMETER_UNITS
 
     rows = []
     for key, value in params.items():
@@ -391,7 +391,7 @@ def cmd_params(args) -> int:
     )
     print_table(rows, headers=("parameter", "value", "meaning"))
     if spring.load_points:
-        from springdyn.valve.calibrate import load_point_check
+        from springdyn.valve.design.calibrate import load_point_check
 
         _print_load_points(load_point_check(spring))
     return 0
@@ -426,9 +426,9 @@ def _print_load_points(rows) -> None:
 
 
 def cmd_cam(args) -> int:
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.cam_analysis import analyse_cam
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.analysis import analyse_cam
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.train.definition import ValveTrain
 
     cam = Cam.from_toml(args.cam)
     timing = _timing(args.cam)
@@ -511,8 +511,8 @@ def _calibrate_trace(args, spring, out) -> int:
 
     from springdyn.core.io import atomic_open, dumps_toml, read_csv_columns
     from springdyn.core.params import load_toml
-    from springdyn.valve.calibrate import calibrate_trace
-    from springdyn.valve.cam import Cam
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.design.calibrate import calibrate_trace
 
     if not (args.cam and args.cam_rpm):
         raise InputError("--trace needs --cam (the cam of the measurement) and --cam-rpm (its speed)")
@@ -552,7 +552,7 @@ def _calibrate_trace(args, spring, out) -> int:
 def cmd_calibrate(args) -> int:
     from springdyn.core.io import atomic_open, check_output_file, dumps_toml
     from springdyn.core.params import load_toml
-    from springdyn.valve.calibrate import calibrate
+    from springdyn.valve.design.calibrate import calibrate
 
     spring = _spring(args)
     out = check_output_file(args.out, "--out") if args.out else None
@@ -640,7 +640,7 @@ def cmd_modes(args) -> int:
 
 
 def cmd_train_modes(args) -> int:
-    from springdyn.valve.train_modes import natural_frequencies, resonance_speeds
+    from springdyn.valve.run.train_modes import natural_frequencies, resonance_speeds
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
@@ -686,7 +686,7 @@ def cmd_train_modes(args) -> int:
 
 def _train_modes_separated(args, spring, cam, vt) -> int:
     """``train-modes --cam-contact open``: the separated train and its jump frequency."""
-    from springdyn.valve.train_modes import separated_frequencies
+    from springdyn.valve.run.train_modes import separated_frequencies
 
     lift = quantity(args.valve_lift, "m", "--valve-lift") if args.valve_lift is not None else None
     with as_options(count="--count", valve_lift="--valve-lift"):
@@ -706,7 +706,7 @@ def _train_modes_separated(args, spring, cam, vt) -> int:
 
 
 def cmd_frf(args) -> int:
-    from springdyn.valve.frf import dynamic_stiffness
+    from springdyn.valve.spring.frf import dynamic_stiffness
 
     spring = _spring(args)
     freq = parse_range(args.frequency, "Hz", "--frequency", bare_unit="Hz")
@@ -792,8 +792,8 @@ def _gas_force(args, cam, vt):
     """``--gas-pressure``: the trace's force on the valve, phased by the cam's ``[timing]``."""
     if not args.gas_pressure:
         return None
-    from springdyn.valve.gas_force import GasForce
-    from springdyn.valve.timing import crank_axis
+    from springdyn.valve.cam.timing import crank_axis
+    from springdyn.valve.train.gas_force import GasForce
 
     if vt is None:
         raise InputError("--gas-pressure acts on the valve: give --valve-train (the spring alone has no valve)")
@@ -816,7 +816,7 @@ def _gas_force(args, cam, vt):
 
 def _crank_axis(args, cam):
     """Crank angles for the outputs: with an engine speed or the cam file's ``[timing]`` table."""
-    from springdyn.valve.timing import crank_axis
+    from springdyn.valve.cam.timing import crank_axis
 
     timing = _timing(args.cam)
     if timing is None and getattr(args, "spring", None):  # one file may hold the whole definition
@@ -828,14 +828,14 @@ def _crank_axis(args, cam):
 
 def _timing(cam_file):
     """The file's ``[timing]`` table (the cam's, or the definition's), or None."""
-    from springdyn.valve.timing import Timing
+    from springdyn.valve.cam.timing import Timing
 
     return Timing.in_file(cam_file)
 
 
 def _load_cam_and_train(args):
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.train.definition import ValveTrain
 
     cam = Cam.from_toml(args.cam)
     vt = ValveTrain.from_toml(args.valve_train) if getattr(args, "valve_train", None) else None
@@ -843,8 +843,8 @@ def _load_cam_and_train(args):
 
 
 def cmd_speed_ramp(args, spring, cam, vt) -> int:
-    """``valve simulate --speed-ramp START:END:RATE``: the run-up (:func:`springdyn.valve.run_up.speed_ramp`)."""
-    from springdyn.valve.run_up import speed_ramp
+    """``valve simulate --speed-ramp START:END:RATE``: the run-up (:func:`springdyn.valve.run.run_up.speed_ramp`)."""
+    from springdyn.valve.run.run_up import speed_ramp
 
     parts = args.speed_ramp.split(":")
     if len(parts) != 3:
@@ -889,7 +889,7 @@ def cmd_speed_ramp(args, spring, cam, vt) -> int:
 
 
 def cmd_simulate(args) -> int:
-    from springdyn.valve.dynamics import simulate
+    from springdyn.valve.run.simulate import simulate
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
@@ -1057,7 +1057,7 @@ def cmd_simulate(args) -> int:
 
 
 def cmd_float(args) -> int:
-    from springdyn.valve.float_search import float_speed
+    from springdyn.valve.run.float_search import float_speed
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)
@@ -1151,7 +1151,7 @@ def parse_vary(text: str, spring: ValveSpring):
 def cmd_sweep(args) -> int:
     from pathlib import Path
 
-    from springdyn.valve.sweeps import connect, describe_design_value, sweep
+    from springdyn.valve.run.sweeps import connect, describe_design_value, sweep
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)

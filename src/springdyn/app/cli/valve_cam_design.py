@@ -1,7 +1,7 @@
 """``springdyn valve cam-from-lift``, ``springdyn valve cam-check`` and ``springdyn valve
 kinematics``: the cam and lever designer's commands (thin layer over
-:mod:`springdyn.valve.cam_from_lift`, :mod:`springdyn.valve.cam_check` and
-:mod:`springdyn.valve.lever`)."""
+:mod:`springdyn.valve.cam.from_lift`, :mod:`springdyn.valve.cam.checks` and
+:mod:`springdyn.valve.train.lever`)."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ from springdyn.app.cli.common import (
     quantity,
 )
 from springdyn.core.errors import InputError
-from springdyn.valve.spring import MODEL_NAMES
+from springdyn.valve.spring.definition import MODEL_NAMES
 
 __all__ = ["register", "cmd_cam_from_lift", "cmd_cam_check", "cmd_kinematics"]
 
@@ -108,7 +108,7 @@ def register(vsub) -> None:
 
 # ----------------------------------------------------------------------------- helpers
 def _follower(path, *, required: bool):
-    from springdyn.valve.follower import Follower
+    from springdyn.valve.cam.follower import Follower
 
     follower = Follower.in_file(path)
     if follower is None and required:
@@ -121,7 +121,7 @@ def _follower(path, *, required: bool):
 
 def _cam_rpm(args, timing) -> float | None:
     """Cam speed [rev/min] from --cam-rpm or --engine-rpm (the [timing] strokes, else a four-stroke)."""
-    from springdyn.valve.cam import cam_rpm_from_engine_rpm
+    from springdyn.valve.cam.definition import cam_rpm_from_engine_rpm
 
     if args.cam_rpm is None and args.engine_rpm is None:
         return None
@@ -139,7 +139,7 @@ def _mm(value) -> str:
 
 
 def _print_checks(s) -> None:
-    """The geometric and stress checks of a :class:`~springdyn.valve.cam_check.CamCheck` summary."""
+    """The geometric and stress checks of a :class:`~springdyn.valve.cam.checks.CamCheck` summary."""
     kind = s["follower"]
     where = f" at {s['min_radius_of_curvature_cam_angle_deg']:.2f} deg" if s["min_radius_of_curvature_m"] else ""
     if kind == "flat":
@@ -179,16 +179,16 @@ def _print_checks(s) -> None:
 def cmd_cam_from_lift(args) -> int:
     """``springdyn valve cam-from-lift``: the lobe of a valve-lift table or a cam card."""
     from springdyn.core.io import check_output_file
-    from springdyn.valve.cam_check import check_cam
-    from springdyn.valve.cam_from_lift import (
+    from springdyn.valve.cam.checks import check_cam
+    from springdyn.valve.cam.from_lift import (
         CamCard,
         cam_from_card,
         cam_from_valve_lift,
         read_valve_lift_table,
         write_cam,
     )
-    from springdyn.valve.timing import Timing
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.timing import Timing
+    from springdyn.valve.train.definition import ValveTrain
 
     if (args.lift is None) == (args.card is None):
         raise InputError("give the wanted valve lift LIFT.csv or --card CARD.toml (one of them)")
@@ -289,11 +289,11 @@ def cmd_cam_from_lift(args) -> int:
 
 def cmd_cam_check(args) -> int:
     """``springdyn valve cam-check``: curvature, excursion, pressure angle and Hertz stress."""
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.cam_check import check_cam
-    from springdyn.valve.spring import ValveSpring
-    from springdyn.valve.timing import Timing
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.checks import check_cam
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.cam.timing import Timing
+    from springdyn.valve.spring.definition import ValveSpring
+    from springdyn.valve.train.definition import ValveTrain
 
     cam = Cam.from_toml(args.cam)
     vt = ValveTrain.from_toml(args.valve_train)
@@ -341,8 +341,8 @@ def cmd_cam_check(args) -> int:
 
 def cmd_kinematics(args) -> int:
     """``springdyn valve kinematics``: the drawn lever over the cam."""
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.train.definition import ValveTrain
 
     cam = Cam.from_toml(args.cam)
     vt = ValveTrain.from_toml(args.valve_train)

@@ -1,5 +1,5 @@
 """``springdyn valve friction``: the valve train's friction over speed (thin layer over
-:func:`springdyn.valve.simulate` and :mod:`springdyn.valve.friction`)."""
+:func:`springdyn.valve.simulate` and :mod:`springdyn.valve.train.friction`)."""
 
 from __future__ import annotations
 
@@ -37,11 +37,12 @@ def cmd_friction(args) -> int:
     from springdyn.core.params import load_toml
     from springdyn.core.progress import progress
     from springdyn.valve import simulate
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.follower import Follower
-    from springdyn.valve.friction import Friction, friction_over_speed, simulation_friction
-    from springdyn.valve.spring import ValveSpring
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.cam.follower import Follower
+    from springdyn.valve.run.friction import friction_over_speed, simulation_friction
+    from springdyn.valve.spring.definition import ValveSpring
+    from springdyn.valve.train.definition import ValveTrain
+    from springdyn.valve.train.friction import Friction
 
     spring = ValveSpring.from_toml(args.spring).with_model(args.model)
     cam = Cam.from_toml(args.cam)

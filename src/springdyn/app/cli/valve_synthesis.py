@@ -1,6 +1,6 @@
 """``springdyn valve synthesize``, ``tolerance`` and ``life``: valve springs from requirements,
 proven across tolerances, relaxed and loaded by a spectrum (thin layer over
-:mod:`springdyn.valve.synthesis`, :mod:`springdyn.valve.tolerances` and :mod:`springdyn.valve.life`)."""
+:mod:`springdyn.valve.design.synthesis`, :mod:`springdyn.valve.design.tolerances` and :mod:`springdyn.valve.design.life`)."""
 
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ def register(vsub) -> None:
 def cmd_synthesize(args) -> int:
     """``springdyn valve synthesize``: search, check, rank, write."""
     from springdyn.core.progress import progress
-    from springdyn.valve.synthesis import read_requirements, synthesize, write_candidates
+    from springdyn.valve.design.synthesis import read_requirements, synthesize, write_candidates
 
     if not 1 <= args.per_kind <= 20:
         raise InputError(f"--per-kind = {args.per_kind} must be from 1 to 20")
@@ -147,10 +147,10 @@ def cmd_tolerance(args) -> int:
 
     from springdyn.app.cli.common import as_options, quantity
     from springdyn.core.progress import progress
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.spring import ValveSpring
-    from springdyn.valve.tolerances import FIGURES, OUTPUTS, read_tolerances, tolerance_study
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.design.tolerances import FIGURES, OUTPUTS, read_tolerances, tolerance_study
+    from springdyn.valve.spring.definition import ValveSpring
+    from springdyn.valve.train.definition import ValveTrain
 
     count = quantity(args.samples, "", "--samples")
     if count != int(count) or not 1 <= count <= 10_000_000:
@@ -178,7 +178,7 @@ def cmd_tolerance(args) -> int:
         workers = int(workers)
     client = None
     if args.scheduler:
-        from springdyn.valve.sweeps import connect
+        from springdyn.valve.run.sweeps import connect
 
         with as_options(scheduler="--scheduler"):
             client = connect(args.scheduler)
@@ -259,10 +259,10 @@ def cmd_life(args) -> int:
     """``springdyn valve life``: relaxation and spectrum life."""
     from springdyn.app.cli.common import emit
     from springdyn.core.params import load_toml
-    from springdyn.valve.cam import Cam
-    from springdyn.valve.life import LoadSpectrum, service_life
-    from springdyn.valve.spring import ValveSpring
-    from springdyn.valve.valvetrain import ValveTrain
+    from springdyn.valve.cam.definition import Cam
+    from springdyn.valve.design.life import LoadSpectrum, service_life
+    from springdyn.valve.spring.definition import ValveSpring
+    from springdyn.valve.train.definition import ValveTrain
 
     spring = ValveSpring.from_toml(args.spring).with_model(args.model)
     cam = Cam.from_toml(args.cam)

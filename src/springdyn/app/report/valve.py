@@ -14,17 +14,17 @@ from springdyn.core.io import write_json
 from springdyn.core.params import Parameters, param
 from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity
-from springdyn.valve.cam import Cam
-from springdyn.valve.chains import PARAMETER_UNITS
-from springdyn.valve.stress import spring_strengths
-from springdyn.valve.dynamics import simulate
-from springdyn.valve.float_search import float_speed
-from springdyn.valve.periodicity import PERIODICITY_TOL
-from springdyn.valve.spring import ValveSpring
-from springdyn.valve.sweeps import sweep
-from springdyn.valve.timing import Timing, crank_axis
-from springdyn.valve.train_modes import natural_frequencies
-from springdyn.valve.valvetrain import ValveTrain
+from springdyn.valve.cam.definition import Cam
+from springdyn.valve.cam.timing import Timing, crank_axis
+from springdyn.valve.run.float_search import float_speed
+from springdyn.valve.run.periodicity import PERIODICITY_TOL
+from springdyn.valve.run.simulate import simulate
+from springdyn.valve.run.sweeps import sweep
+from springdyn.valve.run.train_modes import natural_frequencies
+from springdyn.valve.spring.chains import PARAMETER_UNITS
+from springdyn.valve.spring.definition import ValveSpring
+from springdyn.valve.spring.stress import spring_strengths
+from springdyn.valve.train.definition import ValveTrain
 
 __all__ = ["load", "section", "ValveDefinition", "ReportSettings", "DEFAULT_CAM"]
 
@@ -162,7 +162,7 @@ class ValveDefinition:
     #: The ``[follower]`` and ``[friction]`` tables: the train's friction over speed.
     follower: object = None
     friction: object = None
-    #: The gas force of ``[report] cylinder_pressure`` (:class:`springdyn.valve.gas_force.GasForce`).
+    #: The gas force of ``[report] cylinder_pressure`` (:class:`springdyn.valve.train.gas_force.GasForce`).
     gas_force: object = None
     #: ``[report] requirements``: (Requirements, the file's folder), or None.
     requirements: object = None
@@ -187,7 +187,7 @@ def load(doc: dict, path: Path) -> ValveDefinition:
     for table in ("follower", "geometry"):
         if table in doc and "valve_train" not in doc:
             raise InputError(f"{path}: [{table}] needs a [valve_train] table in the same file")
-    if "geometry" in doc:  # a drawn lever (springdyn.valve.lever): its ratio comes from the drawing
+    if "geometry" in doc:  # a drawn lever (springdyn.valve.train.lever): its ratio comes from the drawing
         vt = ValveTrain.with_lever_drawing(doc, source=str(path))
     else:
         vt = ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
@@ -197,8 +197,8 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         vt = vt.with_hla(doc["hla"], source=str(path))
     settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path))
     timing = Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
-    from springdyn.valve.follower import Follower
-    from springdyn.valve.friction import Friction
+    from springdyn.valve.cam.follower import Follower
+    from springdyn.valve.train.friction import Friction
 
     follower = Follower.from_dict(doc["follower"], source=str(path)) if "follower" in doc else None
     if "friction" in doc and follower is None:
@@ -206,8 +206,8 @@ def load(doc: dict, path: Path) -> ValveDefinition:
     friction = Friction.from_dict(doc["friction"], source=str(path)) if "friction" in doc else None
     gas = None
     if settings.cylinder_pressure is not None:
-        from springdyn.valve.gas_force import GasForce
-        from springdyn.valve.timing import crank_axis
+        from springdyn.valve.cam.timing import crank_axis
+        from springdyn.valve.train.gas_force import GasForce
 
         need = [t for t, ok in (("[valve_train]", vt is not None), ("[timing]", timing is not None)) if not ok]
         if vt is not None and vt.seat_diameter is None:
@@ -225,11 +225,11 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         )
     requirements = tolerances = None
     if settings.requirements is not None:
-        from springdyn.valve.synthesis import read_requirements
+        from springdyn.valve.design.synthesis import read_requirements
 
         requirements = read_requirements(_beside(path, settings.requirements, "requirements"))
     if settings.tolerances is not None:
-        from springdyn.valve.tolerances import read_tolerances
+        from springdyn.valve.design.tolerances import read_tolerances
 
         tolerances = read_tolerances(_beside(path, settings.tolerances, "tolerances"))
         if "lash" in tolerances[0] and vt is None:
@@ -241,8 +241,8 @@ def load(doc: dict, path: Path) -> ValveDefinition:
 
 def _run_up_finding(sp, lobe, vt, f, rs, axis, out_dir, files, figures) -> str:
     """A run-up through the float speed f [cam rpm] at [report] run_up_rate: where the valve
-    first floats against the momentary speed (springdyn.valve.run_up)."""
-    from springdyn.valve.run_up import speed_ramp
+    first floats against the momentary speed (springdyn.valve.run.run_up)."""
+    from springdyn.valve.run.run_up import speed_ramp
 
     rate = rs.cam_rpm(rs.run_up_rate)  # cam rpm per second
     ramp = speed_ramp(sp, lobe, vt, 0.85 * f, 1.1 * f, rate, float_scan=False)
@@ -285,8 +285,8 @@ def _gas_finding(sp, lobe, vt, d, top, axis) -> str:
 
 
 def _friction_finding(sp, lobe, vt, d, report_speeds, axis, out_dir, files, figures) -> str:
-    """The train's friction over speed up to the top speed (springdyn.valve.friction)."""
-    from springdyn.valve.friction import friction_over_speed, simulation_friction
+    """The train's friction over speed up to the top speed (springdyn.valve.train.friction)."""
+    from springdyn.valve.run.friction import friction_over_speed, simulation_friction
 
     speeds = np.linspace(report_speeds[0], report_speeds[-1], 5)
     analyses = [
@@ -641,8 +641,8 @@ def _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, 
     """``[report] requirements``: a new spring synthesised for them (the best candidate);
     ``[report] tolerances``: that spring, else the definition's, across its tolerances."""
     from springdyn.core.progress import progress
-    from springdyn.valve.synthesis import synthesize, write_candidates
-    from springdyn.valve.tolerances import tolerance_study
+    from springdyn.valve.design.synthesis import synthesize, write_candidates
+    from springdyn.valve.design.tolerances import tolerance_study
 
     rs, vt = d.settings, d.valve_train
     spring = d.spring

@@ -1,7 +1,7 @@
 """The cam as the engine sees it: a periodic table of lift and its first two derivatives,
 interpolated by quintic Hermite polynomials (C2), and the angles a step must land on.
 
-One place for the cam table: :class:`CamTable` samples a :class:`~springdyn.valve.cam.Cam`
+One place for the cam table: :class:`CamTable` samples a :class:`~springdyn.valve.cam.definition.Cam`
 (:meth:`CamTable.of`) and evaluates the interpolant on arrays (:meth:`CamTable.at`); the
 compiled engine evaluates the same interpolant (:func:`.equations.hermite5`, through
 :func:`.equations.cam_at`) on the same arrays.
@@ -47,7 +47,7 @@ class CamTable:
         Parameters
         ----------
         cam : Cam
-            The cam (its :meth:`~springdyn.valve.cam.Cam.sampled` values).
+            The cam (its :meth:`~springdyn.valve.cam.definition.Cam.sampled` values).
         samples : int
             Nodes per revolution [-].
         """
@@ -105,7 +105,7 @@ class CamTable:
         Parameters
         ----------
         breakpoints : array_like
-            Cam angles [rad] where the lift law is not smooth (:attr:`springdyn.valve.cam.Cam.breakpoints`).
+            Cam angles [rad] where the lift law is not smooth (:attr:`springdyn.valve.cam.definition.Cam.breakpoints`).
 
         Returns
         -------

@@ -1,6 +1,6 @@
 """The equations of motion the engine integrates: the spring's chain, its contacts, the valve train.
 
-One place for each (the element laws themselves are :mod:`springdyn.valve.elements`, whose
+One place for each (the element laws themselves are :mod:`springdyn.valve.spring.elements`, whose
 piecewise-quadratic tables ``laws`` the chain reads):
 
 - :func:`hermite5`: the cam as the engine sees it, a quintic Hermite interpolant (C2) of the
@@ -169,7 +169,7 @@ def model_of(args) -> EngineModel:
         ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``: masses [kg],
         element laws [m, N], set-up compressions [m], damping [N s/m], cam table [m, m/rad,
         m/rad^2], table step [rad], speed [rad/s] and valve-train parameters
-        (:meth:`springdyn.valve.setup.SimulationSetup.args`).
+        (:meth:`springdyn.valve.run.setup.SimulationSetup.args`).
     """
     masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth = args[:8]
     return EngineModel(masses, laws, xset, _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth))
@@ -242,10 +242,10 @@ def cam_at(theta, cam_h, cam_dh, cam_ddh, dth):
 def element_force(laws, c0, j, xj, rate, unilateral):
     """The force [N] of element ``j`` at compression ``xj`` [m] and compression rate ``rate`` [m/s].
 
-    ``F_j(x) + c_j(x) x'``: the piecewise-quadratic law (:mod:`springdyn.valve.elements`)
+    ``F_j(x) + c_j(x) x'``: the piecewise-quadratic law (:mod:`springdyn.valve.spring.elements`)
     and its damping, ``c0`` on the linear segment and ``c0 sqrt(k(x)/k0)`` beyond
-    (:func:`springdyn.valve.elements.damping_coefficient`): the scalar twin of
-    :func:`springdyn.valve.elements.law_force` for compiled code, which the tests compare
+    (:func:`springdyn.valve.spring.elements.damping_coefficient`): the scalar twin of
+    :func:`springdyn.valve.spring.elements.law_force` for compiled code, which the tests compare
     with it.  An end element is a contact (``unilateral``, MMS-7): compression only.
 
     Parameters
@@ -361,7 +361,7 @@ def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak, check):
 
 def gas_force_at(vt, theta):
     """The gas force on the valve [N] at the cam angle ``theta`` [rad]: linear and periodic in
-    the samples after the train's parameters (:class:`springdyn.valve.gas_force.GasForce`);
+    the samples after the train's parameters (:class:`springdyn.valve.train.gas_force.GasForce`);
     0 without them.
 
     Parameters
@@ -387,7 +387,7 @@ def gas_force_at(vt, theta):
 def lever_ratio_at(vt, theta):
     """The lever's ratio correction ``c = r_0 / r``, ``dc/dtheta`` [1/rad], the pivot factor
     ``n . d`` and its derivative [1/rad] at the cam angle ``theta`` [rad]: cubic Hermite and
-    periodic in the table after the gas force's samples (:mod:`springdyn.valve.lever`).
+    periodic in the table after the gas force's samples (:mod:`springdyn.valve.train.lever`).
 
     Parameters
     ----------
@@ -426,7 +426,7 @@ def lever_ratio_at(vt, theta):
 def lever_mass(vt, x):
     """The lever's mass at its valve-side tip [kg] and ``dM/dx`` [kg/m] at the tip's lift ``x`` [m]
     relative to the pivot: ``M = J / L_v^2``, ``L_v^2 = A^2 + B^2 - (x + A)^2``
-    (:func:`springdyn.valve.lever.lever_mass_at_valve`); the constant ``M_r`` without geometry.
+    (:func:`springdyn.valve.train.lever.lever_mass_at_valve`); the constant ``M_r`` without geometry.
 
     Parameters
     ----------
@@ -444,7 +444,7 @@ def lever_mass(vt, x):
 
 def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
     """Bulk modulus [Pa] of oil with free air at an absolute pressure: the scalar twin of
-    :func:`springdyn.valve.hla.effective_bulk_modulus` for compiled code (the tests compare
+    :func:`springdyn.valve.train.hla.effective_bulk_modulus` for compiled code (the tests compare
     them; a compiled kernel calls code of the engine's folder only, whose contents key its
     cache, :func:`springdyn.numerics.jit.source_group`).
 
@@ -466,12 +466,12 @@ def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
 
 
 def hla_chamber(vt, y, yd, p, out, k, kv):
-    """The adjuster's chamber, plunger spring and travel stops (:mod:`springdyn.valve.hla`).
+    """The adjuster's chamber, plunger spring and travel stops (:mod:`springdyn.valve.train.hla`).
 
     The plunger's collapse ``y`` (its travel into the body from the initial position, the
     direction that loses valve lift) and collapse rate ``yd``; the chamber pressure ``p``
     [Pa, absolute].  The chamber follows oil continuity
-    (:func:`springdyn.valve.hla.chamber_pressure_rate`) with the check valve as an orifice and
+    (:func:`springdyn.valve.train.hla.chamber_pressure_rate`) with the check valve as an orifice and
     laminar leakage with the Couette drag of the moving plunger; it holds at the cavitation
     pressure.  Writes ``dp/dt`` and the flows in and out [m^3/s] into ``out[k:k + 3]`` (the
     first-order states; zeros into ``out[kv:kv + 3]``) and returns the force that pushes the
@@ -502,7 +502,7 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
     dp_cv = ps - vt[VT_HLA_PCRACK] - p
     q_in = 0.0
     if dp_cv > 0.0:
-        if dp_cv < 2000.0:  # laminarised (springdyn.valve.hla.CHECK_VALVE_TRANSITION)
+        if dp_cv < 2000.0:  # laminarised (springdyn.valve.train.hla.CHECK_VALVE_TRANSITION)
             q_in = vt[VT_HLA_KCV] * dp_cv / math.sqrt(2000.0)
         else:
             q_in = vt[VT_HLA_KCV] * math.sqrt(dp_cv)
@@ -510,7 +510,7 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
     volume = vt[VT_HLA_V0] - area * y
     beta = air_oil_bulk_modulus(p, vt[VT_HLA_BETA], vt[VT_HLA_AIR], vt[VT_HLA_N])
     dp = beta / volume * (area * yd + q_in - q_leak)
-    if p <= 2000.0 and dp < 0.0:  # cavitation: the pressure holds (springdyn.valve.hla.P_CAVITATION)
+    if p <= 2000.0 and dp < 0.0:  # cavitation: the pressure holds (springdyn.valve.train.hla.P_CAVITATION)
         dp = 0.0
     out[k] = dp
     out[k + 1] = q_in
@@ -522,7 +522,7 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
 
 
 def hla_forces(s, nm, nfree, vt, out):
-    """The hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.hla`).
+    """The hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.train.hla`).
 
     States (after the chain's, the valve's and the lever tip's): the finger's pivot end
     ``y_a`` (its collapse direction positive), the plunger ``y_p`` in its fixed body, then
@@ -563,7 +563,7 @@ def hla_forces(s, nm, nfree, vt, out):
 
 
 def bucket_hla_forces(s, nm, nfree, vt, out):
-    """A hydraulic bucket tappet (:mod:`springdyn.valve.hla`): the adjuster inside the bucket.
+    """A hydraulic bucket tappet (:mod:`springdyn.valve.train.hla`): the adjuster inside the bucket.
 
     States (after the chain's and the valve's ``z``): the bucket body ``y_b`` on the cam, the
     plunger ``y_p`` on the valve stem (both in the valve's opening direction), then the
@@ -718,7 +718,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
             if ntr == 7:  # on a hydraulic lash adjuster: its pivot end moves
                 ya = s[nm + 2]
                 yad = s[nfree + nm + 2]
-            # the lever's geometry (springdyn.valve.lever): the ratio correction c = r_0 / r(theta)
+            # the lever's geometry (springdyn.valve.train.lever): the ratio correction c = r_0 / r(theta)
             # and the pivot's share n . d of the contact normal; 1 for the constant ratio
             c = 1.0
             dc = 0.0
@@ -771,7 +771,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
             out[nfree + nm + 1] = (f_push / r - f_valve) / vt[VT_M_LEVER]
         out[nm + 1] = zrd
     out[nm] = zd
-    # the gas force pushes the valve towards its seat (springdyn.valve.gas_force)
+    # the gas force pushes the valve towards its seat (springdyn.valve.train.gas_force)
     out[nfree + nm] = (f_valve + f_seat - f_spring - gas_force_at(vt, theta)) / vt[VT_MASS]
     _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
 
@@ -917,7 +917,7 @@ for _name in ("hla_forces", "bucket_hla_forces"):
     _TWINS["__globals__"][_name] = kernel(
         rebind(globals()[_name], _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
     )
-# the same for the drawn lever's table (springdyn.valve.lever), used by lever trains only
+# the same for the drawn lever's table (springdyn.valve.train.lever), used by lever trains only
 _TWINS["__globals__"]["lever_ratio_at"] = kernel(
     rebind(lever_ratio_at, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
 )

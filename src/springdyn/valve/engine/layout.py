@@ -1,6 +1,6 @@
 """The engine's array layouts, by name (numba freezes module-level integers into the code).
 
-- ``VT_*``: the valve train's parameter vector (:meth:`springdyn.valve.valvetrain.ValveTrain.kernel_parameters`).
+- ``VT_*``: the valve train's parameter vector (:meth:`springdyn.valve.train.definition.ValveTrain.kernel_parameters`).
 - ``X_*``: the right-hand side's ``extra`` outputs after the ``2 (N + 1)`` element forces and
   compressions (:func:`extra_layout`).
 - ``EXT_*``: the monitor's per-speed extremes (:data:`EXT`).
@@ -29,7 +29,7 @@ VT_M_LIFTER = 12  #: lifter mass M_f [kg]
 VT_K_PUSH = 13  #: pushrod stiffness k_p [N/m]
 VT_C_PUSH = 14  #: pushrod damping c_p [N s/m]
 VT_LOBE_LASH = 15  #: lobe lift that starts the event [m]
-# hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.hla`; zeros without one)
+# hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.train.hla`; zeros without one)
 VT_HLA = 16  #: 1 with the adjuster's dynamics (layout rocker, dof 7), 0 without [-]
 VT_HLA_AREA = 17  #: plunger area A_p [m^2]
 VT_HLA_V0 = 18  #: chamber volume at the initial plunger position [m^3]
@@ -52,21 +52,21 @@ VT_HLA_YMIN = 34  #: plunger travel out of the body to its clip (negative) [m]
 VT_HLA_KSTOP = 35  #: stiffness of the plunger's travel stops [N/m]
 VT_HLA_CSTOP = 36  #: damping of the plunger in its bore and stops [N s/m]
 #: samples of the gas force on the valve over one revolution (0: none); the samples follow
-#: the vector's fixed entries (:mod:`springdyn.valve.gas_force`) [-]
+#: the vector's fixed entries (:mod:`springdyn.valve.train.gas_force`) [-]
 VT_GAS_N = 37
 #: cam angular acceleration alpha [rad/s^2] of a speed ramp: the cam angle is
-#: ``omega t + alpha t^2 / 2`` (0: constant speed; :mod:`springdyn.valve.run_up`)
+#: ``omega t + alpha t^2 / 2`` (0: constant speed; :mod:`springdyn.valve.run.run_up`)
 VT_ALPHA = 38
-# lever kinematics from the 2-D geometry (:mod:`springdyn.valve.lever`; zeros: the constant ratio)
+# lever kinematics from the 2-D geometry (:mod:`springdyn.valve.train.lever`; zeros: the constant ratio)
 VT_GEOM = 39  #: 1 with the lever's geometry (layout rocker), 0 for the constant ratio [-]
-VT_PAD_A = 40  #: the pad's A = (P_0 - O) . d [m] (:func:`springdyn.valve.lever.valve_side_lift`)
+VT_PAD_A = 40  #: the pad's A = (P_0 - O) . d [m] (:func:`springdyn.valve.train.lever.valve_side_lift`)
 VT_PAD_R2 = 41  #: A^2 + B^2 [m^2]
 VT_LEVER_J = 42  #: the lever's inertia about its pivot, roller included [kg m^2]
 #: samples of the lever's ratio table ``c, dc/dtheta, n . d, d(n . d)/dtheta`` over a
 #: revolution, after the gas force's samples (0: none) [-]
 VT_GEOM_N = 43
 #: the adjuster's collapse as a periodicity force: the force [N] per metre of collapse that the
-#: train would see through it (:meth:`springdyn.valve.valvetrain.ValveTrain.hla_check_stiffness`) [N/m]
+#: train would see through it (:meth:`springdyn.valve.train.definition.ValveTrain.hla_check_stiffness`) [N/m]
 VT_HLA_KCHK = 44
 VT_SIZE = 45
 

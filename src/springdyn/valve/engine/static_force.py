@@ -1,5 +1,5 @@
 """The static force of the spring's series chain, compiled (the engine's twin of
-:func:`springdyn.valve.statics.series_force`): the static force along a cam at every output
+:func:`springdyn.valve.spring.statics.series_force`): the static force along a cam at every output
 sample of a simulation."""
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ __all__ = ["series_force_compiled"]
 
 @kernel
 def series_force_compiled(total_compression, laws, out, table_x, table_f):
-    """Compiled twin of :func:`springdyn.valve.statics.series_force` (Newton's method).
+    """Compiled twin of :func:`springdyn.valve.spring.statics.series_force` (Newton's method).
 
     For each total compression [m], the common force [N] of the series chain, by Newton's
     method on each element's closed-form inverse law.  The total compression is a concave

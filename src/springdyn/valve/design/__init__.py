@@ -1,0 +1,30 @@
+"""The design wing: springs designed from requirements, proven across tolerances and life.
+
+- :mod:`.synthesis` -- valve springs from requirements (``[requirements]``): the lightest
+  springs that meet load points, space, Goodman, surge and float speed, ranked;
+- :mod:`.tolerances` -- a spring across its manufacturing tolerances (``[tolerances]``,
+  ``[criteria]``): Sobol or Monte Carlo variants, percentiles, failing shares;
+- :mod:`.life` -- relaxation at the service temperature and the life against a load
+  spectrum (``[spectrum]``);
+- :mod:`.calibrate` -- the drawing's load points against the model, and a fit of the shear
+  modulus or the active coils to them, or of the damping to a measured trace.
+
+It imports every wing below it.
+"""
+
+from __future__ import annotations
+
+from ..._lazy import lazy_package
+
+_EXPORTS = {
+    "Requirements": "synthesis",
+    "synthesize": "synthesis",
+    "tolerance_study": "tolerances",
+    "read_tolerances": "tolerances",
+    "LoadSpectrum": "life",
+    "service_life": "life",
+    "calibrate": "calibrate",
+}
+__all__ = sorted(_EXPORTS)
+
+lazy_package(__name__, _EXPORTS)

@@ -1,0 +1,188 @@
+"""The spring against its drawing's load points, and a fit of the model to them.
+
+:func:`load_point_check` gives the model's static force at each load point of the
+``[spring]`` table (``load_points``) with its deviation and whether it lies within the
+tolerance; :func:`calibrate` fits the shear modulus or the active coils so that the model
+meets the load points in the least-squares sense (each deviation weighted by its
+tolerance), and says how well.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...core.errors import InputError
+
+__all__ = ["load_point_check", "calibrate", "calibrate_trace", "FIT_PARAMETERS", "TRACE_PARAMETERS"]
+
+#: The cost of a value the spring's checks refuse (finite, so the minimiser's arithmetic stays finite).
+REFUSED = 1e30
+#: What :func:`calibrate` can fit, with the search range as factors of the given value.
+FIT_PARAMETERS = {"shear_modulus": (0.5, 2.0), "active_coils": (0.5, 2.0)}
+
+
+def load_point_check(spring) -> list[dict]:
+    """The model's static force at each load point of the drawing
+    (:meth:`springdyn.valve.spring.chains.SpringModel.load_point_check`).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        With ``load_points``.
+    """
+    return spring.spring_model.load_point_check()
+
+
+def _weighted_residuals(spring) -> np.ndarray:
+    """Deviations over their tolerances (1 % of the force where none is given) [-]."""
+    return np.array([r["deviation_N"] / (r["tolerance_N"] or 0.01 * r["force_N"]) for r in load_point_check(spring)])
+
+
+def _with(spring, name: str, value: float):
+    if name == "shear_modulus":
+        return spring.replace(shear_modulus=value)
+    # active coils: the high-pitch coils carry the change (dead and low-pitch coils as drawn)
+    return spring.replace(high_pitch_coils=value - spring.low_pitch_coils + 2 * spring.dead_coils)
+
+
+def calibrate(spring, fit: str = "shear_modulus") -> dict:
+    """Fit the shear modulus or the active coils to the drawing's load points.
+
+    Minimises the sum of squared deviations over their tolerances (1 % of the force where
+    none is given) over the parameter, between half and twice its given value (bounded
+    scalar minimisation, to 1e-10 relative).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        With at least one load point.
+    fit : {"shear_modulus", "active_coils"}
+        The parameter to fit [-].
+
+    Returns
+    -------
+    dict
+        ``parameter``, ``before`` and ``after`` (its value: [Pa] or [-]), ``spring`` (the
+        calibrated :class:`ValveSpring`), ``load_points_before`` and ``load_points_after``
+        (:func:`load_point_check`), ``rms_weighted_residual`` (after) [-].
+    """
+    from scipy.optimize import minimize_scalar
+
+    if fit not in FIT_PARAMETERS:
+        raise InputError(f"fit = {fit!r}: calibrate fits one of {', '.join(FIT_PARAMETERS)}")
+    if not spring.load_point_table:
+        raise InputError(
+            'calibrate needs load points in the [spring] table: load_points = [{ length = "38 mm", force = '
+            '"250 N", tolerance = "5 %" }, ...]'
+        )
+    before = spring.shear_modulus if fit == "shear_modulus" else spring.active_coils
+    lo, hi = (f * before for f in FIT_PARAMETERS[fit])
+
+    def cost(value):
+        try:
+            return float(np.sum(_weighted_residuals(_with(spring, fit, value)) ** 2))
+        except InputError:  # a value the spring's checks refuse (e.g. a load point beyond solid)
+            return REFUSED
+
+    res = minimize_scalar(cost, bounds=(lo, hi), method="bounded", options=dict(xatol=1e-10 * before))
+    if not res.fun < REFUSED:
+        raise InputError(f"calibrate: no {fit} between {lo:.4g} and {hi:.4g} meets the load points")
+    after = float(res.x)
+    fitted = _with(spring, fit, after)
+    r = _weighted_residuals(fitted)
+    return dict(
+        parameter=fit,
+        before=float(before),
+        after=after,
+        spring=fitted,
+        load_points_before=load_point_check(spring),
+        load_points_after=load_point_check(fitted),
+        rms_weighted_residual=float(np.sqrt(np.mean(r**2))),
+    )
+
+
+#: What :func:`calibrate_trace` can fit to a measured force trace (fitted in log space).
+TRACE_PARAMETERS = ("damping_ratio", "contact_stiffness")
+
+
+def calibrate_trace(
+    spring, cam, cam_rpm: float, cam_angle, retainer_force, fit=TRACE_PARAMETERS, valve_train=None
+) -> dict:
+    """Fit the damping and the contact stiffness to a measured retainer-force trace.
+
+    Least squares (``scipy.optimize.least_squares``, trust region, in the logarithms of the
+    parameters) of the simulated retainer force at the periodic steady state
+    (:func:`springdyn.valve.simulate`) against the measured one at its cam angles.  The
+    contact stiffness shows only where coils clash: measure at a clash speed to fit it.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    cam_rpm : float
+        Cam speed of the measurement [rev/min].
+    cam_angle : array_like
+        Cam angles of the samples [rad].
+    retainer_force : array_like
+        Measured retainer force [N].
+    fit : sequence of str
+        Parameters to fit, of :data:`TRACE_PARAMETERS` [-].
+    valve_train : ValveTrain, optional
+
+    Returns
+    -------
+    dict
+        ``values`` (fitted, SI), ``before`` (given or default values), ``rms_N`` (the rms
+        deviation after the fit) and ``rms_before_N`` [N], ``spring`` (the calibrated spring).
+    """
+    from scipy.optimize import least_squares
+
+    from ..run.simulate import simulate
+
+    fit = list(fit)
+    bad = [f for f in fit if f not in TRACE_PARAMETERS]
+    if bad or not fit:
+        raise InputError(f"fit = {fit!r}: a force trace fits {', '.join(TRACE_PARAMETERS)}")
+    theta = np.mod(np.asarray(cam_angle, dtype=float), 2 * np.pi)
+    measured = np.asarray(retainer_force, dtype=float)
+    if theta.shape != measured.shape or theta.size < 8 or not np.all(np.isfinite(measured)):
+        raise InputError("the trace needs at least 8 finite samples of cam angle and retainer force of one length")
+    start = {
+        "damping_ratio": spring.damping_ratio,
+        "contact_stiffness": float(spring.spring_model.turn_contact_stiffness(spring.mean_diameter))
+        if hasattr(spring.spring_model, "turn_contact_stiffness")
+        else (spring.contact_stiffness or float(spring.spring_model.internal_parameters()["K"])),
+    }
+    if start["damping_ratio"] <= 0:
+        start["damping_ratio"] = 0.02
+
+    def spring_of(logs):
+        return spring.replace(**{name: float(np.exp(v)) for name, v in zip(fit, logs)})
+
+    def residual(logs):
+        # periodic to 1e-6 of Fset: the finite differences of the fit see the parameters, not the
+        # revolution the run stopped at
+        sim = simulate(
+            spring_of(logs),
+            cam,
+            cam_rpm,
+            valve_train=valve_train,
+            check_elements=False,
+            periodicity_tol=1e-6,
+            points_per_revolution=720,
+        )
+        order = np.argsort(sim.cam_angle)
+        model = np.interp(theta, sim.cam_angle[order], sim.retainer_force[order], period=2 * np.pi)
+        return model - measured
+
+    x0 = np.log([start[name] for name in fit])
+    r0 = residual(x0)
+    res = least_squares(residual, x0, x_scale=1.0, diff_step=1e-2, xtol=1e-8, ftol=1e-10, max_nfev=200)
+    values = {name: float(np.exp(v)) for name, v in zip(fit, res.x)}
+    return dict(
+        values=values,
+        before={name: start[name] for name in fit},
+        rms_N=float(np.sqrt(np.mean(res.fun**2))),
+        rms_before_N=float(np.sqrt(np.mean(r0**2))),
+        spring=spring_of(res.x),
+    )

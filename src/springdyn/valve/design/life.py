@@ -1,0 +1,245 @@
+"""A valve spring's service life: relaxation at its temperature and a load spectrum (``[spectrum]``).
+
+What spring calculators give (Hexagon's FED1+, IST's Spring Calculator), with springdyn's
+dynamics underneath:
+
+- **Relaxation**: the installed force after ``hours`` at ``temperature`` from the wire's
+  relaxation table (:func:`springdyn.valve.spring.materials.relaxed_force`, the uncorrected initial
+  stress at the installed length); the relaxed spring is the same spring with its free length
+  shortened so that its installed force is the relaxed one (the set the wire takes), and its
+  float speed is computed again when a valve train is given.
+- **Load spectrum**: per speed of the spectrum its share of the running time; each speed is
+  simulated to its periodic steady state (:func:`springdyn.valve.sweep`), its worst wire
+  element's Goodman safety (the dynamic stress cycle, surge included) is read as a load factor
+  on the material's S-N line, and Miner's sum gives the damage per hour and the life
+  (:func:`springdyn.valve.spring.materials.spectrum_life`).  One load cycle per cam revolution.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.params import Parameters, param
+from ...core.results import Result
+
+__all__ = ["LoadSpectrum", "service_life", "ServiceLife", "relaxed_spring", "FLOAT_RESOLUTION"]
+
+#: Resolution of the float speeds before and after relaxation [rev/min] (a bisection: the
+#: relaxation's change of the float speed is some tens of rpm).
+FLOAT_RESOLUTION = 2.0
+
+
+@dataclass(frozen=True)
+class LoadSpectrum(Parameters):
+    """The ``[spectrum]`` table: speeds and their time shares, temperature, hours, material."""
+
+    cam_rpm: list = param(
+        "rad/s", "cam speeds of the spectrum", kind="quantity_list", display="rpm", bare_unit="rpm", positive=True
+    )
+    share: list = param(
+        "", "share of the running time at each speed (summing to 1)", kind="quantity_list", nonnegative=True
+    )
+    temperature: float = param("K", "spring temperature in service", display="degC", positive=True, default=393.15)
+    hours: float = param(
+        "s", "running time of the relaxation", display="h", bare_unit="h", positive=True, default=3000.0 * 3600.0
+    )
+    material: str = param(
+        None,
+        "the wire's relaxation and S-N data (springdyn.valve.spring.materials: SiCr, SiCrV, CrV, music-wire)",
+        kind="str",
+        default="SiCr",
+    )
+
+    table = "spectrum"
+
+    def _validate(self) -> None:
+        if len(self.cam_rpm) != len(self.share):
+            raise InputError(
+                f"[spectrum] cam_rpm has {len(self.cam_rpm)} speeds but share has {len(self.share)}: one share per speed"
+            )
+        if not math.isclose(sum(self.share), 1.0, abs_tol=1e-6):
+            raise InputError(f"[spectrum] share sums to {sum(self.share):.6g}; the shares of the running time sum to 1")
+        if len(self.cam_rpm) > 200:
+            raise InputError("[spectrum] cam_rpm: at most 200 speeds")
+        from ..spring.materials import material
+
+        material(self.material)
+
+    @property
+    def speeds_rpm(self) -> np.ndarray:
+        """The spectrum's cam speeds [rev/min]."""
+        return np.asarray(self.cam_rpm, dtype=float) * 30.0 / math.pi
+
+    @property
+    def hours_h(self) -> float:
+        """The relaxation's running time [h]."""
+        return self.hours / 3600.0
+
+
+def relaxed_spring(spring, spectrum: LoadSpectrum):
+    """The spring after relaxation: its installed force ``F (1 - loss)``, by a shorter free
+    length (the rate unchanged).  Returns the spring and the loss [fraction].
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    spectrum : LoadSpectrum
+        Temperature, hours and material.
+    """
+    from ..spring.materials import relaxed_force
+
+    p = spring.spring_model.internal_parameters()
+    f0 = float(p["Fset"])
+    f1 = float(
+        relaxed_force(
+            f0, spectrum.material, spectrum.temperature, spring.mean_diameter, spring.wire_diameter, spectrum.hours_h
+        )
+    )
+    k1 = float(p["K1"])
+    relaxed = dataclasses.replace(spring, free_length=spring.free_length - (f0 - f1) / k1)
+    return relaxed, 1.0 - f1 / f0
+
+
+def service_life(spring, cam, spectrum: LoadSpectrum, valve_train=None, float_speeds=None) -> ServiceLife:
+    """Relaxation and load-spectrum life of a spring (module docstring).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    spectrum : LoadSpectrum
+    valve_train : ValveTrain, optional
+        The train (float speed before and after relaxation).
+    float_speeds : array_like, optional
+        Cam speeds of the float-speed scans [rev/min] (with a train; default: 60 % to 140 % of
+        the spectrum's top speed, 41 speeds).
+    """
+    import warnings
+
+    from ..run.float_search import float_speed
+    from ..run.sweeps import sweep
+    from ..spring.materials import material, spectrum_life
+
+    speeds = spectrum.speeds_rpm
+    order = np.argsort(speeds)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sw = sweep(spring, cam, speeds[order], valve_train=valve_train)
+    t = sw.summary_table()
+    goodman = np.empty(speeds.size)
+    goodman[order] = np.asarray(t["fatigue_safety_factor"], dtype=float)
+    shares = np.asarray(spectrum.share, dtype=float)
+    life = spectrum_life(shares, speeds / 60.0, safety_factor=goodman)
+    relaxed, loss = relaxed_spring(spring, spectrum)
+    out = dict(goodman=goodman, life=life, loss=loss, relaxed=relaxed)
+    if valve_train is not None:
+        scan = (
+            np.linspace(0.6 * speeds.max(), 1.4 * speeds.max(), 41)
+            if float_speeds is None
+            else np.sort(np.asarray(float_speeds, dtype=float))
+        )
+        for key, sp in (("float_new", spring), ("float_relaxed", relaxed)):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                out[key] = float_speed(sp, cam, valve_train, scan, resolution=FLOAT_RESOLUTION)["float_cam_rpm"]
+        out["scan"] = scan
+    return ServiceLife(spring=spring, spectrum=spectrum, material=material(spectrum.material).name, **out)
+
+
+@dataclass(frozen=True, repr=False)
+class ServiceLife(Result):
+    """A spring's relaxation and load-spectrum life (:func:`service_life`)."""
+
+    spring: object
+    spectrum: LoadSpectrum
+    material: str
+    goodman: np.ndarray  #: Goodman safety per spectrum speed [-]
+    life: dict  #: :func:`springdyn.valve.spring.materials.spectrum_life`
+    loss: float  #: relaxation loss of the installed force [-]
+    relaxed: object  #: the relaxed spring
+    float_new: float | None = None  #: float speed of the new spring [rev/min]
+    float_relaxed: float | None = None  #: float speed after relaxation [rev/min]
+    scan: np.ndarray | None = None
+    notes: list = field(default_factory=list)
+
+    title = "valve spring service life"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{len(self.goodman)} speeds, {self.material}"
+
+    def _summary(self) -> dict:
+        sp = self.spectrum
+        fset = float(self.spring.spring_model.internal_parameters()["Fset"])
+        life = self.life["life_hours"]
+        s = dict(
+            material=self.material,
+            temperature_degC=sp.temperature - 273.15,
+            relaxation_hours=sp.hours_h,
+            installed_force_N=fset,
+            relaxation_loss=self.loss,
+            relaxed_installed_force_N=fset * (1.0 - self.loss),
+            min_goodman_safety=float(self.goodman.min()),
+            damage_per_hour=float(self.life["damage_per_hour"]),
+            life_hours=None if not math.isfinite(life) else float(life),
+            infinite_life=not math.isfinite(life),
+        )
+        if self.scan is not None:
+            s["float_cam_rpm_new"] = self.float_new
+            s["float_cam_rpm_relaxed"] = self.float_relaxed
+        notes = list(self.notes)
+        if self.scan is not None:
+            for key, what in (("float_cam_rpm_new", "new"), ("float_cam_rpm_relaxed", "relaxed")):
+                if s[key] is None:
+                    notes.append(f"the {what} spring does not float up to {self.scan[-1]:g} cam rpm (the scan's top)")
+        notes.append(
+            "relaxation tables are engineering judgement (springdyn.valve.spring.materials): replace them with the spring "
+            "maker's data where you have it"
+        )
+        s["notes"] = notes
+        return s
+
+    def columns(self) -> dict:
+        pts = self.life["per_point"]
+        return {
+            "cam_rpm": self.spectrum.speeds_rpm,
+            "share": np.asarray(self.spectrum.share, dtype=float),
+            "goodman_safety": self.goodman,
+            "damage_share": np.asarray([p["damage_share"] for p in pts], dtype=float),
+        }
+
+    def to_xarray(self):
+        import xarray as xr
+
+        c = self.columns()
+        rpm = c.pop("cam_rpm")
+        return xr.Dataset(
+            {k: ("cam_rpm", v, {"units": "1"}) for k, v in c.items()},
+            coords={"cam_rpm": ("cam_rpm", rpm, {"units": "rpm"})},
+        )
+
+    def _plot(self, ax=None):
+        from ...core.plotting import plt
+
+        fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(7, 4.5))
+        c = self.columns()
+        ax.bar(
+            c["cam_rpm"],
+            c["share"],
+            width=0.6 * np.min(np.diff(np.sort(c["cam_rpm"]))) if c["cam_rpm"].size > 1 else 100.0,
+            color="C0",
+            alpha=0.6,
+            label="time share",
+        )
+        ax.set_xlabel("cam speed [rpm]")
+        ax.set_ylabel("share of the running time [-]")
+        b = ax.twinx()
+        b.plot(c["cam_rpm"], c["goodman_safety"], "C3o-", label="Goodman safety")
+        b.axhline(1.0, color="C3", lw=0.8, ls="--")
+        b.set_ylabel("Goodman safety [-]", color="C3")
+        return fig

@@ -1,0 +1,881 @@
+"""Valve springs designed from requirements: the ``[requirements]`` table and :func:`synthesize`.
+
+A spring engineer starts from two load points and the space, not from a spring.  The search:
+
+1. **Candidates.**  Every wire diameter of the grid (standard sizes, 0.05 mm apart), every
+   mean coil diameter that fits the space (``D + d <= max_outer_diameter``,
+   ``D - d >= min_inner_diameter``, 0.1 mm apart) and the kinds: one-step (constant pitch)
+   and two-step springs with 1, 1.5 or 2 low-pitch coils that are closed at the installed
+   length (the MMS Type C two-step spring: its rate in service is that of the ``N2 - Nb``
+   high-pitch coils; the low-pitch coils lower its surge frequency's sensitivity and add
+   the low rate from free to installed length).
+2. **Load points.**  The working rate ``k = (F_open - F_installed) / lift`` fixes the active
+   coils (``k = G d^4 / (8 D^3 n)``, :func:`springdyn.valve.spring.formulas.free_length_stiffness`),
+   the installed force the free length (``F_set = K1 (Lf - L_inst)``,
+   :func:`springdyn.valve.spring.formulas.setup_force`); each candidate that is kept is built as a
+   :class:`~springdyn.valve.spring.definition.ValveSpring` and its model's static force at both lengths
+   is checked against the load points.
+3. **Requirements as margins** (:data:`MARGINS`, each a fraction, >= 0 where met): the
+   space, the coil-bind clearance at the open length (EN 13906-1's minimum sum of gaps by
+   default), the Goodman safety between the two load points (:mod:`springdyn.valve.spring.stress`,
+   the material's strengths), the stress at solid length against EN 13906-1's permissible
+   ``0.5 Rm`` (cold-coiled springs), the spring index ``4 <= D/d <= 16``, and the surge
+   frequency when asked.
+4. **Ranking.**  Among the candidates that meet every requirement, the lightest first (the
+   spring's mass is moving mass of the valve train: a third of it at the retainer).
+5. **Dynamics.**  With a cam (and a valve train), the best candidates of each kind are run
+   with the distributed model over the speed range: float speed, peak retainer force, coil
+   clash (:func:`springdyn.valve.float_speed`, :func:`springdyn.valve.simulate`).
+
+Infeasible requirements get a message that names the binding requirements and how far the
+best candidate misses each (:func:`infeasibility`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.params import Parameters, load_toml, param
+from ...core.results import Result
+from ...core.units import format_mm
+from ..spring import formulas
+from ..spring.solid_length import en13906_solid_length, min_sum_of_gaps
+from ..spring.stress import (
+    corrected_shear_stress,
+    goodman_safety_factor,
+    nominal_shear_stress,
+    ultimate_shear_strength,
+    zimmerli_endurance_shear_strength,
+)
+
+__all__ = [
+    "Requirements",
+    "MARGINS",
+    "TWO_STEP_LOW_PITCH_COILS",
+    "candidate_table",
+    "infeasibility",
+    "synthesize",
+    "Synthesis",
+    "evaluate",
+    "read_requirements",
+    "spring_table",
+    "write_candidates",
+    "meet_load_points",
+]
+
+#: Low-pitch coils of the two-step candidates beyond the seat's dead coils [-] (the low-pitch
+#: coils include the seat's dead coil).
+TWO_STEP_LOW_PITCH_COILS = (0.5, 1.0, 1.5)
+#: Spring index range of cold-coiled compression springs (EN 13906-1: ``4 <= w <= 20``;
+#: valve springs keep it below 16, where the coils stay stable in coiling) [-].
+INDEX_RANGE = (4.0, 16.0)
+#: EN 13906-1's permissible (uncorrected) shear stress at solid length of cold-coiled
+#: springs, a fraction of the tensile strength [-].
+SOLID_STRESS_FRACTION = 0.5
+#: The requirements judged for every candidate, as margins (a fraction; >= 0 where met).
+MARGINS = {
+    "outer_diameter": "max_outer_diameter - (D + d), over max_outer_diameter",
+    "inner_diameter": "(D - d) - min_inner_diameter, over min_inner_diameter",
+    "coil_bind": "open length - solid length - clearance, over the clearance",
+    "goodman": "Goodman safety / min_goodman_safety - 1",
+    "solid_stress": "1 - stress at solid length / (0.5 Rm)",
+    "spring_index": "distance of D/d inside 4-16, over 4",
+    "surge": "f1 / min_surge_frequency - 1 (with min_surge_frequency)",
+}
+
+
+@dataclass(frozen=True)
+class Requirements(Parameters):
+    """The ``[requirements]`` table: load points, space, material and the dynamic asks."""
+
+    installed_length: float = param("m", "installed length (valve closed)", display="mm", positive=True)
+    installed_force: float = param("N", "force at the installed length", positive=True)
+    lift: float = param(
+        "m", "valve lift: the spring's compression from the installed length", display="mm", positive=True
+    )
+    open_force: float = param("N", "force at the installed length less the lift (valve open)", positive=True)
+    max_outer_diameter: float = param(
+        "m", "largest outer coil diameter (the spring pocket)", display="mm", positive=True
+    )
+    min_inner_diameter: float = param(
+        "m", "smallest inner coil diameter (the valve guide and stem seal inside)", display="mm", positive=True
+    )
+    min_coil_bind_clearance: float = param(
+        "m",
+        "smallest margin from the open length to the solid length (default: EN 13906-1's minimum sum of gaps Sa)",
+        display="mm",
+        nonnegative=True,
+        default=None,
+    )
+    material: str = param(
+        None,
+        "wire: a name of springdyn.valve.spring.materials (SiCr, SiCrV, CrV, music-wire), or 'custom' with the values below",
+        kind="str",
+        default="SiCr",
+    )
+    shear_modulus: float = param(
+        "Pa", "shear modulus (overrides the material's)", display="GPa", positive=True, default=None
+    )
+    youngs_modulus: float = param(
+        "Pa", "Young's modulus (overrides the material's)", display="GPa", positive=True, default=None
+    )
+    density: float = param("kg/m^3", "density (overrides the material's)", positive=True, default=None)
+    tensile_strength: float = param(
+        "Pa",
+        "tensile strength (overrides the material's, which depends on the wire diameter)",
+        display="MPa",
+        positive=True,
+        default=None,
+    )
+    end_type: str = param(
+        None,
+        "coil ends (sets dead coils and solid length, EN 13906-1)",
+        kind="str",
+        choices=("closed-ground", "closed", "open"),
+        default="closed-ground",
+    )
+    min_goodman_safety: float = param(
+        "",
+        "smallest Goodman safety between the two load points (1.1-1.3 in spring practice)",
+        positive=True,
+        default=1.1,
+    )
+    min_surge_frequency: float = param(
+        "Hz", "smallest first surge frequency at the installed length", positive=True, default=None
+    )
+    min_float_cam_rpm: float = param(
+        "rad/s",
+        "smallest float speed (needs cam and valve_train)",
+        display="rpm",
+        bare_unit="rpm",
+        positive=True,
+        default=None,
+    )
+    cam: str = param(None, "cam file (a [cam] table) for the dynamic checks", kind="str", default="")
+    valve_train: str = param(
+        None, "valve-train file (a [valve_train] table) for the float speed", kind="str", default=""
+    )
+    min_cam_rpm: float = param(
+        "rad/s", "lowest cam speed of the dynamic checks", display="rpm", bare_unit="rpm", positive=True, default=None
+    )
+    max_cam_rpm: float = param(
+        "rad/s", "highest cam speed of the dynamic checks", display="rpm", bare_unit="rpm", positive=True, default=None
+    )
+    damping_ratio: float = param("", "damping ratio written into the candidates", nonnegative=True, default=0.05)
+    min_wire_diameter: float = param("m", "smallest wire of the search", display="mm", positive=True, default=2.0e-3)
+    max_wire_diameter: float = param("m", "largest wire of the search", display="mm", positive=True, default=6.0e-3)
+
+    table = "requirements"
+
+    def _validate(self) -> None:
+        where = "[requirements] "
+        if not self.open_force > self.installed_force:
+            raise InputError(
+                f"{where}open_force = {self.open_force:g} N must exceed installed_force = {self.installed_force:g} N "
+                "(a compression spring's force rises as the valve opens)"
+            )
+        if not self.lift < self.installed_length:
+            raise InputError(
+                f"{where}lift = {format_mm(self.lift)} must be below installed_length = {format_mm(self.installed_length)}"
+            )
+        if not self.min_inner_diameter < self.max_outer_diameter:
+            raise InputError(
+                f"{where}min_inner_diameter = {format_mm(self.min_inner_diameter)} must be below max_outer_diameter = "
+                f"{format_mm(self.max_outer_diameter)}"
+            )
+        if not self.min_wire_diameter < self.max_wire_diameter:
+            raise InputError(f"{where}min_wire_diameter must be below max_wire_diameter")
+        if self.min_float_cam_rpm is not None and not (self.cam and self.valve_train):
+            raise InputError(
+                f"{where}min_float_cam_rpm needs cam and valve_train (files): the float speed is the train's"
+            )
+        if (self.min_cam_rpm is None) != (self.max_cam_rpm is None):
+            raise InputError(f"{where}min_cam_rpm and max_cam_rpm go together (the speed range of the dynamic checks)")
+        if self.min_cam_rpm is not None and not self.min_cam_rpm < self.max_cam_rpm:
+            raise InputError(f"{where}min_cam_rpm must be below max_cam_rpm")
+        if self.cam and self.min_cam_rpm is None:
+            raise InputError(f"{where}cam needs the speed range min_cam_rpm and max_cam_rpm")
+        if self.material.lower() == "custom":
+            missing = [
+                k
+                for k in ("shear_modulus", "youngs_modulus", "density", "tensile_strength")
+                if getattr(self, k) is None
+            ]
+            if missing:
+                raise InputError(f"{where}material = 'custom' needs {', '.join(missing)}")
+        else:
+            from ..spring.materials import material
+
+            material(self.material)  # an unknown name: its message lists the names
+
+    @property
+    def open_length(self) -> float:
+        """Spring length with the valve open [m]."""
+        return self.installed_length - self.lift
+
+    @property
+    def rate(self) -> float:
+        """Working rate between the load points [N/m]."""
+        return (self.open_force - self.installed_force) / self.lift
+
+    @property
+    def dead_coils(self) -> float:
+        """Dead coils per end of the end type [-] (EN 13906-1)."""
+        from ..spring.definition import END_TYPES
+
+        return END_TYPES[self.end_type]
+
+    def wire(self, wire_diameter) -> dict:
+        """The wire's values at a diameter: ``shear_modulus`` [Pa], ``youngs_modulus`` [Pa],
+        ``density`` [kg/m^3], ``tensile_strength`` [Pa] (the table's keys override the material's).
+
+        Parameters
+        ----------
+        wire_diameter : float or ndarray
+            Wire diameter [m].
+        """
+        keys = ("shear_modulus", "youngs_modulus", "density", "tensile_strength")
+        if self.material.lower() == "custom":
+            out = {}
+        else:
+            from ..spring.materials import material
+
+            m = material(self.material)
+            d = np.asarray(wire_diameter, dtype=float)
+            out = dict(
+                shear_modulus=m.shear_modulus,
+                youngs_modulus=m.youngs_modulus,
+                density=m.density,
+                tensile_strength=np.vectorize(m.tensile_strength)(d) if d.ndim else m.tensile_strength(float(d)),
+            )
+        for k in keys:
+            if getattr(self, k) is not None:
+                out[k] = getattr(self, k)
+        return out
+
+    def speeds(self, count: int = 25) -> np.ndarray | None:
+        """Cam speeds of the dynamic checks [rev/min] (None without a range).
+
+        Parameters
+        ----------
+        count : int
+            Speeds over the range [-].
+        """
+        if self.min_cam_rpm is None:
+            return None
+        to_rpm = 30.0 / math.pi
+        return np.linspace(self.min_cam_rpm * to_rpm, self.max_cam_rpm * to_rpm, count)
+
+
+def candidate_table(req: Requirements) -> dict:
+    """Every candidate of the search with its geometry and its margins (vectorised).
+
+    Parameters
+    ----------
+    req : Requirements
+        The requirements.
+
+    Returns
+    -------
+    dict
+        Arrays over the candidates: ``kind`` (0 one-step, 1 two-step), ``wire_diameter``,
+        ``mean_diameter`` [m], ``low_pitch_coils``, ``high_pitch_coils`` [-],
+        ``free_length`` [m], ``mass`` [kg], ``surge_frequency`` [Hz], ``goodman`` [-], the
+        margins of :data:`MARGINS` (``margin_<name>``) and ``worst`` (the smallest margin).
+    """
+    step_d, step_dm = 0.05e-3, 0.1e-3
+    wires = np.round(np.arange(req.min_wire_diameter, req.max_wire_diameter + 0.5 * step_d, step_d), 7)
+    rows = []
+    for d in wires:
+        lo = req.min_inner_diameter + d
+        hi = req.max_outer_diameter - d
+        # a little outside the space too: the margins then say how far a design misses it
+        means = np.round(np.arange(max(lo - 1.0e-3, 2.0 * d), hi + 1.0e-3 + 0.5 * step_dm, step_dm), 7)
+        for dm in means:
+            for n1 in (0.0, *(req.dead_coils + x for x in TWO_STEP_LOW_PITCH_COILS)):
+                rows.append((d, dm, n1))
+    if not rows:
+        raise InputError("[requirements]: no wire and coil diameter to search (check the diameters)")
+    a = np.array(rows)
+    d, dm, n1 = a[:, 0], a[:, 1], a[:, 2]
+    two = n1 > 0
+    g = req.wire(d)["shear_modulus"]
+    nb = req.dead_coils
+    # the working rate: one-step N1 + N2 - 2 Nb active coils, two-step N2 - Nb ([MMS] K2)
+    n_work = formulas.active_coils_for_rate(g, d, dm, req.rate)
+    n2 = np.where(two, n_work + nb, n_work + 2.0 * nb)
+    k1 = formulas.free_length_stiffness(g, d, dm, np.maximum(n1 + n2 - 2.0 * nb, 1e-9))
+    lf = req.installed_length + req.installed_force / k1  # F_set = K1 (Lf - Ls), formulas.setup_force
+    return evaluate(req, d, dm, n1, n2, lf)
+
+
+def evaluate(req: Requirements, d, dm, n1, n2, lf) -> dict:
+    """Mass, surge frequency, Goodman safety and the margins of :data:`MARGINS` of springs
+    (vectorised; :func:`candidate_table` for its outputs).
+
+    Parameters
+    ----------
+    req : Requirements
+        The requirements.
+    d, dm : array_like
+        Wire and mean coil diameters [m].
+    n1, n2 : array_like
+        Low- and high-pitch coils [-].
+    lf : array_like
+        Free lengths [m].
+    """
+    d, dm, n1, n2, lf = (np.atleast_1d(np.asarray(x, dtype=float)) for x in (d, dm, n1, n2, lf))
+    two = n1 > 0
+    w = req.wire(d)
+    g, rho, rm = w["shear_modulus"], w["density"], np.broadcast_to(w["tensile_strength"], d.shape)
+    nb = req.dead_coils
+    n_work = np.where(two, n2 - nb, n1 + n2 - 2.0 * nb)
+    total = n1 + n2
+    mass = formulas.total_mass(rho, dm, d, n1, n2)
+    solid = en13906_solid_length(d, total, req.end_type)
+    clearance = (
+        req.min_coil_bind_clearance if req.min_coil_bind_clearance is not None else min_sum_of_gaps(dm, d, n_work)
+    )
+    index = dm / d
+    tau_lo = corrected_shear_stress(req.installed_force, dm, d)
+    tau_hi = corrected_shear_stress(req.open_force, dm, d)
+    tau_u = ultimate_shear_strength(rm)
+    tau_e = np.vectorize(lambda u: zimmerli_endurance_shear_strength(u, peened=True))(tau_u)
+    goodman = goodman_safety_factor(tau_lo, tau_hi, tau_e, tau_u)
+    f_solid = req.installed_force + req.rate * (req.installed_length - solid)  # the working rate to solid
+    tau_solid = nominal_shear_stress(f_solid, dm, d)  # uncorrected (EN 13906-1 at solid length)
+    surge = formulas.surge_frequency(g, rho, d, dm, n_work)
+    margins = dict(
+        outer_diameter=(req.max_outer_diameter - (dm + d)) / req.max_outer_diameter,
+        inner_diameter=((dm - d) - req.min_inner_diameter) / req.min_inner_diameter,
+        coil_bind=(req.open_length - solid - clearance) / np.maximum(clearance, 1e-4),
+        goodman=goodman / req.min_goodman_safety - 1.0,
+        solid_stress=1.0 - tau_solid / (SOLID_STRESS_FRACTION * rm),
+        spring_index=np.minimum(index - INDEX_RANGE[0], INDEX_RANGE[1] - index) / INDEX_RANGE[0],
+    )
+    if req.min_surge_frequency is not None:
+        margins["surge"] = surge / req.min_surge_frequency - 1.0
+    worst = np.min(np.stack(list(margins.values())), axis=0)
+    physical = (n_work >= 2.0) & (lf > req.installed_length)
+    out = dict(
+        kind=two.astype(int),
+        wire_diameter=d,
+        mean_diameter=dm,
+        low_pitch_coils=n1,
+        high_pitch_coils=n2,
+        active_coils=n_work,
+        free_length=lf,
+        solid_length=solid,
+        mass=mass,
+        surge_frequency=surge,
+        goodman=goodman,
+        tensile_strength=rm,
+        physical=physical,
+    )
+    out.update({f"margin_{k}": v for k, v in margins.items()})
+    out["worst"] = np.where(physical, worst, -np.inf)
+    return out
+
+
+def infeasibility(table: dict, req: Requirements) -> str:
+    """The message of requirements no candidate meets: the binding ones and how far apart.
+
+    Parameters
+    ----------
+    table : dict
+        :func:`candidate_table`.
+    req : Requirements
+    """
+    ok = table["physical"]
+    names = [k[len("margin_") :] for k in table if k.startswith("margin_")]
+    binding = []
+    for k in names:
+        best = float(np.max(np.where(ok, table[f"margin_{k}"], -np.inf)))
+        if best < 0:
+            binding.append(f"{k} (its best candidate misses it by {-best:.1%}: {MARGINS[k]})")
+    i = int(np.argmax(table["worst"]))
+    failing = [f"{k} {table[f'margin_{k}'][i]:+.1%}" for k in names if table[f"margin_{k}"][i] < 0]
+    closest = (
+        f"the closest candidate ({'two' if table['kind'][i] else 'one'}-step, wire {table['wire_diameter'][i] * 1e3:.2f} mm, "
+        f"mean diameter {table['mean_diameter'][i] * 1e3:.1f} mm) misses " + ", ".join(failing)
+    )
+    what = (
+        "no single requirement is out of reach, but none of the candidates meets them all together: "
+        if not binding
+        else "binding requirements: " + "; ".join(binding) + ". "
+    )
+    return (
+        f"[requirements]: no spring meets the requirements ({int(ok.sum())} candidates of wire "
+        f"{req.min_wire_diameter * 1e3:g}-{req.max_wire_diameter * 1e3:g} mm searched). {what}{closest}. Relax those "
+        "requirements (space, load points, lift, clearance, safety) or widen the wire range"
+    )
+
+
+@dataclass(frozen=True, repr=False)
+class Synthesis(Result):
+    """The best springs for the requirements (:func:`synthesize`), ranked, with their margins."""
+
+    requirements: Requirements
+    springs: list  #: ValveSpring per candidate, best first
+    rows: list  #: dicts: kind, geometry, mass, margins, load-point check, dynamics
+    searched: int = 0
+    notes: list = field(default_factory=list)
+
+    title = "valve spring synthesis"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{len(self.springs)} candidates"
+
+    def _summary(self) -> dict:
+        best = self.rows[0]
+        s = dict(
+            candidates=len(self.rows),
+            searched=self.searched,
+            best_kind=best["kind"],
+            best_wire_diameter_m=best["wire_diameter_m"],
+            best_mean_diameter_m=best["mean_diameter_m"],
+            best_mass_kg=best["mass_kg"],
+            best_smallest_margin=best["smallest_margin"],
+        )
+        if "float_cam_rpm" in best:
+            s["best_float_cam_rpm"] = best["float_cam_rpm"]
+        if self.notes:
+            s["notes"] = list(self.notes)
+        return s
+
+    def columns(self) -> dict:
+        keys = [k for k in self.rows[0] if not isinstance(self.rows[0][k], (list, dict, str))]
+        return {k: np.array([np.nan if r.get(k) is None else float(r[k]) for r in self.rows]) for k in keys}
+
+    def to_xarray(self):
+        import xarray as xr
+
+        data = {}
+        for k, v in self.columns().items():
+            unit = next((u for suf, u in _UNITS.items() if k.endswith(suf)), "1")
+            name = k[: -len(next(s for s in _UNITS if k.endswith(s)))] if unit != "1" else k
+            data[name] = ("candidate", np.asarray(v, dtype=float), {"units": unit})
+        # the kinds as numbers (a CSV of numbers): two-step 1 / one-step 0, distributed 1 / Type C 0
+        data["two_step"] = ("candidate", np.array([float(r["kind"] == "two-step") for r in self.rows]), {"units": "1"})
+        data["distributed_model"] = (
+            "candidate",
+            np.array([float(r["model"] == "distributed") for r in self.rows]),
+            {"units": "1"},
+        )
+        return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(1, len(self.rows) + 1))})
+
+    def _plot(self, ax=None):
+        from ...core.plotting import plt
+
+        fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(7, 4.5))
+        req = self.requirements
+        lengths = np.linspace(req.open_length, req.installed_length + 2e-3, 60)
+        for i, sp in enumerate(self.springs):
+            f = sp.spring_model.static_force(lengths)
+            ax.plot(
+                lengths * 1e3, f, f"C{i}", label=f"{i + 1}: {self.rows[i]['kind']}, d {sp.wire_diameter * 1e3:.2f} mm"
+            )
+        ax.plot(
+            [req.installed_length * 1e3, req.open_length * 1e3],
+            [req.installed_force, req.open_force],
+            "ko",
+            label="load points",
+        )
+        ax.invert_xaxis()
+        ax.set_xlabel("spring length [mm]")
+        ax.set_ylabel("static force [N]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+        return fig
+
+
+_UNITS = {"_m": "m", "_kg": "kg", "_N": "N", "_Hz": "Hz", "_rpm": "rpm", "_Pa": "Pa"}
+
+
+#: Searches with a raised static Goodman safety (the surge allowance) when no candidate keeps
+#: the Goodman safety at speed [-].
+SURGE_ITERATIONS = 3
+#: Resolution of the candidates' float speeds [rev/min] (a bisection after the scan).
+FLOAT_RESOLUTION = 5.0
+#: Secant steps that make the model's static forces at both lengths the load points.
+LOAD_POINT_ITERATIONS = 12
+
+
+def _spring(req: Requirements, table: dict, i: int):
+    """The candidate ``i`` of the table as a ValveSpring whose model meets the load points:
+    the closed-form coils and free length, then secant steps on the model's own static force
+    (its rate from the installed to the open length sets the coils, its installed force the
+    free length)."""
+
+    n2 = float(table["high_pitch_coils"][i])
+    try:
+        sp = _valve_spring(req, table, i, n2, float(table["free_length"][i]))
+    except InputError:
+        # the Type C closed forms do not hold for it (e.g. a negative end mass of a two-step
+        # spring): the distributed model, coil by coil from the geometry, describes it
+        sp = _valve_spring(req, table, i, n2, float(table["free_length"][i]), model="distributed")
+    return meet_load_points(sp, req)
+
+
+def meet_load_points(sp, req: Requirements):
+    """The spring with its coils and free length set so that its model's static force meets
+    both load points (secant steps: the model's rate between the lengths sets the coils, its
+    installed force the free length; to 1e-9 in a few steps).
+
+    Parameters
+    ----------
+    sp : ValveSpring
+        A spring near the load points (any model).
+    req : Requirements
+        The load points.
+    """
+    import dataclasses
+
+    n1, n2 = float(sp.low_pitch_coils), float(sp.high_pitch_coils)
+    fixed = req.dead_coils if n1 > 0 else 2.0 * req.dead_coils
+    for _ in range(LOAD_POINT_ITERATIONS):
+        f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+        if abs(f[0] / req.installed_force - 1.0) < 1e-9 and abs(f[1] / req.open_force - 1.0) < 1e-9:
+            break
+        n2 = (n2 - fixed) * (f[1] - f[0]) / (req.open_force - req.installed_force) + fixed
+        sp = dataclasses.replace(sp, high_pitch_coils=float(n2))
+        f0 = float(sp.spring_model.static_force(req.installed_length))
+        k1 = sp.spring_model.internal_parameters()["K1"]
+        sp = dataclasses.replace(sp, free_length=float(sp.free_length + (req.installed_force - f0) / k1))
+    return sp
+
+
+def _valve_spring(req: Requirements, table: dict, i: int, n2: float, lf: float, model: str = "type-c"):
+    from ..spring.definition import ValveSpring
+
+    d = float(table["wire_diameter"][i])
+    w = req.wire(d)
+    return ValveSpring(
+        type="two-step" if table["kind"][i] else "one-step",
+        mean_diameter=float(table["mean_diameter"][i]),
+        wire_diameter=d,
+        free_length=lf,
+        installed_length=req.installed_length,
+        dead_coils=req.dead_coils,
+        low_pitch_coils=float(table["low_pitch_coils"][i]),
+        high_pitch_coils=n2,
+        youngs_modulus=float(w["youngs_modulus"]),
+        shear_modulus=float(w["shear_modulus"]),
+        density=float(w["density"]),
+        damping_ratio=req.damping_ratio,
+        tensile_strength=float(w["tensile_strength"]),
+        end_type=req.end_type,
+        min_coil_bind_clearance=req.min_coil_bind_clearance,
+        model=model,
+    )
+
+
+def synthesize(
+    req: Requirements, *, per_kind: int = 3, base_dir=None, dynamics: bool = True, progress=None
+) -> Synthesis:
+    """The best springs for the requirements (see the module docstring).
+
+    Parameters
+    ----------
+    req : Requirements
+        The ``[requirements]`` table.
+    per_kind : int
+        Candidates kept of each kind (one-step, two-step) [-].
+    base_dir : path-like, optional
+        Folder of the requirements file (its ``cam`` and ``valve_train`` paths are relative to it).
+    dynamics : bool
+        Run the dynamic checks when the requirements name a cam.
+    progress : callable, optional
+        ``progress(iterable, desc=...)`` wrapper for the dynamic runs.
+
+    Returns
+    -------
+    Synthesis
+
+    Raises
+    ------
+    InputError
+        When no candidate meets the requirements (:func:`infeasibility`).
+    """
+    import dataclasses
+
+    allowance, kept = 1.0, None
+    for _ in range(SURGE_ITERATIONS):
+        screen = (
+            req if allowance == 1.0 else dataclasses.replace(req, min_goodman_safety=req.min_goodman_safety * allowance)
+        )
+        table = candidate_table(screen)
+        if not np.any(table["worst"] >= 0.0):
+            if kept is None:
+                raise InputError(infeasibility(table, req))
+            kept[2].append(
+                f"with the static Goodman safety raised to {screen.min_goodman_safety:.3g} for the surge no spring meets "
+                "the requirements: the candidates above are those of the allowance before"
+            )
+            break
+        try:
+            springs, rows, notes = _select(req, screen, table, per_kind)
+        except InputError:
+            if kept is None:
+                raise
+            kept[2].append(
+                f"with the static Goodman safety raised to {screen.min_goodman_safety:.3g} for the surge the spring "
+                "model refuses every candidate: the candidates above are those of the allowance before"
+            )
+            break
+        if allowance != 1.0:
+            notes.append(
+                f"the static Goodman safety between the load points was raised to {screen.min_goodman_safety:.3g} "
+                f"(a surge allowance of {allowance:.3g}: the distributed model's dynamic wire stress at speed)"
+            )
+        kept = (springs, rows, notes, table)
+        if not (dynamics and req.cam):
+            break
+        _dynamics(req, springs, rows, base_dir, progress, notes)
+        dyn = [r["dynamic_goodman_safety"] for r in rows]
+        if any(r["meets_all"] for r in rows) or min(r["margin_goodman_dynamic"] for r in rows) >= 0.0:
+            break
+        allowance *= min(req.min_goodman_safety / max(g, 1e-6) for g in dyn) * 1.02
+    springs, rows, notes, table = kept
+    order = sorted(range(len(rows)), key=lambda k: (not rows[k]["meets_all"], rows[k]["mass_kg"]))
+    rows = [rows[k] for k in order]
+    springs = [springs[k] for k in order]
+    for rank, r in enumerate(rows, 1):
+        r["rank"] = rank
+    return Synthesis(requirements=req, springs=springs, rows=rows, searched=int(table["physical"].sum()), notes=notes)
+
+
+def _select(req: Requirements, screen: Requirements, table: dict, per_kind: int):
+    """The lightest candidates of each kind that meet the screen's margins, built and checked
+    against the load points; their rows judged against the requirements ``req``."""
+    import warnings
+
+    feasible = np.flatnonzero(table["worst"] >= 0.0)
+    springs, rows, notes = [], [], []
+    for kind in (0, 1):
+        mine = feasible[table["kind"][feasible] == kind]
+        if mine.size == 0:
+            notes.append(_kind_note(table, kind))
+        order = mine[np.argsort(table["mass"][mine], kind="stable")]
+        taken = 0
+        wires = set()
+        for i in order:
+            if round(float(table["wire_diameter"][i]) * 1e5) in wires:
+                continue  # one candidate per wire: the lightest coil diameter of each
+            wires.add(round(float(table["wire_diameter"][i]) * 1e5))
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    sp = _spring(screen, table, int(i))
+            except InputError:
+                continue  # the model refuses it (its equations do not hold): the next
+            f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+            err = max(abs(f[0] / req.installed_force - 1.0), abs(f[1] / req.open_force - 1.0))
+            if err > 0.01:  # the model's force differs from the closed form (e.g. coil contact before open)
+                continue
+            row = _row(req, sp, f, kind)
+            if row["smallest_margin"] < 0.0:  # the model's coils (e.g. the distributed fallback) miss a margin
+                continue
+            springs.append(sp)
+            rows.append(row)
+            taken += 1
+            if taken == per_kind:
+                break
+        if mine.size and not taken:
+            notes.append(
+                f"the {'two' if kind else 'one'}-step candidates that meet the margins are refused by the spring "
+                "model (their coils touch before the open length, or its equations do not hold)"
+            )
+    if not springs:
+        raise InputError(
+            "[requirements]: the candidates that meet the margins are refused by the spring model (its coils touch "
+            "before the open length or its equations do not hold): relax the lift or the space"
+        )
+    return springs, rows, notes
+
+
+def _kind_note(table: dict, kind: int) -> str:
+    """Why no spring of a kind meets the requirements: its best margin on each that it misses."""
+    mine = table["physical"] & (table["kind"] == kind)
+    names = [k[len("margin_") :] for k in table if k.startswith("margin_")]
+    i = int(np.argmax(np.where(mine, table["worst"], -np.inf)))
+    failing = ", ".join(f"{k} {table[f'margin_{k}'][i]:+.1%}" for k in names if table[f"margin_{k}"][i] < 0)
+    return (
+        f"no {'two' if kind else 'one'}-step spring meets the requirements: the closest (wire "
+        f"{table['wire_diameter'][i] * 1e3:.2f} mm, mean diameter {table['mean_diameter'][i] * 1e3:.2f} mm) misses "
+        f"{failing}"
+    )
+
+
+def _row(req, sp, f, kind) -> dict:
+    # the final spring (its coils and free length from the model's load points) judged again
+    e = evaluate(req, sp.wire_diameter, sp.mean_diameter, sp.low_pitch_coils, sp.high_pitch_coils, sp.free_length)
+    r = dict(
+        kind="two-step" if kind else "one-step",
+        model=sp.model,
+        wire_diameter_m=sp.wire_diameter,
+        mean_diameter_m=sp.mean_diameter,
+        outer_diameter_m=sp.mean_diameter + sp.wire_diameter,
+        low_pitch_coils=float(sp.low_pitch_coils),
+        high_pitch_coils=float(sp.high_pitch_coils),
+        free_length_m=float(sp.free_length),
+        solid_length_m=float(e["solid_length"][0]),
+        mass_kg=float(e["mass"][0]),
+        surge_frequency_Hz=float(sp.spring_model.first_mode_installed),
+        goodman_safety=float(e["goodman"][0]),
+        tensile_strength_Pa=float(e["tensile_strength"][0]),
+        installed_force_N=float(f[0]),
+        open_force_N=float(f[1]),
+    )
+    for k in e:
+        if k.startswith("margin_"):
+            r[k] = float(e[k][0])
+    r["smallest_margin"] = float(e["worst"][0])
+    r["meets_all"] = r["smallest_margin"] >= 0.0
+    return r
+
+
+def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
+    """The distributed model of each candidate over the speed range (module docstring, 5)."""
+    import warnings
+
+    from ..cam.definition import Cam
+    from ..run.float_search import float_speed
+    from ..run.sweeps import sweep
+    from ..train.definition import ValveTrain
+
+    base = Path(base_dir) if base_dir is not None else Path(".")
+
+    def path(p):
+        q = Path(p)
+        return q if q.is_absolute() else base / q
+
+    cam = Cam.from_toml(path(req.cam))
+    vt = ValveTrain.from_toml(path(req.valve_train)) if req.valve_train else None
+    speeds = req.speeds()
+    items = list(zip(springs, rows))
+    it = progress(items, desc="dynamics") if progress is not None else items
+    for sp, row in it:
+        # the candidate as designed (the standard's rate, EN 13906-1, which the Type C model
+        # keeps) run coil by coil: the distributed model's static forces differ by a few per
+        # cent (its end coils), which the row states
+        model = sp.with_model("distributed")
+        f = model.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+        row["distributed_installed_force_N"], row["distributed_open_force_N"] = float(f[0]), float(f[1])
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            t = sweep(model, cam, speeds, valve_train=vt).summary_table()
+            row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
+            row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
+            row["margin_goodman_dynamic"] = row["dynamic_goodman_safety"] / req.min_goodman_safety - 1.0
+            clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
+            row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
+            if vt is not None:
+                need = None if req.min_float_cam_rpm is None else req.min_float_cam_rpm * 30.0 / math.pi
+                scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
+                res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION)
+                row["float_cam_rpm"] = res["float_cam_rpm"]
+                if need is not None:
+                    fl = res["float_cam_rpm"]
+                    # no float up to the scan's top: at least that (a lower bound of the margin)
+                    row["margin_float"] = (scan[-1] if fl is None else fl) / need - 1.0
+        row["smallest_margin"] = min(v for key, v in row.items() if key.startswith("margin_"))
+        row["meets_all"] = row["smallest_margin"] >= 0.0
+    if not any(r["margin_goodman_dynamic"] >= 0 for r in rows):
+        best = max(r["dynamic_goodman_safety"] for r in rows)
+        notes.append(
+            f"no candidate keeps the Goodman safety {req.min_goodman_safety:g} over the speed range with its surge "
+            f"(the distributed model's wire stress): the best reaches {best:.3g}; the static margin between the load "
+            "points is not enough at speed (a lower stress: a larger wire or a lower open force)"
+        )
+    if req.min_float_cam_rpm is not None and not any(r.get("margin_float", -1.0) >= 0.0 for r in rows):
+        notes.append(
+            f"no candidate reaches the float speed {req.min_float_cam_rpm * 30 / math.pi:.0f} cam rpm: the best "
+            f"reaches {max((r.get('float_cam_rpm') or 0.0) for r in rows):.0f} cam rpm (a stiffer spring: raise the "
+            "installed force, or lighten the train)"
+        )
+
+
+def read_requirements(path) -> tuple[Requirements, Path]:
+    """The ``[requirements]`` table of a file and its folder.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The requirements file.
+    """
+    doc = load_toml(path, "requirements")
+    return Requirements.from_dict(doc, source=str(path)), Path(path).parent
+
+
+def spring_table(sp) -> dict:
+    """The ``[spring]`` table of a synthesised spring, with units (a drawing's values).
+
+    Parameters
+    ----------
+    sp : ValveSpring
+        The spring.
+    """
+    mm = lambda v: f"{v * 1e3:.6g} mm"  # noqa: E731 - a local formatter
+    table = {
+        "type": sp.type,
+        "mean_diameter": mm(sp.mean_diameter),
+        "wire_diameter": mm(sp.wire_diameter),
+        "free_length": mm(sp.free_length),
+        "installed_length": mm(sp.installed_length),
+        "dead_coils": float(sp.dead_coils),
+        "low_pitch_coils": float(sp.low_pitch_coils),
+        "high_pitch_coils": round(float(sp.high_pitch_coils), 4),
+        "end_type": sp.end_type,
+        "youngs_modulus": f"{sp.youngs_modulus / 1e9:.6g} GPa",
+        "shear_modulus": f"{sp.shear_modulus / 1e9:.6g} GPa",
+        "density": f"{sp.density:.6g} kg/m^3",
+        "tensile_strength": f"{sp.tensile_strength / 1e6:.6g} MPa",
+        "damping_ratio": float(sp.damping_ratio),
+    }
+    if sp.min_coil_bind_clearance is not None:
+        table["min_coil_bind_clearance"] = mm(sp.min_coil_bind_clearance)
+    if sp.model != "type-c":  # the Type C closed forms do not hold for it
+        table["model"] = sp.model
+    return table
+
+
+def write_candidates(result: Synthesis, out_dir, source: str = "") -> list[Path]:
+    """Each candidate as a ready spring file ``candidate_<rank>_<kind>.toml`` in ``out_dir``,
+    with its margins in the header, together (:func:`springdyn.core.io.output_set`).
+
+    Parameters
+    ----------
+    result : Synthesis
+        The synthesis.
+    out_dir : path-like
+        Folder (created).
+    source : str
+        The requirements file, for the header.
+    """
+    from ...core.io import atomic_open, dumps_toml, output_set
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    with output_set():
+        for row, sp in zip(result.rows, result.springs):
+            path = out / f"candidate_{row['rank']:02d}_{row['kind']}.toml"
+            margins = ", ".join(f"{k[len('margin_') :]} {v:+.1%}" for k, v in row.items() if k.startswith("margin_"))
+            header = (
+                f"candidate {row['rank']} of springdyn valve synthesize{' for ' + source if source else ''}: "
+                f"{row['kind']}, {row['mass_kg'] * 1e3:.1f} g, f1 {row['surge_frequency_Hz']:.0f} Hz, Goodman "
+                f"{row['goodman_safety']:.3g}\nload points (model): {row['installed_force_N']:.1f} N at the installed "
+                f"length, {row['open_force_N']:.1f} N open\nmargins: {margins}"
+                + (f"\nfloat speed {row['float_cam_rpm']:.0f} cam rpm" if row.get("float_cam_rpm") else "")
+            )
+            with atomic_open(path, "w", encoding="utf-8") as fh:
+                fh.write(dumps_toml({"spring": spring_table(sp)}, header))
+            written.append(path)
+    return written

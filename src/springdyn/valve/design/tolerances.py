@@ -1,0 +1,808 @@
+"""A spring proven across its manufacturing tolerances: the ``[tolerances]`` table and
+:func:`tolerance_study`.
+
+**The table** names the parameters under their own names (:data:`TOLERANCED`): the spring's
+``wire_diameter``, ``mean_diameter``, ``free_length``, ``installed_length``,
+``shear_modulus``, ``youngs_modulus``, ``density``, the coils' ``pitch`` (the mean pitch of the
+active coils, :func:`mean_active_pitch`: the coiling tool's systematic error, which shows as
+free length), the cam's ``lift`` and the valve train's ``lash``.  A value is a band, uniform between its limits (``wire_diameter = "+-0.02 mm"``,
+``shear_modulus = "+-2 %"``), or a distribution (``wire_diameter = { distribution =
+"normal", sigma = "0.01 mm" }``; ``"uniform"`` takes ``limits``).  A ``[criteria]`` table
+beside it sets the limits each variant is judged against (:class:`Criteria`).
+
+**Sampling** (:func:`sample`): scrambled Sobol points (``scipy.stats.qmc.Sobol``, a
+low-discrepancy sequence: percentiles converge faster than with random points) or Monte
+Carlo (``numpy.random.default_rng``), both reproducible from the seed; a point ``u`` in the
+unit cube becomes ``nominal + (2u - 1) band`` (uniform) or ``nominal + sigma Phi^-1(u)``
+(normal, ``scipy.special.ndtri``).
+
+**Each variant** (:func:`run_variant`) is the spring, cam and train with the sampled values,
+swept over the speed range (:func:`springdyn.valve.sweep`, every speed to its periodic
+steady state): ``Fset`` and ``f1`` (the model's), the float speed (the lowest swept speed
+from which the valve leaves the cam over the nose at every higher one, narrowed to the
+resolution), the peak retainer force, the lowest speed with coil clash, and the smallest
+Goodman safety over the speeds (both extremes also at the rated speed and refined around the
+worst swept speeds).  A **float-speed study** (``float_only``, :func:`run_variant_float`)
+runs no sweep: each variant's float speed is searched from the nominal's
+(:func:`springdyn.valve.run.float_search.float_speed_near`, four to five speeds a variant).
+
+**Outputs**: ``variants.nc`` (dimension ``variant``: the inputs under their names and the
+outputs), percentiles, the share of variants that fail each criterion, histograms.  The
+variants run in chunks of :data:`CHUNK`, on the local threads or a Dask cluster, written to
+``DIR/chunks/`` as they finish: a killed run resumes from them (a chunk belongs to its
+sample: the seed, the count, the method, the table, the speeds, the resolution and the kind
+of study).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.params import Parameters, load_toml, param
+from ...core.results import Result
+from ...core.units import to_si
+from ..run.float_search import FLOAT_RESOLUTION, float_speed_near
+
+__all__ = [
+    "TOLERANCED",
+    "Tolerance",
+    "mean_active_pitch",
+    "Criteria",
+    "read_tolerances",
+    "sample",
+    "run_variant",
+    "run_variant_float",
+    "tolerance_study",
+    "ToleranceStudy",
+    "OUTPUTS",
+    "FLOAT_OUTPUTS",
+]
+
+#: The parameters a ``[tolerances]`` table may name, with their SI unit and where they live.
+TOLERANCED = {
+    "wire_diameter": ("m", "spring"),
+    "mean_diameter": ("m", "spring"),
+    "free_length": ("m", "spring"),
+    "installed_length": ("m", "spring"),
+    "shear_modulus": ("Pa", "spring"),
+    "youngs_modulus": ("Pa", "spring"),
+    "density": ("kg/m^3", "spring"),
+    "pitch": ("m", "coiling"),
+    "lift": ("m", "cam"),
+    "lash": ("m", "valve_train"),
+}
+#: The outputs per variant, with their units.  A float speed or clash onset beyond the speed
+#: range is the range's top speed (a lower bound) with ``float_in_range`` / ``clash_in_range``
+#: 0; a variant the model refuses has ``refused`` 1 and zeros (no NaN in an output);
+#: ``periodicity`` is the largest change between the last two revolutions of any speed the
+#: variant ran [fraction of Fset] (the residual beside its figures), ``simulations`` the speeds
+#: it ran, each to its periodic steady state.
+OUTPUTS = {
+    "Fset": "N",
+    "f1": "Hz",
+    "float_cam_rpm": "rpm",
+    "max_retainer_force": "N",
+    "clash_onset_cam_rpm": "rpm",
+    "goodman_safety": "1",
+    "float_in_range": "1",
+    "clash_in_range": "1",
+    "refused": "1",
+    "periodicity": "1",
+    "simulations": "1",
+}
+#: The outputs of a float-speed study (``float_only``): the statics and the float speed.
+FLOAT_OUTPUTS = ("Fset", "f1", "float_cam_rpm", "float_in_range", "refused", "periodicity", "simulations")
+#: The outputs that are figures (percentiles and histograms); the others are flags.
+FIGURES = ("Fset", "f1", "float_cam_rpm", "max_retainer_force", "clash_onset_cam_rpm", "goodman_safety")
+#: Percentiles reported of every output [%].
+PERCENTILES = (0.135, 2.5, 50.0, 97.5, 99.865)
+#: Halvings of the speed step around the swept speeds with the smallest Goodman safety and the
+#: largest retainer force (:func:`run_variant`): both are a resonance's, which can lie between
+#: two swept speeds.
+REFINEMENTS = 2
+#: Variants per chunk on disk (a killed run loses at most one chunk's work; the chunks run
+#: in parallel on the local threads or the Dask workers).
+CHUNK = 25
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """One toleranced parameter: ``kind`` "uniform" (``half_width``) or "normal" (``sigma``), in SI."""
+
+    name: str
+    kind: str
+    half_width: float = 0.0
+    sigma: float = 0.0
+
+    def values(self, nominal: float, u: np.ndarray) -> np.ndarray:
+        """Sampled values [SI] from points ``u`` in (0, 1).
+
+        Parameters
+        ----------
+        nominal : float
+            Nominal value [SI].
+        u : ndarray
+            Points in (0, 1) [-].
+        """
+        if self.kind == "uniform":
+            return nominal + (2.0 * u - 1.0) * self.half_width
+        from scipy.special import ndtri
+
+        return nominal + self.sigma * ndtri(np.clip(u, 1e-12, 1.0 - 1e-12))
+
+
+def _quantity(text, unit: str, field_name: str, nominal_percent: bool):
+    """A tolerance width: ``"0.02 mm"`` [unit] or ``"2 %"`` (a fraction, flagged)."""
+    if isinstance(text, str) and text.strip().endswith("%"):
+        return float(to_si(text, "", field_name)), True
+    return float(to_si(text, unit, field_name)), False
+
+
+def parse_tolerance(name: str, value) -> tuple[Tolerance, bool]:
+    """A ``[tolerances]`` entry: the tolerance and whether its width is relative (a %).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`TOLERANCED`.
+    value : str or dict
+        ``"+-0.02 mm"``, ``"+-2 %"``, or ``{distribution = "normal", sigma = "0.01 mm"}``.
+    """
+    where = f"[tolerances] {name}"
+    if name not in TOLERANCED:
+        raise InputError(f"{where}: not a toleranced parameter; allowed: {', '.join(TOLERANCED)}")
+    unit = TOLERANCED[name][0]
+    if isinstance(value, str):
+        text = value.strip()
+        for prefix in ("+-", "±", "+/-"):
+            if text.startswith(prefix):
+                width, rel = _quantity(text[len(prefix) :].strip(), unit, where, True)
+                if not width > 0:
+                    raise InputError(f"{where} = {value!r}: the band must be positive")
+                return Tolerance(name, "uniform", half_width=width), rel
+        raise InputError(
+            f'{where} = {value!r}: give a band "+-0.02 mm" (or "+-2 %") or a table {{ distribution = "normal", sigma = "0.01 mm" }}'
+        )
+    if isinstance(value, dict):
+        dist = value.get("distribution")
+        extra = sorted(set(value) - {"distribution", "sigma", "limits"})
+        if extra:
+            raise InputError(
+                f"{where}: unknown key {extra[0]!r}; allowed: distribution, sigma (normal), limits (uniform)"
+            )
+        if dist == "normal":
+            if "sigma" not in value:
+                raise InputError(f'{where}: distribution = "normal" needs sigma (e.g. sigma = "0.01 mm")')
+            sigma, rel = _quantity(value["sigma"], unit, f"{where}.sigma", True)
+            if not sigma > 0:
+                raise InputError(f"{where}.sigma must be positive")
+            return Tolerance(name, "normal", sigma=sigma), rel
+        if dist == "uniform":
+            if "limits" not in value:
+                raise InputError(f'{where}: distribution = "uniform" needs limits (e.g. limits = "+-0.02 mm")')
+            return parse_tolerance(name, value["limits"])
+        raise InputError(f'{where}: distribution = {dist!r} must be "normal" or "uniform"')
+    raise InputError(f"{where} = {value!r}: give a band string or a distribution table")
+
+
+@dataclass(frozen=True)
+class Criteria(Parameters):
+    """The ``[criteria]`` table beside ``[tolerances]``: what a variant must meet."""
+
+    min_goodman_safety: float = param("", "smallest Goodman safety over the speeds", positive=True, default=1.1)
+    min_float_cam_rpm: float = param(
+        "rad/s",
+        "smallest float speed (default: the top of the speed range: no float within it)",
+        display="rpm",
+        bare_unit="rpm",
+        positive=True,
+        default=None,
+    )
+    no_coil_clash: bool = param(None, "no coil clash within the speed range", kind="bool", default=True)
+    max_retainer_force: float = param(
+        "N", "largest retainer force over the speeds (optional)", positive=True, default=None
+    )
+    installed_force_band: float = param(
+        "",
+        "largest deviation of Fset from the nominal spring's (a fraction, e.g. '10 %'; optional)",
+        positive=True,
+        default=None,
+    )
+
+    table = "criteria"
+
+
+def read_tolerances(path) -> tuple[dict, Criteria]:
+    """The ``[tolerances]`` (name -> (Tolerance, relative)) and ``[criteria]`` tables of a file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The tolerance file.
+    """
+    doc = load_toml(path, allowed=("tolerances", "criteria"))
+    if "tolerances" not in doc or not doc["tolerances"]:
+        raise InputError(f'{path}: no [tolerances] table (e.g. wire_diameter = "+-0.02 mm")')
+    tols = {k: parse_tolerance(k, v) for k, v in doc["tolerances"].items()}
+    return tols, Criteria.from_dict(doc.get("criteria", {}), source=str(path))
+
+
+def nominal_values(spring, cam, valve_train) -> dict:
+    """The nominal value of every toleranced parameter [SI] (:data:`TOLERANCED`).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain or None
+    """
+    out = {k: float(getattr(spring, k)) for k, (_, where) in TOLERANCED.items() if where == "spring"}
+    out["pitch"] = mean_active_pitch(spring)
+    out["lift"] = float(cam.max_lift)
+    out["lash"] = float(valve_train.lash) if valve_train is not None else 0.0
+    return out
+
+
+def mean_active_pitch(spring) -> float:
+    """The mean pitch of the active coils of the unloaded spring [m]:
+    ``(Lf - (2 Nb + 1) Dw) / (N1 + N2 - 2 Nb)`` (the free length less the dead coils' and the
+    end wire's height, over the active coils of :func:`springdyn.valve.spring.formulas.active_coils_free`).
+
+    A pitch tolerance is the coiling tool's systematic error of this pitch: every active coil
+    longer by ``dp`` makes the spring ``(N1 + N2 - 2 Nb) dp`` longer (:func:`variant`).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        The spring (its free length [m], wire diameter [m] and coil counts [-]).
+    """
+    from ..spring.formulas import active_coils_free
+
+    na = active_coils_free(spring.low_pitch_coils, spring.high_pitch_coils, spring.dead_coils)
+    return (spring.free_length - (2.0 * spring.dead_coils + 1.0) * spring.wire_diameter) / na
+
+
+def sample(tolerances: dict, nominal: dict, count: int, seed: int, method: str = "sobol") -> dict:
+    """Sampled values of the toleranced parameters [SI], reproducible from the seed.
+
+    Parameters
+    ----------
+    tolerances : dict
+        name -> (Tolerance, relative) (:func:`read_tolerances`).
+    nominal : dict
+        name -> nominal value [SI] (:func:`nominal_values`).
+    count : int
+        Variants [-].
+    seed : int
+        Seed of the generator [-].
+    method : {"sobol", "monte-carlo"}
+        Scrambled Sobol points or pseudo-random ones.
+    """
+    names = list(tolerances)
+    if method == "sobol":
+        import warnings
+
+        from scipy.stats import qmc
+
+        with warnings.catch_warnings():  # balanced at powers of 2; ToleranceStudy notes it
+            warnings.simplefilter("ignore")
+            u = qmc.Sobol(d=len(names), scramble=True, seed=seed).random(count)
+    elif method == "monte-carlo":
+        u = np.random.default_rng(seed).random((count, len(names)))
+    else:
+        raise InputError(f"method = {method!r} must be 'sobol' or 'monte-carlo'")
+    out = {}
+    for j, name in enumerate(names):
+        tol, rel = tolerances[name]
+        scale = nominal[name] if rel else 1.0
+        t = dataclasses.replace(tol, half_width=tol.half_width * scale, sigma=tol.sigma * scale)
+        out[name] = t.values(nominal[name], u[:, j])
+    return out
+
+
+def variant(spring, cam, valve_train, values: dict):
+    """The spring, cam and train with the values ``values`` [SI] (name -> value).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain or None
+    values : dict
+        Values of toleranced parameters [SI].
+    """
+    import warnings
+
+    spring_changes = {k: float(v) for k, v in values.items() if TOLERANCED[k][1] == "spring"}
+    if "pitch" in values:  # the coils' pitch error shows as free length (mean_active_pitch)
+        if spring.pitch_profile:
+            raise InputError(
+                "[tolerances] pitch: the spring has a pitch_profile; tolerance its profile's own values instead"
+            )
+        from ..spring.formulas import active_coils_free
+
+        na = active_coils_free(spring.low_pitch_coils, spring.high_pitch_coils, spring.dead_coils)
+        lf = spring_changes.get("free_length", spring.free_length)
+        spring_changes["free_length"] = lf + na * (float(values["pitch"]) - mean_active_pitch(spring))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sp = dataclasses.replace(spring, **spring_changes) if spring_changes else spring
+    c = cam.scaled(float(values["lift"]) / cam.max_lift) if "lift" in values else cam
+    vt = valve_train
+    if "lash" in values and vt is not None:
+        vt = dataclasses.replace(vt, lash=max(float(values["lash"]), 0.0))
+    return sp, c, vt
+
+
+def run_variant(
+    spring, cam, valve_train, speeds, rated_rpm: float | None = None, resolution: float = FLOAT_RESOLUTION
+) -> dict:
+    """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]; the Goodman
+    safety and the peak retainer force over the speeds up to ``rated_rpm`` (default: all).
+
+    The speeds are swept (:func:`springdyn.valve.sweep`); the float speed, the lowest swept
+    speed from which the valve leaves the cam over the nose at every higher one, is then
+    narrowed to ``resolution`` between it and the swept speed below
+    (:func:`springdyn.valve.run.float_search.float_speed_near`); the smallest Goodman safety and
+    the largest retainer force come from the swept speeds up to ``rated_rpm``, ``rated_rpm``
+    itself and, around the worst of each, the step halved :data:`REFINEMENTS` times (a
+    resonance between two swept speeds).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain or None
+    speeds : array_like
+        Cam speeds [rev/min], ascending.
+    rated_rpm : float, optional
+        The highest speed in service [rev/min] (the criteria's float speed: above it the
+        valve may float and the spring is not loaded in service).
+    resolution : float
+        Width of the float speed's final bracket [rev/min].
+    """
+    import warnings
+
+    from ..run.separation import float_speed_of_scan
+    from ..run.setup import prepare
+    from ..run.sweeps import sweep
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1)
+    t = sw.summary_table()
+    rpm = np.asarray(t["cam_rpm"], dtype=float)
+    p = spring.spring_model.internal_parameters()
+    clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
+    f = float_speed_of_scan(rpm, t["nose_separation"]) if valve_train is not None else None
+    periodicity = float(np.max(np.asarray(t["periodicity_error"], dtype=float)))
+    k = -1 if f is None else int(np.flatnonzero(rpm == f)[0])
+    runs = rpm.size
+    if k > 0 and f - rpm[k - 1] > resolution:
+        near = float_speed_near(
+            prepare(spring, cam, valve_train), 0.5 * (rpm[k - 1] + f), rpm[k - 1], f, resolution=resolution
+        )
+        f = near["float_cam_rpm"]
+        periodicity = max(periodicity, near["periodicity"])
+        runs += near["evaluations"]
+    service = rpm <= (rpm[-1] if rated_rpm is None else max(rated_rpm, rpm[0]))
+    worst = {
+        float(r): (float(g), float(x))
+        for r, g, x in zip(
+            rpm[service],
+            np.asarray(t["fatigue_safety_factor"], dtype=float)[service],
+            np.asarray(t["max_retainer_force_N"], dtype=float)[service],
+        )
+    }
+    # a resonance between two swept speeds: the worst speeds' neighbourhoods halved twice; the
+    # rated speed itself, the end of the service range (where the stress is often highest)
+    rated = None if rated_rpm is None else float(rated_rpm)
+    for level in range(REFINEMENTS):
+        known = sorted(worst)
+        new = (
+            {rated} if (level == 0 and rated is not None and rpm[0] < rated < rpm[-1] and rated not in worst) else set()
+        )
+        for r in {min(worst, key=lambda r: worst[r][0]), max(worst, key=lambda r: worst[r][1])}:
+            i = known.index(r)
+            new |= {0.5 * (r + known[j]) for j in (i - 1, i + 1) if 0 <= j < len(known)}
+        if not new:
+            break
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            more = sweep(spring, cam, sorted(new), valve_train=valve_train, workers=1).summary_table()
+        worst |= {
+            float(r): (float(g), float(x))
+            for r, g, x in zip(more["cam_rpm"], more["fatigue_safety_factor"], more["max_retainer_force_N"])
+        }
+        periodicity = max(periodicity, float(np.max(np.asarray(more["periodicity_error"], dtype=float))))
+        runs += len(new)
+    return dict(
+        Fset=float(p["Fset"]),
+        f1=float(spring.spring_model.first_mode_installed),
+        float_cam_rpm=float(rpm[-1]) if f is None else f,
+        max_retainer_force=max(v[1] for v in worst.values()),
+        clash_onset_cam_rpm=float(rpm[clash[0]]) if clash.size else float(rpm[-1]),
+        goodman_safety=min(v[0] for v in worst.values()),
+        float_in_range=float(f is not None),
+        clash_in_range=float(clash.size > 0),
+        refused=0.0,
+        periodicity=periodicity,
+        simulations=float(runs),
+    )
+
+
+def run_variant_float(spring, cam, valve_train, speeds, guess_rpm: float, resolution: float = FLOAT_RESOLUTION) -> dict:
+    """The outputs of :data:`FLOAT_OUTPUTS` of one variant: its statics and its float speed,
+    found near ``guess_rpm`` (the nominal's) within the speed range by
+    :func:`springdyn.valve.run.float_search.float_speed_near` (four to five speeds, not a sweep).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain
+    speeds : array_like
+        Cam speeds [rev/min], ascending: the range searched is ``speeds[0]`` to ``speeds[-1]``.
+    guess_rpm : float
+        Where the search starts [rev/min].
+    resolution : float
+        Width of the float speed's final bracket [rev/min].
+    """
+    from ..run.setup import prepare
+
+    near = float_speed_near(
+        prepare(spring, cam, valve_train),
+        guess_rpm,
+        float(speeds[0]),
+        float(speeds[-1]),
+        resolution=resolution,
+    )
+    return dict(
+        Fset=float(spring.spring_model.internal_parameters()["Fset"]),
+        f1=float(spring.spring_model.first_mode_installed),
+        float_cam_rpm=near["float_cam_rpm"],
+        float_in_range=float(near["in_range"]),
+        refused=0.0,
+        periodicity=near["periodicity"],
+        simulations=float(near["evaluations"]),
+    )
+
+
+def _key(tolerances, count, seed, method, speeds, *extra) -> str:
+    """The sample's fingerprint: chunks on disk belong to it."""
+    spec = {k: [t.kind, t.half_width, t.sigma, rel] for k, (t, rel) in tolerances.items()}
+    text = json.dumps([spec, count, seed, method, [float(s) for s in speeds], CHUNK, *extra], sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _run_chunk(spring, cam, valve_train, speeds, values: dict, run: dict) -> dict:
+    """The variants of ``values`` (a chunk's slice of the sample: only it travels to a Dask
+    worker): :func:`run_variant_float` with ``run["guess"]``, else :func:`run_variant`."""
+    import warnings
+
+    names = FLOAT_OUTPUTS if run.get("guess") is not None else tuple(OUTPUTS)
+    rows = {k: [] for k in names}
+    for i in range(len(next(iter(values.values())))):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
+                if run.get("guess") is not None:
+                    r = run_variant_float(sp, c, vt, speeds, run["guess"], run["resolution"])
+                else:
+                    r = run_variant(sp, c, vt, speeds, run["rated"], run["resolution"])
+        except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
+            r = dict({k: 0.0 for k in names}, refused=1.0)
+        for k in names:
+            rows[k].append(r[k])
+    return {k: np.asarray(v, dtype=float) for k, v in rows.items()}
+
+
+def tolerance_study(
+    spring,
+    cam,
+    tolerances: dict,
+    criteria: Criteria | None = None,
+    *,
+    count: int,
+    seed: int,
+    speeds,
+    valve_train=None,
+    method: str = "sobol",
+    out_dir=None,
+    client=None,
+    progress=None,
+    float_only: bool = False,
+    resolution: float = FLOAT_RESOLUTION,
+    workers: int | None = None,
+) -> ToleranceStudy:
+    """The spring across its tolerances (module docstring).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    tolerances : dict
+        name -> (Tolerance, relative) (:func:`read_tolerances`).
+    criteria : Criteria, optional
+        The limits (default: :class:`Criteria`'s).
+    count : int
+        Variants [-].
+    seed : int
+        Seed [-].
+    speeds : array_like
+        Cam speeds of each variant's sweep [rev/min]; a float-speed study searches between
+        the first and the last.
+    valve_train : ValveTrain, optional
+        The train (float speed, lash).
+    method : {"sobol", "monte-carlo"}
+    out_dir : path-like, optional
+        Folder of the chunks (resumable) and of ``variants.nc``.
+    client : dask.distributed.Client, optional
+        Runs the chunks on a Dask cluster.
+    progress : callable, optional
+        ``progress(iterable, total=, desc=)`` wrapper.
+    float_only : bool
+        A float-speed study: each variant's statics and float speed only
+        (:func:`run_variant_float`, searched from the nominal's), no sweep; Goodman safety,
+        peak force and coil clash are not computed.
+    resolution : float
+        Width of the float speeds' final bracket [rev/min].
+    workers : int, optional
+        Local threads the chunks run on [-] (default: the cores, at most 2).
+    """
+    import xarray as xr
+
+    criteria = Criteria() if criteria is None else criteria
+    if not isinstance(count, int) or not 1 <= count <= 10_000_000:
+        raise InputError(f"count = {count!r} must be a whole number of variants from 1 to 10000000")
+    if float_only and valve_train is None:
+        raise InputError("a float-speed study (float_only) needs a valve train: the spring alone does not float")
+    if not (isinstance(resolution, (int, float)) and math.isfinite(resolution) and resolution > 0):
+        raise InputError(f"resolution = {resolution!r} must be a positive speed [rev/min]")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
+    speeds = np.sort(np.atleast_1d(np.asarray(speeds, dtype=float)))
+    nominal = nominal_values(spring, cam, valve_train)
+    values = sample(tolerances, nominal, count, seed, method)
+    # in service up to the float speed the criteria ask for: the Goodman safety and the peak
+    # force are judged there (above it the valve may float)
+    rated = None if criteria.min_float_cam_rpm is None else criteria.min_float_cam_rpm * 30.0 / math.pi
+    run = dict(rated=rated, resolution=float(resolution), guess=None)
+    if float_only:
+        # the nominal's float speed from a scan of the range (the definition), then by the
+        # variants' search from there: its float speed starts every search
+        from ..run.float_search import float_speed
+
+        scan = float_speed(spring, cam, valve_train, speeds, resolution=float(resolution))
+        scanned = float(speeds[-1] if scan.float_cam_rpm is None else scan.float_cam_rpm)
+        nominal_out = run_variant_float(spring, cam, valve_train, speeds, scanned, float(resolution))
+        nominal_out["float_cam_rpm_scan"] = scanned
+        run["guess"] = nominal_out["float_cam_rpm"]
+    names = FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)
+    key = _key(tolerances, count, seed, method, speeds, float(resolution), bool(float_only))
+    key += "" if (rated is None or float_only) else f"r{rated:.0f}"
+    chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
+    if chunk_dir is not None:
+        chunk_dir.mkdir(parents=True, exist_ok=True)
+    bounds = [(lo, min(lo + CHUNK, count)) for lo in range(0, count, CHUNK)]
+    done, resumed = {}, 0
+    for lo, hi in bounds:
+        f = None if chunk_dir is None else chunk_dir / f"{key}_{lo:08d}.npz"
+        if f is not None and f.exists():
+            with np.load(f) as z:
+                done[lo] = {k: z[k] for k in names}
+            resumed += hi - lo
+    todo = [(lo, hi) for lo, hi in bounds if lo not in done]
+
+    def part(lo, hi):
+        return {k: v[lo:hi].copy() for k, v in values.items()}
+
+    def store(lo, res):
+        done[lo] = res
+        if chunk_dir is not None:
+            from ...core.io import atomic_path
+
+            with atomic_path(chunk_dir / f"{key}_{lo:08d}.npz") as tmp:
+                with open(tmp, "wb") as fh:
+                    np.savez(fh, **res)
+
+    if client is not None and todo:
+        futures = [
+            client.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), run, pure=False)
+            for lo, hi in todo
+        ]
+        from dask.distributed import as_completed
+
+        where = {f.key: lo for f, (lo, _) in zip(futures, todo)}
+        it = as_completed(futures)
+        for fut in progress(it, total=len(futures), desc="variants") if progress else it:
+            store(where[fut.key], fut.result())
+    elif todo:
+        # the engine releases the GIL: the chunks run on threads, each its variants in turn
+        from concurrent.futures import ThreadPoolExecutor
+        from concurrent.futures import as_completed as completed
+
+        threads = workers or min(os.cpu_count() or 1, 2)
+        with ThreadPoolExecutor(max_workers=threads) as pool:
+            futures = {
+                pool.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), run): lo for lo, hi in todo
+            }
+            it = completed(futures)
+            for fut in progress(it, total=len(futures), desc="variants") if progress else it:
+                store(futures[fut], fut.result())
+    outputs = {k: np.concatenate([done[lo][k] for lo, _ in bounds]) for k in names}
+    units = {k: TOLERANCED[k][0] for k in values}
+    data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
+    data.update({k: ("variant", v, {"units": OUTPUTS[k]}) for k, v in outputs.items()})
+    ds = xr.Dataset(
+        data,
+        coords={"variant": ("variant", np.arange(count))},
+        attrs=dict(
+            method=method,
+            seed=int(seed),
+            count=int(count),
+            sample_key=key,
+            study="float speed" if float_only else "full",
+            float_resolution_rpm=float(resolution),
+        ),
+    )
+    if not float_only:
+        nominal_out = run_variant(spring, cam, valve_train, speeds, rated, float(resolution))
+    study = ToleranceStudy(
+        dataset=ds,
+        criteria=criteria,
+        nominal=nominal_out,
+        speeds=speeds,
+        resumed=resumed,
+        floats=valve_train is not None,
+        tolerances={k: (t.kind, t.half_width, t.sigma, rel) for k, (t, rel) in tolerances.items()},
+        float_only=bool(float_only),
+    )
+    if out_dir is not None:
+        from ...core.io import atomic_path
+
+        with atomic_path(Path(out_dir) / "variants.nc") as tmp:
+            ds.to_netcdf(tmp)
+    return study
+
+
+@dataclass(frozen=True, repr=False)
+class ToleranceStudy(Result):
+    """The variants of a tolerance study (:func:`tolerance_study`): inputs, outputs, percentiles, failures."""
+
+    dataset: object  #: xarray Dataset over ``variant``
+    criteria: Criteria
+    nominal: dict  #: the nominal spring's outputs
+    speeds: np.ndarray  #: [rev/min]
+    resumed: int = 0  #: variants read back from chunks on disk
+    tolerances: dict = field(default_factory=dict)
+    #: False for the spring alone (no float speed), True with a valve train.
+    floats: bool = True
+    #: A float-speed study: statics and float speed only (:data:`FLOAT_OUTPUTS`).
+    float_only: bool = False
+
+    title = "tolerance study"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.dataset.sizes['variant']} variants"
+
+    def failures(self) -> dict:
+        """Per criterion the boolean array of the variants that fail it (a refused variant fails all)."""
+        ds, c = self.dataset, self.criteria
+        refused = ds["refused"].values > 0.5
+        out = {}
+        if not self.float_only:
+            g = ds["goodman_safety"].values
+            out["goodman"] = refused | ~(g >= c.min_goodman_safety)
+        if self.floats:
+            need = c.min_float_cam_rpm * 30.0 / math.pi if c.min_float_cam_rpm is not None else float(self.speeds[-1])
+            f = ds["float_cam_rpm"].values
+            out["float_speed"] = refused | ((ds["float_in_range"].values > 0.5) & (f < need))
+        if c.no_coil_clash and not self.float_only:
+            out["coil_clash"] = refused | (ds["clash_in_range"].values > 0.5)
+        if c.max_retainer_force is not None and not self.float_only:
+            out["retainer_force"] = refused | ~(ds["max_retainer_force"].values <= c.max_retainer_force)
+        if c.installed_force_band is not None:
+            dev = np.abs(ds["Fset"].values / self.nominal["Fset"] - 1.0)
+            out["installed_force"] = refused | ~(dev <= c.installed_force_band)
+        return out
+
+    def _figures(self) -> list:
+        """The outputs that are figures in this study."""
+        return [k for k in FIGURES if k in self.dataset and (self.floats or k != "float_cam_rpm")]
+
+    def _summary(self) -> dict:
+        ds = self.dataset
+        n = ds.sizes["variant"]
+        s = dict(
+            variants=int(n),
+            study=str(ds.attrs.get("study", "full")),
+            method=ds.attrs["method"],
+            seed=ds.attrs["seed"],
+            resumed_variants=int(self.resumed),
+        )
+        ok = ds["refused"].values < 0.5
+        for k in self._figures():
+            v = ds[k].values
+            s[f"nominal_{k}"] = float(self.nominal[k])
+            if ok.any():
+                for q, val in zip(PERCENTILES, np.percentile(v[ok], PERCENTILES)):
+                    s[f"{k}_p{q:g}"] = float(val)
+        if "float_cam_rpm_scan" in self.nominal:
+            s["nominal_float_cam_rpm_scan"] = float(self.nominal["float_cam_rpm_scan"])
+        s["float_in_range_share"] = float(ds["float_in_range"].values[ok].mean()) if ok.any() else 0.0
+        if not self.float_only:
+            s["clash_in_range_share"] = float(ds["clash_in_range"].values[ok].mean()) if ok.any() else 0.0
+        s["max_periodicity"] = float(ds["periodicity"].values[ok].max()) if ok.any() else 0.0
+        fails = self.failures()
+        for k, f in fails.items():
+            s[f"fail_share_{k}"] = float(np.mean(f))
+        s["fail_share_any"] = float(np.mean(np.any(np.stack(list(fails.values())), axis=0))) if fails else 0.0
+        notes = []
+        if self.float_only:
+            notes.append(
+                "a float-speed study: each variant's statics and float speed, searched from the nominal's; "
+                "Goodman safety, peak force and coil clash are not computed (run without --float-only)"
+            )
+        if not ok.all():
+            notes.append(f"{int((~ok).sum())} variants refused by the model (counted as failing)")
+        top = float(self.speeds[-1])
+        if self.floats and s["float_in_range_share"] < 1.0:
+            notes.append(
+                f"the float speed of {1 - s['float_in_range_share']:.0%} of the variants lies above the range: they count "
+                f"as {top:g} cam rpm (a lower bound)"
+            )
+        if self.floats:
+            notes.append(
+                f"float speeds are resolved to {float(ds.attrs.get('float_resolution_rpm', FLOAT_RESOLUTION)):g} cam rpm "
+                "(the final bracket of each search)"
+            )
+        if self.speeds.size > 1 and not self.float_only:
+            step = float(np.max(np.diff(self.speeds)))
+            notes.append(f"clash onsets are swept speeds: resolved to {step:g} cam rpm (the --cam-rpm step)")
+        if not self.float_only and s["clash_in_range_share"] < 1.0:
+            notes.append(f"a clash onset beyond the range counts as its top speed {top:g} cam rpm (no clash within it)")
+        if n < 100:
+            notes.append(f"{n} variants: the outer percentiles (0.135 %, 99.865 %) need some thousands")
+        if ds.attrs["method"] == "sobol" and n & (n - 1):
+            notes.append(f"Sobol points are balanced at powers of 2 (e.g. {2 ** int(math.log2(n) + 1)} variants)")
+        s["notes"] = notes
+        return s
+
+    def to_xarray(self):
+        return self.dataset
+
+    def _plot(self, ax=None):
+        from ...core.plotting import plt
+
+        ds = self.dataset
+        names = self._figures()
+        if ax is not None:
+            fig, axes = ax.figure, [ax]
+            names = names[:1]
+        else:
+            cols = 3
+            rows = math.ceil(len(names) / cols)
+            fig, grid = plt.subplots(rows, cols, figsize=(11, 3.2 * rows))
+            axes = list(np.ravel(grid))
+            for a in axes[len(names) :]:
+                a.set_visible(False)
+        for a, k in zip(axes, names):
+            v = ds[k].values
+            a.hist(v[ds["refused"].values < 0.5], bins=30, color="C0", alpha=0.8)
+            a.axvline(self.nominal[k], color="k", lw=1, label="nominal")
+            a.set_xlabel(f"{k} [{OUTPUTS[k]}]")
+            a.set_ylabel("variants")
+        fig.tight_layout()
+        return fig

@@ -1,0 +1,36 @@
+"""The run wing: the spring (and its valve train) driven by the cam, at one speed or many.
+
+- :mod:`.setup` -- :class:`SimulationSetup`, everything the engine needs for one spring, cam
+  and train that does not depend on the speed (cam table, initial state, static force);
+- :mod:`.simulate` -- :func:`simulate`: one speed to its periodic state;
+- :mod:`.periodicity` -- the periodic steady state every result per speed is;
+- :mod:`.separation` -- lift-offs by cam phase, float over the nose, seat bounce;
+- :mod:`.float_search` -- :func:`float_speed` and the search of a variant's float speed;
+- :mod:`.sweeps` -- :func:`sweep` over speeds and design values, local or on Dask;
+- :mod:`.run_up` -- speed ramps: lift-off and float against the momentary speed;
+- :mod:`.train_modes` -- natural frequencies under the cam, resonance speeds;
+- :mod:`.results` -- :class:`Simulation`, :class:`FloatSpeedResult`,
+  :class:`NaturalFrequencies`, and :mod:`.plots` their figures.
+
+It imports the spring, cam and train wings and the engine below them.
+"""
+
+from __future__ import annotations
+
+from ..._lazy import lazy_package
+
+_EXPORTS = {
+    "simulate": "simulate",
+    "sweep": "sweeps",
+    "SpeedSweep": "sweeps",
+    "float_speed": "float_search",
+    "speed_ramp": "run_up",
+    "SimulationSetup": "setup",
+    "prepare": "setup",
+    "Simulation": "results",
+    "FloatSpeedResult": "results",
+    "NaturalFrequencies": "results",
+}
+__all__ = sorted(_EXPORTS)
+
+lazy_package(__name__, _EXPORTS)

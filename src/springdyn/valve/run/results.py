@@ -1,0 +1,948 @@
+"""Result objects of the valve-spring analyses, on the shared :class:`~springdyn.core.results.Result`.
+
+:class:`Simulation` (one simulated revolution under cam drive, with its summary),
+:class:`FloatSpeedResult`, :class:`NaturalFrequencies` (the spring and train under the cam);
+the spring's own :class:`~springdyn.valve.spring.results.StaticCurve` is in the spring wing.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ...core.results import Result
+from ..cam.timing import CrankAngles
+from ..spring.elements import law_force
+from ..spring.stress import fatigue_assessment
+from .periodicity import PERIODICITY_TOL, is_periodic
+from .separation import cam_phases, liftoffs, separates_over_nose
+
+__all__ = ["Simulation", "FloatSpeedResult", "NaturalFrequencies"]
+
+
+@dataclass(repr=False)
+class Simulation(CrankAngles, Result):
+    """The last simulated revolution and its summary (SI; angles in rad, ``*_deg`` in degrees)."""
+
+    spring: object  # ValveSpring
+    cam: object  # Cam
+    valve_train: object  # ValveTrain or None
+    cam_rpm: float
+    revolutions: int
+    time: np.ndarray  # [s]
+    cam_angle: np.ndarray  # [rad], within the revolution
+    lift: np.ndarray  # [m]
+    retainer_force: np.ndarray  # [N]
+    seat_force: np.ndarray  # [N]
+    static_force: np.ndarray  # [N]
+    element_compression: np.ndarray  # (6, n) [m]
+    element_force: np.ndarray  # (6, n) [N]
+    element_contact: np.ndarray  # (6, n) bool
+    mass_displacement: np.ndarray  # (5, n) [m]
+    #: Largest change of the seat, retainer, cam-contact and valve-seat forces from the
+    #: revolution before, on the output grid [fraction of Fset] (nan after one revolution).
+    periodicity_error: float
+    info: dict
+    valve_lift: np.ndarray | None = None  # [m]
+    cam_contact_force: np.ndarray | None = None  # [N]
+    valve_seat_force: np.ndarray | None = None  # [N]
+    #: Monitor outputs of the compiled engine (true extremes and located events of the
+    #: last revolution from the dense output); ``None`` for the SciPy reference.
+    monitor: dict | None = None
+    #: Distributed model with coil clash: the peak forces of the same run with half the
+    #: elements (``elements``, ``max_retainer_force_N``, ``max_seat_force_N``), see
+    #: :func:`springdyn.valve.simulate`.
+    element_check: dict | None = None
+    #: Coil-bind figures of the cam's largest lift (:func:`springdyn.valve.spring.solid_length.check_coil_bind`).
+    coil_bind: dict | None = None
+    #: The tolerance [fraction of Fset] on ``periodicity_error`` under which the last
+    #: revolution is the periodic steady state (None: :data:`springdyn.valve.run.periodicity.PERIODICITY_TOL`).
+    periodicity_tol: float | None = None
+    #: The signed cam-contact gap on the output grid [m] (positive in contact; valve train).
+    cam_gap: np.ndarray | None = None
+    #: A train on a hydraulic lash adjuster (``[hla]``): ``collapse`` [m, from the base-circle
+    #: position], ``pressure`` [Pa above the supply], ``socket_force`` [N], ``inflow`` and
+    #: ``leak`` (oil volumes through the check valve and the clearance since the run's start,
+    #: m^3) on the output grid.
+    hla: dict | None = None
+    #: The cylinder's gas force on the valve on the output grid [N] (towards the seat;
+    #: :mod:`springdyn.valve.train.gas_force`), None without one.
+    gas_force: np.ndarray | None = None
+    #: A run that did not settle (``periodic`` False after the most revolutions): each
+    #: extreme's smallest and largest value over the last revolutions, name -> (lo, hi)
+    #: (names of :data:`springdyn.valve.engine.EXT`); None when periodic.
+    band: dict | None = None
+    #: Notes on how the run was asked for (a speed beyond reason computed on request).
+    flags: list = dataclasses.field(default_factory=list)
+    #: Crank angles beside the cam angles in the outputs and plots: a
+    #: :class:`~springdyn.valve.cam.timing.CrankAxis` (:func:`~springdyn.valve.cam.timing.crank_axis`),
+    #: None for cam angles only (the CLI sets it for an engine speed or a ``[timing]`` table).
+    crank_axis: object = None
+
+    #: Change of the peak end forces with half the elements [fraction of Fset] above which
+    #: the clash forces are flagged as not converged.
+    ELEMENT_TOL = 0.01
+    title = "valve spring simulation"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.spring.type} spring, {self.cam.law} cam, {self.cam_rpm:g} cam rpm"
+
+    @property
+    def cam_angle_deg(self) -> np.ndarray:
+        return np.degrees(self.cam_angle)
+
+    @cached_property
+    def contact_share(self) -> np.ndarray:
+        """The force [N] each element's closed coils pass through their contact over the
+        revolution (:meth:`SpringModel.contact_share`; NaN for an element that is no wire)."""
+        model = self.spring.spring_model
+        x = self.element_compression
+        return model.contact_share(np.stack([law_force(x[j], law) for j, law in enumerate(model.chain.laws)]))
+
+    @property
+    def periodic(self) -> bool | None:
+        """Whether the last revolution repeats the one before within ``periodicity_tol``
+        (``None`` after a single revolution: there is nothing to compare with)."""
+        return is_periodic(self.periodicity_error, self.periodicity_tol)
+
+    # ------------------------------------------------------------------ summary
+    def _summary(self) -> dict:
+        """Peak forces, ratios to static, surge, coil-contact and lift-off events, spectrum;
+        with a :attr:`crank_axis`, every event's crank angles beside its cam angles."""
+        s = _summarise(self)
+        if self.crank_axis is not None:
+            _add_crank_angles(s, self.crank_axis)
+        return s
+
+    def spectrum(self, max_order: int = 40):
+        """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean).
+
+        Parameters
+        ----------
+        max_order : int
+            Highest cam order [-].
+        """
+        n = self.retainer_force.size
+        coef = np.fft.rfft(self.retainer_force) / n
+        amp = np.abs(coef) * 2.0
+        amp[0] /= 2.0
+        k = np.arange(amp.size)
+        keep = k <= max_order
+        return k[keep], amp[keep]
+
+    # ------------------------------------------------------------------ outputs
+    def columns(self) -> dict:
+        """The CSV columns (derived from :meth:`to_xarray`)."""
+        from ...core.results import dataset_columns
+
+        return dataset_columns(self.to_xarray())
+
+    def to_xarray(self):
+        """The time series as an :class:`xarray.Dataset` over ``cam_angle`` [deg]."""
+        import xarray as xr
+
+        dims = ("cam_angle",)
+        enames = list(self.spring.spring_model.chain.element_names)
+        mnames = list(self.spring.spring_model.chain.mass_names)
+
+        def per_element(what):
+            return ",".join(f"element{j + 1}_{n}_{what}" for j, n in enumerate(enames))
+
+        data = {
+            "lift": (dims, self.lift, {"units": "m", "long_name": "cam lift"}),
+            "retainer_force": (dims, self.retainer_force, {"units": "N"}),
+            "seat_force": (dims, self.seat_force, {"units": "N"}),
+            "static_force": (dims, self.static_force, {"units": "N", "long_name": "static (massless) spring force"}),
+        }
+        if self.valve_train is not None:
+            data.update(
+                valve_lift=(dims, self.valve_lift, {"units": "m"}),
+                cam_contact_force=(dims, self.cam_contact_force, {"units": "N"}),
+                valve_seat_force=(dims, self.valve_seat_force, {"units": "N"}),
+            )
+        if self.gas_force is not None:
+            data.update(gas_force=(dims, self.gas_force, {"units": "N", "long_name": "gas force on the valve"}))
+        if self.hla is not None:
+            data.update(
+                hla_collapse=(dims, self.hla["collapse"], {"units": "m"}),
+                hla_pressure=(
+                    dims,
+                    self.hla["pressure"],
+                    {"units": "Pa", "long_name": "chamber pressure above the supply"},
+                ),
+                socket_force=(dims, self.hla["socket_force"], {"units": "N"}),
+            )
+        data.update(
+            {
+                "element_compression": (
+                    ("element",) + dims,
+                    self.element_compression,
+                    {"units": "m", "csv_columns": per_element("compression_m")},
+                ),
+                "element_force": (
+                    ("element",) + dims,
+                    self.element_force,
+                    {"units": "N", "csv_columns": per_element("force_N")},
+                ),
+                "element_contact": (
+                    ("element",) + dims,
+                    self.element_contact.astype(np.int8),
+                    {"units": "1", "long_name": "element in coil contact", "csv_columns": per_element("contact")},
+                ),
+                "mass_displacement": (
+                    ("mass",) + dims,
+                    self.mass_displacement,
+                    {
+                        "units": "m",
+                        "long_name": "displacement from set-up, towards the seat",
+                        "csv_columns": ",".join(f"mass{i + 1}_{n}_displacement_m" for i, n in enumerate(mnames)),
+                    },
+                ),
+            }
+        )
+        return xr.Dataset(
+            data,
+            coords={
+                "time": (dims, self.time, {"units": "s"}),
+                "cam_angle": (dims, self.cam_angle_deg, {"units": "deg"}),
+                **(
+                    {"crank_angle": (dims, self.crank_axis.crank_deg(self.cam_angle_deg), {"units": "deg"})}
+                    if self.crank_axis is not None
+                    else {}
+                ),
+                "element": enames,
+                "mass": mnames,
+            },
+            attrs={
+                "cam_rpm": self.cam_rpm,
+                "revolutions": self.revolutions,
+                "spring_type": self.spring.type,
+                "model": getattr(self.spring, "model", "type-c"),
+                "cam_law": self.cam.law,
+                "periodicity_error": (
+                    self.periodicity_error if np.isfinite(self.periodicity_error) else "n/a (1 revolution)"
+                ),
+            },
+        )
+
+    def _plot(self, ax=None):
+        """Forces vs cam angle (dynamic against static), mass displacements, spectrum."""
+        from .plots import plot_simulation
+
+        return plot_simulation(self, ax=ax)
+
+    def plot_closure_map(self, path=None, ax=None):
+        """Coil-closure map of the distributed model (cam angle x position along the wire).
+
+        Parameters
+        ----------
+        path : path-like, optional
+            PNG file to write.
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw into.
+        """
+        from ...core.errors import InputError
+        from .plots import plot_closure_map
+
+        if not hasattr(self.spring.spring_model, "element_positions"):
+            raise InputError(
+                'the coil-closure map needs the distributed model (model = "distributed"): Type C has no coil geometry'
+            )
+        return plot_closure_map(self, path, ax)
+
+
+def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Index ranges [start, end] of runs of True in a periodic boolean array."""
+    if not mask.any():
+        return []
+    if mask.all():
+        return [(0, mask.size - 1)]
+    m = mask.astype(np.int8)
+    d = np.diff(np.concatenate([[0], m, [0]]))
+    starts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1
+    runs = list(zip(starts.tolist(), ends.tolist()))
+    if len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == mask.size - 1:  # wraps through 0 deg
+        runs = [(runs[-1][0], runs[0][1])] + runs[1:-1]
+    return runs
+
+
+def _tol(sim) -> float:
+    return PERIODICITY_TOL if sim.periodicity_tol is None else sim.periodicity_tol
+
+
+def located_events(sim: Simulation) -> dict:
+    """Events of the last revolution located on the dense output, as cam-angle intervals.
+
+    Returns
+    -------
+    dict
+        ``(kind, index) -> [(start_deg, end_deg, duration_deg), ...]`` for the interval
+        events (0 end separation with index 0 seat / 1 retainer, 1 coil contact of element
+        ``index``, 2 lift-off), and ``"landings"``: ``[(angle_deg, impact_velocity_m_per_s)]``.
+        An interval that runs through the revolution's start is one wrapped interval
+        (``end_deg < start_deg``); one that lasts the whole revolution is ``(0, 360, 360)``.
+    """
+    mon = sim.monitor
+    if mon is None:
+        return {"landings": []}
+    return locate_intervals(mon["events"], mon["omega"], mon["t0"])
+
+
+def locate_intervals(events: np.ndarray, omega: float, t0: float) -> dict:
+    """The monitor's event rows of one revolution as cam-angle intervals (see :func:`located_events`).
+
+    Parameters
+    ----------
+    events : ndarray (rows, 4)
+        The located events ``kind, index, t_start, t_end`` (:data:`springdyn.valve.engine.EVENT_KINDS`).
+    omega : float
+        Cam speed [rad/s].
+    t0 : float
+        Start of the revolution [s].
+    """
+    out: dict = {"landings": []}
+    period = 2 * np.pi / omega
+
+    def deg(t):
+        return float(np.degrees(omega * (t - t0)))
+
+    chans: dict = {}
+    for kind, index, ts, te in events:
+        if kind == 3:
+            out["landings"].append((deg(ts), float(te)))
+            continue
+        chans.setdefault((int(kind), int(index)), []).append((ts, te))
+    for key, rows in chans.items():
+        at_start = [r for r in rows if r[0] == t0]
+        open_end = [r for r in rows if not np.isfinite(r[1])]
+        ivals = []
+        for ts, te in rows:
+            if ts == t0 and not np.isfinite(te):
+                ivals.append((0.0, 360.0, 360.0))
+            elif ts == t0 and open_end:
+                continue  # joined with the interval open at the end
+            elif not np.isfinite(te):
+                end = at_start[0][1] if at_start else t0 + period
+                ivals.append(
+                    (deg(ts), deg(end) % 360.0, (end + (period if at_start else 0.0) - ts) * omega * 180 / np.pi)
+                )
+            else:
+                ivals.append((deg(ts), deg(te), (te - ts) * omega * 180 / np.pi))
+        out[key] = sorted(ivals)
+    return out
+
+
+def _angle_mask(deg: np.ndarray, start: float, end: float) -> np.ndarray:
+    if start <= end:
+        return (deg >= start) & (deg <= end)
+    return (deg >= start) | (deg <= end)
+
+
+def _union(ivals: list) -> list:
+    """Union of cam-angle intervals (wrapped ones unrolled past 360 deg)."""
+    spans = sorted((s, e if e >= s else e + 360.0) for s, e, _ in ivals)
+    merged: list = []
+    for s, e in spans:
+        if merged and s <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], e)
+        else:
+            merged.append([s, e])
+    return merged
+
+
+#: Summary lists of events with ``start_deg``/``end_deg`` cam angles (crank angles added
+#: beside them by :func:`_add_crank_angles`).
+EVENT_LISTS = ("coil_contact", "end_separation", "liftoff")
+
+
+def _add_crank_angles(s: dict, axis) -> None:
+    """``start_crank_deg``/``end_crank_deg`` (and timing words from TDC) beside the cam angles."""
+    s["crank_angle_origin"] = "gas-exchange TDC" if axis.referenced else "cam angle 0 (no [timing] table)"
+    for key in EVENT_LISTS:
+        for ev in s.get(key, []):
+            ev["start_crank_deg"] = axis.crank_deg(ev["start_deg"])
+            ev["end_crank_deg"] = axis.crank_deg(ev["end_deg"])
+            if axis.referenced:
+                ev["start_timing"], ev["end_timing"] = axis.words(ev["start_deg"]), axis.words(ev["end_deg"])
+
+
+#: Length change of the adjuster per revolution [m] above which its figures are flagged as
+#: not settled: a tenth of a micrometre (its leak-down per cycle is some 0.3 um at 1000 cam
+#: rpm); the periodicity channel of the adjuster's length (``CHK_HLA``) judges it as well.
+HLA_CREEP_TOL = 0.1e-6
+
+
+def _hla_summary(sim: Simulation, notes: list) -> dict:
+    """The adjuster over the last revolution: its collapse and length change, pressure, the
+    oil volumes in and out (their balance), socket hop and pump-up (:mod:`springdyn.valve.train.hla`)."""
+    h, vt = sim.hla, sim.valve_train
+    hla = vt.hla
+    n = sim.time.size
+    per_rev = n / (n - 1.0)  # the grid's last sample is one step before the revolution's end
+    inflow = float(h["inflow"][-1] - h["inflow"][0]) * per_rev
+    leak = float(h["leak"][-1] - h["leak"][0]) * per_rev
+    change = float(h["collapse"][-1] - h["collapse"][0]) * per_rev
+    base = ~(sim.lift > 1e-9)  # the lobe on its base circle
+    open_on_base = float(sim.valve_lift[base].min()) if base.any() else 0.0
+    hop = sim.hla["socket_force"] <= 0.0
+    out = dict(
+        collapse_min_m=float(h["collapse"].min()),
+        collapse_max_m=float(h["collapse"].max()),
+        collapse_range_m=float(h["collapse"].max() - h["collapse"].min()),
+        length_change_per_revolution_m=-change,
+        peak_pressure_Pa=float(h["pressure"].max()),
+        min_pressure_Pa=float(h["pressure"].min()),
+        inflow_per_revolution_m3=inflow,
+        leak_per_revolution_m3=leak,
+        # a periodic revolution returns the chamber's oil: in = out (the leak-volume balance)
+        volume_balance_m3=inflow - leak,
+        socket_hop=bool(hop.any()),
+        socket_hop_deg=float(hop.sum() * 360.0 / n),
+        valve_held_open_m=max(open_on_base, 0.0),
+    )
+    if out["valve_held_open_m"] > 1e-6:
+        notes.append(
+            f"PUMP-UP: the adjuster holds the valve open by {out['valve_held_open_m'] * 1e3:.3f} mm on the base "
+            "circle (it extends whenever the train unloads it, after a lift-off or a bounce; the valve fails to close)"
+        )
+    if abs(out["length_change_per_revolution_m"]) > HLA_CREEP_TOL:
+        notes.append(
+            f"the adjuster's length still changes by {out['length_change_per_revolution_m'] * 1e6:+.2f} um per "
+            "revolution (oil in and out do not balance): its figures are those of this revolution, not of a "
+            "steady state"
+        )
+    if out["socket_hop"]:
+        who = "the plunger leaves the valve stem" if vt.bucket_hla else "the finger leaves the adjuster's plunger"
+        notes.append(f"SOCKET HOP: {who} for {out['socket_hop_deg']:.1f} cam degrees")
+    if hla is not None and out["collapse_max_m"] > hla.collapse_travel:
+        notes.append("the plunger bottoms in the adjuster's body (collapse_travel)")
+    return out
+
+
+def _summarise(sim: Simulation) -> dict:
+    p = sim.spring.spring_model.internal_parameters()
+    deg = sim.cam_angle_deg
+    step_deg = 360.0 / sim.cam_angle.size
+    names = sim.spring.spring_model.chain.element_names
+    mon = sim.monitor
+    s = dict(
+        model=getattr(sim.spring, "model", "type-c"),
+        spring=sim.spring.coil_facts,  # the coils and solid length the run used
+        cam_rpm=sim.cam_rpm,
+        revolutions=sim.revolutions,
+        periodic=sim.periodic,
+        periodicity_error=sim.periodicity_error if np.isfinite(sim.periodicity_error) else None,
+        max_retainer_force_N=float(sim.retainer_force.max()),
+        min_retainer_force_N=float(sim.retainer_force.min()),
+        max_seat_force_N=float(sim.seat_force.max()),
+        min_seat_force_N=float(sim.seat_force.min()),
+        max_static_force_N=float(sim.static_force.max()),
+        min_static_force_N=float(sim.static_force.min()),
+    )
+    notes = list(sim.flags)
+    if sim.coil_bind is not None:
+        cb = sim.coil_bind
+        s.update(cb)
+        if cb["through_solid"]:
+            notes.append(
+                f"THROUGH SOLID: the cam drives the spring {-cb['coil_bind_margin_m'] * 1e3:.3g} mm past its solid length "
+                f"{cb['solid_length_m'] * 1e3:.4g} mm (through_solid = true); the forces there rest on the contact "
+                "stiffness of closed coils"
+            )
+        elif not cb["coil_bind_ok"]:
+            notes.append(
+                f"coil bind: the cam leaves {cb['coil_bind_margin_m'] * 1e3:.3g} mm above the solid length "
+                f"{cb['solid_length_m'] * 1e3:.4g} mm, less than the coil-bind clearance "
+                f"{cb['coil_bind_clearance_m'] * 1e3:.3g} mm"
+            )
+    if mon is not None:
+        ext = mon["ext"]
+        to_deg = lambda t: float(np.degrees(mon["omega"] * (t - mon["t0"])) % 360.0)  # noqa: E731
+        # true extremes from the dense output; never less extreme than the grid samples
+        for key, ek, pick in (
+            ("max_retainer_force", "max_retainer_force", max),
+            ("min_retainer_force", "min_retainer_force", min),
+            ("max_seat_force", "max_seat_force", max),
+            ("min_seat_force", "min_seat_force", min),
+        ):
+            s[key + "_N"] = float(pick(ext[ek], s[key + "_N"]))
+            s[key + "_cam_angle_deg"] = to_deg(ext["t_" + ek])
+    else:
+        notes.append(
+            "extremes are samples of the output grid (the SciPy reference backend has no dense-output monitor)"
+        )
+    s["max_retainer_force_ratio"] = s["max_retainer_force_N"] / s["max_static_force_N"]
+    s["min_retainer_force_ratio"] = s["min_retainer_force_N"] / s["min_static_force_N"]
+    s["max_seat_force_ratio"] = s["max_seat_force_N"] / s["max_static_force_N"]
+    s["min_seat_force_ratio"] = s["min_seat_force_N"] / s["min_static_force_N"]
+    s["retainer_surge_amplitude_N"] = float(np.max(np.abs(sim.retainer_force - sim.static_force)))
+    s["seat_surge_amplitude_N"] = float(np.max(np.abs(sim.seat_force - sim.static_force)))
+    rpm = sim.cam_rpm
+    located = located_events(sim)
+    events = []
+    if mon is not None:
+        per_el = {k[1]: v for k, v in located.items() if isinstance(k, tuple) and k[0] == 1}
+        allv = [(a, b, c, j) for j, v in per_el.items() for a, b, c in v]
+        for lo, hi in _union([(a, b, c) for a, b, c, _ in allv]):
+            end = hi % 360.0 if hi > 360.0 else hi
+            elems = sorted(
+                {j for a, b, c, j in allv if any(lo - 1e-9 <= x <= hi + 1e-9 for x in (a, b if b >= a else b + 360.0))}
+            )
+            mask = _angle_mask(deg, lo, end)
+            grid = sim.element_force[np.ix_(elems, np.flatnonzero(mask))] if mask.any() else np.empty((0, 0))
+            gaps = sim.spring.spring_model.contact_gaps
+            at_touch = max(
+                float(law_force(gaps[j], sim.spring.spring_model.chain.laws[j])) if np.isfinite(gaps[j]) else 0.0
+                for j in elems
+            )
+            events.append(
+                dict(
+                    start_deg=float(lo),
+                    end_deg=float(end),
+                    duration_deg=float(hi - lo),
+                    elements=[f"{j + 1}:{names[j]}" for j in elems],
+                    peak_contact_force_N=float(max(grid.max(), at_touch)) if grid.size else at_touch,
+                )
+            )
+    else:
+        for a, b in _ranges(sim.element_contact.any(axis=0)):
+            idx = np.arange(a, b + 1) if a <= b else np.concatenate([np.arange(a, deg.size), np.arange(0, b + 1)])
+            elems = np.flatnonzero(sim.element_contact[:, idx].any(axis=1))
+            events.append(
+                dict(
+                    start_deg=float(deg[a]),
+                    end_deg=float(deg[b]),
+                    duration_deg=float(idx.size * step_deg),
+                    elements=[f"{j + 1}:{names[j]}" for j in elems],
+                    peak_contact_force_N=float(sim.element_force[np.ix_(elems, idx)].max()),
+                )
+            )
+    s["coil_contact"] = events
+    s.update(_durability(sim, s, notes))
+    s["coil_clash"] = _clash_impacts(sim, events)
+    clash = sim.spring.spring_model.clashing_coils(sim) if hasattr(sim.spring.spring_model, "clashing_coils") else None
+    if clash is not None:
+        s["clashing_coils"] = clash
+    if sim.element_check is not None:
+        chk = sim.element_check
+        fset = sim.spring.spring_model.internal_parameters()["Fset"]
+        change = (
+            max(
+                abs(s["max_retainer_force_N"] - chk["max_retainer_force_N"]),
+                abs(s["max_seat_force_N"] - chk["max_seat_force_N"]),
+            )
+            / fset
+        )
+        s["clash_force_element_sensitivity"] = change
+        s["clash_forces_converged"] = bool(change <= sim.ELEMENT_TOL)
+        if change > sim.ELEMENT_TOL:
+            notes.append(
+                f"coil clash: the peak end forces depend on the element count ({chk['elements']} elements give "
+                f"{chk['max_retainer_force_N']:.1f} / {chk['max_seat_force_N']:.1f} N at the retainer / seat against "
+                f"{s['max_retainer_force_N']:.1f} / {s['max_seat_force_N']:.1f} N, {100 * change:.1f} % of Fset): "
+                "treat the clash forces as indicative and compare designs at one element count"
+            )
+    sep = []
+    for end_index, end_name in ((0, "seat"), (1, "retainer")):
+        for a, b, c in located.get((0, end_index), []):
+            sep.append(dict(end=end_name, start_deg=a, end_deg=b, duration_deg=c, duration_s=c / (6.0 * rpm)))
+    if mon is None:
+        for j, end_name in ((0, "seat"), (-1, "retainer")):
+            for a, b in _ranges(sim.element_compression[j] <= 0.0):
+                count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
+                sep.append(
+                    dict(
+                        end=end_name,
+                        start_deg=float(deg[a]),
+                        end_deg=float(deg[b]),
+                        duration_deg=float(count * step_deg),
+                        duration_s=float(count * step_deg / (6.0 * rpm)),
+                    )
+                )
+    s["end_separation"] = sep
+    if s["periodicity_error"] is None:
+        notes.append(
+            "periodicity_error needs at least 2 revolutions (the last one is compared with the one "
+            "before): run 2 or more"
+        )
+    elif not s["periodic"]:
+        notes.append(
+            f"NOT PERIODIC: the last two of {sim.revolutions} revolutions differ by {100 * s['periodicity_error']:.3g} % "
+            f"of Fset (more than {100 * _tol(sim):g} %)"
+            + (
+                ": the run did not settle (bounce that does not repeat); its extremes scatter from revolution to "
+                "revolution, see 'band' (over the last revolutions)"
+                if sim.band is not None
+                else "; the figures are a transient: run more revolutions or to the periodic steady state (the default)"
+            )
+        )
+    if sim.band is not None:
+        unit = {"force": "_N", "velocity": "_m_per_s"}
+        s["band"] = {k + next((u for w, u in unit.items() if w in k), ""): [lo, hi] for k, (lo, hi) in sim.band.items()}
+    f_cam = sim.cam_rpm / 60.0
+    orders, amp = sim.spectrum(40)
+    top = np.argsort(amp[1:])[::-1][:8] + 1
+    s["f1_Hz"] = p["f1"]
+    s["f1_cam_order"] = p["f1"] / f_cam
+    s["spectrum"] = [dict(order=int(k), frequency_Hz=float(k * f_cam), amplitude_N=float(amp[k])) for k in sorted(top)]
+    if sim.valve_train is not None:
+        vt = sim.valve_train
+        # float: the valve open (off its seat, the lobe past the lash) and before its first
+        # landing in the revolution (later separations are seat bounces)
+        z = sim.valve_lift
+        first_landing = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
+        before = np.ones(z.size, dtype=bool)
+        if first_landing.size:
+            before[first_landing[0] + 1 :] = False
+        in_event = (sim.lift > vt.lobe_lash + 1e-6) & (z > 0.0) & before
+        phases = cam_phases(sim.cam, vt.lobe_lash)
+        if mon is not None:
+            intervals = located.get((2, 0), [])
+        else:
+            separated = in_event & (sim.cam_contact_force <= 0.0)
+            intervals = []
+            for a, b in _ranges(separated):
+                count = (b - a + 1) if a <= b else (deg.size - a + b + 1)
+                intervals.append((float(deg[a]), float(deg[b]), float(count * step_deg)))
+        lo = liftoffs(intervals, phases, sim.cam_rpm, sim.cam_angle, None if sim.cam_gap is None else -sim.cam_gap)
+        s["liftoff"] = lo
+        # float as valve-train engineers read it: the valve leaves the cam over the nose
+        s["nose_separation"] = separates_over_nose(lo, phases, sim.cam_angle, sim.cam_contact_force, sim.valve_lift)
+        s["first_liftoff_phase"] = lo[0]["phase"] if lo else None
+        s["cam_phases_deg"] = phases.as_degrees()
+        grid_min = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
+        if mon is not None and np.isfinite(mon["ext"]["min_cam_contact_force"]):
+            s["min_cam_contact_force_N"] = max(min(mon["ext"]["min_cam_contact_force"], grid_min), 0.0)
+        else:
+            s["min_cam_contact_force_N"] = grid_min
+        s["max_cam_contact_force_N"] = float(sim.cam_contact_force.max())
+        z = sim.valve_lift
+        dt = sim.time[1] - sim.time[0]
+        landings = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
+        if mon is not None:
+            lands = located["landings"]
+            s["seat_impact_velocity_m_per_s"] = float(lands[0][1]) if lands else 0.0
+            s["seat_landings"] = len(lands)
+        else:
+            vz = np.gradient(z, dt)
+            s["seat_impact_velocity_m_per_s"] = float(-vz[landings[0] + 1]) if landings.size else 0.0
+            s["seat_landings"] = int(landings.size)
+        s["bounces"] = max(s["seat_landings"] - 1, 0)
+        if lo and s["seat_landings"]:
+            # measured (tests/valve/test_distributed.py): the one-step spring's bucket train at
+            # 3150-3250 cam rpm gives 0.2-0.9 % at rtol 1e-6 and 3e-7, 0.13 % at 1e-8, 0.007 % at 1e-9
+            notes.append(
+                "the valve floated: the landing after lift-off (seat impact velocity, bounces) depends on "
+                "the tolerances, ~0.1 % at the valve train's default rtol = 1e-8; use rtol = 1e-9 for ~0.01 %"
+            )
+        after = np.zeros_like(z, dtype=bool)
+        if landings.size:
+            after[landings[0] + 1 :] = True
+        s["max_bounce_height_m"] = float(np.max(np.where(after & ~(sim.lift > vt.lobe_lash + 1e-6), z, 0.0)))
+        if sim.hla is not None:
+            s["hla"] = _hla_summary(sim, notes)
+        if sim.gas_force is not None:
+            k = int(np.argmax(sim.gas_force))
+            opening = int(np.argmax(sim.valve_lift > 0.0))  # the first sample off the seat
+            s["max_gas_force_N"] = float(sim.gas_force[k])
+            s["max_gas_force_cam_angle_deg"] = float(deg[k])
+            s["gas_force_at_opening_N"] = float(sim.gas_force[opening])
+    if mon is not None and mon["ext"]["events_lost"] > 0:
+        notes.append(f"{int(mon['ext']['events_lost'])} events beyond the first {len(mon['events'])} were not located")
+    s["notes"] = notes
+    return s
+
+
+@dataclass(repr=False)
+class FloatSpeedResult(Result):
+    """The float speed of a valve train: the lowest cam speed from which the valve
+    separates over the nose at every higher scanned speed (:mod:`springdyn.valve.run.separation`).
+
+    ``float_cam_rpm`` is ``None`` when the valve does not separate over the nose at the
+    highest scanned speed; ``bracket`` gives the speeds either side of the bisection;
+    ``first_separation`` the lowest scanned speed with any lift-off and its phase; ``scan``
+    per scanned speed the minimum cam contact force during the event, lift-off, nose
+    separation, the first lift-off's phase, seat landings and rebound height, the seat
+    impact velocity and its band, and the periodicity.  ``result["float_cam_rpm"]`` works
+    as for the dict earlier versions returned.
+    """
+
+    cam_rpm: list  # scanned speeds [rev/min]
+    min_cam_contact_force_N: list  # per scanned speed [N]
+    float_cam_rpm: float | None
+    bracket: list | None
+    resolution_rpm: float
+    first_separation: dict | None = None
+    scan: dict | None = None  # column -> list per scanned speed (float_search.SCAN_COLUMNS)
+    periodicity_tol: float | None = None
+
+    title = "valve float speed"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return "no float in the range" if self.float_cam_rpm is None else f"{self.float_cam_rpm:.1f} cam rpm"
+
+    def _summary(self) -> dict:
+        s = dict(
+            float_cam_rpm=self.float_cam_rpm,
+            float_engine_rpm=None if self.float_cam_rpm is None else 2.0 * self.float_cam_rpm,
+            float_definition="the lowest speed from which the valve separates over the nose (the negative "
+            "acceleration around the peak) at every higher scanned speed",
+            resolution_rpm=self.resolution_rpm,
+            speeds_scanned=len(self.cam_rpm),
+        )
+        s["bracket_low_cam_rpm"], s["bracket_high_cam_rpm"] = self.bracket or [None, None]
+        fs = self.first_separation
+        s["first_separation_cam_rpm"] = fs["cam_rpm"] if fs else None
+        s["first_separation_phase"] = fs["phase"] if fs else None
+        notes = []
+        sc = self.scan or {}
+        if sc.get("periodic") is not None:
+            bad = [r for r, p in zip(self.cam_rpm, sc["periodic"]) if not p]
+            s["speeds_not_periodic"] = len(bad)
+            if bad:
+                notes.append(
+                    f"{len(bad)} scanned speeds did not settle (bounce that does not repeat from one revolution to "
+                    f"the next, from {min(bad):g} cam rpm): their seating velocity is a band over the last "
+                    "revolutions and the speeds within +-25 rpm"
+                )
+        if self.float_cam_rpm is None:
+            notes.append(
+                "the valve does not separate over the nose at the highest scanned speed: no float in the range"
+            )
+        if fs and (self.float_cam_rpm is None or fs["cam_rpm"] < self.float_cam_rpm):
+            notes.append(
+                f"lift-off from {fs['cam_rpm']:g} cam rpm ({fs['phase']}) is bounce, not float: the valve does not "
+                "leave the cam over the nose at every speed above it"
+            )
+        if notes:
+            s["notes"] = notes
+        return s
+
+    def to_dict(self) -> dict:
+        """The JSON of ``springdyn valve float``: the scan and the float speed (SI, rpm)."""
+        out = dict(
+            cam_rpm=list(self.cam_rpm),
+            min_cam_contact_force_N=list(self.min_cam_contact_force_N),
+            float_cam_rpm=self.float_cam_rpm,
+            bracket=self.bracket,
+            first_separation=self.first_separation,
+        )
+        out.update({k: v for k, v in (self.scan or {}).items() if k not in out})
+        return out
+
+    def __getitem__(self, key):
+        legacy = self.to_dict()
+        return legacy[key] if key in legacy else self.summary[key]
+
+    def to_xarray(self):
+        import xarray as xr
+
+        from ...core.results import units_from_name
+
+        data = {
+            "min_cam_contact_force": (
+                "cam_rpm",
+                np.asarray(self.min_cam_contact_force_N, dtype=float),
+                {"units": "N", "long_name": "minimum cam-follower contact force in the event"},
+            )
+        }
+        for k, v in (self.scan or {}).items():
+            if k == "min_cam_contact_force_N":
+                continue
+            a = np.asarray(v)
+            data[k] = ("cam_rpm", a.astype(np.int8) if a.dtype == bool else a, {"units": units_from_name(k)})
+        return xr.Dataset(
+            data,
+            coords={"cam_rpm": ("cam_rpm", np.asarray(self.cam_rpm, dtype=float), {"units": "rpm"})},
+            attrs={"float_cam_rpm": "none" if self.float_cam_rpm is None else self.float_cam_rpm},
+        )
+
+    def _plot(self, ax=None):
+        from ...core.plotting import new_figure
+
+        if ax is None:
+            fig, ax = new_figure(figsize=(8, 4.5))
+        ax.plot(self.cam_rpm, self.min_cam_contact_force_N, "o-", color="C0", label="minimum cam contact force")
+        sc = self.scan or {}
+        if "nose_separation" in sc:
+            rpm = np.asarray(self.cam_rpm)
+            nose = np.asarray(sc["nose_separation"], dtype=bool)
+            other = np.asarray(sc["liftoff"], dtype=bool) & ~nose
+            ax.plot(rpm[other], np.zeros(other.sum()), "^", color="C1", label="lift-off off the nose (bounce)")
+            ax.plot(rpm[nose], np.zeros(nose.sum()), "v", color="C3", label="separation over the nose")
+        ax.axhline(0.0, color="k", lw=0.8)
+        if self.float_cam_rpm is not None:
+            ax.axvline(self.float_cam_rpm, color="C3", ls="--", label=f"float speed {self.float_cam_rpm:.0f} cam rpm")
+        ax.set_xlabel("cam speed [rpm]")
+        ax.set_ylabel("force [N]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        return ax.figure
+
+
+def _clash_impacts(sim, events: list) -> dict:
+    """Coil clash as impacts, apart from the wire's stress: each coil-contact event gets the
+    largest force its closed coils pass through their contact and whether it is a clash
+    (:meth:`SpringModel.clash`); the summary counts the clash events, their total duration
+    and their peak force through contact."""
+    model = sim.spring.spring_model
+    share = np.nan_to_num(sim.contact_share)
+    clash = model.clash(sim.element_contact, sim.static_force)
+    deg = sim.cam_angle_deg
+    index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
+    count, duration, peak = 0, 0.0, 0.0
+    for ev in events:
+        rows = [index[e] for e in ev["elements"]]
+        mask = _angle_mask(deg, ev["start_deg"], ev["end_deg"])
+        ev["peak_force_through_contact_N"] = float(share[np.ix_(rows, mask)].max()) if mask.any() else 0.0
+        ev["clash"] = bool(clash[np.ix_(rows, mask)].any()) if mask.any() else False
+        if ev["clash"]:
+            count += 1
+            duration += ev["duration_deg"]
+            peak = max(peak, ev["peak_force_through_contact_N"])
+    return dict(impacts=count, duration_deg=duration, peak_force_through_contact_N=peak)
+
+
+def _durability(sim, s: dict, notes: list) -> dict:
+    """Fatigue of the wire over the simulated cycle, beside the static one (issue 13).
+
+    Dynamic: every element's wire torsion (its force less what closed coils pass through
+    their contact, :meth:`SpringModel.wire_forces`) between its smallest and largest value
+    of the last revolution (the end elements of the Type C chain from the true extremes);
+    static: the static force's range over the cycle (installed to open).  A largest stress
+    above the limit (``shear_yield_strength``, else the ultimate) is a failure naming the
+    element.  Also the smallest length to solid, and for the distributed model the smallest
+    coil gap.
+    """
+    model = sim.spring.spring_model
+    share = sim.contact_share
+    wire = sim.element_force - share  # SpringModel.wire_forces, with the share computed once
+    rows = np.flatnonzero(np.isfinite(wire).all(axis=1))
+    lo = wire.min(axis=1)
+    hi = wire.max(axis=1)
+    if 0 in rows and not np.any(share[0]):
+        lo[0], hi[0] = min(lo[0], s["min_seat_force_N"]), max(hi[0], s["max_seat_force_N"])
+    last = sim.element_force.shape[0] - 1
+    if last in rows and not np.any(share[-1]):
+        lo[-1], hi[-1] = min(lo[-1], s["min_retainer_force_N"]), max(hi[-1], s["max_retainer_force_N"])
+    dyn = fatigue_assessment(sim.spring, lo[rows], hi[rows])
+    dyn["critical_element"] = int(rows[dyn["critical_element"]])
+    peak_share = np.nanmax(np.where(np.isfinite(share), share, 0.0), axis=1)
+    sta = fatigue_assessment(sim.spring, s["min_static_force_N"], s["max_static_force_N"])
+    out = dict(
+        static_fatigue_safety_factor=sta["fatigue_safety_factor"],
+        fatigue_safety_factor=dyn["fatigue_safety_factor"],
+        static_min_shear_stress_Pa=sta["min_shear_stress_Pa"],
+        static_max_shear_stress_Pa=sta["max_shear_stress_Pa"],
+        min_shear_stress_Pa=dyn["min_shear_stress_Pa"],
+        max_shear_stress_Pa=dyn["max_shear_stress_Pa"],
+        fatigue_critical_element=dyn["critical_element"] + 1,
+        endurance_shear_strength_Pa=dyn["endurance_shear_strength_Pa"],
+        ultimate_shear_strength_Pa=dyn["ultimate_shear_strength_Pa"],
+        shear_stress_limit_Pa=dyn["shear_stress_limit_Pa"],
+        max_wire_force_N=float(np.max(hi[rows])),
+        max_force_through_coil_contact_N=float(np.max(peak_share)),
+    )
+    # the largest stress of any element (the Goodman-critical one above need not be it)
+    peak = fatigue_assessment(sim.spring, np.zeros(rows.size), hi[rows])
+    j = int(rows[peak["critical_element"]])
+    out["peak_shear_stress_Pa"] = peak["max_shear_stress_Pa"]
+    out["peak_shear_stress_element"] = j + 1
+    out["wire_stress_ok"] = bool(out["peak_shear_stress_Pa"] <= out["shear_stress_limit_Pa"])
+    if not out["wire_stress_ok"]:
+        notes.append(
+            f"WIRE OVERSTRESS: element {j + 1} ({model.chain.element_names[j]}) reaches "
+            f"{out['peak_shear_stress_Pa'] / 1e6:.0f} MPa at {sim.cam_rpm:g} cam rpm, above the "
+            f"{dyn['shear_stress_limit_source']} {out['shear_stress_limit_Pa'] / 1e6:.0f} MPa"
+        )
+    if dyn["strength_defaults"]:
+        notes.append(
+            "fatigue: default wire strengths used for "
+            + " and ".join(dyn["strength_defaults"])
+            + " (oil-tempered, shot-peened Cr-Si valve-spring wire; give them in [spring] for your wire)"
+        )
+    if out["fatigue_safety_factor"] is None:
+        notes.append("fatigue: the wire carries no stress over the cycle")
+    # length to solid: the spring's length against its solid length
+    p = sim.spring.spring_model.internal_parameters()
+    length = sim.spring.free_length - sim.element_compression.sum(axis=0)
+    out["min_length_to_solid_m"] = float(max(length.min() - p["Lc"], 0.0))
+    if sim.spring.model == "distributed":
+        gaps = sim.spring.spring_model.contact_gaps
+        # the coils open at set-up (dead coils and closed transitions excluded)
+        active = np.isfinite(gaps) & (gaps > sim.spring.spring_model.chain.setup_compressions + 1e-12)
+        gap = gaps[active, None] - sim.element_compression[active]
+        out["min_coil_gap_m"] = float(max(gap.min(), 0.0)) if gap.size else None
+    return out
+
+
+@dataclass(repr=False)
+class NaturalFrequencies(Result):
+    """Natural frequencies of a spring (and its valve train) linearised on the base circle and
+    at full lift (:func:`springdyn.valve.run.train_modes.natural_frequencies`)."""
+
+    base_circle_Hz: list  # ascending [Hz]
+    full_lift_Hz: list  # ascending [Hz]; empty when the full-lift equilibrium was not found
+    full_lift_cam_angle_deg: float  # [deg]
+    notes: list
+
+    title = "valve natural frequencies"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"first {self.base_circle_Hz[0]:.1f} Hz on the base circle" if self.base_circle_Hz else "none"
+
+    def _summary(self) -> dict:
+        s = dict(
+            first_base_circle_Hz=self.base_circle_Hz[0] if self.base_circle_Hz else None,
+            first_full_lift_Hz=self.full_lift_Hz[0] if self.full_lift_Hz else None,
+            full_lift_cam_angle_deg=self.full_lift_cam_angle_deg,
+            modes_count=len(self.base_circle_Hz),
+        )
+        if self.notes:
+            s["notes"] = list(self.notes)
+        return s
+
+    def to_xarray(self):
+        import xarray as xr
+
+        n = max(len(self.base_circle_Hz), len(self.full_lift_Hz))
+
+        def padded(values):
+            return np.array(list(values) + [np.nan] * (n - len(values)), dtype=float)
+
+        return xr.Dataset(
+            {
+                "base_circle_frequency": ("mode", padded(self.base_circle_Hz), {"units": "Hz"}),
+                "full_lift_frequency": ("mode", padded(self.full_lift_Hz), {"units": "Hz"}),
+            },
+            coords={"mode": ("mode", np.arange(1, n + 1), {"units": "1"})},
+            attrs={"full_lift_cam_angle_deg": self.full_lift_cam_angle_deg},
+        )
+
+    def _csv_dataset(self):
+        # a mode without a full-lift value is left out of the table (never NaN in a file)
+        ds = self.to_xarray()
+        keep = min(len(self.base_circle_Hz), len(self.full_lift_Hz)) or len(self.base_circle_Hz)
+        ds = ds.isel(mode=slice(0, keep))
+        return ds if self.full_lift_Hz else ds.drop_vars("full_lift_frequency")
+
+    def _plot(self, ax=None):
+        from ...core.plotting import new_figure
+
+        if ax is None:
+            fig, ax = new_figure(figsize=(8, 4.5))
+        for i, (values, label) in enumerate(((self.base_circle_Hz, "base circle"), (self.full_lift_Hz, "full lift"))):
+            if values:
+                ax.plot(np.arange(1, len(values) + 1), values, "o-", color=f"C{i}", label=label)
+        ax.set_xlabel("mode")
+        ax.set_ylabel("natural frequency [Hz]")
+        ax.set_yscale("log")
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        return ax.figure

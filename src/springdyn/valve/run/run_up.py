@@ -1,0 +1,326 @@
+"""Speed ramps (run-ups): the valve train through a changing cam speed.
+
+Float under a fast engine acceleration can occur below the steady-state float speed: the
+train enters each speed with the vibration of the slower ones.  A ramp starts from the
+periodic steady state at ``start`` and turns the cam at the speed
+``omega(t) = omega_0 + alpha t``, the cam angle ``omega_0 t + alpha t^2 / 2``
+(:func:`springdyn.valve.engine.equations.train_rhs`), to ``end``.  Every revolution of the
+ramp is judged like a steady speed (:mod:`springdyn.valve.run.separation`): lift-off, lift-off
+over the nose (float), seat landings, against its momentary (mean) speed, beside the
+steady-state float speed of the same range.
+
+:func:`speed_ramp` runs it; :class:`RunUp` holds the revolutions (the Result interface).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...core.errors import InputError, SolverError
+from ...core.results import Result
+
+__all__ = ["speed_ramp", "RunUp", "ramp_time", "ramp_angle", "MAX_RAMP_REVOLUTIONS"]
+
+#: Most cam revolutions a ramp may span (a bound on the work: about 1 s per 100 revolutions).
+MAX_RAMP_REVOLUTIONS = 2000
+
+_RPM = 2.0 * math.pi / 60.0
+
+
+def ramp_angle(t, omega0: float, alpha: float):
+    """Cam angle [rad] at time ``t`` [s] of a ramp from ``omega0`` [rad/s] at ``alpha`` [rad/s^2].
+
+    Parameters
+    ----------
+    t : float or ndarray
+        Time from the ramp's start [s].
+    omega0 : float
+        Cam speed at the start [rad/s].
+    alpha : float
+        Cam angular acceleration [rad/s^2].
+    """
+    return omega0 * np.asarray(t) + 0.5 * alpha * np.asarray(t) ** 2
+
+
+def ramp_time(theta, omega0: float, alpha: float):
+    """Time [s] at which a ramp reaches the cam angle ``theta`` [rad] (the inverse of :func:`ramp_angle`).
+
+    ``t = 2 theta / (omega0 + sqrt(omega0^2 + 2 alpha theta))`` (the root that stays
+    accurate as ``alpha`` goes to zero).
+
+    Parameters
+    ----------
+    theta : float or ndarray
+        Cam angle from the ramp's start [rad].
+    omega0 : float
+        Cam speed at the start [rad/s].
+    alpha : float
+        Cam angular acceleration [rad/s^2].
+    """
+    theta = np.asarray(theta, dtype=float)
+    return 2.0 * theta / (omega0 + np.sqrt(omega0**2 + 2.0 * alpha * theta))
+
+
+def speed_ramp(
+    spring,
+    cam,
+    valve_train,
+    start_rpm: float,
+    end_rpm: float,
+    rate_rpm_per_s: float,
+    *,
+    points_per_revolution: int = 720,
+    rtol: float | None = None,
+    atol: float | None = None,
+    float_scan: bool = True,
+) -> RunUp:
+    """The valve train through a cam-speed ramp (see the module docstring).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain
+    start_rpm, end_rpm : float
+        Cam speeds at the ramp's start and end [rev/min].
+    rate_rpm_per_s : float
+        Rate of the cam speed [rev/min per s] (a deceleration when ``end < start``).
+    points_per_revolution : int
+        Output samples per revolution [-].
+    rtol, atol : float, optional
+        Relative [-] and absolute [m] tolerances (default: the valve train's,
+        :func:`springdyn.valve.run.setup.default_tolerances`).
+    float_scan : bool
+        Also find the steady-state float speed of the range (a sweep of its speeds), to
+        report beside the ramp's.
+    """
+    from ...core.units import rpm_to_omega
+    from ..engine import integrate, rhs_call
+    from ..engine.equations import model_of, train_of
+    from ..engine.layout import VT_ALPHA, extra_layout
+    from .separation import cam_phases, phase_mask
+    from .setup import MAX_STEP_FRACTION, default_tolerances, prepare
+
+    if valve_train is None:
+        raise InputError("a speed ramp judges lift-off and float: it needs a valve train (--valve-train)")
+    for name, v in (("start", start_rpm), ("end", end_rpm)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise InputError(f"speed ramp {name} = {v!r} must be a positive cam speed [rev/min]")
+    if not (isinstance(rate_rpm_per_s, (int, float)) and math.isfinite(rate_rpm_per_s) and rate_rpm_per_s > 0):
+        raise InputError(f"speed ramp rate = {rate_rpm_per_s!r} must be a positive rate [rev/min per s]")
+    if start_rpm == end_rpm:
+        raise InputError("a speed ramp needs different start and end speeds (a constant speed is valve simulate)")
+    n = int(points_per_revolution)
+    rtol, atol = default_tolerances(valve_train, rtol, atol)
+    w0, w1 = rpm_to_omega(start_rpm), rpm_to_omega(end_rpm)
+    alpha = math.copysign(rate_rpm_per_s * _RPM, w1 - w0)
+    duration = (w1 - w0) / alpha
+    total = ramp_angle(duration, w0, alpha)
+    revs = int(math.floor(total / (2.0 * math.pi)))
+    if revs < 2:
+        raise InputError(
+            f"the ramp from {start_rpm:g} to {end_rpm:g} cam rpm at {rate_rpm_per_s:g} rpm/s lasts {duration:.3g} s, "
+            "less than two cam revolutions: take a slower rate or a wider range"
+        )
+    if revs > MAX_RAMP_REVOLUTIONS:
+        raise InputError(
+            f"the ramp from {start_rpm:g} to {end_rpm:g} cam rpm at {rate_rpm_per_s:g} rpm/s spans {revs} cam "
+            f"revolutions, more than {MAX_RAMP_REVOLUTIONS}: take a faster rate or a narrower range"
+        )
+
+    setup = prepare(spring, cam, valve_train)
+    start = setup.run([w0], None, n, rtol=rtol, atol=atol)  # the periodic steady state at the start
+    if int(start["status"][0]) != 0:
+        raise SolverError(f"the ramp's start at {start_rpm:g} cam rpm did not integrate ({start['status'][0]})")
+    vt = setup.vt.copy()
+    vt[VT_ALPHA] = alpha
+    args = (*setup.args(w0)[:9], vt)
+    theta = np.arange(revs * n + 1) * (2.0 * math.pi / n)
+    t_out = ramp_time(theta, w0, alpha)
+    states, info = integrate(
+        np.array(start["state"][0], dtype=float),
+        t_out,
+        args,
+        rtol=rtol,
+        atol=atol,
+        h_max=MAX_STEP_FRACTION * 2.0 * math.pi / max(w0, w1),
+        atol_velocity=setup.atol_velocity(atol),
+        method=setup.method,
+    )
+    if info["status"] != 0 or not np.isfinite(states).all():
+        raise SolverError(
+            f"the speed ramp from {start_rpm:g} to {end_rpm:g} cam rpm stopped at t = {info['t']:.4g} s "
+            f"(status {info['status']}): {info}"
+        )
+    lay = extra_layout(setup.n_masses)
+    m = model_of(args)
+    tr = train_of(vt)
+    extra = np.empty((t_out.size, lay["size"]))
+    d = np.empty(states.shape[1])
+    for k in range(t_out.size):
+        rhs_call(t_out[k], states[k], m, w0, tr, d, extra[k])
+    phases = cam_phases(cam, valve_train.lobe_lash)
+    angle = np.mod(theta, 2.0 * math.pi)
+    nose = phase_mask(angle[:n], phases, "nose")
+    return RunUp(
+        spring=spring,
+        cam=cam,
+        valve_train=valve_train,
+        start_rpm=float(start_rpm),
+        end_rpm=float(end_rpm),
+        rate_rpm_per_s=float(rate_rpm_per_s),
+        time=t_out,
+        cam_angle=theta,
+        cam_rpm=(w0 + alpha * t_out) / _RPM,
+        lift=extra[:, lay["lift"]],
+        valve_lift=extra[:, lay["top_displacement"]],
+        cam_contact_force=extra[:, lay["cam_contact_force"]],
+        valve_seat_force=extra[:, lay["valve_seat_force"]],
+        retainer_force=extra[:, lay["force"]][:, -1],
+        points_per_revolution=n,
+        nose=nose,
+        lobe_lash=valve_train.lobe_lash,
+        steady_float_cam_rpm=_steady_float(spring, cam, valve_train, start_rpm, end_rpm) if float_scan else None,
+        info=info,
+    )
+
+
+def _steady_float(spring, cam, valve_train, a: float, b: float):
+    """The steady-state float speed over the ramp's range (None: none within it)."""
+    from .float_search import float_speed
+
+    lo, hi = min(a, b), max(a, b)
+    res = float_speed(spring, cam, valve_train, np.linspace(lo, hi, 16), progress_quiet=True)
+    return res.float_cam_rpm
+
+
+@dataclass(repr=False)
+class RunUp(Result):
+    """A valve train through a speed ramp (:func:`speed_ramp`), judged revolution by revolution."""
+
+    spring: object
+    cam: object
+    valve_train: object
+    start_rpm: float
+    end_rpm: float
+    rate_rpm_per_s: float
+    time: np.ndarray  # [s]
+    cam_angle: np.ndarray  # [rad] from the ramp's start
+    cam_rpm: np.ndarray  # momentary cam speed [rev/min]
+    lift: np.ndarray  # [m]
+    valve_lift: np.ndarray  # [m]
+    cam_contact_force: np.ndarray  # [N]
+    valve_seat_force: np.ndarray  # [N]
+    retainer_force: np.ndarray  # [N]
+    points_per_revolution: int
+    nose: np.ndarray  # (points,) the nose's samples of a revolution
+    lobe_lash: float  # [m]
+    steady_float_cam_rpm: float | None
+    info: dict
+
+    title = "valve train speed ramp"
+    cheap_plot = True
+
+    def _repr_caption(self) -> str:
+        return f"{self.start_rpm:g} -> {self.end_rpm:g} cam rpm at {self.rate_rpm_per_s:g} rpm/s"
+
+    def revolutions(self) -> dict:
+        """One row per cam revolution: its mean speed and what the valve did in it.
+
+        Returns
+        -------
+        dict
+            ``cam_rpm`` (the revolution's mean speed), ``liftoff``, ``nose_separation``,
+            ``seat_landings``, ``min_cam_contact_force_N``, ``max_retainer_force_N``.
+        """
+        n = self.points_per_revolution
+        revs = (self.time.size - 1) // n
+        rows = {k: [] for k in ("cam_rpm", "liftoff", "nose_separation", "seat_landings")}
+        rows["min_cam_contact_force_N"], rows["max_retainer_force_N"] = [], []
+        for r in range(revs):
+            sl = slice(r * n, (r + 1) * n)
+            z, fc, lift = self.valve_lift[sl], self.cam_contact_force[sl], self.lift[sl]
+            in_event = (lift > self.lobe_lash + 1e-6) & (z > 0.0)
+            off = in_event & (fc <= 0.0)
+            rows["cam_rpm"].append(2.0 * math.pi / (self.time[(r + 1) * n] - self.time[r * n]) / _RPM)
+            rows["liftoff"].append(bool(off.any()))
+            rows["nose_separation"].append(bool((off & self.nose).any()))
+            rows["seat_landings"].append(int(np.sum((z[:-1] > 0) & (z[1:] <= 0))))
+            rows["min_cam_contact_force_N"].append(float(fc[in_event].min()) if in_event.any() else 0.0)
+            rows["max_retainer_force_N"].append(float(self.retainer_force[sl].max()))
+        return {k: np.asarray(v) for k, v in rows.items()}
+
+    def _summary(self) -> dict:
+        t = self.revolutions()
+        first = np.flatnonzero(t["nose_separation"])
+        lift = np.flatnonzero(t["liftoff"])
+        s = dict(
+            start_cam_rpm=self.start_rpm,
+            end_cam_rpm=self.end_rpm,
+            rate_rpm_per_s=self.rate_rpm_per_s,
+            duration_s=float(self.time[-1]),
+            revolutions=int(t["cam_rpm"].size),
+            first_liftoff_cam_rpm=float(t["cam_rpm"][lift[0]]) if lift.size else None,
+            float_onset_cam_rpm=float(t["cam_rpm"][first[0]]) if first.size else None,
+            steady_float_cam_rpm=self.steady_float_cam_rpm,
+            max_seat_landings=int(t["seat_landings"].max()),
+            max_retainer_force_N=float(t["max_retainer_force_N"].max()),
+        )
+        notes = [
+            "each revolution of the ramp is judged at its mean speed; the ramp starts from the periodic steady "
+            "state at its start speed"
+        ]
+        if s["float_onset_cam_rpm"] is not None and self.steady_float_cam_rpm is not None:
+            s["float_onset_below_steady_cam_rpm"] = self.steady_float_cam_rpm - s["float_onset_cam_rpm"]
+        if self.steady_float_cam_rpm is None:
+            notes.append("no steady-state float within the ramp's range (or not scanned)")
+        s["notes"] = notes
+        return s
+
+    def to_xarray(self):
+        import xarray as xr
+
+        dims = ("time",)
+        return xr.Dataset(
+            {
+                "cam_rpm": (dims, self.cam_rpm, {"units": "rpm", "long_name": "momentary cam speed"}),
+                "cam_angle": (dims, np.degrees(self.cam_angle), {"units": "deg", "long_name": "from the ramp's start"}),
+                "lift": (dims, self.lift, {"units": "m"}),
+                "valve_lift": (dims, self.valve_lift, {"units": "m"}),
+                "cam_contact_force": (dims, self.cam_contact_force, {"units": "N"}),
+                "valve_seat_force": (dims, self.valve_seat_force, {"units": "N"}),
+                "retainer_force": (dims, self.retainer_force, {"units": "N"}),
+            },
+            coords={"time": (dims, self.time, {"units": "s"})},
+        )
+
+    def _plot(self, ax=None):
+        """Minimum cam contact force and seat landings per revolution against the momentary speed."""
+        from ...core.plotting import new_figure
+
+        t = self.revolutions()
+        if ax is None:
+            fig, axes = new_figure(2, 1, figsize=(9, 7))
+        else:
+            fig, axes = ax.figure, [ax]
+        a = axes[0]
+        a.plot(t["cam_rpm"], t["min_cam_contact_force_N"], "C0.-", lw=1, ms=3, label="min cam contact force")
+        nose = t["nose_separation"]
+        a.plot(t["cam_rpm"][nose], np.zeros(nose.sum()), "C3x", label="lift-off over the nose (float)")
+        if self.steady_float_cam_rpm is not None:
+            a.axvline(self.steady_float_cam_rpm, color="k", ls="--", lw=1, label="steady-state float speed")
+        a.set_xlabel("cam speed [rpm]")
+        a.set_ylabel("force [N]")
+        a.set_title(f"speed ramp {self.start_rpm:g} -> {self.end_rpm:g} cam rpm at {self.rate_rpm_per_s:g} rpm/s")
+        a.grid(True, alpha=0.3)
+        a.legend(fontsize=8)
+        if len(axes) > 1:
+            b = axes[1]
+            b.step(t["cam_rpm"], t["seat_landings"], where="mid", color="C1")
+            b.set_xlabel("cam speed [rpm]")
+            b.set_ylabel("seat landings per revolution")
+            b.grid(True, alpha=0.3)
+        return fig

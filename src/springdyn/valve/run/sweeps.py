@@ -1,0 +1,919 @@
+"""Speed sweeps (and design-variable sweeps) of the valve spring, locally or on Dask.
+
+The work is cut into chunks of speeds; each chunk integrates its speeds with the
+compiled engine (which releases the GIL, so local threads run in parallel) and reduces
+the states to the forces the results need.  Locally a thread pool runs the chunks; with a
+``dask.distributed.Client`` the same chunk function runs on the cluster, so the results
+are identical bit for bit.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import warnings
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.io import atomic_path
+from ...core.params import describe_value
+from ...core.progress import progress
+from ...core.results import Result, units_from_name
+from ...core.units import rpm_to_omega
+from ..cam.definition import Cam
+from ..cam.timing import CrankAngles
+from ..engine import EXT, extra_layout
+from ..spring.definition import ValveSpring
+from ..spring.stress import fatigue_assessment
+from ..train.definition import ValveTrain
+from .results import locate_intervals
+from .separation import PHASES, cam_phases, float_speed_of_scan, liftoffs, neighbour_band, phase_mask
+from .setup import (
+    MAX_REVOLUTIONS,
+    PERIODICITY_TOL,
+    SimulationSetup,
+    check_run_settings,
+    default_tolerances,
+    output_angles,
+    prepare,
+)
+from .simulate import _solver_error
+
+__all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
+
+#: Seconds to wait for a Dask scheduler before giving up.
+SCHEDULER_TIMEOUT = 5.0
+
+
+def run_chunk(
+    setup: SimulationSetup,
+    cam_rpm: np.ndarray,
+    revolutions: int | None,
+    points: int,
+    rtol: float,
+    atol: float,
+    periodicity_tol: float = PERIODICITY_TOL,
+    max_revolutions: int = MAX_REVOLUTIONS,
+) -> dict:
+    """Integrate a chunk of speeds and reduce each to its last revolution's forces.
+
+    To the periodic steady state (``revolutions`` None) each speed starts from the state
+    the slower speed before it in the chunk ended in (a continuation: the chunk's speeds
+    ascending), the first from rest; ``revolutions`` runs every speed from rest.
+
+    Parameters
+    ----------
+    setup : SimulationSetup
+        Spring, cam and valve train prepared for the engine.
+    cam_rpm : ndarray
+        Camshaft speeds [rev/min], ascending.
+    revolutions : int or None
+        Revolutions per speed [-]; None: to the periodic steady state.
+    points : int
+        Output points per revolution [-].
+    rtol, atol : float
+        Integration tolerances (absolute: [m] and [m/s]).
+    periodicity_tol : float
+        Periodic steady state: tolerance [fraction of Fset].
+    max_revolutions : int
+        Periodic steady state: the most revolutions per speed [-].
+
+    Returns
+    -------
+    dict
+        Arrays with a leading speed dimension: ``retainer``, ``seat``, ``contact`` (any
+        element past its coil-contact compression), ``clash`` (such an element where the
+        static spring at the same lift has it open, :meth:`SpringModel.clash`), ``contact_force`` (largest force of
+        such an element), ``wire_min``, ``wire_max`` (each element's wire torsion as an
+        axial force, :meth:`SpringModel.wire_forces`, NaN for no wire), ``periodicity`` (the largest change of the seat, retainer,
+        cam-contact and valve-seat forces from the revolution before, / Fset),
+        ``revolutions`` (run), ``settled`` (periodic within the tolerance), ``band_lo``,
+        ``band_hi`` (the extremes' band over the last revolutions of a speed that does not
+        settle, layout :data:`springdyn.valve.engine.EXT`), ``ext`` (true extremes of the last revolution from the
+        dense output, layout :data:`springdyn.valve.engine.EXT`), ``separation`` (end
+        separation events located in the last revolution), ``status``, ``t``, ``steps``
+        and, with a valve train, ``cam_contact``, ``valve_lift``, ``static``.
+    """
+    cam_rpm = np.asarray(cam_rpm, dtype=float)
+    mon = setup.run(
+        rpm_to_omega(cam_rpm),
+        revolutions,
+        points,
+        rtol=rtol,
+        atol=atol,
+        periodicity_tol=periodicity_tol,
+        max_revolutions=max_revolutions,
+        warm_start=revolutions is None,
+    )
+    ex, status = mon["extra"], mon["status"]
+    last = slice(0, points)
+    lay = extra_layout(setup.n_masses)
+    ne = setup.n_masses + 1
+    f = ex[:, :, lay["force"]]
+    contact = ex[:, last, lay["compression"]] >= setup.spring.spring_model.contact_gaps
+    ev = mon["events"]
+    model = setup.spring.spring_model
+    wire = model.wire_forces(
+        np.moveaxis(ex[:, last, lay["compression"]], -1, 0), np.moveaxis(f[:, last], -1, 0)
+    )  # (N + 1, speeds, points)
+    out = dict(
+        retainer=f[:, last, ne - 1],
+        seat=f[:, last, 0],
+        contact=contact.any(axis=2),
+        contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
+        periodicity=mon["periodicity"],
+        revolutions=mon["revolutions"],
+        settled=mon["settled"],
+        band_lo=mon["band_lo"],
+        band_hi=mon["band_hi"],
+        ext=mon["ext"],
+        wire_min=wire.min(axis=2).T,
+        wire_max=wire.max(axis=2).T,
+        separation=np.sum(ev[:, :, 0] == 0.0, axis=1),
+        status=status,
+        t=mon["t_end"],
+        steps=mon["steps"],
+    )
+    if setup.valve_train is not None:
+        out["cam_contact"] = ex[:, last, lay["cam_contact_force"]]
+        out["valve_lift"] = ex[:, last, lay["top_displacement"]]
+        out["liftoff"] = _liftoff_rows(setup, cam_rpm, mon, ex[:, last, lay["cam_gap"]], points)
+    # copies, so that the chunk's full engine output (every element, every point) is freed
+    out = {k: np.array(v, copy=True) for k, v in out.items()}
+    if setup.valve_train is not None:
+        valid = status == 0
+        static = np.full(out["valve_lift"].shape, np.nan)
+        static[valid] = setup.static_force(out["valve_lift"][valid])
+        out["static"] = static
+    else:
+        static = np.broadcast_to(setup.static_force_along_cam(points), out["retainer"].shape)
+    # coil clash: contact where the static spring at the same lift is open
+    out["clash"] = model.clash(np.moveaxis(contact, -1, 0), static).any(axis=0)
+    return out
+
+
+#: Lift-offs kept per speed of a sweep (rows of ``data["liftoff"]``; more are counted).
+MAX_LIFTOFFS = 16
+#: Columns of ``data["liftoff"]``: start, end and duration [deg], the phase (index into
+#: :data:`springdyn.valve.run.separation.PHASES`, 5 the base circle) and the largest gap [m].
+LIFTOFF_COLUMNS = ("start_deg", "end_deg", "duration_deg", "phase", "max_gap_m")
+
+
+def _liftoff_rows(setup, cam_rpm, mon, gap, points) -> np.ndarray:
+    """The located lift-offs of each speed's last revolution, classified by phase
+    (:func:`springdyn.valve.run.separation.liftoffs`), NaN-padded to :data:`MAX_LIFTOFFS` rows."""
+    phases = cam_phases(setup.cam, setup.valve_train.lobe_lash)
+    names = {name: k for k, name in enumerate((*PHASES, "base circle"))}
+    rows = np.full((cam_rpm.size, MAX_LIFTOFFS, len(LIFTOFF_COLUMNS)), np.nan)
+    theta = output_angles(points)
+    for i, rpm in enumerate(cam_rpm):
+        omega = rpm_to_omega(rpm)
+        if mon["status"][i] != 0:
+            continue
+        t0 = (int(mon["revolutions"][i]) - 1) * (2.0 * np.pi / omega)
+        ivals = locate_intervals(mon["events"][i, : int(mon["n_events"][i])], omega, t0).get((2, 0), [])
+        for j, r in enumerate(liftoffs(ivals, phases, float(rpm), theta, -gap[i])[:MAX_LIFTOFFS]):
+            rows[i, j] = (r["start_deg"], r["end_deg"], r["duration_deg"], names[r["phase"]], r["max_gap_m"])
+    return rows
+
+
+def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
+    """A ``dask.distributed.Client`` for ``address``, or an InputError within ``timeout`` s.
+
+    Parameters
+    ----------
+    address : str
+        Scheduler address, e.g. ``tcp://127.0.0.1:8786``.
+    timeout : float
+        Seconds [s] to wait for the scheduler.
+    """
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise InputError(f"scheduler = {address!r}: Dask is not installed; install springdyn[dask]") from None
+    try:
+        return Client(address, timeout=f"{timeout}s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise InputError(
+            f"scheduler = {address!r}: cannot reach a Dask scheduler there within {timeout:g} s ({type(exc).__name__}: "
+            f"{str(exc).splitlines()[0] if str(exc) else 'no answer'})"
+        ) from None
+
+
+#: Largest engine output of one chunk [bytes]: bounds the memory of sweeps of big chains.
+CHUNK_BYTES = 32 * 2**20
+
+
+#: Most speeds in a chunk: each chunk continues its speeds from one to the next, and the
+#: chunks are shared out to the workers.
+CHUNK_SPEEDS = 25
+#: Chunks a sweep is cut into at least, where it has the speeds.
+MIN_CHUNKS = 8
+
+
+def _chunks(cam_rpm: np.ndarray, max_size: int) -> list[np.ndarray]:
+    """The speeds (ascending) cut into chunks that depend on the speeds alone, not on the
+    workers: a local and a Dask sweep continue the same speeds from the same neighbours,
+    so their results agree bit for bit."""
+    size = max(1, min(math.ceil(cam_rpm.size / MIN_CHUNKS), CHUNK_SPEEDS, max_size))
+    return [cam_rpm[i : i + size] for i in range(0, cam_rpm.size, size)]
+
+
+def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client, quiet, desc, run):
+    """Run all speeds for one setup; returns the chunk outputs concatenated in the order of
+    ``cam_rpm`` (the chunks run them ascending)."""
+    per_speed = 8 * points * (extra_layout(setup.n_masses)["size"] + 1)  # the last revolution's outputs
+    max_size = max(1, CHUNK_BYTES // per_speed)
+    order = np.argsort(cam_rpm, kind="stable")
+    chunks = _chunks(cam_rpm[order], max_size)
+    if client is not None:
+        remote_setup = client.scatter(setup, broadcast=True)
+        futures = [
+            client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, **run, pure=False)
+            for c in chunks
+        ]
+        from dask.distributed import as_completed as dask_completed
+
+        for _ in progress(dask_completed(futures), total=len(futures), desc=desc, quiet=quiet):
+            pass
+        parts = [f.result() for f in futures]
+    else:
+        workers = workers or min(os.cpu_count() or 1, 2)
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            futures = [pool.submit(run_chunk, setup, c, revolutions, points, rtol, atol, **run) for c in chunks]
+            for _ in progress(as_completed(futures), total=len(futures), desc=desc, quiet=quiet):
+                pass
+            parts = [f.result() for f in futures]
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    return {k: np.concatenate([p[k] for p in parts])[back] for k in parts[0]}
+
+
+@dataclass(repr=False)
+class SpeedSweep(CrankAngles, Result):
+    """Results of a speed sweep, optionally over a design variable (SI).
+
+    ``plot(path)`` draws the forces against speed; :meth:`plot_all` writes every sweep
+    figure (forces, speed x angle map, Campbell diagram, contact force) into a folder and
+    :meth:`write` the NetCDF, the summary CSV and the figures.
+    """
+
+    spring: ValveSpring
+    cam: Cam
+    valve_train: ValveTrain | None
+    cam_rpm: np.ndarray  # (n_rpm,)
+    cam_angle: np.ndarray  # (n_angle,) [rad]
+    lift: np.ndarray  # (n_angle,) [m]
+    vary_name: str | None
+    vary_values: np.ndarray  # (n_vary,), [nan] without a design variable
+    springs: list  # ValveSpring per vary value
+    data: dict  # arrays (n_vary, n_rpm, ...) and static (n_vary, [n_rpm,] n_angle)
+    skipped: list  # (value, reason) of invalid design values
+    #: The tolerance [fraction of Fset] under which a speed's last two revolutions repeat.
+    periodicity_tol: float = PERIODICITY_TOL
+    #: Notes on how the sweep was asked for (speeds beyond reason computed on request).
+    flags: list = dataclasses.field(default_factory=list)
+    #: Crank angles and engine speeds beside the cam's (:mod:`springdyn.valve.cam.timing`; the
+    #: CLI sets it for an engine speed or a ``[timing]`` table): None for cam angles only.
+    crank_axis: object = None
+
+    title = "valve spring speed sweep"
+
+    @property
+    def engine_rpm(self) -> np.ndarray | None:
+        """Engine speeds [rev/min] of the sweep's cam speeds (None without a crank axis)."""
+        return None if self.crank_axis is None else self.crank_axis.per_cam * self.cam_rpm
+
+    def _repr_caption(self) -> str:
+        text = (
+            f"{self.spring.type} spring, {self.cam.law} cam, {self.cam_rpm.size} speeds "
+            f"{self.cam_rpm.min():g}-{self.cam_rpm.max():g} cam rpm"
+        )
+        return text + (f", {self.vary_values.size} values of {self.vary_name}" if self.vary_name else "")
+
+    def vary_label(self, k: int) -> str:
+        """``'installed_length = 36 mm'`` for the design value ``k``.
+
+        Parameters
+        ----------
+        k : int
+            Index of the design value [-].
+        """
+        return describe_design_value(self.vary_name, self.vary_values[k]) if self.vary_name else ""
+
+    def _summary(self) -> dict:
+        t = self.summary_table()
+        s = dict(
+            spring=self.spring.coil_facts,  # the coils and solid length the sweep used
+            speeds=int(self.cam_rpm.size),
+            cam_rpm_min=float(self.cam_rpm.min()),
+            cam_rpm_max=float(self.cam_rpm.max()),
+            design_values=int(self.vary_values.size),
+            vary=self.vary_name or "none",
+            max_retainer_force_N=float(np.max(t["max_retainer_force_N"])),
+            min_retainer_force_N=float(np.min(t["min_retainer_force_N"])),
+            max_seat_force_N=float(np.max(t["max_seat_force_N"])),
+            min_seat_force_N=float(np.min(t["min_seat_force_N"])),
+            max_retainer_surge_amplitude_N=float(np.max(t["retainer_surge_amplitude_N"])),
+            speeds_with_coil_contact=int(np.count_nonzero(t["coil_contact"])),
+            speeds_with_coil_clash=int(np.count_nonzero(t["coil_clash"])),
+            skipped_design_values=len(self.skipped),
+        )
+        s["max_periodicity_error"] = float(np.max(t["periodicity_error"])) if "periodicity_error" in t else None
+        s["speeds_not_periodic"] = int(np.count_nonzero(~t["periodic"]))
+        s["max_revolutions_run"] = int(np.max(t["revolutions"]))
+        if self.valve_train is not None:
+            fl = self.float_speeds()
+            s["lowest_float_cam_rpm"] = float(np.nanmin(fl)) if np.isfinite(fl).any() else None
+            first = self.first_separation_speeds()
+            s["lowest_first_separation_cam_rpm"] = float(np.nanmin(first)) if np.isfinite(first).any() else None
+            s["max_seat_landings"] = int(np.max(t["seat_landings"]))
+            s["max_seat_rebound_height_m"] = float(np.max(t["seat_rebound_height_m"]))
+        s["min_fatigue_safety_factor"] = float(np.min(t["fatigue_safety_factor"]))
+        s["peak_shear_stress_Pa"] = float(np.max(t["peak_shear_stress_Pa"]))
+        bad = np.flatnonzero(~t["wire_stress_ok"])
+        s["speeds_with_wire_overstress"] = int(bad.size)
+        notes = list(self.flags)
+        if bad.size:
+            k = int(bad[np.argmax(t["peak_shear_stress_Pa"][bad])])
+            notes.append(
+                f"WIRE OVERSTRESS at {bad.size} speeds: the worst, element {t['peak_shear_stress_element'][k]} at "
+                f"{t['cam_rpm'][k]:g} cam rpm, {t['peak_shear_stress_Pa'][k] / 1e6:.0f} MPa above the wire's limit "
+                "(shear_yield_strength, else the ultimate shear strength)"
+            )
+        if s["speeds_not_periodic"]:
+            notes.append(
+                f"{s['speeds_not_periodic']} speeds did not settle within their revolutions (the last two differ by "
+                f"more than {100 * self.periodicity_tol:g} % of Fset): their extremes are reported as bands over the "
+                "last revolutions (columns *_lo_N, *_hi_N)"
+            )
+        if self.spring.model == "distributed" and s["speeds_with_coil_contact"]:
+            notes.append(
+                "coil contact at some speeds: the distributed model's clash forces depend on the element "
+                "count (docs/valve.md); valve simulate at such a speed measures how much"
+            )
+        if notes:
+            s["notes"] = notes
+        return s
+
+    # ---------------------------------------------------------------- summary
+    def summary_table(self) -> dict:
+        """One row per (design value, speed): peaks, surge, coil contact, lift-off."""
+        d = self.data
+        nv, nr = d["retainer"].shape[:2]
+        static = d["static"] if d["static"].ndim == 3 else np.broadcast_to(d["static"][:, None, :], d["retainer"].shape)
+        cols = {}
+        if self.vary_name:
+            unit = _field_unit(self.vary_name)
+            cols[f"{self.vary_name}_{unit}" if unit else self.vary_name] = np.repeat(self.vary_values, nr)
+        cols["cam_rpm"] = np.tile(self.cam_rpm, nv)
+        if self.crank_axis is not None:
+            cols["engine_rpm"] = np.tile(self.engine_rpm, nv)
+        flat = lambda a: a.reshape(nv * nr, *a.shape[2:])  # noqa: E731
+        r, s, st = flat(d["retainer"]), flat(d["seat"]), flat(np.ascontiguousarray(static))
+        ext = flat(d["ext"])
+        col = {name: i for i, name in enumerate(EXT)}
+        cols.update(
+            # true extremes from the dense output (never less extreme than the grid samples)
+            max_retainer_force_N=np.maximum(ext[:, col["max_retainer_force"]], r.max(axis=1)),
+            min_retainer_force_N=np.minimum(ext[:, col["min_retainer_force"]], r.min(axis=1)),
+            max_seat_force_N=np.maximum(ext[:, col["max_seat_force"]], s.max(axis=1)),
+            min_seat_force_N=np.minimum(ext[:, col["min_seat_force"]], s.min(axis=1)),
+            max_static_force_N=st.max(axis=1),
+            min_static_force_N=st.min(axis=1),
+            retainer_surge_amplitude_N=np.abs(r - st).max(axis=1),
+            seat_surge_amplitude_N=np.abs(s - st).max(axis=1),
+            coil_contact=flat(d["contact"]).any(axis=1),
+            coil_clash=flat(d["clash"]).any(axis=1),
+            end_separation=flat(d["separation"]) > 0,
+            peak_coil_contact_force_N=flat(d["contact_force"]).max(axis=1),
+        )
+        if np.all(np.isfinite(d["periodicity"])):  # not with 1 revolution per speed: nothing to compare
+            cols["periodicity_error"] = flat(d["periodicity"])
+        cols["revolutions"] = flat(d["revolutions"])
+        cols["periodic"] = flat(d["periodicity"]) <= self.periodicity_tol
+        # a speed that does not settle: the band of its extremes over its last revolutions
+        # (a settled one: the value itself)
+        lo, hi = flat(d["band_lo"]), flat(d["band_hi"])
+        for name in ("max_retainer_force", "min_retainer_force", "max_seat_force", "min_seat_force"):
+            k = col[name]
+            value = cols[f"{name}_N"]
+            cols[f"{name}_lo_N"] = np.where(cols["periodic"], value, np.minimum(lo[:, k], value))
+            cols[f"{name}_hi_N"] = np.where(cols["periodic"], value, np.maximum(hi[:, k], value))
+        if self.valve_train is not None:
+            cols.update(self._separation_columns(cols, ext, col, lo, hi, flat, nv, nr))
+        cols.update(self._fatigue_columns(cols, nv, nr))
+        return cols
+
+    def _separation_columns(self, cols, ext, col, lo, hi, flat, nv, nr) -> dict:
+        """Lift-off by phase, float (nose separation), seat bounce and the seating velocity
+        band per speed (:mod:`springdyn.valve.run.separation`)."""
+        d = self.data
+        rows = flat(d["liftoff"])
+        phase = rows[:, :, LIFTOFF_COLUMNS.index("phase")]
+        z = flat(d["valve_lift"])
+        out = {}
+        # seat landings in the revolution: the valve's first return to its seat
+        landed = (
+            np.cumsum(
+                np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)], axis=1), axis=1
+            )
+            > 0
+        )
+        # the valve open (off its seat, the lobe past the lash) and before its first landing
+        # (later separations are seat bounces, the cam leaving a seated valve is no lift-off)
+        in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0) & ~landed
+        cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
+        dense = ext[:, col["min_cam_contact_force"]]
+        out["liftoff"] = np.isfinite(rows[:, :, 0]).any(axis=1) | (cc <= 0.0).any(axis=1) | (dense <= 0.0)
+        # the valve leaves the cam over the nose (separates_over_nose, vectorised)
+        nose = phase_mask(self.cam_angle, cam_phases(self.cam, self.valve_train.lobe_lash), "nose")
+        off_cam = (flat(d["cam_contact"]) <= 0.0) & (z > 0.0) & nose
+        out["nose_separation"] = (phase == PHASES.index("nose")).any(axis=1) | off_cam.any(axis=1)
+        first = np.where(np.isfinite(phase[:, 0]), phase[:, 0], -1).astype(int)
+        out["first_liftoff_phase"] = np.array([(*PHASES, "base circle")[k] if k >= 0 else "" for k in first])
+        out["max_liftoff_gap_m"] = np.nan_to_num(
+            np.nanmax(np.where(np.isfinite(rows[:, :, 4]), rows[:, :, 4], 0.0), axis=1)
+        )
+        grid = np.where(np.isfinite(cc.min(axis=1)), cc.min(axis=1), 0.0)
+        out["min_cam_contact_force_N"] = np.maximum(np.fmin(dense, grid), 0.0)
+        # seat bounce: landings per revolution, the largest rebound off the seat after the
+        # first landing (the lobe back on its base circle)
+        out["seat_landings"] = ext[:, col["seat_landings"]].astype(int)
+        out["seat_rebound_height_m"] = np.max(
+            np.where(landed & ~(self.lift > self.valve_train.lobe_lash + 1e-6), z, 0.0), axis=1
+        )
+        if self.valve_train.hla is not None:
+            # pump-up: the adjuster holds the valve off its seat on the base circle
+            base = ~(self.lift > 1e-9)
+            out["valve_held_open_m"] = np.maximum(np.min(np.where(base, z, np.inf), axis=1), 0.0)
+        v = ext[:, col["seat_impact_velocity"]]
+        out["seat_impact_velocity_m_per_s"] = v
+        # the seating velocity band: over the speeds within SEATING_BAND_RPM and, for a speed
+        # that does not settle, over its last revolutions
+        k = col["seat_impact_velocity"]
+        vlo = np.where(cols["periodic"], v, np.minimum(lo[:, k], v))
+        vhi = np.where(cols["periodic"], v, np.maximum(hi[:, k], v))
+        blo, bmed, bhi = (np.empty(v.size) for _ in range(3))
+        for i in range(nv):
+            sl = slice(i * nr, (i + 1) * nr)
+            a, _, _ = neighbour_band(self.cam_rpm, vlo[sl])
+            _, m, _ = neighbour_band(self.cam_rpm, v[sl])
+            _, _, b = neighbour_band(self.cam_rpm, vhi[sl])
+            blo[sl], bmed[sl], bhi[sl] = a, m, b
+        out["seat_impact_velocity_min_m_per_s"] = blo
+        out["seat_impact_velocity_median_m_per_s"] = bmed
+        out["seat_impact_velocity_max_m_per_s"] = bhi
+        return out
+
+    def _fatigue_columns(self, cols, nv, nr) -> dict:
+        """Goodman fatigue factor against speed (issue 13): every element's wire torsion
+        (its force less what closed coils pass through their contact) between its smallest
+        and largest value of the revolution (an end element without coil contact from the
+        true extremes of the end force), and the static cycle; per design value, from that
+        variant's wire and strengths.  Also the largest wire stress against the limit."""
+        d = self.data
+        wmin = d["wire_min"].reshape(nv * nr, -1).copy()
+        wmax = d["wire_max"].reshape(nv * nr, -1).copy()
+        dyn, sta, tau, limit, crit = (np.empty(nv * nr) for _ in range(5))
+        for i in range(nv):
+            sp = self.springs[i]
+            plain = ~np.isfinite(sp.spring_model.contact_compressions())
+            for end, key in ((0, "seat"), (-1, "retainer")):
+                if plain[end] and np.isfinite(wmin[0, end]):
+                    sl = slice(i * nr, (i + 1) * nr)
+                    wmin[sl, end] = np.minimum(wmin[sl, end], cols[f"min_{key}_force_N"][sl])
+                    wmax[sl, end] = np.maximum(wmax[sl, end], cols[f"max_{key}_force_N"][sl])
+            for j in range(nr):
+                k = i * nr + j
+                rows = np.isfinite(wmin[k])
+                a = fatigue_assessment(sp, wmin[k, rows], wmax[k, rows])
+                b = fatigue_assessment(sp, cols["min_static_force_N"][k], cols["max_static_force_N"][k])
+                dyn[k] = a["fatigue_safety_factor"] if a["fatigue_safety_factor"] is not None else 0.0
+                sta[k] = b["fatigue_safety_factor"] if b["fatigue_safety_factor"] is not None else 0.0
+                fa = fatigue_assessment(sp, np.zeros(rows.sum()), wmax[k, rows])  # the largest stress
+                tau[k], limit[k] = fa["max_shear_stress_Pa"], fa["shear_stress_limit_Pa"]
+                crit[k] = np.flatnonzero(rows)[fa["critical_element"]] + 1
+        return dict(
+            fatigue_safety_factor=dyn,
+            static_fatigue_safety_factor=sta,
+            peak_shear_stress_Pa=tau,
+            peak_shear_stress_element=crit.astype(int),
+            wire_stress_ok=tau <= limit,
+        )
+
+    def float_speeds(self) -> np.ndarray:
+        """Float speed per design value [rpm]: the lowest swept speed from which the valve
+        separates over the nose at every higher swept speed
+        (:func:`springdyn.valve.run.separation.float_speed_of_scan`; nan: not at the highest
+        speed, or no valve train)."""
+        out = np.full(self.vary_values.size, np.nan)
+        if self.valve_train is None:
+            return out
+        order = np.argsort(self.cam_rpm, kind="stable")
+        nose = self.summary_table()["nose_separation"].reshape(self.vary_values.size, self.cam_rpm.size)
+        for i, row in enumerate(nose):
+            f = float_speed_of_scan(self.cam_rpm[order], row[order])
+            out[i] = np.nan if f is None else f
+        return out
+
+    def first_separation_speeds(self) -> np.ndarray:
+        """Lowest swept speed with any lift-off (any phase) per design value [rpm] (nan: none)."""
+        out = np.full(self.vary_values.size, np.nan)
+        if self.valve_train is None:
+            return out
+        lo = self.summary_table()["liftoff"].reshape(self.vary_values.size, self.cam_rpm.size)
+        for i, row in enumerate(lo):
+            if row.any():
+                out[i] = np.min(self.cam_rpm[row])
+        return out
+
+    # ---------------------------------------------------------------- outputs
+    def to_xarray(self):
+        """Dataset with dimensions ``(vary,) cam_rpm, cam_angle`` (angle in degrees)."""
+        import xarray as xr
+
+        d = self.data
+        dims = ("vary", "cam_rpm", "cam_angle")
+        data = {
+            "retainer_force": (dims, d["retainer"], {"units": "N"}),
+            "seat_force": (dims, d["seat"], {"units": "N"}),
+            "in_coil_contact": (
+                dims,
+                d["contact"].astype(np.int8),
+                {"long_name": "a Kh element past its Fcon breakpoint"},
+            ),
+            "coil_contact_force": (
+                dims,
+                d["contact_force"],
+                {"units": "N", "long_name": "largest force of an element in coil contact"},
+            ),
+            "lift": (("cam_angle",), self.lift, {"units": "m"}),
+        }
+        if np.all(np.isfinite(d["periodicity"])):
+            data["periodicity_error"] = (
+                dims[:2],
+                d["periodicity"],
+                {"units": "1", "long_name": "max change from the previous revolution / Fset"},
+            )
+        if d["static"].ndim == 3:
+            data["static_force"] = (dims, d["static"], {"units": "N"})
+        else:
+            data["static_force"] = (("vary", "cam_angle"), d["static"], {"units": "N"})
+        if self.valve_train is not None:
+            data["cam_contact_force"] = (dims, d["cam_contact"], {"units": "N"})
+            data["valve_lift"] = (dims, d["valve_lift"], {"units": "m"})
+            data["float_cam_rpm"] = (("vary",), self.float_speeds(), {"units": "rpm"})
+        for key, values in self.summary_table().items():
+            if key in ("cam_rpm", "engine_rpm") or (self.vary_name and key.startswith(self.vary_name)):
+                continue
+            values = np.asarray(values).reshape(self.vary_values.size, self.cam_rpm.size)
+            if values.dtype == bool:
+                values = values.astype(np.int8)
+            data[key] = (dims[:2], values, {"units": units_from_name(key)})
+        ds = xr.Dataset(
+            data,
+            coords={
+                "vary": ("vary", self.vary_values, {"long_name": self.vary_name or "none"}),
+                "cam_rpm": ("cam_rpm", self.cam_rpm, {"units": "rpm"}),
+                "cam_angle": ("cam_angle", np.degrees(self.cam_angle), {"units": "deg"}),
+                **(
+                    {
+                        "engine_rpm": ("cam_rpm", self.engine_rpm, {"units": "rpm"}),
+                        "crank_angle": (
+                            "cam_angle",
+                            self.crank_axis.crank_deg(np.degrees(self.cam_angle)),
+                            {
+                                "units": "deg",
+                                "origin": "gas-exchange TDC" if self.crank_axis.referenced else "cam angle 0",
+                            },
+                        ),
+                    }
+                    if self.crank_axis is not None
+                    else {}
+                ),
+            },
+            attrs={
+                "spring_type": self.spring.type,
+                "cam_law": self.cam.law,
+                "vary_name": self.vary_name or "",
+                "valve_train": int(self.valve_train is not None),
+            },
+        )
+        return ds if self.vary_name else ds.isel(vary=0, drop=True)
+
+    def to_netcdf(self, path):
+        """Write :meth:`to_xarray` to NetCDF atomically.
+
+        Parameters
+        ----------
+        path : str or Path
+            The NetCDF file to write [-].
+        """
+        with atomic_path(path, suffix=".nc") as tmp:
+            self.to_xarray().to_netcdf(tmp)
+        return Path(path)
+
+    def _csv_dataset(self):
+        """The summary table (one row per speed and design value) as a one-dimensional dataset."""
+        import xarray as xr
+
+        table = self.summary_table()
+        return xr.Dataset(
+            {
+                k: ("row", (np.asarray(v).astype(int) if np.asarray(v).dtype == bool else np.asarray(v)), {"units": ""})
+                for k, v in table.items()
+            },
+            coords={},
+        )
+
+    def _plot(self, ax=None):
+        from .plots import plot_sweep_forces
+
+        return plot_sweep_forces(self, ax=ax)
+
+    def plot(self, path=None, ax=None, prefix: str = "sweep"):
+        """Plot the forces against speed; return the figure (``path``: that PNG file).
+
+        Earlier versions took an output folder here and wrote every sweep figure into it:
+        a path that is an existing folder still does that, with a DeprecationWarning
+        (use :meth:`plot_all`).
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            The PNG file to write [-].
+        ax : matplotlib Axes, optional
+            Draw there [-].
+        prefix : str
+            File name prefix of a folder's figures [-].
+        """
+        if path is not None and Path(path).is_dir():
+            warnings.warn(
+                "SpeedSweep.plot(folder) is deprecated: use plot_all(folder)", DeprecationWarning, stacklevel=2
+            )
+            return self.plot_all(path, prefix)
+        return super().plot(path, ax=ax)
+
+    def plot_all(self, out_dir, prefix: str = "sweep") -> list[Path]:
+        """Write every sweep figure as PNG into the folder ``out_dir``; returns their paths.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            Output folder [-].
+        prefix : str
+            File name prefix [-].
+        """
+        from .plots import plot_sweep
+
+        out_dir = Path(out_dir)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        return plot_sweep(self, out_dir, prefix)
+
+    def resonance_table(self) -> list[dict]:
+        """Cam speeds in the swept range where a cam order meets a natural frequency.
+
+        ``cam rpm = 60 f / N`` (N up to 20) for the modes of the spring (and valve train)
+        linearised at full lift (:func:`springdyn.valve.run.train_modes.natural_frequencies`; the
+        base-circle modes where full lift has none).  Rows: ``mode``, ``frequency_Hz``,
+        ``order``, ``cam_rpm``.
+        """
+        return list(self._resonances)
+
+    @cached_property
+    def _resonances(self) -> list[dict]:
+        """:meth:`resonance_table`, computed once per sweep (a linearisation and a root search)."""
+        from .train_modes import natural_frequencies, resonance_speeds
+
+        nat = natural_frequencies(self.spring, self.cam, self.valve_train, count=6)
+        return resonance_speeds(
+            nat["full_lift_Hz"] or nat["base_circle_Hz"], float(np.min(self.cam_rpm)), float(np.max(self.cam_rpm))
+        )
+
+    def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
+        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``.
+
+        Parameters
+        ----------
+        out_dir : str or Path
+            Output folder [-].
+        prefix : str
+            File name prefix [-].
+        """
+        from ...core.io import write_csv
+
+        out_dir = Path(out_dir)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        written = [self.to_netcdf(out_dir / f"{prefix}.nc"), self.to_csv(out_dir / f"{prefix}_summary.csv")]
+        rows = self.resonance_table()
+        written.append(
+            write_csv(
+                out_dir / f"{prefix}_resonances.csv",
+                {
+                    "mode": [r["mode"] for r in rows],
+                    "frequency_Hz": [r["frequency_Hz"] for r in rows],
+                    "cam_order": [r["order"] for r in rows],
+                    "cam_rpm": [r["cam_rpm"] for r in rows],
+                },
+            )
+        )
+        return written + self.plot_all(out_dir, prefix)
+
+
+def _field_unit(name: str) -> str:
+    meta = {f.name: f.metadata for f in dataclasses.fields(ValveSpring)}
+    return meta[name]["unit"].replace("/", "_per_").replace("^", "") if name in meta else ""
+
+
+def sweep(
+    spring: ValveSpring,
+    cam: Cam,
+    cam_rpm,
+    *,
+    revolutions: int | None = None,
+    valve_train: ValveTrain | None = None,
+    points_per_revolution: int = 720,
+    rtol: float | None = None,
+    atol: float | None = None,
+    vary: tuple[str, np.ndarray] | None = None,
+    on_invalid: str = "stop",
+    workers: int | None = None,
+    client=None,
+    quiet: bool = True,
+    periodicity_tol: float = PERIODICITY_TOL,
+    max_revolutions: int = MAX_REVOLUTIONS,
+    allow_extreme_speeds: bool = False,
+    gas_force=None,
+) -> SpeedSweep:
+    """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        The spring definition.
+    cam : Cam
+        The cam.
+    cam_rpm : array_like
+        Camshaft speeds [rev/min], positive.
+    valve_train : ValveTrain, optional
+        Adds lift-off (see :func:`springdyn.valve.simulate`).
+    revolutions : int, optional
+        Revolutions per speed from rest [-] (the last is kept; the one before judges
+        periodicity).  Default: each speed to its periodic steady state, continued from the
+        slower speed before it (see :func:`run_chunk`).
+    points_per_revolution : int
+        Output samples per revolution [-].
+    rtol, atol : float, optional
+        Relative [-] and absolute [m, m/s] integration tolerances (default as for
+        :func:`springdyn.valve.simulate`: tighter with a valve train).
+    vary : (str, array_like), optional
+        A numeric :class:`ValveSpring` field and its values [SI unit of the field], an
+        extra dimension.
+    on_invalid : {"stop", "skip"}
+        What to do with a design value that makes the spring invalid.
+    workers : int, optional
+        Local threads [-] (default: both cores).
+    client : dask.distributed.Client, optional
+        Run the chunks on this cluster instead.
+    quiet : bool
+        No progress bar.
+    periodicity_tol : float
+        Periodic steady state: the largest change of the seat, retainer, cam-contact and
+        valve-seat forces between the last two revolutions [fraction of Fset].
+    max_revolutions : int
+        Periodic steady state: the most revolutions per speed [-]; a speed that does not
+        settle is marked (``periodic`` False) and reports bands.
+    allow_extreme_speeds : bool
+        Compute speeds at which the cam event is shorter than one period of the spring's
+        first surge mode (refused otherwise), flagged in the summary's notes.
+    gas_force : GasForce, optional
+        The cylinder's gas force on the valve over the revolution [N], the same at every
+        speed (:class:`springdyn.valve.train.gas_force.GasForce`; needs a valve train).
+    """
+    try:
+        cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"cam_rpm = {cam_rpm!r} must be a speed or a list of speeds [rev/min]") from None
+    if cam_rpm.ndim != 1:
+        raise InputError(f"cam_rpm must be a flat list of speeds [rev/min], not an array of shape {cam_rpm.shape}")
+    if cam_rpm.size == 0:
+        raise InputError("cam_rpm is empty: give at least one speed")
+    if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
+        bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
+        raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
+    rtol, atol = default_tolerances(valve_train, rtol, atol)
+    check_run_settings(revolutions, points_per_revolution, rtol, atol, periodicity_tol, max_revolutions)
+    if on_invalid not in ("stop", "skip"):
+        raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
+        raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
+    springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
+    setups = [setup.with_gas_force(gas_force) for setup in setups]
+    flags = []
+    if gas_force is not None:
+        flags.append(
+            f"with the gas force on the valve{' of ' + gas_force.source if gas_force.source else ''} "
+            f"(up to {float(gas_force.force.max()):.0f} N), the same trace against crank angle at every speed"
+        )
+    for setup in setups:
+        flags += [f for f in setup.check_speeds(cam_rpm, allow_extreme_speeds) if f not in flags]
+    points = int(points_per_revolution)
+    theta = output_angles(points)
+    lift = cam.lift_at(theta)
+    results = []
+    f1 = float(spring.spring_model.modes(spring.installed_length, 1)[0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("once")
+        cam.check_resolution(float(cam_rpm.min()), f1)
+    for k, setup in enumerate(setups):
+        desc = "valve sweep" + (f" {_describe(vary[0], values[k])}" if vary else "")
+        res = _run_speeds(
+            setup,
+            cam_rpm,
+            None if revolutions is None else int(revolutions),
+            points,
+            rtol,
+            atol,
+            workers,
+            client,
+            quiet,
+            desc,
+            dict(periodicity_tol=periodicity_tol, max_revolutions=max_revolutions),
+        )
+        failed = np.flatnonzero(res["status"] != 0)
+        if failed.size:
+            i = int(failed[0])
+            info = dict(status=int(res["status"][i]), t=float(res["t"][i]), steps=int(res["steps"][i]))
+            raise _solver_error(float(cam_rpm[i]), rpm_to_omega(cam_rpm[i]), info)
+        if valve_train is None:
+            res["static"] = setup.static_force_along_cam(points)  # the same as a simulation's
+        results.append(res)
+    data = {key: np.stack([r[key] for r in results]) for key in results[0]}
+    return SpeedSweep(
+        spring,
+        cam,
+        valve_train,
+        cam_rpm,
+        theta,
+        lift,
+        vary[0] if vary else None,
+        values,
+        springs,
+        data,
+        skipped,
+        periodicity_tol,
+        flags,
+    )
+
+
+def describe_design_value(name: str, value: float) -> str:
+    """``'installed_length = 36 mm'`` for a design value in SI.
+
+    Parameters
+    ----------
+    name : str
+        A numeric :class:`ValveSpring` field.
+    value : float
+        Its value [SI unit of the field].
+    """
+    return _describe(name, value)
+
+
+def _describe(name: str, value: float) -> str:
+    meta = {f.name: f.metadata for f in dataclasses.fields(ValveSpring)}
+    return f"{name} = {describe_value(float(value), meta[name])}"
+
+
+def _design_variants(spring, cam, valve_train, vary, on_invalid):
+    """Valid springs (and their prepared setups) for every design value."""
+    if vary is None:
+        return [spring], [prepare(spring, cam, valve_train)], np.array([np.nan]), []
+    name, values = vary
+    numeric = [f.name for f in dataclasses.fields(ValveSpring) if f.metadata.get("kind") == "quantity"]
+    if name not in numeric:
+        raise InputError(f"vary = {name!r}: not a numeric spring field; choose one of {', '.join(numeric)}")
+    values = np.atleast_1d(np.asarray(values, dtype=float))
+    springs, setups, kept, skipped = [], [], [], []
+    for v in values:
+        try:
+            sp = spring.replace(**{name: float(v)})
+            setups.append(prepare(sp, cam, valve_train))
+            springs.append(sp)
+            kept.append(v)
+        except InputError as exc:
+            if on_invalid == "stop":
+                raise InputError(
+                    f"vary: {_describe(name, v)}: {exc} (on_invalid='skip' leaves such values out)"
+                ) from None
+            skipped.append((float(v), str(exc)))
+            warnings.warn(f"vary: {_describe(name, v)} skipped: {exc}", stacklevel=3)
+    if not springs:
+        raise InputError(f"vary = {name!r}: every value makes the spring invalid")
+    return springs, setups, np.asarray(kept), skipped

@@ -1,0 +1,596 @@
+"""The valve-spring definition: the ``[spring]`` keys and their validation.
+
+The definition holds geometry, material and damping; the ``model`` key chooses the
+equations (:mod:`springdyn.valve.spring.chains`), built once as :attr:`ValveSpring.spring_model`.
+The analyses (statics, modes, design figures, dynamics) are those of
+:class:`springdyn.valve.ValveModel` and of the spring model.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from functools import cached_property
+
+from ...core.errors import InputError
+from ...core.params import Parameters, describe_value, param
+from ...core.units import format_mm, format_quantity
+from . import formulas
+
+__all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
+
+#: Built-in example springs (the reference springs of docs/valve.md), shipped in ``springdyn/data``.
+EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"}
+
+#: Coil end types of a drawing: dead coils per end (EN 13906-1, cold-coiled compression
+#: springs: ``n_t = n + 2`` for closed ends; open ends have no dead coil).  Their solid lengths:
+#: :func:`springdyn.valve.spring.solid_length.solid_length`.
+END_TYPES = {"closed-ground": 1.0, "closed": 1.0, "open": 0.0}
+
+#: Keys of a drawing that the ``[spring]`` table reads into the model's own keys
+#: (:meth:`ValveSpring._prepare`): they are not fields of the definition.
+DRAWING_KEYS = ("total_coils", "active_coils", "outer_diameter", "inner_diameter", "pitch", "low_pitch", "high_pitch")
+#: The drawing's pitches of the active coils [m]: ``pitch`` (one-step), ``low_pitch`` and
+#: ``high_pitch`` (two-step); they become the ``pitch_profile`` (:func:`_pitches`).
+PITCH_KEYS = ("pitch", "low_pitch", "high_pitch")
+#: How the pitches are joined (for messages): :data:`springdyn.valve.spring.geometry.TRANSITION_TURNS`.
+TRANSITION_TURNS_TEXT = "a transition of half a turn between sections"
+
+#: Names of the spring models (:data:`springdyn.valve.spring.chains.MODELS`).
+MODEL_NAMES = ("type-c", "distributed")
+
+
+@dataclass(frozen=True)
+class ValveSpring(Parameters):
+    """A helical valve spring for the MMS Type C model (one-step or two-step).
+
+    All values SI.  Build from TOML with :meth:`from_toml` (keys as the attribute names,
+    values with units such as ``"22 mm"``), from a dict with :meth:`from_dict`, or take a
+    built-in example with :meth:`example`.
+
+    Examples
+    --------
+    >>> s = ValveSpring.example("one-step")
+    >>> s.mean_diameter, s.wire_diameter
+    (0.022, 0.0035)
+    >>> round(s.spring_model.internal_parameters()["Fset"], 2)
+    251.43
+    """
+
+    type: str = param(None, "spring kind", kind="str", choices=("one-step", "two-step"))
+    mean_diameter: float = param("m", "mean coil diameter", symbol="Do", display="mm", positive=True)
+    wire_diameter: float = param("m", "wire diameter", symbol="Dw", display="mm", positive=True)
+    free_length: float = param("m", "free length", symbol="Lf", display="mm", positive=True)
+    installed_length: float = param(
+        "m", "set-up (installed) length, valve closed", symbol="Ls", display="mm", positive=True
+    )
+    dead_coils: float = param("", "dead coils per end", symbol="Nb", nonnegative=True)
+    low_pitch_coils: float = param("", "low-pitch coils (0 for one-step)", symbol="N1", nonnegative=True)
+    high_pitch_coils: float = param("", "high-pitch coils", symbol="N2", positive=True)
+    youngs_modulus: float = param("Pa", "Young's modulus", symbol="E", display="GPa", positive=True)
+    shear_modulus: float = param("Pa", "shear modulus", symbol="G'", display="GPa", positive=True)
+    density: float = param("kg/m^3", "density", symbol="rho'", positive=True)
+    damping_ratio: float = param("", "damping ratio", symbol="Cps", nonnegative=True)
+    tensile_strength: float = param(
+        "Pa",
+        "tensile strength of the wire (default 2000 MPa: oil-tempered Cr-Si valve-spring wire, EN 10270-2 VDSiCr)",
+        display="MPa",
+        positive=True,
+        default=None,
+    )
+    endurance_shear_strength: float = param(
+        "Pa",
+        "fully reversed torsional endurance strength of the wire (default: Zimmerli's peened data on the Goodman line)",
+        display="MPa",
+        positive=True,
+        default=None,
+    )
+    shear_yield_strength: float = param(
+        "Pa",
+        "torsional stress the wire may not exceed in service (yield or relaxation limit; default the ultimate "
+        "shear strength, 0.67 of the tensile)",
+        display="MPa",
+        positive=True,
+        default=None,
+    )
+    contact_stiffness: float = param(
+        "N/m",
+        "stiffness of one closed turn in coil contact and of the end contacts (default pi Do E / 1e3, "
+        "the MMS document's 'stiffness for fully contact'; docs/valve.md shows its effect)",
+        display="N/mm",
+        positive=True,
+        default=None,
+    )
+    end_type: str = param(
+        None,
+        "coil ends as drawn: 'closed-ground', 'closed' (not ground) or 'open'; sets the dead coils and the "
+        "solid length per EN 13906-1 (default: the MMS document's solid length Dw (N1 + N2 + 0.5))",
+        kind="str",
+        choices=("", *END_TYPES),
+        default="",
+    )
+    load_points: str = param(
+        None,
+        "load points of the drawing to check the model against: a TOML array of tables "
+        '[{ length = "38 mm", force = "250 N", tolerance = "5 %" }, ...] (tolerance in % of the force or in N)',
+        kind="str",
+        default="",
+    )
+    min_coil_bind_clearance: float = param(
+        "m",
+        "smallest allowed margin between the shortest working length and the solid length "
+        "(default: EN 13906-1's minimum sum of gaps Sa = (0.0015 D^2/d + 0.1 d) n, D and d in mm)",
+        display="mm",
+        nonnegative=True,
+        default=None,
+    )
+    through_solid: bool = param(
+        None,
+        "simulate a spring that the cam drives past its solid length (experts: every result says so)",
+        kind="bool",
+        default=False,
+    )
+    model: str = param(
+        None,
+        "spring model: 'type-c' (the document's MMS Type C, 5 masses) or 'distributed' "
+        "(coil by coil from the geometry)",
+        kind="str",
+        choices=MODEL_NAMES,
+        default="type-c",
+    )
+    elements: int = param("", "wire elements of the distributed model", kind="int", default=50, positive=True)
+    pitch_profile: str = param(
+        None,
+        "distributed model: pitch against turns from the seat end, a CSV file (columns "
+        "turns, pitch_mm) or an array of [turns, pitch] pairs (default: from the keys above)",
+        kind="str",
+        default="",
+    )
+    diameter_profile: str = param(
+        None,
+        "distributed model: mean coil diameter against turns from the seat end, a "
+        "CSV file (columns turns, diameter_mm) or an array of [turns, diameter] pairs "
+        "(default: mean_diameter throughout)",
+        kind="str",
+        default="",
+    )
+
+    table = "spring"
+    plausible_ranges = False  # _check_geometry's ranges say more (the likely unit slip)
+    examples = EXAMPLES
+    default_example = "one-step"
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def _prepare(cls, mapping: dict, base_dir=None, **context) -> dict:
+        """The drawing's keys become the model's (:meth:`_from_drawing`); load points and
+        profiles: a TOML array becomes an inline table (SI); a relative CSV path is taken from
+        the TOML file's folder."""
+        from pathlib import Path
+
+        from ...core.units import to_si
+
+        mapping = _from_drawing(mapping)
+
+        for key in ("pitch_profile", "diameter_profile"):
+            value = mapping.get(key)
+            if isinstance(value, list):
+                rows = []
+                for i, row in enumerate(value):
+                    if (
+                        not isinstance(row, list)
+                        or len(row) != 2
+                        or isinstance(row[0], (bool, str))
+                        or not isinstance(row[0], (int, float))
+                    ):
+                        raise InputError(f'{key}[{i}] = {row!r} must be a pair [turns, value], e.g. [1.5, "7 mm"]')
+                    rows.append(f"{float(row[0])!r} {to_si(row[1], 'm', f'{key}[{i}][1]')!r}")
+                mapping[key] = "table: " + "; ".join(rows)
+            elif isinstance(value, str) and value and base_dir is not None and not value.startswith("table:"):
+                p = Path(value)
+                mapping[key] = str(p if p.is_absolute() else Path(base_dir) / p)
+        return mapping
+
+    def _validate(self) -> None:
+        import warnings
+        from pathlib import Path
+
+        unlikely = self._check_geometry()
+        try:
+            _ = self.spring_model  # the model checks that its equations hold for this spring
+        except InputError as exc:
+            if not unlikely:
+                raise
+            raise InputError(f"{exc} (note: {'; '.join(unlikely)})") from None
+        if unlikely:
+            import sys
+
+            # attribute the warning to the caller's line, outside springdyn
+            package, level, frame = str(Path(__file__).parents[1]), 1, sys._getframe(0)
+            while frame is not None and (
+                frame.f_code.co_filename.startswith(package)
+                or frame.f_code.co_filename.endswith("dataclasses.py")
+                or frame.f_locals.get("self") is self
+            ):
+                frame, level = frame.f_back, level + 1
+        for message in unlikely:
+            warnings.warn(message, UserWarning, stacklevel=level)
+
+    @property
+    def total_coils(self) -> float:
+        """Total coils ``N1 + N2`` [-] (dead coils included)."""
+        return self.low_pitch_coils + self.high_pitch_coils
+
+    @property
+    def active_coils(self) -> float:
+        """Active coils at free length ``N1 + N2 - 2 Nb`` [-]."""
+        return formulas.active_coils_free(self.low_pitch_coils, self.high_pitch_coils, self.dead_coils)
+
+    @property
+    def solid_length(self) -> float:
+        """Solid length [m] (:func:`springdyn.valve.spring.solid_length.solid_length`: by the end type)."""
+        from .solid_length import solid_length
+
+        return solid_length(self)
+
+    @property
+    def coil_facts(self) -> dict:
+        """The coils and the solid length every output states: ``total_coils``,
+        ``active_coils``, ``dead_coils_per_end`` [-], ``solid_length_m`` [m] and its
+        ``solid_length_source``, ``free_length_m`` [m]."""
+        return dict(
+            total_coils=self.total_coils,
+            active_coils=self.active_coils,
+            dead_coils_per_end=self.dead_coils,
+            solid_length_m=self.solid_length,
+            solid_length_source=(
+                f"EN 13906-1, ends {self.end_type}" if self.end_type else "the MMS document, Dw (N1 + N2 + 0.5)"
+            ),
+            free_length_m=self.free_length,
+        )
+
+    @property
+    def load_point_table(self) -> list[dict]:
+        """The drawing's load points: ``length`` [m], ``force`` [N], ``tolerance`` [N] (None: not given)."""
+        out = []
+        if self.load_points:
+            for row in self.load_points.removeprefix("table:").split(";"):
+                length, force, tol = (float(v) for v in row.split())
+                out.append(dict(length=length, force=force, tolerance=None if tol < 0 else tol))
+        return out
+
+    def with_model(self, model: str | None) -> ValveSpring:
+        """The same spring with another model (``None``: unchanged).
+
+        Parameters
+        ----------
+        model : str or None
+            A spring model name (:data:`MODEL_NAMES`) [-].
+        """
+        return self if model is None or model == self.model else self.replace(model=model)
+
+    @cached_property
+    def spring_model(self):
+        """The model of this definition (:class:`~springdyn.valve.spring.chains.SpringModel`)."""
+        from .chains import make_model
+
+        return make_model(self)
+
+    @property
+    def two_step(self) -> bool:
+        return self.type == "two-step"
+
+    def _field(self, name: str) -> str:
+        meta = {f.name: f.metadata for f in dataclasses.fields(self)}[name]
+        return f"{name} = {describe_value(getattr(self, name), meta)}"
+
+    def _check_geometry(self) -> list[str]:
+        """Cross-key and plausibility checks; returns warnings for values unlike a valve spring.
+
+        Errors (:class:`InputError`) for values no helical spring can have, which would
+        otherwise overflow, underflow or divide by zero in the closed forms of [MMS],
+        "Internal Parameter"; warnings for values far outside the range of valve springs,
+        naming the likely unit slip (``22 m`` for ``22 mm``).
+        """
+        import math
+
+        # key: (error range, valve-spring range) in SI
+        ranges = {
+            "mean_diameter": ((1e-6, 1e3), (5e-3, 0.1), "any helical spring", "any valve spring"),
+            "wire_diameter": ((1e-6, 1e3), (0.5e-3, 15e-3), "any helical spring", "any valve spring"),
+            "free_length": ((1e-6, 1e4), (8e-3, 0.3), "any helical spring", "any valve spring"),
+            "installed_length": ((1e-6, 1e4), (5e-3, 0.3), "any helical spring", "any valve spring"),
+            "youngs_modulus": ((1e5, 1e16), (50e9, 400e9), "any spring material", "spring steel or titanium"),
+            "shear_modulus": ((1e5, 1e16), (20e9, 150e9), "any spring material", "spring steel or titanium"),
+            "density": ((1.0, 1e6), (1000.0, 25000.0), "any solid", "spring steel or titanium"),
+        }
+
+        def show(value, unit, display):
+            # in the display unit unless that needs many digits: 22 m, not 22000 mm
+            in_display = value * {"mm": 1e3, "GPa": 1e-9}.get(display, 1.0)
+            return format_quantity(value, unit, display if 1e-2 <= in_display < 1e3 else None)
+
+        unlikely = []
+        for key, ((lo, hi), (wlo, whi), what, typical) in ranges.items():
+            value = getattr(self, key)
+            meta = {f.name: f.metadata for f in dataclasses.fields(self)}[key]
+            display = meta.get("display") or meta["unit"]
+            shown = show(value, meta["unit"], display)
+            hint = ""
+            for factor in (1e-3, 1e3, 1e-6, 1e6, 1e-9, 1e9, 1e-12, 1e12):
+                if wlo <= value * factor <= whi:
+                    hint = f": did you mean {format_quantity(value * factor, meta['unit'], display)}?"
+                    break
+            side = "larger" if value > whi else "smaller"
+            if not lo <= value <= hi:
+                raise InputError(
+                    f"{key} = {shown} is far {side} than {what}: it must lie between "
+                    f"{show(lo, meta['unit'], display)} and {show(hi, meta['unit'], display)}"
+                    f"{hint}"
+                )
+            if not wlo <= value <= whi:
+                unlikely.append(
+                    f"{key} = {shown} is far {side} than {typical} "
+                    f"({show(wlo, meta['unit'], display)} to {show(whi, meta['unit'], display)})"
+                    + (hint or "; check its unit")
+                )
+        for key in ("dead_coils", "low_pitch_coils", "high_pitch_coils"):
+            if getattr(self, key) > 1000:
+                raise InputError(f"{self._field(key)} is more coils than any spring has: it must be at most 1000")
+        if self.damping_ratio > 1.0:
+            raise InputError(
+                f"damping_ratio = {self.damping_ratio:g} is above critical damping (1), which no spring wire has"
+                + (
+                    f": did you mean {self.damping_ratio:g} % ({self.damping_ratio / 100:g})?"
+                    if self.damping_ratio <= 100
+                    else ""
+                )
+            )
+        if self.damping_ratio > 0.2:
+            unlikely.append(
+                f"damping_ratio = {self.damping_ratio:g} is far above the damping of valve springs (a few %, e.g. 0.05)"
+            )
+        if self.shear_modulus > self.youngs_modulus:
+            unlikely.append(
+                f"{self._field('shear_modulus')} exceeds {self._field('youngs_modulus')}: for a metal "
+                "G is about 0.4 E (are the two swapped?)"
+            )
+        index = self.mean_diameter / self.wire_diameter
+        if not 3.0 <= index <= 20.0:
+            raise InputError(
+                f"spring index C = mean_diameter / wire_diameter = {show(self.mean_diameter, 'm', 'mm')} / "
+                f"{show(self.wire_diameter, 'm', 'mm')} = {index:.4g} must lie between 3 and 20 (EN 13906-1 recommends 4 to "
+                "20; below 3 the wire cannot be coiled, above 20 the coils are unstable)"
+                + (": is the wire diameter given as the mean diameter?" if index < 1 else "")
+            )
+        if not math.isfinite(index):  # pragma: no cover - excluded by the ranges above
+            raise InputError(f"spring index C = {index!r} is not finite")
+        if self.installed_length >= self.free_length:
+            raise InputError(f"{self._field('installed_length')} must be shorter than {self._field('free_length')}")
+        if not self.two_step and self.low_pitch_coils != 0:
+            raise InputError(
+                f"{self._field('low_pitch_coils')} must be 0 for a one-step spring "
+                '(set type = "two-step" for a spring with low-pitch coils)'
+            )
+        n1, n2, nb = self.low_pitch_coils, self.high_pitch_coils, self.dead_coils
+        if formulas.active_coils_free(n1, n2, nb) <= 0:
+            raise InputError(
+                f"active coils N1 + N2 - 2 Nb = {n1:g} + {n2:g} - 2*{nb:g} = "
+                f"{formulas.active_coils_free(n1, n2, nb):g} must be positive "
+                "(low_pitch_coils + high_pitch_coils - 2 dead_coils)"
+            )
+        if n2 - nb <= 0:
+            raise InputError(
+                f"active coils at set-up N2 - Nb = {n2:g} - {nb:g} must be positive (high_pitch_coils > dead_coils)"
+            )
+        lc = formulas.coil_contact_length(self.wire_diameter, n1, n2)
+        if self.installed_length <= lc:
+            raise InputError(
+                f"{self._field('installed_length')} is at or below coil contact: it must be longer than the "
+                f"solid length Lc = Dw (N1 + N2 + 0.5) = {format_mm(lc)}"
+            )
+        return unlikely
+
+
+def _quantity(mapping: dict, key: str, unit: str) -> float:
+    from ...core.units import to_si
+
+    return to_si(mapping[key], unit, key)
+
+
+def _from_drawing(mapping: dict) -> dict:
+    """A ``[spring]`` table as a drawing or an EN 13906-1 calculator gives it, in the model's keys.
+
+    - ``outer_diameter`` / ``inner_diameter`` give ``mean_diameter`` (``D = De - d = Di + d``);
+    - ``end_type`` gives ``dead_coils`` (:data:`END_TYPES`);
+    - ``total_coils`` (dead coils included) or ``active_coils`` give ``high_pitch_coils``
+      (``N2 = n_t - N1``, ``n_t = n + 2 Nb``; a two-step spring needs ``low_pitch_coils``);
+    - ``load_points`` become an inline table (lengths [m], forces [N], tolerances [N]).
+
+    Keys that say the same twice must agree (1 um, 1e-9 coils), else :class:`InputError`
+    names both.
+    """
+    m = dict(mapping)
+    given = [k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if k in m]
+    if any(k != "mean_diameter" for k in given):
+        if "wire_diameter" not in m:
+            raise InputError(f"{given[-1]} needs wire_diameter to give the mean coil diameter")
+        d = _quantity(m, "wire_diameter", "m")
+        means = {
+            k: _quantity(m, k, "m") + {"mean_diameter": 0.0, "outer_diameter": -d, "inner_diameter": d}[k]
+            for k in given
+        }
+        first = given[0]
+        for k in given[1:]:
+            if abs(means[k] - means[first]) > 1e-6:
+                raise InputError(
+                    f"{first} and {k} disagree: they give mean coil diameters of {format_mm(means[first])} and "
+                    f"{format_mm(means[k])} (wire_diameter {format_mm(d)}); give one of them"
+                )
+        for k in given:
+            m.pop(k)
+        m["mean_diameter"] = round(means[first], 12)  # 25.5 mm - 3.5 mm is 22 mm, not 22.000000000000002
+    if m.get("end_type"):
+        end = m["end_type"]
+        if end not in END_TYPES:
+            raise InputError(f"end_type = {end!r} is not allowed; choose one of {', '.join(map(repr, END_TYPES))}")
+        nb = END_TYPES[end]
+        if "dead_coils" in m and abs(float(m["dead_coils"]) - nb) > 1e-9:
+            raise InputError(
+                f"dead_coils = {m['dead_coils']!r} disagrees with end_type = {end!r}, which has {nb:g} dead coil per "
+                "end (EN 13906-1); give one of them"
+            )
+        m["dead_coils"] = nb
+    coils = [k for k in ("total_coils", "active_coils") if k in m]
+    if coils:
+        if "dead_coils" not in m:
+            raise InputError(f"{coils[0]} needs dead_coils or end_type to count the dead coils")
+        nb = float(m["dead_coils"])
+        n1 = float(m.get("low_pitch_coils", 0.0))
+        if m.get("type") == "two-step" and "low_pitch_coils" not in m:
+            raise InputError(f"{coils[0]} of a two-step spring needs low_pitch_coils (the closely wound coils)")
+        totals = {}
+        for k in coils:
+            v = m.pop(k)
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise InputError(f"{k} = {v!r} must be a number of coils")
+            totals[k] = float(v) + (2 * nb if k == "active_coils" else 0.0)
+        if len(totals) == 2 and abs(totals["total_coils"] - totals["active_coils"]) > 1e-9:
+            raise InputError(
+                f"total_coils = {totals['total_coils']:g} and active_coils = {totals['active_coils'] - 2 * nb:g} "
+                f"disagree: with {nb:g} dead coil(s) per end the total is the active coils + {2 * nb:g}; give one of them"
+            )
+        n2 = next(iter(totals.values())) - n1
+        if "high_pitch_coils" in m and abs(float(m["high_pitch_coils"]) - n2) > 1e-9:
+            raise InputError(
+                f"high_pitch_coils = {m['high_pitch_coils']!r} disagrees with {' and '.join(coils)} "
+                f"(which give high_pitch_coils = {n2:g}); give one of them"
+            )
+        m["high_pitch_coils"] = n2
+        m.setdefault("low_pitch_coils", 0.0)
+    if any(k in m for k in PITCH_KEYS):
+        _pitches(m)
+    if "load_points" in m:
+        m["load_points"] = _load_points(m["load_points"])
+    return m
+
+
+def _pitches(m: dict) -> None:
+    """The drawing's pitches -> ``pitch_profile`` (and ``free_length`` when not given).
+
+    The profile is :func:`springdyn.valve.spring.geometry.drawing_pitch_knots`; a given free length
+    must agree with the one the pitches give within 0.5 % (the distributed model's rule for a
+    ``pitch_profile``).
+    """
+    import numpy as np
+
+    from .geometry import drawing_pitch_knots
+
+    given = [k for k in PITCH_KEYS if k in m]
+    two = m.get("type") == "two-step"
+    need = ("low_pitch", "high_pitch") if two else ("pitch",)
+    if set(given) != set(need):
+        kind = "a two-step" if two else "a one-step"
+        raise InputError(
+            f"{', '.join(given)}: {kind} spring's drawing gives {' and '.join(need)} "
+            + (
+                "(the pitches of the low- and the high-pitch active coils)"
+                if two
+                else "(the pitch of the active coils)"
+            )
+        )
+    if m.get("pitch_profile"):
+        raise InputError(f"{given[0]} and pitch_profile both give the pitch: give one of them")
+    missing = [k for k in ("wire_diameter", "dead_coils", "high_pitch_coils") if k not in m]
+    if missing:
+        raise InputError(
+            f"{given[0]} needs {missing[0]}"
+            + (" (or end_type)" if missing[0] == "dead_coils" else "")
+            + (" (or total_coils / active_coils)" if missing[0] == "high_pitch_coils" else "")
+            + " to give the free length"
+        )
+    dw = _quantity(m, "wire_diameter", "m")
+    pitch = {k: _quantity(m, k, "m") for k in given}
+    for k, v in pitch.items():
+        if not v > dw:
+            raise InputError(f"{k} = {format_mm(v)} must exceed the wire diameter {format_mm(dw)} (open coils)")
+    if two and not pitch["high_pitch"] > pitch["low_pitch"]:
+        raise InputError(
+            f"high_pitch = {format_mm(pitch['high_pitch'])} must exceed low_pitch = {format_mm(pitch['low_pitch'])}"
+        )
+    nb, n1 = float(m["dead_coils"]), float(m.get("low_pitch_coils", 0.0))
+    n_total = n1 + float(m["high_pitch_coils"])
+    if two and not n1 > nb:
+        raise InputError(
+            f"low_pitch_coils = {n1:g} must exceed dead_coils = {nb:g}: the low-pitch coils include the seat's dead coil"
+        )
+    s, p = drawing_pitch_knots(
+        n_total, nb, dw, n1, pitch["high_pitch" if two else "pitch"], pitch["low_pitch"] if two else None
+    )
+    lf = 0.5 * dw + float(np.trapezoid(p, s))
+    if "free_length" in m:
+        given_lf = _quantity(m, "free_length", "m")
+        if abs(given_lf - lf) > 0.005 * given_lf:
+            raise InputError(
+                f"free_length = {format_mm(given_lf)} and the pitches ({', '.join(f'{k} = {format_mm(v)}' for k, v in pitch.items())}) "
+                f"disagree: the pitches give a free length of {format_mm(lf)} (dead coils closed, {TRANSITION_TURNS_TEXT}); "
+                "they must agree within 0.5 %: give one of them"
+            )
+    else:
+        m["free_length"] = round(lf, 12)
+    if two and "installed_length" in m:
+        # open coils of equal diameter deflect alike: each by (Lf - Ls) / n at set-up, if none closed
+        per_coil = (_quantity(m, "free_length", "m") - _quantity(m, "installed_length", "m")) / (n_total - 2 * nb)
+        if per_coil < pitch["low_pitch"] - dw:
+            import warnings
+
+            warnings.warn(
+                f"low_pitch = {format_mm(pitch['low_pitch'])}: the low-pitch coils are not closed at the installed "
+                f"length (each open coil deflects about {format_mm(per_coil)} there, their gap is "
+                f"{format_mm(pitch['low_pitch'] - dw)}); the Type C model reads a two-step spring with them closed: "
+                'use model = "distributed", which follows the pitch coil by coil',
+                UserWarning,
+                stacklevel=4,
+            )
+    for k in given:
+        m.pop(k)
+    m["pitch_profile"] = "table: " + "; ".join(f"{a!r} {b!r}" for a, b in zip(s.tolist(), p.tolist()))
+
+
+def _load_points(value) -> str:
+    """``[{ length, force, tolerance }, ...]`` -> ``"table: L F tol; ..."`` in SI (tolerance in N, -1: none)."""
+    from ...core.units import to_si
+
+    if isinstance(value, str):
+        return value
+    if not isinstance(value, list) or not value:
+        raise InputError(
+            f'load_points = {value!r} must be an array of tables, e.g. [{{ length = "38 mm", force = "250 N", '
+            'tolerance = "5 %" }]'
+        )
+    rows = []
+    for i, row in enumerate(value):
+        if not isinstance(row, dict):
+            raise InputError(f"load_points[{i}] = {row!r} must be a table with length, force and tolerance")
+        unknown = sorted(set(row) - {"length", "force", "tolerance"})
+        if unknown or "length" not in row or "force" not in row:
+            raise InputError(
+                f"load_points[{i}] has "
+                + (f"unknown key(s) {', '.join(unknown)}" if unknown else "no length or no force")
+                + ": its keys are length, force and (optionally) tolerance"
+            )
+        length = to_si(row["length"], "m", f"load_points[{i}].length")
+        force = to_si(row["force"], "N", f"load_points[{i}].force")
+        if not (length > 0 and force > 0):
+            raise InputError(f"load_points[{i}]: length and force must be positive")
+        tol = -1.0
+        if "tolerance" in row:
+            t = row["tolerance"]
+            try:
+                tol = to_si(t, "N", f"load_points[{i}].tolerance")
+            except InputError:
+                tol = to_si(t, "", f"load_points[{i}].tolerance") * force  # a fraction: "5 %"
+            if not tol > 0:
+                raise InputError(f"load_points[{i}].tolerance = {t!r} must be positive (in % of the force or in N)")
+        rows.append(f"{length!r} {force!r} {tol!r}")
+    return "table: " + "; ".join(rows)

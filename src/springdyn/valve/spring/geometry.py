@@ -1,0 +1,307 @@
+"""Coil geometry of a valve spring along its wire: pitch and mean diameter against turns.
+
+The wire position ``s`` counts turns from the seat end (0) to the retainer end
+(``N1 + N2``).  Pitch ``p(s)`` (axial advance per turn of the unloaded spring) and mean coil
+diameter ``D(s)`` are piecewise linear in ``s``.  The free length is
+``Lf = Dw/2 + int_0^N p(s) ds`` and the solid length the wire stack
+``Lc = Dw (N + 1/2)`` (ends closed and ground by a quarter wire each, which makes the
+wire stack equal to the document's ``Lc = Dw (N1 + N2 + 0.5)``).
+
+Default profiles (:func:`default_pitch_knots`) follow from the ``[spring]`` keys:
+
+- dead coils ``Nb`` at each end are closed (pitch ``Dw``);
+- a transition of :data:`TRANSITION_TURNS` turns at each end of the active coils, where the
+  pitch rises linearly from ``Dw`` (these coils close one by one under load);
+- one-step: a constant active pitch between the transitions, from the free length;
+- two-step: the ``N1 - Nb`` low-pitch active coils next to the seat's dead coil, their pitch
+  rising linearly from ``Dw`` to ``Dw + delta`` so that the last of them closes exactly at
+  the set-up length (the Type C reading: the low-pitch section is closed at set-up), then a
+  transition to the high-pitch coils, whose pitch follows from the free length.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.units import format_mm
+
+__all__ = [
+    "TRANSITION_TURNS",
+    "CoilGeometry",
+    "default_pitch_knots",
+    "drawing_pitch_knots",
+    "parse_profile",
+    "turn_compliance",
+    "wire_length_per_turn",
+]
+
+#: Turns over which the pitch rises from the closed dead coil to the active pitch (an
+#: assumption typical of coiled valve springs; give a ``pitch_profile`` for a measured one).
+TRANSITION_TURNS = 0.5
+
+
+def turn_compliance(mean_diameter, wire_diameter, pitch, shear_modulus, youngs_modulus):
+    """Axial compliance of one turn of an open-coiled helix [m/N], torsion and bending.
+
+    ``c = 8 D^3 / (G d^4 cos a) (cos^2 a + (2 G/E) sin^2 a)``, ``tan a = p/(pi D)``: the
+    energy method for an axially loaded open-coiled helix (Wahl, *Mechanical Springs*,
+    2nd ed., 1963, ch. 3; Timoshenko, *Strength of Materials* II).  For ``a -> 0`` it is the
+    closed-coil ``8 D^3/(G d^4)``.
+
+    Parameters
+    ----------
+    mean_diameter : float or ndarray
+        Mean coil diameter D [m].
+    wire_diameter : float
+        Wire diameter d [m].
+    pitch : float or ndarray
+        Pitch p [m].
+    shear_modulus, youngs_modulus : float
+        G and E [Pa].
+    """
+    a = np.arctan2(pitch, np.pi * mean_diameter)
+    ca, sa = np.cos(a), np.sin(a)
+    return (
+        8.0
+        * mean_diameter**3
+        / (shear_modulus * wire_diameter**4 * ca)
+        * (ca * ca + 2.0 * shear_modulus / youngs_modulus * sa * sa)
+    )
+
+
+def wire_length_per_turn(mean_diameter, pitch):
+    """Length of wire in one turn [m]: ``sqrt((pi D)^2 + p^2)``.
+
+    Parameters
+    ----------
+    mean_diameter : float or ndarray
+        Mean coil diameter D [m].
+    pitch : float or ndarray
+        Pitch p [m].
+    """
+    return np.hypot(np.pi * mean_diameter, pitch)
+
+
+def parse_profile(value: str, what: str, unit_columns: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Turns and values (SI) of a profile key: an inline ``"table: s v; s v; ..."`` (SI, as
+    written by :meth:`ValveSpring._prepare` from a TOML array) or a CSV file.
+
+    Parameters
+    ----------
+    value : str
+        The key's value.
+    what : str
+        Key name for messages.
+    unit_columns : dict
+        Accepted CSV value columns and their factor to SI, e.g. ``{"pitch_mm": 1e-3, "pitch_m": 1}``.
+    """
+    if value.startswith("table:"):
+        rows = [r.split() for r in value[6:].split(";") if r.strip()]
+        s = np.array([float(r[0]) for r in rows])
+        v = np.array([float(r[1]) for r in rows])
+    else:
+        from ...core.io import read_csv_columns
+
+        cols = read_csv_columns(value)
+        if "turns" not in cols:
+            raise InputError(
+                f"{what} = {value!r}: the CSV needs a column 'turns' (wire position in turns from the "
+                f"seat end) and one of {', '.join(unit_columns)}"
+            )
+        found = [c for c in unit_columns if c in cols]
+        if not found:
+            raise InputError(f"{what} = {value!r}: the CSV needs one of the columns {', '.join(unit_columns)}")
+        s = cols["turns"]
+        v = cols[found[0]] * unit_columns[found[0]]
+    if s.size < 2 or np.any(np.diff(s) <= 0):
+        raise InputError(f"{what}: needs at least 2 rows with strictly increasing turns")
+    if np.any(~np.isfinite(v)) or np.any(v <= 0):
+        raise InputError(f"{what}: every value must be positive")
+    return s, v
+
+
+@dataclass(frozen=True)
+class CoilGeometry:
+    """Pitch and mean diameter of the unloaded spring against turns from the seat end (SI)."""
+
+    turns: float  # total turns N1 + N2
+    dead_coils: float  # closed coils at each end
+    wire_diameter: float  # [m]
+    pitch_s: np.ndarray  # knots [turns]
+    pitch_v: np.ndarray  # pitch at the knots [m]
+    diameter_s: np.ndarray  # knots [turns]
+    diameter_v: np.ndarray  # mean diameter at the knots [m]
+
+    def pitch(self, s):
+        """Pitch [m] at turns ``s`` from the seat end.
+
+        Parameters
+        ----------
+        s : float or array_like
+            Turns from the seat end [-].
+        """
+        return np.interp(s, self.pitch_s, self.pitch_v)
+
+    def diameter(self, s):
+        """Mean coil diameter [m] at turns ``s`` from the seat end.
+
+        Parameters
+        ----------
+        s : float or array_like
+            Turns from the seat end [-].
+        """
+        return np.interp(s, self.diameter_s, self.diameter_v)
+
+    @property
+    def free_length(self) -> float:
+        """``Dw/2 + int p ds`` [m] (ends ground by a quarter wire each)."""
+        return 0.5 * self.wire_diameter + float(np.trapezoid(self.pitch_v, self.pitch_s))
+
+    @property
+    def solid_length(self) -> float:
+        """Wire stack ``Dw (N + 1/2)`` [m]."""
+        return self.wire_diameter * (self.turns + 0.5)
+
+
+def default_pitch_knots(
+    n_total: float, dead: float, dw: float, free_length: float, installed_length: float, low_pitch: float, field
+) -> tuple[np.ndarray, np.ndarray]:
+    """Knots (turns, pitch [m]) of the default pitch profile (see the module docstring).
+
+    Parameters
+    ----------
+    n_total : float
+        Total turns N1 + N2 [-].
+    dead : float
+        Dead coils per end Nb [-].
+    dw : float
+        Wire diameter [m].
+    free_length, installed_length : float
+        Lf and Ls [m].
+    low_pitch : float
+        N1 (0 for a one-step spring) [-].
+    field : callable
+        ``field(name)`` describes a ``[spring]`` key for messages.
+    """
+    active = n_total - 2 * dead
+    tr = min(TRANSITION_TURNS, active / 4.0) if dead > 0 else 0.0
+    base = 0.5 * dw + 2 * dead * dw  # free length of the closed dead coils and the ground ends
+    if low_pitch <= 0:
+        pa = (free_length - base - tr * dw) / (active - tr)
+        if not pa > dw:
+            raise InputError(
+                f"{field('free_length')} is too short for the coils: the active pitch would be "
+                f"{format_mm(pa)}, not more than the wire diameter {format_mm(dw)}"
+            )
+        if dead == 0:
+            return np.array([0.0, n_total]), np.array([pa, pa])
+        s = [0.0, dead, dead + tr, n_total - dead - tr, n_total - dead, n_total]
+        p = [dw, dw, pa, pa, dw, dw]
+        return _dedupe(s, p)
+    nl = low_pitch - dead  # low-pitch active coils
+    if nl <= 0:
+        raise InputError(
+            f"{field('low_pitch_coils')} must exceed {field('dead_coils')}: the low-pitch coils "
+            "include the seat's dead coil"
+        )
+    rest = n_total - dead - low_pitch  # high-pitch active coils with their transitions
+    trh = min(TRANSITION_TURNS, rest / 4.0)
+    tre = trh if dead > 0 else 0.0
+
+    def knots(delta):
+        p1 = dw + delta
+        # free length: base + low section + transition + high section + end transition
+        fixed = base + nl * (dw + p1) / 2 + trh * p1 / 2 + tre * dw / 2
+        ph = (free_length - fixed) / (rest - trh / 2 - tre / 2)
+        s = [0.0, dead, low_pitch, low_pitch + trh, n_total - dead - tre, n_total - dead, n_total]
+        p = [dw, dw, p1, ph, ph, dw, dw]
+        return np.array(s), np.array(p)
+
+    def closed_at_setup(delta):
+        s, p = knots(delta)
+        grid = np.linspace(0.0, n_total, 20001)
+        gap = np.interp(grid, s, p) - dw
+        return float(np.trapezoid(np.minimum(gap, delta), grid)) - (free_length - installed_length)
+
+    from scipy.optimize import brentq
+
+    hi = (free_length - base) / max(nl, 1e-9)
+    try:
+        delta = brentq(closed_at_setup, 1e-9, hi, xtol=1e-12)
+    except ValueError:
+        raise InputError(
+            f"{field('installed_length')}: the low-pitch coils cannot be closed at the set-up length "
+            "with the given free length and coil counts"
+        ) from None
+    s, p = knots(delta)
+    if not p[3] > p[2]:
+        raise InputError(
+            f"two-step spring: the high-pitch coils' pitch {format_mm(p[3])} must exceed the low-pitch "
+            f"coils' {format_mm(p[2])}; check {field('free_length')}, {field('installed_length')} and the "
+            "coil counts"
+        )
+    return _dedupe(list(s), list(p))
+
+
+def drawing_pitch_knots(
+    n_total: float, dead: float, dw: float, low_coils: float, pitch: float, low_pitch: float | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Knots (turns, pitch [m]) of a spring whose drawing gives the pitch of its sections.
+
+    The dead coils are closed (pitch ``Dw``); the pitch rises to the active pitch over
+    :data:`TRANSITION_TURNS` turns at each end of the active coils (as in
+    :func:`default_pitch_knots`); a two-step spring's ``N1 - Nb`` low-pitch active coils next
+    to the seat's dead coil have the pitch ``low_pitch``, then a transition of the same length
+    leads to the high-pitch coils' ``pitch``.  The free length is then
+    ``Dw/2 + int p ds`` (:attr:`CoilGeometry.free_length`).
+
+    Parameters
+    ----------
+    n_total : float
+        Total turns N1 + N2 [-].
+    dead : float
+        Dead coils per end Nb [-].
+    dw : float
+        Wire diameter [m].
+    low_coils : float
+        N1, the low-pitch coils with the seat's dead coil (0 for a one-step spring) [-].
+    pitch : float
+        Pitch of the (high-pitch) active coils [m].
+    low_pitch : float, optional
+        Pitch of the low-pitch active coils [m] (two-step).
+    """
+    active = n_total - 2 * dead
+    if low_pitch is None:
+        if dead == 0:  # open ends: the active pitch throughout
+            return np.array([0.0, n_total]), np.array([pitch, pitch])
+        tr = min(TRANSITION_TURNS, active / 4.0)
+        s = [0.0, dead, dead + tr, n_total - dead - tr, n_total - dead, n_total]
+        p = [dw, dw, pitch, pitch, dw, dw]
+        return _dedupe(s, p)
+    nl = low_coils - dead  # low-pitch active coils
+    rest = n_total - dead - low_coils  # high-pitch active coils
+    trh = min(TRANSITION_TURNS, rest / 4.0)
+    if dead == 0:
+        return _dedupe([0.0, low_coils, low_coils + trh, n_total], [low_pitch, low_pitch, pitch, pitch])
+    tr = min(TRANSITION_TURNS, nl / 2.0)
+    s = [0.0, dead, dead + tr, low_coils, low_coils + trh, n_total - dead - trh, n_total - dead, n_total]
+    p = [dw, dw, low_pitch, low_pitch, pitch, pitch, dw, dw]
+    return _dedupe(s, p)
+
+
+def _dedupe(s, p):
+    s, p = np.asarray(s, float), np.asarray(p, float)
+    keep = np.concatenate([[True], np.diff(s) > 1e-12])
+    return s[keep], p[keep]
+
+
+def check_profile_span(s: np.ndarray, n_total: float, what: str) -> None:
+    """A profile must run from turn 0 to turn N1 + N2."""
+    if abs(s[0]) > 1e-6 or abs(s[-1] - n_total) > 1e-6:
+        raise InputError(
+            f"{what}: the turns must run from 0 to low_pitch_coils + high_pitch_coils = {n_total:g} "
+            f"(seat end to retainer end), not {s[0]:g} to {s[-1]:g}"
+        )

@@ -1,0 +1,147 @@
+"""Coil bind: the solid length against the shortest length a cam or a design lift asks for.
+
+:func:`min_sum_of_gaps` is EN 13906-1's recommended clearance between the working length and
+the solid length; :func:`check_coil_bind` compares the shortest length with the solid length
+and that clearance, refuses a spring driven past solid (unless ``through_solid`` is set) and
+warns below the clearance.  :func:`springdyn.valve.run.setup.prepare` (every cam-driven analysis)
+and :meth:`~springdyn.valve.spring.chains.SpringModel.design_figures` call it.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+from ...core.errors import InputError
+from ...core.units import format_mm
+from .formulas import coil_contact_length
+
+__all__ = ["min_sum_of_gaps", "en13906_solid_length", "solid_length", "check_coil_bind"]
+
+
+def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: float) -> float:
+    """Minimum sum of the gaps between the active coils at the shortest working length [m].
+
+    ``Sa = (0.0015 D^2/d + 0.1 d) n`` with D and d in mm (EN 13906-1:2013, cylindrical
+    helical compression springs, "minimum sum of gaps between active coils"); in SI
+    ``Sa = (1.5e-3 D^2/d + 0.1 d) n``.
+
+    Parameters
+    ----------
+    mean_diameter : float
+        Mean coil diameter D [m].
+    wire_diameter : float
+        Wire diameter d [m].
+    active_coils : float
+        Active coils n [-].
+
+    Examples
+    --------
+    >>> round(min_sum_of_gaps(22e-3, 3.5e-3, 5.5) * 1e3, 3)
+    3.066
+    """
+    return (1.5e-3 * mean_diameter**2 / wire_diameter + 0.1 * wire_diameter) * active_coils
+
+
+def en13906_solid_length(wire_diameter: float, total_coils: float, end_type: str) -> float:
+    """Solid length of a cold-coiled compression spring by its ends [m].
+
+    EN 13906-1:2013, solid length of cold-coiled springs: ends closed and ground
+    ``Lc = n_t d``, closed and not ground ``Lc = (n_t + 1.5) d``; open (plain) ends
+    ``Lc = (n_t + 1) d`` (Shigley, Table 10-1: the standard covers closed ends only).
+
+    Parameters
+    ----------
+    wire_diameter : float
+        Wire diameter d [m].
+    total_coils : float
+        Total coils n_t [-].
+    end_type : {"closed-ground", "closed", "open"}
+
+    Examples
+    --------
+    >>> round(en13906_solid_length(3.5e-3, 7.5, "closed-ground") * 1e3, 3)
+    26.25
+    """
+    extra = {"closed-ground": 0.0, "closed": 1.5, "open": 1.0}[end_type]
+    return wire_diameter * (total_coils + extra)
+
+
+def solid_length(spring) -> float:
+    """Solid length [m]: by the spring's ``end_type`` (:func:`en13906_solid_length`), else
+    the MMS document's ``Lc = Dw (N1 + N2 + 1/2)`` ([MMS];
+    :func:`springdyn.valve.spring.formulas.coil_contact_length`).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    """
+    total = spring.low_pitch_coils + spring.high_pitch_coils
+    if getattr(spring, "end_type", ""):
+        return en13906_solid_length(spring.wire_diameter, total, spring.end_type)
+    return coil_contact_length(spring.wire_diameter, spring.low_pitch_coils, spring.high_pitch_coils)
+
+
+def check_coil_bind(spring, lift: float, source: str) -> dict:
+    """Coil-bind figures of the spring compressed by ``lift`` from its installed length.
+
+    Raises :class:`InputError` when ``installed_length - lift`` is below the solid length
+    (unless the spring sets ``through_solid``); warns when the margin is below the
+    coil-bind clearance (``min_coil_bind_clearance``, default :func:`min_sum_of_gaps`).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    lift : float
+        Largest spring compression from the installed length [m] (the valve lift the cam
+        can cause through the train's ratio, less the lash).
+    source : str
+        What causes it, for messages (e.g. ``"the cam lift 9 mm"``).
+
+    Returns
+    -------
+    dict
+        ``solid_length_m``, ``open_length_m``, ``coil_bind_margin_m`` (open length minus solid
+        length), ``coil_bind_clearance_m`` with ``coil_bind_clearance_source``, ``coil_bind_ok`` (margin at least the clearance),
+        ``through_solid`` (the spring is driven past solid, allowed by ``through_solid``).
+    """
+    lc = solid_length(spring)
+    open_length = spring.installed_length - lift
+    margin = open_length - lc
+    clearance = spring.min_coil_bind_clearance
+    if clearance is None:
+        active = spring.low_pitch_coils + spring.high_pitch_coils - 2.0 * spring.dead_coils
+        clearance = min_sum_of_gaps(spring.mean_diameter, spring.wire_diameter, active)
+    through = margin < -1e-9  # at the solid length itself (to rounding) is allowed
+    if through and not spring.through_solid:
+        raise InputError(
+            f"{source} drives the spring past solid: installed_length {format_mm(spring.installed_length)} - lift "
+            f"{format_mm(lift)} = {format_mm(open_length)} is {format_mm(-margin)} below the solid length "
+            f"Dw (N1 + N2 + 1/2) = {format_mm(lc)}; lengthen installed_length, reduce the lift, or set "
+            "through_solid = true in [spring] to simulate through solid anyway"
+        )
+    if through:
+        warnings.warn(
+            f"through_solid: {source} drives the spring {format_mm(-margin)} past solid (Lc {format_mm(lc)}); "
+            "the results rest on the contact stiffness of closed coils",
+            UserWarning,
+            stacklevel=3,
+        )
+    elif margin < clearance:
+        warnings.warn(
+            f"coil bind: {source} leaves {format_mm(margin)} above the solid length {format_mm(lc)}, less than "
+            f"the coil-bind clearance {format_mm(clearance)}"
+            + (" (EN 13906-1's minimum sum of gaps Sa)" if spring.min_coil_bind_clearance is None else ""),
+            UserWarning,
+            stacklevel=3,
+        )
+    return dict(
+        solid_length_m=lc,
+        open_length_m=open_length,
+        coil_bind_margin_m=margin,
+        coil_bind_clearance_m=clearance,
+        coil_bind_ok=bool(margin >= clearance),
+        coil_bind_clearance_source="EN 13906-1 Sa"
+        if spring.min_coil_bind_clearance is None
+        else "min_coil_bind_clearance",
+        through_solid=bool(through),
+    )

@@ -1,0 +1,171 @@
+"""Gas force on the valve head: the cylinder pressure against the valve's seat area.
+
+The valve opens into the cylinder; the cylinder pressure acts on its head, the port's on
+its back, so the net gas force pushes the valve towards its seat,
+
+    ``F_gas = (p_cyl - p_port) pi d_seat^2 / 4``,
+
+on the seat's diameter while the valve is closed or barely open (the exhaust valve opens
+against the blow-down pressure: the case that matters; once open, the pressure across the
+head falls quickly, and taking the seat area throughout is the usual conservative
+reading).  A cylinder-pressure trace is given against crank angle from the gas-exchange
+TDC, as engine measurements are; the cam's ``[timing]`` table
+(:mod:`springdyn.valve.cam.timing`) phases it onto the cam: :class:`GasForce` holds the force
+over one camshaft revolution for the engine, which adds it to the valve's equation of
+motion (:func:`springdyn.valve.engine.equations.train_rhs`).
+
+Sources: docs/references.md, [Heywood] (cylinder pressure, blow-down), [Norton] (gas
+loads on the valve train).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.io import read_csv_columns
+
+__all__ = ["gas_force", "GasForce", "read_pressure_trace", "PRESSURE_COLUMNS", "GAS_SAMPLES"]
+
+#: Columns a pressure trace may give the (absolute) cylinder pressure in, with their factor to Pa.
+PRESSURE_COLUMNS = {"pressure_Pa": 1.0, "pressure_kPa": 1e3, "pressure_bar": 1e5, "pressure_MPa": 1e6}
+#: Samples of the gas force over one camshaft revolution (0.1 cam deg).
+GAS_SAMPLES = 3600
+
+
+def gas_force(cylinder_pressure, port_pressure, seat_diameter):
+    """Net gas force [N] on the valve towards its seat.
+
+    ``(p_cyl - p_port) pi d^2 / 4``: positive pushes the valve closed.
+
+    Parameters
+    ----------
+    cylinder_pressure : float or ndarray
+        Cylinder pressure [Pa] (absolute).
+    port_pressure : float
+        Port (manifold) pressure behind the valve [Pa] (absolute).
+    seat_diameter : float
+        Valve seat diameter [m].
+
+    Examples
+    --------
+    >>> round(float(gas_force(6e5, 1e5, 0.03)), 3)
+    353.429
+    """
+    return (np.asarray(cylinder_pressure, dtype=float) - port_pressure) * (0.25 * math.pi * seat_diameter**2)
+
+
+def read_pressure_trace(path) -> tuple[np.ndarray, np.ndarray]:
+    """A cylinder-pressure trace: crank angle [deg from the gas-exchange TDC] and pressure [Pa].
+
+    A CSV with ``crank_angle_deg`` and one of :data:`PRESSURE_COLUMNS` (absolute pressure),
+    one engine cycle (720 deg for a four-stroke), angles increasing.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file.
+    """
+    cols = read_csv_columns(path)
+    if "crank_angle_deg" not in cols:
+        raise InputError(f"{path}: no column 'crank_angle_deg' (found: {', '.join(cols)})")
+    given = [c for c in PRESSURE_COLUMNS if c in cols]
+    if len(given) != 1:
+        raise InputError(
+            f"{path}: give the cylinder pressure in one column of {', '.join(PRESSURE_COLUMNS)} "
+            f"(found: {', '.join(cols)})"
+        )
+    angle = np.asarray(cols["crank_angle_deg"], dtype=float)
+    pressure = np.asarray(cols[given[0]], dtype=float) * PRESSURE_COLUMNS[given[0]]
+    if angle.size < 8 or np.any(np.diff(angle) <= 0):
+        raise InputError(f"{path}: crank_angle_deg must increase, over at least 8 rows")
+    if np.any(pressure < 0):
+        raise InputError(f"{path}: an absolute pressure cannot be negative (row {int(np.argmin(pressure)) + 2})")
+    return angle, pressure
+
+
+@dataclass(frozen=True)
+class GasForce:
+    """The gas force on the valve over one camshaft revolution (for the engine) [N].
+
+    ``force[k]`` acts at cam angle ``2 pi k / n``; the engine interpolates linearly and
+    periodically.
+    """
+
+    force: np.ndarray  #: (n,) [N], positive towards the seat
+    source: str = ""
+
+    @classmethod
+    def from_trace(cls, crank_deg, pressure, *, axis, seat_diameter: float, port_pressure: float = 101325.0, source=""):
+        """Phase a cylinder-pressure trace onto the cam and turn it into the force on the valve.
+
+        Parameters
+        ----------
+        crank_deg, pressure : array_like
+            The trace: crank angle from the gas-exchange TDC [deg], absolute pressure [Pa].
+        axis : CrankAxis
+            The cam's crank axis, referenced to TDC by its ``[timing]`` table
+            (:func:`springdyn.valve.cam.timing.crank_axis`).
+        seat_diameter : float
+            Valve seat diameter [m].
+        port_pressure : float
+            Port pressure behind the valve [Pa] (absolute).
+        source : str
+            Where the trace came from, for messages.
+        """
+        if axis is None or not axis.referenced:
+            raise InputError(
+                "a cylinder-pressure trace is against crank angle: give the cam's [timing] table (lobe_centre, "
+                "valve, strokes) to phase it onto the cam"
+            )
+        if not (seat_diameter > 0 and math.isfinite(seat_diameter)):
+            raise InputError(f"seat_diameter = {seat_diameter!r} must be a positive diameter [m]")
+        crank = np.asarray(crank_deg, dtype=float)
+        span = crank[-1] - crank[0]
+        if span > axis.cycle_deg + 1e-9 or span < 0.9 * axis.cycle_deg:
+            raise InputError(
+                f"{source or 'the pressure trace'}: its crank angles span {span:g} deg; a {axis.cycle_deg:g}-deg "
+                "engine cycle is needed (one trace row per crank angle of the cycle)"
+            )
+        cam_deg = np.arange(GAS_SAMPLES) * (360.0 / GAS_SAMPLES)
+        phi = axis.crank_deg(cam_deg)
+        p = np.interp(phi, crank, pressure, period=axis.cycle_deg)
+        return cls(np.ascontiguousarray(gas_force(p, port_pressure, seat_diameter)), source)
+
+    @classmethod
+    def from_file(cls, path, *, axis, seat_diameter: float, port_pressure: float = 101325.0):
+        """:meth:`from_trace` of a CSV trace (:func:`read_pressure_trace`).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The CSV file.
+        axis : CrankAxis
+            The cam's referenced crank axis.
+        seat_diameter : float
+            Valve seat diameter [m].
+        port_pressure : float
+            Port pressure behind the valve [Pa] (absolute).
+        """
+        crank, p = read_pressure_trace(path)
+        return cls.from_trace(
+            crank, p, axis=axis, seat_diameter=seat_diameter, port_pressure=port_pressure, source=str(Path(path))
+        )
+
+    def at(self, cam_angle):
+        """The force [N] at cam angles [rad] (linear, periodic), as the engine reads it.
+
+        Parameters
+        ----------
+        cam_angle : float or ndarray
+            Cam angle [rad].
+        """
+        n = self.force.size
+        x = np.mod(np.asarray(cam_angle, dtype=float), 2.0 * math.pi) * (n / (2.0 * math.pi))
+        i0 = np.floor(x).astype(int) % n
+        frac = x - np.floor(x)
+        return self.force[i0] * (1.0 - frac) + self.force[(i0 + 1) % n] * frac

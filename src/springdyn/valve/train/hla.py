@@ -1,0 +1,505 @@
+"""Hydraulic lash adjuster (HLA): the ``[hla]`` table and its hydraulics.
+
+An HLA is a plunger in a body over a high-pressure chamber (HPC) of oil.  A check valve
+(a ball) lets oil in from the supply (the low-pressure reservoir fed by the engine's oil
+gallery) when the chamber pressure falls below the supply pressure; oil leaks out through
+the annular clearance between plunger and body when the chamber pressure exceeds it.  The
+plunger spring extends the plunger to take up lash on the base circle; under the cam load
+the oil column carries the load and leaks down a little each event.  Collapse ``y`` is
+the plunger's travel into the body (positive in the direction that loses valve lift).
+
+One place per equation:
+
+- :func:`kinematic_viscosity` -- the oil's viscosity at a temperature from its datasheet
+  values at 40 and 100 degC (the Walther equation, ASTM D341);
+- :func:`oil_density` -- density at a temperature (volumetric expansion);
+- :func:`effective_bulk_modulus` -- aerated oil: the oil's bulk modulus in series with free
+  air bubbles compressed polytropically (Merritt 1967, eq. 2-19; Gholizadeh et al. 2011);
+- :func:`leak_conductance` -- laminar (Poiseuille) flow through the plunger's annular
+  clearance, ``G = pi D c^3 (1 + 1.5 e^2) / (12 mu L)`` (Merritt 1967, eq. 3-59);
+- :func:`check_valve_flow` -- the check valve as a sharp-edged orifice,
+  ``Q = Cd A sqrt(2 dp / rho)``, laminarised below a transition pressure;
+- :func:`chamber_pressure_rate` -- oil continuity in the chamber,
+  ``dp/dt = beta_e / V (A_p dy/dt + Q_in - Q_leak)``;
+- :func:`leak_down_time` -- the leak-down test in closed form: a constant load ``W`` on the
+  plunger collapses it by ``s`` in ``t = s (A_p + pi D c / 2) / (G (W - F_s) / A_p)``
+  (quasi-static, incompressible; the Couette term of the moving plunger included);
+- :func:`leak_down_test` -- the same test integrated with the plunger's mass, the aerated
+  oil's compressibility and the check valve, the check of the closed form.
+
+Sources: docs/references.md, [Merritt], [ASTM D341], [Gholizadeh].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.params import Parameters, param
+
+__all__ = [
+    "P_ATM",
+    "HLA",
+    "kinematic_viscosity",
+    "oil_density",
+    "effective_bulk_modulus",
+    "leak_conductance",
+    "check_valve_flow",
+    "chamber_pressure_rate",
+    "leak_down_time",
+    "leak_down_test",
+    "LeakDownTest",
+]
+
+#: Standard atmospheric pressure [Pa]: gauge pressures of the ``[hla]`` table are above it.
+P_ATM = 101325.0
+#: Lowest absolute chamber pressure [Pa]: below it the oil releases its air and vapour
+#: (the chamber cavitates); the pressure is held there and the check valve refills.
+P_CAVITATION = 2000.0
+#: The integrator of :func:`leak_down_test` (an implicit one: the oil spring is stiff).
+LEAK_DOWN_METHOD = "Radau"
+#: Pressure difference [Pa] below which the check valve's orifice flow is taken as laminar
+#: (linear in the pressure difference), so that the flow has a finite slope at zero.
+CHECK_VALVE_TRANSITION = 2000.0
+
+
+def kinematic_viscosity(temperature, nu_40, nu_100):
+    """Kinematic viscosity [m^2/s] of an oil at a temperature, from its datasheet values.
+
+    The Walther equation of ASTM D341: ``log10(log10(nu + 0.7)) = A - B log10(T)`` with
+    ``nu`` in mm^2/s and ``T`` in K, through the values at 40 and 100 degC.
+
+    Parameters
+    ----------
+    temperature : float or ndarray
+        Oil temperature [K].
+    nu_40, nu_100 : float
+        Kinematic viscosity at 40 degC and at 100 degC [m^2/s].
+
+    Examples
+    --------
+    >>> round(float(kinematic_viscosity(373.15, 60e-6, 10.5e-6)) * 1e6, 9)
+    10.5
+    """
+    t1, t2 = 313.15, 373.15
+    w1 = math.log10(math.log10(nu_40 * 1e6 + 0.7))
+    w2 = math.log10(math.log10(nu_100 * 1e6 + 0.7))
+    b = (w1 - w2) / (math.log10(t2) - math.log10(t1))
+    a = w1 + b * math.log10(t1)
+    w = a - b * np.log10(temperature)
+    return (10.0 ** (10.0**w) - 0.7) * 1e-6
+
+
+def oil_density(temperature, density_15, expansion=6.5e-4):
+    """Oil density [kg/m^3] at a temperature: ``rho_15 / (1 + alpha (T - 288.15 K))``.
+
+    Parameters
+    ----------
+    temperature : float
+        Oil temperature [K].
+    density_15 : float
+        Density at 15 degC [kg/m^3].
+    expansion : float
+        Volumetric thermal expansion coefficient [1/K] (6.5e-4 for mineral engine oils).
+    """
+    return density_15 / (1.0 + expansion * (temperature - 288.15))
+
+
+def effective_bulk_modulus(p_abs, oil_bulk_modulus, air_fraction, polytropic_index=1.0):
+    """Bulk modulus [Pa] of oil with free air at an absolute pressure.
+
+    ``x`` is the air's volume fraction at atmospheric pressure; at ``p`` the air takes
+    ``x (p_atm / p)^(1/n)`` of the oil volume and is ``n p`` stiff, in series with the oil:
+    ``beta_e = (V_o + V_a) / (V_o / beta + V_a / (n p))`` (Merritt 1967, eq. 2-19).
+
+    Parameters
+    ----------
+    p_abs : float
+        Absolute pressure [Pa].
+    oil_bulk_modulus : float
+        Bulk modulus of the air-free oil [Pa].
+    air_fraction : float
+        Free-air volume fraction at atmospheric pressure [-].
+    polytropic_index : float
+        Polytropic index of the bubbles' compression [-] (1 isothermal, 1.4 adiabatic).
+
+    Examples
+    --------
+    >>> round(effective_bulk_modulus(101325.0, 1.5e9, 0.0) / 1e9, 6)
+    1.5
+    """
+    p = max(p_abs, P_CAVITATION)
+    v_air = air_fraction * (P_ATM / p) ** (1.0 / polytropic_index)
+    v_oil = 1.0 - air_fraction
+    return (v_oil + v_air) / (v_oil / oil_bulk_modulus + v_air / (polytropic_index * p))
+
+
+def leak_conductance(diameter, radial_clearance, length, viscosity, eccentricity=0.0):
+    """Laminar leakage conductance [m^3/(s Pa)] of the plunger's annular clearance.
+
+    ``G = pi D c^3 (1 + 1.5 e^2) / (12 mu L)``: Poiseuille flow through a narrow annulus
+    of radial clearance ``c`` and length ``L``, ``e`` the eccentricity over ``c``
+    (Merritt 1967, eq. 3-59 and 3-62).
+
+    Parameters
+    ----------
+    diameter : float
+        Plunger diameter [m].
+    radial_clearance : float
+        Radial clearance between plunger and body [m].
+    length : float
+        Sealing length of the clearance [m].
+    viscosity : float
+        Dynamic viscosity of the oil [Pa s].
+    eccentricity : float
+        Eccentricity ratio of the plunger in its bore [-], 0 (concentric) to 1.
+    """
+    return math.pi * diameter * radial_clearance**3 * (1.0 + 1.5 * eccentricity**2) / (12.0 * viscosity * length)
+
+
+def check_valve_flow(dp, area, discharge_coefficient, density):
+    """Flow [m^3/s] through the open check valve at a pressure drop ``dp`` [Pa] (> 0 opens it).
+
+    A sharp-edged orifice, ``Q = Cd A sqrt(2 dp / rho)``, laminarised below
+    :data:`CHECK_VALVE_TRANSITION` (linear in ``dp``, the same flow at the transition);
+    no flow for ``dp <= 0`` (the ball seats).
+
+    Parameters
+    ----------
+    dp : float
+        Supply pressure less the cracking pressure less the chamber pressure [Pa].
+    area : float
+        Flow area of the open valve [m^2].
+    discharge_coefficient : float
+        Discharge coefficient [-].
+    density : float
+        Oil density [kg/m^3].
+    """
+    if dp <= 0.0:
+        return 0.0
+    k = discharge_coefficient * area * math.sqrt(2.0 / density)
+    if dp < CHECK_VALVE_TRANSITION:
+        return k * dp / math.sqrt(CHECK_VALVE_TRANSITION)
+    return k * math.sqrt(dp)
+
+
+def chamber_pressure_rate(beta, volume, area, collapse_rate, q_in, q_leak):
+    """Rate of the chamber pressure [Pa/s] from oil continuity.
+
+    ``dp/dt = beta / V (A_p dy/dt + Q_in - Q_leak)``: a collapsing plunger (``dy/dt > 0``)
+    and inflow raise the pressure, leakage lowers it.
+
+    Parameters
+    ----------
+    beta : float
+        Effective bulk modulus [Pa].
+    volume : float
+        Chamber volume [m^3].
+    area : float
+        Plunger area [m^2].
+    collapse_rate : float
+        Plunger velocity into the body [m/s].
+    q_in, q_leak : float
+        Check-valve inflow and leakage outflow [m^3/s].
+    """
+    return beta / volume * (area * collapse_rate + q_in - q_leak)
+
+
+def leak_down_time(load, travel, plunger_diameter, radial_clearance, conductance, spring_force=0.0):
+    """Time [s] a constant load takes to collapse the plunger by ``travel``: the leak-down test.
+
+    Quasi-static and incompressible: the chamber carries ``dp = (W - F_s) / A_p`` above the
+    supply; the leak ``G dp`` leaves at the plunger speed ``v`` through the plunger area,
+    less the oil the plunger drags into the clearance (Couette, ``pi D c v / 2``), so
+    ``v (A_p + pi D c / 2) = G dp`` and ``t = travel / v``.
+
+    Parameters
+    ----------
+    load : float
+        Load on the plunger [N].
+    travel : float
+        Collapse to time [m].
+    plunger_diameter : float
+        Plunger diameter [m].
+    radial_clearance : float
+        Radial clearance [m].
+    conductance : float
+        Leakage conductance :func:`leak_conductance` [m^3/(s Pa)].
+    spring_force : float
+        Plunger-spring force, which the load overcomes [N].
+    """
+    area = 0.25 * math.pi * plunger_diameter**2
+    dp = (load - spring_force) / area
+    if not dp > 0:
+        raise InputError(f"load = {load:g} N must exceed the plunger-spring force {spring_force:g} N to leak down")
+    v = conductance * dp / (area + 0.5 * math.pi * plunger_diameter * radial_clearance)
+    return travel / v
+
+
+@dataclass(frozen=True)
+class HLA(Parameters):
+    """The ``[hla]`` table: a hydraulic lash adjuster's plunger, chamber, check valve and oil.
+
+    Defaults describe a 12 mm HLA of a passenger-car finger-follower train (sources in
+    docs/valve.md, "Hydraulic lash adjuster").
+
+    Examples
+    --------
+    >>> h = HLA()
+    >>> round(h.leak_down_seconds(200.0, 1e-3, h.oil_temperature), 1) > 0
+    True
+    """
+
+    plunger_diameter: float = param("m", "plunger diameter", display="mm", positive=True, default=12e-3)
+    radial_clearance: float = param(
+        "m", "radial clearance between plunger and body", display="um", positive=True, default=4e-6
+    )
+    leak_length: float = param(
+        "m", "sealing length of the plunger's clearance", display="mm", positive=True, default=8e-3
+    )
+    eccentricity: float = param(
+        "", "eccentricity ratio of the plunger in its bore (0 concentric, < 1)", nonnegative=True, default=0.0
+    )
+    chamber_volume: float = param(
+        "m^3", "high-pressure chamber volume on the base circle", display="mm^3", positive=True, default=400e-9
+    )
+    plunger_mass: float = param("kg", "plunger mass", display="g", positive=True, default=8e-3)
+    plunger_spring_force: float = param("N", "plunger-spring force", positive=True, default=15.0)
+    collapse_travel: float = param(
+        "m", "plunger travel into the body before it bottoms", display="mm", positive=True, default=2.5e-3
+    )
+    extension_travel: float = param(
+        "m", "plunger travel out of the body before its retaining clip", display="mm", positive=True, default=1.0e-3
+    )
+    supply_pressure: float = param("Pa", "oil supply pressure (gauge)", display="bar", nonnegative=True, default=2.0e5)
+    check_valve_diameter: float = param(
+        "m", "flow diameter of the open check valve", display="mm", positive=True, default=1.5e-3
+    )
+    cracking_pressure: float = param(
+        "Pa", "pressure difference that opens the check valve", display="bar", nonnegative=True, default=5.0e3
+    )
+    discharge_coefficient: float = param("", "check valve discharge coefficient", positive=True, default=0.7)
+    oil_temperature: float = param("K", "oil temperature", display="degC", positive=True, default=363.15)
+    oil_viscosity_40: float = param(
+        "m^2/s", "oil kinematic viscosity at 40 degC (datasheet)", display="mm^2/s", positive=True, default=60e-6
+    )
+    oil_viscosity_100: float = param(
+        "m^2/s", "oil kinematic viscosity at 100 degC (datasheet)", display="mm^2/s", positive=True, default=10.5e-6
+    )
+    oil_density_15: float = param("kg/m^3", "oil density at 15 degC", positive=True, default=850.0)
+    oil_bulk_modulus: float = param("Pa", "bulk modulus of air-free oil", display="GPa", positive=True, default=1.5e9)
+    air_fraction: float = param(
+        "", "free-air volume fraction of the oil at atmospheric pressure", nonnegative=True, default=0.02
+    )
+    polytropic_index: float = param(
+        "", "polytropic index of the air bubbles (1 isothermal)", positive=True, default=1.0
+    )
+    socket_stiffness: float = param(
+        "N/m",
+        "contact stiffness of the lever's socket on the plunger (a hydraulic bucket: the plunger on the stem)",
+        display="N/um",
+        positive=True,
+        default=1.0e8,
+    )
+    pivot_mass: float = param(
+        "kg",
+        "lever mass carried at the socket (the finger's pivot end; a bucket's body is [valve_train] follower_mass)",
+        display="g",
+        positive=True,
+        default=10e-3,
+    )
+
+    table = "hla"
+
+    def _validate(self) -> None:
+        if not self.eccentricity < 1.0:
+            raise InputError(f"eccentricity = {self.eccentricity:g} must be below 1 (the plunger touching its bore)")
+        if not self.air_fraction < 0.5:
+            raise InputError(f"air_fraction = {self.air_fraction:g} must be below 0.5: that is foam, not oil")
+        if not 1.0 <= self.polytropic_index <= 1.4:
+            raise InputError(
+                f"polytropic_index = {self.polytropic_index:g} must lie from 1 (isothermal) to 1.4 (adiabatic)"
+            )
+        if not self.oil_viscosity_100 < self.oil_viscosity_40:
+            raise InputError(
+                f"oil_viscosity_100 = {self.oil_viscosity_100 * 1e6:g} mm^2/s must be below oil_viscosity_40 = "
+                f"{self.oil_viscosity_40 * 1e6:g} mm^2/s (oil thins as it warms)"
+            )
+        if not 233.15 <= self.oil_temperature <= 443.15:
+            raise InputError(
+                f"oil_temperature = {self.oil_temperature - 273.15:.6g} degC must lie from -40 to 170 degC"
+            )
+        if not self.radial_clearance < 0.05 * self.plunger_diameter:
+            raise InputError(
+                f"radial_clearance = {self.radial_clearance * 1e6:g} um is not a narrow clearance of a "
+                f"{self.plunger_diameter * 1e3:g} mm plunger (at most 5 % of the diameter)"
+            )
+        if not self.chamber_volume > self.area * self.collapse_travel:
+            raise InputError(
+                f"chamber_volume = {self.chamber_volume * 1e9:g} mm^3 must exceed the volume the plunger sweeps "
+                f"over its collapse_travel ({self.area * self.collapse_travel * 1e9:.4g} mm^3)"
+            )
+
+    # -- derived values ---------------------------------------------------------------
+    @property
+    def area(self) -> float:
+        """Plunger area [m^2]."""
+        return 0.25 * math.pi * self.plunger_diameter**2
+
+    def viscosity(self, temperature: float | None = None) -> float:
+        """Dynamic viscosity of the oil [Pa s] at a temperature (default: ``oil_temperature``).
+
+        Parameters
+        ----------
+        temperature : float, optional
+            Oil temperature [K].
+        """
+        t = self.oil_temperature if temperature is None else temperature
+        return float(kinematic_viscosity(t, self.oil_viscosity_40, self.oil_viscosity_100)) * self.density(t)
+
+    def density(self, temperature: float | None = None) -> float:
+        """Oil density [kg/m^3] at a temperature (default: ``oil_temperature``).
+
+        Parameters
+        ----------
+        temperature : float, optional
+            Oil temperature [K].
+        """
+        return oil_density(self.oil_temperature if temperature is None else temperature, self.oil_density_15)
+
+    def conductance(self, temperature: float | None = None) -> float:
+        """Leakage conductance [m^3/(s Pa)] at a temperature (:func:`leak_conductance`).
+
+        Parameters
+        ----------
+        temperature : float, optional
+            Oil temperature [K].
+        """
+        return leak_conductance(
+            self.plunger_diameter,
+            self.radial_clearance,
+            self.leak_length,
+            self.viscosity(temperature),
+            self.eccentricity,
+        )
+
+    def leak_down_seconds(self, load: float, travel: float, temperature: float | None = None) -> float:
+        """Closed-form leak-down time [s] (:func:`leak_down_time`) of a load over a travel.
+
+        Parameters
+        ----------
+        load : float
+            Load on the plunger [N].
+        travel : float
+            Collapse [m].
+        temperature : float, optional
+            Oil temperature [K].
+        """
+        return leak_down_time(
+            load,
+            travel,
+            self.plunger_diameter,
+            self.radial_clearance,
+            self.conductance(temperature),
+            self.plunger_spring_force,
+        )
+
+    @property
+    def check_valve_area(self) -> float:
+        """Flow area of the open check valve [m^2]."""
+        return 0.25 * math.pi * self.check_valve_diameter**2
+
+
+@dataclass(frozen=True)
+class LeakDownTest:
+    """A leak-down test integrated in time (:func:`leak_down_test`) beside its closed form."""
+
+    load_N: float
+    travel_m: float
+    time_s: float  #: integrated time to collapse the travel [s]
+    closed_form_s: float  #: :func:`leak_down_time` [s]
+    peak_pressure_Pa: float  #: chamber pressure above the supply in the test [Pa]
+
+    @property
+    def deviation(self) -> float:
+        """Integrated over closed-form time, less one [-]."""
+        return self.time_s / self.closed_form_s - 1.0
+
+
+def leak_down_test(hla: HLA, load: float, travel: float, temperature: float | None = None) -> LeakDownTest:
+    """The leak-down test integrated: the plunger (mass), the aerated chamber, the check valve.
+
+    As a leak-down tester does, the ``load`` is applied and the chamber brought to the
+    pressure that carries it, ``p = p_s + (W - F_s) / A_p``, with the free air compressed to
+    that pressure (the collapse ``int dp / beta_e`` over the chamber); from that loaded state
+    the state ``(y, v, p)`` follows ``m v' = W - F_s - (p - p_s) A_p`` and
+    :func:`chamber_pressure_rate` (the Couette drag ``pi D c v / 2`` into the clearance
+    included) until the plunger has collapsed ``travel`` further.  Its time checks
+    :func:`leak_down_time`, which neglects the plunger's inertia and the oil's compression.
+
+    Parameters
+    ----------
+    hla : HLA
+        The adjuster.
+    load : float
+        Load on the plunger [N].
+    travel : float
+        Collapse to time [m].
+    temperature : float, optional
+        Oil temperature [K] (default: the adjuster's).
+    """
+    from scipy.integrate import quad, solve_ivp
+
+    closed = hla.leak_down_seconds(load, travel, temperature)
+    a = hla.area
+    g = hla.conductance(temperature)
+    rho = hla.density(temperature)
+    ps = P_ATM + hla.supply_pressure
+    drag = 0.5 * math.pi * hla.plunger_diameter * hla.radial_clearance
+    p1 = ps + (load - hla.plunger_spring_force) / a
+
+    def beta(p):
+        return effective_bulk_modulus(p, hla.oil_bulk_modulus, hla.air_fraction, hla.polytropic_index)
+
+    y0 = hla.chamber_volume * quad(lambda p: 1.0 / beta(p), ps, p1, limit=200)[0] / a
+    if not 0 < y0 + travel < hla.collapse_travel:
+        raise InputError(
+            f"travel = {travel * 1e3:g} mm and the {y0 * 1e3:.3g} mm the load first compresses exceed the "
+            f"collapse_travel {hla.collapse_travel * 1e3:g} mm"
+        )
+
+    def rhs(t, s):
+        y, v, p = s
+        q_in = check_valve_flow(ps - hla.cracking_pressure - p, hla.check_valve_area, hla.discharge_coefficient, rho)
+        q_leak = g * (p - ps) - drag * v
+        dp = chamber_pressure_rate(beta(p), hla.chamber_volume - a * y, a, v, q_in, q_leak)
+        return [v, (load - hla.plunger_spring_force - (p - ps) * a) / hla.plunger_mass, dp]
+
+    def reached(t, s):
+        return s[0] - y0 - travel
+
+    reached.terminal = True
+    v0 = (
+        g * (p1 - ps) / (a + drag)
+    )  # the leak's quasi-static speed (from rest, the 12 kHz oil-spring ringing costs minutes)
+    sol = solve_ivp(
+        rhs,
+        (0.0, 10.0 * closed),
+        [y0, v0, p1],
+        method=LEAK_DOWN_METHOD,
+        rtol=1e-10,
+        atol=[1e-13, 1e-12, 1e-3],
+        events=reached,
+    )
+    if not sol.t_events[0].size:
+        raise InputError(f"the plunger did not collapse {travel * 1e3:g} mm under {load:g} N (check the [hla] values)")
+    return LeakDownTest(
+        load_N=load,
+        travel_m=travel,
+        time_s=float(sol.t_events[0][0]),
+        closed_form_s=closed,
+        peak_pressure_Pa=float(np.max(sol.y[2]) - ps),
+    )

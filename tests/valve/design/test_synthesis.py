@@ -1,0 +1,161 @@
+"""Valve springs from requirements (springdyn.valve.design.synthesis, issue 29 part 1).
+
+Every candidate is checked by routes independent of the search's closed forms: the spring
+model's own static force at both lengths, EN 13906-1's solid length and sum of gaps from
+springdyn.valve.spring.solid_length on the built spring, the Goodman safety of
+springdyn.valve.spring.stress.fatigue_assessment on the built spring's strengths, and the
+model's surge frequency.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from springdyn.core.errors import InputError
+from springdyn.valve.design.synthesis import Requirements, candidate_table, spring_table, synthesize
+from springdyn.valve.spring.solid_length import min_sum_of_gaps, solid_length
+from springdyn.valve.spring.stress import fatigue_assessment
+from tests.paths import EXAMPLES
+
+REQ = dict(
+    installed_length="38 mm",
+    installed_force="250 N",
+    lift="9 mm",
+    open_force="460 N",
+    max_outer_diameter="27 mm",
+    min_inner_diameter="16 mm",
+    material="SiCr",
+    min_goodman_safety=1.1,
+    min_surge_frequency="400 Hz",
+)
+
+
+@pytest.fixture(scope="module")
+def result():
+    return synthesize(Requirements.from_dict(REQ), dynamics=False)
+
+
+def test_candidates_meet_the_load_points_and_every_requirement(result):
+    """The model's static forces equal the load points (1e-6: the secant steps converge to
+    round-off), and every requirement holds by the independent routes of the module
+    docstring (their margins agree with the search's to 1e-6)."""
+    req = Requirements.from_dict(REQ)
+    assert len(result.springs) >= 2
+    assert {r["kind"] for r in result.rows} == {"one-step", "two-step"}
+    for sp, row in zip(result.springs, result.rows):
+        f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+        assert f == pytest.approx([req.installed_force, req.open_force], rel=1e-6)
+        assert sp.mean_diameter + sp.wire_diameter <= req.max_outer_diameter
+        assert sp.mean_diameter - sp.wire_diameter >= req.min_inner_diameter
+        active = sp.high_pitch_coils - (sp.dead_coils if sp.low_pitch_coils else 2 * sp.dead_coils)
+        gaps = min_sum_of_gaps(sp.mean_diameter, sp.wire_diameter, active)
+        assert req.open_length - solid_length(sp) >= gaps
+        assert row["margin_coil_bind"] == pytest.approx((req.open_length - solid_length(sp) - gaps) / gaps, abs=1e-6)
+        n = fatigue_assessment(sp, req.installed_force, req.open_force)["fatigue_safety_factor"]
+        assert n >= req.min_goodman_safety
+        assert row["goodman_safety"] == pytest.approx(n, rel=1e-6)
+        assert sp.spring_model.first_mode_installed >= 400.0
+        assert row["meets_all"] and row["smallest_margin"] >= 0
+
+
+def test_the_first_of_each_kind_is_the_lightest_feasible(result):
+    """Ranking: no candidate of the search meets every margin with less mass than the first
+    of its kind (up to the model's refusal of a candidate, none here)."""
+    req = Requirements.from_dict(REQ)
+    t = candidate_table(req)
+    for kind, name in ((0, "one-step"), (1, "two-step")):
+        ok = (t["worst"] >= 0) & (t["kind"] == kind)
+        first = next(r for r in result.rows if r["kind"] == name)
+        assert first["mass_kg"] == pytest.approx(float(t["mass"][ok].min()), rel=0.01)
+
+
+def test_candidate_files_read_back(result, tmp_path):
+    """A written candidate is a ready spring file: read back, it gives the load points to the
+    rounding of its printed values (6 digits of the free length: 1e-4 of the force)."""
+    from springdyn.core.io import dumps_toml
+    from springdyn.valve import ValveSpring
+
+    sp = result.springs[0]
+    path = tmp_path / "c.toml"
+    path.write_text(dumps_toml({"spring": spring_table(sp)}))
+    back = ValveSpring.from_toml(path)
+    req = Requirements.from_dict(REQ)
+    f = back.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+    assert f == pytest.approx([req.installed_force, req.open_force], rel=1e-4)
+
+
+def test_infeasible_requirements_name_the_binding_ones():
+    """A pocket too small for the load: the message names the outer diameter and how far the
+    best candidate misses it; a Goodman safety out of reach is named too."""
+    tight = dict(REQ, max_outer_diameter="19 mm", min_inner_diameter="13 mm")
+    with pytest.raises(InputError, match="no spring meets the requirements") as e:
+        synthesize(Requirements.from_dict(tight), dynamics=False)
+    assert "binding requirements" in str(e.value) or "none of the candidates meets them all" in str(e.value)
+    safe = dict(REQ, min_goodman_safety=3.0)
+    with pytest.raises(InputError, match="goodman"):
+        synthesize(Requirements.from_dict(safe), dynamics=False)
+
+
+@pytest.mark.parametrize(
+    "change,message",
+    [
+        ({"open_force": "200 N"}, "must exceed installed_force"),
+        ({"material": "unobtainium"}, "SiCr"),
+        ({"min_float_cam_rpm": "4000 rpm"}, "needs cam and valve_train"),
+        ({"material": "custom"}, "needs shear_modulus"),
+        ({"lift": "40 mm"}, "must be below installed_length"),
+    ],
+)
+def test_bad_requirements(change, message):
+    with pytest.raises(InputError, match=message):
+        Requirements.from_dict(dict(REQ, **change))
+
+
+def test_cli_synthesize(capsys, tmp_path):
+    """``springdyn valve synthesize``: the ranked table, the spring files and the CSV; an
+    infeasible file gets one message and exit 2."""
+    from springdyn.app.cli.main import main
+    from springdyn.core.io import dumps_toml
+
+    req = tmp_path / "req.toml"
+    req.write_text(dumps_toml({"requirements": REQ}))
+    out = tmp_path / "out"
+    assert main(["valve", "synthesize", str(req), "--out", str(out), "--per-kind", "1"]) == 0
+    text = capsys.readouterr().out
+    assert "smallest margin" in text and "candidate_01_" in text
+    assert (out / "candidates.csv").exists() and len(list(out.glob("candidate_*.toml"))) == 2
+    req.write_text(dumps_toml({"requirements": dict(REQ, max_outer_diameter="19 mm", min_inner_diameter="13 mm")}))
+    assert main(["valve", "synthesize", str(req), "--out", str(out)]) == 2
+    assert "no spring meets the requirements" in capsys.readouterr().err
+
+
+@pytest.mark.slow  # the distributed model over a speed range for two candidates (~30 s)
+def test_dynamic_checks_with_a_cam_and_train(tmp_path):
+    """With a cam, a train and a float-speed requirement each candidate is run with the
+    distributed model: its float speed is the one float_speed finds for it, and a requirement
+    above every candidate's float speed is a failed margin and a note."""
+
+    from springdyn.valve import Cam, ValveTrain, float_speed
+
+    ex = EXAMPLES / "valve"
+    req = Requirements.from_dict(
+        dict(
+            REQ,
+            cam=str(ex / "cam_polydyne_ramps.toml"),
+            valve_train=str(ex / "valve_train.toml"),
+            min_cam_rpm="2800 rpm",
+            max_cam_rpm="4000 rpm",
+            min_float_cam_rpm="3900 rpm",
+        )
+    )
+    res = synthesize(req, per_kind=1)
+    assert all("float_cam_rpm" in r and "dynamic_goodman_safety" in r for r in res.rows)
+    assert any("no candidate reaches the float speed" in n for n in res.summary["notes"])
+    sp = res.springs[0].with_model("distributed")
+    f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+    assert res.rows[0]["distributed_installed_force_N"] == pytest.approx(f[0], rel=1e-12)
+    scan = np.linspace(req.speeds()[0], 1.15 * 3900.0, req.speeds().size)
+    again = float_speed(sp, Cam.from_toml(req.cam), ValveTrain.from_toml(req.valve_train), scan, resolution=5.0)
+    assert res.rows[0]["float_cam_rpm"] == again["float_cam_rpm"]
+    assert not res.rows[0]["meets_all"] and res.rows[0]["margin_float"] < 0
