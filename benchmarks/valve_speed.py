@@ -105,8 +105,10 @@ def main(argv=None) -> int:
     from springdyn.core.units import rpm_to_omega
     from springdyn.valve import ValveSpring, engine
     from springdyn.valve.cam.definition import Cam
-    from springdyn.valve.run.setup import MAX_STEP_FRACTION, prepare
-    from springdyn.valve.run.simulate import simulate
+    from springdyn.valve.run.runner import engine_args, velocity_tolerance
+    from springdyn.valve.run.settings import MAX_STEP_FRACTION
+    from springdyn.valve.run.setup import prepare
+    from springdyn.valve.run.simulation import simulate
 
     spring = ValveSpring.example("one-step")
     cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
@@ -176,11 +178,11 @@ def main(argv=None) -> int:
             [omega],
             2,
             1440,
-            setup.args(omega),
+            engine_args(setup, omega),
             rtol=1e-6,
             atol=1e-9,
             max_step_fraction=MAX_STEP_FRACTION,
-            atol_velocity=setup.atol_velocity(1e-9),
+            atol_velocity=velocity_tolerance(setup, 1e-9),
         )
         eng.append(time.perf_counter() - t)
     t_eng = min(eng)

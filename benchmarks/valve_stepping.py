@@ -50,7 +50,7 @@ def main(argv=None) -> int:
     import numpy as np
 
     from springdyn.valve import Cam, ValveSpring, simulate
-    from springdyn.valve.run import simulate as dynamics
+    from springdyn.valve.run import simulation as dynamics
     from springdyn.valve.spring.modes import chain_eigenvalues
 
     cams = _cams(Cam)

@@ -29,7 +29,7 @@ def main(argv=None) -> int:
     from valve_stepping import SPEEDS, _cams
 
     from springdyn.valve import Cam, ValveSpring, simulate
-    from springdyn.valve.run import simulate as dynamics
+    from springdyn.valve.run import simulation as dynamics
 
     cams = _cams(Cam)
     keys = ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")

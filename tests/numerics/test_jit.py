@@ -36,11 +36,12 @@ import math
 import numpy as np
 from springdyn.valve import Cam, ValveSpring
 from springdyn.valve.run.setup import prepare
+from springdyn.valve.run.runner import engine_args
 from springdyn.valve.engine.equations import chain_rhs, model_of, rhs_call, train_of
 from springdyn.valve.engine.layout import extra_layout
 setup = prepare(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)))
 omega = 314.0
-args = setup.args(omega)
+args = engine_args(setup, omega)
 m, vt = model_of(args), train_of(args[9])
 got, want = np.zeros(extra_layout(m.masses.shape[0])["size"]), np.zeros(extra_layout(m.masses.shape[0])["size"])
 t = 0.1 * 2 * math.pi / omega
@@ -132,7 +133,7 @@ def test_the_stamp_changes_with_every_file_of_the_group(tmp_path):
     files = jit.source_group(PACKAGE / "valve" / "engine" / "loop.py")
     names = {f.relative_to(PACKAGE).as_posix() for f in files}
     assert {"valve/engine/equations.py", "valve/engine/monitor.py", "numerics/erk.py", "numerics/jit.py"} <= names
-    assert "valve/run/simulate.py" not in names  # the Python around the engine does not key it
+    assert "valve/run/simulation.py" not in names  # the Python around the engine does not key it
 
 
 def test_no_writable_cache_folder_compiles_in_memory_and_says_so_once(tmp_path):

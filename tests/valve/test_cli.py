@@ -118,7 +118,7 @@ def test_argparse_errors_exit_2_in_one_line(capsys):
 def test_cli_default_tolerances_are_the_library_defaults():
     """The parser keeps its own copy (so that --help does not load the engine): they must agree."""
     from springdyn.app.cli import valve as cli
-    from springdyn.valve.run import setup
+    from springdyn.valve.run import settings as setup
 
     assert (cli.DEFAULT_RTOL, cli.DEFAULT_ATOL) == (setup.DEFAULT_RTOL, setup.DEFAULT_ATOL)
     assert (cli.TRAIN_RTOL, cli.TRAIN_ATOL) == (setup.TRAIN_RTOL, setup.TRAIN_ATOL)

@@ -183,7 +183,6 @@ def test_tolerances_are_inputs(one_step, key, value):
         ("points_per_revolution", 720.5),
         ("points_per_revolution", 8),
         ("points_per_revolution", 10**7),
-        ("points_per_revolution", None),
     ],
 )
 def test_whole_number_settings(one_step, key, value):

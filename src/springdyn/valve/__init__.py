@@ -66,7 +66,7 @@ The analyses and their results
 - :mod:`~springdyn.valve.model` -- :class:`ValveModel`;
 - :mod:`~springdyn.valve.run.setup` -- the engine's set-up for a spring, cam and train (cam
   table, initial state) and the run settings;
-- :mod:`~springdyn.valve.run.simulate` -- :func:`simulate`;
+- :mod:`~springdyn.valve.run.simulation` -- :func:`simulate`;
 - :mod:`~springdyn.valve.run.periodicity` -- the periodic steady state every result per speed is
   (tolerance, most revolutions, band);
 - :mod:`~springdyn.valve.run.separation` -- lift-offs by cam phase, float over the nose, seat
@@ -101,7 +101,7 @@ _EXPORTS = {
     "Simulation": "run.results",
     "FloatSpeedResult": "run.results",
     "NaturalFrequencies": "run.results",
-    "simulate": "run.simulate",
+    "simulate": "run.simulation",
     "float_speed": "run.float_search",
     "sweep": "run.sweeps",
     "SpeedSweep": "run.sweeps",

@@ -9,7 +9,7 @@ engine (:attr:`setup`), both cached properties of this (mutable) object.
 
 Where each analysis lives: statics and modes of the chain, :mod:`springdyn.valve.spring.chains`; the
 frequency response, :mod:`springdyn.valve.spring.frf`; simulation and natural frequencies under the
-cam, :mod:`springdyn.valve.run.simulate`; speed sweeps, :mod:`springdyn.valve.run.sweeps`.
+cam, :mod:`springdyn.valve.run.simulation`; speed sweeps, :mod:`springdyn.valve.run.sweeps`.
 
 Examples
 --------
@@ -179,10 +179,10 @@ class ValveModel:
             Revolutions from rest; the last is reported [-].  Default: to the periodic
             steady state.
         **options
-            Further options of :func:`springdyn.valve.run.simulate.simulate` (periodicity
+            Further options of :func:`springdyn.valve.run.simulation.simulate` (periodicity
             tolerance, tolerances, outputs per revolution, backend, pair).
         """
-        from .run.simulate import simulate
+        from .run.simulation import simulate
 
         self._need_cam("simulate")
         return simulate(

@@ -14,6 +14,7 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, engine, simulate
+from springdyn.valve.run.runner import engine_args, runge_kutta_pair
 from springdyn.valve.run.setup import CAM_SAMPLES, prepare
 
 RAMPS = Cam(law="polydyne", lift=9.5e-3, duration=math.radians(110), ramp_height=3e-4, ramp_duration=math.radians(20))
@@ -73,7 +74,7 @@ def test_pairs_per_model_and_their_accuracy():
     the study over 112 runs per model: 0.014 % and 0.0035 %)."""
     for model, pair in (("type-c", "dopri5"), ("distributed", "bs3")):
         s = ValveSpring.example("one-step").with_model(model)
-        assert prepare(s, CAM).method == pair
+        assert runge_kutta_pair(prepare(s, CAM)) == pair
         sim = simulate(s, CAM, 3000.0, 2, check_elements=False)
         assert sim.info["method"] == pair
         ref = simulate(s, CAM, 3000.0, 2, rtol=1e-10, atol=1e-13, check_elements=False)
@@ -116,7 +117,7 @@ def test_spring_alone_and_train_equations_agree_without_a_train():
     spring = ValveSpring.example("one-step")
     setup = prepare(spring, Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)))
     assert setup.vt[0] == 0.0 and engine.train_of(setup.vt) is None
-    m = engine.model_of(setup.args(0.0))
+    m = engine.model_of(engine_args(setup, 0.0))
     rng = np.random.default_rng(1)
     size = engine.extra_layout(5)["size"]
     for _ in range(10):

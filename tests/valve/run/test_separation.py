@@ -18,9 +18,9 @@ from springdyn.valve.run.separation import (
     phase_mask,
     phase_of,
 )
-from tests.paths import example
+from tests.paths import EXAMPLES
 
-EX = example("valve/")
+EX = EXAMPLES / "valve"
 
 
 def test_345_cam_nose_is_the_middle_half_of_the_event():
@@ -36,7 +36,7 @@ def test_345_cam_nose_is_the_middle_half_of_the_event():
 def test_ramps_are_the_cams_own_or_the_lash_take_up():
     """With 20-deg ramps the opening ramp ends at 20 deg; a lash above the ramp height moves
     the end of the lash take-up to where the lobe lift reaches the lash."""
-    cam = Cam.from_toml(EX + "cam_polydyne_ramps.toml")
+    cam = Cam.from_toml(EX / "cam_polydyne_ramps.toml")
     ph = cam_phases(cam, 0.15e-3)
     assert math.degrees(ph.ramp_end) == pytest.approx(20.0, abs=0.06)
     assert math.degrees(ph.ramp_start) == pytest.approx(130.0, abs=0.06)
@@ -58,7 +58,7 @@ def test_phase_mask_is_phase_of_on_every_angle():
     and the bounds themselves) for four cams, with and without lash."""
     rng = np.random.default_rng(0)
     for name in ("cam_polydyne_ramps", "cam_345", "cam_finger", "cam_table"):
-        cam = Cam.from_toml(EX + f"{name}.toml")
+        cam = Cam.from_toml(EX / f"{name}.toml")
         for lash in (0.0, 2e-4):
             ph = cam_phases(cam, lash)
             angles = np.concatenate([rng.uniform(-10.0, 10.0, 2000), np.radians(np.arange(0.0, 360.0, 0.25))])
@@ -99,9 +99,9 @@ def test_bucket_float_speed_is_nose_separation_not_the_first_bounce():
     """The bucket train on the ramp cam (examples): the first lift-off is opening-side bounce
     at the end of the opening ramp; the float speed is above it, and over the nose at every
     scanned speed from it on."""
-    sp = ValveSpring.from_toml(EX + "one_step_spring.toml")
-    cam = Cam.from_toml(EX + "cam_polydyne_ramps.toml")
-    vt = ValveTrain.from_toml(EX + "valve_train.toml")
+    sp = ValveSpring.from_toml(EX / "one_step_spring.toml")
+    cam = Cam.from_toml(EX / "cam_polydyne_ramps.toml")
+    vt = ValveTrain.from_toml(EX / "valve_train.toml")
     with pytest.warns(UserWarning, match="coil bind"):
         res = float_speed(sp, cam, vt, np.arange(2900.0, 3601.0, 50.0), resolution=5.0)
     s = res.summary

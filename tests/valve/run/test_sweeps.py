@@ -11,7 +11,7 @@ from springdyn.app.cli.main import main
 from springdyn.core.errors import InputError
 from springdyn.valve import ValveSpring
 from springdyn.valve.cam.definition import Cam
-from springdyn.valve.run.simulate import simulate
+from springdyn.valve.run.simulation import simulate
 from springdyn.valve.run.sweeps import connect, sweep
 from springdyn.valve.train.definition import ValveTrain
 from tests.paths import EXAMPLES

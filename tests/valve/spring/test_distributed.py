@@ -10,6 +10,7 @@ from springdyn.app.cli.main import main
 from springdyn.core.errors import InputError
 from springdyn.core.units import rpm_to_omega
 from springdyn.valve import Cam, ValveSpring, ValveTrain, engine, simulate
+from springdyn.valve.run.runner import engine_args
 from springdyn.valve.run.setup import prepare
 from springdyn.valve.run.sweeps import sweep
 from springdyn.valve.spring.chains.distributed import DEFAULT_ELEMENTS, coil_law, modal_damping
@@ -255,7 +256,7 @@ def test_energy_balance_undamped(one_step):
     setup = prepare(s, CAM)
     omega = rpm_to_omega(3000)
     t = np.linspace(0, 2 * math.pi / omega, 20001)
-    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-9, atol=1e-12, h_max=2e-5)
+    states, info = engine.integrate(setup.y0, t, engine_args(setup, omega), rtol=1e-9, atol=1e-12, h_max=2e-5)
     assert info["status"] == 0
     lift, dlift = setup.table.at(omega * t)
     ch = s.spring_model.chain
@@ -338,7 +339,12 @@ def test_seat_impact_velocity_from_event_location():
     omega = rpm_to_omega(rpm)
     t = np.linspace(land[2] - 2e-5, land[2] + 2e-5, 40001)
     st, info = engine.integrate(
-        setup.y0, np.concatenate([[0.0], t]), setup.args(omega), rtol=1e-10, atol=1e-13, h_max=2 * math.pi / omega / 720
+        setup.y0,
+        np.concatenate([[0.0], t]),
+        engine_args(setup, omega),
+        rtol=1e-10,
+        atol=1e-13,
+        h_max=2 * math.pi / omega / 720,
     )
     nm = s.spring_model.chain.masses.size
     z, vz = st[1:, nm], st[1:, -1]

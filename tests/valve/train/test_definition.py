@@ -10,6 +10,7 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, float_speed, simulate
+from springdyn.valve.run.runner import engine_args
 from springdyn.valve.run.setup import prepare
 from springdyn.valve.train.definition import ValveTrain, series_stiffness
 
@@ -202,7 +203,7 @@ def _train_energy_error(vt, cam, rpm):
     setup = prepare(s, cam, vt)
     omega = rpm_to_omega(rpm)
     t = np.linspace(0, 2 * math.pi / omega, 40001)
-    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-10, atol=1e-13, h_max=2e-6)
+    states, info = engine.integrate(setup.y0, t, engine_args(setup, omega), rtol=1e-10, atol=1e-13, h_max=2e-6)
     assert info["status"] == 0
     lift, dlift = setup.table.at(omega * t)
     dlift *= omega

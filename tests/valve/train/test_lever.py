@@ -19,6 +19,7 @@ from springdyn.valve import Cam, ValveSpring, ValveTrain, simulate
 from springdyn.valve.cam.checks import cam_profile
 from springdyn.valve.cam.follower import Follower
 from springdyn.valve.engine.cam_table import CamTable
+from springdyn.valve.run.runner import engine_args
 from springdyn.valve.train.lever import (
     LeverGeometry,
     lever_angle_of_lift,
@@ -301,7 +302,7 @@ def test_drawn_lever_energy_balance_over_a_revolution():
         setup = prepare(s, cam, vt)
     omega = rpm_to_omega(1500.0)
     t = np.linspace(0, 2 * math.pi / omega, 40001)
-    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-10, atol=1e-13, h_max=2e-6)
+    states, info = engine.integrate(setup.y0, t, engine_args(setup, omega), rtol=1e-10, atol=1e-13, h_max=2e-6)
     assert info["status"] == 0
     p = setup.vt
     lift, dlift = setup.table.at(omega * t)

@@ -889,7 +889,7 @@ def cmd_speed_ramp(args, spring, cam, vt) -> int:
 
 
 def cmd_simulate(args) -> int:
-    from springdyn.valve.run.simulate import simulate
+    from springdyn.valve.run.simulation import simulate
 
     spring = _spring(args)
     cam, vt = _load_cam_and_train(args)

@@ -18,7 +18,7 @@ from springdyn.valve.cam.definition import Cam
 from springdyn.valve.cam.timing import Timing, crank_axis
 from springdyn.valve.run.float_search import float_speed
 from springdyn.valve.run.periodicity import PERIODICITY_TOL
-from springdyn.valve.run.simulate import simulate
+from springdyn.valve.run.simulation import simulate
 from springdyn.valve.run.sweeps import sweep
 from springdyn.valve.run.train_modes import natural_frequencies
 from springdyn.valve.spring.chains import PARAMETER_UNITS

@@ -137,7 +137,7 @@ def calibrate_trace(
     """
     from scipy.optimize import least_squares
 
-    from ..run.simulate import simulate
+    from ..run.simulation import simulate
 
     fit = list(fit)
     bad = [f for f in fit if f not in TRACE_PARAMETERS]

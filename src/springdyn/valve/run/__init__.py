@@ -2,7 +2,7 @@
 
 - :mod:`.setup` -- :class:`SimulationSetup`, everything the engine needs for one spring, cam
   and train that does not depend on the speed (cam table, initial state, static force);
-- :mod:`.simulate` -- :func:`simulate`: one speed to its periodic state;
+- :mod:`.simulation` -- :func:`simulate`: one speed to its periodic state;
 - :mod:`.periodicity` -- the periodic steady state every result per speed is;
 - :mod:`.separation` -- lift-offs by cam phase, float over the nose, seat bounce;
 - :mod:`.float_search` -- :func:`float_speed` and the search of a variant's float speed;
@@ -20,7 +20,7 @@ from __future__ import annotations
 from ..._lazy import lazy_package
 
 _EXPORTS = {
-    "simulate": "simulate",
+    "simulate": "simulation",
     "sweep": "sweeps",
     "SpeedSweep": "sweeps",
     "float_speed": "float_search",

@@ -20,12 +20,17 @@ import math
 
 import numpy as np
 
-from ...core.errors import InputError
+from ...core.errors import InputError, SolverError
+from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
+from ..engine import STATUS, extra_layout
 from ..spring.definition import ValveSpring
 from ..train.definition import ValveTrain
-from .periodicity import MAX_REVOLUTIONS, PERIODICITY_TOL
 from .results import FloatSpeedResult
+from .runner import run_speeds
+from .separation import cam_phases, phase_mask
+from .settings import POINTS_PER_REVOLUTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
+from .setup import output_angles
 from .sweeps import sweep
 
 __all__ = ["float_speed", "float_speed_near", "nose_gap", "FLOAT_RESOLUTION"]
@@ -58,14 +63,11 @@ def float_speed(
     valve_train: ValveTrain,
     cam_rpm,
     *,
-    revolutions: int | None = None,
+    settings: RunSettings | None = None,
     resolution: float = 1.0,
-    points_per_revolution: int = 1440,
     progress_quiet: bool = True,
-    periodicity_tol: float = PERIODICITY_TOL,
-    max_revolutions: int = MAX_REVOLUTIONS,
     workers: int | None = None,
-    allow_extreme_speeds: bool = False,
+    **run,
 ) -> FloatSpeedResult:
     """Float speed: the lowest cam speed from which the valve separates over the nose at
     every higher scanned speed.
@@ -83,23 +85,17 @@ def float_speed(
         The valve body whose contact with the cam may open.
     cam_rpm : array_like
         Camshaft speeds to scan [rev/min], positive.
-    revolutions : int, optional
-        Cam revolutions per speed from rest [-]; default: to the periodic steady state.
+    settings : RunSettings, optional
+        How each speed is integrated (:class:`~springdyn.valve.run.settings.RunSettings`;
+        default: to the periodic steady state, 1440 output points a revolution).
     resolution : float
         Width of the final bracket [rev/min], positive.
-    points_per_revolution : int
-        Output resolution of each speed [-].
     progress_quiet : bool
         No progress bar.
-    periodicity_tol : float
-        Periodic steady state: tolerance [fraction of Fset].
-    max_revolutions : int
-        Periodic steady state: the most revolutions per speed [-].
     workers : int, optional
         Local threads of the scan [-].
-    allow_extreme_speeds : bool
-        Scan speeds at which the cam event is shorter than one period of the spring's first
-        surge mode (refused otherwise).
+    **run
+        Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one.
 
     Returns
     -------
@@ -128,15 +124,9 @@ def float_speed(
             f"resolution = {resolution:g} rev/min is finer than the bisection reaches in {max_halvings} "
             f"halvings of the scanned range: it must be at least {finest:.3g} rev/min"
         )
-    run = dict(
-        valve_train=valve_train,
-        revolutions=revolutions,
-        points_per_revolution=points_per_revolution,
-        periodicity_tol=periodicity_tol,
-        max_revolutions=max_revolutions,
-        allow_extreme_speeds=allow_extreme_speeds,
-    )
-    scan = sweep(spring, cam, rpms, quiet=progress_quiet, workers=workers, **run)
+    settings = RunSettings.of(settings, **run)
+    settings = RunSettings.of(settings, points_per_revolution=settings.points(POINTS_PER_REVOLUTION))
+    scan = sweep(spring, cam, rpms, valve_train=valve_train, settings=settings, quiet=progress_quiet, workers=workers)
     table = scan.summary_table()
     columns = {k: table[k].tolist() for k in SCAN_COLUMNS if k in table}
     first = scan.first_separation_speeds()[0]
@@ -158,7 +148,7 @@ def float_speed(
             float(resolution),
             first_separation=first_separation,
             scan=columns,
-            periodicity_tol=periodicity_tol,
+            periodicity_tol=settings.periodicity_tol,
         )
 
     f = scan.float_speeds()[0]
@@ -172,7 +162,11 @@ def float_speed(
         if hi - lo <= resolution:
             break
         mid = 0.5 * (lo + hi)
-        if bool(sweep(spring, cam, [mid], workers=1, **run).summary_table()["nose_separation"][0]):
+        if bool(
+            sweep(spring, cam, [mid], valve_train=valve_train, settings=settings, workers=1).summary_table()[
+                "nose_separation"
+            ][0]
+        ):
             hi = mid
         else:
             lo = mid
@@ -213,11 +207,8 @@ def float_speed_near(
     hi_rpm: float,
     *,
     resolution: float = FLOAT_RESOLUTION,
-    points_per_revolution: int = 720,
-    rtol: float | None = None,
-    atol: float | None = None,
-    periodicity_tol: float = PERIODICITY_TOL,
-    max_revolutions: int = MAX_REVOLUTIONS,
+    settings: RunSettings | None = None,
+    **run,
 ) -> dict:
     """The float speed of a prepared valve train near ``guess_rpm`` [rev/min], within
     ``[lo_rpm, hi_rpm]``, to ``resolution``.
@@ -241,15 +232,11 @@ def float_speed_near(
         The speed range [rev/min].
     resolution : float
         Width of the final bracket [rev/min].
-    points_per_revolution : int
-        Output grid of the gap [-].
-    rtol, atol : float, optional
-        Integration tolerances [-, m] (default: the valve train's,
-        :func:`springdyn.valve.run.setup.default_tolerances`).
-    periodicity_tol : float
-        Periodic steady state: tolerance [fraction of Fset].
-    max_revolutions : int
-        Periodic steady state: the most revolutions per speed [-].
+    settings : RunSettings, optional
+        How each trial speed is integrated (default: to the periodic steady state with the
+        valve train's tolerances, on 720 output points a revolution).
+    **run
+        Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one.
 
     Returns
     -------
@@ -261,10 +248,6 @@ def float_speed_near(
         ``periodicity`` (the largest periodicity measure of the trial speeds [fraction of
         Fset]: at most ``periodicity_tol`` when every one settled),.
     """
-    from ...core.units import rpm_to_omega
-    from .separation import cam_phases, phase_mask
-    from .setup import default_tolerances, output_angles
-
     if setup.valve_train is None:
         raise InputError("float_speed_near needs a valve train: the spring alone has no cam contact to lose")
     lo_rpm, hi_rpm = float(lo_rpm), float(hi_rpm)
@@ -272,22 +255,14 @@ def float_speed_near(
         raise InputError(f"speed range [{lo_rpm:g}, {hi_rpm:g}] rev/min must be positive, finite and ascending")
     if not (math.isfinite(resolution) and resolution > 0.0):
         raise InputError(f"resolution = {resolution!r} must be a positive speed [rev/min]")
-    rtol, atol = default_tolerances(setup.valve_train, rtol, atol)
-    points = int(points_per_revolution)
+    settings = RunSettings.of(settings, **run)
+    points = settings.points(SWEEP_POINTS_PER_REVOLUTION)
     nose = phase_mask(output_angles(points), cam_phases(setup.cam, setup.valve_train.lobe_lash), "nose")
     column = _gap_column(setup)
     stats = dict(evaluations=0, revolutions=0, periodicity=0.0)
 
     def gap(rpm: float) -> float:
-        r = setup.run(
-            np.array([rpm_to_omega(rpm)]),
-            None,
-            points,
-            rtol=rtol,
-            atol=atol,
-            periodicity_tol=periodicity_tol,
-            max_revolutions=max_revolutions,
-        )
+        r = run_speeds(setup, np.array([rpm_to_omega(rpm)]), settings, points)
         if r["status"][0] != 0:
             raise _search_failure(rpm, r)
         stats["evaluations"] += 1
@@ -350,15 +325,10 @@ def float_speed_near(
 
 
 def _gap_column(setup) -> int:
-    from ..engine import extra_layout
-
     return extra_layout(setup.n_masses)["cam_gap"]
 
 
 def _search_failure(rpm, r):
-    from ...core.errors import SolverError
-    from ..engine import STATUS
-
     status = int(r["status"][0])
     return SolverError(
         f"float search: the integration failed at {rpm:.1f} cam rpm ({STATUS.get(status, status)}) "

@@ -16,9 +16,17 @@ import numpy as np
 from ...core.results import Result
 from ..cam.timing import CrankAngles
 from ..spring.elements import law_force
-from ..spring.stress import fatigue_assessment
 from .periodicity import PERIODICITY_TOL, is_periodic
-from .separation import cam_phases, liftoffs, separates_over_nose
+from .separation import cam_phases, liftoffs, phase_mask
+from .verdicts import (
+    coil_clash,
+    floats_over_nose,
+    pumps_up,
+    seat_rebound_height,
+    valve_held_open,
+    valve_open,
+    wire_fatigue,
+)
 
 __all__ = ["Simulation", "FloatSpeedResult", "NaturalFrequencies"]
 
@@ -386,8 +394,6 @@ def _hla_summary(sim: Simulation, notes: list) -> dict:
     inflow = float(h["inflow"][-1] - h["inflow"][0]) * per_rev
     leak = float(h["leak"][-1] - h["leak"][0]) * per_rev
     change = float(h["collapse"][-1] - h["collapse"][0]) * per_rev
-    base = ~(sim.lift > 1e-9)  # the lobe on its base circle
-    open_on_base = float(sim.valve_lift[base].min()) if base.any() else 0.0
     hop = sim.hla["socket_force"] <= 0.0
     out = dict(
         collapse_min_m=float(h["collapse"].min()),
@@ -402,9 +408,10 @@ def _hla_summary(sim: Simulation, notes: list) -> dict:
         volume_balance_m3=inflow - leak,
         socket_hop=bool(hop.any()),
         socket_hop_deg=float(hop.sum() * 360.0 / n),
-        valve_held_open_m=max(open_on_base, 0.0),
+        valve_held_open_m=valve_held_open(sim.lift, sim.valve_lift),
     )
-    if out["valve_held_open_m"] > 1e-6:
+    out["pump_up"] = pumps_up(out["valve_held_open_m"])
+    if out["pump_up"]:
         notes.append(
             f"PUMP-UP: the adjuster holds the valve open by {out['valve_held_open_m'] * 1e3:.3f} mm on the base "
             "circle (it extends whenever the train unloads it, after a lift-off or a bounce; the valve fails to close)"
@@ -593,12 +600,7 @@ def _summarise(sim: Simulation) -> dict:
         vt = sim.valve_train
         # float: the valve open (off its seat, the lobe past the lash) and before its first
         # landing in the revolution (later separations are seat bounces)
-        z = sim.valve_lift
-        first_landing = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
-        before = np.ones(z.size, dtype=bool)
-        if first_landing.size:
-            before[first_landing[0] + 1 :] = False
-        in_event = (sim.lift > vt.lobe_lash + 1e-6) & (z > 0.0) & before
+        in_event = valve_open(sim.lift, sim.valve_lift, vt.lobe_lash)
         phases = cam_phases(sim.cam, vt.lobe_lash)
         if mon is not None:
             intervals = located.get((2, 0), [])
@@ -611,7 +613,12 @@ def _summarise(sim: Simulation) -> dict:
         lo = liftoffs(intervals, phases, sim.cam_rpm, sim.cam_angle, None if sim.cam_gap is None else -sim.cam_gap)
         s["liftoff"] = lo
         # float as valve-train engineers read it: the valve leaves the cam over the nose
-        s["nose_separation"] = separates_over_nose(lo, phases, sim.cam_angle, sim.cam_contact_force, sim.valve_lift)
+        s["nose_separation"] = floats_over_nose(
+            any(r["phase"] == "nose" for r in lo),
+            phase_mask(sim.cam_angle, phases, "nose"),
+            sim.cam_contact_force,
+            sim.valve_lift,
+        )
         s["first_liftoff_phase"] = lo[0]["phase"] if lo else None
         s["cam_phases_deg"] = phases.as_degrees()
         grid_min = float(sim.cam_contact_force[in_event].min()) if in_event.any() else 0.0
@@ -639,10 +646,7 @@ def _summarise(sim: Simulation) -> dict:
                 "the valve floated: the landing after lift-off (seat impact velocity, bounces) depends on "
                 "the tolerances, ~0.1 % at the valve train's default rtol = 1e-8; use rtol = 1e-9 for ~0.01 %"
             )
-        after = np.zeros_like(z, dtype=bool)
-        if landings.size:
-            after[landings[0] + 1 :] = True
-        s["max_bounce_height_m"] = float(np.max(np.where(after & ~(sim.lift > vt.lobe_lash + 1e-6), z, 0.0)))
+        s["max_bounce_height_m"] = seat_rebound_height(sim.lift, z, vt.lobe_lash)
         if sim.hla is not None:
             s["hla"] = _hla_summary(sim, notes)
         if sim.gas_force is not None:
@@ -792,7 +796,7 @@ def _clash_impacts(sim, events: list) -> dict:
     and their peak force through contact."""
     model = sim.spring.spring_model
     share = np.nan_to_num(sim.contact_share)
-    clash = model.clash(sim.element_contact, sim.static_force)
+    clash = coil_clash(model, sim.element_contact, sim.static_force)
     deg = sim.cam_angle_deg
     index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
     count, duration, peak = 0, 0.0, 0.0
@@ -822,48 +826,45 @@ def _durability(sim, s: dict, notes: list) -> dict:
     model = sim.spring.spring_model
     share = sim.contact_share
     wire = sim.element_force - share  # SpringModel.wire_forces, with the share computed once
-    rows = np.flatnonzero(np.isfinite(wire).all(axis=1))
-    lo = wire.min(axis=1)
-    hi = wire.max(axis=1)
-    if 0 in rows and not np.any(share[0]):
-        lo[0], hi[0] = min(lo[0], s["min_seat_force_N"]), max(hi[0], s["max_seat_force_N"])
-    last = sim.element_force.shape[0] - 1
-    if last in rows and not np.any(share[-1]):
-        lo[-1], hi[-1] = min(lo[-1], s["min_retainer_force_N"]), max(hi[-1], s["max_retainer_force_N"])
-    dyn = fatigue_assessment(sim.spring, lo[rows], hi[rows])
-    dyn["critical_element"] = int(rows[dyn["critical_element"]])
-    peak_share = np.nanmax(np.where(np.isfinite(share), share, 0.0), axis=1)
-    sta = fatigue_assessment(sim.spring, s["min_static_force_N"], s["max_static_force_N"])
-    out = dict(
-        static_fatigue_safety_factor=sta["fatigue_safety_factor"],
-        fatigue_safety_factor=dyn["fatigue_safety_factor"],
-        static_min_shear_stress_Pa=sta["min_shear_stress_Pa"],
-        static_max_shear_stress_Pa=sta["max_shear_stress_Pa"],
-        min_shear_stress_Pa=dyn["min_shear_stress_Pa"],
-        max_shear_stress_Pa=dyn["max_shear_stress_Pa"],
-        fatigue_critical_element=dyn["critical_element"] + 1,
-        endurance_shear_strength_Pa=dyn["endurance_shear_strength_Pa"],
-        ultimate_shear_strength_Pa=dyn["ultimate_shear_strength_Pa"],
-        shear_stress_limit_Pa=dyn["shear_stress_limit_Pa"],
-        max_wire_force_N=float(np.max(hi[rows])),
-        max_force_through_coil_contact_N=float(np.max(peak_share)),
+    f = wire_fatigue(
+        sim.spring,
+        np.where(np.isfinite(wire).all(axis=1), wire.min(axis=1), np.nan),
+        wire.max(axis=1),
+        (s["min_seat_force_N"], s["min_retainer_force_N"]),
+        (s["max_seat_force_N"], s["max_retainer_force_N"]),
+        s["min_static_force_N"],
+        s["max_static_force_N"],
     )
-    # the largest stress of any element (the Goodman-critical one above need not be it)
-    peak = fatigue_assessment(sim.spring, np.zeros(rows.size), hi[rows])
-    j = int(rows[peak["critical_element"]])
-    out["peak_shear_stress_Pa"] = peak["max_shear_stress_Pa"]
-    out["peak_shear_stress_element"] = j + 1
-    out["wire_stress_ok"] = bool(out["peak_shear_stress_Pa"] <= out["shear_stress_limit_Pa"])
+    peak_share = np.nanmax(np.where(np.isfinite(share), share, 0.0), axis=1)
+    out = dict(
+        static_fatigue_safety_factor=f["static_fatigue_safety_factor"],
+        fatigue_safety_factor=f["fatigue_safety_factor"],
+        static_min_shear_stress_Pa=f["static_min_shear_stress_Pa"],
+        static_max_shear_stress_Pa=f["static_max_shear_stress_Pa"],
+        min_shear_stress_Pa=f["min_shear_stress_Pa"],
+        max_shear_stress_Pa=f["max_shear_stress_Pa"],
+        fatigue_critical_element=f["fatigue_critical_element"] + 1,
+        endurance_shear_strength_Pa=f["endurance_shear_strength_Pa"],
+        ultimate_shear_strength_Pa=f["ultimate_shear_strength_Pa"],
+        shear_stress_limit_Pa=f["shear_stress_limit_Pa"],
+        max_wire_force_N=f["max_wire_force_N"],
+        max_force_through_coil_contact_N=float(np.max(peak_share)),
+        # the largest stress of any element (the Goodman-critical one above need not be it)
+        peak_shear_stress_Pa=f["peak_shear_stress_Pa"],
+        peak_shear_stress_element=f["peak_shear_stress_element"] + 1,
+        wire_stress_ok=f["wire_stress_ok"],
+    )
     if not out["wire_stress_ok"]:
+        j = f["peak_shear_stress_element"]
         notes.append(
             f"WIRE OVERSTRESS: element {j + 1} ({model.chain.element_names[j]}) reaches "
             f"{out['peak_shear_stress_Pa'] / 1e6:.0f} MPa at {sim.cam_rpm:g} cam rpm, above the "
-            f"{dyn['shear_stress_limit_source']} {out['shear_stress_limit_Pa'] / 1e6:.0f} MPa"
+            f"{f['shear_stress_limit_source']} {out['shear_stress_limit_Pa'] / 1e6:.0f} MPa"
         )
-    if dyn["strength_defaults"]:
+    if f["strength_defaults"]:
         notes.append(
             "fatigue: default wire strengths used for "
-            + " and ".join(dyn["strength_defaults"])
+            + " and ".join(f["strength_defaults"])
             + " (oil-tempered, shot-peened Cr-Si valve-spring wire; give them in [spring] for your wire)"
         )
     if out["fatigue_safety_factor"] is None:

@@ -14,6 +14,7 @@ steady-state float speed of the same range.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -21,6 +22,15 @@ import numpy as np
 
 from ...core.errors import InputError, SolverError
 from ...core.results import Result
+from ...core.units import rpm_to_omega
+from ..engine import integrate, rhs_call
+from ..engine.equations import model_of, train_of
+from ..engine.layout import VT_ALPHA, extra_layout
+from .float_search import float_speed
+from .runner import engine_args, run_speeds, runge_kutta_pair, velocity_tolerance
+from .separation import cam_phases, phase_mask
+from .settings import MAX_STEP_FRACTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
+from .setup import prepare
 
 __all__ = ["speed_ramp", "RunUp", "ramp_time", "ramp_angle", "MAX_RAMP_REVOLUTIONS"]
 
@@ -72,10 +82,9 @@ def speed_ramp(
     end_rpm: float,
     rate_rpm_per_s: float,
     *,
-    points_per_revolution: int = 720,
-    rtol: float | None = None,
-    atol: float | None = None,
+    settings: RunSettings | None = None,
     float_scan: bool = True,
+    **run,
 ) -> RunUp:
     """The valve train through a cam-speed ramp (see the module docstring).
 
@@ -88,22 +97,16 @@ def speed_ramp(
         Cam speeds at the ramp's start and end [rev/min].
     rate_rpm_per_s : float
         Rate of the cam speed [rev/min per s] (a deceleration when ``end < start``).
-    points_per_revolution : int
-        Output samples per revolution [-].
-    rtol, atol : float, optional
-        Relative [-] and absolute [m] tolerances (default: the valve train's,
-        :func:`springdyn.valve.run.setup.default_tolerances`).
+    settings : RunSettings, optional
+        The tolerances (default: the valve train's) and output samples per revolution
+        (default 720) of the ramp, and the periodic steady state it starts from.
     float_scan : bool
         Also find the steady-state float speed of the range (a sweep of its speeds), to
         report beside the ramp's.
+    **run
+        Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one.
     """
-    from ...core.units import rpm_to_omega
-    from ..engine import integrate, rhs_call
-    from ..engine.equations import model_of, train_of
-    from ..engine.layout import VT_ALPHA, extra_layout
-    from .separation import cam_phases, phase_mask
-    from .setup import MAX_STEP_FRACTION, default_tolerances, prepare
-
+    settings = RunSettings.of(settings, **run)
     if valve_train is None:
         raise InputError("a speed ramp judges lift-off and float: it needs a valve train (--valve-train)")
     for name, v in (("start", start_rpm), ("end", end_rpm)):
@@ -113,8 +116,8 @@ def speed_ramp(
         raise InputError(f"speed ramp rate = {rate_rpm_per_s!r} must be a positive rate [rev/min per s]")
     if start_rpm == end_rpm:
         raise InputError("a speed ramp needs different start and end speeds (a constant speed is valve simulate)")
-    n = int(points_per_revolution)
-    rtol, atol = default_tolerances(valve_train, rtol, atol)
+    n = settings.points(SWEEP_POINTS_PER_REVOLUTION)
+    rtol, atol = settings.tolerances(valve_train)
     w0, w1 = rpm_to_omega(start_rpm), rpm_to_omega(end_rpm)
     alpha = math.copysign(rate_rpm_per_s * _RPM, w1 - w0)
     duration = (w1 - w0) / alpha
@@ -132,12 +135,14 @@ def speed_ramp(
         )
 
     setup = prepare(spring, cam, valve_train)
-    start = setup.run([w0], None, n, rtol=rtol, atol=atol)  # the periodic steady state at the start
+    start = run_speeds(
+        setup, [w0], dataclasses.replace(settings, revolutions=None), n
+    )  # the periodic state at the start
     if int(start["status"][0]) != 0:
         raise SolverError(f"the ramp's start at {start_rpm:g} cam rpm did not integrate ({start['status'][0]})")
     vt = setup.vt.copy()
     vt[VT_ALPHA] = alpha
-    args = (*setup.args(w0)[:9], vt)
+    args = (*engine_args(setup, w0)[:9], vt)
     theta = np.arange(revs * n + 1) * (2.0 * math.pi / n)
     t_out = ramp_time(theta, w0, alpha)
     states, info = integrate(
@@ -147,8 +152,8 @@ def speed_ramp(
         rtol=rtol,
         atol=atol,
         h_max=MAX_STEP_FRACTION * 2.0 * math.pi / max(w0, w1),
-        atol_velocity=setup.atol_velocity(atol),
-        method=setup.method,
+        atol_velocity=velocity_tolerance(setup, atol),
+        method=runge_kutta_pair(setup, settings),
     )
     if info["status"] != 0 or not np.isfinite(states).all():
         raise SolverError(
@@ -190,8 +195,6 @@ def speed_ramp(
 
 def _steady_float(spring, cam, valve_train, a: float, b: float):
     """The steady-state float speed over the ramp's range (None: none within it)."""
-    from .float_search import float_speed
-
     lo, hi = min(a, b), max(a, b)
     res = float_speed(spring, cam, valve_train, np.linspace(lo, hi, 16), progress_quiet=True)
     return res.float_cam_rpm

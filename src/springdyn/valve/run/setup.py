@@ -1,89 +1,50 @@
 """The engine's set-up for one spring, cam and valve train: everything that does not depend
 on the speed (document, "Initial condition & position").
 
-:func:`prepare` samples the cam (:data:`CAM_SAMPLES` per revolution), checks the lift
-against coil contact and finds the initial state (static equilibrium on the base circle);
-:class:`SimulationSetup` holds the result and runs speeds with the compiled engine.  The
-run settings every analysis shares (tolerances, the largest step, the Runge-Kutta pair per
-model) are defined here.
+:func:`prepare` samples the cam (:data:`~springdyn.valve.run.settings.CAM_SAMPLES` per
+revolution), checks the lift against coil contact, finds the initial state (static
+equilibrium on the base circle) and writes the valve train's parameter vector (with the gas
+force's and a drawn lever's tables); :class:`SimulationSetup` is the record of it, data
+only.  Beside it, the functions of a set-up: its static force at a lift
+(:func:`static_force`) and along a revolution's output grid (:func:`static_force_along_grid`,
+kept for the last few cams), and the check of its speeds against the spring's first surge
+mode (:func:`check_speeds`).  The engine runs a set-up through
+:func:`springdyn.valve.run.runner.run_speeds`.
 """
 
+import dataclasses
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ...core.errors import InputError
 from ..cam.definition import Cam
-from ..engine import (
-    run_speeds,
-    series_force_compiled,
-)
+from ..engine import series_force_compiled
 from ..engine.cam_table import CamTable
+from ..engine.layout import VT_GAS_N, VT_GEOM_N, VT_SIZE
 from ..spring.definition import ValveSpring
 from ..spring.solid_length import check_coil_bind
 from ..spring.statics import series_force
 from ..train.definition import KERNEL_SIZE, ValveTrain
-from .periodicity import BAND_REVOLUTIONS, MAX_REVOLUTIONS, PERIODICITY_TOL
+from .settings import CAM_SAMPLES, MAX_CAM_RPM, MIN_EVENT_SURGE_PERIODS
 
 __all__ = [
     "SimulationSetup",
     "prepare",
-    "check_run_settings",
     "output_angles",
-    "DEFAULT_RTOL",
-    "DEFAULT_ATOL",
-    "TRAIN_RTOL",
-    "TRAIN_ATOL",
-    "default_tolerances",
-    "CAM_SAMPLES",
-    "MAX_STEP_FRACTION",
-    "VELOCITY_TOLERANCE_DIVISOR",
-    "PAIR",
-    "BS3_MIN_ELEMENTS",
-    "PERIODICITY_TOL",
-    "MAX_REVOLUTIONS",
-    "BAND_REVOLUTIONS",
+    "static_force",
+    "static_force_along_grid",
+    "check_speeds",
+    "with_gas_force",
+    "STATIC_CACHE_SIZE",
 ]
 
-#: Default integration tolerances (relative; absolute on displacements [m] and velocities
-#: [m/s]).  Chosen by the refinement study of the tests: halving them changes peak forces
-#: by far less than 0.05 %.
-DEFAULT_RTOL = 1e-6
-DEFAULT_ATOL = 1e-9
-#: With a valve train the defaults are a hundred times tighter: its contacts open and close
-#: with impacts (lash take-up, landings), and at 1e-6 those repeat from one revolution to the
-#: next only to a few per cent of Fset (the pushrod example: 3.7 % at 1000 cam rpm, no speed
-#: settles to the periodic steady state); at 1e-8 every speed below the first lift-off settles
-#: within 0.2 % in 4-5 revolutions (docs/valve.md, "Periodic steady state").
-TRAIN_RTOL = 1e-8
-TRAIN_ATOL = 1e-11
-#: The fewest periods of the spring's first surge mode a cam event may last for its speed to be
-#: an operating point (:meth:`SimulationSetup.check_speeds`).
-MIN_EVENT_SURGE_PERIODS = 1.0
-#: Cam speed [rev/min] above any engine's (a racing engine's 20 000 rpm is 10 000 cam rpm): a
-#: refused speed above it is likely a typing slip, and the message suggests a tenth of it.
-MAX_CAM_RPM = 12000.0
-#: Cam table resolution for the engine (samples per revolution, 0.05 deg).
-CAM_SAMPLES = 7200
-#: Maximum step [fraction of a revolution] so that no step can jump over a short event.
-MAX_STEP_FRACTION = 1.0 / 720.0
-#: The spring's velocities get the absolute tolerance ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR``
-#: [m/s] (:meth:`SimulationSetup.atol_velocity`; the study in docs/valve.md).
-VELOCITY_TOLERANCE_DIVISOR = 30.0
-#: The embedded Runge-Kutta pair of the compiled engine per spring model, chosen by
-#: measurement (docs/valve.md, "Stepping"): Type C's step is set by accuracy, where the
-#: 5th-order Dormand-Prince pair takes the fewest right-hand sides; the distributed chain's
-#: by the stability of its stiffness-proportionally damped top modes (real eigenvalues to
-#: -2.7e5 1/s for 50 elements), where the Bogacki-Shampine 3(2) pair takes 1.3x more steps
-#: for half the right-hand sides each, and still holds the end forces within 0.05 % of Fset.
-PAIR = {"type-c": "dopri5", "distributed": "bs3"}
-#: Below this many elements the distributed chain's explicit step is set by accuracy, not by
-#: stability, and Dormand-Prince is the faster pair (measured, one-step example at 1500 and
-#: 3000 cam rpm: 25 elements 3.0 against 4.2 ms, 40 elements 6.2 against 6.7 ms, 50 elements
-#: 10.4 against 9.6 ms; docs/valve.md "Stepping").
-BS3_MIN_ELEMENTS = 40
+#: Set-ups (spring, cam and output grid) whose static force along the grid is kept
+#: (:func:`static_force_along_grid`): a Newton solve per angle costs about 5 % of a Type C
+#: simulation, and runs of one spring and cam at many speeds share it.
+STATIC_CACHE_SIZE = 8
 
 
 def output_angles(points: int) -> np.ndarray:
@@ -97,166 +58,30 @@ def output_angles(points: int) -> np.ndarray:
     return np.arange(int(points)) * (2.0 * math.pi / int(points))
 
 
-@dataclass
+@dataclass(frozen=True)
 class SimulationSetup:
-    """Everything the engine needs for one spring, cam and valve train (speed-independent)."""
+    """Everything the engine needs for one spring, cam and valve train (speed-independent; data
+    only, made by :func:`prepare`)."""
 
     spring: ValveSpring
     cam: Cam
     valve_train: ValveTrain | None
+    #: The lift table the engine reads (the lobe's, or a drawn lever's equivalent lobe lift).
     table: CamTable
+    #: The valve train's parameter vector, then the gas force's samples and a lever's table
+    #: (layout ``VT_*`` of :mod:`springdyn.valve.engine.layout`).
     vt: np.ndarray
+    #: The initial state: static equilibrium on the base circle [m, m/s].
     y0: np.ndarray
-    #: coil-bind figures of the cam's largest lift (:func:`springdyn.valve.spring.solid_length.check_coil_bind`)
+    #: Coil-bind figures of the cam's largest lift (:func:`springdyn.valve.spring.solid_length.check_coil_bind`).
     coil_bind: dict | None = None
-    #: Cam angles [rad] where the engine's lift table is not smooth: the cam's breakpoints, or
-    #: where a lever's roller meets them (:meth:`springdyn.valve.train.lever.LeverKinematics.breakpoint_angles`);
-    #: None: the cam's.
-    lobe_breakpoints: np.ndarray | None = None
-
-    @property
-    def breakpoints(self) -> np.ndarray:
-        """Cam angles [rad] where the engine's lift table is not smooth (its steps land on them)."""
-        return np.asarray(self.cam.breakpoints if self.lobe_breakpoints is None else self.lobe_breakpoints)
-
-    def static_force(self, lift) -> np.ndarray:
-        """Static (massless) spring force [N] at cam or valve lift(s) [m].
-
-        Parameters
-        ----------
-        lift : float or array_like
-            Cam (spring alone) or valve lift [m].
-        """
-        sp = self.spring
-        lift = np.asarray(lift, dtype=float)
-        dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
-        force = np.empty_like(dl)
-        series_force_compiled(dl, sp.spring_model.chain.laws, force, *sp.spring_model.force_table)
-        return force.reshape(lift.shape)
-
-    @property
-    def event_angle(self) -> float:
-        """Cam angle [rad] over which the cam lifts (its event), from the engine's cam table."""
-        if "_event" not in self.__dict__:
-            h = self.table.h
-            self.__dict__["_event"] = 2.0 * math.pi * float(np.count_nonzero(h > 1e-9 * float(h.max()))) / h.size
-        return self.__dict__["_event"]
-
-    def check_speeds(self, cam_rpm, allow_extreme: bool = False) -> list[str]:
-        """Refuse cam speeds outside physical reason: the cam event shorter than one period
-        of the spring's first surge mode at installed length (a surge margin below
-        :data:`MIN_EVENT_SURGE_PERIODS` periods per event; valve trains keep about 10 and more
-        cam orders below f1).  With ``allow_extreme`` such speeds run and the returned notes
-        flag them.
-
-        Parameters
-        ----------
-        cam_rpm : float or array_like
-            Cam speeds [rev/min].
-        allow_extreme : bool
-            Compute them anyway [-].
-
-        Returns
-        -------
-        list of str
-            Notes for the speeds computed beyond reason (empty when none).
-        """
-        rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
-        event = self.event_angle
-        f1 = self.spring.spring_model.first_mode_installed
-        t_event = event / (rpm * 2.0 * math.pi / 60.0)
-        bad = rpm[t_event * f1 < MIN_EVENT_SURGE_PERIODS]
-        if not bad.size:
-            return []
-        r = float(bad[0])
-        t = event / (r * 2.0 * math.pi / 60.0)
-        what = (
-            f"cam_rpm = {r:g}: the cam event of {math.degrees(event):.0f} deg lasts {t * 1e3:.3g} ms, shorter than one "
-            f"period of the spring's first surge mode ({f1:.0f} Hz, {1e3 / f1:.3g} ms): no valve spring follows such a "
-            "cam (valve trains run with the surge frequency some 10 cam orders or more above the cam speed)"
-        )
-        if not allow_extreme:
-            raise InputError(
-                what
-                + (f"; did you mean {r / 10:g}?" if r > MAX_CAM_RPM else ".")
-                + " Set allow_extreme_speeds (--allow-extreme-speeds) to compute it anyway, flagged"
-                + (f" ({bad.size} speeds of the range are beyond it)" if bad.size > 1 else "")
-            )
-        return [f"EXTREME SPEED, computed on request: {what}" + (f" ({bad.size} speeds)" if bad.size > 1 else "")]
-
-    def static_force_along_cam(self, points: int) -> np.ndarray:
-        """Static (massless) force [N] of the spring alone at the cam angles ``2 pi j / points``,
-        ``j = 0 .. points - 1``: at the lift of the engine's cam table there.
-
-        It depends on the spring, the cam and ``points`` only, not on the speed, so the
-        spring keeps it for its last :attr:`STATIC_CACHE_SIZE` cams (a Newton solve per
-        angle costs about 5 % of a Type C simulation).  Read-only: results share it.
-
-        Parameters
-        ----------
-        points : int
-            Samples per revolution [-].
-        """
-        store = self.spring.spring_model.static_force_cache
-        key = (id(self.cam), int(points))  # the entry holds the cam: its id is not reused meanwhile
-        hit = store.get(key)
-        if hit is None:
-            lift = self.table.at(output_angles(points))[0]
-            force = self.static_force(lift)
-            force.flags.writeable = False
-            hit = store[key] = (self.cam, force)
-            while len(store) > self.STATIC_CACHE_SIZE:
-                store.pop(next(iter(store)), None)  # the oldest
-        return hit[1]
-
-    #: Cams per spring whose static force along the output grid is kept.
-    STATIC_CACHE_SIZE = 8
-
-    def with_gas_force(self, gas) -> "SimulationSetup":
-        """The same set-up with the gas force on the valve (:class:`springdyn.valve.train.gas_force.GasForce`).
-
-        Parameters
-        ----------
-        gas : GasForce or None
-            The force over one camshaft revolution [N] (None: the set-up itself).
-        """
-        import dataclasses
-
-        from ..engine.layout import VT_GAS_N, VT_SIZE
-
-        if gas is None:
-            return self
-        if self.valve_train is None:
-            raise InputError(
-                "a gas force acts on the valve: it needs a valve train (--valve-train / [valve_train]); the spring "
-                "alone has no valve"
-            )
-        n_gas = int(self.vt[VT_GAS_N])
-        vt = np.concatenate([self.vt[:VT_SIZE], gas.force, self.vt[VT_SIZE + n_gas :]])  # a lever table follows
-        vt[VT_GAS_N] = float(gas.force.size)
-        return dataclasses.replace(self, vt=vt)
-
-    def args(self, omega: float) -> tuple:
-        """The engine's argument tuple (:func:`springdyn.valve.engine.model_of` reads it).
-
-        Parameters
-        ----------
-        omega : float
-            Cam speed [rad/s].
-        """
-        ch = self.spring.spring_model.chain
-        return (
-            ch.masses,
-            ch.laws,
-            ch.setup_compressions,
-            ch.c0_array,
-            self.table.h,
-            self.table.dh,
-            self.table.ddh,
-            self.table.dth,
-            omega,
-            self.vt,
-        )
+    #: Cam angles [rad] where the engine's lift table is not smooth (its steps land on them):
+    #: the cam's breakpoints, or where a lever's roller meets them.
+    breakpoints: np.ndarray = field(default_factory=lambda: np.empty(0))
+    #: Cam angle [rad] over which the cam lifts (its event), from the engine's cam table.
+    event_angle: float = 2.0 * math.pi
+    #: The cylinder's gas force on the valve (:class:`springdyn.valve.train.gas_force.GasForce`), or None.
+    gas_force: object = None
 
     @property
     def n_masses(self) -> int:
@@ -268,114 +93,125 @@ class SimulationSetup:
         """Degrees of freedom: the chain's masses, plus the valve train's (valve, lever, lifter)."""
         return self.n_masses + (self.valve_train.degrees_of_freedom if self.valve_train is not None else 0)
 
-    def run(
-        self,
-        omegas,
-        revolutions: int | None,
-        points: int,
-        *,
-        rtol: float,
-        atol: float,
-        method: str | None = None,
-        periodicity_tol: float = PERIODICITY_TOL,
-        max_revolutions: int = MAX_REVOLUTIONS,
-        warm_start: bool = False,
-    ) -> dict:
-        """Integrate the speeds ``omegas`` [rad/s] with the compiled engine to their periodic
-        steady state (``revolutions`` None) or for ``revolutions``, monitoring the last
-        revolution (true extremes and events on the dense output, see
-        :func:`springdyn.valve.engine.run_speeds`).
 
-        Parameters
-        ----------
-        omegas : array_like
-            Cam speeds [rad/s].
-        revolutions : int or None
-            Revolutions per speed [-]; None: until two revolutions repeat.
-        points : int
-            Output samples per revolution [-].
-        rtol : float
-            Relative tolerance [-].
-        atol : float
-            Absolute tolerance of the displacements [m].
-        method : str, optional
-            Runge-Kutta pair (default: the model's, :data:`PAIR`) [-].
-        periodicity_tol : float
-            Periodic steady state: the largest change of the seat, retainer, cam-contact and
-            valve-seat forces from one revolution to the next [fraction of Fset].
-        max_revolutions : int
-            Periodic steady state: the most revolutions per speed [-].
-        warm_start : bool
-            Start each speed from the state the one before ended in (speeds ascending).
+def static_force(setup: SimulationSetup, lift) -> np.ndarray:
+    """Static (massless) spring force [N] at cam or valve lift(s) [m] of a set-up.
 
-        Returns
-        -------
-        dict
-            :func:`springdyn.valve.engine.run_speeds`'s outputs, ``periodicity`` as a
-            fraction of Fset.
-        """
-        fset = self.spring.spring_model.internal_parameters()["Fset"]
-        periodic = revolutions is None
-        res = run_speeds(
-            self.y0,
-            omegas,
-            max_revolutions if periodic else revolutions,
-            points,
-            self.args(0.0),
-            rtol=rtol,
-            atol=atol,
-            max_step_fraction=MAX_STEP_FRACTION,
-            gaps=self.spring.spring_model.contact_gaps,
-            atol_velocity=self.atol_velocity(atol),
-            method=self.method if method is None else method,
-            stop_angles=self.table.stop_angles(self.breakpoints),
-            periodicity_tol=periodicity_tol * fset if periodic else 0.0,
-            warm_start=warm_start,
-            band_revolutions=BAND_REVOLUTIONS if periodic else 0,
+    Parameters
+    ----------
+    setup : SimulationSetup
+        The spring (its chain's laws and force table).
+    lift : float or array_like
+        Cam (spring alone) or valve lift [m].
+    """
+    sp = setup.spring
+    lift = np.asarray(lift, dtype=float)
+    dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
+    force = np.empty_like(dl)
+    series_force_compiled(dl, sp.spring_model.chain.laws, force, *sp.spring_model.force_table)
+    return force.reshape(lift.shape)
+
+
+_STATIC: dict = {}
+
+
+def static_force_along_grid(setup: SimulationSetup, points: int) -> np.ndarray:
+    """Static (massless) force [N] of the spring alone at the cam angles ``2 pi j / points``,
+    ``j = 0 .. points - 1``: at the lift of the engine's cam table there.
+
+    It depends on the spring, the cam and ``points`` only, not on the speed: the last
+    :data:`STATIC_CACHE_SIZE` are kept.  Read-only: results share it.
+
+    Parameters
+    ----------
+    setup : SimulationSetup
+        The spring and its cam table.
+    points : int
+        Samples per revolution [-].
+    """
+    model = setup.spring.spring_model
+    key = (id(model), id(setup.cam), int(points))  # the entry holds both: their ids are not reused meanwhile
+    hit = _STATIC.get(key)
+    if hit is None:
+        force = static_force(setup, setup.table.at(output_angles(points))[0])
+        force.flags.writeable = False
+        hit = _STATIC[key] = (model, setup.cam, force)
+        while len(_STATIC) > STATIC_CACHE_SIZE:
+            _STATIC.pop(next(iter(_STATIC)), None)  # the oldest
+    return hit[2]
+
+
+def check_speeds(setup: SimulationSetup, cam_rpm, allow_extreme: bool = False) -> list[str]:
+    """Refuse cam speeds outside physical reason: the cam event shorter than one period
+    of the spring's first surge mode at installed length (a surge margin below
+    :data:`~springdyn.valve.run.settings.MIN_EVENT_SURGE_PERIODS` periods per event; valve
+    trains keep about 10 and more cam orders below f1).  With ``allow_extreme`` such speeds
+    run and the returned notes flag them.
+
+    Parameters
+    ----------
+    setup : SimulationSetup
+        The spring and its cam's event.
+    cam_rpm : float or array_like
+        Cam speeds [rev/min].
+    allow_extreme : bool
+        Compute them anyway [-].
+
+    Returns
+    -------
+    list of str
+        Notes for the speeds computed beyond reason (empty when none).
+    """
+    rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    event = setup.event_angle
+    f1 = setup.spring.spring_model.first_mode_installed
+    t_event = event / (rpm * 2.0 * math.pi / 60.0)
+    bad = rpm[t_event * f1 < MIN_EVENT_SURGE_PERIODS]
+    if not bad.size:
+        return []
+    r = float(bad[0])
+    t = event / (r * 2.0 * math.pi / 60.0)
+    what = (
+        f"cam_rpm = {r:g}: the cam event of {math.degrees(event):.0f} deg lasts {t * 1e3:.3g} ms, shorter than one "
+        f"period of the spring's first surge mode ({f1:.0f} Hz, {1e3 / f1:.3g} ms): no valve spring follows such a "
+        "cam (valve trains run with the surge frequency some 10 cam orders or more above the cam speed)"
+    )
+    if not allow_extreme:
+        raise InputError(
+            what
+            + (f"; did you mean {r / 10:g}?" if r > MAX_CAM_RPM else ".")
+            + " Set allow_extreme_speeds (--allow-extreme-speeds) to compute it anyway, flagged"
+            + (f" ({bad.size} speeds of the range are beyond it)" if bad.size > 1 else "")
         )
-        res["periodicity"] = res["periodicity"] / fset
-        return res
+    return [f"EXTREME SPEED, computed on request: {what}" + (f" ({bad.size} speeds)" if bad.size > 1 else "")]
 
-    @property
-    def method(self) -> str:
-        """The engine's Runge-Kutta pair for this spring model (:data:`PAIR`); a distributed
-        chain of fewer than :data:`BS3_MIN_ELEMENTS` elements steps with Dormand-Prince."""
-        if self.spring.model == "distributed" and self.spring.elements < BS3_MIN_ELEMENTS:
-            return "dopri5"
-        return PAIR[self.spring.model]
 
-    def atol_velocity(self, atol: float) -> np.ndarray:
-        """Absolute tolerances of the velocities [m/s] for ``atol`` [m] on the displacements.
+def with_gas_force(setup: SimulationSetup, gas_force) -> SimulationSetup:
+    """The same set-up with (another) gas force on the valve.
 
-        The spring's masses: ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR`` (the velocity of
-        a displacement ``atol`` oscillating at a thirtieth of the first surge frequency);
-        the valve train's bodies keep ``atol`` (their stiff contacts make the contact forces
-        sensitive to velocity errors).
-
-        Measured (benchmarks/valve_tolerances.py, docs/valve.md): over 112 runs per model
-        (two springs, four cams, 14 speeds) the worst end-force extreme against a tight
-        reference is 0.014 % of Fset for Type C (0.0087 % with ``atol`` for every
-        component, which takes 1.4 times more steps) and 0.0035 % for the distributed
-        chain; ``/ 10`` reaches 0.028 %, a factor 1.8 to the 0.05 % target only (and 0.27 %
-        on a ramp cam before the engine landed its steps on the ramps' ends).
-
-        Parameters
-        ----------
-        atol : float
-            Absolute tolerance of the displacements [m].
-        """
-        out = np.full(self.nfree, float(atol))
-        out[: self.n_masses] = (
-            atol
-            * 2.0
-            * math.pi
-            * float(self.spring.spring_model.internal_parameters()["f1"])
-            / VELOCITY_TOLERANCE_DIVISOR
+    Parameters
+    ----------
+    setup : SimulationSetup
+        A prepared set-up with a valve train.
+    gas_force : GasForce or None
+        The force over one camshaft revolution [N] (:class:`springdyn.valve.train.gas_force.GasForce`);
+        None removes it.
+    """
+    if gas_force is setup.gas_force:
+        return setup
+    if setup.valve_train is None:
+        raise InputError(
+            "a gas force acts on the valve: it needs a valve train (--valve-train / [valve_train]); the spring "
+            "alone has no valve"
         )
-        return out
+    n_gas = int(setup.vt[VT_GAS_N])
+    samples = np.empty(0) if gas_force is None else gas_force.force
+    vt = np.concatenate([setup.vt[:VT_SIZE], samples, setup.vt[VT_SIZE + n_gas :]])  # a lever table follows
+    vt[VT_GAS_N] = float(samples.size)
+    return dataclasses.replace(setup, vt=vt, gas_force=gas_force)
 
 
-def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None) -> SimulationSetup:
+def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None, gas_force=None) -> SimulationSetup:
     """Sample the cam, check the lift against coil contact, and find the initial state.
 
     Warns when the lift drives the spring into coil contact statically (force above
@@ -390,7 +226,15 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         The cam.
     valve_train : ValveTrain, optional
         Adds the valve body with cam and seat contacts.
+    gas_force : GasForce, optional
+        The cylinder's gas force on the valve over one camshaft revolution [N]
+        (:class:`springdyn.valve.train.gas_force.GasForce`; needs a valve train).
     """
+    if gas_force is not None and valve_train is None:
+        raise InputError(
+            "a gas force acts on the valve: it needs a valve train (--valve-train / [valve_train]); the spring "
+            "alone has no valve"
+        )
     table = CamTable.of(cam, CAM_SAMPLES)
     lever = None
     if valve_train is not None and valve_train.geometry is not None:
@@ -437,13 +281,26 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         )
     y0, lash = _initial_state(spring, table.h[0], valve_train)
     vt = valve_train.kernel_parameters(lash=lash) if valve_train is not None else np.zeros(KERNEL_SIZE)
-    if lever is None:
-        return SimulationSetup(spring, cam, valve_train, table, vt, y0, coil_bind)
-    from ..engine.layout import VT_GEOM_N
-
-    vt = np.concatenate([vt, lever["geometry"]])
-    vt[VT_GEOM_N] = float(lever["geometry"].size // 4)
-    return SimulationSetup(spring, cam, valve_train, table, vt, y0, coil_bind, lever["breakpoints"])
+    # the tables after the fixed entries: the gas force's samples, then a lever's ratio table
+    if gas_force is not None:
+        vt = np.concatenate([vt[:VT_SIZE], gas_force.force])
+        vt[VT_GAS_N] = float(gas_force.force.size)
+    if lever is not None:
+        vt = np.concatenate([vt, lever["geometry"]])
+        vt[VT_GEOM_N] = float(lever["geometry"].size // 4)
+    hh = table.h
+    return SimulationSetup(
+        spring,
+        cam,
+        valve_train,
+        table,
+        vt,
+        y0,
+        coil_bind,
+        np.asarray(cam.breakpoints if lever is None else lever["breakpoints"]),
+        event_angle=2.0 * math.pi * float(np.count_nonzero(hh > 1e-9 * float(hh.max()))) / hh.size,
+        gas_force=gas_force,
+    )
 
 
 def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None):
@@ -500,83 +357,3 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     u = spring.spring_model.initial_condition(setup + z0)["displacements"]
     pos = vt.static_state(lift0, z0, force)
     return np.concatenate([u, pos, np.zeros(nm + pos.size)]), float(lash)
-
-
-def default_tolerances(valve_train, rtol: float | None = None, atol: float | None = None) -> tuple:
-    """The integration tolerances of a run: those given, else the defaults of the spring alone
-    (:data:`DEFAULT_RTOL`, :data:`DEFAULT_ATOL`) or of a valve train (:data:`TRAIN_RTOL`,
-    :data:`TRAIN_ATOL`).
-
-    Parameters
-    ----------
-    valve_train : ValveTrain or None
-        The run's valve train [-].
-    rtol, atol : float, optional
-        Given tolerances [-, m].
-    """
-    train = valve_train is not None
-    return (
-        (TRAIN_RTOL if train else DEFAULT_RTOL) if rtol is None else rtol,
-        (TRAIN_ATOL if train else DEFAULT_ATOL) if atol is None else atol,
-    )
-
-
-def check_run_settings(
-    revolutions, points_per_revolution, rtol, atol, periodicity_tol=PERIODICITY_TOL, max_revolutions=MAX_REVOLUTIONS
-) -> None:
-    """Check the run settings of :func:`simulate` and the sweeps (raise :class:`InputError`).
-
-    Parameters
-    ----------
-    revolutions : int or None
-        Cam revolutions [-], 1 to 1000; None: to the periodic steady state.
-    points_per_revolution : int
-        Output samples per revolution [-], 16 to 100 000.
-    rtol : float
-        Relative tolerance [-], 1e-12 to 1e-2.
-    atol : float
-        Absolute tolerance [m, m/s], 1e-15 to 1e-5.
-    periodicity_tol : float
-        Periodic steady state: tolerance [fraction of Fset], 1e-7 to 0.5.
-    max_revolutions : int
-        Periodic steady state: the most revolutions [-], 2 to 1000.
-    """
-    number = (int, float, np.integer, np.floating)
-    if revolutions is None:
-        if (
-            isinstance(periodicity_tol, bool)
-            or not isinstance(periodicity_tol, number)
-            or not 1e-7 <= periodicity_tol <= 0.5
-        ):
-            raise InputError(
-                f"periodicity_tol = {periodicity_tol!r} must be a fraction of Fset from 1e-07 to 0.5 "
-                f"(default {PERIODICITY_TOL:g}, i.e. {100 * PERIODICITY_TOL:g} %)"
-            )
-        if not isinstance(max_revolutions, bool) and isinstance(max_revolutions, number) and max_revolutions < 2:
-            raise InputError(f"max_revolutions = {max_revolutions!r} must be at least 2: two revolutions are compared")
-        count = ("max_revolutions", max_revolutions, 2, 1000)
-    else:
-        count = ("revolutions", revolutions, 1, 1000)
-    for name, value, lo, hi in (
-        count,
-        ("points_per_revolution", points_per_revolution, 16, 100_000),
-    ):
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, number)
-            or not math.isfinite(value)
-            or value != int(value)
-            or not lo <= value <= hi
-        ):
-            raise InputError(f"{name} = {value!r} must be a whole number of at least {lo} and at most {hi}")
-    for name, value, lo, hi in (("rtol", rtol, 1e-12, 1e-2), ("atol", atol, 1e-15, 1e-5)):
-        if isinstance(value, bool) or not isinstance(value, number) or not lo <= value <= hi:
-            raise InputError(
-                f"{name} = {value!r} is outside the allowed range {lo:g} <= {name} <= {hi:g} "
-                "(integration tolerance"
-                + (
-                    ": absolute, on displacements [m]; velocities get it times 2 pi f1/30)"
-                    if name == "atol"
-                    else ", relative)"
-                )
-            )

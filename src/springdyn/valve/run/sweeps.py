@@ -30,20 +30,22 @@ from ..cam.definition import Cam
 from ..cam.timing import CrankAngles
 from ..engine import EXT, extra_layout
 from ..spring.definition import ValveSpring
-from ..spring.stress import fatigue_assessment
 from ..train.definition import ValveTrain
+from .periodicity import PERIODICITY_TOL
 from .results import locate_intervals
+from .runner import run_speeds, solver_error
 from .separation import PHASES, cam_phases, float_speed_of_scan, liftoffs, neighbour_band, phase_mask
-from .setup import (
-    MAX_REVOLUTIONS,
-    PERIODICITY_TOL,
-    SimulationSetup,
-    check_run_settings,
-    default_tolerances,
-    output_angles,
-    prepare,
+from .settings import SWEEP_POINTS_PER_REVOLUTION, RunSettings
+from .setup import SimulationSetup, check_speeds, output_angles, prepare, static_force, static_force_along_grid
+from .verdicts import (
+    coil_clash,
+    floats_over_nose,
+    pumps_up,
+    seat_rebound_height,
+    valve_held_open,
+    valve_open,
+    wire_fatigue,
 )
-from .simulate import _solver_error
 
 __all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
 
@@ -51,20 +53,11 @@ __all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value
 SCHEDULER_TIMEOUT = 5.0
 
 
-def run_chunk(
-    setup: SimulationSetup,
-    cam_rpm: np.ndarray,
-    revolutions: int | None,
-    points: int,
-    rtol: float,
-    atol: float,
-    periodicity_tol: float = PERIODICITY_TOL,
-    max_revolutions: int = MAX_REVOLUTIONS,
-) -> dict:
+def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings, points: int) -> dict:
     """Integrate a chunk of speeds and reduce each to its last revolution's forces.
 
-    To the periodic steady state (``revolutions`` None) each speed starts from the state
-    the slower speed before it in the chunk ended in (a continuation: the chunk's speeds
+    To the periodic steady state (``settings.revolutions`` None) each speed starts from the
+    state the slower speed before it in the chunk ended in (a continuation: the chunk's speeds
     ascending), the first from rest; ``revolutions`` runs every speed from rest.
 
     Parameters
@@ -73,16 +66,10 @@ def run_chunk(
         Spring, cam and valve train prepared for the engine.
     cam_rpm : ndarray
         Camshaft speeds [rev/min], ascending.
-    revolutions : int or None
-        Revolutions per speed [-]; None: to the periodic steady state.
+    settings : RunSettings
+        Revolutions or the periodic steady state, tolerances (:class:`RunSettings`).
     points : int
         Output points per revolution [-].
-    rtol, atol : float
-        Integration tolerances (absolute: [m] and [m/s]).
-    periodicity_tol : float
-        Periodic steady state: tolerance [fraction of Fset].
-    max_revolutions : int
-        Periodic steady state: the most revolutions per speed [-].
 
     Returns
     -------
@@ -101,16 +88,7 @@ def run_chunk(
         and, with a valve train, ``cam_contact``, ``valve_lift``, ``static``.
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
-    mon = setup.run(
-        rpm_to_omega(cam_rpm),
-        revolutions,
-        points,
-        rtol=rtol,
-        atol=atol,
-        periodicity_tol=periodicity_tol,
-        max_revolutions=max_revolutions,
-        warm_start=revolutions is None,
-    )
+    mon = run_speeds(setup, rpm_to_omega(cam_rpm), settings, points, warm_start=settings.periodic)
     ex, status = mon["extra"], mon["status"]
     last = slice(0, points)
     lay = extra_layout(setup.n_masses)
@@ -149,12 +127,11 @@ def run_chunk(
     if setup.valve_train is not None:
         valid = status == 0
         static = np.full(out["valve_lift"].shape, np.nan)
-        static[valid] = setup.static_force(out["valve_lift"][valid])
+        static[valid] = static_force(setup, out["valve_lift"][valid])
         out["static"] = static
     else:
-        static = np.broadcast_to(setup.static_force_along_cam(points), out["retainer"].shape)
-    # coil clash: contact where the static spring at the same lift is open
-    out["clash"] = model.clash(np.moveaxis(contact, -1, 0), static).any(axis=0)
+        static = np.broadcast_to(static_force_along_grid(setup, points), out["retainer"].shape)
+    out["clash"] = coil_clash(model, np.moveaxis(contact, -1, 0), static).any(axis=0)
     return out
 
 
@@ -225,7 +202,7 @@ def _chunks(cam_rpm: np.ndarray, max_size: int) -> list[np.ndarray]:
     return [cam_rpm[i : i + size] for i in range(0, cam_rpm.size, size)]
 
 
-def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client, quiet, desc, run):
+def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc):
     """Run all speeds for one setup; returns the chunk outputs concatenated in the order of
     ``cam_rpm`` (the chunks run them ascending)."""
     per_speed = 8 * points * (extra_layout(setup.n_masses)["size"] + 1)  # the last revolution's outputs
@@ -234,10 +211,7 @@ def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client
     chunks = _chunks(cam_rpm[order], max_size)
     if client is not None:
         remote_setup = client.scatter(setup, broadcast=True)
-        futures = [
-            client.submit(run_chunk, remote_setup, c, revolutions, points, rtol, atol, **run, pure=False)
-            for c in chunks
-        ]
+        futures = [client.submit(run_chunk, remote_setup, c, settings, points, pure=False) for c in chunks]
         from dask.distributed import as_completed as dask_completed
 
         for _ in progress(dask_completed(futures), total=len(futures), desc=desc, quiet=quiet):
@@ -246,7 +220,7 @@ def _run_speeds(setup, cam_rpm, revolutions, points, rtol, atol, workers, client
     else:
         workers = workers or min(os.cpu_count() or 1, 2)
         with ThreadPoolExecutor(max_workers=workers) as pool:
-            futures = [pool.submit(run_chunk, setup, c, revolutions, points, rtol, atol, **run) for c in chunks]
+            futures = [pool.submit(run_chunk, setup, c, settings, points) for c in chunks]
             for _ in progress(as_completed(futures), total=len(futures), desc=desc, quiet=quiet):
                 pass
             parts = [f.result() for f in futures]
@@ -419,23 +393,17 @@ class SpeedSweep(CrankAngles, Result):
         phase = rows[:, :, LIFTOFF_COLUMNS.index("phase")]
         z = flat(d["valve_lift"])
         out = {}
-        # seat landings in the revolution: the valve's first return to its seat
-        landed = (
-            np.cumsum(
-                np.concatenate([np.zeros((z.shape[0], 1), bool), (z[:, :-1] > 0) & (z[:, 1:] <= 0)], axis=1), axis=1
-            )
-            > 0
-        )
-        # the valve open (off its seat, the lobe past the lash) and before its first landing
-        # (later separations are seat bounces, the cam leaving a seated valve is no lift-off)
-        in_event = (self.lift > self.valve_train.lobe_lash + 1e-6) & (z > 0.0) & ~landed
+        lash = self.valve_train.lobe_lash
+        in_event = valve_open(self.lift, z, lash)
         cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
         dense = ext[:, col["min_cam_contact_force"]]
         out["liftoff"] = np.isfinite(rows[:, :, 0]).any(axis=1) | (cc <= 0.0).any(axis=1) | (dense <= 0.0)
-        # the valve leaves the cam over the nose (separates_over_nose, vectorised)
-        nose = phase_mask(self.cam_angle, cam_phases(self.cam, self.valve_train.lobe_lash), "nose")
-        off_cam = (flat(d["cam_contact"]) <= 0.0) & (z > 0.0) & nose
-        out["nose_separation"] = (phase == PHASES.index("nose")).any(axis=1) | off_cam.any(axis=1)
+        out["nose_separation"] = floats_over_nose(
+            (phase == PHASES.index("nose")).any(axis=1),
+            phase_mask(self.cam_angle, cam_phases(self.cam, lash), "nose"),
+            flat(d["cam_contact"]),
+            z,
+        )
         first = np.where(np.isfinite(phase[:, 0]), phase[:, 0], -1).astype(int)
         out["first_liftoff_phase"] = np.array([(*PHASES, "base circle")[k] if k >= 0 else "" for k in first])
         out["max_liftoff_gap_m"] = np.nan_to_num(
@@ -446,13 +414,10 @@ class SpeedSweep(CrankAngles, Result):
         # seat bounce: landings per revolution, the largest rebound off the seat after the
         # first landing (the lobe back on its base circle)
         out["seat_landings"] = ext[:, col["seat_landings"]].astype(int)
-        out["seat_rebound_height_m"] = np.max(
-            np.where(landed & ~(self.lift > self.valve_train.lobe_lash + 1e-6), z, 0.0), axis=1
-        )
+        out["seat_rebound_height_m"] = seat_rebound_height(self.lift, z, lash)
         if self.valve_train.hla is not None:
-            # pump-up: the adjuster holds the valve off its seat on the base circle
-            base = ~(self.lift > 1e-9)
-            out["valve_held_open_m"] = np.maximum(np.min(np.where(base, z, np.inf), axis=1), 0.0)
+            out["valve_held_open_m"] = valve_held_open(self.lift, z)
+            out["pump_up"] = pumps_up(out["valve_held_open_m"])
         v = ext[:, col["seat_impact_velocity"]]
         out["seat_impact_velocity_m_per_s"] = v
         # the seating velocity band: over the speeds within SEATING_BAND_RPM and, for a speed
@@ -479,33 +444,29 @@ class SpeedSweep(CrankAngles, Result):
         true extremes of the end force), and the static cycle; per design value, from that
         variant's wire and strengths.  Also the largest wire stress against the limit."""
         d = self.data
-        wmin = d["wire_min"].reshape(nv * nr, -1).copy()
-        wmax = d["wire_max"].reshape(nv * nr, -1).copy()
-        dyn, sta, tau, limit, crit = (np.empty(nv * nr) for _ in range(5))
-        for i in range(nv):
-            sp = self.springs[i]
-            plain = ~np.isfinite(sp.spring_model.contact_compressions())
-            for end, key in ((0, "seat"), (-1, "retainer")):
-                if plain[end] and np.isfinite(wmin[0, end]):
-                    sl = slice(i * nr, (i + 1) * nr)
-                    wmin[sl, end] = np.minimum(wmin[sl, end], cols[f"min_{key}_force_N"][sl])
-                    wmax[sl, end] = np.maximum(wmax[sl, end], cols[f"max_{key}_force_N"][sl])
-            for j in range(nr):
-                k = i * nr + j
-                rows = np.isfinite(wmin[k])
-                a = fatigue_assessment(sp, wmin[k, rows], wmax[k, rows])
-                b = fatigue_assessment(sp, cols["min_static_force_N"][k], cols["max_static_force_N"][k])
-                dyn[k] = a["fatigue_safety_factor"] if a["fatigue_safety_factor"] is not None else 0.0
-                sta[k] = b["fatigue_safety_factor"] if b["fatigue_safety_factor"] is not None else 0.0
-                fa = fatigue_assessment(sp, np.zeros(rows.sum()), wmax[k, rows])  # the largest stress
-                tau[k], limit[k] = fa["max_shear_stress_Pa"], fa["shear_stress_limit_Pa"]
-                crit[k] = np.flatnonzero(rows)[fa["critical_element"]] + 1
+        wmin = d["wire_min"].reshape(nv * nr, -1)
+        wmax = d["wire_max"].reshape(nv * nr, -1)
+        dyn, sta, tau, crit = (np.empty(nv * nr) for _ in range(4))
+        ok = np.empty(nv * nr, dtype=bool)
+        for k in range(nv * nr):
+            f = wire_fatigue(
+                self.springs[k // nr],
+                wmin[k],
+                wmax[k],
+                (cols["min_seat_force_N"][k], cols["min_retainer_force_N"][k]),
+                (cols["max_seat_force_N"][k], cols["max_retainer_force_N"][k]),
+                cols["min_static_force_N"][k],
+                cols["max_static_force_N"][k],
+            )
+            dyn[k] = f["fatigue_safety_factor"] if f["fatigue_safety_factor"] is not None else 0.0
+            sta[k] = f["static_fatigue_safety_factor"] if f["static_fatigue_safety_factor"] is not None else 0.0
+            tau[k], crit[k], ok[k] = f["peak_shear_stress_Pa"], f["peak_shear_stress_element"] + 1, f["wire_stress_ok"]
         return dict(
             fatigue_safety_factor=dyn,
             static_fatigue_safety_factor=sta,
             peak_shear_stress_Pa=tau,
             peak_shear_stress_element=crit.astype(int),
-            wire_stress_ok=tau <= limit,
+            wire_stress_ok=ok,
         )
 
     def float_speeds(self) -> np.ndarray:
@@ -737,20 +698,15 @@ def sweep(
     cam: Cam,
     cam_rpm,
     *,
-    revolutions: int | None = None,
     valve_train: ValveTrain | None = None,
-    points_per_revolution: int = 720,
-    rtol: float | None = None,
-    atol: float | None = None,
+    settings: RunSettings | None = None,
     vary: tuple[str, np.ndarray] | None = None,
     on_invalid: str = "stop",
     workers: int | None = None,
     client=None,
     quiet: bool = True,
-    periodicity_tol: float = PERIODICITY_TOL,
-    max_revolutions: int = MAX_REVOLUTIONS,
-    allow_extreme_speeds: bool = False,
     gas_force=None,
+    **run,
 ) -> SpeedSweep:
     """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
 
@@ -764,15 +720,13 @@ def sweep(
         Camshaft speeds [rev/min], positive.
     valve_train : ValveTrain, optional
         Adds lift-off (see :func:`springdyn.valve.simulate`).
-    revolutions : int, optional
-        Revolutions per speed from rest [-] (the last is kept; the one before judges
-        periodicity).  Default: each speed to its periodic steady state, continued from the
-        slower speed before it (see :func:`run_chunk`).
-    points_per_revolution : int
-        Output samples per revolution [-].
-    rtol, atol : float, optional
-        Relative [-] and absolute [m, m/s] integration tolerances (default as for
-        :func:`springdyn.valve.simulate`: tighter with a valve train).
+    settings : RunSettings, optional
+        How each speed is integrated (:class:`~springdyn.valve.run.settings.RunSettings`):
+        default each speed to its periodic steady state, continued from the slower speed before
+        it (see :func:`run_chunk`), on 720 points a revolution; ``revolutions`` runs each speed
+        from rest for that many; tolerances as for :func:`springdyn.valve.simulate` (tighter
+        with a valve train); a speed that does not settle is marked (``periodic`` False) and
+        reports bands; speeds beyond reason are refused unless ``allow_extreme_speeds``.
     vary : (str, array_like), optional
         A numeric :class:`ValveSpring` field and its values [SI unit of the field], an
         extra dimension.
@@ -784,18 +738,12 @@ def sweep(
         Run the chunks on this cluster instead.
     quiet : bool
         No progress bar.
-    periodicity_tol : float
-        Periodic steady state: the largest change of the seat, retainer, cam-contact and
-        valve-seat forces between the last two revolutions [fraction of Fset].
-    max_revolutions : int
-        Periodic steady state: the most revolutions per speed [-]; a speed that does not
-        settle is marked (``periodic`` False) and reports bands.
-    allow_extreme_speeds : bool
-        Compute speeds at which the cam event is shorter than one period of the spring's
-        first surge mode (refused otherwise), flagged in the summary's notes.
     gas_force : GasForce, optional
         The cylinder's gas force on the valve over the revolution [N], the same at every
         speed (:class:`springdyn.valve.train.gas_force.GasForce`; needs a valve train).
+    **run
+        Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one
+        (``revolutions=3``, ``rtol=1e-7``, ...): they change ``settings``.
     """
     try:
         cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
@@ -808,14 +756,12 @@ def sweep(
     if not np.all(np.isfinite(cam_rpm)) or np.any(cam_rpm <= 0):
         bad = cam_rpm[~(np.isfinite(cam_rpm) & (cam_rpm > 0))][0]
         raise InputError(f"cam_rpm = {bad:g} must be positive (every speed of the sweep)")
-    rtol, atol = default_tolerances(valve_train, rtol, atol)
-    check_run_settings(revolutions, points_per_revolution, rtol, atol, periodicity_tol, max_revolutions)
+    settings = RunSettings.of(settings, **run)
     if on_invalid not in ("stop", "skip"):
         raise InputError(f"on_invalid = {on_invalid!r} must be 'stop' or 'skip'")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1):
         raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
-    springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid)
-    setups = [setup.with_gas_force(gas_force) for setup in setups]
+    springs, setups, values, skipped = _design_variants(spring, cam, valve_train, vary, on_invalid, gas_force)
     flags = []
     if gas_force is not None:
         flags.append(
@@ -823,8 +769,8 @@ def sweep(
             f"(up to {float(gas_force.force.max()):.0f} N), the same trace against crank angle at every speed"
         )
     for setup in setups:
-        flags += [f for f in setup.check_speeds(cam_rpm, allow_extreme_speeds) if f not in flags]
-    points = int(points_per_revolution)
+        flags += [f for f in check_speeds(setup, cam_rpm, settings.allow_extreme_speeds) if f not in flags]
+    points = settings.points(SWEEP_POINTS_PER_REVOLUTION)
     theta = output_angles(points)
     lift = cam.lift_at(theta)
     results = []
@@ -834,26 +780,14 @@ def sweep(
         cam.check_resolution(float(cam_rpm.min()), f1)
     for k, setup in enumerate(setups):
         desc = "valve sweep" + (f" {_describe(vary[0], values[k])}" if vary else "")
-        res = _run_speeds(
-            setup,
-            cam_rpm,
-            None if revolutions is None else int(revolutions),
-            points,
-            rtol,
-            atol,
-            workers,
-            client,
-            quiet,
-            desc,
-            dict(periodicity_tol=periodicity_tol, max_revolutions=max_revolutions),
-        )
+        res = _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc)
         failed = np.flatnonzero(res["status"] != 0)
         if failed.size:
             i = int(failed[0])
             info = dict(status=int(res["status"][i]), t=float(res["t"][i]), steps=int(res["steps"][i]))
-            raise _solver_error(float(cam_rpm[i]), rpm_to_omega(cam_rpm[i]), info)
+            raise solver_error(float(cam_rpm[i]), rpm_to_omega(cam_rpm[i]), info)
         if valve_train is None:
-            res["static"] = setup.static_force_along_cam(points)  # the same as a simulation's
+            res["static"] = static_force_along_grid(setup, points)  # the same as a simulation's
         results.append(res)
     data = {key: np.stack([r[key] for r in results]) for key in results[0]}
     return SpeedSweep(
@@ -868,7 +802,7 @@ def sweep(
         springs,
         data,
         skipped,
-        periodicity_tol,
+        settings.periodicity_tol,
         flags,
     )
 
@@ -891,10 +825,10 @@ def _describe(name: str, value: float) -> str:
     return f"{name} = {describe_value(float(value), meta[name])}"
 
 
-def _design_variants(spring, cam, valve_train, vary, on_invalid):
+def _design_variants(spring, cam, valve_train, vary, on_invalid, gas_force=None):
     """Valid springs (and their prepared setups) for every design value."""
     if vary is None:
-        return [spring], [prepare(spring, cam, valve_train)], np.array([np.nan]), []
+        return [spring], [prepare(spring, cam, valve_train, gas_force)], np.array([np.nan]), []
     name, values = vary
     numeric = [f.name for f in dataclasses.fields(ValveSpring) if f.metadata.get("kind") == "quantity"]
     if name not in numeric:
@@ -904,7 +838,7 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid):
     for v in values:
         try:
             sp = spring.replace(**{name: float(v)})
-            setups.append(prepare(sp, cam, valve_train))
+            setups.append(prepare(sp, cam, valve_train, gas_force))
             springs.append(sp)
             kept.append(v)
         except InputError as exc:

@@ -9,34 +9,34 @@ valve lift (:func:`separated_frequencies`, the "jump" frequency of float).
 import math
 
 import numpy as np
+from scipy.linalg import eigvals
+from scipy.optimize import brentq, root
 
 from ...core.errors import InputError, SolverError
 from ..cam.definition import Cam
+from ..engine import NO_EXTRA, chain_rhs, extra_layout, model_of, train_of
 from ..engine.layout import VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS
 from ..spring.definition import ValveSpring
 from ..train.definition import ValveTrain
-from .setup import SimulationSetup, prepare
+from .runner import engine_args
+from .setup import SimulationSetup, prepare, static_force
 
 __all__ = ["natural_frequencies", "separated_frequencies", "resonance_speeds"]
 
 
 def _static_accelerations(setup: SimulationSetup, theta: float, u: np.ndarray) -> np.ndarray:
     """Accelerations [m/s^2] of the masses at rest at positions ``u`` [m], cam at ``theta`` [rad]."""
-    from ..engine import NO_EXTRA, chain_rhs, model_of, train_of
-
     nf = setup.nfree
     omega = 1e-9  # quasi-static: the cam's velocity terms vanish
     y = np.concatenate([u, np.zeros(nf)])
     out = np.empty(2 * nf)
-    chain_rhs(theta / omega, y, model_of(setup.args(omega)), omega, train_of(setup.vt), out, NO_EXTRA)
+    chain_rhs(theta / omega, y, model_of(engine_args(setup, omega)), omega, train_of(setup.vt), out, NO_EXTRA)
     return out[nf:]
 
 
 def _frequencies(setup: SimulationSetup, theta: float, u: np.ndarray, dofs: np.ndarray, count: int) -> list:
     """Natural frequencies [Hz] of the system linearised at rest at ``u`` (central differences
     of the accelerations over the degrees of freedom ``dofs``; the others held)."""
-    from scipy.linalg import eigvals
-
     h = 1e-9
     jac = np.empty((dofs.size, dofs.size))
     for c, j in enumerate(dofs):
@@ -80,8 +80,6 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     --------
     separated_frequencies : the same train with the cam contact open (the jump frequency).
     """
-    from scipy.optimize import root
-
     notes = []
     if valve_train is not None and valve_train.hla is not None:
         valve_train = valve_train.without_hla_dynamics()
@@ -110,7 +108,7 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
         z = h_max
         guess = spring.spring_model.initial_condition(sp_setup + z)["displacements"]
     else:
-        f = float(setup.static_force(valve_train.ratio * h_max))
+        f = float(static_force(setup, valve_train.ratio * h_max))
         z = valve_train.ratio * h_max - setup.vt[VT_LASH] - f / valve_train.stiffness_at_valve
         guess = np.concatenate(
             [
@@ -140,15 +138,13 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
 def _contacts(setup: SimulationSetup, theta: float, u: np.ndarray) -> tuple:
     """Cam contact force [N], valve-seat force [N] and signed cam gap [m] (negative: open)
     of the masses at rest at positions ``u`` [m], cam at ``theta`` [rad]."""
-    from ..engine import chain_rhs, extra_layout, model_of, train_of
-
     nf = setup.nfree
     omega = 1e-9
     lay = extra_layout(setup.n_masses)
     extra = np.zeros(lay["size"])
     out = np.empty(2 * nf)
     y = np.concatenate([u, np.zeros(nf)])
-    chain_rhs(theta / omega, y, model_of(setup.args(omega)), omega, train_of(setup.vt), out, extra)
+    chain_rhs(theta / omega, y, model_of(engine_args(setup, omega)), omega, train_of(setup.vt), out, extra)
     return float(extra[lay["cam_contact_force"]]), float(extra[lay["valve_seat_force"]]), float(extra[lay["cam_gap"]])
 
 
@@ -211,8 +207,6 @@ def separated_frequencies(
     --------
     natural_frequencies : the train with the cam contact closed.
     """
-    from scipy.optimize import brentq, root
-
     if valve_train is None:
         raise InputError(
             "separated-train modes (cam contact open) need a valve train: without one the retainer "
@@ -232,7 +226,7 @@ def separated_frequencies(
     fset = spring.spring_model.internal_parameters()["Fset"]
 
     def force(z):
-        return float(setup.static_force(z))
+        return float(static_force(setup, z))
 
     if valve_lift is None:
         top = r * float(np.max(setup.table.h)) - lash  # the rigid train's valve lift

@@ -206,7 +206,7 @@ class ValveSpring(Parameters):
             import sys
 
             # attribute the warning to the caller's line, outside springdyn
-            package, level, frame = str(Path(__file__).parents[1]), 1, sys._getframe(0)
+            package, level, frame = str(Path(__file__).parents[2]), 1, sys._getframe(0)  # springdyn/
             while frame is not None and (
                 frame.f_code.co_filename.startswith(package)
                 or frame.f_code.co_filename.endswith("dataclasses.py")

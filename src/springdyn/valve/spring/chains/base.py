@@ -93,10 +93,6 @@ class SpringModel:
 
     def __init__(self, spring):
         self.spring = spring
-        #: The static force along the output grid of recent cams, ``(id(cam), points) ->
-        #: (cam, force)``, kept by :meth:`springdyn.valve.run.setup.SimulationSetup.static_force_along_cam`
-        #: (an explicit, bounded cache: the force depends on the spring, the cam and the grid only).
-        self.static_force_cache: dict = {}
 
     def __repr__(self) -> str:
         p = self.internal_parameters()

@@ -10,11 +10,14 @@ from springdyn.core.errors import InputError, SolverError
 from springdyn.core.units import rpm_to_omega
 from springdyn.valve import ValveSpring, engine
 from springdyn.valve.cam.definition import Cam
+from springdyn.valve.run import runner as runnermod
+from springdyn.valve.run import settings as settingsmod
 from springdyn.valve.run import setup as setupmod
-from springdyn.valve.run import simulate as simmod
+from springdyn.valve.run import simulation as simmod
 from springdyn.valve.run.float_search import float_speed
+from springdyn.valve.run.runner import engine_args
 from springdyn.valve.run.setup import prepare
-from springdyn.valve.run.simulate import simulate
+from springdyn.valve.run.simulation import simulate
 from springdyn.valve.spring.elements import law_energy, law_force
 from springdyn.valve.train.definition import ValveTrain
 from tests.paths import example
@@ -62,9 +65,11 @@ def test_static_force_along_the_cam_is_kept_per_cam(one_step):
         )
     coarse = simulate(spring, cams[0], 2000.0, revolutions=1, points_per_revolution=360)
     assert coarse.static_force.shape == (360,)
-    for k in range(3 * setupmod.SimulationSetup.STATIC_CACHE_SIZE):
-        prepare(spring, Cam(law="3-4-5", lift=5e-3 + 1e-5 * k, duration=math.radians(120))).static_force_along_cam(90)
-    assert len(spring.spring_model.static_force_cache) == setupmod.SimulationSetup.STATIC_CACHE_SIZE
+    for k in range(3 * setupmod.STATIC_CACHE_SIZE):
+        setupmod.static_force_along_grid(
+            prepare(spring, Cam(law="3-4-5", lift=5e-3 + 1e-5 * k, duration=math.radians(120))), 90
+        )
+    assert len(setupmod._STATIC) == setupmod.STATIC_CACHE_SIZE
 
 
 @pytest.mark.parametrize("name", ["one-step", "two-step"])
@@ -74,7 +79,7 @@ def test_refinement_study(name):
     cam = CAM if name == "one-step" else CAM.scaled(7.5 / 9.0)  # 9 mm drives the two-step spring past solid
     fset = s.spring_model.internal_parameters()["Fset"]
     a = simulate(s, cam, 3000, 2).summary
-    b = simulate(s, cam, 3000, 2, rtol=setupmod.DEFAULT_RTOL / 2, atol=setupmod.DEFAULT_ATOL / 2).summary
+    b = simulate(s, cam, 3000, 2, rtol=settingsmod.DEFAULT_RTOL / 2, atol=settingsmod.DEFAULT_ATOL / 2).summary
     for key in ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N"):
         assert abs(a[key] - b[key]) < 5e-4 * fset, key
 
@@ -101,7 +106,7 @@ def test_compiled_rhs_equals_numpy_element_laws(one_step):
     """The scalar kernel's forces equal elements.law_force at random states (the end
     elements carry compression only, correction MMS-7)."""
     setup = prepare(one_step, CAM)
-    args = setup.args(rpm_to_omega(3000))
+    args = engine_args(setup, rpm_to_omega(3000))
     rng = np.random.default_rng(0)
     ch = one_step.spring_model.chain
     for _ in range(20):
@@ -122,7 +127,7 @@ def test_energy_balance_undamped_chain(one_step):
     setup = prepare(s, CAM)
     omega = rpm_to_omega(3000)
     t = np.linspace(0, 2 * math.pi / omega, 40001)
-    states, info = engine.integrate(setup.y0, t, setup.args(omega), rtol=1e-10, atol=1e-13, h_max=1e-5)
+    states, info = engine.integrate(setup.y0, t, engine_args(setup, omega), rtol=1e-10, atol=1e-13, h_max=1e-5)
     assert info["status"] == 0
     lift, dlift = setup.table.at(omega * t)
     dlift *= omega
@@ -156,7 +161,7 @@ def test_mode_frequencies_from_free_response(one_step):
     y0[:5] = [2e-5, -1e-5, 3e-5, 1e-5, -2e-5]  # small: stays in the linear range
     fs, n = 20000.0, 20000
     t = np.arange(n) / fs
-    states, info = engine.integrate(y0, t, setup.args(1e-6), rtol=1e-9, atol=1e-14, h_max=1e-4)
+    states, info = engine.integrate(y0, t, engine_args(setup, 1e-6), rtol=1e-9, atol=1e-14, h_max=1e-4)
     sig = states[:, 1] + states[:, 2] - states[:, 3]
     spec = np.abs(np.fft.rfft((sig - sig.mean()) * np.hanning(n)))
     freqs = np.fft.rfftfreq(n, 1 / fs)
@@ -285,7 +290,7 @@ def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
             periodicity=np.full(n, np.nan),
         )
 
-    monkeypatch.setattr(setupmod, "run_speeds", broken)
+    monkeypatch.setattr(runnermod, "engine_run_speeds", broken)
     with pytest.raises(
         SolverError,
         match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
@@ -301,7 +306,7 @@ def test_kernel_outputs_equal_numpy_postprocessing(one_step):
     omega = rpm_to_omega(2000)  # below float speed: no impacts to amplify round-off
     period = 2 * math.pi / omega
     res = engine.run_speeds(
-        setup.y0, [omega], 2, 360, setup.args(omega), rtol=1e-6, atol=1e-9, max_step_fraction=1 / 720
+        setup.y0, [omega], 2, 360, engine_args(setup, omega), rtol=1e-6, atol=1e-9, max_step_fraction=1 / 720
     )
     extra = res["extra"]
     assert extra.shape == (1, 360, engine.extra_layout(5)["size"]) and res["revolutions"][0] == 2
@@ -309,7 +314,7 @@ def test_kernel_outputs_equal_numpy_postprocessing(one_step):
     # run_speeds integrates revolution by revolution, landing a step on each revolution's
     # end: a stop there gives integrate the same step sequence
     states, info = engine.integrate(
-        setup.y0, t, setup.args(omega), rtol=1e-6, atol=1e-9, h_max=period / 720, stops=[period]
+        setup.y0, t, engine_args(setup, omega), rtol=1e-6, atol=1e-9, h_max=period / 720, stops=[period]
     )
     r = simmod.chain_response(setup, omega, omega * t, states)
     # the periodicity measure: the largest change of the seat, retainer, cam-contact and

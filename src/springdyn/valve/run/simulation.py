@@ -7,34 +7,31 @@ runs from is :mod:`springdyn.valve.run.setup`; the float search, :mod:`springdyn
 natural frequencies under the cam, :mod:`springdyn.valve.run.train_modes`.
 """
 
+import dataclasses
 import functools
 import math
 
 import numpy as np
 
-from ...core.errors import InputError, SolverError
+from ...core.errors import InputError
 from ...core.units import rpm_to_omega
-from ...numerics.erk import PAIRS
 from ..cam.definition import Cam
-from ..engine import (
-    STATUS,
-    extra_layout,
-    integrate_scipy,
-    train_response,
-)
+from ..engine import EXT, extra_layout, integrate_scipy, train_response
+from ..engine.layout import EXT_VALUES, VT_HLA_KCHK
 from ..spring.definition import ValveSpring
 from ..spring.elements import damping_coefficient, law_force
 from ..train.definition import ValveTrain
 from .results import Simulation
+from .runner import engine_args, run_speeds, runge_kutta_pair, solver_error, velocity_tolerance
+from .settings import MAX_STEP_FRACTION, POINTS_PER_REVOLUTION, RunSettings
 from .setup import (
-    MAX_REVOLUTIONS,
-    MAX_STEP_FRACTION,
-    PERIODICITY_TOL,
     SimulationSetup,
-    check_run_settings,
-    default_tolerances,
+    check_speeds,
     output_angles,
     prepare,
+    static_force,
+    static_force_along_grid,
+    with_gas_force,
 )
 
 __all__ = ["simulate", "chain_response"]
@@ -47,17 +44,10 @@ def simulate(
     revolutions: int | None = None,
     *,
     valve_train: ValveTrain | None = None,
-    points_per_revolution: int = 1440,
-    rtol: float | None = None,
-    atol: float | None = None,
-    backend: str = "compiled",
+    settings: RunSettings | None = None,
     setup: SimulationSetup | None = None,
-    check_elements: bool = True,
-    method: str | None = None,
-    periodicity_tol: float = PERIODICITY_TOL,
-    max_revolutions: int = MAX_REVOLUTIONS,
-    allow_extreme_speeds: bool = False,
     gas_force=None,
+    **run,
 ) -> Simulation:
     """Simulate the valve spring (or valve train) driven by the cam.
 
@@ -73,68 +63,41 @@ def simulate(
         steady state, until the seat, retainer, cam-contact and valve-seat forces of the last
         two revolutions differ by at most ``periodicity_tol`` on the output grid, for at most
         ``max_revolutions`` (one that does not settle reports the band of its extremes over
-        its last :data:`BAND_REVOLUTIONS`, ``Simulation.band``).
+        its last :data:`~springdyn.valve.run.periodicity.BAND_REVOLUTIONS`, ``Simulation.band``).
     valve_train : ValveTrain, optional
         Adds the valve body with cam and seat contacts (lift-off, bounce).
-    points_per_revolution : int
-        Output resolution [-] (1440: every 0.25 deg).
-    rtol, atol : float, optional
-        Integration tolerances: relative [-], and absolute on the displacements [m]; the
-        velocities get ``atol 2 pi f1 / 30`` [m/s] (:meth:`SimulationSetup.atol_velocity`).
-        Default 1e-6 and 1e-9 m, with a valve train 1e-8 and 1e-11 m
-        (:func:`~springdyn.valve.run.setup.default_tolerances`).
-    backend : {"compiled", "scipy"}
-        ``"compiled"``: the numba engine (embedded Runge-Kutta pair per model, :data:`PAIR`);
-        ``"scipy"``: ``solve_ivp`` (DOP853) with the plain-Python right-hand side, the reference.
+    settings : RunSettings, optional
+        How the run is integrated (:class:`~springdyn.valve.run.settings.RunSettings`: output
+        points, default 1440 a revolution; tolerances, default 1e-6 and 1e-9 m, with a valve
+        train 1e-8 and 1e-11 m; periodicity; backend; pair; extreme speeds; the element check).
     setup : SimulationSetup, optional
         A prepared setup of the same spring, cam and valve train (:func:`prepare`), reused
         across speeds.
-    check_elements : bool
-        Distributed model: when coils clash, run again with half the elements and report
-        how much the peak end forces change (``clash_force_element_sensitivity``,
-        ``clash_forces_converged`` and a note in the summary): an upper bound of the
-        discretisation error of the clash forces (docs/valve.md, convergence study).
-    method : {"dopri5", "tsit5", "bs3"}, optional
-        The compiled engine's Runge-Kutta pair; default the model's (:data:`PAIR`: Type C
-        Dormand-Prince 5(4), distributed Bogacki-Shampine 3(2)).
-    periodicity_tol : float
-        Periodic steady state: tolerance [fraction of Fset] (default 0.2 %).
-    max_revolutions : int
-        Periodic steady state: the most revolutions [-].
-    allow_extreme_speeds : bool
-        Compute a speed at which the cam event is shorter than one period of the spring's
-        first surge mode (refused otherwise, :meth:`SimulationSetup.check_speeds`), flagged
-        in the summary's notes.
     gas_force : GasForce, optional
         The cylinder's gas force on the valve over the revolution [N]
         (:class:`springdyn.valve.train.gas_force.GasForce`; needs a valve train).
+    **run
+        Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one
+        (``rtol=1e-7``, ``points_per_revolution=720``, ...): they change ``settings``.
 
     Raises
     ------
     InputError
-        Non-positive speed, fewer than one revolution, a lift that drives the spring solid.
+        Non-positive speed, bad settings, a lift that drives the spring solid.
     SolverError
         Integration failure, naming the speed, the time and the likely cause.
     """
     number = (int, float, np.integer, np.floating)
     if isinstance(cam_rpm, bool) or not isinstance(cam_rpm, number) or not (cam_rpm > 0 and math.isfinite(cam_rpm)):
         raise InputError(f"cam_rpm = {cam_rpm!r} must be a positive speed: a finite number [rev/min]")
-    rtol, atol = default_tolerances(valve_train, rtol, atol)
-    check_run_settings(revolutions, points_per_revolution, rtol, atol, periodicity_tol, max_revolutions)
-    if backend not in ("compiled", "scipy"):
-        raise InputError(f"backend = {backend!r} must be 'compiled' or 'scipy'")
-    if method is not None and (backend != "compiled" or method not in PAIRS):
-        raise InputError(
-            f"method = {method!r}: the compiled backend's pairs are {sorted(PAIRS)}"
-            + ("" if backend == "compiled" else f"; backend = {backend!r} has its own (DOP853)")
-        )
-    periodic = revolutions is None
-    revolutions = None if periodic else int(revolutions)
-    points_per_revolution = int(points_per_revolution)
-    most = int(max_revolutions) if periodic else revolutions
+    if revolutions is not None:
+        run["revolutions"] = revolutions
+    settings = RunSettings.of(settings, **run)
+    most = settings.most_revolutions
     # bound the work by the periods of the fastest mode: solve_ivp has no step cap (20 to
     # 70 right-hand-side calls per period: 2e4 periods take seconds to a minute); the
     # compiled engine stops at 1e7 steps (3 to 5 steps per period)
+    backend = settings.backend
     max_cycles = 2.0e4 if backend == "scipy" else 2.0e6
     f_top = spring.spring_model.fastest_mode
     if valve_train is not None:
@@ -149,81 +112,82 @@ def simulate(
             + f"at least {most * 60.0 * f_top / max_cycles:.3g} rev/min"
         )
     if setup is None:
-        setup = prepare(spring, cam, valve_train)
+        setup = prepare(spring, cam, valve_train, gas_force)
         if cam.law == "table":
             cam.check_resolution(cam_rpm, float(spring.spring_model.first_mode_installed))
-    setup = setup.with_gas_force(gas_force)
-    extreme = setup.check_speeds(cam_rpm, allow_extreme_speeds)
+    elif gas_force is not None:
+        setup = with_gas_force(setup, gas_force)
+    extreme = check_speeds(setup, cam_rpm, settings.allow_extreme_speeds)
     omega = rpm_to_omega(cam_rpm)
     period = 2 * math.pi / omega
-    n = points_per_revolution
-    run = dict(periodicity_tol=periodicity_tol, max_revolutions=most)
+    n = settings.points(POINTS_PER_REVOLUTION)
     if backend == "compiled":
-        chosen, method = method, setup.method if method is None else method
-        res = setup.run([omega], revolutions, n, rtol=rtol, atol=atol, method=method, **run)
-        info = dict(status=int(res["status"][0]), t=float(res["t_end"][0]), steps=int(res["steps"][0]), method=method)
+        res = run_speeds(setup, [omega], settings, n)
+        info = dict(
+            status=int(res["status"][0]),
+            t=float(res["t_end"][0]),
+            steps=int(res["steps"][0]),
+            method=runge_kutta_pair(setup, settings),
+        )
         if info["status"] != 0 or not np.isfinite(res["extra"]).all():
-            raise _solver_error(cam_rpm, omega, info)
+            raise solver_error(cam_rpm, omega, info)
         done = int(res["revolutions"][0])
         time = (done - 1) * period + np.arange(n) * (period / n)
         sim = _from_extra(setup, cam_rpm, done, time, res["extra"][0], float(res["periodicity"][0]), info)
-        sim.periodicity_tol = periodicity_tol
+        sim.periodicity_tol = settings.periodicity_tol
         sim.monitor = _monitor_record(res, 0, omega, done)
-        if periodic and not res["settled"][0]:
+        if settings.periodic and not res["settled"][0]:
             sim.band = _band(res, 0)
         sim.flags = extreme
-        if check_elements:
-            _check_element_count(
-                sim, cam, cam_rpm, revolutions, valve_train, points_per_revolution, rtol, atol, chosen, run, gas_force
-            )
-        _add_gas_force(sim, gas_force)
+        if settings.check_elements:
+            _check_element_count(sim, setup, cam_rpm, settings)
+        _add_gas_force(sim, setup.gas_force)
         return sim
-    sim = _simulate_scipy(setup, cam_rpm, revolutions, most, periodicity_tol, n, rtol, atol)
-    sim.periodicity_tol = periodicity_tol
+    sim = _simulate_scipy(setup, cam_rpm, settings, n)
+    sim.periodicity_tol = settings.periodicity_tol
     sim.flags = extreme
-    _add_gas_force(sim, gas_force)
+    _add_gas_force(sim, setup.gas_force)
     return sim
 
 
 def _band(res: dict, i: int) -> dict:
     """The band of each extreme over the monitored revolutions of speed ``i``: name -> (lo, hi)."""
-    from ..engine import EXT
-    from ..engine.layout import EXT_VALUES
-
     return {EXT[k]: (float(res["band_lo"][i, k]), float(res["band_hi"][i, k])) for k in EXT_VALUES}
 
 
-def _simulate_scipy(setup, cam_rpm, revolutions, most, periodicity_tol, n, rtol, atol) -> Simulation:
-    """The SciPy reference, revolution by revolution: ``revolutions`` of them, or (None)
-    until the periodicity channels of two revolutions agree within ``periodicity_tol`` of
-    Fset (at most ``most``), as the compiled engine judges them (:func:`_check_forces`)."""
+def _simulate_scipy(setup, cam_rpm, settings: RunSettings, n: int) -> Simulation:
+    """The SciPy reference, revolution by revolution: ``settings.revolutions`` of them, or
+    (None) until the periodicity channels of two revolutions agree within the periodicity
+    tolerance of Fset (at most ``max_revolutions``), as the compiled engine judges them
+    (:func:`_check_forces`)."""
     omega = rpm_to_omega(cam_rpm)
     period = 2 * math.pi / omega
     fset = setup.spring.spring_model.internal_parameters()["Fset"]
+    rtol, atol = settings.tolerances(setup.valve_train)
     y = np.array(setup.y0, dtype=float)
     before = None
     err = math.nan
     steps = 0
-    for r in range(most):
+    for r in range(settings.most_revolutions):
         t_rev = r * period + np.arange(n + 1) * (period / n)
         states, info = integrate_scipy(
             y,
             t_rev,
-            setup.args(omega),
+            engine_args(setup, omega),
             rtol=rtol,
             atol=atol,
             h_max=period * MAX_STEP_FRACTION,
-            atol_velocity=setup.atol_velocity(atol),
+            atol_velocity=velocity_tolerance(setup, atol),
         )
         steps += int(info["steps"])
         if info["status"] != 0 or not np.all(np.isfinite(states)):
-            raise _solver_error(cam_rpm, omega, info)
+            raise solver_error(cam_rpm, omega, info)
         y = states[-1]
         forces = _check_forces(setup, omega, t_rev[:n], states[:n])
         if before is not None:
             err = float(np.max(np.abs(forces - before))) / fset
         before = forces
-        if revolutions is None and r >= 1 and err <= periodicity_tol:
+        if settings.periodic and r >= 1 and err <= settings.periodicity_tol:
             break
     return _postprocess(setup, cam_rpm, r + 1, t_rev[:n], states[:n], dict(info, steps=steps), err)
 
@@ -233,8 +197,6 @@ def _check_forces(setup: SimulationSetup, omega: float, t: np.ndarray, states: n
     reference's states, as :func:`springdyn.valve.engine.loop.check_channels` samples them."""
     r = chain_response(setup, omega, omega * t, states)
     zero = np.zeros(t.size)
-    from ..engine.layout import VT_HLA_KCHK
-
     hla = r.get("hla_collapse", zero) * setup.vt[VT_HLA_KCHK] if setup.valve_train is not None else zero
     return np.stack(
         [r["force"][0], r["force"][-1], r.get("cam_contact_force", zero), r.get("valve_seat_force", zero), hla],
@@ -248,11 +210,9 @@ def _add_gas_force(sim: Simulation, gas) -> None:
         sim.gas_force = gas.at(sim.cam_angle)
 
 
-def _check_element_count(
-    sim, cam, cam_rpm, revolutions, valve_train, points, rtol, atol, method, run, gas_force=None
-) -> None:
+def _check_element_count(sim, setup: SimulationSetup, cam_rpm: float, settings: RunSettings) -> None:
     """Distributed model with clashing coils: the peak end forces with half the elements
-    (with the pair the caller chose, else the coarse chain's own, :attr:`SimulationSetup.method`)."""
+    (with the pair the caller chose, else the coarse chain's own, :func:`runge_kutta_pair`)."""
     sp = sim.spring
     if sp.model != "distributed" or not sp.spring_model.clashing_coils(sim):
         return
@@ -262,17 +222,11 @@ def _check_element_count(
     coarse_spring = _coarser(sp, half)  # its set-up is kept
     coarse = simulate(
         coarse_spring,
-        cam,
+        setup.cam,
         cam_rpm,
-        revolutions,
-        valve_train=valve_train,
-        points_per_revolution=points,
-        rtol=rtol,
-        atol=atol,
-        check_elements=False,
-        method=method,
-        gas_force=gas_force,
-        **run,
+        valve_train=setup.valve_train,
+        settings=dataclasses.replace(settings, check_elements=False),
+        gas_force=setup.gas_force,
     )
     ext = coarse.monitor["ext"]  # the true extremes of the dense output, as in the summary
     sim.element_check = dict(
@@ -288,22 +242,6 @@ def _coarser(spring: ValveSpring, elements: int) -> ValveSpring:
     """``spring`` with ``elements`` elements, kept for the last few springs (an explicit cache:
     the coarse spring's model and set-up are reused by every run that checks it)."""
     return spring.replace(elements=elements)
-
-
-def _solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
-    t = info["t"]
-    angle = math.degrees(omega * t) % 360.0
-    why = STATUS.get(info["status"], info.get("message", "failed"))
-    cause = {
-        1: "the step size became very small for very long: the spring is driven deep into coil contact, or the "
-        "tolerances are too tight",
-        2: "the element stiffness became extreme (deep coil contact) or the contact parameters are inconsistent",
-        3: "the response diverged: check masses, stiffnesses and contact parameters",
-    }.get(info["status"], "see the message")
-    return SolverError(
-        f"valve simulation at {cam_rpm:g} cam rpm failed at t = {t:.6g} s (cam angle {angle:.2f} deg, "
-        f"after {info['steps']} steps): {why}; likely cause: {cause}"
-    )
 
 
 def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.ndarray) -> dict:
@@ -363,10 +301,10 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         force[..., j, :] = np.where(x[..., j, :] > 0.0, np.maximum(force[..., j, :], 0.0), 0.0)
     out = dict(lift=lift, compression=x, force=force, contact=x >= setup.spring.spring_model.contact_gaps[:, None])
     if nf > nm:
-        out["static"] = setup.static_force(u_top)
+        out["static"] = static_force(setup, u_top)
         out.update(train_response(setup.vt, lift, dlift, u[..., nm:, :], v[..., nm:, :], theta=theta, omega=omega))
     else:
-        out["static"] = setup.static_force(lift)
+        out["static"] = static_force(setup, lift)
     out["displacement"] = u[..., :nm, :]
     return out
 
@@ -378,9 +316,9 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err,
     force, x = e[:, lay["force"]].T, e[:, lay["compression"]].T
     lift = e[:, lay["lift"]]
     if setup.valve_train is None:  # the lift of the cam table at the output angles: kept per cam
-        static = setup.static_force_along_cam(time.size)
+        static = static_force_along_grid(setup, time.size)
     else:
-        static = setup.static_force(e[:, lay["top_displacement"]])
+        static = static_force(setup, e[:, lay["top_displacement"]])
     sim = Simulation(
         spring=setup.spring,
         cam=setup.cam,
@@ -417,8 +355,6 @@ def _monitor_record(mon: dict, i: int, omega: float, revolutions: int) -> dict:
     Times become cam angles within the revolution [rad] (``t0`` the revolution's start);
     events open at the window's start or end are marked by ``None`` times there.
     """
-    from ..engine import EXT
-
     ext = dict(zip(EXT, mon["ext"][i].tolist()))
     t0 = (revolutions - 1) * (2.0 * np.pi / omega)  # as the engine's loop computes it
     rows = mon["events"][i, : int(mon["n_events"][i])]

@@ -1,0 +1,235 @@
+"""The rules that judge a simulated revolution, one home each.
+
+A :class:`~springdyn.valve.run.results.Simulation` (one revolution) and a
+:class:`~springdyn.valve.run.sweeps.SpeedSweep` (a revolution per speed, stacked) both call
+these functions on their arrays, so that one spring gets one answer whichever way it ran:
+
+- :func:`valve_open`: the valve off its seat with the lobe past the lash, before its first
+  landing in the revolution (where a lift-off counts as one, not as seat bounce);
+- :func:`floats_over_nose`: float, the valve leaving the cam over the nose;
+- :func:`coil_clash`: coils in contact where the static spring at the same lift is open;
+- :func:`valve_held_open` and :func:`pumps_up`: a hydraulic lash adjuster holding the valve
+  off its seat on the base circle (pump-up), above :data:`PUMP_UP_THRESHOLD`;
+- :func:`wire_fatigue`: the Goodman safety of the wire's torsion over the revolution, its
+  peak stress against the limit (:mod:`springdyn.valve.spring.stress`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..spring import stress
+
+__all__ = [
+    "PUMP_UP_THRESHOLD",
+    "OPEN_LIFT",
+    "BASE_CIRCLE_LIFT",
+    "valve_open",
+    "first_landing",
+    "seat_rebound_height",
+    "floats_over_nose",
+    "coil_clash",
+    "valve_held_open",
+    "pumps_up",
+    "wire_fatigue",
+]
+
+#: Valve lift held on the base circle [m] above which a hydraulic lash adjuster has pumped up
+#: (a micrometre: the adjuster's leak-down per cycle is some 0.3 um, its collapse under the
+#: valve spring some 10 um; a valve held a micrometre open no longer seals).
+PUMP_UP_THRESHOLD = 1e-6
+#: Lobe lift past the lash [m] from which the lobe is in its event (the valve is driven open).
+OPEN_LIFT = 1e-6
+#: Lobe lift [m] at or below which the lobe is on its base circle.
+BASE_CIRCLE_LIFT = 1e-9
+
+
+def first_landing(valve_lift) -> np.ndarray:
+    """Whether the valve has landed on its seat at or before each output sample of the
+    revolution (its first return to the seat; along the last axis).
+
+    Parameters
+    ----------
+    valve_lift : array_like (..., n)
+        Valve lift over the revolution's output grid [m].
+    """
+    z = np.asarray(valve_lift, dtype=float)
+    landing = (z[..., :-1] > 0) & (z[..., 1:] <= 0)
+    start = np.zeros(z.shape[:-1] + (1,), dtype=bool)
+    return np.cumsum(np.concatenate([start, landing], axis=-1), axis=-1) > 0
+
+
+def valve_open(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
+    """The valve open in its event: off its seat, the lobe past the lash (by :data:`OPEN_LIFT`),
+    and before its first landing in the revolution (later separations are seat bounces; the
+    cam leaving a seated valve is no lift-off).
+
+    Parameters
+    ----------
+    lobe_lift : array_like (n,)
+        Lobe lift on the output grid [m].
+    valve_lift : array_like (..., n)
+        Valve lift on the same grid [m].
+    lobe_lash : float
+        Lobe lift that starts the event [m] (:attr:`ValveTrain.lobe_lash`).
+    """
+    z = np.asarray(valve_lift, dtype=float)
+    return (np.asarray(lobe_lift) > lobe_lash + OPEN_LIFT) & (z > 0.0) & ~first_landing(z)
+
+
+def seat_rebound_height(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
+    """Seat bounce: the largest lift [m] the valve rebounds to after its first landing in the
+    revolution, while the lobe is back on its base circle (past the event).
+
+    Parameters
+    ----------
+    lobe_lift : array_like (n,)
+        Lobe lift on the output grid [m].
+    valve_lift : array_like (..., n)
+        Valve lift on the same grid [m].
+    lobe_lash : float
+        Lobe lift that starts the event [m].
+    """
+    z = np.asarray(valve_lift, dtype=float)
+    rebound = first_landing(z) & ~(np.asarray(lobe_lift) > lobe_lash + OPEN_LIFT)
+    out = np.max(np.where(rebound, z, 0.0), axis=-1)
+    return float(out) if out.ndim == 0 else out
+
+
+def floats_over_nose(liftoff_in_nose, nose, cam_contact_force, valve_lift) -> np.ndarray:
+    """Float: the valve leaves the cam over the nose in the revolution.  A lift-off that
+    starts in the nose, or the follower off the cam (no contact force) with the valve off its
+    seat at an output angle of the nose (a lift-off that began on the flank and lasts into
+    the nose, or a valve that never caught up with the cam).
+
+    Parameters
+    ----------
+    liftoff_in_nose : bool or array_like (...)
+        Whether a located lift-off of the revolution starts in the nose [-]
+        (:func:`springdyn.valve.run.separation.liftoffs`).
+    nose : array_like of bool (n,)
+        The output grid's samples in the nose [-] (:func:`springdyn.valve.run.separation.phase_mask`).
+    cam_contact_force, valve_lift : array_like (..., n)
+        Cam contact force [N] and valve lift [m] on the grid.
+
+    Returns
+    -------
+    bool or ndarray of bool (...)
+    """
+    off_cam = (np.asarray(cam_contact_force) <= 0.0) & (np.asarray(valve_lift) > 0.0) & np.asarray(nose, bool)
+    out = np.asarray(liftoff_in_nose, bool) | off_cam.any(axis=-1)
+    return bool(out) if out.ndim == 0 else out
+
+
+def coil_clash(spring_model, contact, static_force) -> np.ndarray:
+    """Coil clash: an element in coil contact where the static (massless) spring at the same
+    lift holds it open (:meth:`springdyn.valve.spring.chains.SpringModel.clash`, the model's
+    own margin); coils that close quasi-statically are contact, not clash.
+
+    Parameters
+    ----------
+    spring_model : SpringModel
+        The spring's model [-].
+    contact : array_like of bool (N + 1, ...)
+        Each element past its coil-contact compression [-].
+    static_force : array_like (...)
+        The static spring force at the same instants [N].
+
+    Returns
+    -------
+    ndarray of bool (N + 1, ...)
+    """
+    return spring_model.clash(contact, static_force)
+
+
+def valve_held_open(lobe_lift, valve_lift) -> np.ndarray:
+    """The smallest valve lift [m] while the lobe is on its base circle (0 when it closes;
+    with a hydraulic lash adjuster that pumped up, the lift it holds the valve open by).
+
+    Parameters
+    ----------
+    lobe_lift : array_like (n,)
+        Lobe lift on the output grid [m].
+    valve_lift : array_like (..., n)
+        Valve lift on the same grid [m].
+    """
+    base = ~(np.asarray(lobe_lift) > BASE_CIRCLE_LIFT)
+    z = np.asarray(valve_lift, dtype=float)
+    out = np.maximum(np.min(np.where(base, z, np.inf), axis=-1), 0.0)
+    out = np.where(np.isfinite(out), out, 0.0)
+    return float(out) if out.ndim == 0 else out
+
+
+def pumps_up(held_open) -> np.ndarray:
+    """Pump-up: the adjuster holds the valve open on the base circle by more than
+    :data:`PUMP_UP_THRESHOLD`.
+
+    Parameters
+    ----------
+    held_open : float or array_like
+        :func:`valve_held_open` [m].
+    """
+    out = np.asarray(held_open, dtype=float) > PUMP_UP_THRESHOLD
+    return bool(out) if out.ndim == 0 else out
+
+
+def wire_fatigue(spring, wire_lo, wire_hi, end_lo, end_hi, static_lo: float, static_hi: float) -> dict:
+    """The wire's fatigue over a revolution (issue 13): the Goodman safety of every element's
+    wire torsion between its smallest and largest value, beside the static cycle's, and the
+    largest stress against the wire's limit.
+
+    Each element's wire torsion is its force less what closed coils pass through their
+    contact (:meth:`SpringModel.wire_forces`); an end element that can never close its coils
+    (the Type C chain's contacts) carries the end force itself, and its range is widened to
+    the true extremes of that force (the engine's dense output), ``end_lo``/``end_hi``.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+        Its wire, coil diameter and strengths (:func:`springdyn.valve.spring.stress.spring_strengths`).
+    wire_lo, wire_hi : array_like (N + 1,)
+        Each element's smallest and largest wire torsion as an axial force [N] (NaN: no wire).
+    end_lo, end_hi : array_like (2,)
+        The smallest and largest seat and retainer forces [N] (true extremes).
+    static_lo, static_hi : float
+        The static force's range over the cycle [N] (installed to open).
+
+    Returns
+    -------
+    dict
+        ``fatigue_safety_factor`` (None: no stress), ``static_fatigue_safety_factor``,
+        ``min_shear_stress_Pa``/``max_shear_stress_Pa`` (the Goodman-critical element's),
+        ``fatigue_critical_element`` (index from the seat), ``static_min_shear_stress_Pa``,
+        ``static_max_shear_stress_Pa``, ``peak_shear_stress_Pa`` and ``peak_shear_stress_element``
+        (the largest stress of any element, index), ``shear_stress_limit_Pa`` and its source,
+        ``wire_stress_ok``, the strengths and ``max_wire_force_N``.
+    """
+    lo = np.array(wire_lo, dtype=float)
+    hi = np.array(wire_hi, dtype=float)
+    rows = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))
+    plain = ~np.isfinite(spring.spring_model.contact_compressions())
+    for end, k in ((0, 0), (lo.size - 1, 1)):
+        if plain[end] and end in rows:
+            lo[end] = min(lo[end], end_lo[k])
+            hi[end] = max(hi[end], end_hi[k])
+    dyn = stress.fatigue_assessment(spring, lo[rows], hi[rows])
+    sta = stress.fatigue_assessment(spring, static_lo, static_hi)
+    peak = stress.fatigue_assessment(spring, np.zeros(rows.size), hi[rows])  # the largest stress
+    return dict(
+        fatigue_safety_factor=dyn["fatigue_safety_factor"],
+        static_fatigue_safety_factor=sta["fatigue_safety_factor"],
+        min_shear_stress_Pa=dyn["min_shear_stress_Pa"],
+        max_shear_stress_Pa=dyn["max_shear_stress_Pa"],
+        fatigue_critical_element=int(rows[dyn["critical_element"]]),
+        static_min_shear_stress_Pa=sta["min_shear_stress_Pa"],
+        static_max_shear_stress_Pa=sta["max_shear_stress_Pa"],
+        peak_shear_stress_Pa=peak["max_shear_stress_Pa"],
+        peak_shear_stress_element=int(rows[peak["critical_element"]]),
+        shear_stress_limit_Pa=dyn["shear_stress_limit_Pa"],
+        shear_stress_limit_source=dyn["shear_stress_limit_source"],
+        wire_stress_ok=bool(peak["max_shear_stress_Pa"] <= dyn["shear_stress_limit_Pa"]),
+        endurance_shear_strength_Pa=dyn["endurance_shear_strength_Pa"],
+        ultimate_shear_strength_Pa=dyn["ultimate_shear_strength_Pa"],
+        strength_defaults=dyn["strength_defaults"],
+        max_wire_force_N=float(np.max(hi[rows])),
+    )
