@@ -23,7 +23,6 @@ Optional Gaussian sensor noise is added to the measured forces and displacements
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -31,10 +30,8 @@ from ..core.errors import InputError
 from ..core.results import Result
 from ..core.units import rpm_to_omega
 from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
+from .model import LSDModel
 from .stiffness import warn_if_unloading
-
-if TYPE_CHECKING:
-    from .model import LSDModel
 
 __all__ = [
     "RIG_COLUMNS",
