@@ -46,6 +46,12 @@ def pack_spring_forces(angles, pack_stiffness, preload, x, y):
         Ring displacement along x [m].
     y : array_like
         Ring displacement along y [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(fx, fy, loads)``: the force along x and y [N], shape of ``x``, and the pack loads
+        ``P_i = k_s max(delta_pre + delta_i, 0)`` [N], shape ``x.shape + (N,)``.
     """
     phi = np.asarray(angles, dtype=float)
     delta = pack_deflections(phi, x, y)
@@ -75,6 +81,11 @@ def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_fac
         Ring velocity along x [m/s].
     vy : float
         Ring velocity along y [m/s].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(fx, fy)``: the friction force along x and y [N], one value per sample.
     """
     phi = np.asarray(angles, dtype=float)
     rate = pack_deflections(phi, vx, vy)
@@ -99,6 +110,12 @@ def oring_friction_force(friction_coefficient, normal_force, vx, vy):
         Ring velocity along x [m/s].
     vy : float
         Ring velocity along y [m/s].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(fx, fy)``: the friction force along x and y [N], shape of ``vx``; zero where the
+        ring is at rest.
     """
     vx = np.asarray(vx, dtype=float)
     vy = np.asarray(vy, dtype=float)
