@@ -1,9 +1,9 @@
 """The package's architecture: the physics never imports the application layer,
 and no two springdyn modules import each other, directly or through others.
 
-The import graph is read from the source (every ``import`` statement, also inside
-functions, except under ``if TYPE_CHECKING:``), so a cycle hidden behind a lazy import
-counts as a cycle too.
+The import graph is read from the source: every ``import`` statement, also inside
+functions and under ``if TYPE_CHECKING:``, so a cycle hidden behind a lazy import or a
+type-only import counts as a cycle too.
 """
 
 from __future__ import annotations
@@ -27,10 +27,6 @@ def _module_name(path: Path) -> str:
     return ".".join(parts)
 
 
-def _is_type_checking(node: ast.If) -> bool:
-    return isinstance(node.test, (ast.Name, ast.Attribute)) and "TYPE_CHECKING" in ast.unparse(node.test)
-
-
 def _imports(path: Path, name: str, modules: set[str]) -> set[str]:
     tree = ast.parse(path.read_text(encoding="utf-8"))
     is_pkg = path.name == "__init__.py"
@@ -38,10 +34,7 @@ def _imports(path: Path, name: str, modules: set[str]) -> set[str]:
     found: set[str] = set()
 
     def visit(node):
-        if isinstance(node, ast.If) and _is_type_checking(node):
-            for child in node.orelse:
-                visit(child)
-            return
+        # no branch is skipped: an import under ``if TYPE_CHECKING:`` is a dependency too
         if isinstance(node, ast.Import):
             for alias in node.names:
                 found.add(alias.name)
@@ -135,6 +128,23 @@ def test_the_cycle_finder_finds_a_cycle():
     """The check above can fail: a made-up graph with a cycle is caught."""
     assert _cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
     assert _cycle({"a": {"b"}, "b": set()}) is None
+
+
+def test_type_only_and_lazy_imports_count(tmp_path):
+    """An import under ``if TYPE_CHECKING:`` or inside a function is an edge of the graph."""
+    module = tmp_path / "rig.py"
+    module.write_text(
+        "from typing import TYPE_CHECKING\n"
+        "if TYPE_CHECKING:\n"
+        "    from .model import LSDModel\n"
+        "else:\n"
+        "    from . import forces\n"
+        "def f():\n"
+        "    from .film import film_network\n",
+        encoding="utf-8",
+    )
+    modules = {f"pkg.{m}" for m in ("rig", "model", "forces", "film")}
+    assert _imports(module, "pkg.rig", modules) == {"pkg.model", "pkg.forces", "pkg.film"}
 
 
 # --------------------------------------------------------------------------- maps that stay true

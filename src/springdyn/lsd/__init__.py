@@ -8,11 +8,14 @@ spaces between the packs are oil chambers joined by narrow passages.  Modules:
 - :mod:`~springdyn.lsd.damping` -- O-ring and inter-leaf friction (2.21)-(2.28), the oil
   network ``C_visc = B^T G^+ B`` and (3.5)-(3.6), passage conductance (2.17), passage
   inertance, duct impedance and the squeeze Reynolds number;
+- :mod:`~springdyn.lsd.forces` -- the nonlinear force laws in time: pack springs with lift-off,
+  inter-leaf and O-ring Coulomb friction (2.21), (2.25)-(2.27);
 - :mod:`~springdyn.lsd.film` -- the oil network in time: passage inertia, film rupture
   (cavitation) against the supply pressure, its describing function and the speed x orbit map;
 - :mod:`~springdyn.lsd.parameters` -- :class:`LSDParameters` (TOML ``[lsd]`` table, Types A-C);
 - :mod:`~springdyn.lsd.model` -- :class:`LSDModel`, :class:`LSDCoefficients` (K, C vs rpm);
-- :mod:`~springdyn.lsd.rig` -- time-domain test-rig simulation (Chapter 4), :class:`RigRecord`;
+- :mod:`~springdyn.lsd.rig` -- time-domain test-rig simulation (Chapter 4) of a model with those
+  laws, :class:`RigRecord`;
 - :mod:`~springdyn.lsd.identify` -- identification (4.1)-(4.22) with the corrected algebra;
 - :mod:`~springdyn.lsd.equivalent` -- describing-function coefficients of the nonlinear laws at an amplitude;
 - :mod:`~springdyn.lsd.calibrate` -- fit parameters (``leakage_factor`` ...) to rig records;

@@ -1,9 +1,9 @@
 """Equivalent (describing-function) coefficients of the nonlinear damper at a given amplitude.
 
 The coefficient model of Chapter 3 linearises each mechanism with closed forms at one
-amplitude.  Here the nonlinear force laws of the time-domain rig (:mod:`springdyn.lsd.rig`:
-pack springs with lift-off, inter-leaf Coulomb friction on the instantaneous pack load,
-O-ring Coulomb friction, the oil network) are evaluated along a harmonic ring motion of
+amplitude.  Here the nonlinear force laws of the time-domain rig (pack springs with lift-off,
+inter-leaf Coulomb friction on the instantaneous pack load, O-ring Coulomb friction:
+:mod:`springdyn.lsd.forces`; the oil network) are evaluated along a harmonic ring motion of
 given amplitude and frequency, and their first harmonic gives the equivalent stiffness and
 damping, mechanism by mechanism (the describing function; e.g. Gelb and Vander Velde,
 *Multiple-input describing functions*, 1968).  This is what a rig identifies at that
@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.errors import InputError
-from . import rig
+from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
 
 __all__ = ["MECHANISMS", "harmonic_forces", "equivalent_matrices", "forward_whirl_coefficient", "DEFAULT_SAMPLES"]
 
@@ -67,11 +67,11 @@ def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES, film: bo
     x, y = np.real(X * e), np.real(Y * e)
     vx, vy = np.real(1j * omega * X * e), np.real(1j * omega * Y * e)
     p = model.params
-    fx, fy, loads = rig.pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
+    fx, fy, loads = pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
     forces = {
         "spring": (fx, fy),
-        "leaf_friction": rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy),
-        "oring_friction": rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy),
+        "leaf_friction": interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy),
+        "oring_friction": oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy),
     }
     conj = np.conj(e) * (2.0 / n)
     out = {k: (complex(np.sum(a * conj)), complex(np.sum(b * conj))) for k, (a, b) in forces.items()}

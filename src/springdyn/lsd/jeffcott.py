@@ -302,12 +302,13 @@ def simulate_time_response(
 ):
     """Time-domain unbalance response of the rotor with the nonlinear damper forces.
 
-    The damper force on each bearing is the rig's force law (:mod:`springdyn.lsd.rig`: pack
-    springs with lift-off, inter-leaf Coulomb friction on the instantaneous pack load,
-    O-ring Coulomb friction, oil), evaluated pack by pack; the rotor equations of the module
-    docstring (two dampers) are integrated with the classical fixed-step Runge-Kutta
-    method (a fixed step crosses the friction switches without the step-size collapse of
-    adaptive solvers; the switches make it first order there, so check the step).
+    The damper force on each bearing is the rig's force law (pack springs with lift-off,
+    inter-leaf Coulomb friction on the instantaneous pack load, O-ring Coulomb friction:
+    the laws of :mod:`springdyn.lsd.forces`, written out here for scalars; oil), evaluated
+    pack by pack; the rotor equations of the module docstring (two dampers) are
+    integrated with the classical fixed-step Runge-Kutta method (a fixed step crosses the
+    friction switches without the step-size collapse of adaptive solvers; the switches make
+    it first order there, so check the step).
 
     Parameters
     ----------

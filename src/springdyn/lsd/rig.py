@@ -3,7 +3,8 @@
 The inner ring is moved along a prescribed path -- a circular orbit of the eccentric
 shaft, an x-only or y-only shake, or any measured ``x(t), y(t)`` -- and the force the
 shaft must apply to it (what the load cells measure) is computed with the nonlinear
-model, not with the linearised coefficients:
+model, not with the linearised coefficients (the force laws of :mod:`springdyn.lsd.forces`,
+summed with the oil and the ring's inertia):
 
 - each pack pushes with ``k_s max(delta_pre + delta_i, 0)`` (it lifts off when the ring
   moves away from it by more than the preload);
@@ -22,17 +23,15 @@ Optional Gaussian sensor noise is added to the measured forces and displacements
 from __future__ import annotations
 
 import dataclasses
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..core.errors import InputError
 from ..core.results import Result
 from ..core.units import rpm_to_omega
-from .stiffness import pack_deflections, warn_if_unloading
-
-if TYPE_CHECKING:
-    from .model import LSDModel
+from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
+from .model import LSDModel
+from .stiffness import warn_if_unloading
 
 __all__ = [
     "RIG_COLUMNS",
@@ -40,9 +39,6 @@ __all__ = [
     "circular_orbit",
     "linear_shake",
     "trajectory_from_samples",
-    "pack_spring_forces",
-    "interleaf_friction_forces",
-    "oring_friction_force",
     "simulate_rig",
     "RigRecord",
 ]
@@ -176,86 +172,6 @@ def trajectory_from_samples(time, x, y, rpm=float("nan")):
     vx, vy = np.gradient(x, t, edge_order=2), np.gradient(y, t, edge_order=2)
     ax, ay = np.gradient(vx, t, edge_order=2), np.gradient(vy, t, edge_order=2)
     return Trajectory(t, x, y, vx, vy, ax, ay, excitation="measured", rpm=float(rpm))
-
-
-def pack_spring_forces(angles, pack_stiffness, preload, x, y):
-    """Force of the packs on the shaft side, ``sum_i k_s [max(delta_pre + delta_i, 0) - delta_pre] e_i`` [N].
-
-    The static preloads cancel at the centre; a pack that the ring leaves by more than
-    the preload lifts off and stops pushing (the nonlinearity the linear (3.4) misses).
-    Returns ``(fx, fy)`` and the pack loads ``P_i`` (shape ``(T, N)``).
-
-    Parameters
-    ----------
-    angles : array_like
-        Pack angles phi_i [rad].
-    pack_stiffness : float
-        Stiffness k_s of one pack [N/m].
-    preload : float
-        Pack preload deflection delta_pre [m].
-    x : array_like
-        Ring displacement along x [m].
-    y : array_like
-        Ring displacement along y [m].
-    """
-    phi = np.asarray(angles, dtype=float)
-    delta = pack_deflections(phi, x, y)
-    load = pack_stiffness * np.maximum(preload + delta, 0.0)
-    net = load - pack_stiffness * preload
-    return net @ np.cos(phi), net @ np.sin(phi), load
-
-
-def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_factor, vx, vy):
-    """Coulomb friction between the leaves, ``1.5 mu_s S P_i sign(d delta_i/dt) e_i`` summed [N].
-
-    The dissipation rate of Eq. (2.25) with the slips of (2.26) is
-    ``1.5 mu_s S P_1 |d delta_1/dt|`` per pack; the force is that rate over the
-    deflection rate, with the instantaneous pack load ``P_1``.
-
-    Parameters
-    ----------
-    angles : array_like
-        Pack angles phi_i [rad].
-    pack_loads : array_like
-        Pack loads P_i [N].
-    friction_coefficient : float
-        Coulomb friction coefficient [-].
-    slip_factor : float
-        Inter-leaf slip factor S of Eqs. (2.27)-(2.28) [-].
-    vx : float
-        Ring velocity along x [m/s].
-    vy : float
-        Ring velocity along y [m/s].
-    """
-    phi = np.asarray(angles, dtype=float)
-    rate = pack_deflections(phi, vx, vy)
-    # A pack the motion does not deflect (e.g. the pack at 0 deg in a y shake) has a
-    # round-off rate; it sticks and carries no friction.
-    scale = float(np.max(np.hypot(vx, vy), initial=0.0))
-    moving = np.abs(rate) > 1e-9 * scale
-    f = 1.5 * friction_coefficient * slip_factor * pack_loads * np.where(moving, np.sign(rate), 0.0)
-    return f @ np.cos(phi), f @ np.sin(phi)
-
-
-def oring_friction_force(friction_coefficient, normal_force, vx, vy):
-    """O-ring Coulomb friction ``mu_o F_N v/|v|`` opposing the ring velocity [N] (Eq. (2.21)).
-
-    Parameters
-    ----------
-    friction_coefficient : float
-        Coulomb friction coefficient [-].
-    normal_force : float
-        O-ring normal force F_N [N].
-    vx : float
-        Ring velocity along x [m/s].
-    vy : float
-        Ring velocity along y [m/s].
-    """
-    vx = np.asarray(vx, dtype=float)
-    vy = np.asarray(vy, dtype=float)
-    speed = np.hypot(vx, vy)
-    scale = np.divide(friction_coefficient * normal_force, speed, out=np.zeros_like(speed), where=speed > 0)
-    return scale * vx, scale * vy
 
 
 def simulate_rig(

@@ -15,7 +15,7 @@ dampers' film networks (:mod:`springdyn.lsd.film`) in one implicit step:
   ``omega(t) G``, cross-coupled bearings, ``Ksdt`` times the angular acceleration) are taken
   at the start of the step;
 - damper packs: the linear pack stiffness (3.4) is part of the implicit ``K``; lift-off and
-  friction (inter-leaf, O-ring; :mod:`springdyn.lsd.rig`) at the start of the step;
+  friction (inter-leaf, O-ring; :mod:`springdyn.lsd.forces`) at the start of the step;
 - oil: the film networks' pressures at the end of the step solve one linear complementarity
   problem together with the rotor's velocities (the rotor's velocity is linear in the oil
   forces, so the squeeze of every damper is too): ``p >= p_cav``, ``void >= 0``, complementary.
@@ -39,8 +39,8 @@ from scipy.linalg import cho_factor, cho_solve
 from scipy.optimize import nnls
 
 from ..core.errors import InputError
-from . import rig
 from .film import film_network
+from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
 
 __all__ = ["rotor_time_response", "RotorTimeResponse", "unbalance_runup"]
 
@@ -235,10 +235,10 @@ def rotor_time_response(
         for it in items:
             m, P, p = it["model"], it["P"], it["model"].params
             xn, vn = P @ x, P @ v
-            fx, fy, loads = rig.pack_spring_forces(m.angles, m.pack_stiffness, p.preload, xn[:1], xn[1:])
+            fx, fy, loads = pack_spring_forces(m.angles, m.pack_stiffness, p.preload, xn[:1], xn[1:])
             lift = np.array([fx[0], fy[0]]) - m.stiffness_matrix @ xn
-            lx, ly = rig.interleaf_friction_forces(m.angles, loads, p.leaf_friction, m.slip_factor, vn[:1], vn[1:])
-            ox, oy = rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vn[:1], vn[1:])
+            lx, ly = interleaf_friction_forces(m.angles, loads, p.leaf_friction, m.slip_factor, vn[:1], vn[1:])
+            ox, oy = oring_friction_force(p.oring_friction, p.oring_normal_force, vn[:1], vn[1:])
             E -= it["count"] * P.T @ (lift + np.array([lx[0] + ox[0], ly[0] + oy[0]]))
         c1 = -(v + dt * (1.0 - g) * a) / (g * dt)  # a1 = v1 / (g dt) + c1
         c2 = x + dt * v + dt * dt * ((0.5 - b) * a + b * c1)  # x1 = (b dt / g) v1 + c2

@@ -34,6 +34,7 @@ import numpy as np
 
 from ..core.errors import InputError, SolverError
 from ..core.units import omega_to_rpm, rpm_to_omega
+from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
 
 __all__ = [
     "bearing_element",
@@ -390,8 +391,8 @@ def nonlinear_force(
 
     ROSS 2.3's ``rotor.run_time_response(speed, F, t, add_to_RHS=f)`` adds ``f(step,
     disp_resp=..., velc_resp=..., accl_resp=..., time_step=...)`` to the right-hand side at
-    every step.  The callback evaluates the rig's force laws (:mod:`springdyn.lsd.rig`: pack
-    springs with lift-off, inter-leaf and O-ring Coulomb friction, oil) at the x, y
+    every step.  The callback evaluates the rig's force laws (pack springs with lift-off,
+    inter-leaf and O-ring Coulomb friction: :mod:`springdyn.lsd.forces`; oil) at the x, y
     displacement and velocity of node ``n`` and returns minus that force (the damper pushes
     back) on the node's x and y degrees of freedom.
 
@@ -434,7 +435,6 @@ def nonlinear_force(
         ndarray (rotor.ndof,)`` [N]; ``f.network`` is the film network (or None), ``f.history``
         the node's oil pressures per step (absolute, [Pa]) when ``film``.
     """
-    from . import rig
     from .film import film_network
 
     ndof, per_node = int(rotor.ndof), int(rotor.number_dof)
@@ -468,9 +468,9 @@ def nonlinear_force(
             return out
         x, y = np.array([disp_resp[ix]]), np.array([disp_resp[iy]])
         vx, vy = np.array([velc_resp[ix]]), np.array([velc_resp[iy]])
-        fx, fy, loads = rig.pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
-        lx, ly = rig.interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy)
-        ox, oy = rig.oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy)
+        fx, fy, loads = pack_spring_forces(model.angles, model.pack_stiffness, p.preload, x, y)
+        lx, ly = interleaf_friction_forces(model.angles, loads, p.leaf_friction, model.slip_factor, vx, vy)
+        ox, oy = oring_friction_force(p.oring_friction, p.oring_normal_force, vx, vy)
         v = np.array([vx[0], vy[0]])
         f = np.array([fx[0] + lx[0] + ox[0], fy[0] + ly[0] + oy[0]]) + oil(v, time_step)
         if residual:
