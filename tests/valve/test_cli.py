@@ -115,13 +115,22 @@ def test_argparse_errors_exit_2_in_one_line(capsys):
     assert err.count("\n") == 1 and "--length" in err and "usage:" not in err
 
 
-def test_cli_default_tolerances_are_the_library_defaults():
-    """The parser keeps its own copy (so that --help does not load the engine): they must agree."""
-    from springdyn.app.cli import valve as cli
-    from springdyn.valve.run import settings as setup
+def test_cli_help_states_the_library_defaults(capsys):
+    """The options' help reads the run settings' own defaults (one home, numba-free)."""
+    import subprocess
+    import sys
 
-    assert (cli.DEFAULT_RTOL, cli.DEFAULT_ATOL) == (setup.DEFAULT_RTOL, setup.DEFAULT_ATOL)
-    assert (cli.TRAIN_RTOL, cli.TRAIN_ATOL) == (setup.TRAIN_RTOL, setup.TRAIN_ATOL)
+    from springdyn.valve.run import settings
+
+    out = subprocess.run(
+        [sys.executable, "-m", "springdyn.app.cli.main", "valve", "simulate", "--help"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    assert f"default {settings.DEFAULT_RTOL:g}, {settings.TRAIN_RTOL:g} with a valve train" in " ".join(out.split())
+    code = "import sys, springdyn.app.cli.main as m; m.build_parser('valve'); print('numba' in sys.modules)"
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True).stdout.strip() == "False"
 
 
 def test_every_valve_command_takes_the_model_option(capsys):

@@ -32,7 +32,17 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["Result", "Summary", "unit_suffix", "units_from_name", "column_name", "dataset_columns", "format_value"]
+__all__ = [
+    "Result",
+    "Summary",
+    "unit_suffix",
+    "units_from_name",
+    "column_name",
+    "dataset_columns",
+    "format_value",
+    "text_table",
+    "notes_lines",
+]
 
 #: Lines of a result's ``repr`` at most (header and footer included).
 REPR_LINES = 15
@@ -194,6 +204,45 @@ class _SummaryAttribute:
         return cached
 
 
+def text_table(rows, headers=("quantity", "value", "unit")) -> str:
+    """Rows of values as an aligned plain-text table (headers, a rule, the rows).
+
+    Parameters
+    ----------
+    rows : iterable of sequence
+        The rows; each cell is shown with ``str``.
+    headers : sequence of str
+        The column headers.
+
+    Examples
+    --------
+    >>> print(text_table([("a", 1), ("bb", 22)], headers=("name", "n")))
+    name  n
+    ----  --
+    a     1
+    bb    22
+    """
+    rows = [tuple(str(c) for c in r) for r in rows]
+    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h) for i, h in enumerate(headers)]
+    lines = ["  ".join(h.ljust(w) for h, w in zip(headers, widths)).rstrip(), "  ".join("-" * w for w in widths)]
+    lines += ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
+    return "\n".join(lines)
+
+
+def notes_lines(summary, skip=()) -> list[str]:
+    """Every caveat of a result's summary (its ``notes``), one ``note: ...`` line each: the text
+    a result describes itself with carries what its JSON carries.
+
+    Parameters
+    ----------
+    summary : Mapping
+        The result's summary (its ``notes`` list, if any).
+    skip : tuple of str
+        Notes said in another form already (by their first words).
+    """
+    return ["note: " + n for n in summary.get("notes") or [] if not any(n.startswith(p) for p in skip)]
+
+
 class Result:
     """Base of every analysis result (see the module docstring for the interface)."""
 
@@ -220,6 +269,19 @@ class Result:
     def _repr_caption(self) -> str:
         """One line naming what this result is about (e.g. the speed)."""
         return ""
+
+    def describe(self) -> str:
+        """The result in words and tables, as the CLI prints it (lines of plain text).
+
+        The default: its title and caption, its scalar figures and its notes; a result with a
+        richer account overrides it.
+        """
+        caption = self._repr_caption()
+        lines = [f"{self.title}" + (f": {caption}" if caption else "")]
+        items = [(k, format_value(v)) for k, v in self._scalar_items()]
+        if items:
+            lines.append(text_table(items, headers=("figure", "value (SI)")))
+        return "\n".join(lines + notes_lines(self.summary))
 
     # ------------------------------------------------------------------ the interface
     def to_csv(self, path) -> Path:

@@ -1,15 +1,23 @@
-"""The valve family's model: a spring, optionally its cam and valve train, and every analysis.
+"""The valve family's front door: a spring with its cam and valve train, and every study of it.
 
 :class:`ValveModel` is the valve counterpart of :class:`springdyn.cfcs.CFCS` and
-:class:`springdyn.lsd.LSDModel`: built from the definitions (:class:`ValveSpring`, :class:`Cam`,
-:class:`ValveTrain`), it runs the analyses and returns :class:`~springdyn.core.results.Result`
-objects.  What it derives once and reuses is visible: the spring's chain model
-(:attr:`chain_model`, :mod:`springdyn.valve.spring.chains`) and the speed-independent set-up of the
-engine (:attr:`setup`), both cached properties of this (mutable) object.
+:class:`springdyn.lsd.LSDModel`.  It holds the definitions (:class:`ValveSpring`,
+:class:`Cam`, :class:`ValveTrain`, the engine's ``[timing]``, the follower and its friction,
+the gas force) and the :class:`~springdyn.valve.run.settings.RunSettings` every run uses, and
+offers every analysis of the family as a method returning a
+:class:`~springdyn.core.results.Result`.  The CLI and the report call it, never the wings.
 
-Where each analysis lives: statics and modes of the chain, :mod:`springdyn.valve.spring.chains`; the
-frequency response, :mod:`springdyn.valve.spring.frf`; simulation and natural frequencies under the
-cam, :mod:`springdyn.valve.run.simulation`; speed sweeps, :mod:`springdyn.valve.run.sweeps`.
+What it derives once and reuses is visible: the spring's chain model (:attr:`chain_model`),
+the engine's speed-independent set-up (:attr:`setup`) and the crank-angle axis
+(:attr:`crank_axis`), cached properties of this object.  Besides the single analyses it offers
+the named studies a valve-train engineer runs: the friction over a speed range
+(:meth:`friction_over_speed`), the resonance speeds in a range (:meth:`resonance_speeds`), the
+float speed against a rated speed (:meth:`float_speed_above`) and the run-up through the float
+speed (:meth:`run_up_through_float`).
+
+Where each analysis lives: the spring alone, :mod:`springdyn.valve.spring`; the cam,
+:mod:`springdyn.valve.cam`; the runs under the cam, :mod:`springdyn.valve.run`; the design
+studies (tolerances, life, calibration), :mod:`springdyn.valve.design`.
 
 Examples
 --------
@@ -22,13 +30,31 @@ Examples
 from __future__ import annotations
 
 from functools import cached_property
+from pathlib import Path
+
+import numpy as np
 
 from ..core.errors import InputError
+from ..core.params import load_toml
 from .cam.definition import Cam
+from .cam.follower import Follower
+from .cam.timing import Timing, cam_rpm_from_engine_rpm, crank_axis
+from .run.settings import RunSettings
 from .spring.definition import ValveSpring
 from .train.definition import ValveTrain
 
-__all__ = ["ValveModel"]
+__all__ = ["ValveModel", "RUN_UP_WINDOW", "FLOAT_SCAN"]
+
+#: The run-up through the float speed f (:meth:`ValveModel.run_up_through_float`): from this
+#: fraction of f to this fraction [-] (the valve settles before, and floats well after).
+RUN_UP_WINDOW = (0.85, 1.1)
+#: The float-speed scan against a rated speed (:meth:`ValveModel.float_speed_above`): from this
+#: fraction of the rated speed to this fraction of the float speed asked for, in this many
+#: speeds [-, -, -].
+FLOAT_SCAN = (0.25, 1.5, 21)
+#: Cam speeds of the friction over speed (:meth:`ValveModel.friction_over_speed`) when a range
+#: is given as its ends [-].
+FRICTION_SPEEDS = 5
 
 
 class ValveModel:
@@ -39,22 +65,107 @@ class ValveModel:
     spring : ValveSpring
         The spring definition (its ``model`` key chooses Type C or the distributed chain).
     cam : Cam, optional
-        The cam; needed by :meth:`simulate`, :meth:`sweep`, :meth:`float_speed` and
-        :meth:`natural_frequencies`.
+        The cam; needed by every analysis under the cam.
     valve_train : ValveTrain, optional
         The valve train between cam and valve; without it the retainer follows the cam.
+    settings : RunSettings, optional
+        How every run of this model is integrated (default: :class:`RunSettings`' defaults).
+    timing : Timing, optional
+        The ``[timing]`` table: crank angles from TDC and the engine's strokes.
+    crank_angles : bool, optional
+        Give the results crank angles beside the cam's (default: when ``timing`` is given).
+    follower : Follower, optional
+        The ``[follower]`` table (cam checks, friction).
+    friction : Friction, optional
+        The ``[friction]`` table (default: its defaults).
+    gas_force : GasForce, optional
+        The cylinder's gas force on the valve over a cam revolution [N] (needs a valve train).
     """
 
-    def __init__(self, spring: ValveSpring, cam: Cam | None = None, valve_train: ValveTrain | None = None):
+    def __init__(
+        self,
+        spring: ValveSpring,
+        cam: Cam | None = None,
+        valve_train: ValveTrain | None = None,
+        *,
+        settings: RunSettings | None = None,
+        timing: Timing | None = None,
+        crank_angles: bool | None = None,
+        follower: Follower | None = None,
+        friction=None,
+        gas_force=None,
+    ):
         if not isinstance(spring, ValveSpring):
             raise InputError(f"spring = {spring!r} must be a ValveSpring (ValveSpring.from_toml(...) or .example())")
         if cam is not None and not isinstance(cam, Cam):
             raise InputError(f"cam = {cam!r} must be a Cam or None")
         if valve_train is not None and not isinstance(valve_train, ValveTrain):
             raise InputError(f"valve_train = {valve_train!r} must be a ValveTrain or None")
+        if gas_force is not None and valve_train is None:
+            raise InputError(
+                "a gas force acts on the valve: it needs a valve train (--valve-train / [valve_train]); the spring "
+                "alone has no valve"
+            )
         self.spring = spring
         self.cam = cam
         self.valve_train = valve_train
+        self.settings = RunSettings.of(settings)
+        self.timing = timing
+        self.crank_angles = timing is not None if crank_angles is None else bool(crank_angles)
+        self.follower = follower
+        self.friction_table = friction
+        self.gas_force = gas_force
+
+    @classmethod
+    def from_files(
+        cls,
+        spring,
+        cam=None,
+        valve_train=None,
+        *,
+        model: str | None = None,
+        settings: RunSettings | None = None,
+        crank_angles: bool | None = None,
+    ) -> ValveModel:
+        """A model of definition files: ``[spring]``, ``[cam]`` (with its ``[timing]``, or the
+        spring file's), ``[valve_train]`` (with its ``[hla]``, ``[geometry]``, ``[follower]`` and
+        ``[friction]``).
+
+        Parameters
+        ----------
+        spring : str or path-like
+            The spring file.
+        cam, valve_train : str or path-like, optional
+            The cam file and the valve-train file.
+        model : str, optional
+            The spring model, overriding the file's ``model`` key.
+        settings : RunSettings, optional
+            The run settings.
+        crank_angles : bool, optional
+            Crank angles in the results (default: when a ``[timing]`` table is given).
+        """
+        from .train.friction import Friction
+
+        sp = ValveSpring.from_toml(spring).with_model(model)
+        c = Cam.from_toml(cam) if cam is not None else None
+        vt = ValveTrain.from_toml(valve_train) if valve_train is not None else None
+        timing = (Timing.in_file(cam) if cam is not None else None) or Timing.in_file(spring)
+        follower = Follower.in_file(valve_train) if valve_train is not None else None
+        friction = None
+        if valve_train is not None:
+            doc = load_toml(valve_train)
+            if "friction" in doc:
+                friction = Friction.from_dict(doc["friction"], source=str(valve_train))
+        return cls(
+            sp,
+            c,
+            vt,
+            settings=settings,
+            timing=timing,
+            crank_angles=crank_angles,
+            follower=follower,
+            friction=friction,
+        )
 
     def __repr__(self) -> str:
         parts = [f"{self.spring.type} spring, {self.spring.model} model"]
@@ -64,6 +175,92 @@ class ValveModel:
             parts.append(f"{self.valve_train.layout} valve train")
         return f"<ValveModel: {', '.join(parts)}>"
 
+    # ------------------------------------------------------------------ variants
+    def replace(self, **changes) -> ValveModel:
+        """The same model with other definitions or settings (``spring=``, ``cam=``,
+        ``valve_train=``, ``settings=``, ``gas_force=``, ...): a new model, its derived
+        state computed anew.
+
+        Parameters
+        ----------
+        **changes
+            Constructor arguments to change.
+        """
+        args = dict(
+            spring=self.spring,
+            cam=self.cam,
+            valve_train=self.valve_train,
+            settings=self.settings,
+            timing=self.timing,
+            crank_angles=self.crank_angles,
+            follower=self.follower,
+            friction=self.friction_table,
+            gas_force=self.gas_force,
+        )
+        unknown = sorted(set(changes) - set(args))
+        if unknown:
+            raise InputError(f"{unknown[0]!r} is not a part of a ValveModel; its parts are {', '.join(args)}")
+        args.update(changes)
+        return ValveModel(**args)
+
+    def with_model(self, name: str | None) -> ValveModel:
+        """The same definitions with the spring model ``name`` (None: this model).
+
+        Parameters
+        ----------
+        name : {"type-c", "distributed"} or None
+            The spring model.
+        """
+        return self if name is None or name == self.spring.model else self.replace(spring=self.spring.with_model(name))
+
+    def with_settings(self, settings: RunSettings | None = None, **changes) -> ValveModel:
+        """The same model run with other settings.
+
+        Parameters
+        ----------
+        settings : RunSettings, optional
+            New settings (default: this model's).
+        **changes
+            Fields of :class:`RunSettings` to change.
+        """
+        return self.replace(settings=RunSettings.of(self.settings if settings is None else settings, **changes))
+
+    def with_gas_pressure(self, path, port_pressure: float = 101325.0) -> ValveModel:
+        """The same model with the gas force of a cylinder-pressure trace on its valve
+        (:meth:`springdyn.valve.train.gas_force.GasForce.from_file`), phased by the ``[timing]``
+        table, over the valve train's ``seat_diameter``.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The trace: crank angle against absolute cylinder pressure (CSV).
+        port_pressure : float
+            Pressure behind the valve head, absolute [Pa].
+        """
+        from .train.gas_force import GasForce
+
+        if self.valve_train is None:
+            raise InputError(
+                "the gas force acts on the valve: give --valve-train / [valve_train] (the spring alone has no valve)"
+            )
+        vt = self.valve_train
+        if vt.seat_diameter is None:
+            raise InputError("the gas force needs the valve's seat_diameter in [valve_train]")
+        if self.timing is None:
+            raise InputError(
+                "the cylinder pressure is against crank angle: the cam file needs a [timing] table (lobe_centre, "
+                "valve) to phase it"
+            )
+        if not Path(path).is_file():
+            raise InputError(f"path = {str(path)!r}: no such file (the cylinder pressure)")
+        gas = GasForce.from_file(
+            path,
+            axis=crank_axis(self._need_cam("the gas force"), self.timing),
+            seat_diameter=vt.seat_diameter,
+            port_pressure=port_pressure,
+        )
+        return self.replace(gas_force=gas)
+
     # ------------------------------------------------------------------ derived once
     @cached_property
     def chain_model(self):
@@ -72,21 +269,61 @@ class ValveModel:
 
     @cached_property
     def setup(self):
-        """The engine's speed-independent set-up: cam table, initial state
-        (:func:`springdyn.valve.run.setup.prepare`)."""
-        from .run.setup import prepare
+        """The engine's speed-independent set-up: cam table, initial state, the train's
+        parameters with the gas force (:func:`springdyn.valve.run.setup.prepare`)."""
+        from .run.setup import prepare  # (here: the run wing loads the compiled engine, numba)
 
-        return prepare(self.spring, self._need_cam("the set-up"), self.valve_train)
+        return prepare(self.spring, self._need_cam("the set-up"), self.valve_train, self.gas_force)
+
+    @cached_property
+    def crank_axis(self):
+        """Crank angles and engine speeds beside the cam's (:class:`~springdyn.valve.cam.timing.CrankAxis`),
+        or None (:attr:`crank_angles` false or no cam)."""
+        if not self.crank_angles or self.cam is None:
+            return None
+        return crank_axis(self.cam, self.timing)
+
+    @property
+    def strokes(self) -> int:
+        """Strokes of the engine's cycle (the ``[timing]`` table's; a four-stroke by default) [-]."""
+        return self.timing.strokes if self.timing is not None else 4
+
+    def cam_rpm(self, engine_rpm):
+        """The cam speed [rev/min] of an engine speed [rev/min] (:attr:`strokes`).
+
+        Parameters
+        ----------
+        engine_rpm : float or array_like
+            Engine speed [rev/min].
+        """
+        return cam_rpm_from_engine_rpm(engine_rpm, self.strokes)
 
     def _need_cam(self, what: str) -> Cam:
         if self.cam is None:
             raise InputError(f"{what} needs a cam: ValveModel(spring, cam=Cam(...))")
         return self.cam
 
+    def _need_train(self, what: str) -> ValveTrain:
+        if self.valve_train is None:
+            raise InputError(f"{what} needs a valve train: ValveModel(spring, cam, valve_train=ValveTrain(...))")
+        return self.valve_train
+
+    def _with_axis(self, result):
+        if self.crank_axis is not None:
+            result.set_crank_axis(self.crank_axis)
+        return result
+
     # ------------------------------------------------------------------ the spring alone
     def internal_parameters(self) -> dict:
         """The model's internal parameters (K, K1, Kh1, m1, f1, Fset, ... [SI])."""
         return self.chain_model.internal_parameters()
+
+    def parameter_table(self):
+        """The internal parameters with their units and meaning, the coils and the drawing's load
+        points (:class:`~springdyn.valve.spring.results.SpringParameters`)."""
+        from .spring.results import SpringParameters
+
+        return SpringParameters.of(self.spring)
 
     def static_force(self, length):
         """Static force [N] at the spring length(s) [m].
@@ -99,7 +336,7 @@ class ValveModel:
         return self.chain_model.static_force(length)
 
     def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
-        """The static force and stiffness against length (:class:`~springdyn.valve.run.results.StaticCurve`).
+        """The static force and stiffness against length (:class:`~springdyn.valve.spring.results.StaticCurve`).
 
         Parameters
         ----------
@@ -122,8 +359,25 @@ class ValveModel:
         """
         return self.chain_model.modes(length, count)
 
-    def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:
-        """Spring index, corrected stresses, surge margin (:meth:`~springdyn.valve.spring.chains.SpringModel.design_figures`).
+    def chain_modes(self, length: float, count: int = 5):
+        """The chain's natural frequencies at a length with what moves in each
+        (:class:`~springdyn.valve.spring.results.ChainModes`).
+
+        Parameters
+        ----------
+        length : float
+            Spring length [m].
+        count : int
+            Frequencies [-].
+        """
+        from .spring.results import ChainModes
+
+        return ChainModes.of(self.spring, length, count)
+
+    def design_figures(self, lift: float | None = None, cam_rpm: float | None = None):
+        """Spring index, corrected stresses, surge margin, coil bind, static fatigue
+        (:class:`~springdyn.valve.spring.results.DesignFigures`; its ``figures`` dict is
+        :meth:`~springdyn.valve.spring.chains.SpringModel.design_figures`).
 
         Parameters
         ----------
@@ -132,9 +386,11 @@ class ValveModel:
         cam_rpm : float, optional
             Cam speed [rev/min] for the surge margin.
         """
+        from .spring.results import DesignFigures
+
         if lift is None and self.cam is not None:
             lift = self.cam.lift
-        return self.chain_model.design_figures(lift, cam_rpm)
+        return DesignFigures(self.spring, self.chain_model.design_figures(lift, cam_rpm))
 
     def dynamic_stiffness(self, frequency, length: float | None = None):
         """The linearised dynamic stiffness of the spring (:class:`~springdyn.valve.spring.frf.FrequencyResponse`).
@@ -149,6 +405,85 @@ class ValveModel:
         from .spring.frf import dynamic_stiffness
 
         return dynamic_stiffness(self.spring, frequency, length)
+
+    def calibrate(self, fit: str = "shear_modulus") -> dict:
+        """The shear modulus or the active coils fitted to the drawing's load points
+        (:func:`springdyn.valve.design.calibrate.calibrate`).
+
+        Parameters
+        ----------
+        fit : {"shear_modulus", "active_coils"}
+            What to fit.
+        """
+        from .design.calibrate import calibrate  # (here: the design wing loads the run wing, numba)
+
+        return calibrate(self.spring, fit)
+
+    def calibrate_trace(self, cam_rpm: float, cam_angle, retainer_force, fit=("damping_ratio", "contact_stiffness")):
+        """The damping and the coils' contact stiffness fitted to a measured retainer-force trace
+        (:func:`springdyn.valve.design.calibrate.calibrate_trace`).
+
+        Parameters
+        ----------
+        cam_rpm : float
+            Cam speed of the measurement [rev/min].
+        cam_angle : array_like
+            Cam angles of the trace [rad].
+        retainer_force : array_like
+            Measured retainer force [N].
+        fit : sequence of str
+            What to fit, of ``damping_ratio`` and ``contact_stiffness``.
+        """
+        from .design.calibrate import calibrate_trace
+
+        return calibrate_trace(self.spring, self._need_cam("calibrate_trace"), cam_rpm, cam_angle, retainer_force, fit)
+
+    # ------------------------------------------------------------------ the cam
+    def cam_analysis(self, engine_rpm: float | None = None):
+        """The cam checked first: lift and its derivatives, timing at the check heights
+        (:class:`~springdyn.valve.cam.analysis.CamAnalysis`; at the valve with a train).
+
+        Parameters
+        ----------
+        engine_rpm : float, optional
+            Engine speed [rev/min]: crank angles and the derivatives in time.
+        """
+        from .cam.analysis import analyse_cam
+
+        return analyse_cam(self._need_cam("cam_analysis"), self.valve_train, engine_rpm, timing=self.timing)
+
+    def cam_check(self, cam_rpm: float | None = None):
+        """Curvature, undercut, excursion, pressure angle and Hertz stress along the cam, with
+        the spring's load at ``cam_rpm`` (:class:`~springdyn.valve.cam.checks.CamCheck`).
+
+        Parameters
+        ----------
+        cam_rpm : float, optional
+            Cam speed of the load [rev/min] (None: the geometric checks only).
+        """
+        from .cam.checks import check_cam
+
+        if self.follower is None:
+            raise InputError("the cam checks need the follower: a [follower] table beside [valve_train]")
+        return check_cam(
+            self._need_cam("cam_check"),
+            self._need_train("cam_check"),
+            self.follower,
+            spring=self.spring,
+            cam_rpm=cam_rpm,
+        )
+
+    def lever_kinematics(self):
+        """The drawn lever over the cam: its ratio, arms and mass over the lift
+        (:class:`~springdyn.valve.train.lever.LeverTable`)."""
+        vt = self._need_train("lever_kinematics")
+        if vt.geometry is None:
+            raise InputError(
+                "the lever's kinematics need its drawing: a [geometry] table beside [valve_train] and [follower]; "
+                f"without it the ratio is the constant {vt.ratio:g}"
+            )
+        lash = 0.0 if vt.hydraulic else vt.lash
+        return vt.geometry.over_cam(self._need_cam("lever_kinematics"), lash=lash, inertia=vt.lever_inertia)
 
     # ------------------------------------------------------------------ under the cam
     def natural_frequencies(self, count: int = 8):
@@ -168,7 +503,39 @@ class ValveModel:
             out["base_circle_Hz"], out["full_lift_Hz"], out["full_lift_cam_angle_deg"], out["notes"]
         )
 
-    def simulate(self, cam_rpm: float, revolutions: int | None = None, **options):
+    def separated_frequencies(self, count: int = 8, valve_lift: float | None = None) -> dict:
+        """Natural frequencies of the separated train, its first the jump frequency
+        (:func:`springdyn.valve.run.train_modes.separated_frequencies`).
+
+        Parameters
+        ----------
+        count : int
+            Frequencies [-].
+        valve_lift : float, optional
+            Valve lift of the held state [m] (default: full lift).
+        """
+        from .run.train_modes import separated_frequencies
+
+        return separated_frequencies(
+            self.spring, self._need_cam("separated_frequencies"), self.valve_train, count, valve_lift
+        )
+
+    def resonance_speeds(self, cam_rpm_min: float, cam_rpm_max: float, count: int = 6):
+        """The named study "resonances in a range": the modes under the cam and the cam speeds
+        where a cam order meets one (:class:`~springdyn.valve.run.results.NaturalFrequencies`
+        with its ``resonances`` over the range).
+
+        Parameters
+        ----------
+        cam_rpm_min, cam_rpm_max : float
+            The speed range [rev/min].
+        count : int
+            Frequencies per state [-].
+        """
+        nat = self.natural_frequencies(count)
+        return nat.with_resonances(cam_rpm_min, cam_rpm_max)
+
+    def simulate(self, cam_rpm: float, revolutions: int | None = None, **changes):
         """The dynamic response at one cam speed (:class:`~springdyn.valve.run.results.Simulation`).
 
         Parameters
@@ -176,46 +543,223 @@ class ValveModel:
         cam_rpm : float
             Cam speed [rev/min].
         revolutions : int, optional
-            Revolutions from rest; the last is reported [-].  Default: to the periodic
-            steady state.
-        **options
-            Further options of :func:`springdyn.valve.run.simulation.simulate` (periodicity
-            tolerance, tolerances, outputs per revolution, backend, pair).
+            Revolutions from rest; the last is reported [-].  Default: this model's settings
+            (to the periodic steady state).
+        **changes
+            Fields of :class:`RunSettings` to change for this run.
         """
         from .run.simulation import simulate
 
-        self._need_cam("simulate")
-        return simulate(
-            self.spring, self.cam, cam_rpm, revolutions, valve_train=self.valve_train, setup=self.setup, **options
+        if revolutions is not None:
+            changes["revolutions"] = revolutions
+        return self._with_axis(
+            simulate(
+                self.spring,
+                self._need_cam("simulate"),
+                cam_rpm,
+                valve_train=self.valve_train,
+                settings=RunSettings.of(self.settings, **changes),
+                setup=self.setup,
+            )
         )
 
-    def sweep(self, cam_rpm, **options):
-        """Every cam speed of ``cam_rpm`` (:class:`~springdyn.valve.run.sweeps.SpeedSweep`).
+    def sweep(self, cam_rpm, *, vary=None, on_invalid: str = "stop", workers=None, client=None, quiet=True, **changes):
+        """Every cam speed of ``cam_rpm`` (and every design value of ``vary``)
+        (:class:`~springdyn.valve.run.sweeps.SpeedSweep`).
 
         Parameters
         ----------
         cam_rpm : array_like
             Cam speeds [rev/min].
-        **options
-            Further options of :func:`springdyn.valve.run.sweeps.sweep` (revolutions, a design
-            variable, workers, a Dask client).
+        vary : (str, array_like), optional
+            A numeric spring field and its values [SI].
+        on_invalid : {"stop", "skip"}
+            A design value that makes the spring invalid.
+        workers : int, optional
+            Local threads [-].
+        client : dask.distributed.Client, optional
+            Run on this cluster.
+        quiet : bool
+            No progress bar.
+        **changes
+            Fields of :class:`RunSettings` to change for this sweep.
         """
         from .run.sweeps import sweep
 
-        return sweep(self.spring, self._need_cam("sweep"), cam_rpm, valve_train=self.valve_train, **options)
+        return self._with_axis(
+            sweep(
+                self.spring,
+                self._need_cam("sweep"),
+                cam_rpm,
+                valve_train=self.valve_train,
+                settings=RunSettings.of(self.settings, **changes),
+                vary=vary,
+                on_invalid=on_invalid,
+                workers=workers,
+                client=client,
+                quiet=quiet,
+                gas_force=self.gas_force,
+            )
+        )
 
-    def float_speed(self, cam_rpm, **options):
+    def float_speed(self, cam_rpm, *, resolution: float = 1.0, quiet: bool = True, workers=None, **changes):
         """The float speed of the valve train (:class:`~springdyn.valve.run.results.FloatSpeedResult`).
 
         Parameters
         ----------
         cam_rpm : array_like
             Cam speeds to scan [rev/min].
-        **options
-            Further options of :func:`springdyn.valve.run.float_search.float_speed`.
+        resolution : float
+            Width of the final bracket [rev/min].
+        quiet : bool
+            No progress bar.
+        workers : int, optional
+            Local threads of the scan [-].
+        **changes
+            Fields of :class:`RunSettings` to change for this search.
         """
         from .run.float_search import float_speed
 
-        if self.valve_train is None:
-            raise InputError("float_speed needs a valve train: ValveModel(spring, cam, valve_train=ValveTrain(...))")
-        return float_speed(self.spring, self._need_cam("float_speed"), self.valve_train, cam_rpm, **options)
+        return float_speed(
+            self.spring,
+            self._need_cam("float_speed"),
+            self._need_train("float_speed"),
+            cam_rpm,
+            settings=RunSettings.of(self.settings, **changes),
+            resolution=resolution,
+            progress_quiet=quiet,
+            workers=workers,
+        )
+
+    def float_speed_above(self, rated_cam_rpm: float, margin: float = 0.0, *, resolution: float = 1.0):
+        """The named study "float speed against a rated speed": the float speed searched over
+        :data:`FLOAT_SCAN` of the rated speed up to past the float speed asked for, ``(1 +
+        margin)`` times the rated speed (:meth:`float_speed`).
+
+        Parameters
+        ----------
+        rated_cam_rpm : float
+            The highest cam speed in service [rev/min].
+        margin : float
+            How far above it the float speed is asked for [fraction].
+        resolution : float
+            Width of the final bracket [rev/min].
+        """
+        lo, hi, n = FLOAT_SCAN
+        need = rated_cam_rpm * (1.0 + margin)
+        return self.float_speed(np.linspace(lo * rated_cam_rpm, hi * need, n), resolution=resolution)
+
+    def speed_ramp(self, start_rpm: float, end_rpm: float, rate_rpm_per_s: float, *, float_scan: bool = True):
+        """The valve train through a cam-speed ramp (:class:`~springdyn.valve.run.run_up.RunUp`).
+
+        Parameters
+        ----------
+        start_rpm, end_rpm : float
+            Cam speeds at the ramp's start and end [rev/min].
+        rate_rpm_per_s : float
+            Rate of the cam speed [rev/min per s].
+        float_scan : bool
+            Also find the steady-state float speed of the range.
+        """
+        from .run.run_up import speed_ramp
+
+        return speed_ramp(
+            self.spring,
+            self._need_cam("speed_ramp"),
+            self.valve_train,
+            start_rpm,
+            end_rpm,
+            rate_rpm_per_s,
+            settings=self.settings,
+            float_scan=float_scan,
+        )
+
+    def run_up_through_float(self, float_cam_rpm: float, rate_rpm_per_s: float):
+        """The named study "run-up through the float speed": a ramp over :data:`RUN_UP_WINDOW` of
+        the float speed ``f`` at the given rate (:meth:`speed_ramp`, no float scan: ``f`` is known).
+
+        Parameters
+        ----------
+        float_cam_rpm : float
+            The steady-state float speed [rev/min].
+        rate_rpm_per_s : float
+            Rate of the cam speed [rev/min per s].
+        """
+        a, b = RUN_UP_WINDOW
+        return self.speed_ramp(a * float_cam_rpm, b * float_cam_rpm, rate_rpm_per_s, float_scan=False)
+
+    def friction(self, cam_rpm: float):
+        """The train's friction over a simulated revolution at ``cam_rpm``
+        (:class:`~springdyn.valve.train.friction.FrictionAnalysis`; needs the follower).
+
+        Parameters
+        ----------
+        cam_rpm : float
+            Cam speed [rev/min].
+        """
+        from .run.friction import simulation_friction
+
+        if self.follower is None:
+            raise InputError(
+                "friction at the cam needs the follower: a [follower] table beside [valve_train] (see "
+                "examples/valve/valve_train_with_follower.toml)"
+            )
+        self._need_train("friction")
+        return simulation_friction(self.simulate(float(cam_rpm)), self.follower, self.friction_table)
+
+    def friction_over_speed(self, cam_rpm, *, quiet: bool = True):
+        """The named study "friction over a speed range": each speed simulated to its periodic
+        state and its friction (:class:`~springdyn.valve.run.friction.FrictionSweep`).
+
+        Parameters
+        ----------
+        cam_rpm : array_like
+            Cam speeds [rev/min]; two values are a range's ends, filled to
+            :data:`FRICTION_SPEEDS` speeds.
+        quiet : bool
+            No progress bar.
+        """
+        from ..core.progress import progress
+        from .run.friction import friction_over_speed
+
+        speeds = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+        return friction_over_speed([self.friction(float(r)) for r in progress(speeds, desc="friction", quiet=quiet)])
+
+    def tolerance_study(self, tolerances: dict, criteria=None, **options):
+        """The spring across its manufacturing tolerances
+        (:class:`~springdyn.valve.design.tolerances.ToleranceStudy`).
+
+        Parameters
+        ----------
+        tolerances : dict
+            name -> (Tolerance, relative) (:func:`springdyn.valve.design.tolerances.read_tolerances`).
+        criteria : Criteria, optional
+            The limits each variant is judged against.
+        **options
+            Further options of :func:`springdyn.valve.design.tolerances.tolerance_study` (count,
+            seed, speeds, method, out_dir, client, progress, float_only, resolution, workers).
+        """
+        from .design.tolerances import tolerance_study
+
+        return tolerance_study(
+            self.spring,
+            self._need_cam("tolerance_study"),
+            tolerances,
+            criteria,
+            valve_train=self.valve_train,
+            **options,
+        )
+
+    def service_life(self, spectrum, float_speeds=None):
+        """Relaxation and load-spectrum life (:class:`~springdyn.valve.design.life.ServiceLife`).
+
+        Parameters
+        ----------
+        spectrum : LoadSpectrum
+            The ``[spectrum]`` table.
+        float_speeds : array_like, optional
+            Cam speeds of the float-speed scans [rev/min].
+        """
+        from .design.life import service_life
+
+        return service_life(self.spring, self._need_cam("service_life"), spectrum, self.valve_train, float_speeds)

@@ -13,6 +13,7 @@ import numpy as np
 
 from springdyn.core.errors import InputError
 from springdyn.core.io import to_jsonable
+from springdyn.core.results import notes_lines, text_table
 from springdyn.core.units import to_si
 
 __all__ = [
@@ -108,19 +109,13 @@ def print_json(data) -> None:
 
 
 def print_table(rows, headers=("quantity", "value", "unit")) -> None:
-    """Print rows of strings as an aligned plain-text table."""
-    rows = [tuple(str(c) for c in r) for r in rows]
-    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h) for i, h in enumerate(headers)]
-    line = "  ".join(h.ljust(w) for h, w in zip(headers, widths))
-    print(line)
-    print("  ".join("-" * w for w in widths))
-    for r in rows:
-        print("  ".join(c.ljust(w) for c, w in zip(r, widths)))
+    """Print rows of strings as an aligned plain-text table (:func:`springdyn.core.results.text_table`)."""
+    print(text_table(rows, headers))
 
 
 def print_notes(summary, skip=()) -> None:
-    """Every caveat of a result's summary (its ``notes``) in words, one ``note:`` line each:
-    the text output carries what the JSON carries.
+    """Every caveat of a result's summary (its ``notes``) in words, one ``note:`` line each
+    (:func:`springdyn.core.results.notes_lines`).
 
     Parameters
     ----------
@@ -129,9 +124,8 @@ def print_notes(summary, skip=()) -> None:
     skip : tuple of str
         Notes already printed in another form (by their first words).
     """
-    for note in summary.get("notes") or []:
-        if not any(note.startswith(prefix) for prefix in skip):
-            print("note: " + note)
+    for line in notes_lines(summary, skip):
+        print(line)
 
 
 def add_output_options(p: argparse.ArgumentParser, *, csv=True, plot=True, json=True) -> None:

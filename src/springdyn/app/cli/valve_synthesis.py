@@ -4,14 +4,9 @@ proven across tolerances, relaxed and loaded by a spectrum (thin layer over
 
 from __future__ import annotations
 
-from springdyn.app.cli.common import (
-    add_output_options,
-    announce_written,
-    close_figure,
-    print_json,
-    print_notes,
-    print_table,
-)
+import springdyn.valve as valve
+import springdyn.valve.design as design
+from springdyn.app.cli.common import add_output_options, announce_written, close_figure, print_json
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "register_tolerance", "register_life", "cmd_synthesize", "cmd_tolerance", "cmd_life"]
@@ -36,17 +31,16 @@ def register(vsub) -> None:
 def cmd_synthesize(args) -> int:
     """``springdyn valve synthesize``: search, check, rank, write."""
     from springdyn.core.progress import progress
-    from springdyn.valve.design.synthesis import read_requirements, synthesize, write_candidates
 
     if not 1 <= args.per_kind <= 20:
         raise InputError(f"--per-kind = {args.per_kind} must be from 1 to 20")
-    req, base = read_requirements(args.requirements)
+    req, base = design.read_requirements(args.requirements)
 
     def bar(items, desc):
         return progress(items, desc=desc, quiet=args.quiet)
 
-    res = synthesize(req, per_kind=args.per_kind, base_dir=base, progress=bar)
-    written = write_candidates(res, args.out_dir, str(args.requirements))
+    res = design.synthesize(req, per_kind=args.per_kind, base_dir=base, progress=bar)
+    written = design.write_candidates(res, args.out_dir, str(args.requirements))
     written.append(res.to_csv(args.csv if args.csv else f"{args.out_dir}/candidates.csv"))
     if args.plot:
         close_figure(res.plot(args.plot))
@@ -54,50 +48,8 @@ def cmd_synthesize(args) -> int:
     announce_written(written, args)
     if args.json:
         print_json(dict(res.summary, candidates_table=res.rows, written=[str(p) for p in written]))
-        return 0
-    print(
-        f"{len(res.rows)} candidates of {res.searched} searched for {args.requirements}: "
-        f"{req.installed_force:g} N at {req.installed_length * 1e3:g} mm, {req.open_force:g} N at "
-        f"{req.open_length * 1e3:g} mm (lift {req.lift * 1e3:g} mm), material {req.material}"
-    )
-    names = [k for k in res.rows[0] if k.startswith("margin_")]
-    rows = []
-    for r in res.rows:
-        rows.append(
-            (
-                r["rank"],
-                r["kind"] + ("" if r["low_pitch_coils"] == 0 else f" ({r['low_pitch_coils']:g} low)"),
-                f"{r['wire_diameter_m'] * 1e3:.2f}",
-                f"{r['mean_diameter_m'] * 1e3:.2f}",
-                f"{r['high_pitch_coils']:.2f}",
-                f"{r['free_length_m'] * 1e3:.2f}",
-                f"{r['mass_kg'] * 1e3:.1f}",
-                f"{r['surge_frequency_Hz']:.0f}",
-                f"{r['goodman_safety']:.2f}",
-                "-" if r.get("float_cam_rpm", "-") in ("-", None) else f"{r['float_cam_rpm']:.0f}",
-                f"{r['smallest_margin']:+.1%} ({min(names, key=lambda k: r[k])[len('margin_') :]})",
-                "yes" if r["meets_all"] else "NO",
-            )
-        )
-    print_table(
-        rows,
-        headers=(
-            "rank",
-            "kind",
-            "wire [mm]",
-            "mean D [mm]",
-            "N2",
-            "free L [mm]",
-            "mass [g]",
-            "f1 [Hz]",
-            "Goodman",
-            "float [rpm]",
-            "smallest margin",
-            "meets all",
-        ),
-    )
-    print(f"the candidates' spring files and candidates.csv are in {args.out_dir}")
-    print_notes(res.summary)
+    else:
+        print(res.describe(str(args.requirements), str(args.out_dir)))
     return 0
 
 
@@ -146,11 +98,8 @@ def cmd_tolerance(args) -> int:
     from pathlib import Path
 
     from springdyn.app.cli.common import as_options, quantity
+    from springdyn.app.cli.valve import model_of
     from springdyn.core.progress import progress
-    from springdyn.valve.cam.definition import Cam
-    from springdyn.valve.design.tolerances import FIGURES, OUTPUTS, read_tolerances, tolerance_study
-    from springdyn.valve.spring.definition import ValveSpring
-    from springdyn.valve.train.definition import ValveTrain
 
     count = quantity(args.samples, "", "--samples")
     if count != int(count) or not 1 <= count <= 10_000_000:
@@ -158,14 +107,12 @@ def cmd_tolerance(args) -> int:
     seed = quantity(args.seed, "", "--seed")
     if seed != int(seed) or seed < 0:
         raise InputError(f"--seed = {args.seed!r} must be a whole number, 0 or more")
-    spring = ValveSpring.from_toml(args.spring).with_model(args.model)
-    cam = Cam.from_toml(args.cam)
-    vt = ValveTrain.from_toml(args.valve_train) if args.valve_train else None
-    tols, criteria = read_tolerances(args.tolerances)
-    if "lash" in tols and vt is None:
+    model = model_of(args)
+    tols, criteria = design.read_tolerances(args.tolerances)
+    if "lash" in tols and model.valve_train is None:
         raise InputError("[tolerances] lash is the valve train's: give --valve-train")
-    speeds = args.cam_speeds(args, ranged=True)
-    if args.float_only and vt is None:
+    speeds = args.cam_speeds(args, ranged=True, model=model)
+    if args.float_only and model.valve_train is None:
         raise InputError("--float-only needs --valve-train: the spring alone does not float")
     resolution = quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm")
     if not resolution > 0:
@@ -176,25 +123,18 @@ def cmd_tolerance(args) -> int:
         if workers != int(workers) or workers < 1:
             raise InputError(f"--workers = {args.workers!r} must be a whole number of at least 1")
         workers = int(workers)
-    client = None
-    if args.scheduler:
-        from springdyn.valve.run.sweeps import connect
-
-        with as_options(scheduler="--scheduler"):
-            client = connect(args.scheduler)
+    with as_options(scheduler="--scheduler"):
+        client = valve.connect(args.scheduler) if args.scheduler else None
 
     def bar(items, total=None, desc=""):
         return progress(items, total=total, desc=desc, quiet=args.quiet)
 
-    res = tolerance_study(
-        spring,
-        cam,
+    res = model.tolerance_study(
         tols,
         criteria,
         count=int(count),
         seed=int(seed),
         speeds=speeds,
-        valve_train=vt,
         method=args.method,
         out_dir=args.out_dir,
         client=client,
@@ -203,37 +143,15 @@ def cmd_tolerance(args) -> int:
         resolution=resolution,
         workers=workers,
     )
-    written = [Path(args.out_dir) / "variants.nc"]
-    plot = args.plot or str(Path(args.out_dir) / "histograms.png")
-    close_figure(res.plot(plot))
-    written.append(plot)
+    written = [Path(args.out_dir) / "variants.nc", args.plot or str(Path(args.out_dir) / "histograms.png")]
+    close_figure(res.plot(written[-1]))
     if args.csv:
         written.append(res.to_csv(args.csv))
     announce_written(written, args)
-    s = res.summary
     if args.json:
-        print_json(dict(s, written=[str(p) for p in written]))
-        return 0
-    print(
-        f"{s['variants']} variants ({s['method']}, seed {s['seed']}"
-        + (f", {s['resumed_variants']} read back from {args.out_dir}/chunks" if s["resumed_variants"] else "")
-        + f") of {args.spring} over {speeds[0]:g}-{speeds[-1]:g} cam rpm"
-        + (": float speeds only" if args.float_only else "")
-    )
-    rows = []
-    for k in FIGURES:
-        if f"{k}_p50" not in s:
-            continue
-        qs = ("0.135", "2.5", "50", "97.5", "99.865")
-        rows.append((k, OUTPUTS[k], f"{s[f'nominal_{k}']:.4g}", *(f"{s[f'{k}_p{q}']:.4g}" for q in qs)))
-    print_table(rows, headers=("output", "unit", "nominal", "0.135 %", "2.5 %", "50 %", "97.5 %", "99.865 %"))
-    fails = [(k[len("fail_share_") :], f"{v:.1%}") for k, v in s.items() if k.startswith("fail_share_")]
-    print_table(fails, headers=("criterion", "variants failing"))
-    print(
-        f"periodic steady state: the last two revolutions of every speed run agree within "
-        f"{100 * s['max_periodicity']:.3g} % of Fset (largest residual over the variants)"
-    )
-    print_notes(s)
+        print_json(dict(res.summary, written=[str(p) for p in written]))
+    else:
+        print(res.describe(str(args.spring), f"{args.out_dir}/chunks"))
     return 0
 
 
@@ -258,41 +176,12 @@ def register_life(vsub, add_model_option) -> None:
 def cmd_life(args) -> int:
     """``springdyn valve life``: relaxation and spectrum life."""
     from springdyn.app.cli.common import emit
+    from springdyn.app.cli.valve import model_of
     from springdyn.core.params import load_toml
-    from springdyn.valve.cam.definition import Cam
-    from springdyn.valve.design.life import LoadSpectrum, service_life
-    from springdyn.valve.spring.definition import ValveSpring
-    from springdyn.valve.train.definition import ValveTrain
 
-    spring = ValveSpring.from_toml(args.spring).with_model(args.model)
-    cam = Cam.from_toml(args.cam)
-    vt = ValveTrain.from_toml(args.valve_train) if args.valve_train else None
-    spec = LoadSpectrum.from_dict(load_toml(args.spectrum, "spectrum"), source=str(args.spectrum))
-    res = service_life(spring, cam, spec, vt)
-    if emit(res, args, json_data=dict(res.summary)):
-        return 0
-    s = res.summary
-    print(
-        f"{args.spring} ({s['material']}): after {s['relaxation_hours']:g} h at {s['temperature_degC']:g} degC the "
-        f"installed force relaxes by {s['relaxation_loss']:.2%}, {s['installed_force_N']:.1f} N to "
-        f"{s['relaxed_installed_force_N']:.1f} N"
-    )
-    if "float_cam_rpm_new" in s:
-        new, old = s["float_cam_rpm_new"], s["float_cam_rpm_relaxed"]
-        fmt = lambda v: "above the scan" if v is None else f"{v:.0f} cam rpm"  # noqa: E731
-        print(f"float speed: new {fmt(new)}, relaxed {fmt(old)}")
-    cols = res.columns()
-    print_table(
-        [
-            (f"{r:.0f}", f"{p:.3g}", f"{g:.3f}", f"{d:.1%}")
-            for r, p, g, d in zip(cols["cam_rpm"], cols["share"], cols["goodman_safety"], cols["damage_share"])
-        ],
-        headers=("cam rpm", "time share", "Goodman (dynamic)", "share of the damage"),
-    )
-    print(
-        "life: infinite (every speed at or below the endurance strength)"
-        if s["infinite_life"]
-        else f"life: {s['life_hours']:.4g} h (Miner, damage {s['damage_per_hour']:.3g} per hour)"
-    )
-    print_notes(s)
+    model = model_of(args)
+    spec = design.LoadSpectrum.from_dict(load_toml(args.spectrum, "spectrum"), source=str(args.spectrum))
+    res = model.service_life(spec)
+    if not emit(res, args, json_data=dict(res.summary)):
+        print(res.describe(str(args.spring)))
     return 0

@@ -22,8 +22,15 @@ from ..._lazy import lazy_package
 _EXPORTS = {
     "Cam": "definition",
     "Timing": "timing",
+    "crank_axis": "timing",
     "Follower": "follower",
+    "analyse_cam": "analysis",
+    "check_cam": "checks",
     "CamCard": "from_lift",
+    "cam_from_valve_lift": "from_lift",
+    "cam_from_card": "from_lift",
+    "read_valve_lift_table": "from_lift",
+    "write_cam": "from_lift",
 }
 __all__ = sorted(_EXPORTS)
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 
 __all__ = ["CHECK_HEIGHTS", "cam_derivatives", "check_height_timing", "analyse_cam", "CamAnalysis"]
 
@@ -151,7 +151,14 @@ def analyse_cam(
     d = cam_derivatives(cam, samples, ratio, lash)
     axis = crank_axis(cam, timing) if (timing is not None or engine_rpm is not None) else None
     return CamAnalysis(
-        cam=cam, at_valve=valve_train is not None, ratio=ratio, lash=lash, engine_rpm=engine_rpm, axis=axis, **d
+        cam=cam,
+        at_valve=valve_train is not None,
+        ratio=ratio,
+        lash=lash,
+        engine_rpm=engine_rpm,
+        axis=axis,
+        **d,
+        valve=None if timing is None else timing.valve,
     )
 
 
@@ -171,12 +178,85 @@ class CamAnalysis(Result):
     velocity: np.ndarray  # [m/rad]
     acceleration: np.ndarray  # [m/rad^2]
     jerk: np.ndarray  # [m/rad^3]
+    #: The valve of the ``[timing]`` table ("intake" or "exhaust"), None without one.
+    valve: str | None = None
 
     title = "cam analysis"
     cheap_plot = True
 
     def _repr_caption(self) -> str:
         return f"{self.cam.law} cam, {self.lift.max() * 1e3:.3g} mm {'at the valve' if self.at_valve else 'lobe lift'}"
+
+    def describe(self) -> str:
+        """The cam in words and tables (what ``springdyn valve cam`` prints): the lift, the event
+        and the timing at the check heights (in crank angles with an engine speed or a
+        ``[timing]`` table), the lobe centre, the derivatives and the ramps."""
+        s = self.summary
+        crank = self.axis is not None
+        ang = self.axis.unit if crank else "cam deg"
+
+        def a(key):  # an angle in the axis asked for
+            v = s.get(key.replace("_deg", "_crank_deg") if crank else key)
+            return "-" if v is None else f"{v:.2f}"
+
+        out = [
+            f"{self.cam.law} cam at the {'valve' if self.at_valve else 'lobe'}: max lift {s['max_lift_m'] * 1e3:.3f} mm "
+            f"at {s['max_lift_cam_angle_deg']:.2f} cam deg"
+            + (f" (rocker ratio {s['rocker_ratio']:g}, lash {s['lash_m'] * 1e3:.3g} mm)" if self.at_valve else "")
+        ]
+        rows = [
+            (
+                "event (lift > 0)",
+                a("event_opening_deg"),
+                a("event_closing_deg"),
+                f"{s.get('event_duration_deg', 0):.2f}",
+            )
+        ]
+        for key, label in (("0050in", "0.050 in"), ("1mm", "1 mm")):
+            if s.get(f"duration_at_{key}_deg") is not None:
+                rows.append(
+                    (
+                        f"at {label}",
+                        a(f"opening_at_{key}_deg"),
+                        a(f"closing_at_{key}_deg"),
+                        f"{s[f'duration_at_{key}_deg']:.2f}",
+                    )
+                )
+            else:
+                rows.append((f"at {label}", "-", "-", "lift below the check height"))
+        out.append(text_table(rows, headers=("timing", f"opens [{ang}]", f"closes [{ang}]", "duration [cam deg]")))
+        out.append(f"lobe centre (mid-way between the 1 mm points): {a('lobe_centre_deg')} {ang}")
+        if "timing" in s:
+            t = s["timing"]
+            out.append(
+                f"{self.valve or 'intake'} valve timing ([timing] lobe centre {t['max_lift']} at the maximum lift): "
+                + "; ".join(
+                    f"at {label} opens {t[f'opening_at_{key}']}, closes {t[f'closing_at_{key}']}"
+                    for key, label in (("0050in", "0.050 in"), ("1mm", "1 mm"))
+                    if f"opening_at_{key}" in t
+                )
+            )
+        elif crank:
+            out.append(
+                "crank angles count from the start of the cam's event: give a [timing] table to count them from TDC"
+            )
+        out.append(
+            f"velocity {s['min_velocity_m_per_rad'] * 1e3:.3f} to {s['max_velocity_m_per_rad'] * 1e3:.3f} mm/rad, "
+            f"acceleration {s['min_acceleration_m_per_rad2'] * 1e3:.3f} to "
+            f"{s['max_acceleration_m_per_rad2'] * 1e3:.3f} mm/rad^2, jerk up to "
+            f"{s['max_abs_jerk_m_per_rad3'] * 1e3:.2f} mm/rad^3"
+        )
+        if self.engine_rpm is not None:
+            out.append(
+                f"at {self.engine_rpm:g} engine rpm: velocity up to {s['max_velocity_m_per_s']:.3f} m/s, acceleration "
+                f"{s['min_acceleration_m_per_s2']:.0f} to {s['max_acceleration_m_per_s2']:.0f} m/s^2"
+            )
+        if "ramp_height_m" in s:
+            out.append(
+                f"ramps: {s['ramp_height_m'] * 1e3:.3f} mm over {s['ramp_duration_deg']:.2f} cam deg, "
+                f"{s['ramp_velocity_m_per_rad'] * 1e3:.4f} mm/rad"
+            )
+        return "\n".join(out + notes_lines(s))
 
     @property
     def cam_omega(self) -> float | None:

@@ -51,7 +51,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.results import Result
+from ...core.results import Result, notes_lines
 
 __all__ = [
     "flat_follower_radius",
@@ -543,6 +543,83 @@ class CamCheck(Result):
 
     def _at(self, i) -> float:
         return math.degrees(float(self.cam_angle[i]))
+
+    def checks_text(self) -> str:
+        """The geometric checks in words: curvature and undercut (or cusp), the flat face's
+        excursion or the roller's pitch curve and pressure angle."""
+        s = self.summary
+        kind = s["follower"]
+
+        def mm(value):
+            return "-" if value is None else f"{value * 1e3:.3f}"
+
+        where = f" at {s['min_radius_of_curvature_cam_angle_deg']:.2f} deg" if s["min_radius_of_curvature_m"] else ""
+        if kind == "flat":
+            verdict = "CUSP: the face cannot follow the lift" if s["concave"] else "ok (convex everywhere)"
+        else:
+            verdict = "UNDERCUT" if s["undercut"] else "ok (no undercut)"
+        out = [
+            f"radius of curvature: min {mm(s['min_radius_of_curvature_m'])} mm{where}, at the nose "
+            f"{mm(s['nose_radius_of_curvature_m'])} mm: {verdict}"
+        ]
+        if kind == "flat":
+            face = (
+                f"; with the {s['edge_margin_m'] * 1e3:g} mm edge margin it needs a face radius of "
+                f"{mm(s['required_face_radius_m'])} mm"
+            )
+            if s.get("face_radius_m") is not None:
+                face += f" of the {mm(s['face_radius_m'])} mm: " + ("ok" if s["excursion_ok"] else "BEYOND THE FACE")
+            out.append(
+                f"contact excursion: up to {mm(s['max_excursion_m'])} mm from the tappet axis at "
+                f"{s['max_excursion_cam_angle_deg']:.2f} deg; the contact line reaches {mm(s['max_face_reach_m'])} mm"
+                + face
+            )
+        else:
+            concave = (
+                f", concave down to {mm(s['min_concave_radius_m'])} mm"
+                if s.get("min_concave_radius_m") is not None
+                else ""
+            )
+            out.append(
+                f"pitch curve: smallest convex radius {mm(s['min_pitch_radius_m'])} mm ({s['roller_radius_m'] * 1e3:g} "
+                f"mm roller){concave}; pressure angle up to {s['max_pressure_angle_deg']:.2f} deg at "
+                f"{s['max_pressure_angle_cam_angle_deg']:.2f} deg"
+            )
+        return "\n".join(out)
+
+    def describe(self) -> str:
+        """The checks in words (what ``springdyn valve cam-check`` prints): the follower, the
+        geometric checks, the load and the Hertz stress, the verdict and the notes."""
+        s = self.summary
+        f = self.follower
+        what = "flat face" if f.kind == "flat" else f"roller of {f.roller_radius * 1e3:g} mm"
+        out = [
+            f"{getattr(self.cam, 'law', 'cam')} lobe, {what}, base circle {f.base_circle_radius * 1e3:g} mm, contact "
+            f"width {f.width * 1e3:g} mm"
+            + (f", crown {f.crown_radius * 1e3:g} mm" if f.crown_radius is not None else ""),
+            self.checks_text(),
+        ]
+        if "max_contact_stress_Pa" in s:
+            out.append(
+                f"load (kinematic: spring + {s['moving_mass_kg'] * 1e3:.1f} g at the valve, ratio "
+                f"{self.valve_train.ratio:g}) at {s['cam_rpm']:g} cam rpm: {s['min_contact_force_N']:.1f} N (at "
+                f"{s['min_contact_force_cam_angle_deg']:.2f} deg, valve open) to {s['max_contact_force_N']:.1f} N (at "
+                f"{s['max_contact_force_cam_angle_deg']:.2f} deg)"
+                + ("" if s["follower_stays_on_cam"] else ": the spring cannot hold the follower on the cam")
+            )
+            allow = (
+                f"; allowable {s['allowable_contact_stress_Pa'] / 1e6:.0f} MPa: "
+                + ("ok" if s["contact_stress_ok"] else "EXCEEDED")
+                if s.get("allowable_contact_stress_Pa") is not None
+                else " (no allowable_contact_stress in [follower]: not checked)"
+            )
+            out.append(
+                f"Hertz stress ({s['contact_at_max_stress']} contact): max {s['max_contact_stress_Pa'] / 1e6:.0f} MPa at "
+                f"{s['max_contact_stress_cam_angle_deg']:.2f} deg, contact half-width "
+                f"{s['contact_half_width_at_max_stress_m'] * 1e3:.3f} mm" + allow
+            )
+        out.append("checks: " + ("all passed" if s["ok"] else "FAILED: " + ", ".join(s["checks_failed"])))
+        return "\n".join(out + notes_lines(s))
 
     def _summary(self) -> dict:
         f = self.follower

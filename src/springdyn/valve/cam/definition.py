@@ -44,37 +44,10 @@ from ...core.io import read_csv_columns
 from ...core.params import Parameters, param
 from ...core.units import format_mm
 
-__all__ = ["cam_rpm_from_engine_rpm", "Cam", "rise_law", "polydyne_coefficients", "LAWS"]
+__all__ = ["Cam", "rise_law", "polydyne_coefficients", "LAWS"]
 
 LAWS = ("cycloidal", "3-4-5", "4-5-6-7", "polydyne", "table")
 TWO_PI = 2.0 * math.pi
-
-
-def cam_rpm_from_engine_rpm(engine_rpm, strokes: int = 4):
-    """Camshaft speed [rev/min] from the engine (crankshaft) speed [rev/min].
-
-    A four-stroke engine turns its camshaft once per two crankshaft revolutions; a
-    two-stroke engine once per revolution.
-
-    Parameters
-    ----------
-    engine_rpm : float or array_like
-        Engine speed [rev/min].
-    strokes : int
-        Strokes per cycle [-]: 4 (default) or 2.
-
-    Examples
-    --------
-    >>> cam_rpm_from_engine_rpm(6000)
-    3000.0
-    """
-    if strokes not in (2, 4):
-        raise InputError(f"strokes = {strokes!r} must be 2 or 4")
-    return (
-        np.asarray(engine_rpm, dtype=float) * (2.0 / strokes)
-        if np.ndim(engine_rpm)
-        else float(engine_rpm) * 2.0 / strokes
-    )
 
 
 def polydyne_coefficients() -> np.ndarray:

@@ -41,7 +41,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 from ...core.units import format_mm
 
 __all__ = [
@@ -745,6 +745,66 @@ class CamFromLift(Result):
 
         gross = kin.solve(theta, CamTable.of(self.cam, _SAMPLES).at)["valve_lift"]
         return np.maximum(gross - self.lash, 0.0)
+
+    def describe(self) -> str:
+        """The lobe in words and tables (what ``springdyn valve cam-from-lift`` prints): the ratio
+        and lash, the lifts, the valve timing or the card's figures, the lash ramps, the timing
+        at the check heights and the notes."""
+        s = self.summary
+        out = [
+            f"{s['law']} lobe from {s['source']}: ratio {s['rocker_ratio']:g}, lash {s['lash_m'] * 1e3:.3g} mm at the "
+            f"valve ({s['lobe_lash_m'] * 1e3:.4g} mm at the lobe)",
+            f"max valve lift {s['max_valve_lift_m'] * 1e3:.4f} mm, max lobe lift {s['max_lobe_lift_m'] * 1e3:.4f} mm "
+            f"at {s['max_lift_cam_angle_deg']:.2f} cam deg",
+        ]
+        if self.cam.law == "table":
+            out.append(
+                f"valve opens at {s['valve_opening_deg']:.3f}, closes at {s['valve_closing_deg']:.3f} cam deg; "
+                f"round trip (the lobe's valve lift against the table, every row): {s['round_trip_error_m']:.3g} m"
+            )
+            if "opening_ramp_deg" in s:
+                out.append(
+                    text_table(
+                        [
+                            (side, f"{s[f'{side}_ramp_deg']:.3f}", f"{s[f'{side}_lash_velocity_m_per_rad'] * 1e3:.4f}")
+                            for side in ("opening", "closing")
+                        ],
+                        headers=("lash ramp (from rest)", "cam angle [deg]", "lobe velocity at the lash [mm/rad]"),
+                    )
+                )
+                out.append(
+                    f"the opening ramp starts at {s['opening_ramp_start_deg']:.3f} deg, the closing ramp ends at "
+                    f"{s['closing_ramp_end_deg']:.3f} deg"
+                )
+        else:
+            unit = s["card_duration_angle"]
+            out.append(
+                f"main duration {s['main_duration_deg']:.6f} cam deg; ramps {s['ramp_height_m'] * 1e3:.4g} mm over "
+                f"{s['ramp_duration_deg']:.4f} deg ({s['ramp_velocity_m_per_rad'] * 1e3:.4f} mm/rad)"
+                + (f", height {s['ramp_height_default']}" if "ramp_height_default" in s else "")
+            )
+            out.append(
+                f"card: {s['card_lift_m'] * 1e3:g} mm lift ({s['card_lift_at']}), {s['card_duration_deg']:g} {unit} deg "
+                f"at {s['card_check_height_m'] * 1e3:.4g} mm ({s['card_check_at']}); the lobe misses them by "
+                f"{s['lift_error_m']:.3g} m and {s['duration_error_deg']:.3g} {unit} deg"
+            )
+        rows = []
+        for key, label in (("0050in", "0.050 in"), ("1mm", "1 mm")):
+            if s.get(f"duration_at_{key}_deg") is None:
+                rows.append((f"at {label}", "-", "-", "lift below the check height"))
+            else:
+                rows.append(
+                    (
+                        f"at {label}",
+                        f"{s[f'opening_at_{key}_deg']:.3f}",
+                        f"{s[f'closing_at_{key}_deg']:.3f}",
+                        f"{s[f'duration_at_{key}_deg']:.3f}",
+                    )
+                )
+        out.append(
+            text_table(rows, headers=("valve timing", "opens [cam deg]", "closes [cam deg]", "duration [cam deg]"))
+        )
+        return "\n".join(out + notes_lines(s))
 
     def _summary(self) -> dict:
         theta = np.arange(_SAMPLES) * (_TWO_PI / _SAMPLES)

@@ -31,10 +31,67 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
 
-__all__ = ["VALVES", "Timing", "CrankAxis", "CrankAngles", "crank_axis", "crank_words"]
+__all__ = [
+    "VALVES",
+    "Timing",
+    "CrankAxis",
+    "CrankAngles",
+    "crank_axis",
+    "crank_words",
+    "cam_rpm_from_engine_rpm",
+    "engine_rpm_from_cam_rpm",
+]
 
 #: The valves a ``[timing]`` table can describe: the sign of the lobe centreline.
 VALVES = ("intake", "exhaust")
+
+
+def cam_rpm_from_engine_rpm(engine_rpm, strokes: int = 4):
+    """Camshaft speed [rev/min] from the engine (crankshaft) speed [rev/min].
+
+    A four-stroke engine turns its camshaft once per two crankshaft revolutions; a
+    two-stroke engine once per revolution.
+
+    Parameters
+    ----------
+    engine_rpm : float or array_like
+        Engine speed [rev/min].
+    strokes : int
+        Strokes per cycle [-]: 4 (default) or 2.
+
+    Examples
+    --------
+    >>> cam_rpm_from_engine_rpm(6000)
+    3000.0
+    """
+    if strokes not in (2, 4):
+        raise InputError(f"strokes = {strokes!r} must be 2 or 4")
+    return (
+        np.asarray(engine_rpm, dtype=float) * (2.0 / strokes)
+        if np.ndim(engine_rpm)
+        else float(engine_rpm) * 2.0 / strokes
+    )
+
+
+def engine_rpm_from_cam_rpm(cam_rpm, strokes: int = 4):
+    """Engine (crankshaft) speed [rev/min] from the camshaft speed [rev/min]: the inverse of
+    :func:`cam_rpm_from_engine_rpm`.
+
+    Parameters
+    ----------
+    cam_rpm : float or array_like
+        Camshaft speed [rev/min].
+    strokes : int
+        Strokes per cycle [-]: 4 (default) or 2.
+
+    Examples
+    --------
+    >>> engine_rpm_from_cam_rpm(3000)
+    6000.0
+    """
+    if strokes not in (2, 4):
+        raise InputError(f"strokes = {strokes!r} must be 2 or 4")
+    return np.asarray(cam_rpm, dtype=float) * (strokes / 2.0) if np.ndim(cam_rpm) else float(cam_rpm) * strokes / 2.0
 
 
 @dataclass(frozen=True)

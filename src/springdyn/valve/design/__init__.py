@@ -18,12 +18,13 @@ from ..._lazy import lazy_package
 
 _EXPORTS = {
     "Requirements": "synthesis",
+    "read_requirements": "synthesis",
     "synthesize": "synthesis",
+    "write_candidates": "synthesis",
     "tolerance_study": "tolerances",
     "read_tolerances": "tolerances",
     "LoadSpectrum": "life",
     "service_life": "life",
-    "calibrate": "calibrate",
 }
 __all__ = sorted(_EXPORTS)
 

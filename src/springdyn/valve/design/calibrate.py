@@ -4,16 +4,28 @@
 ``[spring]`` table (``load_points``) with its deviation and whether it lies within the
 tolerance; :func:`calibrate` fits the shear modulus or the active coils so that the model
 meets the load points in the least-squares sense (each deviation weighted by its
-tolerance), and says how well.
+tolerance), and says how well (:func:`load_point_lines`), and which ``[spring]`` keys a
+calibrated definition writes (:func:`calibrated_keys`); :func:`calibrate_trace` fits the damping
+and the coils' contact stiffness to a measured retainer-force trace.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import least_squares, minimize_scalar
 
 from ...core.errors import InputError
+from ..run.simulation import simulate
 
-__all__ = ["load_point_check", "calibrate", "calibrate_trace", "FIT_PARAMETERS", "TRACE_PARAMETERS"]
+__all__ = [
+    "load_point_check",
+    "calibrate",
+    "calibrate_trace",
+    "calibrated_keys",
+    "load_point_lines",
+    "FIT_PARAMETERS",
+    "TRACE_PARAMETERS",
+]
 
 #: The cost of a value the spring's checks refuse (finite, so the minimiser's arithmetic stays finite).
 REFUSED = 1e30
@@ -66,8 +78,6 @@ def calibrate(spring, fit: str = "shear_modulus") -> dict:
         calibrated :class:`ValveSpring`), ``load_points_before`` and ``load_points_after``
         (:func:`load_point_check`), ``rms_weighted_residual`` (after) [-].
     """
-    from scipy.optimize import minimize_scalar
-
     if fit not in FIT_PARAMETERS:
         raise InputError(f"fit = {fit!r}: calibrate fits one of {', '.join(FIT_PARAMETERS)}")
     if not spring.load_point_table:
@@ -135,9 +145,6 @@ def calibrate_trace(
         ``values`` (fitted, SI), ``before`` (given or default values), ``rms_N`` (the rms
         deviation after the fit) and ``rms_before_N`` [N], ``spring`` (the calibrated spring).
     """
-    from scipy.optimize import least_squares
-
-    from ..run.simulation import simulate
 
     fit = list(fit)
     bad = [f for f in fit if f not in TRACE_PARAMETERS]
@@ -186,3 +193,37 @@ def calibrate_trace(
         rms_before_N=float(np.sqrt(np.mean(r0**2))),
         spring=spring_of(res.x),
     )
+
+
+def calibrated_keys(result: dict, table: dict) -> dict:
+    """The ``[spring]`` keys a calibration changes, as a definition file writes them.
+
+    Parameters
+    ----------
+    result : dict
+        :func:`calibrate`'s result.
+    table : dict
+        The definition's ``[spring]`` table as given (its coil keys decide which one is written).
+    """
+    sp = result["spring"]
+    if result["parameter"] == "shear_modulus":
+        return {"shear_modulus": f"{result['after'] / 1e9:.6g} GPa"}
+    key = next((k for k in ("active_coils", "total_coils") if k in table), "high_pitch_coils")
+    value = {"active_coils": sp.active_coils, "total_coils": sp.total_coils, "high_pitch_coils": sp.high_pitch_coils}
+    return {key: round(float(value[key]), 6)}
+
+
+def load_point_lines(result: dict) -> list[str]:
+    """The calibration in lines (a calibrated file's header): the parameter before and after,
+    and each load point of the drawing against the calibrated model.
+
+    Parameters
+    ----------
+    result : dict
+        :func:`calibrate`'s result.
+    """
+    return [f"{result['before']:.6g} -> {result['after']:.6g}"] + [
+        f"load point {r['length_m'] * 1e3:.4g} mm: drawing {r['force_N']:.2f} N, model {r['model_force_N']:.2f} N "
+        f"({r['deviation_percent']:+.2f} %)"
+        for r in result["load_points_after"]
+    ]

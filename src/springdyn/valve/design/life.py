@@ -25,7 +25,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 
 __all__ = ["LoadSpectrum", "service_life", "ServiceLife", "relaxed_spring", "FLOAT_RESOLUTION"]
 
@@ -172,6 +172,45 @@ class ServiceLife(Result):
 
     def _repr_caption(self) -> str:
         return f"{len(self.goodman)} speeds, {self.material}"
+
+    def describe(self, source: str = "") -> str:
+        """Relaxation, float speeds new and relaxed, and the life per speed of the spectrum (what
+        ``springdyn valve life`` prints).
+
+        Parameters
+        ----------
+        source : str
+            The spring file, for the first line [-].
+        """
+        s = self.summary
+        out = [
+            f"{source or 'the spring'} ({s['material']}): after {s['relaxation_hours']:g} h at "
+            f"{s['temperature_degC']:g} degC the installed force relaxes by {s['relaxation_loss']:.2%}, "
+            f"{s['installed_force_N']:.1f} N to {s['relaxed_installed_force_N']:.1f} N"
+        ]
+        if "float_cam_rpm_new" in s:
+            new, old = s["float_cam_rpm_new"], s["float_cam_rpm_relaxed"]
+
+            def fmt(v):
+                return "above the scan" if v is None else f"{v:.0f} cam rpm"
+
+            out.append(f"float speed: new {fmt(new)}, relaxed {fmt(old)}")
+        cols = self.columns()
+        out.append(
+            text_table(
+                [
+                    (f"{r:.0f}", f"{p:.3g}", f"{g:.3f}", f"{d:.1%}")
+                    for r, p, g, d in zip(cols["cam_rpm"], cols["share"], cols["goodman_safety"], cols["damage_share"])
+                ],
+                headers=("cam rpm", "time share", "Goodman (dynamic)", "share of the damage"),
+            )
+        )
+        out.append(
+            "life: infinite (every speed at or below the endurance strength)"
+            if s["infinite_life"]
+            else f"life: {s['life_hours']:.4g} h (Miner, damage {s['damage_per_hour']:.3g} per hour)"
+        )
+        return "\n".join(out + notes_lines(s))
 
     def _summary(self) -> dict:
         sp = self.spectrum

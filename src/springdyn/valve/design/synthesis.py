@@ -41,7 +41,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 from ...core.units import format_mm
 from ..spring import formulas
 from ..spring.solid_length import en13906_solid_length, min_sum_of_gaps
@@ -431,6 +431,64 @@ class Synthesis(Result):
 
     def _repr_caption(self) -> str:
         return f"{len(self.springs)} candidates"
+
+    def describe(self, source: str = "", out_dir: str = "") -> str:
+        """The ranked candidates as a table (what ``springdyn valve synthesize`` prints).
+
+        Parameters
+        ----------
+        source : str
+            The requirements file, for the first line [-].
+        out_dir : str
+            The folder the candidates' files went to [-].
+        """
+        req = self.requirements
+        out = [
+            f"{len(self.rows)} candidates of {self.searched} searched for {source or 'the requirements'}: "
+            f"{req.installed_force:g} N at {req.installed_length * 1e3:g} mm, {req.open_force:g} N at "
+            f"{req.open_length * 1e3:g} mm (lift {req.lift * 1e3:g} mm), material {req.material}"
+        ]
+        names = [k for k in self.rows[0] if k.startswith("margin_")]
+        rows = []
+        for r in self.rows:
+            rows.append(
+                (
+                    r["rank"],
+                    r["kind"] + ("" if r["low_pitch_coils"] == 0 else f" ({r['low_pitch_coils']:g} low)"),
+                    f"{r['wire_diameter_m'] * 1e3:.2f}",
+                    f"{r['mean_diameter_m'] * 1e3:.2f}",
+                    f"{r['high_pitch_coils']:.2f}",
+                    f"{r['free_length_m'] * 1e3:.2f}",
+                    f"{r['mass_kg'] * 1e3:.1f}",
+                    f"{r['surge_frequency_Hz']:.0f}",
+                    f"{r['goodman_safety']:.2f}",
+                    "-" if r.get("float_cam_rpm", "-") in ("-", None) else f"{r['float_cam_rpm']:.0f}",
+                    f"{r['smallest_margin']:+.1%} ({min(names, key=lambda k: r[k])[len('margin_') :]})",
+                    "yes" if r["meets_all"] else "NO",
+                )
+            )
+        out.append(
+            text_table(
+                rows,
+                headers=(
+                    "rank",
+                    "kind",
+                    "wire [mm]",
+                    "mean D [mm]",
+                    "N2",
+                    "free L [mm]",
+                    "mass [g]",
+                    "f1 [Hz]",
+                    "Goodman",
+                    "float [rpm]",
+                    "smallest margin",
+                    "meets all",
+                ),
+            )
+        )
+        if out_dir:
+            out.append(f"the candidates' spring files and candidates.csv are in {out_dir}")
+        return "\n".join(out + notes_lines(self.summary))
 
     def _summary(self) -> dict:
         best = self.rows[0]

@@ -48,7 +48,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 from ...core.units import to_si
 from ..run.float_search import FLOAT_RESOLUTION, float_speed_near
 
@@ -779,6 +779,43 @@ class ToleranceStudy(Result):
             notes.append(f"Sobol points are balanced at powers of 2 (e.g. {2 ** int(math.log2(n) + 1)} variants)")
         s["notes"] = notes
         return s
+
+    def describe(self, source: str = "", chunks: str = "") -> str:
+        """The study in words and tables (what ``springdyn valve tolerance`` prints): the sample,
+        the percentiles of every figure, the share of variants failing each criterion, the
+        largest periodicity residual and the notes.
+
+        Parameters
+        ----------
+        source : str
+            The spring file, for the first line [-].
+        chunks : str
+            The folder of the chunks on disk, named where variants were read back [-].
+        """
+        s = self.summary
+        speeds = self.speeds
+        out = [
+            f"{s['variants']} variants ({s['method']}, seed {s['seed']}"
+            + (f", {s['resumed_variants']} read back from {chunks or 'the chunks'}" if s["resumed_variants"] else "")
+            + f") of {source or 'the spring'} over {speeds[0]:g}-{speeds[-1]:g} cam rpm"
+            + (": float speeds only" if self.float_only else "")
+        ]
+        rows = []
+        for k in FIGURES:
+            if f"{k}_p50" not in s:
+                continue
+            qs = ("0.135", "2.5", "50", "97.5", "99.865")
+            rows.append((k, OUTPUTS[k], f"{s[f'nominal_{k}']:.4g}", *(f"{s[f'{k}_p{q}']:.4g}" for q in qs)))
+        out.append(
+            text_table(rows, headers=("output", "unit", "nominal", "0.135 %", "2.5 %", "50 %", "97.5 %", "99.865 %"))
+        )
+        fails = [(k[len("fail_share_") :], f"{v:.1%}") for k, v in s.items() if k.startswith("fail_share_")]
+        out.append(text_table(fails, headers=("criterion", "variants failing")))
+        out.append(
+            f"periodic steady state: the last two revolutions of every speed run agree within "
+            f"{100 * s['max_periodicity']:.3g} % of Fset (largest residual over the variants)"
+        )
+        return "\n".join(out + notes_lines(s))
 
     def to_xarray(self):
         return self.dataset

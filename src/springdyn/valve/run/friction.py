@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 from ..train.friction import CONTACTS, Friction, FrictionAnalysis, friction_along_cam
 
 __all__ = ["train_friction_loads", "simulation_friction", "friction_over_speed", "FrictionSweep"]
@@ -145,6 +145,67 @@ class FrictionSweep(Result):
 
     title = "valve-train friction over speed"
     cheap_plot = True
+
+    def describe(self, train: str = "", friction_given: bool = True) -> str:
+        """Per speed the drive torque and each contact's friction power, the energy balance of
+        the top speed's revolution (what ``springdyn valve friction`` prints).
+
+        Parameters
+        ----------
+        train : str
+            The valve train's layout, for the first line [-].
+        friction_given : bool
+            Whether a ``[friction]`` table was given (else its defaults were used) [-].
+        """
+        out = [
+            f"valve-train friction, {self.follower} follower"
+            + (f", {train} train" if train else "")
+            + ("" if friction_given else " ([friction] not given: its defaults)")
+        ]
+        rows = []
+        for a in self.analyses:
+            m = a.summary
+            rows.append(
+                (
+                    f"{m['cam_rpm']:.0f}",
+                    f"{m['mean_drive_torque_N_m']:.3f}",
+                    f"{m['min_drive_torque_N_m']:.2f} / {m['max_drive_torque_N_m']:.2f}",
+                    f"{m['friction_power_W']:.2f}",
+                    f"{m['friction_power_cam_W']:.2f}",
+                    f"{m['friction_power_roller_bearing_W']:.2f}",
+                    f"{m['friction_power_guide_W']:.2f}",
+                    f"{m['friction_power_pivot_W']:.2f}",
+                    f"{m.get('min_film_parameter', float('nan')):.3g}",
+                    "-"
+                    if "slip_share_loaded" not in m or m["slip_share_loaded"] is None
+                    else f"{m['slip_share_loaded']:.1%}",
+                )
+            )
+        out.append(
+            text_table(
+                rows,
+                headers=(
+                    "cam rpm",
+                    "mean torque [N m]",
+                    "min / max [N m]",
+                    "friction [W]",
+                    "cam",
+                    "roller bearing",
+                    "guide",
+                    "pivot",
+                    "min lambda",
+                    "roller slip",
+                ),
+            )
+        )
+        last = self.analyses[-1].summary
+        friction_j = sum(last[f"dissipated_{k}_J"] for k in CONTACTS)
+        out.append(
+            f"energy of a revolution at {last['cam_rpm']:.0f} rpm: cam work {last['cam_work_J']:.4g} J = friction "
+            f"{friction_j:.4g} J + the train's dampers and elastic change {last['load_work_J']:.4g} J "
+            f"(residual {last['energy_residual_J']:.2g} J)"
+        )
+        return "\n".join(out + notes_lines(self.summary))
 
     @property
     def total_power(self) -> np.ndarray:

@@ -13,9 +13,10 @@ from functools import cached_property
 
 import numpy as np
 
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 from ..cam.timing import CrankAngles
 from ..spring.elements import law_force
+from ..spring.results import coil_line
 from .periodicity import PERIODICITY_TOL, is_periodic
 from .separation import cam_phases, liftoffs, phase_mask
 from .verdicts import (
@@ -125,6 +126,109 @@ class Simulation(CrankAngles, Result):
         if self.crank_axis is not None:
             _add_crank_angles(s, self.crank_axis)
         return s
+
+    def describe(self) -> str:
+        """The run in words and a table (what ``springdyn valve simulate`` prints): periodicity,
+        forces against static, surge, coil contact and clash, end separation, lift-off and
+        float, the adjuster, seat impact, fatigue and wire stress, and every note."""
+        s = self.summary
+        vt = self.valve_train
+
+        def angles(ev):  # an event's cam angles, and its crank angles when the run has them
+            text = f"{ev['start_deg']:.2f}-{ev['end_deg']:.2f} cam deg"
+            if "start_timing" in ev:
+                return f"{text} ({ev['start_timing']} to {ev['end_timing']})"
+            if "start_crank_deg" in ev:
+                return f"{text} ({ev['start_crank_deg']:.1f}-{ev['end_crank_deg']:.1f} crank deg)"
+            return text
+
+        if s["periodicity_error"] is None:
+            period = "periodicity n/a (1 revolution)"
+        else:
+            period = (
+                f"{'periodic' if s['periodic'] else 'NOT periodic'}: {100 * s['periodicity_error']:.2f} % of Fset "
+                "change from the revolution before"
+            )
+        out = [
+            f"{self.spring.type} spring, {self.cam.law} cam at {self.cam_rpm:g} cam rpm, last of {s['revolutions']} "
+            f"revolutions ({period})",
+            coil_line(s["spring"]),
+        ]
+        rows = [
+            (
+                "retainer force",
+                *(f"{v:.1f}" for v in (s["max_retainer_force_N"], s["min_retainer_force_N"])),
+                f"{s['max_retainer_force_ratio']:.3f}",
+                f"{s['retainer_surge_amplitude_N']:.1f}",
+            ),
+            (
+                "seat force",
+                *(f"{v:.1f}" for v in (s["max_seat_force_N"], s["min_seat_force_N"])),
+                f"{s['max_seat_force_ratio']:.3f}",
+                f"{s['seat_surge_amplitude_N']:.1f}",
+            ),
+            ("static force", f"{s['max_static_force_N']:.1f}", f"{s['min_static_force_N']:.1f}", "1", "0"),
+        ]
+        out.append(text_table(rows, headers=("", "max [N]", "min [N]", "max/static", "surge [N]")))
+        if "band" in s:
+            b = s["band"]
+            out.append(
+                "did not settle: over the last revolutions the extremes scatter: max retainer "
+                f"{b['max_retainer_force_N'][0]:.1f}-{b['max_retainer_force_N'][1]:.1f} N, min retainer "
+                f"{b['min_retainer_force_N'][0]:.1f}-{b['min_retainer_force_N'][1]:.1f} N, max seat "
+                f"{b['max_seat_force_N'][0]:.1f}-{b['max_seat_force_N'][1]:.1f} N"
+                + (
+                    f", seat impact velocity {b['seat_impact_velocity_m_per_s'][0]:.2f}-"
+                    f"{b['seat_impact_velocity_m_per_s'][1]:.2f} m/s"
+                    if vt is not None
+                    else ""
+                )
+            )
+        out.append(
+            f"f1 = {s['f1_Hz']:.1f} Hz = cam order {s['f1_cam_order']:.2f}; strongest harmonics: "
+            + ", ".join(
+                f"{h['order']}: {h['amplitude_N']:.1f} N"
+                for h in sorted(s["spectrum"], key=lambda h: -h["amplitude_N"])[:4]
+            )
+        )
+        for ev in s["coil_contact"]:
+            els = ev["elements"]
+            where = ", ".join(els) if len(els) <= 4 else f"{len(els)} elements, from {els[0]} to {els[-1]}"
+            out.append(
+                f"coil contact {angles(ev)} in {where} (element number:name from the "
+                f"seat), peak element force {ev['peak_contact_force_N']:.1f} N"
+                + (", a clash" if ev.get("clash") else "")
+            )
+        if not s["coil_contact"]:
+            out.append("no coil contact")
+        if "clashing_coils" in s:
+            out.append("clashing coils (from the seat): " + (", ".join(map(str, s["clashing_coils"])) or "none"))
+        cc = s["coil_clash"]
+        if cc["impacts"]:
+            out.append(
+                f"coil clash: {cc['impacts']} impacts over {cc['duration_deg']:.1f} cam degrees, up to "
+                f"{cc['peak_force_through_contact_N']:.1f} N through the closed coils' contact"
+            )
+        for ev in s["end_separation"]:
+            out.append(f"END SEPARATION at the {ev['end']} {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms)")
+        if vt is not None:
+            out += _train_lines(s, angles)
+        fs, fd = s["static_fatigue_safety_factor"], s["fatigue_safety_factor"]
+        out.append(
+            "fatigue safety factor (Goodman): static "
+            + (f"{fs:.2f}" if fs is not None else "-")
+            + ", dynamic "
+            + (f"{fd:.2f}" if fd is not None else "-")
+            + f" (element {s['fatigue_critical_element']}, {s['min_shear_stress_Pa'] / 1e6:.0f}-"
+            f"{s['max_shear_stress_Pa'] / 1e6:.0f} MPa)"
+            + (f"; smallest coil gap {s['min_coil_gap_m'] * 1e3:.3f} mm" if s.get("min_coil_gap_m") is not None else "")
+        )
+        out.append(
+            f"wire stress (torsion only; {s['max_force_through_coil_contact_N']:.1f} N passed through coil contact at "
+            f"most): peak {s['peak_shear_stress_Pa'] / 1e6:.0f} MPa in element {s['peak_shear_stress_element']}, limit "
+            f"{s['shear_stress_limit_Pa'] / 1e6:.0f} MPa: " + ("ok" if s["wire_stress_ok"] else "OVERSTRESS")
+        )
+        return "\n".join(out + notes_lines(s))
 
     def spectrum(self, max_order: int = 40):
         """Cam-order harmonics of the retainer force: orders and amplitudes [N] (order 0: mean).
@@ -261,6 +365,43 @@ class Simulation(CrankAngles, Result):
                 'the coil-closure map needs the distributed model (model = "distributed"): Type C has no coil geometry'
             )
         return plot_closure_map(self, path, ax)
+
+
+def _train_lines(s: dict, angles) -> list[str]:
+    """The valve train's lines of :meth:`Simulation.describe`: lift-off and float, the gas
+    force, the adjuster, the seat impact."""
+    out = []
+    if s["liftoff"]:
+        for ev in s["liftoff"]:
+            gap = f", gap {ev['max_gap_m'] * 1e3:.3f} mm" if "max_gap_m" in ev else ""
+            out.append(f"LIFT-OFF {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms{gap}) on the {ev['phase']}")
+        out.append(
+            "FLOAT: the valve leaves the cam over the nose"
+            if s["nose_separation"]
+            else "bounce only: the valve stays on the cam over the nose (no float)"
+        )
+    else:
+        out.append(f"no lift-off: minimum cam contact force {s['min_cam_contact_force_N']:.1f} N")
+    if "max_gas_force_N" in s:
+        out.append(
+            f"gas force on the valve: up to {s['max_gas_force_N']:.0f} N, {s['gas_force_at_opening_N']:.0f} N as it "
+            "leaves its seat"
+        )
+    if "hla" in s:
+        h = s["hla"]
+        out.append(
+            f"hydraulic lash adjuster: collapse {h['collapse_min_m'] * 1e6:.1f} to {h['collapse_max_m'] * 1e6:.1f} um, "
+            f"length change {h['length_change_per_revolution_m'] * 1e6:+.3f} um per revolution, chamber up to "
+            f"{h['peak_pressure_Pa'] / 1e5:.1f} bar above the supply; oil in {h['inflow_per_revolution_m3'] * 1e9:.4f}, "
+            f"out {h['leak_per_revolution_m3'] * 1e9:.4f} mm^3 per revolution"
+            + (f"; valve held open {h['valve_held_open_m'] * 1e3:.3f} mm" if h["pump_up"] else "")
+            + (f"; socket hop {h['socket_hop_deg']:.1f} deg" if h["socket_hop"] else "")
+        )
+    out.append(
+        f"seat impact velocity {s['seat_impact_velocity_m_per_s']:.3f} m/s, bounces {s['bounces']}, "
+        f"max bounce {s['max_bounce_height_m'] * 1e3:.3f} mm"
+    )
+    return out
 
 
 def _ranges(mask: np.ndarray) -> list[tuple[int, int]]:
@@ -727,6 +868,66 @@ class FloatSpeedResult(Result):
             s["notes"] = notes
         return s
 
+    def table(self) -> str:
+        """The scan as a table: per speed the minimum cam force, the first lift-off, float over
+        the nose, seat landings, rebound, the seating-velocity band and the periodicity."""
+        sc = self.scan or {}
+        rows = []
+        for i, rpm in enumerate(self.cam_rpm):
+            phase = sc["first_liftoff_phase"][i] or ("off the cam" if sc["liftoff"][i] else "-")
+            band = (
+                f"{sc['seat_impact_velocity_min_m_per_s'][i]:.2f}/{sc['seat_impact_velocity_median_m_per_s'][i]:.2f}/"
+                f"{sc['seat_impact_velocity_max_m_per_s'][i]:.2f}"
+            )
+            rows.append(
+                (
+                    f"{rpm:g}",
+                    f"{sc['min_cam_contact_force_N'][i]:.1f}",
+                    phase,
+                    "yes" if sc["nose_separation"][i] else "no",
+                    str(sc["seat_landings"][i]),
+                    f"{1e3 * sc['seat_rebound_height_m'][i]:.3f}",
+                    band,
+                    "yes" if sc["periodic"][i] else f"no ({100 * sc['periodicity_error'][i]:.3g} %)",
+                )
+            )
+        return text_table(
+            rows,
+            headers=(
+                "cam rpm",
+                "min cam force [N]",
+                "first lift-off",
+                "over the nose",
+                "seat landings",
+                "rebound [mm]",
+                "seating v min/med/max [m/s]",
+                "periodic",
+            ),
+        )
+
+    def describe(self) -> str:
+        """The scan's table (:meth:`table`), the first lift-off and the float speed in words."""
+        s = self.summary
+        top = max(self.cam_rpm)
+        out = [
+            self.table(),
+            "seating velocity band: min/median/max over the scanned speeds within +-25 rpm and, where a speed does not",
+            "settle, over its last revolutions",
+        ]
+        if s["first_separation_cam_rpm"] is not None:
+            out.append(f"first lift-off: {s['first_separation_cam_rpm']:.0f} cam rpm ({s['first_separation_phase']})")
+        else:
+            out.append(f"no lift-off up to {top:g} cam rpm")
+        if self.float_cam_rpm is None:
+            out.append(f"float speed: above {top:g} cam rpm (no separation over the nose at the highest speed)")
+        else:
+            f = self.float_cam_rpm
+            out.append(
+                f"float speed: {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke), the valve separating over the "
+                "nose at every higher scanned speed"
+            )
+        return "\n".join(out + notes_lines(s))
+
     def to_dict(self) -> dict:
         """The JSON of ``springdyn valve float``: the scan and the float speed (SI, rpm)."""
         out = dict(
@@ -891,9 +1092,75 @@ class NaturalFrequencies(Result):
     full_lift_Hz: list  # ascending [Hz]; empty when the full-lift equilibrium was not found
     full_lift_cam_angle_deg: float  # [deg]
     notes: list
+    #: Cam speeds where a cam order meets a mode (:meth:`with_resonances`): ``mode``,
+    #: ``frequency_Hz``, ``order``, ``cam_rpm`` per row; None when no range was asked for.
+    resonances: list | None = None
+    #: The speed range of :attr:`resonances` [rev/min].
+    speed_range: tuple | None = None
 
     title = "valve natural frequencies"
     cheap_plot = True
+
+    def with_resonances(self, cam_rpm_min: float, cam_rpm_max: float) -> NaturalFrequencies:
+        """The same modes with the cam speeds in a range where a cam order meets one
+        (:func:`springdyn.valve.run.train_modes.resonance_speeds`, the full-lift modes, else the
+        base circle's).
+
+        Parameters
+        ----------
+        cam_rpm_min, cam_rpm_max : float
+            The speed range [rev/min].
+        """
+        from .train_modes import resonance_speeds
+
+        rows = resonance_speeds(self.full_lift_Hz or self.base_circle_Hz, float(cam_rpm_min), float(cam_rpm_max))
+        return dataclasses.replace(self, resonances=rows, speed_range=(float(cam_rpm_min), float(cam_rpm_max)))
+
+    def to_dict(self) -> dict:
+        """``base_circle_Hz``, ``full_lift_Hz``, ``full_lift_cam_angle_deg``, ``notes`` and, with a
+        range, ``resonance_speeds`` (the JSON of ``springdyn valve train-modes``)."""
+        out = dict(
+            base_circle_Hz=list(self.base_circle_Hz),
+            full_lift_Hz=list(self.full_lift_Hz),
+            full_lift_cam_angle_deg=self.full_lift_cam_angle_deg,
+            notes=list(self.notes),
+        )
+        if self.resonances is not None:
+            out["resonance_speeds"] = list(self.resonances)
+        return out
+
+    def describe(self) -> str:
+        """The modes on the base circle and at full lift, and the resonance speeds."""
+        n = max(len(self.base_circle_Hz), len(self.full_lift_Hz))
+        rows = [
+            (
+                str(i + 1),
+                f"{self.base_circle_Hz[i]:.1f}" if i < len(self.base_circle_Hz) else "-",
+                f"{self.full_lift_Hz[i]:.1f}" if i < len(self.full_lift_Hz) else "-",
+            )
+            for i in range(n)
+        ]
+        out = [
+            text_table(
+                rows, headers=("mode", "base circle [Hz]", f"full lift ({self.full_lift_cam_angle_deg:.0f} deg) [Hz]")
+            )
+        ]
+        out += ["note: " + note for note in self.notes]
+        if self.resonances is not None:
+            lo, hi = self.speed_range
+            out.append(
+                f"cam-order resonances (cam rpm = 60 f / N, full-lift frequencies) from {lo:g} to {hi:g} cam rpm:"
+            )
+            out.append(
+                text_table(
+                    [
+                        (str(r["mode"]), f"{r['frequency_Hz']:.1f}", str(r["order"]), f"{r['cam_rpm']:.0f}")
+                        for r in self.resonances
+                    ],
+                    headers=("mode", "f [Hz]", "order N", "cam rpm"),
+                )
+            )
+        return "\n".join(out)
 
     def _repr_caption(self) -> str:
         return f"first {self.base_circle_Hz[0]:.1f} Hz on the base circle" if self.base_circle_Hz else "none"

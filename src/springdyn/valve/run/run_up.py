@@ -21,16 +21,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...core.errors import InputError, SolverError
-from ...core.results import Result
+from ...core.results import Result, notes_lines, text_table
 from ...core.units import rpm_to_omega
 from ..engine import integrate, rhs_call
 from ..engine.equations import model_of, train_of
 from ..engine.layout import VT_ALPHA, extra_layout
+from ..spring.results import coil_line
 from .float_search import float_speed
 from .runner import engine_args, run_speeds, runge_kutta_pair, velocity_tolerance
 from .separation import cam_phases, phase_mask
 from .settings import MAX_STEP_FRACTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
 from .setup import prepare
+from .verdicts import floats_over_nose, valve_open
 
 __all__ = ["speed_ramp", "RunUp", "ramp_time", "ramp_angle", "MAX_RAMP_REVOLUTIONS"]
 
@@ -230,6 +232,41 @@ class RunUp(Result):
     def _repr_caption(self) -> str:
         return f"{self.start_rpm:g} -> {self.end_rpm:g} cam rpm at {self.rate_rpm_per_s:g} rpm/s"
 
+    def describe(self) -> str:
+        """The ramp revolution by revolution (what ``springdyn valve simulate --speed-ramp`` prints)."""
+        s = self.summary
+        out = [
+            coil_line(self.spring.coil_facts),
+            f"speed ramp {self.start_rpm:g} -> {self.end_rpm:g} cam rpm at {self.rate_rpm_per_s:g} rpm/s: "
+            f"{s['duration_s']:.3f} s, {s['revolutions']} revolutions, each judged at its mean speed",
+        ]
+        t = self.revolutions()
+        out.append(
+            text_table(
+                [
+                    (
+                        f"{t['cam_rpm'][i]:.0f}",
+                        "FLOAT" if t["nose_separation"][i] else ("lift-off" if t["liftoff"][i] else "-"),
+                        str(t["seat_landings"][i]),
+                        f"{t['min_cam_contact_force_N'][i]:.1f}",
+                        f"{t['max_retainer_force_N'][i]:.1f}",
+                    )
+                    for i in range(t["cam_rpm"].size)
+                ],
+                headers=("cam rpm", "separation", "seat landings", "min cam force [N]", "max retainer force [N]"),
+            )
+        )
+        onset, steady = s["float_onset_cam_rpm"], s["steady_float_cam_rpm"]
+        out.append(
+            (
+                f"float (lift-off over the nose) from {onset:.0f} cam rpm of the ramp"
+                if onset
+                else "no float in the ramp"
+            )
+            + (f"; steady-state float speed {steady:.0f} cam rpm" if steady else "; no steady-state float in the range")
+        )
+        return "\n".join(out + notes_lines(s))
+
     def revolutions(self) -> dict:
         """One row per cam revolution: its mean speed and what the valve did in it.
 
@@ -246,11 +283,11 @@ class RunUp(Result):
         for r in range(revs):
             sl = slice(r * n, (r + 1) * n)
             z, fc, lift = self.valve_lift[sl], self.cam_contact_force[sl], self.lift[sl]
-            in_event = (lift > self.lobe_lash + 1e-6) & (z > 0.0)
+            in_event = valve_open(lift, z, self.lobe_lash)
             off = in_event & (fc <= 0.0)
             rows["cam_rpm"].append(2.0 * math.pi / (self.time[(r + 1) * n] - self.time[r * n]) / _RPM)
             rows["liftoff"].append(bool(off.any()))
-            rows["nose_separation"].append(bool((off & self.nose).any()))
+            rows["nose_separation"].append(floats_over_nose(False, self.nose, np.where(in_event, fc, np.inf), z))
             rows["seat_landings"].append(int(np.sum((z[:-1] > 0) & (z[1:] <= 0))))
             rows["min_cam_contact_force_N"].append(float(fc[in_event].min()) if in_event.any() else 0.0)
             rows["max_retainer_force_N"].append(float(self.retainer_force[sl].max()))

@@ -24,12 +24,13 @@ from ...core.errors import InputError
 from ...core.io import atomic_path
 from ...core.params import describe_value
 from ...core.progress import progress
-from ...core.results import Result, units_from_name
+from ...core.results import Result, notes_lines, units_from_name
 from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
 from ..cam.timing import CrankAngles
 from ..engine import EXT, extra_layout
 from ..spring.definition import ValveSpring
+from ..spring.results import coil_line
 from ..train.definition import ValveTrain
 from .periodicity import PERIODICITY_TOL
 from .results import locate_intervals
@@ -335,6 +336,83 @@ class SpeedSweep(CrankAngles, Result):
         if notes:
             s["notes"] = notes
         return s
+
+    def describe(self, where: str = "") -> str:
+        """The sweep in words (what ``springdyn valve sweep`` prints): the speeds, the peak
+        retainer force, coil contact and clash, periodicity, float and first lift-off per design
+        value, pump-up, the notes, skipped design values and the first mode's resonances.
+
+        Parameters
+        ----------
+        where : str
+            Where it ran (``"locally"``, ``"on tcp://..."``), for the first line [-].
+        """
+        table = self.summary_table()
+        sm = self.summary
+        engine = self.crank_axis is not None
+
+        def speed(rpm):  # a cam speed, with the engine's beside it when the sweep has crank angles
+            return f"{rpm:g} cam rpm" + (f" ({self.crank_axis.per_cam * rpm:g} engine rpm)" if engine else "")
+
+        rpms = self.cam_rpm
+        out = [
+            coil_line(self.spring.coil_facts),
+            f"swept {rpms.size} speeds ({rpms.min():g}-{rpms.max():g} cam rpm"
+            + (f", {self.engine_rpm.min():g}-{self.engine_rpm.max():g} engine rpm)" if engine else ")")
+            + (f" x {self.vary_values.size} values of {self.vary_name}" if self.vary_name else "")
+            + (f" {where}" if where else ""),
+        ]
+        k = int(np.argmax(table["max_retainer_force_N"]))
+        out.append(
+            f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {speed(table['cam_rpm'][k])} "
+            f"(static peak {table['max_static_force_N'][k]:.1f} N); coil contact at "
+            f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs, coil clash at "
+            f"{int(np.sum(table['coil_clash']))}"
+        )
+        out.append(
+            f"periodic steady state: {table['cam_rpm'].size - sm['speeds_not_periodic']} of {table['cam_rpm'].size} "
+            f"runs settled within {100 * self.periodicity_tol:g} % of Fset ({np.mean(table['revolutions']):.1f} "
+            "revolutions on average)"
+            + (
+                f"; {sm['speeds_not_periodic']} did not settle in {int(np.max(table['revolutions']))} revolutions: "
+                "their extremes are bands (*_lo_N, *_hi_N in sweep_summary.csv)"
+                if sm["speeds_not_periodic"]
+                else ""
+            )
+        )
+        if self.valve_train is not None:
+            for v, f, first in zip(self.vary_values, self.float_speeds(), self.first_separation_speeds()):
+                tag = f"{describe_design_value(self.vary_name, v)}: " if self.vary_name else ""
+                out.append(
+                    f"{tag}float speed "
+                    + (
+                        f"~{speed(f)} (lowest swept speed from which the valve leaves the cam over the nose at every "
+                        "higher one; refine with 'springdyn valve float')"
+                        if np.isfinite(f)
+                        else "above the swept range"
+                    )
+                    + (f"; first lift-off at {speed(first)}" if np.isfinite(first) else "")
+                )
+        if "pump_up" in table:
+            pumped = np.flatnonzero(np.asarray(table["pump_up"], dtype=bool))
+            if pumped.size:
+                out.append(
+                    f"PUMP-UP: the hydraulic lash adjuster holds the valve open on the base circle from "
+                    f"{speed(table['cam_rpm'][int(pumped[0])])} (up to {np.max(table['valve_held_open_m']) * 1e3:.3f} "
+                    "mm; column valve_held_open_m)"
+                )
+        # every caveat (the periodicity one is the line above)
+        out += notes_lines(sm, skip=(f"{sm['speeds_not_periodic']} speeds did not settle",))
+        for value, reason in self.skipped:
+            out.append(f"skipped {describe_design_value(self.vary_name, value)}: {reason}")
+        first = [r for r in self.resonance_table() if r["mode"] == 1]
+        if first:
+            out.append(
+                f"cam-order resonances of the first mode ({first[0]['frequency_Hz']:.0f} Hz at full lift): "
+                + ", ".join(f"N={r['order']} at {r['cam_rpm']:.0f}" for r in first)
+                + " cam rpm (all modes: sweep_resonances.csv)"
+            )
+        return "\n".join(out)
 
     # ---------------------------------------------------------------- summary
     def summary_table(self) -> dict:

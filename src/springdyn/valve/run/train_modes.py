@@ -13,6 +13,7 @@ from scipy.linalg import eigvals
 from scipy.optimize import brentq, root
 
 from ...core.errors import InputError, SolverError
+from ...core.results import text_table
 from ..cam.definition import Cam
 from ..engine import NO_EXTRA, chain_rhs, extra_layout, model_of, train_of
 from ..engine.layout import VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS
@@ -21,7 +22,7 @@ from ..train.definition import ValveTrain
 from .runner import engine_args
 from .setup import SimulationSetup, prepare, static_force
 
-__all__ = ["natural_frequencies", "separated_frequencies", "resonance_speeds"]
+__all__ = ["natural_frequencies", "separated_frequencies", "separated_train_text", "resonance_speeds"]
 
 
 def _static_accelerations(setup: SimulationSetup, theta: float, u: np.ndarray) -> np.ndarray:
@@ -287,6 +288,29 @@ def separated_frequencies(
         )
     freqs = _frequencies(setup, theta, x, np.arange(nf), count)
     return dict(frequencies_Hz=freqs, jump_frequency_Hz=freqs[0], valve_lift_m=z, spring_force_N=f)
+
+
+def separated_train_text(res: dict) -> str:
+    """The separated train's modes in words (what ``springdyn valve train-modes --cam-contact
+    open`` prints).
+
+    Parameters
+    ----------
+    res : dict
+        :func:`separated_frequencies`'s result: ``frequencies_Hz``, ``jump_frequency_Hz`` [Hz],
+        ``valve_lift_m`` [m], ``spring_force_N`` [N].
+    """
+    return "\n".join(
+        [
+            f"separated train (cam contact open, valve off its seat) at valve lift {res['valve_lift_m'] * 1e3:.3f} mm, "
+            f"static spring force {res['spring_force_N']:.1f} N",
+            text_table(
+                [(str(i + 1), f"{f:.1f}") for i, f in enumerate(res["frequencies_Hz"])],
+                headers=("mode", "frequency [Hz]"),
+            ),
+            f"jump frequency (first mode of the separated train): {res['jump_frequency_Hz']:.1f} Hz",
+        ]
+    )
 
 
 def resonance_speeds(frequencies, cam_rpm_min: float, cam_rpm_max: float, max_order: int = 20) -> list:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.results import Result
+from ...core.results import Result, text_table
 
 __all__ = ["dynamic_stiffness", "FrequencyResponse"]
 
@@ -47,6 +47,21 @@ class FrequencyResponse(Result):
         return (
             f"{self.spring.type} spring, {self.model} model, at {self.length * 1e3:.3f} mm, "
             f"{self.frequency[0]:g}-{self.frequency[-1]:g} Hz"
+        )
+
+    def describe(self) -> str:
+        """The static rate, the modes and the dynamic stiffness at about 25 frequencies."""
+        step = max(1, self.frequency.size // 25)
+        rows = [
+            (f"{f:.1f}", f"{abs(r) / 1e3:.3f}", f"{abs(st) / 1e3:.3f}")
+            for f, r, st in zip(self.frequency[::step], self.retainer[::step], self.seat[::step])
+        ]
+        return "\n".join(
+            [
+                f"{self.spring.type} spring, {self.model} model, at {self.length * 1e3:.3f} mm: static rate "
+                f"{self.static_stiffness / 1e3:.3f} N/mm, modes " + ", ".join(f"{f:.1f}" for f in self.modes) + " Hz",
+                text_table(rows, headers=("frequency [Hz]", "retainer [N/mm]", "seat [N/mm]")),
+            ]
         )
 
     def _summary(self) -> dict:

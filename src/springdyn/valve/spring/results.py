@@ -1,6 +1,9 @@
-"""The spring wing's result: :class:`StaticCurve`, the static force, stiffness and first
+"""The spring wing's results: :class:`StaticCurve`, the static force, stiffness and first
 natural frequency of a spring against its length, on the shared
-:class:`~springdyn.core.results.Result` (its figure: :mod:`.plots`)."""
+:class:`~springdyn.core.results.Result` (its figure: :mod:`.plots`); and the spring's figures
+that describe themselves: :class:`SpringParameters`, :class:`ChainModes`,
+:class:`DesignFigures`, with the lines every valve output states (:func:`coil_line`,
+:func:`load_points_text`)."""
 
 from __future__ import annotations
 
@@ -8,9 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...core.results import Result, dataset_columns
+from ...core.results import Result, dataset_columns, text_table
+from ...core.units import format_quantity
 
-__all__ = ["StaticCurve"]
+__all__ = ["StaticCurve", "SpringParameters", "ChainModes", "DesignFigures", "coil_line", "load_points_text"]
 
 
 @dataclass(repr=False)
@@ -70,8 +74,235 @@ class StaticCurve(Result):
             attrs={"model": self.model, "spring_type": self.spring.type},
         )
 
+    def describe(self) -> str:
+        """The curve as a table of about 20 lengths: force, stiffness, first mode."""
+        step = max(1, len(self.length) // 20)
+        rows = [
+            (f"{l * 1e3:.3f}", f"{f:.2f}", f"{k / 1e3:.2f}", f"{n:.1f}")
+            for l, f, k, n in zip(
+                self.length[::step], self.force[::step], self.stiffness[::step], self.frequency[::step]
+            )
+        ]
+        return text_table(rows, headers=("length [mm]", "force [N]", "stiffness [N/mm]", "first mode [Hz]"))
+
     def _plot(self, ax=None):
         """Force and stiffness vs length with Ls, F1, F2 and Fcon marked."""
         from .plots import plot_static_curve  # (here: matplotlib costs 0.3 s of start-up)
 
         return plot_static_curve(self, ax=ax)
+
+
+def coil_line(facts: dict) -> str:
+    """The one line every valve output states about the spring it ran: its coils, solid length
+    (and where it comes from) and free length (:attr:`ValveSpring.coil_facts`).
+
+    Parameters
+    ----------
+    facts : dict
+        :attr:`ValveSpring.coil_facts` [-, m].
+    """
+    return (
+        f"spring: {facts['total_coils']:g} coils, {facts['active_coils']:g} active; solid length "
+        f"{facts['solid_length_m'] * 1e3:.3f} mm ({facts['solid_length_source']}); free length "
+        f"{facts['free_length_m'] * 1e3:.3f} mm"
+    )
+
+
+def load_points_text(rows: list) -> str:
+    """The drawing's load points against the model's static force, as a table
+    (:meth:`SpringModel.load_point_check`).
+
+    Parameters
+    ----------
+    rows : list of dict
+        ``length_m`` [m], ``force_N``, ``model_force_N``, ``deviation_N`` [N],
+        ``deviation_percent`` [%], ``tolerance_N`` [N] and ``within_tolerance`` per load point.
+    """
+    return "load points of the drawing against the model's static force:\n" + text_table(
+        [
+            (
+                f"{r['length_m'] * 1e3:.3f}",
+                f"{r['force_N']:.1f}",
+                f"{r['model_force_N']:.1f}",
+                f"{r['deviation_N']:+.1f} ({r['deviation_percent']:+.2f} %)",
+                "-" if r["tolerance_N"] is None else f"+-{r['tolerance_N']:.1f}",
+                {None: "-", True: "ok", False: "OUTSIDE"}[r["within_tolerance"]],
+            )
+            for r in rows
+        ],
+        headers=("length [mm]", "drawing [N]", "model [N]", "deviation [N]", "tolerance [N]", ""),
+    )
+
+
+@dataclass(frozen=True)
+class SpringParameters:
+    """A spring model's internal parameters with their units and meaning, its coils and the
+    drawing's load points (``springdyn valve params``)."""
+
+    spring: object
+    #: The internal parameters [SI] (:meth:`SpringModel.internal_parameters`).
+    parameters: dict
+    #: The load points against the model (empty without ``load_points``).
+    load_points: list
+
+    @classmethod
+    def of(cls, spring) -> SpringParameters:
+        """The parameters of a spring's model.
+
+        Parameters
+        ----------
+        spring : ValveSpring
+            The spring (its model gives the parameters).
+        """
+        model = spring.spring_model
+        return cls(spring, model.internal_parameters(), model.load_point_check() if spring.load_points else [])
+
+    def to_dict(self) -> dict:
+        """The internal parameters [SI] (the JSON of ``valve params``)."""
+        return dict(self.parameters)
+
+    def describe(self) -> str:
+        """The parameters as a table with their units and meaning, the coils, the load points."""
+        from .chains import PARAMETER_UNITS
+
+        sp = self.spring
+        rows = []
+        for key, value in self.parameters.items():
+            unit, display, doc = PARAMETER_UNITS[key]
+            rows.append((key, format_quantity(value, unit, display), doc))
+        lines = [
+            f"{sp.type} valve spring, {sp.spring_model.description}",
+            f"coils: {sp.total_coils:g} total, {sp.active_coils:g} active ({sp.dead_coils:g} dead per end); "
+            f"solid length {sp.solid_length * 1e3:.3f} mm"
+            + (f" (EN 13906-1, ends {sp.end_type})" if sp.end_type else " (the MMS document's Dw (N1 + N2 + 0.5))")
+            + f"; free length {sp.free_length * 1e3:.3f} mm"
+            + (", pitch profile given" if sp.pitch_profile else ""),
+            text_table(rows, headers=("parameter", "value", "meaning")),
+        ]
+        if self.load_points:
+            lines.append(load_points_text(self.load_points))
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class ChainModes:
+    """The chain's natural frequencies at a length, both ends fixed, and what moves in each
+    (``springdyn valve modes``)."""
+
+    length: float  #: spring length [m]
+    force: float  #: static force there [N]
+    frequencies: list  #: ascending [Hz]
+    labels: list  #: ``"surge n"`` or ``"end mass"`` per mode
+
+    @classmethod
+    def of(cls, spring, length: float, count: int = 5) -> ChainModes:
+        """The modes of a spring's chain linearised at ``length``.
+
+        Parameters
+        ----------
+        spring : ValveSpring
+            The spring.
+        length : float
+            Spring length [m].
+        count : int
+            How many, from the lowest [-].
+        """
+        model = spring.spring_model
+        freqs = model.modes(length, count)
+        labels = model.mode_labels(length, count)
+        return cls(float(length), float(model.static_force(length)), list(freqs), list(labels))
+
+    def to_dict(self) -> dict:
+        """``length_m``, ``force_N``, ``frequencies_Hz``, ``modes`` (the JSON of ``valve modes``)."""
+        return {
+            "length_m": self.length,
+            "force_N": self.force,
+            "frequencies_Hz": self.frequencies,
+            "modes": self.labels,
+        }
+
+    def describe(self) -> str:
+        """The modes as a table, with a word on the end-mass modes."""
+        lines = [
+            f"length {self.length * 1e3:.3f} mm, static force {self.force:.2f} N",
+            text_table(
+                [(str(i + 1), f"{f:.2f}", label) for i, (f, label) in enumerate(zip(self.frequencies, self.labels))],
+                headers=("mode", "frequency [Hz]", "what moves"),
+            ),
+        ]
+        if "end mass" in self.labels:
+            lines.append(
+                "end mass: the chain's end masses bouncing on their stiff end contacts (a lumped model's mode, "
+                "not a surge of the coils)"
+            )
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class DesignFigures:
+    """The design figures of a spring (``springdyn valve design``): spring index, corrected
+    stresses and surge frequencies at installed, open and coil-contact length, coil bind, the
+    static fatigue (:meth:`SpringModel.design_figures`, ``figures``)."""
+
+    spring: object
+    figures: dict
+
+    def to_dict(self) -> dict:
+        """The figures [SI] (the JSON of ``valve design``)."""
+        return dict(self.figures)
+
+    def __getitem__(self, key):
+        return self.figures[key]
+
+    def __contains__(self, key) -> bool:
+        return key in self.figures
+
+    def describe(self) -> str:
+        """The figures in words and a table per state."""
+        fig = self.figures
+        lines = [
+            f"spring index C = {fig['spring_index']:.3f}, Bergstraesser k = {fig['bergstraesser_factor']:.4f}, "
+            f"Wahl k = {fig['wahl_factor']:.4f}",
+            f"coils: {fig['total_coils']:g} total, {fig['active_coils']:g} active ({fig['dead_coils_per_end']:g} dead "
+            f"per end); solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm ({fig['solid_length_source']}); "
+            f"spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g",
+        ]
+        rows = []
+        for state in ("installed", "open", "coil_contact"):
+            if state in fig:
+                s = fig[state]
+                rows.append(
+                    (
+                        state,
+                        f"{s['length_m'] * 1e3:.3f}",
+                        f"{s['force_N']:.1f}",
+                        f"{s['shear_stress_Pa'] / 1e6:.0f}",
+                        f"{s['surge_frequency_Hz']:.1f}",
+                        f"{s['surge_margin']:.2f}" if "surge_margin" in s else "-",
+                    )
+                )
+        lines.append(
+            text_table(
+                rows, headers=("state", "length [mm]", "force [N]", "stress [MPa]", "surge [Hz]", "surge margin")
+            )
+        )
+        if "coil_bind" in fig:
+            cb = fig["coil_bind"]
+            verdict = "ok" if cb["coil_bind_ok"] else ("THROUGH SOLID" if cb["through_solid"] else "BELOW CLEARANCE")
+            lines.append(
+                f"coil bind: {cb['coil_bind_margin_m'] * 1e3:.3f} mm above solid at full lift "
+                f"(clearance {cb['coil_bind_clearance_m'] * 1e3:.3f} mm): {verdict}"
+            )
+        if "coil_contact_note" in fig:
+            lines.append(f"note: {fig['coil_contact_note']}")
+        if "load_points" in fig:
+            lines.append(load_points_text(fig["load_points"]))
+        if "fatigue" in fig:
+            f = fig["fatigue"]
+            lines.append(
+                f"fatigue (Goodman, installed -> open): safety factor {f['static_fatigue_safety_factor']:.2f}; "
+                f"endurance {f['endurance_shear_strength_Pa'] / 1e6:.0f} MPa, ultimate shear "
+                f"{f['ultimate_shear_strength_Pa'] / 1e6:.0f} MPa"
+                + (f" (defaults for {', '.join(f['strength_defaults'])})" if f["strength_defaults"] else "")
+            )
+        return "\n".join(lines)

@@ -62,7 +62,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
-from ...core.results import Result
+from ...core.results import Result, notes_lines
 from ...core.units import format_mm
 
 __all__ = [
@@ -736,6 +736,34 @@ class LeverTable(Result):
     def valve_lift(self) -> np.ndarray:
         """The rigid train's valve lift [m] (less the lash, not below 0)."""
         return np.maximum(self.solution["valve_lift"] - self.lash, 0.0)
+
+    def describe(self, source: str = "") -> str:
+        """The lever over the cam in words (what ``springdyn valve kinematics`` prints): its ratio
+        over the event, the valve lift against the constant ratio's, the pad's travel on the
+        stem tip, its mass at the valve and the notes.
+
+        Parameters
+        ----------
+        source : str
+            The file the lever is drawn in, for the first line [-].
+        """
+        s = self.summary
+        out = [
+            f"lever drawn{' in ' + source if source else ''} on the {self.cam.law} lobe: ratio "
+            f"{s['ratio_at_rest']:.4f} at rest, {s['ratio_min']:.4f} to {s['ratio_max']:.4f} over the event "
+            f"({s['ratio_change']:.1%} of the ratio at rest), {s['ratio_at_max_lift']:.4f} at the largest lift",
+            f"max valve lift {s['max_valve_lift_m'] * 1e3:.4f} mm at {s['max_lift_cam_angle_deg']:.2f} cam deg (constant "
+            f"ratio: {s['constant_ratio_valve_lift_m'] * 1e3:.4f} mm); the lever turns {s['max_lever_angle_deg']:.2f} deg",
+        ]
+        lo, hi = s["pad_travel_m"]
+        line = f"pad contact on the stem tip travels {lo * 1e3:+.3f} to {hi * 1e3:+.3f} mm from its place at rest"
+        if "pad_on_stem_margin_m" in s:
+            line += f" (margin to the tip's edge {s['pad_on_stem_margin_m'] * 1e3:.3f} mm)"
+        out.append(line)
+        if "mass_at_valve_kg" in s:
+            m0, m1 = s["mass_at_valve_kg"]
+            out.append(f"lever mass at the valve (J / L_v^2, roller included): {m0 * 1e3:.2f} to {m1 * 1e3:.2f} g")
+        return "\n".join(out + notes_lines(s))
 
     def _summary(self) -> dict:
         sol = self.solution
