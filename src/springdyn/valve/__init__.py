@@ -50,6 +50,7 @@ _EXPORTS = {
     "SpringModel": "spring.chains",
     "TypeCModel": "spring.chains",
     "MODELS": "spring.chains",
+    "PARAMETER_UNITS": "spring.chains",
     # results
     "StaticCurve": "spring.results",
     "Simulation": "run.results",

@@ -261,6 +261,41 @@ class ValveModel:
         )
         return self.replace(gas_force=gas)
 
+    def spring_alone(self) -> ValveModel:
+        """The spring alone driven by the valve lift of this model's train: the lobe lift times
+        the rocker ratio, or a drawn lever's valve lift over the cam (:meth:`lever_kinematics`);
+        this model itself without a train.  Its crank angles are this model's (the lobe's)."""
+        vt = self.valve_train
+        if vt is None or self.cam is None:
+            return self
+        if vt.geometry is not None:
+            lever = self.lever_kinematics(lash=0.0)
+            cam = Cam.from_table(
+                lever.cam_angle, np.maximum(lever.solution["valve_lift"], 0.0), name="valve lift of the lever"
+            )
+        else:
+            cam = self.cam if vt.ratio == 1.0 else self.cam.scaled(vt.ratio)
+        alone = self.replace(cam=cam, valve_train=None, gas_force=None)
+        alone.__dict__["crank_axis"] = self.crank_axis  # its crank angles stay the lobe's (the engine's)
+        return alone
+
+    def service_speeds(self, low_cam_rpm: float, rated_cam_rpm: float, step: float, float_margin: float = 0.0):
+        """The named study's speed range "in service and past the float speed": from ``low`` up to
+        10 % past the float speed the criteria ask for (the rated speed plus ``float_margin``;
+        the rated speed itself for the spring alone), in ``step`` [rev/min].
+
+        Parameters
+        ----------
+        low_cam_rpm, rated_cam_rpm : float
+            The lowest and the highest cam speed in service [rev/min].
+        step : float
+            The step [rev/min] (the smallest Goodman safety is a resonance's, which a coarse step misses).
+        float_margin : float
+            How far above the rated speed the float speed is asked for [fraction].
+        """
+        hi = 1.1 * rated_cam_rpm * (1.0 + float_margin) if self.valve_train is not None else rated_cam_rpm
+        return np.arange(low_cam_rpm, hi + step, step)
+
     # ------------------------------------------------------------------ derived once
     @cached_property
     def chain_model(self):
@@ -473,16 +508,22 @@ class ValveModel:
             cam_rpm=cam_rpm,
         )
 
-    def lever_kinematics(self):
+    def lever_kinematics(self, lash: float | None = None):
         """The drawn lever over the cam: its ratio, arms and mass over the lift
-        (:class:`~springdyn.valve.train.lever.LeverTable`)."""
+        (:class:`~springdyn.valve.train.lever.LeverTable`).
+
+        Parameters
+        ----------
+        lash : float, optional
+            Lash at the valve [m] (default: the train's; none with a hydraulic adjuster).
+        """
         vt = self._need_train("lever_kinematics")
         if vt.geometry is None:
             raise InputError(
                 "the lever's kinematics need its drawing: a [geometry] table beside [valve_train] and [follower]; "
                 f"without it the ratio is the constant {vt.ratio:g}"
             )
-        lash = 0.0 if vt.hydraulic else vt.lash
+        lash = (0.0 if vt.hydraulic else vt.lash) if lash is None else lash
         return vt.geometry.over_cam(self._need_cam("lever_kinematics"), lash=lash, inertia=vt.lever_inertia)
 
     # ------------------------------------------------------------------ under the cam

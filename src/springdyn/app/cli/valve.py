@@ -457,7 +457,9 @@ def cmd_calibrate(args) -> int:
         cols = read_csv_columns(args.trace)
         missing = [c for c in ("cam_angle_deg", "retainer_force_N") if c not in cols]
         if missing:
-            raise InputError(f"{args.trace}: no column {missing[0]!r}; the trace has cam_angle_deg and retainer_force_N")
+            raise InputError(
+                f"{args.trace}: no column {missing[0]!r}; the trace has cam_angle_deg and retainer_force_N"
+            )
         model = model.replace(cam=valve.Cam.from_toml(args.cam))
         rpm = quantity(args.cam_rpm, "rpm", "--cam-rpm", bare_unit="rpm")
         with as_options(fit="--trace-fit"):

@@ -1,4 +1,10 @@
-"""The valve-spring section of the springdyn report (and of ``springdyn demo``)."""
+"""The valve-spring section of the springdyn report (and of ``springdyn demo``).
+
+The section loads a definition into :class:`springdyn.valve.ValveModel` (the spring alone, driven
+by the valve lift, and with its train), runs its studies and writes what they give: files,
+figures, findings in sentences, and the criteria judged by the one criteria set
+(:mod:`springdyn.valve.design.criteria`) through the model that judges.  No numbers are made here.
+"""
 
 from __future__ import annotations
 
@@ -8,23 +14,14 @@ from pathlib import Path
 
 import numpy as np
 
+import springdyn.valve as valve
+import springdyn.valve.design as design
 from springdyn.app.report.html import Criterion, Section, parameter_rows
 from springdyn.core.errors import InputError
 from springdyn.core.io import write_json
 from springdyn.core.params import Parameters, param
 from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity
-from springdyn.valve.cam.definition import Cam
-from springdyn.valve.cam.timing import Timing, crank_axis
-from springdyn.valve.run.float_search import float_speed
-from springdyn.valve.run.periodicity import PERIODICITY_TOL
-from springdyn.valve.run.simulation import simulate
-from springdyn.valve.run.sweeps import sweep
-from springdyn.valve.run.train_modes import natural_frequencies
-from springdyn.valve.spring.chains import PARAMETER_UNITS
-from springdyn.valve.spring.definition import ValveSpring
-from springdyn.valve.spring.stress import spring_strengths
-from springdyn.valve.train.definition import ValveTrain
 
 __all__ = ["load", "section", "ValveDefinition", "ReportSettings", "DEFAULT_CAM"]
 
@@ -56,27 +53,27 @@ class ReportSettings(Parameters):
     )
     min_surge_margin: float = param(
         "",
-        "smallest surge margin f1 / cam frequency at the top speed (rule of thumb 10-13)",
-        default=10.0,
+        "smallest surge margin f1 / cam frequency at the top speed (rule of thumb 10-13; the [criteria] key)",
+        default=design.MIN_SURGE_MARGIN,
         positive=True,
     )
     float_margin: float = param(
         "",
-        "how far above the top speed the float speed must lie (a fraction, e.g. '10 %')",
-        default=0.1,
+        "how far above the top speed the float speed must lie (a fraction, e.g. '10 %'; the [criteria] key)",
+        default=design.FLOAT_MARGIN,
         nonnegative=True,
     )
     min_goodman_safety: float = param(
         "",
-        "smallest fatigue safety factor on the Goodman line (1.1-1.3 in spring practice)",
-        default=1.1,
+        "smallest fatigue safety factor on the Goodman line (1.1-1.3 in spring practice; the [criteria] key)",
+        default=design.MIN_GOODMAN_SAFETY,
         positive=True,
     )
     max_seating_velocity: float = param(
         "m/s",
         "largest seat impact velocity of the valve up to the top speed (a common design limit for passenger-car "
-        "valve trains is about 0.5 m/s; set your own)",
-        default=0.5,
+        "valve trains is about 0.5 m/s; set your own; the [criteria] key)",
+        default=design.MAX_SEATING_VELOCITY,
         positive=True,
     )
 
@@ -133,9 +130,19 @@ class ReportSettings(Parameters):
         if (self.max_engine_rpm - self.min_engine_rpm) / self.engine_rpm_step > 2000:
             raise InputError("[report] engine_rpm_step gives more than 2000 speeds: take a larger step")
 
+    @property
+    def criteria(self):
+        """The report's limits as the one criteria set (:class:`springdyn.valve.design.Criteria`)."""
+        return design.Criteria(
+            min_goodman_safety=self.min_goodman_safety,
+            min_surge_margin=self.min_surge_margin,
+            float_margin=self.float_margin,
+            max_seating_velocity=self.max_seating_velocity,
+        )
+
     def cam_rpm(self, engine_rad_s: float) -> float:
         """Cam speed [rev/min] of an engine speed [rad/s] (four-stroke)."""
-        return engine_rad_s * 30.0 / np.pi / 2.0
+        return valve.cam_rpm_from_engine_rpm(float(engine_rad_s) * 30.0 / np.pi)
 
     @property
     def sweep_speeds(self) -> np.ndarray:
@@ -152,22 +159,28 @@ class ReportSettings(Parameters):
 
 @dataclass
 class ValveDefinition:
-    spring: ValveSpring
-    cam: Cam
-    valve_train: ValveTrain | None
+    """A report definition: its model (spring, cam, train, timing, follower, friction, gas force),
+    the ``[report]`` settings and the design studies it asks for."""
+
+    model: valve.ValveModel
     cam_given: bool
     settings: ReportSettings = dataclasses.field(default_factory=ReportSettings)
-    #: The ``[timing]`` table: crank angles from TDC (else from the start of the cam's event).
-    timing: Timing | None = None
-    #: The ``[follower]`` and ``[friction]`` tables: the train's friction over speed.
-    follower: object = None
-    friction: object = None
-    #: The gas force of ``[report] cylinder_pressure`` (:class:`springdyn.valve.train.gas_force.GasForce`).
-    gas_force: object = None
     #: ``[report] requirements``: (Requirements, the file's folder), or None.
     requirements: object = None
     #: ``[report] tolerances``: (tolerances, Criteria), or None.
     tolerances: object = None
+
+    @property
+    def spring(self):
+        return self.model.spring
+
+    @property
+    def cam(self):
+        return self.model.cam
+
+    @property
+    def valve_train(self):
+        return self.model.valve_train
 
 
 def _beside(path: Path, name: str, key: str) -> Path:
@@ -181,34 +194,28 @@ def _beside(path: Path, name: str, key: str) -> Path:
 
 def load(doc: dict, path: Path) -> ValveDefinition:
     """Validate the [spring], [cam], [valve_train] and [report] tables of a definition."""
-    spring = ValveSpring.from_dict(doc["spring"], source=str(path))
+    spring = valve.ValveSpring.from_dict(doc["spring"], source=str(path))
     cam_given = "cam" in doc
-    cam = Cam.from_dict(doc["cam"] if cam_given else DEFAULT_CAM, source=str(path), base_dir=Path(path).parent)
+    cam = valve.Cam.from_dict(doc["cam"] if cam_given else DEFAULT_CAM, source=str(path), base_dir=Path(path).parent)
     for table in ("follower", "geometry"):
         if table in doc and "valve_train" not in doc:
             raise InputError(f"{path}: [{table}] needs a [valve_train] table in the same file")
     if "geometry" in doc:  # a drawn lever (springdyn.valve.train.lever): its ratio comes from the drawing
-        vt = ValveTrain.with_lever_drawing(doc, source=str(path))
+        vt = valve.ValveTrain.with_lever_drawing(doc, source=str(path))
     else:
-        vt = ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
+        vt = valve.ValveTrain.from_dict(doc["valve_train"], source=str(path)) if "valve_train" in doc else None
     if "hla" in doc:
         if vt is None:
             raise InputError(f"{path}: [hla] needs a [valve_train] table in the same file")
         vt = vt.with_hla(doc["hla"], source=str(path))
     settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path))
-    timing = Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
-    from springdyn.valve.cam.follower import Follower
-    from springdyn.valve.train.friction import Friction
-
-    follower = Follower.from_dict(doc["follower"], source=str(path)) if "follower" in doc else None
+    timing = valve.Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
+    follower = valve.Follower.from_dict(doc["follower"], source=str(path)) if "follower" in doc else None
     if "friction" in doc and follower is None:
         raise InputError(f"{path}: [friction] needs a [follower] table in the same file (the contact at the cam)")
-    friction = Friction.from_dict(doc["friction"], source=str(path)) if "friction" in doc else None
-    gas = None
+    friction = valve.Friction.from_dict(doc["friction"], source=str(path)) if "friction" in doc else None
+    model = valve.ValveModel(spring, cam, vt, timing=timing, crank_angles=True, follower=follower, friction=friction)
     if settings.cylinder_pressure is not None:
-        from springdyn.valve.cam.timing import crank_axis
-        from springdyn.valve.train.gas_force import GasForce
-
         need = [t for t, ok in (("[valve_train]", vt is not None), ("[timing]", timing is not None)) if not ok]
         if vt is not None and vt.seat_diameter is None:
             need.append("[valve_train] seat_diameter")
@@ -220,40 +227,36 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         trace = trace if trace.is_absolute() else Path(path).parent / trace
         if not trace.is_file():
             raise InputError(f"{path}: [report] cylinder_pressure = {settings.cylinder_pressure!r}: no such file")
-        gas = GasForce.from_file(
-            trace, axis=crank_axis(cam, timing), seat_diameter=vt.seat_diameter, port_pressure=settings.port_pressure
-        )
+        model = model.with_gas_pressure(trace, settings.port_pressure)
     requirements = tolerances = None
     if settings.requirements is not None:
-        from springdyn.valve.design.synthesis import read_requirements
-
-        requirements = read_requirements(_beside(path, settings.requirements, "requirements"))
+        requirements = design.read_requirements(_beside(path, settings.requirements, "requirements"))
     if settings.tolerances is not None:
-        from springdyn.valve.design.tolerances import read_tolerances
-
-        tolerances = read_tolerances(_beside(path, settings.tolerances, "tolerances"))
+        tolerances = design.read_tolerances(_beside(path, settings.tolerances, "tolerances"))
         if "lash" in tolerances[0] and vt is None:
             raise InputError(f"{path}: [report] tolerances: lash is the valve train's: give a [valve_train] table")
-    return ValveDefinition(
-        spring, cam, vt, cam_given, settings, timing, follower, friction, gas, requirements, tolerances
-    )
+    return ValveDefinition(model, cam_given, settings, requirements, tolerances)
 
 
-def _run_up_finding(sp, lobe, vt, f, rs, axis, out_dir, files, figures) -> str:
-    """A run-up through the float speed f [cam rpm] at [report] run_up_rate: where the valve
-    first floats against the momentary speed (springdyn.valve.run.run_up)."""
-    from springdyn.valve.run.run_up import speed_ramp
+def _criterion(v) -> Criterion:
+    """A judged criterion (:class:`springdyn.valve.design.Verdict`) as a row of the report."""
+    return Criterion(v.label, v.value, v.limit, v.passed, v.note)
 
+
+def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
+    """The run-up through the float speed f [cam rpm] at [report] run_up_rate: where the valve
+    first floats against the momentary speed (:meth:`ValveModel.run_up_through_float`)."""
+    axis = model.crank_axis
     rate = rs.cam_rpm(rs.run_up_rate)  # cam rpm per second
-    ramp = speed_ramp(sp, lobe, vt, 0.85 * f, 1.1 * f, rate, float_scan=False)
+    ramp = model.run_up_through_float(f, rate)
     r = ramp.summary
     plt.close(ramp.plot(out_dir / "run_up.png"))
     files.append(ramp.to_csv(out_dir / "run_up.csv"))
     figures.append(
         (
             out_dir / "run_up.png",
-            f"Run-up from {0.85 * f:.0f} to {1.1 * f:.0f} cam rpm at {rate:.0f} cam rpm/s: lift-off and float "
-            "against the momentary speed",
+            f"Run-up from {ramp.start_rpm:.0f} to {ramp.end_rpm:.0f} cam rpm at {rate:.0f} cam rpm/s: lift-off and "
+            "float against the momentary speed",
         )
     )
     onset = r["float_onset_cam_rpm"]
@@ -270,13 +273,13 @@ def _run_up_finding(sp, lobe, vt, f, rs, axis, out_dir, files, figures) -> str:
     )
 
 
-def _gas_finding(sp, lobe, vt, d, top, axis) -> str:
+def _gas_finding(model, top) -> str:
     """The gas force on the valve at the top speed, against the run without it."""
-    with_gas = simulate(sp, lobe, top, valve_train=vt, gas_force=d.gas_force).summary
-    without = simulate(sp, lobe, top, valve_train=vt).summary
+    with_gas = model.simulate(top).summary
+    without = model.replace(gas_force=None).simulate(top).summary
     return (
-        f"Gas force on the valve head ([report] cylinder_pressure, seat {vt.seat_diameter * 1e3:.1f} mm) at "
-        f"{axis.per_cam * top:.0f} engine rpm: up to {with_gas['max_gas_force_N']:.0f} N, "
+        f"Gas force on the valve head ([report] cylinder_pressure, seat {model.valve_train.seat_diameter * 1e3:.1f} "
+        f"mm) at {model.crank_axis.per_cam * top:.0f} engine rpm: up to {with_gas['max_gas_force_N']:.0f} N, "
         f"{with_gas['gas_force_at_opening_N']:.0f} N as the valve leaves its seat; the largest cam contact force is "
         f"{with_gas['max_cam_contact_force_N']:.0f} N against {without['max_cam_contact_force_N']:.0f} N without it"
         + ("; the valve lifts off the cam" if with_gas["nose_separation"] else "")
@@ -284,15 +287,12 @@ def _gas_finding(sp, lobe, vt, d, top, axis) -> str:
     )
 
 
-def _friction_finding(sp, lobe, vt, d, report_speeds, axis, out_dir, files, figures) -> str:
-    """The train's friction over speed up to the top speed (springdyn.valve.train.friction)."""
-    from springdyn.valve.run.friction import friction_over_speed, simulation_friction
-
+def _friction_finding(model, report_speeds, out_dir, files, figures) -> str:
+    """The train's friction over speed up to the top speed (:meth:`ValveModel.friction_over_speed`)."""
+    axis = model.crank_axis
     speeds = np.linspace(report_speeds[0], report_speeds[-1], 5)
-    analyses = [
-        simulation_friction(simulate(sp, lobe, float(r), valve_train=vt), d.follower, d.friction) for r in speeds
-    ]
-    sweep = friction_over_speed(analyses)
+    sweep = model.friction_over_speed(speeds)
+    analyses = sweep.analyses
     plt.close(sweep.plot(out_dir / "friction.png"))
     files.append(sweep.to_csv(out_dir / "friction.csv"))
     figures.append(
@@ -305,7 +305,7 @@ def _friction_finding(sp, lobe, vt, d, report_speeds, axis, out_dir, files, figu
         if top[f"friction_power_{k}_W"] >= 0.05
     )
     return (
-        f"Friction of one valve's train ([follower]{'' if d.friction is not None else ', [friction] defaults'}): "
+        f"Friction of one valve's train ([follower]{'' if model.friction_table is not None else ', [friction] defaults'}): "
         f"{analyses[0].summary['friction_power_W']:.1f} W at {axis.per_cam * speeds[0]:.0f} engine rpm to "
         f"{top['friction_power_W']:.1f} W at {axis.per_cam * speeds[-1]:.0f} engine rpm ({parts}); mean camshaft "
         f"drive torque {top['mean_drive_torque_N_m']:.2f} N m, peaks {top['min_drive_torque_N_m']:.1f} / "
@@ -315,23 +315,22 @@ def _friction_finding(sp, lobe, vt, d, report_speeds, axis, out_dir, files, figu
 
 def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
     """Run the valve analyses of one definition into ``out_dir`` and describe them."""
-    sp, lobe, vt, rs = d.spring, d.cam, d.valve_train, d.settings
-    if rs.models == "distributed":
-        sp = sp.with_model("distributed")
+    rs = d.settings
+    train = d.model.with_model("distributed") if rs.models == "distributed" else d.model
+    sp, lobe, vt = train.spring, train.cam, train.valve_train
+    criteria_set = rs.criteria
     report_speeds, sweep_speeds = rs.report_speeds, rs.sweep_speeds
     top = report_speeds[-1]
     p = sp.spring_model.internal_parameters()
     files, figures, findings = [], [], []
     # the report is set for an engine: crank angles and engine speeds beside the cam's
-    axis = crank_axis(lobe, d.timing)
-    # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio
-    cam = lobe if vt is None or vt.ratio == 1.0 else lobe.scaled(vt.ratio)
+    axis = train.crank_axis
+    # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio, or the
+    # drawn lever's valve lift
+    alone = train.spring_alone()
+    cam = alone.cam
     if vt is not None and vt.geometry is not None:
-        lever = vt.geometry.over_cam(lobe, inertia=vt.lever_inertia)
-        ls = lever.summary
-        cam = Cam.from_table(
-            lever.cam_angle, np.maximum(lever.solution["valve_lift"], 0.0), name="valve lift of the lever"
-        )
+        ls = train.lever_kinematics(lash=0.0).summary
         findings.append(
             f"The lever is drawn ([geometry]): its ratio runs from {ls['ratio_min']:.3f} to {ls['ratio_max']:.3f} over "
             f"the event ({ls['ratio_change']:.1%} of {ls['ratio_at_rest']:.3f} at rest), the valve lifts "
@@ -344,7 +343,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"lobe lift ({lobe.max_lift * 1e3:.3g} mm) times the rocker ratio {vt.ratio:g}."
         )
     files.append(write_json(out_dir / "params.json", p))
-    curve = sp.spring_model.static_curve()
+    curve = alone.static_curve()
     files.append(curve.to_csv(out_dir / "static_curve.csv"))
     plt.close(curve.plot(out_dir / "static_curve.png"))
     figures.append(
@@ -355,14 +354,13 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         )
     )
     lift = cam.max_lift
-    design = sp.spring_model.design_figures(lift=lift, cam_rpm=top)
-    files.append(write_json(out_dir / "design.json", design))
-    modes_free = sp.spring_model.modes(sp.free_length, 3)
+    figs = alone.design_figures(lift=lift, cam_rpm=top).figures
+    files.append(write_json(out_dir / "design.json", figs))
+    modes_free = alone.modes(sp.free_length, 3)
 
     sims = {}
     for rpm in report_speeds:
-        sim = simulate(sp, cam, rpm)
-        sim.set_crank_axis(axis)
+        sim = alone.simulate(rpm)
         sims[rpm] = sim
         stem = out_dir / f"simulate_{rpm:.0f}rpm"
         files.append(sim.to_csv(stem.with_suffix(".csv")))
@@ -376,8 +374,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
                 "displacements, cam-order spectrum",
             )
         )
-    sw = sweep(sp, cam, sweep_speeds, quiet=quiet)
-    sw.set_crank_axis(axis)
+    sw = alone.sweep(sweep_speeds, quiet=quiet)
     written = sw.write(out_dir, "sweep")
     files += written[:2]
     figures.append(
@@ -401,11 +398,11 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     sw_other = None
     if rs.models == "both":
         try:
-            sw_other = sweep(sp.with_model(other_model), cam, sweep_speeds, quiet=quiet)
+            sw_other = alone.with_model(other_model).replace(crank_angles=False).sweep(sweep_speeds, quiet=quiet)
         except InputError as exc:  # the other model may not accept this spring
             findings.append(f"The {other_model} model cannot run this spring ({exc}); no model comparison.")
     if sw_other is not None:
-        png, sentences, table_other = _compare_models(sp, sw, sw_other, out_dir)
+        png, sentences, _ = _compare_models(sp, sw, sw_other, out_dir)
         files.append(sw_other.to_csv(out_dir / f"sweep_{other_model}_summary.csv"))
         figures.append(
             (
@@ -415,12 +412,13 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             )
         )
         findings += sentences
-    # the criteria come from the better model: the distributed chain (converged in its
-    # elements, every surge mode, coil closure turn by turn) whenever it runs this spring
+    # the criteria come from the model that judges (design.JUDGING_MODEL, the distributed chain:
+    # converged in its elements, every surge mode, coil closure turn by turn) whenever it runs
+    # this spring
     by_model = {sp.model: sw} | ({sw_other.spring.model: sw_other} if sw_other is not None else {})
-    crit_sweep = by_model.get("distributed", sw)
+    crit_sweep = by_model.get(design.JUDGING_MODEL, sw)
     beside = by_model.get("type-c") if crit_sweep is not by_model.get("type-c") else None
-    findings.insert(0, _model_choice(crit_sweep, beside, cam, top))
+    findings.insert(0, _model_choice(crit_sweep, beside, alone, top))
 
     for rpm, sim in sims.items():
         s = sim.summary
@@ -432,7 +430,8 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             else "no coil contact"
         )
         findings.append(
-            f"At {axis.per_cam * rpm:.0f} engine rpm ({rpm:.0f} cam rpm, {_describe_model(sw).split(',')[0]}) the peak retainer force is {s['max_retainer_force_N']:.1f} N, "
+            f"At {axis.per_cam * rpm:.0f} engine rpm ({rpm:.0f} cam rpm, {_describe_model(sw).split(',')[0]}) the peak "
+            f"retainer force is {s['max_retainer_force_N']:.1f} N, "
             f"{s['max_retainer_force_ratio']:.3f} times the static peak of {s['max_static_force_N']:.1f} N; the seat "
             f"force swings from {s['min_seat_force_N']:.1f} to {s['max_seat_force_N']:.1f} N (surge amplitude "
             f"{s['seat_surge_amplitude_N']:.1f} N); {contact}."
@@ -454,18 +453,26 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     )
     findings.append(
         f"First surge frequency f1 = {p['f1']:.1f} Hz (chain: {modes_free[0]:.1f} Hz at free length, "
-        f"{design['open']['surge_frequency_Hz']:.1f} Hz at full lift); at {top:.0f} cam rpm that is cam order "
-        f"{p['f1'] / (top / 60):.1f}, a surge margin of {design['installed']['surge_margin']:.1f} "
+        f"{figs['open']['surge_frequency_Hz']:.1f} Hz at full lift); at {top:.0f} cam rpm that is cam order "
+        f"{p['f1'] / (top / 60):.1f}, a surge margin of {figs['installed']['surge_margin']:.1f} "
         "(rule of thumb: 10-13 or more)."
     )
     findings.append(
-        f"Corrected shear stress (Bergstraesser k = {design['bergstraesser_factor']:.3f}): "
-        f"{design['installed']['shear_stress_Pa'] / 1e6:.0f} MPa installed, {design['open']['shear_stress_Pa'] / 1e6:.0f} MPa "
-        f"at {lift * 1e3:.3g} mm lift, {design['coil_contact']['shear_stress_Pa'] / 1e6:.0f} MPa at coil contact."
+        f"Corrected shear stress (Bergstraesser k = {figs['bergstraesser_factor']:.3f}): "
+        f"{figs['installed']['shear_stress_Pa'] / 1e6:.0f} MPa installed, {figs['open']['shear_stress_Pa'] / 1e6:.0f} MPa "
+        f"at {lift * 1e3:.3g} mm lift, {figs['coil_contact']['shear_stress_Pa'] / 1e6:.0f} MPa at coil contact."
     )
-    criteria = _criteria(
-        p, design, crit_sweep.summary_table(), beside.summary_table() if beside is not None else None, crit_sweep, rs
+    verdicts = design.spring_verdicts(
+        criteria_set,
+        figs,
+        crit_sweep.summary_table(),
+        crit_sweep.cam_rpm,
+        model=crit_sweep.spring.model,
+        rated_cam_rpm=top,
+        wire_limit=crit_sweep.spring.strengths["shear_stress_limit_Pa"],
+        beside=beside.summary_table() if beside is not None else None,
     )
+    criteria = [_criterion(v) for v in verdicts]
     if not d.cam_given:
         findings.append("The definition has no [cam] table: the built-in 3-4-5 cam (9 mm over 120 deg) was used.")
     commands = [
@@ -475,132 +482,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         f"springdyn valve sweep {source} --cam {source} --cam-rpm 500:4000:50 --out sweep",
     ]
     if vt is not None:
-        nat = natural_frequencies(sp, lobe, vt, count=6)
-        files.append(write_json(out_dir / "train_modes.json", nat))
-        findings.append(
-            f"Valve train ({vt.layout}{', hydraulic lash adjuster' if vt.hydraulic else ''}): "
-            f"{vt.moving_mass * 1e3:.1f} g referred to the valve, {vt.stiffness_at_valve / 1e6:.1f} N/um from cam to "
-            f"valve; natural frequencies of spring and train on the base circle "
-            + ", ".join(f"{f:.0f}" for f in nat["base_circle_Hz"])
-            + " Hz, at full lift "
-            + (", ".join(f"{f:.0f}" for f in nat["full_lift_Hz"]) or "n/a")
-            + " Hz."
-        )
-        need = top * (1.0 + rs.float_margin)  # the float speed the criterion asks for
-        res = float_speed(sp, lobe, vt, np.linspace(0.25 * top, 1.5 * need, 21))
-        files.append(write_json(out_dir / "float_speed.json", res.to_dict()))
-        f = res["float_cam_rpm"]
-        if f is None:
-            criteria.append(
-                Criterion(
-                    "float speed",
-                    f"above {res['cam_rpm'][-1]:.0f} cam rpm",
-                    f">= {need:.0f} cam rpm ({100 * rs.float_margin:g} % above the top speed {top:.0f} cam rpm)",
-                    True,
-                    "the valve does not leave the cam over the nose at the highest scanned speed"
-                    + _first_lift_off(res),
-                )
-            )
-            findings.append(
-                f"The valve stays on the cam over the nose up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float)"
-                + _first_lift_off(res)
-                + "."
-            )
-        else:
-            above = simulate(sp, lobe, 1.05 * f, valve_train=vt)
-            above.set_crank_axis(axis)
-            s = above.summary
-            plt.close(above.plot(out_dir / "valve_train_above_float.png"))
-            files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
-            figures.append(
-                (
-                    out_dir / "valve_train_above_float.png",
-                    f"Valve train 5 % above the float speed "
-                    f"({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals",
-                )
-            )
-            criteria.append(
-                Criterion(
-                    "float speed",
-                    f"{f:.0f} cam rpm",
-                    f">= {need:.0f} cam rpm ({100 * rs.float_margin:g} % above the top speed {top:.0f} cam rpm)",
-                    bool(f >= need),
-                    "lowest cam speed from which the valve leaves the cam over the nose at every higher scanned speed"
-                    + _first_lift_off(res),
-                )
-            )
-            sc = res.scan
-            hi = [i for i, r in enumerate(res.cam_rpm) if r >= f]
-            v_lo = min(sc["seat_impact_velocity_min_m_per_s"][i] for i in hi)
-            v_hi = max(sc["seat_impact_velocity_max_m_per_s"][i] for i in hi)
-            landings = max(sc["seat_landings"][i] for i in hi)
-            findings.append(
-                f"Valve float: the valve leaves the cam over the nose from {f:.0f} cam rpm ({2 * f:.0f} engine rpm, "
-                f"four-stroke) on{_first_lift_off(res)}. 5 % above it, contact is lost for "
-                f"{sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the valve lands on its seat at "
-                f"{s['seat_impact_velocity_m_per_s']:.2f} m/s; over the scanned speeds from the float speed on the seating "
-                f"velocity ranges {v_lo:.2f}-{v_hi:.2f} m/s (band over the speeds within 25 rpm and, where a speed does "
-                f"not settle, over its last revolutions) with up to {landings} seat landings per cycle."
-            )
-            findings.append(_run_up_finding(sp, lobe, vt, f, rs, axis, out_dir, files, figures))
-        if vt.hla is not None:  # the adjuster at the top speed: leak-down, pump-up, socket hop
-            at_top = simulate(sp, lobe, top, valve_train=vt).summary
-            h = at_top["hla"]
-            findings.append(
-                f"Hydraulic lash adjuster at the top speed ({axis.per_cam * top:.0f} engine rpm): it collapses "
-                f"{h['collapse_min_m'] * 1e6:.1f} to {h['collapse_max_m'] * 1e6:.1f} um over the cycle under up to "
-                f"{h['peak_pressure_Pa'] / 1e5:.0f} bar above the supply; {h['leak_per_revolution_m3'] * 1e9:.3f} mm^3 "
-                f"leaks out and {h['inflow_per_revolution_m3'] * 1e9:.3f} mm^3 refills per cycle"
-                + (
-                    f"; {'the plunger leaves the stem' if vt.bucket_hla else 'the finger leaves its socket'} for "
-                    f"{h['socket_hop_deg']:.1f} cam degrees"
-                    if h["socket_hop"]
-                    else ""
-                )
-                + "."
-            )
-            criteria.append(
-                Criterion(
-                    f"valve closes at {top:.0f} cam rpm (no pump-up)",
-                    f"held open {h['valve_held_open_m'] * 1e3:.3f} mm",
-                    "0 mm on the base circle",
-                    bool(h["valve_held_open_m"] <= 1e-6),
-                    "the hydraulic lash adjuster must not extend into a lift-off and hold the valve open",
-                )
-            )
-            if f is not None and "hla" in s:
-                findings.append(
-                    f"5 % above the float speed the adjuster holds the valve {s['hla']['valve_held_open_m'] * 1e3:.3f} mm "
-                    "open on the base circle (pump-up)."
-                    if s["hla"]["valve_held_open_m"] > 1e-6
-                    else "5 % above the float speed the adjuster does not pump up: the valve still closes."
-                )
-        sc = res.scan or {}
-        upto = [i for i, r in enumerate(res.cam_rpm) if r <= top + 1e-9]
-        if upto and "seat_impact_velocity_max_m_per_s" in sc:
-            v = max(sc["seat_impact_velocity_max_m_per_s"][i] for i in upto)
-            criteria.append(
-                Criterion(
-                    f"seating velocity up to {top:.0f} cam rpm",
-                    f"{v:.2f} m/s",
-                    f"<= {rs.max_seating_velocity:g} m/s ([report] max_seating_velocity)",
-                    bool(v <= rs.max_seating_velocity),
-                    "the valve's impact on its seat, the largest of the band over the scanned speeds within 25 rpm "
-                    "and, where a speed does not settle, its last revolutions",
-                )
-            )
-        if d.gas_force is not None:
-            findings.append(_gas_finding(sp, lobe, vt, d, top, axis))
-        if d.follower is not None:
-            findings.append(_friction_finding(sp, lobe, vt, d, report_speeds, axis, out_dir, files, figures))
-            commands.append(
-                f"springdyn valve friction {source} --cam {source} --valve-train {source} "
-                f"--cam-rpm {report_speeds[0]:.0f}:{top:.0f}:{(top - report_speeds[0]) / 4:.0f}"
-            )
-        commands.append(
-            f"springdyn valve float {source} --cam {source} --valve-train {source} "
-            f"--cam-rpm {res.cam_rpm[0]:.0f}:{res.cam_rpm[-1]:.0f}:{res.cam_rpm[1] - res.cam_rpm[0]:.0f}"
-        )
+        _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, findings, criteria, commands, source)
     if d.requirements is not None or d.tolerances is not None:
         _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet)
     inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
@@ -608,11 +490,12 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         inputs += [(f"valve_train.{k}", v, m) for k, v, m in parameter_rows(vt)]
         if vt.hla is not None:
             inputs += [(f"hla.{k}", v, m) for k, v, m in parameter_rows(vt.hla)]
-    derived = [(k, format_quantity(v, *PARAMETER_UNITS[k][:2]), PARAMETER_UNITS[k][2]) for k, v in p.items()]
+    units = valve.PARAMETER_UNITS
+    derived = [(k, format_quantity(v, *units[k][:2]), units[k][2]) for k, v in p.items()]
     derived.append(
         ("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length")
     )
-    derived.append(("spring index", f"{design['spring_index']:.3f}", "D/d"))
+    derived.append(("spring index", f"{figs['spring_index']:.3f}", "D/d"))
     if vt is None:
         criteria.append(
             Criterion(
@@ -637,12 +520,107 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     )
 
 
+def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, findings, criteria, commands, source):
+    """The valve train's part of the section: its modes, the float speed against the criteria, a
+    run 5 % above it, the run-up through it, the adjuster, the seating velocity, the gas force
+    and the friction."""
+    model = train.replace(gas_force=None)  # every study but the gas force's own runs without it
+    vt = model.valve_train
+    axis = model.crank_axis
+    crit = rs.criteria
+    nat = model.natural_frequencies(count=6)
+    files.append(write_json(out_dir / "train_modes.json", nat.to_dict()))
+    findings.append(
+        f"Valve train ({vt.layout}{', hydraulic lash adjuster' if vt.hydraulic else ''}): "
+        f"{vt.moving_mass * 1e3:.1f} g referred to the valve, {vt.stiffness_at_valve / 1e6:.1f} N/um from cam to "
+        f"valve; natural frequencies of spring and train on the base circle "
+        + ", ".join(f"{f:.0f}" for f in nat.base_circle_Hz)
+        + " Hz, at full lift "
+        + (", ".join(f"{f:.0f}" for f in nat.full_lift_Hz) or "n/a")
+        + " Hz."
+    )
+    res = model.float_speed_above(top, crit.float_margin)
+    files.append(write_json(out_dir / "float_speed.json", res.to_dict()))
+    f = res["float_cam_rpm"]
+    criteria.append(_criterion(design.float_verdict(crit, res, top, _first_lift_off(res))))
+    s = None
+    if f is None:
+        findings.append(
+            f"The valve stays on the cam over the nose up to {res['cam_rpm'][-1]:.0f} cam rpm (no valve float)"
+            + _first_lift_off(res)
+            + "."
+        )
+    else:
+        above = model.simulate(1.05 * f)
+        s = above.summary
+        plt.close(above.plot(out_dir / "valve_train_above_float.png"))
+        files.append(above.to_csv(out_dir / "valve_train_above_float.csv"))
+        figures.append(
+            (
+                out_dir / "valve_train_above_float.png",
+                f"Valve train 5 % above the float speed ({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals",
+            )
+        )
+        sc = res.scan
+        hi = [i for i, r in enumerate(res.cam_rpm) if r >= f]
+        v_lo = min(sc["seat_impact_velocity_min_m_per_s"][i] for i in hi)
+        v_hi = max(sc["seat_impact_velocity_max_m_per_s"][i] for i in hi)
+        landings = max(sc["seat_landings"][i] for i in hi)
+        findings.append(
+            f"Valve float: the valve leaves the cam over the nose from {f:.0f} cam rpm ({2 * f:.0f} engine rpm, "
+            f"four-stroke) on{_first_lift_off(res)}. 5 % above it, contact is lost for "
+            f"{sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the valve lands on its seat at "
+            f"{s['seat_impact_velocity_m_per_s']:.2f} m/s; over the scanned speeds from the float speed on the seating "
+            f"velocity ranges {v_lo:.2f}-{v_hi:.2f} m/s (band over the speeds within 25 rpm and, where a speed does "
+            f"not settle, over its last revolutions) with up to {landings} seat landings per cycle."
+        )
+        findings.append(_run_up_finding(model, f, rs, out_dir, files, figures))
+    if vt.hla is not None:  # the adjuster at the top speed: leak-down, pump-up, socket hop
+        h = model.simulate(top).summary["hla"]
+        findings.append(
+            f"Hydraulic lash adjuster at the top speed ({axis.per_cam * top:.0f} engine rpm): it collapses "
+            f"{h['collapse_min_m'] * 1e6:.1f} to {h['collapse_max_m'] * 1e6:.1f} um over the cycle under up to "
+            f"{h['peak_pressure_Pa'] / 1e5:.0f} bar above the supply; {h['leak_per_revolution_m3'] * 1e9:.3f} mm^3 "
+            f"leaks out and {h['inflow_per_revolution_m3'] * 1e9:.3f} mm^3 refills per cycle"
+            + (
+                f"; {'the plunger leaves the stem' if vt.bucket_hla else 'the finger leaves its socket'} for "
+                f"{h['socket_hop_deg']:.1f} cam degrees"
+                if h["socket_hop"]
+                else ""
+            )
+            + "."
+        )
+        criteria.append(_criterion(design.pump_up_verdict(h["valve_held_open_m"], top)))
+        if f is not None and "hla" in s:
+            findings.append(
+                f"5 % above the float speed the adjuster holds the valve {s['hla']['valve_held_open_m'] * 1e3:.3f} mm "
+                "open on the base circle (pump-up)."
+                if s["hla"]["pump_up"]
+                else "5 % above the float speed the adjuster does not pump up: the valve still closes."
+            )
+    sc = res.scan or {}
+    upto = [i for i, r in enumerate(res.cam_rpm) if r <= top + 1e-9]
+    if upto and "seat_impact_velocity_max_m_per_s" in sc:
+        v = max(sc["seat_impact_velocity_max_m_per_s"][i] for i in upto)
+        criteria.append(_criterion(design.seating_verdict(crit, v, top)))
+    if train.gas_force is not None:
+        findings.append(_gas_finding(train, top))
+    if model.follower is not None:
+        findings.append(_friction_finding(model, report_speeds, out_dir, files, figures))
+        commands.append(
+            f"springdyn valve friction {source} --cam {source} --valve-train {source} "
+            f"--cam-rpm {report_speeds[0]:.0f}:{top:.0f}:{(top - report_speeds[0]) / 4:.0f}"
+        )
+    commands.append(
+        f"springdyn valve float {source} --cam {source} --valve-train {source} "
+        f"--cam-rpm {res.cam_rpm[0]:.0f}:{res.cam_rpm[-1]:.0f}:{res.cam_rpm[1] - res.cam_rpm[0]:.0f}"
+    )
+
+
 def _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet):
     """``[report] requirements``: a new spring synthesised for them (the best candidate);
     ``[report] tolerances``: that spring, else the definition's, across its tolerances."""
     from springdyn.core.progress import progress
-    from springdyn.valve.design.synthesis import synthesize, write_candidates
-    from springdyn.valve.design.tolerances import tolerance_study
 
     rs, vt = d.settings, d.valve_train
     spring = d.spring
@@ -653,9 +631,9 @@ def _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, 
 
     if d.requirements is not None:
         req, base = d.requirements
-        syn = synthesize(req, base_dir=base, progress=bar)  # infeasible: an InputError naming the binding ones
+        syn = design.synthesize(req, base_dir=base, progress=bar)  # infeasible: an InputError naming the binding ones
         folder = out_dir / "new_spring"
-        files += write_candidates(syn, folder, source=rs.requirements)
+        files += design.write_candidates(syn, folder, source=rs.requirements)
         files.append(syn.to_csv(folder / "candidates.csv"))
         plot = folder / "candidates.png"
         plt.close(syn.plot(plot))
@@ -685,16 +663,14 @@ def _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, 
     if d.tolerances is None:
         return
     tols, crit = d.tolerances
-    lo = rs.report_speeds[0]
     # up to 10 % past the float speed the report asks for (the variants' float speeds inside
     # the range), in the step of the report's sweep: the smallest Goodman safety over the
     # speeds is a resonance's, which a coarser step misses (250 rpm instead of 100 passed 50 %
     # more of the worked example's variants)
-    hi = 1.1 * top * (1.0 + rs.float_margin) if vt is not None else top
     step = rs.cam_rpm(rs.engine_rpm_step)
-    speeds = np.arange(lo, hi + step, step)
+    speeds = d.model.service_speeds(rs.report_speeds[0], top, step, rs.float_margin)
     which = "the synthesised spring" if d.requirements is not None else "the spring"
-    st = tolerance_study(
+    st = design.tolerance_study(
         spring.with_model(model),
         lobe,
         tols,
@@ -811,7 +787,7 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
     return png, sentences, b
 
 
-def _model_choice(crit, beside, cam, top) -> str:
+def _model_choice(crit, beside, alone, top) -> str:
     """The paragraph up front: which model the criteria use, why, and its convergence evidence."""
     s = crit.spring
     if s.model != "distributed":
@@ -820,8 +796,7 @@ def _model_choice(crit, beside, cam, top) -> str:
             "([report] models), or the distributed model cannot run this spring. Type C's three surge modes and "
             "empirical coil contact make its clash and float figures indicative (docs/valve.md)."
         )
-    sim = simulate(s, cam, top)  # with the element check where coils clash
-    sm = sim.summary
+    sm = alone.replace(spring=s).simulate(top).summary  # with the element check where coils clash
     if "clash_force_element_sensitivity" in sm:
         evidence = (
             f"at {top:.0f} cam rpm its coils clash and the peak end forces with half the elements ({s.elements // 2}) "
@@ -850,122 +825,6 @@ def _describe_model(run) -> str:
     """Which model and settings produced a figure: ``run`` a sweep, or a spring (its runs to
     the default periodic steady state)."""
     s = getattr(run, "spring", run)
-    tol = getattr(run, "periodicity_tol", PERIODICITY_TOL)
+    tol = getattr(run, "periodicity_tol", valve.PERIODICITY_TOL)
     name = f"distributed model ({s.elements} elements)" if s.model == "distributed" else "Type C model (5 masses)"
     return f"{name}, each speed to its periodic steady state (last two revolutions within {100 * tol:g} % of Fset)"
-
-
-def _criteria(p, design, table, beside, sw, rs) -> list[Criterion]:
-    """The valve section's criteria: surge margin, solid length and coil bind, coil clash,
-    minimum retainer force, wire stress and fatigue; over the sweep from ``table`` (the
-    better model's, ``sw``) with ``beside`` (Type C's) in the notes."""
-    speeds = sw.cam_rpm
-    top = rs.report_speeds[-1]
-    margin = design["installed"]["surge_margin"]
-    model = "distributed" if sw.spring.model == "distributed" else "Type C"
-    rng = f"{speeds[0]:.0f}-{speeds[-1]:.0f} cam rpm, {model}"
-
-    def other(text):
-        return f"; Type C: {text}" if beside is not None else ""
-
-    out = [
-        Criterion(
-            f"surge margin at {top:.0f} cam rpm",
-            f"{margin:.1f}",
-            f">= {rs.min_surge_margin:g} ([report] min_surge_margin; rule of thumb 10-13)",
-            bool(margin >= rs.min_surge_margin),
-            "first natural frequency at installed length / camshaft frequency",
-        )
-    ]
-    cb = design.get("coil_bind")
-    if cb is not None:
-        out.append(
-            Criterion(
-                "solid length",
-                f"{cb['solid_length_m'] * 1e3:.2f} mm",
-                f"below the open length {cb['open_length_m'] * 1e3:.2f} mm",
-                bool(cb["solid_length_m"] < cb["open_length_m"]),
-                "EN 13906-1 solid length of the drawing; the spring's length at full lift is the open length",
-            )
-        )
-        out.append(
-            Criterion(
-                "coil-bind clearance at full lift",
-                f"{cb['coil_bind_margin_m'] * 1e3:.2f} mm above solid ({cb['solid_length_m'] * 1e3:.2f} mm)",
-                f">= {cb['coil_bind_clearance_m'] * 1e3:.2f} mm" + f" ({cb['coil_bind_clearance_source']})",
-                bool(cb["coil_bind_ok"]),
-                "THROUGH SOLID (through_solid = true): forces rest on the closed coils' contact stiffness"
-                if cb["through_solid"]
-                else "installed length - cam lift - solid length",
-            )
-        )
-
-    def clash_text(t):
-        c = np.asarray(t["coil_clash"], bool)
-        return f"{int(c.sum())} of {c.size} speeds" + (f" from {speeds[c][0]:.0f} cam rpm" if c.any() else "")
-
-    clash = np.asarray(table["coil_clash"], bool)
-    out.append(
-        Criterion(
-            f"coil clash, {rng}",
-            clash_text(table),
-            "none",
-            bool(not clash.any()),
-            (
-                "coils close where the static spring at the same lift is open"
-                if clash.any()
-                else "no coil closes beyond what the static spring closes at the same lift"
-            )
-            + other(clash_text(beside) if beside is not None else "")
-            + (f"; {design['coil_contact_note']}" if "coil_contact_note" in design else ""),
-        )
-    )
-    k = int(np.argmin(table["min_retainer_force_N"]))
-    fmin = float(table["min_retainer_force_N"][k])
-    kb = int(np.argmin(beside["min_retainer_force_N"])) if beside is not None else 0
-    out.append(
-        Criterion(
-            f"minimum retainer force (dynamic), {rng}",
-            f"{fmin:.1f} N at {speeds[k]:.0f} cam rpm",
-            "> 0 N",
-            bool(fmin > 0.0),
-            f"static minimum {float(np.min(table['min_static_force_N'])):.1f} N; at 0 N the spring end leaves the "
-            "retainer"
-            + other(
-                f"{float(beside['min_retainer_force_N'][kb]):.1f} N at {speeds[kb]:.0f} cam rpm"
-                if beside is not None
-                else ""
-            ),
-        )
-    )
-    peak = np.asarray(table["peak_shear_stress_Pa"], dtype=float)
-    k = int(np.argmax(peak))
-    limit = spring_strengths(sw.spring)["shear_stress_limit_Pa"]
-    out.append(
-        Criterion(
-            f"peak wire stress, {rng}",
-            f"{peak[k] / 1e6:.0f} MPa at {speeds[k]:.0f} cam rpm (element {int(table['peak_shear_stress_element'][k])})",
-            f"<= {limit / 1e6:.0f} MPa",
-            bool(np.all(table["wire_stress_ok"])),
-            "EN 13906-1 corrected stress of the wire's torsion alone (force closed coils pass through their contact "
-            "excluded); limit: shear_yield_strength, else the ultimate shear strength"
-            + other(f"{float(np.max(beside['peak_shear_stress_Pa'])) / 1e6:.0f} MPa" if beside is not None else ""),
-        )
-    )
-    dyn = np.asarray(table["fatigue_safety_factor"], dtype=float)
-    k = int(np.argmin(dyn))
-    fat = design.get("fatigue", {})
-    defaults = fat.get("strength_defaults", [])
-    out.append(
-        Criterion(
-            f"fatigue safety factor (Goodman), {rng}",
-            f"{dyn[k]:.2f} at {speeds[k]:.0f} cam rpm",
-            f">= {rs.min_goodman_safety:g} ([report] min_goodman_safety)",
-            bool(dyn[k] >= rs.min_goodman_safety),
-            f"static (installed to open) {fat.get('static_fatigue_safety_factor', float('nan')):.2f}; the dynamic "
-            "factor uses every element's wire torsion range with surge"
-            + other(f"{float(np.min(beside['fatigue_safety_factor'])):.2f}" if beside is not None else "")
-            + (f"; default wire strengths for {', '.join(defaults)}" if defaults else ""),
-        )
-    )
-    return out

@@ -7,7 +7,9 @@
 - :mod:`.life` -- relaxation at the service temperature and the life against a load
   spectrum (``[spectrum]``);
 - :mod:`.calibrate` -- the drawing's load points against the model, and a fit of the shear
-  modulus or the active coils to them, or of the damping to a measured trace.
+  modulus or the active coils to them, or of the damping to a measured trace;
+- :mod:`.criteria` -- the one set of pass/fail criteria (``[criteria]``): every limit and the rule
+  that judges it, for the report, the tolerance study and the synthesis.
 
 It imports every wing below it.
 """
@@ -25,6 +27,20 @@ _EXPORTS = {
     "read_tolerances": "tolerances",
     "LoadSpectrum": "life",
     "service_life": "life",
+    "Criteria": "criteria",
+    "Verdict": "criteria",
+    "RULES": "criteria",
+    "margin": "criteria",
+    "passes": "criteria",
+    "spring_verdicts": "criteria",
+    "float_verdict": "criteria",
+    "pump_up_verdict": "criteria",
+    "seating_verdict": "criteria",
+    "MIN_GOODMAN_SAFETY": "criteria",
+    "MIN_SURGE_MARGIN": "criteria",
+    "FLOAT_MARGIN": "criteria",
+    "MAX_SEATING_VELOCITY": "criteria",
+    "JUDGING_MODEL": "criteria",
 }
 __all__ = sorted(_EXPORTS)
 

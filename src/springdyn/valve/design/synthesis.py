@@ -52,6 +52,7 @@ from ..spring.stress import (
     ultimate_shear_strength,
     zimmerli_endurance_shear_strength,
 )
+from . import criteria
 
 __all__ = [
     "Requirements",
@@ -77,15 +78,16 @@ INDEX_RANGE = (4.0, 16.0)
 #: EN 13906-1's permissible (uncorrected) shear stress at solid length of cold-coiled
 #: springs, a fraction of the tensile strength [-].
 SOLID_STRESS_FRACTION = 0.5
-#: The requirements judged for every candidate, as margins (a fraction; >= 0 where met).
+#: The requirements judged for every candidate, as margins (a fraction; >= 0 where met; each
+#: the rule of :data:`springdyn.valve.design.criteria.RULES` named beside it).
 MARGINS = {
-    "outer_diameter": "max_outer_diameter - (D + d), over max_outer_diameter",
-    "inner_diameter": "(D - d) - min_inner_diameter, over min_inner_diameter",
-    "coil_bind": "open length - solid length - clearance, over the clearance",
-    "goodman": "Goodman safety / min_goodman_safety - 1",
-    "solid_stress": "1 - stress at solid length / (0.5 Rm)",
-    "spring_index": "distance of D/d inside 4-16, over 4",
-    "surge": "f1 / min_surge_frequency - 1 (with min_surge_frequency)",
+    "outer_diameter": "outer_diameter: 1 - (D + d) / max_outer_diameter",
+    "inner_diameter": "inner_diameter: (D - d) / min_inner_diameter - 1",
+    "coil_bind": "coil_bind: (open length - solid length) / clearance - 1",
+    "goodman": "goodman: Goodman safety / min_goodman_safety - 1",
+    "solid_stress": "solid_stress: 1 - stress at solid length / (0.5 Rm)",
+    "spring_index": "spring_index: distance of D/d inside 4-16, over 4",
+    "surge": "surge_margin: f1 / min_surge_frequency - 1 (with min_surge_frequency)",
 }
 
 
@@ -143,7 +145,7 @@ class Requirements(Parameters):
         "",
         "smallest Goodman safety between the two load points (1.1-1.3 in spring practice)",
         positive=True,
-        default=1.1,
+        default=criteria.MIN_GOODMAN_SAFETY,
     )
     min_surge_frequency: float = param(
         "Hz", "smallest first surge frequency at the installed length", positive=True, default=None
@@ -351,15 +353,15 @@ def evaluate(req: Requirements, d, dm, n1, n2, lf) -> dict:
     tau_solid = nominal_shear_stress(f_solid, dm, d)  # uncorrected (EN 13906-1 at solid length)
     surge = formulas.surge_frequency(g, rho, d, dm, n_work)
     margins = dict(
-        outer_diameter=(req.max_outer_diameter - (dm + d)) / req.max_outer_diameter,
-        inner_diameter=((dm - d) - req.min_inner_diameter) / req.min_inner_diameter,
-        coil_bind=(req.open_length - solid - clearance) / np.maximum(clearance, 1e-4),
-        goodman=goodman / req.min_goodman_safety - 1.0,
-        solid_stress=1.0 - tau_solid / (SOLID_STRESS_FRACTION * rm),
-        spring_index=np.minimum(index - INDEX_RANGE[0], INDEX_RANGE[1] - index) / INDEX_RANGE[0],
+        outer_diameter=criteria.margin("outer_diameter", dm + d, req.max_outer_diameter),
+        inner_diameter=criteria.margin("inner_diameter", dm - d, req.min_inner_diameter),
+        coil_bind=criteria.margin("coil_bind", req.open_length - solid, np.maximum(clearance, 1e-4)),
+        goodman=criteria.margin("goodman", goodman, req.min_goodman_safety),
+        solid_stress=criteria.margin("solid_stress", tau_solid, SOLID_STRESS_FRACTION * rm),
+        spring_index=criteria.margin("spring_index", index, INDEX_RANGE),
     )
     if req.min_surge_frequency is not None:
-        margins["surge"] = surge / req.min_surge_frequency - 1.0
+        margins["surge"] = criteria.margin("surge_margin", surge, req.min_surge_frequency)
     worst = np.min(np.stack(list(margins.values())), axis=0)
     physical = (n_work >= 2.0) & (lf > req.installed_length)
     out = dict(
@@ -831,7 +833,9 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
             t = sweep(model, cam, speeds, valve_train=vt).summary_table()
             row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
             row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
-            row["margin_goodman_dynamic"] = row["dynamic_goodman_safety"] / req.min_goodman_safety - 1.0
+            row["margin_goodman_dynamic"] = criteria.margin(
+                "goodman", row["dynamic_goodman_safety"], req.min_goodman_safety
+            )
             clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
             row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
             if vt is not None:
@@ -842,7 +846,7 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
                 if need is not None:
                     fl = res["float_cam_rpm"]
                     # no float up to the scan's top: at least that (a lower bound of the margin)
-                    row["margin_float"] = (scan[-1] if fl is None else fl) / need - 1.0
+                    row["margin_float"] = criteria.margin("float_speed", scan[-1] if fl is None else fl, need)
         row["smallest_margin"] = min(v for key, v in row.items() if key.startswith("margin_"))
         row["meets_all"] = row["smallest_margin"] >= 0.0
     if not any(r["margin_goodman_dynamic"] >= 0 for r in rows):

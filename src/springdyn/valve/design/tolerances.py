@@ -8,7 +8,8 @@ active coils, :func:`mean_active_pitch`: the coiling tool's systematic error, wh
 free length), the cam's ``lift`` and the valve train's ``lash``.  A value is a band, uniform between its limits (``wire_diameter = "+-0.02 mm"``,
 ``shear_modulus = "+-2 %"``), or a distribution (``wire_diameter = { distribution =
 "normal", sigma = "0.01 mm" }``; ``"uniform"`` takes ``limits``).  A ``[criteria]`` table
-beside it sets the limits each variant is judged against (:class:`Criteria`).
+beside it sets the limits each variant is judged against
+(:class:`springdyn.valve.design.criteria.Criteria`, the one set of criteria).
 
 **Sampling** (:func:`sample`): scrambled Sobol points (``scipy.stats.qmc.Sobol``, a
 low-discrepancy sequence: percentiles converge faster than with random points) or Monte
@@ -47,10 +48,12 @@ from pathlib import Path
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.params import Parameters, load_toml, param
+from ...core.params import load_toml
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import to_si
 from ..run.float_search import FLOAT_RESOLUTION, float_speed_near
+from . import criteria
+from .criteria import Criteria
 
 __all__ = [
     "TOLERANCED",
@@ -192,33 +195,6 @@ def parse_tolerance(name: str, value) -> tuple[Tolerance, bool]:
             return parse_tolerance(name, value["limits"])
         raise InputError(f'{where}: distribution = {dist!r} must be "normal" or "uniform"')
     raise InputError(f"{where} = {value!r}: give a band string or a distribution table")
-
-
-@dataclass(frozen=True)
-class Criteria(Parameters):
-    """The ``[criteria]`` table beside ``[tolerances]``: what a variant must meet."""
-
-    min_goodman_safety: float = param("", "smallest Goodman safety over the speeds", positive=True, default=1.1)
-    min_float_cam_rpm: float = param(
-        "rad/s",
-        "smallest float speed (default: the top of the speed range: no float within it)",
-        display="rpm",
-        bare_unit="rpm",
-        positive=True,
-        default=None,
-    )
-    no_coil_clash: bool = param(None, "no coil clash within the speed range", kind="bool", default=True)
-    max_retainer_force: float = param(
-        "N", "largest retainer force over the speeds (optional)", positive=True, default=None
-    )
-    installed_force_band: float = param(
-        "",
-        "largest deviation of Fset from the nominal spring's (a fraction, e.g. '10 %'; optional)",
-        positive=True,
-        default=None,
-    )
-
-    table = "criteria"
 
 
 def read_tolerances(path) -> tuple[dict, Criteria]:
@@ -698,24 +674,28 @@ class ToleranceStudy(Result):
         return f"{self.dataset.sizes['variant']} variants"
 
     def failures(self) -> dict:
-        """Per criterion the boolean array of the variants that fail it (a refused variant fails all)."""
+        """Per criterion the boolean array of the variants that fail it (a refused variant fails
+        all), each judged by its rule (:func:`springdyn.valve.design.criteria.passes`)."""
         ds, c = self.dataset, self.criteria
         refused = ds["refused"].values > 0.5
         out = {}
         if not self.float_only:
-            g = ds["goodman_safety"].values
-            out["goodman"] = refused | ~(g >= c.min_goodman_safety)
+            out["goodman"] = refused | ~criteria.passes("goodman", ds["goodman_safety"].values, c.min_goodman_safety)
         if self.floats:
             need = c.min_float_cam_rpm * 30.0 / math.pi if c.min_float_cam_rpm is not None else float(self.speeds[-1])
             f = ds["float_cam_rpm"].values
-            out["float_speed"] = refused | ((ds["float_in_range"].values > 0.5) & (f < need))
+            out["float_speed"] = refused | (
+                (ds["float_in_range"].values > 0.5) & ~criteria.passes("float_speed", f, need)
+            )
         if c.no_coil_clash and not self.float_only:
-            out["coil_clash"] = refused | (ds["clash_in_range"].values > 0.5)
+            out["coil_clash"] = refused | ~criteria.passes("coil_clash", ds["clash_in_range"].values > 0.5, None)
         if c.max_retainer_force is not None and not self.float_only:
-            out["retainer_force"] = refused | ~(ds["max_retainer_force"].values <= c.max_retainer_force)
+            out["retainer_force"] = refused | ~criteria.passes(
+                "max_retainer_force", ds["max_retainer_force"].values, c.max_retainer_force
+            )
         if c.installed_force_band is not None:
             dev = np.abs(ds["Fset"].values / self.nominal["Fset"] - 1.0)
-            out["installed_force"] = refused | ~(dev <= c.installed_force_band)
+            out["installed_force"] = refused | ~criteria.passes("installed_force", dev, c.installed_force_band)
         return out
 
     def _figures(self) -> list:

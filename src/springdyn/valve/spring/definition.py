@@ -16,6 +16,7 @@ from ...core.errors import InputError
 from ...core.params import Parameters, describe_value, param
 from ...core.units import format_mm, format_quantity
 from . import formulas
+from .stress import spring_strengths
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
 
@@ -248,6 +249,12 @@ class ValveSpring(Parameters):
             ),
             free_length_m=self.free_length,
         )
+
+    @property
+    def strengths(self) -> dict:
+        """The wire's torsional strengths and stress limit, and which are defaults
+        (:func:`springdyn.valve.spring.stress.spring_strengths`)."""
+        return spring_strengths(self)
 
     @property
     def load_point_table(self) -> list[dict]:
