@@ -50,7 +50,7 @@ _EXPORTS = {
     "SpringModel": "spring.chains",
     "TypeCModel": "spring.chains",
     "MODELS": "spring.chains",
-    "PARAMETER_UNITS": "spring.chains",
+    "PARAMETER_UNITS": "spring.formulas",
     # results
     "StaticCurve": "spring.results",
     "Simulation": "run.results",

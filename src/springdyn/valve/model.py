@@ -36,6 +36,12 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.params import load_toml
+from ..core.progress import progress
+from . import cam as cam_wing
+from . import design as design_wing
+from . import run as run_wing
+from . import spring as spring_wing
+from . import train as train_wing
 from .cam.definition import Cam
 from .cam.follower import Follower
 from .cam.timing import Timing, cam_rpm_from_engine_rpm, crank_axis
@@ -144,8 +150,6 @@ class ValveModel:
         crank_angles : bool, optional
             Crank angles in the results (default: when a ``[timing]`` table is given).
         """
-        from .train.friction import Friction
-
         sp = ValveSpring.from_toml(spring).with_model(model)
         c = Cam.from_toml(cam) if cam is not None else None
         vt = ValveTrain.from_toml(valve_train) if valve_train is not None else None
@@ -155,7 +159,7 @@ class ValveModel:
         if valve_train is not None:
             doc = load_toml(valve_train)
             if "friction" in doc:
-                friction = Friction.from_dict(doc["friction"], source=str(valve_train))
+                friction = train_wing.Friction.from_dict(doc["friction"], source=str(valve_train))
         return cls(
             sp,
             c,
@@ -237,8 +241,6 @@ class ValveModel:
         port_pressure : float
             Pressure behind the valve head, absolute [Pa].
         """
-        from .train.gas_force import GasForce
-
         if self.valve_train is None:
             raise InputError(
                 "the gas force acts on the valve: give --valve-train / [valve_train] (the spring alone has no valve)"
@@ -253,7 +255,7 @@ class ValveModel:
             )
         if not Path(path).is_file():
             raise InputError(f"path = {str(path)!r}: no such file (the cylinder pressure)")
-        gas = GasForce.from_file(
+        gas = train_wing.GasForce.from_file(
             path,
             axis=crank_axis(self._need_cam("the gas force"), self.timing),
             seat_diameter=vt.seat_diameter,
@@ -306,9 +308,7 @@ class ValveModel:
     def setup(self):
         """The engine's speed-independent set-up: cam table, initial state, the train's
         parameters with the gas force (:func:`springdyn.valve.run.setup.prepare`)."""
-        from .run.setup import prepare  # (here: the run wing loads the compiled engine, numba)
-
-        return prepare(self.spring, self._need_cam("the set-up"), self.valve_train, self.gas_force)
+        return run_wing.prepare(self.spring, self._need_cam("the set-up"), self.valve_train, self.gas_force)
 
     @cached_property
     def crank_axis(self):
@@ -356,9 +356,7 @@ class ValveModel:
     def parameter_table(self):
         """The internal parameters with their units and meaning, the coils and the drawing's load
         points (:class:`~springdyn.valve.spring.results.SpringParameters`)."""
-        from .spring.results import SpringParameters
-
-        return SpringParameters.of(self.spring)
+        return spring_wing.SpringParameters.of(self.spring)
 
     def static_force(self, length):
         """Static force [N] at the spring length(s) [m].
@@ -405,9 +403,7 @@ class ValveModel:
         count : int
             Frequencies [-].
         """
-        from .spring.results import ChainModes
-
-        return ChainModes.of(self.spring, length, count)
+        return spring_wing.ChainModes.of(self.spring, length, count)
 
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None):
         """Spring index, corrected stresses, surge margin, coil bind, static fatigue
@@ -421,11 +417,9 @@ class ValveModel:
         cam_rpm : float, optional
             Cam speed [rev/min] for the surge margin.
         """
-        from .spring.results import DesignFigures
-
         if lift is None and self.cam is not None:
             lift = self.cam.lift
-        return DesignFigures(self.spring, self.chain_model.design_figures(lift, cam_rpm))
+        return spring_wing.DesignFigures(self.spring, self.chain_model.design_figures(lift, cam_rpm))
 
     def dynamic_stiffness(self, frequency, length: float | None = None):
         """The linearised dynamic stiffness of the spring (:class:`~springdyn.valve.spring.frf.FrequencyResponse`).
@@ -437,9 +431,7 @@ class ValveModel:
         length : float, optional
             Spring length [m] (default: installed).
         """
-        from .spring.frf import dynamic_stiffness
-
-        return dynamic_stiffness(self.spring, frequency, length)
+        return spring_wing.dynamic_stiffness(self.spring, frequency, length)
 
     def calibrate(self, fit: str = "shear_modulus") -> dict:
         """The shear modulus or the active coils fitted to the drawing's load points
@@ -450,9 +442,7 @@ class ValveModel:
         fit : {"shear_modulus", "active_coils"}
             What to fit.
         """
-        from .design.calibrate import calibrate  # (here: the design wing loads the run wing, numba)
-
-        return calibrate(self.spring, fit)
+        return design_wing.calibrate(self.spring, fit)
 
     def calibrate_trace(self, cam_rpm: float, cam_angle, retainer_force, fit=("damping_ratio", "contact_stiffness")):
         """The damping and the coils' contact stiffness fitted to a measured retainer-force trace
@@ -469,9 +459,9 @@ class ValveModel:
         fit : sequence of str
             What to fit, of ``damping_ratio`` and ``contact_stiffness``.
         """
-        from .design.calibrate import calibrate_trace
-
-        return calibrate_trace(self.spring, self._need_cam("calibrate_trace"), cam_rpm, cam_angle, retainer_force, fit)
+        return design_wing.calibrate_trace(
+            self.spring, self._need_cam("calibrate_trace"), cam_rpm, cam_angle, retainer_force, fit
+        )
 
     # ------------------------------------------------------------------ the cam
     def cam_analysis(self, engine_rpm: float | None = None):
@@ -483,9 +473,7 @@ class ValveModel:
         engine_rpm : float, optional
             Engine speed [rev/min]: crank angles and the derivatives in time.
         """
-        from .cam.analysis import analyse_cam
-
-        return analyse_cam(self._need_cam("cam_analysis"), self.valve_train, engine_rpm, timing=self.timing)
+        return cam_wing.analyse_cam(self._need_cam("cam_analysis"), self.valve_train, engine_rpm, timing=self.timing)
 
     def cam_check(self, cam_rpm: float | None = None):
         """Curvature, undercut, excursion, pressure angle and Hertz stress along the cam, with
@@ -496,11 +484,9 @@ class ValveModel:
         cam_rpm : float, optional
             Cam speed of the load [rev/min] (None: the geometric checks only).
         """
-        from .cam.checks import check_cam
-
         if self.follower is None:
             raise InputError("the cam checks need the follower: a [follower] table beside [valve_train]")
-        return check_cam(
+        return cam_wing.check_cam(
             self._need_cam("cam_check"),
             self._need_train("cam_check"),
             self.follower,
@@ -536,11 +522,8 @@ class ValveModel:
         count : int
             Frequencies per state [-].
         """
-        from .run.results import NaturalFrequencies
-        from .run.train_modes import natural_frequencies
-
-        out = natural_frequencies(self.spring, self._need_cam("natural_frequencies"), self.valve_train, count)
-        return NaturalFrequencies(
+        out = run_wing.natural_frequencies(self.spring, self._need_cam("natural_frequencies"), self.valve_train, count)
+        return run_wing.NaturalFrequencies(
             out["base_circle_Hz"], out["full_lift_Hz"], out["full_lift_cam_angle_deg"], out["notes"]
         )
 
@@ -555,9 +538,7 @@ class ValveModel:
         valve_lift : float, optional
             Valve lift of the held state [m] (default: full lift).
         """
-        from .run.train_modes import separated_frequencies
-
-        return separated_frequencies(
+        return run_wing.separated_frequencies(
             self.spring, self._need_cam("separated_frequencies"), self.valve_train, count, valve_lift
         )
 
@@ -589,12 +570,10 @@ class ValveModel:
         **changes
             Fields of :class:`RunSettings` to change for this run.
         """
-        from .run.simulation import simulate
-
         if revolutions is not None:
             changes["revolutions"] = revolutions
         return self._with_axis(
-            simulate(
+            run_wing.simulate(
                 self.spring,
                 self._need_cam("simulate"),
                 cam_rpm,
@@ -625,10 +604,8 @@ class ValveModel:
         **changes
             Fields of :class:`RunSettings` to change for this sweep.
         """
-        from .run.sweeps import sweep
-
         return self._with_axis(
-            sweep(
+            run_wing.sweep(
                 self.spring,
                 self._need_cam("sweep"),
                 cam_rpm,
@@ -659,9 +636,7 @@ class ValveModel:
         **changes
             Fields of :class:`RunSettings` to change for this search.
         """
-        from .run.float_search import float_speed
-
-        return float_speed(
+        return run_wing.float_speed(
             self.spring,
             self._need_cam("float_speed"),
             self._need_train("float_speed"),
@@ -702,9 +677,7 @@ class ValveModel:
         float_scan : bool
             Also find the steady-state float speed of the range.
         """
-        from .run.run_up import speed_ramp
-
-        return speed_ramp(
+        return run_wing.speed_ramp(
             self.spring,
             self._need_cam("speed_ramp"),
             self.valve_train,
@@ -738,15 +711,13 @@ class ValveModel:
         cam_rpm : float
             Cam speed [rev/min].
         """
-        from .run.friction import simulation_friction
-
         if self.follower is None:
             raise InputError(
                 "friction at the cam needs the follower: a [follower] table beside [valve_train] (see "
                 "examples/valve/valve_train_with_follower.toml)"
             )
         self._need_train("friction")
-        return simulation_friction(self.simulate(float(cam_rpm)), self.follower, self.friction_table)
+        return run_wing.simulation_friction(self.simulate(float(cam_rpm)), self.follower, self.friction_table)
 
     def friction_over_speed(self, cam_rpm, *, quiet: bool = True):
         """The named study "friction over a speed range": each speed simulated to its periodic
@@ -760,11 +731,10 @@ class ValveModel:
         quiet : bool
             No progress bar.
         """
-        from ..core.progress import progress
-        from .run.friction import friction_over_speed
-
         speeds = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
-        return friction_over_speed([self.friction(float(r)) for r in progress(speeds, desc="friction", quiet=quiet)])
+        return run_wing.friction_over_speed(
+            [self.friction(float(r)) for r in progress(speeds, desc="friction", quiet=quiet)]
+        )
 
     def tolerance_study(self, tolerances: dict, criteria=None, **options):
         """The spring across its manufacturing tolerances
@@ -780,9 +750,7 @@ class ValveModel:
             Further options of :func:`springdyn.valve.design.tolerances.tolerance_study` (count,
             seed, speeds, method, out_dir, client, progress, float_only, resolution, workers).
         """
-        from .design.tolerances import tolerance_study
-
-        return tolerance_study(
+        return design_wing.tolerance_study(
             self.spring,
             self._need_cam("tolerance_study"),
             tolerances,
@@ -801,6 +769,6 @@ class ValveModel:
         float_speeds : array_like, optional
             Cam speeds of the float-speed scans [rev/min].
         """
-        from .design.life import service_life
-
-        return service_life(self.spring, self._need_cam("service_life"), spectrum, self.valve_train, float_speeds)
+        return design_wing.service_life(
+            self.spring, self._need_cam("service_life"), spectrum, self.valve_train, float_speeds
+        )

@@ -25,24 +25,19 @@ from springdyn.app.cli.common import (
     print_json,
     quantity,
 )
+from springdyn.app.cli.valve_options import (
+    RUN_OPTIONS,
+    add_gas_options,
+    add_model_option,
+    add_revolution_options,
+    add_speed_options,
+    add_tolerance_options,
+    cam_rpm_from_args,
+    model_of,
+)
 from springdyn.core.errors import InputError
 
-__all__ = ["register", "model_of", "cam_rpm_from_args", "run_settings"]
-
-#: The API arguments of a dynamic run and the options that set them (for error messages).
-RUN_OPTIONS = dict(
-    cam_rpm="--cam-rpm",
-    revolutions="--revolutions",
-    periodicity_tol="--periodicity-tol",
-    max_revolutions="--max-revolutions",
-    allow_extreme_speeds="--allow-extreme-speeds",
-    rtol="--rtol",
-    atol="--atol",
-    points_per_revolution="--points-per-revolution",
-    resolution="--resolution",
-    lift="--lift",
-    backend="--backend",
-)
+__all__ = ["register"]
 
 
 def register(sub) -> None:
@@ -51,7 +46,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("params", help="internal parameters and model variables")
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_params)
 
@@ -96,7 +91,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("curve", help="static force and tangent stiffness vs spring length")
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--from", dest="start", metavar="L1", help="first length (default: free length)")
     p.add_argument("--to", dest="stop", metavar="L2", help="last length (default: where the force is 3 Fcon)")
     p.add_argument("--points", type=int, default=400, metavar="N", help="number of lengths (default 400)")
@@ -105,7 +100,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("modes", help="natural frequencies of the chain linearised at a length")
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--length", required=True, metavar="L", help="spring length, e.g. 38mm")
     p.add_argument("--count", type=int, default=5, metavar="N", help="how many modes (1-5, default 5)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
@@ -116,7 +111,7 @@ def register(sub) -> None:
         help="natural frequencies of spring + valve train (base circle, full lift) and the cam-order resonance speeds",
     )
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     p.add_argument(
         "--valve-train", metavar="VT.toml", help="file with a [valve_train] table (without: the spring alone)"
@@ -145,7 +140,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("frf", help="linearised dynamic stiffness against frequency (seat fixed, retainer driven)")
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument(
         "--frequency", required=True, metavar="START:STOP:STEP", help="frequencies, e.g. 10:3000:5 (bare numbers: Hz)"
     )
@@ -155,7 +150,7 @@ def register(sub) -> None:
 
     p = vsub.add_parser("design", help="index, corrected stress, surge frequency at installed/open/coil-contact length")
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--lift", metavar="LIFT", help="maximum valve lift, e.g. 9mm")
     p.add_argument("--cam-rpm", metavar="RPM", help="camshaft speed for the surge margin (bare number: rpm)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
@@ -163,14 +158,14 @@ def register(sub) -> None:
 
     p = vsub.add_parser("simulate", help="dynamic response under cam drive (spring alone or valve train)")
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
-    _add_speed_options(p, ranged=False, ramp=True)
-    _add_revolution_options(p)
+    add_speed_options(p, ranged=False, ramp=True)
+    add_revolution_options(p)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
-    _add_gas_options(p)
+    add_gas_options(p)
     p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
-    _add_tolerance_options(p)
+    add_tolerance_options(p)
     p.add_argument(
         "--backend",
         choices=valve.BACKENDS,
@@ -190,11 +185,11 @@ def register(sub) -> None:
         help="float speed: lowest speed from which the valve leaves the cam over the nose; bounce and seating velocity",
     )
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
     p.add_argument("--valve-train", required=True, metavar="VT.toml", help="file with a [valve_train] table")
-    _add_speed_options(p, ranged=True)
-    _add_revolution_options(p)
+    add_speed_options(p, ranged=True)
+    add_revolution_options(p)
     p.add_argument("--resolution", default="1", metavar="RPM", help="bisection resolution in cam rpm (default 1)")
     p.add_argument("--csv", metavar="FILE.csv", help="write the minimum cam contact force against speed")
     p.add_argument(
@@ -206,12 +201,12 @@ def register(sub) -> None:
 
     p = vsub.add_parser("sweep", help="speed sweep (optionally over a design variable), locally or on Dask")
     p.add_argument("spring", metavar="SPRING.toml")
-    _add_model_option(p)
+    add_model_option(p)
     p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
-    _add_speed_options(p, ranged=True)
+    add_speed_options(p, ranged=True)
     p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
-    _add_gas_options(p)
-    _add_revolution_options(p)
+    add_gas_options(p)
+    add_revolution_options(p)
     p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
     p.add_argument(
         "--vary",
@@ -229,159 +224,15 @@ def register(sub) -> None:
     p.add_argument(
         "--scheduler", metavar="ADDRESS", help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786"
     )
-    _add_tolerance_options(p)
+    add_tolerance_options(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
 
     valve_cam_design.register(vsub)  # cam-from-lift, cam-check, kinematics
-    valve_friction.register(vsub, _add_speed_options, _add_model_option, cam_rpm_from_args)
+    valve_friction.register(vsub, add_speed_options, add_model_option, cam_rpm_from_args)
     valve_synthesis.register(vsub)
-    valve_synthesis.register_tolerance(vsub, _add_model_option, cam_rpm_from_args)
-    valve_synthesis.register_life(vsub, _add_model_option)
-
-
-# ----------------------------------------------------------------------------- options
-def _add_tolerance_options(p) -> None:
-    p.add_argument(
-        "--rtol",
-        type=float,
-        help=f"relative tolerance (default {valve.DEFAULT_RTOL:g}, {valve.TRAIN_RTOL:g} with a valve train)",
-    )
-    p.add_argument(
-        "--atol",
-        type=float,
-        help="absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 "
-        f"(default {valve.DEFAULT_ATOL:g}, {valve.TRAIN_ATOL:g} with a valve train)",
-    )
-
-
-def _add_revolution_options(p) -> None:
-    p.add_argument(
-        "--revolutions",
-        type=int,
-        metavar="N",
-        help="run exactly N cam revolutions from rest (default: to the periodic steady state)",
-    )
-    p.add_argument(
-        "--periodicity-tol",
-        default=f"{100 * valve.PERIODICITY_TOL:g} %",
-        metavar="TOL",
-        help="periodic steady state: the last two revolutions' seat, retainer, cam-contact and valve-seat forces "
-        f"agree within TOL of Fset (default {100 * valve.PERIODICITY_TOL:g} %%)",
-    )
-    p.add_argument(
-        "--max-revolutions",
-        type=int,
-        default=valve.MAX_REVOLUTIONS,
-        metavar="N",
-        help=f"periodic steady state: at most N revolutions per speed (default {valve.MAX_REVOLUTIONS})",
-    )
-    p.add_argument(
-        "--allow-extreme-speeds",
-        action="store_true",
-        help="compute speeds at which the cam event is shorter than one surge period (refused otherwise), flagged",
-    )
-
-
-def _add_model_option(p) -> None:
-    p.add_argument(
-        "--model",
-        choices=valve.MODEL_NAMES,
-        help="spring model (default: the [spring] model key, else 'type-c', the document's MMS Type C)",
-    )
-
-
-def _add_gas_options(p) -> None:
-    p.add_argument(
-        "--gas-pressure",
-        metavar="P.csv",
-        help="cylinder pressure against crank angle (columns crank_angle_deg, pressure_bar|_Pa|_kPa|_MPa, absolute): "
-        "its force on the valve head over [valve_train] seat_diameter, phased by the cam's [timing]",
-    )
-    p.add_argument(
-        "--port-pressure",
-        default="1 atm",
-        metavar="P",
-        help="pressure behind the valve head, absolute (default 1 atm; bare number: Pa)",
-    )
-
-
-def _add_speed_options(p, *, ranged: bool, ramp: bool = False) -> None:
-    g = p.add_mutually_exclusive_group(required=True)
-    what = "START:STOP:STEP or a list" if ranged else "a speed"
-    g.add_argument("--cam-rpm", metavar="RPM", help=f"camshaft speed, {what} (bare numbers: rpm)")
-    g.add_argument(
-        "--engine-rpm", metavar="RPM", help=f"engine speed, {what} (four-stroke: cam speed = engine speed / 2)"
-    )
-    if ramp:
-        g.add_argument(
-            "--speed-ramp",
-            metavar="START:END:RATE",
-            help="a cam-speed ramp (a run-up, or a run-down when END < START): cam speeds and the rate of the cam "
-            "speed (bare numbers: rpm and rpm/s), from the periodic steady state at START; lift-off, float and "
-            "seat landings per revolution against the momentary speed (needs --valve-train)",
-        )
-
-
-# ----------------------------------------------------------------------------- the model
-def run_settings(args) -> valve.RunSettings:
-    """The run options of a command as one :class:`~springdyn.valve.RunSettings` (checked once)."""
-    given = {}
-    if getattr(args, "revolutions", None) is not None and args.max_revolutions != valve.MAX_REVOLUTIONS:
-        raise InputError("--revolutions runs a fixed number of revolutions: --max-revolutions applies without it")
-    if hasattr(args, "periodicity_tol"):
-        given.update(
-            revolutions=args.revolutions,
-            periodicity_tol=quantity(args.periodicity_tol, "", "--periodicity-tol"),
-            max_revolutions=args.max_revolutions,
-            allow_extreme_speeds=args.allow_extreme_speeds,
-        )
-    for key in ("rtol", "atol", "points_per_revolution", "backend"):
-        if getattr(args, key, None) is not None:
-            given[key] = getattr(args, key)
-    with as_options(**RUN_OPTIONS):
-        return valve.RunSettings(**given)
-
-
-def model_of(args, *, cam: bool = True, train: bool = True) -> valve.ValveModel:
-    """The :class:`~springdyn.valve.ValveModel` of a command's files and options: the spring
-    (``--model``), the cam and valve train when the command has them, the run settings, crank
-    angles with an engine speed, the gas force of ``--gas-pressure``."""
-    with as_options(**RUN_OPTIONS):
-        model = valve.ValveModel.from_files(
-            args.spring,
-            getattr(args, "cam", None) if cam else None,
-            getattr(args, "valve_train", None) if train else None,
-            model=getattr(args, "model", None),
-            settings=run_settings(args),
-            crank_angles=True if getattr(args, "engine_rpm", None) is not None else None,
-        )
-    if getattr(args, "gas_pressure", None):
-        with as_options(path="--gas-pressure", port_pressure="--port-pressure"):
-            model = model.with_gas_pressure(args.gas_pressure, quantity(args.port_pressure, "Pa", "--port-pressure"))
-    return model
-
-
-def cam_rpm_from_args(args, *, ranged: bool, model: valve.ValveModel | None = None):
-    """Camshaft speed(s) in rev/min from --cam-rpm or --engine-rpm (the model's strokes; a
-    four-stroke without a ``[timing]`` table)."""
-    option = "--cam-rpm" if args.cam_rpm is not None else "--engine-rpm"
-    text = args.cam_rpm if args.cam_rpm is not None else args.engine_rpm
-
-    def cam(rpm):
-        if args.cam_rpm is not None:
-            return rpm
-        return model.cam_rpm(rpm) if model is not None else valve.cam_rpm_from_engine_rpm(rpm)
-
-    if ranged:
-        values = cam(parse_range(text, "rpm", option, bare_unit="rpm"))
-        if (values <= 0).any():
-            raise InputError(f"{option} = {text!r}: every speed must be positive")
-        return values
-    value = cam(quantity(text, "rpm", option, bare_unit="rpm"))
-    if not value > 0:
-        raise InputError(f"{option} = {text!r} must be a positive speed")
-    return value
+    valve_synthesis.register_tolerance(vsub, add_model_option, cam_rpm_from_args)
+    valve_synthesis.register_life(vsub, add_model_option)
 
 
 # ----------------------------------------------------------------------------- the spring alone

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from springdyn.app.cli.common import add_output_options, as_options, emit
+from springdyn.app.cli.valve_options import model_of
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "cmd_friction"]
@@ -34,7 +35,6 @@ def register(vsub, add_speed_options, add_model_option, cam_speeds) -> None:
 
 def cmd_friction(args) -> int:
     """``springdyn valve friction``: simulate each speed to its periodic state, then its friction."""
-    from springdyn.app.cli.valve import model_of
 
     model = model_of(args)
     if model.follower is None:

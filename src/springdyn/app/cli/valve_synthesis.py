@@ -7,6 +7,7 @@ from __future__ import annotations
 import springdyn.valve as valve
 import springdyn.valve.design as design
 from springdyn.app.cli.common import add_output_options, announce_written, close_figure, print_json
+from springdyn.app.cli.valve_options import model_of
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "register_tolerance", "register_life", "cmd_synthesize", "cmd_tolerance", "cmd_life"]
@@ -98,7 +99,6 @@ def cmd_tolerance(args) -> int:
     from pathlib import Path
 
     from springdyn.app.cli.common import as_options, quantity
-    from springdyn.app.cli.valve import model_of
     from springdyn.core.progress import progress
 
     count = quantity(args.samples, "", "--samples")
@@ -176,7 +176,6 @@ def register_life(vsub, add_model_option) -> None:
 def cmd_life(args) -> int:
     """``springdyn valve life``: relaxation and spectrum life."""
     from springdyn.app.cli.common import emit
-    from springdyn.app.cli.valve import model_of
     from springdyn.core.params import load_toml
 
     model = model_of(args)

@@ -52,6 +52,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.results import Result, notes_lines
+from .follower import Follower
 
 __all__ = [
     "flat_follower_radius",
@@ -410,7 +411,6 @@ def check_cam(
     samples : int
         Samples per revolution without a given force [-].
     """
-    from .follower import Follower
 
     if not isinstance(follower, Follower):
         raise InputError(f"follower = {follower!r} must be a Follower (the [follower] table)")
@@ -777,7 +777,7 @@ class CamCheck(Result):
         return r * self.lift - lash > 0.0
 
     def to_xarray(self):
-        import xarray as xr
+        import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
         dims = ("cam_angle",)
         data = {
@@ -811,7 +811,7 @@ class CamCheck(Result):
     def _plot(self, ax=None):
         """The profile, the radius of curvature, the excursion or pressure angle, and the
         contact stress; into ``ax``: the profile."""
-        from ...core.plotting import plt
+        from ...core.plotting import plt  # (here: matplotlib costs 0.3 s of start-up)
 
         f = self.follower
         if ax is not None:

@@ -40,9 +40,12 @@ from pathlib import Path
 import numpy as np
 
 from ...core.errors import InputError
+from ...core.io import atomic_open, dumps_toml, output_set, write_csv
 from ...core.params import Parameters, param
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import format_mm
+from .analysis import CHECK_HEIGHTS
+from .definition import Cam, _normalise_table, read_angle_table
 
 __all__ = [
     "CamCard",
@@ -201,7 +204,7 @@ def event_crossings(cam, lobe_lift: float, samples: int = _SAMPLES):
         ``(opening, closing, duration)`` [rad] (opening and closing in [0, 2 pi)); None when
         the lift never reaches the height.
     """
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
 
     step = _TWO_PI / samples
     theta = np.arange(samples) * step
@@ -329,7 +332,6 @@ def read_valve_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
     path : str or path-like
         The CSV file.
     """
-    from .definition import read_angle_table
 
     return read_angle_table(path, _LIFT_COLUMNS)
 
@@ -392,7 +394,6 @@ def cam_from_valve_lift(cam_angle, valve_lift, valve_train=None, ramp_angle: flo
     -------
     CamFromLift
     """
-    from .definition import _normalise_table
 
     theta, z = _normalise_table(cam_angle, valve_lift, name)
     ratio, lash = _train(valve_train)
@@ -437,7 +438,6 @@ def _lobe_space_table(kin, theta, z, lash):
 def _lobe_from_table(theta, z, ratio, lash, ramp_angle, name):
     """The lobe of a normalised valve-lift table through a constant ratio (the body of
     :func:`cam_from_valve_lift`): the ``table`` cam and the result's fields."""
-    from .definition import Cam
 
     if ramp_angle is not None and not (math.isfinite(ramp_angle) and 0 < ramp_angle < math.pi):
         raise InputError(f"ramp_angle = {math.degrees(ramp_angle):.6g} deg must lie between 0 and 180 deg")
@@ -546,9 +546,7 @@ def cam_from_card(card: CamCard, valve_train=None, timing=None) -> CamFromLift:
     -------
     CamFromLift
     """
-    from scipy.optimize import brentq
-
-    from .definition import Cam
+    from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
 
     if not isinstance(card, CamCard):
         raise InputError(f"card = {card!r} must be a CamCard (the [cam_card] table)")
@@ -672,7 +670,6 @@ def write_cam(result: CamFromLift, path, header: str = "") -> list[Path]:
     list of Path
         The files written.
     """
-    from ...core.io import atomic_open, dumps_toml, output_set, write_csv
 
     path = Path(path)
     cam = result.cam
@@ -741,7 +738,7 @@ class CamFromLift(Result):
         kin = None if self.valve_train is None else self.valve_train.geometry
         if kin is None:
             return valve_lift_from_lobe_lift(self.cam.lift_at(theta), self.ratio, self.lash)
-        from ..engine.cam_table import CamTable
+        from ..engine.cam_table import CamTable  # (here: the compiled engine (numba) loads only when a run needs it)
 
         gross = kin.solve(theta, CamTable.of(self.cam, _SAMPLES).at)["valve_lift"]
         return np.maximum(gross - self.lash, 0.0)
@@ -822,7 +819,6 @@ class CamFromLift(Result):
             round_trip_error_m=self.round_trip_error_m,
         )
         s.update(self.figures)
-        from .analysis import CHECK_HEIGHTS
 
         for key, height in CHECK_HEIGHTS.items():
             c = event_crossings(self.cam, _lobe_height(height, "valve", self.valve_train))
@@ -834,7 +830,7 @@ class CamFromLift(Result):
         return s
 
     def to_xarray(self):
-        import xarray as xr
+        import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
         theta = np.arange(_SAMPLES) * (_TWO_PI / _SAMPLES)
         h, dh, ddh = self.cam.evaluate(theta)
@@ -850,7 +846,7 @@ class CamFromLift(Result):
 
     def _plot(self, ax=None):
         """Valve lift (wanted and forward), lobe lift, lobe acceleration; into ``ax``: the lifts."""
-        from ...core.plotting import plt
+        from ...core.plotting import plt  # (here: matplotlib costs 0.3 s of start-up)
 
         if ax is not None:
             fig, axes = ax.figure, [ax]

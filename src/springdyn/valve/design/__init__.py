@@ -25,6 +25,8 @@ _EXPORTS = {
     "write_candidates": "synthesis",
     "tolerance_study": "tolerances",
     "read_tolerances": "tolerances",
+    "calibrate": "calibrate",
+    "calibrate_trace": "calibrate",
     "LoadSpectrum": "life",
     "service_life": "life",
     "Criteria": "criteria",

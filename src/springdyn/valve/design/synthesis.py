@@ -33,17 +33,25 @@ best candidate misses each (:func:`infeasibility`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from ...core.errors import InputError
+from ...core.io import atomic_open, dumps_toml, output_set
 from ...core.params import Parameters, load_toml, param
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import format_mm
+from ..cam.definition import Cam
+from ..run.float_search import float_speed
+from ..run.sweeps import sweep
 from ..spring import formulas
+from ..spring.definition import END_TYPES, ValveSpring
+from ..spring.materials import material
 from ..spring.solid_length import en13906_solid_length, min_sum_of_gaps
 from ..spring.stress import (
     corrected_shear_stress,
@@ -52,6 +60,7 @@ from ..spring.stress import (
     ultimate_shear_strength,
     zimmerli_endurance_shear_strength,
 )
+from ..train.definition import ValveTrain
 from . import criteria
 
 __all__ = [
@@ -211,8 +220,6 @@ class Requirements(Parameters):
             if missing:
                 raise InputError(f"{where}material = 'custom' needs {', '.join(missing)}")
         else:
-            from ..spring.materials import material
-
             material(self.material)  # an unknown name: its message lists the names
 
     @property
@@ -228,7 +235,6 @@ class Requirements(Parameters):
     @property
     def dead_coils(self) -> float:
         """Dead coils per end of the end type [-] (EN 13906-1)."""
-        from ..spring.definition import END_TYPES
 
         return END_TYPES[self.end_type]
 
@@ -245,8 +251,6 @@ class Requirements(Parameters):
         if self.material.lower() == "custom":
             out = {}
         else:
-            from ..spring.materials import material
-
             m = material(self.material)
             d = np.asarray(wire_diameter, dtype=float)
             out = dict(
@@ -514,7 +518,7 @@ class Synthesis(Result):
         return {k: np.array([np.nan if r.get(k) is None else float(r[k]) for r in self.rows]) for k in keys}
 
     def to_xarray(self):
-        import xarray as xr
+        import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
         data = {}
         for k, v in self.columns().items():
@@ -531,7 +535,7 @@ class Synthesis(Result):
         return xr.Dataset(data, coords={"candidate": ("candidate", np.arange(1, len(self.rows) + 1))})
 
     def _plot(self, ax=None):
-        from ...core.plotting import plt
+        from ...core.plotting import plt  # (here: matplotlib costs 0.3 s of start-up)
 
         fig, ax = (ax.figure, ax) if ax is not None else plt.subplots(figsize=(7, 4.5))
         req = self.requirements
@@ -595,7 +599,6 @@ def meet_load_points(sp, req: Requirements):
     req : Requirements
         The load points.
     """
-    import dataclasses
 
     n1, n2 = float(sp.low_pitch_coils), float(sp.high_pitch_coils)
     fixed = req.dead_coils if n1 > 0 else 2.0 * req.dead_coils
@@ -612,7 +615,6 @@ def meet_load_points(sp, req: Requirements):
 
 
 def _valve_spring(req: Requirements, table: dict, i: int, n2: float, lf: float, model: str = "type-c"):
-    from ..spring.definition import ValveSpring
 
     d = float(table["wire_diameter"][i])
     w = req.wire(d)
@@ -663,7 +665,6 @@ def synthesize(
     InputError
         When no candidate meets the requirements (:func:`infeasibility`).
     """
-    import dataclasses
 
     allowance, kept = 1.0, None
     for _ in range(SURGE_ITERATIONS):
@@ -714,7 +715,6 @@ def synthesize(
 def _select(req: Requirements, screen: Requirements, table: dict, per_kind: int):
     """The lightest candidates of each kind that meet the screen's margins, built and checked
     against the load points; their rows judged against the requirements ``req``."""
-    import warnings
 
     feasible = np.flatnonzero(table["worst"] >= 0.0)
     springs, rows, notes = [], [], []
@@ -803,12 +803,6 @@ def _row(req, sp, f, kind) -> dict:
 
 def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
     """The distributed model of each candidate over the speed range (module docstring, 5)."""
-    import warnings
-
-    from ..cam.definition import Cam
-    from ..run.float_search import float_speed
-    from ..run.sweeps import sweep
-    from ..train.definition import ValveTrain
 
     base = Path(base_dir) if base_dir is not None else Path(".")
 
@@ -921,7 +915,6 @@ def write_candidates(result: Synthesis, out_dir, source: str = "") -> list[Path]
     source : str
         The requirements file, for the header.
     """
-    from ...core.io import atomic_open, dumps_toml, output_set
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -42,16 +42,26 @@ import hashlib
 import json
 import math
 import os
+import warnings
+from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import as_completed as completed
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from scipy.special import ndtri
+from scipy.stats import qmc
 
 from ...core.errors import InputError
+from ...core.io import atomic_path
 from ...core.params import load_toml
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import to_si
-from ..run.float_search import FLOAT_RESOLUTION, float_speed_near
+from ..run.float_search import FLOAT_RESOLUTION, float_speed, float_speed_near
+from ..run.separation import float_speed_of_scan
+from ..run.setup import prepare
+from ..run.sweeps import sweep
+from ..spring.formulas import active_coils_free
 from . import criteria
 from .criteria import Criteria
 
@@ -138,7 +148,6 @@ class Tolerance:
         """
         if self.kind == "uniform":
             return nominal + (2.0 * u - 1.0) * self.half_width
-        from scipy.special import ndtri
 
         return nominal + self.sigma * ndtri(np.clip(u, 1e-12, 1.0 - 1e-12))
 
@@ -241,7 +250,6 @@ def mean_active_pitch(spring) -> float:
     spring : ValveSpring
         The spring (its free length [m], wire diameter [m] and coil counts [-]).
     """
-    from ..spring.formulas import active_coils_free
 
     na = active_coils_free(spring.low_pitch_coils, spring.high_pitch_coils, spring.dead_coils)
     return (spring.free_length - (2.0 * spring.dead_coils + 1.0) * spring.wire_diameter) / na
@@ -265,10 +273,6 @@ def sample(tolerances: dict, nominal: dict, count: int, seed: int, method: str =
     """
     names = list(tolerances)
     if method == "sobol":
-        import warnings
-
-        from scipy.stats import qmc
-
         with warnings.catch_warnings():  # balanced at powers of 2; ToleranceStudy notes it
             warnings.simplefilter("ignore")
             u = qmc.Sobol(d=len(names), scramble=True, seed=seed).random(count)
@@ -296,7 +300,6 @@ def variant(spring, cam, valve_train, values: dict):
     values : dict
         Values of toleranced parameters [SI].
     """
-    import warnings
 
     spring_changes = {k: float(v) for k, v in values.items() if TOLERANCED[k][1] == "spring"}
     if "pitch" in values:  # the coils' pitch error shows as free length (mean_active_pitch)
@@ -304,7 +307,6 @@ def variant(spring, cam, valve_train, values: dict):
             raise InputError(
                 "[tolerances] pitch: the spring has a pitch_profile; tolerance its profile's own values instead"
             )
-        from ..spring.formulas import active_coils_free
 
         na = active_coils_free(spring.low_pitch_coils, spring.high_pitch_coils, spring.dead_coils)
         lf = spring_changes.get("free_length", spring.free_length)
@@ -346,11 +348,6 @@ def run_variant(
     resolution : float
         Width of the float speed's final bracket [rev/min].
     """
-    import warnings
-
-    from ..run.separation import float_speed_of_scan
-    from ..run.setup import prepare
-    from ..run.sweeps import sweep
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -433,7 +430,6 @@ def run_variant_float(spring, cam, valve_train, speeds, guess_rpm: float, resolu
     resolution : float
         Width of the float speed's final bracket [rev/min].
     """
-    from ..run.setup import prepare
 
     near = float_speed_near(
         prepare(spring, cam, valve_train),
@@ -463,7 +459,6 @@ def _key(tolerances, count, seed, method, speeds, *extra) -> str:
 def _run_chunk(spring, cam, valve_train, speeds, values: dict, run: dict) -> dict:
     """The variants of ``values`` (a chunk's slice of the sample: only it travels to a Dask
     worker): :func:`run_variant_float` with ``run["guess"]``, else :func:`run_variant`."""
-    import warnings
 
     names = FLOAT_OUTPUTS if run.get("guess") is not None else tuple(OUTPUTS)
     rows = {k: [] for k in names}
@@ -536,7 +531,7 @@ def tolerance_study(
     workers : int, optional
         Local threads the chunks run on [-] (default: the cores, at most 2).
     """
-    import xarray as xr
+    import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
     criteria = Criteria() if criteria is None else criteria
     if not isinstance(count, int) or not 1 <= count <= 10_000_000:
@@ -557,7 +552,6 @@ def tolerance_study(
     if float_only:
         # the nominal's float speed from a scan of the range (the definition), then by the
         # variants' search from there: its float speed starts every search
-        from ..run.float_search import float_speed
 
         scan = float_speed(spring, cam, valve_train, speeds, resolution=float(resolution))
         scanned = float(speeds[-1] if scan.float_cam_rpm is None else scan.float_cam_rpm)
@@ -586,8 +580,6 @@ def tolerance_study(
     def store(lo, res):
         done[lo] = res
         if chunk_dir is not None:
-            from ...core.io import atomic_path
-
             with atomic_path(chunk_dir / f"{key}_{lo:08d}.npz") as tmp:
                 with open(tmp, "wb") as fh:
                     np.savez(fh, **res)
@@ -597,7 +589,7 @@ def tolerance_study(
             client.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), run, pure=False)
             for lo, hi in todo
         ]
-        from dask.distributed import as_completed
+        from dask.distributed import as_completed  # (here: dask is an optional extra)
 
         where = {f.key: lo for f, (lo, _) in zip(futures, todo)}
         it = as_completed(futures)
@@ -605,8 +597,6 @@ def tolerance_study(
             store(where[fut.key], fut.result())
     elif todo:
         # the engine releases the GIL: the chunks run on threads, each its variants in turn
-        from concurrent.futures import ThreadPoolExecutor
-        from concurrent.futures import as_completed as completed
 
         threads = workers or min(os.cpu_count() or 1, 2)
         with ThreadPoolExecutor(max_workers=threads) as pool:
@@ -645,8 +635,6 @@ def tolerance_study(
         float_only=bool(float_only),
     )
     if out_dir is not None:
-        from ...core.io import atomic_path
-
         with atomic_path(Path(out_dir) / "variants.nc") as tmp:
             ds.to_netcdf(tmp)
     return study
@@ -801,7 +789,7 @@ class ToleranceStudy(Result):
         return self.dataset
 
     def _plot(self, ax=None):
-        from ...core.plotting import plt
+        from ...core.plotting import plt  # (here: matplotlib costs 0.3 s of start-up)
 
         ds = self.dataset
         names = self._figures()

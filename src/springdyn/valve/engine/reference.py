@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 import numpy as np
+from scipy.integrate import solve_ivp
 
 from .equations import NO_EXTRA, chain_rhs, model_of, rhs_call, train_of
 
@@ -61,7 +62,6 @@ def integrate_scipy(
         Absolute tolerance of the velocities [m/s], one for all or one per velocity
         (default ``atol``).
     """
-    from scipy.integrate import solve_ivp
 
     f = rhs_call if compiled_rhs else chain_rhs
     m = model_of(args)

@@ -195,7 +195,7 @@ class RunSettings:
     def _check_method(self) -> None:
         # (imported here: the pairs live with the compiled kernels, numba; the CLI builds its
         # options from this module without loading it)
-        from ...numerics.erk import PAIRS
+        from ...numerics.erk import PAIRS  # (here: the compiled engine (numba) loads only when a run needs it)
 
         if self.backend != "compiled" or self.method not in PAIRS:
             raise InputError(

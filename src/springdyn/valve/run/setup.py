@@ -18,6 +18,7 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import brentq
 
 from ...core.errors import InputError
 from ..cam.definition import Cam
@@ -317,7 +318,6 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
             return np.zeros(2 * nm), 0.0
         u = spring.initial_condition(setup + lift0)["displacements"]
         return np.concatenate([u, np.zeros(nm)]), 0.0
-    from scipy.optimize import brentq  # (imported here: scipy.optimize costs 0.2 s of start-up)
 
     laws = spring.spring_model.chain.laws
     vt = valve_train

@@ -31,6 +31,10 @@ from ..._lazy import lazy_package
 _EXPORTS = {
     "ValveSpring": "definition",
     "StaticCurve": "results",
+    "SpringParameters": "results",
+    "ChainModes": "results",
+    "DesignFigures": "results",
+    "dynamic_stiffness": "frf",
     "SpringModel": "chains",
     "TypeCModel": "chains",
     "Chain": "chains",

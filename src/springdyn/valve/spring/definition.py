@@ -9,13 +9,22 @@ The analyses (statics, modes, design figures, dynamics) are those of
 from __future__ import annotations
 
 import dataclasses
+import math
+import sys
+import warnings
 from dataclasses import dataclass
 from functools import cached_property
+from pathlib import Path
+
+import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, describe_value, param
-from ...core.units import format_mm, format_quantity
+from ...core.units import format_mm, format_quantity, to_si
 from . import formulas
+from .chains import make_model
+from .geometry import drawing_pitch_knots
+from .solid_length import solid_length
 from .stress import spring_strengths
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
@@ -167,9 +176,6 @@ class ValveSpring(Parameters):
         """The drawing's keys become the model's (:meth:`_from_drawing`); load points and
         profiles: a TOML array becomes an inline table (SI); a relative CSV path is taken from
         the TOML file's folder."""
-        from pathlib import Path
-
-        from ...core.units import to_si
 
         mapping = _from_drawing(mapping)
 
@@ -193,8 +199,6 @@ class ValveSpring(Parameters):
         return mapping
 
     def _validate(self) -> None:
-        import warnings
-        from pathlib import Path
 
         unlikely = self._check_geometry()
         try:
@@ -204,8 +208,6 @@ class ValveSpring(Parameters):
                 raise
             raise InputError(f"{exc} (note: {'; '.join(unlikely)})") from None
         if unlikely:
-            import sys
-
             # attribute the warning to the caller's line, outside springdyn
             package, level, frame = str(Path(__file__).parents[2]), 1, sys._getframe(0)  # springdyn/
             while frame is not None and (
@@ -230,7 +232,6 @@ class ValveSpring(Parameters):
     @property
     def solid_length(self) -> float:
         """Solid length [m] (:func:`springdyn.valve.spring.solid_length.solid_length`: by the end type)."""
-        from .solid_length import solid_length
 
         return solid_length(self)
 
@@ -279,7 +280,6 @@ class ValveSpring(Parameters):
     @cached_property
     def spring_model(self):
         """The model of this definition (:class:`~springdyn.valve.spring.chains.SpringModel`)."""
-        from .chains import make_model
 
         return make_model(self)
 
@@ -299,7 +299,6 @@ class ValveSpring(Parameters):
         "Internal Parameter"; warnings for values far outside the range of valve springs,
         naming the likely unit slip (``22 m`` for ``22 mm``).
         """
-        import math
 
         # key: (error range, valve-spring range) in SI
         ranges = {
@@ -400,7 +399,6 @@ class ValveSpring(Parameters):
 
 
 def _quantity(mapping: dict, key: str, unit: str) -> float:
-    from ...core.units import to_si
 
     return to_si(mapping[key], unit, key)
 
@@ -489,9 +487,6 @@ def _pitches(m: dict) -> None:
     must agree with the one the pitches give within 0.5 % (the distributed model's rule for a
     ``pitch_profile``).
     """
-    import numpy as np
-
-    from .geometry import drawing_pitch_knots
 
     given = [k for k in PITCH_KEYS if k in m]
     two = m.get("type") == "two-step"
@@ -549,8 +544,6 @@ def _pitches(m: dict) -> None:
         # open coils of equal diameter deflect alike: each by (Lf - Ls) / n at set-up, if none closed
         per_coil = (_quantity(m, "free_length", "m") - _quantity(m, "installed_length", "m")) / (n_total - 2 * nb)
         if per_coil < pitch["low_pitch"] - dw:
-            import warnings
-
             warnings.warn(
                 f"low_pitch = {format_mm(pitch['low_pitch'])}: the low-pitch coils are not closed at the installed "
                 f"length (each open coil deflects about {format_mm(per_coil)} there, their gap is "
@@ -566,7 +559,6 @@ def _pitches(m: dict) -> None:
 
 def _load_points(value) -> str:
     """``[{ length, force, tolerance }, ...]`` -> ``"table: L F tol; ..."`` in SI (tolerance in N, -1: none)."""
-    from ...core.units import to_si
 
     if isinstance(value, str):
         return value

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 __all__ = [
+    "PARAMETER_UNITS",
     "active_coils_free",
     "active_coils_setup",
     "contact_stiffness",
@@ -36,6 +37,38 @@ __all__ = [
     "coil_contact_force",
     "stiffened_chain_rates",
 ]
+
+
+#: SI unit, display unit and meaning of each internal parameter of the MMS Type C model
+#: (:meth:`springdyn.valve.spring.chains.TypeCModel.internal_parameters`).
+PARAMETER_UNITS = {
+    "K": ("N/m", "N/mm", "contact stiffness of a coil"),
+    "K1": ("N/m", "N/mm", "spring rate at free length"),
+    "K2": ("N/m", "N/mm", "spring rate at set-up length"),
+    "K3": ("N/m", "N/mm", "stiffened rate 1.15 K2"),
+    "Kh1": ("N/m", "N/mm", "chain element Kh1"),
+    "Kh2": ("N/m", "N/mm", "chain element Kh2"),
+    "Ks": ("N/m", "N/mm", "low-pitch element Ks"),
+    "m1": ("kg", "g", "chain mass m1"),
+    "m2": ("kg", "g", "chain mass m2"),
+    "me": ("kg", "g", "end mass me"),
+    "M": ("kg", "g", "spring mass"),
+    "f1": ("Hz", "Hz", "surge frequency, free length"),
+    "f2": ("Hz", "Hz", "surge frequency, set-up length"),
+    "n1p": ("", "", "pitch term n1'"),
+    "n2p": ("", "", "pitch term n2'"),
+    "Pc": ("m", "mm", "coil gap term"),
+    "Lc": ("m", "mm", "solid length"),
+    "Fset": ("N", "N", "set-up force"),
+    "F1": ("N", "N", "first nonlinear force"),
+    "F2": ("N", "N", "second nonlinear force"),
+    "Fcon": ("N", "N", "coil-contact force"),
+    "C0": ("N*s/m", "N*s/m", "element damping C0"),
+    "f_continuum": ("Hz", "Hz", "continuum surge frequency of the active coils"),
+    "elements": ("", "", "wire elements"),
+    "beta": ("s", "s", "stiffness-proportional damping (mode 1 at set-up gets damping_ratio)"),
+    "pitch_max": ("m", "mm", "largest pitch of the unloaded spring"),
+}
 
 
 def active_coils_free(n1: float, n2: float, nb: float) -> float:

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...core.errors import InputError
+from ...core.io import read_csv_columns
 from ...core.units import format_mm
 
 __all__ = [
@@ -103,8 +104,6 @@ def parse_profile(value: str, what: str, unit_columns: dict) -> tuple[np.ndarray
         s = np.array([float(r[0]) for r in rows])
         v = np.array([float(r[1]) for r in rows])
     else:
-        from ...core.io import read_csv_columns
-
         cols = read_csv_columns(value)
         if "turns" not in cols:
             raise InputError(
@@ -226,7 +225,7 @@ def default_pitch_knots(
         gap = np.interp(grid, s, p) - dw
         return float(np.trapezoid(np.minimum(gap, delta), grid)) - (free_length - installed_length)
 
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
 
     hi = (free_length - base) / max(nl, 1e-9)
     try:

@@ -40,14 +40,18 @@ Defaults and their sources are listed in :data:`DEFAULT_SOURCES` (and in docs/va
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.params import Parameters, param
-from ..engine.layout import VT_SIZE
+from ...core.params import Parameters, load_toml, param
+from ..cam.follower import Follower
+from ..engine.layout import VT_GAS_N, VT_HLA, VT_SIZE
+from .hla import HLA, P_ATM, effective_bulk_modulus
+from .lever import LeverGeometry
 
 __all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "series_stiffness", "KERNEL_SIZE"]
 
@@ -515,12 +519,10 @@ class ValveTrain(Parameters):
 
     def _hla_parameters(self) -> list:
         """The ``VT_HLA*`` entries of :meth:`kernel_parameters` (zeros without ``[hla]``)."""
-        from ..engine.layout import VT_GAS_N, VT_HLA
 
         h = self.hla
         if h is None:
             return [0.0] * (VT_GAS_N - VT_HLA)
-        from .hla import P_ATM
 
         if self.bucket_hla:  # the collapse's origin: the body less the plunger on the base circle
             origin, carried = self.bucket_hla_state()["collapse"], self.follower_mass
@@ -645,7 +647,6 @@ class ValveTrain(Parameters):
         path : str or path-like
             The definition file.
         """
-        from ...core.params import load_toml
 
         doc = load_toml(path)
         if "geometry" in doc:
@@ -666,10 +667,6 @@ class ValveTrain(Parameters):
         source : str, optional
             The file, for messages.
         """
-        import dataclasses
-
-        from ..cam.follower import Follower
-        from .lever import LeverGeometry
 
         where = f"{source}: " if source else ""
         table = dict(doc.get("valve_train", {}))
@@ -695,7 +692,6 @@ class ValveTrain(Parameters):
 
     def without_geometry(self) -> ValveTrain:
         """The constant-ratio lever of the same ratio, valve arm and inertia at rest (no ``[geometry]``)."""
-        import dataclasses
 
         if self.geometry is None:
             return self
@@ -714,11 +710,9 @@ class ValveTrain(Parameters):
         column ``beta_e A_p^2 / V`` at the supply pressure referred to the valve,
         ``/ (r - 1)^2``, in series with the socket.  Without ``[hla]``: the train itself.
         """
-        import dataclasses
 
         if self.hla is None:
             return self
-        from .hla import P_ATM, effective_bulk_modulus
 
         h, r = self.hla, self.ratio
         beta = effective_bulk_modulus(P_ATM + h.supply_pressure, h.oil_bulk_modulus, h.air_fraction, h.polytropic_index)
@@ -739,9 +733,6 @@ class ValveTrain(Parameters):
         source : str, optional
             The file, for messages.
         """
-        import dataclasses
-
-        from .hla import HLA
 
         h = table if isinstance(table, HLA) else HLA.from_dict(table, source=source)
         try:
@@ -769,16 +760,12 @@ class ValveTrain(Parameters):
         """
         r = self.ratio
         if self.bucket_hla:
-            from .hla import P_ATM
-
             st = self.bucket_hla_state(valve_force, lobe_lift, valve_lift)
             return np.array([valve_lift, st["body"], st["plunger"], P_ATM + self.hla.supply_pressure, 0.0, 0.0])
         if self.layout == "direct-acting":
             return np.array([valve_lift])
         f_cam = r * valve_force
         if self.hla is not None:
-            from .hla import P_ATM
-
             st = self.hla_pivot_state(valve_force, lobe_lift, valve_lift)
             return np.array(
                 [valve_lift, st["tip"], st["pivot"], st["plunger"], P_ATM + self.hla.supply_pressure, 0.0, 0.0]

@@ -51,7 +51,7 @@ from ..geometry import (
     turn_compliance,
     wire_length_per_turn,
 )
-from ..modes import chain_frequencies
+from ..modes import chain_eigenvalues, chain_frequencies
 from ..statics import element_compressions, series_force
 from .base import Chain, SpringModel
 
@@ -243,7 +243,6 @@ def modal_damping(masses, stiffness, damping) -> tuple[np.ndarray, np.ndarray]:
         As for ``chain_eigenvalues``: lumped masses [kg] (n), element stiffnesses [N/m]
         and damping coefficients [N s/m] (n + 1 each).
     """
-    from ..modes import chain_eigenvalues
 
     lam = chain_eigenvalues(masses, stiffness, damping)
     lam = lam[lam.imag > 0]
@@ -347,7 +346,7 @@ class DistributedModel(SpringModel):
         def excess(force):
             return slice_response(force, *laws)[0] + force * float(ends) - setup
 
-        from scipy.optimize import brentq
+        from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
 
         force = brentq(excess, 0.0, setup * float(np.max(k_slice + sl["kc"])), xtol=1e-9, rtol=1e-10)
         stiffening = slice_states(force, *laws)[1] / k_slice

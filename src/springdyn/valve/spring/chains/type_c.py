@@ -14,6 +14,7 @@ import numpy as np
 
 from ....core.errors import InputError
 from .. import formulas
+from ..formulas import PARAMETER_UNITS
 from ..elements import hardening_law, law_compression, linear_law, low_pitch_law
 from ..statics import element_compressions
 from .base import Chain, SpringModel  # noqa: F401 (Chain: the return type)
@@ -26,35 +27,6 @@ ONE_STEP_MASSES = ("me", "m1", "m2", "m1", "me")
 TWO_STEP_MASSES = ("me", "m1", "m2", "m2", "me")
 
 
-#: SI unit, display unit and meaning of each internal parameter of :meth:`TypeCModel.internal_parameters`.
-PARAMETER_UNITS = {
-    "K": ("N/m", "N/mm", "contact stiffness of a coil"),
-    "K1": ("N/m", "N/mm", "spring rate at free length"),
-    "K2": ("N/m", "N/mm", "spring rate at set-up length"),
-    "K3": ("N/m", "N/mm", "stiffened rate 1.15 K2"),
-    "Kh1": ("N/m", "N/mm", "chain element Kh1"),
-    "Kh2": ("N/m", "N/mm", "chain element Kh2"),
-    "Ks": ("N/m", "N/mm", "low-pitch element Ks"),
-    "m1": ("kg", "g", "chain mass m1"),
-    "m2": ("kg", "g", "chain mass m2"),
-    "me": ("kg", "g", "end mass me"),
-    "M": ("kg", "g", "spring mass"),
-    "f1": ("Hz", "Hz", "surge frequency, free length"),
-    "f2": ("Hz", "Hz", "surge frequency, set-up length"),
-    "n1p": ("", "", "pitch term n1'"),
-    "n2p": ("", "", "pitch term n2'"),
-    "Pc": ("m", "mm", "coil gap term"),
-    "Lc": ("m", "mm", "solid length"),
-    "Fset": ("N", "N", "set-up force"),
-    "F1": ("N", "N", "first nonlinear force"),
-    "F2": ("N", "N", "second nonlinear force"),
-    "Fcon": ("N", "N", "coil-contact force"),
-    "C0": ("N*s/m", "N*s/m", "element damping C0"),
-    "f_continuum": ("Hz", "Hz", "continuum surge frequency of the active coils"),
-    "elements": ("", "", "wire elements"),
-    "beta": ("s", "s", "stiffness-proportional damping (mode 1 at set-up gets damping_ratio)"),
-    "pitch_max": ("m", "mm", "largest pitch of the unloaded spring"),
-}
 
 
 class TypeCModel(SpringModel):

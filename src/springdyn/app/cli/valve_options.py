@@ -1,0 +1,180 @@
+"""The options and the model of every ``springdyn valve`` command: the run options, the spring
+model option, the speed options, and the :class:`~springdyn.valve.ValveModel` built from a
+command's files and options (:func:`model_of`)."""
+
+from __future__ import annotations
+
+import springdyn.valve as valve
+from springdyn.app.cli.common import as_options, parse_range, quantity
+from springdyn.core.errors import InputError
+
+__all__ = [
+    "RUN_OPTIONS",
+    "model_of",
+    "run_settings",
+    "cam_rpm_from_args",
+    "add_model_option",
+    "add_speed_options",
+    "add_revolution_options",
+    "add_tolerance_options",
+    "add_gas_options",
+]
+
+#: The API arguments of a dynamic run and the options that set them (for error messages).
+RUN_OPTIONS = dict(
+    cam_rpm="--cam-rpm",
+    revolutions="--revolutions",
+    periodicity_tol="--periodicity-tol",
+    max_revolutions="--max-revolutions",
+    allow_extreme_speeds="--allow-extreme-speeds",
+    rtol="--rtol",
+    atol="--atol",
+    points_per_revolution="--points-per-revolution",
+    resolution="--resolution",
+    lift="--lift",
+    backend="--backend",
+)
+
+
+# ----------------------------------------------------------------------------- options
+def add_tolerance_options(p) -> None:
+    p.add_argument(
+        "--rtol",
+        type=float,
+        help=f"relative tolerance (default {valve.DEFAULT_RTOL:g}, {valve.TRAIN_RTOL:g} with a valve train)",
+    )
+    p.add_argument(
+        "--atol",
+        type=float,
+        help="absolute tolerance on displacements in m, velocities get it x 2 pi f1/30 "
+        f"(default {valve.DEFAULT_ATOL:g}, {valve.TRAIN_ATOL:g} with a valve train)",
+    )
+
+
+def add_revolution_options(p) -> None:
+    p.add_argument(
+        "--revolutions",
+        type=int,
+        metavar="N",
+        help="run exactly N cam revolutions from rest (default: to the periodic steady state)",
+    )
+    p.add_argument(
+        "--periodicity-tol",
+        default=f"{100 * valve.PERIODICITY_TOL:g} %",
+        metavar="TOL",
+        help="periodic steady state: the last two revolutions' seat, retainer, cam-contact and valve-seat forces "
+        f"agree within TOL of Fset (default {100 * valve.PERIODICITY_TOL:g} %%)",
+    )
+    p.add_argument(
+        "--max-revolutions",
+        type=int,
+        default=valve.MAX_REVOLUTIONS,
+        metavar="N",
+        help=f"periodic steady state: at most N revolutions per speed (default {valve.MAX_REVOLUTIONS})",
+    )
+    p.add_argument(
+        "--allow-extreme-speeds",
+        action="store_true",
+        help="compute speeds at which the cam event is shorter than one surge period (refused otherwise), flagged",
+    )
+
+
+def add_model_option(p) -> None:
+    p.add_argument(
+        "--model",
+        choices=valve.MODEL_NAMES,
+        help="spring model (default: the [spring] model key, else 'type-c', the document's MMS Type C)",
+    )
+
+
+def add_gas_options(p) -> None:
+    p.add_argument(
+        "--gas-pressure",
+        metavar="P.csv",
+        help="cylinder pressure against crank angle (columns crank_angle_deg, pressure_bar|_Pa|_kPa|_MPa, absolute): "
+        "its force on the valve head over [valve_train] seat_diameter, phased by the cam's [timing]",
+    )
+    p.add_argument(
+        "--port-pressure",
+        default="1 atm",
+        metavar="P",
+        help="pressure behind the valve head, absolute (default 1 atm; bare number: Pa)",
+    )
+
+
+def add_speed_options(p, *, ranged: bool, ramp: bool = False) -> None:
+    g = p.add_mutually_exclusive_group(required=True)
+    what = "START:STOP:STEP or a list" if ranged else "a speed"
+    g.add_argument("--cam-rpm", metavar="RPM", help=f"camshaft speed, {what} (bare numbers: rpm)")
+    g.add_argument(
+        "--engine-rpm", metavar="RPM", help=f"engine speed, {what} (four-stroke: cam speed = engine speed / 2)"
+    )
+    if ramp:
+        g.add_argument(
+            "--speed-ramp",
+            metavar="START:END:RATE",
+            help="a cam-speed ramp (a run-up, or a run-down when END < START): cam speeds and the rate of the cam "
+            "speed (bare numbers: rpm and rpm/s), from the periodic steady state at START; lift-off, float and "
+            "seat landings per revolution against the momentary speed (needs --valve-train)",
+        )
+
+
+# ----------------------------------------------------------------------------- the model
+def run_settings(args) -> valve.RunSettings:
+    """The run options of a command as one :class:`~springdyn.valve.RunSettings` (checked once)."""
+    given = {}
+    if getattr(args, "revolutions", None) is not None and args.max_revolutions != valve.MAX_REVOLUTIONS:
+        raise InputError("--revolutions runs a fixed number of revolutions: --max-revolutions applies without it")
+    if hasattr(args, "periodicity_tol"):
+        given.update(
+            revolutions=args.revolutions,
+            periodicity_tol=quantity(args.periodicity_tol, "", "--periodicity-tol"),
+            max_revolutions=args.max_revolutions,
+            allow_extreme_speeds=args.allow_extreme_speeds,
+        )
+    for key in ("rtol", "atol", "points_per_revolution", "backend"):
+        if getattr(args, key, None) is not None:
+            given[key] = getattr(args, key)
+    with as_options(**RUN_OPTIONS):
+        return valve.RunSettings(**given)
+
+
+def model_of(args, *, cam: bool = True, train: bool = True) -> valve.ValveModel:
+    """The :class:`~springdyn.valve.ValveModel` of a command's files and options: the spring
+    (``--model``), the cam and valve train when the command has them, the run settings, crank
+    angles with an engine speed, the gas force of ``--gas-pressure``."""
+    with as_options(**RUN_OPTIONS):
+        model = valve.ValveModel.from_files(
+            args.spring,
+            getattr(args, "cam", None) if cam else None,
+            getattr(args, "valve_train", None) if train else None,
+            model=getattr(args, "model", None),
+            settings=run_settings(args),
+            crank_angles=True if getattr(args, "engine_rpm", None) is not None else None,
+        )
+    if getattr(args, "gas_pressure", None):
+        with as_options(path="--gas-pressure", port_pressure="--port-pressure"):
+            model = model.with_gas_pressure(args.gas_pressure, quantity(args.port_pressure, "Pa", "--port-pressure"))
+    return model
+
+
+def cam_rpm_from_args(args, *, ranged: bool, model: valve.ValveModel | None = None):
+    """Camshaft speed(s) in rev/min from --cam-rpm or --engine-rpm (the model's strokes; a
+    four-stroke without a ``[timing]`` table)."""
+    option = "--cam-rpm" if args.cam_rpm is not None else "--engine-rpm"
+    text = args.cam_rpm if args.cam_rpm is not None else args.engine_rpm
+
+    def cam(rpm):
+        if args.cam_rpm is not None:
+            return rpm
+        return model.cam_rpm(rpm) if model is not None else valve.cam_rpm_from_engine_rpm(rpm)
+
+    if ranged:
+        values = cam(parse_range(text, "rpm", option, bare_unit="rpm"))
+        if (values <= 0).any():
+            raise InputError(f"{option} = {text!r}: every speed must be positive")
+        return values
+    value = cam(quantity(text, "rpm", option, bare_unit="rpm"))
+    if not value > 0:
+        raise InputError(f"{option} = {text!r} must be a positive speed")
+    return value
