@@ -26,7 +26,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
-from ..run.verdicts import PUMP_UP_THRESHOLD
+from ..run import verdicts
 
 __all__ = [
     "Criteria",
@@ -573,8 +573,8 @@ def float_verdict(criteria: Criteria, float_result, rated_cam_rpm: float, first_
 
 
 def pump_up_verdict(held_open: float, rated_cam_rpm: float) -> Verdict:
-    """The valve closes at the rated speed: no pump-up of the hydraulic lash adjuster
-    (:data:`springdyn.valve.run.verdicts.PUMP_UP_THRESHOLD`).
+    """The valve closes at the rated speed: no pump-up of the hydraulic lash adjuster, judged by
+    its rule (:func:`springdyn.valve.run.verdicts.pumps_up`).
 
     Parameters
     ----------
@@ -583,14 +583,13 @@ def pump_up_verdict(held_open: float, rated_cam_rpm: float) -> Verdict:
     rated_cam_rpm : float
         The top speed in service [rev/min].
     """
-    return verdict(
+    return Verdict(
         "pump_up",
-        held_open,
-        PUMP_UP_THRESHOLD,
-        label=f"valve closes at {rated_cam_rpm:.0f} cam rpm (no pump-up)",
-        value_text=f"held open {held_open * 1e3:.3f} mm",
-        limit_text="0 mm on the base circle",
-        note="the hydraulic lash adjuster must not extend into a lift-off and hold the valve open",
+        f"valve closes at {rated_cam_rpm:.0f} cam rpm (no pump-up)",
+        f"held open {held_open * 1e3:.3f} mm",
+        "0 mm on the base circle",
+        not verdicts.pumps_up(held_open),
+        "the hydraulic lash adjuster must not extend into a lift-off and hold the valve open",
     )
 
 

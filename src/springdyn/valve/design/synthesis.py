@@ -49,17 +49,9 @@ from ...core.units import format_mm
 from ..cam.definition import Cam
 from ..run.float_search import float_speed
 from ..run.sweeps import sweep
-from ..spring import formulas
+from ..spring import formulas, solid_length, stress
 from ..spring.definition import END_TYPES, ValveSpring
 from ..spring.materials import material
-from ..spring.solid_length import en13906_solid_length, min_sum_of_gaps
-from ..spring.stress import (
-    corrected_shear_stress,
-    goodman_safety_factor,
-    nominal_shear_stress,
-    ultimate_shear_strength,
-    zimmerli_endurance_shear_strength,
-)
 from ..train.definition import ValveTrain
 from . import criteria
 
@@ -343,18 +335,20 @@ def evaluate(req: Requirements, d, dm, n1, n2, lf) -> dict:
     n_work = np.where(two, n2 - nb, n1 + n2 - 2.0 * nb)
     total = n1 + n2
     mass = formulas.total_mass(rho, dm, d, n1, n2)
-    solid = en13906_solid_length(d, total, req.end_type)
+    solid = solid_length.en13906_solid_length(d, total, req.end_type)
     clearance = (
-        req.min_coil_bind_clearance if req.min_coil_bind_clearance is not None else min_sum_of_gaps(dm, d, n_work)
+        req.min_coil_bind_clearance
+        if req.min_coil_bind_clearance is not None
+        else solid_length.min_sum_of_gaps(dm, d, n_work)
     )
     index = dm / d
-    tau_lo = corrected_shear_stress(req.installed_force, dm, d)
-    tau_hi = corrected_shear_stress(req.open_force, dm, d)
-    tau_u = ultimate_shear_strength(rm)
-    tau_e = np.vectorize(lambda u: zimmerli_endurance_shear_strength(u, peened=True))(tau_u)
-    goodman = goodman_safety_factor(tau_lo, tau_hi, tau_e, tau_u)
+    tau_lo = stress.corrected_shear_stress(req.installed_force, dm, d)
+    tau_hi = stress.corrected_shear_stress(req.open_force, dm, d)
+    tau_u = stress.ultimate_shear_strength(rm)
+    tau_e = np.vectorize(lambda u: stress.zimmerli_endurance_shear_strength(u, peened=True))(tau_u)
+    goodman = stress.goodman_safety_factor(tau_lo, tau_hi, tau_e, tau_u)
     f_solid = req.installed_force + req.rate * (req.installed_length - solid)  # the working rate to solid
-    tau_solid = nominal_shear_stress(f_solid, dm, d)  # uncorrected (EN 13906-1 at solid length)
+    tau_solid = stress.nominal_shear_stress(f_solid, dm, d)  # uncorrected (EN 13906-1 at solid length)
     surge = formulas.surge_frequency(g, rho, d, dm, n_work)
     margins = dict(
         outer_diameter=criteria.margin("outer_diameter", dm + d, req.max_outer_diameter),

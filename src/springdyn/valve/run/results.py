@@ -18,18 +18,10 @@ from ...core.results import Result, dataset_columns, notes_lines, text_table, un
 from ..cam.timing import CrankAngles
 from ..spring.elements import law_force
 from ..spring.results import coil_line
+from . import verdicts
 from .periodicity import PERIODICITY_TOL, is_periodic
 from .separation import cam_phases, liftoffs, phase_mask
 from .train_modes import resonance_speeds
-from .verdicts import (
-    coil_clash,
-    floats_over_nose,
-    pumps_up,
-    seat_rebound_height,
-    valve_held_open,
-    valve_open,
-    wire_fatigue,
-)
 
 __all__ = ["Simulation", "FloatSpeedResult", "NaturalFrequencies"]
 
@@ -549,9 +541,9 @@ def _hla_summary(sim: Simulation, notes: list) -> dict:
         volume_balance_m3=inflow - leak,
         socket_hop=bool(hop.any()),
         socket_hop_deg=float(hop.sum() * 360.0 / n),
-        valve_held_open_m=valve_held_open(sim.lift, sim.valve_lift),
+        valve_held_open_m=verdicts.valve_held_open(sim.lift, sim.valve_lift),
     )
-    out["pump_up"] = pumps_up(out["valve_held_open_m"])
+    out["pump_up"] = verdicts.pumps_up(out["valve_held_open_m"])
     if out["pump_up"]:
         notes.append(
             f"PUMP-UP: the adjuster holds the valve open by {out['valve_held_open_m'] * 1e3:.3f} mm on the base "
@@ -741,7 +733,7 @@ def _summarise(sim: Simulation) -> dict:
         vt = sim.valve_train
         # float: the valve open (off its seat, the lobe past the lash) and before its first
         # landing in the revolution (later separations are seat bounces)
-        in_event = valve_open(sim.lift, sim.valve_lift, vt.lobe_lash)
+        in_event = verdicts.valve_open(sim.lift, sim.valve_lift, vt.lobe_lash)
         phases = cam_phases(sim.cam, vt.lobe_lash)
         if mon is not None:
             intervals = located.get((2, 0), [])
@@ -754,7 +746,7 @@ def _summarise(sim: Simulation) -> dict:
         lo = liftoffs(intervals, phases, sim.cam_rpm, sim.cam_angle, None if sim.cam_gap is None else -sim.cam_gap)
         s["liftoff"] = lo
         # float as valve-train engineers read it: the valve leaves the cam over the nose
-        s["nose_separation"] = floats_over_nose(
+        s["nose_separation"] = verdicts.floats_over_nose(
             any(r["phase"] == "nose" for r in lo),
             phase_mask(sim.cam_angle, phases, "nose"),
             sim.cam_contact_force,
@@ -787,7 +779,7 @@ def _summarise(sim: Simulation) -> dict:
                 "the valve floated: the landing after lift-off (seat impact velocity, bounces) depends on "
                 "the tolerances, ~0.1 % at the valve train's default rtol = 1e-8; use rtol = 1e-9 for ~0.01 %"
             )
-        s["max_bounce_height_m"] = seat_rebound_height(sim.lift, z, vt.lobe_lash)
+        s["max_bounce_height_m"] = verdicts.seat_rebound_height(sim.lift, z, vt.lobe_lash)
         if sim.hla is not None:
             s["hla"] = _hla_summary(sim, notes)
         if sim.gas_force is not None:
@@ -995,7 +987,7 @@ def _clash_impacts(sim, events: list) -> dict:
     and their peak force through contact."""
     model = sim.spring.spring_model
     share = np.nan_to_num(sim.contact_share)
-    clash = coil_clash(model, sim.element_contact, sim.static_force)
+    clash = verdicts.coil_clash(model, sim.element_contact, sim.static_force)
     deg = sim.cam_angle_deg
     index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
     count, duration, peak = 0, 0.0, 0.0
@@ -1025,7 +1017,7 @@ def _durability(sim, s: dict, notes: list) -> dict:
     model = sim.spring.spring_model
     share = sim.contact_share
     wire = sim.element_force - share  # SpringModel.wire_forces, with the share computed once
-    f = wire_fatigue(
+    f = verdicts.wire_fatigue(
         sim.spring,
         np.where(np.isfinite(wire).all(axis=1), wire.min(axis=1), np.nan),
         wire.max(axis=1),

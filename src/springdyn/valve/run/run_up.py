@@ -27,12 +27,12 @@ from ..engine import integrate, rhs_call
 from ..engine.equations import model_of, train_of
 from ..engine.layout import VT_ALPHA, extra_layout
 from ..spring.results import coil_line
+from . import verdicts
 from .float_search import float_speed
 from .runner import engine_args, run_speeds, runge_kutta_pair, velocity_tolerance
 from .separation import cam_phases, phase_mask
 from .settings import MAX_STEP_FRACTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
 from .setup import prepare
-from .verdicts import floats_over_nose, valve_open
 
 __all__ = ["speed_ramp", "RunUp", "ramp_time", "ramp_angle", "MAX_RAMP_REVOLUTIONS"]
 
@@ -283,11 +283,13 @@ class RunUp(Result):
         for r in range(revs):
             sl = slice(r * n, (r + 1) * n)
             z, fc, lift = self.valve_lift[sl], self.cam_contact_force[sl], self.lift[sl]
-            in_event = valve_open(lift, z, self.lobe_lash)
+            in_event = verdicts.valve_open(lift, z, self.lobe_lash)
             off = in_event & (fc <= 0.0)
             rows["cam_rpm"].append(2.0 * math.pi / (self.time[(r + 1) * n] - self.time[r * n]) / _RPM)
             rows["liftoff"].append(bool(off.any()))
-            rows["nose_separation"].append(floats_over_nose(False, self.nose, np.where(in_event, fc, np.inf), z))
+            rows["nose_separation"].append(
+                verdicts.floats_over_nose(False, self.nose, np.where(in_event, fc, np.inf), z)
+            )
             rows["seat_landings"].append(int(np.sum((z[:-1] > 0) & (z[1:] <= 0))))
             rows["min_cam_contact_force_N"].append(float(fc[in_event].min()) if in_event.any() else 0.0)
             rows["max_retainer_force_N"].append(float(self.retainer_force[sl].max()))

@@ -32,6 +32,7 @@ from ..engine import EXT, extra_layout
 from ..spring.definition import ValveSpring
 from ..spring.results import coil_line
 from ..train.definition import ValveTrain
+from . import verdicts
 from .periodicity import PERIODICITY_TOL
 from .results import locate_intervals
 from .runner import run_speeds, solver_error
@@ -39,15 +40,6 @@ from .separation import PHASES, cam_phases, float_speed_of_scan, liftoffs, neigh
 from .settings import SWEEP_POINTS_PER_REVOLUTION, RunSettings
 from .setup import SimulationSetup, check_speeds, output_angles, prepare, static_force, static_force_along_grid
 from .train_modes import natural_frequencies, resonance_speeds
-from .verdicts import (
-    coil_clash,
-    floats_over_nose,
-    pumps_up,
-    seat_rebound_height,
-    valve_held_open,
-    valve_open,
-    wire_fatigue,
-)
 
 __all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
 
@@ -133,7 +125,7 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         out["static"] = static
     else:
         static = np.broadcast_to(static_force_along_grid(setup, points), out["retainer"].shape)
-    out["clash"] = coil_clash(model, np.moveaxis(contact, -1, 0), static).any(axis=0)
+    out["clash"] = verdicts.coil_clash(model, np.moveaxis(contact, -1, 0), static).any(axis=0)
     return out
 
 
@@ -473,11 +465,11 @@ class SpeedSweep(CrankAngles, Result):
         z = flat(d["valve_lift"])
         out = {}
         lash = self.valve_train.lobe_lash
-        in_event = valve_open(self.lift, z, lash)
+        in_event = verdicts.valve_open(self.lift, z, lash)
         cc = np.where(in_event, flat(d["cam_contact"]), np.inf)
         dense = ext[:, col["min_cam_contact_force"]]
         out["liftoff"] = np.isfinite(rows[:, :, 0]).any(axis=1) | (cc <= 0.0).any(axis=1) | (dense <= 0.0)
-        out["nose_separation"] = floats_over_nose(
+        out["nose_separation"] = verdicts.floats_over_nose(
             (phase == PHASES.index("nose")).any(axis=1),
             phase_mask(self.cam_angle, cam_phases(self.cam, lash), "nose"),
             flat(d["cam_contact"]),
@@ -493,10 +485,10 @@ class SpeedSweep(CrankAngles, Result):
         # seat bounce: landings per revolution, the largest rebound off the seat after the
         # first landing (the lobe back on its base circle)
         out["seat_landings"] = ext[:, col["seat_landings"]].astype(int)
-        out["seat_rebound_height_m"] = seat_rebound_height(self.lift, z, lash)
+        out["seat_rebound_height_m"] = verdicts.seat_rebound_height(self.lift, z, lash)
         if self.valve_train.hla is not None:
-            out["valve_held_open_m"] = valve_held_open(self.lift, z)
-            out["pump_up"] = pumps_up(out["valve_held_open_m"])
+            out["valve_held_open_m"] = verdicts.valve_held_open(self.lift, z)
+            out["pump_up"] = verdicts.pumps_up(out["valve_held_open_m"])
         v = ext[:, col["seat_impact_velocity"]]
         out["seat_impact_velocity_m_per_s"] = v
         # the seating velocity band: over the speeds within SEATING_BAND_RPM and, for a speed
@@ -528,7 +520,7 @@ class SpeedSweep(CrankAngles, Result):
         dyn, sta, tau, crit = (np.empty(nv * nr) for _ in range(4))
         ok = np.empty(nv * nr, dtype=bool)
         for k in range(nv * nr):
-            f = wire_fatigue(
+            f = verdicts.wire_fatigue(
                 self.springs[k // nr],
                 wmin[k],
                 wmax[k],

@@ -209,7 +209,7 @@ def active_coils_for_rate(g, dw, do, rate):
     >>> round(active_coils_for_rate(78.5e9, 3.5e-3, 22e-3, free_length_stiffness(78.5e9, 3.5e-3, 22e-3, 6.0)), 12)
     6.0
     """
-    return g * dw**4 / (8.0 * do**3 * rate)
+    return free_length_stiffness(g, dw, do, 1.0) / rate  # the rate's law, solved for n (K n is constant)
 
 
 def pitch_correction_free(lf: float, dw: float, n1: float, n2: float, n_active: float, do: float) -> float:

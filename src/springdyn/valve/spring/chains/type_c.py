@@ -14,8 +14,8 @@ import numpy as np
 
 from ....core.errors import InputError
 from .. import formulas
-from ..formulas import PARAMETER_UNITS
 from ..elements import hardening_law, law_compression, linear_law, low_pitch_law
+from ..formulas import PARAMETER_UNITS
 from ..statics import element_compressions
 from .base import Chain, SpringModel  # noqa: F401 (Chain: the return type)
 
@@ -25,8 +25,6 @@ ONE_STEP_ELEMENTS = ("K", "Kh1", "Kh2", "Kh2", "Kh1", "K")
 TWO_STEP_ELEMENTS = ("K", "Ks", "Kh1", "Kh2", "Kh1", "K")
 ONE_STEP_MASSES = ("me", "m1", "m2", "m1", "me")
 TWO_STEP_MASSES = ("me", "m1", "m2", "m2", "me")
-
-
 
 
 class TypeCModel(SpringModel):
