@@ -261,7 +261,7 @@ class Cam(Parameters):
         d = self._spline.derivative()
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, 7200)]
         if d(lo) > 0 > d(hi):
-            from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
+            from scipy.optimize import brentq  # (here: scipy.optimize costs start-up of every valve command)
 
             return float(brentq(d, lo, hi, xtol=1e-12)) % TWO_PI
         return float(grid[i]) % TWO_PI
@@ -292,9 +292,7 @@ class Cam(Parameters):
 
     @cached_property
     def _spline(self):
-        from scipy.interpolate import (
-            CubicSpline,  # (here: scipy's scipy.interpolate costs start-up of every valve command)
-        )
+        from scipy.interpolate import CubicSpline  # (here: scipy.interpolate costs start-up of every valve command)
 
         a = np.append(self.table_angle, self.table_angle[0] + TWO_PI)
         h = np.append(self.table_lift, self.table_lift[0])

@@ -204,7 +204,7 @@ def event_crossings(cam, lobe_lift: float, samples: int = _SAMPLES):
         ``(opening, closing, duration)`` [rad] (opening and closing in [0, 2 pi)); None when
         the lift never reaches the height.
     """
-    from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
+    from scipy.optimize import brentq  # (here: scipy.optimize costs start-up of every valve command)
 
     step = _TWO_PI / samples
     theta = np.arange(samples) * step
@@ -546,7 +546,7 @@ def cam_from_card(card: CamCard, valve_train=None, timing=None) -> CamFromLift:
     -------
     CamFromLift
     """
-    from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
+    from scipy.optimize import brentq  # (here: scipy.optimize costs start-up of every valve command)
 
     if not isinstance(card, CamCard):
         raise InputError(f"card = {card!r} must be a CamCard (the [cam_card] table)")

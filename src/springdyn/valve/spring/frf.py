@@ -157,7 +157,7 @@ def dynamic_stiffness(spring, frequency, length: float | None = None) -> Frequen
     FrequencyResponse
         Retainer and seat force per unit retainer displacement (complex) [N/m].
     """
-    from scipy.linalg import solve_banded  # (here: scipy's scipy.linalg costs start-up of every valve command)
+    from scipy.linalg import solve_banded  # (here: scipy.linalg costs start-up of every valve command)
 
     f = np.atleast_1d(np.asarray(frequency, dtype=float))
     if f.size == 0 or not np.all(np.isfinite(f)) or np.any(f <= 0):

@@ -225,7 +225,7 @@ def default_pitch_knots(
         gap = np.interp(grid, s, p) - dw
         return float(np.trapezoid(np.minimum(gap, delta), grid)) - (free_length - installed_length)
 
-    from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
+    from scipy.optimize import brentq  # (here: scipy.optimize costs start-up of every valve command)
 
     hi = (free_length - base) / max(nl, 1e-9)
     try:

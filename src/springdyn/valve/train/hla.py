@@ -451,7 +451,7 @@ def leak_down_test(hla: HLA, load: float, travel: float, temperature: float | No
     temperature : float, optional
         Oil temperature [K] (default: the adjuster's).
     """
-    from scipy.integrate import quad, solve_ivp  # (here: scipy's scipy.integrate costs start-up of every valve command)
+    from scipy.integrate import quad, solve_ivp  # (here: scipy.integrate costs start-up of every valve command)
 
     closed = hla.leak_down_seconds(load, travel, temperature)
     a = hla.area

@@ -346,7 +346,7 @@ class DistributedModel(SpringModel):
         def excess(force):
             return slice_response(force, *laws)[0] + force * float(ends) - setup
 
-        from scipy.optimize import brentq  # (here: scipy's scipy.optimize costs start-up of every valve command)
+        from scipy.optimize import brentq  # (here: scipy.optimize costs start-up of every valve command)
 
         force = brentq(excess, 0.0, setup * float(np.max(k_slice + sl["kc"])), xtol=1e-9, rtol=1e-10)
         stiffening = slice_states(force, *laws)[1] / k_slice
