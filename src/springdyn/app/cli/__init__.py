@@ -6,7 +6,8 @@
   the valve commands that design and check a cam and a lever, ``cam-from-lift``, ``cam-check``
   and ``kinematics``; :mod:`.valve_friction`: ``friction``, the drive torque and friction power;
   :mod:`.valve_synthesis`: ``synthesize``, ``tolerance`` and ``life``, springs from
-  requirements, across their tolerances, relaxed and under a load spectrum);
+  requirements, across their tolerances, relaxed and under a load spectrum;
+  :mod:`.valve_options`: the options every valve command shares and the model it builds);
 - :mod:`.docs_cmd` -- ``springdyn docs``, the generated references.
 """
 

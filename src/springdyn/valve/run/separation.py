@@ -13,8 +13,8 @@ where on the cam it starts:
 
 :func:`cam_phases` finds the phase boundaries from the cam's own lift and acceleration;
 :func:`phase_of` names the phase of a cam angle; :func:`liftoffs` classifies the located
-lift-offs of a revolution and :func:`separates_over_nose` says whether the valve leaves the
-cam over the nose in it.  Over a speed scan, :func:`float_speed_of_scan` is the float speed
+lift-offs of a revolution (whether the valve leaves the cam over the nose in it is the rule
+:func:`springdyn.valve.run.verdicts.floats_over_nose`).  Over a speed scan, :func:`float_speed_of_scan` is the float speed
 as the field defines it (the lowest speed from which the valve separates over the nose at
 every higher speed), :func:`first_separation` the first speed with any lift-off, and
 :func:`neighbour_band` the band of a scattering quantity (seat impact velocity) over
@@ -34,7 +34,6 @@ __all__ = [
     "cam_phases",
     "phase_of",
     "phase_mask",
-    "separates_over_nose",
     "liftoffs",
     "float_speed_of_scan",
     "first_separation",
@@ -178,27 +177,6 @@ def phase_mask(cam_angle, phases: CamPhases, name: str) -> np.ndarray:
         index[hit] = k
         open_ &= ~hit
     return ~base & (index == PHASES.index(name))
-
-
-def separates_over_nose(rows, phases: CamPhases, cam_angle, cam_contact_force, valve_lift) -> bool:
-    """Whether the valve leaves the cam over the nose in a revolution: a lift-off that
-    starts in the nose, or the follower off the cam (zero contact force) with the valve off
-    its seat at an output angle of the nose (a lift-off that began on the flank and lasts
-    into the nose, or a valve that never caught up with the cam).
-
-    Parameters
-    ----------
-    rows : list of dict
-        The revolution's lift-offs (:func:`liftoffs`).
-    phases : CamPhases
-        The cam's phase boundaries.
-    cam_angle, cam_contact_force, valve_lift : ndarray
-        The output grid [rad], the cam contact force [N] and the valve lift [m] on it.
-    """
-    if any(r["phase"] == "nose" for r in rows):
-        return True
-    nose = phase_mask(cam_angle, phases, "nose")
-    return bool(np.any(nose & (cam_contact_force <= 0.0) & (valve_lift > 0.0)))
 
 
 def liftoffs(intervals, phases: CamPhases, cam_rpm: float, cam_angle=None, gap=None) -> list:
