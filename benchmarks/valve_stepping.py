@@ -50,7 +50,7 @@ def main(argv=None) -> int:
     import numpy as np
 
     from springdyn.valve import Cam, ValveSpring, simulate
-    from springdyn.valve.run import simulation as dynamics
+    from springdyn.valve.run import settings
     from springdyn.valve.spring.modes import chain_eigenvalues
 
     cams = _cams(Cam)
@@ -91,7 +91,7 @@ def main(argv=None) -> int:
                 err = max(abs(sim.summary[k] - refs[i][k]) for k in keys) / fset
                 if err > worst:
                     worst, where = err, f"{s.type} {c} {rpm:g} rpm"
-            mark = "  <- used" if dynamics.PAIR[model] == pair else ""
+            mark = "  <- used" if settings.PAIR[model] == pair else ""
             print(f"{model:12s} {pair:7s} {steps:8d} {total * 1e3:10.1f} {100 * worst:21.4f}  {where}{mark}")
     print()
     from springdyn.numerics.erk import pair_arrays
@@ -110,7 +110,7 @@ def main(argv=None) -> int:
         sim = simulate(s, cams["3-4-5"], 3000.0, 2, check_elements=False)
         h = 2 * 0.02 / sim.info["steps"]
         print(
-            f"  {model:12s} ({dynamics.PAIR[model]}) top eigenvalue {top.real:.3g}{top.imag:+.3g}j 1/s, "
+            f"  {model:12s} ({settings.PAIR[model]}) top eigenvalue {top.real:.3g}{top.imag:+.3g}j 1/s, "
             f"mean step {h * 1e6:.2f} us, |lambda| h = {abs(top) * h:.2f}"
         )
     return 0

@@ -1,7 +1,7 @@
 """The velocity tolerance of the valve-spring engine (issue 12).  Run:  python benchmarks/valve_tolerances.py
 
 The displacements get the absolute tolerance ``atol`` [m]; the spring's velocities get
-``atol 2 pi f1 / D`` [m/s] (``D`` = :data:`springdyn.valve.run.setup.VELOCITY_TOLERANCE_DIVISOR`).
+``atol 2 pi f1 / D`` [m/s] (``D`` = :data:`springdyn.valve.run.settings.VELOCITY_TOLERANCE_DIVISOR`).
 For each ``D`` in 10, 30, 100 and "one tolerance for every component" (``D = 2 pi f1`` in
 1/s units, the earliest versions), over the runs of benchmarks/valve_stepping.py (two
 springs, four cams, 14 speeds), it prints the total steps and the worst error of the four
@@ -29,7 +29,7 @@ def main(argv=None) -> int:
     from valve_stepping import SPEEDS, _cams
 
     from springdyn.valve import Cam, ValveSpring, simulate
-    from springdyn.valve.run import simulation as dynamics
+    from springdyn.valve.run import runner  # its velocity_tolerance reads the divisor
 
     cams = _cams(Cam)
     keys = ("max_retainer_force_N", "min_retainer_force_N", "max_seat_force_N", "min_seat_force_N")
@@ -43,13 +43,13 @@ def main(argv=None) -> int:
         simulate(s, cams[c], r, 2, rtol=1e-10, atol=1e-13, check_elements=False, method="dopri5").summary
         for s, c, r in cases
     ]
-    default = dynamics.VELOCITY_TOLERANCE_DIVISOR
+    default = runner.VELOCITY_TOLERANCE_DIVISOR
     f1 = float(cases[0][0].spring_model.internal_parameters()["f1"])
     print(f"{args.model}: {len(cases)} runs; velocity tolerance atol 2 pi f1 / D")
     print(f"{'D':>12s} {'steps':>9s} {'worst [% Fset]':>15s} {'2nd':>8s}  worst case")
     try:
         for d in (10.0, 30.0, 100.0, 2 * math.pi * f1):
-            dynamics.VELOCITY_TOLERANCE_DIVISOR = d
+            runner.VELOCITY_TOLERANCE_DIVISOR = d
             steps, errs = 0, []
             for (s, c, r), ref in zip(cases, refs):
                 sim = simulate(s, cams[c], r, 2, check_elements=False)
@@ -66,7 +66,7 @@ def main(argv=None) -> int:
                 f"{cases[w][0].type} {cases[w][1]} {cases[w][2]:g} rpm{mark}"
             )
     finally:
-        dynamics.VELOCITY_TOLERANCE_DIVISOR = default
+        runner.VELOCITY_TOLERANCE_DIVISOR = default
     return 0
 
 

@@ -57,10 +57,8 @@ from ...core.io import atomic_path
 from ...core.params import load_toml
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import to_si
-from ..run.float_search import FLOAT_RESOLUTION, float_speed, float_speed_near
-from ..run.separation import float_speed_of_scan
-from ..run.setup import prepare
-from ..run.sweeps import sweep
+from .. import run
+from ..run.float_search import FLOAT_RESOLUTION
 from ..spring.formulas import active_coils_free
 from . import criteria
 from .criteria import Criteria
@@ -118,10 +116,6 @@ FLOAT_OUTPUTS = ("Fset", "f1", "float_cam_rpm", "float_in_range", "refused", "pe
 FIGURES = ("Fset", "f1", "float_cam_rpm", "max_retainer_force", "clash_onset_cam_rpm", "goodman_safety")
 #: Percentiles reported of every output [%].
 PERCENTILES = (0.135, 2.5, 50.0, 97.5, 99.865)
-#: Halvings of the speed step around the swept speeds with the smallest Goodman safety and the
-#: largest retainer force (:func:`run_variant`): both are a resonance's, which can lie between
-#: two swept speeds.
-REFINEMENTS = 2
 #: Variants per chunk on disk (a killed run loses at most one chunk's work; the chunks run
 #: in parallel on the local threads or the Dask workers).
 CHUNK = 25
@@ -324,16 +318,10 @@ def variant(spring, cam, valve_train, values: dict):
 def run_variant(
     spring, cam, valve_train, speeds, rated_rpm: float | None = None, resolution: float = FLOAT_RESOLUTION
 ) -> dict:
-    """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]; the Goodman
-    safety and the peak retainer force over the speeds up to ``rated_rpm`` (default: all).
-
-    The speeds are swept (:func:`springdyn.valve.sweep`); the float speed, the lowest swept
-    speed from which the valve leaves the cam over the nose at every higher one, is then
-    narrowed to ``resolution`` between it and the swept speed below
-    (:func:`springdyn.valve.run.float_search.float_speed_near`); the smallest Goodman safety and
-    the largest retainer force come from the swept speeds up to ``rated_rpm``, ``rated_rpm``
-    itself and, around the worst of each, the step halved :data:`REFINEMENTS` times (a
-    resonance between two swept speeds).
+    """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]: its statics and
+    its speed study (:func:`springdyn.valve.run.studies.speed_study`: the float speed to
+    ``resolution``, the smallest Goodman safety and the largest retainer force up to
+    ``rated_rpm``, refined around the worst speeds, the clash onset).
 
     Parameters
     ----------
@@ -348,68 +336,21 @@ def run_variant(
     resolution : float
         Width of the float speed's final bracket [rev/min].
     """
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1)
-    t = sw.summary_table()
-    rpm = np.asarray(t["cam_rpm"], dtype=float)
+    top = float(np.max(speeds))
+    r = run.speed_study(spring, cam, valve_train, speeds, rated_rpm, resolution)
     p = spring.spring_model.internal_parameters()
-    clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
-    f = float_speed_of_scan(rpm, t["nose_separation"]) if valve_train is not None else None
-    periodicity = float(np.max(np.asarray(t["periodicity_error"], dtype=float)))
-    k = -1 if f is None else int(np.flatnonzero(rpm == f)[0])
-    runs = rpm.size
-    if k > 0 and f - rpm[k - 1] > resolution:
-        near = float_speed_near(
-            prepare(spring, cam, valve_train), 0.5 * (rpm[k - 1] + f), rpm[k - 1], f, resolution=resolution
-        )
-        f = near["float_cam_rpm"]
-        periodicity = max(periodicity, near["periodicity"])
-        runs += near["evaluations"]
-    service = rpm <= (rpm[-1] if rated_rpm is None else max(rated_rpm, rpm[0]))
-    worst = {
-        float(r): (float(g), float(x))
-        for r, g, x in zip(
-            rpm[service],
-            np.asarray(t["fatigue_safety_factor"], dtype=float)[service],
-            np.asarray(t["max_retainer_force_N"], dtype=float)[service],
-        )
-    }
-    # a resonance between two swept speeds: the worst speeds' neighbourhoods halved twice; the
-    # rated speed itself, the end of the service range (where the stress is often highest)
-    rated = None if rated_rpm is None else float(rated_rpm)
-    for level in range(REFINEMENTS):
-        known = sorted(worst)
-        new = (
-            {rated} if (level == 0 and rated is not None and rpm[0] < rated < rpm[-1] and rated not in worst) else set()
-        )
-        for r in {min(worst, key=lambda r: worst[r][0]), max(worst, key=lambda r: worst[r][1])}:
-            i = known.index(r)
-            new |= {0.5 * (r + known[j]) for j in (i - 1, i + 1) if 0 <= j < len(known)}
-        if not new:
-            break
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            more = sweep(spring, cam, sorted(new), valve_train=valve_train, workers=1).summary_table()
-        worst |= {
-            float(r): (float(g), float(x))
-            for r, g, x in zip(more["cam_rpm"], more["fatigue_safety_factor"], more["max_retainer_force_N"])
-        }
-        periodicity = max(periodicity, float(np.max(np.asarray(more["periodicity_error"], dtype=float))))
-        runs += len(new)
     return dict(
         Fset=float(p["Fset"]),
         f1=float(spring.spring_model.first_mode_installed),
-        float_cam_rpm=float(rpm[-1]) if f is None else f,
-        max_retainer_force=max(v[1] for v in worst.values()),
-        clash_onset_cam_rpm=float(rpm[clash[0]]) if clash.size else float(rpm[-1]),
-        goodman_safety=min(v[0] for v in worst.values()),
-        float_in_range=float(f is not None),
-        clash_in_range=float(clash.size > 0),
+        float_cam_rpm=top if r["float_cam_rpm"] is None else r["float_cam_rpm"],
+        max_retainer_force=r["max_retainer_force"],
+        clash_onset_cam_rpm=top if r["clash_onset_cam_rpm"] is None else r["clash_onset_cam_rpm"],
+        goodman_safety=r["goodman_safety"],
+        float_in_range=float(r["float_cam_rpm"] is not None),
+        clash_in_range=float(r["clash_onset_cam_rpm"] is not None),
         refused=0.0,
-        periodicity=periodicity,
-        simulations=float(runs),
+        periodicity=r["periodicity"],
+        simulations=float(r["simulations"]),
     )
 
 
@@ -431,13 +372,7 @@ def run_variant_float(spring, cam, valve_train, speeds, guess_rpm: float, resolu
         Width of the float speed's final bracket [rev/min].
     """
 
-    near = float_speed_near(
-        prepare(spring, cam, valve_train),
-        guess_rpm,
-        float(speeds[0]),
-        float(speeds[-1]),
-        resolution=resolution,
-    )
+    near = run.variant_float_speed(spring, cam, valve_train, guess_rpm, float(speeds[0]), float(speeds[-1]), resolution)
     return dict(
         Fset=float(spring.spring_model.internal_parameters()["Fset"]),
         f1=float(spring.spring_model.first_mode_installed),
@@ -456,21 +391,21 @@ def _key(tolerances, count, seed, method, speeds, *extra) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _run_chunk(spring, cam, valve_train, speeds, values: dict, run: dict) -> dict:
+def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict) -> dict:
     """The variants of ``values`` (a chunk's slice of the sample: only it travels to a Dask
-    worker): :func:`run_variant_float` with ``run["guess"]``, else :func:`run_variant`."""
+    worker): :func:`run_variant_float` with ``plan["guess"]``, else :func:`run_variant`."""
 
-    names = FLOAT_OUTPUTS if run.get("guess") is not None else tuple(OUTPUTS)
+    names = FLOAT_OUTPUTS if plan.get("guess") is not None else tuple(OUTPUTS)
     rows = {k: [] for k in names}
     for i in range(len(next(iter(values.values())))):
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
-                if run.get("guess") is not None:
-                    r = run_variant_float(sp, c, vt, speeds, run["guess"], run["resolution"])
+                if plan.get("guess") is not None:
+                    r = run_variant_float(sp, c, vt, speeds, plan["guess"], plan["resolution"])
                 else:
-                    r = run_variant(sp, c, vt, speeds, run["rated"], run["resolution"])
+                    r = run_variant(sp, c, vt, speeds, plan["rated"], plan["resolution"])
         except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
             r = dict({k: 0.0 for k in names}, refused=1.0)
         for k in names:
@@ -548,16 +483,16 @@ def tolerance_study(
     # in service up to the float speed the criteria ask for: the Goodman safety and the peak
     # force are judged there (above it the valve may float)
     rated = None if criteria.min_float_cam_rpm is None else criteria.min_float_cam_rpm * 30.0 / math.pi
-    run = dict(rated=rated, resolution=float(resolution), guess=None)
+    plan = dict(rated=rated, resolution=float(resolution), guess=None)
     if float_only:
         # the nominal's float speed from a scan of the range (the definition), then by the
         # variants' search from there: its float speed starts every search
 
-        scan = float_speed(spring, cam, valve_train, speeds, resolution=float(resolution))
+        scan = run.float_speed(spring, cam, valve_train, speeds, resolution=float(resolution))
         scanned = float(speeds[-1] if scan.float_cam_rpm is None else scan.float_cam_rpm)
         nominal_out = run_variant_float(spring, cam, valve_train, speeds, scanned, float(resolution))
         nominal_out["float_cam_rpm_scan"] = scanned
-        run["guess"] = nominal_out["float_cam_rpm"]
+        plan["guess"] = nominal_out["float_cam_rpm"]
     names = FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)
     key = _key(tolerances, count, seed, method, speeds, float(resolution), bool(float_only))
     key += "" if (rated is None or float_only) else f"r{rated:.0f}"
@@ -586,7 +521,7 @@ def tolerance_study(
 
     if client is not None and todo:
         futures = [
-            client.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), run, pure=False)
+            client.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), plan, pure=False)
             for lo, hi in todo
         ]
         from dask.distributed import as_completed  # (here: dask is an optional extra)
@@ -601,7 +536,7 @@ def tolerance_study(
         threads = workers or min(os.cpu_count() or 1, 2)
         with ThreadPoolExecutor(max_workers=threads) as pool:
             futures = {
-                pool.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), run): lo for lo, hi in todo
+                pool.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), plan): lo for lo, hi in todo
             }
             it = completed(futures)
             for fut in progress(it, total=len(futures), desc="variants") if progress else it:

@@ -11,6 +11,8 @@
 - :mod:`.float_search` -- :func:`float_speed` and the search of a variant's float speed;
 - :mod:`.sweeps` -- :func:`sweep` over speeds and design values, local or on Dask;
 - :mod:`.run_up` -- speed ramps: lift-off and float against the momentary speed;
+- :mod:`.studies` -- speed studies of one design: a sweep refined at the float speed and the
+  worst speeds, a variant's float speed near a guess;
 - :mod:`.train_modes` -- natural frequencies under the cam, resonance speeds;
 - :mod:`.friction` -- the friction of a simulated revolution and over speed;
 - :mod:`.verdicts` -- the rules that judge a revolution (valve open, float, clash, pump-up,
@@ -36,6 +38,8 @@ _EXPORTS = {
     "float_speed": "float_search",
     "float_speed_near": "float_search",
     "speed_ramp": "run_up",
+    "speed_study": "studies",
+    "variant_float_speed": "studies",
     "RunUp": "run_up",
     "natural_frequencies": "train_modes",
     "separated_frequencies": "train_modes",
