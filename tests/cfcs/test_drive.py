@@ -296,6 +296,12 @@ def test_sensitivity_to_the_shear_angle_and_the_speed_is_current_in_the_docs(mod
         else:
             s = model.driven(**{**SEED, "omega": value}).summary
         pp, fmax, ratio, share, free, change = row
+        assert s["peak_to_peak_without_axial_friction_N"] == pytest.approx(float(free), abs=0.051), (what, value)
+        if pp == "not periodic":
+            # the run with tau_AF does not settle (chaotic toggle crossing): no figure is printed and
+            # the model must say it is not periodic
+            assert s["periodicity_change_percent"] > 1.0, (what, value)
+            continue
         assert s["peak_to_peak_N"] == pytest.approx(float(pp), abs=0.051), (what, value)
         assert s["force_max_N"] == pytest.approx(float(fmax), abs=0.051), (what, value)
         if ratio == "-":
@@ -303,5 +309,4 @@ def test_sensitivity_to_the_shear_angle_and_the_speed_is_current_in_the_docs(mod
         else:
             assert s["toggle_stop_angle_over_shear_angle"] == pytest.approx(float(ratio), abs=0.0051), (what, value)
             assert 100 * s["toggle_sticking_share"] == pytest.approx(float(share), abs=0.051), (what, value)
-        assert s["peak_to_peak_without_axial_friction_N"] == pytest.approx(float(free), abs=0.051), (what, value)
         assert s["periodicity_change_percent"] == pytest.approx(float(change), rel=0.05, abs=0.01), (what, value)
