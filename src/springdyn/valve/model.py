@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 from ..core.params import load_toml
 from ..core.progress import progress
@@ -50,6 +51,20 @@ from .spring.definition import ValveSpring
 from .train.definition import ValveTrain
 
 __all__ = ["ValveModel", "RUN_UP_WINDOW", "FLOAT_SCAN"]
+
+#: Parameter descriptions shared by the model's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    length : float
+        Spring length [m].
+    count : int
+        Frequencies [-].
+    start, stop : float, optional
+        Lengths [m] (default: the free length down to the model's limit).
+    points : int
+        Samples [-].
+    """
+)
 
 #: The run-up through the float speed f (:meth:`ValveModel.run_up_through_float`): from this
 #: fraction of f to this fraction [-] (the valve settles before, and floats well after).
@@ -368,40 +383,37 @@ class ValveModel:
         """
         return self.chain_model.static_force(length)
 
+    @_DOCS.fill
     def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
         """The static force and stiffness against length (:class:`~springdyn.valve.spring.results.StaticCurve`).
 
         Parameters
         ----------
-        start, stop : float, optional
-            Lengths [m] (default: the free length down to the model's limit).
-        points : int
-            Samples [-].
+        {start_stop}
+        {points}
         """
         return self.chain_model.static_curve(start, stop, points)
 
+    @_DOCS.fill
     def modes(self, length: float, count: int = 5):
         """Natural frequencies [Hz] of the chain at a length, both ends fixed.
 
         Parameters
         ----------
-        length : float
-            Spring length [m].
-        count : int
-            Frequencies [-].
+        {length}
+        {count}
         """
         return self.chain_model.modes(length, count)
 
+    @_DOCS.fill
     def chain_modes(self, length: float, count: int = 5):
         """The chain's natural frequencies at a length with what moves in each
         (:class:`~springdyn.valve.spring.results.ChainModes`).
 
         Parameters
         ----------
-        length : float
-            Spring length [m].
-        count : int
-            Frequencies [-].
+        {length}
+        {count}
         """
         return spring_wing.ChainModes.of(self.spring, length, count)
 
@@ -450,14 +462,9 @@ class ValveModel:
 
         Parameters
         ----------
-        cam_rpm : float
-            Cam speed of the measurement [rev/min].
-        cam_angle : array_like
-            Cam angles of the trace [rad].
-        retainer_force : array_like
-            Measured retainer force [N].
-        fit : sequence of str
-            What to fit, of ``damping_ratio`` and ``contact_stiffness``.
+        cam_rpm, cam_angle, retainer_force, fit
+            The measurement's cam speed [rev/min], cam angles [rad] and retainer forces [N], and
+            what to fit, as :func:`~springdyn.valve.design.calibrate.calibrate_trace` takes them.
         """
         return design_wing.calibrate_trace(
             self.spring, self._need_cam("calibrate_trace"), cam_rpm, cam_angle, retainer_force, fit
@@ -557,6 +564,11 @@ class ValveModel:
         nat = self.natural_frequencies(count)
         return nat.with_resonances(cam_rpm_min, cam_rpm_max)
 
+    def _run_inputs(self, changes: dict, setup: bool = True) -> dict:
+        """The train, the settings with ``changes`` and (with ``setup``) the cached set-up of a run."""
+        inputs = dict(valve_train=self.valve_train, settings=RunSettings.of(self.settings, **changes))
+        return {**inputs, "setup": self.setup} if setup else inputs
+
     def simulate(self, cam_rpm: float, revolutions: int | None = None, **changes):
         """The dynamic response at one cam speed (:class:`~springdyn.valve.run.results.Simulation`).
 
@@ -572,16 +584,8 @@ class ValveModel:
         """
         if revolutions is not None:
             changes["revolutions"] = revolutions
-        return self._with_axis(
-            run_wing.simulate(
-                self.spring,
-                self._need_cam("simulate"),
-                cam_rpm,
-                valve_train=self.valve_train,
-                settings=RunSettings.of(self.settings, **changes),
-                setup=self.setup,
-            )
-        )
+        run = run_wing.simulate(self.spring, self._need_cam("simulate"), cam_rpm, **self._run_inputs(changes))
+        return self._with_axis(run)
 
     def sweep(self, cam_rpm, *, vary=None, on_invalid: str = "stop", workers=None, client=None, quiet=True, **changes):
         """Every cam speed of ``cam_rpm`` (and every design value of ``vary``)
@@ -609,8 +613,7 @@ class ValveModel:
                 self.spring,
                 self._need_cam("sweep"),
                 cam_rpm,
-                valve_train=self.valve_train,
-                settings=RunSettings.of(self.settings, **changes),
+                **self._run_inputs(changes, setup=False),
                 vary=vary,
                 on_invalid=on_invalid,
                 workers=workers,

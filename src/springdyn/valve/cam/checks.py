@@ -50,6 +50,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from ...core.results import Result, notes_lines
 from .follower import Follower
@@ -71,6 +72,28 @@ __all__ = [
     "PITCH_RADIUS_GUIDE",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    offset : float
+        Follower axis offset along +x [m].
+    velocity : float or array_like
+        dh/dtheta [m/rad].
+    lift : float or array_like
+        Lobe lift h [m].
+    reduced_modulus : float
+        Contact modulus E* [Pa].
+    follower : Follower
+        The ``[follower]`` table.
+    pitch_radius : float
+        d0 = sqrt((R_b + r)^2 - offset^2) [m].
+    acceleration : float or array_like
+        d2h/dtheta2 [m/rad^2].
+    force : float or array_like
+        Normal force F [N] (negative counts as 0).
+    """
+)
+
 #: Largest pressure angle of a translating roller follower of common guidance [rad] (30 deg,
 #: [Norton]); beyond it the side thrust on the follower's guide grows quickly.
 PRESSURE_ANGLE_GUIDE = math.radians(30.0)
@@ -83,6 +106,7 @@ _TWO_PI = 2.0 * math.pi
 
 
 # ----------------------------------------------------------------------------- geometry
+@_DOCS.fill
 def flat_follower_radius(base_circle_radius, lift, acceleration):
     """Radius of curvature of the cam under a flat-faced translating follower [m].
 
@@ -93,10 +117,8 @@ def flat_follower_radius(base_circle_radius, lift, acceleration):
     ----------
     base_circle_radius : float
         Base-circle radius R_b [m].
-    lift : float or array_like
-        Lobe lift h [m].
-    acceleration : float or array_like
-        d2h/dtheta2 [m/rad^2].
+    {lift}
+    {acceleration}
 
     Examples
     --------
@@ -106,6 +128,7 @@ def flat_follower_radius(base_circle_radius, lift, acceleration):
     return base_circle_radius + np.asarray(lift, dtype=float) + np.asarray(acceleration, dtype=float)
 
 
+@_DOCS.fill
 def flat_contact_offset(velocity, offset=0.0):
     """Distance of the contact point from a flat follower's axis along its face [m].
 
@@ -116,10 +139,8 @@ def flat_contact_offset(velocity, offset=0.0):
 
     Parameters
     ----------
-    velocity : float or array_like
-        dh/dtheta [m/rad].
-    offset : float
-        Follower axis offset along +x [m].
+    {velocity}
+    {offset}
     """
     return np.asarray(velocity, dtype=float) - offset
 
@@ -145,6 +166,7 @@ def flat_face_reach(contact_offset, width, lateral_offset=0.0):
     return np.hypot(e, abs(lateral_offset) + 0.5 * width)
 
 
+@_DOCS.fill
 def pressure_angle(lift, velocity, pitch_radius, offset=0.0):
     """Pressure angle of a translating roller follower [rad]: between the contact normal and
     the follower's axis.
@@ -154,18 +176,15 @@ def pressure_angle(lift, velocity, pitch_radius, offset=0.0):
 
     Parameters
     ----------
-    lift : float or array_like
-        Lobe lift h [m].
-    velocity : float or array_like
-        dh/dtheta [m/rad].
-    pitch_radius : float
-        d0 = sqrt((R_b + r)^2 - offset^2) [m].
-    offset : float
-        Follower axis offset along +x [m].
+    {lift}
+    {velocity}
+    {pitch_radius}
+    {offset}
     """
     return np.arctan2(np.asarray(velocity, dtype=float) - offset, pitch_radius + np.asarray(lift, dtype=float))
 
 
+@_DOCS.fill
 def pitch_curve_curvature(lift, velocity, acceleration, pitch_radius, offset=0.0):
     """Curvature of a roller follower's pitch curve in the cam frame [1/m], positive convex.
 
@@ -179,16 +198,11 @@ def pitch_curve_curvature(lift, velocity, acceleration, pitch_radius, offset=0.0
 
     Parameters
     ----------
-    lift : float or array_like
-        Lobe lift h [m].
-    velocity : float or array_like
-        dh/dtheta [m/rad].
-    acceleration : float or array_like
-        d2h/dtheta2 [m/rad^2].
-    pitch_radius : float
-        d0 = sqrt((R_b + r)^2 - offset^2) [m].
-    offset : float
-        Follower axis offset along +x [m].
+    {lift}
+    {velocity}
+    {acceleration}
+    {pitch_radius}
+    {offset}
     """
     h, dh, ddh = (np.asarray(a, dtype=float) for a in (lift, velocity, acceleration))
     y = pitch_radius + h
@@ -226,6 +240,7 @@ def roller_cam_curvature(pitch_curvature, roller_radius):
     return np.clip(k / safe, -1e9, 1e9), undercut
 
 
+@_DOCS.fill
 def cam_profile(cam_angle, lift, velocity, follower):
     """The cam surface (and a roller's pitch curve) in the cam frame [m].
 
@@ -242,8 +257,7 @@ def cam_profile(cam_angle, lift, velocity, follower):
         Lobe lift h [m].
     velocity : array_like
         dh/dtheta [m/rad].
-    follower : Follower
-        The ``[follower]`` table.
+    {follower}
 
     Returns
     -------
@@ -269,6 +283,7 @@ def cam_profile(cam_angle, lift, velocity, follower):
 
 
 # ----------------------------------------------------------------------------- contact
+@_DOCS.fill
 def line_contact(force, width, radius, reduced_modulus):
     """Hertz line contact of two cylinders: peak pressure [Pa] and half-width [m].
 
@@ -277,14 +292,12 @@ def line_contact(force, width, radius, reduced_modulus):
 
     Parameters
     ----------
-    force : float or array_like
-        Normal force F [N] (negative counts as 0).
+    {force}
     width : float
         Contact length L [m].
     radius : float or array_like
         Effective radius R [m], positive.
-    reduced_modulus : float
-        Contact modulus E* [Pa].
+    {reduced_modulus}
 
     Returns
     -------
@@ -304,6 +317,7 @@ def line_contact(force, width, radius, reduced_modulus):
     )
 
 
+@_DOCS.fill
 def elliptical_contact(force, radius_x, radius_y, reduced_modulus):
     """Hertz point (elliptical) contact: peak pressure [Pa] and semi-axes [m], by the
     closed-form approximations of [Hamrock-Brewe].
@@ -318,14 +332,12 @@ def elliptical_contact(force, radius_x, radius_y, reduced_modulus):
 
     Parameters
     ----------
-    force : float or array_like
-        Normal force F [N] (negative counts as 0).
+    {force}
     radius_x : float or array_like
         Effective radius in the rolling direction [m], positive.
     radius_y : float or array_like
         Effective radius across it (the crown) [m], positive.
-    reduced_modulus : float
-        Contact modulus E* [Pa].
+    {reduced_modulus}
 
     Returns
     -------
@@ -378,6 +390,7 @@ def kinematic_cam_force(valve_lift, valve_acceleration, spring_force, moving_mas
 
 
 # ----------------------------------------------------------------------------- the check
+@_DOCS.fill
 def check_cam(
     cam,
     valve_train,
@@ -397,8 +410,7 @@ def check_cam(
         The lobe (its lift is the follower's lift).
     valve_train : ValveTrain or None
         Ratio, lash and masses of the load (None: the lobe is the valve, no train mass).
-    follower : Follower
-        The ``[follower]`` table.
+    {follower}
     spring : ValveSpring, optional
         The valve spring: with it the kinematic load and the Hertz stress.
     cam_rpm : float, optional

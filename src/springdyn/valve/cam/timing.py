@@ -46,6 +46,18 @@ __all__ = [
 VALVES = ("intake", "exhaust")
 
 
+def _cam_turns_per_crank_turn(strokes: int) -> float:
+    """``2 / strokes`` [-]: the camshaft turns once per cycle, a cycle is ``strokes / 2`` crank turns."""
+    if strokes not in (2, 4):
+        raise InputError(f"strokes = {strokes!r} must be 2 or 4")
+    return 2.0 / strokes
+
+
+def _scaled(speed, factor: float):
+    """``speed * factor``: a float for a scalar, an array for an array."""
+    return np.asarray(speed, dtype=float) * factor if np.ndim(speed) else float(speed) * factor
+
+
 def cam_rpm_from_engine_rpm(engine_rpm, strokes: int = 4):
     """Camshaft speed [rev/min] from the engine (crankshaft) speed [rev/min].
 
@@ -64,13 +76,7 @@ def cam_rpm_from_engine_rpm(engine_rpm, strokes: int = 4):
     >>> cam_rpm_from_engine_rpm(6000)
     3000.0
     """
-    if strokes not in (2, 4):
-        raise InputError(f"strokes = {strokes!r} must be 2 or 4")
-    return (
-        np.asarray(engine_rpm, dtype=float) * (2.0 / strokes)
-        if np.ndim(engine_rpm)
-        else float(engine_rpm) * 2.0 / strokes
-    )
+    return _scaled(engine_rpm, _cam_turns_per_crank_turn(strokes))
 
 
 def engine_rpm_from_cam_rpm(cam_rpm, strokes: int = 4):
@@ -89,9 +95,7 @@ def engine_rpm_from_cam_rpm(cam_rpm, strokes: int = 4):
     >>> engine_rpm_from_cam_rpm(3000)
     6000.0
     """
-    if strokes not in (2, 4):
-        raise InputError(f"strokes = {strokes!r} must be 2 or 4")
-    return np.asarray(cam_rpm, dtype=float) * (strokes / 2.0) if np.ndim(cam_rpm) else float(cam_rpm) * strokes / 2.0
+    return _scaled(cam_rpm, 1.0 / _cam_turns_per_crank_turn(strokes))
 
 
 @dataclass(frozen=True)

@@ -1027,21 +1027,15 @@ def _durability(sim, s: dict, notes: list) -> dict:
         s["max_static_force_N"],
     )
     peak_share = np.nanmax(np.where(np.isfinite(share), share, 0.0), axis=1)
+    copied = (
+        "static_fatigue_safety_factor fatigue_safety_factor static_min_shear_stress_Pa static_max_shear_stress_Pa "
+        "min_shear_stress_Pa max_shear_stress_Pa endurance_shear_strength_Pa ultimate_shear_strength_Pa "
+        "shear_stress_limit_Pa max_wire_force_N peak_shear_stress_Pa"  # the largest stress of any element
+    ).split()
     out = dict(
-        static_fatigue_safety_factor=f["static_fatigue_safety_factor"],
-        fatigue_safety_factor=f["fatigue_safety_factor"],
-        static_min_shear_stress_Pa=f["static_min_shear_stress_Pa"],
-        static_max_shear_stress_Pa=f["static_max_shear_stress_Pa"],
-        min_shear_stress_Pa=f["min_shear_stress_Pa"],
-        max_shear_stress_Pa=f["max_shear_stress_Pa"],
+        {key: f[key] for key in copied},
         fatigue_critical_element=f["fatigue_critical_element"] + 1,
-        endurance_shear_strength_Pa=f["endurance_shear_strength_Pa"],
-        ultimate_shear_strength_Pa=f["ultimate_shear_strength_Pa"],
-        shear_stress_limit_Pa=f["shear_stress_limit_Pa"],
-        max_wire_force_N=f["max_wire_force_N"],
         max_force_through_coil_contact_N=float(np.max(peak_share)),
-        # the largest stress of any element (the Goodman-critical one above need not be it)
-        peak_shear_stress_Pa=f["peak_shear_stress_Pa"],
         peak_shear_stress_element=f["peak_shear_stress_element"] + 1,
         wire_stress_ok=f["wire_stress_ok"],
     )

@@ -309,6 +309,20 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
     return out
 
 
+def _run_record(setup: SimulationSetup, cam_rpm, revolutions, prev_err, info) -> dict:
+    """The fields of a :class:`Simulation` that say what was run and how well it settled."""
+    return dict(
+        spring=setup.spring,
+        cam=setup.cam,
+        valve_train=setup.valve_train,
+        cam_rpm=cam_rpm,
+        revolutions=revolutions,
+        periodicity_error=prev_err,
+        info=info,
+        coil_bind=setup.coil_bind,
+    )
+
+
 def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err, info) -> Simulation:
     """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)
     over the last revolution, ``e``; ``prev_err`` is its periodicity error [fraction of Fset]."""
@@ -320,11 +334,7 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err,
     else:
         static = static_force(setup, e[:, lay["top_displacement"]])
     sim = Simulation(
-        spring=setup.spring,
-        cam=setup.cam,
-        valve_train=setup.valve_train,
-        cam_rpm=cam_rpm,
-        revolutions=revolutions,
+        **_run_record(setup, cam_rpm, revolutions, prev_err, info),
         time=time,
         cam_angle=output_angles(time.size),
         lift=lift,
@@ -335,9 +345,6 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err,
         element_force=force,
         element_contact=x >= setup.spring.spring_model.contact_gaps[:, None],
         mass_displacement=e[:, lay["displacement"]].T,
-        periodicity_error=prev_err,
-        info=info,
-        coil_bind=setup.coil_bind,
     )
     if setup.valve_train is not None:
         sim.valve_lift = e[:, lay["top_displacement"]]
@@ -370,11 +377,7 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_last, states, i
     last = slice(0, t_last.size)
     force = r["force"]
     sim = Simulation(
-        spring=setup.spring,
-        cam=setup.cam,
-        valve_train=setup.valve_train,
-        cam_rpm=cam_rpm,
-        revolutions=revolutions,
+        **_run_record(setup, cam_rpm, revolutions, prev_err, info),
         time=t_last,
         cam_angle=np.mod(theta[last], 2 * math.pi),
         lift=r["lift"][last],
@@ -385,9 +388,6 @@ def _postprocess(setup: SimulationSetup, cam_rpm, revolutions, t_last, states, i
         element_force=force[:, last],
         element_contact=r["contact"][:, last],
         mass_displacement=r["displacement"][:, last],
-        periodicity_error=prev_err,
-        info=info,
-        coil_bind=setup.coil_bind,
     )
     if setup.valve_train is not None:
         sim.valve_lift = r["valve_lift"][last]

@@ -132,12 +132,8 @@ def variant_float_speed(spring, cam, valve_train, guess_rpm: float, lo_rpm: floa
 
     Parameters
     ----------
-    spring : ValveSpring
-        The design [-].
-    cam : Cam
-        The cam [-].
-    valve_train : ValveTrain
-        The train [-].
+    spring, cam, valve_train : ValveSpring, Cam, ValveTrain
+        The design, its cam and its train [-].
     guess_rpm : float
         Where the search starts [rev/min].
     lo_rpm, hi_rpm : float

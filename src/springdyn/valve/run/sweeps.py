@@ -99,12 +99,7 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         seat=f[:, last, 0],
         contact=contact.any(axis=2),
         contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
-        periodicity=mon["periodicity"],
-        revolutions=mon["revolutions"],
-        settled=mon["settled"],
-        band_lo=mon["band_lo"],
-        band_hi=mon["band_hi"],
-        ext=mon["ext"],
+        **{key: mon[key] for key in ("periodicity", "revolutions", "settled", "band_lo", "band_hi", "ext")},
         wire_min=wire.min(axis=2).T,
         wire_max=wire.max(axis=2).T,
         separation=np.sum(ev[:, :, 0] == 0.0, axis=1),
@@ -729,16 +724,8 @@ class SpeedSweep(CrankAngles, Result):
         )
 
     def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
-        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``.
-
-        Parameters
-        ----------
-        out_dir : str or Path
-            Output folder [-].
-        prefix : str
-            File name prefix [-].
-        """
-
+        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``
+        (the arguments of :meth:`plot_all`)."""
         out_dir = Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
         written = [self.to_netcdf(out_dir / f"{prefix}.nc"), self.to_csv(out_dir / f"{prefix}_summary.csv")]

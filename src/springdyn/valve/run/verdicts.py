@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ..spring import stress
 
 __all__ = [
@@ -33,6 +34,16 @@ __all__ = [
     "pumps_up",
     "wire_fatigue",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    lobe_lift : array_like (n,)
+        Lobe lift on the output grid [m].
+    valve_lift : array_like (..., n)
+        Valve lift on the same grid [m].
+    """
+)
 
 #: Valve lift held on the base circle [m] above which a hydraulic lash adjuster has pumped up
 #: (a micrometre: the adjuster's leak-down per cycle is some 0.3 um, its collapse under the
@@ -59,6 +70,7 @@ def first_landing(valve_lift) -> np.ndarray:
     return np.cumsum(np.concatenate([start, landing], axis=-1), axis=-1) > 0
 
 
+@_DOCS.fill
 def valve_open(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
     """The valve open in its event: off its seat, the lobe past the lash (by :data:`OPEN_LIFT`),
     and before its first landing in the revolution (later separations are seat bounces; the
@@ -66,10 +78,8 @@ def valve_open(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
 
     Parameters
     ----------
-    lobe_lift : array_like (n,)
-        Lobe lift on the output grid [m].
-    valve_lift : array_like (..., n)
-        Valve lift on the same grid [m].
+    {lobe_lift}
+    {valve_lift}
     lobe_lash : float
         Lobe lift that starts the event [m] (:attr:`ValveTrain.lobe_lash`).
     """
@@ -77,16 +87,15 @@ def valve_open(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
     return (np.asarray(lobe_lift) > lobe_lash + OPEN_LIFT) & (z > 0.0) & ~first_landing(z)
 
 
+@_DOCS.fill
 def seat_rebound_height(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
     """Seat bounce: the largest lift [m] the valve rebounds to after its first landing in the
     revolution, while the lobe is back on its base circle (past the event).
 
     Parameters
     ----------
-    lobe_lift : array_like (n,)
-        Lobe lift on the output grid [m].
-    valve_lift : array_like (..., n)
-        Valve lift on the same grid [m].
+    {lobe_lift}
+    {valve_lift}
     lobe_lash : float
         Lobe lift that starts the event [m].
     """
@@ -142,16 +151,15 @@ def coil_clash(spring_model, contact, static_force) -> np.ndarray:
     return spring_model.clash(contact, static_force)
 
 
+@_DOCS.fill
 def valve_held_open(lobe_lift, valve_lift) -> np.ndarray:
     """The smallest valve lift [m] while the lobe is on its base circle (0 when it closes;
     with a hydraulic lash adjuster that pumped up, the lift it holds the valve open by).
 
     Parameters
     ----------
-    lobe_lift : array_like (n,)
-        Lobe lift on the output grid [m].
-    valve_lift : array_like (..., n)
-        Valve lift on the same grid [m].
+    {lobe_lift}
+    {valve_lift}
     """
     base = ~(np.asarray(lobe_lift) > BASE_CIRCLE_LIFT)
     z = np.asarray(valve_lift, dtype=float)

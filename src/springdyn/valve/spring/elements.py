@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
+
 __all__ = [
     "quadratic_through",
     "linear_law",
@@ -28,6 +30,16 @@ __all__ = [
     "damping_coefficient",
     "law_energy",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    law : ndarray, shape (S, 4)
+        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    x : float or array_like
+        Element compression [m].
+    """
+)
 
 _INF = math.inf
 
@@ -163,6 +175,7 @@ def _segment(x, law):
     return seg
 
 
+@_DOCS.fill
 def law_force(x, law: np.ndarray):
     """Element force [N] at compression ``x`` [m] (scalar or array).
 
@@ -170,8 +183,7 @@ def law_force(x, law: np.ndarray):
     ----------
     x : float or array_like
         Element compression from its free state [m].
-    law : ndarray, shape (S, 4)
-        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    {law}
 
     Notes
     -----
@@ -183,15 +195,14 @@ def law_force(x, law: np.ndarray):
     return (a * x + b) * x + c
 
 
+@_DOCS.fill
 def law_stiffness(x, law: np.ndarray):
     """Tangent stiffness ``dF/dx`` [N/m] at compression ``x`` [m].
 
     Parameters
     ----------
-    x : float or array_like
-        Element compression [m].
-    law : ndarray, shape (S, 4)
-        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    {x}
+    {law}
 
     Notes
     -----
@@ -203,6 +214,7 @@ def law_stiffness(x, law: np.ndarray):
     return 2.0 * law[s, 1] * x + law[s, 2]
 
 
+@_DOCS.fill
 def law_compression(force, law: np.ndarray):
     """Inverse law: compression [m] at which the element carries ``force`` [N].
 
@@ -210,8 +222,7 @@ def law_compression(force, law: np.ndarray):
     ----------
     force : float or array_like
         Element force [N].
-    law : ndarray, shape (S, 4)
-        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    {law}
 
     Notes
     -----
@@ -229,6 +240,7 @@ def law_compression(force, law: np.ndarray):
     return 2.0 * d / (b + np.sqrt(np.maximum(b * b + 4.0 * a * d, 0.0)))
 
 
+@_DOCS.fill
 def damping_coefficient(x, law: np.ndarray, c0: float):
     """Element damping ``c(x) = C0 sqrt(k(x)/k(0))`` [N s/m] ([MMS], "Damping Coefficient").
 
@@ -237,16 +249,15 @@ def damping_coefficient(x, law: np.ndarray, c0: float):
 
     Parameters
     ----------
-    x : float or array_like
-        Element compression [m].
-    law : ndarray, shape (S, 4)
-        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    {x}
+    {law}
     c0 : float
         Base damping coefficient C0 [N s/m].
     """
     return c0 * np.sqrt(law_stiffness(x, law) / law[0, 2])
 
 
+@_DOCS.fill
 def law_energy(x, law: np.ndarray):
     """Strain energy ``int_0^x F(s) ds`` [J] stored in an element compressed by ``x`` [m].
 
@@ -255,10 +266,8 @@ def law_energy(x, law: np.ndarray):
 
     Parameters
     ----------
-    x : float or array_like
-        Element compression [m].
-    law : ndarray, shape (S, 4)
-        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    {x}
+    {law}
     """
     x = np.asarray(x, dtype=float)
     energy = np.where(x < 0, 0.5 * law[0, 2] * x * x, 0.0)

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import math
 
+from ...core.docstrings import ParameterDocs
+
 __all__ = [
     "PARAMETER_UNITS",
     "active_coils_free",
@@ -22,8 +24,7 @@ __all__ = [
     "free_length_stiffness",
     "setup_stiffness",
     "active_coils_for_rate",
-    "pitch_correction_free",
-    "pitch_correction_setup",
+    "pitch_correction",
     "surge_frequency",
     "total_mass",
     "coil_pitch",
@@ -41,6 +42,38 @@ __all__ = [
 
 #: SI unit, display unit and meaning of each internal parameter of the MMS Type C model
 #: (:meth:`springdyn.valve.spring.chains.TypeCModel.internal_parameters`).
+#: The symbols' descriptions, shared by the docstrings below (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    dw : float
+        Wire diameter Dw [m].
+    n1, n2 : float
+        Low- and high-pitch coils N1, N2 [-].
+    ls : float
+        Set-up (installed) length Ls [m].
+    do : float
+        Mean coil diameter Do [m].
+    lf : float
+        Free length Lf [m].
+    k1 : float
+        Free-length spring rate K1 [N/m].
+    k2 : float
+        Set-up-length spring rate K2 [N/m].
+    k : float
+        End-element (contact) stiffness K [N/m].
+    pc : float
+        Gap term Pc [m].
+    two_step : bool
+        True for a two-step spring.
+    k3 : float
+        Stiffened rate K3 [N/m].
+    m_total : float
+        Spring mass M [kg].
+    n2 : float
+        High-pitch coils N2 [-].
+    """
+)
+
 PARAMETER_UNITS = {
     "K": ("N/m", "N/mm", "contact stiffness of a coil"),
     "K1": ("N/m", "N/mm", "spring rate at free length"),
@@ -71,6 +104,7 @@ PARAMETER_UNITS = {
 }
 
 
+@_DOCS.fill
 def active_coils_free(n1: float, n2: float, nb: float) -> float:
     """Active coils at free length, ``N1 + N2 - 2 Nb`` [-].
 
@@ -78,8 +112,7 @@ def active_coils_free(n1: float, n2: float, nb: float) -> float:
     ----------
     n1 : float
         Low-pitch coils N1 (0 for a one-step spring) [-].
-    n2 : float
-        High-pitch coils N2 [-].
+    {n2}
     nb : float
         Dead (seat-contact) coils per end Nb [-].
 
@@ -90,6 +123,7 @@ def active_coils_free(n1: float, n2: float, nb: float) -> float:
     return n1 + n2 - 2.0 * nb
 
 
+@_DOCS.fill
 def active_coils_setup(n1: float, n2: float, nb: float, two_step: bool) -> float:
     """Active coils at set-up length [-].
 
@@ -97,12 +131,10 @@ def active_coils_setup(n1: float, n2: float, nb: float, two_step: bool) -> float
     ----------
     n1 : float
         Low-pitch coils N1 [-].
-    n2 : float
-        High-pitch coils N2 [-].
+    {n2}
     nb : float
         Dead coils per end Nb [-].
-    two_step : bool
-        True for a two-step spring.
+    {two_step}
 
     Notes
     -----
@@ -115,6 +147,7 @@ def active_coils_setup(n1: float, n2: float, nb: float, two_step: bool) -> float
     return n2 - nb if two_step else active_coils_free(n1, n2, nb)
 
 
+@_DOCS.fill
 def contact_stiffness(do: float, e: float) -> float:
     r"""Stiffness of a fully contacting coil, ``K = pi Do E / 1e3`` [N/m].
 
@@ -124,8 +157,7 @@ def contact_stiffness(do: float, e: float) -> float:
 
     Parameters
     ----------
-    do : float
-        Mean coil diameter [m].
+    {do}
     e : float
         Young's modulus [Pa].
 
@@ -146,6 +178,7 @@ def contact_stiffness(do: float, e: float) -> float:
     return math.pi * do * e / 1e3
 
 
+@_DOCS.fill
 def free_length_stiffness(g: float, dw: float, do: float, n_active: float) -> float:
     r"""Helical spring rate ``G Dw^4 / (8 n Do^3)`` [N/m].
 
@@ -162,8 +195,7 @@ def free_length_stiffness(g: float, dw: float, do: float, n_active: float) -> fl
         Shear modulus G' [Pa].
     dw : float
         Wire diameter [m].
-    do : float
-        Mean coil diameter [m].
+    {do}
     n_active : float
         Number of active coils [-].
 
@@ -212,50 +244,29 @@ def active_coils_for_rate(g, dw, do, rate):
     return free_length_stiffness(g, dw, do, 1.0) / rate  # the rate's law, solved for n (K n is constant)
 
 
-def pitch_correction_free(lf: float, dw: float, n1: float, n2: float, n_active: float, do: float) -> float:
-    """Pitch term ``n1' = (Lf - Dw (N1 + N2 - 1)) / ((N1 + N2 - 2 Nb) Do)`` [-].
+@_DOCS.fill
+def pitch_correction(length: float, dw: float, n1: float, n2: float, n_active: float, do: float) -> float:
+    """Pitch term ``n' = (L - Dw (N1 + N2 - 1)) / (n_active Do)`` [-].
+
+    At the free length (``L = Lf``, ``n_active = N1 + N2 - 2 Nb``) it is n'1, at the set-up length
+    (``L = Ls``, :func:`active_coils_setup`) n'2.
 
     Parameters
     ----------
-    lf : float
-        Free length Lf [m].
-    dw : float
-        Wire diameter Dw [m].
-    n1, n2 : float
-        Low- and high-pitch coils N1, N2 [-].
+    length : float
+        Spring length, Lf or Ls [m].
+    {dw}
+    {n1_n2}
     n_active : float
-        Active coils at free length ``N1 + N2 - 2 Nb`` [-].
-    do : float
-        Mean coil diameter Do [m].
+        Active coils at that length [-].
+    {do}
 
     Notes
     -----
-    [MMS], "Internal Parameter", n'1 (in f1, "Natural Frequency for free length").
+    [MMS], "Internal Parameter", n'1 (in f1, "Natural Frequency for free length"), and "Stiffness for
+    set-up length", n'2 (in f2, "Natural frequency for set-up length").
     """
-    return (lf - dw * (n1 + n2 - 1.0)) / (n_active * do)
-
-
-def pitch_correction_setup(ls: float, dw: float, n1: float, n2: float, n_active: float, do: float) -> float:
-    """Pitch term ``n2' = (Ls - Dw (N1 + N2 - 1)) / (n_setup Do)`` [-].
-
-    Parameters
-    ----------
-    ls : float
-        Set-up (installed) length Ls [m].
-    dw : float
-        Wire diameter Dw [m].
-    n1, n2 : float
-        Low- and high-pitch coils N1, N2 [-].
-    n_active : float
-        Active coils at set-up length (:func:`active_coils_setup`) [-].
-    do : float
-        Mean coil diameter Do [m].
-
-    Notes
-    -----
-    [MMS], "Stiffness for set-up length", n'2 (in f2, "Natural frequency for set-up length").
-    """
-    return (ls - dw * (n1 + n2 - 1.0)) / (n_active * do)
+    return (length - dw * (n1 + n2 - 1.0)) / (n_active * do)
 
 
 def surge_frequency(g: float, rho: float, dw: float, do: float, n_eff: float) -> float:
@@ -294,6 +305,7 @@ def surge_frequency(g: float, rho: float, dw: float, do: float, n_eff: float) ->
     return math.sqrt(g / (2.0 * rho)) * dw / (2.0 * math.pi * n_eff * do**2)
 
 
+@_DOCS.fill
 def total_mass(rho: float, do: float, dw: float, n1: float, n2: float) -> float:
     """Total spring mass ``M = pi^2/4 rho Do Dw^2 (N1 + N2 - 0.7)`` [kg].
 
@@ -301,12 +313,9 @@ def total_mass(rho: float, do: float, dw: float, n1: float, n2: float) -> float:
     ----------
     rho : float
         Density rho' [kg/m^3].
-    do : float
-        Mean coil diameter Do [m].
-    dw : float
-        Wire diameter Dw [m].
-    n1, n2 : float
-        Low- and high-pitch coils N1, N2 [-].
+    {do}
+    {dw}
+    {n1_n2}
 
     Notes
     -----
@@ -315,6 +324,7 @@ def total_mass(rho: float, do: float, dw: float, n1: float, n2: float) -> float:
     return math.pi**2 / 4.0 * rho * do * dw**2 * (n1 + n2 - 0.7)
 
 
+@_DOCS.fill
 def coil_pitch(ls: float, dw: float, n1: float, n2: float) -> float:
     """Gap term ``Pc = 2 (Ls - Dw (N1 + N2 - 1)) / N2`` [m].
 
@@ -322,12 +332,9 @@ def coil_pitch(ls: float, dw: float, n1: float, n2: float) -> float:
 
     Parameters
     ----------
-    ls : float
-        Set-up (installed) length Ls [m].
-    dw : float
-        Wire diameter Dw [m].
-    n1, n2 : float
-        Low- and high-pitch coils N1, N2 [-].
+    {ls}
+    {dw}
+    {n1_n2}
 
     Notes
     -----
@@ -336,15 +343,14 @@ def coil_pitch(ls: float, dw: float, n1: float, n2: float) -> float:
     return 2.0 * (ls - dw * (n1 + n2 - 1.0)) / n2
 
 
+@_DOCS.fill
 def coil_contact_length(dw: float, n1: float, n2: float) -> float:
     """Solid (coil contact) length ``Lc = Dw (N1 + N2 + 0.5)`` [m].
 
     Parameters
     ----------
-    dw : float
-        Wire diameter Dw [m].
-    n1, n2 : float
-        Low- and high-pitch coils N1, N2 [-].
+    {dw}
+    {n1_n2}
 
     Notes
     -----
@@ -354,17 +360,15 @@ def coil_contact_length(dw: float, n1: float, n2: float) -> float:
     return dw * (n1 + n2 + 0.5)
 
 
+@_DOCS.fill
 def setup_force(lf: float, ls: float, k1: float) -> float:
     """Set-up load ``Fset = (Lf - Ls) K1`` [N].
 
     Parameters
     ----------
-    lf : float
-        Free length Lf [m].
-    ls : float
-        Set-up (installed) length Ls [m].
-    k1 : float
-        Free-length spring rate K1 [N/m].
+    {lf}
+    {ls}
+    {k1}
 
     Notes
     -----
@@ -373,6 +377,7 @@ def setup_force(lf: float, ls: float, k1: float) -> float:
     return (lf - ls) * k1
 
 
+@_DOCS.fill
 def onestep_model_variables(k: float, k1: float, f1: float, m_total: float) -> dict:
     """Stiffnesses and masses of the one-step chain ([MMS], "Model variable for One-Step
     spring", Fig. 40.32).
@@ -381,14 +386,11 @@ def onestep_model_variables(k: float, k1: float, f1: float, m_total: float) -> d
 
     Parameters
     ----------
-    k : float
-        End-element (contact) stiffness K [N/m].
-    k1 : float
-        Free-length spring rate K1 [N/m].
+    {k}
+    {k1}
     f1 : float
         Free-length surge frequency [Hz].
-    m_total : float
-        Spring mass M [kg].
+    {m_total}
 
     Returns
     -------
@@ -402,6 +404,7 @@ def onestep_model_variables(k: float, k1: float, f1: float, m_total: float) -> d
     return dict(Kh1=16.0 / 5.0 * q, Kh2=16.0 / 3.0 * q, m1=m1, m2=m2, me=(m_total - 2.0 * m1 - m2) / 2.0)
 
 
+@_DOCS.fill
 def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float, m_total: float) -> dict:
     """Stiffnesses and masses of the two-step chain ([MMS], "Model variable for Two-Step
     spring", Fig. 40.33).
@@ -413,18 +416,14 @@ def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float
 
     Parameters
     ----------
-    k : float
-        End-element (contact) stiffness K [N/m].
-    k1 : float
-        Free-length spring rate K1 [N/m].
-    k2 : float
-        Set-up-length spring rate K2 [N/m].
+    {k}
+    {k1}
+    {k2}
     f1 : float
         Free-length surge frequency f1 [Hz].
     f2 : float
         Set-up-length surge frequency f2 [Hz].
-    m_total : float
-        Spring mass M [kg].
+    {m_total}
 
     Returns
     -------
@@ -441,6 +440,7 @@ def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float
     return dict(Kh1=kh1, Kh2=kh2, Ks=ks, m1=m1, m2=m2, me=(m_total - 2.0 * m2 - m1) / 2.0)
 
 
+@_DOCS.fill
 def first_nonlinear_force(fset: float, ls: float, lc: float, pc: float, k2: float) -> float:
     """``F1 = Fset + (Ls - Lc - Pc) K2`` [N]: force where the chain elements start to stiffen.
 
@@ -448,14 +448,11 @@ def first_nonlinear_force(fset: float, ls: float, lc: float, pc: float, k2: floa
     ----------
     fset : float
         Set-up force Fset [N].
-    ls : float
-        Set-up (installed) length Ls [m].
+    {ls}
     lc : float
         Solid length Lc [m].
-    pc : float
-        Gap term Pc [m].
-    k2 : float
-        Set-up-length spring rate K2 [N/m].
+    {pc}
+    {k2}
 
     Notes
     -----
@@ -464,13 +461,13 @@ def first_nonlinear_force(fset: float, ls: float, lc: float, pc: float, k2: floa
     return fset + (ls - lc - pc) * k2
 
 
+@_DOCS.fill
 def stiffened_rate(k2: float) -> float:
     """``K3 = 1.15 K2`` [N/m]: spring rate between F1 and F2.
 
     Parameters
     ----------
-    k2 : float
-        Set-up-length spring rate K2 [N/m].
+    {k2}
 
     Notes
     -----
@@ -479,6 +476,7 @@ def stiffened_rate(k2: float) -> float:
     return 1.15 * k2
 
 
+@_DOCS.fill
 def second_nonlinear_force(f1_force: float, pc: float, k3: float) -> float:
     """``F2 = F1 + Pc K3`` [N].
 
@@ -486,10 +484,8 @@ def second_nonlinear_force(f1_force: float, pc: float, k3: float) -> float:
     ----------
     f1_force : float
         First nonlinear force F1 [N].
-    pc : float
-        Gap term Pc [m].
-    k3 : float
-        Stiffened rate K3 [N/m].
+    {pc}
+    {k3}
 
     Notes
     -----
@@ -498,6 +494,7 @@ def second_nonlinear_force(f1_force: float, pc: float, k3: float) -> float:
     return f1_force + pc * k3
 
 
+@_DOCS.fill
 def coil_contact_force(k1: float, k2: float, lf: float, ls: float, dw: float, n1: float, n2: float) -> float:
     """``Fcon = K1 (Lf - Ls) + K2 (Ls - Dw (N1 + N2 - 0.5))`` [N]: coil-contact force.
 
@@ -505,14 +502,10 @@ def coil_contact_force(k1: float, k2: float, lf: float, ls: float, dw: float, n1
     ----------
     k1, k2 : float
         Free- and set-up-length spring rates K1, K2 [N/m].
-    lf : float
-        Free length Lf [m].
-    ls : float
-        Set-up (installed) length Ls [m].
-    dw : float
-        Wire diameter Dw [m].
-    n1, n2 : float
-        Low- and high-pitch coils N1, N2 [-].
+    {lf}
+    {ls}
+    {dw}
+    {n1_n2}
 
     Notes
     -----
@@ -522,6 +515,7 @@ def coil_contact_force(k1: float, k2: float, lf: float, ls: float, dw: float, n1
     return k1 * (lf - ls) + k2 * (ls - dw * (n1 + n2 - 0.5))
 
 
+@_DOCS.fill
 def stiffened_chain_rates(k: float, k3: float, two_step: bool) -> tuple[float, float]:
     """``Kh1'``, ``Kh2'`` [N/m]: the chain rates that reproduce K3.
 
@@ -529,12 +523,9 @@ def stiffened_chain_rates(k: float, k3: float, two_step: bool) -> tuple[float, f
 
     Parameters
     ----------
-    k : float
-        End-element (contact) stiffness K [N/m].
-    k3 : float
-        Stiffened rate K3 [N/m].
-    two_step : bool
-        True for a two-step spring.
+    {k}
+    {k3}
+    {two_step}
 
     Notes
     -----

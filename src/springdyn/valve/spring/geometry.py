@@ -145,13 +145,8 @@ class CoilGeometry:
         return np.interp(s, self.pitch_s, self.pitch_v)
 
     def diameter(self, s):
-        """Mean coil diameter [m] at turns ``s`` from the seat end.
-
-        Parameters
-        ----------
-        s : float or array_like
-            Turns from the seat end [-].
-        """
+        """Mean coil diameter [m] at turns ``s`` [-] from the seat end (linear between the knots,
+        as :meth:`pitch`)."""
         return np.interp(s, self.diameter_s, self.diameter_v)
 
     @property

@@ -278,105 +278,89 @@ def _fit_source(grade: str, rows: str) -> str:
     )
 
 
-#: The named wires (keys: the names ``material = "..."`` takes, see :func:`material`).
+def _wire(
+    name,
+    grade,
+    description,
+    standard,
+    strength_fit,
+    strength_rows,
+    relaxation_percent,
+    relaxation_note="",
+    *,
+    shear_modulus=79.5e9,
+    diameter_range=(0.5e-3, 10e-3),
+) -> Material:
+    """A wire of the table: E and rho as EN 13906-1 gives them for every grade, the sources named."""
+    return Material(
+        name=name,
+        grade=grade,
+        description=description,
+        shear_modulus=shear_modulus,
+        youngs_modulus=206e9,
+        density=7850.0,
+        strength_fit=strength_fit,
+        diameter_range=diameter_range,
+        relaxation_percent=relaxation_percent,
+        sources=dict(
+            shear_modulus=standard,
+            youngs_modulus=standard,
+            density=_RHO,
+            tensile_strength=_fit_source(grade, strength_rows),
+            endurance_shear_strength=_ZIMMERLI,
+            relaxation_percent=_RELAX + relaxation_note,
+        ),
+    )
+
+
+#: The named wires (keys: the names ``material = "..."`` takes, see :func:`material`); relaxation
+#: rows at 20, 80, 120 and 160 degC.
 MATERIALS: dict[str, Material] = {
-    "SiCr": Material(
-        name="SiCr",
-        grade="EN 10270-2 VDSiCr",
-        description="oil-tempered Si-Cr valve-spring wire (high fatigue grade; ASTM A877, JIS SWOSC-V)",
-        shear_modulus=79.5e9,
-        youngs_modulus=206e9,
-        density=7850.0,
-        strength_fit=(2125e6, 466e6, 2080e6),
-        diameter_range=(0.5e-3, 10e-3),
-        relaxation_percent=(
-            (0.0, 0.1, 0.3, 0.6, 1.2),  # 20 degC
-            (0.2, 0.5, 1.0, 1.8, 3.0),  # 80 degC
-            (0.5, 1.2, 2.2, 3.6, 5.5),  # 120 degC
-            (1.0, 2.5, 4.5, 7.0, 10.0),  # 160 degC
-        ),
-        sources=dict(
-            shear_modulus=_EN13906_OT,
-            youngs_modulus=_EN13906_OT,
-            density=_RHO,
-            tensile_strength=_fit_source("EN 10270-2 VDSiCr", "d = 0.50 mm: 2080-2230 MPa ([metalleschmidt])"),
-            endurance_shear_strength=_ZIMMERLI,
-            relaxation_percent=_RELAX,
-        ),
+    "SiCr": _wire(
+        "SiCr",
+        "EN 10270-2 VDSiCr",
+        "oil-tempered Si-Cr valve-spring wire (high fatigue grade; ASTM A877, JIS SWOSC-V)",
+        _EN13906_OT,
+        (2125e6, 466e6, 2080e6),
+        "d = 0.50 mm: 2080-2230 MPa ([metalleschmidt])",
+        ((0.0, 0.1, 0.3, 0.6, 1.2), (0.2, 0.5, 1.0, 1.8, 3.0), (0.5, 1.2, 2.2, 3.6, 5.5), (1.0, 2.5, 4.5, 7.0, 10.0)),
     ),
-    "SiCrV": Material(
-        name="SiCrV",
-        grade="EN 10270-2 VDSiCrV",
-        description="oil-tempered Si-Cr-V valve-spring wire, the high-strength grade",
-        shear_modulus=79.5e9,
-        youngs_modulus=206e9,
-        density=7850.0,
-        strength_fit=(2270e6, 475e6, 2230e6),
-        diameter_range=(0.5e-3, 10e-3),
-        relaxation_percent=(
-            (0.0, 0.1, 0.2, 0.4, 0.8),
-            (0.1, 0.3, 0.7, 1.2, 2.0),
-            (0.3, 0.8, 1.5, 2.5, 3.8),
-            (0.7, 1.7, 3.0, 4.8, 7.0),
-        ),
-        sources=dict(
-            shear_modulus=_EN13906_OT,
-            youngs_modulus=_EN13906_OT,
-            density=_RHO,
-            tensile_strength=_fit_source("EN 10270-2 VDSiCrV", "d = 0.50 mm: 2230-2380 MPa ([metalleschmidt])"),
-            endurance_shear_strength=_ZIMMERLI,
-            relaxation_percent=_RELAX + "; vanadium grade about 0.7 of SiCr (its better sag resistance)",
-        ),
+    "SiCrV": _wire(
+        "SiCrV",
+        "EN 10270-2 VDSiCrV",
+        "oil-tempered Si-Cr-V valve-spring wire, the high-strength grade",
+        _EN13906_OT,
+        (2270e6, 475e6, 2230e6),
+        "d = 0.50 mm: 2230-2380 MPa ([metalleschmidt])",
+        ((0.0, 0.1, 0.2, 0.4, 0.8), (0.1, 0.3, 0.7, 1.2, 2.0), (0.3, 0.8, 1.5, 2.5, 3.8), (0.7, 1.7, 3.0, 4.8, 7.0)),
+        "; vanadium grade about 0.7 of SiCr (its better sag resistance)",
     ),
-    "CrV": Material(
-        name="CrV",
-        grade="EN 10270-2 VDCrV",
-        description="oil-tempered Cr-V valve-spring wire (ASTM A232 class)",
-        shear_modulus=79.5e9,
-        youngs_modulus=206e9,
-        density=7850.0,
-        strength_fit=(1900e6, 518e6, 1910e6),
-        diameter_range=(0.5e-3, 10e-3),
-        relaxation_percent=(
-            (0.0, 0.2, 0.4, 0.8, 1.6),
-            (0.3, 0.7, 1.4, 2.5, 4.0),
-            (0.8, 1.8, 3.2, 5.0, 7.5),
-            (1.6, 3.6, 6.3, 9.5, 13.5),
-        ),
-        sources=dict(
-            shear_modulus=_EN13906_OT,
-            youngs_modulus=_EN13906_OT,
-            density=_RHO,
-            tensile_strength=_fit_source("EN 10270-2 VDCrV", "(none: no public row was found)"),
-            endurance_shear_strength=_ZIMMERLI,
-            relaxation_percent=_RELAX + "; Cr-V about 1.3-1.4 of SiCr",
-        ),
+    "CrV": _wire(
+        "CrV",
+        "EN 10270-2 VDCrV",
+        "oil-tempered Cr-V valve-spring wire (ASTM A232 class)",
+        _EN13906_OT,
+        (1900e6, 518e6, 1910e6),
+        "(none: no public row was found)",
+        ((0.0, 0.2, 0.4, 0.8, 1.6), (0.3, 0.7, 1.4, 2.5, 4.0), (0.8, 1.8, 3.2, 5.0, 7.5), (1.6, 3.6, 6.3, 9.5, 13.5)),
+        "; Cr-V about 1.3-1.4 of SiCr",
     ),
-    "music-wire": Material(
-        name="music-wire",
-        grade="EN 10270-1 DH",
-        description="patented cold-drawn music wire (EN 10270-1 DH, ASTM A228)",
-        shear_modulus=81.5e9,
-        youngs_modulus=206e9,
-        density=7850.0,
-        strength_fit=(2218e6, 817e6, 2800e6),
-        diameter_range=(0.05e-3, 20e-3),
-        relaxation_percent=(
+    "music-wire": _wire(
+        "music-wire",
+        "EN 10270-1 DH",
+        "patented cold-drawn music wire (EN 10270-1 DH, ASTM A228)",
+        _EN13906_DH,
+        (2218e6, 817e6, 2800e6),
+        "d = 0.20 mm: 2800-3110 MPa, 0.28-0.30 mm: 2660-2940 MPa ([hengming])",
+        (
             (0.1, 0.3, 0.6, 1.2, 2.2),
             (0.6, 1.5, 3.0, 5.0, 8.0),
             (2.0, 4.5, 8.0, 12.0, 17.0),
             (4.5, 9.0, 15.0, 21.0, 28.0),
         ),
-        sources=dict(
-            shear_modulus=_EN13906_DH,
-            youngs_modulus=_EN13906_DH,
-            density=_RHO,
-            tensile_strength=_fit_source(
-                "EN 10270-1 DH", "d = 0.20 mm: 2800-3110 MPa, 0.28-0.30 mm: 2660-2940 MPa ([hengming])"
-            ),
-            endurance_shear_strength=_ZIMMERLI,
-            relaxation_percent=_RELAX + "; cold-drawn carbon wire relaxes much more above about 80 degC",
-        ),
+        "; cold-drawn carbon wire relaxes much more above about 80 degC",
+        shear_modulus=81.5e9,
+        diameter_range=(0.05e-3, 20e-3),
     ),
 }
 

@@ -11,7 +11,19 @@ import math
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    masses : ndarray, shape (n,)
+        Lumped masses [kg].
+    k : ndarray, shape (n + 1,)
+        Element tangent stiffnesses [N/m].
+    """
+)
+
 
 __all__ = ["chain_stiffness_matrix", "chain_frequencies", "chain_eigenvalues", "mode_labels", "surge_margin"]
 
@@ -48,6 +60,7 @@ def _mass_normalised(masses, k) -> tuple:
     return m, (k[:-1] + k[1:]) / m, -k[1:-1] / np.sqrt(m[:-1] * m[1:])
 
 
+@_DOCS.fill
 def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> np.ndarray:
     """Natural frequencies [Hz], ascending, of the chain with both ends fixed.
 
@@ -58,10 +71,8 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
 
     Parameters
     ----------
-    masses : ndarray, shape (n,)
-        Lumped masses [kg].
-    k : ndarray, shape (n + 1,)
-        Element tangent stiffnesses [N/m].
+    {masses}
+    {k}
     count : int, optional
         Only the lowest ``count`` frequencies [-].
     """
@@ -83,6 +94,7 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
 END_MASS_ENERGY = 0.5
 
 
+@_DOCS.fill
 def mode_labels(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> list[str]:
     """What each of the lowest natural modes of the chain is: ``"surge n"`` (the n-th
     standing wave along the coils) or ``"end mass"`` (the end masses bouncing on their stiff
@@ -90,10 +102,8 @@ def mode_labels(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> 
 
     Parameters
     ----------
-    masses : ndarray, shape (n,)
-        Lumped masses [kg].
-    k : ndarray, shape (n + 1,)
-        Element tangent stiffnesses [N/m].
+    {masses}
+    {k}
     count : int, optional
         Only the lowest ``count`` modes [-].
 

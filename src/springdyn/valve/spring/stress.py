@@ -39,6 +39,7 @@ import math
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 
 __all__ = [
@@ -57,6 +58,18 @@ __all__ = [
     "fatigue_assessment",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    wire_diameter : float or array_like
+        Wire diameter ``d`` [m].
+    mean_diameter : float or array_like
+        Mean coil diameter ``D`` [m].
+    force : float or array_like
+        Axial spring force [N] (compression positive).
+    """
+)
+
 #: Default tensile strength [Pa] of oil-tempered Cr-Si valve-spring wire of 3-4 mm
 #: (EN 10270-2 grade VDSiCr: about 1960-2060 MPa at these diameters; the lower-middle value).
 DEFAULT_TENSILE_STRENGTH = 2.0e9
@@ -70,15 +83,14 @@ ZIMMERLI_PEENED = (398e6, 534e6)
 ZIMMERLI_UNPEENED = (241e6, 379e6)
 
 
+@_DOCS.fill
 def spring_index(mean_diameter, wire_diameter):
     """Spring index ``w = D/d`` [-] (mean coil diameter over wire diameter).
 
     Parameters
     ----------
-    mean_diameter : float or array_like
-        Mean coil diameter ``D`` [m].
-    wire_diameter : float or array_like
-        Wire diameter ``d`` [m].
+    {mean_diameter}
+    {wire_diameter}
 
     Notes
     -----
@@ -131,6 +143,7 @@ def wahl_factor(spring_index):
     return (4.0 * spring_index - 1.0) / (4.0 * spring_index - 4.0) + 0.615 / spring_index
 
 
+@_DOCS.fill
 def nominal_shear_stress(force, mean_diameter, wire_diameter):
     r"""Nominal (uncorrected) torsional shear stress of the wire ``8 F D / (pi d^3)`` [Pa].
 
@@ -142,12 +155,9 @@ def nominal_shear_stress(force, mean_diameter, wire_diameter):
 
     Parameters
     ----------
-    force : float or array_like
-        Axial spring force [N] (compression positive).
-    mean_diameter : float or array_like
-        Mean coil diameter ``D`` [m].
-    wire_diameter : float or array_like
-        Wire diameter ``d`` [m].
+    {force}
+    {mean_diameter}
+    {wire_diameter}
 
     Notes
     -----
@@ -156,18 +166,16 @@ def nominal_shear_stress(force, mean_diameter, wire_diameter):
     return 8.0 * np.asarray(force, dtype=float) * mean_diameter / (math.pi * wire_diameter**3)
 
 
+@_DOCS.fill
 def corrected_shear_stress(force, mean_diameter, wire_diameter):
     """Corrected torsional shear stress of the wire ``k 8 F D / (pi d^3)`` [Pa]
     (:func:`bergstraesser_factor` times :func:`nominal_shear_stress`).
 
     Parameters
     ----------
-    force : float or array_like
-        Axial spring force [N] (compression positive).
-    mean_diameter : float or array_like
-        Mean coil diameter ``D`` [m].
-    wire_diameter : float or array_like
-        Wire diameter ``d`` [m].
+    {force}
+    {mean_diameter}
+    {wire_diameter}
 
     Returns
     -------

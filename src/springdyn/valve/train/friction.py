@@ -91,6 +91,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import erfc
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from ...core.params import Parameters, param
 from ...core.results import Result
@@ -120,6 +121,31 @@ __all__ = [
     "FrictionAnalysis",
     "CONTACTS",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    lift : array_like
+        Lobe lift h [m].
+    omega : float
+        Cam speed [rad/s].
+    velocity : array_like
+        dh/dtheta [m/rad].
+    roller_radius : float
+        Roller radius r [m].
+    film_parameter : array_like
+        lambda = h_min / sigma [-].
+    acceleration : array_like
+        d2h/dtheta2 [m/rad^2].
+    offset : float
+        Follower axis offset e along +x [m].
+    pitch_radius : float
+        d0 = sqrt((R_b + r)^2 - offset^2) [m].
+    follower : Follower
+        The ``[follower]`` table.
+    """,
+    omega_positive="omega : float\n    Cam speed [rad/s], positive.",
+)
 
 _TWO_PI = 2.0 * math.pi
 #: The contacts whose friction is reported, in this order.
@@ -365,6 +391,7 @@ class Friction(Parameters):
 
 
 # ----------------------------------------------------------------------------- kinematics
+@_DOCS.fill
 def contact_point(lift, velocity, follower):
     """Contact point of cam and follower in the fixed frame [m] and the pressure angle [rad].
 
@@ -374,12 +401,9 @@ def contact_point(lift, velocity, follower):
 
     Parameters
     ----------
-    lift : array_like
-        Lobe lift h [m].
-    velocity : array_like
-        dh/dtheta [m/rad].
-    follower : Follower
-        The ``[follower]`` table.
+    {lift}
+    {velocity}
+    {follower}
 
     Returns
     -------
@@ -419,6 +443,7 @@ def drive_torque_arms(px, py, phi):
     return px * c + py * s, px * s - py * c
 
 
+@_DOCS.fill
 def flat_contact_velocities(omega, lift, acceleration, base_circle_radius):
     """Surface velocities of cam and flat face relative to their moving contact point [m/s].
 
@@ -428,12 +453,9 @@ def flat_contact_velocities(omega, lift, acceleration, base_circle_radius):
 
     Parameters
     ----------
-    omega : float
-        Cam speed [rad/s].
-    lift : array_like
-        Lobe lift h [m].
-    acceleration : array_like
-        d2h/dtheta2 [m/rad^2].
+    {omega}
+    {lift}
+    {acceleration}
     base_circle_radius : float
         Base-circle radius R_b [m].
 
@@ -452,6 +474,7 @@ def flat_contact_velocities(omega, lift, acceleration, base_circle_radius):
     return -omega * flat_follower_radius(base_circle_radius, lift, ddh), -omega * ddh
 
 
+@_DOCS.fill
 def roller_rolling_speed(omega, lift, velocity, pitch_radius, roller_radius, offset=0.0):
     """Spin of a roller rolling without sliding on the cam [rad/s] (counter-clockwise positive).
 
@@ -461,24 +484,19 @@ def roller_rolling_speed(omega, lift, velocity, pitch_radius, roller_radius, off
 
     Parameters
     ----------
-    omega : float
-        Cam speed [rad/s].
-    lift : array_like
-        Lobe lift h [m].
-    velocity : array_like
-        dh/dtheta [m/rad].
-    pitch_radius : float
-        d0 = sqrt((R_b + r)^2 - offset^2) [m].
-    roller_radius : float
-        Roller radius r [m].
-    offset : float
-        Follower axis offset e along +x [m].
+    {omega}
+    {lift}
+    {velocity}
+    {pitch_radius}
+    {roller_radius}
+    {offset}
     """
     h, dh = np.asarray(lift, dtype=float), np.asarray(velocity, dtype=float)
     d = np.hypot(pitch_radius + h, dh - offset)
     return -omega * (d - roller_radius) / roller_radius
 
 
+@_DOCS.fill
 def roller_contact_velocities(
     omega, lift, velocity, acceleration, pitch_radius, roller_radius, offset=0.0, roller_speed=None
 ):
@@ -490,20 +508,13 @@ def roller_contact_velocities(
 
     Parameters
     ----------
-    omega : float
-        Cam speed [rad/s].
-    lift : array_like
-        Lobe lift h [m].
-    velocity : array_like
-        dh/dtheta [m/rad].
-    acceleration : array_like
-        d2h/dtheta2 [m/rad^2].
-    pitch_radius : float
-        d0 = sqrt((R_b + r)^2 - offset^2) [m].
-    roller_radius : float
-        Roller radius r [m].
-    offset : float
-        Follower axis offset e along +x [m].
+    {omega}
+    {lift}
+    {velocity}
+    {acceleration}
+    {pitch_radius}
+    {roller_radius}
+    {offset}
     roller_speed : array_like, optional
         The roller's spin Omega [rad/s] (default: pure rolling, :func:`roller_rolling_speed`).
 
@@ -583,6 +594,7 @@ def line_contact_film_thickness(entrainment, load_per_width, radius, reduced_mod
     return h_c, h_min
 
 
+@_DOCS.fill
 def boundary_share(film_parameter):
     """Share of the contact in boundary lubrication ``f_b = erfc(lambda / sqrt(2))`` [-].
 
@@ -592,13 +604,13 @@ def boundary_share(film_parameter):
 
     Parameters
     ----------
-    film_parameter : array_like
-        lambda = h_min / sigma [-].
+    {film_parameter}
     """
     lam = np.maximum(np.asarray(film_parameter, dtype=float), 0.0)
     return erfc(lam / math.sqrt(2.0))
 
 
+@_DOCS.fill
 def friction_coefficient(film_parameter, boundary, fluid):
     """Friction coefficient of a lubricated contact by its regime [-].
 
@@ -607,8 +619,7 @@ def friction_coefficient(film_parameter, boundary, fluid):
 
     Parameters
     ----------
-    film_parameter : array_like
-        lambda = h_min / sigma [-].
+    {film_parameter}
     boundary : float
         Boundary friction coefficient mu_b [-].
     fluid : float
@@ -638,6 +649,7 @@ class RollerSpin:
     revolutions: int  #: revolutions integrated
 
 
+@_DOCS.fill
 def roller_spin(omega, rolling_speed, axial_force, pressure_angle, friction, roller_radius, inertia, bearing_arm):
     """The roller's spin over a periodic revolution, with slip where traction runs short.
 
@@ -652,8 +664,7 @@ def roller_spin(omega, rolling_speed, axial_force, pressure_angle, friction, rol
 
     Parameters
     ----------
-    omega : float
-        Cam speed [rad/s], positive.
+    {omega_positive}
     rolling_speed : array_like
         Pure-rolling spin Omega_roll over the revolution [rad/s] (:func:`roller_rolling_speed`),
         on a uniform cam-angle grid over [0, 2 pi).
@@ -807,6 +818,7 @@ def _array(name, value, n):
     return a
 
 
+@_DOCS.fill
 def friction_along_cam(
     cam_angle,
     omega,
@@ -831,15 +843,13 @@ def friction_along_cam(
     ----------
     cam_angle : array_like
         Cam angles [rad], uniform over one revolution [0, 2 pi) (at least 360).
-    omega : float
-        Cam speed [rad/s], positive.
+    {omega_positive}
     lift, dlift, ddlift : array_like
         Lobe lift h [m], dh/dtheta [m/rad], d2h/dtheta2 [m/rad^2] at those angles.
     cam_force : array_like
         Force of the follower on the cam along its axis [N] (a simulation's cam contact force
         or the kinematic load; negative counts as 0, no contact).
-    follower : Follower
-        The ``[follower]`` table.
+    {follower}
     friction : Friction
         The ``[friction]`` table.
     valve_velocity : array_like, optional

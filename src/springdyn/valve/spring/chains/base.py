@@ -481,12 +481,10 @@ class SpringModel:
             out[name] = st
         if "open" in out:  # fatigue of the static cycle installed -> open (issue 13)
             fat = stress.fatigue_assessment(self.spring, out["installed"]["force_N"], out["open"]["force_N"])
+            copied = "min_shear_stress_Pa max_shear_stress_Pa endurance_shear_strength_Pa ultimate_shear_strength_Pa"
             out["fatigue"] = dict(
                 static_fatigue_safety_factor=fat["fatigue_safety_factor"],
-                min_shear_stress_Pa=fat["min_shear_stress_Pa"],
-                max_shear_stress_Pa=fat["max_shear_stress_Pa"],
-                endurance_shear_strength_Pa=fat["endurance_shear_strength_Pa"],
-                ultimate_shear_strength_Pa=fat["ultimate_shear_strength_Pa"],
+                **{key: fat[key] for key in copied.split()},
                 strength_defaults=fat["strength_defaults"],
                 note="the dynamic factor needs a simulation: valve simulate reports it beside this one",
             )

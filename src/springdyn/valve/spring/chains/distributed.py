@@ -40,6 +40,7 @@ from functools import cached_property
 
 import numpy as np
 
+from ....core.docstrings import ParameterDocs
 from ....core.errors import InputError
 from ....core.units import format_quantity
 from .. import formulas
@@ -54,6 +55,16 @@ from ..geometry import (
 from ..modes import chain_eigenvalues, chain_frequencies
 from ..statics import element_compressions, series_force
 from .base import Chain, SpringModel
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    force : float or ndarray (...)
+        Axial force [N], ``>= 0``.
+    """,
+    slices="k_slice, gap, k_contact, onset : ndarray (n,)\n    Per slice: open rate [N/m], gap [m], contact stiffness [N/m], onset width [m].",
+)
+
 
 __all__ = ["DistributedModel", "coil_law", "CONTACT_ONSET", "DEFAULT_ELEMENTS", "modal_damping"]
 
@@ -112,6 +123,7 @@ MESH_SLICES = 4000
 MAX_ELEMENT_STRETCH = 2.0
 
 
+@_DOCS.fill
 def slice_states(force, k_slice, gap, k_contact, onset) -> tuple[np.ndarray, np.ndarray]:
     """Compression [m] and tangent stiffness [N/m] of each turn-slice at ``force``.
 
@@ -120,10 +132,8 @@ def slice_states(force, k_slice, gap, k_contact, onset) -> tuple[np.ndarray, np.
 
     Parameters
     ----------
-    force : float or ndarray (...)
-        Axial force [N], ``>= 0``.
-    k_slice, gap, k_contact, onset : ndarray (n,)
-        Per slice: open rate [N/m], gap [m], contact stiffness [N/m], onset width [m].
+    {force}
+    {slices}
 
     Returns
     -------
@@ -143,6 +153,7 @@ def slice_states(force, k_slice, gap, k_contact, onset) -> tuple[np.ndarray, np.
     return e, k
 
 
+@_DOCS.fill
 def slice_response(force, k_slice, gap, k_contact, onset):
     """Compression [m] and tangent stiffness [N/m] of turn-slices in series at ``force``
     (:func:`slice_states`): they carry the same force, so their compressions add and their
@@ -150,10 +161,8 @@ def slice_response(force, k_slice, gap, k_contact, onset):
 
     Parameters
     ----------
-    force : float or ndarray (...)
-        Axial force [N], ``>= 0``.
-    k_slice, gap, k_contact, onset : ndarray (n,)
-        Per slice: open rate [N/m], gap [m], contact stiffness [N/m], onset width [m].
+    {force}
+    {slices}
 
     Returns
     -------
@@ -190,6 +199,7 @@ def stiffness_graded_edges(turns: np.ndarray, stiffening: np.ndarray, elements: 
     return np.interp(np.linspace(0.0, measure[-1], elements + 1), measure, turns)
 
 
+@_DOCS.fill
 def graded_coil_law(k_slice, gap, k_contact, onset, pieces: int = CLOSING_PIECES) -> np.ndarray:
     """Element law (``(pieces + 2, 4)``, the format of :mod:`springdyn.valve.spring.elements`) of
     turn-slices in series that close one after the other (:func:`slice_response`).
@@ -202,8 +212,7 @@ def graded_coil_law(k_slice, gap, k_contact, onset, pieces: int = CLOSING_PIECES
 
     Parameters
     ----------
-    k_slice, gap, k_contact, onset : ndarray (n,)
-        Per slice: open rate [N/m], gap [m], contact stiffness [N/m], onset width [m].
+    {slices}
     pieces : int
         Quadratic pieces over the closing [-].
     """

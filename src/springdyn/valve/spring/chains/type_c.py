@@ -129,8 +129,8 @@ class TypeCModel(SpringModel):
         k = self.spring.contact_stiffness or formulas.contact_stiffness(do, self.spring.youngs_modulus)
         k1 = formulas.free_length_stiffness(g, dw, do, na1)
         k2 = formulas.setup_stiffness(g, dw, do, na2) if self.two_step else k1
-        n1p = formulas.pitch_correction_free(lf, dw, n1, n2, na1, do)
-        n2p = formulas.pitch_correction_setup(ls, dw, n1, n2, na2, do)
+        n1p = formulas.pitch_correction(lf, dw, n1, n2, na1, do)
+        n2p = formulas.pitch_correction(ls, dw, n1, n2, na2, do)
         f1 = formulas.surge_frequency(g, rho, dw, do, na1 + n1p)
         f2 = formulas.surge_frequency(g, rho, dw, do, na2 + n2p)
         m_total = formulas.total_mass(rho, do, dw, n1, n2)
