@@ -27,8 +27,10 @@ from springdyn.app.cli.common import (
 )
 from springdyn.app.cli.valve_options import (
     RUN_OPTIONS,
+    TRAIN_HELP,
+    add_backend_option,
     add_gas_options,
-    add_model_option,
+    add_inputs,
     add_revolution_options,
     add_speed_options,
     add_tolerance_options,
@@ -45,8 +47,7 @@ def register(sub) -> None:
     vsub = valve_p.add_subparsers(dest="valve_command", metavar="COMMAND", required=True)
 
     p = vsub.add_parser("params", help="internal parameters and model variables")
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
+    add_inputs(p, cam=False)
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_params)
 
@@ -90,8 +91,7 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_calibrate)
 
     p = vsub.add_parser("curve", help="static force and tangent stiffness vs spring length")
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
+    add_inputs(p, cam=False)
     p.add_argument("--from", dest="start", metavar="L1", help="first length (default: free length)")
     p.add_argument("--to", dest="stop", metavar="L2", help="last length (default: where the force is 3 Fcon)")
     p.add_argument("--points", type=int, default=400, metavar="N", help="number of lengths (default 400)")
@@ -99,8 +99,7 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_curve)
 
     p = vsub.add_parser("modes", help="natural frequencies of the chain linearised at a length")
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
+    add_inputs(p, cam=False)
     p.add_argument("--length", required=True, metavar="L", help="spring length, e.g. 38mm")
     p.add_argument("--count", type=int, default=5, metavar="N", help="how many modes (1-5, default 5)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
@@ -110,12 +109,7 @@ def register(sub) -> None:
         "train-modes",
         help="natural frequencies of spring + valve train (base circle, full lift) and the cam-order resonance speeds",
     )
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
-    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
-    p.add_argument(
-        "--valve-train", metavar="VT.toml", help="file with a [valve_train] table (without: the spring alone)"
-    )
+    add_inputs(p, train="file with a [valve_train] table (without: the spring alone)")
     p.add_argument(
         "--cam-rpm",
         default="500:8000:500",
@@ -139,8 +133,7 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_train_modes, engine_rpm=None)
 
     p = vsub.add_parser("frf", help="linearised dynamic stiffness against frequency (seat fixed, retainer driven)")
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
+    add_inputs(p, cam=False)
     p.add_argument(
         "--frequency", required=True, metavar="START:STOP:STEP", help="frequencies, e.g. 10:3000:5 (bare numbers: Hz)"
     )
@@ -149,29 +142,20 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_frf)
 
     p = vsub.add_parser("design", help="index, corrected stress, surge frequency at installed/open/coil-contact length")
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
+    add_inputs(p, cam=False)
     p.add_argument("--lift", metavar="LIFT", help="maximum valve lift, e.g. 9mm")
     p.add_argument("--cam-rpm", metavar="RPM", help="camshaft speed for the surge margin (bare number: rpm)")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_design)
 
     p = vsub.add_parser("simulate", help="dynamic response under cam drive (spring alone or valve train)")
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
-    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    add_inputs(p, train=TRAIN_HELP)
     add_speed_options(p, ranged=False, ramp=True)
     add_revolution_options(p)
-    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
     add_gas_options(p)
     p.add_argument("--points-per-revolution", type=int, default=1440, metavar="N", help="output points (default 1440)")
     add_tolerance_options(p)
-    p.add_argument(
-        "--backend",
-        choices=valve.BACKENDS,
-        default="compiled",
-        help="compiled engine (default) or the SciPy reference",
-    )
+    add_backend_option(p)
     p.add_argument(
         "--closure-map",
         metavar="PNG",
@@ -184,10 +168,7 @@ def register(sub) -> None:
         "float",
         help="float speed: lowest speed from which the valve leaves the cam over the nose; bounce and seating velocity",
     )
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
-    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
-    p.add_argument("--valve-train", required=True, metavar="VT.toml", help="file with a [valve_train] table")
+    add_inputs(p, train="file with a [valve_train] table", train_required=True)
     add_speed_options(p, ranged=True)
     add_revolution_options(p)
     p.add_argument("--resolution", default="1", metavar="RPM", help="bisection resolution in cam rpm (default 1)")
@@ -200,11 +181,8 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_float)
 
     p = vsub.add_parser("sweep", help="speed sweep (optionally over a design variable), locally or on Dask")
-    p.add_argument("spring", metavar="SPRING.toml")
-    add_model_option(p)
-    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    add_inputs(p, train=TRAIN_HELP)
     add_speed_options(p, ranged=True)
-    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table: adds lift-off")
     add_gas_options(p)
     add_revolution_options(p)
     p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
@@ -229,10 +207,10 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_sweep)
 
     valve_cam_design.register(vsub)  # cam-from-lift, cam-check, kinematics
-    valve_friction.register(vsub, add_speed_options, add_model_option, cam_rpm_from_args)
+    valve_friction.register(vsub)
     valve_synthesis.register(vsub)
-    valve_synthesis.register_tolerance(vsub, add_model_option, cam_rpm_from_args)
-    valve_synthesis.register_life(vsub, add_model_option)
+    valve_synthesis.register_tolerance(vsub)
+    valve_synthesis.register_life(vsub)
 
 
 # ----------------------------------------------------------------------------- the spring alone

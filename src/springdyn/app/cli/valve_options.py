@@ -13,6 +13,8 @@ __all__ = [
     "model_of",
     "run_settings",
     "cam_rpm_from_args",
+    "add_inputs",
+    "add_backend_option",
     "add_model_option",
     "add_speed_options",
     "add_revolution_options",
@@ -37,6 +39,31 @@ RUN_OPTIONS = dict(
 
 
 # ----------------------------------------------------------------------------- options
+#: The help of ``--cam`` where the cam is required.
+CAM_HELP = "file with a [cam] table"
+#: The help of an optional ``--valve-train`` that adds the train to the spring and cam.
+TRAIN_HELP = "file with a [valve_train] table: adds lift-off"
+
+
+def add_inputs(
+    p, *, cam: bool = True, cam_help: str = CAM_HELP, train: str | None = None, train_required: bool = False
+) -> None:
+    """The spring file, ``--model``, ``--cam`` (required unless ``cam_help`` says otherwise) and,
+    with its help ``train``, ``--valve-train``."""
+    p.add_argument("spring", metavar="SPRING.toml", help="file with a [spring] table")
+    add_model_option(p)
+    if cam:
+        p.add_argument("--cam", required=cam_help == CAM_HELP, metavar="CAM.toml", help=cam_help)
+    if train is not None:
+        p.add_argument("--valve-train", required=train_required, metavar="VT.toml", help=train)
+
+
+def add_backend_option(p) -> None:
+    p.add_argument(
+        "--backend", choices=valve.BACKENDS, default="compiled", help="compiled engine (default) or the SciPy reference"
+    )
+
+
 def add_tolerance_options(p) -> None:
     p.add_argument(
         "--rtol",

@@ -7,7 +7,7 @@ from __future__ import annotations
 import springdyn.valve as valve
 import springdyn.valve.design as design
 from springdyn.app.cli.common import add_output_options, announce_written, close_figure, print_json
-from springdyn.app.cli.valve_options import model_of
+from springdyn.app.cli.valve_options import add_inputs, cam_rpm_from_args, model_of
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "register_tolerance", "register_life", "cmd_synthesize", "cmd_tolerance", "cmd_life"]
@@ -54,7 +54,7 @@ def cmd_synthesize(args) -> int:
     return 0
 
 
-def register_tolerance(vsub, add_model_option, cam_speeds) -> None:
+def register_tolerance(vsub) -> None:
     """Add ``tolerance`` to the ``springdyn valve`` sub-commands ``vsub``."""
     p = vsub.add_parser(
         "tolerance",
@@ -62,10 +62,8 @@ def register_tolerance(vsub, add_model_option, cam_speeds) -> None:
         "variants swept over the speeds (or, with --float-only, each variant's float speed searched from the "
         "nominal's); variants.nc, percentiles, failing shares, histograms (resumable)",
     )
-    p.add_argument("spring", metavar="SPRING.toml", help="file with a [spring] table")
-    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    add_inputs(p, train="file with a [valve_train] table (float speed, lash)")
     p.add_argument("--tolerances", required=True, metavar="TOL.toml", help="file with [tolerances] (and [criteria])")
-    p.add_argument("--valve-train", metavar="VT.toml", help="file with a [valve_train] table (float speed, lash)")
     p.add_argument("--samples", required=True, metavar="N", help="variants (a power of 2 for Sobol points)")
     p.add_argument(
         "--seed", default="0", metavar="S", help="seed of the sampling (default 0): the same seed, the same variants"
@@ -89,9 +87,8 @@ def register_tolerance(vsub, add_model_option, cam_speeds) -> None:
         "--scheduler", metavar="ADDRESS", help="run the chunks on a Dask scheduler, e.g. tcp://127.0.0.1:8786"
     )
     p.set_defaults(engine_rpm=None)
-    add_model_option(p)
     add_output_options(p)
-    p.set_defaults(func=cmd_tolerance, cam_speeds=cam_speeds)
+    p.set_defaults(func=cmd_tolerance)
 
 
 def cmd_tolerance(args) -> int:
@@ -111,7 +108,7 @@ def cmd_tolerance(args) -> int:
     tols, criteria = design.read_tolerances(args.tolerances)
     if "lash" in tols and model.valve_train is None:
         raise InputError("[tolerances] lash is the valve train's: give --valve-train")
-    speeds = args.cam_speeds(args, ranged=True, model=model)
+    speeds = cam_rpm_from_args(args, ranged=True, model=model)
     if args.float_only and model.valve_train is None:
         raise InputError("--float-only needs --valve-train: the spring alone does not float")
     resolution = quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm")
@@ -155,20 +152,15 @@ def cmd_tolerance(args) -> int:
     return 0
 
 
-def register_life(vsub, add_model_option) -> None:
+def register_life(vsub) -> None:
     """Add ``life`` to the ``springdyn valve`` sub-commands ``vsub``."""
     p = vsub.add_parser(
         "life",
         help="relaxation at the service temperature and life against a load spectrum ([spectrum]: speeds and time "
         "shares), from each speed's dynamic Goodman safety",
     )
-    p.add_argument("spring", metavar="SPRING.toml", help="file with a [spring] table")
-    p.add_argument("--cam", required=True, metavar="CAM.toml", help="file with a [cam] table")
+    add_inputs(p, train="file with a [valve_train] table (float speed, new and relaxed)")
     p.add_argument("--spectrum", required=True, metavar="SPECTRUM.toml", help="file with a [spectrum] table")
-    p.add_argument(
-        "--valve-train", metavar="VT.toml", help="file with a [valve_train] table (float speed, new and relaxed)"
-    )
-    add_model_option(p)
     add_output_options(p)
     p.set_defaults(func=cmd_life)
 
