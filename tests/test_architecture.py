@@ -199,12 +199,31 @@ def test_every_package_docstring_lists_its_modules():
         assert not missing, f"{folder.relative_to(PACKAGE.parent)}/__init__.py does not list {missing}"
 
 
+def _valve_tree() -> set[str]:
+    """Every module and sub-package of springdyn/valve as a path below it: ``model.py``,
+    ``spring/stress.py``, ``spring/chains/`` (a package), ``engine/loop.py``; the top
+    ``__init__.py`` and private modules (``_name.py``) are not listed."""
+    valve = PACKAGE / "valve"
+    tree = set()
+    for path in valve.rglob("*.py"):
+        rel = path.relative_to(valve)
+        if path.name == "__init__.py":
+            if rel.parent.parts:  # a sub-package: its folder
+                tree.add(rel.parent.as_posix() + "/")
+        elif not path.stem.startswith("_"):
+            tree.add(rel.as_posix())
+    return tree
+
+
 def test_the_valve_guide_lists_every_valve_module():
-    """docs/valve.md, "Where each piece lives", lists the modules of springdyn/valve (and no others)."""
+    """docs/valve.md, "Where each piece lives", lists every module and sub-package of
+    springdyn/valve by its path below it (``spring/stress.py``, ``engine/``), once, and no others."""
     text = (DOCS / "valve.md").read_text(encoding="utf-8")
     section = text.split("## Where each piece lives", 1)[1].split("\n## ", 1)[0]
-    listed = set(re.findall(r"^\| `([\w/]+?)(?:\.py)?/?` \|", section, flags=re.M))
-    valve = PACKAGE / "valve"
-    actual = {p.stem for p in valve.glob("*.py") if not p.stem.startswith("_")}
-    actual |= {p.name for p in valve.iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
-    assert listed == actual, f"missing from the guide: {actual - listed}; listed but absent: {listed - actual}"
+    rows = re.findall(r"^\| `([\w/]+(?:\.py|/))` \|", section, flags=re.M)
+    assert len(rows) == len(set(rows)), f"listed twice: {sorted({r for r in rows if rows.count(r) > 1})}"
+    listed, actual = set(rows), _valve_tree()
+    assert {"model.py", "spring/", "spring/chains/", "engine/", "run/simulation.py"} <= actual
+    assert listed == actual, (
+        f"missing from the guide: {sorted(actual - listed)}; listed but absent: {sorted(listed - actual)}"
+    )
