@@ -447,7 +447,7 @@ def toml_reference() -> str:
             out.append(
                 "Keys of a drawing that `[spring]` also reads and turns into the keys above: "
                 + ", ".join(f"`{k}`" for k in drawing)
-                + " (with `end_type` and `load_points`; see [the valve guide](../valve.md#the-spring-as-its-drawing-gives-it)).\n"
+                + " (with `end_type` and `load_points`; see [the valve spring's guide](../valve-spring.md#the-spring-as-its-drawing-gives-it)).\n"
             )
         rules = CROSS_KEY_RULES.get(table, [])
         if rules:
