@@ -216,12 +216,185 @@ def test_every_package_docstring_lists_its_modules():
         assert not missing, f"{folder.relative_to(PACKAGE.parent)}/__init__.py does not list {missing}"
 
 
+def _valve_tree() -> set[str]:
+    """Every module and sub-package of springdyn/valve as a path below it: ``model.py``,
+    ``spring/stress.py``, ``spring/chains/`` (a package), ``engine/loop.py``; the top
+    ``__init__.py`` and private modules (``_name.py``) are not listed."""
+    valve = PACKAGE / "valve"
+    tree = set()
+    for path in valve.rglob("*.py"):
+        rel = path.relative_to(valve)
+        if path.name == "__init__.py":
+            if rel.parent.parts:  # a sub-package: its folder
+                tree.add(rel.parent.as_posix() + "/")
+        elif not path.stem.startswith("_"):
+            tree.add(rel.as_posix())
+    return tree
+
+
 def test_the_valve_guide_lists_every_valve_module():
-    """docs/valve.md, "Where each piece lives", lists the modules of springdyn/valve (and no others)."""
+    """docs/valve.md, "Where each piece lives", lists every module and sub-package of
+    springdyn/valve by its path below it (``spring/stress.py``, ``engine/``), once, and no others."""
     text = (DOCS / "valve.md").read_text(encoding="utf-8")
     section = text.split("## Where each piece lives", 1)[1].split("\n## ", 1)[0]
-    listed = set(re.findall(r"^\| `([\w/]+?)(?:\.py)?/?` \|", section, flags=re.M))
-    valve = PACKAGE / "valve"
-    actual = {p.stem for p in valve.glob("*.py") if not p.stem.startswith("_")}
-    actual |= {p.name for p in valve.iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
-    assert listed == actual, f"missing from the guide: {actual - listed}; listed but absent: {listed - actual}"
+    rows = re.findall(r"^\| `([\w/]+(?:\.py|/))` \|", section, flags=re.M)
+    assert len(rows) == len(set(rows)), f"listed twice: {sorted({r for r in rows if rows.count(r) > 1})}"
+    listed, actual = set(rows), _valve_tree()
+    assert {"model.py", "spring/", "spring/chains/", "engine/", "run/simulation.py"} <= actual
+    assert listed == actual, (
+        f"missing from the guide: {sorted(actual - listed)}; listed but absent: {sorted(listed - actual)}"
+    )
+
+
+# --------------------------------------------------------------------------- tests find the repository through tests/paths.py
+TESTS = Path(__file__).resolve().parent
+#: The repository's top folders: a string that starts with one of them and a slash is a path
+#: relative to the working directory, which holds only when pytest runs from the repository.
+REPO_FOLDERS = ("examples", "docs", "src", "tests", "benchmarks", "tools")
+_CWD_PATH = re.compile(rf"^(?:\./)?(?:{'|'.join(REPO_FOLDERS)})/\S*$")
+#: Calls that make a path of their first argument: a bare folder name there (``Path("docs")``) is one too.
+_PATH_CALLS = {"Path", "PurePath", "PosixPath", "open", "join", "from_toml", "read_text"}
+#: String methods: their receiver and arguments are text, not paths (``line.startswith("docs/")``).
+_TEXT_METHODS = {
+    "startswith",
+    "endswith",
+    "split",
+    "rsplit",
+    "partition",
+    "rpartition",
+    "replace",
+    "find",
+    "rfind",
+    "index",
+    "rindex",
+    "count",
+    "removeprefix",
+    "removesuffix",
+    "strip",
+    "lstrip",
+    "rstrip",
+    "format",
+}
+
+
+def _docstring_nodes(tree: ast.AST) -> set[int]:
+    """The ids of the docstrings' string nodes (module, class, function): prose, not paths."""
+    ids = set()
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and node.body:
+            first = node.body[0]
+            if isinstance(first, ast.Expr) and isinstance(first.value, (ast.Constant, ast.JoinedStr)):
+                ids.add(id(first.value))
+    return ids
+
+
+def _literal_text(node: ast.AST) -> str | None:
+    """The text of a string literal; of an f-string with each replacement field as ``{}``."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if isinstance(node, ast.JoinedStr):
+        return "".join(v.value if isinstance(v, ast.Constant) else "{}" for v in node.values)
+    return None
+
+
+def _not_a_path_here(node: ast.AST, parent: ast.AST | None, parents: dict) -> bool:
+    """Where a path-like string is no working-directory path: joined onto a base
+    (``ROOT / "docs/valve.md"``, ``.joinpath(...)``), compared or searched as text (also as an
+    item of a list compared: expected values), a key."""
+    if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.Div) and parent.right is node:
+        return True
+    outer = parent
+    while isinstance(outer, (ast.Tuple, ast.List, ast.Set)):
+        outer = parents.get(id(outer))
+    if isinstance(outer, ast.Compare):
+        return True
+    if isinstance(parent, ast.Attribute):  # "docs/x".split(...): a method of the text
+        return True
+    if isinstance(parent, ast.Call) and isinstance(parent.func, ast.Attribute):
+        if parent.func.attr in _TEXT_METHODS | {"joinpath"}:
+            return True
+    if isinstance(parent, ast.Subscript) and parent.slice is node:
+        return True
+    return isinstance(parent, ast.Dict) and any(k is node for k in parent.keys)
+
+
+def _call_name(call: ast.Call) -> str:
+    func = call.func
+    return func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+
+
+def cwd_relative_paths(source: str) -> list[tuple[int, str]]:
+    """(line, text) of every string literal of ``source`` that is a path into the repository
+    relative to the working directory: it starts with a top folder (``examples/``, ``docs/``,
+    ``src/``, ``tests/``, ``benchmarks/``, ``tools/``) and stands where a path goes (an argument of
+    ``open``, ``Path``, ``from_toml``, an argv list, an assignment, ...), or is a bare top folder
+    given to a call that makes a path (``Path("docs")``).  Docstrings are prose and comments are
+    not in the tree; strings joined onto a base (``ROOT / "docs/x.md"``), compared or searched as
+    text, and dictionary keys are no such paths.
+    """
+    tree = ast.parse(source)
+    docstrings = _docstring_nodes(tree)
+    parents = {id(child): node for node in ast.walk(tree) for child in ast.iter_child_nodes(node)}
+    found = []
+    for node in ast.walk(tree):
+        text = _literal_text(node)
+        parent = parents.get(id(node))
+        if text is None or id(node) in docstrings or isinstance(parent, (ast.JoinedStr, ast.FormattedValue)):
+            continue  # an f-string's pieces are judged as the whole f-string
+        if _CWD_PATH.match(text) and not _not_a_path_here(node, parent, parents):
+            found.append((node.lineno, text))
+        elif (
+            text.rstrip("/") in REPO_FOLDERS
+            and isinstance(parent, ast.Call)
+            and parent.args[:1] == [node]
+            and _call_name(parent) in _PATH_CALLS
+        ):
+            found.append((node.lineno, text))
+    return sorted(found)
+
+
+def test_tests_find_the_repository_through_tests_paths():
+    """No test reads the repository's files by a path relative to the working directory:
+    tests/paths.py (ROOT, EXAMPLES, DOCS, example(...)) finds them from any folder."""
+    files = sorted(TESTS.rglob("*.py"))
+    assert TESTS / "paths.py" in files and len(files) > 50
+    offenders = [
+        f"{path.relative_to(TESTS.parent).as_posix()}:{line}: {text!r}"
+        for path in files
+        for line, text in cwd_relative_paths(path.read_text(encoding="utf-8"))
+    ]
+    assert not offenders, (
+        "paths relative to the working directory (use tests/paths.py: ROOT, EXAMPLES, DOCS, example(...)):\n"
+        + "\n".join(offenders)
+    )
+
+
+def test_the_path_finder_finds_a_working_directory_path():
+    """The check above can fail: it names the line of each such path and passes everything else."""
+    source = '''"""A docstring that names docs/valve.md and examples/valve/x.toml: prose."""
+from pathlib import Path
+
+from tests.paths import DOCS, ROOT, example
+
+
+def f(name, text, main, ValveSpring):
+    """Nor is tests/paths.py here."""
+    open("examples/valve/x.toml")
+    main(["valve", "params", "examples/valve/one_step_spring.toml"])
+    ValveSpring.from_toml(f"examples/valve/{name}.toml")
+    Path("docs")
+    SPRING = "./src/springdyn/data/valve_one_step.toml"
+    open(ROOT / "examples/valve/x.toml")
+    open(example("valve/x.toml"))
+    (DOCS / "valve.md").read_text()
+    assert "docs/valve.md" in text, f"docs/{name}.md lacks a part"
+    text.split("## docs/"), text.startswith("tests/")
+    return {"examples/valve/x.toml": 1}["examples/valve/x.toml"], SPRING
+'''
+    assert cwd_relative_paths(source) == [
+        (9, "examples/valve/x.toml"),
+        (10, "examples/valve/one_step_spring.toml"),
+        (11, "examples/valve/{}.toml"),
+        (12, "docs"),
+        (13, "./src/springdyn/data/valve_one_step.toml"),
+    ]

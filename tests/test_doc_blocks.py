@@ -5,7 +5,7 @@ A block that is an excerpt of a larger script (it uses names it does not define)
 its info string (```python fragment) and is compiled only.  The one warning allowed is the
 coil-bind clearance of the source document's one-step spring under the 9 mm example cams
 (1 mm above solid against EN 13906-1's 3.07 mm): the docs show it on purpose
-(docs/valve.md, "Coil bind").
+(docs/valve-spring.md, "Solid length and coil bind").
 """
 
 import re

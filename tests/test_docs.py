@@ -189,6 +189,29 @@ def test_api_reference_keeps_units_and_parameters_sections(generated):
     assert "[rev/min]" in entry
 
 
+def test_valve_api_reference_is_ordered_by_wing(generated):
+    """api-valve.md: the facade, ValveModel, then spring, cam, train, run, design, engine; each
+    wing's package before its modules, which follow its docstring's module map."""
+    modules = [m for m in docs._public_modules() if m.startswith("springdyn.valve")]
+    order = docs._topic_modules("api-valve.md")
+    assert sorted(order) == sorted(modules) and len(order) == len(set(order))
+    assert order[:2] == ["springdyn.valve", "springdyn.valve.model"]
+    wings = [m.split(".")[2] for m in order[2:]]
+    runs = [w for k, w in enumerate(wings) if k == 0 or wings[k - 1] != w]
+    assert runs == ["spring", "cam", "train", "run", "design", "engine"], runs  # each wing in one block
+    for wing in runs:
+        block = [m for m in order if m.split(".")[2:3] == [wing]]
+        assert block[0] == f"springdyn.valve.{wing}"
+        mapped = [m for m in docs._docstring_order(block[0]) if f"{block[0]}.{m}" in block]
+        assert [m.split(".")[3] for m in block[1:] if m.count(".") == 3] == mapped + sorted(
+            m.split(".")[3] for m in block[1:] if m.count(".") == 3 and m.split(".")[3] not in mapped
+        )
+    headings = re.findall(r"^## (springdyn\.valve\S*)$", generated["api-valve.md"], re.M)
+    assert headings == order
+    index_row = next(line for line in generated["api.md"].splitlines() if "(api-valve.md)" in line)
+    assert re.findall(r"`(springdyn[\w.]*)`", index_row) == order
+
+
 # --------------------------------------------------------------------------- doctests
 def _all_modules():
     import pkgutil

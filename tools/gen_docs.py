@@ -196,6 +196,24 @@ API_TOPICS = {
     "api-core.md": ("Shared pieces: units, parameters, results, files, compiled numerics", ("springdyn",)),
 }
 
+#: Topics whose modules follow an order of their own rather than the alphabet: file -> (root
+#: package, its sub-packages and modules in order, the sentence that says so on the page).  The valve family follows its wings: the
+#: facade, the front door ``model`` (:class:`ValveModel`), the wings from the spring up to the
+#: design, and the compiled engine, the ground floor, last.  Within a package its modules
+#: follow the order in which its docstring names them (``:mod:`.name```), a sub-package's
+#: modules right after it, and any module the docstring does not name alphabetically after
+#: those (:func:`_package_order`).  Modules of the topic the order does not reach come last,
+#: alphabetically.
+API_ORDER = {
+    "api-valve.md": (
+        "springdyn.valve",
+        ("model", "spring", "cam", "train", "run", "design", "engine"),
+        "The modules follow the wings: the facade `springdyn.valve`, the front door `springdyn.valve.model`, "
+        "then `spring`, `cam`, `train`, `run` and `design`, and the compiled `engine` (the ground floor) last; "
+        "in each wing its package first, then its modules in the order of the package's module map.",
+    ),
+}
+
 #: Modules left out of the API reference: the command line and report layers (see cli.md).
 _APPLICATION_MODULES = re.compile(
     r"^springdyn\.app(\.|$)|^springdyn\.(units|config|errors|io|plotting|progress|integration)$|\.demo$"
@@ -447,7 +465,7 @@ def toml_reference() -> str:
             out.append(
                 "Keys of a drawing that `[spring]` also reads and turns into the keys above: "
                 + ", ".join(f"`{k}`" for k in drawing)
-                + " (with `end_type` and `load_points`; see [the valve guide](../valve.md#the-spring-as-its-drawing-gives-it)).\n"
+                + " (with `end_type` and `load_points`; see [the valve spring's guide](../valve-spring.md#the-spring-as-its-drawing-gives-it)).\n"
             )
         rules = CROSS_KEY_RULES.get(table, [])
         if rules:
@@ -662,6 +680,51 @@ def _topic_of(modname: str) -> str:
     return "api-core.md"
 
 
+def _docstring_order(package: str) -> list[str]:
+    """The modules a package's docstring names as ``:mod:`.name```, in the order it names them."""
+    doc = importlib.import_module(package).__doc__ or ""
+    return list(dict.fromkeys(re.findall(r":mod:`\.(\w+)`", doc)))
+
+
+def _package_order(package: str, modules: set[str]) -> list[str]:
+    """``package`` (when documented) and the documented modules below it, in reading order.
+
+    Its modules follow the order of its docstring's module map, each sub-package followed by its
+    own modules the same way; modules its docstring does not name come after, alphabetically.
+    """
+    children = sorted({m[len(package) + 1 :].split(".")[0] for m in modules if m.startswith(package + ".")})
+    named = [c for c in _docstring_order(package) if c in children] if children else []
+    out = [package] if package in modules else []
+    for child in named + [c for c in children if c not in named]:
+        out.extend(_package_order(f"{package}.{child}", modules))
+    return out
+
+
+def _topic_modules(topic: str, all_modules: list[str] | None = None) -> list[str]:
+    """The documented modules of one API topic, in the order its page lists them.
+
+    Packages before their modules, alphabetically, unless :data:`API_ORDER` orders the topic.
+
+    Examples
+    --------
+    >>> valve = _topic_modules("api-valve.md")
+    >>> valve[:3]
+    ['springdyn.valve', 'springdyn.valve.model', 'springdyn.valve.spring']
+    >>> valve[-1].startswith("springdyn.valve.engine.")
+    True
+    """
+    all_modules = _public_modules() if all_modules is None else all_modules
+    mods = [m for m in all_modules if _topic_of(m) == topic]
+    if topic not in API_ORDER:
+        return mods
+    root, parts, _ = API_ORDER[topic]
+    present = set(mods)
+    out = [root] if root in present else []
+    for part in parts:
+        out.extend(m for m in _package_order(f"{root}.{part}", present) if m not in out)
+    return out + [m for m in mods if m not in out]
+
+
 def _link(modname: str, here: str) -> str:
     anchor = "#" + modname.replace(".", "")
     target = _topic_of(modname)
@@ -679,10 +742,11 @@ def api_reference(topic: str | None = None) -> str:
     Returns
     -------
     str
-        Markdown: per module (packages first) the names of its ``__all__`` with
-        signature, summary, and the Parameters/Returns/Raises/Attributes sections.  A
-        name re-exported by a package is documented once, where it is defined, and the
-        package links there.
+        Markdown: per module (in the topic's order, :func:`_topic_modules`: the valve
+        family by wing, :data:`API_ORDER`; else packages before their modules,
+        alphabetically) the names of its ``__all__`` with signature, summary, and the
+        Parameters/Returns/Raises/Attributes sections.  A name re-exported by a package is
+        documented once, where it is defined, and the package links there.
 
     Examples
     --------
@@ -690,7 +754,7 @@ def api_reference(topic: str | None = None) -> str:
     True
     """
     all_modules = _public_modules()
-    modules = all_modules if topic is None else [m for m in all_modules if _topic_of(m) == topic]
+    modules = all_modules if topic is None else _topic_modules(topic, all_modules)
     here = topic or ""
     title = "Python API reference" + (f": {API_TOPICS[topic][0]}" if topic else "")
     out = [
@@ -700,6 +764,8 @@ def api_reference(topic: str | None = None) -> str:
         "layer is in [cli.md](cli.md); the topics in [api.md](api.md)).  Units are SI unless a",
         "docstring says otherwise; units are given in brackets, source equation numbers in parentheses.\n",
     ]
+    if topic in API_ORDER:
+        out.append(API_ORDER[topic][2] + "\n")
     out.append("Modules: " + ", ".join(f"[`{m}`](#{m.replace('.', '')})" for m in modules) + "\n")
     for modname in modules:
         module = importlib.import_module(modname)
@@ -744,7 +810,7 @@ def api_index() -> str:
     ]
     modules = _public_modules()
     for filename, (title, _) in API_TOPICS.items():
-        mods = [m for m in modules if _topic_of(m) == filename]
+        mods = _topic_modules(filename, modules)
         out.append(f"| {title} | [{filename}]({filename}) | " + ", ".join(f"`{m}`" for m in mods) + " |")
     return "\n".join(out) + "\n"
 

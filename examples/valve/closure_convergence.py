@@ -1,5 +1,5 @@
 """Coil clash in the distributed model: convergence in the element count and the effect of
-the contact stiffness of closed turns (the tables of docs/valve.md, issue 25).
+the contact stiffness of closed turns (the tables of docs/valve-spring.md, issue 25).
 
 Runs the one-step example on a 3-4-5 cam of 9 mm at 4000 cam rpm and the two-step example
 on 7.5 mm at 4500 cam rpm (9 mm would drive it past solid), each to its periodic steady state (the last two revolutions within 1e-5 of Fset), and prints

@@ -7,18 +7,18 @@ import json
 import pytest
 
 from springdyn.app.cli.main import main
-from tests.paths import example
+from tests.paths import ROOT, example
 
-ONE = "src/springdyn/data/valve_one_step.toml"
+ONE = str(ROOT / "src/springdyn/data/valve_one_step.toml")
 CAM = example("valve/cam_345.toml")
-TRAIN = "src/springdyn/data/valve_train_direct_acting.toml"
+TRAIN = str(ROOT / "src/springdyn/data/valve_train_direct_acting.toml")
 
 CASES = [
     ["cfcs", "dynamic", "table1", "--omega", "14.7", "--offset", "0"],  # toggle-dominated
     ["cfcs", "forward", "table1", "--force", "0N", "--x0", "0mm", "--t-end", "0.05s"],  # unloaded part
     ["valve", "simulate", ONE, "--cam", CAM, "--cam-rpm", "3000", "--revolutions", "2"],  # default strengths
     ["valve", "simulate", ONE, "--cam", CAM, "--cam-rpm", "3300", "--valve-train", TRAIN, "--revolutions", "3"],
-    ["lsd", "coefficients", "src/springdyn/data/lsd_type_c.toml", "--rpm", "3000"],
+    ["lsd", "coefficients", str(ROOT / "src/springdyn/data/lsd_type_c.toml"), "--rpm", "3000"],
 ]
 
 
@@ -27,7 +27,7 @@ def _notes(data) -> list:
     return [n for d in items for n in (d.get("notes") or [])]
 
 
-@pytest.mark.parametrize("argv", CASES, ids=lambda a: " ".join(a[:3]))
+@pytest.mark.parametrize("argv", CASES, ids=lambda a: " ".join(a[:3]).replace(f"{ROOT}/", ""))  # ids as from the root
 def test_every_json_note_is_in_the_text(argv, capsys):
     assert main([*argv, "--json", "--quiet"]) == 0
     notes = _notes(json.loads(capsys.readouterr().out))

@@ -18,7 +18,7 @@ def model():
 
 def test_the_spring_alone_is_its_chain_models(model):
     spring = model.spring
-    assert model.internal_parameters()["Fset"] == pytest.approx(251.43, rel=1e-4)  # docs/valve.md reference
+    assert model.internal_parameters()["Fset"] == pytest.approx(251.43, rel=1e-4)  # docs/valve-spring.md reference
     assert model.static_force(spring.installed_length) == pytest.approx(model.internal_parameters()["Fset"])
     assert np.array_equal(model.modes(0.038, 3), spring.spring_model.modes(0.038, 3))
     assert model.chain_model is spring.spring_model  # derived once, shared with the definition

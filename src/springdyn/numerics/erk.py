@@ -14,7 +14,7 @@ stages:
 - **Tsitouras 5(4)** (Tsitouras 2011) with its 4th-order interpolant: Dormand-Prince's cost
   per step with coefficients tuned for a smaller principal error; about 13 % fewer steps on
   the valve-spring study at the same tolerances, with a larger error estimate-to-error
-  ratio (docs/valve.md, "Which pair").
+  ratio (docs/valve-dynamics.md, "Which pair, measured").
 
 Dormand-Prince and Tsitouras also have fused kernels (``dopri5_*``, ``tsit5_*``): each
 stage, error estimate and set of dense-output coefficients in one pass over the state with

@@ -19,9 +19,10 @@ from springdyn.core.errors import InputError
 from springdyn.valve.cam.analysis import analyse_cam
 from springdyn.valve.cam.definition import Cam
 from springdyn.valve.cam.timing import CrankAxis, Timing, crank_axis, crank_words
+from tests.paths import ROOT
 
 CAM = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
-TIMING_FILE = "src/springdyn/data/valve_cam_timing.toml"
+TIMING_FILE = str(ROOT / "src/springdyn/data/valve_cam_timing.toml")
 
 
 def _one_mm_cam_deg() -> float:
@@ -115,11 +116,11 @@ def test_simulation_events_carry_crank_angles(tmp_path, capsys):
         [
             "valve",
             "simulate",
-            "src/springdyn/data/valve_one_step.toml",
+            str(ROOT / "src/springdyn/data/valve_one_step.toml"),
             "--cam",
             TIMING_FILE,
             "--valve-train",
-            "src/springdyn/data/valve_train_direct_acting.toml",
+            str(ROOT / "src/springdyn/data/valve_train_direct_acting.toml"),
             "--cam-rpm",
             "3300",
             "--revolutions",

@@ -3,7 +3,7 @@ tolerance ("choose explicit, implicit or IMEX stepping from measurements").
 
 References: a tight Dormand-Prince run at rtol 1e-10 (the engine itself, checked against
 SciPy's DOP853 in test_dynamics.py); the cam law's definition (the ramps' velocity steps);
-the measured study of benchmarks/valve_stepping.py and docs/valve.md, of which these tests
+the measured study of benchmarks/valve_stepping.py and docs/valve-dynamics.md, of which these tests
 keep the cases that decided.
 """
 

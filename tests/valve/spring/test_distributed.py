@@ -411,7 +411,7 @@ def test_cli_frf_modes_and_bad_elements(capsys, tmp_path):
 
 
 def test_clash_forces_are_checked_against_half_the_elements():
-    # the convergence table of docs/valve.md: at 4000 cam rpm the coils clash and the peak
+    # the convergence table of docs/valve-spring.md: at 4000 cam rpm the coils clash and the peak
     # seat force moves 702 -> 717 N from 25 to 50 elements (5.8 % of Fset): flagged
     cam = Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
     s = ValveSpring.example("one-step").with_model("distributed")

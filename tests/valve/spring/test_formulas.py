@@ -1,5 +1,5 @@
 """Internal parameters and model variables of [MMS] ("Internal Parameter", "Model variable")
-against the reference values of docs/valve.md, and the series identities of the chain."""
+against the reference values of docs/valve-spring.md, and the series identities of the chain."""
 
 import math
 
@@ -9,7 +9,7 @@ import pytest
 from springdyn.valve import ValveSpring
 from springdyn.valve.spring import formulas
 
-# The reference values (docs/valve.md) are printed to 5 significant digits; we require agreement to 4 significant
+# The reference values (docs/valve-spring.md) are printed to 5 significant digits; we require agreement to 4 significant
 # digits or better, i.e. relative 5e-5 of the printed value's last digit is too strict for
 # a rounded figure, so the tolerance is half a unit in the 5th digit (rel 1e-4 is the
 # 4-digit requirement of the issue with one digit of margin).
@@ -62,7 +62,7 @@ def test_one_step_k2_equals_k1():
 def test_series_identities_of_the_chain(name):
     """One-step 2/K + 2/Kh1 + 2/Kh2 = 1/K1; two-step 2/K + 1/Ks + 2/Kh1 + 1/Kh2 = 1/K1 and,
     with the low-pitch section closed, = 1/K2 (exact algebra: relative 1e-12 allows for
-    round-off only).  "Ks rigid" (docs/valve.md, chain topology) holds exactly when the closed low-pitch
+    round-off only).  "Ks rigid" (docs/valve-spring.md, chain topology) holds exactly when the closed low-pitch
     section takes the contact stiffness K of a fully contacting coil (3/K + 2/Kh1 + 1/Kh2
     = 1/K2); with Ks infinite the sum is 1/K2 - 1/K (0.2 % off for the example)."""
     s = ValveSpring.example(name)

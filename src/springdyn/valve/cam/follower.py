@@ -18,7 +18,7 @@ cam centre, the cam turns counter-clockwise; ``offset`` moves the follower axis 
 the plane of motion), ``lateral_offset`` moves a flat tappet's axis along the camshaft
 (the offset that makes a bucket spin).
 
-Defaults and their sources are in :data:`DEFAULT_SOURCES` (and docs/valve.md).
+Defaults and their sources are in :data:`DEFAULT_SOURCES` (and docs/valve-cam.md).
 """
 
 from __future__ import annotations

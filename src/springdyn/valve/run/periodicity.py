@@ -1,4 +1,4 @@
-"""The periodic steady state a valve simulation reports (docs/valve.md, "Periodic steady state").
+"""The periodic steady state a valve simulation reports (docs/valve-dynamics.md, "Periodic steady state").
 
 A speed runs revolution by revolution until the seat, retainer, cam-contact and valve-seat
 forces of the last two revolutions differ by at most :data:`PERIODICITY_TOL` of Fset on the

@@ -68,7 +68,7 @@ def velocity_tolerance(setup: SimulationSetup, atol: float) -> np.ndarray:
     the valve train's bodies keep ``atol`` (their stiff contacts make the contact forces
     sensitive to velocity errors).
 
-    Measured (benchmarks/valve_tolerances.py, docs/valve.md): over 112 runs per model
+    Measured (benchmarks/valve_tolerances.py, docs/valve-dynamics.md, "Tolerances"): over 112 runs per model
     (two springs, four cams, 14 speeds) the worst end-force extreme against a tight
     reference is 0.014 % of Fset for Type C (0.0087 % with ``atol`` for every
     component, which takes 1.4 times more steps) and 0.0035 % for the distributed

@@ -5,7 +5,7 @@ the float search, the run-ups, the tolerance study above them) takes one
 :class:`RunSettings`: the revolutions (or the periodic steady state and its tolerance), the
 output grid, the integration tolerances, the backend and Runge-Kutta pair, and whether speeds
 beyond reason are computed.  The defaults below were chosen by the refinement studies of
-docs/valve.md ("Stepping", "Periodic steady state"); the run-wide constants of the engine's
+docs/valve-dynamics.md ("Stepping and tolerances", "Periodic steady state"); the run-wide constants of the engine's
 set-up (cam table resolution, largest step) live here too.
 """
 
@@ -47,7 +47,7 @@ DEFAULT_ATOL = 1e-9
 #: with impacts (lash take-up, landings), and at 1e-6 those repeat from one revolution to the
 #: next only to a few per cent of Fset (the pushrod example: 3.7 % at 1000 cam rpm, no speed
 #: settles to the periodic steady state); at 1e-8 every speed below the first lift-off settles
-#: within 0.2 % in 4-5 revolutions (docs/valve.md, "Periodic steady state").
+#: within 0.2 % in 4-5 revolutions (docs/valve-dynamics.md, "Periodic steady state").
 TRAIN_RTOL = 1e-8
 TRAIN_ATOL = 1e-11
 #: Output samples per revolution of one simulated speed (every 0.25 deg) and of each speed of
@@ -65,10 +65,10 @@ CAM_SAMPLES = 7200
 #: Maximum step [fraction of a revolution] so that no step can jump over a short event.
 MAX_STEP_FRACTION = 1.0 / 720.0
 #: The spring's velocities get the absolute tolerance ``atol 2 pi f1 / VELOCITY_TOLERANCE_DIVISOR``
-#: [m/s] (:func:`springdyn.valve.run.runner.atol_velocity`; the study in docs/valve.md).
+#: [m/s] (:func:`springdyn.valve.run.runner.atol_velocity`; the study in docs/valve-dynamics.md, "Tolerances").
 VELOCITY_TOLERANCE_DIVISOR = 30.0
 #: The embedded Runge-Kutta pair of the compiled engine per spring model, chosen by
-#: measurement (docs/valve.md, "Stepping"): Type C's step is set by accuracy, where the
+#: measurement (docs/valve-dynamics.md, "Which pair, measured"): Type C's step is set by accuracy, where the
 #: 5th-order Dormand-Prince pair takes the fewest right-hand sides; the distributed chain's
 #: by the stability of its stiffness-proportionally damped top modes (real eigenvalues to
 #: -2.7e5 1/s for 50 elements), where the Bogacki-Shampine 3(2) pair takes 1.3x more steps
@@ -77,7 +77,7 @@ PAIR = {"type-c": "dopri5", "distributed": "bs3"}
 #: Below this many elements the distributed chain's explicit step is set by accuracy, not by
 #: stability, and Dormand-Prince is the faster pair (measured, one-step example at 1500 and
 #: 3000 cam rpm: 25 elements 3.0 against 4.2 ms, 40 elements 6.2 against 6.7 ms, 50 elements
-#: 10.4 against 9.6 ms; docs/valve.md "Stepping").
+#: 10.4 against 9.6 ms; docs/valve-spring.md, "Stepping: explicit, from measurements").
 BS3_MIN_ELEMENTS = 40
 #: The integrators: the compiled engine, or SciPy's ``solve_ivp`` (DOP853) as the reference.
 BACKENDS = ("compiled", "scipy")

@@ -29,7 +29,7 @@ from .stress import spring_strengths
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
 
-#: Built-in example springs (the reference springs of docs/valve.md), shipped in ``springdyn/data``.
+#: Built-in example springs (the reference springs of docs/valve-spring.md), shipped in ``springdyn/data``.
 EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"}
 
 #: Coil end types of a drawing: dead coils per end (EN 13906-1, cold-coiled compression
@@ -106,7 +106,7 @@ class ValveSpring(Parameters):
     contact_stiffness: float = param(
         "N/m",
         "stiffness of one closed turn in coil contact and of the end contacts (default pi Do E / 1e3, "
-        "the MMS document's 'stiffness for fully contact'; docs/valve.md shows its effect)",
+        "the MMS document's 'stiffness for fully contact'; docs/valve-spring.md shows its effect)",
         display="N/mm",
         positive=True,
         default=None,

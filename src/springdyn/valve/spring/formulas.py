@@ -382,7 +382,7 @@ def onestep_model_variables(k: float, k1: float, f1: float, m_total: float) -> d
     """Stiffnesses and masses of the one-step chain ([MMS], "Model variable for One-Step
     spring", Fig. 40.32).
 
-    Chain (topology in docs/valve.md): ``seat -K- me -Kh1- m1 -Kh2- m2 -Kh2- m1 -Kh1- me -K- retainer``.
+    Chain (topology in docs/valve-spring.md): ``seat -K- me -Kh1- m1 -Kh2- m2 -Kh2- m1 -Kh1- me -K- retainer``.
 
     Parameters
     ----------
@@ -409,7 +409,7 @@ def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float
     """Stiffnesses and masses of the two-step chain ([MMS], "Model variable for Two-Step
     spring", Fig. 40.33).
 
-    Chain (topology in docs/valve.md):
+    Chain (topology in docs/valve-spring.md):
     ``seat -K- me -Ks- m1 -Kh1- m2 -Kh2- m2 -Kh1- me -K- retainer``.
     ``m2 = Kh1 / (2 pi f2)^2`` is the in-phase mode of the two m2 masses with m1 blocked;
     ``m1`` is the dynamic condensation of the chain at ``w1 = 2 pi f1``.

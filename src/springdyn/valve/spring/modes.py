@@ -1,7 +1,7 @@
 """Natural frequencies of the lumped chain linearised about a static state.
 
 The chain is the 5-mass, 6-element chain of [MMS], "Model variable for One-Step spring"
-and "for Two-Step spring" (Figs. 40.32-40.33; topology in docs/valve.md), linearised
+and "for Two-Step spring" (Figs. 40.32-40.33; topology in docs/valve-spring.md), linearised
 with the tangent stiffnesses of its "Nonlinear characteristics".
 """
 
@@ -67,7 +67,7 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
     Solves ``K phi = w^2 M phi``: the mass-normalised matrix ``M^-1/2 K M^-1/2`` is
     symmetric tridiagonal (LAPACK's symmetric eigensolver; the tridiagonal one for long chains).
     At free length the one-step chain's first mode is close to f1 of [MMS], "Natural
-    Frequency for free length" (the check of docs/valve.md, "Modes").
+    Frequency for free length" (the check of docs/valve-spring.md, "The physics in a page", Modes).
 
     Parameters
     ----------

@@ -35,7 +35,7 @@ series.  Its leak-down and pump-up are not modelled (see :data:`HLA_NOT_MODELLED
 ``[hla]`` table gives the adjuster's dynamics at a finger follower's pivot or inside a
 hydraulic bucket (:mod:`springdyn.valve.train.hla`).
 
-Defaults and their sources are listed in :data:`DEFAULT_SOURCES` (and in docs/valve.md).
+Defaults and their sources are listed in :data:`DEFAULT_SOURCES` (and in docs/valve-train.md).
 """
 
 from __future__ import annotations

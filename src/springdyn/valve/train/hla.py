@@ -244,7 +244,7 @@ class HLA(Parameters):
     """The ``[hla]`` table: a hydraulic lash adjuster's plunger, chamber, check valve and oil.
 
     Defaults describe a 12 mm HLA of a passenger-car finger-follower train (sources in
-    docs/valve.md, "Hydraulic lash adjuster").
+    docs/valve-train.md, "Hydraulic lash adjuster").
 
     Examples
     --------

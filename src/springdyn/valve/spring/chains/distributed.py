@@ -68,14 +68,14 @@ _DOCS = ParameterDocs(
 
 __all__ = ["DistributedModel", "coil_law", "CONTACT_ONSET", "DEFAULT_ELEMENTS", "modal_damping"]
 
-#: Default number of wire elements (convergence study in docs/valve.md: peak and minimum
+#: Default number of wire elements (convergence study in docs/valve-spring.md: peak and minimum
 #: forces of the one-step example at 3000 and 4000 cam rpm change by less than 0.1 % of
 #: Fset from 50 to 100 elements, and the surge modes 1-5 are within 1 % of the harmonic
 #: series).
 DEFAULT_ELEMENTS = 50
 #: Width of the contact onset per turn, as a fraction of the wire diameter: the contact
 #: stiffness builds up over ``0.05 Dw`` of closure per turn (coils touch first at their
-#: high points).  A regularisation that makes the law C1; docs/valve.md shows its effect.
+#: high points).  A regularisation that makes the law C1; docs/valve-spring.md shows its effect.
 CONTACT_ONSET = 0.05
 
 
@@ -117,7 +117,7 @@ SHARE_NODES = 1200
 #: Fine turn-slices over the active wire for the set-up state that places the element edges.
 MESH_SLICES = 4000
 #: Largest ratio of element lengths: coils closed at set-up get elements up to this much
-#: longer than the open coils' (:func:`stiffness_graded_edges`; docs/valve.md: 2 halves the
+#: longer than the open coils' (:func:`stiffness_graded_edges`; docs/valve-spring.md: 2 halves the
 #: explicit steps against equal lengths and keeps clash forces within 1 % of Fset of 4x the
 #: elements).
 MAX_ELEMENT_STRETCH = 2.0

@@ -2,7 +2,7 @@
 
 The internal parameters ([MMS], :mod:`springdyn.valve.spring.formulas`) give the masses and the
 element laws (:mod:`springdyn.valve.spring.elements`) of the one-step and two-step chains
-(topologies in docs/valve.md); the rest of the interface comes from
+(topologies in docs/valve-spring.md); the rest of the interface comes from
 :class:`~.base.SpringModel`.
 """
 
@@ -209,7 +209,7 @@ class TypeCModel(SpringModel):
 
     @cached_property
     def chain(self) -> Chain:
-        """The lumped 5-mass chain with its element laws and damping ([MMS], Figs. 40.32-40.33; topology in docs/valve.md)."""
+        """The lumped 5-mass chain with its element laws and damping ([MMS], Figs. 40.32-40.33; topology in docs/valve-spring.md)."""
         p = self._parameters
         named, _ = self._laws
         enames = TWO_STEP_ELEMENTS if self.two_step else ONE_STEP_ELEMENTS
