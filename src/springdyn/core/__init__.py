@@ -7,6 +7,7 @@
   every analysis result (``summary``, ``to_xarray``, ``to_csv``, ``plot``, reprs);
 - :mod:`~springdyn.core.io`: atomic CSV/JSON writers and the CSV reader;
 - :mod:`~springdyn.core.errors`: :class:`InputError` and :class:`SolverError`;
+- :mod:`~springdyn.core.docstrings`: shared parameter descriptions of numpydoc docstrings;
 - :mod:`~springdyn.core.plotting`, :mod:`~springdyn.core.progress`.
 
 Nothing here imports numba, xarray or matplotlib at import time.

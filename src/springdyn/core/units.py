@@ -27,6 +27,7 @@ __all__ = [
     "SI_UNITS",
     "rpm_to_omega",
     "omega_to_rpm",
+    "rpm_to_hz",
 ]
 
 #: Smallest magnitude springdyn accepts as a nonzero number: subnormal floats (5e-324)
@@ -84,6 +85,20 @@ def omega_to_rpm(omega):
     if not isinstance(omega, Real):
         omega = np.asarray(omega, dtype=float)
     return omega * (60.0 / (2.0 * math.pi))
+
+
+def rpm_to_hz(rpm):
+    """Revolutions per second [Hz] from a speed [rev/min]: the frequency of a once-per-turn
+    event (a cam's first order).
+
+    Parameters
+    ----------
+    rpm : float or array_like
+        Speed [rev/min].
+    """
+    if not isinstance(rpm, Real):
+        rpm = np.asarray(rpm, dtype=float)
+    return rpm / 60.0
 
 
 def format_mm(value: float) -> str:

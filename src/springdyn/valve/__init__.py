@@ -5,7 +5,7 @@ valve train and every analysis of them, built from the definitions :class:`Valve
 (``[spring]``), :class:`Cam` (``[cam]``) and :class:`ValveTrain` (``[valve_train]``), and run
 with one :class:`RunSettings`.
 
-The family is built in wings, each importing only the wings below it (``tests/test_architecture.py``
+The family is built in wings, each importing only the wings below it (``tests/valve/test_wings.py``
 keeps the order):
 
 - :mod:`~springdyn.valve.engine` -- the ground floor: the compiled equations of motion and

@@ -21,7 +21,7 @@ from springdyn.core.errors import InputError
 from springdyn.core.io import write_json
 from springdyn.core.params import Parameters, param
 from springdyn.core.plotting import plt
-from springdyn.core.units import format_quantity
+from springdyn.core.units import format_quantity, omega_to_rpm, rpm_to_omega
 
 __all__ = ["load", "section", "ValveDefinition", "ReportSettings", "DEFAULT_CAM"]
 
@@ -38,11 +38,11 @@ class ReportSettings(Parameters):
     Speeds are the engine's (four-stroke: the camshaft turns at half of it).
     """
 
-    min_engine_rpm: float = param("rad/s", "lowest engine speed of the sweep", default=1000.0 * np.pi / 30, **_RPM)
+    min_engine_rpm: float = param("rad/s", "lowest engine speed of the sweep", default=rpm_to_omega(1000.0), **_RPM)
     max_engine_rpm: float = param(
-        "rad/s", "highest engine speed: the top of the sweep and of the criteria", default=8000.0 * np.pi / 30, **_RPM
+        "rad/s", "highest engine speed: the top of the sweep and of the criteria", default=rpm_to_omega(8000.0), **_RPM
     )
-    engine_rpm_step: float = param("rad/s", "step of the sweep", default=100.0 * np.pi / 30, **_RPM)
+    engine_rpm_step: float = param("rad/s", "step of the sweep", default=rpm_to_omega(100.0), **_RPM)
     models: str = param(
         None,
         "spring models to run: 'both' (the criteria from the distributed one, Type C beside it), 'type-c' or "
@@ -83,7 +83,7 @@ class ReportSettings(Parameters):
         "engine rpm per second)",
         display="rpm/s",
         bare_unit="rpm/s",
-        default=5000.0 * np.pi / 30,
+        default=rpm_to_omega(5000.0),
         positive=True,
     )
 
@@ -142,7 +142,7 @@ class ReportSettings(Parameters):
 
     def cam_rpm(self, engine_rad_s: float) -> float:
         """Cam speed [rev/min] of an engine speed [rad/s] (four-stroke)."""
-        return valve.cam_rpm_from_engine_rpm(float(engine_rad_s) * 30.0 / np.pi)
+        return valve.cam_rpm_from_engine_rpm(omega_to_rpm(float(engine_rad_s)))
 
     @property
     def sweep_speeds(self) -> np.ndarray:

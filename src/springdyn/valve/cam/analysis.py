@@ -18,7 +18,8 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.results import Result, notes_lines, text_table
-from .timing import crank_axis
+from ...core.units import rpm_to_omega
+from .timing import cam_rpm_from_engine_rpm, crank_axis
 
 __all__ = ["CHECK_HEIGHTS", "cam_derivatives", "check_height_timing", "analyse_cam", "CamAnalysis"]
 
@@ -261,7 +262,7 @@ class CamAnalysis(Result):
     @property
     def cam_omega(self) -> float | None:
         """Cam speed [rad/s] at the engine speed (four-stroke), None without one."""
-        return None if self.engine_rpm is None else self.engine_rpm / 2.0 * _TWO_PI / 60.0
+        return None if self.engine_rpm is None else rpm_to_omega(cam_rpm_from_engine_rpm(self.engine_rpm))
 
     def _summary(self) -> dict:
         peak = int(np.argmax(self.lift))

@@ -53,6 +53,7 @@ import numpy as np
 from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from ...core.results import Result, notes_lines
+from ...core.units import rpm_to_omega
 from .follower import Follower
 
 __all__ = [
@@ -476,7 +477,7 @@ def check_cam(
     if contact_force is not None:
         out["force"], out["load"] = force_in, "given"
     elif spring is not None:
-        omega = (cam_rpm or 0.0) * _TWO_PI / 60.0
+        omega = rpm_to_omega(cam_rpm or 0.0)
         z = np.maximum(ratio * h - lash, 0.0)
         acc = np.where(z > 0.0, ratio * ddh * omega**2, 0.0)
         f_s = spring.spring_model.static_force(spring.installed_length - z)

@@ -42,7 +42,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.io import read_csv_columns
 from ...core.params import Parameters, param
-from ...core.units import format_mm
+from ...core.units import format_mm, rpm_to_hz
 
 __all__ = ["Cam", "rise_law", "polydyne_coefficients", "LAWS"]
 
@@ -396,7 +396,7 @@ class Cam(Parameters):
             return
         step = float(np.max(np.diff(np.append(self.table_angle, self.table_angle[0] + TWO_PI))))
         nyquist_order = math.pi / step
-        needed = frequency / (cam_rpm / 60.0)
+        needed = frequency / rpm_to_hz(cam_rpm)
         if nyquist_order < needed:
             warnings.warn(
                 f"cam table {self.file}: its largest step of {math.degrees(step):.3g} deg resolves cam orders up "

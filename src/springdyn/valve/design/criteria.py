@@ -14,18 +14,19 @@ judge through this module:
   and the other model's figure beside it (:func:`verdict`).
 
 A study that changes a limit (its own ``[criteria]`` table) or a rule (here) changes every
-consumer with it: ``tests/valve/design/test_criteria.py`` checks that.
+consumer with it: ``tests/valve/test_one_home.py`` checks that, and
+``tests/valve/design/test_criteria.py`` the rules and the table.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
+from ...core.units import omega_to_rpm
 from ..run import verdicts
 
 __all__ = [
@@ -321,7 +322,7 @@ class Criteria(Parameters):
             The highest cam speed in service [rev/min].
         """
         if self.min_float_cam_rpm is not None:
-            return self.min_float_cam_rpm * 30.0 / math.pi
+            return omega_to_rpm(self.min_float_cam_rpm)
         return None if rated_cam_rpm is None else rated_cam_rpm * (1.0 + self.float_margin)
 
 

@@ -27,6 +27,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, param
 from ...core.results import Result, notes_lines, text_table
+from ...core.units import omega_to_rpm, rpm_to_hz
 from ..run.float_search import float_speed
 from ..run.sweeps import sweep
 from ..spring.materials import material, relaxed_force, spectrum_life
@@ -76,7 +77,7 @@ class LoadSpectrum(Parameters):
     @property
     def speeds_rpm(self) -> np.ndarray:
         """The spectrum's cam speeds [rev/min]."""
-        return np.asarray(self.cam_rpm, dtype=float) * 30.0 / math.pi
+        return omega_to_rpm(np.asarray(self.cam_rpm, dtype=float))
 
     @property
     def hours_h(self) -> float:
@@ -131,7 +132,7 @@ def service_life(spring, cam, spectrum: LoadSpectrum, valve_train=None, float_sp
     goodman = np.empty(speeds.size)
     goodman[order] = np.asarray(t["fatigue_safety_factor"], dtype=float)
     shares = np.asarray(spectrum.share, dtype=float)
-    life = spectrum_life(shares, speeds / 60.0, safety_factor=goodman)
+    life = spectrum_life(shares, rpm_to_hz(speeds), safety_factor=goodman)
     relaxed, loss = relaxed_spring(spring, spectrum)
     out = dict(goodman=goodman, life=life, loss=loss, relaxed=relaxed)
     if valve_train is not None:

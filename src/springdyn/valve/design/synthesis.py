@@ -34,7 +34,6 @@ best candidate misses each (:func:`infeasibility`).
 from __future__ import annotations
 
 import dataclasses
-import math
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,7 +44,7 @@ from ...core.errors import InputError
 from ...core.io import atomic_open, dumps_toml, output_set
 from ...core.params import Parameters, load_toml, param
 from ...core.results import Result, notes_lines, text_table
-from ...core.units import format_mm
+from ...core.units import format_mm, omega_to_rpm
 from ..cam.definition import Cam
 from ..run.float_search import float_speed
 from ..run.sweeps import sweep
@@ -266,8 +265,7 @@ class Requirements(Parameters):
         """
         if self.min_cam_rpm is None:
             return None
-        to_rpm = 30.0 / math.pi
-        return np.linspace(self.min_cam_rpm * to_rpm, self.max_cam_rpm * to_rpm, count)
+        return np.linspace(omega_to_rpm(self.min_cam_rpm), omega_to_rpm(self.max_cam_rpm), count)
 
 
 def candidate_table(req: Requirements) -> dict:
@@ -827,7 +825,7 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
             clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
             row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
             if vt is not None:
-                need = None if req.min_float_cam_rpm is None else req.min_float_cam_rpm * 30.0 / math.pi
+                need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
                 scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
                 res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION)
                 row["float_cam_rpm"] = res["float_cam_rpm"]
@@ -846,7 +844,7 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
         )
     if req.min_float_cam_rpm is not None and not any(r.get("margin_float", -1.0) >= 0.0 for r in rows):
         notes.append(
-            f"no candidate reaches the float speed {req.min_float_cam_rpm * 30 / math.pi:.0f} cam rpm: the best "
+            f"no candidate reaches the float speed {omega_to_rpm(req.min_float_cam_rpm):.0f} cam rpm: the best "
             f"reaches {max((r.get('float_cam_rpm') or 0.0) for r in rows):.0f} cam rpm (a stiffer spring: raise the "
             "installed force, or lighten the train)"
         )

@@ -56,7 +56,7 @@ from ...core.errors import InputError
 from ...core.io import atomic_path
 from ...core.params import load_toml
 from ...core.results import Result, notes_lines, text_table
-from ...core.units import to_si
+from ...core.units import omega_to_rpm, to_si
 from .. import run
 from ..run.float_search import FLOAT_RESOLUTION
 from ..spring.formulas import active_coils_free
@@ -482,7 +482,7 @@ def tolerance_study(
     values = sample(tolerances, nominal, count, seed, method)
     # in service up to the float speed the criteria ask for: the Goodman safety and the peak
     # force are judged there (above it the valve may float)
-    rated = None if criteria.min_float_cam_rpm is None else criteria.min_float_cam_rpm * 30.0 / math.pi
+    rated = None if criteria.min_float_cam_rpm is None else omega_to_rpm(criteria.min_float_cam_rpm)
     plan = dict(rated=rated, resolution=float(resolution), guess=None)
     if float_only:
         # the nominal's float speed from a scan of the range (the definition), then by the
@@ -605,7 +605,7 @@ class ToleranceStudy(Result):
         if not self.float_only:
             out["goodman"] = refused | ~criteria.passes("goodman", ds["goodman_safety"].values, c.min_goodman_safety)
         if self.floats:
-            need = c.min_float_cam_rpm * 30.0 / math.pi if c.min_float_cam_rpm is not None else float(self.speeds[-1])
+            need = omega_to_rpm(c.min_float_cam_rpm) if c.min_float_cam_rpm is not None else float(self.speeds[-1])
             f = ds["float_cam_rpm"].values
             out["float_speed"] = refused | (
                 (ds["float_in_range"].values > 0.5) & ~criteria.passes("float_speed", f, need)

@@ -16,6 +16,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.results import Result, notes_lines, text_table
+from ...core.units import rpm_to_omega
 from ..train.friction import CONTACTS, Friction, FrictionAnalysis, friction_along_cam
 
 __all__ = ["train_friction_loads", "simulation_friction", "friction_over_speed", "FrictionSweep"]
@@ -53,7 +54,7 @@ def train_friction_loads(sim, friction: Friction) -> dict:
     if vt is None or sim.cam_contact_force is None:
         raise InputError("friction needs a valve train: simulate the spring with its [valve_train]")
     n = sim.cam_angle.size
-    dt = _TWO_PI / (n * sim.cam_rpm * _TWO_PI / 60.0)
+    dt = _TWO_PI / (n * rpm_to_omega(sim.cam_rpm))
     z = sim.valve_lift
     velocity = (np.roll(z, -1) - np.roll(z, 1)) / (2.0 * dt)
     force = np.maximum(sim.cam_contact_force, 0.0)
@@ -92,7 +93,7 @@ def simulation_friction(sim, follower, friction: Friction | None = None) -> Fric
     friction = Friction() if friction is None else friction
     theta = sim.cam_angle
     h, dh, ddh = sim.cam.evaluate(theta)
-    omega = sim.cam_rpm * _TWO_PI / 60.0
+    omega = rpm_to_omega(sim.cam_rpm)
     res = friction_along_cam(
         theta,
         float(omega),

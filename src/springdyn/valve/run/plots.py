@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.plotting import new_figure, save_figure
+from ...core.units import rpm_to_hz
 from ..cam.timing import CrankAxis
 
 __all__ = ["plot_closure_map", "plot_simulation", "plot_sweep", "plot_sweep_forces"]
@@ -284,14 +285,14 @@ def _campbell(result, k, path, tag, max_order=30):
     a = amp[:, orders]
     sc = ax.scatter(
         rr.ravel(),
-        (oo * rr / 60.0).ravel(),
+        rpm_to_hz(oo * rr).ravel(),
         c=np.log10(np.maximum(a.ravel(), 1e-3)),
         s=4 + 40 * (a.ravel() / a.max()),
         cmap="magma_r",
     )
     fig.colorbar(sc, ax=ax, label="log10 retainer-force harmonic amplitude [N]")
     for o in orders[::5]:
-        ax.annotate(f"{o}", (rpm[-1], o * rpm[-1] / 60.0), fontsize=7, color="0.4")
+        ax.annotate(f"{o}", (rpm[-1], rpm_to_hz(o * rpm[-1])), fontsize=7, color="0.4")
     f_inst = float(spring.spring_model.modes(spring.installed_length, 1)[0])
     ax.axhline(f_inst, color="C0", lw=1.5, label=f"f1 at installed length {f_inst:.0f} Hz")
     open_len = spring.installed_length - result.cam.max_lift

@@ -15,6 +15,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.results import Result, dataset_columns, notes_lines, text_table, units_from_name
+from ...core.units import rpm_to_hz
 from ..cam.timing import CrankAngles
 from ..spring.elements import law_force
 from ..spring.results import coil_line
@@ -723,7 +724,7 @@ def _summarise(sim: Simulation) -> dict:
     if sim.band is not None:
         unit = {"force": "_N", "velocity": "_m_per_s"}
         s["band"] = {k + next((u for w, u in unit.items() if w in k), ""): [lo, hi] for k, (lo, hi) in sim.band.items()}
-    f_cam = sim.cam_rpm / 60.0
+    f_cam = rpm_to_hz(sim.cam_rpm)
     orders, amp = sim.spectrum(40)
     top = np.argsort(amp[1:])[::-1][:8] + 1
     s["f1_Hz"] = p["f1"]
@@ -1027,20 +1028,21 @@ def _durability(sim, s: dict, notes: list) -> dict:
         s["max_static_force_N"],
     )
     peak_share = np.nanmax(np.where(np.isfinite(share), share, 0.0), axis=1)
-    copied = (
-        "static_fatigue_safety_factor fatigue_safety_factor static_min_shear_stress_Pa static_max_shear_stress_Pa "
-        "min_shear_stress_Pa max_shear_stress_Pa endurance_shear_strength_Pa ultimate_shear_strength_Pa "
-        "shear_stress_limit_Pa max_wire_force_N peak_shear_stress_Pa"  # the largest stress of any element
-    ).split()
-    out = dict(
-        {key: f[key] for key in copied},
+    f = dict(  # elements counted from 1 for people; the force through the coils' contact
+        f,
         fatigue_critical_element=f["fatigue_critical_element"] + 1,
-        max_force_through_coil_contact_N=float(np.max(peak_share)),
         peak_shear_stress_element=f["peak_shear_stress_element"] + 1,
-        wire_stress_ok=f["wire_stress_ok"],
+        max_force_through_coil_contact_N=float(np.max(peak_share)),
     )
+    keys = (  # peak_shear_stress_*: the largest stress of any element (the Goodman-critical one need not be it)
+        "static_fatigue_safety_factor fatigue_safety_factor static_min_shear_stress_Pa static_max_shear_stress_Pa "
+        "min_shear_stress_Pa max_shear_stress_Pa fatigue_critical_element endurance_shear_strength_Pa "
+        "ultimate_shear_strength_Pa shear_stress_limit_Pa max_wire_force_N max_force_through_coil_contact_N "
+        "peak_shear_stress_Pa peak_shear_stress_element wire_stress_ok"
+    )
+    out = {key: f[key] for key in keys.split()}
     if not out["wire_stress_ok"]:
-        j = f["peak_shear_stress_element"]
+        j = f["peak_shear_stress_element"] - 1
         notes.append(
             f"WIRE OVERSTRESS: element {j + 1} ({model.chain.element_names[j]}) reaches "
             f"{out['peak_shear_stress_Pa'] / 1e6:.0f} MPa at {sim.cam_rpm:g} cam rpm, above the "

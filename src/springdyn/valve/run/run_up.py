@@ -22,7 +22,7 @@ import numpy as np
 
 from ...core.errors import InputError, SolverError
 from ...core.results import Result, notes_lines, text_table
-from ...core.units import rpm_to_omega
+from ...core.units import omega_to_rpm, rpm_to_omega
 from ..engine import integrate, rhs_call
 from ..engine.equations import model_of, train_of
 from ..engine.layout import VT_ALPHA, extra_layout
@@ -38,8 +38,6 @@ __all__ = ["speed_ramp", "RunUp", "ramp_time", "ramp_angle", "MAX_RAMP_REVOLUTIO
 
 #: Most cam revolutions a ramp may span (a bound on the work: about 1 s per 100 revolutions).
 MAX_RAMP_REVOLUTIONS = 2000
-
-_RPM = 2.0 * math.pi / 60.0
 
 
 def ramp_angle(t, omega0: float, alpha: float):
@@ -121,7 +119,7 @@ def speed_ramp(
     n = settings.points(SWEEP_POINTS_PER_REVOLUTION)
     rtol, atol = settings.tolerances(valve_train)
     w0, w1 = rpm_to_omega(start_rpm), rpm_to_omega(end_rpm)
-    alpha = math.copysign(rate_rpm_per_s * _RPM, w1 - w0)
+    alpha = math.copysign(rpm_to_omega(rate_rpm_per_s), w1 - w0)
     duration = (w1 - w0) / alpha
     total = ramp_angle(duration, w0, alpha)
     revs = int(math.floor(total / (2.0 * math.pi)))
@@ -181,7 +179,7 @@ def speed_ramp(
         rate_rpm_per_s=float(rate_rpm_per_s),
         time=t_out,
         cam_angle=theta,
-        cam_rpm=(w0 + alpha * t_out) / _RPM,
+        cam_rpm=omega_to_rpm(w0 + alpha * t_out),
         lift=extra[:, lay["lift"]],
         valve_lift=extra[:, lay["top_displacement"]],
         cam_contact_force=extra[:, lay["cam_contact_force"]],
@@ -285,7 +283,7 @@ class RunUp(Result):
             z, fc, lift = self.valve_lift[sl], self.cam_contact_force[sl], self.lift[sl]
             in_event = verdicts.valve_open(lift, z, self.lobe_lash)
             off = in_event & (fc <= 0.0)
-            rows["cam_rpm"].append(2.0 * math.pi / (self.time[(r + 1) * n] - self.time[r * n]) / _RPM)
+            rows["cam_rpm"].append(omega_to_rpm(2.0 * math.pi / (self.time[(r + 1) * n] - self.time[r * n])))
             rows["liftoff"].append(bool(off.any()))
             rows["nose_separation"].append(
                 verdicts.floats_over_nose(False, self.nose, np.where(in_event, fc, np.inf), z)

@@ -21,6 +21,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ...core.errors import InputError
+from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
 from ..engine import series_force_compiled
 from ..engine.cam_table import CamTable
@@ -166,12 +167,12 @@ def check_speeds(setup: SimulationSetup, cam_rpm, allow_extreme: bool = False) -
     rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
     event = setup.event_angle
     f1 = setup.spring.spring_model.first_mode_installed
-    t_event = event / (rpm * 2.0 * math.pi / 60.0)
+    t_event = event / rpm_to_omega(rpm)
     bad = rpm[t_event * f1 < MIN_EVENT_SURGE_PERIODS]
     if not bad.size:
         return []
     r = float(bad[0])
-    t = event / (r * 2.0 * math.pi / 60.0)
+    t = event / rpm_to_omega(r)
     what = (
         f"cam_rpm = {r:g}: the cam event of {math.degrees(event):.0f} deg lasts {t * 1e3:.3g} ms, shorter than one "
         f"period of the spring's first surge mode ({f1:.0f} Hz, {1e3 / f1:.3g} ms): no valve spring follows such a "

@@ -13,6 +13,7 @@ import numpy as np
 
 from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
+from ...core.units import rpm_to_hz
 
 #: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
 _DOCS = ParameterDocs(
@@ -172,4 +173,4 @@ def surge_margin(surge_frequency: float, cam_speed_rpm: float) -> float:
     """
     if not (math.isfinite(cam_speed_rpm) and cam_speed_rpm > 0):
         raise InputError(f"cam_speed_rpm = {cam_speed_rpm!r} must be a positive, finite speed [rev/min]")
-    return surge_frequency / (cam_speed_rpm / 60.0)
+    return surge_frequency / rpm_to_hz(cam_speed_rpm)
