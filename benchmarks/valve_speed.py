@@ -173,7 +173,7 @@ def main(argv=None) -> int:
     eng = []
     for _ in range(args.repeat):
         t = time.perf_counter()
-        engine.run_speeds(
+        engine.integrate_speeds(
             setup.y0,
             [omega],
             2,

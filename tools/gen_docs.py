@@ -50,8 +50,9 @@ PARAMETER_TABLES = {
     "follower": ("springdyn.valve.cam.follower:Follower", "valve_train_follower.toml"),
     "geometry": ("springdyn.valve.train.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
     "friction": ("springdyn.valve.train.friction:Friction", "valve_train_follower.toml"),
+    "oil": ("springdyn.valve.train.oil:Oil", "valve_train_finger_hla.toml"),
     "requirements": ("springdyn.valve.design.synthesis:Requirements", "valve_requirements.toml"),
-    "criteria": ("springdyn.valve.design.tolerances:Criteria", "valve_tolerances.toml"),
+    "criteria": ("springdyn.valve.design.criteria:Criteria", "valve_tolerances.toml"),
     "spectrum": ("springdyn.valve.design.life:LoadSpectrum", "valve_spectrum.toml"),
     "cam_card": ("springdyn.valve.cam.from_lift:CamCard", "valve_cam_card.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
@@ -92,8 +93,6 @@ CROSS_KEY_RULES = {
     "valve_train": [],
     "hla": [
         ("`eccentricity` < 1", {"eccentricity": 1.2}),
-        ("`oil_viscosity_100` < `oil_viscosity_40`", {"oil_viscosity_100": "80 mm^2/s"}),
-        ("`oil_temperature` from -40 to 170 degC", {"oil_temperature": 600}),
         ("`chamber_volume` above the volume the plunger sweeps over `collapse_travel`", {"chamber_volume": "100 mm^3"}),
     ],
     "follower": [
@@ -126,7 +125,15 @@ CROSS_KEY_RULES = {
     ],
     "friction": [
         ("`fluid_friction` <= `boundary_friction`", {"fluid_friction": 0.2}),
-        ("`oil_viscosity` or the Walther keys (`oil_temperature`, ...), not both", {"oil_viscosity": "8 mPa*s"}),
+    ],
+    "oil": [
+        ("`viscosity_100` < `viscosity_40`", {"viscosity_100": "80 mm^2/s"}),
+        ("`temperature` from -40 to 170 degC", {"temperature": 600}),
+        ("`air_fraction` < 0.5, `polytropic_index` from 1 to 1.4", {"air_fraction": 0.6}),
+        (
+            "`viscosity` or the datasheet's viscosities (`viscosity_40`, `viscosity_100`), not both",
+            {"viscosity": "8 mPa*s"},
+        ),
     ],
     "requirements": [
         ("`open_force` > `installed_force`", {"open_force": "100 N"}),
@@ -432,6 +439,7 @@ def toml_reference() -> str:
         "follower": "beside `[valve_train]`: `springdyn valve cam-check --valve-train`, `cam-from-lift --valve-train`",
         "geometry": "beside `[valve_train]` (layout `rocker`) and a roller `[follower]`: `springdyn valve kinematics`, `simulate/float/sweep/cam-from-lift --valve-train`, `springdyn report`",
         "friction": "beside `[valve_train]` and `[follower]`: `springdyn valve friction --valve-train`",
+        "oil": "beside `[valve_train]`: the one oil of `[hla]` and `[friction]` (their older oil keys mean the same)",
         "requirements": "`springdyn valve synthesize` (a file of its own)",
         "criteria": "beside `[tolerances]`: `springdyn valve tolerance --tolerances`",
         "spectrum": "`springdyn valve life --spectrum` (a file of its own)",

@@ -315,6 +315,7 @@ KNOWN_TABLES = (
     "follower",
     "geometry",
     "friction",
+    "oil",
     "requirements",
     "tolerances",
     "criteria",

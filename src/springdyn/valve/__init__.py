@@ -45,6 +45,8 @@ _EXPORTS = {
     "ValveTrain": "train.definition",
     "GasForce": "train.gas_force",
     "Friction": "train.friction",
+    "Oil": "train.oil",
+    "oil_of": "train.oil",
     # the spring models
     "Chain": "spring.chains",
     "SpringModel": "spring.chains",

@@ -98,7 +98,10 @@ class ValveModel:
     follower : Follower, optional
         The ``[follower]`` table (cam checks, friction).
     friction : Friction, optional
-        The ``[friction]`` table (default: its defaults).
+        The ``[friction]`` table (default: its defaults, with ``oil``).
+    oil : Oil, optional
+        The train's one oil (``[oil]``; the friction table's and the adjuster's are the same):
+        the friction's where no ``friction`` is given (default: the oil's defaults).
     gas_force : GasForce, optional
         The cylinder's gas force on the valve over a cam revolution [N] (needs a valve train).
     """
@@ -115,6 +118,7 @@ class ValveModel:
         follower: Follower | None = None,
         friction=None,
         gas_force=None,
+        oil=None,
     ):
         if not isinstance(spring, ValveSpring):
             raise InputError(f"spring = {spring!r} must be a ValveSpring (ValveSpring.from_toml(...) or .example())")
@@ -135,6 +139,7 @@ class ValveModel:
         self.crank_angles = timing is not None if crank_angles is None else bool(crank_angles)
         self.follower = follower
         self.friction_table = friction
+        self.oil = oil if oil is not None or friction is None else friction.oil
         self.gas_force = gas_force
 
     @classmethod
@@ -170,11 +175,11 @@ class ValveModel:
         vt = ValveTrain.from_toml(valve_train) if valve_train is not None else None
         timing = (Timing.in_file(cam) if cam is not None else None) or Timing.in_file(spring)
         follower = Follower.in_file(valve_train) if valve_train is not None else None
-        friction = None
+        friction = oil = None
         if valve_train is not None:
             doc = load_toml(valve_train)
-            if "friction" in doc:
-                friction = train_wing.Friction.from_dict(doc["friction"], source=str(valve_train))
+            friction = train_wing.Friction.in_document(doc, source=str(valve_train))
+            oil = train_wing.oil_of(doc, source=str(valve_train))[0]
         return cls(
             sp,
             c,
@@ -184,6 +189,7 @@ class ValveModel:
             crank_angles=crank_angles,
             follower=follower,
             friction=friction,
+            oil=oil,
         )
 
     def __repr__(self) -> str:
@@ -215,6 +221,7 @@ class ValveModel:
             follower=self.follower,
             friction=self.friction_table,
             gas_force=self.gas_force,
+            oil=self.oil,
         )
         unknown = sorted(set(changes) - set(args))
         if unknown:
@@ -720,7 +727,10 @@ class ValveModel:
                 "examples/valve/valve_train_with_follower.toml)"
             )
         self._need_train("friction")
-        return run_wing.simulation_friction(self.simulate(float(cam_rpm)), self.follower, self.friction_table)
+        friction = self.friction_table
+        if friction is None and self.oil is not None:  # the friction's defaults with the train's oil
+            friction = train_wing.Friction(oil=self.oil)
+        return run_wing.simulation_friction(self.simulate(float(cam_rpm)), self.follower, friction)
 
     def friction_over_speed(self, cam_rpm, *, quiet: bool = True):
         """The named study "friction over a speed range": each speed simulated to its periodic

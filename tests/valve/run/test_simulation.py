@@ -290,7 +290,7 @@ def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
             periodicity=np.full(n, np.nan),
         )
 
-    monkeypatch.setattr(runnermod, "engine_run_speeds", broken)
+    monkeypatch.setattr(runnermod, "integrate_speeds", broken)
     with pytest.raises(
         SolverError,
         match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
@@ -305,13 +305,13 @@ def test_kernel_outputs_equal_numpy_postprocessing(one_step):
     setup = prepare(one_step, CAM, VT)
     omega = rpm_to_omega(2000)  # below float speed: no impacts to amplify round-off
     period = 2 * math.pi / omega
-    res = engine.run_speeds(
+    res = engine.integrate_speeds(
         setup.y0, [omega], 2, 360, engine_args(setup, omega), rtol=1e-6, atol=1e-9, max_step_fraction=1 / 720
     )
     extra = res["extra"]
     assert extra.shape == (1, 360, engine.extra_layout(5)["size"]) and res["revolutions"][0] == 2
     t = np.arange(720) * period / 360
-    # run_speeds integrates revolution by revolution, landing a step on each revolution's
+    # integrate_speeds integrates revolution by revolution, landing a step on each revolution's
     # end: a stop there gives integrate the same step sequence
     states, info = engine.integrate(
         setup.y0, t, engine_args(setup, omega), rtol=1e-6, atol=1e-9, h_max=period / 720, stops=[period]

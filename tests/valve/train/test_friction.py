@@ -32,6 +32,8 @@ from springdyn.valve.train.friction import (
     roller_rolling_speed,
     roller_spin,
 )
+from springdyn.valve.train.hla import HLA
+from springdyn.valve.train.oil import Oil
 from tests.paths import EXAMPLES
 from tests.result_checks import check_result_interface
 
@@ -387,10 +389,13 @@ def test_results_offer_the_result_interface(tmp_path):
 
 # ----------------------------------------------------------------------------- the table
 def test_friction_table_defaults_and_viscosity():
-    """The Walther viscosity (reused from the HLA) at 100 degC is the datasheet's 10.5 mm^2/s
-    times the density 850/(1 + 6.5e-4 * 85) = 805.5 kg/m^3: 8.458 mPa s."""
+    """The friction's oil is the train's one oil (springdyn.valve.train.oil): at 100 degC its
+    Walther viscosity is the datasheet's 10.5 mm^2/s times the density 850/(1 + 6.5e-4 * 85) =
+    805.5 kg/m^3: 8.458 mPa s; by default (90 degC) the adjuster's viscosity."""
     f = Friction()
-    assert f.viscosity == pytest.approx(10.5e-6 * 850 / (1 + 6.5e-4 * 85), rel=1e-9)
+    assert f.viscosity == HLA().viscosity() == Oil().dynamic_viscosity()
+    hot = Friction.from_dict({"oil_temperature": "100 degC"})
+    assert hot.viscosity == pytest.approx(10.5e-6 * 850 / (1 + 6.5e-4 * 85), rel=1e-9)
     assert Friction.from_dict({"oil_viscosity": "9 mPa*s"}).viscosity == pytest.approx(0.009)
     assert Friction.from_dict({"pressure_viscosity": "15 1/GPa"}).pressure_viscosity == pytest.approx(1.5e-8)
     # a solid steel roller of the contact width: 7850 pi r^4 w / 2
@@ -411,7 +416,10 @@ def test_friction_table_defaults_and_viscosity():
             {"fluid_friction": 0.15},
             r"fluid_friction = 0.15 must not exceed boundary_friction = 0.12 .*allowed 0 to 0.12",
         ),
-        ({"oil_viscosity": "8 mPa*s", "oil_temperature": "90 degC"}, r"oil_viscosity is given, so oil_temperature"),
+        (
+            {"oil_viscosity": "8 mPa*s", "oil_viscosity_40": "60 mm^2/s"},
+            r"\[friction\] oil_viscosity is given, so \[friction\] oil_viscosity_40 would be ignored",
+        ),
         ({"oil_temperature": "200 degC"}, r"oil_temperature = 200 degC must lie from -40 to 170 degC"),
         ({"roller_inertia": "500 g*mm^2", "roller_mass": "10 g"}, r"roller_inertia or roller_mass"),
         ({"guide_clearance": "0.5 mm"}, r"guide_clearance = 500 um .* up to 5 % of the diameter \(275 um\)"),

@@ -15,15 +15,8 @@ import pytest
 
 from springdyn.core.errors import InputError
 from springdyn.valve import Cam, ValveSpring, ValveTrain, simulate
-from springdyn.valve.engine.equations import air_oil_bulk_modulus
-from springdyn.valve.train.hla import (
-    HLA,
-    P_ATM,
-    effective_bulk_modulus,
-    kinematic_viscosity,
-    leak_conductance,
-    leak_down_test,
-)
+from springdyn.valve.train.hla import HLA, P_ATM, leak_conductance, leak_down_test
+from springdyn.valve.train.oil import Oil, effective_bulk_modulus
 from tests.paths import example
 
 TRAIN = example("valve/finger_follower_hla.toml")
@@ -57,33 +50,15 @@ def test_leak_down_test_matches_the_closed_form(load, air):
     only by the oil's compression as the chamber shrinks and the Couette term: measured 1e-15
     (a consistency check of the chamber and plunger equations; the hand calculation above and
     the train's oil balance below are the independent ones)."""
-    r = leak_down_test(HLA(air_fraction=air), load, 1e-3)
+    r = leak_down_test(HLA(oil=Oil(air_fraction=air)), load, 1e-3)
     assert abs(r.deviation) < 0.02
     assert r.peak_pressure_Pa == pytest.approx((load - 15.0) / HLA().area, rel=1e-6)
 
 
-def test_viscosity_at_the_datasheet_points_and_between():
-    """Walther (ASTM D341) passes through its two points and falls in between."""
-    assert kinematic_viscosity(313.15, 60e-6, 10.5e-6) == pytest.approx(60e-6, rel=1e-12)
-    assert kinematic_viscosity(373.15, 60e-6, 10.5e-6) == pytest.approx(10.5e-6, rel=1e-12)
-    mid = kinematic_viscosity(343.15, 60e-6, 10.5e-6)
-    assert 10.5e-6 < mid < 60e-6
-    # warmer oil leaks faster: 90 degC against 40 degC
-    assert HLA(oil_temperature=363.15).leak_down_seconds(200, 1e-3) < HLA(oil_temperature=313.15).leak_down_seconds(
-        200, 1e-3
-    )
-
-
-def test_bulk_modulus_limits_and_the_compiled_twin():
-    """Air-free: the oil's modulus; much air at low pressure: n p / x (the air alone); the
-    compiled twin equals the documented function."""
-    assert effective_bulk_modulus(5e6, 1.5e9, 0.0) == pytest.approx(1.5e9, rel=1e-12)
-    assert effective_bulk_modulus(P_ATM, 1.5e9, 0.3, 1.0) == pytest.approx(P_ATM / 0.3, rel=0.01)
-    for p in (3e3, 1e5, 3e5, 1e7):
-        for n in (1.0, 1.4):
-            assert air_oil_bulk_modulus(p, 1.5e9, 0.02, n) == pytest.approx(
-                effective_bulk_modulus(p, 1.5e9, 0.02, n), rel=1e-14
-            )
+def test_warmer_oil_leaks_faster():
+    """90 degC against 40 degC: the Walther viscosity (tests/valve/train/test_oil.py) falls."""
+    warm = HLA(oil=Oil(temperature=363.15)).leak_down_seconds(200, 1e-3)
+    assert warm < HLA(oil=Oil(temperature=313.15)).leak_down_seconds(200, 1e-3)
 
 
 @pytest.mark.parametrize(
@@ -162,9 +137,10 @@ def test_stiff_leak_free_adjuster_is_the_preloaded_plunger():
     the preloaded plunger of the same base-circle force (hla_preload = F_s / (r - 1)) and a
     stiffness the oil column has referred to the valve, (r - 1)^2 / k_oil' in series."""
     vt = ValveTrain.from_toml(TRAIN)
-    h = vt.hla.replace(air_fraction=0.0, oil_bulk_modulus=1.5e10, radial_clearance=1e-7, socket_stiffness=1e10)
+    stiff_oil = vt.hla.oil.replace(air_fraction=0.0, bulk_modulus=1.5e10)
+    h = vt.hla.replace(oil=stiff_oil, radial_clearance=1e-7, socket_stiffness=1e10)
     stiff = vt.with_hla(h)
-    k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
+    k_oil = h.oil.bulk_modulus * h.area**2 / h.chamber_volume
     k_valve = k_oil / (vt.ratio - 1.0) ** 2
     import dataclasses
 
@@ -208,7 +184,7 @@ def test_train_modes_take_the_adjusters_oil_column():
     vt = ValveTrain.from_toml(TRAIN)
     eq = vt.without_hla_dynamics()
     h = vt.hla
-    beta = effective_bulk_modulus(P_ATM + h.supply_pressure, h.oil_bulk_modulus, h.air_fraction)
+    beta = effective_bulk_modulus(P_ATM + h.supply_pressure, h.oil.bulk_modulus, h.oil.air_fraction)
     k_oil = beta * h.area**2 / h.chamber_volume
     k_pivot = 1.0 / (1.0 / k_oil + 1.0 / h.socket_stiffness)
     assert eq.hla_stiffness == pytest.approx(k_pivot / (vt.ratio - 1.0) ** 2, rel=1e-12)
@@ -273,9 +249,10 @@ def test_hydraulic_bucket_stiff_leak_free_limit_is_the_preloaded_plunger():
 
     vt = ValveTrain.from_toml(BUCKET)
     assert vt.degrees_of_freedom == 6 and vt.hla_force == 10.0
-    h = vt.hla.replace(air_fraction=0.0, oil_bulk_modulus=1.5e10, radial_clearance=1e-7, socket_stiffness=1e10)
+    stiff_oil = vt.hla.oil.replace(air_fraction=0.0, bulk_modulus=1.5e10)
+    h = vt.hla.replace(oil=stiff_oil, radial_clearance=1e-7, socket_stiffness=1e10)
     stiff = vt.with_hla(h)
-    k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
+    k_oil = h.oil.bulk_modulus * h.area**2 / h.chamber_volume
     simple = dataclasses.replace(vt, hla=None, hla_stiffness=k_oil, hla_preload=10.0)
     cam = Cam.from_toml(example("valve/cam_345.toml"))
     a = simulate(_spring(), cam, 1500.0, valve_train=stiff, revolutions=3)

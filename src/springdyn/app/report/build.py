@@ -29,6 +29,7 @@ SUPPORT_TABLES = {
     "follower": "spring",
     "geometry": "spring",
     "friction": "spring",
+    "oil": "spring",
     "report": "spring",
 }
 #: Built-in definitions of ``springdyn demo`` (shipped in springdyn/data, copies in examples/report).

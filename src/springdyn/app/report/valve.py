@@ -207,14 +207,17 @@ def load(doc: dict, path: Path) -> ValveDefinition:
     if "hla" in doc:
         if vt is None:
             raise InputError(f"{path}: [hla] needs a [valve_train] table in the same file")
-        vt = vt.with_hla(doc["hla"], source=str(path))
+        vt = vt.with_document_hla(doc, source=str(path))
     settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path))
     timing = valve.Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
     follower = valve.Follower.from_dict(doc["follower"], source=str(path)) if "follower" in doc else None
     if "friction" in doc and follower is None:
         raise InputError(f"{path}: [friction] needs a [follower] table in the same file (the contact at the cam)")
-    friction = valve.Friction.from_dict(doc["friction"], source=str(path)) if "friction" in doc else None
-    model = valve.ValveModel(spring, cam, vt, timing=timing, crank_angles=True, follower=follower, friction=friction)
+    friction = valve.Friction.in_document(doc, source=str(path))
+    oil = valve.oil_of(doc, source=str(path))[0] if vt is not None else None
+    model = valve.ValveModel(
+        spring, cam, vt, timing=timing, crank_angles=True, follower=follower, friction=friction, oil=oil
+    )
     if settings.cylinder_pressure is not None:
         need = [t for t, ok in (("[valve_train]", vt is not None), ("[timing]", timing is not None)) if not ok]
         if vt is not None and vt.seat_diameter is None:

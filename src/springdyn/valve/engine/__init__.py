@@ -14,7 +14,7 @@ Module map (one reason to change each):
 - :mod:`.static_force`: the compiled static force of the series chain.
 - :mod:`.api`: the Python face below (argument tuples to model arrays, allocation, notices).
 
-This module is the engine's Python face: :func:`integrate`, :func:`run_speeds` (compiled,
+This module is the engine's Python face: :func:`integrate`, :func:`integrate_speeds` (compiled,
 an adaptive embedded Runge-Kutta pair with dense output, :mod:`springdyn.numerics.erk`:
 Dormand-Prince 5(4), Bogacki-Shampine 3(2) or Tsitouras 5(4)) and :func:`integrate_scipy`
 (the reference).  Every kernel is a :func:`springdyn.numerics.jit.kernel`: cached on disk
@@ -28,7 +28,7 @@ from ..._lazy import lazy_package
 
 _EXPORTS = {
     "integrate": "api",
-    "run_speeds": "api",
+    "integrate_speeds": "api",
     "model_of": "equations",
     "train_of": "equations",
     "COMPILE_SECONDS": "api",

@@ -13,7 +13,7 @@ from .loop import Revolutions, SpeedOutputs, Tolerances, integrate_kernel, run_s
 from .monitor import new_monitor
 from .reference import atol_vector
 
-__all__ = ["integrate", "run_speeds", "COMPILE_SECONDS"]
+__all__ = ["integrate", "integrate_speeds", "COMPILE_SECONDS"]
 
 #: About how long the engine takes to compile on a 2-core machine [s], per model and pair:
 #: the figure the compile notice quotes.  Measured with an empty cache by
@@ -58,7 +58,7 @@ def _angles(a) -> np.ndarray:
     return np.empty(0) if a is None else np.ascontiguousarray(a, dtype=float)
 
 
-def run_speeds(
+def integrate_speeds(
     y0,
     omegas,
     revolutions,
@@ -201,9 +201,9 @@ def integrate(
     max_steps : int
         Most steps [-] (the loop is bounded).
     atol_velocity : float or ndarray, optional
-        Velocity tolerance [m/s], as for :func:`run_speeds`.
+        Velocity tolerance [m/s], as for :func:`integrate_speeds`.
     method : {"dopri5", "tsit5", "bs3"}
-        Runge-Kutta pair, as for :func:`run_speeds`.
+        Runge-Kutta pair, as for :func:`integrate_speeds`.
     stops : array_like, optional
         Times [s], ascending, on which a step lands.
 

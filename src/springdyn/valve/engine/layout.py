@@ -235,3 +235,10 @@ N_FIXED_CHANNELS = 3
 
 #: Status codes of the integration.
 STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the solution is not finite (NaN/inf)"}
+
+# --- constants of the hydraulic laws (the oil's and the adjuster's) ---------------------------
+#: Standard atmospheric pressure [Pa]: gauge pressures of the ``[hla]`` table are above it.
+P_ATM = 101325.0
+#: Lowest absolute chamber pressure [Pa]: below it the oil releases its air and vapour
+#: (the chamber cavitates); the pressure is held there and the check valve refills.
+P_CAVITATION = 2000.0

@@ -3,7 +3,7 @@
 A prepared set-up (:func:`springdyn.valve.run.setup.prepare`) and a
 :class:`~springdyn.valve.run.settings.RunSettings` go in; the engine integrates each speed to
 its periodic steady state (or for the set revolutions) and returns the last revolution's
-outputs (:func:`springdyn.valve.engine.run_speeds`).  One speed
+outputs (:func:`springdyn.valve.engine.integrate_speeds`).  One speed
 (:func:`~springdyn.valve.run.simulation.simulate`), the chunks of a sweep, the float search and
 the start of a run-up all run through it.  Beside it: the engine's argument tuple, the
 velocity tolerances and the Runge-Kutta pair of a set-up, and the message of a failed run.
@@ -16,8 +16,7 @@ import math
 import numpy as np
 
 from ...core.errors import SolverError
-from ..engine import STATUS
-from ..engine import run_speeds as engine_run_speeds
+from ..engine import STATUS, integrate_speeds
 from .periodicity import BAND_REVOLUTIONS
 from .settings import BS3_MIN_ELEMENTS, MAX_STEP_FRACTION, PAIR, VELOCITY_TOLERANCE_DIVISOR, RunSettings
 from .setup import SimulationSetup
@@ -95,7 +94,7 @@ def run_speeds(
     """Integrate the speeds ``omegas`` [rad/s] with the compiled engine to their periodic
     steady state (``settings.revolutions`` None) or for ``settings.revolutions``,
     monitoring the last revolution (true extremes and events on the dense output, see
-    :func:`springdyn.valve.engine.run_speeds`).
+    :func:`springdyn.valve.engine.integrate_speeds`).
 
     Parameters
     ----------
@@ -115,13 +114,13 @@ def run_speeds(
     Returns
     -------
     dict
-        :func:`springdyn.valve.engine.run_speeds`'s outputs, ``periodicity`` as a fraction
+        :func:`springdyn.valve.engine.integrate_speeds`'s outputs, ``periodicity`` as a fraction
         of Fset.
     """
     fset = setup.spring.spring_model.internal_parameters()["Fset"]
     rtol, atol = settings.tolerances(setup.valve_train)
     periodic = settings.periodic
-    res = engine_run_speeds(
+    res = integrate_speeds(
         setup.y0 if y0 is None else y0,
         omegas,
         settings.most_revolutions,

@@ -36,7 +36,7 @@ __all__ = [
     "SimulationSetup",
     "prepare",
     "output_angles",
-    "static_force",
+    "static_force_at_lift",
     "static_force_along_grid",
     "check_speeds",
     "with_gas_force",
@@ -96,7 +96,7 @@ class SimulationSetup:
         return self.n_masses + (self.valve_train.degrees_of_freedom if self.valve_train is not None else 0)
 
 
-def static_force(setup: SimulationSetup, lift) -> np.ndarray:
+def static_force_at_lift(setup: SimulationSetup, lift) -> np.ndarray:
     """Static (massless) spring force [N] at cam or valve lift(s) [m] of a set-up.
 
     Parameters
@@ -135,7 +135,7 @@ def static_force_along_grid(setup: SimulationSetup, points: int) -> np.ndarray:
     key = (id(model), id(setup.cam), int(points))  # the entry holds both: their ids are not reused meanwhile
     hit = _STATIC.get(key)
     if hit is None:
-        force = static_force(setup, setup.table.at(output_angles(points))[0])
+        force = static_force_at_lift(setup, setup.table.at(output_angles(points))[0])
         force.flags.writeable = False
         hit = _STATIC[key] = (model, setup.cam, force)
         while len(_STATIC) > STATIC_CACHE_SIZE:

@@ -29,8 +29,8 @@ from .setup import (
     check_speeds,
     output_angles,
     prepare,
-    static_force,
     static_force_along_grid,
+    static_force_at_lift,
     with_gas_force,
 )
 
@@ -301,10 +301,10 @@ def chain_response(setup: SimulationSetup, omega, theta: np.ndarray, states: np.
         force[..., j, :] = np.where(x[..., j, :] > 0.0, np.maximum(force[..., j, :], 0.0), 0.0)
     out = dict(lift=lift, compression=x, force=force, contact=x >= setup.spring.spring_model.contact_gaps[:, None])
     if nf > nm:
-        out["static"] = static_force(setup, u_top)
+        out["static"] = static_force_at_lift(setup, u_top)
         out.update(train_response(setup.vt, lift, dlift, u[..., nm:, :], v[..., nm:, :], theta=theta, omega=omega))
     else:
-        out["static"] = static_force(setup, lift)
+        out["static"] = static_force_at_lift(setup, lift)
     out["displacement"] = u[..., :nm, :]
     return out
 
@@ -332,7 +332,7 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err,
     if setup.valve_train is None:  # the lift of the cam table at the output angles: kept per cam
         static = static_force_along_grid(setup, time.size)
     else:
-        static = static_force(setup, e[:, lay["top_displacement"]])
+        static = static_force_at_lift(setup, e[:, lay["top_displacement"]])
     sim = Simulation(
         **_run_record(setup, cam_rpm, revolutions, prev_err, info),
         time=time,

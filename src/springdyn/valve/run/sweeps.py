@@ -38,7 +38,7 @@ from .results import locate_intervals
 from .runner import run_speeds, solver_error
 from .separation import PHASES, cam_phases, float_speed_of_scan, liftoffs, neighbour_band, phase_mask
 from .settings import SWEEP_POINTS_PER_REVOLUTION, RunSettings
-from .setup import SimulationSetup, check_speeds, output_angles, prepare, static_force, static_force_along_grid
+from .setup import SimulationSetup, check_speeds, output_angles, prepare, static_force_along_grid, static_force_at_lift
 from .train_modes import natural_frequencies, resonance_speeds
 
 __all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
@@ -116,7 +116,7 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
     if setup.valve_train is not None:
         valid = status == 0
         static = np.full(out["valve_lift"].shape, np.nan)
-        static[valid] = static_force(setup, out["valve_lift"][valid])
+        static[valid] = static_force_at_lift(setup, out["valve_lift"][valid])
         out["static"] = static
     else:
         static = np.broadcast_to(static_force_along_grid(setup, points), out["retainer"].shape)

@@ -20,7 +20,7 @@ from ..engine.layout import VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS
 from ..spring.definition import ValveSpring
 from ..train.definition import ValveTrain
 from .runner import engine_args
-from .setup import SimulationSetup, prepare, static_force
+from .setup import SimulationSetup, prepare, static_force_at_lift
 
 __all__ = ["natural_frequencies", "separated_frequencies", "separated_train_text", "resonance_speeds"]
 
@@ -109,7 +109,7 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
         z = h_max
         guess = spring.spring_model.initial_condition(sp_setup + z)["displacements"]
     else:
-        f = float(static_force(setup, valve_train.ratio * h_max))
+        f = float(static_force_at_lift(setup, valve_train.ratio * h_max))
         z = valve_train.ratio * h_max - setup.vt[VT_LASH] - f / valve_train.stiffness_at_valve
         guess = np.concatenate(
             [
@@ -227,7 +227,7 @@ def separated_frequencies(
     fset = spring.spring_model.internal_parameters()["Fset"]
 
     def force(z):
-        return float(static_force(setup, z))
+        return float(static_force_at_lift(setup, z))
 
     if valve_lift is None:
         top = r * float(np.max(setup.table.h)) - lash  # the rigid train's valve lift

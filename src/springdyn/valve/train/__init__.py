@@ -22,6 +22,8 @@ _EXPORTS = {
     "HLA": "hla",
     "GasForce": "gas_force",
     "Friction": "friction",
+    "Oil": "oil",
+    "oil_of": "oil",
 }
 __all__ = sorted(_EXPORTS)
 

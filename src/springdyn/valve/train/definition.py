@@ -50,8 +50,9 @@ from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
 from ..cam.follower import Follower
 from ..engine.layout import VT_GAS_N, VT_HLA, VT_SIZE
-from .hla import HLA, P_ATM, effective_bulk_modulus
+from .hla import HLA, P_ATM
 from .lever import LeverGeometry
+from .oil import oil_of
 
 __all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "series_stiffness", "KERNEL_SIZE"]
 
@@ -529,7 +530,7 @@ class ValveTrain(Parameters):
         else:  # the plunger's position in its fixed body
             origin, carried = self.hla_pivot_state()["plunger"], h.pivot_mass
         mass = h.plunger_mass
-        k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
+        k_oil = h.oil.bulk_modulus * h.area**2 / h.chamber_volume
         return [
             1.0,
             h.area,
@@ -545,9 +546,9 @@ class ValveTrain(Parameters):
             P_ATM + h.supply_pressure,
             h.cracking_pressure,
             h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.density()),
-            h.oil_bulk_modulus,
-            h.air_fraction,
-            h.polytropic_index,
+            h.oil.bulk_modulus,
+            h.oil.air_fraction,
+            h.oil.polytropic_index,
             h.collapse_travel,
             -h.extension_travel,
             10.0 * k_oil,
@@ -630,7 +631,7 @@ class ValveTrain(Parameters):
             parts.append(math.sqrt((self.cam_stiffness + self.pushrod_stiffness) / self.lifter_mass))
         if self.hla is not None:
             h = self.hla
-            k_oil = h.oil_bulk_modulus * h.area**2 / h.chamber_volume
+            k_oil = h.oil.bulk_modulus * h.area**2 / h.chamber_volume
             parts.append(math.sqrt((h.socket_stiffness + k_oil) / h.plunger_mass))
             if self.bucket_hla:  # the bucket body between the cam and the oil
                 parts.append(math.sqrt((self.cam_link_stiffness + k_oil) / self.follower_mass))
@@ -649,11 +650,25 @@ class ValveTrain(Parameters):
         """
 
         doc = load_toml(path)
-        if "geometry" in doc:
-            vt = cls.with_lever_drawing(doc, source=str(path))
-        else:
-            vt = super().from_toml(path)
-        return vt.with_hla(doc["hla"], source=str(path)) if "hla" in doc else vt
+        vt = cls.with_lever_drawing(doc, source=str(path)) if "geometry" in doc else super().from_toml(path)
+        return vt.with_document_hla(doc, source=str(path))
+
+    def with_document_hla(self, doc: dict, source: str | None = None) -> ValveTrain:
+        """The same train with the ``[hla]`` table of a definition and the train's one oil
+        (``[oil]`` with the oil keys of ``[hla]`` and ``[friction]``, :func:`springdyn.valve.train.oil.oil_of`);
+        the train itself where the definition has no ``[hla]``.
+
+        Parameters
+        ----------
+        doc : dict
+            The definition's tables (``load_toml``).
+        source : str, optional
+            The file, for messages.
+        """
+        if "hla" not in doc:
+            return self
+        oil, rest = oil_of(doc, source)
+        return self.with_hla(HLA.from_dict(rest["hla"], source=source, oil=oil), source=source)
 
     @classmethod
     def with_lever_drawing(cls, doc: dict, source: str | None = None) -> ValveTrain:
@@ -715,7 +730,7 @@ class ValveTrain(Parameters):
             return self
 
         h, r = self.hla, self.ratio
-        beta = effective_bulk_modulus(P_ATM + h.supply_pressure, h.oil_bulk_modulus, h.air_fraction, h.polytropic_index)
+        beta = h.oil.bulk_modulus_at(P_ATM + h.supply_pressure)
         k_pivot = series_stiffness(beta * h.area**2 / h.chamber_volume, h.socket_stiffness)
         if self.bucket_hla:  # the oil column under the bucket, in series with the stem contact
             return dataclasses.replace(self, hla=None, hla_stiffness=k_pivot, hla_preload=h.plunger_spring_force)

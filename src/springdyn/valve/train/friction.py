@@ -85,7 +85,9 @@ rolling resistance of a roller, and the valve stem seal.  Sources: docs/referenc
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -97,7 +99,7 @@ from ...core.params import Parameters, param
 from ...core.results import Result
 from ..cam.checks import flat_follower_radius, pitch_curve_curvature, pressure_angle, roller_cam_curvature
 from ..cam.follower import Follower
-from .hla import kinematic_viscosity, oil_density
+from .oil import Oil, oil_of
 
 __all__ = [
     "Friction",
@@ -155,10 +157,6 @@ CONTACTS = ("cam", "roller_bearing", "guide", "pivot")
 ENERGY_NOTE_TOL = 0.01
 #: Density of a steel roller [kg/m^3] (a roller without inertia or mass given is solid steel).
 STEEL_DENSITY = 7850.0
-#: Walther defaults: a 5W-30 engine oil's datasheet (as the ``[hla]`` table's) at 100 degC.
-_WALTHER_DEFAULTS = dict(
-    oil_temperature=373.15, oil_viscosity_40=60e-6, oil_viscosity_100=10.5e-6, oil_density_15=850.0
-)
 #: Smallest load per width of the film formula [N/m] (an unloaded contact carries no friction).
 _MIN_LOAD_PER_WIDTH = 1.0
 #: Revolutions the roller's spin may take to repeat (it repeats after the first stick).
@@ -166,13 +164,6 @@ _SPIN_REVOLUTIONS = 40
 
 #: Where each default comes from (stated in the docs and the generated TOML reference).
 DEFAULT_SOURCES = {
-    "oil_viscosity": (
-        "none: from the Walther equation ([ASTM D341], kinematic_viscosity of springdyn.valve.train.hla) at "
-        "oil_temperature, 8.46 mPa s for the defaults (a 5W-30 at 100 degC: 60 and 10.5 mm^2/s at 40 and "
-        "100 degC, 850 kg/m^3 at 15 degC, as the [hla] table)"
-    ),
-    "oil_temperature": "100 degC: the oil at the cam of a warm engine (90-110 degC, [Taylor])",
-    "pressure_viscosity": "2e-8 1/Pa: mineral engine oils about 1-3e-8 1/Pa ([Hamrock])",
     "surface_roughness": (
         "0.3 um: composite rms sqrt(sigma_1^2 + sigma_2^2) of a ground cam (0.2-0.3 um) and a ground or polished "
         "follower (0.1-0.2 um) ([Taylor])"
@@ -202,18 +193,17 @@ DEFAULT_SOURCES = {
     "pivot_friction": "0.1: oil-wetted steel ball or shaft pivot in boundary lubrication (as guide_friction)",
 }
 
-_OIL_WALTHER_KEYS = ("oil_temperature", "oil_viscosity_40", "oil_viscosity_100", "oil_density_15")
-
 
 @dataclass(frozen=True)
 class Friction(Parameters):
-    """The ``[friction]`` table: oil, roughness, friction coefficients, the roller's inertia and
-    bearing, the stem guide and the pivot.
+    """The ``[friction]`` table: roughness, friction coefficients, the roller's inertia and
+    bearing, the stem guide and the pivot; and the oil (:class:`~springdyn.valve.train.oil.Oil`).
 
-    It sits in the valve-train file beside ``[valve_train]`` and ``[follower]``.  The oil's
-    viscosity is either given (``oil_viscosity``) or taken from its datasheet by the Walther
-    equation (``oil_temperature``, ``oil_viscosity_40``, ``oil_viscosity_100``,
-    ``oil_density_15``), not both.  Defaults and their sources: :data:`DEFAULT_SOURCES`.
+    It sits in the valve-train file beside ``[valve_train]`` and ``[follower]``.  The oil is the
+    train's one ``[oil]`` table; its keys may still be given here by their older names
+    (``oil_viscosity``, ``oil_temperature``, ``oil_viscosity_40``, ``oil_viscosity_100``,
+    ``oil_density_15``, ``pressure_viscosity``: :data:`springdyn.valve.train.oil.OLDER_KEYS`),
+    with one meaning.  Defaults and their sources: :data:`DEFAULT_SOURCES`.
 
     Examples
     --------
@@ -221,42 +211,12 @@ class Friction(Parameters):
     >>> f.viscosity
     0.008
     >>> round(Friction().viscosity * 1e3, 2)
-    8.46
+    10.6
     """
 
-    oil_viscosity: float = param(
-        "Pa*s",
-        "dynamic viscosity of the oil at the contacts (default: from the Walther inputs)",
-        display="mPa*s",
-        positive=True,
-        default=None,
-    )
-    oil_temperature: float = param(
-        "K", "oil temperature of the Walther viscosity (default 100 degC)", display="degC", positive=True, default=None
-    )
-    oil_viscosity_40: float = param(
-        "m^2/s",
-        "oil kinematic viscosity at 40 degC (datasheet; default 60 mm^2/s)",
-        display="mm^2/s",
-        positive=True,
-        default=None,
-    )
-    oil_viscosity_100: float = param(
-        "m^2/s",
-        "oil kinematic viscosity at 100 degC (datasheet; default 10.5 mm^2/s)",
-        display="mm^2/s",
-        positive=True,
-        default=None,
-    )
-    oil_density_15: float = param("kg/m^3", "oil density at 15 degC (default 850 kg/m^3)", positive=True, default=None)
-    pressure_viscosity: float = param(
-        "1/Pa",
-        "pressure-viscosity coefficient alpha of the oil (Barus)",
-        display="1/GPa",
-        default=2e-8,
-        minimum=0.0,
-        maximum=1e-7,
-    )
+    #: The oil at the contacts (not a key: ``[oil]``, or the older keys of this table).
+    oil: Oil = field(default_factory=Oil)
+
     surface_roughness: float = param(
         "m",
         "composite rms roughness of cam and follower, sqrt(sigma_1^2 + sigma_2^2)",
@@ -330,22 +290,6 @@ class Friction(Parameters):
                 f"{self.boundary_friction:g} (a full film carries less friction than boundary contact): "
                 f"allowed 0 to {self.boundary_friction:g}"
             )
-        walther = [k for k in _OIL_WALTHER_KEYS if getattr(self, k) is not None]
-        if self.oil_viscosity is not None and walther:
-            raise InputError(
-                f"{where}oil_viscosity is given, so {', '.join(walther)} would be ignored: give either the "
-                "viscosity or the Walther inputs (temperature and datasheet viscosities), not both"
-            )
-        if self.oil_viscosity is None:
-            nu40, nu100 = self._walther("oil_viscosity_40"), self._walther("oil_viscosity_100")
-            if not nu100 < nu40:
-                raise InputError(
-                    f"{where}oil_viscosity_100 = {nu100 * 1e6:g} mm^2/s must be below oil_viscosity_40 = "
-                    f"{nu40 * 1e6:g} mm^2/s (oil thins as it warms)"
-                )
-            t = self._walther("oil_temperature")
-            if not 233.15 <= t <= 443.15:
-                raise InputError(f"{where}oil_temperature = {t - 273.15:.6g} degC must lie from -40 to 170 degC")
         if self.roller_inertia is not None and self.roller_mass is not None:
             raise InputError(f"{where}give roller_inertia or roller_mass (the inertia of a solid disc), not both")
         if not self.guide_clearance < 0.05 * self.stem_diameter:
@@ -355,21 +299,54 @@ class Friction(Parameters):
                 f"({0.05 * self.stem_diameter * 1e6:g} um)"
             )
 
-    def _walther(self, key: str) -> float:
-        value = getattr(self, key)
-        return _WALTHER_DEFAULTS[key] if value is None else value
+    @classmethod
+    def from_dict(cls, mapping, *, source: str | None = None, oil: Oil | None = None, **context):
+        """The table's keys (the oil's older keys among them, or the train's ``oil``).
+
+        Parameters
+        ----------
+        mapping : mapping
+            The ``[friction]`` table.
+        source : str, optional
+            The file, for messages.
+        oil : Oil, optional
+            The train's oil (:func:`springdyn.valve.train.oil.oil_of`): then the table holds no oil keys.
+        """
+        found, rest = oil_of({"friction": mapping}, source) if isinstance(mapping, Mapping) else (None, {})
+        table = rest.get("friction", mapping)
+        if oil is not None and isinstance(mapping, Mapping) and len(table) != len(mapping):
+            raise InputError("the oil is given twice: as the train's [oil] and in the [friction] table")
+        friction = super().from_dict(table, source=source, **context)
+        return dataclasses.replace(friction, oil=found if oil is None else oil)
+
+    @classmethod
+    def in_document(cls, doc: Mapping, source: str | None = None) -> Friction | None:
+        """The ``[friction]`` table of a definition with the train's one oil (``[oil]`` with the oil
+        keys of ``[hla]`` and ``[friction]``); None where the definition has no ``[friction]``.
+
+        Parameters
+        ----------
+        doc : mapping
+            The definition's tables (``load_toml``).
+        source : str, optional
+            The file, for messages.
+        """
+        if "friction" not in doc:
+            return None
+        oil, rest = oil_of(doc, source)
+        return cls.from_dict(rest["friction"], source=source, oil=oil)
 
     # -- resolved values ---------------------------------------------------------------
     @property
     def viscosity(self) -> float:
-        """Dynamic viscosity of the oil at the contacts [Pa s]: ``oil_viscosity``, or the
-        Walther viscosity ([ASTM D341], :func:`springdyn.valve.train.hla.kinematic_viscosity`) times
-        the density (:func:`springdyn.valve.train.hla.oil_density`) at ``oil_temperature``."""
-        if self.oil_viscosity is not None:
-            return self.oil_viscosity
-        t = self._walther("oil_temperature")
-        nu = float(kinematic_viscosity(t, self._walther("oil_viscosity_40"), self._walther("oil_viscosity_100")))
-        return nu * oil_density(t, self._walther("oil_density_15"))
+        """Dynamic viscosity of the oil at the contacts [Pa s] (:meth:`Oil.dynamic_viscosity
+        <springdyn.valve.train.oil.Oil.dynamic_viscosity>` at the oil's temperature)."""
+        return self.oil.dynamic_viscosity()
+
+    @property
+    def pressure_viscosity(self) -> float:
+        """Pressure-viscosity coefficient of the oil's films [1/Pa]."""
+        return self.oil.pressure_viscosity
 
     def roller_moment_of_inertia(self, follower) -> float:
         """The roller's moment of inertia about its pin [kg m^2].

@@ -8,13 +8,11 @@ plunger spring extends the plunger to take up lash on the base circle; under the
 the oil column carries the load and leaks down a little each event.  Collapse ``y`` is
 the plunger's travel into the body (positive in the direction that loses valve lift).
 
+The oil (its viscosity, density and bulk modulus with free air) is the train's one ``[oil]``
+(:mod:`.oil`); its keys may still be given here by their older names, with one meaning.
+
 One place per equation:
 
-- :func:`kinematic_viscosity` -- the oil's viscosity at a temperature from its datasheet
-  values at 40 and 100 degC (the Walther equation, ASTM D341);
-- :func:`oil_density` -- density at a temperature (volumetric expansion);
-- :func:`effective_bulk_modulus` -- aerated oil: the oil's bulk modulus in series with free
-  air bubbles compressed polytropically (Merritt 1967, eq. 2-19; Gholizadeh et al. 2011);
 - :func:`leak_conductance` -- laminar (Poiseuille) flow through the plunger's annular
   clearance, ``G = pi D c^3 (1 + 1.5 e^2) / (12 mu L)`` (Merritt 1967, eq. 3-59);
 - :func:`check_valve_flow` -- the check valve as a sharp-edged orifice,
@@ -32,20 +30,21 @@ Sources: docs/references.md, [Merritt], [ASTM D341], [Gholizadeh].
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
+from ..engine.layout import P_ATM
+from .oil import Oil, oil_of
 
 __all__ = [
     "P_ATM",
     "HLA",
-    "kinematic_viscosity",
-    "oil_density",
-    "effective_bulk_modulus",
     "leak_conductance",
     "check_valve_flow",
     "chamber_pressure_rate",
@@ -54,87 +53,11 @@ __all__ = [
     "LeakDownTest",
 ]
 
-#: Standard atmospheric pressure [Pa]: gauge pressures of the ``[hla]`` table are above it.
-P_ATM = 101325.0
-#: Lowest absolute chamber pressure [Pa]: below it the oil releases its air and vapour
-#: (the chamber cavitates); the pressure is held there and the check valve refills.
-P_CAVITATION = 2000.0
 #: The integrator of :func:`leak_down_test` (an implicit one: the oil spring is stiff).
 LEAK_DOWN_METHOD = "Radau"
 #: Pressure difference [Pa] below which the check valve's orifice flow is taken as laminar
 #: (linear in the pressure difference), so that the flow has a finite slope at zero.
 CHECK_VALVE_TRANSITION = 2000.0
-
-
-def kinematic_viscosity(temperature, nu_40, nu_100):
-    """Kinematic viscosity [m^2/s] of an oil at a temperature, from its datasheet values.
-
-    The Walther equation of ASTM D341: ``log10(log10(nu + 0.7)) = A - B log10(T)`` with
-    ``nu`` in mm^2/s and ``T`` in K, through the values at 40 and 100 degC.
-
-    Parameters
-    ----------
-    temperature : float or ndarray
-        Oil temperature [K].
-    nu_40, nu_100 : float
-        Kinematic viscosity at 40 degC and at 100 degC [m^2/s].
-
-    Examples
-    --------
-    >>> round(float(kinematic_viscosity(373.15, 60e-6, 10.5e-6)) * 1e6, 9)
-    10.5
-    """
-    t1, t2 = 313.15, 373.15
-    w1 = math.log10(math.log10(nu_40 * 1e6 + 0.7))
-    w2 = math.log10(math.log10(nu_100 * 1e6 + 0.7))
-    b = (w1 - w2) / (math.log10(t2) - math.log10(t1))
-    a = w1 + b * math.log10(t1)
-    w = a - b * np.log10(temperature)
-    return (10.0 ** (10.0**w) - 0.7) * 1e-6
-
-
-def oil_density(temperature, density_15, expansion=6.5e-4):
-    """Oil density [kg/m^3] at a temperature: ``rho_15 / (1 + alpha (T - 288.15 K))``.
-
-    Parameters
-    ----------
-    temperature : float
-        Oil temperature [K].
-    density_15 : float
-        Density at 15 degC [kg/m^3].
-    expansion : float
-        Volumetric thermal expansion coefficient [1/K] (6.5e-4 for mineral engine oils).
-    """
-    return density_15 / (1.0 + expansion * (temperature - 288.15))
-
-
-def effective_bulk_modulus(p_abs, oil_bulk_modulus, air_fraction, polytropic_index=1.0):
-    """Bulk modulus [Pa] of oil with free air at an absolute pressure.
-
-    ``x`` is the air's volume fraction at atmospheric pressure; at ``p`` the air takes
-    ``x (p_atm / p)^(1/n)`` of the oil volume and is ``n p`` stiff, in series with the oil:
-    ``beta_e = (V_o + V_a) / (V_o / beta + V_a / (n p))`` (Merritt 1967, eq. 2-19).
-
-    Parameters
-    ----------
-    p_abs : float
-        Absolute pressure [Pa].
-    oil_bulk_modulus : float
-        Bulk modulus of the air-free oil [Pa].
-    air_fraction : float
-        Free-air volume fraction at atmospheric pressure [-].
-    polytropic_index : float
-        Polytropic index of the bubbles' compression [-] (1 isothermal, 1.4 adiabatic).
-
-    Examples
-    --------
-    >>> round(effective_bulk_modulus(101325.0, 1.5e9, 0.0) / 1e9, 6)
-    1.5
-    """
-    p = max(p_abs, P_CAVITATION)
-    v_air = air_fraction * (P_ATM / p) ** (1.0 / polytropic_index)
-    v_oil = 1.0 - air_fraction
-    return (v_oil + v_air) / (v_oil / oil_bulk_modulus + v_air / (polytropic_index * p))
 
 
 def leak_conductance(diameter, radial_clearance, length, viscosity, eccentricity=0.0):
@@ -249,9 +172,12 @@ class HLA(Parameters):
     Examples
     --------
     >>> h = HLA()
-    >>> round(h.leak_down_seconds(200.0, 1e-3, h.oil_temperature), 1) > 0
+    >>> round(h.leak_down_seconds(200.0, 1e-3, h.oil.temperature), 1) > 0
     True
     """
+
+    #: The oil (not a key: ``[oil]``, or the older keys of this table, :data:`.oil.OLDER_KEYS`).
+    oil: Oil = field(default_factory=Oil)
 
     plunger_diameter: float = param("m", "plunger diameter", display="mm", positive=True, default=12e-3)
     radial_clearance: float = param(
@@ -282,21 +208,6 @@ class HLA(Parameters):
         "Pa", "pressure difference that opens the check valve", display="bar", nonnegative=True, default=5.0e3
     )
     discharge_coefficient: float = param("", "check valve discharge coefficient", positive=True, default=0.7)
-    oil_temperature: float = param("K", "oil temperature", display="degC", positive=True, default=363.15)
-    oil_viscosity_40: float = param(
-        "m^2/s", "oil kinematic viscosity at 40 degC (datasheet)", display="mm^2/s", positive=True, default=60e-6
-    )
-    oil_viscosity_100: float = param(
-        "m^2/s", "oil kinematic viscosity at 100 degC (datasheet)", display="mm^2/s", positive=True, default=10.5e-6
-    )
-    oil_density_15: float = param("kg/m^3", "oil density at 15 degC", positive=True, default=850.0)
-    oil_bulk_modulus: float = param("Pa", "bulk modulus of air-free oil", display="GPa", positive=True, default=1.5e9)
-    air_fraction: float = param(
-        "", "free-air volume fraction of the oil at atmospheric pressure", nonnegative=True, default=0.02
-    )
-    polytropic_index: float = param(
-        "", "polytropic index of the air bubbles (1 isothermal)", positive=True, default=1.0
-    )
     socket_stiffness: float = param(
         "N/m",
         "contact stiffness of the lever's socket on the plunger (a hydraulic bucket: the plunger on the stem)",
@@ -317,21 +228,6 @@ class HLA(Parameters):
     def _validate(self) -> None:
         if not self.eccentricity < 1.0:
             raise InputError(f"eccentricity = {self.eccentricity:g} must be below 1 (the plunger touching its bore)")
-        if not self.air_fraction < 0.5:
-            raise InputError(f"air_fraction = {self.air_fraction:g} must be below 0.5: that is foam, not oil")
-        if not 1.0 <= self.polytropic_index <= 1.4:
-            raise InputError(
-                f"polytropic_index = {self.polytropic_index:g} must lie from 1 (isothermal) to 1.4 (adiabatic)"
-            )
-        if not self.oil_viscosity_100 < self.oil_viscosity_40:
-            raise InputError(
-                f"oil_viscosity_100 = {self.oil_viscosity_100 * 1e6:g} mm^2/s must be below oil_viscosity_40 = "
-                f"{self.oil_viscosity_40 * 1e6:g} mm^2/s (oil thins as it warms)"
-            )
-        if not 233.15 <= self.oil_temperature <= 443.15:
-            raise InputError(
-                f"oil_temperature = {self.oil_temperature - 273.15:.6g} degC must lie from -40 to 170 degC"
-            )
         if not self.radial_clearance < 0.05 * self.plunger_diameter:
             raise InputError(
                 f"radial_clearance = {self.radial_clearance * 1e6:g} um is not a narrow clearance of a "
@@ -349,26 +245,45 @@ class HLA(Parameters):
         """Plunger area [m^2]."""
         return 0.25 * math.pi * self.plunger_diameter**2
 
+    @classmethod
+    def from_dict(cls, mapping, *, source: str | None = None, oil: Oil | None = None, **context):
+        """The table's keys (the oil's older keys among them, or the train's ``oil``).
+
+        Parameters
+        ----------
+        mapping : mapping
+            The ``[hla]`` table.
+        source : str, optional
+            The file, for messages.
+        oil : Oil, optional
+            The train's oil (:func:`springdyn.valve.train.oil.oil_of`): then the table holds no oil keys.
+        """
+        found, rest = oil_of({"hla": mapping}, source) if isinstance(mapping, Mapping) else (None, {})
+        table = rest.get("hla", mapping)
+        if oil is not None and isinstance(mapping, Mapping) and len(table) != len(mapping):
+            raise InputError("the oil is given twice: as the train's [oil] and in the [hla] table")
+        hla = super().from_dict(table, source=source, **context)
+        return dataclasses.replace(hla, oil=found if oil is None else oil)
+
     def viscosity(self, temperature: float | None = None) -> float:
-        """Dynamic viscosity of the oil [Pa s] at a temperature (default: ``oil_temperature``).
+        """Dynamic viscosity of the oil [Pa s] at a temperature (default: the oil's).
 
         Parameters
         ----------
         temperature : float, optional
             Oil temperature [K].
         """
-        t = self.oil_temperature if temperature is None else temperature
-        return float(kinematic_viscosity(t, self.oil_viscosity_40, self.oil_viscosity_100)) * self.density(t)
+        return self.oil.dynamic_viscosity(temperature)
 
     def density(self, temperature: float | None = None) -> float:
-        """Oil density [kg/m^3] at a temperature (default: ``oil_temperature``).
+        """Oil density [kg/m^3] at a temperature (default: the oil's).
 
         Parameters
         ----------
         temperature : float, optional
             Oil temperature [K].
         """
-        return oil_density(self.oil_temperature if temperature is None else temperature, self.oil_density_15)
+        return self.oil.density(temperature)
 
     def conductance(self, temperature: float | None = None) -> float:
         """Leakage conductance [m^3/(s Pa)] at a temperature (:func:`leak_conductance`).
@@ -461,8 +376,7 @@ def leak_down_test(hla: HLA, load: float, travel: float, temperature: float | No
     drag = 0.5 * math.pi * hla.plunger_diameter * hla.radial_clearance
     p1 = ps + (load - hla.plunger_spring_force) / a
 
-    def beta(p):
-        return effective_bulk_modulus(p, hla.oil_bulk_modulus, hla.air_fraction, hla.polytropic_index)
+    beta = hla.oil.bulk_modulus_at
 
     y0 = hla.chamber_volume * quad(lambda p: 1.0 / beta(p), ps, p1, limit=200)[0] / a
     if not 0 < y0 + travel < hla.collapse_travel:
