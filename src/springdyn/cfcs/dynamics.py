@@ -18,10 +18,10 @@ from scipy.integrate import solve_ivp
 
 from ..core.errors import InputError, SolverError
 from .kinematics import (
-    coupler_root,
     crank_rates,
     deflection_from_theta2,
     slider_jacobian,
+    spring_angle_rate_derivative,
     spring_angle_rate_ratio,
 )
 from .statics import (
@@ -113,8 +113,8 @@ def generalized_mass_eq19(theta2, m2, m3, ms, r2, r3):
 def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
     """``dM/dtheta2`` [kg*m^2/rad]; ``M'/2`` is the coefficient of theta2'^2 in Eq. (19).
 
-    Differentiated from :func:`generalized_mass` with
-    ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (docs/references.md: the
+    Differentiated from :func:`generalized_mass` with ``du/dtheta2`` of
+    :func:`springdyn.cfcs.kinematics.spring_angle_rate_derivative` (docs/references.md: the
     velocity-squared coefficient is ``M'/2``).
 
     Parameters
@@ -133,9 +133,8 @@ def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
         Coupler length r3 [m], longer than r2.
     """
     s, c = np.sin(theta2), np.cos(theta2)
-    d = coupler_root(theta2, r2, r3)
-    u = r2 * c / d
-    du = -r2 * s * (r3 * r3 - r2 * r2) / d**3
+    u = spring_angle_rate_ratio(theta2, r2, r3)
+    du = spring_angle_rate_derivative(theta2, r2, r3)
     return m3 * (r2 * r2 * (2.0 * s * c * (1.0 + u) + s * s * du) + 2.0 * r3 * r3 * u * du / 3.0) + ms * r2 * r2 * (
         2.0 * s * c * (1.0 + u) ** 2 + 2.0 * s * s * (1.0 + u) * du
     )
