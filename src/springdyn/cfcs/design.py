@@ -24,17 +24,16 @@ import dataclasses
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 from scipy.optimize import brentq, minimize_scalar
 
 from ..core.errors import InputError
 from ..core.io import atomic_open
 from ..core.plotting import new_figure
-from ..core.results import Result
 from ..core.units import format_quantity
 from .beam import beam_force_curve
 from .kinematics import kinematic_limit_deflection, spring_angle, theta2_from_deflection
 from .pivot import FLEXURE_MODELS, allowable_spring_angle, default_plate_bending, plate_modulus, strip_buckling_load
+from .results import _Table
 from .statics import percent_constant_force_energy, static_force
 
 __all__ = ["design_flattest", "DesignResult", "design", "normalized_pcf", "min_ratio_for_stroke"]
@@ -121,7 +120,7 @@ def normalized_pcf(ratio, stroke_fraction, n=401, start_fraction=0.0):
 
 
 @dataclasses.dataclass(repr=False)
-class DesignResult(Result):
+class DesignResult(_Table):
     """A CFCS design and its verification (force curve, PCF, stress)."""
 
     summary: dict
@@ -129,6 +128,7 @@ class DesignResult(Result):
     force: np.ndarray
     stress: np.ndarray
 
+    dim = "deflection_m"
     title = "constant-force spring design"
 
     @property
@@ -140,19 +140,6 @@ class DesignResult(Result):
 
     def columns(self) -> dict:
         return {"deflection_m": self.deflection, "force_N": self.force, "stress_Pa": self.stress}
-
-    def to_xarray(self) -> xr.Dataset:
-        ds = xr.Dataset(
-            {
-                "force_N": ("deflection_m", self.force, {"units": "N"}),
-                "stress_Pa": ("deflection_m", self.stress, {"units": "Pa"}),
-            },
-            coords={"deflection_m": ("deflection_m", self.deflection, {"units": "m"})},
-        )
-        ds.attrs.update(
-            {k: v for k, v in self.summary.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
-        )
-        return ds
 
     def to_params(self, crank_mass, coupler_mass, slider_mass, **extra):
         """A :class:`~springdyn.cfcs.params.CFCSParams` of this design (masses are not designed).
