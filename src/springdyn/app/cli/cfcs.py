@@ -189,29 +189,24 @@ def _model_option(p, default=None):
 
 
 def _motion_options(p, *, omega_help, required=False, prefix=""):
-    if prefix:  # the base of the forward problem: no preload
-        p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
-        p.add_argument(
-            f"--{prefix}amplitude",
-            default=DEFAULT_AMPLITUDE,
-            help="stroke of the base sinusoid: a "
-            "length such as 72mm or a percentage of r2 + r3 such as '40%%' (default 40%%)",
+    """``--omega``, ``--amplitude`` and ``--offset`` of the sinusoid; with ``prefix`` (``"base-"``) those
+    of the forward problem's moving base, which starts at 0 (no preload)."""
+    if prefix:
+        amplitude_help = "stroke of the base sinusoid: a length such as 72mm or a percentage of r2 + r3 such as "
+        offset, offset_help = "0", "base position at t = 0 (default 0), e.g. 5mm"
+    else:
+        amplitude_help = (
+            "stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
+            "r2 + r3 such as "
         )
-        p.add_argument(f"--{prefix}offset", default="0", help="base position at t = 0 (default 0), e.g. 5mm")
-        return
+        offset = DEFAULT_OFFSET
+        offset_help = (
+            "deflection at t = 0: a preload, a length or a percentage of r2 + r3 (default 2.5%%); "
+            "0 starts at the toggle"
+        )
     p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
-    p.add_argument(
-        f"--{prefix}amplitude",
-        default=DEFAULT_AMPLITUDE,
-        help="stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
-        "r2 + r3 such as '40%%' (default 40%%)",
-    )
-    p.add_argument(
-        f"--{prefix}offset",
-        default=DEFAULT_OFFSET,
-        help="deflection at t = 0: a preload, a length or a percentage of r2 + r3 (default 2.5%%); "
-        "0 starts at the toggle",
-    )
+    p.add_argument(f"--{prefix}amplitude", default=DEFAULT_AMPLITUDE, help=amplitude_help + "'40%%' (default 40%%)")
+    p.add_argument(f"--{prefix}offset", default=offset, help=offset_help)
 
 
 def _q(text, unit: str, option: str) -> float:
