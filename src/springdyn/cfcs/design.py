@@ -94,6 +94,13 @@ def min_ratio_for_stroke(stroke_fraction):
     return (1.0 - q * q) / (1.0 + q * q)
 
 
+def _ratio_grid(reach, points):
+    """``points`` ratios r2/r3 where the design looks for the flattest force: from the smallest whose
+    kinematic limit reaches ``reach (r2 + r3)`` (:func:`min_ratio_for_stroke`; at least 0.02) to 0.995."""
+    lo = min(max(min_ratio_for_stroke(reach) * (1 + 1e-9), 0.02), 0.995)
+    return np.linspace(lo, 0.995, points)
+
+
 def _geometry(ratio, total_length):
     r3 = total_length / (1.0 + ratio)
     return ratio * r3, r3
@@ -394,8 +401,7 @@ def design(
             "use a longer mechanism (smaller stroke fraction)"
         )
     sigma = allowable_stress / safety_factor
-    lo = min(max(min_ratio_for_stroke(reach) * (1 + 1e-9), 0.02), 0.995)
-    ratios = np.linspace(lo, 0.995, 200)
+    ratios = _ratio_grid(reach, 200)
 
     def width_limit(ratio):
         return max_width if max_width is not None else _geometry(ratio, length)[1]
@@ -678,14 +684,14 @@ def _largest_fraction_for_pcf(min_pcf, n, start_fraction=0.0):
 
 
 def _flattest_pcf(stroke_fraction, n, start_fraction=0.0):
-    lo = min(max(min_ratio_for_stroke(stroke_fraction + start_fraction) * (1 + 1e-9), 0.02), 0.995)
-    return max(normalized_pcf(r, stroke_fraction, n, start_fraction) for r in np.linspace(lo, 0.995, 60))
+    return max(
+        normalized_pcf(r, stroke_fraction, n, start_fraction) for r in _ratio_grid(stroke_fraction + start_fraction, 60)
+    )
 
 
 def _flattest_ratio(stroke_fraction, n):
     """The ratio r2/r3 of largest PCF on a grid (no limits)."""
-    lo = min(max(min_ratio_for_stroke(stroke_fraction) * (1 + 1e-9), 0.02), 0.995)
-    ratios = np.linspace(lo, 0.995, 100)
+    ratios = _ratio_grid(stroke_fraction, 100)
     return ratios[int(np.argmax([normalized_pcf(r, stroke_fraction, n) for r in ratios]))]
 
 
