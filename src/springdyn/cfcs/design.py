@@ -24,17 +24,16 @@ import dataclasses
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 from scipy.optimize import brentq, minimize_scalar
 
 from ..core.errors import InputError
 from ..core.io import atomic_open
 from ..core.plotting import new_figure
-from ..core.results import Result
 from ..core.units import format_quantity
 from .beam import beam_force_curve
 from .kinematics import kinematic_limit_deflection, spring_angle, theta2_from_deflection
 from .pivot import FLEXURE_MODELS, allowable_spring_angle, default_plate_bending, plate_modulus, strip_buckling_load
+from .results import _Table
 from .statics import percent_constant_force_energy, static_force
 
 __all__ = ["design_flattest", "DesignResult", "design", "normalized_pcf", "min_ratio_for_stroke"]
@@ -95,6 +94,13 @@ def min_ratio_for_stroke(stroke_fraction):
     return (1.0 - q * q) / (1.0 + q * q)
 
 
+def _ratio_grid(reach, points):
+    """``points`` ratios r2/r3 where the design looks for the flattest force: from the smallest whose
+    kinematic limit reaches ``reach (r2 + r3)`` (:func:`min_ratio_for_stroke`; at least 0.02) to 0.995."""
+    lo = min(max(min_ratio_for_stroke(reach) * (1 + 1e-9), 0.02), 0.995)
+    return np.linspace(lo, 0.995, points)
+
+
 def _geometry(ratio, total_length):
     r3 = total_length / (1.0 + ratio)
     return ratio * r3, r3
@@ -121,7 +127,7 @@ def normalized_pcf(ratio, stroke_fraction, n=401, start_fraction=0.0):
 
 
 @dataclasses.dataclass(repr=False)
-class DesignResult(Result):
+class DesignResult(_Table):
     """A CFCS design and its verification (force curve, PCF, stress)."""
 
     summary: dict
@@ -129,6 +135,7 @@ class DesignResult(Result):
     force: np.ndarray
     stress: np.ndarray
 
+    dim = "deflection_m"
     title = "constant-force spring design"
 
     @property
@@ -140,19 +147,6 @@ class DesignResult(Result):
 
     def columns(self) -> dict:
         return {"deflection_m": self.deflection, "force_N": self.force, "stress_Pa": self.stress}
-
-    def to_xarray(self) -> xr.Dataset:
-        ds = xr.Dataset(
-            {
-                "force_N": ("deflection_m", self.force, {"units": "N"}),
-                "stress_Pa": ("deflection_m", self.stress, {"units": "Pa"}),
-            },
-            coords={"deflection_m": ("deflection_m", self.deflection, {"units": "m"})},
-        )
-        ds.attrs.update(
-            {k: v for k, v in self.summary.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
-        )
-        return ds
 
     def to_params(self, crank_mass, coupler_mass, slider_mass, **extra):
         """A :class:`~springdyn.cfcs.params.CFCSParams` of this design (masses are not designed).
@@ -407,8 +401,7 @@ def design(
             "use a longer mechanism (smaller stroke fraction)"
         )
     sigma = allowable_stress / safety_factor
-    lo = min(max(min_ratio_for_stroke(reach) * (1 + 1e-9), 0.02), 0.995)
-    ratios = np.linspace(lo, 0.995, 200)
+    ratios = _ratio_grid(reach, 200)
 
     def width_limit(ratio):
         return max_width if max_width is not None else _geometry(ratio, length)[1]
@@ -691,14 +684,14 @@ def _largest_fraction_for_pcf(min_pcf, n, start_fraction=0.0):
 
 
 def _flattest_pcf(stroke_fraction, n, start_fraction=0.0):
-    lo = min(max(min_ratio_for_stroke(stroke_fraction + start_fraction) * (1 + 1e-9), 0.02), 0.995)
-    return max(normalized_pcf(r, stroke_fraction, n, start_fraction) for r in np.linspace(lo, 0.995, 60))
+    return max(
+        normalized_pcf(r, stroke_fraction, n, start_fraction) for r in _ratio_grid(stroke_fraction + start_fraction, 60)
+    )
 
 
 def _flattest_ratio(stroke_fraction, n):
     """The ratio r2/r3 of largest PCF on a grid (no limits)."""
-    lo = min(max(min_ratio_for_stroke(stroke_fraction) * (1 + 1e-9), 0.02), 0.995)
-    ratios = np.linspace(lo, 0.995, 100)
+    ratios = _ratio_grid(stroke_fraction, 100)
     return ratios[int(np.argmax([normalized_pcf(r, stroke_fraction, n) for r in ratios]))]
 
 

@@ -36,9 +36,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .dynamics import generalized_mass, generalized_mass_derivative, integrate_crank, kinetic_energy
-from .kinematics import deflection_from_theta2, slider_jacobian
-from .statics import dissipative_torque, spring_energy, spring_torque, static_force
+from .dynamics import crank_terms, integrate_crank, kinetic_energy
+from .kinematics import deflection_from_theta2
+from .statics import spring_energy
 
 __all__ = [
     "DRIVE_SIGN_SMOOTHING",
@@ -116,25 +116,11 @@ def driven_rhs(t, y, motion, k_d, c_d, p, sign_smoothing):
         Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
     """
     th, thd = y[0], y[1]
-    r2, r3 = p["r2"], p["r3"]
-    g = slider_jacobian(th, r2, r3)
-    x = deflection_from_theta2(th, r2, r3)
-    v = g * thd
+    g, x, v, m, dm, torque, pin, slider = crank_terms(th, thd, p, sign_smoothing)
     md = motion(t)
     xd, vd = float(md[0]), float(md[1])
-    f = k_d * (xd - x) + c_d * (vd - v)
-    m = generalized_mass(th, p["m2"], p["m3"], p["ms"], r2, r3)
-    dm = generalized_mass_derivative(th, p["m2"], p["m3"], p["ms"], r2, r3)
-    spring = p.get("spring_force")
-    f_spring = static_force(th, p["k3"], r2, r3) if spring is None else float(spring(x))
-    torque = spring_torque(th, p["k3"], r2, r3) if spring is None else f_spring * g
-    tau_d = dissipative_torque(
-        th, f_spring, p["pin_friction"], p["friction_model"], p["shear_angle"], p["axial_force"], r2, r3
-    )
-    friction = (
-        tau_d * np.tanh(thd / sign_smoothing)
-        + p["slider_friction"] * np.tanh(v / (sign_smoothing * max(r2, 1e-300))) * g
-    )
+    f = drive_force(xd, vd, x, v, k_d, c_d)
+    friction = pin + slider
     acc = (f * g - 0.5 * dm * thd * thd - torque - friction) / m
     return np.array([thd, acc, f * vd, friction * thd, c_d * (vd - v) ** 2])
 

@@ -18,10 +18,10 @@ from scipy.integrate import solve_ivp
 
 from ..core.errors import InputError, SolverError
 from .kinematics import (
-    coupler_root,
     crank_rates,
     deflection_from_theta2,
     slider_jacobian,
+    spring_angle_rate_derivative,
     spring_angle_rate_ratio,
 )
 from .statics import (
@@ -39,10 +39,12 @@ __all__ = [
     "generalized_mass_eq19",
     "generalized_mass_derivative",
     "kinetic_energy",
+    "inertia_force",
     "TOGGLE_FLOOR",
     "drive_force_components",
     "toggle_inertia_limit",
     "inverse_dynamics",
+    "crank_terms",
     "forward_rhs",
     "integrate_forward",
     "energy",
@@ -113,8 +115,8 @@ def generalized_mass_eq19(theta2, m2, m3, ms, r2, r3):
 def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
     """``dM/dtheta2`` [kg*m^2/rad]; ``M'/2`` is the coefficient of theta2'^2 in Eq. (19).
 
-    Differentiated from :func:`generalized_mass` with
-    ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (docs/references.md: the
+    Differentiated from :func:`generalized_mass` with ``du/dtheta2`` of
+    :func:`springdyn.cfcs.kinematics.spring_angle_rate_derivative` (docs/references.md: the
     velocity-squared coefficient is ``M'/2``).
 
     Parameters
@@ -133,9 +135,8 @@ def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
         Coupler length r3 [m], longer than r2.
     """
     s, c = np.sin(theta2), np.cos(theta2)
-    d = coupler_root(theta2, r2, r3)
-    u = r2 * c / d
-    du = -r2 * s * (r3 * r3 - r2 * r2) / d**3
+    u = spring_angle_rate_ratio(theta2, r2, r3)
+    du = spring_angle_rate_derivative(theta2, r2, r3)
     return m3 * (r2 * r2 * (2.0 * s * c * (1.0 + u) + s * s * du) + 2.0 * r3 * r3 * u * du / 3.0) + ms * r2 * r2 * (
         2.0 * s * c * (1.0 + u) ** 2 + 2.0 * s * s * (1.0 + u) * du
     )
@@ -162,6 +163,35 @@ def kinetic_energy(theta2, theta2dot, m2, m3, ms, r2, r3):
         Coupler length r3 [m], longer than r2.
     """
     return 0.5 * generalized_mass(theta2, m2, m3, ms, r2, r3) * theta2dot * theta2dot
+
+
+def inertia_force(theta2, theta2dot, theta2ddot, jacobian, m2, m3, ms, r2, r3):
+    """Slider force of the links' inertia ``(M th2'' + M'/2 th2'^2) / G`` [N] (Eq. (19) over G).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    theta2dot : float or array_like
+        Crank angular speed [rad/s].
+    theta2ddot : float or array_like
+        Crank angular acceleration [rad/s^2].
+    jacobian : float or array_like
+        ``G = dx/dtheta2`` at ``theta2`` [m/rad] (0 at the toggle, where the result is 0/0).
+    m2 : float
+        Crank mass [kg].
+    m3 : float
+        Coupler mass [kg].
+    ms : float
+        Slider mass [kg].
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
+    m = generalized_mass(theta2, m2, m3, ms, r2, r3)
+    dm = generalized_mass_derivative(theta2, m2, m3, ms, r2, r3)
+    return (m * theta2ddot + 0.5 * dm * theta2dot * theta2dot) / jacobian
 
 
 #: Crank angle [rad] below which the exact inertia formula loses accuracy (0/0 at the toggle);
@@ -234,11 +264,9 @@ def drive_force_components(
         (dissipative terms capped) and ``at_toggle`` (inertia from the limit).
     """
     th, thd, thdd, jac = crank_rates(x, xdot, xddot, r2, r3)
-    m = generalized_mass(th, m2, m3, ms, r2, r3)
-    dm = generalized_mass_derivative(th, m2, m3, ms, r2, r3)
     f_static = static_force(th, k3, r2, r3) if spring_force is None else np.asarray(spring_force(x), dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
-        f_inertia = (m * thdd + 0.5 * dm * thd * thd) / jac
+        f_inertia = inertia_force(th, thd, thdd, jac, m2, m3, ms, r2, r3)
     at_toggle = th < TOGGLE_FLOOR
     f_inertia = np.where(at_toggle, np.nan, f_inertia)
     # x' and theta2' share their sign (G >= 0); a velocity at rounding level (turning points such as
@@ -300,10 +328,7 @@ def toggle_inertia_limit(motion, t0, period, *, r2, r3, m2, m3, ms):
         x, xd, xdd = motion(tt)
         th, thd, thdd, jac = crank_rates(np.clip(x, 0.0, None), xd, xdd, r2, r3)
         if np.all(th >= 2 * TOGGLE_FLOOR):
-            f = (
-                generalized_mass(th, m2, m3, ms, r2, r3) * thdd
-                + 0.5 * generalized_mass_derivative(th, m2, m3, ms, r2, r3) * thd * thd
-            ) / jac
+            f = inertia_force(th, thd, thdd, jac, m2, m3, ms, r2, r3)
             return float((4.0 * (f[1] + f[2]) - (f[0] + f[3])) / 6.0)
         delta *= 2.0
     return 0.0
@@ -339,13 +364,58 @@ def inverse_dynamics(motion, t, period, *, theta2_cutoff, **p):
     return c
 
 
+def crank_terms(theta2, theta2dot, p, sign_smoothing):
+    """The mechanism's terms of Lagrange's equation at ``(theta2, theta2')``, dissipation smoothed.
+
+    The one home of the crank's equation of motion without the drive, for the forward
+    (:func:`forward_rhs`) and the driven (:func:`springdyn.cfcs.drive.driven_rhs`) problems:
+    the slider's deflection ``x(theta2)`` and velocity ``x' = G theta2'``, ``M`` and ``M'``, the
+    spring torque ``dV/dtheta2`` (the elastica's ``F_spring(x) G`` with ``p["spring_force"]``)
+    and the dissipative torques with the Coulomb signs smoothed, ``sgn~(v) = tanh(v / v_s)``:
+    ``tau_d sgn~(theta2')`` and ``F_slider sgn~(x') G`` (the slider's in units of ``theta2'``).
+
+    Parameters
+    ----------
+    theta2 : float
+        Crank angle [rad].
+    theta2dot : float
+        Crank speed [rad/s].
+    p : mapping
+        Mechanism values as in :func:`drive_force_components` (SI).
+    sign_smoothing : float
+        Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
+
+    Returns
+    -------
+    tuple of float
+        ``G`` [m/rad], ``x`` [m], ``x'`` [m/s], ``M`` [kg*m^2], ``M'`` [kg*m^2/rad], the spring
+        torque, the pin and axial-force torque and the slider friction torque [N*m].
+    """
+    th, thd = theta2, theta2dot
+    r2, r3 = p["r2"], p["r3"]
+    g = slider_jacobian(th, r2, r3)
+    x = deflection_from_theta2(th, r2, r3)
+    xdot = g * thd
+    m = generalized_mass(th, p["m2"], p["m3"], p["ms"], r2, r3)
+    dm = generalized_mass_derivative(th, p["m2"], p["m3"], p["ms"], r2, r3)
+    spring = p.get("spring_force")
+    f_spring = static_force(th, p["k3"], r2, r3) if spring is None else float(spring(x))
+    torque = spring_torque(th, p["k3"], r2, r3) if spring is None else f_spring * g
+    tau_d = dissipative_torque(
+        th, f_spring, p["pin_friction"], p["friction_model"], p["shear_angle"], p["axial_force"], r2, r3
+    )
+    pin = tau_d * np.tanh(thd / sign_smoothing)
+    slider = p["slider_friction"] * np.tanh(xdot / (sign_smoothing * max(r2, 1e-300))) * g
+    return g, x, xdot, m, dm, torque, pin, slider
+
+
 def forward_rhs(t, state, force_fn, p, sign_smoothing):
     """Right-hand side of the forward problem, state ``(theta2, theta2')``.
 
     ``M th2'' = F G - M'/2 th2'^2 - dV/dth2 - tau_d sgn~(th2') - F_slider sgn~(x') G``
     where ``sgn~(v) = tanh(v / v_s)`` smooths the Coulomb sign (v_s = ``sign_smoothing``
-    [rad/s]; the slider velocity is ``G th2'``).  No division by G: the forward problem
-    passes through the toggle without a cut-off.
+    [rad/s]; the slider velocity is ``G th2'``), the terms of :func:`crank_terms`.  No
+    division by G: the forward problem passes through the toggle without a cut-off.
 
     Parameters
     ----------
@@ -361,22 +431,9 @@ def forward_rhs(t, state, force_fn, p, sign_smoothing):
         Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
     """
     th, thd = state
-    r2, r3 = p["r2"], p["r3"]
-    g = slider_jacobian(th, r2, r3)
-    x = deflection_from_theta2(th, r2, r3)
-    xdot = g * thd
+    g, x, xdot, m, dm, torque, pin, slider = crank_terms(th, thd, p, sign_smoothing)
     f = force_fn(t, x, xdot)
-    m = generalized_mass(th, p["m2"], p["m3"], p["ms"], r2, r3)
-    dm = generalized_mass_derivative(th, p["m2"], p["m3"], p["ms"], r2, r3)
-    smooth = np.tanh(thd / sign_smoothing)
-    spring = p.get("spring_force")
-    f_spring = static_force(th, p["k3"], r2, r3) if spring is None else float(spring(x))
-    tau_d = dissipative_torque(
-        th, f_spring, p["pin_friction"], p["friction_model"], p["shear_angle"], p["axial_force"], r2, r3
-    )
-    slider = p["slider_friction"] * np.tanh(xdot / (sign_smoothing * max(r2, 1e-300))) * g
-    torque = spring_torque(th, p["k3"], r2, r3) if spring is None else f_spring * g
-    rhs = f * g - 0.5 * dm * thd * thd - torque - tau_d * smooth - slider
+    rhs = f * g - 0.5 * dm * thd * thd - torque - pin - slider
     return np.array([thd, rhs / m])
 
 

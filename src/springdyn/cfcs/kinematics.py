@@ -28,6 +28,7 @@ __all__ = [
     "coupler_angle",
     "spring_angle",
     "spring_angle_rate_ratio",
+    "spring_angle_rate_derivative",
     "slider_jacobian",
     "slider_jacobian_derivative",
     "dr1_dtheta2",
@@ -168,6 +169,22 @@ def spring_angle_rate_ratio(theta2, r2, r3):
     return r2 * np.cos(theta2) / coupler_root(theta2, r2, r3)
 
 
+def spring_angle_rate_derivative(theta2, r2, r3):
+    """``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` [1/rad], the derivative of
+    :func:`spring_angle_rate_ratio` (``D^2 - r2^2 cos^2 theta2 = r3^2 - r2^2``).
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    """
+    return -r2 * np.sin(theta2) * (r3 * r3 - r2 * r2) / coupler_root(theta2, r2, r3) ** 3
+
+
 def slider_jacobian(theta2, r2, r3):
     """``G = dx/dtheta2 = -dr1/dtheta2 = r2 sin theta2 (1 + u)`` [m/rad].
 
@@ -205,8 +222,8 @@ def dr1_dtheta2(theta2, r2, r3):
 def slider_jacobian_derivative(theta2, r2, r3):
     """``dG/dtheta2 = r2 cos th2 (1 + u) + r2 sin th2 du/dth2`` [m/rad^2].
 
-    With ``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` (derived from
-    :func:`spring_angle_rate_ratio`; ``D^2 - r2^2 cos^2 = r3^2 - r2^2``).
+    With ``u`` of :func:`spring_angle_rate_ratio` and ``du/dtheta2`` of
+    :func:`spring_angle_rate_derivative`.
 
     Parameters
     ----------
@@ -218,9 +235,8 @@ def slider_jacobian_derivative(theta2, r2, r3):
         Coupler length r3 [m], longer than r2.
     """
     s, c = np.sin(theta2), np.cos(theta2)
-    d = coupler_root(theta2, r2, r3)
-    u = r2 * c / d
-    du = -r2 * s * (r3 * r3 - r2 * r2) / d**3
+    u = spring_angle_rate_ratio(theta2, r2, r3)
+    du = spring_angle_rate_derivative(theta2, r2, r3)
     return r2 * c * (1.0 + u) + r2 * s * du
 
 

@@ -1071,7 +1071,7 @@ class CFCS:
             def force_fn(t, x, xd):
                 b = base_motion(t)
                 xb, vb = (b[0], b[1]) if isinstance(b, tuple) else (b, 0.0)
-                return base_stiffness * (xb - x) + base_damping * (vb - xd)
+                return drive_force(xb, vb, x, xd, base_stiffness, base_damping)
 
         t = np.linspace(0.0, t_end, n)
         vals = self._values(hi=p.max_deflection if self.beam else None)

@@ -7,6 +7,7 @@ Each result keeps SI arrays and a ``summary`` dict whose keys carry their unit
 from __future__ import annotations
 
 import dataclasses
+from typing import ClassVar
 
 import numpy as np
 import xarray as xr
@@ -36,34 +37,42 @@ def running_pcf(force):
 
 
 class _Table(Result):
-    """Shared plumbing of the CFCS results on :class:`~springdyn.core.results.Result`.
+    """Shared plumbing of the CFCS results (and :class:`springdyn.cfcs.design.DesignResult`) on
+    :class:`~springdyn.core.results.Result`.
 
-    ``columns()`` gives ``{name_unit: array}``; :meth:`to_xarray` turns it into the dataset
-    (each variable with the unit its name carries), from which the base derives the CSV.
+    ``columns()`` gives ``{name_unit: array}``, the first column the coordinate along
+    :attr:`dim`; :meth:`to_xarray` turns it into the dataset (each variable with the unit its
+    name carries, the summary's scalars as attributes), from which the base derives the CSV.
     The summary is stored by the model that builds the result (a dataclass field).
     """
 
     title = "constant-force spring result"
+    #: Name of the dataset's dimension (the rows of the CSV).
+    dim: ClassVar[str]
 
     def columns(self) -> dict:  # pragma: no cover - overridden
         raise NotImplementedError
 
-    def _dataset(self, dim: str) -> xr.Dataset:
+    def to_xarray(self) -> xr.Dataset:
         cols = self.columns()
         first = next(iter(cols))
         coord = cols.pop(first)
         ds = xr.Dataset(
-            {k: (dim, np.asarray(v), {"units": units_from_name(k)}) for k, v in cols.items()},
-            coords={first: (dim, coord, {"units": units_from_name(first)})},
+            {k: (self.dim, np.asarray(v), {"units": units_from_name(k)}) for k, v in cols.items()},
+            coords={first: (self.dim, coord, {"units": units_from_name(first)})},
         )
         ds.attrs.update(
-            {
-                k: (v if v is not None else "none")
-                for k, v in self.summary.items()
-                if isinstance(v, (int, float, str)) and not isinstance(v, bool)
-            }
+            {k: v for k, v in self.summary.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)}
         )
         return ds
+
+    @staticmethod
+    def _panels(ax, height: float = 7.0):
+        """The figure, its main axes and a second panel below them (``None`` when drawing into ``ax``)."""
+        if ax is None:
+            fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, height), sharex=True)
+            return fig, ax, ax2
+        return ax.figure, ax, None
 
 
 @dataclasses.dataclass(repr=False)
@@ -92,9 +101,7 @@ class StaticResult(_Table):
         cols.update(self.extra)
         return cols
 
-    def to_xarray(self) -> xr.Dataset:
-        return self._dataset("sample")
-
+    dim = "sample"
     title = "constant-force spring: static force"
 
     def _plot(self, ax=None):
@@ -153,16 +160,11 @@ class DynamicResult(_Table):
         cols["in_toggle_zone"] = self.in_toggle_zone.astype(int)
         return cols
 
-    def to_xarray(self) -> xr.Dataset:
-        return self._dataset("time")
-
+    dim = "time"
     title = "constant-force spring: dynamic force"
 
     def _plot(self, ax=None, *, label: str = "dynamic"):
-        if ax is None:
-            fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 7.0), sharex=True)
-        else:
-            fig, ax2 = ax.figure, None
+        fig, ax, ax2 = self._panels(ax)
         ax.plot(self.time, self.force, label=label, lw=2)
         ax.plot(self.time, self.force_static, "--", label="static force at the same deflection")
         ax.set_ylabel("slider force [N]")
@@ -199,9 +201,7 @@ class FrequencySweep(_Table):
     def columns(self) -> dict:
         return {"omega_rad_per_s": self.omega, **self.stats}
 
-    def to_xarray(self) -> xr.Dataset:
-        return self._dataset("omega")
-
+    dim = "omega"
     title = "constant-force spring: frequency sweep"
 
     def _plot(self, ax=None):
@@ -259,22 +259,17 @@ class ForwardResult(_Table):
             "energy_J": self.energy,
         }
 
-    def to_xarray(self) -> xr.Dataset:
-        return self._dataset("time")
-
+    dim = "time"
     title = "constant-force spring: forward dynamics"
 
     def _plot(self, ax=None):
-        if ax is not None:
-            ax.plot(self.time, self.deflection * 1e3)
-            ax.set_xlabel("time [s]")
-            ax.set_ylabel("slider deflection [mm]")
-            ax.grid(True, alpha=0.3)
-            return ax.figure
-        fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 6.5), sharex=True)
+        fig, ax, ax2 = self._panels(ax, height=6.5)
         ax.plot(self.time, self.deflection * 1e3)
         ax.set_ylabel("slider deflection [mm]")
         ax.grid(True, alpha=0.3)
+        if ax2 is None:
+            ax.set_xlabel("time [s]")
+            return fig
         ax.set_title(
             f"CFCS forward dynamics (smoothed Coulomb sign, v_s = {self.summary['sign_smoothing_rad_per_s']:.3g} rad/s)"
         )
@@ -326,17 +321,12 @@ class DrivenResult(_Table):
             "energy_residual_J": self.energy_residual,
         }
 
-    def to_xarray(self) -> xr.Dataset:
-        return self._dataset("time")
-
+    dim = "time"
     title = "constant-force spring: driven through a compliant drive"
 
     def _plot(self, ax=None):
         s = self.summary
-        if ax is None:
-            fig, (ax, ax2) = new_figure(2, 1, figsize=(8.0, 7.0), sharex=True)
-        else:
-            fig, ax2 = ax.figure, None
+        fig, ax, ax2 = self._panels(ax)
         ax.plot(self.time, self.force, label="drive force", lw=1.5)
         ax.plot(self.time, self.force_static, "--", label="static force at the deflection")
         ax.set_ylabel("force [N]")

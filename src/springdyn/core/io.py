@@ -170,12 +170,18 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
         raise
 
 
-def _check_names(path: Path, name: str) -> None:
+def _output_name(path, name: str, what: str) -> Path:
+    """``path`` as a :class:`Path`, checked as every output name is: given (not empty), and no
+    part of it longer than :data:`MAX_NAME_BYTES` (``what``: "file" or "folder", for messages)."""
     from .errors import InputError
 
+    if path is None or str(path).strip() == "":
+        raise InputError(f"{name}: an empty {what} name was given")
+    path = Path(path)
     for part in path.parts:
         if len(part.encode("utf-8", "surrogateescape")) > MAX_NAME_BYTES:
             raise InputError(f"{name}: the file name is longer than {MAX_NAME_BYTES} bytes")
+    return path
 
 
 def _check_parent(path: Path, name: str) -> None:
@@ -202,10 +208,7 @@ def check_output_file(path, name: str) -> Path:
     """
     from .errors import InputError
 
-    if path is None or str(path).strip() == "":
-        raise InputError(f"{name}: an empty file name was given")
-    path = Path(path)
-    _check_names(path, name)
+    path = _output_name(path, name, "file")
     if path.is_dir():
         raise InputError(f"{name} = {str(path)!r} is a folder: give a file name such as {str(path / 'out')!r}")
     _check_parent(path, name)
@@ -224,10 +227,7 @@ def check_output_folder(path, name: str) -> Path:
     """
     from .errors import InputError
 
-    if path is None or str(path).strip() == "":
-        raise InputError(f"{name}: an empty folder name was given")
-    path = Path(path)
-    _check_names(path, name)
+    path = _output_name(path, name, "folder")
     if path.exists() and not path.is_dir():
         raise InputError(f"{name} = {str(path)!r} is an existing file: give a folder (new or existing)")
     if path.is_dir():

@@ -13,6 +13,7 @@ from ..core.results import Result
 from ..core.units import omega_to_rpm, rpm_to_omega
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
+from .rotordynamics import DEFAULT_POINTS, DEFAULT_RPM_RANGE
 
 __all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "MASS_NAMES", "FILM_EFFECT_THRESHOLD"]
 
@@ -369,8 +370,8 @@ class LSDModel:
         amplitude: float = 50e-6,
         motion: str = "linear",
         *,
-        rpm_range=(0.0, 20000.0),
-        points: int = 40,
+        rpm_range=DEFAULT_RPM_RANGE,
+        points: int = DEFAULT_POINTS,
         outside: str = "raise",
         omega=None,
         added_mass: bool = True,

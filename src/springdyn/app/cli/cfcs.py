@@ -8,11 +8,9 @@ import numpy as np
 
 from springdyn.app.cli.common import (
     add_output_options,
-    announce_written,
     as_options,
-    close_figure,
+    emit,
     parse_range,
-    print_json,
     print_notes,
     print_table,
     quantity,
@@ -62,8 +60,7 @@ def register(subparsers) -> None:
     )
     sub = p.add_subparsers(dest="cfcs_command", metavar="ACTION", required=True)
 
-    s = sub.add_parser("static", help="force-deflection curve, PCF and pivot stress")
-    s.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    s = _command(sub, "static", _static, help="force-deflection curve, PCF and pivot stress")
     s.add_argument("--stroke", help="stroke from the toggle (default 40%% of r2 + r3), e.g. 72mm")
     s.add_argument("--points", type=int, default=721, help="samples of the curve (default 721)")
     s.add_argument(
@@ -72,17 +69,16 @@ def register(subparsers) -> None:
         help="start of the working range over which the dissipative "
         "branches are rated (default 2.5%% of r2 + r3, a preload), e.g. 5mm or 0",
     )
-    _model_option(s)
-    add_output_options(s)
-    s.set_defaults(func=_static)
+    _model_and_output_options(s)
 
-    d = sub.add_parser(
+    d = _command(
+        sub,
         "dynamic",
+        _dynamic,
         help="slider force along a prescribed periodic motion (inverse dynamics)",
         description="Force needed to drive the slider along x(t) = offset + amplitude (1 - cos wt)/2 "
         "or a periodic motion from a CSV (columns time_s, deflection_m). " + _TOGGLE_NOTE,
     )
-    d.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
     _motion_options(d, omega_help="circular frequency [rad/s] of the input (required without --motion)")
     d.add_argument(
         "--motion",
@@ -107,21 +103,15 @@ def register(subparsers) -> None:
     d.add_argument(
         "--sign-smoothing", help="compliant drive: speed v_s of tanh(theta2'/v_s), the Coulomb sign [rad/s] (0.001)"
     )
-    _model_option(d)
-    add_output_options(d)
-    d.set_defaults(func=_dynamic)
+    _model_and_output_options(d)
 
-    w = sub.add_parser("sweep", help="mean/median/peak-to-peak force and PCF vs omega (Figs. 5-7)")
-    w.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    w = _command(sub, "sweep", _sweep, help="mean/median/peak-to-peak force and PCF vs omega (Figs. 5-7)")
     _motion_options(w, omega_help="frequencies START:STOP:STEP or a comma list [rad/s], e.g. 1:50:0.5", required=True)
     w.add_argument("--samples", type=int, default=400, help="samples per cycle (default 400)")
     w.add_argument("--quiet", action="store_true", help="no progress bar")
-    _model_option(w)
-    add_output_options(w)
-    w.set_defaults(func=_sweep)
+    _model_and_output_options(w)
 
-    f = sub.add_parser("forward", help="response of the slider to a force or to a spring from a moving base")
-    f.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    f = _command(sub, "forward", _forward, help="response of the slider to a force or to a spring from a moving base")
     f.add_argument("--t-end", required=True, help="simulated time, e.g. 2s")
     f.add_argument("--force", help="constant slider force (positive in compression), e.g. 13N")
     f.add_argument("--base-stiffness", help="stiffness of the drive spring, e.g. 2000N/m")
@@ -131,12 +121,13 @@ def register(subparsers) -> None:
     f.add_argument("--v0", default="0", help="initial slider velocity [m/s] (default 0)")
     f.add_argument("--points", type=int, default=2001, help="output samples (default 2001)")
     f.add_argument("--sign-smoothing", default="0.01", help="velocity scale of the smoothed Coulomb sign [rad/s]")
-    _model_option(f)
-    add_output_options(f)
-    f.set_defaults(func=_forward)
+    _model_and_output_options(f)
 
-    g = sub.add_parser(
+    g = _command(
+        sub,
         "design",
+        _design,
+        config=False,
         help="choose r2/r3, K3 and the flexure for a target force and stroke",
         description="Sizes the strip with the beam (elastica) model by default and checks the "
         "stress (safety factor 1.5), the PCF, buckling of the strip and the thickness tolerance.  "
@@ -169,7 +160,22 @@ def register(subparsers) -> None:
     _model_option(g, default="beam")
     g.add_argument("--toml", metavar="OUT.toml", help="write the design as a [cfcs] table")
     add_output_options(g)
-    g.set_defaults(func=_design)
+
+
+def _command(sub, name: str, func, *, config: bool = True, **kw):
+    """The sub-command ``name`` (``help``, ``description`` in ``kw``) that runs ``func``; its first
+    argument the mechanism (``CFG.toml`` or a built-in example) unless ``config`` is False."""
+    p = sub.add_parser(name, **kw)
+    if config:
+        p.add_argument("config", metavar="CFG.toml", help=_CFG_HELP)
+    p.set_defaults(func=func)
+    return p
+
+
+def _model_and_output_options(p) -> None:
+    """The options every mechanism command ends with: ``--model``, then ``--csv``, ``--plot``, ``--json``."""
+    _model_option(p)
+    add_output_options(p)
 
 
 def _model_option(p, default=None):
@@ -183,29 +189,24 @@ def _model_option(p, default=None):
 
 
 def _motion_options(p, *, omega_help, required=False, prefix=""):
-    if prefix:  # the base of the forward problem: no preload
-        p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
-        p.add_argument(
-            f"--{prefix}amplitude",
-            default=DEFAULT_AMPLITUDE,
-            help="stroke of the base sinusoid: a "
-            "length such as 72mm or a percentage of r2 + r3 such as '40%%' (default 40%%)",
+    """``--omega``, ``--amplitude`` and ``--offset`` of the sinusoid; with ``prefix`` (``"base-"``) those
+    of the forward problem's moving base, which starts at 0 (no preload)."""
+    if prefix:
+        amplitude_help = "stroke of the base sinusoid: a length such as 72mm or a percentage of r2 + r3 such as "
+        offset, offset_help = "0", "base position at t = 0 (default 0), e.g. 5mm"
+    else:
+        amplitude_help = (
+            "stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
+            "r2 + r3 such as "
         )
-        p.add_argument(f"--{prefix}offset", default="0", help="base position at t = 0 (default 0), e.g. 5mm")
-        return
+        offset = DEFAULT_OFFSET
+        offset_help = (
+            "deflection at t = 0: a preload, a length or a percentage of r2 + r3 (default 2.5%%); "
+            "0 starts at the toggle"
+        )
     p.add_argument(f"--{prefix}omega", required=required, help=omega_help)
-    p.add_argument(
-        f"--{prefix}amplitude",
-        default=DEFAULT_AMPLITUDE,
-        help="stroke of the sinusoid: a length such as 72mm (a bare number is metres) or a percentage of "
-        "r2 + r3 such as '40%%' (default 40%%)",
-    )
-    p.add_argument(
-        f"--{prefix}offset",
-        default=DEFAULT_OFFSET,
-        help="deflection at t = 0: a preload, a length or a percentage of r2 + r3 (default 2.5%%); "
-        "0 starts at the toggle",
-    )
+    p.add_argument(f"--{prefix}amplitude", default=DEFAULT_AMPLITUDE, help=amplitude_help + "'40%%' (default 40%%)")
+    p.add_argument(f"--{prefix}offset", default=offset, help=offset_help)
 
 
 def _q(text, unit: str, option: str) -> float:
@@ -235,15 +236,13 @@ def _fmt(value, unit="", display=None, digits=5):
     return format_quantity(float(value), unit, display, digits)
 
 
-def _write_outputs(args, result) -> None:
-    """Write ``--csv`` and ``--plot`` and name them (on stderr when stdout carries JSON)."""
-    written = []
-    if args.csv:
-        written.append(result.to_csv(args.csv))
-    if args.plot:
-        close_figure(result.plot(args.plot))
-        written.append(args.plot)
-    announce_written(written, args)
+def _show(args, result, rows) -> int:
+    """Write ``--csv`` and ``--plot``; print the summary as JSON with ``--json``, else the table
+    ``rows(summary)`` and the notes."""
+    if not emit(result, args):
+        print_table(rows(result.summary), headers=("quantity", "value", "note"))
+        print_notes(result.summary)
+    return 0
 
 
 def _cutoff_row(summary):
@@ -258,11 +257,10 @@ def _static(args) -> int:
     stroke = _q(args.stroke, "m", "--stroke") if args.stroke else None
     with as_options(**_OPTIONS):
         res = model.static(stroke, n=args.points, offset=args.offset)
-    _write_outputs(args, res)
-    s = res.summary
-    if args.json:
-        print_json(s)
-        return 0
+    return _show(args, res, _static_rows)
+
+
+def _static_rows(s) -> list:
     beam = s["flexure_model"] == "beam"
     prbm_rows = (
         [
@@ -278,47 +276,42 @@ def _static(args) -> int:
         if beam
         else []
     )
-    print_table(
-        [
-            (
-                "flexure model",
-                s["flexure_model"],
-                ("elastica of the strip, " if beam else "pin with K3 = EI/l, ")
-                + ("plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E"),
-            ),
-            ("stroke", _fmt(s["stroke_m"], "m", "mm"), ""),
-            ("force at the toggle", _fmt(s["force_at_zero_N"], "N"), ""),
-            ("maximum force", _fmt(s["force_max_N"], "N"), f"at {_fmt(s['deflection_at_force_max_m'], 'm', 'mm')}"),
-            ("minimum force", _fmt(s["force_min_N"], "N"), ""),
-            ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), ""),
-            ("PCF energy-based", _fmt(s["pcf_energy_percent"], "%", digits=4), ""),
-            (
-                "PCF compression branch",
-                _fmt(s["pcf_compression_percent"], "%", digits=4),
-                f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}",
-            ),
-            (
-                "max pivot stress",
-                _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-                "largest curvature of the strip" if beam else "E (h/2) theta_K3 / l",
-            ),
-            ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
-            *prbm_rows,
-            *_beam_check_rows(s),
-            ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
-            ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
-            (
-                "working range",
-                f"{_fmt(s['working_start_m'], 'm', 'mm')} .. {_fmt(s['working_end_m'], 'm', 'mm')}",
-                "PCF compression branch rated here",
-            ),
-            _cutoff_row(s),
-            _toggle_row(s),
-        ],
-        headers=("quantity", "value", "note"),
-    )
-    print_notes(s)
-    return 0
+    return [
+        (
+            "flexure model",
+            s["flexure_model"],
+            ("elastica of the strip, " if beam else "pin with K3 = EI/l, ")
+            + ("plate E/(1 - nu^2)" if s["plate_bending"] else "beam modulus E"),
+        ),
+        ("stroke", _fmt(s["stroke_m"], "m", "mm"), ""),
+        ("force at the toggle", _fmt(s["force_at_zero_N"], "N"), ""),
+        ("maximum force", _fmt(s["force_max_N"], "N"), f"at {_fmt(s['deflection_at_force_max_m'], 'm', 'mm')}"),
+        ("minimum force", _fmt(s["force_min_N"], "N"), ""),
+        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), ""),
+        ("PCF energy-based", _fmt(s["pcf_energy_percent"], "%", digits=4), ""),
+        (
+            "PCF compression branch",
+            _fmt(s["pcf_compression_percent"], "%", digits=4),
+            f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}",
+        ),
+        (
+            "max pivot stress",
+            _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+            "largest curvature of the strip" if beam else "E (h/2) theta_K3 / l",
+        ),
+        ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
+        *prbm_rows,
+        *_beam_check_rows(s),
+        ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
+        ("kinematic limit", _fmt(s["kinematic_limit_m"], "m", "mm"), ""),
+        (
+            "working range",
+            f"{_fmt(s['working_start_m'], 'm', 'mm')} .. {_fmt(s['working_end_m'], 'm', 'mm')}",
+            "PCF compression branch rated here",
+        ),
+        _cutoff_row(s),
+        _toggle_row(s),
+    ]
 
 
 def _beam_check_rows(summary) -> list:
@@ -385,33 +378,27 @@ def _dynamic(args) -> int:
         if driven:
             return _driven(args, model, mot)
         res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples or 400)
-    _write_outputs(args, res)
-    s = res.summary
-    if args.json:
-        print_json(s)
-        return 0
-    print_table(
-        [
-            ("input", s["motion"], ""),
-            ("mean force", _fmt(s["mean_force_N"], "N"), ""),
-            ("median force", _fmt(s["median_force_N"], "N"), ""),
-            ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
-            ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over one cycle"),
-            ("hysteresis per cycle", _fmt(s["hysteresis_energy_per_cycle_J"], "J"), ""),
-            (
-                "max pivot stress",
-                _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-                f"safety factor {_fmt(s['safety_factor'], digits=3)}",
-            ),
-            *_beam_check_rows(s),
-            _cutoff_row(s),
-            ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
-            _toggle_row(s),
-        ],
-        headers=("quantity", "value", "note"),
-    )
-    print_notes(s)
-    return 0
+    return _show(args, res, _dynamic_rows)
+
+
+def _dynamic_rows(s) -> list:
+    return [
+        ("input", s["motion"], ""),
+        ("mean force", _fmt(s["mean_force_N"], "N"), ""),
+        ("median force", _fmt(s["median_force_N"], "N"), ""),
+        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
+        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over one cycle"),
+        ("hysteresis per cycle", _fmt(s["hysteresis_energy_per_cycle_J"], "J"), ""),
+        (
+            "max pivot stress",
+            _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+            f"safety factor {_fmt(s['safety_factor'], digits=3)}",
+        ),
+        *_beam_check_rows(s),
+        _cutoff_row(s),
+        ("samples in toggle zone", str(s["toggle_zone_samples"]), ""),
+        _toggle_row(s),
+    ]
 
 
 def _sticking_row(s: dict) -> tuple:
@@ -446,69 +433,63 @@ def _driven(args, model, mot) -> int:
     )
     with as_options(periods="--periods", samples_per_period="--samples", rtol="--rtol", max_step="--max-step"):
         res = model.driven(motion=mot, **kw)
-    _write_outputs(args, res)
-    s = res.summary
-    if args.json:
-        print_json(s)
-        return 0
-    print_table(
-        [
-            ("input", s["motion"], "moves the drive's far end"),
-            (
-                "drive",
-                f"k_d {_fmt(s['drive_stiffness_N_per_m'], 'N/m', 'kN/m')}, "
-                f"c_d {_fmt(s['drive_damping_N_s_per_m'], 'N*s/m')}",
-                "force k_d (x_d - x) + c_d (x_d' - x')",
-            ),
-            ("mean force", _fmt(s["mean_force_N"], "N"), f"last of {s['periods']} periods"),
-            ("median force", _fmt(s["median_force_N"], "N"), ""),
-            ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
-            ("force range", f"{_fmt(s['force_min_N'], 'N')} .. {_fmt(s['force_max_N'], 'N')}", ""),
-            ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over the last period"),
-            (
-                "slider range",
-                f"{_fmt(s['deflection_min_m'], 'm', 'mm')} .. {_fmt(s['deflection_max_m'], 'm', 'mm')}",
-                f"largest drive lag {_fmt(s['drive_lag_max_m'], 'm', 'mm')}",
-            ),
-            ("toggle crossings", str(s["toggle_crossings_per_period"]), "per period, through the crank's inertia"),
-            _sticking_row(s),
-            (
-                "p-p without tau_AF",
-                _fmt(s["peak_to_peak_without_axial_friction_N"], "N"),
-                "same run, pin and slider friction only"
-                if s["peak_to_peak_without_axial_friction_N"] is not None
-                else "not repeated (see notes)",
-            ),
-            (
-                "friction heat per cycle",
-                _fmt(s["hysteresis_energy_per_cycle_J"], "J"),
-                "work of the drive on the slider",
-            ),
-            ("actuator work per cycle", _fmt(s["actuator_work_per_cycle_J"], "J"), "includes the drive's damper"),
-            (
-                "periodicity",
-                f"{s['periodicity_change_percent']:.3g} %",
-                "change of the statistics from the period before",
-            ),
-            ("energy balance", f"{s['energy_balance_relative']:.2g}", "max |W - dE - D| / gross actuator work"),
-            (
-                "max pivot stress",
-                _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-                f"safety factor {_fmt(s['safety_factor'], digits=3)}",
-            ),
-            *_beam_check_rows(s),
-            (
-                "numerics",
-                f"rtol {s['rtol']:.2g}, max step {_fmt(s['max_step_s'], 's', 'ms', 3)}, "
-                f"{s['samples_per_period']} samples/period, v_s {s['sign_smoothing_rad_per_s']:.2g} rad/s",
-                "",
-            ),
-            _cutoff_row(s),
-        ],
-        headers=("quantity", "value", "note"),
-    )
-    print_notes(s)
-    return 0
+    return _show(args, res, _driven_rows)
+
+
+def _driven_rows(s) -> list:
+    return [
+        ("input", s["motion"], "moves the drive's far end"),
+        (
+            "drive",
+            f"k_d {_fmt(s['drive_stiffness_N_per_m'], 'N/m', 'kN/m')}, "
+            f"c_d {_fmt(s['drive_damping_N_s_per_m'], 'N*s/m')}",
+            "force k_d (x_d - x) + c_d (x_d' - x')",
+        ),
+        ("mean force", _fmt(s["mean_force_N"], "N"), f"last of {s['periods']} periods"),
+        ("median force", _fmt(s["median_force_N"], "N"), ""),
+        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
+        ("force range", f"{_fmt(s['force_min_N'], 'N')} .. {_fmt(s['force_max_N'], 'N')}", ""),
+        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over the last period"),
+        (
+            "slider range",
+            f"{_fmt(s['deflection_min_m'], 'm', 'mm')} .. {_fmt(s['deflection_max_m'], 'm', 'mm')}",
+            f"largest drive lag {_fmt(s['drive_lag_max_m'], 'm', 'mm')}",
+        ),
+        ("toggle crossings", str(s["toggle_crossings_per_period"]), "per period, through the crank's inertia"),
+        _sticking_row(s),
+        (
+            "p-p without tau_AF",
+            _fmt(s["peak_to_peak_without_axial_friction_N"], "N"),
+            "same run, pin and slider friction only"
+            if s["peak_to_peak_without_axial_friction_N"] is not None
+            else "not repeated (see notes)",
+        ),
+        (
+            "friction heat per cycle",
+            _fmt(s["hysteresis_energy_per_cycle_J"], "J"),
+            "work of the drive on the slider",
+        ),
+        ("actuator work per cycle", _fmt(s["actuator_work_per_cycle_J"], "J"), "includes the drive's damper"),
+        (
+            "periodicity",
+            f"{s['periodicity_change_percent']:.3g} %",
+            "change of the statistics from the period before",
+        ),
+        ("energy balance", f"{s['energy_balance_relative']:.2g}", "max |W - dE - D| / gross actuator work"),
+        (
+            "max pivot stress",
+            _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
+            f"safety factor {_fmt(s['safety_factor'], digits=3)}",
+        ),
+        *_beam_check_rows(s),
+        (
+            "numerics",
+            f"rtol {s['rtol']:.2g}, max step {_fmt(s['max_step_s'], 's', 'ms', 3)}, "
+            f"{s['samples_per_period']} samples/period, v_s {s['sign_smoothing_rad_per_s']:.2g} rad/s",
+            "",
+        ),
+        _cutoff_row(s),
+    ]
 
 
 def _sweep(args) -> int:
@@ -522,9 +503,7 @@ def _sweep(args) -> int:
         res = model.sweep(
             omegas, args.amplitude, args.offset, samples_per_cycle=args.samples, quiet=args.quiet or args.json
         )
-    _write_outputs(args, res)
-    if args.json:
-        print_json({**res.summary, **res.columns()})
+    if emit(res, args, json_data={**res.summary, **res.columns()}):
         return 0
     st = res.stats
     rows = [
@@ -577,28 +556,22 @@ def _forward(args) -> int:
             base_damping=_q(args.base_damping, "N*s/m", "--base-damping"),
             **kw,
         )
-    _write_outputs(args, res)
-    s = res.summary
-    if args.json:
-        print_json(s)
-        return 0
-    print_table(
-        [
-            (
-                "deflection range",
-                f"{_fmt(s['min_deflection_m'], 'm', 'mm')} .. {_fmt(s['max_deflection_m'], 'm', 'mm')}",
-                "",
-            ),
-            ("toggle crossings", str(s["toggle_crossings"]), ""),
-            ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
-            ("sign smoothing", _fmt(s["sign_smoothing_rad_per_s"], "rad/s"), "tanh(theta2'/v_s)"),
-            *_beam_check_rows(s),
-            _cutoff_row(s),
-        ],
-        headers=("quantity", "value", "note"),
-    )
-    print_notes(s)
-    return 0
+    return _show(args, res, _forward_rows)
+
+
+def _forward_rows(s) -> list:
+    return [
+        (
+            "deflection range",
+            f"{_fmt(s['min_deflection_m'], 'm', 'mm')} .. {_fmt(s['max_deflection_m'], 'm', 'mm')}",
+            "",
+        ),
+        ("toggle crossings", str(s["toggle_crossings"]), ""),
+        ("max pivot stress", _fmt(s["max_stress_Pa"], "Pa", "GPa", 4), ""),
+        ("sign smoothing", _fmt(s["sign_smoothing_rad_per_s"], "rad/s"), "tanh(theta2'/v_s)"),
+        *_beam_check_rows(s),
+        _cutoff_row(s),
+    ]
 
 
 #: design() argument -> CLI option, for the suggestions printed by the CLI.
@@ -642,13 +615,10 @@ def _design(args) -> int:
             plate_bending=None if args.plate_bending == "auto" else args.plate_bending == "true",
             poisson_ratio=_q(args.poisson_ratio, "", "--poisson-ratio"),
         )
-    _write_outputs(args, res)
     if args.toml:
         res.to_toml(args.toml)
     s = res.summary
-    if args.json:
-        print_json(s)
-    else:
+    if not emit(res, args):
         print_table(
             [
                 ("r2 + r3", _fmt(s["total_length_m"], "m", "mm"), f"stroke fraction {s['stroke_fraction']:.3g}"),

@@ -316,11 +316,7 @@ def cmd_identify(args) -> int:
 
     records = [read_rig_data(p) for p in args.data]
     seconds = [read_rig_data(p) for p in args.second] if args.second else None
-    rpms = None
-    if args.rpm:
-        rpms = list(parse_range(args.rpm, "rpm", "--rpm"))
-        if len(rpms) == 1 and len(records) > 1:
-            raise InputError(f"--rpm gives one speed for {len(records)} records; give one per record or none")
+    rpms = _speeds(args.rpm, records)
     mass = quantity(args.mass, "kg", "--mass")
     series = identify_series(records, seconds, mass=mass, rpms=rpms)
     if args.csv:
@@ -368,6 +364,7 @@ def cmd_identify(args) -> int:
 
 
 def _speeds(text, records):
+    """The ``--rpm`` speeds of the records (one per record), or None when not given."""
     if not text:
         return None
     rpms = list(parse_range(text, "rpm", "--rpm"))

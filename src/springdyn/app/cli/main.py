@@ -314,10 +314,7 @@ def main(argv=None) -> int:
         sys.stdout.flush()
         _flush_warnings()
         return code
-    except UsageError as exc:
-        print(f"springdyn: error: {exc}", file=sys.stderr)
-        return EXIT_INPUT
-    except InputError as exc:
+    except (UsageError, InputError) as exc:
         print(f"springdyn: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
     except SolverError as exc:

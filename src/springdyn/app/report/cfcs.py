@@ -13,13 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
-from springdyn.app.report.html import Criterion, Section, fmt, parameter_rows
+from springdyn.app.report.html import Criterion, Section, add_result, fmt, parameter_rows
 from springdyn.cfcs.design import design_flattest
 from springdyn.cfcs.model import CFCS
 from springdyn.cfcs.motion import SinusoidMotion
 from springdyn.cfcs.params import CFCSParams
 from springdyn.core.io import write_json
-from springdyn.core.plotting import new_figure, plt, save_figure
+from springdyn.core.plotting import new_figure, save_figure
 
 __all__ = ["load", "section", "PAPER_OMEGAS"]
 
@@ -41,14 +41,13 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
     ideal = CFCS(model.params.without_dissipation())
     files, figures = [], []
     st = model.static()
-    files.append(st.to_csv(out_dir / "static.csv"))
-    plt.close(st.plot(out_dir / "static.png"))
-    figures.append(
-        (
-            out_dir / "static.png",
-            "Force-deflection by virtual work (CFCS paper Figs. 2-3), with the "
-            "compression and extension branches of the dissipative terms",
-        )
+    add_result(
+        files,
+        figures,
+        st,
+        out_dir / "static.png",
+        "Force-deflection by virtual work (CFCS paper Figs. 2-3), with the "
+        "compression and extension branches of the dissipative terms",
     )
     figures.append(
         (
@@ -69,9 +68,13 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
         )
         dyn[w] = (full.summary, bare.summary)
     sw = model.sweep(np.arange(1.0, 50.0 + 1e-9, 0.5), quiet=quiet)
-    files.append(sw.to_csv(out_dir / "sweep.csv"))
-    plt.close(sw.plot(out_dir / "sweep.png"))
-    figures.append((out_dir / "sweep.png", "Mean, median, peak-to-peak force and PCF against omega (paper Figs. 5-7)"))
+    add_result(
+        files,
+        figures,
+        sw,
+        out_dir / "sweep.png",
+        "Mean, median, peak-to-peak force and PCF against omega (paper Figs. 5-7)",
+    )
     s = st.summary
     p = model.params
     # the flexure: pseudo-rigid-body pin against the elastica of the strip (same modulus), side by side
@@ -95,14 +98,13 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
     # forward dynamics: the frictionless slider pushed through a spring by a moving base
     base = SinusoidMotion(10.0, 0.072, 0.0)  # x = 36 mm (1 - cos 10 t), the library's sinusoid
     fw = ideal.forward(1.0, base_motion=lambda t: base(t)[:2], base_stiffness=2000.0, x0=1e-3)
-    files.append(fw.to_csv(out_dir / "forward_base_spring.csv"))
-    plt.close(fw.plot(out_dir / "forward_base_spring.png"))
-    figures.append(
-        (
-            out_dir / "forward_base_spring.png",
-            "Forward dynamics: the slider driven through a 2 N/mm "
-            "spring by a base moving 36 mm at 10 rad/s (frictionless model)",
-        )
+    add_result(
+        files,
+        figures,
+        fw,
+        out_dir / "forward_base_spring.png",
+        "Forward dynamics: the slider driven through a 2 N/mm "
+        "spring by a base moving 36 mm at 10 rad/s (frictionless model)",
     )
     # design for this mechanism's force and stroke, in its material, within its stress limit
     allowable = p.allowable_stress or 1.5e9

@@ -11,7 +11,7 @@ from pathlib import Path
 from springdyn import __version__
 from springdyn.core.io import atomic_open
 
-__all__ = ["Section", "Criterion", "render_html", "parameter_rows", "fmt", "png_min_font_px"]
+__all__ = ["Section", "Criterion", "render_html", "parameter_rows", "fmt", "add_result", "png_min_font_px"]
 
 
 @dataclass
@@ -106,6 +106,16 @@ window.addEventListener('load', function () {
     String(document.documentElement.scrollWidth > document.documentElement.clientWidth + 1));
 });
 """
+
+
+def add_result(files: list, figures: list, result, png: Path, caption: str) -> None:
+    """Write a result's table and figure for a section: its CSV beside the PNG ``png`` (same
+    name), listed in ``files``, and the PNG with its ``caption`` in ``figures``."""
+    from springdyn.core.plotting import plt
+
+    files.append(result.to_csv(png.with_suffix(".csv")))
+    plt.close(result.plot(png))
+    figures.append((png, caption))
 
 
 def fmt(value: float, unit: str = "", digits: int = 5) -> str:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from springdyn.app.report.html import Criterion, Section, fmt, parameter_rows
+from springdyn.app.report.html import Criterion, Section, add_result, fmt, parameter_rows
 from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
 from springdyn.lsd.identify import RigData, identify_series
@@ -57,15 +57,13 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
                     else linear_shake(rpm, AMPLITUDE, "x", 10, 5e3)
                 )
                 rec = simulate_rig(model, tr, force_noise=NOISE, seed=int(rpm))
-                png = out_dir / f"loops_{exc}_{rpm:.0f}rpm.png"
-                files.append(rec.to_csv(png.with_suffix(".csv")))
-                plt.close(rec.plot(png))
-                figures.append(
-                    (
-                        png,
-                        f"Simulated rig, {'circular orbit' if exc == 'orbit' else 'x shake'} of "
-                        f"{AMPLITUDE * 1e6:.0f} um at {rpm:.0f} rpm: displacements, forces, hysteresis loops",
-                    )
+                add_result(
+                    files,
+                    figures,
+                    rec,
+                    out_dir / f"loops_{exc}_{rpm:.0f}rpm.png",
+                    f"Simulated rig, {'circular orbit' if exc == 'orbit' else 'x shake'} of "
+                    f"{AMPLITUDE * 1e6:.0f} um at {rpm:.0f} rpm: displacements, forces, hysteresis loops",
                 )
         firsts, seconds = [], []
         for k, rpm in enumerate(SPEEDS):
