@@ -42,6 +42,7 @@ import math
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError, SolverError
 from ..numerics.jit import kernel
 from .kinematics import spring_angle, theta2_from_deflection
@@ -55,6 +56,22 @@ __all__ = [
     "prbm_error",
     "prbm_error_map",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    length : float
+        Strip length l [m].
+    ei : float
+        Bending stiffness of the strip [N*m^2].
+    deflection : array_like
+        Increasing slider deflections [m].
+    steps : int
+        RK4 steps along the strip [-].
+    r2, r3 : float
+        Crank and coupler lengths [m].
+    """
+)
 
 #: RK4 steps along the strip in the shooting solver (a test checks 2x steps changes F by < 1e-9 F0).
 SHOOTING_STEPS = 200
@@ -116,6 +133,7 @@ def _geometry(r2, r3, length):
     return r3 - 0.5 * length, r2 + r3 + 0.5 * length
 
 
+@_DOCS.fill
 def beam_force_at_toggle(r2, r3, length, ei, *, steps=SHOOTING_STEPS):
     """Slider force [N] of the elastica model as ``x -> 0+`` (the bifurcation load at the toggle).
 
@@ -125,14 +143,7 @@ def beam_force_at_toggle(r2, r3, length, ei, *, steps=SHOOTING_STEPS):
 
     Parameters
     ----------
-    r2, r3 : float
-        Crank and coupler lengths [m].
-    length : float
-        Strip length l [m].
-    ei : float
-        Bending stiffness of the strip [N*m^2].
-    steps : int
-        RK4 steps along the strip [-].
+    {r2_r3 length ei steps}
     """
     rigid, x_clamp = _geometry(r2, r3, length)
 
@@ -172,6 +183,7 @@ def _newton(p, th, x_clamp, length, rigid, r2, ei, steps, scale):
     return None
 
 
+@_DOCS.fill
 def beam_force_curve(deflection, r2, r3, length, ei, *, steps=SHOOTING_STEPS):
     """Elastica solution along a stroke by shooting and continuation (see the module docstring).
 
@@ -181,12 +193,7 @@ def beam_force_curve(deflection, r2, r3, length, ei, *, steps=SHOOTING_STEPS):
         Slider deflections [m], increasing, from 0 (the toggle) or above.
     r2, r3 : float
         Crank and coupler lengths [m] (r3 to the PRBM pin at the middle of the strip).
-    length : float
-        Strip length l [m].
-    ei : float
-        Bending stiffness of the strip [N*m^2].
-    steps : int
-        RK4 steps along the strip [-].
+    {length ei steps}
 
     Returns
     -------
@@ -266,6 +273,7 @@ def beam_force_curve(deflection, r2, r3, length, ei, *, steps=SHOOTING_STEPS):
 
 
 # -- discretised chain ---------------------------------------------------------------------
+@_DOCS.fill
 def chain_equilibrium(deflection, r2, r3, length, ei, *, links=200, guess=None):
     """Elastica by a discretised rigid-link chain: energy minimum under the loop closure.
 
@@ -282,12 +290,7 @@ def chain_equilibrium(deflection, r2, r3, length, ei, *, links=200, guess=None):
     ----------
     deflection : float
         Slider deflection [m] (> 0).
-    r2, r3 : float
-        Crank and coupler lengths [m].
-    length : float
-        Strip length l [m].
-    ei : float
-        Bending stiffness of the strip [N*m^2].
+    {r2_r3 length ei}
     links : int
         Number of links N [-].
     guess : dict, optional
@@ -370,6 +373,7 @@ def chain_equilibrium(deflection, r2, r3, length, ei, *, links=200, guess=None):
 
 
 # -- the PRBM's error against the elastica -----------------------------------------------------
+@_DOCS.fill
 def force_band(deflection, force):
     """Force band ``F_max - F_min`` [N] of a sampled force curve, its interior extrema refined.
 
@@ -380,8 +384,7 @@ def force_band(deflection, force):
 
     Parameters
     ----------
-    deflection : array_like
-        Increasing slider deflections [m].
+    {deflection}
     force : array_like
         Force at those deflections [N].
     """
@@ -406,6 +409,7 @@ def force_band(deflection, force):
     return extreme(1.0) - extreme(-1.0)
 
 
+@_DOCS.fill
 def prbm_error(deflection, force_prbm, force_beam, force_ref):
     """Band error and force error of the pseudo-rigid-body model against the elastica over a stroke.
 
@@ -416,8 +420,7 @@ def prbm_error(deflection, force_prbm, force_beam, force_ref):
 
     Parameters
     ----------
-    deflection : array_like
-        Increasing slider deflections [m].
+    {deflection}
     force_prbm : array_like
         PRBM static force at the deflections [N].
     force_beam : array_like

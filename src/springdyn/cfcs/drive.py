@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from .dynamics import crank_terms, integrate_crank, kinetic_energy
 from .kinematics import deflection_from_theta2
 from .statics import spring_energy
@@ -51,49 +52,62 @@ __all__ = [
     "TOGGLE_REST_FACTOR",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    k_d : float
+        Drive stiffness [N/m].
+    c_d : float
+        Drive damping [N*s/m].
+    theta2dot : array_like
+        Crank speed [rad/s].
+    motion : callable
+        ``motion(t) -> (x_d, x_d', ...)`` [m, m/s].
+    p : mapping
+        Mechanism values [SI].
+    x_d : float or array_like
+        Prescribed position of the drive's far end [m].
+    x : float or array_like
+        Slider deflection [m].
+    """
+)
+
 #: Default speed v_s [rad/s] of the smoothed Coulomb sign in the driven model: halving and doubling it
 #: moves the statistics of the seed's case (Table 1 through the toggle at 14.7 rad/s, 20 kN/m) by
 #: less than 1 % (a test).
 DRIVE_SIGN_SMOOTHING = 1e-3
 
 
+@_DOCS.fill
 def drive_force(x_d, v_d, x, v, k_d, c_d):
     """Force of the drive on the slider ``k_d (x_d - x) + c_d (x_d' - x')`` [N], positive in compression.
 
     Parameters
     ----------
-    x_d : float or array_like
-        Prescribed position of the drive's far end [m].
+    {x_d}
     v_d : float or array_like
         Its velocity [m/s].
-    x : float or array_like
-        Slider deflection [m].
+    {x}
     v : float or array_like
         Slider velocity [m/s].
-    k_d : float
-        Drive stiffness [N/m].
-    c_d : float
-        Drive damping [N*s/m].
+    {k_d c_d}
     """
     return k_d * (np.asarray(x_d) - x) + c_d * (np.asarray(v_d) - v)
 
 
+@_DOCS.fill
 def drive_spring_energy(x_d, x, k_d):
     """Strain energy of the drive ``k_d (x_d - x)^2 / 2`` [J].
 
     Parameters
     ----------
-    x_d : float or array_like
-        Prescribed position of the drive's far end [m].
-    x : float or array_like
-        Slider deflection [m].
-    k_d : float
-        Drive stiffness [N/m].
+    {x_d x k_d}
     """
     d = np.asarray(x_d) - x
     return 0.5 * k_d * d * d
 
 
+@_DOCS.fill
 def driven_rhs(t, y, motion, k_d, c_d, p, sign_smoothing):
     """Right-hand side of the driven problem; state ``(theta2, theta2', W, D_f, D_c)``.
 
@@ -103,12 +117,7 @@ def driven_rhs(t, y, motion, k_d, c_d, p, sign_smoothing):
         Time [s].
     y : ndarray
         Crank angle [rad], crank speed [rad/s], actuator work [J], friction heat [J], damper heat [J].
-    motion : callable
-        ``motion(t) -> (x_d, x_d', ...)`` [m, m/s].
-    k_d : float
-        Drive stiffness [N/m].
-    c_d : float
-        Drive damping [N*s/m].
+    {motion k_d c_d}
     p : mapping
         Mechanism values (:meth:`springdyn.cfcs.params.CFCSParams.values`; with the beam model,
         ``spring_force`` the elastica's quasi-static force of x) [SI].
@@ -132,6 +141,7 @@ def driven_rhs(t, y, motion, k_d, c_d, p, sign_smoothing):
 TOGGLE_REST_FACTOR = 10.0
 
 
+@_DOCS.fill
 def toggle_sticking(theta2, theta2dot, force, shear_angle, rest_speed):
     """Where the crank rests within the shear angle of the toggle: share, stop angle, release force.
 
@@ -143,8 +153,7 @@ def toggle_sticking(theta2, theta2dot, force, shear_angle, rest_speed):
     ----------
     theta2 : array_like
         Crank angle over the samples (equally spaced in time) [rad].
-    theta2dot : array_like
-        Crank speed [rad/s].
+    {theta2dot}
     force : array_like
         Drive force on the slider [N].
     shear_angle : float
@@ -169,6 +178,7 @@ def toggle_sticking(theta2, theta2dot, force, shear_angle, rest_speed):
 MAX_DRIVEN_CALLS = 4_000_000
 
 
+@_DOCS.fill
 def integrate_driven(
     motion, k_d, c_d, p, t_eval, theta2_0, theta2dot_0, *, sign_smoothing, rtol, max_step, energy_scale
 ):
@@ -176,14 +186,7 @@ def integrate_driven(
 
     Parameters
     ----------
-    motion : callable
-        ``motion(t) -> (x_d, x_d', ...)`` [m, m/s].
-    k_d : float
-        Drive stiffness [N/m].
-    c_d : float
-        Drive damping [N*s/m].
-    p : mapping
-        Mechanism values [SI].
+    {motion k_d c_d p}
     t_eval : array_like
         Output times [s], increasing.
     theta2_0 : float
@@ -222,6 +225,7 @@ def integrate_driven(
     )
 
 
+@_DOCS.fill
 def energy_balance(theta2, theta2dot, x_d, work, heat_friction, heat_damper, k_d, p, strain_energy=None):
     """Residual of ``W = Delta(T + V + V_d) + D_f + D_c`` along a driven run [J].
 
@@ -229,8 +233,7 @@ def energy_balance(theta2, theta2dot, x_d, work, heat_friction, heat_damper, k_d
     ----------
     theta2 : array_like
         Crank angle [rad].
-    theta2dot : array_like
-        Crank speed [rad/s].
+    {theta2dot}
     x_d : array_like
         Drive position [m].
     work : array_like
@@ -239,10 +242,7 @@ def energy_balance(theta2, theta2dot, x_d, work, heat_friction, heat_damper, k_d
         Running heat of the mechanism's friction [J].
     heat_damper : array_like
         Running heat of the drive's damper [J].
-    k_d : float
-        Drive stiffness [N/m].
-    p : mapping
-        Mechanism values [SI].
+    {k_d p}
     strain_energy : callable, optional
         ``V(x)`` [J] of another flexure model (the elastica's integrated force); default the PRBM's
         ``K3 theta_K3^2 / 2``.

@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError, SolverError
 from .kinematics import (
     crank_rates,
@@ -50,6 +51,33 @@ __all__ = [
     "energy",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    m2 : float
+        Crank mass [kg].
+    m3 : float
+        Coupler mass [kg].
+    ms : float
+        Slider mass [kg].
+    theta2dot : float or array_like
+        Crank angular speed [rad/s].
+    sign_smoothing : float
+        Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
+    p : CFCSParams
+        The mechanism.
+    rtol : float
+        Relative tolerance [-].
+    """,
+    p_values="p : mapping\n    Mechanism values as in :func:`drive_force_components` (SI).",
+)
+
 
 def generalized_mass(theta2, m2, m3, ms, r2, r3):
     """Generalized mass ``M(theta2)`` [kg*m^2], compact form of Eq. (19) (docs/references.md).
@@ -77,6 +105,7 @@ def generalized_mass(theta2, m2, m3, ms, r2, r3):
     )
 
 
+@_DOCS.fill
 def generalized_mass_eq19(theta2, m2, m3, ms, r2, r3):
     """The coefficient of theta2'' in Eq. (19) of the CFCS paper, term by term as printed [kg*m^2].
 
@@ -85,18 +114,7 @@ def generalized_mass_eq19(theta2, m2, m3, ms, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    m2 : float
-        Crank mass [kg].
-    m3 : float
-        Coupler mass [kg].
-    ms : float
-        Slider mass [kg].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 m2 m3 ms r2 r3}
     """
     s, c = np.sin(theta2), np.cos(theta2)
     d2 = r3 * r3 - r2 * r2 * s * s
@@ -112,6 +130,7 @@ def generalized_mass_eq19(theta2, m2, m3, ms, r2, r3):
     )
 
 
+@_DOCS.fill
 def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
     """``dM/dtheta2`` [kg*m^2/rad]; ``M'/2`` is the coefficient of theta2'^2 in Eq. (19).
 
@@ -121,18 +140,7 @@ def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    m2 : float
-        Crank mass [kg].
-    m3 : float
-        Coupler mass [kg].
-    ms : float
-        Slider mass [kg].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 m2 m3 ms r2 r3}
     """
     s, c = np.sin(theta2), np.cos(theta2)
     u = spring_angle_rate_ratio(theta2, r2, r3)
@@ -142,52 +150,29 @@ def generalized_mass_derivative(theta2, m2, m3, ms, r2, r3):
     )
 
 
+@_DOCS.fill
 def kinetic_energy(theta2, theta2dot, m2, m3, ms, r2, r3):
     """``T = M(theta2) theta2'^2 / 2`` [J], Eq. (11) of the CFCS paper.
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    theta2dot : float or array_like
-        Crank angular speed [rad/s].
-    m2 : float
-        Crank mass [kg].
-    m3 : float
-        Coupler mass [kg].
-    ms : float
-        Slider mass [kg].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 theta2dot m2 m3 ms r2 r3}
     """
     return 0.5 * generalized_mass(theta2, m2, m3, ms, r2, r3) * theta2dot * theta2dot
 
 
+@_DOCS.fill
 def inertia_force(theta2, theta2dot, theta2ddot, jacobian, m2, m3, ms, r2, r3):
     """Slider force of the links' inertia ``(M th2'' + M'/2 th2'^2) / G`` [N] (Eq. (19) over G).
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    theta2dot : float or array_like
-        Crank angular speed [rad/s].
+    {theta2 theta2dot}
     theta2ddot : float or array_like
         Crank angular acceleration [rad/s^2].
     jacobian : float or array_like
         ``G = dx/dtheta2`` at ``theta2`` [m/rad] (0 at the toggle, where the result is 0/0).
-    m2 : float
-        Crank mass [kg].
-    m3 : float
-        Coupler mass [kg].
-    ms : float
-        Slider mass [kg].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {m2 m3 ms r2 r3}
     """
     m = generalized_mass(theta2, m2, m3, ms, r2, r3)
     dm = generalized_mass_derivative(theta2, m2, m3, ms, r2, r3)
@@ -294,6 +279,7 @@ def drive_force_components(
     )
 
 
+@_DOCS.fill
 def toggle_inertia_limit(motion, t0, period, *, r2, r3, m2, m3, ms):
     """Inertia force [N] at an instant ``t0`` where the crank is at (or within TOGGLE_FLOOR of) the toggle.
 
@@ -311,16 +297,7 @@ def toggle_inertia_limit(motion, t0, period, *, r2, r3, m2, m3, ms):
         ``motion(t) -> (x, x', x'')`` [m, m/s, m/s^2].
     t0, period : float
         Instant and period [s].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
-    m2 : float
-        Crank mass [kg].
-    m3 : float
-        Coupler mass [kg].
-    ms : float
-        Slider mass [kg].
+    {r2 r3 m2 m3 ms}
     """
     delta = 1e-4 * period
     while delta <= period / 16:
@@ -364,6 +341,7 @@ def inverse_dynamics(motion, t, period, *, theta2_cutoff, **p):
     return c
 
 
+@_DOCS.fill
 def crank_terms(theta2, theta2dot, p, sign_smoothing):
     """The mechanism's terms of Lagrange's equation at ``(theta2, theta2')``, dissipation smoothed.
 
@@ -380,10 +358,7 @@ def crank_terms(theta2, theta2dot, p, sign_smoothing):
         Crank angle [rad].
     theta2dot : float
         Crank speed [rad/s].
-    p : mapping
-        Mechanism values as in :func:`drive_force_components` (SI).
-    sign_smoothing : float
-        Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
+    {p_values sign_smoothing}
 
     Returns
     -------
@@ -409,6 +384,7 @@ def crank_terms(theta2, theta2dot, p, sign_smoothing):
     return g, x, xdot, m, dm, torque, pin, slider
 
 
+@_DOCS.fill
 def forward_rhs(t, state, force_fn, p, sign_smoothing):
     """Right-hand side of the forward problem, state ``(theta2, theta2')``.
 
@@ -421,14 +397,12 @@ def forward_rhs(t, state, force_fn, p, sign_smoothing):
     ----------
     force_fn : callable
         ``force_fn(t, x, xdot) -> F`` [N], positive in compression.
-    p : mapping
-        Mechanism values as in :func:`drive_force_components` (SI).
+    {p_values}
     t : float
         Time [s].
     state : ndarray
         State: crank angle [rad] and crank speed [rad/s].
-    sign_smoothing : float
-        Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
+    {sign_smoothing}
     """
     th, thd = state
     g, x, xdot, m, dm, torque, pin, slider = crank_terms(th, thd, p, sign_smoothing)
@@ -445,6 +419,7 @@ class _Budget(Exception):
     """A run's right-hand-side budget is spent (at the time in ``args[0]``)."""
 
 
+@_DOCS.fill
 def integrate_crank(rhs_fn, y0, t_eval, args, *, rtol, atol, max_step=np.inf, budget, what, too_long, past_limit):
     """Integrate a crank's equations ``rhs_fn(t, y, *args)`` (state ``theta2, theta2', ...``)
     over ``t_eval`` with LSODA, stopping at the kinematic limit ``|theta2| = pi/2``: the one
@@ -461,8 +436,7 @@ def integrate_crank(rhs_fn, y0, t_eval, args, *, rtol, atol, max_step=np.inf, bu
         Output times [s], increasing, at least two.
     args : tuple
         Extra arguments of ``rhs_fn``.
-    rtol : float
-        Relative tolerance [-].
+    {rtol}
     atol : float or array_like
         Absolute tolerances [rad, rad/s, ...].
     max_step : float
@@ -524,6 +498,7 @@ def integrate_crank(rhs_fn, y0, t_eval, args, *, rtol, atol, max_step=np.inf, bu
     return sol.y
 
 
+@_DOCS.fill
 def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smoothing=1e-2, rtol=1e-9, atol=1e-12):
     """Integrate the forward problem over ``t_eval`` (LSODA); stop at the kinematic limit.
 
@@ -531,18 +506,14 @@ def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smooth
     ----------
     force_fn : callable
         Applied slider force F(t, x, x') [N].
-    p : CFCSParams
-        The mechanism.
+    {p}
     t_eval : array_like
         Output times [s].
     theta2_0 : float
         Initial crank angle [rad].
     theta2dot_0 : float
         Initial crank speed [rad/s].
-    sign_smoothing : float
-        Speed v_s of the smoothed Coulomb sign tanh(v/v_s) [rad/s].
-    rtol : float
-        Relative tolerance [-].
+    {sign_smoothing rtol}
     atol : float
         Absolute tolerance [rad, rad/s].
 
@@ -573,17 +544,13 @@ def integrate_forward(force_fn, p, t_eval, theta2_0, theta2dot_0, *, sign_smooth
     return y[0], y[1]
 
 
+@_DOCS.fill
 def energy(theta2, theta2dot, p):
     """``T + V`` [J] of the mechanism (for power-balance checks).
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    theta2dot : float or array_like
-        Crank angular speed [rad/s].
-    p : CFCSParams
-        The mechanism.
+    {theta2 theta2dot p}
     """
     return kinetic_energy(theta2, theta2dot, p["m2"], p["m3"], p["ms"], p["r2"], p["r3"]) + spring_energy(
         theta2, p["k3"], p["r2"], p["r3"]

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
+
 __all__ = [
     "coupler_root",
     "slider_position",
@@ -37,6 +39,18 @@ __all__ = [
     "crank_rates",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    r2 : float
+        Crank length r2 [m].
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    """
+)
+
 
 def coupler_root(theta2, r2, r3):
     """``D = sqrt(r3^2 - r2^2 sin^2 theta2)`` [m], the root that recurs in Eqs. (19)-(25).
@@ -52,6 +66,7 @@ def coupler_root(theta2, r2, r3):
     return np.sqrt(r3 * r3 - (r2 * s) ** 2)
 
 
+@_DOCS.fill
 def slider_position(theta2, r2, r3):
     """Distance ``r1`` [m] from the ground pin to the slider pivot (loop closure).
 
@@ -60,16 +75,12 @@ def slider_position(theta2, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     return r2 * np.cos(theta2) + coupler_root(theta2, r2, r3)
 
 
+@_DOCS.fill
 def deflection_from_theta2(theta2, r2, r3):
     """Slider deflection ``x = r2 + r3 - r1`` [m] for a crank angle ``theta2`` [rad].
 
@@ -78,12 +89,7 @@ def deflection_from_theta2(theta2, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     s = np.sin(theta2)
     return 2.0 * r2 * np.sin(0.5 * np.asarray(theta2)) ** 2 + (r2 * s) ** 2 / (r3 + coupler_root(theta2, r2, r3))
@@ -118,21 +124,18 @@ def theta2_from_deflection(x, r2, r3):
     return out if out.ndim else float(out)
 
 
+@_DOCS.fill
 def coupler_angle(theta2, r2, r3):
     """Coupler angle ``theta3 = -asin(r2 sin theta2 / r3)`` [rad] (loop closure).
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     return -np.arcsin(r2 * np.sin(theta2) / r3)
 
 
+@_DOCS.fill
 def spring_angle(theta2, r2, r3):
     """Deflection of the pivot spring ``theta_K3 = -theta3`` [rad].
 
@@ -141,16 +144,12 @@ def spring_angle(theta2, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     return np.arcsin(r2 * np.sin(theta2) / r3)
 
 
+@_DOCS.fill
 def spring_angle_rate_ratio(theta2, r2, r3):
     """``u = d theta_K3 / d theta2 = r2 cos theta2 / D`` [-].
 
@@ -159,32 +158,24 @@ def spring_angle_rate_ratio(theta2, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     return r2 * np.cos(theta2) / coupler_root(theta2, r2, r3)
 
 
+@_DOCS.fill
 def spring_angle_rate_derivative(theta2, r2, r3):
     """``du/dtheta2 = -r2 sin theta2 (r3^2 - r2^2) / D^3`` [1/rad], the derivative of
     :func:`spring_angle_rate_ratio` (``D^2 - r2^2 cos^2 theta2 = r3^2 - r2^2``).
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     return -r2 * np.sin(theta2) * (r3 * r3 - r2 * r2) / coupler_root(theta2, r2, r3) ** 3
 
 
+@_DOCS.fill
 def slider_jacobian(theta2, r2, r3):
     """``G = dx/dtheta2 = -dr1/dtheta2 = r2 sin theta2 (1 + u)`` [m/rad].
 
@@ -193,32 +184,24 @@ def slider_jacobian(theta2, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     return r2 * np.sin(theta2) * (1.0 + spring_angle_rate_ratio(theta2, r2, r3))
 
 
+@_DOCS.fill
 def dr1_dtheta2(theta2, r2, r3):
     """Eq. (25) of the CFCS paper: ``dr1/dtheta2 = -r2 sin th2 - r2^2 sin th2 cos th2 / D`` [m/rad].
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     s, c = np.sin(theta2), np.cos(theta2)
     return -r2 * s - r2 * r2 * s * c / coupler_root(theta2, r2, r3)
 
 
+@_DOCS.fill
 def slider_jacobian_derivative(theta2, r2, r3):
     """``dG/dtheta2 = r2 cos th2 (1 + u) + r2 sin th2 du/dth2`` [m/rad^2].
 
@@ -227,12 +210,7 @@ def slider_jacobian_derivative(theta2, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     """
     s, c = np.sin(theta2), np.cos(theta2)
     u = spring_angle_rate_ratio(theta2, r2, r3)
@@ -245,19 +223,18 @@ def kinematic_limit_theta2() -> float:
     return np.pi / 2
 
 
+@_DOCS.fill
 def kinematic_limit_deflection(r2, r3):
     """Largest slider deflection ``r2 + r3 - sqrt(r3^2 - r2^2)`` [m] (``theta2 = pi/2``).
 
     Parameters
     ----------
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {r2 r3}
     """
     return r2 + r3 - np.sqrt(r3 * r3 - r2 * r2)
 
 
+@_DOCS.fill
 def crank_rates(x, xdot, xddot, r2, r3):
     """Crank angle, rate and acceleration from the slider motion (exact inverse kinematics).
 
@@ -274,10 +251,7 @@ def crank_rates(x, xdot, xddot, r2, r3):
         Slider speed [m/s].
     xddot : float or array_like
         Slider acceleration [m/s^2].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {r2 r3}
 
     Returns
     -------

@@ -19,9 +19,21 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import CubicSpline
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 from ..core.io import read_csv_columns
 from ..core.units import format_quantity, to_si
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    field : str
+        Name of the argument, for messages.
+    extended_length : float
+        r2 + r3, the slider position at the toggle [m].
+    """
+)
+
 
 __all__ = ["sinusoid", "SinusoidMotion", "TabulatedMotion", "amplitude_to_si", "offset_to_si", "check_stroke"]
 
@@ -56,6 +68,7 @@ def sinusoid(t, offset, amplitude, omega):
 MAX_OMEGA = 1e5
 
 
+@_DOCS.fill
 def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> float:
     """An amplitude [m]: a length (``"72 mm"``, or a bare number in metres, SI like every
     bare number), or a percentage of ``r2 + r3`` (``"40 %"``).
@@ -70,10 +83,7 @@ def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> 
     value : str or float
         The amplitude: a length such as '72 mm' or a bare number [m], or a percentage
         of r2 + r3 such as '40 %' [-].
-    extended_length : float
-        r2 + r3, the slider position at the toggle [m].
-    field : str
-        Name of the argument, for messages.
+    {extended_length field}
     """
     import warnings
 
@@ -101,6 +111,7 @@ def amplitude_to_si(value, extended_length: float, field: str = "amplitude") -> 
     return length
 
 
+@_DOCS.fill
 def offset_to_si(value, extended_length: float, field: str = "offset") -> float:
     """An offset (preload deflection) [m]: a length (``"5 mm"``, or a bare number in metres) or a
     percentage of ``r2 + r3`` (``"2.5 %"``).
@@ -110,10 +121,7 @@ def offset_to_si(value, extended_length: float, field: str = "offset") -> float:
     value : str or float
         The offset: a length such as '5 mm' or a bare number [m], or a percentage of r2 + r3
         such as '2.5 %' [-].
-    extended_length : float
-        r2 + r3, the slider position at the toggle [m].
-    field : str
-        Name of the argument, for messages.
+    {extended_length field}
     """
     frac = _percentage(value, field)
     if frac is not None:

@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from .kinematics import deflection_from_theta2, kinematic_limit_deflection
 
 __all__ = [
@@ -36,6 +37,22 @@ __all__ = [
     "strip_first_frequency",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    allowable_stress : float
+        Allowable bending stress of the flexure [Pa].
+    thickness : float
+        Flexure thickness h [m].
+    ei : float
+        Bending stiffness [N*m^2].
+    length : float
+        Strip length l [m].
+    """,
+)
+
 #: Allowed values of ``flexure_model``.
 FLEXURE_MODELS = ("prbm", "beam")
 
@@ -43,6 +60,7 @@ FLEXURE_MODELS = ("prbm", "beam")
 PLATE_WIDTH_RATIO = 1.0
 
 
+@_DOCS.fill
 def second_moment_rectangle(width, thickness):
     """``I = b h^3 / 12`` [m^4] of a rectangular strip bent about its thin axis.
 
@@ -50,12 +68,12 @@ def second_moment_rectangle(width, thickness):
     ----------
     width : float
         Flexure width b [m].
-    thickness : float
-        Flexure thickness h [m].
+    {thickness}
     """
     return width * thickness**3 / 12.0
 
 
+@_DOCS.fill
 def flexure_stiffness(youngs_modulus, width, thickness, length):
     r"""Torsional stiffness ``K3 = E b h^3 / (12 l)`` [N*m/rad], Eq. (1) of the CFCS paper.
 
@@ -65,8 +83,7 @@ def flexure_stiffness(youngs_modulus, width, thickness, length):
 
     Parameters
     ----------
-    youngs_modulus : float
-        Young's modulus E [Pa].
+    {youngs_modulus}
     width, thickness, length : float
         Flexure width b, thickness h and length l [m].
 
@@ -112,13 +129,13 @@ def bending_stress(spring_angle, youngs_modulus, thickness, length):
     return youngs_modulus * 0.5 * thickness * np.abs(spring_angle) / length
 
 
+@_DOCS.fill
 def safety_factor(allowable_stress, max_stress):
     """``n = sigma_allow / sigma_max`` [-]; infinite when the pivot is unstressed.
 
     Parameters
     ----------
-    allowable_stress : float
-        Allowable bending stress of the flexure [Pa].
+    {allowable_stress}
     max_stress : float
         Largest bending stress [Pa].
     """
@@ -128,23 +145,18 @@ def safety_factor(allowable_stress, max_stress):
     return out if out.ndim else float(out)
 
 
+@_DOCS.fill
 def allowable_spring_angle(allowable_stress, youngs_modulus, thickness, length):
     """Largest pivot deflection ``theta_K3 = 2 sigma_allow l / (E h)`` [rad] the stress allows.
 
     Parameters
     ----------
-    allowable_stress : float
-        Allowable bending stress of the flexure [Pa].
-    youngs_modulus : float
-        Young's modulus of the flexure [Pa].
-    thickness : float
-        Flexure thickness h [m].
-    length : float
-        Flexure length l [m].
+    {allowable_stress youngs_modulus thickness length}
     """
     return 2.0 * allowable_stress * length / (youngs_modulus * thickness)
 
 
+@_DOCS.fill
 def max_stroke_for_stress(allowable_stress, youngs_modulus, thickness, length, r2, r3):
     """Largest slider deflection [m] at which the pivot stress stays at the allowable value.
 
@@ -154,14 +166,7 @@ def max_stroke_for_stress(allowable_stress, youngs_modulus, thickness, length, r
 
     Parameters
     ----------
-    allowable_stress : float
-        Allowable bending stress of the flexure [Pa].
-    youngs_modulus : float
-        Young's modulus of the flexure [Pa].
-    thickness : float
-        Flexure thickness h [m].
-    length : float
-        Flexure length l [m].
+    {allowable_stress youngs_modulus thickness length}
     r2 : float
         Crank length r2 [m].
     r3 : float
@@ -174,19 +179,20 @@ def max_stroke_for_stress(allowable_stress, youngs_modulus, thickness, length, r
     return float(deflection_from_theta2(theta2, r2, r3))
 
 
+@_DOCS.fill
 def plate_modulus(youngs_modulus, poisson_ratio):
     """Plate (cylindrical bending) modulus ``E / (1 - nu^2)`` [Pa].
 
     Parameters
     ----------
-    youngs_modulus : float
-        Young's modulus E [Pa].
+    {youngs_modulus}
     poisson_ratio : float
         Poisson's ratio nu [-].
     """
     return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio)
 
 
+@_DOCS.fill
 def default_plate_bending(width, length) -> bool:
     """Whether a strip of width b and length l bends as a plate by default: ``b >= l``.
 
@@ -200,19 +206,18 @@ def default_plate_bending(width, length) -> bool:
     ----------
     width : float
         Strip width b [m].
-    length : float
-        Strip length l [m].
+    {length}
     """
     return bool(width >= PLATE_WIDTH_RATIO * length)
 
 
+@_DOCS.fill
 def bending_stiffness(youngs_modulus, width, thickness, plate_bending=False, poisson_ratio=0.3):
     """Bending stiffness ``EI = E' b h^3 / 12`` [N*m^2], E' = E or E/(1 - nu^2).
 
     Parameters
     ----------
-    youngs_modulus : float
-        Young's modulus E [Pa].
+    {youngs_modulus}
     width, thickness : float
         Strip width b and thickness h [m].
     plate_bending : bool
@@ -224,6 +229,7 @@ def bending_stiffness(youngs_modulus, width, thickness, plate_bending=False, poi
     return e * width * thickness**3 / 12.0
 
 
+@_DOCS.fill
 def strip_buckling_load(ei, effective_length):
     """Euler buckling load ``pi^2 EI / L_e^2`` [N] of the strip.
 
@@ -233,14 +239,14 @@ def strip_buckling_load(ei, effective_length):
 
     Parameters
     ----------
-    ei : float
-        Bending stiffness [N*m^2].
+    {ei}
     effective_length : float
         Effective column length L_e [m] (2 l for a cantilever).
     """
     return math.pi**2 * ei / (effective_length * effective_length)
 
 
+@_DOCS.fill
 def strip_first_frequency(ei, mass_per_length, length):
     """First bending frequency ``1.875^2 sqrt(EI / (rho A)) / l^2`` [rad/s] of the strip as a cantilever.
 
@@ -250,11 +256,9 @@ def strip_first_frequency(ei, mass_per_length, length):
 
     Parameters
     ----------
-    ei : float
-        Bending stiffness [N*m^2].
+    {ei}
     mass_per_length : float
         rho b h [kg/m].
-    length : float
-        Strip length l [m].
+    {length}
     """
     return 1.8751**2 * math.sqrt(ei / mass_per_length) / (length * length)

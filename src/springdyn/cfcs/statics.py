@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from .kinematics import (
     slider_jacobian,
     slider_position,
@@ -40,41 +41,45 @@ __all__ = [
     "percent_constant_force_energy",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    r2 : float
+        Crank length r2 [m].
+    r3 : float
+        Coupler length r3 [m], longer than r2.
+    theta2 : float or array_like
+        Crank angle theta2 [rad], 0 at the toggle.
+    k3 : float
+        Pivot torsional stiffness K3 [N*m/rad].
+    r2, r3 : float
+        Link lengths [m].
+    """,
+)
+
 #: Allowed values of ``friction_model``.
 FRICTION_MODELS = ("paper", "constant", "none")
 
 
+@_DOCS.fill
 def spring_energy(theta2, k3, r2, r3):
     """Pivot spring energy ``V = K3 theta_K3^2 / 2`` [J], Eq. (17) of the CFCS paper.
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    k3 : float
-        Pivot torsional stiffness K3 [N*m/rad].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 k3 r2 r3}
     """
     th = spring_angle(theta2, r2, r3)
     return 0.5 * k3 * th * th
 
 
+@_DOCS.fill
 def spring_torque(theta2, k3, r2, r3):
     """``dV/dtheta2 = K3 theta_K3 r2 cos theta2 / D`` [N*m], the last term of Eq. (19).
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    k3 : float
-        Pivot torsional stiffness K3 [N*m/rad].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 k3 r2 r3}
     """
     return k3 * spring_angle(theta2, r2, r3) * spring_angle_rate_ratio(theta2, r2, r3)
 
@@ -89,6 +94,7 @@ def _asin_ratio(s, a):
     return np.where(small, series, exact)
 
 
+@_DOCS.fill
 def static_force(theta2, k3, r2, r3):
     """Static slider force by virtual work ``K3 theta_K3 cos th2 / (r1 sin th2)`` [N].
 
@@ -97,8 +103,7 @@ def static_force(theta2, k3, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array
-        Crank angle [rad].
+    {theta2}
     k3 : float
         Pivot stiffness [N*m/rad].
     r2, r3 : float
@@ -109,21 +114,18 @@ def static_force(theta2, k3, r2, r3):
     return out if out.ndim else float(out)
 
 
+@_DOCS.fill
 def static_force_at_toggle(k3, r2, r3):
     """Static force as ``theta2 -> 0+``: ``K3 r2 / (r3 (r2 + r3))`` [N] (reference values of docs/references.md).
 
     Parameters
     ----------
-    k3 : float
-        Pivot torsional stiffness K3 [N*m/rad].
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {k3 r2 r3}
     """
     return k3 * r2 / (r3 * (r2 + r3))
 
 
+@_DOCS.fill
 def pin_friction_torque(theta2, pin_friction, model, r2, r3):
     """Magnitude of the pin friction torque tau_CF [N*m], Eq. (21) of the CFCS paper.
 
@@ -137,13 +139,11 @@ def pin_friction_torque(theta2, pin_friction, model, r2, r3):
 
     Parameters
     ----------
-    theta2 : float or array
-        Crank angle [rad].
+    {theta2}
     pin_friction : float
         Coulomb torque C of a pin [N*m] (units not given by the paper, correction CFCS-4 of docs/references.md).
     model : {"paper", "constant", "none"}
-    r2, r3 : float
-        Link lengths [m].
+    {r2_r3}
     """
     theta2 = np.asarray(theta2, dtype=float)
     bracket = 2.0 + spring_angle_rate_ratio(theta2, r2, r3)
@@ -156,6 +156,7 @@ def pin_friction_torque(theta2, pin_friction, model, r2, r3):
     raise ValueError(f"friction model {model!r}: choose one of {FRICTION_MODELS}")
 
 
+@_DOCS.fill
 def axial_force_torque(force_static, shear_angle, r2, r3):
     """Magnitude of the axial-force torque tau_AF [N*m], Eq. (22) of the CFCS paper.
 
@@ -168,19 +169,18 @@ def axial_force_torque(force_static, shear_angle, r2, r3):
         Static force at the same deflection [N].
     shear_angle : float
         alpha [rad].
-    r2, r3 : float
-        Link lengths [m].
+    {r2_r3}
     """
     return force_static * r2 * shear_angle * (1.0 + r2 / np.sqrt(r3 * r3 - (r2 * shear_angle) ** 2))
 
 
+@_DOCS.fill
 def dissipative_torque(theta2, force_static, pin_friction, model, shear_angle, axial_force, r2, r3):
     """``|tau_CF| + |tau_AF|`` [N*m] with the options of the mechanism (see above).
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
+    {theta2}
     force_static : float or array_like
         Static slider force [N].
     pin_friction : float
@@ -191,10 +191,7 @@ def dissipative_torque(theta2, force_static, pin_friction, model, shear_angle, a
         Shear angle alpha of Eq. (22) [rad].
     axial_force : bool
         Include the axial-force torque tau_AF of Eq. (22).
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {r2 r3}
     """
     tau = pin_friction_torque(theta2, pin_friction, model, r2, r3)
     if axial_force:
@@ -202,6 +199,7 @@ def dissipative_torque(theta2, force_static, pin_friction, model, shear_angle, a
     return tau
 
 
+@_DOCS.fill
 def frozen_jacobian(theta2, r2, r3, theta2_cutoff):
     """``G`` [m/rad] frozen at ``G(theta2_cutoff)`` inside the toggle zone ``|theta2| < theta2_cutoff``.
 
@@ -212,12 +210,7 @@ def frozen_jacobian(theta2, r2, r3, theta2_cutoff):
 
     Parameters
     ----------
-    theta2 : float or array_like
-        Crank angle theta2 [rad], 0 at the toggle.
-    r2 : float
-        Crank length r2 [m].
-    r3 : float
-        Coupler length r3 [m], longer than r2.
+    {theta2 r2 r3}
     theta2_cutoff : float
         Toggle cut-off angle [rad] (correction CFCS-3 of docs/references.md).
     """

@@ -4,9 +4,10 @@ A module whose functions take the same symbols (the cam speed ``omega``, the lif
 spring's ``Do``, ``Dw``, ``N1``, ``N2``) writes each description once in a
 :class:`ParameterDocs` table and marks its docstrings with ``{name}`` lines where the entry
 belongs; the decorator fills them at import, so ``help()``, the API reference and doctests see
-the full numpydoc text.  Only a line that holds nothing but ``{name}`` is replaced (braces in
-equations and examples stay as written), and an unknown name is an error at import, not a hole
-in the documentation.  The pattern is MNE-Python's ``fill_doc``/``docdict`` and matplotlib's
+the full numpydoc text.  Only a line that holds nothing but ``{name}`` (or several names,
+``{theta2 r2 r3}``, for their entries in that order) is replaced (braces in equations and
+examples stay as written), and an unknown name is an error at import, not a hole in the
+documentation.  The pattern is MNE-Python's ``fill_doc``/``docdict`` and matplotlib's
 ``_docstring.interpd``.
 
 Examples
@@ -39,7 +40,9 @@ __all__ = ["ParameterDocs"]
 
 F = TypeVar("F", bound=Callable)
 
-_PLACEHOLDER = re.compile(r"^(?P<indent>[ \t]*)\{(?P<name>[A-Za-z_][A-Za-z0-9_]*)\}[ \t]*$", re.MULTILINE)
+_PLACEHOLDER = re.compile(
+    r"^(?P<indent>[ \t]*)\{(?P<names>[A-Za-z_][A-Za-z0-9_]*(?: [A-Za-z_][A-Za-z0-9_]*)*)\}[ \t]*$", re.MULTILINE
+)
 
 
 def _parse(text: str) -> dict[str, str]:
@@ -83,8 +86,11 @@ class ParameterDocs:
         return "\n".join(indent + line if line else line for line in text.splitlines())
 
     def fill(self, obj: F) -> F:
-        """Decorator: replace each ``{name}`` line of ``obj.__doc__`` by the entry ``name``."""
+        """Decorator: replace each ``{name}`` line of ``obj.__doc__`` by the entry ``name`` (a line
+        ``{a b c}`` by the entries ``a``, ``b`` and ``c``)."""
         doc = obj.__doc__
         if doc:
-            obj.__doc__ = _PLACEHOLDER.sub(lambda m: self.entry(m["name"], m["indent"]), doc)
+            obj.__doc__ = _PLACEHOLDER.sub(
+                lambda m: "\n".join(self.entry(name, m["indent"]) for name in m["names"].split()), doc
+            )
         return obj

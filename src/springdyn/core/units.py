@@ -59,6 +59,11 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def _number_or_array(value):
+    """A real number as it is, anything else as a float array."""
+    return value if isinstance(value, Real) else np.asarray(value, dtype=float)
+
+
 def rpm_to_omega(rpm):
     """Angular speed [rad/s] from a speed [rev/min].
 
@@ -67,8 +72,7 @@ def rpm_to_omega(rpm):
     rpm : float or array_like
         Speed [rev/min].
     """
-    if not isinstance(rpm, Real):
-        rpm = np.asarray(rpm, dtype=float)
+    rpm = _number_or_array(rpm)
     # (in this order: the valve and rig speeds were always computed so, and an adaptive
     # integration at another speed by one ulp takes other steps)
     return rpm * 2.0 * math.pi / 60.0
@@ -82,9 +86,7 @@ def omega_to_rpm(omega):
     omega : float or array_like
         Angular speed [rad/s].
     """
-    if not isinstance(omega, Real):
-        omega = np.asarray(omega, dtype=float)
-    return omega * (60.0 / (2.0 * math.pi))
+    return _number_or_array(omega) * (60.0 / (2.0 * math.pi))
 
 
 def rpm_to_hz(rpm):
@@ -96,9 +98,7 @@ def rpm_to_hz(rpm):
     rpm : float or array_like
         Speed [rev/min].
     """
-    if not isinstance(rpm, Real):
-        rpm = np.asarray(rpm, dtype=float)
-    return rpm / 60.0
+    return _number_or_array(rpm) / 60.0
 
 
 def format_mm(value: float) -> str:

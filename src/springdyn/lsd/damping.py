@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 
 __all__ = [
@@ -40,10 +41,42 @@ __all__ = [
     "ATMOSPHERIC_PRESSURE",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    clearance : float
+        Passage clearance h_o [m].
+    width : float
+        Passage width b_o [m].
+    terms : int
+        Odd terms per direction [-].
+    conductance : float
+        Conductance C_D between neighbouring chambers [m^3/(s Pa)].
+    length : float
+        Passage length L_h [m].
+    leakage_factor : float
+        Calibration factor on the conductance [-].
+    width, clearance : float
+        Sides of the duct [m].
+    density : float
+        Oil density rho [kg/m^3].
+    passages : int
+        Parallel passages between two chambers [-].
+    volume_matrix : numpy.ndarray
+        ``B`` (N x 2) from :func:`chamber_volume_matrix` [m^2].
+    omega : float or array
+        Vibration frequency [rad/s].
+    angles : array_like
+        Pack angles phi_i [rad].
+    """,
+    omega_one="omega : float\n    Vibration frequency [rad/s].",
+)
+
 #: Standard atmosphere [Pa]: gauge + ATMOSPHERIC_PRESSURE = absolute.
 ATMOSPHERIC_PRESSURE = 101325.0
 
 
+@_DOCS.fill
 def coulomb_equivalent_damping(friction_coefficient, normal_force, omega, amplitude, motion="linear"):
     """Equivalent viscous damping of a Coulomb friction force [N s/m], Eq. (2.22).
 
@@ -59,8 +92,7 @@ def coulomb_equivalent_damping(friction_coefficient, normal_force, omega, amplit
         ``mu_o`` [-].
     normal_force : float
         O-ring normal force ``F_N`` [N].
-    omega : float or array
-        Vibration frequency [rad/s].
+    {omega}
     amplitude : float
         Vibration amplitude ``A`` [m].
     motion : {"linear", "circular"}
@@ -141,6 +173,7 @@ def leaf_loss_factor(friction_coefficient, preload, amplitude, slip_factor, norm
     return 6.0 * friction_coefficient / np.pi * load * slip_factor
 
 
+@_DOCS.fill
 def hysteresis_damping_matrix(loss_factor, pack_stiffness, omega, angles):
     """Equivalent viscous damping of the packs' hysteresis, ``C_h = zeta k_s / omega`` [N s/m].
 
@@ -153,10 +186,7 @@ def hysteresis_damping_matrix(loss_factor, pack_stiffness, omega, angles):
         Loss factor zeta of the packs' hysteresis, Eq. (2.28) [-].
     pack_stiffness : float
         Stiffness k_s of one pack [N/m].
-    omega : float
-        Vibration frequency [rad/s].
-    angles : array_like
-        Pack angles phi_i [rad].
+    {omega_one angles}
     """
     phi = np.asarray(angles, dtype=float)
     c, s = np.cos(phi), np.sin(phi)
@@ -165,19 +195,18 @@ def hysteresis_damping_matrix(loss_factor, pack_stiffness, omega, angles):
     return (loss_factor * pack_stiffness / omega)[..., None, None] * geometry
 
 
+@_DOCS.fill
 def hydraulic_diameter(width, clearance):
     """Hydraulic diameter of a rectangular passage ``d_h = 2 b_o h_o / (b_o + h_o)`` [m], Eq. (2.17).
 
     Parameters
     ----------
-    width : float
-        Passage width b_o [m].
-    clearance : float
-        Passage clearance h_o [m].
+    {width clearance}
     """
     return 2.0 * width * clearance / (width + clearance)
 
 
+@_DOCS.fill
 def passage_conductance_thesis(width, clearance, length, viscosity):
     """Conductance of one passage as printed in Eq. (2.17): ``pi d_h^4 / (142 eta L_h)`` [m^3/(s Pa)].
 
@@ -189,8 +218,7 @@ def passage_conductance_thesis(width, clearance, length, viscosity):
     ----------
     width, clearance : float
         ``b_o``, ``h_o`` [m].
-    length : float
-        ``L_h`` [m].
+    {length}
     viscosity : float
         Dynamic viscosity ``eta`` [Pa s].
     """
@@ -198,6 +226,7 @@ def passage_conductance_thesis(width, clearance, length, viscosity):
     return np.pi * dh**4 / (142.0 * viscosity * length)
 
 
+@_DOCS.fill
 def passage_conductance_rectangular(width, clearance, length, viscosity, terms=50):
     """Exact laminar conductance of a rectangular duct [m^3/(s Pa)].
 
@@ -210,8 +239,7 @@ def passage_conductance_rectangular(width, clearance, length, viscosity, terms=5
     ----------
     width, clearance : float
         Sides of the passage [m] (either order).
-    length : float
-        ``L_h`` [m].
+    {length}
     viscosity : float
         Dynamic viscosity [Pa s].
     terms : int
@@ -223,6 +251,7 @@ def passage_conductance_rectangular(width, clearance, length, viscosity, terms=5
     return b * h**3 / (12.0 * viscosity * length) * (1.0 - 192.0 * h / (np.pi**5 * b) * series)
 
 
+@_DOCS.fill
 def boundary_conductance(width, clearance, length, viscosity, passages=2, model="exact", leakage_factor=1.0):
     """Conductance ``C_D`` between two neighbouring chambers [m^3/(s Pa)].
 
@@ -232,20 +261,13 @@ def boundary_conductance(width, clearance, length, viscosity, passages=2, model=
 
     Parameters
     ----------
-    width : float
-        Passage width b_o [m].
-    clearance : float
-        Passage clearance h_o [m].
-    length : float
-        Passage length L_h [m].
+    {width clearance length}
     viscosity : float
         Dynamic oil viscosity [Pa s].
-    passages : int
-        Parallel passages between two chambers [-].
+    {passages}
     model : str
         Conductance model: 'exact' (rectangular duct, correction LSD-2 of docs/references.md) or 'thesis' (Eq. (2.17)).
-    leakage_factor : float
-        Calibration factor on the conductance [-].
+    {leakage_factor}
     """
     if model == "exact":
         single = passage_conductance_rectangular(width, clearance, length, viscosity)
@@ -286,6 +308,7 @@ def chamber_volume_matrix(angles, ring_width, ring_diameter, leaf_length):
     return np.column_stack([bx, by])
 
 
+@_DOCS.fill
 def chamber_laplacian(chambers: int, conductance: float) -> np.ndarray:
     """Conductance matrix ``G`` of a ring of chambers joined to their two neighbours [m^3/(s Pa)].
 
@@ -296,8 +319,7 @@ def chamber_laplacian(chambers: int, conductance: float) -> np.ndarray:
     ----------
     chambers : int
         Number of oil chambers [-].
-    conductance : float
-        Conductance C_D between neighbouring chambers [m^3/(s Pa)].
+    {conductance}
     """
     n = int(chambers)
     if n < 2:
@@ -309,6 +331,7 @@ def chamber_laplacian(chambers: int, conductance: float) -> np.ndarray:
     return conductance * G
 
 
+@_DOCS.fill
 def chamber_pressures(volume_matrix, conductance, velocity):
     """Chamber gauge pressures ``p = G^+ B v`` [Pa] for ring velocity ``v`` [m/s].
 
@@ -319,8 +342,7 @@ def chamber_pressures(volume_matrix, conductance, velocity):
 
     Parameters
     ----------
-    volume_matrix : numpy.ndarray
-        ``B`` (N x 2) from :func:`chamber_volume_matrix` [m^2].
+    {volume_matrix}
     conductance : float
         ``C_D`` [m^3/(s Pa)].
     velocity : array_like
@@ -333,6 +355,7 @@ def chamber_pressures(volume_matrix, conductance, velocity):
     return v @ (Gp @ B).T
 
 
+@_DOCS.fill
 def viscous_damping_matrix(volume_matrix, conductance):
     """Damping of the oil network ``C_visc = B^T G^+ B`` [N s/m] (correction LSD-3 of docs/references.md).
 
@@ -345,8 +368,7 @@ def viscous_damping_matrix(volume_matrix, conductance):
     ----------
     volume_matrix : ndarray
         Chamber volume change per unit ring displacement, B (N x 2) [m^2].
-    conductance : float
-        Conductance C_D between neighbouring chambers [m^3/(s Pa)].
+    {conductance}
     """
     B = np.asarray(volume_matrix, dtype=float)
     Gp = np.linalg.pinv(chamber_laplacian(B.shape[0], conductance))
@@ -354,6 +376,7 @@ def viscous_damping_matrix(volume_matrix, conductance):
     return 0.5 * (C + C.T)
 
 
+@_DOCS.fill
 def viscous_damping_thesis(angles, ring_width, ring_diameter, leaf_length, conductance):
     """Viscous part of Eq. (3.5) of the thesis, with the ``C_yy`` typo fixed [N s/m].
 
@@ -366,16 +389,14 @@ def viscous_damping_thesis(angles, ring_width, ring_diameter, leaf_length, condu
 
     Parameters
     ----------
-    angles : array_like
-        Pack angles phi_i [rad].
+    {angles}
     ring_width : float
         Inner ring width b [m].
     ring_diameter : float
         Inner ring outer diameter d_o [m].
     leaf_length : float
         Length of the longest leaf L_1 [m].
-    conductance : float
-        Conductance C_D between neighbouring chambers [m^3/(s Pa)].
+    {conductance}
     """
     phi = np.asarray(angles, dtype=float)
     n = phi.size
@@ -398,6 +419,7 @@ def viscous_damping_thesis(angles, ring_width, ring_diameter, leaf_length, condu
     return np.array([[cxx, cxy], [cyx, cyy]])
 
 
+@_DOCS.fill
 def compliant_chamber_coefficients(volume_matrix, conductance, chamber_compliance, omega):
     """Stiffness and damping of the oil network with compliant chambers [N/m], [N s/m].
 
@@ -414,14 +436,12 @@ def compliant_chamber_coefficients(volume_matrix, conductance, chamber_complianc
 
     Parameters
     ----------
-    volume_matrix : numpy.ndarray
-        ``B`` (N x 2) from :func:`chamber_volume_matrix` [m^2].
+    {volume_matrix}
     conductance : float
         ``C_D`` between neighbouring chambers [m^3/(s Pa)].
     chamber_compliance : float
         ``c_ch = V / beta_eff`` of each chamber [m^3/Pa]; 0 is incompressible oil.
-    omega : float
-        Vibration frequency [rad/s].
+    {omega_one}
 
     Returns
     -------
@@ -444,6 +464,7 @@ def compliant_chamber_coefficients(volume_matrix, conductance, chamber_complianc
 # ---------------------------------------------------------------- fluid inertia in the passages
 
 
+@_DOCS.fill
 def duct_flow_series(width, clearance, terms=101):
     """Weights and eigenvalues of the laminar flow in a rectangular duct [-], [1/m^2].
 
@@ -460,8 +481,7 @@ def duct_flow_series(width, clearance, terms=101):
     ----------
     width, clearance : float
         Sides of the duct ``b``, ``h`` [m].
-    terms : int
-        Odd terms per direction [-].
+    {terms}
 
     Returns
     -------
@@ -477,6 +497,7 @@ def duct_flow_series(width, clearance, terms=101):
     return w.ravel(), lam.ravel()
 
 
+@_DOCS.fill
 def duct_profile_factor(width, clearance, terms=101):
     """Inertance factor ``kappa = A int(u^2) dA / (int u dA)^2`` of laminar duct flow [-].
 
@@ -491,16 +512,14 @@ def duct_profile_factor(width, clearance, terms=101):
 
     Parameters
     ----------
-    width, clearance : float
-        Sides of the duct [m].
-    terms : int
-        Odd terms per direction [-].
+    {width_clearance terms}
     """
     w, lam = duct_flow_series(width, clearance, terms)
     s1, s2 = np.sum(w / lam), np.sum(w / lam**2)
     return float(s2 / s1**2)
 
 
+@_DOCS.fill
 def duct_impedance_ratio(width, clearance, kinematic_viscosity, omega, terms=101):
     """Exact oscillating-flow impedance of a rectangular duct over its steady resistance ``Z/R`` [-].
 
@@ -511,14 +530,12 @@ def duct_impedance_ratio(width, clearance, kinematic_viscosity, omega, terms=101
 
     Parameters
     ----------
-    width, clearance : float
-        Sides of the duct [m].
+    {width_clearance}
     kinematic_viscosity : float
         ``nu = mu / rho`` [m^2/s].
     omega : float or array
         Frequency [rad/s].
-    terms : int
-        Odd terms per direction [-].
+    {terms}
     """
     w, lam = duct_flow_series(width, clearance, terms)
     om = np.asarray(omega, dtype=float)
@@ -527,6 +544,7 @@ def duct_impedance_ratio(width, clearance, kinematic_viscosity, omega, terms=101
     return steady / osc
 
 
+@_DOCS.fill
 def passage_inertance(width, clearance, length, density, passages=2, leakage_factor=1.0):
     """Inertance ``I`` of the passages between two neighbouring chambers [Pa s^2/m^3].
 
@@ -539,23 +557,13 @@ def passage_inertance(width, clearance, length, density, passages=2, leakage_fac
 
     Parameters
     ----------
-    width : float
-        Passage width b_o [m].
-    clearance : float
-        Passage clearance h_o [m].
-    length : float
-        Passage length L_h [m].
-    density : float
-        Oil density rho [kg/m^3].
-    passages : int
-        Parallel passages between two chambers [-].
-    leakage_factor : float
-        Calibration factor on the conductance [-].
+    {width clearance length density passages leakage_factor}
     """
     kappa = duct_profile_factor(width, clearance)
     return kappa * density * length / (width * clearance) / (passages * leakage_factor)
 
 
+@_DOCS.fill
 def squeeze_reynolds_number(density, viscosity, omega, clearance):
     """Squeeze Reynolds number of the passage flow ``Re_s = rho omega h^2 / mu`` [-].
 
@@ -568,13 +576,9 @@ def squeeze_reynolds_number(density, viscosity, omega, clearance):
 
     Parameters
     ----------
-    density : float
-        Oil density rho [kg/m^3].
+    {density}
     viscosity : float
         Dynamic oil viscosity mu [Pa s].
-    omega : float or array
-        Vibration frequency [rad/s].
-    clearance : float
-        Passage clearance h_o [m].
+    {omega clearance}
     """
     return density * np.asarray(omega, dtype=float) * clearance**2 / viscosity

@@ -19,8 +19,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    samples : int
+        Quadrature points per period [-].
+    model : LSDModel
+        The damper.
+    omega : float
+        Vibration frequency [rad/s].
+    """
+)
+
 
 __all__ = ["MECHANISMS", "harmonic_forces", "equivalent_matrices", "forward_whirl_coefficient", "DEFAULT_SAMPLES"]
 
@@ -32,19 +46,16 @@ MECHANISMS = ("spring", "leaf_friction", "oring_friction", "oil")
 DEFAULT_SAMPLES = 2048
 
 
+@_DOCS.fill
 def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES, film: bool = False) -> dict:
     """First-harmonic force phasors of each mechanism along ``x = Re(X e^(jwt)), y = Re(Y e^(jwt))``.
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
+    {model}
     X, Y : complex
         Displacement phasors [m].
-    omega : float
-        Vibration frequency [rad/s].
-    samples : int
-        Quadrature points per period [-].
+    {omega samples}
     film : bool
         Oil force from the film network with passage inertia and cavitation at its
         periodic steady state (:func:`springdyn.lsd.film.film_harmonic`; its details under
@@ -87,6 +98,7 @@ def harmonic_forces(model, X, Y, omega, samples: int = DEFAULT_SAMPLES, film: bo
     return out
 
 
+@_DOCS.fill
 def equivalent_matrices(
     model, omega, amplitude, motion: str = "linear", samples: int = DEFAULT_SAMPLES, film: bool = False
 ):
@@ -94,16 +106,12 @@ def equivalent_matrices(
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
-    omega : float
-        Vibration frequency [rad/s].
+    {model omega}
     amplitude : float
         Shake amplitude or orbit radius [m].
     motion : {"linear", "circular"}
         x and y shakes, or forward and backward orbits.
-    samples : int
-        Quadrature points per period [-].
+    {samples}
     film : bool
         Oil from the film network with inertia and cavitation (:func:`harmonic_forces`).
 
@@ -137,6 +145,7 @@ def equivalent_matrices(
     return out
 
 
+@_DOCS.fill
 def forward_whirl_coefficient(model, omega, amplitude, samples: int = DEFAULT_SAMPLES) -> complex:
     """Complex forward-whirl describing function ``H = F_z / z`` [N/m] of the damper.
 
@@ -146,14 +155,12 @@ def forward_whirl_coefficient(model, omega, amplitude, samples: int = DEFAULT_SA
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
+    {model}
     omega : float
         Whirl frequency [rad/s].
     amplitude : float
         Orbit radius [m].
-    samples : int
-        Quadrature points per period [-].
+    {samples}
     """
     if not (np.isfinite(amplitude) and amplitude > 0):
         raise InputError(f"amplitude = {amplitude!r} m must be positive")

@@ -36,6 +36,7 @@ import dataclasses
 import numpy as np
 from scipy.optimize import brentq, nnls
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError, SolverError
 from ..core.results import Result
 from .damping import chamber_pressures
@@ -53,6 +54,16 @@ __all__ = [
     "DEFAULT_FEED_RATIO",
     "DEFAULT_STEPS_PER_CYCLE",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    model : LSDModel
+        The damper.
+    dt : float
+        Time step [s].
+    """
+)
 
 #: Default feed conductance of the time-domain network as a fraction of the passage
 #: conductance ``C_D`` [-].  It acts on the mean pressure only (see the module docstring).
@@ -184,6 +195,7 @@ class FilmNetwork:
         """
         return np.linalg.pinv(self._D) @ (self.volume_matrix @ np.asarray(velocity, dtype=float))
 
+    @_DOCS.fill
     def step_terms(self, dt):
         """The step's linear complementarity data without the squeeze term.
 
@@ -191,8 +203,7 @@ class FilmNetwork:
 
         Parameters
         ----------
-        dt : float
-            Time step [s].
+        {dt}
 
         Returns
         -------
@@ -223,6 +234,7 @@ class FilmNetwork:
         self.void = np.maximum(void, 0.0)
         self.flow = beta * (self._D.T @ pressures) + h
 
+    @_DOCS.fill
     def step(self, velocity, dt):
         """Advance one step of ``dt`` [s] to ring velocity ``velocity`` [m/s]; return the pressures [Pa].
 
@@ -230,8 +242,7 @@ class FilmNetwork:
         ----------
         velocity : array_like
             Ring velocity ``(vx, vy)`` at the end of the step [m/s].
-        dt : float
-            Time step [s].
+        {dt}
 
         Returns
         -------
@@ -353,6 +364,7 @@ def _cycle_run(network, X, Y, omega, void_total, steps, cycles):
     return hist, last, e
 
 
+@_DOCS.fill
 def film_harmonic(
     model,
     X,
@@ -375,8 +387,7 @@ def film_harmonic(
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
+    {model}
     X, Y : complex
         Displacement phasors [m].
     omega : float
@@ -456,6 +467,7 @@ def film_harmonic(
 # ---------------------------------------------------------------- where the film effects matter
 
 
+@_DOCS.fill
 def film_effect_map(model, rpm, amplitudes, *, steps: int = DEFAULT_STEPS_PER_CYCLE, progress=None):
     """Where fluid inertia and where cavitation change the oil force, over speed and orbit.
 
@@ -472,8 +484,7 @@ def film_effect_map(model, rpm, amplitudes, *, steps: int = DEFAULT_STEPS_PER_CY
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
+    {model}
     rpm : array_like
         Vibration frequencies as shaft speeds [rev/min].
     amplitudes : array_like

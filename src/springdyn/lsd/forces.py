@@ -22,11 +22,28 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from .stiffness import pack_deflections
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    angles : array_like
+        Pack angles phi_i [rad].
+    vy : float
+        Ring velocity along y [m/s].
+    friction_coefficient : float
+        Coulomb friction coefficient [-].
+    vx : float
+        Ring velocity along x [m/s].
+    """
+)
+
 
 __all__ = ["pack_spring_forces", "interleaf_friction_forces", "oring_friction_force"]
 
 
+@_DOCS.fill
 def pack_spring_forces(angles, pack_stiffness, preload, x, y):
     """Force of the packs on the shaft side, ``sum_i k_s [max(delta_pre + delta_i, 0) - delta_pre] e_i`` [N].
 
@@ -36,8 +53,7 @@ def pack_spring_forces(angles, pack_stiffness, preload, x, y):
 
     Parameters
     ----------
-    angles : array_like
-        Pack angles phi_i [rad].
+    {angles}
     pack_stiffness : float
         Stiffness k_s of one pack [N/m].
     preload : float
@@ -60,6 +76,7 @@ def pack_spring_forces(angles, pack_stiffness, preload, x, y):
     return net @ np.cos(phi), net @ np.sin(phi), load
 
 
+@_DOCS.fill
 def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_factor, vx, vy):
     """Coulomb friction between the leaves, ``1.5 mu_s S P_i sign(d delta_i/dt) e_i`` summed [N].
 
@@ -69,18 +86,13 @@ def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_fac
 
     Parameters
     ----------
-    angles : array_like
-        Pack angles phi_i [rad].
+    {angles}
     pack_loads : array_like
         Pack loads P_i [N].
-    friction_coefficient : float
-        Coulomb friction coefficient [-].
+    {friction_coefficient}
     slip_factor : float
         Inter-leaf slip factor S of Eqs. (2.27)-(2.28) [-].
-    vx : float
-        Ring velocity along x [m/s].
-    vy : float
-        Ring velocity along y [m/s].
+    {vx vy}
 
     Returns
     -------
@@ -97,19 +109,16 @@ def interleaf_friction_forces(angles, pack_loads, friction_coefficient, slip_fac
     return f @ np.cos(phi), f @ np.sin(phi)
 
 
+@_DOCS.fill
 def oring_friction_force(friction_coefficient, normal_force, vx, vy):
     """O-ring Coulomb friction ``mu_o F_N v/|v|`` opposing the ring velocity [N] (Eq. (2.21)).
 
     Parameters
     ----------
-    friction_coefficient : float
-        Coulomb friction coefficient [-].
+    {friction_coefficient}
     normal_force : float
         O-ring normal force F_N [N].
-    vx : float
-        Ring velocity along x [m/s].
-    vy : float
-        Ring velocity along y [m/s].
+    {vx vy}
 
     Returns
     -------

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 from ..core.io import read_csv_columns
 from ..core.results import Result
@@ -45,6 +46,20 @@ __all__ = [
     "IdentificationSeries",
     "CROSS_COUPLING_CAVEAT",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    mass : float
+        Moving mass [kg].
+    omega : float
+        Vibration frequency [rad/s].
+    signal : array_like
+        Signal samples [signal unit].
+    time : array_like
+        Sample times [s].
+    """
+)
 
 #: Columns of a rig record (CSV header or TDMS channel names).
 
@@ -136,6 +151,7 @@ def read_rig_data(path) -> RigData:
     return RigData(*(cols[c] for c in RIG_COLUMNS), source=str(path), row_offset=offset)
 
 
+@_DOCS.fill
 def harmonic_coefficients(time, signal, omega):
     """Fourier coefficients ``(s1, s2)`` of ``s ~ s0 + s1 cos wt + s2 sin wt`` [signal units].
 
@@ -146,12 +162,7 @@ def harmonic_coefficients(time, signal, omega):
 
     Parameters
     ----------
-    time : array_like
-        Sample times [s].
-    signal : array_like
-        Signal samples [signal unit].
-    omega : float
-        Vibration frequency [rad/s].
+    {time signal omega}
     """
     t = np.asarray(time, dtype=float)
     A = np.column_stack([np.ones_like(t), np.cos(omega * t), np.sin(omega * t)])
@@ -159,6 +170,7 @@ def harmonic_coefficients(time, signal, omega):
     return coef[1], coef[2]
 
 
+@_DOCS.fill
 def estimate_frequency(time, signal, source="<data>", column="x_m") -> float:
     """Fundamental frequency of a harmonic record [Hz].
 
@@ -168,10 +180,7 @@ def estimate_frequency(time, signal, source="<data>", column="x_m") -> float:
 
     Parameters
     ----------
-    time : array_like
-        Sample times [s].
-    signal : array_like
-        Signal samples [signal unit].
+    {time signal}
     source : str
         Where the record comes from, for messages.
     column : str
@@ -233,6 +242,7 @@ def direct_coefficients(a1, a2, c1, c2, mass, omega):
     return K, C
 
 
+@_DOCS.fill
 def thesis_printed_direct_coefficients(a1, a2, c1, c2, mass, omega):
     """Eqs. (4.19), (4.21) exactly as printed in the thesis -- WRONG, kept for the record.
 
@@ -252,10 +262,7 @@ def thesis_printed_direct_coefficients(a1, a2, c1, c2, mass, omega):
         Cosine coefficient of the force [N].
     c2 : float
         Sine coefficient of the force [N].
-    mass : float
-        Moving mass [kg].
-    omega : float
-        Vibration frequency [rad/s].
+    {mass omega}
     """
     d = (a1 * a1 - a2 * a2) * omega
     K = (a1 * omega * (c1 + a1 * omega**2 * mass) - a2 * omega * (c2 + a2 * mass * omega)) / d
@@ -645,6 +652,7 @@ class IdentificationSeries(Result):
         return coefficients_figure(f"{self.name}: identified coefficients", self.plot_on, None)
 
 
+@_DOCS.fill
 def identify_series(records, seconds=None, *, mass=0.0, rpms=None, name="identified") -> IdentificationSeries:
     """Identify at several speeds at once.
 
@@ -654,8 +662,7 @@ def identify_series(records, seconds=None, *, mass=0.0, rpms=None, name="identif
         One record per speed.
     seconds : list of RigData, optional
         The matching second excitations (same order).
-    mass : float
-        Moving mass [kg].
+    {mass}
     rpms : list of float, optional
         Speeds [rev/min]; by default found in the data.
     name : str

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import solve_banded
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 
 __all__ = [
@@ -25,6 +26,18 @@ __all__ = [
     "pack_stiffness",
     "clamped_pack_stiffness",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    lengths : array_like
+        Leaf lengths L_i, longest first [m].
+    flexural_rigidities : array_like
+        Flexural rigidities (E I)_i of the leaves [N m^2].
+    """,
+    lengths_any_order="lengths : array_like\n    Leaf lengths [m].",
+    rigidities="flexural_rigidities : array_like\n    ``(EI)_i`` [N m^2].",
+)
 
 
 def _leaves(lengths, flexural_rigidities):
@@ -128,6 +141,7 @@ def load_ratios(lengths, flexural_rigidities):
     return np.concatenate(([1.0], phi))
 
 
+@_DOCS.fill
 def load_ratios_direct(lengths, flexural_rigidities):
     """Contact-load ratios by direct compatibility, an independent check of Eq. (2.7).
 
@@ -138,10 +152,7 @@ def load_ratios_direct(lengths, flexural_rigidities):
 
     Parameters
     ----------
-    lengths : array_like
-        Leaf lengths [m].
-    flexural_rigidities : array_like
-        ``(EI)_i`` [N m^2].
+    {lengths_any_order rigidities}
 
     Returns
     -------
@@ -168,6 +179,7 @@ def load_ratios_direct(lengths, flexural_rigidities):
     return np.concatenate(([1.0], P))
 
 
+@_DOCS.fill
 def tip_deflection_ratios(lengths, flexural_rigidities):
     """Tip deflection of each leaf relative to leaf 1, ``delta_i / delta_1`` [-].
 
@@ -175,10 +187,7 @@ def tip_deflection_ratios(lengths, flexural_rigidities):
 
     Parameters
     ----------
-    lengths : array_like
-        Leaf lengths L_i, longest first [m].
-    flexural_rigidities : array_like
-        Flexural rigidities (E I)_i of the leaves [N m^2].
+    {lengths flexural_rigidities}
     """
     L, EI = _leaves(lengths, flexural_rigidities)
     phi = load_ratios(L, EI)
@@ -191,6 +200,7 @@ def tip_deflection_ratios(lengths, flexural_rigidities):
     return tips / tips[0]
 
 
+@_DOCS.fill
 def stiffness_factor(lengths, flexural_rigidities):
     """Stiffness factor ``xi`` of a leaf pack, Eq. (2.9) of the thesis [-].
 
@@ -200,10 +210,7 @@ def stiffness_factor(lengths, flexural_rigidities):
 
     Parameters
     ----------
-    lengths : array_like
-        Leaf lengths L_i, longest first [m].
-    flexural_rigidities : array_like
-        Flexural rigidities (E I)_i of the leaves [N m^2].
+    {lengths flexural_rigidities}
     """
     L, EI = _leaves(lengths, flexural_rigidities)
     if L.size == 1:
@@ -213,6 +220,7 @@ def stiffness_factor(lengths, flexural_rigidities):
     return float(1.0 - 0.5 * phi[1] * q * q * (3.0 - q))
 
 
+@_DOCS.fill
 def pack_stiffness(lengths, flexural_rigidities, poisson_ratio):
     r"""Leaf pack tip stiffness ``k_p = 3 (EI)_1 / (xi (1 - nu^2) L_1^3)``, Eq. (2.8) [N/m].
 
@@ -224,10 +232,7 @@ def pack_stiffness(lengths, flexural_rigidities, poisson_ratio):
 
     Parameters
     ----------
-    lengths : array_like
-        Leaf lengths [m].
-    flexural_rigidities : array_like
-        ``(EI)_i`` [N m^2].
+    {lengths_any_order rigidities}
     poisson_ratio : float
         ``nu`` [-].
 

@@ -8,12 +8,25 @@ from functools import cached_property
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 from ..core.results import Result
 from ..core.units import omega_to_rpm, rpm_to_omega
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
 from .rotordynamics import DEFAULT_POINTS, DEFAULT_RPM_RANGE
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    motion : {"linear", "circular"}
+        Motion for the O-ring Coulomb equivalent.
+    omega : float or array
+        Vibration frequency [rad/s].
+    """,
+    omega_instead="omega : float or array_like, optional\n    Vibration frequencies [rad/s] instead of ``rpm``.",
+)
+
 
 __all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "MASS_NAMES", "FILM_EFFECT_THRESHOLD"]
 
@@ -156,13 +169,13 @@ class LSDModel:
         """
         return self.film_time_constant * self.viscous_damping
 
+    @_DOCS.fill
     def film_diagnostics(self, omega, amplitude: float) -> dict:
         """Squeeze Reynolds number, inertia ratio and linear pressure amplitude at ``omega`` [rad/s].
 
         Parameters
         ----------
-        omega : float or array
-            Vibration frequency [rad/s].
+        {omega}
         amplitude : float
             Orbit radius or shake amplitude [m]; the pressure amplitude is the larger of a
             forward orbit's and the x and y shakes' (the orbit's for three or more packs).
@@ -203,13 +216,13 @@ class LSDModel:
             p.leaf_friction, p.preload, amplitude, self.slip_factor, normal_load or p.leaf_normal_load
         )
 
+    @_DOCS.fill
     def damping_matrix(self, omega, amplitude: float, motion: str = "linear", parts: bool = False):
         """Total damping ``C = C_f I + C_h + C_visc`` [N s/m], shape ``omega.shape + (2, 2)``.
 
         Parameters
         ----------
-        omega : float or array
-            Vibration frequency [rad/s].
+        {omega}
         amplitude : float
             Vibration amplitude [m] (pack deflection amplitude ``delta_1``).
         motion : {"linear", "circular"}
@@ -230,6 +243,7 @@ class LSDModel:
             return total, {"oring": c_f, "hysteresis": c_h, "viscous": np.array(c_v)}
         return total
 
+    @_DOCS.fill
     def coefficients(
         self, rpm=None, amplitude: float = 50e-6, motion: str = "linear", *, omega=None
     ) -> LSDCoefficients:
@@ -246,10 +260,7 @@ class LSDModel:
             Speeds [rev/min].
         amplitude : float
             Vibration amplitude [m] of the friction equivalents.
-        motion : {"linear", "circular"}
-            Motion for the O-ring Coulomb equivalent.
-        omega : float or array_like, optional
-            Vibration frequencies [rad/s] instead of ``rpm``.
+        {motion omega_instead}
         """
         rpm, w = _speeds(rpm, omega)
         if isinstance(amplitude, bool) or not isinstance(amplitude, (int, float, np.integer, np.floating)):
@@ -286,6 +297,7 @@ class LSDModel:
             film=film,
         )
 
+    @_DOCS.fill
     def equivalent_coefficients(
         self,
         rpm=None,
@@ -313,8 +325,7 @@ class LSDModel:
             Shake amplitude or orbit radius [m].
         motion : {"linear", "circular"}
             x and y shakes, or forward and backward orbits.
-        omega : float or array_like, optional
-            Vibration frequencies [rad/s] instead of ``rpm``.
+        {omega_instead}
         samples : int
             Quadrature points per period [-].
         film : bool
@@ -363,6 +374,7 @@ class LSDModel:
             film=diag,
         )
 
+    @_DOCS.fill
     def to_ross(
         self,
         n: int,
@@ -394,8 +406,7 @@ class LSDModel:
             Deprecated alias of ``omega`` [rad/s].
         amplitude : float
             Vibration amplitude [m] for the amplitude-dependent friction terms.
-        motion : {"linear", "circular"}
-            Motion for the O-ring Coulomb equivalent.
+        {motion}
         rpm_range : tuple of float
             ``(start, stop)`` vibration frequencies [rev/min]; default 0 to 20 000 rpm
             (below 60 rpm the 60 rpm values are used).

@@ -32,6 +32,7 @@ import warnings
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError, SolverError
 from ..core.units import omega_to_rpm, rpm_to_omega
 from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
@@ -48,6 +49,16 @@ __all__ = [
     "LOWEST_TABLE_RPM",
     "DEFAULT_FREQUENCIES",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    model : LSDModel
+        The damper.
+    n : int
+        Rotor node number [-].
+    """
+)
 
 #: Default speed range of :func:`bearing_element` [rev/min].
 DEFAULT_RPM_RANGE = (0.0, 20000.0)
@@ -148,6 +159,7 @@ def _table(rpm_range, points):
     return lo, hi, np.geomspace(first, hi, int(points))
 
 
+@_DOCS.fill
 def bearing_element(
     model,
     n: int,
@@ -166,10 +178,7 @@ def bearing_element(
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
-    n : int
-        Rotor node number [-].
+    {model n}
     frequencies : array_like, optional
         Deprecated alias of ``omega`` (explicit table frequencies [rad/s]).
     amplitude : float
@@ -256,6 +265,7 @@ def _mass_kwargs(model) -> dict:
     return _matrix_kwargs("m", model.added_mass)
 
 
+@_DOCS.fill
 def bearing_at_frequency(
     model, n: int, omega: float, *, amplitude: float = 50e-6, motion: str = "linear", added_mass: bool = True, **kwargs
 ):
@@ -267,10 +277,7 @@ def bearing_at_frequency(
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
-    n : int
-        Rotor node number [-].
+    {model n}
     omega : float
         Vibration frequency [rad/s].
     amplitude : float
@@ -357,6 +364,7 @@ def whirl_consistent_mode(
     )
 
 
+@_DOCS.fill
 def small_orbit_element(model, n: int, **kwargs):
     """``ross.BearingElement`` with the damper's small-orbit linearisation, constant in frequency.
 
@@ -369,10 +377,7 @@ def small_orbit_element(model, n: int, **kwargs):
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
-    n : int
-        Rotor node number [-].
+    {model n}
     **kwargs
         Passed on to ``ross.BearingElement`` (``tag`` ...).
     """
@@ -384,6 +389,7 @@ def small_orbit_element(model, n: int, **kwargs):
     )
 
 
+@_DOCS.fill
 def nonlinear_force(
     model, rotor, n: int, *, count: int = 1, film: bool = False, residual: bool = False, inertia: bool = True
 ):
@@ -413,8 +419,7 @@ def nonlinear_force(
 
     Parameters
     ----------
-    model : LSDModel
-        The damper.
+    {model}
     rotor : ross.Rotor
         The rotor (for ``ndof`` and ``number_dof``).
     n : int

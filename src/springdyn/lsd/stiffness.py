@@ -12,6 +12,7 @@ import warnings
 
 import numpy as np
 
+from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 
 __all__ = [
@@ -23,18 +24,26 @@ __all__ = [
     "warn_if_unloading",
 ]
 
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    packs : int
+        Number of packs N [-].
+    """
+)
+
 
 class PreloadExceededWarning(UserWarning):
     """The vibration amplitude exceeds the pack preload: packs lift off, K and C are no longer linear."""
 
 
+@_DOCS.fill
 def equally_spaced_angles(packs: int, first_angle: float = 0.0) -> np.ndarray:
     """Angles of ``packs`` equally spaced packs [rad], the first at ``first_angle`` [rad].
 
     Parameters
     ----------
-    packs : int
-        Number of packs N [-].
+    {packs}
     first_angle : float
         Angle of the first pack [rad].
     """
@@ -81,13 +90,13 @@ def stiffness_matrix(pack_stiffness, angles):
     return pack_stiffness * np.array([[np.sum(c * c), np.sum(s * c)], [np.sum(s * c), np.sum(s * s)]])
 
 
+@_DOCS.fill
 def isotropic_stiffness(packs: int, pack_stiffness: float) -> float:
     """``Kxx = Kyy = N k_s / 2`` of ``N >= 3`` equally spaced packs (thesis, after (3.6)) [N/m].
 
     Parameters
     ----------
-    packs : int
-        Number of packs N [-].
+    {packs}
     pack_stiffness : float
         Stiffness k_s of one pack [N/m].
 

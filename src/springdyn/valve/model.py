@@ -396,8 +396,7 @@ class ValveModel:
 
         Parameters
         ----------
-        {start_stop}
-        {points}
+        {start_stop points}
         """
         return self.chain_model.static_curve(start, stop, points)
 
@@ -407,8 +406,7 @@ class ValveModel:
 
         Parameters
         ----------
-        {length}
-        {count}
+        {length count}
         """
         return self.chain_model.modes(length, count)
 
@@ -419,8 +417,7 @@ class ValveModel:
 
         Parameters
         ----------
-        {length}
-        {count}
+        {length count}
         """
         return spring_wing.ChainModes.of(self.spring, length, count)
 
@@ -469,7 +466,7 @@ class ValveModel:
 
         Parameters
         ----------
-        cam_rpm, cam_angle, retainer_force, fit
+        cam_rpm, cam_angle, retainer_force, fit : float, array_like, array_like, sequence of str
             The measurement's cam speed [rev/min], cam angles [rad] and retainer forces [N], and
             what to fit, as :func:`~springdyn.valve.design.calibrate.calibrate_trace` takes them.
         """

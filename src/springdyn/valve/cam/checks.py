@@ -118,8 +118,7 @@ def flat_follower_radius(base_circle_radius, lift, acceleration):
     ----------
     base_circle_radius : float
         Base-circle radius R_b [m].
-    {lift}
-    {acceleration}
+    {lift acceleration}
 
     Examples
     --------
@@ -140,8 +139,7 @@ def flat_contact_offset(velocity, offset=0.0):
 
     Parameters
     ----------
-    {velocity}
-    {offset}
+    {velocity offset}
     """
     return np.asarray(velocity, dtype=float) - offset
 
@@ -177,10 +175,7 @@ def pressure_angle(lift, velocity, pitch_radius, offset=0.0):
 
     Parameters
     ----------
-    {lift}
-    {velocity}
-    {pitch_radius}
-    {offset}
+    {lift velocity pitch_radius offset}
     """
     return np.arctan2(np.asarray(velocity, dtype=float) - offset, pitch_radius + np.asarray(lift, dtype=float))
 
@@ -199,11 +194,7 @@ def pitch_curve_curvature(lift, velocity, acceleration, pitch_radius, offset=0.0
 
     Parameters
     ----------
-    {lift}
-    {velocity}
-    {acceleration}
-    {pitch_radius}
-    {offset}
+    {lift velocity acceleration pitch_radius offset}
     """
     h, dh, ddh = (np.asarray(a, dtype=float) for a in (lift, velocity, acceleration))
     y = pitch_radius + h

@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from ...core.io import atomic_path, write_csv
 from ...core.params import describe_value
@@ -42,6 +43,16 @@ from .setup import SimulationSetup, check_speeds, output_angles, prepare, static
 from .train_modes import natural_frequencies, resonance_speeds
 
 __all__ = ["sweep", "SpeedSweep", "run_chunk", "connect", "describe_design_value", "SCHEDULER_TIMEOUT"]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    out_dir : str or Path
+        Output folder [-].
+    prefix : str
+        File name prefix [-].
+    """
+)
 
 #: Seconds to wait for a Dask scheduler before giving up.
 SCHEDULER_TIMEOUT = 5.0
@@ -688,15 +699,13 @@ class SpeedSweep(CrankAngles, Result):
             return self.plot_all(path, prefix)
         return super().plot(path, ax=ax)
 
+    @_DOCS.fill
     def plot_all(self, out_dir, prefix: str = "sweep") -> list[Path]:
         """Write every sweep figure as PNG into the folder ``out_dir``; returns their paths.
 
         Parameters
         ----------
-        out_dir : str or Path
-            Output folder [-].
-        prefix : str
-            File name prefix [-].
+        {out_dir prefix}
         """
         from .plots import plot_sweep  # (here: matplotlib costs 0.3 s of start-up)
 
@@ -723,9 +732,14 @@ class SpeedSweep(CrankAngles, Result):
             nat["full_lift_Hz"] or nat["base_circle_Hz"], float(np.min(self.cam_rpm)), float(np.max(self.cam_rpm))
         )
 
+    @_DOCS.fill
     def write(self, out_dir, prefix: str = "sweep") -> list[Path]:
-        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``
-        (the arguments of :meth:`plot_all`)."""
+        """NetCDF, summary CSV, the cam-order resonance table and plots into ``out_dir``.
+
+        Parameters
+        ----------
+        {out_dir prefix}
+        """
         out_dir = Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
         written = [self.to_netcdf(out_dir / f"{prefix}.nc"), self.to_csv(out_dir / f"{prefix}_summary.csv")]

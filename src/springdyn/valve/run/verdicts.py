@@ -78,8 +78,7 @@ def valve_open(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
 
     Parameters
     ----------
-    {lobe_lift}
-    {valve_lift}
+    {lobe_lift valve_lift}
     lobe_lash : float
         Lobe lift that starts the event [m] (:attr:`ValveTrain.lobe_lash`).
     """
@@ -94,8 +93,7 @@ def seat_rebound_height(lobe_lift, valve_lift, lobe_lash: float) -> np.ndarray:
 
     Parameters
     ----------
-    {lobe_lift}
-    {valve_lift}
+    {lobe_lift valve_lift}
     lobe_lash : float
         Lobe lift that starts the event [m].
     """
@@ -158,8 +156,7 @@ def valve_held_open(lobe_lift, valve_lift) -> np.ndarray:
 
     Parameters
     ----------
-    {lobe_lift}
-    {valve_lift}
+    {lobe_lift valve_lift}
     """
     base = ~(np.asarray(lobe_lift) > BASE_CIRCLE_LIFT)
     z = np.asarray(valve_lift, dtype=float)

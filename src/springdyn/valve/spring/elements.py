@@ -201,8 +201,7 @@ def law_stiffness(x, law: np.ndarray):
 
     Parameters
     ----------
-    {x}
-    {law}
+    {x law}
 
     Notes
     -----
@@ -249,8 +248,7 @@ def damping_coefficient(x, law: np.ndarray, c0: float):
 
     Parameters
     ----------
-    {x}
-    {law}
+    {x law}
     c0 : float
         Base damping coefficient C0 [N s/m].
     """
@@ -266,8 +264,7 @@ def law_energy(x, law: np.ndarray):
 
     Parameters
     ----------
-    {x}
-    {law}
+    {x law}
     """
     x = np.asarray(x, dtype=float)
     energy = np.where(x < 0, 0.5 * law[0, 2] * x * x, 0.0)

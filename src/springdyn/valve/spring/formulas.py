@@ -255,8 +255,7 @@ def pitch_correction(length: float, dw: float, n1: float, n2: float, n_active: f
     ----------
     length : float
         Spring length, Lf or Ls [m].
-    {dw}
-    {n1_n2}
+    {dw n1_n2}
     n_active : float
         Active coils at that length [-].
     {do}
@@ -313,9 +312,7 @@ def total_mass(rho: float, do: float, dw: float, n1: float, n2: float) -> float:
     ----------
     rho : float
         Density rho' [kg/m^3].
-    {do}
-    {dw}
-    {n1_n2}
+    {do dw n1_n2}
 
     Notes
     -----
@@ -332,9 +329,7 @@ def coil_pitch(ls: float, dw: float, n1: float, n2: float) -> float:
 
     Parameters
     ----------
-    {ls}
-    {dw}
-    {n1_n2}
+    {ls dw n1_n2}
 
     Notes
     -----
@@ -349,8 +344,7 @@ def coil_contact_length(dw: float, n1: float, n2: float) -> float:
 
     Parameters
     ----------
-    {dw}
-    {n1_n2}
+    {dw n1_n2}
 
     Notes
     -----
@@ -366,9 +360,7 @@ def setup_force(lf: float, ls: float, k1: float) -> float:
 
     Parameters
     ----------
-    {lf}
-    {ls}
-    {k1}
+    {lf ls k1}
 
     Notes
     -----
@@ -386,8 +378,7 @@ def onestep_model_variables(k: float, k1: float, f1: float, m_total: float) -> d
 
     Parameters
     ----------
-    {k}
-    {k1}
+    {k k1}
     f1 : float
         Free-length surge frequency [Hz].
     {m_total}
@@ -416,9 +407,7 @@ def twostep_model_variables(k: float, k1: float, k2: float, f1: float, f2: float
 
     Parameters
     ----------
-    {k}
-    {k1}
-    {k2}
+    {k k1 k2}
     f1 : float
         Free-length surge frequency f1 [Hz].
     f2 : float
@@ -451,8 +440,7 @@ def first_nonlinear_force(fset: float, ls: float, lc: float, pc: float, k2: floa
     {ls}
     lc : float
         Solid length Lc [m].
-    {pc}
-    {k2}
+    {pc k2}
 
     Notes
     -----
@@ -484,8 +472,7 @@ def second_nonlinear_force(f1_force: float, pc: float, k3: float) -> float:
     ----------
     f1_force : float
         First nonlinear force F1 [N].
-    {pc}
-    {k3}
+    {pc k3}
 
     Notes
     -----
@@ -502,10 +489,7 @@ def coil_contact_force(k1: float, k2: float, lf: float, ls: float, dw: float, n1
     ----------
     k1, k2 : float
         Free- and set-up-length spring rates K1, K2 [N/m].
-    {lf}
-    {ls}
-    {dw}
-    {n1_n2}
+    {lf ls dw n1_n2}
 
     Notes
     -----
@@ -523,9 +507,7 @@ def stiffened_chain_rates(k: float, k3: float, two_step: bool) -> tuple[float, f
 
     Parameters
     ----------
-    {k}
-    {k3}
-    {two_step}
+    {k k3 two_step}
 
     Notes
     -----

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from ...core.io import read_csv_columns
 from ...core.units import format_mm
@@ -38,6 +39,14 @@ __all__ = [
     "turn_compliance",
     "wire_length_per_turn",
 ]
+
+#: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    s : float or array_like
+        Turns from the seat end [-].
+    """
+)
 
 #: Turns over which the pitch rises from the closed dead coil to the active pitch (an
 #: assumption typical of coiled valve springs; give a ``pitch_profile`` for a measured one).
@@ -134,19 +143,24 @@ class CoilGeometry:
     diameter_s: np.ndarray  # knots [turns]
     diameter_v: np.ndarray  # mean diameter at the knots [m]
 
+    @_DOCS.fill
     def pitch(self, s):
         """Pitch [m] at turns ``s`` from the seat end.
 
         Parameters
         ----------
-        s : float or array_like
-            Turns from the seat end [-].
+        {s}
         """
         return np.interp(s, self.pitch_s, self.pitch_v)
 
+    @_DOCS.fill
     def diameter(self, s):
-        """Mean coil diameter [m] at turns ``s`` [-] from the seat end (linear between the knots,
-        as :meth:`pitch`)."""
+        """Mean coil diameter [m] at turns ``s`` from the seat end.
+
+        Parameters
+        ----------
+        {s}
+        """
         return np.interp(s, self.diameter_s, self.diameter_v)
 
     @property

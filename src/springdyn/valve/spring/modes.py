@@ -72,8 +72,7 @@ def chain_frequencies(masses: np.ndarray, k: np.ndarray, count: int | None = Non
 
     Parameters
     ----------
-    {masses}
-    {k}
+    {masses k}
     count : int, optional
         Only the lowest ``count`` frequencies [-].
     """
@@ -103,8 +102,7 @@ def mode_labels(masses: np.ndarray, k: np.ndarray, count: int | None = None) -> 
 
     Parameters
     ----------
-    {masses}
-    {k}
+    {masses k}
     count : int, optional
         Only the lowest ``count`` modes [-].
 

@@ -89,8 +89,7 @@ def spring_index(mean_diameter, wire_diameter):
 
     Parameters
     ----------
-    {mean_diameter}
-    {wire_diameter}
+    {mean_diameter wire_diameter}
 
     Notes
     -----
@@ -155,9 +154,7 @@ def nominal_shear_stress(force, mean_diameter, wire_diameter):
 
     Parameters
     ----------
-    {force}
-    {mean_diameter}
-    {wire_diameter}
+    {force mean_diameter wire_diameter}
 
     Notes
     -----
@@ -173,9 +170,7 @@ def corrected_shear_stress(force, mean_diameter, wire_diameter):
 
     Parameters
     ----------
-    {force}
-    {mean_diameter}
-    {wire_diameter}
+    {force mean_diameter wire_diameter}
 
     Returns
     -------

@@ -378,9 +378,7 @@ def contact_point(lift, velocity, follower):
 
     Parameters
     ----------
-    {lift}
-    {velocity}
-    {follower}
+    {lift velocity follower}
 
     Returns
     -------
@@ -430,9 +428,7 @@ def flat_contact_velocities(omega, lift, acceleration, base_circle_radius):
 
     Parameters
     ----------
-    {omega}
-    {lift}
-    {acceleration}
+    {omega lift acceleration}
     base_circle_radius : float
         Base-circle radius R_b [m].
 
@@ -461,12 +457,7 @@ def roller_rolling_speed(omega, lift, velocity, pitch_radius, roller_radius, off
 
     Parameters
     ----------
-    {omega}
-    {lift}
-    {velocity}
-    {pitch_radius}
-    {roller_radius}
-    {offset}
+    {omega lift velocity pitch_radius roller_radius offset}
     """
     h, dh = np.asarray(lift, dtype=float), np.asarray(velocity, dtype=float)
     d = np.hypot(pitch_radius + h, dh - offset)
@@ -485,13 +476,7 @@ def roller_contact_velocities(
 
     Parameters
     ----------
-    {omega}
-    {lift}
-    {velocity}
-    {acceleration}
-    {pitch_radius}
-    {roller_radius}
-    {offset}
+    {omega lift velocity acceleration pitch_radius roller_radius offset}
     roller_speed : array_like, optional
         The roller's spin Omega [rad/s] (default: pure rolling, :func:`roller_rolling_speed`).
 

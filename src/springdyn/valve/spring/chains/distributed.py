@@ -132,8 +132,7 @@ def slice_states(force, k_slice, gap, k_contact, onset) -> tuple[np.ndarray, np.
 
     Parameters
     ----------
-    {force}
-    {slices}
+    {force slices}
 
     Returns
     -------
@@ -161,8 +160,7 @@ def slice_response(force, k_slice, gap, k_contact, onset):
 
     Parameters
     ----------
-    {force}
-    {slices}
+    {force slices}
 
     Returns
     -------
