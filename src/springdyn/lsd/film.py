@@ -39,6 +39,7 @@ from scipy.optimize import brentq, nnls
 from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError, SolverError
 from ..core.results import Result
+from ..core.units import omega_to_rpm, rpm_to_omega
 from .damping import chamber_pressures
 
 __all__ = [
@@ -498,7 +499,6 @@ def film_effect_map(model, rpm, amplitudes, *, steps: int = DEFAULT_STEPS_PER_CY
     -------
     FilmMap
     """
-    from ..core.units import rpm_to_omega
 
     rpm = np.atleast_1d(np.asarray(rpm, dtype=float))
     amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
@@ -579,7 +579,7 @@ class FilmMap(Result):
         """
         if not self.time_constant > 0:
             return None
-        rpm = self.threshold / self.time_constant * 30.0 / np.pi
+        rpm = omega_to_rpm(self.threshold / self.time_constant)
         return float(rpm) if rpm <= self.rpm.max() else None
 
     def cavitation_onset_rpm(self):

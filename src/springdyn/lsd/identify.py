@@ -29,6 +29,7 @@ from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError
 from ..core.io import read_csv_columns
 from ..core.results import Result
+from ..core.units import rpm_to_hz
 from .model import COEFFICIENT_NAMES
 from .rig import RIG_COLUMNS, RigRecord
 
@@ -311,13 +312,13 @@ def _frequency(data: RigData, rpm):
         except InputError:
             found = None
         if found is not None:
-            if abs(rpm / 60.0 - found) > RPM_MISMATCH * found:
+            if abs(rpm_to_hz(rpm) - found) > RPM_MISMATCH * found:
                 raise InputError(
                     f"rpm = {rpm:g} does not match the record {data.source}: its fundamental is {found:.4g} Hz "
-                    f"({60 * found:.4g} rpm), {100 * abs(rpm / 60.0 / found - 1):.0f} % away (at most "
+                    f"({60 * found:.4g} rpm), {100 * abs(rpm_to_hz(rpm) / found - 1):.0f} % away (at most "
                     f"{100 * RPM_MISMATCH:g} % is accepted); leave the speed out to use the one found in the data"
                 )
-        return rpm / 60.0
+        return rpm_to_hz(rpm)
     return estimate_frequency(data.time, sig, data.source, col)
 
 

@@ -28,7 +28,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.results import Result
-from ..core.units import rpm_to_omega
+from ..core.units import rpm_to_hz, rpm_to_omega
 from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
 from .model import LSDModel
 from .stiffness import warn_if_unloading
@@ -70,7 +70,7 @@ def _time_base(rpm, revolutions, sample_rate):
         raise InputError(f"revolutions = {revolutions!r} must be a positive, finite number of revolutions")
     if not (np.isfinite(sample_rate) and sample_rate > 0):
         raise InputError(f"sample_rate = {sample_rate!r} Hz must be positive")
-    f = rpm / 60.0
+    f = rpm_to_hz(rpm)
     if not sample_rate > 4 * f:
         raise InputError(
             f"sample rate {sample_rate:g} Hz is too low for {rpm:g} rpm ({f:g} Hz); use at least {8 * f:g} Hz"

@@ -68,7 +68,7 @@ DEFAULT_POINTS = 40
 #: ``C ~ 1/omega`` grow without bound, so a range starting lower is held at this value.
 LOWEST_TABLE_RPM = 60.0
 #: Old default table [rad/s] (500-3000 rpm, 11 points); kept for code that imported it.
-DEFAULT_FREQUENCIES = 2.0 * np.pi * np.linspace(500.0, 3000.0, 11) / 60.0
+DEFAULT_FREQUENCIES = rpm_to_omega(np.linspace(500.0, 3000.0, 11))
 
 _NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
 _INDEX = {"kxx": (0, 0), "kxy": (0, 1), "kyx": (1, 0), "kyy": (1, 1)}

@@ -15,6 +15,7 @@ import numpy as np
 from springdyn.app.report.html import Criterion, Section, add_result, fmt, parameter_rows
 from springdyn.core.io import write_json
 from springdyn.core.plotting import plt
+from springdyn.core.units import rpm_to_omega
 from springdyn.lsd.identify import RigData, identify_series
 from springdyn.lsd.model import LSDModel
 from springdyn.lsd.parameters import LSDParameters
@@ -142,7 +143,7 @@ def section(model: LSDModel, *, source: str, out_dir: Path, quiet: bool = True) 
             else ": the film stays whole."
         )
     )
-    omega = SPEEDS * 2.0 * np.pi / 60.0
+    omega = rpm_to_omega(SPEEDS)
     loss = cxx_m * omega / kxx_m
     k = int(np.argmax(loss))
     criteria = [
