@@ -233,6 +233,18 @@ class FrequencySweep(_Table):
         return fig
 
 
+def _slider_columns(r) -> dict:
+    """The slider's and the crank's motion and the forces of a forward or driven run, as columns."""
+    return {
+        "deflection_m": r.deflection,
+        "velocity_m_per_s": r.velocity,
+        "theta2_rad": r.theta2,
+        "theta2dot_rad_per_s": r.theta2dot,
+        "force_N": r.force,
+        "force_static_N": r.force_static,
+    }
+
+
 @dataclasses.dataclass(repr=False)
 class ForwardResult(_Table):
     """Forward dynamics: the slider's response to a force (or a spring from a moving base)."""
@@ -248,16 +260,7 @@ class ForwardResult(_Table):
     summary: dict
 
     def columns(self) -> dict:
-        return {
-            "time_s": self.time,
-            "deflection_m": self.deflection,
-            "velocity_m_per_s": self.velocity,
-            "theta2_rad": self.theta2,
-            "theta2dot_rad_per_s": self.theta2dot,
-            "force_N": self.force,
-            "force_static_N": self.force_static,
-            "energy_J": self.energy,
-        }
+        return {"time_s": self.time, **_slider_columns(self), "energy_J": self.energy}
 
     dim = "time"
     title = "constant-force spring: forward dynamics"
@@ -309,12 +312,7 @@ class DrivenResult(_Table):
         return {
             "time_s": self.time,
             "drive_position_m": self.drive_position,
-            "deflection_m": self.deflection,
-            "velocity_m_per_s": self.velocity,
-            "theta2_rad": self.theta2,
-            "theta2dot_rad_per_s": self.theta2dot,
-            "force_N": self.force,
-            "force_static_N": self.force_static,
+            **_slider_columns(self),
             "actuator_work_J": self.work,
             "heat_friction_J": self.heat_friction,
             "heat_damper_J": self.heat_damper,

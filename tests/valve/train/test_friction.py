@@ -393,7 +393,7 @@ def test_friction_table_defaults_and_viscosity():
     Walther viscosity is the datasheet's 10.5 mm^2/s times the density 850/(1 + 6.5e-4 * 85) =
     805.5 kg/m^3: 8.458 mPa s; by default (90 degC) the adjuster's viscosity."""
     f = Friction()
-    assert f.viscosity == HLA().viscosity() == Oil().dynamic_viscosity()
+    assert f.viscosity == HLA().oil.dynamic_viscosity() == Oil().dynamic_viscosity()
     hot = Friction.from_dict({"oil_temperature": "100 degC"})
     assert hot.viscosity == pytest.approx(10.5e-6 * 850 / (1 + 6.5e-4 * 85), rel=1e-9)
     assert Friction.from_dict({"oil_viscosity": "9 mPa*s"}).viscosity == pytest.approx(0.009)

@@ -31,7 +31,7 @@ def test_leak_down_time_by_hand():
     """12 mm plunger, 4 um radial clearance, 8 mm land, mu at 90 degC; 200 N less the 15 N
     spring over 1 mm: t = s (A + pi D c / 2) A / (G (W - F_s)), G = pi D c^3 / (12 mu L)."""
     h = HLA()
-    mu = h.viscosity()
+    mu = h.oil.dynamic_viscosity()
     d, c, length = 12e-3, 4e-6, 8e-3
     g = math.pi * d * c**3 / (12 * mu * length)
     area = math.pi * d**2 / 4

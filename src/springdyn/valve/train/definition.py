@@ -545,7 +545,7 @@ class ValveTrain(Parameters):
             0.5 * math.pi * h.plunger_diameter * h.radial_clearance,
             P_ATM + h.supply_pressure,
             h.cracking_pressure,
-            h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.density()),
+            h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.oil.density()),
             h.oil.bulk_modulus,
             h.oil.air_fraction,
             h.oil.polytropic_index,

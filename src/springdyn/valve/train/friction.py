@@ -85,7 +85,6 @@ rolling resistance of a roller, and the valve stem seal.  Sources: docs/referenc
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -99,7 +98,7 @@ from ...core.params import Parameters, param
 from ...core.results import Result
 from ..cam.checks import flat_follower_radius, pitch_curve_curvature, pressure_angle, roller_cam_curvature
 from ..cam.follower import Follower
-from .oil import Oil, oil_of
+from .oil import HoldsOil, Oil, oil_of
 
 __all__ = [
     "Friction",
@@ -195,7 +194,7 @@ DEFAULT_SOURCES = {
 
 
 @dataclass(frozen=True)
-class Friction(Parameters):
+class Friction(HoldsOil, Parameters):
     """The ``[friction]`` table: roughness, friction coefficients, the roller's inertia and
     bearing, the stem guide and the pivot; and the oil (:class:`~springdyn.valve.train.oil.Oil`).
 
@@ -300,36 +299,14 @@ class Friction(Parameters):
             )
 
     @classmethod
-    def from_dict(cls, mapping, *, source: str | None = None, oil: Oil | None = None, **context):
-        """The table's keys (the oil's older keys among them, or the train's ``oil``).
-
-        Parameters
-        ----------
-        mapping : mapping
-            The ``[friction]`` table.
-        source : str, optional
-            The file, for messages.
-        oil : Oil, optional
-            The train's oil (:func:`springdyn.valve.train.oil.oil_of`): then the table holds no oil keys.
-        """
-        found, rest = oil_of({"friction": mapping}, source) if isinstance(mapping, Mapping) else (None, {})
-        table = rest.get("friction", mapping)
-        if oil is not None and isinstance(mapping, Mapping) and len(table) != len(mapping):
-            raise InputError("the oil is given twice: as the train's [oil] and in the [friction] table")
-        friction = super().from_dict(table, source=source, **context)
-        return dataclasses.replace(friction, oil=found if oil is None else oil)
-
-    @classmethod
     def in_document(cls, doc: Mapping, source: str | None = None) -> Friction | None:
         """The ``[friction]`` table of a definition with the train's one oil (``[oil]`` with the oil
         keys of ``[hla]`` and ``[friction]``); None where the definition has no ``[friction]``.
 
         Parameters
         ----------
-        doc : mapping
-            The definition's tables (``load_toml``).
-        source : str, optional
-            The file, for messages.
+        doc, source : mapping, str
+            The definition's tables and its file, as :func:`~springdyn.valve.train.oil.oil_of` takes them.
         """
         if "friction" not in doc:
             return None

@@ -30,9 +30,7 @@ Sources: docs/references.md, [Merritt], [ASTM D341], [Gholizadeh].
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -40,7 +38,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, param
 from ..engine.layout import P_ATM
-from .oil import Oil, oil_of
+from .oil import HoldsOil, Oil
 
 __all__ = [
     "P_ATM",
@@ -163,7 +161,7 @@ def leak_down_time(load, travel, plunger_diameter, radial_clearance, conductance
 
 
 @dataclass(frozen=True)
-class HLA(Parameters):
+class HLA(HoldsOil, Parameters):
     """The ``[hla]`` table: a hydraulic lash adjuster's plunger, chamber, check valve and oil.
 
     Defaults describe a 12 mm HLA of a passenger-car finger-follower train (sources in
@@ -245,46 +243,6 @@ class HLA(Parameters):
         """Plunger area [m^2]."""
         return 0.25 * math.pi * self.plunger_diameter**2
 
-    @classmethod
-    def from_dict(cls, mapping, *, source: str | None = None, oil: Oil | None = None, **context):
-        """The table's keys (the oil's older keys among them, or the train's ``oil``).
-
-        Parameters
-        ----------
-        mapping : mapping
-            The ``[hla]`` table.
-        source : str, optional
-            The file, for messages.
-        oil : Oil, optional
-            The train's oil (:func:`springdyn.valve.train.oil.oil_of`): then the table holds no oil keys.
-        """
-        found, rest = oil_of({"hla": mapping}, source) if isinstance(mapping, Mapping) else (None, {})
-        table = rest.get("hla", mapping)
-        if oil is not None and isinstance(mapping, Mapping) and len(table) != len(mapping):
-            raise InputError("the oil is given twice: as the train's [oil] and in the [hla] table")
-        hla = super().from_dict(table, source=source, **context)
-        return dataclasses.replace(hla, oil=found if oil is None else oil)
-
-    def viscosity(self, temperature: float | None = None) -> float:
-        """Dynamic viscosity of the oil [Pa s] at a temperature (default: the oil's).
-
-        Parameters
-        ----------
-        temperature : float, optional
-            Oil temperature [K].
-        """
-        return self.oil.dynamic_viscosity(temperature)
-
-    def density(self, temperature: float | None = None) -> float:
-        """Oil density [kg/m^3] at a temperature (default: the oil's).
-
-        Parameters
-        ----------
-        temperature : float, optional
-            Oil temperature [K].
-        """
-        return self.oil.density(temperature)
-
     def conductance(self, temperature: float | None = None) -> float:
         """Leakage conductance [m^3/(s Pa)] at a temperature (:func:`leak_conductance`).
 
@@ -297,7 +255,7 @@ class HLA(Parameters):
             self.plunger_diameter,
             self.radial_clearance,
             self.leak_length,
-            self.viscosity(temperature),
+            self.oil.dynamic_viscosity(temperature),
             self.eccentricity,
         )
 
@@ -371,7 +329,7 @@ def leak_down_test(hla: HLA, load: float, travel: float, temperature: float | No
     closed = hla.leak_down_seconds(load, travel, temperature)
     a = hla.area
     g = hla.conductance(temperature)
-    rho = hla.density(temperature)
+    rho = hla.oil.density(temperature)
     ps = P_ATM + hla.supply_pressure
     drag = 0.5 * math.pi * hla.plunger_diameter * hla.radial_clearance
     p1 = ps + (load - hla.plunger_spring_force) / a

@@ -21,6 +21,7 @@ Sources: docs/references.md.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Mapping
@@ -41,6 +42,7 @@ __all__ = [
     "OLDER_KEYS",
     "oil_of",
     "WALTHER_KEYS",
+    "HoldsOil",
 ]
 
 #: The datasheet keys of the Walther viscosity; with ``viscosity`` given they would go unused (the
@@ -345,3 +347,28 @@ def oil_of(doc: Mapping, source: str | None = None) -> tuple[Oil, dict]:
                 text = re.sub(rf"(\[oil\] )?\b{name}\b(?= = )", lambda _m, first=first: first, text)
             raise InputError(text) from None
         raise
+
+
+class HoldsOil:
+    """Base of a table that holds the train's oil (``oil``, not a key) and may still give the oil's
+    keys by their older names (:data:`OLDER_KEYS` of its ``table``): ``[hla]``, ``[friction]``."""
+
+    @classmethod
+    def from_dict(cls, mapping, *, source: str | None = None, oil: Oil | None = None, **context):
+        """The table's keys (the oil's older keys among them, or the train's ``oil``).
+
+        Parameters
+        ----------
+        mapping : mapping
+            The table's keys.
+        source : str, optional
+            The file, for messages.
+        oil : Oil, optional
+            The train's oil (:func:`oil_of`): then the table holds no oil keys.
+        """
+        found, rest = oil_of({cls.table: mapping}, source) if isinstance(mapping, Mapping) else (None, {})
+        table = rest.get(cls.table, mapping)
+        if oil is not None and isinstance(mapping, Mapping) and len(table) != len(mapping):
+            raise InputError(f"the oil is given twice: as the train's [oil] and in the [{cls.table}] table")
+        made = super().from_dict(table, source=source, **context)
+        return dataclasses.replace(made, oil=found if oil is None else oil)
