@@ -36,6 +36,7 @@ from .layout import (
     X_CAM_FORCE,
     X_DISP,
     X_SEAT_FORCE,
+    XT_HLA_CHECK,
 )
 from .monitor import finish_monitor, monitor_step, new_monitor
 from .stepping import step_kernels
@@ -289,7 +290,7 @@ def check_channels(e, ne, row):
     row[CHK_RETAINER] = e[ne - 1]
     row[CHK_CAM] = e[b + X_CAM_FORCE]
     row[CHK_VALVE_SEAT] = e[b + X_SEAT_FORCE]
-    row[CHK_HLA] = e[b + X_DISP + ne + 5]  # the adjuster's collapse as a force (layout.extra_layout)
+    row[CHK_HLA] = e[b + X_DISP + (ne - 1) + XT_HLA_CHECK]  # the adjuster's collapse as a force
 
 
 _METHOD_OF = {type(tab): name for name, tab in erk.TABLEAUS.items()}

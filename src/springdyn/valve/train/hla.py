@@ -39,6 +39,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
+from ..engine.layout import CHECK_VALVE_TRANSITION, P_ATM, P_CAVITATION
 
 __all__ = [
     "P_ATM",
@@ -54,16 +55,12 @@ __all__ = [
     "LeakDownTest",
 ]
 
-#: Standard atmospheric pressure [Pa]: gauge pressures of the ``[hla]`` table are above it.
-P_ATM = 101325.0
-#: Lowest absolute chamber pressure [Pa]: below it the oil releases its air and vapour
-#: (the chamber cavitates); the pressure is held there and the check valve refills.
-P_CAVITATION = 2000.0
+# Standard atmospheric pressure P_ATM [Pa], the cavitation pressure P_CAVITATION [Pa] and the
+# check valve's laminar transition CHECK_VALVE_TRANSITION [Pa]: defined once, in the engine's
+# layout, whose compiled laws use them too (the engine imports nothing from train/).
+
 #: The integrator of :func:`leak_down_test` (an implicit one: the oil spring is stiff).
 LEAK_DOWN_METHOD = "Radau"
-#: Pressure difference [Pa] below which the check valve's orifice flow is taken as laminar
-#: (linear in the pressure difference), so that the flow has a finite slope at zero.
-CHECK_VALVE_TRANSITION = 2000.0
 
 
 def kinematic_viscosity(temperature, nu_40, nu_100):
