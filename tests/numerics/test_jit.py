@@ -198,8 +198,8 @@ from springdyn.valve import Cam, ValveSpring, simulate
 from springdyn.numerics import erk
 from springdyn.valve.engine import loop
 simulate(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)), 3000.0, 2)
-print("variants", sorted(k.py_func.__qualname__ for k in loop._VARIANTS.values() if k.signatures))
-print("trains", sorted({str(sig[6]) for k in loop._VARIANTS.values() for sig in k.signatures}))
+print("variants", sorted(k.py_func.__qualname__ for k in loop._COMPILED.values() if k.signatures))
+print("trains", sorted({str(sig[6]) for k in loop._COMPILED.values() for sig in k.signatures}))
 print("unused", [k.py_func.__name__ for k in (erk.stage_state, erk.error_norm, erk.tsit5_stage_state,
                                               erk.tsit5_error_norm, erk.dense_coefficients) if k.signatures])
 """

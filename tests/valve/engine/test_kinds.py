@@ -160,3 +160,18 @@ def test_the_extra_outputs_are_read_where_they_are_written():
         assert [lay[k] for k in ("cam_gap", "hla_collapse", "hla_pressure", "socket_force")] == list(
             range(lay["cam_gap"], lay["cam_gap"] + 4)
         )
+
+
+def test_the_variants_are_one_table():
+    """Every pair and model has one row; the templates' unbound names say who binds them."""
+    from springdyn.numerics import erk
+    from springdyn.valve.engine import stepping
+
+    assert set(loop.VARIANTS) == {(p, m) for p in erk.TABLEAUS for m in ("spring", "train")}
+    for (pair, model), v in loop.VARIANTS.items():
+        assert v.step is getattr(stepping, f"{pair}_step") and v.dense is getattr(stepping, f"{pair}_dense")
+        assert v.rhs is (eq.train_rhs_hot if model == "train" else eq.spring_rhs_hot)
+    with pytest.raises(RuntimeError, match="loop.VARIANTS"):
+        loop.attempt_step(*[None] * 14)
+    with pytest.raises(RuntimeError, match="loop.VARIANTS"):
+        stepping.rhs_hot(*[None] * 7)
