@@ -762,8 +762,9 @@ def spring_rhs(t, s, m, omega, vt, out, extra):
     lift, slope = cam_at(omega * t, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
     dlift = slope * omega
     chain_forces(s, m, nm, lift, dlift, out, extra)
-    _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
-    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    if extra.shape[0] > 0:  # (the records are called, not inlined: see _RECORDS)
+        _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
+        _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 class CamDrive(NamedTuple):
@@ -966,19 +967,20 @@ def lever_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     f_cam, f_valve, gap, c, kap = lever_links(s, nm, nfree, vt, cam, out, ya, yad)
     sock = hla_forces(s, nm, nfree, vt, out)
     out[nfree + nm + S_PIVOT] = (f_cam * (kap - c / vt[VT_RATIO]) - sock) / vt[VT_HLA_MA]
-    h = nm + S_LEVER_HLA
-    collapse = s[h + H_PLUNGER] - vt[VT_HLA_Y0]
-    _record_hla(
-        extra,
-        nm + 1,
-        nm,
-        collapse,
-        s[h + H_PRESSURE] - vt[VT_HLA_PS],
-        sock,
-        s[h + H_INFLOW],
-        s[h + H_LEAK],
-        collapse * vt[VT_HLA_KCHK],
-    )
+    if extra.shape[0] > 0:
+        h = nm + S_LEVER_HLA
+        collapse = s[h + H_PLUNGER] - vt[VT_HLA_Y0]
+        _record_hla(
+            extra,
+            nm + 1,
+            nm,
+            collapse,
+            s[h + H_PRESSURE] - vt[VT_HLA_PS],
+            sock,
+            s[h + H_INFLOW],
+            s[h + H_LEAK],
+            collapse * vt[VT_HLA_KCHK],
+        )
     return f_cam, f_valve, gap
 
 
@@ -1045,18 +1047,19 @@ def bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     pen_s = s[h + H_PLUNGER] - s[nm + S_VALVE]
     raw_s = vt[VT_HLA_KS] * pen_s + vt[VT_HLA_CS] * (s[nfree + h + H_PLUNGER] - s[nfree + nm + S_VALVE])
     gap = min(min(pen, raw / vt[VT_K_CAM]), min(pen_s, raw_s / vt[VT_HLA_KS]))
-    collapse = yb - s[h + H_PLUNGER] - vt[VT_HLA_Y0]
-    _record_hla(
-        extra,
-        nm + 1,
-        nm,
-        collapse,
-        s[h + H_PRESSURE] - vt[VT_HLA_PS],
-        f_valve,
-        s[h + H_INFLOW],
-        s[h + H_LEAK],
-        collapse * vt[VT_HLA_KCHK],
-    )
+    if extra.shape[0] > 0:
+        collapse = yb - s[h + H_PLUNGER] - vt[VT_HLA_Y0]
+        _record_hla(
+            extra,
+            nm + 1,
+            nm,
+            collapse,
+            s[h + H_PRESSURE] - vt[VT_HLA_PS],
+            f_valve,
+            s[h + H_INFLOW],
+            s[h + H_LEAK],
+            collapse * vt[VT_HLA_KCHK],
+        )
     return f_cam, f_valve, gap
 
 
@@ -1099,7 +1102,8 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     z = s[nm + S_VALVE]
     zd = s[nfree + nm + S_VALVE]
     f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
-    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # an adjuster overwrites them
+    if extra.shape[0] > 0:  # an adjuster overwrites them
+        _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     f_seat = seat_force(vt, z, zd)
     if kind == TRAIN_DIRECT:
         f_cam, f_valve, gap = direct_acting_rhs(s, nm, nfree, vt, cam, out, extra)
@@ -1116,7 +1120,8 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     out[nm + S_VALVE] = zd
     # the gas force pushes the valve towards its seat (springdyn.valve.train.gas_force)
     out[nfree + nm + S_VALVE] = (f_valve + f_seat - f_spring - gas_force_at(vt, theta)) / vt[VT_MASS]
-    _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
+    if extra.shape[0] > 0:
+        _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
 
 
 def _contact(k, c, pen, rate):
@@ -1311,6 +1316,11 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
     spring_rhs(t, s, m, omega, vt, out, extra)
 
 
+#: The records of the extra outputs, called (only where there are outputs), not inlined: inlined
+#: into every right-hand side (the train's, the spring's, the step's and rhs_call's) their
+#: stores made a sixth of the engine's code for numba to type and compile.
+_RECORDS = ("_record_tail", "_record_hla")
+
 _TWINS = twins(
     globals(),
     [
@@ -1340,10 +1350,11 @@ _TWINS = twins(
     ],
     fastmath=FASTMATH,
 )
-# the adjuster's equations are called, not inlined: the integration step evaluates the
-# right-hand side at every stage, and inlining this rarely used branch into each of them
-# cost 2.4 s of the train engine's compilation (11.4 against 9 s)
-for _name in ("hla_forces", "bucket_hla_forces"):
+# the adjusters' equations are called, not inlined (the finger's with its kind, which holds a
+# second copy of the lever's): the integration step evaluates the right-hand side at every
+# stage, and inlining these rarely used branches there (and into rhs_call) costs seconds of
+# the train engine's compilation (measured 2.4 s for the finger's adjuster alone)
+for _name in ("lever_hla_rhs", "bucket_hla_forces", *_RECORDS):
     _TWINS["__globals__"][_name] = kernel(
         rebind(globals()[_name], _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
     )
