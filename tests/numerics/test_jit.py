@@ -227,7 +227,9 @@ def test_the_installed_numba_is_within_the_pin():
 
     import numba
 
-    deps = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())["project"]["dependencies"]
+    deps = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())["project"][
+        "dependencies"
+    ]
     spec = next(d for d in deps if re.match(r"numba\b", d))
     upper = re.search(r"<\s*([\d.]+)", spec)
     assert upper, f"the numba requirement {spec!r} has no upper bound"
