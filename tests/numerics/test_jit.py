@@ -199,8 +199,8 @@ from springdyn.valve import Cam, ValveSpring, simulate
 from springdyn.numerics import erk
 from springdyn.valve.engine import loop
 simulate(ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120)), 3000.0, 2)
-print("variants", sorted(k.py_func.__qualname__ for k in loop._VARIANTS.values() if k.signatures))
-print("trains", sorted({str(sig[6]) for k in loop._VARIANTS.values() for sig in k.signatures}))
+print("variants", sorted(k.py_func.__qualname__ for k in loop._COMPILED.values() if k.signatures))
+print("trains", sorted({str(sig[6]) for k in loop._COMPILED.values() for sig in k.signatures}))
 print("unused", [k.py_func.__name__ for k in (erk.stage_state, erk.error_norm, erk.tsit5_stage_state,
                                               erk.tsit5_error_norm, erk.dense_coefficients) if k.signatures])
 """
@@ -217,3 +217,22 @@ def test_a_type_c_run_compiles_only_its_pair_and_model(tmp_path):
     assert out["variants"] == "['integrate_loop_dopri5_spring']"
     assert out["trains"] == "['none']"  # the spring alone: no valve-train variant
     assert out["unused"] == "[]"  # no Bogacki-Shampine or Tsitouras kernel
+
+
+def test_the_installed_numba_is_within_the_pin():
+    """jit subclasses numba's private caching classes, so pyproject.toml pins numba to the
+    releases tested; an install outside the pin (pip --no-deps, a conda environment) fails
+    here, and tools/check_numba.py says whether a newer numba works."""
+    import re
+    import tomllib
+
+    import numba
+
+    deps = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())["project"][
+        "dependencies"
+    ]
+    spec = next(d for d in deps if re.match(r"numba\b", d))
+    upper = re.search(r"<\s*([\d.]+)", spec)
+    assert upper, f"the numba requirement {spec!r} has no upper bound"
+    have = tuple(int(x) for x in re.findall(r"\d+", numba.__version__)[:2])
+    assert have < tuple(int(x) for x in upper.group(1).split(".")[:2]), (numba.__version__, spec)

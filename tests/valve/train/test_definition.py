@@ -4,6 +4,7 @@ strain-energy reduction of a rigid lever (masses ``m / r^2``, ``J / arm^2``, sti
 ``k / r^2`` in series), and the static series-spring deflection."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -255,3 +256,114 @@ def test_train_energy_balance_over_a_revolution(name, camfile, rpm):
     vt = ValveTrain.example(name).replace(cam_contact_damping=0.0, seat_damping=0.0, link_damping=0.0)
     err = _train_energy_error(vt, Cam.from_toml(ROOT / camfile), rpm)
     assert err < 1e-4
+
+
+# --- the engine's parameter vector (issue 38 item 4): written by slot name, read by slot name ----
+from springdyn.valve.engine import layout as engine_layout  # noqa: E402
+
+#: One example train of each kind the engine knows (and the drawn lever, a lever of its own).
+KIND_EXAMPLES = {
+    "valve_train.toml": engine_layout.TRAIN_DIRECT,
+    "finger_follower.toml": engine_layout.TRAIN_LEVER,
+    "finger_follower_geometry.toml": engine_layout.TRAIN_LEVER,
+    "pushrod.toml": engine_layout.TRAIN_PUSHROD,
+    "bucket_hla.toml": engine_layout.TRAIN_BUCKET_HLA,
+    "finger_follower_hla.toml": engine_layout.TRAIN_LEVER_HLA,
+}
+
+
+def _slot_names() -> dict:
+    return {name: value for name, value in vars(engine_layout).items() if name.startswith("VT_") and name != "VT_SIZE"}
+
+
+class _Recorder(np.ndarray):
+    """An array that records the indices written into it."""
+
+    def __array_finalize__(self, obj):
+        self.writes = getattr(obj, "writes", None)
+
+    def __setitem__(self, key, value):
+        self.writes.append(key)
+        super().__setitem__(key, value)
+
+
+def _recorded_parameters(vt: ValveTrain, monkeypatch) -> tuple:
+    """``vt.kernel_parameters()`` and the slots it wrote, in order."""
+    real_zeros = np.zeros
+    made = []
+
+    def zeros(shape, *args, **kwargs):
+        out = real_zeros(shape, *args, **kwargs)
+        if shape == engine_layout.VT_SIZE:
+            out = out.view(_Recorder)
+            out.writes = []
+            made.append(out)
+        return out
+
+    with monkeypatch.context() as mp:
+        mp.setattr(np, "zeros", zeros)
+        params = vt.kernel_parameters()
+    assert len(made) == 1 and params is made[0]
+    return np.asarray(params), list(made[0].writes)
+
+
+def test_every_slot_has_one_name():
+    """The layout names every slot of the vector, each slot once ("none left unnamed")."""
+    names = _slot_names()
+    assert sorted(names.values()) == list(range(engine_layout.VT_SIZE)), names
+
+
+@pytest.mark.parametrize("name", sorted(KIND_EXAMPLES))
+def test_kernel_parameters_write_every_slot_once_by_name(name, monkeypatch):
+    vt = ValveTrain.from_toml(ROOT / example(f"valve/{name}"))
+    params, writes = _recorded_parameters(vt, monkeypatch)
+    assert params.shape == (engine_layout.VT_SIZE,)
+    assert all(isinstance(k, int) for k in writes)  # one slot at a time, by its name
+    assert sorted(writes) == list(range(engine_layout.VT_SIZE))  # every slot, each once
+    kind = KIND_EXAMPLES[name]
+    assert vt.kernel_kind == kind and params[engine_layout.VT_KIND] == kind
+    assert params[engine_layout.VT_ENABLED] == 1.0
+    dof = engine_layout.TRAIN_DOF[kind]
+    assert params[engine_layout.VT_DOF] == dof == vt.degrees_of_freedom
+    assert vt.static_state(0.0, 0.0, 0.0).shape == (dof,)
+    assert (params[engine_layout.VT_HLA] == 1.0) == (vt.hla is not None)
+    assert (params[engine_layout.VT_GEOM] == 1.0) == (vt.geometry is not None)
+
+
+def test_the_docstrings_state_the_vectors_true_size():
+    """The docstrings that give the vector's size give ``VT_SIZE`` (they once said 16 of 45)."""
+    import re
+
+    from springdyn.valve.engine import equations
+
+    doc = " ".join(ValveTrain.kernel_parameters.__doc__.split())
+    assert f"its {engine_layout.VT_SIZE} slots (``VT_SIZE``)" in doc
+    for module in (equations, engine_layout):
+        text = Path(module.__file__).read_text()
+        sizes = re.findall(r"vt : ndarray \((\d+),\)", text)
+        assert not sizes, f"{module.__name__} gives the vector {sizes} slots: write (VT_SIZE,)"
+
+
+def test_state_offsets_name_the_states_of_each_kind():
+    """``S_*`` and ``H_*`` are the positions of the states that TRAIN_STATES lists per kind, and
+    a train's static state (its initial condition) has the pressure where the engine reads it."""
+    L = engine_layout
+    states = L.TRAIN_STATES
+    assert states[L.TRAIN_DIRECT].index("valve") == L.S_VALVE
+    assert states[L.TRAIN_LEVER].index("lever") == L.S_LEVER
+    assert states[L.TRAIN_PUSHROD].index("lifter") == L.S_LIFTER
+    assert states[L.TRAIN_LEVER_HLA].index("pivot") == L.S_PIVOT
+    assert states[L.TRAIN_BUCKET_HLA].index("bucket") == L.S_BUCKET
+    for kind, first in ((L.TRAIN_LEVER_HLA, L.S_LEVER_HLA), (L.TRAIN_BUCKET_HLA, L.S_BUCKET_HLA)):
+        for h, name in (
+            (L.H_PLUNGER, "plunger"),
+            (L.H_PRESSURE, "pressure"),
+            (L.H_INFLOW, "inflow"),
+            (L.H_LEAK, "leak"),
+        ):
+            assert states[kind][first + h] == name
+        assert len(states[kind]) == first + L.N_HLA_STATES
+    for name, first in (("bucket_hla.toml", L.S_BUCKET_HLA), ("finger_follower_hla.toml", L.S_LEVER_HLA)):
+        vt = ValveTrain.from_toml(ROOT / example(f"valve/{name}"))
+        y = vt.static_state(0.0, 0.0, vt.hla_force)
+        assert y[first + L.H_PRESSURE] == vt.kernel_parameters()[L.VT_HLA_PS]  # the supply, absolute

@@ -20,6 +20,12 @@ carries ``f_j = F_j(x_j) + c_j(x_j) dx_j/dt``.  Mass ``i`` (node ``i + 1``) obey
 - Valve train: node N + 1 is the valve body (mass ``M_v``, displacement ``z`` = valve lift)
   with ``M_v z'' = F_cam + F_seat - f_N``; the cam contact ``F_cam = max(0, k_c p + c_c p')``
   for ``p = h - z - lash > 0`` and the seat ``F_seat = max(0, -k_s z - c_s z')`` for ``z < 0``.
+  The kind of train (``vt[VT_KIND]``, ``TRAIN_*`` of :mod:`.layout`) has its own function
+  (:func:`direct_acting_rhs`, :func:`lever_rhs`, :func:`lever_hla_rhs`, :func:`pushrod_rhs`,
+  :func:`bucket_hla_rhs`) and NumPy twin (:data:`RESPONSES`); its states are named by
+  ``S_*`` and ``H_*`` of :mod:`.layout`.  A new kind: a ``TRAIN_*`` code, its states in
+  :data:`.layout.TRAIN_STATES`, a ``*_rhs`` and a ``*_response`` here, and its branch in
+  :func:`train_rhs` and entry in :data:`RESPONSES`.
 
 The functions are plain Python on floats and arrays: :data:`spring_rhs_hot`,
 :data:`train_rhs_hot` and :data:`rhs_call` are their compiled twins (the first two inlined
@@ -36,6 +42,28 @@ import numpy as np
 
 from ...numerics.jit import kernel, rebind, twins
 from .layout import (
+    CHECK_VALVE_TRANSITION,
+    H_INFLOW,
+    H_LEAK,
+    H_PLUNGER,
+    H_PRESSURE,
+    P_ATM,
+    P_CAVITATION,
+    S_BUCKET,
+    S_BUCKET_HLA,
+    S_LEVER,
+    S_LEVER_HLA,
+    S_LIFTER,
+    S_PIVOT,
+    S_VALVE,
+    TRAIN_BUCKET_HLA,
+    TRAIN_DIRECT,
+    TRAIN_DOF,
+    TRAIN_KINDS,
+    TRAIN_LEVER,
+    TRAIN_LEVER_HLA,
+    TRAIN_PUSHROD,
+    TRAIN_SPRING_ALONE,
     VT_ALPHA,
     VT_C_CAM,
     VT_C_PUSH,
@@ -71,6 +99,7 @@ from .layout import (
     VT_K_PUSH,
     VT_K_SEAT,
     VT_K_TIP,
+    VT_KIND,
     VT_LASH,
     VT_LEVER_J,
     VT_M_LEVER,
@@ -86,6 +115,13 @@ from .layout import (
     X_LIFT,
     X_SEAT_FORCE,
     X_TOP,
+    XT_CAM_GAP,
+    XT_HLA_CHECK,
+    XT_HLA_COLLAPSE,
+    XT_HLA_INFLOW,
+    XT_HLA_LEAK,
+    XT_HLA_PRESSURE,
+    XT_SOCKET_FORCE,
 )
 
 __all__ = [
@@ -98,6 +134,16 @@ __all__ = [
     "chain_forces",
     "spring_rhs",
     "train_rhs",
+    "CamDrive",
+    "contact_force",
+    "seat_force",
+    "direct_acting_rhs",
+    "lever_rhs",
+    "lever_hla_rhs",
+    "pushrod_rhs",
+    "bucket_hla_rhs",
+    "kind_of",
+    "RESPONSES",
     "train_response",
     "chain_rhs",
     "spring_rhs_hot",
@@ -134,6 +180,45 @@ class EngineModel(NamedTuple):
     dth: float  #: table step [rad]
 
 
+#: What the engine says of a parameter vector whose ``VT_KIND`` names no kind of train.
+UNKNOWN_KIND = "vt[VT_KIND] names no kind of valve train the engine knows (springdyn.valve.engine.layout.TRAIN_KINDS)"
+
+
+def kind_of(vt) -> int:
+    """The kind of valve train of a parameter vector (``TRAIN_*`` of :mod:`.layout`), checked.
+
+    Parameters
+    ----------
+    vt : ndarray (VT_SIZE,) or None
+        The train's parameter vector [mixed units, layout ``VT_*``]; None, or
+        ``vt[VT_ENABLED]`` zero, for the spring alone.
+
+    Returns
+    -------
+    int
+        ``TRAIN_SPRING_ALONE`` for the spring alone, else the enabled train's kind.
+
+    Raises
+    ------
+    ValueError
+        An enabled train whose ``VT_KIND`` is no kind of train, or whose ``VT_DOF`` is not
+        its kind's (:data:`.layout.TRAIN_DOF`).
+    """
+    if vt is None or not vt[VT_ENABLED] > 0.5:
+        return TRAIN_SPRING_ALONE
+    code = float(vt[VT_KIND])
+    if code == TRAIN_SPRING_ALONE or code not in TRAIN_KINDS:
+        known = ", ".join(f"{k} {name}" for k, name in TRAIN_KINDS.items() if k != TRAIN_SPRING_ALONE)
+        raise ValueError(f"{UNKNOWN_KIND}: {code:g} (an enabled train is one of {known})")
+    kind = int(code)
+    if vt[VT_DOF] != TRAIN_DOF[kind]:
+        raise ValueError(
+            f"vt[VT_DOF] = {vt[VT_DOF]:g}, but a {TRAIN_KINDS[kind]} train (VT_KIND {kind}) has "
+            f"{TRAIN_DOF[kind]} degrees of freedom (springdyn.valve.engine.layout.TRAIN_DOF)"
+        )
+    return kind
+
+
 def train_of(vt):
     """The valve train's parameters for the compiled code: None for the spring alone
     (``vt[VT_ENABLED]`` zero), which selects the variant compiled without the train's code.
@@ -142,8 +227,13 @@ def train_of(vt):
     ----------
     vt : ndarray (VT_SIZE,) or None
         The train's parameter vector [mixed units, layout ``VT_*``].
+
+    Raises
+    ------
+    ValueError
+        An enabled train of no known kind (:func:`kind_of`).
     """
-    return vt if vt is not None and vt[VT_ENABLED] > 0.5 else None
+    return None if kind_of(vt) == TRAIN_SPRING_ALONE else vt
 
 
 def _c0_array(c0, laws) -> np.ndarray:
@@ -338,6 +428,24 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
 
 
 def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
+    """Record the cam, the contact forces, the valve's lift and the train's gap (offsets ``X_*``
+    and :data:`.layout.XT_CAM_GAP`) into ``extra`` unless it is empty.
+
+    Parameters
+    ----------
+    extra : ndarray
+        Empty, or the extra outputs [N, m, m/s] (:func:`.layout.extra_layout`).
+    ne, nm : int
+        Chain elements and masses [-].
+    lift, dlift : float
+        Cam lift [m] and lift rate [m/s].
+    f_cam, f_seat : float
+        Cam contact and valve-seat forces [N].
+    z : float
+        Displacement of the retainer end (the valve lift with a train) [m].
+    gap : float
+        The train's smallest signed gap [m] (positive in contact).
+    """
     if extra.shape[0] > 0:
         b = 2 * ne
         extra[b + X_LIFT] = lift
@@ -345,18 +453,38 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
         extra[b + X_CAM_FORCE] = f_cam
         extra[b + X_SEAT_FORCE] = f_seat
         extra[b + X_TOP] = z
-        extra[b + X_DISP + nm] = gap
+        extra[b + X_DISP + nm + XT_CAM_GAP] = gap
 
 
 def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak, check):
+    """Record an adjuster's outputs (offsets ``XT_HLA_*`` of :mod:`.layout`) into ``extra``
+    unless it is empty.
+
+    Parameters
+    ----------
+    extra : ndarray
+        Empty, or the extra outputs [N, m, m/s, Pa, m^3] (:func:`.layout.extra_layout`).
+    ne, nm : int
+        Chain elements and masses [-].
+    collapse : float
+        The adjuster's collapse from its base-circle position [m].
+    pressure : float
+        Chamber pressure above the supply [Pa].
+    socket : float
+        Socket force [N].
+    inflow, leak : float
+        Oil volumes in and out since the start [m^3].
+    check : float
+        The collapse as a periodicity force [N].
+    """
     if extra.shape[0] > 0:
         b = 2 * ne + X_DISP + nm
-        extra[b + 1] = collapse
-        extra[b + 2] = pressure
-        extra[b + 3] = socket
-        extra[b + 4] = inflow
-        extra[b + 5] = leak
-        extra[b + 6] = check
+        extra[b + XT_HLA_COLLAPSE] = collapse
+        extra[b + XT_HLA_PRESSURE] = pressure
+        extra[b + XT_SOCKET_FORCE] = socket
+        extra[b + XT_HLA_INFLOW] = inflow
+        extra[b + XT_HLA_LEAK] = leak
+        extra[b + XT_HLA_CHECK] = check
 
 
 def gas_force_at(vt, theta):
@@ -459,8 +587,8 @@ def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
     n : float
         Polytropic index [-].
     """
-    p = p_abs if p_abs > 2000.0 else 2000.0
-    v_air = air * (101325.0 / p) ** (1.0 / n)
+    p = p_abs if p_abs > P_CAVITATION else P_CAVITATION
+    v_air = air * (P_ATM / p) ** (1.0 / n)
     v_oil = 1.0 - air
     return (v_oil + v_air) / (v_oil / beta_oil + v_air / (n * p))
 
@@ -473,10 +601,11 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
     [Pa, absolute].  The chamber follows oil continuity
     (:func:`springdyn.valve.train.hla.chamber_pressure_rate`) with the check valve as an orifice and
     laminar leakage with the Couette drag of the moving plunger; it holds at the cavitation
-    pressure.  Writes ``dp/dt`` and the flows in and out [m^3/s] into ``out[k:k + 3]`` (the
-    first-order states; zeros into ``out[kv:kv + 3]``) and returns the force that pushes the
-    plunger out of its body [N]: the chamber's pressure above the supply, the plunger spring,
-    less the travel stops and the plunger's damping.
+    pressure (:data:`.layout.P_CAVITATION`).  Writes ``dp/dt`` [Pa/s] and the flows in and out
+    [m^3/s] into the adjuster's first-order states ``out[k + H_PRESSURE]``, ``out[k + H_INFLOW]``,
+    ``out[k + H_LEAK]`` (zeros into their velocity slots from ``kv``) and returns the force that
+    pushes the plunger out of its body [N]: the chamber's pressure above the supply, the plunger
+    spring, less the travel stops and the plunger's damping.
 
     Parameters
     ----------
@@ -489,7 +618,7 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
     out : ndarray
         Receives the rates [Pa/s, m^3/s].
     k, kv : int
-        Index of the pressure in the state and of its (unused) velocity slot [-].
+        Index of the adjuster's first state (``H_*`` from it) and of its velocity [-].
     """
     stop = -vt[VT_HLA_CSTOP] * yd
     if y > vt[VT_HLA_YMAX]:
@@ -502,33 +631,33 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
     dp_cv = ps - vt[VT_HLA_PCRACK] - p
     q_in = 0.0
     if dp_cv > 0.0:
-        if dp_cv < 2000.0:  # laminarised (springdyn.valve.train.hla.CHECK_VALVE_TRANSITION)
-            q_in = vt[VT_HLA_KCV] * dp_cv / math.sqrt(2000.0)
+        if dp_cv < CHECK_VALVE_TRANSITION:  # laminarised
+            q_in = vt[VT_HLA_KCV] * dp_cv / math.sqrt(CHECK_VALVE_TRANSITION)
         else:
             q_in = vt[VT_HLA_KCV] * math.sqrt(dp_cv)
     q_leak = vt[VT_HLA_G] * (p - ps) - vt[VT_HLA_DRAG] * yd
     volume = vt[VT_HLA_V0] - area * y
     beta = air_oil_bulk_modulus(p, vt[VT_HLA_BETA], vt[VT_HLA_AIR], vt[VT_HLA_N])
     dp = beta / volume * (area * yd + q_in - q_leak)
-    if p <= 2000.0 and dp < 0.0:  # cavitation: the pressure holds (springdyn.valve.train.hla.P_CAVITATION)
+    if p <= P_CAVITATION and dp < 0.0:  # cavitation: the pressure holds
         dp = 0.0
-    out[k] = dp
-    out[k + 1] = q_in
-    out[k + 2] = q_leak
-    out[kv] = 0.0
-    out[kv + 1] = 0.0
-    out[kv + 2] = 0.0
+    out[k + H_PRESSURE] = dp
+    out[k + H_INFLOW] = q_in
+    out[k + H_LEAK] = q_leak
+    out[kv + H_PRESSURE] = 0.0
+    out[kv + H_INFLOW] = 0.0
+    out[kv + H_LEAK] = 0.0
     return (p - ps) * area + vt[VT_HLA_FS] - stop
 
 
 def hla_forces(s, nm, nfree, vt, out):
     """The hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.train.hla`).
 
-    States (after the chain's, the valve's and the lever tip's): the finger's pivot end
-    ``y_a`` (its collapse direction positive), the plunger ``y_p`` in its fixed body, then
-    three first-order states: the chamber pressure ``p`` [Pa, absolute] and the oil volumes
-    that entered through the check valve and left through the clearance since the start
-    [m^3].  The socket (the finger on the plunger) is a unilateral contact; the plunger
+    States (:data:`.layout.TRAIN_STATES` of ``TRAIN_LEVER_HLA``, after the valve's and the lever
+    tip's): the finger's pivot end ``y_a`` (``S_PIVOT``, its collapse direction positive), then
+    the adjuster's from ``S_LEVER_HLA``: the plunger ``y_p`` in its fixed body and three
+    first-order states, the chamber pressure ``p`` [Pa, absolute] and the oil volumes that
+    entered through the check valve and left through the clearance since the start [m^3].  The socket (the finger on the plunger) is a unilateral contact; the plunger
     carries the socket force against the chamber (:func:`hla_chamber`).  Writes the
     derivatives of the adjuster's states into ``out`` and returns the socket force [N] on
     the finger's pivot end.
@@ -546,28 +675,31 @@ def hla_forces(s, nm, nfree, vt, out):
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
     """
-    ya = s[nm + 2]
-    yp = s[nm + 3]
-    yad = s[nfree + nm + 2]
-    ypd = s[nfree + nm + 3]
+    h = nm + S_LEVER_HLA  # the adjuster's first state
+    hv = nfree + h
+    ya = s[nm + S_PIVOT]
+    yp = s[h + H_PLUNGER]
+    yad = s[nfree + nm + S_PIVOT]
+    ypd = s[hv + H_PLUNGER]
     # the socket: the finger's pivot end on the plunger (compression only)
     pen = ya - yp
     sock = vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (yad - ypd)
     if pen <= 0.0 or sock < 0.0:
         sock = 0.0
-    f_out = hla_chamber(vt, yp - vt[VT_HLA_Y0], ypd, s[nm + 4], out, nm + 4, nfree + nm + 4)
-    out[nfree + nm + 3] = (sock - f_out) / vt[VT_HLA_MP]
-    out[nm + 3] = ypd
-    out[nm + 2] = yad
+    f_out = hla_chamber(vt, yp - vt[VT_HLA_Y0], ypd, s[h + H_PRESSURE], out, h, hv)
+    out[hv + H_PLUNGER] = (sock - f_out) / vt[VT_HLA_MP]
+    out[h + H_PLUNGER] = ypd
+    out[nm + S_PIVOT] = yad
     return sock
 
 
 def bucket_hla_forces(s, nm, nfree, vt, out):
     """A hydraulic bucket tappet (:mod:`springdyn.valve.train.hla`): the adjuster inside the bucket.
 
-    States (after the chain's and the valve's ``z``): the bucket body ``y_b`` on the cam, the
-    plunger ``y_p`` on the valve stem (both in the valve's opening direction), then the
-    chamber pressure and the oil volumes in and out.  The chamber lies between body and
+    States (:data:`.layout.TRAIN_STATES` of ``TRAIN_BUCKET_HLA``, after the valve's ``z``): the
+    bucket body ``y_b`` on the cam (``S_BUCKET``), then the adjuster's from ``S_BUCKET_HLA``: the
+    plunger ``y_p`` on the valve stem (both in the valve's opening direction), the chamber
+    pressure and the oil volumes in and out.  The chamber lies between body and
     plunger: the collapse is ``y_b - y_p`` from its initial value.  The plunger pushes the
     stem through a unilateral contact (the socket).  Writes the body's and the plunger's
     derivatives (the body's acceleration without the cam force, which the caller adds) and
@@ -586,21 +718,23 @@ def bucket_hla_forces(s, nm, nfree, vt, out):
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
     """
-    z = s[nm]
-    yb = s[nm + 1]
-    yp = s[nm + 2]
-    zd = s[nfree + nm]
-    ybd = s[nfree + nm + 1]
-    ypd = s[nfree + nm + 2]
+    h = nm + S_BUCKET_HLA  # the adjuster's first state
+    hv = nfree + h
+    z = s[nm + S_VALVE]
+    yb = s[nm + S_BUCKET]
+    yp = s[h + H_PLUNGER]
+    zd = s[nfree + nm + S_VALVE]
+    ybd = s[nfree + nm + S_BUCKET]
+    ypd = s[hv + H_PLUNGER]
     pen = yp - z  # the plunger on the stem tip (compression only)
     sock = vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (ypd - zd)
     if pen <= 0.0 or sock < 0.0:
         sock = 0.0
-    f_out = hla_chamber(vt, yb - yp - vt[VT_HLA_Y0], ybd - ypd, s[nm + 3], out, nm + 3, nfree + nm + 3)
-    out[nm + 1] = ybd
-    out[nm + 2] = ypd
-    out[nfree + nm + 1] = -f_out / vt[VT_HLA_MA]  # the cam's force follows (train_rhs)
-    out[nfree + nm + 2] = (f_out - sock) / vt[VT_HLA_MP]
+    f_out = hla_chamber(vt, yb - yp - vt[VT_HLA_Y0], ybd - ypd, s[h + H_PRESSURE], out, h, hv)
+    out[nm + S_BUCKET] = ybd
+    out[h + H_PLUNGER] = ypd
+    out[nfree + nm + S_BUCKET] = -f_out / vt[VT_HLA_MA]  # the cam's force follows (bucket_hla_rhs)
+    out[hv + H_PLUNGER] = (f_out - sock) / vt[VT_HLA_MP]
     return sock
 
 
@@ -628,13 +762,315 @@ def spring_rhs(t, s, m, omega, vt, out, extra):
     lift, slope = cam_at(omega * t, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
     dlift = slope * omega
     chain_forces(s, m, nm, lift, dlift, out, extra)
-    _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
-    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    if extra.shape[0] > 0:  # (the records are called, not inlined: see _RECORDS)
+        _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
+        _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+class CamDrive(NamedTuple):
+    """The cam as the valve train sees it at one instant (an argument of the train's equations)."""
+
+    angle: float  #: cam angle [rad]
+    speed: float  #: cam speed [rad/s]
+    lift: float  #: lobe lift [m]
+    rate: float  #: lobe lift rate [m/s]
+
+
+def contact_force(pen, raw):
+    """The force of a unilateral contact [N]: its spring-damper force while pressed and pushing.
+
+    Parameters
+    ----------
+    pen : float
+        Penetration [m] (positive in contact).
+    raw : float
+        The contact's spring-damper force ``k pen + c pen'`` [N].
+    """
+    if pen > 0.0:
+        return raw if raw > 0.0 else 0.0
+    return 0.0
+
+
+def seat_force(vt, z, zd):
+    """The valve-seat force [N] on the valve body: compression only, below the seat (``z < 0``).
+
+    Parameters
+    ----------
+    vt : ndarray
+        The train's parameters [N/m, N s/m] (``VT_K_SEAT``, ``VT_C_SEAT``).
+    z, zd : float
+        Valve lift [m] and velocity [m/s].
+    """
+    f_seat = 0.0
+    if z < 0.0:
+        f_seat = -vt[VT_K_SEAT] * z - vt[VT_C_SEAT] * zd
+        if f_seat < 0.0:
+            f_seat = 0.0
+    return f_seat
+
+
+def tip_force(s, nm, nfree, vt):
+    """The lever's valve-side tip on the valve (the lash here): force [N] and signed gap [m].
+
+    Parameters
+    ----------
+    s : ndarray
+        State [m, m/s]: valve ``S_VALVE`` and lever tip ``S_LEVER`` after the chain's masses.
+    nm : int
+        Chain masses [-].
+    nfree : int
+        Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+    vt : ndarray
+        The train's parameters [N/m, N s/m, m] (``VT_K_TIP``, ``VT_C_TIP``, ``VT_LASH``).
+    """
+    pen_t = s[nm + S_LEVER] - s[nm + S_VALVE] - vt[VT_LASH]
+    raw_t = vt[VT_K_TIP] * pen_t + vt[VT_C_TIP] * (s[nfree + nm + S_LEVER] - s[nfree + nm + S_VALVE])
+    return contact_force(pen_t, raw_t), min(pen_t, raw_t / vt[VT_K_TIP])
+
+
+def lever_links(s, nm, nfree, vt, cam, out, ya, yad):
+    """A lever (finger follower or rocker arm) between the cam and the valve, its pivot end at ``ya``.
+
+    The follower rides on the lever: the cam contact at the follower, the tip contact at the
+    valve (:func:`tip_force`).  A drawn lever (``VT_GEOM``, :mod:`springdyn.valve.train.lever`)
+    has the ratio correction ``c = r_0 / r(theta)`` and the pivot's share ``n . d`` of the
+    contact normal from its table (:func:`lever_ratio_at`), its mass at the tip from its
+    inertia (:func:`lever_mass`); the constant-ratio lever has 1, 1 and ``VT_M_LEVER``.
+    Writes the lever tip's derivatives (``S_LEVER``).
+
+    Parameters
+    ----------
+    s : ndarray
+        State [m, m/s].
+    nm : int
+        Chain masses [-].
+    nfree : int
+        Degrees of freedom [-].
+    vt : ndarray
+        The train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
+    cam : CamDrive
+        The cam [rad, rad/s, m, m/s].
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2].
+    ya, yad : float
+        The pivot end's collapse [m] and its rate [m/s] (0 on a fixed pivot).
+
+    Returns
+    -------
+    f_cam, f_valve, gap, c, kap : float
+        Cam and tip contact forces [N], the smallest signed gap of the two [m], the ratio
+        correction and the pivot factor [-].
+    """
+    zr = s[nm + S_LEVER]
+    zrd = s[nfree + nm + S_LEVER]
+    f_valve, gap = tip_force(s, nm, nfree, vt)
+    r = vt[VT_RATIO]
+    c = 1.0
+    dc = 0.0
+    kap = 1.0
+    dkap = 0.0
+    if vt[VT_GEOM] > 0.5:
+        c, dc, kap, dkap = lever_ratio_at(vt, cam.angle)
+    thd = cam.speed
+    q = cam.lift - (zr - ya) / r
+    pen = c * q - kap * ya
+    raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (
+        c * (cam.rate - (zrd - yad) / r) + dc * thd * q - kap * yad - dkap * thd * ya
+    )
+    f_cam = contact_force(pen, raw)
+    gap = min(gap, min(pen, raw / vt[VT_K_CAM]))
+    m_lever, dm_lever = lever_mass(vt, zr - ya)
+    f_lever = f_cam * c / r - 0.5 * dm_lever * (zrd - yad) * (zrd - yad)
+    out[nfree + nm + S_LEVER] = (f_lever - f_valve) / m_lever
+    out[nm + S_LEVER] = zrd
+    return f_cam, f_valve, gap, c, kap
+
+
+def direct_acting_rhs(s, nm, nfree, vt, cam, out, extra):
+    """The direct-acting train (``TRAIN_DIRECT``): the cam on the valve body, the lash at the cam.
+
+    Each ``*_rhs`` of a kind of train has these parameters and returns: it writes the
+    derivatives of the train's states other than the valve's (none here) and returns the
+    forces on the valve body, which :func:`train_rhs` adds.
+
+    Parameters
+    ----------
+    s : ndarray
+        State [m, m/s]: the chain's, then the train's (:data:`.layout.TRAIN_STATES`).
+    nm : int
+        Chain masses [-]: the train's states start at ``s[nm]``.
+    nfree : int
+        Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+    vt : ndarray
+        The train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
+    cam : CamDrive
+        The cam [rad, rad/s, m, m/s].
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2].
+    extra : ndarray
+        Empty, or the extra outputs (:func:`.layout.extra_layout`; an adjuster's).
+
+    Returns
+    -------
+    f_cam : float
+        Cam contact force [N].
+    f_valve : float
+        Force of the train on the valve body [N].
+    gap : float
+        The smallest signed gap of the train's links [m] (positive in contact).
+    """
+    pen = cam.lift - s[nm + S_VALVE] - vt[VT_LASH]
+    raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (cam.rate - s[nfree + nm + S_VALVE])
+    f_cam = contact_force(pen, raw)
+    return f_cam, f_cam, min(pen, raw / vt[VT_K_CAM])
+
+
+def lever_rhs(s, nm, nfree, vt, cam, out, extra):
+    """A finger follower or rocker arm on a fixed pivot (``TRAIN_LEVER``), constant-ratio or drawn.
+
+    States: valve, lever tip (:func:`lever_links`).
+
+    Parameters
+    ----------
+    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
+        State [m, m/s], chain masses [-], degrees of freedom [-], the train's parameters,
+        the cam [rad, rad/s, m, m/s], ``ds/dt`` [m/s, m/s^2], extra outputs.
+
+    Returns
+    -------
+    f_cam, f_valve, gap : float
+        Cam contact force [N], force on the valve [N], smallest signed gap [m].
+    """
+    f_cam, f_valve, gap, c, kap = lever_links(s, nm, nfree, vt, cam, out, 0.0, 0.0)
+    return f_cam, f_valve, gap
+
+
+def lever_hla_rhs(s, nm, nfree, vt, cam, out, extra):
+    """A finger follower on a hydraulic lash adjuster (``TRAIN_LEVER_HLA``): its pivot end moves.
+
+    States: valve, lever tip, the pivot end, then the adjuster's (:func:`hla_forces`).  The
+    pivot end carries the cam force's share ``n . d - c / r`` against the socket.
+
+    Parameters
+    ----------
+    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
+        State [m, m/s, Pa, m^3], chain masses [-], degrees of freedom [-], the train's
+        parameters, the cam [rad, rad/s, m, m/s], ``ds/dt``, extra outputs (the adjuster's).
+
+    Returns
+    -------
+    f_cam, f_valve, gap : float
+        Cam contact force [N], force on the valve [N], smallest signed gap [m].
+    """
+    ya = s[nm + S_PIVOT]
+    yad = s[nfree + nm + S_PIVOT]
+    f_cam, f_valve, gap, c, kap = lever_links(s, nm, nfree, vt, cam, out, ya, yad)
+    sock = hla_forces(s, nm, nfree, vt, out)
+    out[nfree + nm + S_PIVOT] = (f_cam * (kap - c / vt[VT_RATIO]) - sock) / vt[VT_HLA_MA]
+    if extra.shape[0] > 0:
+        h = nm + S_LEVER_HLA
+        collapse = s[h + H_PLUNGER] - vt[VT_HLA_Y0]
+        _record_hla(
+            extra,
+            nm + 1,
+            nm,
+            collapse,
+            s[h + H_PRESSURE] - vt[VT_HLA_PS],
+            sock,
+            s[h + H_INFLOW],
+            s[h + H_LEAK],
+            collapse * vt[VT_HLA_KCHK],
+        )
+    return f_cam, f_valve, gap
+
+
+def pushrod_rhs(s, nm, nfree, vt, cam, out, extra):
+    """An OHV pushrod train (``TRAIN_PUSHROD``): the lifter on the cam, the pushrod to the rocker.
+
+    States: valve, rocker tip, lifter.
+
+    Parameters
+    ----------
+    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
+        State [m, m/s], chain masses [-], degrees of freedom [-], the train's parameters,
+        the cam [rad, rad/s, m, m/s], ``ds/dt`` [m/s, m/s^2], extra outputs.
+
+    Returns
+    -------
+    f_cam, f_valve, gap : float
+        Cam contact force [N], force on the valve [N], smallest signed gap [m].
+    """
+    zr = s[nm + S_LEVER]
+    zrd = s[nfree + nm + S_LEVER]
+    zf = s[nm + S_LIFTER]
+    zfd = s[nfree + nm + S_LIFTER]
+    r = vt[VT_RATIO]
+    f_valve, gap = tip_force(s, nm, nfree, vt)
+    pen = cam.lift - zf
+    raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (cam.rate - zfd)
+    f_cam = contact_force(pen, raw)
+    xp = zf - zr / r
+    raw_p = vt[VT_K_PUSH] * xp + vt[VT_C_PUSH] * (zfd - zrd / r)
+    f_push = contact_force(xp, raw_p)
+    gap = min(gap, min(min(pen, raw / vt[VT_K_CAM]), min(xp, raw_p / vt[VT_K_PUSH])))
+    out[nm + S_LIFTER] = zfd
+    out[nfree + nm + S_LIFTER] = (f_cam - f_push) / vt[VT_M_LIFTER]
+    out[nfree + nm + S_LEVER] = (f_push / r - f_valve) / vt[VT_M_LEVER]
+    out[nm + S_LEVER] = zrd
+    return f_cam, f_valve, gap
+
+
+def bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra):
+    """A hydraulic bucket tappet (``TRAIN_BUCKET_HLA``): the cam on the bucket body, the
+    adjuster's plunger on the stem (:func:`bucket_hla_forces`).
+
+    States: valve, bucket body, then the adjuster's.
+
+    Parameters
+    ----------
+    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
+        State [m, m/s, Pa, m^3], chain masses [-], degrees of freedom [-], the train's
+        parameters, the cam [rad, rad/s, m, m/s], ``ds/dt``, extra outputs (the adjuster's).
+
+    Returns
+    -------
+    f_cam, f_valve, gap : float
+        Cam contact force [N], force on the valve (the socket's) [N], smallest signed gap [m].
+    """
+    h = nm + S_BUCKET_HLA
+    yb = s[nm + S_BUCKET]
+    pen = cam.lift - yb
+    raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (cam.rate - s[nfree + nm + S_BUCKET])
+    f_cam = contact_force(pen, raw)
+    f_valve = bucket_hla_forces(s, nm, nfree, vt, out)
+    out[nfree + nm + S_BUCKET] += f_cam / vt[VT_HLA_MA]
+    pen_s = s[h + H_PLUNGER] - s[nm + S_VALVE]
+    raw_s = vt[VT_HLA_KS] * pen_s + vt[VT_HLA_CS] * (s[nfree + h + H_PLUNGER] - s[nfree + nm + S_VALVE])
+    gap = min(min(pen, raw / vt[VT_K_CAM]), min(pen_s, raw_s / vt[VT_HLA_KS]))
+    if extra.shape[0] > 0:
+        collapse = yb - s[h + H_PLUNGER] - vt[VT_HLA_Y0]
+        _record_hla(
+            extra,
+            nm + 1,
+            nm,
+            collapse,
+            s[h + H_PRESSURE] - vt[VT_HLA_PS],
+            f_valve,
+            s[h + H_INFLOW],
+            s[h + H_LEAK],
+            collapse * vt[VT_HLA_KCHK],
+        )
+    return f_cam, f_valve, gap
 
 
 def train_rhs(t, s, m, omega, vt, out, extra):
     """Right-hand side of the spring in its valve train: node N + 1 is the valve body, and the
     train's links (cam, lever tip, pushrod, valve seat) are unilateral.
+
+    The kind of train (``vt[VT_KIND]``, ``TRAIN_*`` of :mod:`.layout`) chooses its equations,
+    one function each: :func:`direct_acting_rhs`, :func:`lever_rhs`, :func:`lever_hla_rhs`,
+    :func:`pushrod_rhs`, :func:`bucket_hla_rhs`; a code of no kind is an error.  Here: the
+    cam, the chain, the valve seat and the valve body, which all kinds share.
 
     Parameters
     ----------
@@ -654,142 +1090,170 @@ def train_rhs(t, s, m, omega, vt, out, extra):
         Empty, or receives the extra outputs [N, m, m/s] (:func:`chain_rhs`).
     """
     nm = m.masses.shape[0]
-    ntr = int(vt[VT_DOF])
-    nfree = nm + ntr
+    nfree = nm + int(vt[VT_DOF])
+    kind = int(vt[VT_KIND])
     # the cam angle and speed: constant speed, or a speed ramp of acceleration alpha
     alpha = vt[VT_ALPHA]
     theta = omega * t + 0.5 * alpha * t * t
+    speed = omega + alpha * t
     lift, slope = cam_at(theta, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
-    dlift = slope * (omega + alpha * t)
-    z = s[nm]
-    zd = s[nfree + nm]
+    dlift = slope * speed
+    cam = CamDrive(theta, speed, lift, dlift)
+    z = s[nm + S_VALVE]
+    zd = s[nfree + nm + S_VALVE]
     f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
-    _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # an adjuster overwrites them
-    r = vt[VT_RATIO]
-    f_cam = 0.0
-    f_seat = 0.0
-    if z < 0.0:
-        f_seat = -vt[VT_K_SEAT] * z - vt[VT_C_SEAT] * zd
-        if f_seat < 0.0:
-            f_seat = 0.0
-    if ntr == 1:  # direct-acting: the cam on the valve body, lash at the cam
-        pen = lift - z - vt[VT_LASH]
-        raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zd)
-        if pen > 0.0:
-            f_cam = raw if raw > 0.0 else 0.0
-        gap = min(pen, raw / vt[VT_K_CAM])
-        f_valve = f_cam
-    elif ntr == 6:  # a hydraulic bucket: the cam on the bucket body, the adjuster's plunger on the stem
-        yb = s[nm + 1]
-        ybd = s[nfree + nm + 1]
-        pen = lift - yb
-        raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - ybd)
-        if pen > 0.0:
-            f_cam = raw if raw > 0.0 else 0.0
-        f_valve = bucket_hla_forces(s, nm, nfree, vt, out)
-        out[nfree + nm + 1] += f_cam / vt[VT_HLA_MA]
-        pen_s = s[nm + 2] - z
-        raw_s = vt[VT_HLA_KS] * pen_s + vt[VT_HLA_CS] * (s[nfree + nm + 2] - zd)
-        gap = min(min(pen, raw / vt[VT_K_CAM]), min(pen_s, raw_s / vt[VT_HLA_KS]))
-        collapse = yb - s[nm + 2] - vt[VT_HLA_Y0]
-        _record_hla(
-            extra,
-            nm + 1,
-            nm,
-            collapse,
-            s[nm + 3] - vt[VT_HLA_PS],
-            f_valve,
-            s[nm + 4],
-            s[nm + 5],
-            collapse * vt[VT_HLA_KCHK],
-        )
+    if extra.shape[0] > 0:  # an adjuster overwrites them
+        _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    f_seat = seat_force(vt, z, zd)
+    if kind == TRAIN_DIRECT:
+        f_cam, f_valve, gap = direct_acting_rhs(s, nm, nfree, vt, cam, out, extra)
+    elif kind == TRAIN_LEVER:
+        f_cam, f_valve, gap = lever_rhs(s, nm, nfree, vt, cam, out, extra)
+    elif kind == TRAIN_PUSHROD:
+        f_cam, f_valve, gap = pushrod_rhs(s, nm, nfree, vt, cam, out, extra)
+    elif kind == TRAIN_LEVER_HLA:
+        f_cam, f_valve, gap = lever_hla_rhs(s, nm, nfree, vt, cam, out, extra)
+    elif kind == TRAIN_BUCKET_HLA:
+        f_cam, f_valve, gap = bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra)
     else:
-        zr = s[nm + 1]
-        zrd = s[nfree + nm + 1]
-        pen_t = zr - z - vt[VT_LASH]  # the lever tip on the valve, lash here
-        raw_t = vt[VT_K_TIP] * pen_t + vt[VT_C_TIP] * (zrd - zd)
-        f_valve = 0.0
-        if pen_t > 0.0:
-            f_valve = raw_t if raw_t > 0.0 else 0.0
-        gap = min(pen_t, raw_t / vt[VT_K_TIP])
-        if ntr == 2 or ntr == 7:  # finger follower / rocker: the follower rides on the lever
-            ya = 0.0
-            yad = 0.0
-            if ntr == 7:  # on a hydraulic lash adjuster: its pivot end moves
-                ya = s[nm + 2]
-                yad = s[nfree + nm + 2]
-            # the lever's geometry (springdyn.valve.train.lever): the ratio correction c = r_0 / r(theta)
-            # and the pivot's share n . d of the contact normal; 1 for the constant ratio
-            c = 1.0
-            dc = 0.0
-            kap = 1.0
-            dkap = 0.0
-            if vt[VT_GEOM] > 0.5:
-                c, dc, kap, dkap = lever_ratio_at(vt, theta)
-            thd = omega + alpha * t
-            q = lift - (zr - ya) / r
-            pen = c * q - kap * ya
-            raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (
-                c * (dlift - (zrd - yad) / r) + dc * thd * q - kap * yad - dkap * thd * ya
-            )
-            if pen > 0.0:
-                f_cam = raw if raw > 0.0 else 0.0
-            gap = min(gap, min(pen, raw / vt[VT_K_CAM]))
-            m_lever, dm_lever = lever_mass(vt, zr - ya)
-            f_lever = f_cam * c / r - 0.5 * dm_lever * (zrd - yad) * (zrd - yad)
-            if ntr == 7:
-                # the finger's pivot end: the cam's share (n . d - c/r) against the socket
-                sock = hla_forces(s, nm, nfree, vt, out)
-                out[nfree + nm + 2] = (f_cam * (kap - c / r) - sock) / vt[VT_HLA_MA]
-                _record_hla(
-                    extra,
-                    nm + 1,
-                    nm,
-                    s[nm + 3] - vt[VT_HLA_Y0],
-                    s[nm + 4] - vt[VT_HLA_PS],
-                    sock,
-                    s[nm + 5],
-                    s[nm + 6],
-                    (s[nm + 3] - vt[VT_HLA_Y0]) * vt[VT_HLA_KCHK],
-                )
-            out[nfree + nm + 1] = (f_lever - f_valve) / m_lever
-        else:  # pushrod: lifter on the cam, pushrod to the lever
-            zf = s[nm + 2]
-            zfd = s[nfree + nm + 2]
-            pen = lift - zf
-            raw = vt[VT_K_CAM] * pen + vt[VT_C_CAM] * (dlift - zfd)
-            if pen > 0.0:
-                f_cam = raw if raw > 0.0 else 0.0
-            xp = zf - zr / r
-            raw_p = vt[VT_K_PUSH] * xp + vt[VT_C_PUSH] * (zfd - zrd / r)
-            f_push = 0.0
-            if xp > 0.0:
-                f_push = raw_p if raw_p > 0.0 else 0.0
-            gap = min(gap, min(min(pen, raw / vt[VT_K_CAM]), min(xp, raw_p / vt[VT_K_PUSH])))
-            out[nm + 2] = zfd
-            out[nfree + nm + 2] = (f_cam - f_push) / vt[VT_M_LIFTER]
-            out[nfree + nm + 1] = (f_push / r - f_valve) / vt[VT_M_LEVER]
-        out[nm + 1] = zrd
-    out[nm] = zd
+        raise ValueError(UNKNOWN_KIND)
+    out[nm + S_VALVE] = zd
     # the gas force pushes the valve towards its seat (springdyn.valve.train.gas_force)
-    out[nfree + nm] = (f_valve + f_seat - f_spring - gas_force_at(vt, theta)) / vt[VT_MASS]
-    _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
+    out[nfree + nm + S_VALVE] = (f_valve + f_seat - f_spring - gas_force_at(vt, theta)) / vt[VT_MASS]
+    if extra.shape[0] > 0:
+        _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
+
+
+def _contact(k, c, pen, rate):
+    """A unilateral contact's force [N], vectorised: stiffness ``k`` [N/m], damping ``c``
+    [N s/m], penetration ``pen`` [m] and its rate ``rate`` [m/s] (the NumPy twin of
+    :func:`contact_force`)."""
+    return np.where(pen > 0, np.maximum(k * pen + c * rate, 0.0), 0.0)
+
+
+def direct_acting_response(vt, lift, dlift, u, v, theta, omega) -> dict:
+    """The contact forces of a direct-acting train (NumPy twin of :func:`direct_acting_rhs`).
+
+    Each ``*_response`` of a kind of train has these parameters and returns the outputs of
+    its kind: the cam contact force, and an adjuster's.
+
+    Parameters
+    ----------
+    vt : ndarray (VT_SIZE,)
+        The train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
+    lift, dlift : ndarray (..., n_t)
+        Lobe lift [m] and its rate [m/s].
+    u, v : ndarray (..., dof, n_t)
+        The train's positions [m, Pa, m^3] and velocities [m/s] (:data:`.layout.TRAIN_STATES`).
+    theta : ndarray (n_t,) or None
+        Cam angles [rad].
+    omega : float or ndarray (..., 1) or None
+        Cam speed [rad/s].
+
+    Returns
+    -------
+    dict
+        ``cam_contact_force`` [N].
+    """
+    cam = _contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., S_VALVE, :] - vt[VT_LASH], dlift - v[..., S_VALVE, :])
+    return dict(cam_contact_force=cam)
+
+
+def _lever_cam_response(vt, lift, dlift, u, v, theta, omega, ya, yad):
+    """The cam contact force [N] on a lever whose pivot end is at ``ya`` [m] moving at ``yad``
+    [m/s] (NumPy twin of the cam contact of :func:`lever_links`; other parameters as for
+    :func:`direct_acting_response`)."""
+    r = vt[VT_RATIO]
+    c, dc, kap, dkap = 1.0, 0.0, 1.0, 0.0
+    if vt[VT_GEOM] > 0.5:
+        c, dc, kap, dkap = np.array([lever_ratio_at(vt, th) for th in np.ravel(theta)]).T
+    thd = 0.0 if omega is None else omega
+    q = lift - (u[..., S_LEVER, :] - ya) / r
+    rate = c * (dlift - (v[..., S_LEVER, :] - yad) / r) + dc * thd * q - kap * yad - dkap * thd * ya
+    return _contact(vt[VT_K_CAM], vt[VT_C_CAM], c * q - kap * ya, rate)
+
+
+def lever_response(vt, lift, dlift, u, v, theta, omega) -> dict:
+    """The contact forces of a lever on a fixed pivot (NumPy twin of :func:`lever_rhs`;
+    parameters and returns of :func:`direct_acting_response`)."""
+    return dict(cam_contact_force=_lever_cam_response(vt, lift, dlift, u, v, theta, omega, 0.0, 0.0))
+
+
+def pushrod_response(vt, lift, dlift, u, v, theta, omega) -> dict:
+    """The contact forces of a pushrod train: the lifter on the cam (NumPy twin of
+    :func:`pushrod_rhs`; parameters and returns of :func:`direct_acting_response`)."""
+    cam = _contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., S_LIFTER, :], dlift - v[..., S_LIFTER, :])
+    return dict(cam_contact_force=cam)
+
+
+def _hla_response(vt, u, h, collapse, socket) -> dict:
+    """An adjuster's outputs from its first state ``h`` (``S_LEVER_HLA`` or ``S_BUCKET_HLA``):
+    ``hla_collapse`` [m], ``hla_pressure`` [Pa above the supply], ``socket_force`` [N],
+    ``hla_inflow`` and ``hla_leak`` [m^3]."""
+    return dict(
+        hla_collapse=collapse,
+        hla_pressure=u[..., h + H_PRESSURE, :] - vt[VT_HLA_PS],
+        socket_force=socket,
+        hla_inflow=u[..., h + H_INFLOW, :],
+        hla_leak=u[..., h + H_LEAK, :],
+    )
+
+
+def lever_hla_response(vt, lift, dlift, u, v, theta, omega) -> dict:
+    """The contact forces of a finger follower on an adjuster and the adjuster's outputs
+    (NumPy twin of :func:`lever_hla_rhs`; parameters of :func:`direct_acting_response`).
+
+    Returns
+    -------
+    dict
+        ``cam_contact_force`` [N], ``hla_collapse`` [m], ``hla_pressure`` [Pa above the
+        supply], ``socket_force`` [N], ``hla_inflow`` and ``hla_leak`` [m^3].
+    """
+    ya, yad = u[..., S_PIVOT, :], v[..., S_PIVOT, :]
+    cam = _lever_cam_response(vt, lift, dlift, u, v, theta, omega, ya, yad)
+    h = S_LEVER_HLA
+    plunger, plunger_v = u[..., h + H_PLUNGER, :], v[..., h + H_PLUNGER, :]
+    socket = _contact(vt[VT_HLA_KS], vt[VT_HLA_CS], ya - plunger, yad - plunger_v)
+    return dict(cam_contact_force=cam, **_hla_response(vt, u, h, plunger - vt[VT_HLA_Y0], socket))
+
+
+def bucket_hla_response(vt, lift, dlift, u, v, theta, omega) -> dict:
+    """The contact forces of a hydraulic bucket and the adjuster's outputs (NumPy twin of
+    :func:`bucket_hla_rhs`; parameters and returns of :func:`lever_hla_response`)."""
+    body, body_v = u[..., S_BUCKET, :], v[..., S_BUCKET, :]
+    h = S_BUCKET_HLA
+    plunger, plunger_v = u[..., h + H_PLUNGER, :], v[..., h + H_PLUNGER, :]
+    cam = _contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - body, dlift - body_v)
+    socket = _contact(vt[VT_HLA_KS], vt[VT_HLA_CS], plunger - u[..., S_VALVE, :], plunger_v - v[..., S_VALVE, :])
+    return dict(cam_contact_force=cam, **_hla_response(vt, u, h, body - plunger - vt[VT_HLA_Y0], socket))
+
+
+#: The NumPy twin of each kind's equations (:func:`train_response`).
+RESPONSES = {
+    TRAIN_DIRECT: direct_acting_response,
+    TRAIN_LEVER: lever_response,
+    TRAIN_PUSHROD: pushrod_response,
+    TRAIN_LEVER_HLA: lever_hla_response,
+    TRAIN_BUCKET_HLA: bucket_hla_response,
+}
 
 
 def train_response(vt: np.ndarray, lift, dlift, u, v, theta=None, omega=None) -> dict:
     """Contact forces of the valve train from its states (vectorised NumPy).
 
     The NumPy twin of the contact laws of :func:`train_rhs` (above), vectorised over
-    output samples for the reference backend's outputs; the tests compare the two.
+    output samples for the reference backend's outputs; the tests compare the two.  The
+    kind of train (``vt[VT_KIND]``) chooses its function (:data:`RESPONSES`).
 
     Parameters
     ----------
-    vt : ndarray (16,)
+    vt : ndarray (VT_SIZE,)
         Engine parameters of the train [kg, N/m, N s/m, m, -] (layout ``VT_*``, :meth:`ValveTrain.kernel_parameters`).
     lift, dlift : ndarray (..., n_t)
         Lobe lift [m] and its rate [m/s].
     u, v : ndarray (..., dof, n_t)
-        Positions [m] and velocities [m/s] of valve, lever tip, lifter.
+        The train's positions [m] and velocities [m/s]: valve, lever tip, lifter, ...
+        (:data:`.layout.TRAIN_STATES`).
     theta : ndarray (n_t,), optional
         Cam angles [rad] (needed with a lever's geometry, ``vt[VT_GEOM]``).
     omega : float or ndarray (..., 1), optional
@@ -802,54 +1266,14 @@ def train_response(vt: np.ndarray, lift, dlift, u, v, theta=None, omega=None) ->
         hydraulic lash adjuster also ``hla_collapse`` [m], ``hla_pressure`` [Pa above the
         supply], ``socket_force`` [N], ``hla_inflow`` and ``hla_leak`` [m^3].
     """
-
-    def contact(k, c, pen, rate):
-        return np.where(pen > 0, np.maximum(k * pen + c * rate, 0.0), 0.0)
-
-    dof = int(vt[VT_DOF])
-    z, zd = u[..., 0, :], v[..., 0, :]
+    respond = RESPONSES.get(kind_of(vt))
+    if respond is None:
+        raise ValueError(UNKNOWN_KIND)
+    z, zd = u[..., S_VALVE, :], v[..., S_VALVE, :]
     seat = np.where(z < 0, np.maximum(-vt[VT_K_SEAT] * z - vt[VT_C_SEAT] * zd, 0.0), 0.0)
-    if dof == 1:
-        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - z - vt[VT_LASH], dlift - zd)
-    elif dof == 6:  # a hydraulic bucket: body, plunger, chamber
-        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 1, :], dlift - v[..., 1, :])
-        socket = contact(vt[VT_HLA_KS], vt[VT_HLA_CS], u[..., 2, :] - z, v[..., 2, :] - zd)
-        return dict(
-            cam_contact_force=cam,
-            valve_seat_force=seat,
-            valve_lift=z,
-            hla_collapse=u[..., 1, :] - u[..., 2, :] - vt[VT_HLA_Y0],
-            hla_pressure=u[..., 3, :] - vt[VT_HLA_PS],
-            socket_force=socket,
-            hla_inflow=u[..., 4, :],
-            hla_leak=u[..., 5, :],
-        )
-    elif dof == 3:  # pushrod: the lifter on the cam
-        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], lift - u[..., 2, :], dlift - v[..., 2, :])
-    else:  # the lever; on a hydraulic lash adjuster (dof 7) its pivot end moves
-        r = vt[VT_RATIO]
-        ya = u[..., 2, :] if dof == 7 else 0.0
-        yad = v[..., 2, :] if dof == 7 else 0.0
-        c, dc, kap, dkap = 1.0, 0.0, 1.0, 0.0
-        if vt[VT_GEOM] > 0.5:
-            c, dc, kap, dkap = np.array([lever_ratio_at(vt, th) for th in np.ravel(theta)]).T
-        thd = 0.0 if omega is None else omega
-        q = lift - (u[..., 1, :] - ya) / r
-        rate = c * (dlift - (v[..., 1, :] - yad) / r) + dc * thd * q - kap * yad - dkap * thd * ya
-        cam = contact(vt[VT_K_CAM], vt[VT_C_CAM], c * q - kap * ya, rate)
-    if dof == 7:
-        socket = contact(vt[VT_HLA_KS], vt[VT_HLA_CS], u[..., 2, :] - u[..., 3, :], v[..., 2, :] - v[..., 3, :])
-        return dict(
-            cam_contact_force=cam,
-            valve_seat_force=seat,
-            valve_lift=z,
-            hla_collapse=u[..., 3, :] - vt[VT_HLA_Y0],
-            hla_pressure=u[..., 4, :] - vt[VT_HLA_PS],
-            socket_force=socket,
-            hla_inflow=u[..., 5, :],
-            hla_leak=u[..., 6, :],
-        )
-    return dict(cam_contact_force=cam, valve_seat_force=seat, valve_lift=z)
+    out = dict(cam_contact_force=None, valve_seat_force=seat, valve_lift=z)
+    out.update(respond(vt, lift, dlift, u, v, theta, omega))
+    return out
 
 
 def chain_rhs(t, s, m, omega, vt, out, extra):
@@ -874,14 +1298,16 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
     vt : ndarray (VT_SIZE,) or None
         The valve train's parameters (layout ``VT_*`` of :mod:`.layout`); None, or
         ``vt[VT_ENABLED] = 0``, for the spring alone.  Train states follow the chain's
-        masses: valve, lever tip (rocker, pushrod), lifter (pushrod).
+        masses, as its kind has them (:data:`.layout.TRAIN_STATES`): valve, lever tip
+        (lever, pushrod), lifter (pushrod), ...
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2].
     extra : ndarray
         Empty for none, or an array of ``extra_layout(N)["size"]`` that receives the element
         forces [N] and compressions [m], then (offsets ``X_*``) lift [m] and lift rate
         [m/s], cam contact and valve-seat forces [N], the displacement of the retainer end
-        [m], of the masses [m] and the signed cam-contact gap [m] (positive in contact).
+        [m], of the masses [m] and (offsets ``XT_*``) the signed cam-contact gap [m]
+        (positive in contact) and an adjuster's outputs.
     """
     if vt is not None:
         if vt[VT_ENABLED] > 0.5:
@@ -889,6 +1315,11 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
             return
     spring_rhs(t, s, m, omega, vt, out, extra)
 
+
+#: The records of the extra outputs, called (only where there are outputs), not inlined: inlined
+#: into every right-hand side (the train's, the spring's, the step's and rhs_call's) their
+#: stores made a sixth of the engine's code for numba to type and compile.
+_RECORDS = ("_record_tail", "_record_hla")
 
 _TWINS = twins(
     globals(),
@@ -905,15 +1336,25 @@ _TWINS = twins(
         "hla_chamber",
         "hla_forces",
         "bucket_hla_forces",
+        "contact_force",
+        "seat_force",
+        "tip_force",
+        "lever_links",
+        "direct_acting_rhs",
+        "lever_rhs",
+        "lever_hla_rhs",
+        "pushrod_rhs",
+        "bucket_hla_rhs",
         "spring_rhs",
         "train_rhs",
     ],
     fastmath=FASTMATH,
 )
-# the adjuster's equations are called, not inlined: the integration step evaluates the
-# right-hand side at every stage, and inlining this rarely used branch into each of them
-# cost 2.4 s of the train engine's compilation (11.4 against 9 s)
-for _name in ("hla_forces", "bucket_hla_forces"):
+# the adjusters' equations are called, not inlined (the finger's with its kind, which holds a
+# second copy of the lever's): the integration step evaluates the right-hand side at every
+# stage, and inlining these rarely used branches there (and into rhs_call) costs seconds of
+# the train engine's compilation (measured 2.4 s for the finger's adjuster alone)
+for _name in ("lever_hla_rhs", "bucket_hla_forces", *_RECORDS):
     _TWINS["__globals__"][_name] = kernel(
         rebind(globals()[_name], _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
     )

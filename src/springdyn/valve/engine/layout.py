@@ -1,8 +1,13 @@
-"""The engine's array layouts, by name (numba freezes module-level integers into the code).
+"""The engine's array layouts and constants, by name (numba freezes module-level numbers into the code).
 
 - ``VT_*``: the valve train's parameter vector (:meth:`springdyn.valve.train.definition.ValveTrain.kernel_parameters`).
-- ``X_*``: the right-hand side's ``extra`` outputs after the ``2 (N + 1)`` element forces and
-  compressions (:func:`extra_layout`).
+- ``TRAIN_*``: the kinds of valve train (slot :data:`VT_KIND`), each with its own equations
+  (:func:`springdyn.valve.engine.equations.train_rhs`) and degrees of freedom (:data:`TRAIN_DOF`).
+- ``S_*``, ``H_*``: the train's states, after the chain's (:data:`TRAIN_STATES`).
+- ``X_*``, ``XT_*``: the right-hand side's ``extra`` outputs after the ``2 (N + 1)`` element
+  forces and compressions (:func:`extra_layout`).
+- ``P_*``: the constants of the compiled hydraulic laws (the adjuster's, :mod:`springdyn.valve.train.hla`
+  imports them from here).
 - ``EXT_*``: the monitor's per-speed extremes (:data:`EXT`).
 - ``EV_*``: the columns and kinds of the monitor's event table (:data:`EVENT_KINDS`).
 - ``CHK_*``: the forces sampled every revolution to judge periodicity (:data:`N_CHECK`).
@@ -10,7 +15,23 @@
 
 from __future__ import annotations
 
-__all__ = ["VT_SIZE", "EXTRA", "EXT", "N_EXT", "N_CHECK", "EVENT_KINDS", "MAX_EVENTS", "STATUS", "extra_layout"]
+__all__ = [
+    "VT_SIZE",
+    "TRAIN_KINDS",
+    "TRAIN_DOF",
+    "TRAIN_STATES",
+    "EXTRA",
+    "EXT",
+    "N_EXT",
+    "N_CHECK",
+    "EVENT_KINDS",
+    "MAX_EVENTS",
+    "STATUS",
+    "P_ATM",
+    "P_CAVITATION",
+    "CHECK_VALVE_TRANSITION",
+    "extra_layout",
+]
 
 # --- valve-train parameters ------------------------------------------------------------
 VT_ENABLED = 0  #: 1 with a valve train, 0 for the spring alone [-]
@@ -20,7 +41,9 @@ VT_C_CAM = 3  #: cam-contact damping c_c [N s/m]
 VT_K_SEAT = 4  #: valve-seat stiffness k_s [N/m]
 VT_C_SEAT = 5  #: valve-seat damping c_s [N s/m]
 VT_LASH = 6  #: lash at the valve side [m]
-VT_DOF = 7  #: the train's degrees of freedom (1 direct-acting, 2 lever, 3 pushrod) [-]
+#: the train's degrees of freedom, the states after the chain's (:data:`TRAIN_DOF` of its kind;
+#: array sizes only: the equations choose by :data:`VT_KIND`) [-]
+VT_DOF = 7
 VT_RATIO = 8  #: lever ratio r [-]
 VT_M_LEVER = 9  #: lever (rocker) mass at its tip M_r [kg]
 VT_K_TIP = 10  #: lever-tip contact stiffness k_t [N/m]
@@ -29,13 +52,14 @@ VT_M_LIFTER = 12  #: lifter mass M_f [kg]
 VT_K_PUSH = 13  #: pushrod stiffness k_p [N/m]
 VT_C_PUSH = 14  #: pushrod damping c_p [N s/m]
 VT_LOBE_LASH = 15  #: lobe lift that starts the event [m]
-# hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.train.hla`; zeros without one)
-VT_HLA = 16  #: 1 with the adjuster's dynamics (layout rocker, dof 7), 0 without [-]
+# hydraulic lash adjuster at a finger follower's pivot or in a bucket (:mod:`springdyn.valve.train.hla`;
+# zeros without one)
+VT_HLA = 16  #: 1 with the adjuster's dynamics (kinds TRAIN_BUCKET_HLA, TRAIN_LEVER_HLA), 0 without [-]
 VT_HLA_AREA = 17  #: plunger area A_p [m^2]
 VT_HLA_V0 = 18  #: chamber volume at the initial plunger position [m^3]
-VT_HLA_Y0 = 19  #: initial plunger position (collapse) [m]
+VT_HLA_Y0 = 19  #: initial plunger position (finger) or collapse (bucket) [m]
 VT_HLA_MP = 20  #: plunger mass [kg]
-VT_HLA_MA = 21  #: lever mass at the socket (the pivot end) [kg]
+VT_HLA_MA = 21  #: lever mass at the socket (the pivot end), or the bucket body's mass [kg]
 VT_HLA_FS = 22  #: plunger-spring force [N]
 VT_HLA_KS = 23  #: socket contact stiffness [N/m]
 VT_HLA_CS = 24  #: socket contact damping [N s/m]
@@ -68,7 +92,64 @@ VT_GEOM_N = 43
 #: the adjuster's collapse as a periodicity force: the force [N] per metre of collapse that the
 #: train would see through it (:meth:`springdyn.valve.train.definition.ValveTrain.hla_check_stiffness`) [N/m]
 VT_HLA_KCHK = 44
-VT_SIZE = 45
+#: the kind of train (``TRAIN_*`` below): which equations the engine runs [-]
+VT_KIND = 45
+#: Slots of the parameter vector; the gas force's samples and the lever's table follow them.
+VT_SIZE = 46
+
+# --- kinds of valve train (slot VT_KIND) ---------------------------------------------------
+TRAIN_SPRING_ALONE = 0  #: no train: the retainer end follows the cam (the all-zero vector)
+TRAIN_DIRECT = 1  #: direct-acting (bucket tappet): the cam on the valve body
+TRAIN_LEVER = 2  #: finger follower / rocker arm on a fixed pivot (constant ratio or drawn geometry)
+TRAIN_PUSHROD = 3  #: OHV: lifter, pushrod, rocker
+TRAIN_BUCKET_HLA = 4  #: hydraulic bucket tappet: the adjuster inside the bucket (``[hla]``, direct-acting)
+TRAIN_LEVER_HLA = 5  #: finger follower on a hydraulic lash adjuster at its pivot (``[hla]``, rocker)
+#: The kinds' names.
+TRAIN_KINDS = {
+    TRAIN_SPRING_ALONE: "spring alone",
+    TRAIN_DIRECT: "direct-acting",
+    TRAIN_LEVER: "lever",
+    TRAIN_PUSHROD: "pushrod",
+    TRAIN_BUCKET_HLA: "hydraulic bucket",
+    TRAIN_LEVER_HLA: "lever on a hydraulic lash adjuster",
+}
+
+# --- the train's states: offsets from its first, ``s[nm + S_*]``, after the chain's nm masses;
+# each velocity at ``s[nfree + nm + S_*]`` (a first-order state has an unused velocity slot)
+S_VALVE = 0  #: every kind: the valve body's lift z [m]
+S_LEVER = 1  #: lever, pushrod, lever on an adjuster: the lever's valve-side tip [m]
+S_LIFTER = 2  #: pushrod: the lifter on the cam [m]
+S_PIVOT = 2  #: lever on an adjuster: the finger's pivot end y_a (collapse direction positive) [m]
+S_BUCKET = 1  #: hydraulic bucket: the bucket body on the cam y_b [m]
+S_LEVER_HLA = 3  #: lever on an adjuster: the adjuster's first state (``H_*`` from here)
+S_BUCKET_HLA = 2  #: hydraulic bucket: the adjuster's first state (``H_*`` from here)
+# the adjuster's states, from its first (S_LEVER_HLA or S_BUCKET_HLA)
+H_PLUNGER = 0  #: the plunger y_p [m]
+H_PRESSURE = 1  #: the chamber pressure, absolute [Pa] (first order)
+H_INFLOW = 2  #: oil in through the check valve since the start [m^3] (first order)
+H_LEAK = 3  #: oil out through the clearance since the start [m^3] (first order)
+N_HLA_STATES = 4
+#: The train's states of each kind, in order (their offsets are their positions) [-].
+TRAIN_STATES = {
+    TRAIN_SPRING_ALONE: (),
+    TRAIN_DIRECT: ("valve",),
+    TRAIN_LEVER: ("valve", "lever"),
+    TRAIN_PUSHROD: ("valve", "lever", "lifter"),
+    TRAIN_BUCKET_HLA: ("valve", "bucket", "plunger", "pressure", "inflow", "leak"),
+    TRAIN_LEVER_HLA: ("valve", "lever", "pivot", "plunger", "pressure", "inflow", "leak"),
+}
+#: Degrees of freedom of each kind (slot :data:`VT_DOF`) [-].
+TRAIN_DOF = {kind: len(states) for kind, states in TRAIN_STATES.items()}
+
+# --- constants of the compiled hydraulic laws (springdyn.valve.train.hla and .oil use these) -------
+#: Standard atmospheric pressure [Pa]: gauge pressures of the ``[hla]`` table are above it.
+P_ATM = 101325.0
+#: Lowest absolute chamber pressure [Pa]: below it the oil releases its air and vapour
+#: (the chamber cavitates); the pressure is held there and the check valve refills.
+P_CAVITATION = 2000.0
+#: Pressure difference [Pa] below which the check valve's orifice flow is taken as laminar
+#: (linear in the pressure difference), so that the flow has a finite slope at zero.
+CHECK_VALVE_TRANSITION = 2000.0
 
 # --- the right-hand side's extra outputs: offsets after the 2 (N + 1) element values ----
 X_LIFT = 0  #: cam lift [m]
@@ -76,10 +157,17 @@ X_DLIFT = 1  #: cam lift rate [m/s]
 X_CAM_FORCE = 2  #: cam contact force [N]
 X_SEAT_FORCE = 3  #: valve-seat force [N]
 X_TOP = 4  #: displacement of the retainer end (the valve lift with a train) [m]
-X_DISP = 5  #: first of the N mass displacements [m]; the cam gap follows them, then the adjuster's
-#: outputs (:func:`extra_layout`: ``hla_collapse``, ``hla_pressure``, ``socket_force``,
-#: ``hla_inflow``, ``hla_leak``, ``hla_check``; zeros without an adjuster)
-N_HLA_EXTRA = 6
+X_DISP = 5  #: first of the N mass displacements [m]; the tail ``XT_*`` follows them
+# the tail: offsets after the N displacements, ``extra[2 (N + 1) + X_DISP + N + XT_*]``
+XT_CAM_GAP = 0  #: the signed cam-contact gap [m] (positive in contact; 1 for the spring alone)
+XT_HLA_COLLAPSE = 1  #: the adjuster's collapse from its base-circle position [m] (0 without)
+XT_HLA_PRESSURE = 2  #: the chamber pressure above the supply [Pa]
+XT_SOCKET_FORCE = 3  #: the socket force [N]
+XT_HLA_INFLOW = 4  #: oil in through the check valve since the start [m^3]
+XT_HLA_LEAK = 5  #: oil out through the clearance since the start [m^3]
+XT_HLA_CHECK = 6  #: the collapse as a periodicity force [N] (:data:`CHK_HLA`)
+N_TAIL = 7
+N_HLA_EXTRA = N_TAIL - 1  #: the adjuster's outputs in the tail [-]
 
 #: Names of the ``extra`` outputs for the 5-mass Type C chain (:func:`extra_layout` for any N).
 EXTRA = (
@@ -135,6 +223,7 @@ def extra_layout(n_masses: int) -> dict:
     """
     ne = n_masses + 1
     b = 2 * ne
+    tail = b + X_DISP + n_masses
     return dict(
         force=slice(0, ne),
         compression=slice(ne, b),
@@ -143,15 +232,15 @@ def extra_layout(n_masses: int) -> dict:
         cam_contact_force=b + X_CAM_FORCE,
         valve_seat_force=b + X_SEAT_FORCE,
         top_displacement=b + X_TOP,
-        displacement=slice(b + X_DISP, b + X_DISP + n_masses),
-        cam_gap=b + X_DISP + n_masses,
-        hla_collapse=b + X_DISP + n_masses + 1,
-        hla_pressure=b + X_DISP + n_masses + 2,
-        socket_force=b + X_DISP + n_masses + 3,
-        hla_inflow=b + X_DISP + n_masses + 4,
-        hla_leak=b + X_DISP + n_masses + 5,
-        hla_check=b + X_DISP + n_masses + 6,
-        size=b + X_DISP + 1 + n_masses + N_HLA_EXTRA,
+        displacement=slice(b + X_DISP, tail),
+        cam_gap=tail + XT_CAM_GAP,
+        hla_collapse=tail + XT_HLA_COLLAPSE,
+        hla_pressure=tail + XT_HLA_PRESSURE,
+        socket_force=tail + XT_SOCKET_FORCE,
+        hla_inflow=tail + XT_HLA_INFLOW,
+        hla_leak=tail + XT_HLA_LEAK,
+        hla_check=tail + XT_HLA_CHECK,
+        size=tail + N_TAIL,
     )
 
 
@@ -235,10 +324,3 @@ N_FIXED_CHANNELS = 3
 
 #: Status codes of the integration.
 STATUS = {0: "ok", 1: "too many steps", 2: "step size collapsed", 3: "the solution is not finite (NaN/inf)"}
-
-# --- constants of the hydraulic laws (the oil's and the adjuster's) ---------------------------
-#: Standard atmospheric pressure [Pa]: gauge pressures of the ``[hla]`` table are above it.
-P_ATM = 101325.0
-#: Lowest absolute chamber pressure [Pa]: below it the oil releases its air and vapour
-#: (the chamber cavitates); the pressure is held there and the check valve refills.
-P_CAVITATION = 2000.0

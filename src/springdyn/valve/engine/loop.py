@@ -6,7 +6,8 @@
   none), so one compiled variant serves them all.
 - :func:`integrate_kernel`: that loop compiled for one pair and one model (the spring
   alone, or the valve train), with the pair's step and the model's right-hand side
-  inlined (:mod:`.stepping`): the only compiled variants, made on first use.
+  inlined (:mod:`.stepping`): the only compiled variants, listed in :data:`VARIANTS` and
+  made on first use.
 - :func:`run_speeds_loop`: many speeds, revolution by revolution: a given number of
   revolutions, or until two revolutions repeat (the periodic steady state), each speed from
   the initial state or from the state the speed before ended in; the last revolution with
@@ -23,7 +24,8 @@ import numpy as np
 
 from ...numerics import erk
 from ...numerics.jit import kernel, rebind
-from .equations import FASTMATH, rhs_call
+from . import stepping
+from .equations import FASTMATH, rhs_call, spring_rhs_hot, train_rhs_hot
 from .layout import (
     CHK_CAM,
     CHK_HLA,
@@ -36,9 +38,9 @@ from .layout import (
     X_CAM_FORCE,
     X_DISP,
     X_SEAT_FORCE,
+    XT_HLA_CHECK,
 )
 from .monitor import finish_monitor, monitor_step, new_monitor
-from .stepping import step_kernels
 
 __all__ = [
     "Tolerances",
@@ -46,6 +48,8 @@ __all__ = [
     "workspace",
     "integrate_loop",
     "integrate_kernel",
+    "VARIANTS",
+    "Variant",
     "run_speeds_loop",
     "Revolutions",
     "SpeedOutputs",
@@ -53,9 +57,36 @@ __all__ = [
     "stop_times",
 ]
 
-#: The step and dense-output functions :func:`integrate_loop` calls: bound, per pair and
-#: model, to inlined twins of :mod:`.stepping` by :func:`integrate_kernel`.
-attempt_step = dense_coefficients = None
+_UNBOUND = (
+    "integrate_loop is a template: attempt_step and dense_coefficients are bound per variant by "
+    "integrate_kernel (the table loop.VARIANTS); run the loop through integrate_kernel(tab, vt)"
+)
+
+
+def attempt_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
+    """The step :func:`integrate_loop` takes: a name that :func:`integrate_kernel` binds, per
+    variant (:data:`VARIANTS`), to an inlined twin of a pair's ``<pair>_step`` of
+    :mod:`.stepping` (whose parameters these are); never called itself.
+
+    Parameters
+    ----------
+    tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work
+        Those of :func:`.stepping.dopri5_step`.
+    """
+    raise RuntimeError(_UNBOUND)
+
+
+def dense_coefficients(tab, y, y_new, k, h, rc):
+    """The dense output of an accepted step: a name that :func:`integrate_kernel` binds, per
+    variant (:data:`VARIANTS`), to an inlined twin of a pair's ``<pair>_dense`` of
+    :mod:`.stepping` (whose parameters these are); never called itself.
+
+    Parameters
+    ----------
+    tab, y, y_new, k, h, rc
+        Those of :func:`.stepping.dopri5_dense`.
+    """
+    raise RuntimeError(_UNBOUND)
 
 
 class Tolerances(NamedTuple):
@@ -289,20 +320,45 @@ def check_channels(e, ne, row):
     row[CHK_RETAINER] = e[ne - 1]
     row[CHK_CAM] = e[b + X_CAM_FORCE]
     row[CHK_VALVE_SEAT] = e[b + X_SEAT_FORCE]
-    row[CHK_HLA] = e[b + X_DISP + ne + 5]  # the adjuster's collapse as a force (layout.extra_layout)
+    row[CHK_HLA] = e[b + X_DISP + (ne - 1) + XT_HLA_CHECK]  # the adjuster's collapse as a force
 
+
+class Variant(NamedTuple):
+    """One compiled variant of :func:`integrate_loop`: what is bound into its template."""
+
+    step: object  #: the pair's step (``<pair>_step`` of :mod:`.stepping`), bound to ``attempt_step``
+    dense: object  #: its dense output (``<pair>_dense``), bound to ``dense_coefficients``
+    rhs: object  #: the right-hand side its stages inline (:mod:`.equations`), bound to ``stepping.rhs_hot``
+
+
+#: Every compiled variant of the engine, by (pair, model): one per Runge-Kutta pair of
+#: :data:`springdyn.numerics.erk.TABLEAUS` and model, the spring alone (``"spring"``, the
+#: valve train's parameters None) or the valve train (``"train"``, all kinds of train: the
+#: kind is a runtime choice, :func:`.equations.train_rhs`).  :func:`integrate_kernel` makes a
+#: variant on first use (compiled loop ``integrate_loop_<pair>_<model>``, cached on disk), so
+#: a run compiles its own variant only.  A new pair or model is a row here.
+VARIANTS = {
+    ("dopri5", "spring"): Variant(stepping.dopri5_step, stepping.dopri5_dense, spring_rhs_hot),
+    ("dopri5", "train"): Variant(stepping.dopri5_step, stepping.dopri5_dense, train_rhs_hot),
+    ("bs3", "spring"): Variant(stepping.bs3_step, stepping.bs3_dense, spring_rhs_hot),
+    ("bs3", "train"): Variant(stepping.bs3_step, stepping.bs3_dense, train_rhs_hot),
+    ("tsit5", "spring"): Variant(stepping.tsit5_step, stepping.tsit5_dense, spring_rhs_hot),
+    ("tsit5", "train"): Variant(stepping.tsit5_step, stepping.tsit5_dense, train_rhs_hot),
+}
 
 _METHOD_OF = {type(tab): name for name, tab in erk.TABLEAUS.items()}
-_VARIANTS: dict = {}
-_VARIANTS_LOCK = threading.Lock()
+#: The variants made in this process, by the keys of :data:`VARIANTS`.
+_COMPILED: dict = {}
+_COMPILED_LOCK = threading.Lock()
 
 
 def integrate_kernel(tab, vt):
     """The compiled :func:`integrate_loop` for the pair ``tab`` and the model of ``vt``.
 
     One variant per pair and model (``vt`` None: the spring alone; else the valve train),
-    each with its own step and right-hand side inlined (:func:`.stepping.step_kernels`) and
-    its own cache entry; made on first use, so a run compiles its own variant only.
+    each with its own step and right-hand side inlined (:data:`VARIANTS`,
+    :func:`.stepping.step_kernels`) and its own cache entry; made on first use, so a run
+    compiles its own variant only.
 
     Parameters
     ----------
@@ -317,14 +373,15 @@ def integrate_kernel(tab, vt):
         ``integrate_loop`` compiled with ``nogil``, :data:`.equations.FASTMATH` and without
         numba's reference counting.
     """
-    key = (_METHOD_OF[type(tab)], vt is not None)
-    with _VARIANTS_LOCK:
-        if key not in _VARIANTS:
-            step, dense = step_kernels(*key)
+    key = (_METHOD_OF[type(tab)], "spring" if vt is None else "train")
+    with _COMPILED_LOCK:
+        if key not in _COMPILED:
+            variant = VARIANTS[key]
+            step, dense = stepping.step_kernels(variant.step, variant.dense, variant.rhs)
             fn = rebind(integrate_loop, dict(globals(), attempt_step=step, dense_coefficients=dense))
-            fn.__qualname__ = f"integrate_loop_{key[0]}_{'train' if key[1] else 'spring'}"
-            _VARIANTS[key] = kernel(fn, nogil=True, fastmath=FASTMATH, _nrt=False)
-        return _VARIANTS[key]
+            fn.__qualname__ = f"integrate_loop_{key[0]}_{key[1]}"
+            _COMPILED[key] = kernel(fn, nogil=True, fastmath=FASTMATH, _nrt=False)
+        return _COMPILED[key]
 
 
 def stop_times(stop_angles, omega, r0, r1):

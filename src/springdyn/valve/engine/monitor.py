@@ -52,6 +52,7 @@ from .layout import (
     X_DISP,
     X_LIFT,
     X_TOP,
+    XT_CAM_GAP,
 )
 
 __all__ = ["Monitor", "new_monitor", "monitor_step", "finish_monitor"]
@@ -158,7 +159,7 @@ def _channel(c, e, ne, nm, open_lift, gaps):
         return e[2 * ne - 1]
     if c == CH_TRAIN:
         if e[2 * ne + X_LIFT] > open_lift and e[2 * ne + X_TOP] > 0.0:
-            return e[2 * ne + X_DISP + nm]
+            return e[2 * ne + X_DISP + nm + XT_CAM_GAP]
         return 1.0
     return gaps[c - N_FIXED_CHANNELS] - e[ne + c - N_FIXED_CHANNELS]
 

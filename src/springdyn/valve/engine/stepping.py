@@ -7,6 +7,8 @@ makes their compiled twins for one pair and one right-hand side (the spring alon
 valve train, :mod:`.equations`), inlined into the integration loop before typing
 (:func:`springdyn.numerics.jit.twins`).  So a loop variant types the code of its own pair
 and equations only: a Type C run compiles no Bogacki-Shampine, Tsitouras or valve-train code.
+Which pair goes with which right-hand side in which variant: the table
+:data:`springdyn.valve.engine.loop.VARIANTS`.
 
 - Dormand-Prince 5(4) and Tsitouras 5(4): the fused kernels of :mod:`springdyn.numerics.erk`.
 - Bogacki-Shampine 3(2): the generic kernels on its arrays.
@@ -16,12 +18,26 @@ from __future__ import annotations
 
 from ...numerics import erk
 from ...numerics.jit import twins
-from .equations import FASTMATH, spring_rhs_hot, train_rhs_hot
+from .equations import FASTMATH
 
 __all__ = ["dopri5_step", "dopri5_dense", "tsit5_step", "tsit5_dense", "bs3_step", "bs3_dense", "step_kernels"]
 
-#: The right-hand side the step functions call (rebound to a compiled twin by :func:`step_kernels`).
-rhs_hot = None
+
+def rhs_hot(t, s, m, omega, vt, out, extra):
+    """The right-hand side the step functions' stages call: a name that :func:`step_kernels`
+    binds, per variant (:data:`springdyn.valve.engine.loop.VARIANTS`), to a compiled twin of
+    :mod:`.equations` (``spring_rhs_hot`` or ``train_rhs_hot``), inlined; never called itself.
+
+    Parameters
+    ----------
+    t, s, m, omega, vt, out, extra
+        Those of :func:`.equations.chain_rhs`: time [s], state [m, m/s], model, speed
+        [rad/s], train, ``ds/dt``, extra outputs.
+    """
+    raise RuntimeError(
+        "stepping.rhs_hot is bound per variant by step_kernels (the table loop.VARIANTS): "
+        "run a step through loop.integrate_kernel"
+    )
 
 
 def dopri5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
@@ -144,21 +160,23 @@ def bs3_dense(tab, y, y_new, k, h, rc):
     erk.dense_coefficients(y, y_new, k, h, rc, tab.d)
 
 
-def step_kernels(method: str, train: bool) -> tuple:
-    """The compiled twins (inlined where called) of the step and dense-output functions of a pair.
+def step_kernels(step, dense, rhs) -> tuple:
+    """The compiled twins (inlined where called) of a pair's step and dense-output functions,
+    the step's stages calling the right-hand side ``rhs`` (bound to the name ``rhs_hot``).
 
     Parameters
     ----------
-    method : {"dopri5", "tsit5", "bs3"}
-        The pair (:data:`springdyn.numerics.erk.TABLEAUS`).
-    train : bool
-        The valve train's right-hand side (else the spring alone's).
+    step, dense : function
+        The pair's ``<pair>_step`` and ``<pair>_dense`` of this module.
+    rhs : numba dispatcher
+        The right-hand side's compiled twin, inlined into the stages
+        (:data:`.equations.spring_rhs_hot` or :data:`.equations.train_rhs_hot`).
 
     Returns
     -------
     attempt_step, dense_coefficients
-        Twins of ``<method>_step`` and ``<method>_dense``.
+        Twins of ``step`` and ``dense``.
     """
-    namespace = dict(globals(), rhs_hot=train_rhs_hot if train else spring_rhs_hot)
-    made = twins(namespace, [f"{method}_step", f"{method}_dense"], fastmath=FASTMATH)
-    return made[f"{method}_step"], made[f"{method}_dense"]
+    namespace = dict(globals(), rhs_hot=rhs)
+    made = twins(namespace, [step.__name__, dense.__name__], fastmath=FASTMATH)
+    return made[step.__name__], made[dense.__name__]

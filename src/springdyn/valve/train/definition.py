@@ -49,7 +49,61 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
 from ..cam.follower import Follower
-from ..engine.layout import VT_GAS_N, VT_HLA, VT_SIZE
+from ..engine.layout import (
+    TRAIN_BUCKET_HLA,
+    TRAIN_DIRECT,
+    TRAIN_DOF,
+    TRAIN_LEVER,
+    TRAIN_LEVER_HLA,
+    TRAIN_PUSHROD,
+    VT_ALPHA,
+    VT_C_CAM,
+    VT_C_PUSH,
+    VT_C_SEAT,
+    VT_C_TIP,
+    VT_DOF,
+    VT_ENABLED,
+    VT_GAS_N,
+    VT_GEOM,
+    VT_GEOM_N,
+    VT_HLA,
+    VT_HLA_AIR,
+    VT_HLA_AREA,
+    VT_HLA_BETA,
+    VT_HLA_CS,
+    VT_HLA_CSTOP,
+    VT_HLA_DRAG,
+    VT_HLA_FS,
+    VT_HLA_G,
+    VT_HLA_KCHK,
+    VT_HLA_KCV,
+    VT_HLA_KS,
+    VT_HLA_KSTOP,
+    VT_HLA_MA,
+    VT_HLA_MP,
+    VT_HLA_N,
+    VT_HLA_PCRACK,
+    VT_HLA_PS,
+    VT_HLA_V0,
+    VT_HLA_Y0,
+    VT_HLA_YMAX,
+    VT_HLA_YMIN,
+    VT_K_CAM,
+    VT_K_PUSH,
+    VT_K_SEAT,
+    VT_K_TIP,
+    VT_KIND,
+    VT_LASH,
+    VT_LEVER_J,
+    VT_LOBE_LASH,
+    VT_M_LEVER,
+    VT_M_LIFTER,
+    VT_MASS,
+    VT_PAD_A,
+    VT_PAD_R2,
+    VT_RATIO,
+    VT_SIZE,
+)
 from .hla import HLA, P_ATM
 from .lever import LeverGeometry
 from .oil import oil_of
@@ -60,6 +114,31 @@ LAYOUTS = ("direct-acting", "rocker", "pushrod")
 
 #: Length of the engine's valve-train parameter vector (see :meth:`ValveTrain.kernel_parameters`).
 KERNEL_SIZE = VT_SIZE
+
+#: The adjuster's slots of the engine's parameter vector (:meth:`ValveTrain.kernel_parameters`).
+_HLA_SLOTS = (
+    VT_HLA,
+    VT_HLA_AREA,
+    VT_HLA_V0,
+    VT_HLA_Y0,
+    VT_HLA_MP,
+    VT_HLA_MA,
+    VT_HLA_FS,
+    VT_HLA_KS,
+    VT_HLA_CS,
+    VT_HLA_G,
+    VT_HLA_DRAG,
+    VT_HLA_PS,
+    VT_HLA_PCRACK,
+    VT_HLA_KCV,
+    VT_HLA_BETA,
+    VT_HLA_AIR,
+    VT_HLA_N,
+    VT_HLA_YMAX,
+    VT_HLA_YMIN,
+    VT_HLA_KSTOP,
+    VT_HLA_CSTOP,
+)
 
 #: Damping ratio of the plunger on its oil column (and at its travel stops) [-]: the oil's
 #: viscous losses in the clearance, the check valve and the aerated oil, which the lumped
@@ -435,10 +514,9 @@ class ValveTrain(Parameters):
         """Degrees of freedom of the train: 1 direct-acting, 2 rocker, 3 pushrod; 7 for a
         finger follower on an ``[hla]`` (pivot end, plunger, and the chamber pressure and
         the oil volumes in and out as first-order states); 6 for a hydraulic bucket (bucket
-        body, plunger, chamber pressure, oil in and out)."""
-        if self.hla is not None:
-            return 6 if self.bucket_hla else 7
-        return LAYOUTS.index(self.layout) + 1
+        body, plunger, chamber pressure, oil in and out): :data:`springdyn.valve.engine.layout.TRAIN_DOF`
+        of :attr:`kernel_kind`, whose :data:`~springdyn.valve.engine.layout.TRAIN_STATES` names them."""
+        return TRAIN_DOF[self.kernel_kind]
 
     def equivalent_direct_acting(self) -> ValveTrain:
         """The direct-acting train of the same referred mass, series stiffness and lash.
@@ -457,45 +535,65 @@ class ValveTrain(Parameters):
         )
 
     def kernel_parameters(self, lash: float | None = None) -> np.ndarray:
-        """The engine's parameter vector (:func:`springdyn.valve.engine.chain_rhs`, ``vt``; layout ``VT_*`` of :mod:`springdyn.valve.engine.layout`).
+        """The engine's parameter vector (:func:`springdyn.valve.engine.chain_rhs`, ``vt``): its
+        46 slots (``VT_SIZE``), each written here once by its name ``VT_*`` of
+        :mod:`springdyn.valve.engine.layout`, where each is described.
 
-        ``enabled, M_v, k_c, c_c, k_s, c_s, lash, dof, r, M_r, k_t, c_t, M_f, k_p, c_p,
-        lobe_lash``: masses [kg], stiffnesses [N/m], dampings [N s/m], lash at the valve
-        side [m] (``lash`` overrides it: the effective lash of an adjuster), lobe lift that
-        starts the event [m].
+        The train's kind (``VT_KIND``, :attr:`kernel_kind`) and degrees of freedom
+        (``VT_DOF``), masses [kg], stiffnesses [N/m], dampings [N s/m], the lash at the valve
+        side [m] (``lash`` overrides it: the effective lash of an adjuster), the lobe lift that
+        starts the event [m], the adjuster's dynamics (``VT_HLA*``, zeros without ``[hla]``)
+        and the drawn lever's (``VT_GEOM*``, zeros for the constant ratio).  The slots a train
+        does not use are zero.  Set elsewhere: the gas force's samples
+        (:meth:`springdyn.valve.run.setup.SimulationSetup.with_gas_force`, ``VT_GAS_N``), the
+        lever's ratio table (:func:`springdyn.valve.run.setup.prepare`, ``VT_GEOM_N``), a speed
+        ramp's acceleration (:mod:`springdyn.valve.run.run_up`, ``VT_ALPHA``).
 
         Parameters
         ----------
         lash : float, optional
             Lash at the valve side [m] (default: the train's).
+
+        Returns
+        -------
+        ndarray (VT_SIZE,)
+            The parameters [mixed units, layout ``VT_*``].
         """
         lash = self.lash if lash is None else lash
         lever = self.layout != "direct-acting"
-        return np.array(
-            [
-                1.0,
-                self.valve_side_mass,
-                self.cam_link_stiffness,
-                self.cam_contact_damping,
-                self.seat_stiffness,
-                self.seat_damping,
-                lash,
-                float(self.degrees_of_freedom),
-                self.ratio,
-                self.rocker_mass if lever else 0.0,
-                self.tip_stiffness if lever else 0.0,
-                self.link_damping if lever else 0.0,
-                self.lifter_mass,
-                self.pushrod_stiffness if self.layout == "pushrod" else 0.0,
-                self.link_damping if self.layout == "pushrod" else 0.0,
-                self.lobe_lash,
-                *self._hla_parameters(),
-                0.0,  # VT_GAS_N: no gas force (SimulationSetup.with_gas_force adds its samples)
-                0.0,  # VT_ALPHA: constant speed (springdyn.valve.run.run_up sets a ramp's acceleration)
-                *self._lever_parameters(),
-                self.hla_check_stiffness,
-            ]
-        )
+        pushrod = self.layout == "pushrod"
+        vt = np.zeros(VT_SIZE)
+        vt[VT_ENABLED] = 1.0
+        vt[VT_KIND] = float(self.kernel_kind)
+        vt[VT_DOF] = float(self.degrees_of_freedom)
+        vt[VT_MASS] = self.valve_side_mass
+        vt[VT_K_CAM] = self.cam_link_stiffness
+        vt[VT_C_CAM] = self.cam_contact_damping
+        vt[VT_K_SEAT] = self.seat_stiffness
+        vt[VT_C_SEAT] = self.seat_damping
+        vt[VT_LASH] = lash
+        vt[VT_RATIO] = self.ratio
+        vt[VT_M_LEVER] = self.rocker_mass if lever else 0.0
+        vt[VT_K_TIP] = self.tip_stiffness if lever else 0.0
+        vt[VT_C_TIP] = self.link_damping if lever else 0.0
+        vt[VT_M_LIFTER] = self.lifter_mass
+        vt[VT_K_PUSH] = self.pushrod_stiffness if pushrod else 0.0
+        vt[VT_C_PUSH] = self.link_damping if pushrod else 0.0
+        vt[VT_LOBE_LASH] = self.lobe_lash
+        self._write_hla_parameters(vt)
+        vt[VT_GAS_N] = 0.0  # no gas force (SimulationSetup.with_gas_force adds its samples)
+        vt[VT_ALPHA] = 0.0  # constant speed (springdyn.valve.run.run_up sets a ramp's acceleration)
+        self._write_lever_parameters(vt)
+        vt[VT_HLA_KCHK] = self.hla_check_stiffness
+        return vt
+
+    @property
+    def kernel_kind(self) -> int:
+        """The engine's kind of this train (``VT_KIND``, ``TRAIN_*`` of
+        :mod:`springdyn.valve.engine.layout`): it chooses the train's equations [-]."""
+        if self.hla is not None:
+            return TRAIN_BUCKET_HLA if self.bucket_hla else TRAIN_LEVER_HLA
+        return {"direct-acting": TRAIN_DIRECT, "rocker": TRAIN_LEVER, "pushrod": TRAIN_PUSHROD}[self.layout]
 
     @property
     def hla_check_stiffness(self) -> float:
@@ -509,21 +607,43 @@ class ValveTrain(Parameters):
             return self.stiffness_at_valve
         return (self.ratio - 1.0) * self.stiffness_at_valve
 
-    def _lever_parameters(self) -> list:
-        """The ``VT_GEOM*`` entries of :meth:`kernel_parameters`: the drawn lever's pad and
+    def _write_lever_parameters(self, vt: np.ndarray) -> None:
+        """Write the ``VT_GEOM*`` slots of :meth:`kernel_parameters`: the drawn lever's pad and
         inertia (zeros for the constant ratio; :func:`springdyn.valve.run.setup.prepare` appends
-        the ratio table and sets ``VT_GEOM_N``)."""
+        the ratio table and sets ``VT_GEOM_N``).
+
+        Parameters
+        ----------
+        vt : ndarray (VT_SIZE,)
+            The parameter vector [mixed units].
+        """
         if self.geometry is None:
-            return [0.0] * 5
-        a, b, _ = self.geometry.geometry.pad_arms()
-        return [1.0, a, a * a + b * b, self.lever_inertia, 0.0]
+            a = r2 = inertia = 0.0
+        else:
+            a, b, _ = self.geometry.geometry.pad_arms()
+            r2, inertia = a * a + b * b, self.lever_inertia
+        vt[VT_GEOM] = 0.0 if self.geometry is None else 1.0
+        vt[VT_PAD_A] = a
+        vt[VT_PAD_R2] = r2
+        vt[VT_LEVER_J] = inertia
+        vt[VT_GEOM_N] = 0.0
 
-    def _hla_parameters(self) -> list:
-        """The ``VT_HLA*`` entries of :meth:`kernel_parameters` (zeros without ``[hla]``)."""
+    def _write_hla_parameters(self, vt: np.ndarray) -> None:
+        """Write the ``VT_HLA*`` slots of :meth:`kernel_parameters` (zeros without ``[hla]``).
 
+        Parameters
+        ----------
+        vt : ndarray (VT_SIZE,)
+            The parameter vector [mixed units].
+        """
+        for slot, value in self._hla_slots().items():
+            vt[slot] = value
+
+    def _hla_slots(self) -> dict:
+        """The ``VT_HLA*`` slots of :meth:`kernel_parameters` by name (zeros without ``[hla]``)."""
         h = self.hla
         if h is None:
-            return [0.0] * (VT_GAS_N - VT_HLA)
+            return dict.fromkeys(_HLA_SLOTS, 0.0)
 
         if self.bucket_hla:  # the collapse's origin: the body less the plunger on the base circle
             origin, carried = self.bucket_hla_state()["collapse"], self.follower_mass
@@ -531,29 +651,29 @@ class ValveTrain(Parameters):
             origin, carried = self.hla_pivot_state()["plunger"], h.pivot_mass
         mass = h.plunger_mass
         k_oil = h.oil.bulk_modulus * h.area**2 / h.chamber_volume
-        return [
-            1.0,
-            h.area,
-            h.chamber_volume,
-            origin,
-            mass,
-            carried,
-            h.plunger_spring_force,
-            h.socket_stiffness,
-            self.link_damping,
-            h.conductance(),
-            0.5 * math.pi * h.plunger_diameter * h.radial_clearance,
-            P_ATM + h.supply_pressure,
-            h.cracking_pressure,
-            h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.oil.density()),
-            h.oil.bulk_modulus,
-            h.oil.air_fraction,
-            h.oil.polytropic_index,
-            h.collapse_travel,
-            -h.extension_travel,
-            10.0 * k_oil,
-            HLA_PLUNGER_DAMPING_RATIO * 2.0 * math.sqrt(k_oil * mass),
-        ]
+        return {
+            VT_HLA: 1.0,
+            VT_HLA_AREA: h.area,
+            VT_HLA_V0: h.chamber_volume,
+            VT_HLA_Y0: origin,
+            VT_HLA_MP: mass,
+            VT_HLA_MA: carried,
+            VT_HLA_FS: h.plunger_spring_force,
+            VT_HLA_KS: h.socket_stiffness,
+            VT_HLA_CS: self.link_damping,
+            VT_HLA_G: h.conductance(),
+            VT_HLA_DRAG: 0.5 * math.pi * h.plunger_diameter * h.radial_clearance,
+            VT_HLA_PS: P_ATM + h.supply_pressure,
+            VT_HLA_PCRACK: h.cracking_pressure,
+            VT_HLA_KCV: h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.oil.density()),
+            VT_HLA_BETA: h.oil.bulk_modulus,
+            VT_HLA_AIR: h.oil.air_fraction,
+            VT_HLA_N: h.oil.polytropic_index,
+            VT_HLA_YMAX: h.collapse_travel,
+            VT_HLA_YMIN: -h.extension_travel,
+            VT_HLA_KSTOP: 10.0 * k_oil,
+            VT_HLA_CSTOP: HLA_PLUNGER_DAMPING_RATIO * 2.0 * math.sqrt(k_oil * mass),
+        }
 
     def hla_pivot_state(
         self, valve_force: float | None = None, lobe_lift: float = 0.0, valve_lift: float = 0.0

@@ -37,7 +37,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
-from ..engine.layout import P_ATM
+from ..engine.layout import CHECK_VALVE_TRANSITION, P_ATM
 from .oil import HoldsOil, Oil
 
 __all__ = [
@@ -51,11 +51,12 @@ __all__ = [
     "LeakDownTest",
 ]
 
+# Standard atmospheric pressure P_ATM [Pa], the cavitation pressure P_CAVITATION [Pa] and the
+# check valve's laminar transition CHECK_VALVE_TRANSITION [Pa]: defined once, in the engine's
+# layout, whose compiled laws use them too (the engine imports nothing from train/).
+
 #: The integrator of :func:`leak_down_test` (an implicit one: the oil spring is stiff).
 LEAK_DOWN_METHOD = "Radau"
-#: Pressure difference [Pa] below which the check valve's orifice flow is taken as laminar
-#: (linear in the pressure difference), so that the flow has a finite slope at zero.
-CHECK_VALVE_TRANSITION = 2000.0
 
 
 def leak_conductance(diameter, radial_clearance, length, viscosity, eccentricity=0.0):
