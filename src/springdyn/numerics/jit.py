@@ -230,7 +230,8 @@ def twins(namespace: dict, names, **options) -> dict:
     namespace : dict
         The module's globals (``globals()``).
     names : iterable of str
-        The functions to twin, callees first.
+        The functions to twin, callees first (a function the module imported from another
+        module also sees the names only that module defines, e.g. its constants).
     **options
         Options of :func:`kernel` for every twin.
 
@@ -244,6 +245,9 @@ def twins(namespace: dict, names, **options) -> dict:
     out = {"__globals__": g}
     for name in names:
         fn = namespace[name]
+        if fn.__globals__ is not namespace:  # imported: the names only its module defines (constants)
+            for key, value in fn.__globals__.items():
+                g.setdefault(key, value)
         copy = types.FunctionType(fn.__code__, g, fn.__name__, fn.__defaults__, fn.__closure__)
         copy.__qualname__ = fn.__qualname__
         copy.__module__ = fn.__module__

@@ -15,7 +15,7 @@ import pytest
 from springdyn.core.errors import InputError
 from springdyn.core.params import load_toml
 from springdyn.valve import ValveModel, ValveTrain
-from springdyn.valve.engine.equations import air_oil_bulk_modulus
+from springdyn.valve.engine import equations
 from springdyn.valve.engine.layout import P_ATM
 from springdyn.valve.train.friction import Friction
 from springdyn.valve.train.hla import HLA
@@ -50,10 +50,25 @@ def test_bulk_modulus_limits_and_the_compiled_twin():
     assert effective_bulk_modulus(P_ATM, 1.5e9, 0.3, 1.0) == pytest.approx(P_ATM / 0.3, rel=0.01)
     for p in (3e3, 1e5, 3e5, 1e7):
         for n in (1.0, 1.4):
-            assert air_oil_bulk_modulus(p, 1.5e9, 0.02, n) == pytest.approx(
+            assert equations._TWINS["effective_bulk_modulus"](p, 1.5e9, 0.02, n) == pytest.approx(
                 effective_bulk_modulus(p, 1.5e9, 0.02, n), rel=1e-14
             )
     assert Oil().bulk_modulus_at(3e5) == effective_bulk_modulus(3e5, 1.5e9, 0.02, 1.0)
+
+
+def test_the_check_valve_is_the_compiled_orifice():
+    """hla.check_valve_flow and the chamber's compiled orifice are one law (engine.hydraulics):
+    the same flow, continuous at the laminar transition (Merritt 1967, eq. 3-6)."""
+    from springdyn.valve.engine.layout import CHECK_VALVE_TRANSITION
+    from springdyn.valve.train.hla import check_valve_flow
+
+    k = 0.7 * 1e-6 * math.sqrt(2.0 / 850.0)
+    for dp in (-10.0, 0.0, 500.0, CHECK_VALVE_TRANSITION, 1e5):
+        assert equations._TWINS["orifice_flow"](dp, k) == pytest.approx(
+            check_valve_flow(dp, 1e-6, 0.7, 850.0), rel=1e-14
+        )
+    below = check_valve_flow(CHECK_VALVE_TRANSITION * (1 - 1e-12), 1e-6, 0.7, 850.0)
+    assert below == pytest.approx(check_valve_flow(CHECK_VALVE_TRANSITION, 1e-6, 0.7, 850.0), rel=1e-9)
 
 
 def test_a_viscosity_given_holds_at_its_temperature_only():

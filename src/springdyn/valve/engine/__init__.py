@@ -5,6 +5,7 @@ Module map (one reason to change each):
 - :mod:`.layout`: the named indices of every array the engine reads or writes.
 - :mod:`.equations`: the equations of motion, the cam the engine sees, the contact laws of
   the ends and of the valve train's links (plain Python, with their compiled twins).
+- :mod:`.hydraulics`: the oil's scalar laws the compiled adjuster and the Python one share.
 - :mod:`.cam_table`: :class:`CamTable`, the cam's sampled table, its interpolant on arrays
   and the angles a step lands on.
 - :mod:`.stepping`: one Runge-Kutta step of each pair on the chain.

@@ -41,13 +41,12 @@ from typing import NamedTuple
 import numpy as np
 
 from ...numerics.jit import kernel, rebind, twins
+from .hydraulics import effective_bulk_modulus, orifice_flow
 from .layout import (
-    CHECK_VALVE_TRANSITION,
     H_INFLOW,
     H_LEAK,
     H_PLUNGER,
     H_PRESSURE,
-    P_ATM,
     P_CAVITATION,
     S_BUCKET,
     S_BUCKET_HLA,
@@ -151,7 +150,6 @@ __all__ = [
     "cam_at_hot",
     "rhs_call",
     "NO_EXTRA",
-    "air_oil_bulk_modulus",
     "hla_forces",
     "gas_force_at",
 ]
@@ -570,29 +568,6 @@ def lever_mass(vt, x):
     return vt[VT_LEVER_J] / lv2, 2.0 * vt[VT_LEVER_J] * xa / (lv2 * lv2)
 
 
-def air_oil_bulk_modulus(p_abs, beta_oil, air, n):
-    """Bulk modulus [Pa] of oil with free air at an absolute pressure: the scalar twin of
-    :func:`springdyn.valve.train.hla.effective_bulk_modulus` for compiled code (the tests compare
-    them; a compiled kernel calls code of the engine's folder only, whose contents key its
-    cache, :func:`springdyn.numerics.jit.source_group`).
-
-    Parameters
-    ----------
-    p_abs : float
-        Absolute pressure [Pa].
-    beta_oil : float
-        Bulk modulus of the air-free oil [Pa].
-    air : float
-        Free-air volume fraction at atmospheric pressure [-].
-    n : float
-        Polytropic index [-].
-    """
-    p = p_abs if p_abs > P_CAVITATION else P_CAVITATION
-    v_air = air * (P_ATM / p) ** (1.0 / n)
-    v_oil = 1.0 - air
-    return (v_oil + v_air) / (v_oil / beta_oil + v_air / (n * p))
-
-
 def hla_chamber(vt, y, yd, p, out, k, kv):
     """The adjuster's chamber, plunger spring and travel stops (:mod:`springdyn.valve.train.hla`).
 
@@ -629,15 +604,10 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
     area = vt[VT_HLA_AREA]
     # the chamber: check-valve inflow, leakage, the plunger's displacement of oil
     dp_cv = ps - vt[VT_HLA_PCRACK] - p
-    q_in = 0.0
-    if dp_cv > 0.0:
-        if dp_cv < CHECK_VALVE_TRANSITION:  # laminarised
-            q_in = vt[VT_HLA_KCV] * dp_cv / math.sqrt(CHECK_VALVE_TRANSITION)
-        else:
-            q_in = vt[VT_HLA_KCV] * math.sqrt(dp_cv)
+    q_in = orifice_flow(dp_cv, vt[VT_HLA_KCV])
     q_leak = vt[VT_HLA_G] * (p - ps) - vt[VT_HLA_DRAG] * yd
     volume = vt[VT_HLA_V0] - area * y
-    beta = air_oil_bulk_modulus(p, vt[VT_HLA_BETA], vt[VT_HLA_AIR], vt[VT_HLA_N])
+    beta = effective_bulk_modulus(p, vt[VT_HLA_BETA], vt[VT_HLA_AIR], vt[VT_HLA_N])
     dp = beta / volume * (area * yd + q_in - q_leak)
     if p <= P_CAVITATION and dp < 0.0:  # cavitation: the pressure holds
         dp = 0.0
@@ -1332,7 +1302,8 @@ _TWINS = twins(
         "_record_hla",
         "gas_force_at",
         "lever_mass",
-        "air_oil_bulk_modulus",
+        "effective_bulk_modulus",
+        "orifice_flow",
         "hla_chamber",
         "hla_forces",
         "bucket_hla_forces",

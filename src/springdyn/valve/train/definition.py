@@ -49,61 +49,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
 from ..cam.follower import Follower
-from ..engine.layout import (
-    TRAIN_BUCKET_HLA,
-    TRAIN_DIRECT,
-    TRAIN_DOF,
-    TRAIN_LEVER,
-    TRAIN_LEVER_HLA,
-    TRAIN_PUSHROD,
-    VT_ALPHA,
-    VT_C_CAM,
-    VT_C_PUSH,
-    VT_C_SEAT,
-    VT_C_TIP,
-    VT_DOF,
-    VT_ENABLED,
-    VT_GAS_N,
-    VT_GEOM,
-    VT_GEOM_N,
-    VT_HLA,
-    VT_HLA_AIR,
-    VT_HLA_AREA,
-    VT_HLA_BETA,
-    VT_HLA_CS,
-    VT_HLA_CSTOP,
-    VT_HLA_DRAG,
-    VT_HLA_FS,
-    VT_HLA_G,
-    VT_HLA_KCHK,
-    VT_HLA_KCV,
-    VT_HLA_KS,
-    VT_HLA_KSTOP,
-    VT_HLA_MA,
-    VT_HLA_MP,
-    VT_HLA_N,
-    VT_HLA_PCRACK,
-    VT_HLA_PS,
-    VT_HLA_V0,
-    VT_HLA_Y0,
-    VT_HLA_YMAX,
-    VT_HLA_YMIN,
-    VT_K_CAM,
-    VT_K_PUSH,
-    VT_K_SEAT,
-    VT_K_TIP,
-    VT_KIND,
-    VT_LASH,
-    VT_LEVER_J,
-    VT_LOBE_LASH,
-    VT_M_LEVER,
-    VT_M_LIFTER,
-    VT_MASS,
-    VT_PAD_A,
-    VT_PAD_R2,
-    VT_RATIO,
-    VT_SIZE,
-)
+from ..engine import layout as L
 from .hla import HLA, P_ATM
 from .lever import LeverGeometry
 from .oil import oil_of
@@ -113,31 +59,31 @@ __all__ = ["ValveTrain", "LAYOUTS", "DEFAULT_SOURCES", "HLA_NOT_MODELLED", "seri
 LAYOUTS = ("direct-acting", "rocker", "pushrod")
 
 #: Length of the engine's valve-train parameter vector (see :meth:`ValveTrain.kernel_parameters`).
-KERNEL_SIZE = VT_SIZE
+KERNEL_SIZE = L.VT_SIZE
 
 #: The adjuster's slots of the engine's parameter vector (:meth:`ValveTrain.kernel_parameters`).
 _HLA_SLOTS = (
-    VT_HLA,
-    VT_HLA_AREA,
-    VT_HLA_V0,
-    VT_HLA_Y0,
-    VT_HLA_MP,
-    VT_HLA_MA,
-    VT_HLA_FS,
-    VT_HLA_KS,
-    VT_HLA_CS,
-    VT_HLA_G,
-    VT_HLA_DRAG,
-    VT_HLA_PS,
-    VT_HLA_PCRACK,
-    VT_HLA_KCV,
-    VT_HLA_BETA,
-    VT_HLA_AIR,
-    VT_HLA_N,
-    VT_HLA_YMAX,
-    VT_HLA_YMIN,
-    VT_HLA_KSTOP,
-    VT_HLA_CSTOP,
+    L.VT_HLA,
+    L.VT_HLA_AREA,
+    L.VT_HLA_V0,
+    L.VT_HLA_Y0,
+    L.VT_HLA_MP,
+    L.VT_HLA_MA,
+    L.VT_HLA_FS,
+    L.VT_HLA_KS,
+    L.VT_HLA_CS,
+    L.VT_HLA_G,
+    L.VT_HLA_DRAG,
+    L.VT_HLA_PS,
+    L.VT_HLA_PCRACK,
+    L.VT_HLA_KCV,
+    L.VT_HLA_BETA,
+    L.VT_HLA_AIR,
+    L.VT_HLA_N,
+    L.VT_HLA_YMAX,
+    L.VT_HLA_YMIN,
+    L.VT_HLA_KSTOP,
+    L.VT_HLA_CSTOP,
 )
 
 #: Damping ratio of the plunger on its oil column (and at its travel stops) [-]: the oil's
@@ -516,7 +462,7 @@ class ValveTrain(Parameters):
         the oil volumes in and out as first-order states); 6 for a hydraulic bucket (bucket
         body, plunger, chamber pressure, oil in and out): :data:`springdyn.valve.engine.layout.TRAIN_DOF`
         of :attr:`kernel_kind`, whose :data:`~springdyn.valve.engine.layout.TRAIN_STATES` names them."""
-        return TRAIN_DOF[self.kernel_kind]
+        return L.TRAIN_DOF[self.kernel_kind]
 
     def equivalent_direct_acting(self) -> ValveTrain:
         """The direct-acting train of the same referred mass, series stiffness and lash.
@@ -556,35 +502,35 @@ class ValveTrain(Parameters):
 
         Returns
         -------
-        ndarray (VT_SIZE,)
+        ndarray (L.VT_SIZE,)
             The parameters [mixed units, layout ``VT_*``].
         """
         lash = self.lash if lash is None else lash
         lever = self.layout != "direct-acting"
         pushrod = self.layout == "pushrod"
-        vt = np.zeros(VT_SIZE)
-        vt[VT_ENABLED] = 1.0
-        vt[VT_KIND] = float(self.kernel_kind)
-        vt[VT_DOF] = float(self.degrees_of_freedom)
-        vt[VT_MASS] = self.valve_side_mass
-        vt[VT_K_CAM] = self.cam_link_stiffness
-        vt[VT_C_CAM] = self.cam_contact_damping
-        vt[VT_K_SEAT] = self.seat_stiffness
-        vt[VT_C_SEAT] = self.seat_damping
-        vt[VT_LASH] = lash
-        vt[VT_RATIO] = self.ratio
-        vt[VT_M_LEVER] = self.rocker_mass if lever else 0.0
-        vt[VT_K_TIP] = self.tip_stiffness if lever else 0.0
-        vt[VT_C_TIP] = self.link_damping if lever else 0.0
-        vt[VT_M_LIFTER] = self.lifter_mass
-        vt[VT_K_PUSH] = self.pushrod_stiffness if pushrod else 0.0
-        vt[VT_C_PUSH] = self.link_damping if pushrod else 0.0
-        vt[VT_LOBE_LASH] = self.lobe_lash
+        vt = np.zeros(L.VT_SIZE)
+        vt[L.VT_ENABLED] = 1.0
+        vt[L.VT_KIND] = float(self.kernel_kind)
+        vt[L.VT_DOF] = float(self.degrees_of_freedom)
+        vt[L.VT_MASS] = self.valve_side_mass
+        vt[L.VT_K_CAM] = self.cam_link_stiffness
+        vt[L.VT_C_CAM] = self.cam_contact_damping
+        vt[L.VT_K_SEAT] = self.seat_stiffness
+        vt[L.VT_C_SEAT] = self.seat_damping
+        vt[L.VT_LASH] = lash
+        vt[L.VT_RATIO] = self.ratio
+        vt[L.VT_M_LEVER] = self.rocker_mass if lever else 0.0
+        vt[L.VT_K_TIP] = self.tip_stiffness if lever else 0.0
+        vt[L.VT_C_TIP] = self.link_damping if lever else 0.0
+        vt[L.VT_M_LIFTER] = self.lifter_mass
+        vt[L.VT_K_PUSH] = self.pushrod_stiffness if pushrod else 0.0
+        vt[L.VT_C_PUSH] = self.link_damping if pushrod else 0.0
+        vt[L.VT_LOBE_LASH] = self.lobe_lash
         self._write_hla_parameters(vt)
-        vt[VT_GAS_N] = 0.0  # no gas force (SimulationSetup.with_gas_force adds its samples)
-        vt[VT_ALPHA] = 0.0  # constant speed (springdyn.valve.run.run_up sets a ramp's acceleration)
+        vt[L.VT_GAS_N] = 0.0  # no gas force (SimulationSetup.with_gas_force adds its samples)
+        vt[L.VT_ALPHA] = 0.0  # constant speed (springdyn.valve.run.run_up sets a ramp's acceleration)
         self._write_lever_parameters(vt)
-        vt[VT_HLA_KCHK] = self.hla_check_stiffness
+        vt[L.VT_HLA_KCHK] = self.hla_check_stiffness
         return vt
 
     @property
@@ -592,8 +538,8 @@ class ValveTrain(Parameters):
         """The engine's kind of this train (``VT_KIND``, ``TRAIN_*`` of
         :mod:`springdyn.valve.engine.layout`): it chooses the train's equations [-]."""
         if self.hla is not None:
-            return TRAIN_BUCKET_HLA if self.bucket_hla else TRAIN_LEVER_HLA
-        return {"direct-acting": TRAIN_DIRECT, "rocker": TRAIN_LEVER, "pushrod": TRAIN_PUSHROD}[self.layout]
+            return L.TRAIN_BUCKET_HLA if self.bucket_hla else L.TRAIN_LEVER_HLA
+        return {"direct-acting": L.TRAIN_DIRECT, "rocker": L.TRAIN_LEVER, "pushrod": L.TRAIN_PUSHROD}[self.layout]
 
     @property
     def hla_check_stiffness(self) -> float:
@@ -614,7 +560,7 @@ class ValveTrain(Parameters):
 
         Parameters
         ----------
-        vt : ndarray (VT_SIZE,)
+        vt : ndarray (L.VT_SIZE,)
             The parameter vector [mixed units].
         """
         if self.geometry is None:
@@ -622,18 +568,18 @@ class ValveTrain(Parameters):
         else:
             a, b, _ = self.geometry.geometry.pad_arms()
             r2, inertia = a * a + b * b, self.lever_inertia
-        vt[VT_GEOM] = 0.0 if self.geometry is None else 1.0
-        vt[VT_PAD_A] = a
-        vt[VT_PAD_R2] = r2
-        vt[VT_LEVER_J] = inertia
-        vt[VT_GEOM_N] = 0.0
+        vt[L.VT_GEOM] = 0.0 if self.geometry is None else 1.0
+        vt[L.VT_PAD_A] = a
+        vt[L.VT_PAD_R2] = r2
+        vt[L.VT_LEVER_J] = inertia
+        vt[L.VT_GEOM_N] = 0.0
 
     def _write_hla_parameters(self, vt: np.ndarray) -> None:
         """Write the ``VT_HLA*`` slots of :meth:`kernel_parameters` (zeros without ``[hla]``).
 
         Parameters
         ----------
-        vt : ndarray (VT_SIZE,)
+        vt : ndarray (L.VT_SIZE,)
             The parameter vector [mixed units].
         """
         for slot, value in self._hla_slots().items():
@@ -652,27 +598,27 @@ class ValveTrain(Parameters):
         mass = h.plunger_mass
         k_oil = h.oil.bulk_modulus * h.area**2 / h.chamber_volume
         return {
-            VT_HLA: 1.0,
-            VT_HLA_AREA: h.area,
-            VT_HLA_V0: h.chamber_volume,
-            VT_HLA_Y0: origin,
-            VT_HLA_MP: mass,
-            VT_HLA_MA: carried,
-            VT_HLA_FS: h.plunger_spring_force,
-            VT_HLA_KS: h.socket_stiffness,
-            VT_HLA_CS: self.link_damping,
-            VT_HLA_G: h.conductance(),
-            VT_HLA_DRAG: 0.5 * math.pi * h.plunger_diameter * h.radial_clearance,
-            VT_HLA_PS: P_ATM + h.supply_pressure,
-            VT_HLA_PCRACK: h.cracking_pressure,
-            VT_HLA_KCV: h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.oil.density()),
-            VT_HLA_BETA: h.oil.bulk_modulus,
-            VT_HLA_AIR: h.oil.air_fraction,
-            VT_HLA_N: h.oil.polytropic_index,
-            VT_HLA_YMAX: h.collapse_travel,
-            VT_HLA_YMIN: -h.extension_travel,
-            VT_HLA_KSTOP: 10.0 * k_oil,
-            VT_HLA_CSTOP: HLA_PLUNGER_DAMPING_RATIO * 2.0 * math.sqrt(k_oil * mass),
+            L.VT_HLA: 1.0,
+            L.VT_HLA_AREA: h.area,
+            L.VT_HLA_V0: h.chamber_volume,
+            L.VT_HLA_Y0: origin,
+            L.VT_HLA_MP: mass,
+            L.VT_HLA_MA: carried,
+            L.VT_HLA_FS: h.plunger_spring_force,
+            L.VT_HLA_KS: h.socket_stiffness,
+            L.VT_HLA_CS: self.link_damping,
+            L.VT_HLA_G: h.conductance(),
+            L.VT_HLA_DRAG: 0.5 * math.pi * h.plunger_diameter * h.radial_clearance,
+            L.VT_HLA_PS: P_ATM + h.supply_pressure,
+            L.VT_HLA_PCRACK: h.cracking_pressure,
+            L.VT_HLA_KCV: h.discharge_coefficient * h.check_valve_area * math.sqrt(2.0 / h.oil.density()),
+            L.VT_HLA_BETA: h.oil.bulk_modulus,
+            L.VT_HLA_AIR: h.oil.air_fraction,
+            L.VT_HLA_N: h.oil.polytropic_index,
+            L.VT_HLA_YMAX: h.collapse_travel,
+            L.VT_HLA_YMIN: -h.extension_travel,
+            L.VT_HLA_KSTOP: 10.0 * k_oil,
+            L.VT_HLA_CSTOP: HLA_PLUNGER_DAMPING_RATIO * 2.0 * math.sqrt(k_oil * mass),
         }
 
     def hla_pivot_state(

@@ -37,7 +37,8 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, param
-from ..engine.layout import CHECK_VALVE_TRANSITION, P_ATM
+from ..engine.hydraulics import orifice_flow
+from ..engine.layout import P_ATM
 from .oil import HoldsOil, Oil
 
 __all__ = [
@@ -52,8 +53,9 @@ __all__ = [
 ]
 
 # Standard atmospheric pressure P_ATM [Pa], the cavitation pressure P_CAVITATION [Pa] and the
-# check valve's laminar transition CHECK_VALVE_TRANSITION [Pa]: defined once, in the engine's
-# layout, whose compiled laws use them too (the engine imports nothing from train/).
+# check valve's laminar transition CHECK_VALVE_TRANSITION [Pa] are defined once, in the
+# engine's layout, and the orifice law once, in springdyn.valve.engine.hydraulics: the
+# compiled laws use them too (the engine imports nothing from train/).
 
 #: The integrator of :func:`leak_down_test` (an implicit one: the oil spring is stiff).
 LEAK_DOWN_METHOD = "Radau"
@@ -86,7 +88,7 @@ def check_valve_flow(dp, area, discharge_coefficient, density):
     """Flow [m^3/s] through the open check valve at a pressure drop ``dp`` [Pa] (> 0 opens it).
 
     A sharp-edged orifice, ``Q = Cd A sqrt(2 dp / rho)``, laminarised below
-    :data:`CHECK_VALVE_TRANSITION` (linear in ``dp``, the same flow at the transition);
+    :data:`springdyn.valve.engine.layout.CHECK_VALVE_TRANSITION` (linear in ``dp``, the same flow at the transition);
     no flow for ``dp <= 0`` (the ball seats).
 
     Parameters
@@ -100,12 +102,7 @@ def check_valve_flow(dp, area, discharge_coefficient, density):
     density : float
         Oil density [kg/m^3].
     """
-    if dp <= 0.0:
-        return 0.0
-    k = discharge_coefficient * area * math.sqrt(2.0 / density)
-    if dp < CHECK_VALVE_TRANSITION:
-        return k * dp / math.sqrt(CHECK_VALVE_TRANSITION)
-    return k * math.sqrt(dp)
+    return orifice_flow(dp, discharge_coefficient * area * math.sqrt(2.0 / density))
 
 
 def chamber_pressure_rate(beta, volume, area, collapse_rate, q_in, q_leak):

@@ -14,7 +14,8 @@ One place per equation:
   40 and 100 degC (the Walther equation, [ASTM D341]);
 - :func:`oil_density` -- the density at a temperature (volumetric expansion);
 - :func:`effective_bulk_modulus` -- aerated oil: the oil's bulk modulus in series with free air
-  bubbles compressed polytropically ([Merritt] eq. 2-19; [Gholizadeh]).
+  bubbles compressed polytropically ([Merritt] eq. 2-19; [Gholizadeh]); its home is
+  :mod:`springdyn.valve.engine.hydraulics`, whose compiled twin the adjuster's chamber uses.
 
 Sources: docs/references.md.
 """
@@ -32,7 +33,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, param
 from ...core.units import to_si
-from ..engine.layout import P_ATM, P_CAVITATION
+from ..engine.hydraulics import effective_bulk_modulus
 
 __all__ = [
     "Oil",
@@ -131,36 +132,6 @@ def oil_density(temperature, density_15, expansion=6.5e-4):
         Volumetric thermal expansion coefficient [1/K] (6.5e-4 for mineral engine oils).
     """
     return density_15 / (1.0 + expansion * (temperature - 288.15))
-
-
-def effective_bulk_modulus(p_abs, oil_bulk_modulus, air_fraction, polytropic_index=1.0):
-    """Bulk modulus [Pa] of oil with free air at an absolute pressure.
-
-    ``x`` is the air's volume fraction at atmospheric pressure; at ``p`` the air takes
-    ``x (p_atm / p)^(1/n)`` of the oil volume and is ``n p`` stiff, in series with the oil:
-    ``beta_e = (V_o + V_a) / (V_o / beta + V_a / (n p))`` (Merritt 1967, eq. 2-19).  Below the
-    cavitation pressure the oil releases its air and vapour: the pressure is held there.
-
-    Parameters
-    ----------
-    p_abs : float
-        Absolute pressure [Pa].
-    oil_bulk_modulus : float
-        Bulk modulus of the air-free oil [Pa].
-    air_fraction : float
-        Free-air volume fraction at atmospheric pressure [-].
-    polytropic_index : float
-        Polytropic index of the bubbles' compression [-] (1 isothermal, 1.4 adiabatic).
-
-    Examples
-    --------
-    >>> round(effective_bulk_modulus(101325.0, 1.5e9, 0.0) / 1e9, 6)
-    1.5
-    """
-    p = max(p_abs, P_CAVITATION)
-    v_air = air_fraction * (P_ATM / p) ** (1.0 / polytropic_index)
-    v_oil = 1.0 - air_fraction
-    return (v_oil + v_air) / (v_oil / oil_bulk_modulus + v_air / (polytropic_index * p))
 
 
 @dataclass(frozen=True)
