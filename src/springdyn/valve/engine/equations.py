@@ -40,6 +40,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...numerics.jit import kernel, rebind, twins
 from .hydraulics import effective_bulk_modulus, orifice_flow
 from .layout import (
@@ -153,6 +154,43 @@ __all__ = [
     "hla_forces",
     "gas_force_at",
 ]
+
+#: The parameters several right-hand sides share, described once (springdyn.core.docstrings).
+_DOCS = ParameterDocs(
+    """
+    cam : CamDrive
+        The cam [rad, rad/s, m, m/s].
+    extra : ndarray
+        Empty, or receives the extra outputs [N, m, m/s] (:func:`chain_rhs`).
+    lift, dlift : ndarray (..., n_t)
+        Lobe lift [m] and its rate [m/s].
+    m : EngineModel
+        The chain and cam arrays [kg, m, N, N s/m, rad].
+    ne, nm : int
+        Chain elements and masses [-].
+    nfree : int
+        Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+    nm : int
+        Chain masses [-].
+    omega : float
+        Cam speed [rad/s].
+    out : ndarray
+        Receives ``ds/dt`` [m/s, m/s^2].
+    s : ndarray
+        State [m, m/s, Pa, m^3].
+    t : float
+        Time [s].
+    theta : float
+        Cam angle [rad].
+    vt : ndarray (VT_SIZE,)
+        The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
+""",
+    kind_args="""
+s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
+    State [m, m/s], chain masses [-], degrees of freedom [-], the train's parameters,
+    the cam [rad, rad/s, m, m/s], ``ds/dt`` [m/s, m/s^2], extra outputs.
+""",
+)
 
 #: Floating-point licences of the compiled kernels: fused multiply-add (``contract``),
 #: division by a reciprocal (``arcp``) and no signed zeros (``nsz``).  Each changes a result
@@ -367,6 +405,7 @@ def element_force(laws, c0, j, xj, rate, unilateral):
     return force
 
 
+@_DOCS.fill
 def chain_forces(s, m, nfree, u_top, v_top, out, extra):
     """The element forces of the chain and the accelerations of its masses ([MMS], MMS-7).
 
@@ -378,8 +417,7 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
         State: displacements [m] then velocities [m/s].
     m : EngineModel
         The chain's arrays [kg, m, N, N s/m].
-    nfree : int
-        Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+    {nfree}
     u_top, v_top : float
         Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
     out : ndarray
@@ -425,6 +463,7 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
     return f_prev
 
 
+@_DOCS.fill
 def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
     """Record the cam, the contact forces, the valve's lift and the train's gap (offsets ``X_*``
     and :data:`.layout.XT_CAM_GAP`) into ``extra`` unless it is empty.
@@ -433,8 +472,7 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
     ----------
     extra : ndarray
         Empty, or the extra outputs [N, m, m/s] (:func:`.layout.extra_layout`).
-    ne, nm : int
-        Chain elements and masses [-].
+    {ne_nm}
     lift, dlift : float
         Cam lift [m] and lift rate [m/s].
     f_cam, f_seat : float
@@ -454,6 +492,7 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
         extra[b + X_DISP + nm + XT_CAM_GAP] = gap
 
 
+@_DOCS.fill
 def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak, check):
     """Record an adjuster's outputs (offsets ``XT_HLA_*`` of :mod:`.layout`) into ``extra``
     unless it is empty.
@@ -462,8 +501,7 @@ def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak, check):
     ----------
     extra : ndarray
         Empty, or the extra outputs [N, m, m/s, Pa, m^3] (:func:`.layout.extra_layout`).
-    ne, nm : int
-        Chain elements and masses [-].
+    {ne_nm}
     collapse : float
         The adjuster's collapse from its base-circle position [m].
     pressure : float
@@ -485,6 +523,7 @@ def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak, check):
         extra[b + XT_HLA_CHECK] = check
 
 
+@_DOCS.fill
 def gas_force_at(vt, theta):
     """The gas force on the valve [N] at the cam angle ``theta`` [rad]: linear and periodic in
     the samples after the train's parameters (:class:`springdyn.valve.train.gas_force.GasForce`);
@@ -494,8 +533,7 @@ def gas_force_at(vt, theta):
     ----------
     vt : ndarray
         The train's parameters [mixed units], the force samples [N] after ``VT_SIZE``.
-    theta : float
-        Cam angle [rad].
+    {theta}
     """
     n = int(vt[VT_GAS_N])
     if n == 0:
@@ -510,6 +548,7 @@ def gas_force_at(vt, theta):
     return vt[VT_SIZE + i0] * (1.0 - frac) + vt[VT_SIZE + i1] * frac
 
 
+@_DOCS.fill
 def lever_ratio_at(vt, theta):
     """The lever's ratio correction ``c = r_0 / r``, ``dc/dtheta`` [1/rad], the pivot factor
     ``n . d`` and its derivative [1/rad] at the cam angle ``theta`` [rad]: cubic Hermite and
@@ -519,8 +558,7 @@ def lever_ratio_at(vt, theta):
     ----------
     vt : ndarray
         The train's parameters [mixed units], the table after ``VT_SIZE`` and the gas samples.
-    theta : float
-        Cam angle [rad].
+    {theta}
     """
     n = int(vt[VT_GEOM_N])
     base = VT_SIZE + int(vt[VT_GAS_N])
@@ -568,6 +606,7 @@ def lever_mass(vt, x):
     return vt[VT_LEVER_J] / lv2, 2.0 * vt[VT_LEVER_J] * xa / (lv2 * lv2)
 
 
+@_DOCS.fill
 def hla_chamber(vt, y, yd, p, out, k, kv):
     """The adjuster's chamber, plunger spring and travel stops (:mod:`springdyn.valve.train.hla`).
 
@@ -584,8 +623,7 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
 
     Parameters
     ----------
-    vt : ndarray (VT_SIZE,)
-        The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
+    {vt}
     y, yd : float
         Collapse [m] and its rate [m/s].
     p : float
@@ -620,6 +658,7 @@ def hla_chamber(vt, y, yd, p, out, k, kv):
     return (p - ps) * area + vt[VT_HLA_FS] - stop
 
 
+@_DOCS.fill
 def hla_forces(s, nm, nfree, vt, out):
     """The hydraulic lash adjuster at the finger follower's pivot (:mod:`springdyn.valve.train.hla`).
 
@@ -634,14 +673,10 @@ def hla_forces(s, nm, nfree, vt, out):
 
     Parameters
     ----------
-    s : ndarray
-        State [m, m/s, Pa, m^3].
-    nm : int
-        Chain masses [-].
+    {s nm}
     nfree : int
         Degrees of freedom [-].
-    vt : ndarray (VT_SIZE,)
-        The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
+    {vt}
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
     """
@@ -663,6 +698,7 @@ def hla_forces(s, nm, nfree, vt, out):
     return sock
 
 
+@_DOCS.fill
 def bucket_hla_forces(s, nm, nfree, vt, out):
     """A hydraulic bucket tappet (:mod:`springdyn.valve.train.hla`): the adjuster inside the bucket.
 
@@ -677,14 +713,10 @@ def bucket_hla_forces(s, nm, nfree, vt, out):
 
     Parameters
     ----------
-    s : ndarray
-        State [m, m/s, Pa, m^3].
-    nm : int
-        Chain masses [-].
+    {s nm}
     nfree : int
         Degrees of freedom [-].
-    vt : ndarray (VT_SIZE,)
-        The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
+    {vt}
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
     """
@@ -708,25 +740,19 @@ def bucket_hla_forces(s, nm, nfree, vt, out):
     return sock
 
 
+@_DOCS.fill
 def spring_rhs(t, s, m, omega, vt, out, extra):
     """Right-hand side of the spring alone: the retainer end follows the cam, ``u_(N+1) = h(omega t)``.
 
     Parameters
     ----------
-    t : float
-        Time [s].
+    {t}
     s : ndarray
         State [m, m/s].
-    m : EngineModel
-        The chain and cam arrays [kg, m, N, N s/m, rad].
-    omega : float
-        Cam speed [rad/s].
+    {m omega}
     vt : None or ndarray
         Not read [-].
-    out : ndarray
-        Receives ``ds/dt`` [m/s, m/s^2].
-    extra : ndarray
-        Empty, or receives the extra outputs [N, m, m/s] (:func:`chain_rhs`).
+    {out extra}
     """
     nm = m.masses.shape[0]
     lift, slope = cam_at(omega * t, m.cam_h, m.cam_dh, m.cam_ddh, m.dth)
@@ -779,6 +805,7 @@ def seat_force(vt, z, zd):
     return f_seat
 
 
+@_DOCS.fill
 def tip_force(s, nm, nfree, vt):
     """The lever's valve-side tip on the valve (the lash here): force [N] and signed gap [m].
 
@@ -786,10 +813,7 @@ def tip_force(s, nm, nfree, vt):
     ----------
     s : ndarray
         State [m, m/s]: valve ``S_VALVE`` and lever tip ``S_LEVER`` after the chain's masses.
-    nm : int
-        Chain masses [-].
-    nfree : int
-        Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+    {nm nfree}
     vt : ndarray
         The train's parameters [N/m, N s/m, m] (``VT_K_TIP``, ``VT_C_TIP``, ``VT_LASH``).
     """
@@ -798,6 +822,7 @@ def tip_force(s, nm, nfree, vt):
     return contact_force(pen_t, raw_t), min(pen_t, raw_t / vt[VT_K_TIP])
 
 
+@_DOCS.fill
 def lever_links(s, nm, nfree, vt, cam, out, ya, yad):
     """A lever (finger follower or rocker arm) between the cam and the valve, its pivot end at ``ya``.
 
@@ -812,16 +837,12 @@ def lever_links(s, nm, nfree, vt, cam, out, ya, yad):
     ----------
     s : ndarray
         State [m, m/s].
-    nm : int
-        Chain masses [-].
+    {nm}
     nfree : int
         Degrees of freedom [-].
     vt : ndarray
         The train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
-    cam : CamDrive
-        The cam [rad, rad/s, m, m/s].
-    out : ndarray
-        Receives ``ds/dt`` [m/s, m/s^2].
+    {cam out}
     ya, yad : float
         The pivot end's collapse [m] and its rate [m/s] (0 on a fixed pivot).
 
@@ -856,6 +877,7 @@ def lever_links(s, nm, nfree, vt, cam, out, ya, yad):
     return f_cam, f_valve, gap, c, kap
 
 
+@_DOCS.fill
 def direct_acting_rhs(s, nm, nfree, vt, cam, out, extra):
     """The direct-acting train (``TRAIN_DIRECT``): the cam on the valve body, the lash at the cam.
 
@@ -869,14 +891,10 @@ def direct_acting_rhs(s, nm, nfree, vt, cam, out, extra):
         State [m, m/s]: the chain's, then the train's (:data:`.layout.TRAIN_STATES`).
     nm : int
         Chain masses [-]: the train's states start at ``s[nm]``.
-    nfree : int
-        Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+    {nfree}
     vt : ndarray
         The train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
-    cam : CamDrive
-        The cam [rad, rad/s, m, m/s].
-    out : ndarray
-        Receives ``ds/dt`` [m/s, m/s^2].
+    {cam out}
     extra : ndarray
         Empty, or the extra outputs (:func:`.layout.extra_layout`; an adjuster's).
 
@@ -895,6 +913,7 @@ def direct_acting_rhs(s, nm, nfree, vt, cam, out, extra):
     return f_cam, f_cam, min(pen, raw / vt[VT_K_CAM])
 
 
+@_DOCS.fill
 def lever_rhs(s, nm, nfree, vt, cam, out, extra):
     """A finger follower or rocker arm on a fixed pivot (``TRAIN_LEVER``), constant-ratio or drawn.
 
@@ -902,9 +921,7 @@ def lever_rhs(s, nm, nfree, vt, cam, out, extra):
 
     Parameters
     ----------
-    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
-        State [m, m/s], chain masses [-], degrees of freedom [-], the train's parameters,
-        the cam [rad, rad/s, m, m/s], ``ds/dt`` [m/s, m/s^2], extra outputs.
+    {kind_args}
 
     Returns
     -------
@@ -954,6 +971,7 @@ def lever_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     return f_cam, f_valve, gap
 
 
+@_DOCS.fill
 def pushrod_rhs(s, nm, nfree, vt, cam, out, extra):
     """An OHV pushrod train (``TRAIN_PUSHROD``): the lifter on the cam, the pushrod to the rocker.
 
@@ -961,9 +979,7 @@ def pushrod_rhs(s, nm, nfree, vt, cam, out, extra):
 
     Parameters
     ----------
-    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
-        State [m, m/s], chain masses [-], degrees of freedom [-], the train's parameters,
-        the cam [rad, rad/s, m, m/s], ``ds/dt`` [m/s, m/s^2], extra outputs.
+    {kind_args}
 
     Returns
     -------
@@ -1033,6 +1049,7 @@ def bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     return f_cam, f_valve, gap
 
 
+@_DOCS.fill
 def train_rhs(t, s, m, omega, vt, out, extra):
     """Right-hand side of the spring in its valve train: node N + 1 is the valve body, and the
     train's links (cam, lever tip, pushrod, valve seat) are unilateral.
@@ -1044,20 +1061,13 @@ def train_rhs(t, s, m, omega, vt, out, extra):
 
     Parameters
     ----------
-    t : float
-        Time [s].
+    {t}
     s : ndarray
         State: the chain's, then the train's degrees of freedom [m, m/s].
-    m : EngineModel
-        The chain and cam arrays [kg, m, N, N s/m, rad].
-    omega : float
-        Cam speed [rad/s].
+    {m omega}
     vt : ndarray (VT_SIZE,)
         An enabled valve train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
-    out : ndarray
-        Receives ``ds/dt`` [m/s, m/s^2].
-    extra : ndarray
-        Empty, or receives the extra outputs [N, m, m/s] (:func:`chain_rhs`).
+    {out extra}
     """
     nm = m.masses.shape[0]
     nfree = nm + int(vt[VT_DOF])
@@ -1101,6 +1111,7 @@ def _contact(k, c, pen, rate):
     return np.where(pen > 0, np.maximum(k * pen + c * rate, 0.0), 0.0)
 
 
+@_DOCS.fill
 def direct_acting_response(vt, lift, dlift, u, v, theta, omega) -> dict:
     """The contact forces of a direct-acting train (NumPy twin of :func:`direct_acting_rhs`).
 
@@ -1111,8 +1122,7 @@ def direct_acting_response(vt, lift, dlift, u, v, theta, omega) -> dict:
     ----------
     vt : ndarray (VT_SIZE,)
         The train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
-    lift, dlift : ndarray (..., n_t)
-        Lobe lift [m] and its rate [m/s].
+    {lift_dlift}
     u, v : ndarray (..., dof, n_t)
         The train's positions [m, Pa, m^3] and velocities [m/s] (:data:`.layout.TRAIN_STATES`).
     theta : ndarray (n_t,) or None
@@ -1208,6 +1218,7 @@ RESPONSES = {
 }
 
 
+@_DOCS.fill
 def train_response(vt: np.ndarray, lift, dlift, u, v, theta=None, omega=None) -> dict:
     """Contact forces of the valve train from its states (vectorised NumPy).
 
@@ -1219,8 +1230,7 @@ def train_response(vt: np.ndarray, lift, dlift, u, v, theta=None, omega=None) ->
     ----------
     vt : ndarray (VT_SIZE,)
         Engine parameters of the train [kg, N/m, N s/m, m, -] (layout ``VT_*``, :meth:`ValveTrain.kernel_parameters`).
-    lift, dlift : ndarray (..., n_t)
-        Lobe lift [m] and its rate [m/s].
+    {lift_dlift}
     u, v : ndarray (..., dof, n_t)
         The train's positions [m] and velocities [m/s]: valve, lever tip, lifter, ...
         (:data:`.layout.TRAIN_STATES`).
@@ -1246,6 +1256,7 @@ def train_response(vt: np.ndarray, lift, dlift, u, v, theta=None, omega=None) ->
     return out
 
 
+@_DOCS.fill
 def chain_rhs(t, s, m, omega, vt, out, extra):
     """Right-hand side ``ds/dt`` of a chain of N masses, with or without a valve train.
 
@@ -1270,8 +1281,7 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
         ``vt[VT_ENABLED] = 0``, for the spring alone.  Train states follow the chain's
         masses, as its kind has them (:data:`.layout.TRAIN_STATES`): valve, lever tip
         (lever, pushrod), lifter (pushrod), ...
-    out : ndarray
-        Receives ``ds/dt`` [m/s, m/s^2].
+    {out}
     extra : ndarray
         Empty for none, or an array of ``extra_layout(N)["size"]`` that receives the element
         forces [N] and compressions [m], then (offsets ``X_*``) lift [m] and lift rate

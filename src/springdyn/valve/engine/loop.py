@@ -22,6 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...numerics import erk
 from ...numerics.jit import kernel, rebind
 from . import stepping
@@ -56,6 +57,20 @@ __all__ = [
     "MIN_PERIODIC_REVOLUTIONS",
     "stop_times",
 ]
+
+#: The parameters several functions share, described once (springdyn.core.docstrings).
+_DOCS = ParameterDocs(
+    """
+    m : EngineModel
+        The chain and cam arrays [kg, m, N, N s/m, rad].
+    omega : float
+        Cam speed [rad/s].
+    tab : DormandPrince, BogackiShampine or Tsitouras
+        The pair's tableau [-].
+    vt : None or ndarray
+        The valve train [kg, N/m, N s/m, m, -] (None: the spring alone).
+"""
+)
 
 _UNBOUND = (
     "integrate_loop is a template: attempt_step and dense_coefficients are bound per variant by "
@@ -140,6 +155,7 @@ def workspace(n, size, stages):
     )
 
 
+@_DOCS.fill
 def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out, xout, fout, mon, ws):
     """Adaptive embedded Runge-Kutta loop from ``t0`` to ``t_end``.
 
@@ -168,14 +184,7 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
         Start and end [s].
     t_out : ndarray
         Output times [s], ascending.
-    m : EngineModel
-        The chain and cam arrays [kg, m, N, N s/m, rad].
-    omega : float
-        Cam speed [rad/s].
-    vt : None or ndarray
-        The valve train [kg, N/m, N s/m, m, -] (None: the spring alone).
-    tab : DormandPrince, BogackiShampine or Tsitouras
-        The pair's tableau [-].
+    {m omega vt tab}
     tol : Tolerances
         Step control [-, m, m/s, s].
     ctl : ndarray (3,)
@@ -384,6 +393,7 @@ def integrate_kernel(tab, vt):
         return _COMPILED[key]
 
 
+@_DOCS.fill
 def stop_times(stop_angles, omega, r0, r1):
     """The times [s] of the stop angles in revolutions ``r0`` to ``r1 - 1``.
 
@@ -391,8 +401,7 @@ def stop_times(stop_angles, omega, r0, r1):
     ----------
     stop_angles : ndarray
         Cam angles [rad] in [0, 2 pi), ascending.
-    omega : float
-        Cam speed [rad/s].
+    {omega}
     r0, r1 : int
         First revolution and the one after the last [-].
     """
@@ -441,6 +450,7 @@ def _predicted_change(d, d_before):
     return d * min(d / d_before, 1.0)
 
 
+@_DOCS.fill
 def run_speeds_loop(y0, omegas, points, m, vt, tab, tol, revs, stop_angles, gaps, out):
     """Every speed of ``omegas`` [rad/s], revolution by revolution, into ``out``.
 
@@ -469,12 +479,7 @@ def run_speeds_loop(y0, omegas, points, m, vt, tab, tol, revs, stop_angles, gaps
         Cam speeds [rad/s].
     points : int
         Output samples per revolution [-].
-    m : EngineModel
-        The chain and cam arrays [kg, m, N, N s/m, rad].
-    vt : None or ndarray
-        The valve train [kg, N/m, N s/m, m, -] (None: the spring alone).
-    tab : DormandPrince, BogackiShampine or Tsitouras
-        The pair's tableau [-].
+    {m vt tab}
     tol : Tolerances
         Step control; ``h_max`` as a fraction of a revolution [-, m, m/s, -].
     revs : Revolutions

@@ -16,11 +16,31 @@ Which pair goes with which right-hand side in which variant: the table
 
 from __future__ import annotations
 
+from ...core.docstrings import ParameterDocs
 from ...numerics import erk
 from ...numerics.jit import twins
 from .equations import FASTMATH
 
 __all__ = ["dopri5_step", "dopri5_dense", "tsit5_step", "tsit5_dense", "bs3_step", "bs3_dense", "step_kernels"]
+
+#: The parameters several functions share, described once (springdyn.core.docstrings).
+_DOCS = ParameterDocs(
+    """
+    h : float
+        Step size [s].
+    tab : BogackiShampine
+        The pair's tableau [-].
+""",
+    step_args="""
+t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work : as for :func:`dopri5_step`
+    Time [s], state [m, m/s], step [s], stages, new state, model, speed [rad/s], train,
+    tolerances [-, m, m/s], extra outputs, the empty array, scratch.
+""",
+    dense_args="""
+y, y_new, k, h, rc : as for :func:`dopri5_dense`
+    States [m, m/s], stage derivatives, step [s], coefficients.
+""",
+)
 
 
 def rhs_hot(t, s, m, omega, vt, out, extra):
@@ -40,6 +60,7 @@ def rhs_hot(t, s, m, omega, vt, out, extra):
     )
 
 
+@_DOCS.fill
 def dopri5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
     """Stages of a Dormand-Prince step of size ``h`` from ``(t, y)``; returns the scaled error norm [-].
 
@@ -51,8 +72,7 @@ def dopri5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_
         Start of the step [s].
     y : ndarray
         State at ``t`` [m, m/s].
-    h : float
-        Step size [s].
+    {h}
     k : ndarray (stages, n)
         Stage derivatives; ``k[0]`` holds the derivative at ``t`` (first same as last).
     ytmp : ndarray
@@ -80,6 +100,7 @@ def dopri5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_
     return erk.dopri5_error_norm(y, ytmp, k, h, rtol, atol)
 
 
+@_DOCS.fill
 def tsit5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
     """Stages of a Tsitouras step; returns the scaled error norm [-] (parameters of :func:`dopri5_step`).
 
@@ -87,9 +108,7 @@ def tsit5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_e
     ----------
     tab : Tsitouras
         The pair's tableau [-].
-    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work : as for :func:`dopri5_step`
-        Time [s], state [m, m/s], step [s], stages, new state, model, speed [rad/s], train,
-        tolerances [-, m, m/s], extra outputs, the empty array, scratch.
+    {step_args}
     """
     for stage in range(1, 7):
         erk.tsit5_stage_state(y, h, k, stage, ytmp)
@@ -97,16 +116,13 @@ def tsit5_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_e
     return erk.tsit5_error_norm(y, ytmp, k, h, rtol, atol)
 
 
+@_DOCS.fill
 def bs3_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work):
     """Stages of a Bogacki-Shampine step; returns the scaled error norm [-] (parameters of :func:`dopri5_step`).
 
     Parameters
     ----------
-    tab : BogackiShampine
-        The pair's tableau [-].
-    t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_extra, work : as for :func:`dopri5_step`
-        Time [s], state [m, m/s], step [s], stages, new state, model, speed [rad/s], train,
-        tolerances [-, m, m/s], extra outputs, the empty array, scratch.
+    {tab step_args}
     """
     last = tab.c.shape[0] - 1
     for stage in range(1, last + 1):
@@ -115,6 +131,7 @@ def bs3_step(tab, t, y, h, k, ytmp, m, omega, vt, rtol, atol, last_extra, no_ext
     return erk.error_norm(y, ytmp, k, h, rtol, atol, work, tab.e)
 
 
+@_DOCS.fill
 def dopri5_dense(tab, y, y_new, k, h, rc):
     """The dense-output coefficients of an accepted Dormand-Prince step.
 
@@ -126,14 +143,14 @@ def dopri5_dense(tab, y, y_new, k, h, rc):
         State at the step's start and end [m, m/s].
     k : ndarray (stages, n)
         Stage derivatives [m/s, m/s^2].
-    h : float
-        Step size [s].
+    {h}
     rc : ndarray (5, n)
         Receives the coefficients [m, m/s] (:func:`springdyn.numerics.erk.dense_eval`).
     """
     erk.dopri5_dense_coefficients(y, y_new, k, h, rc)
 
 
+@_DOCS.fill
 def tsit5_dense(tab, y, y_new, k, h, rc):
     """The dense-output coefficients of an accepted Tsitouras step (parameters of :func:`dopri5_dense`).
 
@@ -141,21 +158,18 @@ def tsit5_dense(tab, y, y_new, k, h, rc):
     ----------
     tab : Tsitouras
         The pair's tableau [-].
-    y, y_new, k, h, rc : as for :func:`dopri5_dense`
-        States [m, m/s], stage derivatives, step [s], coefficients.
+    {dense_args}
     """
     erk.tsit5_dense_coefficients(y, k, h, rc)
 
 
+@_DOCS.fill
 def bs3_dense(tab, y, y_new, k, h, rc):
     """The dense-output coefficients of an accepted Bogacki-Shampine step (parameters of :func:`dopri5_dense`).
 
     Parameters
     ----------
-    tab : BogackiShampine
-        The pair's tableau [-].
-    y, y_new, k, h, rc : as for :func:`dopri5_dense`
-        States [m, m/s], stage derivatives, step [s], coefficients.
+    {tab dense_args}
     """
     erk.dense_coefficients(y, y_new, k, h, rc, tab.d)
 
