@@ -493,34 +493,51 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
 
 
 @_DOCS.fill
-def _record_hla(extra, ne, nm, collapse, pressure, socket, inflow, leak, check):
+def _record_hla(extra, ne, nm, s, h, vt, collapse, socket):
     """Record an adjuster's outputs (offsets ``XT_HLA_*`` of :mod:`.layout`) into ``extra``
-    unless it is empty.
+    unless it is empty: its collapse, chamber pressure above the supply, socket force, the oil
+    volumes in and out since the start and the collapse as a periodicity force.
 
     Parameters
     ----------
     extra : ndarray
         Empty, or the extra outputs [N, m, m/s, Pa, m^3] (:func:`.layout.extra_layout`).
     {ne_nm}
+    s : ndarray
+        State [m, m/s, Pa, m^3].
+    h : int
+        Index of the adjuster's first state (``H_*`` from it) [-].
+    {vt}
     collapse : float
         The adjuster's collapse from its base-circle position [m].
-    pressure : float
-        Chamber pressure above the supply [Pa].
     socket : float
         Socket force [N].
-    inflow, leak : float
-        Oil volumes in and out since the start [m^3].
-    check : float
-        The collapse as a periodicity force [N].
     """
     if extra.shape[0] > 0:
         b = 2 * ne + X_DISP + nm
         extra[b + XT_HLA_COLLAPSE] = collapse
-        extra[b + XT_HLA_PRESSURE] = pressure
+        extra[b + XT_HLA_PRESSURE] = s[h + H_PRESSURE] - vt[VT_HLA_PS]
         extra[b + XT_SOCKET_FORCE] = socket
-        extra[b + XT_HLA_INFLOW] = inflow
-        extra[b + XT_HLA_LEAK] = leak
-        extra[b + XT_HLA_CHECK] = check
+        extra[b + XT_HLA_INFLOW] = s[h + H_INFLOW]
+        extra[b + XT_HLA_LEAK] = s[h + H_LEAK]
+        extra[b + XT_HLA_CHECK] = collapse * vt[VT_HLA_KCHK]
+
+
+@_DOCS.fill
+def _record_no_hla(extra, ne, nm):
+    """Record zeros for the adjuster's outputs (a train without one, the spring alone) into
+    ``extra`` unless it is empty.
+
+    Parameters
+    ----------
+    extra : ndarray
+        Empty, or the extra outputs [N, m, m/s, Pa, m^3] (:func:`.layout.extra_layout`).
+    {ne_nm}
+    """
+    if extra.shape[0] > 0:
+        b = 2 * ne + X_DISP + nm
+        for slot in (XT_HLA_COLLAPSE, XT_HLA_PRESSURE, XT_SOCKET_FORCE, XT_HLA_INFLOW, XT_HLA_LEAK, XT_HLA_CHECK):
+            extra[b + slot] = 0.0
 
 
 @_DOCS.fill
@@ -760,7 +777,7 @@ def spring_rhs(t, s, m, omega, vt, out, extra):
     chain_forces(s, m, nm, lift, dlift, out, extra)
     if extra.shape[0] > 0:  # (the records are called, not inlined: see _RECORDS)
         _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
-        _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        _record_no_hla(extra, nm + 1, nm)
 
 
 class CamDrive(NamedTuple):
@@ -956,18 +973,7 @@ def lever_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     out[nfree + nm + S_PIVOT] = (f_cam * (kap - c / vt[VT_RATIO]) - sock) / vt[VT_HLA_MA]
     if extra.shape[0] > 0:
         h = nm + S_LEVER_HLA
-        collapse = s[h + H_PLUNGER] - vt[VT_HLA_Y0]
-        _record_hla(
-            extra,
-            nm + 1,
-            nm,
-            collapse,
-            s[h + H_PRESSURE] - vt[VT_HLA_PS],
-            sock,
-            s[h + H_INFLOW],
-            s[h + H_LEAK],
-            collapse * vt[VT_HLA_KCHK],
-        )
+        _record_hla(extra, nm + 1, nm, s, h, vt, s[h + H_PLUNGER] - vt[VT_HLA_Y0], sock)
     return f_cam, f_valve, gap
 
 
@@ -1034,18 +1040,7 @@ def bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     raw_s = vt[VT_HLA_KS] * pen_s + vt[VT_HLA_CS] * (s[nfree + h + H_PLUNGER] - s[nfree + nm + S_VALVE])
     gap = min(min(pen, raw / vt[VT_K_CAM]), min(pen_s, raw_s / vt[VT_HLA_KS]))
     if extra.shape[0] > 0:
-        collapse = yb - s[h + H_PLUNGER] - vt[VT_HLA_Y0]
-        _record_hla(
-            extra,
-            nm + 1,
-            nm,
-            collapse,
-            s[h + H_PRESSURE] - vt[VT_HLA_PS],
-            f_valve,
-            s[h + H_INFLOW],
-            s[h + H_LEAK],
-            collapse * vt[VT_HLA_KCHK],
-        )
+        _record_hla(extra, nm + 1, nm, s, h, vt, yb - s[h + H_PLUNGER] - vt[VT_HLA_Y0], f_valve)
     return f_cam, f_valve, gap
 
 
@@ -1083,7 +1078,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     zd = s[nfree + nm + S_VALVE]
     f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
     if extra.shape[0] > 0:  # an adjuster overwrites them
-        _record_hla(extra, nm + 1, nm, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        _record_no_hla(extra, nm + 1, nm)
     f_seat = seat_force(vt, z, zd)
     if kind == TRAIN_DIRECT:
         f_cam, f_valve, gap = direct_acting_rhs(s, nm, nfree, vt, cam, out, extra)
@@ -1299,7 +1294,7 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
 #: The records of the extra outputs, called (only where there are outputs), not inlined: inlined
 #: into every right-hand side (the train's, the spring's, the step's and rhs_call's) their
 #: stores made a sixth of the engine's code for numba to type and compile.
-_RECORDS = ("_record_tail", "_record_hla")
+_RECORDS = ("_record_tail", "_record_hla", "_record_no_hla")
 
 _TWINS = twins(
     globals(),
@@ -1310,6 +1305,7 @@ _TWINS = twins(
         "chain_forces",
         "_record_tail",
         "_record_hla",
+        "_record_no_hla",
         "gas_force_at",
         "lever_mass",
         "effective_bulk_modulus",
