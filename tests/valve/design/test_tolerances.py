@@ -253,3 +253,8 @@ def test_dask_cluster_gives_the_local_variants(tmp_path):
             ]
         )
         assert code == 0 and (tmp_path / "o" / "variants.nc").exists()
+    # the CLI's client is closed and was never the process's default: later dask work (xarray's)
+    # must not look for its scheduler (CI once failed 7 later tests so)
+    import dask
+
+    assert dask.config.get("scheduler", None) != "dask.distributed"

@@ -100,6 +100,9 @@ def test_dask_local_cluster_bit_for_bit(spring, local, tmp_path):
             ]
         )
         assert code == 0 and (tmp_path / "sweep.nc").exists()
+    import dask  # the clients are gone and none stays the default (later xarray work runs locally)
+
+    assert dask.config.get("scheduler", None) != "dask.distributed"
 
 
 def test_float_speed_from_sweep(local):

@@ -126,20 +126,24 @@ def cmd_tolerance(args) -> int:
     def bar(items, total=None, desc=""):
         return progress(items, total=total, desc=desc, quiet=args.quiet)
 
-    res = model.tolerance_study(
-        tols,
-        criteria,
-        count=int(count),
-        seed=int(seed),
-        speeds=speeds,
-        method=args.method,
-        out_dir=args.out_dir,
-        client=client,
-        progress=bar,
-        float_only=args.float_only,
-        resolution=resolution,
-        workers=workers,
-    )
+    try:
+        res = model.tolerance_study(
+            tols,
+            criteria,
+            count=int(count),
+            seed=int(seed),
+            speeds=speeds,
+            method=args.method,
+            out_dir=args.out_dir,
+            client=client,
+            progress=bar,
+            float_only=args.float_only,
+            resolution=resolution,
+            workers=workers,
+        )
+    finally:
+        if client is not None:
+            client.close()
     written = [Path(args.out_dir) / "variants.nc", args.plot or str(Path(args.out_dir) / "histograms.png")]
     close_figure(res.plot(written[-1]))
     if args.csv:

@@ -175,7 +175,10 @@ def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
     except ImportError:
         raise InputError(f"scheduler = {address!r}: Dask is not installed; install springdyn[dask]") from None
     try:
-        return Client(address, timeout=f"{timeout}s")
+        # not the process's default client: the runs hand it their chunks themselves, and a
+        # default one outlives its close in dask's configuration (later dask computations,
+        # xarray's among them, would then ask a scheduler that is gone)
+        return Client(address, timeout=f"{timeout}s", set_as_default=False)
     except (OSError, TimeoutError, ValueError) as exc:
         raise InputError(
             f"scheduler = {address!r}: cannot reach a Dask scheduler there within {timeout:g} s ({type(exc).__name__}: "
