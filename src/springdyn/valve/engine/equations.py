@@ -690,10 +690,7 @@ def hla_forces(s, nm, nfree, vt, out):
 
     Parameters
     ----------
-    {s nm}
-    nfree : int
-        Degrees of freedom [-].
-    {vt}
+    {s nm nfree vt}
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
     """
@@ -705,9 +702,7 @@ def hla_forces(s, nm, nfree, vt, out):
     ypd = s[hv + H_PLUNGER]
     # the socket: the finger's pivot end on the plunger (compression only)
     pen = ya - yp
-    sock = vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (yad - ypd)
-    if pen <= 0.0 or sock < 0.0:
-        sock = 0.0
+    sock = contact_force(pen, vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (yad - ypd))
     f_out = hla_chamber(vt, yp - vt[VT_HLA_Y0], ypd, s[h + H_PRESSURE], out, h, hv)
     out[hv + H_PLUNGER] = (sock - f_out) / vt[VT_HLA_MP]
     out[h + H_PLUNGER] = ypd
@@ -730,10 +725,7 @@ def bucket_hla_forces(s, nm, nfree, vt, out):
 
     Parameters
     ----------
-    {s nm}
-    nfree : int
-        Degrees of freedom [-].
-    {vt}
+    {s nm nfree vt}
     out : ndarray
         Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
     """
@@ -746,9 +738,7 @@ def bucket_hla_forces(s, nm, nfree, vt, out):
     ybd = s[nfree + nm + S_BUCKET]
     ypd = s[hv + H_PLUNGER]
     pen = yp - z  # the plunger on the stem tip (compression only)
-    sock = vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (ypd - zd)
-    if pen <= 0.0 or sock < 0.0:
-        sock = 0.0
+    sock = contact_force(pen, vt[VT_HLA_KS] * pen + vt[VT_HLA_CS] * (ypd - zd))
     f_out = hla_chamber(vt, yb - yp - vt[VT_HLA_Y0], ybd - ypd, s[h + H_PRESSURE], out, h, hv)
     out[nm + S_BUCKET] = ybd
     out[h + H_PLUNGER] = ypd
@@ -1310,10 +1300,10 @@ _TWINS = twins(
         "lever_mass",
         "effective_bulk_modulus",
         "orifice_flow",
+        "contact_force",
         "hla_chamber",
         "hla_forces",
         "bucket_hla_forces",
-        "contact_force",
         "seat_force",
         "tip_force",
         "lever_links",
