@@ -248,41 +248,24 @@ DEFAULT_MIN_PCF = 90.0
 DEFAULT_THICKNESS_TOLERANCE = 0.05
 
 
-def _check_design_inputs(
-    force,
-    stroke,
-    youngs_modulus,
-    allowable_stress,
-    pivot_length_ratio,
-    safety_factor,
-    max_width,
-    min_pcf,
-    thickness_tolerance,
-    flexure_model,
-    plate_bending,
-    poisson_ratio,
-    preload,
-):
-    for name, v in (
-        ("force", force),
-        ("stroke", stroke),
-        ("youngs_modulus", youngs_modulus),
-        ("allowable_stress", allowable_stress),
-        ("pivot_length_ratio", pivot_length_ratio),
-        ("safety_factor", safety_factor),
-    ):
+def _check_design_inputs(given: dict) -> None:
+    """Check :func:`design`'s arguments, ``given`` by name (its ``locals()`` on entry)."""
+    for name in ("force", "stroke", "youngs_modulus", "allowable_stress", "pivot_length_ratio", "safety_factor"):
+        v = given[name]
         if (
             isinstance(v, bool)
             or not isinstance(v, (int, float, np.floating, np.integer))
             or not (np.isfinite(v) and v > 0)
         ):
             raise InputError(f"{name} = {v!r} must be positive (a number in SI units)")
+    max_width, min_pcf, tolerance = given["max_width"], given["min_pcf"], given["thickness_tolerance"]
     if max_width is not None and not max_width > 0:
         raise InputError(f"max_width = {max_width!r} must be positive")
     if not 0.0 <= min_pcf < 100.0:
         raise InputError(f"min_pcf = {min_pcf!r} must lie in [0, 100) %")
-    if not 0.0 <= thickness_tolerance < 0.5:
-        raise InputError(f"thickness_tolerance = {thickness_tolerance!r} must lie in [0, 0.5) (a fraction of h)")
+    if not 0.0 <= tolerance < 0.5:
+        raise InputError(f"thickness_tolerance = {tolerance!r} must lie in [0, 0.5) (a fraction of h)")
+    flexure_model, plate_bending = given["flexure_model"], given["plate_bending"]
     if flexure_model not in FLEXURE_MODELS:
         raise InputError(
             f"flexure_model = {flexure_model!r} is not allowed; choose one of "
@@ -290,6 +273,7 @@ def _check_design_inputs(
         )
     if plate_bending not in (None, True, False):
         raise InputError(f"plate_bending = {plate_bending!r} must be true, false or None (chosen by b/l)")
+    poisson_ratio, preload = given["poisson_ratio"], given["preload"]
     if not 0.0 <= poisson_ratio <= 0.49:
         raise InputError(f"poisson_ratio = {poisson_ratio!r} must lie in [0, 0.49]")
     if not (np.isfinite(preload) and preload >= 0):
@@ -363,21 +347,7 @@ def design(
     preload : float
         Start of the working range [m] (default 0, the toggle).
     """
-    _check_design_inputs(
-        force,
-        stroke,
-        youngs_modulus,
-        allowable_stress,
-        pivot_length_ratio,
-        safety_factor,
-        max_width,
-        min_pcf,
-        thickness_tolerance,
-        flexure_model,
-        plate_bending,
-        poisson_ratio,
-        preload,
-    )
+    _check_design_inputs(locals())
     if not (isinstance(n, (int, np.integer)) and 5 <= n <= 100_000):
         raise InputError(f"n = {n!r} must be a whole number from 5 to 100000")
     if total_length is not None:

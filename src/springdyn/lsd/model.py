@@ -121,14 +121,18 @@ class LSDModel:
         p = self.params
         return damping.chamber_volume_matrix(self.angles, p.ring_width, p.ring_outer_diameter, p.leaf_lengths[0])
 
+    @property
+    def _passage(self) -> tuple:
+        """Width, clearance and length of a passage between two chambers [m]."""
+        p = self.params
+        return p.passage_width, p.passage_clearance, p.passage_length
+
     @cached_property
     def conductance(self) -> float:
         """``C_D`` between neighbouring chambers [m^3/(s Pa)]."""
         p = self.params
         return damping.boundary_conductance(
-            p.passage_width,
-            p.passage_clearance,
-            p.passage_length,
+            *self._passage,
             p.oil_viscosity,
             passages=p.passages_per_boundary,
             model=p.conductance_model,
@@ -145,12 +149,7 @@ class LSDModel:
         """Inertance ``I`` of the passages between two chambers [Pa s^2/m^3] (:func:`damping.passage_inertance`)."""
         p = self.params
         return damping.passage_inertance(
-            p.passage_width,
-            p.passage_clearance,
-            p.passage_length,
-            p.oil_density,
-            passages=p.passages_per_boundary,
-            leakage_factor=p.leakage_factor,
+            *self._passage, p.oil_density, passages=p.passages_per_boundary, leakage_factor=p.leakage_factor
         )
 
     @cached_property

@@ -11,7 +11,7 @@ from .equations import model_of, train_of
 from .layout import MAX_EVENTS, N_CHECK, N_EXT, extra_layout
 from .loop import Revolutions, SpeedOutputs, Tolerances, integrate_kernel, run_speeds_loop, workspace
 from .monitor import new_monitor
-from .reference import atol_vector
+from .reference import INTEGRATION_DOCS, atol_vector
 
 __all__ = ["integrate", "integrate_speeds", "COMPILE_SECONDS"]
 
@@ -181,6 +181,7 @@ def integrate_speeds(
     return res
 
 
+@INTEGRATION_DOCS.fill
 def integrate(
     y0, t_out, args, *, rtol, atol, h_max, max_steps=10_000_000, atol_velocity=None, method="dopri5", stops=None
 ):
@@ -188,16 +189,10 @@ def integrate(
 
     Parameters
     ----------
-    y0 : ndarray
-        Initial state [m, m/s].
-    t_out : ndarray
-        Output times [s], ascending.
+    {y0 t_out}
     args : tuple
         The set-up's argument tuple (:func:`model_of`), with the speed [rad/s].
-    rtol, atol : float
-        Relative [-] and absolute [m] tolerances (velocities: ``atol_velocity``).
-    h_max : float
-        Largest step [s].
+    {rtol_atol h_max}
     max_steps : int
         Most steps [-] (the loop is bounded).
     atol_velocity : float or ndarray, optional

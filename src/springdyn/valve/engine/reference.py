@@ -9,9 +9,25 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from ...core.docstrings import ParameterDocs
 from .equations import NO_EXTRA, chain_rhs, model_of, rhs_call, train_of
 
 __all__ = ["integrate_scipy", "atol_vector"]
+
+#: The parameters of the integrators (this one and :func:`springdyn.valve.engine.integrate`),
+#: described once (springdyn.core.docstrings).
+INTEGRATION_DOCS = ParameterDocs(
+    """
+    y0 : ndarray
+        Initial state [m, m/s].
+    t_out : ndarray
+        Output times [s], ascending.
+    rtol, atol : float
+        Relative [-] and absolute [m] tolerances (velocities: ``atol_velocity``).
+    h_max : float
+        Largest step [s].
+"""
+)
 
 
 def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -> np.ndarray:
@@ -33,6 +49,7 @@ def atol_vector(n_state: int, atol: float, atol_velocity: float | None = None) -
     return out
 
 
+@INTEGRATION_DOCS.fill
 def integrate_scipy(
     y0, t_out, args, *, rtol, atol, method="DOP853", compiled_rhs=False, h_max=np.inf, atol_velocity=None
 ):
@@ -43,21 +60,16 @@ def integrate_scipy(
 
     Parameters
     ----------
-    y0 : ndarray
-        Initial state [m, m/s].
-    t_out : ndarray
-        Output times [s], ascending.
+    {y0 t_out}
     args : tuple
         ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)`` [kg, m and N,
         m, N s/m, m, m/rad, m/rad^2, rad, rad/s, -] (see :func:`springdyn.valve.engine.model_of`).
-    rtol, atol : float
-        Relative [-] and absolute [m] tolerances (velocities: ``atol_velocity``).
+    {rtol_atol}
     method : str
         ``solve_ivp`` method name [-] (default ``"DOP853"``).
     compiled_rhs : bool
         Use the compiled right-hand side.
-    h_max : float
-        Largest step [s].
+    {h_max}
     atol_velocity : float or ndarray, optional
         Absolute tolerance of the velocities [m/s], one for all or one per velocity
         (default ``atol``).
