@@ -32,7 +32,7 @@ def rs():
         return pytest.importorskip("ross")
 
 
-@pytest.mark.slow  # importing ross takes about 5-10 s
+# in the fast tier, so that every run exercises the ross extra (importing ross takes 5-10 s)
 @pytest.mark.parametrize("kind", ["A", "C"])
 def test_ross_interpolation_matches_over_the_whole_range_and_never_extrapolates(rs, kind):
     # Type C has large friction terms (C ~ 1/omega over 2.5 decades of frequency), Type A a

@@ -74,6 +74,16 @@ class _Table(Result):
             return fig, ax, ax2
         return ax.figure, ax, None
 
+    @staticmethod
+    def _finish_main(ax, ax2) -> bool:
+        """Grid and legend of the main axes; ``True`` when there is no second panel (the
+        main axes then carry the time axis)."""
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        if ax2 is None:
+            ax.set_xlabel("time [s]")
+        return ax2 is None
+
 
 @dataclasses.dataclass(repr=False)
 class StaticResult(_Table):
@@ -177,10 +187,7 @@ class DynamicResult(_Table):
             + ("; TOGGLE-DOMINATED: the statistics depend on the cut-off)" if s.get("toggle_dominated") else ")"),
             fontsize=10,
         )
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        if ax2 is None:
-            ax.set_xlabel("time [s]")
+        if self._finish_main(ax, ax2):
             return fig
         ax2.plot(self.time, self.pcf_vs_time)
         ax2.set_xlabel("time [s]")
@@ -340,10 +347,7 @@ class DrivenResult(_Table):
             ),
             fontsize=10,
         )
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        if ax2 is None:
-            ax.set_xlabel("time [s]")
+        if self._finish_main(ax, ax2):
             return fig
         ax2.plot(self.time, self.drive_position * 1e3, "--", label="drive x_d")
         ax2.plot(self.time, self.deflection * 1e3, label="slider x")

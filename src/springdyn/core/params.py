@@ -29,6 +29,7 @@ __all__ = [
     "decode_utf8",
     "Parameters",
     "param",
+    "param_like",
     "from_mapping",
     "check_fields",
     "load_toml",
@@ -96,6 +97,27 @@ def param(
     if isinstance(default, list):
         return dataclasses.field(default_factory=lambda d=default: list(d), metadata=meta)
     return dataclasses.field(default=default, metadata=meta)
+
+
+def param_like(cls, name: str, note: str = "") -> Any:
+    """A parameter field declared as the field ``name`` of the parameter class ``cls`` is: the
+    same unit, checks and default (one declaration of a key two tables take).
+
+    Parameters
+    ----------
+    cls : type
+        A :class:`Parameters` dataclass.
+    name : str
+        Its field.
+    note : str
+        Appended to the field's description, in parentheses (``"the [criteria] key"``).
+    """
+    field = next(f for f in dataclasses.fields(cls) if f.name == name)
+    meta = dict(field.metadata)
+    if note:  # inside the description's closing parenthesis, or in its own
+        doc = meta["doc"]
+        meta["doc"] = f"{doc[:-1]}; {note})" if doc.endswith(")") else f"{doc} ({note})"
+    return dataclasses.field(default=field.default, metadata=meta)
 
 
 def field_specs(cls) -> list[tuple[dataclasses.Field, dict]]:

@@ -14,7 +14,6 @@ from ..core.results import Result
 from ..core.units import omega_to_rpm, rpm_to_omega
 from . import damping, leafpack, stiffness
 from .parameters import LSDParameters
-from .rotordynamics import DEFAULT_POINTS, DEFAULT_RPM_RANGE
 
 #: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
 _DOCS = ParameterDocs(
@@ -282,19 +281,8 @@ class LSDModel:
         K = np.broadcast_to(self.stiffness_matrix, C.shape).copy()
         film = self.film_diagnostics(w, amplitude)
         _warn_film(film, rpm)
-        return LSDCoefficients(
-            name=self.params.name,
-            rpm=rpm,
-            amplitude=float(amplitude),
-            K=K,
-            C=C,
-            parts=parts,
-            pack_stiffness=self.pack_stiffness,
-            load_ratios=self.load_ratios.copy(),
-            preload_exceeded=unloads,
-            M=np.broadcast_to(self.added_mass, C.shape).copy(),
-            film=film,
-        )
+        M = np.broadcast_to(self.added_mass, C.shape).copy()
+        return self._coefficients(rpm, amplitude, K, C, M, parts, preload_exceeded=unloads, film=film)
 
     @_DOCS.fill
     def equivalent_coefficients(
@@ -358,36 +346,37 @@ class LSDModel:
             "hysteresis": np.array([m["leaf_friction"][1] for m in mats]),
             "viscous": np.array([m["oil"][1] for m in mats]),
         }
+        return self._coefficients(
+            omega_to_rpm(w),
+            amplitude,
+            K,
+            C,
+            M,
+            parts,
+            preload_exceeded=bool(amplitude > self.params.preload),
+            method="describing function, film network" if film else "describing function",
+            film=diag,
+        )
+
+    def _coefficients(self, rpm, amplitude, K, C, M, parts, **more) -> LSDCoefficients:
+        """The coefficients of this damper at ``rpm`` [rev/min] and ``amplitude`` [m]: ``K``
+        [N/m], ``C`` [N s/m], ``M`` [kg] and the damping's ``parts``, with the pack's stiffness
+        and load ratios (``more``: the further fields of :class:`LSDCoefficients`)."""
         return LSDCoefficients(
             name=self.params.name,
-            rpm=omega_to_rpm(w),
+            rpm=rpm,
             amplitude=float(amplitude),
             K=K,
             C=C,
             parts=parts,
             pack_stiffness=self.pack_stiffness,
             load_ratios=self.load_ratios.copy(),
-            preload_exceeded=bool(amplitude > self.params.preload),
-            method="describing function, film network" if film else "describing function",
             M=M,
-            film=diag,
+            **more,
         )
 
     @_DOCS.fill
-    def to_ross(
-        self,
-        n: int,
-        frequencies=None,
-        amplitude: float = 50e-6,
-        motion: str = "linear",
-        *,
-        rpm_range=DEFAULT_RPM_RANGE,
-        points: int = DEFAULT_POINTS,
-        outside: str = "raise",
-        omega=None,
-        added_mass: bool = True,
-        **kwargs,
-    ):
+    def to_ross(self, n: int, frequencies=None, amplitude: float = 50e-6, motion: str = "linear", **options):
         """A ``ross.BearingElement`` with the eight coefficients tabulated over ``rpm_range``.
 
         The table is dense (``points`` >= 30, log-spaced) and the element **never
@@ -406,19 +395,13 @@ class LSDModel:
         amplitude : float
             Vibration amplitude [m] for the amplitude-dependent friction terms.
         {motion}
-        rpm_range : tuple of float
-            ``(start, stop)`` vibration frequencies [rev/min]; default 0 to 20 000 rpm
-            (below 60 rpm the 60 rpm values are used).
-        points : int
-            Table points [-], at least 30.
-        outside : {"raise", "clamp"}
-            Beyond the range: raise (default) or clamp.
-        omega : array_like, optional
-            Explicit table [rad/s] instead of ``rpm_range``.
-        added_mass : bool
-            Also give ROSS the oil's added mass (``mxx`` ... [kg], :attr:`added_mass`).
-        **kwargs
-            Passed to ``BearingElement`` (``tag``, ``n_link``, ...).
+        **options
+            The table's keywords of :func:`springdyn.lsd.rotordynamics.bearing_element`
+            (``rpm_range``: default 0 to 20 000 rpm, below 60 rpm the 60 rpm values;
+            ``points``, at least 30; ``outside``, ``"raise"`` or ``"clamp"``; ``omega``, an
+            explicit table [rad/s]; ``added_mass``, also give ROSS the oil's added mass
+            ``mxx`` ... [kg], default true), then those of ``BearingElement`` (``tag``,
+            ``n_link``, ...).
 
         Notes
         -----
@@ -426,19 +409,7 @@ class LSDModel:
         """
         from .rotordynamics import bearing_element
 
-        return bearing_element(
-            self,
-            n,
-            frequencies,
-            amplitude=amplitude,
-            motion=motion,
-            rpm_range=rpm_range,
-            points=points,
-            outside=outside,
-            omega=omega,
-            added_mass=added_mass,
-            **kwargs,
-        )
+        return bearing_element(self, n, frequencies, amplitude=amplitude, motion=motion, **options)
 
 
 def _names(prefix_k: bool, unit: str) -> str:

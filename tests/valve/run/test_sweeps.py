@@ -68,7 +68,7 @@ def test_threads_and_serial_identical(spring, local):
         np.testing.assert_array_equal(serial.data[key], local.data[key])
 
 
-@pytest.mark.slow
+# in the fast tier (some 10 s), so that every run exercises the dask extra on a real cluster
 def test_dask_local_cluster_bit_for_bit(spring, local, tmp_path):
     """A LocalCluster on loopback (2 worker processes) gives exactly the local results."""
     distributed = pytest.importorskip("distributed")

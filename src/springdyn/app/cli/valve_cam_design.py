@@ -17,6 +17,7 @@ from springdyn.app.cli.common import (
     print_notes,
     quantity,
 )
+from springdyn.app.cli.valve_options import add_speed_options, cam_rpm_from_args
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "cmd_cam_from_lift", "cmd_cam_check", "cmd_kinematics"]
@@ -82,11 +83,7 @@ def register(vsub) -> None:
         choices=valve.MODEL_NAMES,
         help="spring model of the static force (default: the [spring] model key, else 'type-c')",
     )
-    g = p.add_mutually_exclusive_group()
-    g.add_argument("--cam-rpm", metavar="RPM", help="camshaft speed of the load (needs --spring; default 0: static)")
-    g.add_argument(
-        "--engine-rpm", metavar="RPM", help="engine speed instead (four-stroke: cam speed = engine speed / 2)"
-    )
+    add_speed_options(p, ranged=False, required=False, what="the speed of the load (needs --spring; default 0: static)")
     add_output_options(p)
     p.set_defaults(func=cmd_cam_check)
 
@@ -115,19 +112,6 @@ def _follower(path, *, required: bool):
             "(see examples/valve/valve_train_with_follower.toml)"
         )
     return follower
-
-
-def _cam_rpm(args, timing) -> float | None:
-    """Cam speed [rev/min] from --cam-rpm or --engine-rpm (the [timing] strokes, else a four-stroke)."""
-    if args.cam_rpm is None and args.engine_rpm is None:
-        return None
-    option = "--cam-rpm" if args.cam_rpm is not None else "--engine-rpm"
-    value = quantity(args.cam_rpm if args.cam_rpm is not None else args.engine_rpm, "rpm", option, bare_unit="rpm")
-    if not 0 < value < 1e5:
-        raise InputError(f"{option} = {value:g} rpm must be a speed between 0 and 100000 rpm")
-    if args.engine_rpm is not None:
-        value = float(valve.cam_rpm_from_engine_rpm(value, timing.strokes if timing is not None else 4))
-    return value
 
 
 # ----------------------------------------------------------------------------- commands
@@ -182,7 +166,7 @@ def cmd_cam_check(args) -> int:
     lobe = valve.Cam.from_toml(args.cam)
     vt = valve.ValveTrain.from_toml(args.valve_train)
     follower = _follower(args.valve_train, required=True)
-    rpm = _cam_rpm(args, valve.Timing.in_file(args.cam))
+    rpm = cam_rpm_from_args(args, ranged=False, timing=valve.Timing.in_file(args.cam))
     if rpm is not None and args.spring is None:
         raise InputError("--cam-rpm and --engine-rpm set the speed of the load: give the spring with --spring")
     if args.model is not None and args.spring is None:

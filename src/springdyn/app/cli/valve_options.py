@@ -129,9 +129,11 @@ def add_gas_options(p) -> None:
     )
 
 
-def add_speed_options(p, *, ranged: bool, ramp: bool = False) -> None:
-    g = p.add_mutually_exclusive_group(required=True)
-    what = "START:STOP:STEP or a list" if ranged else "a speed"
+def add_speed_options(p, *, ranged: bool, ramp: bool = False, required: bool = True, what: str = "") -> None:
+    """``--cam-rpm`` or ``--engine-rpm`` (a speed, or with ``ranged`` a range or list; ``what``:
+    what the speed is for, when it is optional), and with ``ramp`` ``--speed-ramp``."""
+    g = p.add_mutually_exclusive_group(required=required)
+    what = what or ("START:STOP:STEP or a list" if ranged else "a speed")
     g.add_argument("--cam-rpm", metavar="RPM", help=f"camshaft speed, {what} (bare numbers: rpm)")
     g.add_argument(
         "--engine-rpm", metavar="RPM", help=f"engine speed, {what} (four-stroke: cam speed = engine speed / 2)"
@@ -185,16 +187,20 @@ def model_of(args, *, cam: bool = True, train: bool = True) -> valve.ValveModel:
     return model
 
 
-def cam_rpm_from_args(args, *, ranged: bool, model: valve.ValveModel | None = None):
-    """Camshaft speed(s) in rev/min from --cam-rpm or --engine-rpm (the model's strokes; a
-    four-stroke without a ``[timing]`` table)."""
+def cam_rpm_from_args(args, *, ranged: bool, model: valve.ValveModel | None = None, timing=None):
+    """Camshaft speed(s) in rev/min from --cam-rpm or --engine-rpm (the strokes of the model's or
+    the given ``[timing]``; a four-stroke without one); ``None`` when neither is given."""
+    if args.cam_rpm is None and args.engine_rpm is None:
+        return None
     option = "--cam-rpm" if args.cam_rpm is not None else "--engine-rpm"
     text = args.cam_rpm if args.cam_rpm is not None else args.engine_rpm
 
     def cam(rpm):
         if args.cam_rpm is not None:
             return rpm
-        return model.cam_rpm(rpm) if model is not None else valve.cam_rpm_from_engine_rpm(rpm)
+        if model is not None:
+            return model.cam_rpm(rpm)
+        return valve.cam_rpm_from_engine_rpm(rpm, timing.strokes if timing is not None else 4)
 
     if ranged:
         values = cam(parse_range(text, "rpm", option, bare_unit="rpm"))

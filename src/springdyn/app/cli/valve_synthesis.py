@@ -7,7 +7,7 @@ from __future__ import annotations
 import springdyn.valve as valve
 import springdyn.valve.design as design
 from springdyn.app.cli.common import add_output_options, announce_written, close_figure, print_json
-from springdyn.app.cli.valve_options import add_inputs, cam_rpm_from_args, model_of
+from springdyn.app.cli.valve_options import add_inputs, add_speed_options, cam_rpm_from_args, model_of
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "register_tolerance", "register_life", "cmd_synthesize", "cmd_tolerance", "cmd_life"]
@@ -71,7 +71,7 @@ def register_tolerance(vsub) -> None:
     p.add_argument(
         "--method", choices=("sobol", "monte-carlo"), default="sobol", help="scrambled Sobol (default) or Monte Carlo"
     )
-    p.add_argument("--cam-rpm", required=True, metavar="START:STOP:STEP", help="cam speeds of each variant's sweep")
+    add_speed_options(p, ranged=True, what="the speeds of each variant's sweep, START:STOP:STEP or a list")
     p.add_argument("--out", dest="out_dir", required=True, metavar="DIR", help="folder: variants.nc, chunks/ (resumes)")
     p.add_argument(
         "--float-only",
@@ -86,7 +86,6 @@ def register_tolerance(vsub) -> None:
     p.add_argument(
         "--scheduler", metavar="ADDRESS", help="run the chunks on a Dask scheduler, e.g. tcp://127.0.0.1:8786"
     )
-    p.set_defaults(engine_rpm=None)
     add_output_options(p)
     p.set_defaults(func=cmd_tolerance)
 

@@ -19,7 +19,7 @@ import springdyn.valve.design as design
 from springdyn.app.report.html import Criterion, Section, parameter_rows
 from springdyn.core.errors import InputError
 from springdyn.core.io import write_json
-from springdyn.core.params import Parameters, param
+from springdyn.core.params import Parameters, param, param_like
 from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity, omega_to_rpm, rpm_to_omega
 
@@ -51,31 +51,10 @@ class ReportSettings(Parameters):
         choices=("both", "type-c", "distributed"),
         default="both",
     )
-    min_surge_margin: float = param(
-        "",
-        "smallest surge margin f1 / cam frequency at the top speed (rule of thumb 10-13; the [criteria] key)",
-        default=design.MIN_SURGE_MARGIN,
-        positive=True,
-    )
-    float_margin: float = param(
-        "",
-        "how far above the top speed the float speed must lie (a fraction, e.g. '10 %'; the [criteria] key)",
-        default=design.FLOAT_MARGIN,
-        nonnegative=True,
-    )
-    min_goodman_safety: float = param(
-        "",
-        "smallest fatigue safety factor on the Goodman line (1.1-1.3 in spring practice; the [criteria] key)",
-        default=design.MIN_GOODMAN_SAFETY,
-        positive=True,
-    )
-    max_seating_velocity: float = param(
-        "m/s",
-        "largest seat impact velocity of the valve up to the top speed (a common design limit for passenger-car "
-        "valve trains is about 0.5 m/s; set your own; the [criteria] key)",
-        default=design.MAX_SEATING_VELOCITY,
-        positive=True,
-    )
+    min_surge_margin: float = param_like(design.Criteria, "min_surge_margin", "the [criteria] key")
+    float_margin: float = param_like(design.Criteria, "float_margin", "the [criteria] key")
+    min_goodman_safety: float = param_like(design.Criteria, "min_goodman_safety", "the [criteria] key")
+    max_seating_velocity: float = param_like(design.Criteria, "max_seating_velocity", "the [criteria] key")
 
     run_up_rate: float = param(
         "1/s^2",

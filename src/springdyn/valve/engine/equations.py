@@ -185,6 +185,19 @@ _DOCS = ParameterDocs(
     vt : ndarray (VT_SIZE,)
         The train's parameters [kg, N/m, N s/m, m, m^3, Pa, -] (layout ``VT_*``).
 """,
+    out_hla="""
+out : ndarray
+    Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
+""",
+    hla_kind_args="""
+s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
+    State [m, m/s, Pa, m^3], chain masses [-], degrees of freedom [-], the train's
+    parameters, the cam [rad, rad/s, m, m/s], ``ds/dt``, extra outputs (the adjuster's).
+""",
+    kind_returns="""
+f_cam, f_valve, gap : float
+    Cam contact force [N], force on the valve [N], smallest signed gap [m].
+""",
     kind_args="""
 s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
     State [m, m/s], chain masses [-], degrees of freedom [-], the train's parameters,
@@ -690,9 +703,7 @@ def hla_forces(s, nm, nfree, vt, out):
 
     Parameters
     ----------
-    {s nm nfree vt}
-    out : ndarray
-        Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
+    {s nm nfree vt out_hla}
     """
     h = nm + S_LEVER_HLA  # the adjuster's first state
     hv = nfree + h
@@ -725,9 +736,7 @@ def bucket_hla_forces(s, nm, nfree, vt, out):
 
     Parameters
     ----------
-    {s nm nfree vt}
-    out : ndarray
-        Receives ``ds/dt`` [m/s, m/s^2, Pa/s, m^3/s].
+    {s nm nfree vt out_hla}
     """
     h = nm + S_BUCKET_HLA  # the adjuster's first state
     hv = nfree + h
@@ -903,7 +912,7 @@ def direct_acting_rhs(s, nm, nfree, vt, cam, out, extra):
         The train's parameters [kg, N/m, N s/m, m, -] (layout ``VT_*``).
     {cam out}
     extra : ndarray
-        Empty, or the extra outputs (:func:`.layout.extra_layout`; an adjuster's).
+        Empty, or the extra outputs [N, m, m/s, Pa, m^3] (:func:`.layout.extra_layout`; an adjuster's).
 
     Returns
     -------
@@ -932,13 +941,13 @@ def lever_rhs(s, nm, nfree, vt, cam, out, extra):
 
     Returns
     -------
-    f_cam, f_valve, gap : float
-        Cam contact force [N], force on the valve [N], smallest signed gap [m].
+    {kind_returns}
     """
     f_cam, f_valve, gap, c, kap = lever_links(s, nm, nfree, vt, cam, out, 0.0, 0.0)
     return f_cam, f_valve, gap
 
 
+@_DOCS.fill
 def lever_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     """A finger follower on a hydraulic lash adjuster (``TRAIN_LEVER_HLA``): its pivot end moves.
 
@@ -947,14 +956,11 @@ def lever_hla_rhs(s, nm, nfree, vt, cam, out, extra):
 
     Parameters
     ----------
-    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
-        State [m, m/s, Pa, m^3], chain masses [-], degrees of freedom [-], the train's
-        parameters, the cam [rad, rad/s, m, m/s], ``ds/dt``, extra outputs (the adjuster's).
+    {hla_kind_args}
 
     Returns
     -------
-    f_cam, f_valve, gap : float
-        Cam contact force [N], force on the valve [N], smallest signed gap [m].
+    {kind_returns}
     """
     ya = s[nm + S_PIVOT]
     yad = s[nfree + nm + S_PIVOT]
@@ -979,8 +985,7 @@ def pushrod_rhs(s, nm, nfree, vt, cam, out, extra):
 
     Returns
     -------
-    f_cam, f_valve, gap : float
-        Cam contact force [N], force on the valve [N], smallest signed gap [m].
+    {kind_returns}
     """
     zr = s[nm + S_LEVER]
     zrd = s[nfree + nm + S_LEVER]
@@ -1002,6 +1007,7 @@ def pushrod_rhs(s, nm, nfree, vt, cam, out, extra):
     return f_cam, f_valve, gap
 
 
+@_DOCS.fill
 def bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     """A hydraulic bucket tappet (``TRAIN_BUCKET_HLA``): the cam on the bucket body, the
     adjuster's plunger on the stem (:func:`bucket_hla_forces`).
@@ -1010,9 +1016,7 @@ def bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra):
 
     Parameters
     ----------
-    s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
-        State [m, m/s, Pa, m^3], chain masses [-], degrees of freedom [-], the train's
-        parameters, the cam [rad, rad/s, m, m/s], ``ds/dt``, extra outputs (the adjuster's).
+    {hla_kind_args}
 
     Returns
     -------

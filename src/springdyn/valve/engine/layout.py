@@ -296,11 +296,7 @@ N_CHECK = 5
 
 #: Extreme signals (maximised): retainer force, -retainer force, seat force, -seat force,
 #: -cam contact force while the valve is open.
-SIG_RETAINER_MAX = 0
-SIG_RETAINER_MIN = 1
-SIG_SEAT_MAX = 2
-SIG_SEAT_MIN = 3
-SIG_CAM_MIN = 4
+SIG_RETAINER_MAX, SIG_RETAINER_MIN, SIG_SEAT_MAX, SIG_SEAT_MIN, SIG_CAM_MIN = range(5)
 N_SIG = 5
 
 # --- events --------------------------------------------------------------------------------
@@ -310,16 +306,12 @@ EV_KIND = 0  #: column: the kind (a key of EVENT_KINDS)
 EV_INDEX = 1  #: column: the end (0 seat, 1 retainer) or the element
 EV_START = 2  #: column: start time [s]
 EV_END = 3  #: column: end time [s] (a landing: its impact velocity [m/s])
-KIND_SEPARATION = 0.0
-KIND_COIL_CONTACT = 1.0
-KIND_LIFT_OFF = 2.0
-KIND_LANDING = 3.0
+#: The kinds' codes as the event table's float column holds them.
+KIND_SEPARATION, KIND_COIL_CONTACT, KIND_LIFT_OFF, KIND_LANDING = 0.0, 1.0, 2.0, 3.0
 #: Event table rows per speed (further events are counted in ``events_lost``).
 MAX_EVENTS = 512
 #: Event channels before the coil gaps: seat end, retainer end, the train's smallest gap.
-CH_SEAT = 0
-CH_RETAINER = 1
-CH_TRAIN = 2
+CH_SEAT, CH_RETAINER, CH_TRAIN = range(3)
 N_FIXED_CHANNELS = 3
 
 #: Status codes of the integration.
