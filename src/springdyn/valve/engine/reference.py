@@ -7,7 +7,6 @@
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ...core.docstrings import ParameterDocs
 from .equations import NO_EXTRA, chain_rhs, model_of, rhs_call, train_of
@@ -85,6 +84,8 @@ def integrate_scipy(
         d = np.empty_like(buf)
         f(t, y, m, omega, vt, d, NO_EXTRA)
         return d
+
+    from scipy.integrate import solve_ivp  # (here: scipy.integrate costs 0.4-0.9 s of every run's start-up)
 
     sol = solve_ivp(
         fun,

@@ -18,7 +18,6 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ...core.errors import InputError
 from ...core.units import rpm_to_omega
@@ -319,6 +318,8 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
             return np.zeros(2 * nm), 0.0
         u = spring.initial_condition(setup + lift0)["displacements"]
         return np.concatenate([u, np.zeros(nm)]), 0.0
+
+    from scipy.optimize import brentq  # (here: a train's run only; scipy.optimize costs 0.2-0.5 s of start-up)
 
     laws = spring.spring_model.chain.laws
     vt = valve_train

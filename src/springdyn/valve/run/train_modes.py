@@ -9,8 +9,6 @@ valve lift (:func:`separated_frequencies`, the "jump" frequency of float).
 import math
 
 import numpy as np
-from scipy.linalg import eigvals
-from scipy.optimize import brentq, root
 
 from ...core.errors import InputError, SolverError
 from ...core.results import text_table
@@ -47,6 +45,8 @@ def _frequencies(setup: SimulationSetup, theta: float, u: np.ndarray, dofs: np.n
         jac[:, c] = (_static_accelerations(setup, theta, up)[dofs] - _static_accelerations(setup, theta, dn)[dofs]) / (
             2 * h
         )
+    from scipy.linalg import eigvals  # (here: 0.5 s of every run's start-up)
+
     w2 = np.sort(np.real(eigvals(-jac)))
     w2 = w2[w2 > (2 * math.pi * 1.0) ** 2]  # rigid-body (unloaded) motions have none
     return [float(math.sqrt(v) / (2 * math.pi)) for v in w2[:count]]
@@ -124,6 +124,8 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
 
     def residual(x):  # forces [N]: better scaled than accelerations across light and heavy masses
         return _static_accelerations(setup, theta, x * scale) * mass
+
+    from scipy.optimize import root  # (here: 0.5 s of every run's start-up)
 
     sol = root(residual, guess / scale, method="hybr", options=dict(xtol=1e-14, maxfev=200 * (nf + 1)))
     if not sol.success or np.max(np.abs(residual(sol.x))) > 1e-6 * spring.spring_model.internal_parameters()["Fset"]:
@@ -237,6 +239,8 @@ def separated_frequencies(
                 f"against the lash {lash * 1e3:.4g} mm): give a valve lift (valve_lift, --valve-lift)"
             )
         # static equilibrium of the closed train at full lift: k_train (top - z) = F(z)
+        from scipy.optimize import brentq  # (here: 0.5 s of every run's start-up)
+
         z = brentq(
             lambda z: k_train * (top - z) - force(z), top - (force(top) + fset) / k_train - 1e-9, top, xtol=1e-16
         )
@@ -273,6 +277,8 @@ def separated_frequencies(
         res = _static_accelerations(setup, theta, x * scale) * mass
         res[held] = (x[nm] * scale - z) * k_train
         return res
+
+    from scipy.optimize import root  # (here: 0.5 s of every run's start-up)
 
     sol = root(residual, guess / scale, method="hybr", options=dict(xtol=1e-14, maxfev=200 * (nf + 1)))
     x = sol.x * scale
