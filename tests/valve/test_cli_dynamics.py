@@ -67,6 +67,30 @@ def test_engine_rpm_is_twice_cam_rpm(capsys):
     assert json.loads(a) == b
 
 
+def test_design_and_train_modes_take_the_engine_speed(capsys):
+    """Issue 39 (engine rpm everywhere): ``design`` and ``train-modes`` take ``--engine-rpm``
+    as every speed-taking command does; a four-stroke engine speed is twice the cam speed."""
+    _, a, _ = run(capsys, "valve", "design", SPRING, "--cam-rpm", "3500", "--json")
+    _, b, _ = run(capsys, "valve", "design", SPRING, "--engine-rpm", "7000 rpm", "--json")
+    assert json.loads(a) == json.loads(b) and "surge_margin" in json.loads(a)["installed"]
+    common = ("valve", "train-modes", SPRING, "--cam", CAM, "--valve-train", VT, "--json")
+    _, a, _ = run(capsys, *common, "--cam-rpm", "1000:5000:500")
+    _, b, _ = run(capsys, *common, "--engine-rpm", "2000:10000:1000")
+    assert json.loads(a) == json.loads(b)
+
+
+def test_an_absurd_engine_speed_is_named_as_given(capsys):
+    """Issue 39: ``--engine-rpm 1e9`` was refused as ``--cam-rpm = 5e+08 ... did you mean 5e+07?``:
+    the message names the option the user gave, its value, the cam speed it means, and a guess in
+    the user's unit."""
+    code, _, err = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--engine-rpm", "1e9")
+    assert code == 2
+    assert err.startswith("springdyn: error: --engine-rpm = 1e+09 (a cam speed of 5e+08 rpm): ")
+    assert "did you mean 1e+08?" in err and "--cam-rpm" not in err
+    code, _, err = run(capsys, "valve", "simulate", SPRING, "--cam", CAM, "--cam-rpm", "1e9")
+    assert code == 2 and err.startswith("springdyn: error: --cam-rpm = 1e+09: ")
+
+
 def test_valve_train_reports_liftoff(capsys):
     code, out, _ = run(
         capsys, "valve", "simulate", SPRING, "--cam", CAMR, "--cam-rpm", "3500", "--valve-train", VT, "--json"

@@ -435,7 +435,7 @@ class ValveModel:
         """
         if lift is None and self.cam is not None:
             lift = self.cam.lift
-        return spring_wing.DesignFigures(self.spring, self.chain_model.design_figures(lift, cam_rpm))
+        return spring_wing.DesignFigures(self.spring, self.chain_model.design_figures(lift, cam_rpm), cam_rpm)
 
     def dynamic_stiffness(self, frequency, length: float | None = None):
         """The linearised dynamic stiffness of the spring (:class:`~springdyn.valve.spring.frf.FrequencyResponse`).

@@ -140,13 +140,19 @@ def add_output_options(p: argparse.ArgumentParser, *, csv=True, plot=True, json=
 @contextlib.contextmanager
 def as_options(**names):
     """Name CLI options in the library's errors: ``as_options(stop="--to")`` turns an
-    :class:`InputError` starting ``stop = 5 mm ...`` into ``--to = 5 mm ...``."""
+    :class:`InputError` starting ``stop = 5 mm ...`` into ``--to = 5 mm ...``.  A callable in
+    place of the option rewrites such a message itself (it gets the message, returns the new
+    one or ``None``): an engine speed names the ``--engine-rpm`` the user gave."""
     try:
         yield
     except InputError as exc:
         text = str(exc)
         for arg, option in names.items():
-            new = re.sub(rf"^{re.escape(arg)}(\[\d+\])?( = |: )", rf"{option}\1\2", text)
+            if callable(option):
+                new = option(text) if re.match(rf"^{re.escape(arg)}(\[\d+\])?( = |: )", text) else None
+                new = text if new is None else new
+            else:
+                new = re.sub(rf"^{re.escape(arg)}(\[\d+\])?( = |: )", rf"{option}\1\2", text)
             if new != text:
                 raise InputError(new) from None
         raise

@@ -26,7 +26,6 @@ from springdyn.app.cli.common import (
     quantity,
 )
 from springdyn.app.cli.valve_options import (
-    RUN_OPTIONS,
     TRAIN_HELP,
     add_backend_option,
     add_gas_options,
@@ -36,6 +35,7 @@ from springdyn.app.cli.valve_options import (
     add_tolerance_options,
     cam_rpm_from_args,
     model_of,
+    run_options,
 )
 from springdyn.core.errors import InputError
 
@@ -110,11 +110,11 @@ def register(sub) -> None:
         help="natural frequencies of spring + valve train (base circle, full lift) and the cam-order resonance speeds",
     )
     add_inputs(p, train="file with a [valve_train] table (without: the spring alone)")
-    p.add_argument(
-        "--cam-rpm",
-        default="500:8000:500",
-        metavar="RANGE",
-        help="speed range for the resonance table, START:STOP:STEP in cam rpm (default 500:8000:500)",
+    add_speed_options(
+        p,
+        ranged=True,
+        required=False,
+        what="the range of the resonance table, START:STOP:STEP (default 500:8000:500 cam rpm)",
     )
     p.add_argument("--count", type=int, default=6, metavar="N", help="frequencies per state (1-20, default 6)")
     p.add_argument(
@@ -144,7 +144,7 @@ def register(sub) -> None:
     p = vsub.add_parser("design", help="index, corrected stress, surge frequency at installed/open/coil-contact length")
     add_inputs(p, cam=False)
     p.add_argument("--lift", metavar="LIFT", help="maximum valve lift, e.g. 9mm")
-    p.add_argument("--cam-rpm", metavar="RPM", help="camshaft speed for the surge margin (bare number: rpm)")
+    add_speed_options(p, ranged=False, required=False, what="the speed of the surge margin")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_design)
 
@@ -261,8 +261,8 @@ def cmd_frf(args) -> int:
 def cmd_design(args) -> int:
     model = model_of(args, cam=False, train=False)
     lift = quantity(args.lift, "m", "--lift") if args.lift is not None else None
-    rpm = quantity(args.cam_rpm, "rpm", "--cam-rpm", bare_unit="rpm") if args.cam_rpm else None
-    with as_options(**RUN_OPTIONS):
+    rpm = cam_rpm_from_args(args, ranged=False, model=model)
+    with as_options(**run_options(args, model)):
         fig = model.design_figures(lift=lift, cam_rpm=rpm)
     if args.json:
         print_json(fig.to_dict())
@@ -358,6 +358,8 @@ def cmd_train_modes(args) -> int:
         return 0
     if args.valve_lift is not None:
         raise InputError("--valve-lift applies to --cam-contact open (the closed train is linearised at full lift)")
+    if args.cam_rpm is None and args.engine_rpm is None:
+        args.cam_rpm = "500:8000:500"
     rpms = cam_rpm_from_args(args, ranged=True, model=model)
     with as_options(count="--count"):
         res = model.resonance_speeds(float(rpms.min()), float(rpms.max()), args.count)
@@ -378,7 +380,7 @@ def cmd_simulate(args) -> int:
             )
         return _speed_ramp(args, model)
     rpm = cam_rpm_from_args(args, ranged=False, model=model)
-    with as_options(**RUN_OPTIONS):
+    with as_options(**run_options(args, model)):
         sim = model.simulate(rpm)
     written = []
     if args.csv:
@@ -415,7 +417,7 @@ def cmd_float(args) -> int:
     model = model_of(args)
     rpms = cam_rpm_from_args(args, ranged=True, model=model)
     resolution = quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm")
-    with as_options(**RUN_OPTIONS):
+    with as_options(**run_options(args, model)):
         res = model.float_speed(rpms, resolution=resolution, quiet=args.quiet)
     if args.csv:
         res.to_csv(args.csv)
@@ -453,7 +455,7 @@ def cmd_sweep(args) -> int:
     with as_options(scheduler="--scheduler"):
         client = valve.connect(args.scheduler) if args.scheduler else None
     try:
-        with as_options(vary="--vary", workers="--workers", **RUN_OPTIONS):
+        with as_options(vary="--vary", workers="--workers", **run_options(args, model)):
             res = model.sweep(
                 rpms, vary=vary, on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet
             )

@@ -17,7 +17,7 @@ from springdyn.app.cli.common import (
     print_notes,
     quantity,
 )
-from springdyn.app.cli.valve_options import add_speed_options, cam_rpm_from_args
+from springdyn.app.cli.valve_options import add_speed_options, cam_rpm_from_args, run_options
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "cmd_cam_from_lift", "cmd_cam_check", "cmd_kinematics"]
@@ -166,13 +166,14 @@ def cmd_cam_check(args) -> int:
     lobe = valve.Cam.from_toml(args.cam)
     vt = valve.ValveTrain.from_toml(args.valve_train)
     follower = _follower(args.valve_train, required=True)
-    rpm = cam_rpm_from_args(args, ranged=False, timing=valve.Timing.in_file(args.cam))
+    timing = valve.Timing.in_file(args.cam)
+    rpm = cam_rpm_from_args(args, ranged=False, timing=timing)
     if rpm is not None and args.spring is None:
         raise InputError("--cam-rpm and --engine-rpm set the speed of the load: give the spring with --spring")
     if args.model is not None and args.spring is None:
         raise InputError("--model applies to the spring: give it with --spring")
     spring = valve.ValveSpring.from_toml(args.spring).with_model(args.model) if args.spring else None
-    with as_options(cam_rpm="--cam-rpm"):
+    with as_options(cam_rpm=run_options(args, timing=timing)["cam_rpm"]):
         res = cam.check_cam(lobe, vt, follower, spring=spring, cam_rpm=rpm)
     if not emit(res, args, json_data=dict(res.summary)):
         print(res.describe())

@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 from springdyn.app.cli.common import add_output_options, as_options, emit
-from springdyn.app.cli.valve_options import add_inputs, add_speed_options, cam_rpm_from_args, model_of
+from springdyn.app.cli.valve_options import add_inputs, add_speed_options, cam_rpm_from_args, model_of, run_options
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "cmd_friction"]
@@ -38,7 +38,7 @@ def cmd_friction(args) -> int:
             "(see examples/valve/valve_train_with_follower.toml)"
         )
     speeds = cam_rpm_from_args(args, ranged=True, model=model)
-    with as_options(cam_rpm="--cam-rpm"):
+    with as_options(cam_rpm=run_options(args, model)["cam_rpm"]):
         sweep = model.friction_over_speed(speeds, quiet=args.quiet)
     given = model.friction_table is not None
     data = dict(sweep.summary, per_speed=[a.summary for a in sweep.analyses], friction_defaults=not given)

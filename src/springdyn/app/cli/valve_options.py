@@ -4,12 +4,15 @@ command's files and options (:func:`model_of`)."""
 
 from __future__ import annotations
 
+import re
+
 import springdyn.valve as valve
 from springdyn.app.cli.common import as_options, parse_range, quantity
 from springdyn.core.errors import InputError
 
 __all__ = [
     "RUN_OPTIONS",
+    "run_options",
     "model_of",
     "run_settings",
     "cam_rpm_from_args",
@@ -185,6 +188,29 @@ def model_of(args, *, cam: bool = True, train: bool = True) -> valve.ValveModel:
         with as_options(path="--gas-pressure", port_pressure="--port-pressure"):
             model = model.with_gas_pressure(args.gas_pressure, quantity(args.port_pressure, "Pa", "--port-pressure"))
     return model
+
+
+def run_options(args, model: valve.ValveModel | None = None, timing=None) -> dict:
+    """:data:`RUN_OPTIONS` for :func:`~springdyn.app.cli.common.as_options`, with a cam speed
+    the library refuses named as the user gave it: ``--engine-rpm = 1e+09 (a cam speed of
+    5e+08 rpm): ...`` when the speed came from ``--engine-rpm``."""
+    if getattr(args, "engine_rpm", None) is None:
+        return dict(RUN_OPTIONS)
+    if model is not None:
+        per_engine = float(model.cam_rpm(1.0))
+    else:
+        per_engine = float(valve.cam_rpm_from_engine_rpm(1.0, timing.strokes if timing is not None else 4))
+
+    def engine_message(text: str) -> str | None:
+        found = re.match(r"^cam_rpm(?:\[\d+\])? = ([-+0-9.eEinf]+)(.*)$", text, re.S)
+        if not found:
+            return None
+        cam = float(found.group(1))
+        engine = cam / per_engine
+        rest = found.group(2).replace(f"did you mean {cam / 10:g}?", f"did you mean {engine / 10:g}?")
+        return f"--engine-rpm = {engine:g} (a cam speed of {cam:g} rpm){rest}"
+
+    return dict(RUN_OPTIONS, cam_rpm=engine_message)
 
 
 def cam_rpm_from_args(args, *, ranged: bool, model: valve.ValveModel | None = None, timing=None):

@@ -246,6 +246,8 @@ class DesignFigures:
 
     spring: object
     figures: dict
+    #: The cam speed of the surge margins [rev/min] (None: no margins), named in the table.
+    cam_rpm: float | None = None
 
     def to_dict(self) -> dict:
         """The figures [SI] (the JSON of ``valve design``)."""
@@ -283,7 +285,15 @@ class DesignFigures:
                 )
         lines.append(
             text_table(
-                rows, headers=("state", "length [mm]", "force [N]", "stress [MPa]", "surge [Hz]", "surge margin")
+                rows,
+                headers=(
+                    "state",
+                    "length [mm]",
+                    "force [N]",
+                    "stress [MPa]",
+                    "surge [Hz]",
+                    "surge margin" if self.cam_rpm is None else f"surge margin at {self.cam_rpm:g} cam rpm",
+                ),
             )
         )
         if "coil_bind" in fig:
