@@ -266,6 +266,46 @@ def test_cli_calibrate_writes_a_definition_that_meets_its_load_points(tmp_path, 
     assert "5.5 active" in capsys.readouterr().out
 
 
+@pytest.mark.parametrize("fit", ["shear_modulus", "active_coils"])
+@pytest.mark.parametrize("coils", ["active_coils = 5.5\n", "active_coils = 5.5\ntotal_coils = 7.5\n"])
+def test_calibrate_writes_a_definition_the_loader_accepts(tmp_path, capsys, fit, coils):
+    """Issue 39: every ``--fit`` writes a file that ``valve params`` loads (a drawing with both
+    active and total coils once got active coils alone changed, a pair the loader refuses), and
+    rewriting the same file works (``--out`` is a file, not a folder)."""
+    src = tmp_path / "drawing.toml"
+    src.write_text(
+        "[spring]\n"
+        + "\n".join(f"{k} = {v!r}".replace("'", '"') for k, v in BASE.items())
+        + '\nouter_diameter = "25.5 mm"\nend_type = "closed-ground"\n'
+        + coils
+        + 'load_points = [{ length = "38 mm", force = "262 N" }, { length = "30 mm", force = "475 N" }]\n'
+    )
+    out = tmp_path / "calibrated.toml"
+    for _ in range(2):
+        assert main(["valve", "calibrate", str(src), "--fit", fit, "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["valve", "params", str(out)]) == 0
+    s = ValveSpring.from_toml(out)
+    rows = load_point_check(s)
+    assert max(abs(r["deviation_percent"]) for r in rows) < 1.0  # the fit meets both points to ~0.2 %
+
+
+def test_a_fitted_shear_modulus_no_steel_has_is_said():
+    """Issue 39: ``--fit shear_modulus`` returned 90.4 GPa (14 % above spring steel) without a
+    word.  Load points 15 % above the spring's forces need G ~ 93 GPa: a warning and a note name
+    the wires' range (79.5-81.5 GPa, +-5 %); load points the spring meets give no note."""
+    s = ValveSpring.example("one-step")
+    rows = [(length, float(s.spring_model.static_force(length))) for length in (0.038, 0.030)]
+
+    def drawing(factor):
+        return s.replace(load_points="table: " + "; ".join(f"{x!r} {f * factor!r} 2.0" for x, f in rows))
+
+    with pytest.warns(UserWarning, match=r"fitted shear modulus 9\d\.\d+ GPa lies outside 75.53-85.58 GPa"):
+        res = calibrate(drawing(1.15), "shear_modulus")
+    assert res["after"] == pytest.approx(1.15 * s.shear_modulus, rel=1e-6) and len(res["notes"]) == 1
+    assert calibrate(drawing(1.0), "shear_modulus")["notes"] == []
+
+
 def test_calibrate_trace_fits_the_damping_of_a_measured_trace():
     """A retainer-force trace simulated with 3 % damping (3000 cam rpm, no clash): the fit
     from the example's 5 % recovers it to 1e-3 and meets the trace to 0.01 N."""

@@ -71,7 +71,9 @@ def register(sub) -> None:
     p.add_argument(
         "--fit", choices=("shear_modulus", "active_coils"), default="shear_modulus", help="what to fit (default G)"
     )
-    p.add_argument("--out", metavar="FILE.toml", help="write the calibrated definition there")
+    p.add_argument(
+        "--out", dest="calibrated_out", metavar="FILE.toml", help="write the calibrated definition there (a file)"
+    )
     p.add_argument(
         "--trace",
         metavar="TRACE.csv",
@@ -277,7 +279,7 @@ def cmd_calibrate(args) -> int:
     from springdyn.core.units import format_quantity
 
     model = model_of(args, cam=False, train=False)
-    out = check_output_file(args.out, "--out") if args.out else None
+    out = check_output_file(args.calibrated_out, "--out") if args.calibrated_out else None
     doc = load_toml(args.spring)
     table = dict(doc["spring"])
     if args.trace:

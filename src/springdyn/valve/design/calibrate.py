@@ -11,11 +11,14 @@ and the coils' contact stiffness to a measured retainer-force trace.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
 from ...core.errors import InputError
 from ..run.simulation import simulate
+from ..spring.materials import MATERIALS
 
 __all__ = [
     "load_point_check",
@@ -31,6 +34,10 @@ __all__ = [
 REFUSED = 1e30
 #: What :func:`calibrate` can fit, with the search range as factors of the given value.
 FIT_PARAMETERS = {"shear_modulus": (0.5, 2.0), "active_coils": (0.5, 2.0)}
+#: How far a fitted shear modulus may leave the named wires' (:data:`springdyn.valve.spring.materials.MATERIALS`,
+#: 79.5-81.5 GPa) before the fit says so [-]: EN 13906-1's values hold to a few per cent; a larger
+#: correction points at the geometry (coils, diameter) or the load points, not at the steel.
+PLAUSIBLE_SHEAR_MODULUS_MARGIN = 0.05
 
 
 def load_point_check(spring) -> list[dict]:
@@ -76,7 +83,8 @@ def calibrate(spring, fit: str = "shear_modulus") -> dict:
     dict
         ``parameter``, ``before`` and ``after`` (its value: [Pa] or [-]), ``spring`` (the
         calibrated :class:`ValveSpring`), ``load_points_before`` and ``load_points_after``
-        (:func:`load_point_check`), ``rms_weighted_residual`` (after) [-].
+        (:func:`load_point_check`), ``rms_weighted_residual`` (after) [-], ``notes`` (a
+        fitted shear modulus outside the spring wires' plausible range, also warned).
     """
     if fit not in FIT_PARAMETERS:
         raise InputError(f"fit = {fit!r}: calibrate fits one of {', '.join(FIT_PARAMETERS)}")
@@ -100,6 +108,18 @@ def calibrate(spring, fit: str = "shear_modulus") -> dict:
     after = float(res.x)
     fitted = _with(spring, fit, after)
     r = _weighted_residuals(fitted)
+    notes = []
+    if fit == "shear_modulus":
+        g = [m.shear_modulus for m in MATERIALS.values()]
+        lo_g, hi_g = min(g) * (1 - PLAUSIBLE_SHEAR_MODULUS_MARGIN), max(g) * (1 + PLAUSIBLE_SHEAR_MODULUS_MARGIN)
+        if not lo_g <= after <= hi_g:
+            notes.append(
+                f"the fitted shear modulus {after / 1e9:.4g} GPa lies outside {lo_g / 1e9:.4g}-{hi_g / 1e9:.4g} GPa "
+                f"(the spring wires' {min(g) / 1e9:g}-{max(g) / 1e9:g} GPa, EN 13906-1, +-"
+                f"{PLAUSIBLE_SHEAR_MODULUS_MARGIN:.0%}): no steel is that {'stiff' if after > hi_g else 'soft'}; "
+                "check the coils, the diameters and the load points, or fit active_coils"
+            )
+            warnings.warn(notes[-1], stacklevel=2)
     return dict(
         parameter=fit,
         before=float(before),
@@ -108,6 +128,7 @@ def calibrate(spring, fit: str = "shear_modulus") -> dict:
         load_points_before=load_point_check(spring),
         load_points_after=load_point_check(fitted),
         rms_weighted_residual=float(np.sqrt(np.mean(r**2))),
+        notes=notes,
     )
 
 
@@ -203,14 +224,16 @@ def calibrated_keys(result: dict, table: dict) -> dict:
     result : dict
         :func:`calibrate`'s result.
     table : dict
-        The definition's ``[spring]`` table as given (its coil keys decide which one is written).
+        The definition's ``[spring]`` table as given (its coil keys decide which are written).
     """
     sp = result["spring"]
     if result["parameter"] == "shear_modulus":
         return {"shear_modulus": f"{result['after'] / 1e9:.6g} GPa"}
-    key = next((k for k in ("active_coils", "total_coils") if k in table), "high_pitch_coils")
+    # every coil key the table gives, from the calibrated spring (a drawing with both active and
+    # total coils keeps them consistent: the loader refuses a pair that disagrees)
+    keys = [k for k in ("active_coils", "total_coils") if k in table] or ["high_pitch_coils"]
     value = {"active_coils": sp.active_coils, "total_coils": sp.total_coils, "high_pitch_coils": sp.high_pitch_coils}
-    return {key: round(float(value[key]), 6)}
+    return {key: round(float(value[key]), 6) for key in keys}
 
 
 def load_point_lines(result: dict) -> list[str]:
