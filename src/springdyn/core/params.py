@@ -281,9 +281,10 @@ def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: 
     unknown = [k for k in mapping if k not in specs]
     if unknown:
         k = unknown[0]
-        close = difflib.get_close_matches(k, list(specs), n=1)
+        allowed = [*specs, *getattr(cls, "extra_keys", ())]  # with the keys the class reads into its own
+        close = difflib.get_close_matches(k, allowed, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
-        raise InputError(f"{where}{prefix}unknown key {k!r}{hint}; allowed keys: {', '.join(specs)}")
+        raise InputError(f"{where}{prefix}unknown key {k!r}{hint}; allowed keys: {', '.join(allowed)}")
     kwargs = {}
     for name, (f, meta) in specs.items():
         if name in mapping:
@@ -485,11 +486,14 @@ class Parameters:
     #: Refuse quantities beyond :data:`PLAUSIBLE_MAX` (a class with finer ranges of its own,
     #: with did-you-mean hints, turns this off).
     plausible_ranges: bool = True
+    #: Keys the table takes besides the fields (:meth:`_prepare` reads them into fields): they
+    #: stand in the allowed-keys list of an unknown key's message.
+    extra_keys: tuple = ()
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         # class attributes of the base are configuration, not dataclass fields
-        for name in ("table", "examples", "default_example", "plausible_ranges"):
+        for name in ("table", "examples", "default_example", "plausible_ranges", "extra_keys"):
             if name in cls.__dict__ and name in getattr(cls, "__annotations__", {}):  # pragma: no cover
                 raise TypeError(f"{cls.__name__}.{name} must not be annotated")
         # the display repr, kept by the dataclass decorator (it does not replace a __repr__

@@ -369,3 +369,25 @@ def test_cli_calibrate_trace(tmp_path, capsys):
     assert "damping_ratio: 0.05 -> 0.0299" in capsys.readouterr().out
     assert ValveSpring.from_toml(out).damping_ratio == pytest.approx(0.03, rel=2e-3)
     assert main(argv) == 2 and "--trace needs --cam" in capsys.readouterr().err
+
+
+def test_a_named_wire_in_the_spring_table():
+    """Issue 39: ``material = "SiCr"`` in ``[spring]`` (``[requirements]`` and ``[spectrum]``
+    took it) gives the wire's moduli, density and its tensile strength at this diameter
+    (springdyn.valve.spring.materials), each overridable by its own key; a wrong name is one
+    clear message, and the allowed-keys list of an unknown key names the drawing's keys too."""
+    from springdyn.valve.spring.materials import material
+
+    base = {k: v for k, v in BASE.items() if k not in ("youngs_modulus", "shear_modulus", "density")}
+    keys = {**base, "mean_diameter": "22 mm", "end_type": "closed-ground", "active_coils": 5.5, "material": "SiCr"}
+    s = ValveSpring.from_dict(keys)
+    wire = material("SiCr").spring_keys(3.5e-3)
+    assert s.material == "SiCr"
+    for key, value in wire.items():
+        assert getattr(s, key) == pytest.approx(value, rel=1e-12)
+    assert ValveSpring.from_dict({**keys, "shear_modulus": "80 GPa"}).shear_modulus == 80e9
+    assert ValveSpring.from_dict({**keys, "material": "vdsicr"}).material == "SiCr"  # a grade name
+    with pytest.raises(InputError, match=r"material = 'SiCrx' is not a known spring wire; choose one of 'SiCr'"):
+        ValveSpring.from_dict({**keys, "material": "SiCrx"})
+    with pytest.raises(InputError, match=r"unknown key 'totl_coils' \(did you mean 'total_coils'\?\).*outer_diameter"):
+        ValveSpring.from_dict({**keys, "totl_coils": 7.5})

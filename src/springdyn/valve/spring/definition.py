@@ -24,6 +24,7 @@ from ...core.units import format_mm, format_quantity, to_si
 from . import formulas
 from .chains import make_model
 from .geometry import drawing_pitch_knots
+from .materials import MATERIALS, material
 from .solid_length import solid_length
 from .stress import spring_strengths
 
@@ -119,6 +120,14 @@ class ValveSpring(Parameters):
         choices=("", *END_TYPES),
         default="",
     )
+    material: str = param(
+        None,
+        "named wire (SiCr, SiCrV, CrV, music-wire; springdyn.valve.spring.materials): its shear and Young's "
+        "moduli, density and the tensile strength at this wire diameter, each overridable by its own key",
+        kind="str",
+        choices=("", *MATERIALS),
+        default="",
+    )
     load_points: str = param(
         None,
         "load points of the drawing to check the model against: a TOML array of tables "
@@ -169,6 +178,7 @@ class ValveSpring(Parameters):
     plausible_ranges = False  # _check_geometry's ranges say more (the likely unit slip)
     examples = EXAMPLES
     default_example = "one-step"
+    extra_keys = DRAWING_KEYS
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -410,12 +420,21 @@ def _from_drawing(mapping: dict) -> dict:
     - ``end_type`` gives ``dead_coils`` (:data:`END_TYPES`);
     - ``total_coils`` (dead coils included) or ``active_coils`` give ``high_pitch_coils``
       (``N2 = n_t - N1``, ``n_t = n + 2 Nb``; a two-step spring needs ``low_pitch_coils``);
+    - ``material`` (a named wire) gives ``shear_modulus``, ``youngs_modulus``, ``density`` and
+      ``tensile_strength`` where the table gives none of its own;
     - ``load_points`` become an inline table (lengths [m], forces [N], tolerances [N]).
 
     Keys that say the same twice must agree (1 um, 1e-9 coils), else :class:`InputError`
     names both.
     """
     m = dict(mapping)
+    if m.get("material"):
+        wire = material(m["material"])  # (case-insensitive, grade names too; an unknown one says which are known)
+        if "wire_diameter" not in m:
+            raise InputError(f"material = {m['material']!r} needs wire_diameter (its tensile strength depends on it)")
+        m["material"] = wire.name
+        for key, value in wire.spring_keys(_quantity(m, "wire_diameter", "m")).items():
+            m.setdefault(key, value)  # each of the wire's values unless the table gives its own
     given = [k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if k in m]
     if any(k != "mean_diameter" for k in given):
         if "wire_diameter" not in m:
