@@ -10,7 +10,9 @@ from springdyn.valve import Cam, ValveSpring
 from springdyn.valve.design.tolerances import (
     CHUNK,
     Criteria,
+    nominal_values,
     parse_tolerance,
+    read_tolerances,
     run_variant,
     sample,
     tolerance_study,
@@ -258,3 +260,26 @@ def test_dask_cluster_gives_the_local_variants(tmp_path):
     import dask
 
     assert dask.config.get("scheduler", None) != "dask.distributed"
+
+
+def test_the_drawings_outer_and_inner_diameters_are_tolerable(tmp_path):
+    """Issue 39: ``[tolerances] outer_diameter`` (the drawing tolerances the coil diameter so)
+    was refused.  A drawn diameter's variant is the mean diameter ``De - d`` (``Di + d``) with the
+    variant's own wire: with the wire toleranced too, an outer-diameter variant's mean diameter
+    moves against the wire; and one coil diameter is toleranced at a time."""
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    nominal = nominal_values(sp, cam, None)
+    assert nominal["outer_diameter"] == pytest.approx(sp.mean_diameter + sp.wire_diameter)
+    assert nominal["inner_diameter"] == pytest.approx(sp.mean_diameter - sp.wire_diameter)
+    de = sp.mean_diameter + sp.wire_diameter
+    v, _, _ = variant(sp, cam, None, {"outer_diameter": de + 1e-4, "wire_diameter": sp.wire_diameter + 2e-5})
+    assert v.mean_diameter == pytest.approx(sp.mean_diameter + 1e-4 - 2e-5, abs=1e-12)
+    v, _, _ = variant(sp, cam, None, {"inner_diameter": de - 2 * sp.wire_diameter - 1e-4})
+    assert v.mean_diameter == pytest.approx(sp.mean_diameter - 1e-4, abs=1e-12)
+    path = tmp_path / "tol.toml"
+    path.write_text('[tolerances]\nouter_diameter = "+-0.1 mm"\nwire_diameter = "+-0.02 mm"\n')
+    tols, _ = read_tolerances(path)
+    assert set(tols) == {"outer_diameter", "wire_diameter"}
+    path.write_text('[tolerances]\nouter_diameter = "+-0.1 mm"\nmean_diameter = "+-0.1 mm"\n')
+    with pytest.raises(InputError, match="mean_diameter and outer_diameter both vary the coil diameter"):
+        read_tolerances(path)

@@ -2,7 +2,8 @@
 :func:`tolerance_study`.
 
 **The table** names the parameters under their own names (:data:`TOLERANCED`): the spring's
-``wire_diameter``, ``mean_diameter``, ``free_length``, ``installed_length``,
+``wire_diameter``, ``mean_diameter`` (or the drawing's ``outer_diameter`` / ``inner_diameter``),
+``free_length``, ``installed_length``,
 ``shear_modulus``, ``youngs_modulus``, ``density``, the coils' ``pitch`` (the mean pitch of the
 active coils, :func:`mean_active_pitch`: the coiling tool's systematic error, which shows as
 free length), the cam's ``lift`` and the valve train's ``lash``.  A value is a band, uniform between its limits (``wire_diameter = "+-0.02 mm"``,
@@ -78,7 +79,9 @@ __all__ = [
     "FLOAT_OUTPUTS",
 ]
 
-#: The parameters a ``[tolerances]`` table may name, with their SI unit and where they live.
+#: The parameters a ``[tolerances]`` table may name, with their SI unit and where they live
+#: (a drawing's outer or inner diameter is the coil diameter as drawn: the mean diameter is
+#: ``De - d`` or ``Di + d`` with the variant's wire diameter; one of the three is toleranced).
 TOLERANCED = {
     "wire_diameter": ("m", "spring"),
     "mean_diameter": ("m", "spring"),
@@ -87,6 +90,8 @@ TOLERANCED = {
     "shear_modulus": ("Pa", "spring"),
     "youngs_modulus": ("Pa", "spring"),
     "density": ("kg/m^3", "spring"),
+    "outer_diameter": ("m", "drawing"),
+    "inner_diameter": ("m", "drawing"),
     "pitch": ("m", "coiling"),
     "lift": ("m", "cam"),
     "lash": ("m", "valve_train"),
@@ -212,6 +217,12 @@ def read_tolerances(path) -> tuple[dict, Criteria]:
     if "tolerances" not in doc or not doc["tolerances"]:
         raise InputError(f'{path}: no [tolerances] table (e.g. wire_diameter = "+-0.02 mm")')
     tols = {k: parse_tolerance(k, v) for k, v in doc["tolerances"].items()}
+    diameters = [k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if k in tols]
+    if len(diameters) > 1:
+        raise InputError(
+            f"{path}: [tolerances] {diameters[0]} and {diameters[1]} both vary the coil diameter; give one of them "
+            "(the drawing's)"
+        )
     return tols, Criteria.from_dict(doc.get("criteria", {}), source=str(path))
 
 
@@ -225,6 +236,8 @@ def nominal_values(spring, cam, valve_train) -> dict:
     valve_train : ValveTrain or None
     """
     out = {k: float(getattr(spring, k)) for k, (_, where) in TOLERANCED.items() if where == "spring"}
+    out["outer_diameter"] = float(spring.mean_diameter + spring.wire_diameter)
+    out["inner_diameter"] = float(spring.mean_diameter - spring.wire_diameter)
     out["pitch"] = mean_active_pitch(spring)
     out["lift"] = float(cam.max_lift)
     out["lash"] = float(valve_train.lash) if valve_train is not None else 0.0
@@ -296,6 +309,11 @@ def variant(spring, cam, valve_train, values: dict):
     """
 
     spring_changes = {k: float(v) for k, v in values.items() if TOLERANCED[k][1] == "spring"}
+    wire = spring_changes.get("wire_diameter", spring.wire_diameter)
+    if "outer_diameter" in values:  # the drawn coil diameter with this variant's wire
+        spring_changes["mean_diameter"] = float(values["outer_diameter"]) - wire
+    if "inner_diameter" in values:
+        spring_changes["mean_diameter"] = float(values["inner_diameter"]) + wire
     if "pitch" in values:  # the coils' pitch error shows as free length (mean_active_pitch)
         if spring.pitch_profile:
             raise InputError(
