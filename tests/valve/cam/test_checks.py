@@ -370,3 +370,22 @@ def test_cli_cam_check_bad_input(capsys):
     assert code == 2 and "no [follower] table" in err
     code, _, err = run(capsys, "valve", "cam-check", cam, "--valve-train", VT_FOLLOWER, "--cam-rpm", "3000")
     assert code == 2 and "--spring" in err
+
+
+def test_the_base_circle_load_does_not_flicker_with_an_adjuster():
+    """Issue 39: with a hydraulic adjuster (no lash) the base circle's round-off lift (+-1e-54 m)
+    counted as open, and the load alternated between the plunger force and the spring's
+    (24.75 <-> 459.5 N in the report).  The valve is open where the lobe is past the lash by
+    OPEN_LIFT, the run's rule: below it the load is the adjuster's force alone."""
+    import dataclasses
+
+    from springdyn.valve.cam.definition import OPEN_LIFT
+
+    path = str(ALL_EXAMPLES / "valve" / "valve_train_with_follower.toml")
+    vt = dataclasses.replace(ValveTrain.from_toml(path), lash_adjuster="hydraulic", lash=0.0)
+    lobe = Cam.from_toml(str(ALL_EXAMPLES / "valve" / "cam_345.toml"))
+    res = check_cam(lobe, vt, Follower.in_file(path), spring=ValveSpring.example("one-step"), cam_rpm=3000.0)
+    closed = res.lift <= OPEN_LIFT
+    assert closed.sum() > 10 and (res.lift[closed] > 0).any()  # round-off lifts among them
+    assert np.all(res.force[closed] == pytest.approx(vt.ratio * vt.hla_force, rel=1e-12))
+    assert res.force[np.argmax(res.lift > 10 * OPEN_LIFT)] > 5 * vt.hla_force  # open: the spring's force

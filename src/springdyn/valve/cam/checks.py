@@ -54,6 +54,7 @@ from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from ...core.results import Result, notes_lines
 from ...core.units import rpm_to_omega
+from .definition import OPEN_LIFT
 from .follower import Follower
 
 __all__ = [
@@ -469,7 +470,9 @@ def check_cam(
         out["force"], out["load"] = force_in, "given"
     elif spring is not None:
         omega = rpm_to_omega(cam_rpm or 0.0)
-        z = np.maximum(ratio * h - lash, 0.0)
+        # open where the lobe is past the lash by OPEN_LIFT (the run's rule): a base circle's
+        # round-off lift (+-1e-54 m) once counted as open and the load flickered
+        z = np.where(ratio * h - lash > ratio * OPEN_LIFT, ratio * h - lash, 0.0)
         acc = np.where(z > 0.0, ratio * ddh * omega**2, 0.0)
         f_s = spring.spring_model.static_force(spring.installed_length - z)
         m_spring = float(spring.spring_model.internal_parameters()["M"])
@@ -778,7 +781,7 @@ class CamCheck(Result):
         vt = self.valve_train
         r = 1.0 if vt is None else vt.ratio
         lash = 0.0 if vt is None else vt.lash
-        return r * self.lift - lash > 0.0
+        return r * self.lift - lash > r * OPEN_LIFT
 
     def to_xarray(self):
         import xarray as xr  # (here: xarray costs 0.4 s of start-up)

@@ -44,7 +44,14 @@ from ...core.io import read_csv_columns
 from ...core.params import Parameters, param
 from ...core.units import format_mm, rpm_to_hz
 
-__all__ = ["Cam", "rise_law", "polydyne_coefficients", "LAWS"]
+__all__ = ["Cam", "rise_law", "polydyne_coefficients", "LAWS", "OPEN_LIFT", "BASE_CIRCLE_LIFT"]
+
+#: Lobe lift past the lash [m] from which the lobe is in its event and drives the valve open
+#: (a micrometre: far above the table's round-off, some 1e-54 m on the base circle, and below
+#: any lash or ramp height); the run's verdicts and the cam checks use this one rule.
+OPEN_LIFT = 1e-6
+#: Lobe lift [m] at or below which the lobe is on its base circle.
+BASE_CIRCLE_LIFT = 1e-9
 
 LAWS = ("cycloidal", "3-4-5", "4-5-6-7", "polydyne", "table")
 TWO_PI = 2.0 * math.pi

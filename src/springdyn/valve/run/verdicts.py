@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.docstrings import ParameterDocs
+from ..cam.definition import BASE_CIRCLE_LIFT, OPEN_LIFT
 from ..spring import stress
 
 __all__ = [
@@ -49,10 +50,8 @@ _DOCS = ParameterDocs(
 #: (a micrometre: the adjuster's leak-down per cycle is some 0.3 um, its collapse under the
 #: valve spring some 10 um; a valve held a micrometre open no longer seals).
 PUMP_UP_THRESHOLD = 1e-6
-#: Lobe lift past the lash [m] from which the lobe is in its event (the valve is driven open).
-OPEN_LIFT = 1e-6
-#: Lobe lift [m] at or below which the lobe is on its base circle.
-BASE_CIRCLE_LIFT = 1e-9
+# The lobe-lift thresholds OPEN_LIFT (in its event past the lash) and BASE_CIRCLE_LIFT live with
+# the cam (springdyn.valve.cam.definition), whose checks judge the valve open by the same rule.
 
 
 def first_landing(valve_lift) -> np.ndarray:
