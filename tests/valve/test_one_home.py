@@ -161,16 +161,23 @@ def test_a_criterion_has_one_rule_for_the_report_the_tolerance_study_and_the_syn
     the tolerance study's failing share and the synthesis' margin all flip."""
     a = _consumers()
     table = a["table"]
-    rows = criteria.spring_verdicts(
-        criteria.Criteria(),
-        a["design"],
-        table,
-        SPEEDS,
-        model="type-c",
-        rated_cam_rpm=2500.0,
-        wire_limit=SPRING.strengths["shear_stress_limit_Pa"],
-    )
-    goodman = next(r for r in rows if r.name == "goodman")
+
+    def goodman_row():
+        return next(
+            r
+            for r in criteria.spring_verdicts(
+                criteria.Criteria(),
+                a["design"],
+                table,
+                SPEEDS,
+                model="type-c",
+                rated_cam_rpm=2500.0,
+                wire_limit=SPRING.strengths["shear_stress_limit_Pa"],
+            )
+            if r.name == "goodman"
+        )
+
+    goodman = goodman_row()
     ds = xr.Dataset(
         {
             k: ("variant", np.array(v, float))
@@ -184,16 +191,7 @@ def test_a_criterion_has_one_rule_for_the_report_the_tolerance_study_and_the_syn
     margin = a["synthesis"]["margin_goodman"][0]
     rule = criteria.RULES["goodman"]
     monkeypatch.setitem(criteria.RULES, "goodman", dataclasses.replace(rule, sense="<="))
-    rows_b = criteria.spring_verdicts(
-        criteria.Criteria(),
-        a["design"],
-        table,
-        SPEEDS,
-        model="type-c",
-        rated_cam_rpm=2500.0,
-        wire_limit=SPRING.strengths["shear_stress_limit_Pa"],
-    )
-    assert next(r for r in rows_b if r.name == "goodman").passed is (not goodman.passed)
+    assert goodman_row().passed is (not goodman.passed)
     assert study.failures()["goodman"].mean() == 1.0 - share
     assert math.copysign(1.0, _candidates()["margin_goodman"][0]) == -math.copysign(1.0, margin)
 
