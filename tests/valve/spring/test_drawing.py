@@ -44,10 +44,11 @@ def test_one_step_pitch_gives_the_example_spring():
     """The example's free length 48 mm is Dw/2 + 2 Nb Dw (dead coils) + 2 x 0.5 turn x (Dw + p)/2
     (transitions) + (7.5 - 2 - 1) p (the rest) = 10.5 mm + 5 p: p = 7.5 mm; the
     drawing's pitch 7.5 mm gives that free length and, in the distributed model, the same
-    profile as the default: the same Fset to 1e-12."""
+    profile as the default: the same Fset to 1e-12.  (Without end_type the end allowance is
+    the document's Dw/2.)"""
     keys = {k: v for k, v in BASE.items() if k != "free_length"}
     s = ValveSpring.from_dict(
-        {**keys, "mean_diameter": "22 mm", "end_type": "closed-ground", "total_coils": 7.5, "pitch": "7.5 mm"}
+        {**keys, "mean_diameter": "22 mm", "dead_coils": 1, "total_coils": 7.5, "pitch": "7.5 mm"}
     )
     assert s.free_length == pytest.approx(0.048, abs=1e-12)
     ref = ValveSpring.example("one-step")
@@ -57,12 +58,39 @@ def test_one_step_pitch_gives_the_example_spring():
         assert a == pytest.approx(b, rel=1e-12)
 
 
+@pytest.mark.parametrize("end_type", ["closed-ground", "closed", "open"])
+def test_one_solid_length_in_every_model(end_type):
+    """Issue 39: one solid length per spring.  The drawing's end type gives EN 13906-1's Lc
+    (closed-ground n_t d = 26.25 mm, closed (n_t + 1.5) d, open (n_t + 1) d); the pitch 7.5 mm
+    gives the free length Lc + the sum of the gaps (2 x 0.5 turn x (p - Dw)/2 + 4.5 (p - Dw) =
+    5 (p - Dw) = 20 mm, the same for every end type); Type C's Lc, the distributed geometry's
+    wire stack, the coil-bind check and the header all state that one length."""
+    from springdyn.valve.spring.solid_length import check_coil_bind
+
+    keys = {k: v for k, v in BASE.items() if k != "free_length"}
+    nb = 0 if end_type == "open" else 1
+    s = ValveSpring.from_dict(
+        {**keys, "mean_diameter": "22 mm", "end_type": end_type, "total_coils": 7.5 if nb else 5.5, "pitch": "7.5 mm"}
+    )
+    lc = en13906_solid_length(3.5e-3, s.total_coils, end_type)
+    assert s.solid_length == pytest.approx(lc, abs=1e-15)
+    gaps = 5.0 * 4e-3 if nb else 5.5 * 4e-3
+    assert s.free_length == pytest.approx(lc + gaps, abs=1e-12)
+    assert s.spring_model.internal_parameters()["Lc"] == pytest.approx(lc, abs=1e-15)
+    d = s.with_model("distributed").spring_model
+    assert d.geometry.solid_length == pytest.approx(lc, abs=1e-15)
+    assert d.internal_parameters()["Lc"] == pytest.approx(lc, abs=1e-15)
+    assert check_coil_bind(s, 0.0, "test")["solid_length_m"] == pytest.approx(lc, abs=1e-15)
+    assert s.coil_facts["solid_length_source"] == f"EN 13906-1, ends {end_type}"
+
+
 def test_two_step_pitches_give_the_free_length_by_hand():
     """Two-step, 1 dead coil per end, N1 = 2 (with the seat's dead coil), N = 8, low pitch p1,
-    high pitch p2: Dw/2 + Dw (seat dead coil) + 0.5 (Dw + p1)/2 + 0.5 p1 (rest of the low
-    section) + 0.5 (p1 + p2)/2 + 4 p2 + 0.5 (p2 + Dw)/2 + Dw (retainer dead coil): 45.75 mm."""
+    high pitch p2, ends closed and ground (end allowance 0, EN 13906-1's Lc = n_t d): Dw (seat
+    dead coil) + 0.5 (Dw + p1)/2 + 0.5 p1 (rest of the low section) + 0.5 (p1 + p2)/2 + 4 p2 +
+    0.5 (p2 + Dw)/2 + Dw (retainer dead coil): 44.0 mm."""
     dw, p1, p2 = 3.5, 4.2, 6.9
-    by_hand = dw / 2 + dw + 0.25 * (dw + p1) + 0.5 * p1 + 0.25 * (p1 + p2) + 4.0 * p2 + 0.25 * (p2 + dw) + dw
+    by_hand = dw + 0.25 * (dw + p1) + 0.5 * p1 + 0.25 * (p1 + p2) + 4.0 * p2 + 0.25 * (p2 + dw) + dw
     keys = {k: v for k, v in BASE.items() if k != "free_length"}
     s = ValveSpring.from_dict(
         {

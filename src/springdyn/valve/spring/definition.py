@@ -23,9 +23,9 @@ from ...core.params import Parameters, describe_value, param
 from ...core.units import format_mm, format_quantity, to_si
 from . import formulas
 from .chains import make_model
-from .geometry import drawing_pitch_knots
+from .geometry import drawing_pitch_knots, end_allowance
 from .materials import MATERIALS, material
-from .solid_length import solid_length
+from .solid_length import en13906_solid_length, solid_length, solid_length_source
 from .stress import spring_strengths
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
@@ -255,9 +255,7 @@ class ValveSpring(Parameters):
             active_coils=self.active_coils,
             dead_coils_per_end=self.dead_coils,
             solid_length_m=self.solid_length,
-            solid_length_source=(
-                f"EN 13906-1, ends {self.end_type}" if self.end_type else "the MMS document, Dw (N1 + N2 + 0.5)"
-            ),
+            solid_length_source=solid_length_source(self),
             free_length_m=self.free_length,
         )
 
@@ -399,11 +397,11 @@ class ValveSpring(Parameters):
             raise InputError(
                 f"active coils at set-up N2 - Nb = {n2:g} - {nb:g} must be positive (high_pitch_coils > dead_coils)"
             )
-        lc = formulas.coil_contact_length(self.wire_diameter, n1, n2)
+        lc = self.solid_length
         if self.installed_length <= lc:
             raise InputError(
                 f"{self._field('installed_length')} is at or below coil contact: it must be longer than the "
-                f"solid length Lc = Dw (N1 + N2 + 0.5) = {format_mm(lc)}"
+                f"solid length Lc = {format_mm(lc)} ({self.coil_facts['solid_length_source']})"
             )
         return unlikely
 
@@ -548,7 +546,8 @@ def _pitches(m: dict) -> None:
     s, p = drawing_pitch_knots(
         n_total, nb, dw, n1, pitch["high_pitch" if two else "pitch"], pitch["low_pitch"] if two else None
     )
-    lf = 0.5 * dw + float(np.trapezoid(p, s))
+    lc = en13906_solid_length(dw, n_total, m["end_type"]) if m.get("end_type") else dw * (n_total + 0.5)
+    lf = end_allowance(lc, dw, n_total) + float(np.trapezoid(p, s))  # the geometry's a + int p ds
     if "free_length" in m:
         given_lf = _quantity(m, "free_length", "m")
         if abs(given_lf - lf) > 0.005 * given_lf:

@@ -482,21 +482,30 @@ def second_nonlinear_force(f1_force: float, pc: float, k3: float) -> float:
 
 
 @_DOCS.fill
-def coil_contact_force(k1: float, k2: float, lf: float, ls: float, dw: float, n1: float, n2: float) -> float:
-    """``Fcon = K1 (Lf - Ls) + K2 (Ls - Dw (N1 + N2 - 0.5))`` [N]: coil-contact force.
+def coil_contact_force(k1: float, k2: float, lf: float, ls: float, lc: float, dw: float) -> float:
+    """``Fcon = K1 (Lf - Ls) + K2 (Ls - (Lc - Dw))`` [N]: coil-contact force.
+
+    With the document's solid length ``Lc = Dw (N1 + N2 + 0.5)`` this is the printed
+    ``K1 (Lf - Ls) + K2 (Ls - Dw (N1 + N2 - 0.5))``: the document reaches Fcon one wire
+    diameter above its Lc.  springdyn anchors that length on the spring's one solid length
+    (:func:`springdyn.valve.spring.solid_length.solid_length`, EN 13906-1 by the end type), so
+    a drawing's spring keeps the document's offset without a second solid length.
 
     Parameters
     ----------
     k1, k2 : float
         Free- and set-up-length spring rates K1, K2 [N/m].
-    {lf ls dw n1_n2}
+    {lf ls}
+    lc : float
+        Solid length Lc [m].
+    {dw}
 
     Notes
     -----
     [MMS], "Nonlinear characteristics", Fcon; the ``-0.5`` is kept as printed
     (correction MMS-5 of docs/references.md).
     """
-    return k1 * (lf - ls) + k2 * (ls - dw * (n1 + n2 - 0.5))
+    return k1 * (lf - ls) + k2 * (ls - (lc - dw))
 
 
 @_DOCS.fill

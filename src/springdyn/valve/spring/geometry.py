@@ -3,9 +3,10 @@
 The wire position ``s`` counts turns from the seat end (0) to the retainer end
 (``N1 + N2``).  Pitch ``p(s)`` (axial advance per turn of the unloaded spring) and mean coil
 diameter ``D(s)`` are piecewise linear in ``s``.  The free length is
-``Lf = Dw/2 + int_0^N p(s) ds`` and the solid length the wire stack
-``Lc = Dw (N + 1/2)`` (ends closed and ground by a quarter wire each, which makes the
-wire stack equal to the document's ``Lc = Dw (N1 + N2 + 0.5)``).
+``Lf = a + int_0^N p(s) ds`` and the solid length the wire stack ``Lc = a + N Dw``, where
+the end allowance ``a`` (:func:`end_allowance`) makes ``Lc`` the spring's one solid length
+(:func:`springdyn.valve.spring.solid_length.solid_length`): ``a = Dw/2`` gives the
+document's ``Lc = Dw (N1 + N2 + 0.5)``, ``a = 0`` EN 13906-1's closed and ground ends.
 
 Default profiles (:func:`default_pitch_knots`) follow from the ``[spring]`` keys:
 
@@ -142,6 +143,12 @@ class CoilGeometry:
     pitch_v: np.ndarray  # pitch at the knots [m]
     diameter_s: np.ndarray  # knots [turns]
     diameter_v: np.ndarray  # mean diameter at the knots [m]
+    end_allowance: float | None = None  # a [m]: solid length minus N Dw (None: Dw/2)
+
+    @property
+    def allowance(self) -> float:
+        """End allowance ``a`` [m]: the solid length less the wire stack ``N Dw``."""
+        return 0.5 * self.wire_diameter if self.end_allowance is None else self.end_allowance
 
     @_DOCS.fill
     def pitch(self, s):
@@ -165,17 +172,44 @@ class CoilGeometry:
 
     @property
     def free_length(self) -> float:
-        """``Dw/2 + int p ds`` [m] (ends ground by a quarter wire each)."""
-        return 0.5 * self.wire_diameter + float(np.trapezoid(self.pitch_v, self.pitch_s))
+        """``a + int p ds`` [m] (``a``: :attr:`allowance`)."""
+        return self.allowance + float(np.trapezoid(self.pitch_v, self.pitch_s))
 
     @property
     def solid_length(self) -> float:
-        """Wire stack ``Dw (N + 1/2)`` [m]."""
-        return self.wire_diameter * (self.turns + 0.5)
+        """Wire stack ``a + N Dw`` [m]: the spring's solid length."""
+        return self.allowance + self.wire_diameter * self.turns
+
+
+def end_allowance(solid_length: float, wire_diameter: float, turns: float) -> float:
+    """End allowance ``a = Lc - N Dw`` [m]: what the ends add to (or grind off) the wire stack.
+
+    Parameters
+    ----------
+    solid_length : float
+        The spring's solid length Lc [m] (by its end type).
+    wire_diameter : float
+        Wire diameter Dw [m].
+    turns : float
+        Total turns N [-].
+
+    Examples
+    --------
+    >>> round(end_allowance(28e-3, 3.5e-3, 7.5) / 3.5e-3, 6)  # the document's Lc: half a wire
+    0.5
+    """
+    return solid_length - wire_diameter * turns
 
 
 def default_pitch_knots(
-    n_total: float, dead: float, dw: float, free_length: float, installed_length: float, low_pitch: float, field
+    n_total: float,
+    dead: float,
+    dw: float,
+    free_length: float,
+    installed_length: float,
+    low_pitch: float,
+    field,
+    allowance: float | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Knots (turns, pitch [m]) of the default pitch profile (see the module docstring).
 
@@ -193,10 +227,13 @@ def default_pitch_knots(
         N1 (0 for a one-step spring) [-].
     field : callable
         ``field(name)`` describes a ``[spring]`` key for messages.
+    allowance : float, optional
+        End allowance ``a`` [m] (:func:`end_allowance`; default ``Dw/2``, the document's).
     """
     active = n_total - 2 * dead
     tr = min(TRANSITION_TURNS, active / 4.0) if dead > 0 else 0.0
-    base = 0.5 * dw + 2 * dead * dw  # free length of the closed dead coils and the ground ends
+    a = 0.5 * dw if allowance is None else allowance
+    base = a + 2 * dead * dw  # free length of the closed dead coils and the ends
     if low_pitch <= 0:
         pa = (free_length - base - tr * dw) / (active - tr)
         if not pa > dw:
@@ -264,7 +301,7 @@ def drawing_pitch_knots(
     :func:`default_pitch_knots`); a two-step spring's ``N1 - Nb`` low-pitch active coils next
     to the seat's dead coil have the pitch ``low_pitch``, then a transition of the same length
     leads to the high-pitch coils' ``pitch``.  The free length is then
-    ``Dw/2 + int p ds`` (:attr:`CoilGeometry.free_length`).
+    ``a + int p ds`` (:attr:`CoilGeometry.free_length`).
 
     Parameters
     ----------

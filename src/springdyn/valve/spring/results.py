@@ -166,17 +166,19 @@ class SpringParameters:
         """The parameters as a table with their units and meaning, the coils, the load points."""
 
         sp = self.spring
+        model = sp.spring_model
         rows = []
         for key, value in self.parameters.items():
-            unit, display, doc = PARAMETER_UNITS[key]
-            rows.append((key, format_quantity(value, unit, display), doc))
+            unit, display, _ = PARAMETER_UNITS[key]
+            rows.append((key, format_quantity(value, unit, display), model.parameter_meaning(key)))
         lines = [
-            f"{sp.type} valve spring, {sp.spring_model.description}",
+            f"{sp.type} valve spring, {model.description}",
             f"coils: {sp.total_coils:g} total, {sp.active_coils:g} active ({sp.dead_coils:g} dead per end); "
-            f"solid length {sp.solid_length * 1e3:.3f} mm"
-            + (f" (EN 13906-1, ends {sp.end_type})" if sp.end_type else " (the MMS document's Dw (N1 + N2 + 0.5))")
+            f"solid length {sp.solid_length * 1e3:.3f} mm ({sp.coil_facts['solid_length_source']})"
             + f"; free length {sp.free_length * 1e3:.3f} mm"
             + (", pitch profile given" if sp.pitch_profile else ""),
+            f"first surge frequency {model.first_mode_installed:.1f} Hz at installed length "
+            f"({model.surge_frequency_definition}; every surge margin and check uses it)",
             text_table(rows, headers=("parameter", "value", "meaning")),
         ]
         if self.load_points:
@@ -268,6 +270,7 @@ class DesignFigures:
             f"coils: {fig['total_coils']:g} total, {fig['active_coils']:g} active ({fig['dead_coils_per_end']:g} dead "
             f"per end); solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm ({fig['solid_length_source']}); "
             f"spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g",
+            f"surge f1: {self.spring.spring_model.surge_frequency_definition}, at each state's length",
         ]
         rows = []
         for state in ("installed", "open", "coil_contact"):
@@ -291,7 +294,7 @@ class DesignFigures:
                     "length [mm]",
                     "force [N]",
                     "stress [MPa]",
-                    "surge [Hz]",
+                    "surge f1 [Hz]",
                     "surge margin" if self.cam_rpm is None else f"surge margin at {self.cam_rpm:g} cam rpm",
                 ),
             )

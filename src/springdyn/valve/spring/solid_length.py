@@ -15,7 +15,7 @@ from ...core.errors import InputError
 from ...core.units import format_mm
 from .formulas import coil_contact_length
 
-__all__ = ["min_sum_of_gaps", "en13906_solid_length", "solid_length", "check_coil_bind"]
+__all__ = ["min_sum_of_gaps", "en13906_solid_length", "solid_length", "solid_length_source", "check_coil_bind"]
 
 
 def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: float) -> float:
@@ -81,6 +81,18 @@ def solid_length(spring) -> float:
     return coil_contact_length(spring.wire_diameter, spring.low_pitch_coils, spring.high_pitch_coils)
 
 
+def solid_length_source(spring) -> str:
+    """Which definition :func:`solid_length` took for ``spring``, for every output that states it.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    """
+    if getattr(spring, "end_type", ""):
+        return f"EN 13906-1, ends {spring.end_type}"
+    return "the MMS document, Dw (N1 + N2 + 0.5)"
+
+
 def check_coil_bind(spring, lift: float, source: str) -> dict:
     """Coil-bind figures of the spring compressed by ``lift`` from its installed length.
 
@@ -116,7 +128,7 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
         raise InputError(
             f"{source} drives the spring past solid: installed_length {format_mm(spring.installed_length)} - lift "
             f"{format_mm(lift)} = {format_mm(open_length)} is {format_mm(-margin)} below the solid length "
-            f"Dw (N1 + N2 + 1/2) = {format_mm(lc)}; lengthen installed_length, reduce the lift, or set "
+            f"{format_mm(lc)} ({solid_length_source(spring)}); lengthen installed_length, reduce the lift, or set "
             "through_solid = true in [spring] to simulate through solid anyway"
         )
     if through:

@@ -85,6 +85,27 @@ class SpringModel:
     name = ""
     #: What the model is, for people.
     description = ""
+    #: The meaning of a parameter where this model's definition differs from
+    #: :data:`~springdyn.valve.spring.formulas.PARAMETER_UNITS`' (``{key: meaning}``).
+    PARAMETER_MEANINGS: dict = {}
+
+    def parameter_meaning(self, key: str) -> str:
+        """What the internal parameter ``key`` is in this model (its definition named).
+
+        Parameters
+        ----------
+        key : str
+            A key of :meth:`internal_parameters`.
+        """
+        from ..formulas import PARAMETER_UNITS  # (here: formulas sits beside the chains; kept out of import time)
+
+        return self.PARAMETER_MEANINGS.get(key, PARAMETER_UNITS[key][2])
+
+    @property
+    def surge_frequency_definition(self) -> str:
+        """The definition of the one first surge frequency every margin and check uses."""
+        return f"the {self.name} chain's first mode, ends fixed"
+
     #: The model is evaluated down to the length where the static force reaches this
     #: multiple of Fcon; beyond ``2 Fcon`` the coil-contact branch is already an
     #: extrapolation (correction MMS-9 of docs/references.md), beyond ``10 Fcon``

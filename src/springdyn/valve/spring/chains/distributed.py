@@ -48,6 +48,7 @@ from ..geometry import (
     CoilGeometry,
     check_profile_span,
     default_pitch_knots,
+    end_allowance,
     parse_profile,
     turn_compliance,
     wire_length_per_turn,
@@ -270,6 +271,12 @@ class DistributedModel(SpringModel):
 
     name = "distributed"
     description = "distributed coil-by-coil chain"
+    PARAMETER_MEANINGS = {
+        "f1": "the chain's first mode, ends fixed, free length",
+        "f2": "the chain's first mode, ends fixed, set-up length",
+        "f_continuum": "Wahl closed form of the active coils, free length (comparison)",
+        "Fcon": "force at which the last coil closes (solid)",
+    }
 
     def __init__(self, spring):
         super().__init__(spring)
@@ -293,6 +300,7 @@ class DistributedModel(SpringModel):
         """Pitch and diameter profiles (given, or the defaults from the ``[spring]`` keys)."""
         sp = self.spring
         n_total = sp.low_pitch_coils + sp.high_pitch_coils
+        allowance = end_allowance(sp.solid_length, sp.wire_diameter, n_total)  # Lc: the spring's one solid length
         if sp.pitch_profile:
             ps, pv = parse_profile(sp.pitch_profile, "pitch_profile", {"pitch_mm": 1e-3, "pitch_m": 1.0})
             check_profile_span(ps, n_total, "pitch_profile")
@@ -310,6 +318,7 @@ class DistributedModel(SpringModel):
                 sp.installed_length,
                 sp.low_pitch_coils if sp.two_step else 0.0,
                 sp._field,
+                allowance,
             )
         if sp.diameter_profile:
             ds, dv = parse_profile(sp.diameter_profile, "diameter_profile", {"diameter_mm": 1e-3, "diameter_m": 1.0})
@@ -318,16 +327,17 @@ class DistributedModel(SpringModel):
                 raise InputError("diameter_profile: the mean diameter must exceed the wire diameter everywhere")
         else:
             ds, dv = np.array([0.0, n_total]), np.full(2, sp.mean_diameter)
-        g = CoilGeometry(n_total, sp.dead_coils, sp.wire_diameter, ps, pv, ds, dv)
+        g = CoilGeometry(n_total, sp.dead_coils, sp.wire_diameter, ps, pv, ds, dv, allowance)
         if sp.pitch_profile and abs(g.free_length - sp.free_length) > 0.005 * sp.free_length:
             raise InputError(
-                f"pitch_profile gives the free length Dw/2 + int p ds = {format_quantity(g.free_length, 'm', 'mm')}, "
+                f"pitch_profile gives the free length a + int p ds = {format_quantity(g.free_length, 'm', 'mm')} "
+                f"(end allowance a = {format_quantity(allowance, 'm', 'mm')}), "
                 f"but {sp._field('free_length')}: they must agree within 0.5 %"
             )
         if not sp.installed_length > g.solid_length:
             raise InputError(
-                f"{sp._field('installed_length')} must exceed the solid length (wire stack) "
-                f"Dw (N1 + N2 + 1/2) = {format_quantity(g.solid_length, 'm', 'mm')}"
+                f"{sp._field('installed_length')} must exceed the solid length "
+                f"{format_quantity(g.solid_length, 'm', 'mm')} ({sp.coil_facts['solid_length_source']})"
             )
         return g
 

@@ -47,6 +47,11 @@ class TypeCModel(SpringModel):
 
     name = "type-c"
     description = "MMS Type C (5 masses, 6 elements)"
+    PARAMETER_MEANINGS = {
+        "f1": "Wahl closed form with n1', free length (calibrates the chain; comparison)",
+        "f2": "Wahl closed form with n2', set-up length (calibrates the chain; comparison)",
+        "Lc": "solid length (the spring's: F1 at Lc, Fcon at Lc - Dw as [MMS])",
+    }
 
     def __init__(self, spring):
         super().__init__(spring)
@@ -135,12 +140,12 @@ class TypeCModel(SpringModel):
         f2 = formulas.surge_frequency(g, rho, dw, do, na2 + n2p)
         m_total = formulas.total_mass(rho, do, dw, n1, n2)
         pc = formulas.coil_pitch(ls, dw, n1, n2)
-        lc = formulas.coil_contact_length(dw, n1, n2)
+        lc = self.spring.solid_length  # the spring's one solid length (the document's without end_type)
         fset = formulas.setup_force(lf, ls, k1)
         k3 = formulas.stiffened_rate(k2)
         f_1 = formulas.first_nonlinear_force(fset, ls, lc, pc, k2)
         f_2 = formulas.second_nonlinear_force(f_1, pc, k3)
-        fcon = formulas.coil_contact_force(k1, k2, lf, ls, dw, n1, n2)
+        fcon = formulas.coil_contact_force(k1, k2, lf, ls, lc, dw)
         if self.two_step:
             mv = formulas.twostep_model_variables(k, k1, k2, f1, f2, m_total)
         else:
