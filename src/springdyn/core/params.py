@@ -267,21 +267,71 @@ def check_fields(obj) -> None:
         _check_one(f.name, value, meta, plausible=getattr(type(obj), "plausible_ranges", True))
 
 
-def from_mapping(cls, mapping: Mapping[str, Any], *, section: str = "", source: str | None = None):
+#: A speed key of either shaft has its twin on the other: ``min_float_cam_rpm`` is also
+#: given as ``min_float_engine_rpm``, ``max_engine_rpm`` as ``max_cam_rpm``.
+SPEED_TWINS = ("cam_rpm", "engine_rpm")
+
+
+def speed_twin(name: str) -> str | None:
+    """The other shaft's name of a speed key (``"min_cam_rpm"`` -> ``"min_engine_rpm"``), or None.
+
+    Parameters
+    ----------
+    name : str
+        A key of a table.
+    """
+    cam, engine = SPEED_TWINS
+    if cam in name:
+        return name.replace(cam, engine)
+    if engine in name:
+        return name.replace(engine, cam)
+    return None
+
+
+def _resolve_speed_twins(specs, mapping: dict, where: str, cam_per_crank: float) -> dict:
+    """Read each given twin of a speed field into the field: an engine speed times
+    ``cam_per_crank`` (the camshaft's turns per crankshaft turn), a cam speed divided by it; a
+    field given both ways is an error naming both."""
+    out = dict(mapping)
+    for name, (_f, meta) in specs.items():
+        twin = speed_twin(name)
+        if twin is None or twin not in out or twin in specs:
+            continue
+        if name in out:
+            raise InputError(
+                f"{where}{name} = {out[name]!r} and {twin} = {out[twin]!r} give the same speed twice: give one of them"
+            )
+        value = _convert(twin, out.pop(twin), meta, where)  # SI, in the field's unit
+        factor = cam_per_crank if SPEED_TWINS[1] in twin else 1.0 / cam_per_crank
+        unit = meta.get("unit", "")
+        # the converted speed with its SI unit, read as given (a bare number would be rpm)
+        values = [f"{v * factor!r} {unit}" for v in (value if isinstance(value, list) else [value])]
+        out[name] = values if isinstance(value, list) else values[0]
+    return out
+
+
+def from_mapping(
+    cls, mapping: Mapping[str, Any], *, section: str = "", source: str | None = None, cam_per_crank: float = 0.5
+):
     """Build the parameter dataclass ``cls`` from a TOML table.
 
     Unknown keys, missing required keys, bad units and out-of-range values raise
-    :class:`~springdyn.core.errors.InputError` naming the file, the key and the value.
+    :class:`~springdyn.core.errors.InputError` naming the file, the key and the value.  A
+    speed field named with ``cam_rpm`` or ``engine_rpm`` also takes its twin on the other
+    shaft (:func:`speed_twin`), converted with ``cam_per_crank`` (0.5: a four-stroke engine's
+    camshaft turns once per two crankshaft turns).
     """
     where = f"{source}: " if source else ""
     prefix = f"[{section}] " if section else ""
     specs = {f.name: (f, meta) for f, meta in field_specs(cls)}
     if not isinstance(mapping, Mapping):
         raise InputError(f"{where}{prefix or 'the table'} must be a table of keys")
+    mapping = _resolve_speed_twins(specs, mapping, f"{where}{prefix}", cam_per_crank)
     unknown = [k for k in mapping if k not in specs]
     if unknown:
         k = unknown[0]
-        allowed = [*specs, *getattr(cls, "extra_keys", ())]  # with the keys the class reads into its own
+        twins = [t for t in map(speed_twin, specs) if t is not None and t not in specs]
+        allowed = [*specs, *getattr(cls, "extra_keys", ()), *twins]  # with the keys the class reads into its own
         close = difflib.get_close_matches(k, allowed, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
         raise InputError(f"{where}{prefix}unknown key {k!r}{hint}; allowed keys: {', '.join(allowed)}")
@@ -533,7 +583,11 @@ class Parameters:
         if not isinstance(mapping, Mapping):
             raise InputError(f"{source + ': ' if source else ''}[{cls.table}] must be a table of keys")
         return from_mapping(
-            cls, cls._prepare(dict(mapping), source=source, **context), section=cls.table, source=source
+            cls,
+            cls._prepare(dict(mapping), source=source, **context),
+            section=cls.table,
+            source=source,
+            cam_per_crank=context.get("cam_per_crank", 0.5),
         )
 
     @classmethod

@@ -643,15 +643,17 @@ class ValveModel:
         **changes
             Fields of :class:`RunSettings` to change for this search.
         """
-        return run_wing.float_speed(
-            self.spring,
-            self._need_cam("float_speed"),
-            self._need_train("float_speed"),
-            cam_rpm,
-            settings=RunSettings.of(self.settings, **changes),
-            resolution=resolution,
-            progress_quiet=quiet,
-            workers=workers,
+        return self._with_axis(
+            run_wing.float_speed(
+                self.spring,
+                self._need_cam("float_speed"),
+                self._need_train("float_speed"),
+                cam_rpm,
+                settings=RunSettings.of(self.settings, **changes),
+                resolution=resolution,
+                progress_quiet=quiet,
+                workers=workers,
+            )
         )
 
     def float_speed_above(self, rated_cam_rpm: float, margin: float = 0.0, *, resolution: float = 1.0):

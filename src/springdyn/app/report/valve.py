@@ -187,8 +187,10 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         if vt is None:
             raise InputError(f"{path}: [hla] needs a [valve_train] table in the same file")
         vt = vt.with_document_hla(doc, source=str(path))
-    settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path))
     timing = valve.Timing.from_dict(doc["timing"], source=str(path)) if "timing" in doc else None
+    # [report] speeds in engine rpm, or in cam rpm through [timing]'s strokes (four-stroke without it)
+    per_crank = 2.0 / timing.strokes if timing is not None else 0.5
+    settings = ReportSettings.from_dict(doc.get("report", {}), source=str(path), cam_per_crank=per_crank)
     follower = valve.Follower.from_dict(doc["follower"], source=str(path)) if "follower" in doc else None
     if "friction" in doc and follower is None:
         raise InputError(f"{path}: [friction] needs a [follower] table in the same file (the contact at the cam)")

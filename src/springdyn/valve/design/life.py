@@ -190,17 +190,23 @@ class ServiceLife(Result):
             new, old = s["float_cam_rpm_new"], s["float_cam_rpm_relaxed"]
 
             def fmt(v):
-                return "above the scan" if v is None else f"{v:.0f} cam rpm"
+                return "above the scan" if v is None else f"{2 * v:.0f} engine rpm ({v:.0f} cam rpm)"
 
             out.append(f"float speed: new {fmt(new)}, relaxed {fmt(old)}")
         cols = self.columns()
         out.append(
             text_table(
                 [
-                    (f"{r:.0f}", f"{p:.3g}", f"{g:.3f}", f"{d:.1%}")
+                    (f"{2 * r:.0f}", f"{r:.0f}", f"{p:.3g}", f"{g:.3f}", f"{d:.1%}")
                     for r, p, g, d in zip(cols["cam_rpm"], cols["share"], cols["goodman_safety"], cols["damage_share"])
                 ],
-                headers=("cam rpm", "time share", "Goodman (dynamic)", "share of the damage"),
+                headers=(
+                    "engine rpm (four-stroke)",
+                    "cam rpm",
+                    "time share",
+                    "Goodman (dynamic)",
+                    "share of the damage",
+                ),
             )
         )
         out.append(
@@ -257,7 +263,10 @@ class ServiceLife(Result):
         rpm = c.pop("cam_rpm")
         return xr.Dataset(
             {k: ("cam_rpm", v, {"units": "1"}) for k, v in c.items()},
-            coords={"cam_rpm": ("cam_rpm", rpm, {"units": "rpm"})},
+            coords={
+                "cam_rpm": ("cam_rpm", rpm, {"units": "rpm"}),
+                "engine_rpm": ("cam_rpm", 2.0 * rpm, {"units": "rpm", "long_name": "engine speed, four-stroke"}),
+            },
         )
 
     def _plot(self, ax=None):

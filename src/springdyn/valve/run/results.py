@@ -796,7 +796,7 @@ def _summarise(sim: Simulation) -> dict:
 
 
 @dataclass(repr=False)
-class FloatSpeedResult(Result):
+class FloatSpeedResult(CrankAngles, Result):
     """The float speed of a valve train: the lowest cam speed from which the valve
     separates over the nose at every higher scanned speed (:mod:`springdyn.valve.run.separation`).
 
@@ -827,7 +827,7 @@ class FloatSpeedResult(Result):
     def _summary(self) -> dict:
         s = dict(
             float_cam_rpm=self.float_cam_rpm,
-            float_engine_rpm=None if self.float_cam_rpm is None else 2.0 * self.float_cam_rpm,
+            float_engine_rpm=None if self.float_cam_rpm is None else self.engine_per_cam * self.float_cam_rpm,
             float_definition="the lowest speed from which the valve separates over the nose (the negative "
             "acceleration around the peak) at every higher scanned speed",
             resolution_rpm=self.resolution_rpm,
@@ -861,10 +861,17 @@ class FloatSpeedResult(Result):
             s["notes"] = notes
         return s
 
+    @property
+    def engine_per_cam(self) -> float:
+        """Engine turns per cam turn [-]: the crank axis's, else a four-stroke's 2."""
+        return 2.0 if self.crank_axis is None else float(self.crank_axis.per_cam)
+
     def table(self) -> str:
         """The scan as a table: per speed the minimum cam force, the first lift-off, float over
-        the nose, seat landings, rebound, the seating-velocity band and the periodicity."""
+        the nose, seat landings, rebound, the seating-velocity band and the periodicity (the
+        engine speed first when the result has a crank axis)."""
         sc = self.scan or {}
+        engine = self.crank_axis is not None
         rows = []
         for i, rpm in enumerate(self.cam_rpm):
             phase = sc["first_liftoff_phase"][i] or ("off the cam" if sc["liftoff"][i] else "-")
@@ -873,7 +880,8 @@ class FloatSpeedResult(Result):
                 f"{sc['seat_impact_velocity_max_m_per_s'][i]:.2f}"
             )
             rows.append(
-                (
+                (f"{self.engine_per_cam * rpm:g}",) * engine
+                + (
                     f"{rpm:g}",
                     f"{sc['min_cam_contact_force_N'][i]:.1f}",
                     phase,
@@ -886,7 +894,8 @@ class FloatSpeedResult(Result):
             )
         return text_table(
             rows,
-            headers=(
+            headers=("engine rpm",) * engine
+            + (
                 "cam rpm",
                 "min cam force [N]",
                 "first lift-off",
@@ -916,8 +925,9 @@ class FloatSpeedResult(Result):
         else:
             f = self.float_cam_rpm
             out.append(
-                f"float speed: {f:.0f} cam rpm ({2 * f:.0f} engine rpm, four-stroke), the valve separating over the "
-                "nose at every higher scanned speed"
+                f"float speed: {self.engine_per_cam * f:.0f} engine rpm ({f:.0f} cam rpm"
+                + (", four-stroke" if self.crank_axis is None else "")
+                + "), the valve separating over the nose at every higher scanned speed"
             )
         return "\n".join(out + notes_lines(s))
 
@@ -954,7 +964,14 @@ class FloatSpeedResult(Result):
             data[k] = ("cam_rpm", a.astype(np.int8) if a.dtype == bool else a, {"units": units_from_name(k)})
         return xr.Dataset(
             data,
-            coords={"cam_rpm": ("cam_rpm", np.asarray(self.cam_rpm, dtype=float), {"units": "rpm"})},
+            coords={
+                "cam_rpm": ("cam_rpm", np.asarray(self.cam_rpm, dtype=float), {"units": "rpm"}),
+                "engine_rpm": (
+                    "cam_rpm",
+                    self.engine_per_cam * np.asarray(self.cam_rpm, dtype=float),
+                    {"units": "rpm"},
+                ),
+            },
             attrs={"float_cam_rpm": "none" if self.float_cam_rpm is None else self.float_cam_rpm},
         )
 
