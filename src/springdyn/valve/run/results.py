@@ -201,7 +201,10 @@ class Simulation(CrankAngles, Result):
         if not s["coil_contact"]:
             out.append("no coil contact")
         if "clashing_coils" in s:
-            out.append("clashing coils (from the seat): " + (", ".join(map(str, s["clashing_coils"])) or "none"))
+            out.append(
+                "coils closing where the static spring is open (from the seat): "
+                + (", ".join(map(str, s["clashing_coils"])) or "none")
+            )
         out.append(_clash_text(s["coil_clash"]))
         for ev in s["end_separation"]:
             out.append(f"END SEPARATION at the {ev['end']} {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms)")
