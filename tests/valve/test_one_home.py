@@ -23,7 +23,7 @@ import springdyn.valve as valve
 from springdyn.valve.design import criteria
 from springdyn.valve.design import synthesis as syn
 from springdyn.valve.design.tolerances import ToleranceStudy
-from springdyn.valve.run import verdicts
+from springdyn.valve.run import studies, verdicts
 from springdyn.valve.spring import formulas, solid_length, stress
 from tests.paths import example
 
@@ -132,16 +132,56 @@ def test_the_wire_fatigue_rule_is_one_function_for_a_simulation_and_a_sweep(monk
 
 
 def test_the_float_and_clash_verdicts_have_one_home(monkeypatch):
-    """verdicts.floats_over_nose and verdicts.coil_clash made always true: a simulation, a sweep
-    and the float-speed search all see float and clash at every speed."""
+    """verdicts.floats_over_nose made always true and verdicts.coil_clash made to class every run
+    an active-coil clash of severity 0.37: a simulation, a sweep, the speed study, the
+    float-speed search and the criteria row all see float and that clash at every speed."""
     monkeypatch.setattr(verdicts, "floats_over_nose", lambda in_nose, nose, fc, z: np.ones(np.shape(fc)[:-1], bool))
-    monkeypatch.setattr(verdicts, "coil_clash", lambda model, contact, static: np.ones(np.shape(contact), bool))
+    rule = verdicts.coil_clash
+
+    def marked(model, compression, static, period, limit=None):
+        out = dict(rule(model, compression, static, period, limit))
+        shape = np.shape(out["severity"])
+        out.update(
+            severity=np.full(shape, 0.37)[()],
+            active=np.ones(shape, bool)[()],
+            transition=np.zeros(shape, bool)[()],
+            class_index=np.full(shape, 2)[()],
+            clash=np.ones(shape, bool)[()],
+        )
+        return out
+
+    monkeypatch.setattr(verdicts, "coil_clash", marked)
     s = valve.simulate(_fresh(), CAM, 1500.0, valve_train=TRAIN).summary
-    assert s["nose_separation"] and s["coil_clash"]["impacts"] >= 0
+    assert s["nose_separation"] and s["coil_clash"]["clash_class"] == "active" and s["coil_clash"]["clash"]
+    assert s["coil_clash"]["clash_severity"] == 0.37
     t = valve.sweep(_fresh(), CAM, SPEEDS, valve_train=TRAIN).summary_table()
-    assert np.all(t["nose_separation"]) and np.all(t["coil_clash"])
+    assert np.all(t["nose_separation"]) and np.all(t["coil_clash"]) and np.all(t["clash_severity"] == 0.37)
+    assert np.all(t["active_coil_closing"]) and not np.any(t["transition_seating"])
+    study = studies.speed_study(_fresh(), CAM, TRAIN, SPEEDS, resolution=100.0)
+    assert study["clash_onset_cam_rpm"] == SPEEDS[0] and study["max_clash_severity"] == 0.37
+    row = _verdict_row("coil_clash", t, _fresh().spring_model.design_figures(lift=CAM.lift, cam_rpm=2500.0))
+    assert row.passed is False and "37.0 %" in row.value
     res = valve.float_speed(_fresh(), CAM, TRAIN, SPEEDS, resolution=100.0)
     assert res.float_cam_rpm <= SPEEDS[0]
+
+
+def test_the_clash_limit_has_one_home(monkeypatch):
+    """verdicts.MAX_CLASH_SEVERITY at zero: a simulation and a sweep call the example's
+    dynamic closings clash, while [criteria] max_clash_severity judges the same severities in
+    the criteria row and the tolerance study."""
+    spring = _fresh().with_model("distributed")  # its transition coils seat at 2500 cam rpm, within the limit
+    a = valve.sweep(spring, CAM, [2500.0], valve_train=TRAIN).summary_table()
+    assert a["clash_severity"][0] > 0.0 and a["transition_seating"][0] and not a["coil_clash"][0]
+    monkeypatch.setattr(verdicts, "MAX_CLASH_SEVERITY", 0.0)
+    b = valve.sweep(spring, CAM, [2500.0], valve_train=TRAIN).summary_table()
+    assert b["coil_clash"][0] and b["clash_severity"][0] == a["clash_severity"][0]
+    assert valve.simulate(spring, CAM, 2500.0, valve_train=TRAIN).summary["coil_clash"]["clash"]
+    outputs = dict(max_clash_severity=[0.02, 0.2], goodman_safety=[2.0, 2.0], refused=[0, 0])
+    ds = xr.Dataset({k: ("variant", np.array(v, float)) for k, v in outputs.items()})
+    study = ToleranceStudy(
+        dataset=ds, criteria=criteria.Criteria(), nominal={}, speeds=np.array(SPEEDS), floats=False, float_only=False
+    )
+    np.testing.assert_array_equal(study.failures()["coil_clash"], [False, True])
 
 
 def test_the_pump_up_threshold_has_one_home(monkeypatch):
@@ -154,6 +194,23 @@ def test_the_pump_up_threshold_has_one_home(monkeypatch):
     assert s["hla"]["pump_up"]
     assert np.all(valve.sweep(_fresh(), cam, [1500.0], valve_train=vt).summary_table()["pump_up"])
     assert criteria.pump_up_verdict(0.0, 3000.0).passed is False
+
+
+def _verdict_row(name, table, design):
+    """The criteria row ``name`` of :func:`criteria.spring_verdicts` for a sweep table over SPEEDS."""
+    return next(
+        r
+        for r in criteria.spring_verdicts(
+            criteria.Criteria(),
+            design,
+            table,
+            SPEEDS,
+            model="type-c",
+            rated_cam_rpm=2500.0,
+            wire_limit=SPRING.strengths["shear_stress_limit_Pa"],
+        )
+        if r.name == name
+    )
 
 
 def test_a_criterion_has_one_rule_for_the_report_the_tolerance_study_and_the_synthesis(monkeypatch):
@@ -181,7 +238,7 @@ def test_a_criterion_has_one_rule_for_the_report_the_tolerance_study_and_the_syn
     ds = xr.Dataset(
         {
             k: ("variant", np.array(v, float))
-            for k, v in dict(goodman_safety=[2.0, 2.5], refused=[0, 0], clash_in_range=[0, 0]).items()
+            for k, v in dict(goodman_safety=[2.0, 2.5], refused=[0, 0], max_clash_severity=[0, 0]).items()
         }
     )
     study = ToleranceStudy(

@@ -33,8 +33,8 @@ def test_the_margin_of_each_sense_is_its_definition():
     assert margin("min_retainer_force", 50.0, 200.0) == pytest.approx(0.25, rel=1e-15)
     assert margin("spring_index", 6.0, (4.0, 16.0)) == pytest.approx((6.0 - 4.0) / 4.0, rel=1e-15)
     assert margin("spring_index", 15.0, (4.0, 16.0)) == pytest.approx((16.0 - 15.0) / 4.0, rel=1e-15)
-    assert margin("coil_clash", True, None) == -1.0
-    assert margin("coil_clash", False, None) == 0.0
+    # coil clash: its severity [fraction of Fset] at most the limit
+    assert margin("coil_clash", 0.05, 0.1) == pytest.approx(0.5, rel=1e-15)
 
 
 def test_a_limit_met_exactly_passes_and_one_missed_by_a_hair_fails():
@@ -45,7 +45,8 @@ def test_a_limit_met_exactly_passes_and_one_missed_by_a_hair_fails():
     # "above zero": a retainer force of exactly 0 N is the spring leaving its retainer
     assert not passes("min_retainer_force", 0.0, 200.0)
     assert passes("min_retainer_force", 1e-9, 200.0)
-    assert not passes("coil_clash", True, None)
+    assert passes("coil_clash", 0.1, 0.1)
+    assert not passes("coil_clash", np.nextafter(0.1, 1.0), 0.1)
 
 
 def test_margins_and_verdicts_work_on_arrays_element_by_element():

@@ -55,6 +55,7 @@ class ReportSettings(Parameters):
     float_margin: float = param_like(design.Criteria, "float_margin", "the [criteria] key")
     min_goodman_safety: float = param_like(design.Criteria, "min_goodman_safety", "the [criteria] key")
     max_seating_velocity: float = param_like(design.Criteria, "max_seating_velocity", "the [criteria] key")
+    max_clash_severity: float = param_like(design.Criteria, "max_clash_severity", "the [criteria] key")
 
     run_up_rate: float = param(
         "1/s^2",
@@ -117,6 +118,7 @@ class ReportSettings(Parameters):
             min_surge_margin=self.min_surge_margin,
             float_margin=self.float_margin,
             max_seating_velocity=self.max_seating_velocity,
+            max_clash_severity=self.max_clash_severity,
         )
 
     def cam_rpm(self, engine_rad_s: float) -> float:

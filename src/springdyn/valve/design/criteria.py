@@ -5,8 +5,8 @@ of variants failing each criterion) and the synthesis (each candidate's margins)
 judge through this module:
 
 - :class:`Criteria` is the ``[criteria]`` table: every limit with its default (the report's
-  ``[report]`` keys ``min_surge_margin``, ``float_margin``, ``min_goodman_safety`` and
-  ``max_seating_velocity`` are the same limits);
+  ``[report]`` keys ``min_surge_margin``, ``float_margin``, ``min_goodman_safety``,
+  ``max_seating_velocity`` and ``max_clash_severity`` are the same limits);
 - :data:`RULES` names each criterion once: what it judges, how (its sense), its label;
 - :func:`margin` is the one measure of how far a value is inside its limit (a fraction,
   ``>= 0`` where met), and :func:`passes` its verdict;
@@ -41,6 +41,7 @@ __all__ = [
     "MIN_SURGE_MARGIN",
     "FLOAT_MARGIN",
     "MAX_SEATING_VELOCITY",
+    "MAX_CLASH_SEVERITY",
     "JUDGING_MODEL",
     "spring_verdicts",
     "float_verdict",
@@ -57,6 +58,8 @@ FLOAT_MARGIN = 0.1
 #: Largest seat impact velocity of the valve up to the top speed [m/s] (a common design limit of
 #: passenger-car valve trains is about 0.5 m/s).
 MAX_SEATING_VELOCITY = 0.5
+#: Largest clash severity [fraction of Fset] (:data:`springdyn.valve.run.verdicts.MAX_CLASH_SEVERITY`, its home).
+MAX_CLASH_SEVERITY = verdicts.MAX_CLASH_SEVERITY
 #: The spring model whose runs judge the criteria where it runs the spring: the distributed
 #: chain (converged in its elements, every surge mode, coils closing turn by turn).
 JUDGING_MODEL = "distributed"
@@ -102,7 +105,13 @@ RULES = {
             None,
             "installed length - cam lift - solid length against the coil-bind clearance",
         ),
-        Rule("coil_clash", "coil clash", "none", "no_coil_clash", "coils close where the static spring is open"),
+        Rule(
+            "coil_clash",
+            "coil clash",
+            "<=",
+            "max_clash_severity",
+            "the force coils closing where the static spring is open pass through their contact, over Fset",
+        ),
         Rule(
             "min_retainer_force",
             "minimum retainer force (dynamic)",
@@ -285,7 +294,16 @@ class Criteria(Parameters):
         positive=True,
         default=MAX_SEATING_VELOCITY,
     )
-    no_coil_clash: bool = param(None, "no coil clash within the speed range", kind="bool", default=True)
+    no_coil_clash: bool = param(
+        None, "no coil clash within the speed range (a severity above max_clash_severity)", kind="bool", default=True
+    )
+    max_clash_severity: float = param(
+        "",
+        "largest clash severity: the force coils closing where the static spring is open pass through their "
+        "contact, a fraction of Fset (e.g. '10 %'; transition coils seating pass a few per cent)",
+        positive=True,
+        default=MAX_CLASH_SEVERITY,
+    )
     max_retainer_force: float = param(
         "N", "largest retainer force over the speeds (optional)", positive=True, default=None
     )
@@ -453,24 +471,34 @@ def spring_verdicts(
             )
         )
 
-    def clash_text(t):
-        c = np.asarray(t["coil_clash"], bool)
-        return f"{int(c.sum())} of {c.size} speeds" + (f" from {speeds[c][0]:.0f} cam rpm" if c.any() else "")
+    limit = criteria.max_clash_severity
 
-    clash = np.asarray(table["coil_clash"], bool)
+    def clash_text(t):
+        sev = np.asarray(t["clash_severity"], dtype=float)
+        k = int(np.argmax(sev))
+        over = sev > limit
+        seat, act = (int(np.count_nonzero(t[c])) for c in ("transition_seating", "active_coil_closing"))
+        return (
+            f"largest severity {100 * sev[k]:.1f} % of Fset at {speeds[k]:.0f} cam rpm; above the limit at "
+            f"{int(over.sum())} of {sev.size} speeds"
+            + (f" from {speeds[over][0]:.0f} cam rpm" if over.any() else "")
+            + f" (transition coils seat at {seat}, active coils close at {act})"
+        )
+
+    sev = np.asarray(table["clash_severity"], dtype=float)
     out.append(
         verdict(
             "coil_clash",
-            bool(clash.any()) if criteria.no_coil_clash else False,
-            None,
+            float(np.max(sev)) if criteria.no_coil_clash else 0.0,
+            limit,
             label=f"coil clash, {rng}",
             value_text=clash_text(table),
-            limit_text="none",
-            note=(
-                "coils close where the static spring at the same lift is open"
-                if clash.any()
-                else "no coil closes beyond what the static spring closes at the same lift"
-            )
+            limit_text=f"<= {100 * limit:g} % of Fset ([criteria] max_clash_severity)"
+            if criteria.no_coil_clash
+            else "not judged ([criteria] no_coil_clash = false)",
+            note=RULES["coil_clash"].definition
+            + "; transition coils seating earlier than the static spring pass a few per cent, surge-driven impacts "
+            "of the active coils more"
             + other(clash_text(beside) if beside is not None else "")
             + (f"; {design['coil_contact_note']}" if "coil_contact_note" in design else ""),
             model=name,

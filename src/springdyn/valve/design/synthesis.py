@@ -822,8 +822,10 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
             row["margin_goodman_dynamic"] = criteria.margin(
                 "goodman", row["dynamic_goodman_safety"], req.min_goodman_safety
             )
+            # coil clash: a severity above the default limit (verdicts.coil_clash, the sweep's column)
             clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
             row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
+            row["max_clash_severity"] = float(np.max(t["clash_severity"]))
             if vt is not None:
                 need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
                 scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)

@@ -108,6 +108,7 @@ OUTPUTS = {
     "float_cam_rpm": "rpm",
     "max_retainer_force": "N",
     "clash_onset_cam_rpm": "rpm",
+    "max_clash_severity": "1",
     "goodman_safety": "1",
     "float_in_range": "1",
     "clash_in_range": "1",
@@ -118,7 +119,15 @@ OUTPUTS = {
 #: The outputs of a float-speed study (``float_only``): the statics and the float speed.
 FLOAT_OUTPUTS = ("Fset", "f1", "float_cam_rpm", "float_in_range", "refused", "periodicity", "simulations")
 #: The outputs that are figures (percentiles and histograms); the others are flags.
-FIGURES = ("Fset", "f1", "float_cam_rpm", "max_retainer_force", "clash_onset_cam_rpm", "goodman_safety")
+FIGURES = (
+    "Fset",
+    "f1",
+    "float_cam_rpm",
+    "max_retainer_force",
+    "clash_onset_cam_rpm",
+    "max_clash_severity",
+    "goodman_safety",
+)
 #: Percentiles reported of every output [%].
 PERCENTILES = (0.135, 2.5, 50.0, 97.5, 99.865)
 #: Variants per chunk on disk (a killed run loses at most one chunk's work; the chunks run
@@ -334,12 +343,19 @@ def variant(spring, cam, valve_train, values: dict):
 
 
 def run_variant(
-    spring, cam, valve_train, speeds, rated_rpm: float | None = None, resolution: float = FLOAT_RESOLUTION
+    spring,
+    cam,
+    valve_train,
+    speeds,
+    rated_rpm: float | None = None,
+    resolution: float = FLOAT_RESOLUTION,
+    max_clash_severity: float | None = None,
 ) -> dict:
     """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]: its statics and
     its speed study (:func:`springdyn.valve.run.studies.speed_study`: the float speed to
     ``resolution``, the smallest Goodman safety and the largest retainer force up to
-    ``rated_rpm``, refined around the worst speeds, the clash onset).
+    ``rated_rpm``, refined around the worst speeds, the clash onset above ``max_clash_severity``
+    and the largest clash severity).
 
     Parameters
     ----------
@@ -353,9 +369,12 @@ def run_variant(
         valve may float and the spring is not loaded in service).
     resolution : float
         Width of the float speed's final bracket [rev/min].
+    max_clash_severity : float, optional
+        Largest clash severity that is no clash [fraction of Fset] (``[criteria]``; default the run's,
+        :data:`springdyn.valve.run.verdicts.MAX_CLASH_SEVERITY`).
     """
     top = float(np.max(speeds))
-    r = run.speed_study(spring, cam, valve_train, speeds, rated_rpm, resolution)
+    r = run.speed_study(spring, cam, valve_train, speeds, rated_rpm, resolution, max_clash_severity)
     p = spring.spring_model.internal_parameters()
     return dict(
         Fset=float(p["Fset"]),
@@ -363,6 +382,7 @@ def run_variant(
         float_cam_rpm=top if r["float_cam_rpm"] is None else r["float_cam_rpm"],
         max_retainer_force=r["max_retainer_force"],
         clash_onset_cam_rpm=top if r["clash_onset_cam_rpm"] is None else r["clash_onset_cam_rpm"],
+        max_clash_severity=r["max_clash_severity"],
         goodman_safety=r["goodman_safety"],
         float_in_range=float(r["float_cam_rpm"] is not None),
         clash_in_range=float(r["clash_onset_cam_rpm"] is not None),
@@ -423,7 +443,7 @@ def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict) -> di
                 if plan.get("guess") is not None:
                     r = run_variant_float(sp, c, vt, speeds, plan["guess"], plan["resolution"])
                 else:
-                    r = run_variant(sp, c, vt, speeds, plan["rated"], plan["resolution"])
+                    r = run_variant(sp, c, vt, speeds, plan["rated"], plan["resolution"], plan["clash_limit"])
         except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
             r = dict({k: 0.0 for k in names}, refused=1.0)
         for k in names:
@@ -501,7 +521,7 @@ def tolerance_study(
     # in service up to the float speed the criteria ask for: the Goodman safety and the peak
     # force are judged there (above it the valve may float)
     rated = None if criteria.min_float_cam_rpm is None else omega_to_rpm(criteria.min_float_cam_rpm)
-    plan = dict(rated=rated, resolution=float(resolution), guess=None)
+    plan = dict(rated=rated, resolution=float(resolution), guess=None, clash_limit=criteria.max_clash_severity)
     if float_only:
         # the nominal's float speed from a scan of the range (the definition), then by the
         # variants' search from there: its float speed starts every search
@@ -512,7 +532,9 @@ def tolerance_study(
         nominal_out["float_cam_rpm_scan"] = scanned
         plan["guess"] = nominal_out["float_cam_rpm"]
     names = FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)
-    key = _key(tolerances, count, seed, method, speeds, float(resolution), bool(float_only))
+    key = _key(
+        tolerances, count, seed, method, speeds, float(resolution), bool(float_only), criteria.max_clash_severity
+    )
     key += "" if (rated is None or float_only) else f"r{rated:.0f}"
     chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
     if chunk_dir is not None:
@@ -576,7 +598,9 @@ def tolerance_study(
         ),
     )
     if not float_only:
-        nominal_out = run_variant(spring, cam, valve_train, speeds, rated, float(resolution))
+        nominal_out = run_variant(
+            spring, cam, valve_train, speeds, rated, float(resolution), criteria.max_clash_severity
+        )
     study = ToleranceStudy(
         dataset=ds,
         criteria=criteria,
@@ -629,7 +653,9 @@ class ToleranceStudy(Result):
                 (ds["float_in_range"].values > 0.5) & ~criteria.passes("float_speed", f, need)
             )
         if c.no_coil_clash and not self.float_only:
-            out["coil_clash"] = refused | ~criteria.passes("coil_clash", ds["clash_in_range"].values > 0.5, None)
+            out["coil_clash"] = refused | ~criteria.passes(
+                "coil_clash", ds["max_clash_severity"].values, c.max_clash_severity
+            )
         if c.max_retainer_force is not None and not self.float_only:
             out["retainer_force"] = refused | ~criteria.passes(
                 "max_retainer_force", ds["max_retainer_force"].values, c.max_retainer_force

@@ -192,18 +192,20 @@ class Simulation(CrankAngles, Result):
             out.append(
                 f"coil contact {angles(ev)} in {where} (element number:name from the "
                 f"seat), peak element force {ev['peak_contact_force_N']:.1f} N"
-                + (", a clash" if ev.get("clash") else "")
+                + (
+                    f", closing where the static spring is open (severity {100 * ev['clash_severity']:.1f} % of Fset)"
+                    if ev.get("dynamic_closing")
+                    else ""
+                )
             )
         if not s["coil_contact"]:
             out.append("no coil contact")
         if "clashing_coils" in s:
-            out.append("clashing coils (from the seat): " + (", ".join(map(str, s["clashing_coils"])) or "none"))
-        cc = s["coil_clash"]
-        if cc["impacts"]:
             out.append(
-                f"coil clash: {cc['impacts']} impacts over {cc['duration_deg']:.1f} cam degrees, up to "
-                f"{cc['peak_force_through_contact_N']:.1f} N through the closed coils' contact"
+                "coils closing where the static spring is open (from the seat): "
+                + (", ".join(map(str, s["clashing_coils"])) or "none")
             )
+        out.append(_clash_text(s["coil_clash"]))
         for ev in s["end_separation"]:
             out.append(f"END SEPARATION at the {ev['end']} {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms)")
         if vt is not None:
@@ -999,13 +1001,17 @@ class FloatSpeedResult(CrankAngles, Result):
 
 
 def _clash_impacts(sim, events: list) -> dict:
-    """Coil clash as impacts, apart from the wire's stress: each coil-contact event gets the
-    largest force its closed coils pass through their contact and whether it is a clash
-    (:meth:`SpringModel.clash`); the summary counts the clash events, their total duration
-    and their peak force through contact."""
+    """Coil clash, classed and graded (:func:`springdyn.valve.run.verdicts.coil_clash`), apart
+    from the wire's stress: each coil-contact event gets the largest force its closed coils pass
+    through their contact, whether coils close in it where the static spring is open
+    (``dynamic_closing``) and with what severity; the summary gives the revolution's class,
+    severity, closing velocity and contact share, the verdict against the limit, and counts the
+    dynamic closings, their total duration and their peak force through contact."""
     model = sim.spring.spring_model
     share = np.nan_to_num(sim.contact_share)
-    clash = verdicts.coil_clash(model, sim.element_contact, sim.static_force)
+    cc = verdicts.coil_clash(model, sim.element_compression, sim.static_force, 60.0 / sim.cam_rpm)
+    closing = cc["closing"]
+    fset = model.chain.setup_force
     deg = sim.cam_angle_deg
     index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
     count, duration, peak = 0, 0.0, 0.0
@@ -1013,12 +1019,51 @@ def _clash_impacts(sim, events: list) -> dict:
         rows = [index[e] for e in ev["elements"]]
         mask = _angle_mask(deg, ev["start_deg"], ev["end_deg"])
         ev["peak_force_through_contact_N"] = float(share[np.ix_(rows, mask)].max()) if mask.any() else 0.0
-        ev["clash"] = bool(clash[np.ix_(rows, mask)].any()) if mask.any() else False
-        if ev["clash"]:
+        block = np.ix_(rows, mask)
+        ev["dynamic_closing"] = bool(closing[block].any()) if mask.any() else False
+        ev["clash_severity"] = float(np.where(closing[block], share[block], 0.0).max()) / fset if mask.any() else 0.0
+        ev["clash"] = ev["clash_severity"] > verdicts.MAX_CLASH_SEVERITY
+        if ev["dynamic_closing"]:
             count += 1
             duration += ev["duration_deg"]
-            peak = max(peak, ev["peak_force_through_contact_N"])
-    return dict(impacts=count, duration_deg=duration, peak_force_through_contact_N=peak)
+            peak = max(peak, ev["clash_severity"] * fset)
+    return dict(
+        clash_class=verdicts.CLASH_CLASSES[int(cc["class_index"])],
+        clash_severity=float(cc["severity"]),
+        clash_severity_limit=verdicts.MAX_CLASH_SEVERITY,
+        clash=bool(cc["clash"]),
+        closing_velocity_m_per_s=float(cc["closing_velocity_m_per_s"]),
+        contact_share=float(cc["contact_share"]),
+        impacts=count,
+        duration_deg=duration,
+        peak_force_through_contact_N=peak,
+    )
+
+
+def _clash_text(cc: dict) -> str:
+    """A revolution's coil clash in words (the ``coil_clash`` entry of a simulation's summary):
+    its class and severity against the limit, ``FAIL`` above it.
+
+    Parameters
+    ----------
+    cc : dict
+        ``summary["coil_clash"]`` [-].
+    """
+    sev, limit = 100 * cc["clash_severity"], 100 * cc["clash_severity_limit"]
+    if cc["clash_class"] == "none":
+        return "coil clash: none (no coil closes where the static spring is open)"
+    what = {
+        "transition": ("transition coils seat", "transition coils clash"),
+        "active": ("active coils touch", "active-coil clash"),
+    }
+    name = what[cc["clash_class"]][int(cc["clash"])]
+    return (
+        f"{name} (severity {sev:.1f} % of Fset through the contact, "
+        + (f"above the {limit:g} % limit): FAIL" if cc["clash"] else f"within the {limit:g} % limit)")
+        + f"; closing at {cc['closing_velocity_m_per_s']:.3f} m/s, {100 * cc['contact_share']:.1f} % of the "
+        f"element's force through the contact; {cc['impacts']} closing event{'s' if cc['impacts'] != 1 else ''} over "
+        f"{cc['duration_deg']:.1f} cam degrees"
+    )
 
 
 def _durability(sim, s: dict, notes: list) -> dict:

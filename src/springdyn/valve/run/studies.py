@@ -16,6 +16,7 @@ import warnings
 
 import numpy as np
 
+from . import verdicts
 from .float_search import FLOAT_RESOLUTION, float_speed_near
 from .separation import float_speed_of_scan
 from .setup import prepare
@@ -30,11 +31,18 @@ REFINEMENTS = 2
 
 
 def speed_study(
-    spring, cam, valve_train, speeds, rated_rpm: float | None = None, resolution: float = FLOAT_RESOLUTION
+    spring,
+    cam,
+    valve_train,
+    speeds,
+    rated_rpm: float | None = None,
+    resolution: float = FLOAT_RESOLUTION,
+    max_clash_severity: float | None = None,
 ) -> dict:
     """A design over its speeds [rev/min]: the float speed to ``resolution``, the smallest
     Goodman safety and the largest retainer force up to ``rated_rpm`` (default: all), the lowest
-    speed with coil clash.
+    speed with coil clash (a severity above ``max_clash_severity``,
+    :func:`springdyn.valve.run.verdicts.coil_clash`) and the largest severity.
 
     The speeds are swept (:func:`springdyn.valve.sweep`); the float speed, the lowest swept
     speed from which the valve leaves the cam over the nose at every higher one, is then
@@ -59,12 +67,16 @@ def speed_study(
         not loaded in service).
     resolution : float
         Width of the float speed's final bracket [rev/min].
+    max_clash_severity : float, optional
+        Largest clash severity that is no clash [fraction of Fset] (default
+        :data:`springdyn.valve.run.verdicts.MAX_CLASH_SEVERITY`).
 
     Returns
     -------
     dict
         ``float_cam_rpm`` (None: no float within the speeds) [rev/min], ``max_retainer_force``
         [N], ``goodman_safety`` [-], ``clash_onset_cam_rpm`` (None: no clash) [rev/min],
+        ``max_clash_severity`` (the largest over the swept speeds) [fraction of Fset],
         ``periodicity`` (the largest residual of any speed run [fraction of Fset]) and
         ``simulations`` (the speeds run).
     """
@@ -73,7 +85,8 @@ def speed_study(
         sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1)
     t = sw.summary_table()
     rpm = np.asarray(t["cam_rpm"], dtype=float)
-    clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
+    severity = np.asarray(t["clash_severity"], dtype=float)
+    clash = np.flatnonzero(verdicts.clashes(severity, max_clash_severity))
     f = float_speed_of_scan(rpm, t["nose_separation"]) if valve_train is not None else None
     periodicity = float(np.max(np.asarray(t["periodicity_error"], dtype=float)))
     k = -1 if f is None else int(np.flatnonzero(rpm == f)[0])
@@ -121,6 +134,7 @@ def speed_study(
         max_retainer_force=max(v[1] for v in worst.values()),
         goodman_safety=min(v[0] for v in worst.values()),
         clash_onset_cam_rpm=float(rpm[clash[0]]) if clash.size else None,
+        max_clash_severity=float(np.max(severity)),
         periodicity=periodicity,
         simulations=runs,
     )

@@ -80,8 +80,12 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
     -------
     dict
         Arrays with a leading speed dimension: ``retainer``, ``seat``, ``contact`` (any
-        element past its coil-contact compression), ``clash`` (such an element where the
-        static spring at the same lift has it open, :meth:`SpringModel.clash`), ``contact_force`` (largest force of
+        element past its coil-contact compression), ``closing`` (such an element where the
+        static spring at the same lift has it open, :meth:`SpringModel.clash`), ``clash`` (a
+        severity above :data:`~springdyn.valve.run.verdicts.MAX_CLASH_SEVERITY`),
+        ``clash_severity``, ``clash_contact_share``, ``clash_closing_velocity_m_per_s``,
+        ``clash_transition``, ``clash_active`` (:func:`springdyn.valve.run.verdicts.coil_clash`),
+        ``contact_force`` (largest force of
         such an element), ``wire_min``, ``wire_max`` (each element's wire torsion as an
         axial force, :meth:`SpringModel.wire_forces`, NaN for no wire), ``periodicity`` (the largest change of the seat, retainer,
         cam-contact and valve-seat forces from the revolution before, / Fset),
@@ -131,8 +135,34 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         out["static"] = static
     else:
         static = np.broadcast_to(static_force_along_grid(setup, points), out["retainer"].shape)
-    out["clash"] = verdicts.coil_clash(model, np.moveaxis(contact, -1, 0), static).any(axis=0)
+    cc = verdicts.coil_clash(model, np.moveaxis(ex[:, last, lay["compression"]], -1, 0), static, 60.0 / cam_rpm)
+    out["closing"] = cc["closing"].any(axis=(0, 2))
+    for key in ("severity", "contact_share", "closing_velocity_m_per_s", "transition", "active", "clash"):
+        out[f"clash_{key}" if key != "clash" else "clash"] = np.asarray(cc[key])
     return out
+
+
+def _clash_line(table: dict, speed) -> str:
+    """The sweep's coil clash in words: the speeds whose coils close where the static spring is
+    open, by class (transition-coil seating, active coils), the largest severity against its
+    limit, and the speeds that clash (:func:`springdyn.valve.run.verdicts.coil_clash`)."""
+    limit = verdicts.MAX_CLASH_SEVERITY
+    sev = np.asarray(table["clash_severity"], dtype=float)
+    n = sev.size
+    seat, active = (np.asarray(table[k], bool) for k in ("transition_seating", "active_coil_closing"))
+    clash = np.asarray(table["coil_clash"], bool)
+    if not (seat.any() or active.any()):
+        return f"coil clash: none (no coil closes where the static spring is open, {n} runs)"
+    k = int(np.argmax(sev))
+    text = (
+        f"coils close where the static spring is open: transition coils seat at {int(seat.sum())} of {n} runs, "
+        f"active coils at {int(active.sum())}; largest severity {100 * sev[k]:.1f} % of Fset at "
+        f"{speed(table['cam_rpm'][k])} (force through contact / Fset, limit {100 * limit:g} %)"
+    )
+    if clash.any():
+        first = float(np.min(np.asarray(table["cam_rpm"])[clash]))
+        return text + f"; COIL CLASH (severity above the limit) at {int(clash.sum())} runs, from {speed(first)}"
+    return text + "; no coil clash (every severity within the limit)"
 
 
 #: Lift-offs kept per speed of a sweep (rows of ``data["liftoff"]``; more are counted).
@@ -300,6 +330,10 @@ class SpeedSweep(CrankAngles, Result):
             max_retainer_surge_amplitude_N=float(np.max(t["retainer_surge_amplitude_N"])),
             speeds_with_coil_contact=int(np.count_nonzero(t["coil_contact"])),
             speeds_with_coil_clash=int(np.count_nonzero(t["coil_clash"])),
+            speeds_with_transition_seating=int(np.count_nonzero(t["transition_seating"])),
+            speeds_with_active_coil_closing=int(np.count_nonzero(t["active_coil_closing"])),
+            max_clash_severity=float(np.max(t["clash_severity"])),
+            clash_severity_limit=verdicts.MAX_CLASH_SEVERITY,
             skipped_design_values=len(self.skipped),
         )
         s["max_periodicity_error"] = float(np.max(t["periodicity_error"])) if "periodicity_error" in t else None
@@ -368,9 +402,9 @@ class SpeedSweep(CrankAngles, Result):
         out.append(
             f"peak retainer force {table['max_retainer_force_N'][k]:.1f} N at {speed(table['cam_rpm'][k])} "
             f"(static peak {table['max_static_force_N'][k]:.1f} N); coil contact at "
-            f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs, coil clash at "
-            f"{int(np.sum(table['coil_clash']))}"
+            f"{int(np.sum(table['coil_contact']))} of {table['cam_rpm'].size} runs"
         )
+        out.append(_clash_line(table, speed))
         out.append(
             f"periodic steady state: {table['cam_rpm'].size - sm['speeds_not_periodic']} of {table['cam_rpm'].size} "
             f"runs settled within {100 * self.periodicity_tol:g} % of Fset ({np.mean(table['revolutions']):.1f} "
@@ -444,7 +478,12 @@ class SpeedSweep(CrankAngles, Result):
             retainer_surge_amplitude_N=np.abs(r - st).max(axis=1),
             seat_surge_amplitude_N=np.abs(s - st).max(axis=1),
             coil_contact=flat(d["contact"]).any(axis=1),
-            coil_clash=flat(d["clash"]).any(axis=1),
+            coil_clash=flat(d["clash"]),
+            clash_severity=flat(d["clash_severity"]),
+            transition_seating=flat(d["clash_transition"]),
+            active_coil_closing=flat(d["clash_active"]),
+            clash_closing_velocity_m_per_s=flat(d["clash_closing_velocity_m_per_s"]),
+            clash_contact_share=flat(d["clash_contact_share"]),
             end_separation=flat(d["separation"]) > 0,
             peak_coil_contact_force_N=flat(d["contact_force"]).max(axis=1),
         )
