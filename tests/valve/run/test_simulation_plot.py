@@ -1,10 +1,11 @@
-"""The simulation figure a user can read (issue 39): the distributed model's 51 masses get a
+"""Figures a user can read (issue 39): the distributed model's 51 masses get a
 colour bar of their position along the wire and a legend naming the two end masses only;
 Type C's 5 masses keep their legend."""
 
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
+import numpy as np
 import pytest
 
 import springdyn.valve as valve
@@ -47,5 +48,27 @@ def test_type_c_masses_keep_their_legend(cam):
         labels = [t.get_text() for t in _mass_panel(fig).get_legend().get_texts()]
         assert labels == [f"mass {i + 1} ({n})" for i, n in enumerate(sim.spring.spring_model.chain.mass_names)]
         assert len(labels) == 5
+    finally:
+        plt.close(fig)
+
+
+def test_run_up_figure_shows_what_changes_through_the_ramp(cam, tmp_path):
+    """The run-up figure (the report's run-up panel): the least cam contact force falls with
+    speed, the retainer force's range beside it, and the ramp's float onset marked."""
+    from springdyn.valve import ValveModel, ValveTrain
+
+    model = ValveModel(ValveSpring.example("one-step"), cam, ValveTrain.example())
+    ramp = model.run_up_through_float(2114.0, 3000.0)  # this train floats from 2114 cam rpm on
+    assert ramp.steady_float_cam_rpm == 2114.0  # known to the study: its figure marks it
+    t = ramp.revolutions()
+    assert t["min_nose_contact_force_N"].max() > 10.0 and np.ptp(t["max_retainer_force_N"]) > 0.0
+    fig = ramp.plot(tmp_path / "run_up.png")
+    try:
+        labels = [x.get_text() for x in fig.axes[0].get_legend().get_texts()]
+        assert any(x.startswith("cam contact force") for x in labels)
+        assert any(x.startswith("retainer force") for x in labels)
+        assert any(x.startswith("steady-state float speed 2114 rpm") for x in labels)
+        if ramp.summary["float_onset_cam_rpm"] is not None:
+            assert any(x.startswith("float onset in the ramp") for x in labels)
     finally:
         plt.close(fig)
