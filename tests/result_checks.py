@@ -58,6 +58,12 @@ def check_result_interface(result, tmp_path: Path, *, plot: bool = True) -> None
     csv = result.to_csv(tmp_path / "result.csv")
     cols = read_csv_columns(csv)
     assert cols, "to_csv wrote no column"
+    frame = result.to_dataframe()
+    assert list(frame.columns) == list(cols), "to_dataframe() must have the CSV's columns, in order"
+    for name in cols:
+        assert len(frame[name]) == len(cols[name]), f"to_dataframe(): column {name!r} has other rows than the CSV"
+        if np.issubdtype(frame[name].dtype, np.number):
+            np.testing.assert_allclose(frame[name].to_numpy(float), np.asarray(cols[name], float), rtol=1e-12)
     text = repr(result)
     assert 1 <= len(text.splitlines()) <= REPR_LINES, f"repr has {len(text.splitlines())} lines"
     assert "<" in text.splitlines()[0]

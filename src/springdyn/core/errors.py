@@ -4,6 +4,10 @@ Every input problem is an :class:`InputError` (a :class:`ValueError`), whose mes
 names the field, the value and what is allowed.  A numerical failure is a
 :class:`SolverError` that says where (speed, time) and why.  The CLI turns both into
 one line on stderr and exit code 2 (input) or 3 (solver), never a traceback.
+
+A warning about one fact that several paths may reach (the coil-bind clearance is checked
+by the spring's design figures and by every run's set-up) is a :class:`FactWarning` named
+by its ``key``: a command shows it once.
 """
 
 from __future__ import annotations
@@ -19,6 +23,27 @@ class InputError(SpringdynError, ValueError):
 
 class SolverError(SpringdynError, RuntimeError):
     """A numerical solution failed (NaN, step-size collapse, no convergence)."""
+
+
+class FactWarning(UserWarning):
+    """A warning about one fact, named by ``key``, that several paths of one command may reach.
+
+    The CLI prints the first warning of a command with a key and drops the others with the
+    same key (the coil-bind check of the design figures and that of a run's set-up say the
+    same thing in other words), and drops it too when the command's printed result already
+    states the fact as a note (``note: <key>: ...``).
+
+    Parameters
+    ----------
+    message : str
+        The warning's text [-].
+    key : str
+        The fact it is about, as its text and its notes begin (``"coil bind"``) [-].
+    """
+
+    def __init__(self, message: str, key: str = ""):
+        super().__init__(message)
+        self.key = key
 
 
 def fmt_value(value, unit: str = "") -> str:

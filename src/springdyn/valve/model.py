@@ -29,6 +29,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 from functools import cached_property
 from pathlib import Path
 
@@ -699,7 +700,8 @@ class ValveModel:
 
     def run_up_through_float(self, float_cam_rpm: float, rate_rpm_per_s: float):
         """The named study "run-up through the float speed": a ramp over :data:`RUN_UP_WINDOW` of
-        the float speed ``f`` at the given rate (:meth:`speed_ramp`, no float scan: ``f`` is known).
+        the float speed ``f`` at the given rate (:meth:`speed_ramp`, no float scan: ``f`` is known,
+        and the ramp carries it as its ``steady_float_cam_rpm``, which its figure marks).
 
         Parameters
         ----------
@@ -709,7 +711,8 @@ class ValveModel:
             Rate of the cam speed [rev/min per s].
         """
         a, b = RUN_UP_WINDOW
-        return self.speed_ramp(a * float_cam_rpm, b * float_cam_rpm, rate_rpm_per_s, float_scan=False)
+        ramp = self.speed_ramp(a * float_cam_rpm, b * float_cam_rpm, rate_rpm_per_s, float_scan=False)
+        return dataclasses.replace(ramp, steady_float_cam_rpm=float(float_cam_rpm))  # known: its figure marks it
 
     def friction(self, cam_rpm: float):
         """The train's friction over a simulated revolution at ``cam_rpm``

@@ -46,18 +46,32 @@ class _Parser(argparse.ArgumentParser):
 
 
 #: Warnings of the running command: printed when it succeeds; when it fails, its one-line
-#: error is all that is printed (bad input gets one message).
-_PENDING_WARNINGS: list[str] = []
+#: error is all that is printed (bad input gets one message).  Each entry is the warning's
+#: key (a :class:`~springdyn.core.errors.FactWarning`'s fact, else ``""``) and its line.
+_PENDING_WARNINGS: list[tuple[str, str]] = []
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """Keep a warning of the running command: once per text, and once per fact (its key)."""
     text = f"springdyn: warning: {message}"
-    if text not in _PENDING_WARNINGS:
-        _PENDING_WARNINGS.append(text)
+    key = str(getattr(message, "key", "") or "")
+    if any(t == text or (key and k == key) for k, t in _PENDING_WARNINGS):
+        return  # said already: the same text, or the same fact reached by another path
+    _PENDING_WARNINGS.append((key, text))
 
 
-def _flush_warnings() -> None:
-    for text in _PENDING_WARNINGS:
+def _flush_warnings(stated=()) -> None:
+    """Print the kept warnings on stderr, but not a fact the printed result states as a note.
+
+    Parameters
+    ----------
+    stated : iterable of str
+        The ``note: ...`` lines the command printed on standard output [-].
+    """
+    notes = [n.lower() for n in stated]
+    for key, text in _PENDING_WARNINGS:
+        if key and any(n.startswith(f"note: {key.lower()}") for n in notes):
+            continue  # the result said it (``note: coil bind: ...``): once per command
         print(text, file=sys.stderr)
     _PENDING_WARNINGS.clear()
 
@@ -240,6 +254,7 @@ class _GuardedStdout:
     def __init__(self, stream):
         self._stream = stream
         self.failed = False
+        self.notes: list[str] = []
 
     def _call(self, name, *args):
         if self._stream is None:
@@ -252,6 +267,8 @@ class _GuardedStdout:
             raise StdoutError(getattr(exc, "strerror", None) or str(exc)) from exc
 
     def write(self, text):
+        if "note: " in text:  # a fact the result states: its warning is not repeated on stderr
+            self.notes.extend(line.strip() for line in text.splitlines() if line.strip().startswith("note: "))
         return self._call("write", text)
 
     def flush(self):
@@ -312,7 +329,7 @@ def main(argv=None) -> int:
             # every file of the command is renamed into place together, at the end
             code = int(args.func(args) or 0)
         sys.stdout.flush()
-        _flush_warnings()
+        _flush_warnings(getattr(sys.stdout, "notes", ()))
         return code
     except (UsageError, InputError) as exc:
         print(f"springdyn: error: {exc}", file=sys.stderr)

@@ -665,6 +665,42 @@ class ToleranceStudy(Result):
             out["installed_force"] = refused | ~criteria.passes("installed_force", dev, c.installed_force_band)
         return out
 
+    def limits(self) -> dict:
+        """The criteria's limits on each figure of the study, as :meth:`failures` judges them
+        (the surge margin's on ``f1`` too, at the top speed).
+
+        Returns
+        -------
+        dict
+            Figure name -> list of ``(value, side, label)``: ``side`` is ``"min"`` (a variant
+            passes at or above ``value``) or ``"max"`` (at or below); ``value`` in the figure's
+            unit (:data:`OUTPUTS`) [-].
+        """
+        c, top = self.criteria, float(self.speeds[-1])
+        out: dict = {}
+        if not self.float_only:
+            out["goodman_safety"] = [(c.min_goodman_safety, "min", f"min_goodman_safety {c.min_goodman_safety:g}")]
+        if self.floats:
+            need = omega_to_rpm(c.min_float_cam_rpm) if c.min_float_cam_rpm is not None else top
+            why = "min_float_cam_rpm" if c.min_float_cam_rpm is not None else "no float in the range"
+            out["float_cam_rpm"] = [(need, "min", f"{why}: {need:.0f} rpm")]
+        if c.no_coil_clash and not self.float_only:
+            out["clash_onset_cam_rpm"] = [(top, "min", f"no_coil_clash up to {top:.0f} rpm")]
+        if c.max_retainer_force is not None and not self.float_only:
+            out["max_retainer_force"] = [
+                (c.max_retainer_force, "max", f"max_retainer_force {c.max_retainer_force:.0f} N")
+            ]
+        if c.min_surge_margin is not None:
+            f1 = c.min_surge_margin * top / 60.0  # the cam frequency at the top speed [Hz]
+            out["f1"] = [(f1, "min", f"min_surge_margin {c.min_surge_margin:g} at {top:.0f} rpm: {f1:.0f} Hz")]
+        if c.installed_force_band is not None:
+            band, f0 = c.installed_force_band, float(self.nominal["Fset"])
+            out["Fset"] = [
+                (f0 * (1.0 - band), "min", f"installed_force_band -{band:.1%}"),
+                (f0 * (1.0 + band), "max", f"installed_force_band +{band:.1%}"),
+            ]
+        return out
+
     def _figures(self) -> list:
         """The outputs that are figures in this study."""
         return [k for k in FIGURES if k in self.dataset and (self.floats or k != "float_cam_rpm")]
@@ -782,11 +818,35 @@ class ToleranceStudy(Result):
             axes = list(np.ravel(grid))
             for a in axes[len(names) :]:
                 a.set_visible(False)
+        limits = self.limits()
         for a, k in zip(axes, names):
             v = ds[k].values
             a.hist(v[ds["refused"].values < 0.5], bins=30, color="C0", alpha=0.8)
             a.axvline(self.nominal[k], color="k", lw=1, label="nominal")
+            _draw_limits(a, limits.get(k, ()))
             a.set_xlabel(f"{k} [{OUTPUTS[k]}]")
             a.set_ylabel("variants")
+            a.yaxis.get_major_locator().set_params(integer=True)
+            a.ticklabel_format(axis="x", useOffset=False)
+            a.legend(fontsize=7, loc="best")
+        if ax is None:
+            fig.suptitle("variants per figure; red: the criteria's limits, shaded where a variant fails", fontsize=9)
         fig.tight_layout()
         return fig
+
+
+def _draw_limits(ax, limits) -> None:
+    """The criteria's limits on a histogram: a red dashed line each, its failing side shaded."""
+    if not limits:
+        return
+    values = [v for v, _, _ in limits]
+    lo, hi = min(*ax.get_xlim(), *values), max(*ax.get_xlim(), *values)
+    least = 0.04 * max(abs(hi), 1.0)  # every variant alike (no clash in the range): a readable span
+    if hi - lo < least:
+        lo, hi = 0.5 * (lo + hi) - least / 2, 0.5 * (lo + hi) + least / 2
+    pad = 0.06 * (hi - lo)  # a limit beside the data stays in view, its failing side visible
+    lo, hi = lo - pad, hi + pad
+    for value, side, label in limits:
+        ax.axvline(value, color="C3", lw=1.5, ls="--", label=label)
+        ax.axvspan(*((lo, value) if side == "min" else (value, hi)), color="C3", alpha=0.12, lw=0)
+    ax.set_xlim(lo, hi)

@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import numpy as np
+from matplotlib import colormaps
+from matplotlib.cm import ScalarMappable
+from matplotlib.colors import Normalize
 
 from ...core.plotting import new_figure, save_figure
 from ...core.units import rpm_to_hz
@@ -61,7 +64,9 @@ def plot_closure_map(sim, path=None, ax=None):
 def plot_simulation(sim, path=None, ax=None):
     """Forces vs cam angle (dynamic against static), mass displacements and spectrum.
 
-    With ``ax``, only the force panel is drawn into it.
+    With ``ax``, only the force panel is drawn into it.  A chain of more than
+    :data:`MAX_LEGEND_MASSES` masses (the distributed model) has its masses coloured by their
+    position along the wire (a colour bar) and only its two end masses in the legend.
 
     Parameters
     ----------
@@ -106,11 +111,7 @@ def plot_simulation(sim, path=None, ax=None):
     ax2 = ax.twinx()
     ax2.plot(deg[order], sim.lift[order] * 1e3, color="0.6", lw=0.8)
     ax2.set_ylabel("cam lift [mm]", color="0.5")
-    ax = axes[1]
-    for i, name in enumerate(sim.spring.spring_model.chain.mass_names):
-        ax.plot(deg[order], sim.mass_displacement[i][order] * 1e3, lw=1, label=f"mass {i + 1} ({name})")
-    ax.set_ylabel("displacement from set-up [mm]")
-    ax.legend(fontsize=8, ncol=3)
+    _plot_masses(axes[1], sim, deg, order)
     row = 2
     if vt:
         ax = axes[2]
@@ -164,6 +165,38 @@ def plot_simulation(sim, path=None, ax=None):
     if path is not None:
         save_figure(fig, path, close=False)
     return fig
+
+
+#: Most masses a chain's displacement panel names one by one in its legend (Type C has 5);
+#: a longer chain (the distributed model's) is coloured by position with a colour bar.
+MAX_LEGEND_MASSES = 8
+
+
+def _plot_masses(ax, sim, deg, order):
+    """The masses' displacements: a legend for a short chain; for a long one, the chain masses
+    coloured by their position along the wire (a colour bar) and the two end masses named."""
+    model = sim.spring.spring_model
+    names = model.chain.mass_names
+    disp = sim.mass_displacement[:, order] * 1e3
+    x = deg[order]
+    ax.set_ylabel("displacement from set-up [mm]")
+    if len(names) <= MAX_LEGEND_MASSES:
+        for i, name in enumerate(names):
+            ax.plot(x, disp[i], lw=1, label=f"mass {i + 1} ({name})")
+        ax.legend(fontsize=8, ncol=3)
+        return
+    turns = getattr(model, "element_turns", None)  # the distributed model: each mass at an element edge
+    if turns is not None and len(turns) == len(names):
+        where, label, unit = np.asarray(turns, float), "position along the wire [turns from the seat]", " turns"
+    else:
+        where, label, unit = np.arange(1.0, len(names) + 1), "mass number (from the seat)", ""
+    cmap, norm = colormaps["viridis"], Normalize(float(where[0]), float(where[-1]))
+    for i in range(1, len(names) - 1):
+        ax.plot(x, disp[i], lw=0.7, color=cmap(norm(where[i])))
+    for i, end, style in ((0, "seat-end", dict(color="k", ls="--")), (-1, "retainer-end", dict(color="C3"))):
+        ax.plot(x, disp[i], lw=1.8, **style, label=f"{end} mass ({names[i]}, at {where[i]:.2f}{unit})")
+    ax.figure.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, label=label, pad=0.01)
+    ax.legend(fontsize=8, loc="upper right", title=f"{len(names)} masses", title_fontsize=8)
 
 
 def plot_sweep_forces(result, ax=None):

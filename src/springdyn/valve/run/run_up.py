@@ -272,12 +272,20 @@ class RunUp(Result):
         -------
         dict
             ``cam_rpm`` (the revolution's mean speed), ``liftoff``, ``nose_separation``,
-            ``seat_landings``, ``min_cam_contact_force_N``, ``max_retainer_force_N``.
+            ``seat_landings``, ``min_cam_contact_force_N`` (while the valve is open),
+            ``min_nose_contact_force_N`` (over the nose, where float is judged),
+            ``max_retainer_force_N``, ``min_retainer_force_N``.
         """
         n = self.points_per_revolution
         revs = (self.time.size - 1) // n
         rows = {k: [] for k in ("cam_rpm", "liftoff", "nose_separation", "seat_landings")}
-        rows["min_cam_contact_force_N"], rows["max_retainer_force_N"] = [], []
+        for k in (
+            "min_cam_contact_force_N",
+            "min_nose_contact_force_N",
+            "max_retainer_force_N",
+            "min_retainer_force_N",
+        ):
+            rows[k] = []
         for r in range(revs):
             sl = slice(r * n, (r + 1) * n)
             z, fc, lift = self.valve_lift[sl], self.cam_contact_force[sl], self.lift[sl]
@@ -290,7 +298,10 @@ class RunUp(Result):
             )
             rows["seat_landings"].append(int(np.sum((z[:-1] > 0) & (z[1:] <= 0))))
             rows["min_cam_contact_force_N"].append(float(fc[in_event].min()) if in_event.any() else 0.0)
+            nose = self.nose & in_event
+            rows["min_nose_contact_force_N"].append(float(fc[nose].min()) if nose.any() else 0.0)
             rows["max_retainer_force_N"].append(float(self.retainer_force[sl].max()))
+            rows["min_retainer_force_N"].append(float(self.retainer_force[sl].min()))
         return {k: np.asarray(v) for k, v in rows.items()}
 
     def _summary(self) -> dict:
@@ -338,29 +349,47 @@ class RunUp(Result):
         )
 
     def _plot(self, ax=None):
-        """Minimum cam contact force and seat landings per revolution against the momentary speed."""
+        """Per revolution against the momentary speed: the cam contact force at its least (over
+        the event and over the nose) and the retainer force's range, the ramp's float onset, its
+        first lift-off and the steady-state float speed marked; the seat landings below."""
         from ...core.plotting import new_figure  # (here: matplotlib costs 0.3 s of start-up)
 
-        t = self.revolutions()
+        t, s = self.revolutions(), self.summary
+        rpm = t["cam_rpm"]
         if ax is None:
-            fig, axes = new_figure(2, 1, figsize=(9, 7))
+            fig, axes = new_figure(2, 1, figsize=(11, 8), sharex=True)
         else:
             fig, axes = ax.figure, [ax]
         a = axes[0]
-        a.plot(t["cam_rpm"], t["min_cam_contact_force_N"], "C0.-", lw=1, ms=3, label="min cam contact force")
+        a.plot(rpm, t["min_cam_contact_force_N"], "C0.-", lw=1.2, ms=4, label="cam contact force, least while open")
+        a.plot(rpm, t["min_nose_contact_force_N"], "C2.-", lw=1.2, ms=4, label="cam contact force, least over the nose")
+        a.fill_between(rpm, t["min_retainer_force_N"], t["max_retainer_force_N"], color="C1", alpha=0.15, lw=0)
+        a.plot(rpm, t["max_retainer_force_N"], "C1-", lw=1, label="retainer force, most and least")
+        a.plot(rpm, t["min_retainer_force_N"], "C1-", lw=1)
         nose = t["nose_separation"]
-        a.plot(t["cam_rpm"][nose], np.zeros(nose.sum()), "C3x", label="lift-off over the nose (float)")
-        if self.steady_float_cam_rpm is not None:
-            a.axvline(self.steady_float_cam_rpm, color="k", ls="--", lw=1, label="steady-state float speed")
-        a.set_xlabel("cam speed [rpm]")
+        a.plot(rpm[nose], np.zeros(nose.sum()), "C3x", ms=7, label="revolution floats over the nose")
+        a.axhline(0.0, color="k", lw=0.6)
+        for a_ in axes:
+            self._mark_speeds(a_, s, label=a_ is a)
         a.set_ylabel("force [N]")
-        a.set_title(f"speed ramp {self.start_rpm:g} -> {self.end_rpm:g} cam rpm at {self.rate_rpm_per_s:g} rpm/s")
+        a.set_title(f"speed ramp {self.start_rpm:.0f} -> {self.end_rpm:.0f} cam rpm at {self.rate_rpm_per_s:.0f} rpm/s")
         a.grid(True, alpha=0.3)
-        a.legend(fontsize=8)
+        a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # beside: never over a curve
         if len(axes) > 1:
             b = axes[1]
-            b.step(t["cam_rpm"], t["seat_landings"], where="mid", color="C1")
-            b.set_xlabel("cam speed [rpm]")
+            b.step(rpm, t["seat_landings"], where="mid", color="C4")
             b.set_ylabel("seat landings per revolution")
+            b.yaxis.get_major_locator().set_params(integer=True)
             b.grid(True, alpha=0.3)
+        axes[-1].set_xlabel("cam speed [rpm] (each revolution at its mean speed)")
         return fig
+
+    def _mark_speeds(self, ax, s, label: bool):
+        """The ramp's first lift-off and float onset, and the steady-state float speed, as lines."""
+        for value, style, text in (
+            (s["first_liftoff_cam_rpm"], dict(color="C3", ls=":", lw=1.2), "first lift-off"),
+            (s["float_onset_cam_rpm"], dict(color="C3", ls="-", lw=1.2), "float onset in the ramp"),
+            (self.steady_float_cam_rpm, dict(color="k", ls="--", lw=1.0), "steady-state float speed"),
+        ):
+            if value is not None:
+                ax.axvline(value, **style, label=f"{text} {value:.0f} rpm" if label else None)

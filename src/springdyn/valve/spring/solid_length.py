@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import warnings
 
-from ...core.errors import InputError
+from ...core.errors import FactWarning, InputError
 from ...core.units import format_mm
 from .formulas import coil_contact_length
 
@@ -131,19 +131,24 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
             f"{format_mm(lc)} ({solid_length_source(spring)}); lengthen installed_length, reduce the lift, or set "
             "through_solid = true in [spring] to simulate through solid anyway"
         )
+    # one fact under one key: the design figures and every run's set-up check it (the CLI says it once)
     if through:
         warnings.warn(
-            f"through_solid: {source} drives the spring {format_mm(-margin)} past solid (Lc {format_mm(lc)}); "
-            "the results rest on the contact stiffness of closed coils",
-            UserWarning,
+            FactWarning(
+                f"through_solid: {source} drives the spring {format_mm(-margin)} past solid (Lc {format_mm(lc)}); "
+                "the results rest on the contact stiffness of closed coils",
+                key="through solid",
+            ),
             stacklevel=3,
         )
     elif margin < clearance:
         warnings.warn(
-            f"coil bind: {source} leaves {format_mm(margin)} above the solid length {format_mm(lc)}, less than "
-            f"the coil-bind clearance {format_mm(clearance)}"
-            + (" (EN 13906-1's minimum sum of gaps Sa)" if spring.min_coil_bind_clearance is None else ""),
-            UserWarning,
+            FactWarning(
+                f"coil bind: {source} leaves {format_mm(margin)} above the solid length {format_mm(lc)}, less than "
+                f"the coil-bind clearance {format_mm(clearance)}"
+                + (" (EN 13906-1's minimum sum of gaps Sa)" if spring.min_coil_bind_clearance is None else ""),
+                key="coil bind",
+            ),
             stacklevel=3,
         )
     return dict(
