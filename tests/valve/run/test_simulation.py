@@ -257,7 +257,7 @@ def test_lift_that_drives_spring_solid(one_step):
     run it, and the model's own range (10 Fcon) still holds."""
     cam = lambda lift: Cam(law="3-4-5", lift=lift, duration=math.radians(120))  # noqa: E731
     with pytest.raises(
-        InputError, match=r"38 mm - lift 10\.5 mm = 27\.5 mm is 0\.5 mm below the solid length .* 28 mm"
+        InputError, match=r"38 mm - lift 10\.5 mm = 27\.5 mm is 0\.5 mm below the solid length 28 mm \(the MMS document"
     ):
         prepare(one_step, cam(10.5e-3))
     with pytest.warns(

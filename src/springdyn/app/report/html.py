@@ -26,6 +26,8 @@ class Criterion:
     limit: str
     passed: bool | None
     note: str = ""
+    #: The model whose figure is judged ("distributed", "Type C", "statics"; empty: no model).
+    model: str = ""
 
     @property
     def verdict(self) -> str:
@@ -170,10 +172,11 @@ def _criteria(criteria: list[Criterion]) -> str:
     for c in criteria:
         css = {"pass": "pass", "fail": "fail", "n/a": "na"}[c.verdict]
         rows.append(
-            f"<tr class='criterion {css}'><td>{html.escape(c.name)}</td><td class='v'>{html.escape(c.value)}</td>"
-            f"<td>{html.escape(c.limit)}</td><td class='verdict'>{c.verdict}</td><td>{html.escape(c.note)}</td></tr>"
+            f"<tr class='criterion {css}'><td>{html.escape(c.name)}</td><td>{html.escape(c.model or '-')}</td>"
+            f"<td class='v'>{html.escape(c.value)}</td><td>{html.escape(c.limit)}</td>"
+            f"<td class='verdict'>{c.verdict}</td><td>{html.escape(c.note)}</td></tr>"
         )
-    head = "".join(f"<th>{h}</th>" for h in ("criterion", "value", "limit", "verdict", "note"))
+    head = "".join(f"<th>{h}</th>" for h in ("criterion", "judged by", "value", "limit", "verdict", "note"))
     return f"<div class='scroll'><table class='criteria'><tr>{head}</tr>{''.join(rows)}</table></div>"
 
 

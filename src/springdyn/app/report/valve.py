@@ -226,7 +226,7 @@ def load(doc: dict, path: Path) -> ValveDefinition:
 
 def _criterion(v) -> Criterion:
     """A judged criterion (:class:`springdyn.valve.design.Verdict`) as a row of the report."""
-    return Criterion(v.label, v.value, v.limit, v.passed, v.note)
+    return Criterion(v.label, v.value, v.limit, v.passed, v.note, v.model)
 
 
 def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
@@ -241,8 +241,8 @@ def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
     figures.append(
         (
             out_dir / "run_up.png",
-            f"Run-up from {ramp.start_rpm:.0f} to {ramp.end_rpm:.0f} cam rpm at {rate:.0f} cam rpm/s: lift-off and "
-            "float against the momentary speed",
+            f"Run-up from {ramp.start_rpm:.0f} to {ramp.end_rpm:.0f} cam rpm at {rate:.0f} cam rpm/s "
+            f"({_describe_model(model.spring).split(',')[0]}): lift-off and float against the momentary speed",
         )
     )
     onset = r["float_onset_cam_rpm"]
@@ -253,7 +253,8 @@ def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
         else "the valve does not float over the nose within the ramp"
     )
     return (
-        f"Run-up through the float speed at {axis.per_cam * rate:.0f} engine rpm/s ([report] run_up_rate): {where}"
+        f"Run-up through the float speed at {axis.per_cam * rate:.0f} engine rpm/s ([report] run_up_rate, "
+        f"{_describe_model(model.spring).split(',')[0]}): {where}"
         + (f"; the first lift-off at {r['first_liftoff_cam_rpm']:.0f} cam rpm" if r["first_liftoff_cam_rpm"] else "")
         + f"; up to {r['max_seat_landings']} seat landings per revolution."
     )
@@ -437,11 +438,32 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             else "no coil clash occurs in that range."
         )
     )
+    # the surge frequency and margin of the model that judges, the other's beside
+    judge_spring = crit_sweep.spring
+    figs_judge = (
+        figs
+        if judge_spring.model == sp.model
+        else alone.replace(spring=judge_spring).design_figures(lift=lift, cam_rpm=top).figures
+    )
+    fi = figs_judge["installed"]
     findings.append(
-        f"First surge frequency f1 = {p['f1']:.1f} Hz (chain: {modes_free[0]:.1f} Hz at free length, "
-        f"{figs['open']['surge_frequency_Hz']:.1f} Hz at full lift); at {top:.0f} cam rpm that is cam order "
-        f"{p['f1'] / (top / 60):.1f}, a surge margin of {figs['installed']['surge_margin']:.1f} "
-        "(rule of thumb: 10-13 or more)."
+        f"First surge frequency f1 = {fi['surge_frequency_Hz']:.1f} Hz at installed length "
+        f"({judge_spring.spring_model.surge_frequency_definition}; "
+        f"{figs_judge['open']['surge_frequency_Hz']:.1f} Hz at full lift); at {top:.0f} cam rpm that is cam order "
+        f"{fi['surge_frequency_Hz'] / (top / 60):.1f}, a surge margin of {fi['surge_margin']:.1f} "
+        "(rule of thumb: 10-13 or more)"
+        + (
+            f"; Type C's chain: {figs['installed']['surge_frequency_Hz']:.1f} Hz, margin "
+            f"{figs['installed']['surge_margin']:.1f}"
+            if figs_judge is not figs
+            else ""
+        )
+        + (
+            f"; the document's closed form at free length (Wahl with n1', Type C's calibration) {p['f1']:.1f} Hz"
+            if sp.model == "type-c"
+            else ""
+        )
+        + "."
     )
     findings.append(
         f"Corrected shear stress (Bergstraesser k = {figs['bergstraesser_factor']:.3f}): "
@@ -450,23 +472,31 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
     )
     verdicts = design.spring_verdicts(
         criteria_set,
-        figs,
+        figs_judge,
         crit_sweep.summary_table(),
         crit_sweep.cam_rpm,
         model=crit_sweep.spring.model,
         rated_cam_rpm=top,
         wire_limit=crit_sweep.spring.strengths["shear_stress_limit_Pa"],
         beside=beside.summary_table() if beside is not None else None,
+        beside_design=figs if figs_judge is not figs else None,
     )
     criteria = [_criterion(v) for v in verdicts]
     if not d.cam_given:
         findings.append("The definition has no [cam] table: the built-in 3-4-5 cam (9 mm over 120 deg) was used.")
+    speeds = f"{sweep_speeds[0]:g}:{sweep_speeds[-1]:g}:{sweep_speeds[1] - sweep_speeds[0]:g}"
     commands = [
         f"springdyn valve params {source}",
+        f"springdyn valve design {source} --lift {lift * 1e3:g}mm --cam-rpm {top:g} --model {judge_spring.model}",
         f"springdyn valve curve {source} --plot curve.png",
-        f"springdyn valve simulate {source} --cam {source} --cam-rpm 2500 --plot sim.png --json",
-        f"springdyn valve sweep {source} --cam {source} --cam-rpm 500:4000:50 --out sweep",
+        f"springdyn valve simulate {source} --cam {source} --cam-rpm {top:g} --plot sim.png --json",
+        f"springdyn valve sweep {source} --cam {source} --cam-rpm {speeds} --model {judge_spring.model} --out sweep",
     ]
+    if beside is not None:
+        commands.append(
+            f"springdyn valve sweep {source} --cam {source} --cam-rpm {speeds} --model {beside.spring.model} "
+            "--out sweep_beside"
+        )
     if vt is not None:
         _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, findings, criteria, commands, source)
     if d.requirements is not None or d.tolerances is not None:
@@ -477,9 +507,13 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         if vt.hla is not None:
             inputs += [(f"hla.{k}", v, m) for k, v, m in parameter_rows(vt.hla)]
     units = valve.PARAMETER_UNITS
-    derived = [(k, format_quantity(v, *units[k][:2]), units[k][2]) for k, v in p.items()]
+    derived = [(k, format_quantity(v, *units[k][:2]), sp.spring_model.parameter_meaning(k)) for k, v in p.items()]
     derived.append(
-        ("chain modes", ", ".join(f"{f:.1f}" for f in modes_free) + " Hz", "first three, ends fixed, free length")
+        (
+            "chain modes",
+            ", ".join(f"{f:.1f}" for f in modes_free) + " Hz",
+            f"first three of the {sp.spring_model.name} chain, ends fixed, free length",
+        )
     )
     derived.append(("spring index", f"{figs['spring_index']:.3f}", "D/d"))
     if vt is None:
@@ -528,7 +562,19 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
     res = model.float_speed_above(top, crit.float_margin)
     files.append(write_json(out_dir / "float_speed.json", res.to_dict()))
     f = res["float_cam_rpm"]
-    criteria.append(_criterion(design.float_verdict(crit, res, top, _first_lift_off(res))))
+    # the float and seating verdicts from the model that judges, the definition's model beside
+    judged, res_j = _judging_float(model, rs, top, crit, findings)
+    if judged is not None:
+        files.append(write_json(out_dir / f"float_speed_{judged}.json", res_j.to_dict()))
+    ref = res_j if judged is not None else res
+    beside = _float_words(model.spring.model, res) if judged is not None else ""
+    criteria.append(
+        _criterion(
+            design.float_verdict(
+                crit, ref, top, _first_lift_off(ref), model=judged or model.spring.model, beside=beside
+            )
+        )
+    )
     s = None
     if f is None:
         findings.append(
@@ -544,7 +590,8 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
         figures.append(
             (
                 out_dir / "valve_train_above_float.png",
-                f"Valve train 5 % above the float speed ({1.05 * f:.0f} cam rpm): contact forces, lift-off intervals",
+                f"Valve train 5 % above the float speed ({1.05 * f:.0f} cam rpm, "
+                f"{_describe_model(model.spring).split(',')[0]}): contact forces, lift-off intervals",
             )
         )
         sc = res.scan
@@ -553,8 +600,19 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
         v_hi = max(sc["seat_impact_velocity_max_m_per_s"][i] for i in hi)
         landings = max(sc["seat_landings"][i] for i in hi)
         findings.append(
-            f"Valve float: the valve leaves the cam over the nose from {f:.0f} cam rpm ({2 * f:.0f} engine rpm, "
-            f"four-stroke) on{_first_lift_off(res)}. 5 % above it, contact is lost for "
+            f"Valve float ({_describe_model(model.spring).split(',')[0]}): the valve leaves the cam over the nose "
+            f"from {f:.0f} cam rpm ({res.engine_per_cam * f:.0f} engine rpm) on{_first_lift_off(res)}"
+            + (
+                f"; the {design.JUDGING_MODEL} model, which judges, from "
+                + (
+                    f"{res_j.float_cam_rpm:.0f} cam rpm ({res_j.engine_per_cam * res_j.float_cam_rpm:.0f} engine rpm)"
+                    if res_j.float_cam_rpm is not None
+                    else f"above {res_j.cam_rpm[-1]:.0f} cam rpm"
+                )
+                if judged is not None
+                else ""
+            )
+            + ". 5 % above it, contact is lost for "
             f"{sum(e['duration_deg'] for e in s['liftoff']):.1f} cam degrees and the valve lands on its seat at "
             f"{s['seat_impact_velocity_m_per_s']:.2f} m/s; over the scanned speeds from the float speed on the seating "
             f"velocity ranges {v_lo:.2f}-{v_hi:.2f} m/s (band over the speeds within 25 rpm and, where a speed does "
@@ -576,7 +634,7 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
             )
             + "."
         )
-        criteria.append(_criterion(design.pump_up_verdict(h["valve_held_open_m"], top)))
+        criteria.append(_criterion(design.pump_up_verdict(h["valve_held_open_m"], top, model=model.spring.model)))
         if f is not None and "hla" in s:
             findings.append(
                 f"5 % above the float speed the adjuster holds the valve {s['hla']['valve_held_open_m'] * 1e3:.3f} mm "
@@ -584,11 +642,20 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
                 if s["hla"]["pump_up"]
                 else "5 % above the float speed the adjuster does not pump up: the valve still closes."
             )
-    sc = res.scan or {}
-    upto = [i for i, r in enumerate(res.cam_rpm) if r <= top + 1e-9]
-    if upto and "seat_impact_velocity_max_m_per_s" in sc:
-        v = max(sc["seat_impact_velocity_max_m_per_s"][i] for i in upto)
-        criteria.append(_criterion(design.seating_verdict(crit, v, top)))
+    v = _max_seating_velocity(ref, top)
+    if v is not None:
+        v_other = _max_seating_velocity(res, top) if judged is not None else None
+        criteria.append(
+            _criterion(
+                design.seating_verdict(
+                    crit,
+                    v,
+                    top,
+                    model=judged or model.spring.model,
+                    beside=f"{_MODEL_NAMES[model.spring.model]}: {v_other:.2f} m/s" if v_other is not None else "",
+                )
+            )
+        )
     if train.gas_force is not None:
         findings.append(_gas_finding(train, top))
     if model.follower is not None:
@@ -599,8 +666,47 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
         )
     commands.append(
         f"springdyn valve float {source} --cam {source} --valve-train {source} "
-        f"--cam-rpm {res.cam_rpm[0]:.0f}:{res.cam_rpm[-1]:.0f}:{res.cam_rpm[1] - res.cam_rpm[0]:.0f}"
+        f"--cam-rpm {ref.cam_rpm[0]:.0f}:{ref.cam_rpm[-1]:.0f}:{ref.cam_rpm[1] - ref.cam_rpm[0]:.0f}"
+        + (f" --model {judged} --resolution {ref.resolution_rpm:g}" if judged is not None else "")
     )
+
+
+_MODEL_NAMES = {"type-c": "Type C", "distributed": "distributed"}
+
+#: Width of the final bracket of the judging model's float search [rev/min]: the distributed
+#: chain costs some ten times Type C per speed, and the bracket is stated beside the figure.
+JUDGING_FLOAT_RESOLUTION = 10.0
+
+
+def _judging_float(model, rs, top, crit, findings):
+    """The float search with the model that judges (``design.JUDGING_MODEL``) when the report
+    runs both models and the definition's is the other one: ``(model name, result)``, else
+    ``(None, None)``."""
+    if rs.models != "both" or model.spring.model == design.JUDGING_MODEL:
+        return None, None
+    try:
+        other = model.with_model(design.JUDGING_MODEL)
+        return design.JUDGING_MODEL, other.float_speed_above(
+            top, crit.float_margin, resolution=JUDGING_FLOAT_RESOLUTION
+        )
+    except InputError as exc:  # the distributed model may not accept this spring
+        findings.append(f"The {design.JUDGING_MODEL} model cannot run this train ({exc}): its float is not judged.")
+        return None, None
+
+
+def _float_words(name: str, res) -> str:
+    """``"Type C: 2683 cam rpm"``: a float search's figure for a note."""
+    f = res.float_cam_rpm
+    return f"{_MODEL_NAMES[name]}: " + (f"above {res.cam_rpm[-1]:.0f} cam rpm" if f is None else f"{f:.0f} cam rpm")
+
+
+def _max_seating_velocity(res, top):
+    """The largest seating velocity band's top of a float scan up to ``top`` [m/s] (None: not scanned)."""
+    sc = res.scan or {}
+    upto = [i for i, r in enumerate(res.cam_rpm) if r <= top + 1e-9]
+    if not upto or "seat_impact_velocity_max_m_per_s" not in sc:
+        return None
+    return max(sc["seat_impact_velocity_max_m_per_s"][i] for i in upto)
 
 
 def _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet):
@@ -740,6 +846,7 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
     ta, tb = (a, b) if names[0] == "type-c" else (b, a)
     fset = sp.with_model("type-c").spring_model.internal_parameters()["Fset"]
     parts = []
+    worst = np.zeros(rpm.size)
     for key, label in (
         ("max_retainer_force_N", "peak retainer"),
         ("min_retainer_force_N", "minimum retainer"),
@@ -747,6 +854,7 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
         ("min_seat_force_N", "minimum seat"),
     ):
         diff = (tb[key] - ta[key]) / fset
+        worst = np.maximum(worst, np.abs(diff))
         k = int(np.argmax(np.abs(diff)))
         parts.append(f"{label} force {100 * diff[k]:+.0f} % of Fset at {rpm[k]:.0f} cam rpm")
     clash_a, clash_b = (rpm[np.asarray(t["coil_clash"], bool)] for t in (ta, tb))
@@ -770,7 +878,43 @@ def _compare_models(sp, sw, sw_other, out_dir: Path):
         + ". The distributed model carries every surge mode and stiffens as its end coils close one by one; Type C "
         "has three surge modes on a fixed chain whose coil contact comes only from its empirical element laws.",
     ]
+    sentences.append(_type_c_range(rpm, worst, ta, tb))
     return png, sentences, b
+
+
+#: Type C is within its valid range for a spring while its end forces stay within this share
+#: of Fset of the distributed model's (the tolerance of a drawing's installed force, some 5 %).
+TYPE_C_AGREEMENT = 0.05
+
+
+def _type_c_range(rpm, worst, ta, tb) -> str:
+    """Where Type C leaves its valid range for this spring: the first speed where its end forces
+    differ from the distributed model's by more than :data:`TYPE_C_AGREEMENT` of Fset, and the
+    first speed where its end-separation or clash verdict differs."""
+    out = np.flatnonzero(worst > TYPE_C_AGREEMENT)
+    text = (
+        f"Type C leaves its valid range for this spring at {rpm[out[0]]:.0f} cam rpm: from there its end forces "
+        f"differ from the distributed model's by more than {100 * TYPE_C_AGREEMENT:g} % of Fset (up to "
+        f"{100 * worst.max():.0f} %)"
+        if out.size
+        else f"Type C stays within {100 * TYPE_C_AGREEMENT:g} % of Fset of the distributed model's end forces over "
+        f"the whole range (largest {100 * worst.max():.1f} %)"
+    )
+    verdicts_differ = []
+    for key, what in (("min_retainer_force_N", "end separation"), ("coil_clash", "coil clash")):
+        va = np.asarray(ta[key]) <= 0 if key != "coil_clash" else np.asarray(ta[key], bool)
+        vb = np.asarray(tb[key]) <= 0 if key != "coil_clash" else np.asarray(tb[key], bool)
+        k = np.flatnonzero(va != vb)
+        if k.size:
+            verdicts_differ.append(
+                f"its {what} verdict differs from {rpm[k[0]]:.0f} cam rpm ({k.size} speeds; Type C "
+                f"{'yes' if va[k[0]] else 'no'}, distributed {'yes' if vb[k[0]] else 'no'} there)"
+            )
+    return (
+        text
+        + ("; " + "; ".join(verdicts_differ) if verdicts_differ else "; its end-separation and clash verdicts agree")
+        + ". The criteria use the distributed model (docs/which-model.md)."
+    )
 
 
 def _model_choice(crit, beside, alone, top) -> str:

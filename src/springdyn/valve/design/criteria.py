@@ -399,6 +399,7 @@ def spring_verdicts(
     rated_cam_rpm: float,
     wire_limit: float,
     beside: dict | None = None,
+    beside_design: dict | None = None,
 ) -> list[Verdict]:
     """The spring's criteria over a sweep: surge margin, solid length and coil bind, coil
     clash, minimum retainer force, peak wire stress and Goodman safety.
@@ -423,6 +424,8 @@ def spring_verdicts(
         The wire's shear stress limit [Pa] (:func:`springdyn.valve.spring.stress.spring_strengths`).
     beside : dict, optional
         The other model's sweep summary table over the same speeds: its figure goes in each note.
+    beside_design : dict, optional
+        The other model's design figures (its surge margin goes in the note).
     """
     speeds = np.asarray(speeds, dtype=float)
     top = rated_cam_rpm
@@ -433,15 +436,22 @@ def spring_verdicts(
         return f"; Type C: {text}" if beside is not None else ""
 
     margin_value = design["installed"]["surge_margin"]
+    f1 = design["installed"]["surge_frequency_Hz"]
+    other_margin = (
+        f"; Type C: {beside_design['installed']['surge_margin']:.1f} (f1 "
+        f"{beside_design['installed']['surge_frequency_Hz']:.1f} Hz)"
+        if beside_design is not None and model != "type-c"
+        else ""
+    )
     out = [
         verdict(
             "surge_margin",
             margin_value,
             criteria.min_surge_margin,
-            label=f"surge margin at {top:.0f} cam rpm",
-            value_text=f"{margin_value:.1f}",
+            label=f"surge margin at {top:.0f} cam rpm, {name}",
+            value_text=f"{margin_value:.1f} (f1 {f1:.1f} Hz)",
             limit_text=f">= {criteria.min_surge_margin:g} ([report] min_surge_margin; rule of thumb 10-13)",
-            note=RULES["surge_margin"].definition,
+            note=RULES["surge_margin"].definition + f" (f1: the {name} chain's first mode, ends fixed)" + other_margin,
             model=name,
         )
     ]
@@ -455,7 +465,9 @@ def spring_verdicts(
                 label="solid length",
                 value_text=f"{cb['solid_length_m'] * 1e3:.2f} mm",
                 limit_text=f"below the open length {cb['open_length_m'] * 1e3:.2f} mm",
-                note="EN 13906-1 solid length of the drawing; the spring's length at full lift is the open length",
+                note=f"the spring's one solid length ({cb.get('solid_length_source', 'EN 13906-1')}), the same in "
+                "both models; the spring's length at full lift is the open length",
+                model="statics",
             )
         )
         out.append(
@@ -562,7 +574,15 @@ def spring_verdicts(
     return out
 
 
-def float_verdict(criteria: Criteria, float_result, rated_cam_rpm: float, first_lift_off: str = "") -> Verdict:
+def float_verdict(
+    criteria: Criteria,
+    float_result,
+    rated_cam_rpm: float,
+    first_lift_off: str = "",
+    *,
+    model: str = "",
+    beside: str = "",
+) -> Verdict:
     """The float speed against the speed the criteria ask for (:meth:`Criteria.float_speed_needed`).
 
     Parameters
@@ -575,8 +595,15 @@ def float_verdict(criteria: Criteria, float_result, rated_cam_rpm: float, first_
         The top speed in service [rev/min].
     first_lift_off : str
         Words on the first lift-off below the float speed, for the note [-].
+    model : str
+        The spring model of the search (``"type-c"``, ``"distributed"``; empty: not named) [-].
+    beside : str
+        The other model's float speed in words, for the note [-].
     """
     need = criteria.float_speed_needed(rated_cam_rpm)
+    name = _model_name(model) if model else ""
+    label = f"float speed, {name}" if name else "float speed"
+    other = f"; {beside}" if beside else ""
     f = float_result.float_cam_rpm
     limit = f">= {need:.0f} cam rpm ({100 * criteria.float_margin:g} % above the top speed {rated_cam_rpm:.0f} cam rpm)"
     if f is None:
@@ -584,24 +611,27 @@ def float_verdict(criteria: Criteria, float_result, rated_cam_rpm: float, first_
             "float_speed",
             float_result.cam_rpm[-1],
             need,
-            label="float speed",
+            label=label,
             value_text=f"above {float_result.cam_rpm[-1]:.0f} cam rpm",
             limit_text=limit,
-            note="the valve does not leave the cam over the nose at the highest scanned speed" + first_lift_off,
+            note="the valve does not leave the cam over the nose at the highest scanned speed" + first_lift_off + other,
+            model=name,
         )
     return verdict(
         "float_speed",
         f,
         need,
-        label="float speed",
-        value_text=f"{f:.0f} cam rpm",
+        label=label,
+        value_text=f"{f:.0f} cam rpm (+-{float_result.resolution_rpm / 2:g})",
         limit_text=limit,
         note="lowest cam speed from which the valve leaves the cam over the nose at every higher scanned speed"
-        + first_lift_off,
+        + first_lift_off
+        + other,
+        model=name,
     )
 
 
-def pump_up_verdict(held_open: float, rated_cam_rpm: float) -> Verdict:
+def pump_up_verdict(held_open: float, rated_cam_rpm: float, *, model: str = "") -> Verdict:
     """The valve closes at the rated speed: no pump-up of the hydraulic lash adjuster, judged by
     its rule (:func:`springdyn.valve.run.verdicts.pumps_up`).
 
@@ -611,18 +641,24 @@ def pump_up_verdict(held_open: float, rated_cam_rpm: float) -> Verdict:
         The valve lift the adjuster holds on the base circle [m].
     rated_cam_rpm : float
         The top speed in service [rev/min].
+    model : str
+        The spring model of the run (empty: not named) [-].
     """
+    name = _model_name(model) if model else ""
     return Verdict(
         "pump_up",
-        f"valve closes at {rated_cam_rpm:.0f} cam rpm (no pump-up)",
+        f"valve closes at {rated_cam_rpm:.0f} cam rpm (no pump-up)" + (f", {name}" if name else ""),
         f"held open {held_open * 1e3:.3f} mm",
         "0 mm on the base circle",
         not verdicts.pumps_up(held_open),
         "the hydraulic lash adjuster must not extend into a lift-off and hold the valve open",
+        name,
     )
 
 
-def seating_verdict(criteria: Criteria, velocity: float, rated_cam_rpm: float) -> Verdict:
+def seating_verdict(
+    criteria: Criteria, velocity: float, rated_cam_rpm: float, *, model: str = "", beside: str = ""
+) -> Verdict:
     """The largest seat impact velocity up to the rated speed.
 
     Parameters
@@ -633,14 +669,20 @@ def seating_verdict(criteria: Criteria, velocity: float, rated_cam_rpm: float) -
         The largest seating velocity band's top up to the rated speed [m/s].
     rated_cam_rpm : float
         The top speed in service [rev/min].
+    model : str
+        The spring model of the scan (empty: not named) [-].
+    beside : str
+        The other model's figure in words, for the note [-].
     """
+    name = _model_name(model) if model else ""
     return verdict(
         "seating_velocity",
         velocity,
         criteria.max_seating_velocity,
-        label=f"seating velocity up to {rated_cam_rpm:.0f} cam rpm",
+        label=f"seating velocity up to {rated_cam_rpm:.0f} cam rpm" + (f", {name}" if name else ""),
         value_text=f"{velocity:.2f} m/s",
         limit_text=f"<= {criteria.max_seating_velocity:g} m/s ([report] max_seating_velocity)",
         note="the valve's impact on its seat, the largest of the band over the scanned speeds within 25 rpm and, "
-        "where a speed does not settle, its last revolutions",
+        "where a speed does not settle, its last revolutions" + (f"; {beside}" if beside else ""),
+        model=name,
     )

@@ -149,6 +149,7 @@ def float_speed(
             first_separation=first_separation,
             scan=columns,
             periodicity_tol=settings.periodicity_tol,
+            model=spring.model,
         )
 
     f = scan.float_speeds()[0]

@@ -793,8 +793,43 @@ def _summarise(sim: Simulation) -> dict:
             s["gas_force_at_opening_N"] = float(sim.gas_force[opening])
     if mon is not None and mon["ext"]["events_lost"] > 0:
         notes.append(f"{int(mon['ext']['events_lost'])} events beyond the first {len(mon['events'])} were not located")
+    outside = type_c_outside_range(sim.spring.model, s)
+    if outside:
+        notes.append(outside)
     s["notes"] = notes
     return s
+
+
+def type_c_outside_range(model: str, summary: dict) -> str:
+    """A note when a Type C run reaches what Type C does not model reliably: its coils touch (an
+    empirical contact law on three surge modes), an end of the spring separates, or the valve
+    leaves the cam; empty otherwise (and for the distributed model).
+
+    Parameters
+    ----------
+    model : str
+        The spring model of the run.
+    summary : dict
+        The run's summary (``coil_contact``, ``end_separation``, ``liftoff``).
+    """
+    if model != "type-c":
+        return ""
+    what = [
+        name
+        for key, name in (
+            ("coil_contact", "coil contact"),
+            ("end_separation", "end separation"),
+            ("liftoff", "lift-off"),
+        )
+        if summary.get(key)
+    ]
+    if not what:
+        return ""
+    return (
+        f"TYPE C RANGE: this run has {', '.join(what)}, where Type C's three surge modes and empirical coil "
+        "contact differ most from the distributed model (which judges the report's criteria): check it with "
+        "--model distributed (docs/which-model.md)"
+    )
 
 
 @dataclass(repr=False)
@@ -819,6 +854,7 @@ class FloatSpeedResult(CrankAngles, Result):
     first_separation: dict | None = None
     scan: dict | None = None  # column -> list per scanned speed (float_search.SCAN_COLUMNS)
     periodicity_tol: float | None = None
+    model: str = ""  # the spring model of the search
 
     title = "valve float speed"
     cheap_plot = True
@@ -858,6 +894,14 @@ class FloatSpeedResult(CrankAngles, Result):
             notes.append(
                 f"lift-off from {fs['cam_rpm']:g} cam rpm ({fs['phase']}) is bounce, not float: the valve does not "
                 "leave the cam over the nose at every speed above it"
+            )
+        if self.model:
+            s["model"] = self.model
+        if self.model == "type-c" and fs:
+            notes.append(
+                "TYPE C RANGE: this float speed is Type C's; the distributed model, which judges the report's float "
+                "criterion, separates at a somewhat different speed (its surge carries every mode): confirm it with "
+                "--model distributed (docs/which-model.md)"
             )
         if notes:
             s["notes"] = notes

@@ -112,7 +112,7 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
     Returns
     -------
     dict
-        ``solid_length_m``, ``open_length_m``, ``coil_bind_margin_m`` (open length minus solid
+        ``solid_length_m`` with ``solid_length_source``, ``open_length_m``, ``coil_bind_margin_m`` (open length minus solid
         length), ``coil_bind_clearance_m`` with ``coil_bind_clearance_source``, ``coil_bind_ok`` (margin at least the clearance),
         ``through_solid`` (the spring is driven past solid, allowed by ``through_solid``).
     """
@@ -153,6 +153,7 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
         )
     return dict(
         solid_length_m=lc,
+        solid_length_source=solid_length_source(spring),
         open_length_m=open_length,
         coil_bind_margin_m=margin,
         coil_bind_clearance_m=clearance,
