@@ -191,7 +191,7 @@ def test_report_table_sets_the_engine_speeds_and_limits(tmp_path):
     assert d.settings.sweep_speeds[0] == pytest.approx(1000.0) and d.settings.sweep_speeds[-1] == pytest.approx(2500.0)
     sec = section(d, source=str(f), out_dir=tmp_path / "out")
     names = {c.name: c for c in sec.criteria}
-    surge = names["surge margin at 2500 cam rpm"]
+    surge = names["surge margin at 2500 cam rpm, Type C"]
     assert surge.passed and "min_surge_margin" in surge.limit and surge.limit.startswith(">= 6")
     assert any(n.startswith("coil clash, 1000-2500 cam rpm, Type C") for n in names)
     assert sec.findings[0].startswith("The criteria below come from the Type C model")

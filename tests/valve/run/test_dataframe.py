@@ -62,7 +62,8 @@ def test_speed_sweep(spring, cam, tmp_path):
 def test_float_search_result(tmp_path):
     res = valve.run.results.FloatSpeedResult([1000.0, 2000.0], [120.0, -5.0], 1800.0, [1500.0, 1800.0], 1.0)
     frame = _same_as_csv(res, tmp_path)
-    assert list(frame.columns) == ["cam_rpm", "min_cam_contact_force_N"]
+    assert list(frame.columns) == ["cam_rpm", "engine_rpm", "min_cam_contact_force_N"]
+    assert list(frame["engine_rpm"]) == [2000.0, 4000.0]  # four-stroke without a crank axis
     assert frame.attrs["float_cam_rpm"] == 1800.0
 
 
