@@ -193,7 +193,8 @@ def test_every_layout_runs_simulate_float_and_train_modes(capsys, tmp_path, trai
     )
     assert code == 0 and "float speed" in out
     header = next(csv.reader(open(c)))
-    assert header[:3] == ["cam_rpm", "engine_rpm", "min_cam_contact_force_N"] and {"nose_separation", "seat_landings"} <= set(header)
+    assert header[:3] == ["cam_rpm", "engine_rpm", "min_cam_contact_force_N"]
+    assert {"nose_separation", "seat_landings"} <= set(header)
     assert p.read_bytes()[:4] == b"\x89PNG"
     code, out, _ = run(capsys, "valve", "train-modes", SPRING, "--cam", cm, "--valve-train", vt, "--json")
     res = json.loads(out)
