@@ -38,7 +38,9 @@ class FactWarning(UserWarning):
     message : str
         The warning's text [-].
     key : str
-        The fact it is about, as its text and its notes begin (``"coil bind"``) [-].
+        The fact it is about: its topic, as its text and its notes begin (``"coil bind"``),
+        and after a ``|`` what it is about (``"coil bind|<the spring>"``: two springs are two
+        facts) [-].
     """
 
     def __init__(self, message: str, key: str = ""):

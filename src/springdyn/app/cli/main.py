@@ -70,7 +70,7 @@ def _flush_warnings(stated=()) -> None:
     """
     notes = [n.lower() for n in stated]
     for key, text in _PENDING_WARNINGS:
-        if key and any(n.startswith(f"note: {key.lower()}") for n in notes):
+        if key and any(n.startswith(f"note: {key.split('|')[0].lower()}") for n in notes):
             continue  # the result said it (``note: coil bind: ...``): once per command
         print(text, file=sys.stderr)
     _PENDING_WARNINGS.clear()

@@ -480,6 +480,7 @@ def spring_verdicts(
                 "THROUGH SOLID (through_solid = true): forces rest on the closed coils' contact stiffness"
                 if cb["through_solid"]
                 else "installed length - cam lift - solid length",
+                "statics",
             )
         )
 

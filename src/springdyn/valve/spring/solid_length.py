@@ -81,6 +81,11 @@ def solid_length(spring) -> float:
     return coil_contact_length(spring.wire_diameter, spring.low_pitch_coils, spring.high_pitch_coils)
 
 
+def _spring_id(spring) -> str:
+    """The spring a coil-bind fact is about (two springs in one command are two facts)."""
+    return f"{spring.wire_diameter!r},{spring.mean_diameter!r},{spring.total_coils!r},{spring.installed_length!r}"
+
+
 def solid_length_source(spring) -> str:
     """Which definition :func:`solid_length` took for ``spring``, for every output that states it.
 
@@ -137,7 +142,7 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
             FactWarning(
                 f"through_solid: {source} drives the spring {format_mm(-margin)} past solid (Lc {format_mm(lc)}); "
                 "the results rest on the contact stiffness of closed coils",
-                key="through solid",
+                key=f"through solid|{_spring_id(spring)}",
             ),
             stacklevel=3,
         )
@@ -147,7 +152,7 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
                 f"coil bind: {source} leaves {format_mm(margin)} above the solid length {format_mm(lc)}, less than "
                 f"the coil-bind clearance {format_mm(clearance)}"
                 + (" (EN 13906-1's minimum sum of gaps Sa)" if spring.min_coil_bind_clearance is None else ""),
-                key="coil bind",
+                key=f"coil bind|{_spring_id(spring)}",
             ),
             stacklevel=3,
         )
