@@ -9,6 +9,8 @@ criteria come from the distributed model (``design.JUDGING_MODEL``, docs/which-m
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -136,3 +138,46 @@ def test_every_train_verdict_names_its_model():
     assert v.model == "distributed" and v.label == "float speed, distributed" and "Type C: 1450" in v.note
     assert design.seating_verdict(crit, 0.3, 1200.0, model="type-c").model == "Type C"
     assert design.pump_up_verdict(0.0, 1200.0, model="distributed").model == "distributed"
+
+
+def _json(capsys, args):
+    import json
+
+    from springdyn.app.cli.main import main
+
+    assert main(args + ["--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+SPRING_FILE = str(example("valve/one_step_spring.toml"))
+CAM_FILE = str(example("valve/cam_polydyne_ramps.toml"))
+TRAIN_FILE = str(example("valve/valve_train.toml"))
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["valve", "design", SPRING_FILE, "--lift", "9mm"],
+        ["valve", "train-modes", SPRING_FILE, "--cam", CAM_FILE, "--valve-train", TRAIN_FILE],
+    ],
+)
+def test_a_new_user_s_engine_speed_needs_no_conversion(command, capsys):
+    """Issue 39: design and train-modes given 6000 engine rpm give what 3000 cam rpm gives."""
+    engine = _json(capsys, command + ["--engine-rpm", "6000"])
+    cam = _json(capsys, command + ["--cam-rpm", "3000"])
+    assert engine == cam
+
+
+def test_the_life_spectrum_in_engine_rpm(capsys, tmp_path):
+    """The example spectrum is given in engine rpm: the life is that of the same cam speeds."""
+    base = ["valve", "life", SPRING_FILE, "--cam", CAM_FILE, "--valve-train", TRAIN_FILE, "--quiet"]
+    engine = _json(capsys, base + ["--spectrum", str(example("valve/spectrum.toml"))])
+    text = Path(example("valve/spectrum.toml")).read_text()
+    cam_file = tmp_path / "spectrum.toml"
+    cam_file.write_text(
+        text.replace(
+            'engine_rpm = ["1500 rpm", "3000 rpm", "4500 rpm", "6000 rpm"]', "cam_rpm = [750, 1500, 2250, 3000]"
+        )
+    )
+    cam = _json(capsys, base + ["--spectrum", str(cam_file)])
+    assert engine == cam

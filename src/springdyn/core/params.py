@@ -140,7 +140,7 @@ def _convert(name: str, value: Any, meta: Mapping, where: str) -> Any:
     if kind == "quantity_list":
         if not isinstance(value, list) or not value:
             raise InputError(f'{label} = {value!r} must be a non-empty list, e.g. ["38 mm", "34 mm"]')
-        return [to_si(v, meta["unit"], f"{label}[{i}]") for i, v in enumerate(value)]
+        return [to_si(v, meta["unit"], f"{label}[{i}]", bare_unit=meta.get("bare_unit")) for i, v in enumerate(value)]
     if kind == "int":
         if isinstance(value, bool) or not isinstance(value, int):
             if isinstance(value, float) and value.is_integer():

@@ -765,7 +765,7 @@ class ValveModel:
             Further options of :func:`springdyn.valve.design.tolerances.tolerance_study` (count,
             seed, speeds, method, out_dir, client, progress, float_only, resolution, workers).
         """
-        return design_wing.tolerance_study(
+        study = design_wing.tolerance_study(
             self.spring,
             self._need_cam("tolerance_study"),
             tolerances,
@@ -773,6 +773,7 @@ class ValveModel:
             valve_train=self.valve_train,
             **options,
         )
+        return dataclasses.replace(study, engine_per_cam=self.strokes / 2.0)  # engine rpm beside the cam's
 
     def service_life(self, spectrum, float_speeds=None):
         """Relaxation and load-spectrum life (:class:`~springdyn.valve.design.life.ServiceLife`).

@@ -78,7 +78,7 @@ def register(sub) -> None:
         "--trace",
         metavar="TRACE.csv",
         help="instead: fit damping_ratio and contact_stiffness to a measured retainer-force trace "
-        "(columns cam_angle_deg, retainer_force_N; needs --cam and --cam-rpm)",
+        "(columns cam_angle_deg, retainer_force_N; needs --cam and --cam-rpm or --engine-rpm)",
     )
     p.add_argument(
         "--trace-fit",
@@ -88,7 +88,7 @@ def register(sub) -> None:
         "stiffness shows only at a clash speed)",
     )
     p.add_argument("--cam", metavar="CAM.toml", help="with --trace: the cam of the measurement")
-    p.add_argument("--cam-rpm", metavar="RPM", help="with --trace: the cam speed of the measurement")
+    add_speed_options(p, ranged=False, required=False, what="with --trace: the speed of the measurement")
     p.add_argument("--json", action="store_true", help="print JSON (SI values)")
     p.set_defaults(func=cmd_calibrate)
 
@@ -283,8 +283,11 @@ def cmd_calibrate(args) -> int:
     doc = load_toml(args.spring)
     table = dict(doc["spring"])
     if args.trace:
-        if not (args.cam and args.cam_rpm):
-            raise InputError("--trace needs --cam (the cam of the measurement) and --cam-rpm (its speed)")
+        rpm = cam_rpm_from_args(args, ranged=False, model=model)
+        if not (args.cam and rpm is not None):
+            raise InputError(
+                "--trace needs --cam (the cam of the measurement) and --cam-rpm or --engine-rpm (its speed)"
+            )
         cols = read_csv_columns(args.trace)
         missing = [c for c in ("cam_angle_deg", "retainer_force_N") if c not in cols]
         if missing:
@@ -292,7 +295,6 @@ def cmd_calibrate(args) -> int:
                 f"{args.trace}: no column {missing[0]!r}; the trace has cam_angle_deg and retainer_force_N"
             )
         model = model.replace(cam=valve.Cam.from_toml(args.cam))
-        rpm = quantity(args.cam_rpm, "rpm", "--cam-rpm", bare_unit="rpm")
         with as_options(fit="--trace-fit"):
             res = model.calibrate_trace(
                 rpm,

@@ -631,6 +631,9 @@ class ToleranceStudy(Result):
     floats: bool = True
     #: A float-speed study: statics and float speed only (:data:`FLOAT_OUTPUTS`).
     float_only: bool = False
+    #: Engine turns per cam turn [-] of the engine speeds shown beside the cam's (a
+    #: four-stroke's 2; the CLI sets the ``[timing]``'s).
+    engine_per_cam: float = 2.0
 
     title = "tolerance study"
     cheap_plot = True
@@ -753,7 +756,7 @@ class ToleranceStudy(Result):
             )
         if self.speeds.size > 1 and not self.float_only:
             step = float(np.max(np.diff(self.speeds)))
-            notes.append(f"clash onsets are swept speeds: resolved to {step:g} cam rpm (the --cam-rpm step)")
+            notes.append(f"clash onsets are swept speeds: resolved to {step:g} cam rpm (the step of the swept speeds)")
         if not self.float_only and s["clash_in_range_share"] < 1.0:
             notes.append(f"a clash onset beyond the range counts as its top speed {top:g} cam rpm (no clash within it)")
         if n < 100:
@@ -780,15 +783,26 @@ class ToleranceStudy(Result):
         out = [
             f"{s['variants']} variants ({s['method']}, seed {s['seed']}"
             + (f", {s['resumed_variants']} read back from {chunks or 'the chunks'}" if s["resumed_variants"] else "")
-            + f") of {source or 'the spring'} over {speeds[0]:g}-{speeds[-1]:g} cam rpm"
+            + f") of {source or 'the spring'} over {self.engine_per_cam * speeds[0]:g}-"
+            f"{self.engine_per_cam * speeds[-1]:g} engine rpm ({speeds[0]:g}-{speeds[-1]:g} cam rpm)"
             + (": float speeds only" if self.float_only else "")
         ]
         rows = []
+        qs = ("0.135", "2.5", "50", "97.5", "99.865")
         for k in FIGURES:
             if f"{k}_p50" not in s:
                 continue
-            qs = ("0.135", "2.5", "50", "97.5", "99.865")
             rows.append((k, OUTPUTS[k], f"{s[f'nominal_{k}']:.4g}", *(f"{s[f'{k}_p{q}']:.4g}" for q in qs)))
+            if k.endswith("_cam_rpm"):  # the same speeds on the crankshaft
+                e = self.engine_per_cam
+                rows.append(
+                    (
+                        k.replace("_cam_rpm", "_engine_rpm"),
+                        "rpm",
+                        f"{e * s[f'nominal_{k}']:.4g}",
+                        *(f"{e * s[f'{k}_p{q}']:.4g}" for q in qs),
+                    )
+                )
         out.append(
             text_table(rows, headers=("output", "unit", "nominal", "0.135 %", "2.5 %", "50 %", "97.5 %", "99.865 %"))
         )
