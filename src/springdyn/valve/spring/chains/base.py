@@ -443,7 +443,9 @@ class SpringModel:
             ``spring_index``, ``bergstraesser_factor``, ``wahl_factor``, ``solid_length_m``
             (and its ``solid_length_source``), ``total_coils``, ``active_coils``,
             ``dead_coils_per_end``, ``load_points`` (with load points,
-            :func:`springdyn.valve.design.calibrate.load_point_check`), ``spring_mass_kg``, ``rate_free_N_per_m`` and, per state (``installed``,
+            :func:`springdyn.valve.design.calibrate.load_point_check`), ``spring_mass_kg``,
+            ``rate_free_N_per_m``, ``model`` (and ``elements``), ``surge_frequency_definition``,
+            ``surge_frequency_free_Hz`` (the chain's at free length) and, per state (``installed``,
             ``open`` if lift is given, ``coil_contact``): ``length_m``, ``force_N``,
             ``shear_stress_Pa`` (Bergstraesser-corrected), ``surge_frequency_Hz`` (first
             mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
@@ -467,9 +469,12 @@ class SpringModel:
             **{k: v for k, v in self.spring.coil_facts.items() if k != "free_length_m"},
             spring_mass_kg=p["M"],
             rate_free_N_per_m=p["K1"],
-            surge_frequency_free_Hz=p["f1"],
-            surge_frequency_setup_Hz=p["f2"],
+            model=self.name,
+            surge_frequency_definition=self.surge_frequency_definition,
+            surge_frequency_free_Hz=float(self.modes(self.spring.free_length, 1)[0]),
         )
+        if "elements" in p:
+            out["elements"] = int(p["elements"])
         states = {"installed": self.spring.installed_length}
         if lift is not None:
             if not lift > 0:
