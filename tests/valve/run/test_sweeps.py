@@ -72,17 +72,16 @@ def test_threads_and_serial_identical(spring, local):
 def test_dask_local_cluster_bit_for_bit(spring, local, tmp_path):
     """A LocalCluster on loopback (2 worker processes) gives exactly the local results."""
     distributed = pytest.importorskip("distributed")
-    with (
-        distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
-        ) as cluster,
-        distributed.Client(cluster) as client,
-    ):
-        remote = sweep(spring, CAM, SPEEDS, valve_train=VT, points_per_revolution=360, client=client)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+    ) as cluster:
+        with distributed.Client(cluster) as client:
+            remote = sweep(spring, CAM, SPEEDS, valve_train=VT, points_per_revolution=360, client=client)
         address = cluster.scheduler_address
         for key in local.data:
             np.testing.assert_array_equal(remote.data[key], local.data[key])
-        # and through the CLI with --scheduler
+        # and through the CLI with --scheduler, with no client of the test's open: the CLI's own
+        # client is no process default (the README's --scheduler sweep failed so, issue 39)
         code = main(
             [
                 "valve",

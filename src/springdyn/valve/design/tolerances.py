@@ -567,7 +567,7 @@ def tolerance_study(
         from dask.distributed import as_completed  # (here: dask is an optional extra)
 
         where = {f.key: lo for f, (lo, _) in zip(futures, todo)}
-        it = as_completed(futures)
+        it = as_completed(futures, loop=client.loop)  # the study's client, not a default one (it may have none)
         for fut in progress(it, total=len(futures), desc="variants") if progress else it:
             store(where[fut.key], fut.result())
     elif todo:

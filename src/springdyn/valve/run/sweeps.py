@@ -247,7 +247,8 @@ def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc):
         futures = [client.submit(run_chunk, remote_setup, c, settings, points, pure=False) for c in chunks]
         from dask.distributed import as_completed as dask_completed  # (here: dask is an optional extra)
 
-        for _ in progress(dask_completed(futures), total=len(futures), desc=desc, quiet=quiet):
+        done = dask_completed(futures, loop=client.loop)  # this client's: connect() sets no default client
+        for _ in progress(done, total=len(futures), desc=desc, quiet=quiet):
             pass
         parts = [f.result() for f in futures]
     else:
