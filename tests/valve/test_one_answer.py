@@ -125,7 +125,7 @@ def test_the_report_states_type_c_s_valid_range():
     assert "leaves its valid range for this spring at 3000 cam rpm" in text
     assert "end separation verdict differs from 4000 cam rpm" in text
     assert "coil clash verdict differs from 3000 cam rpm (2 speeds" in text
-    assert "stays within 5 % of Fset" in _type_c_range(rpm, worst * 0.1, ta, ta)
+    assert "stay within 5 % of Fset" in _type_c_range(rpm, worst * 0.1, ta, ta)
 
 
 def test_every_train_verdict_names_its_model():
