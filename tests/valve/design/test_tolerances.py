@@ -129,6 +129,23 @@ def test_study_resumes_from_its_chunks(tmp_path):
     assert s["variants"] == 2 * CHUNK + 10 and s["Fset_p2.5"] < s["nominal_Fset"] < s["Fset_p97.5"]
 
 
+def test_chunks_of_another_spring_or_cam_are_not_read_back(tmp_path):
+    """Issue 40: a study resumed the chunks of a different spring from the same folder and
+    reported them against the new nominal (Fset p50 252.1 N for a spring whose own is 224.8 N).
+    The chunk key now holds every field of the spring, the cam and the train: another spring
+    or cam recomputes (0 read back) and gives its own Fset; the same definitions read back."""
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    tols = _tols(wire_diameter="+-0.02 mm")
+    kw = dict(count=6, seed=1, speeds=[1500.0, 2500.0], out_dir=tmp_path)
+    first = tolerance_study(sp, cam, tols, **kw)
+    other = sp.replace(installed_length=sp.installed_length + 1e-3)
+    moved = tolerance_study(other, cam, tols, **kw)
+    assert moved.resumed == 0
+    assert moved.summary["Fset_p50"] < first.summary["Fset_p50"] - 10.0  # 1 mm less compression: ~25 N less
+    assert tolerance_study(sp, cam.replace(lift=cam.lift * 0.99), tols, **kw).resumed == 0
+    assert tolerance_study(sp, cam, tols, **kw).resumed == 6
+
+
 def test_float_only_study_finds_each_variants_float_speed():
     """A float-speed study (issue 29 part 3) searches each variant's float speed from the
     nominal's: it agrees with the full study's (a sweep of the range, then the search within
@@ -282,3 +299,41 @@ def test_the_drawings_outer_and_inner_diameters_are_tolerable(tmp_path):
     path.write_text('[tolerances]\nouter_diameter = "+-0.1 mm"\nmean_diameter = "+-0.1 mm"\n')
     with pytest.raises(InputError, match="mean_diameter and outer_diameter both vary the coil diameter"):
         read_tolerances(path)
+
+
+@pytest.mark.slow  # a CLI study killed and resumed (~20 s)
+def test_a_killed_study_resumes_its_finished_chunks(tmp_path, capsys):
+    """Issue 40: the chunks stayed temporaries until the whole study ended, so a killed run
+    resumed 0 variants, and SIGTERM ran the whole study on before exiting.  Now each chunk is
+    committed as it finishes, SIGTERM stops within a variant, and the next run reads back
+    every finished chunk (that the read-back variants are those of an uninterrupted study is
+    test_study_resumes_from_its_chunks)."""
+    import json
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    tol = tmp_path / "tol.toml"
+    tol.write_text('[tolerances]\nwire_diameter = "+-0.02 mm"\n')
+    out = tmp_path / "o"
+    args = ["valve", "tolerance", SPRING, "--cam", CAM, "--tolerances", str(tol), "--samples", str(8 * CHUNK)]
+    args += ["--cam-rpm", "1500,2500", "--out", str(out), "--quiet", "--workers", "1"]
+    code = "import sys; from springdyn.app.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    proc = subprocess.Popen([sys.executable, "-c", code, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while not list((out / "chunks").glob("*.npz")) and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.2)
+    assert proc.poll() is None, "the study ended before its first chunk was seen"
+    proc.send_signal(signal.SIGTERM)
+    t0 = time.monotonic()
+    proc.communicate(timeout=60)
+    assert time.monotonic() - t0 < 15.0  # within a variant or two, not the rest of the study
+    assert proc.returncode != 0
+    kept = len(list((out / "chunks").glob("*.npz")))
+    assert 1 <= kept < 8
+    from springdyn.app.cli.main import main
+
+    capsys.readouterr()
+    assert main([*args, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["resumed_variants"] >= kept * CHUNK

@@ -43,6 +43,7 @@ import hashlib
 import json
 import math
 import os
+import threading
 import warnings
 from concurrent.futures import ThreadPoolExecutor
 from concurrent.futures import as_completed as completed
@@ -54,7 +55,7 @@ from scipy.special import ndtri
 from scipy.stats import qmc
 
 from ...core.errors import InputError
-from ...core.io import atomic_path
+from ...core.io import atomic_path, direct_outputs
 from ...core.params import load_toml
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import omega_to_rpm, to_si
@@ -422,20 +423,56 @@ def run_variant_float(spring, cam, valve_train, speeds, guess_rpm: float, resolu
     )
 
 
+def definition_fingerprint(value):
+    """Every field of a definition, exactly, as JSON-ready data: nested definitions as their
+    fields, floats as their ``repr`` (all digits), arrays as lists; what a study's chunk key
+    hashes so that chunks of another spring, cam or train are never read back.
+
+    Parameters
+    ----------
+    value : object
+        A definition (a dataclass: ``ValveSpring``, ``Cam``, ``ValveTrain``, ...), or a field's value.
+    """
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return [type(value).__name__] + [
+            [f.name, definition_fingerprint(getattr(value, f.name))] for f in dataclasses.fields(value)
+        ]
+    if isinstance(value, np.ndarray):
+        return [definition_fingerprint(v) for v in value.tolist()]
+    if isinstance(value, (list, tuple)):
+        return [definition_fingerprint(v) for v in value]
+    if isinstance(value, dict):
+        return [[str(k), definition_fingerprint(v)] for k, v in sorted(value.items(), key=lambda kv: str(kv[0]))]
+    if isinstance(value, float | np.floating):
+        return repr(float(value))
+    if value is None or isinstance(value, bool | int | str):
+        return value
+    return repr(value)
+
+
 def _key(tolerances, count, seed, method, speeds, *extra) -> str:
-    """The sample's fingerprint: chunks on disk belong to it."""
+    """The sample's fingerprint: chunks on disk belong to it (``extra``: the definitions and
+    settings that change a variant, :func:`definition_fingerprint`)."""
     spec = {k: [t.kind, t.half_width, t.sigma, rel] for k, (t, rel) in tolerances.items()}
     text = json.dumps([spec, count, seed, method, [float(s) for s in speeds], CHUNK, *extra], sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict) -> dict:
+class _Stopped(Exception):
+    """A chunk left unfinished because the study was interrupted (nothing of it is stored)."""
+
+
+def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=None) -> dict:
     """The variants of ``values`` (a chunk's slice of the sample: only it travels to a Dask
-    worker): :func:`run_variant_float` with ``plan["guess"]``, else :func:`run_variant`."""
+    worker): :func:`run_variant_float` with ``plan["guess"]``, else :func:`run_variant`.
+    ``stop`` (a :class:`threading.Event`, local threads only): set, the chunk ends before its
+    next variant (an interrupted study stops within one variant, its finished chunks kept)."""
 
     names = FLOAT_OUTPUTS if plan.get("guess") is not None else tuple(OUTPUTS)
     rows = {k: [] for k in names}
     for i in range(len(next(iter(values.values())))):
+        if stop is not None and stop.is_set():
+            raise _Stopped()
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -533,7 +570,15 @@ def tolerance_study(
         plan["guess"] = nominal_out["float_cam_rpm"]
     names = FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)
     key = _key(
-        tolerances, count, seed, method, speeds, float(resolution), bool(float_only), criteria.max_clash_severity
+        tolerances,
+        count,
+        seed,
+        method,
+        speeds,
+        float(resolution),
+        bool(float_only),
+        criteria.max_clash_severity,
+        definition_fingerprint([spring, cam, valve_train]),  # chunks of another spring, cam or train are not these
     )
     key += "" if (rated is None or float_only) else f"r{rated:.0f}"
     chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
@@ -555,7 +600,9 @@ def tolerance_study(
     def store(lo, res):
         done[lo] = res
         if chunk_dir is not None:
-            with atomic_path(chunk_dir / f"{key}_{lo:08d}.npz") as tmp:
+            # committed now, not with the command's other outputs: a killed or interrupted study
+            # resumes from every chunk that finished (issue 40)
+            with direct_outputs(), atomic_path(chunk_dir / f"{key}_{lo:08d}.npz") as tmp:
                 with open(tmp, "wb") as fh:
                     np.savez(fh, **res)
 
@@ -574,13 +621,21 @@ def tolerance_study(
         # the engine releases the GIL: the chunks run on threads, each its variants in turn
 
         threads = workers or min(os.cpu_count() or 1, 2)
-        with ThreadPoolExecutor(max_workers=threads) as pool:
+        stop = threading.Event()
+        pool = ThreadPoolExecutor(max_workers=threads)
+        try:
             futures = {
-                pool.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), plan): lo for lo, hi in todo
+                pool.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), plan, stop): lo
+                for lo, hi in todo
             }
             it = completed(futures)
             for fut in progress(it, total=len(futures), desc="variants") if progress else it:
                 store(futures[fut], fut.result())
+        except BaseException:  # Ctrl-C, SIGTERM (the CLI's), an error: stop within a variant, keep the chunks
+            stop.set()
+            pool.shutdown(wait=True, cancel_futures=True)
+            raise
+        pool.shutdown(wait=True)
     outputs = {k: np.concatenate([done[lo][k] for lo, _ in bounds]) for k in names}
     units = {k: TOLERANCED[k][0] for k in values}
     data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
