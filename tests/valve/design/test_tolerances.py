@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from springdyn.core.errors import InputError
-from springdyn.valve import Cam, ValveSpring
+from springdyn.valve import Cam, ValveSpring, ValveTrain
 from springdyn.valve.design.tolerances import (
     CHUNK,
     Criteria,
@@ -337,3 +337,34 @@ def test_a_killed_study_resumes_its_finished_chunks(tmp_path, capsys):
     capsys.readouterr()
     assert main([*args, "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["resumed_variants"] >= kept * CHUNK
+
+
+def test_a_band_that_leaves_the_parameters_range_is_refused():
+    """Issue 40: ``lash = "+-1 mm"`` on 0.15 mm simulated negative lash and counted it in the
+    shares.  A band whose lowest sample leaves the range is refused, naming the key and the
+    nominal; zero lash is a lash, a zero wire is not."""
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(example("valve/cam_polydyne_ramps.toml"))
+    vt = ValveTrain.from_toml(example("valve/valve_train.toml"))
+    kw = dict(count=4, seed=0, speeds=[1500.0, 2500.0], valve_train=vt)
+    with pytest.raises(InputError, match=r"\[tolerances\] lash = \+-1 mm on the nominal 0.15 mm reaches -0.85 mm"):
+        tolerance_study(sp, cam, _tols(lash="+-1 mm"), **kw)
+    with pytest.raises(InputError, match="wire_diameter .* must keep wire_diameter positive"):
+        tolerance_study(sp, cam, _tols(wire_diameter="+-3.5 mm"), **kw)
+    nominal = nominal_values(sp, cam, vt)
+    assert sample(_tols(lash="+-0.15 mm"), nominal, 4, 0)["lash"].min() >= 0.0  # down to zero lash: allowed
+
+
+def test_an_unreadable_chunk_is_computed_again_and_a_huge_seed_refused(tmp_path):
+    """Issue 40: a corrupt chunk crashed the resume (exit 70); a seed of 2^63 or more failed
+    when the NetCDF file was written, after the whole study."""
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    tols = _tols(wire_diameter="+-0.02 mm")
+    kw = dict(count=CHUNK + 5, seed=2, speeds=[1500.0, 2500.0], out_dir=tmp_path)
+    first = tolerance_study(sp, cam, tols, **kw)
+    chunk = sorted((tmp_path / "chunks").glob("*.npz"))[0]
+    chunk.write_bytes(b"not a chunk")
+    again = tolerance_study(sp, cam, tols, **kw)
+    assert again.resumed == 5
+    np.testing.assert_array_equal(first.dataset["Fset"].values, again.dataset["Fset"].values)
+    with pytest.raises(InputError, match=r"seed = 9223372036854775808 must be a whole number from 0 to 2\^63 - 1"):
+        tolerance_study(sp, cam, tols, count=4, seed=2**63, speeds=[1500.0])

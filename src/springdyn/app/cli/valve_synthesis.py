@@ -101,8 +101,8 @@ def cmd_tolerance(args) -> int:
     if count != int(count) or not 1 <= count <= 10_000_000:
         raise InputError(f"--samples = {args.samples!r} must be a whole number from 1 to 10000000")
     seed = quantity(args.seed, "", "--seed")
-    if seed != int(seed) or seed < 0:
-        raise InputError(f"--seed = {args.seed!r} must be a whole number, 0 or more")
+    if seed != int(seed) or not 0 <= seed < 2**63:
+        raise InputError(f"--seed = {args.seed!r} must be a whole number from 0 to 2^63 - 1")
     model = model_of(args)
     tols, criteria = design.read_tolerances(args.tolerances)
     if "lash" in tols and model.valve_train is None:

@@ -45,6 +45,7 @@ import math
 import os
 import threading
 import warnings
+import zipfile
 from concurrent.futures import ThreadPoolExecutor
 from concurrent.futures import as_completed as completed
 from dataclasses import dataclass, field
@@ -58,7 +59,7 @@ from ...core.errors import InputError
 from ...core.io import atomic_path, direct_outputs
 from ...core.params import load_toml
 from ...core.results import Result, notes_lines, text_table
-from ...core.units import omega_to_rpm, to_si
+from ...core.units import format_quantity, omega_to_rpm, to_si
 from .. import run
 from ..run.float_search import FLOAT_RESOLUTION
 from ..spring.formulas import active_coils_free
@@ -302,8 +303,34 @@ def sample(tolerances: dict, nominal: dict, count: int, seed: int, method: str =
         tol, rel = tolerances[name]
         scale = nominal[name] if rel else 1.0
         t = dataclasses.replace(tol, half_width=tol.half_width * scale, sigma=tol.sigma * scale)
+        _check_band(name, t, nominal[name])
         out[name] = t.values(nominal[name], u[:, j])
     return out
+
+
+#: The parameters that may be zero (no lash is a lash); every other toleranced one must stay positive.
+MAY_BE_ZERO = ("lash",)
+
+
+def _check_band(name: str, tol: Tolerance, nominal: float) -> None:
+    """Refuse a band whose lowest sample leaves the parameter's range (issue 40: ``lash =
+    "+-1 mm"`` on 0.15 mm simulated negative lash): a uniform band's ``nominal - half_width``,
+    a normal one's ``nominal - 7.03 sigma`` (the sampler's most extreme point, u = 1e-12)."""
+    low = nominal - (tol.half_width if tol.kind == "uniform" else 7.03 * tol.sigma)
+    if low < 0.0 or (low == 0.0 and name not in MAY_BE_ZERO):
+        unit = TOLERANCED[name][0]
+        display = {"m": "mm", "Pa": "GPa"}.get(unit, unit)
+        band = (
+            f"+-{format_quantity(tol.half_width, unit, display)}"
+            if tol.kind == "uniform"
+            else f"sigma {format_quantity(tol.sigma, unit, display)}"
+        )
+        raise InputError(
+            f"[tolerances] {name} = {band} on the nominal {format_quantity(nominal, unit, display)} reaches "
+            f"{format_quantity(low, unit, display)}: a band must keep {name} "
+            + ("at 0 or more" if name in MAY_BE_ZERO else "positive")
+            + (" (a normal band reaches 7 sigma in the sample)" if tol.kind == "normal" else "")
+        )
 
 
 def variant(spring, cam, valve_train, values: dict):
@@ -552,6 +579,9 @@ def tolerance_study(
         raise InputError(f"resolution = {resolution!r} must be a positive speed [rev/min]")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**63:
+        # the seed goes into the NetCDF file as a 64-bit integer (a larger one failed there, after the study)
+        raise InputError(f"seed = {seed!r} must be a whole number from 0 to 2^63 - 1")
     speeds = np.sort(np.atleast_1d(np.asarray(speeds, dtype=float)))
     nominal = nominal_values(spring, cam, valve_train)
     values = sample(tolerances, nominal, count, seed, method)
@@ -589,8 +619,15 @@ def tolerance_study(
     for lo, hi in bounds:
         f = None if chunk_dir is None else chunk_dir / f"{key}_{lo:08d}.npz"
         if f is not None and f.exists():
-            with np.load(f) as z:
-                done[lo] = {k: z[k] for k in names}
+            try:
+                with np.load(f) as z:
+                    done[lo] = {k: np.asarray(z[k], dtype=float) for k in names}
+                if any(v.shape != (hi - lo,) or not np.all(np.isfinite(v)) for v in done[lo].values()):
+                    raise ValueError("wrong shape or not finite")
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+                done.pop(lo, None)  # an unreadable chunk (a torn write, a foreign file): computed again
+                f.unlink(missing_ok=True)
+                continue
             resumed += hi - lo
     todo = [(lo, hi) for lo, hi in bounds if lo not in done]
 
