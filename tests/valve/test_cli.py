@@ -209,3 +209,71 @@ def test_train_modes_with_the_cam_contact_open_prints_the_jump_frequency(capsys)
     assert code == 2 and "need a valve train" in err and err.count("\n") == 1
     code, _, err = run(capsys, *base, "--valve-lift", "0mm")
     assert code == 2 and "--valve-lift = 0 mm must be above 0" in err
+
+
+def test_options_of_issue_40_are_refused_not_ignored(capsys, tmp_path):
+    """Issue 40: options silently ignored or nonsense accepted, each now one message, exit 2."""
+    from tests.paths import example
+
+    spring, cam = example("valve/one_step_spring.toml"), example("valve/cam_345.toml")
+    exhaust, pressure = example("valve/exhaust_valve.toml"), example("valve/cylinder_pressure.csv")
+    lift = tmp_path / "lift.csv"
+    lift.write_bytes(open(example("valve/valve_lift.csv"), "rb").read())
+    before = lift.read_bytes()
+    cases = [
+        (
+            ["valve", "simulate", spring, "--cam", cam, "--cam-rpm", "2000", "--port-pressure", "2 bar"],
+            "--port-pressure = '2 bar' needs --gas-pressure",
+        ),
+        (
+            [
+                "valve",
+                "simulate",
+                spring,
+                "--cam",
+                exhaust,
+                "--valve-train",
+                exhaust,
+                "--cam-rpm",
+                "2000",
+                "--gas-pressure",
+                pressure,
+                "--port-pressure",
+                "-2 bar",
+            ],
+            "is an absolute pressure: it must be 0 or more",
+        ),
+        (
+            [
+                "valve",
+                "sweep",
+                spring,
+                "--cam",
+                cam,
+                "--cam-rpm",
+                "1000,2000",
+                "--scheduler",
+                "",
+                "--out",
+                str(tmp_path / "s"),
+            ],
+            "--scheduler = '': give a Dask scheduler's address",
+        ),
+        (["valve", "synthesize", example("valve/requirements.toml"), "--out", ""], "--out: an empty folder name"),
+        (
+            [
+                "valve",
+                "cam-from-lift",
+                str(lift),
+                "--valve-train",
+                example("valve/valve_train_with_follower.toml"),
+                "--out",
+                str(lift),
+            ],
+            "is the input LIFT.csv: writing the lobe would overwrite it",
+        ),
+    ]
+    for argv, message in cases:
+        code, _, err = run(capsys, *map(str, argv))
+        assert code == 2 and message in err and "Traceback" not in err, (argv, err)
+    assert lift.read_bytes() == before

@@ -359,3 +359,22 @@ def test_a_model_error_carries_the_unit_slip():
         r"206 GPa\?",
     ):
         ValveSpring.example("one-step").replace(youngs_modulus=206e6)
+
+
+@pytest.mark.parametrize(
+    ("changes", "message"),
+    [
+        # issue 40: a traceback (exit 70): the TOML reference types load_points as a string
+        ({"load_points": "38 mm"}, r"load_points = '38 mm' must be an array of tables"),
+        (
+            {"load_points": [{"length": "38 mm", "force": "250 N"}, {"length": "38 mm", "force": "260 N"}]},
+            r"load_points\[0\] and load_points\[1\] give two forces \(250 N and 260 N\) at one length 38 mm",
+        ),
+        ({"shear_yield_strength": "2000 MPa", "tensile_strength": "1900 MPa"}, "is not below tensile_strength"),
+        ({"contact_stiffness": "1e30 N/mm"}, "outside any coil contact"),
+    ],
+)
+def test_nonsense_of_issue_40_is_refused(changes, message):
+    """Accepted nonsense (issue 40): each now one message naming the key."""
+    with pytest.raises(InputError, match=message):
+        build(**changes)

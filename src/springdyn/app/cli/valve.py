@@ -457,7 +457,7 @@ def cmd_sweep(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers = {args.workers} must be at least 1")
     with as_options(scheduler="--scheduler"):
-        client = valve.connect(args.scheduler) if args.scheduler else None
+        client = valve.connect(args.scheduler) if args.scheduler is not None else None
     try:
         with as_options(vary="--vary", workers="--workers", **run_options(args, model)):
             res = model.sweep(

@@ -5,6 +5,8 @@ kinematics``: the cam and lever designer's commands (thin layer over
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import springdyn.valve as valve
 import springdyn.valve.cam as cam
 from springdyn.app.cli.common import (
@@ -124,6 +126,9 @@ def cmd_cam_from_lift(args) -> int:
     if args.card is not None and args.ramp_angle is not None:
         raise InputError("--ramp-angle applies to LIFT.csv; a card gives its ramps in its [cam_card] table")
     out = check_output_file(args.cam_out, "--out")
+    for given, what in ((args.lift, "LIFT.csv"), (args.card, "--card"), (args.valve_train, "--valve-train")):
+        if given is not None and Path(given).exists() and Path(given).resolve() == out.resolve():
+            raise InputError(f"--out = {str(args.cam_out)!r} is the input {what}: writing the lobe would overwrite it")
     vt = valve.ValveTrain.from_toml(args.valve_train)
     follower = _follower(args.valve_train, required=False)
     if args.lift is not None:

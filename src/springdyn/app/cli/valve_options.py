@@ -126,9 +126,9 @@ def add_gas_options(p) -> None:
     )
     p.add_argument(
         "--port-pressure",
-        default="1 atm",
+        default=None,
         metavar="P",
-        help="pressure behind the valve head, absolute (default 1 atm; bare number: Pa)",
+        help="with --gas-pressure: pressure behind the valve head, absolute (default 1 atm; bare number: Pa)",
     )
 
 
@@ -184,9 +184,15 @@ def model_of(args, *, cam: bool = True, train: bool = True) -> valve.ValveModel:
             settings=run_settings(args),
             crank_angles=True if getattr(args, "engine_rpm", None) is not None else None,
         )
+    port = getattr(args, "port_pressure", None)
+    if port is not None and not getattr(args, "gas_pressure", None):
+        raise InputError(f"--port-pressure = {port!r} needs --gas-pressure (the cylinder pressure it acts against)")
     if getattr(args, "gas_pressure", None):
+        p_port = quantity(port if port is not None else "1 atm", "Pa", "--port-pressure")
+        if p_port < 0:
+            raise InputError(f"--port-pressure = {port!r} is an absolute pressure: it must be 0 or more")
         with as_options(path="--gas-pressure", port_pressure="--port-pressure"):
-            model = model.with_gas_pressure(args.gas_pressure, quantity(args.port_pressure, "Pa", "--port-pressure"))
+            model = model.with_gas_pressure(args.gas_pressure, p_port)
     return model
 
 

@@ -31,10 +31,12 @@ def register(vsub) -> None:
 
 def cmd_synthesize(args) -> int:
     """``springdyn valve synthesize``: search, check, rank, write."""
+    from springdyn.core.io import check_output_folder
     from springdyn.core.progress import progress
 
     if not 1 <= args.per_kind <= 20:
         raise InputError(f"--per-kind = {args.per_kind} must be from 1 to 20")
+    check_output_folder(args.out_dir, "--out")  # before the search (an empty name ran it all)
     req, base = design.read_requirements(args.requirements)
 
     def bar(items, desc):
@@ -120,7 +122,7 @@ def cmd_tolerance(args) -> int:
             raise InputError(f"--workers = {args.workers!r} must be a whole number of at least 1")
         workers = int(workers)
     with as_options(scheduler="--scheduler"):
-        client = valve.connect(args.scheduler) if args.scheduler else None
+        client = valve.connect(args.scheduler) if args.scheduler is not None else None
 
     def bar(items, total=None, desc=""):
         return progress(items, total=total, desc=desc, quiet=args.quiet)

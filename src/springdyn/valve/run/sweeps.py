@@ -200,6 +200,8 @@ def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
     timeout : float
         Seconds [s] to wait for the scheduler.
     """
+    if not isinstance(address, str) or not address.strip():
+        raise InputError(f"scheduler = {address!r}: give a Dask scheduler's address, e.g. tcp://127.0.0.1:8786")
     try:
         from dask.distributed import Client  # (here: dask is an optional extra)
     except ImportError:

@@ -348,6 +348,19 @@ class ValveSpring(Parameters):
                     f"({show(wlo, meta['unit'], display)} to {show(whi, meta['unit'], display)})"
                     + (hint or "; check its unit")
                 )
+        if self.contact_stiffness is not None and not 1e3 <= self.contact_stiffness <= 1e12:
+            # the default pi Do E / 1e3 is some 1e7 N/m; beyond these the closed coils are a unit slip
+            raise InputError(
+                f"{self._field('contact_stiffness')} is outside any coil contact: it must lie between 1 N/mm and 1e9 N/mm (the default pi Do E / 1e3 is "
+                f"{format_quantity(formulas.contact_stiffness(self.mean_diameter, self.youngs_modulus), 'N/m', 'N/mm')})"
+            )
+        for strength in ("shear_yield_strength", "endurance_shear_strength"):
+            value = getattr(self, strength)
+            if value is not None and self.tensile_strength is not None and value >= self.tensile_strength:
+                raise InputError(
+                    f"{self._field(strength)} is not below {self._field('tensile_strength')}: a "
+                    "wire's torsional strengths lie below its tensile strength (the ultimate shear is some 0.67 of it)"
+                )
         for key in ("dead_coils", "low_pitch_coils", "high_pitch_coils"):
             if getattr(self, key) > 1000:
                 raise InputError(f"{self._field(key)} is more coils than any spring has: it must be at most 1000")
@@ -578,14 +591,14 @@ def _pitches(m: dict) -> None:
 def _load_points(value) -> str:
     """``[{ length, force, tolerance }, ...]`` -> ``"table: L F tol; ..."`` in SI (tolerance in N, -1: none)."""
 
-    if isinstance(value, str):
-        return value
+    if isinstance(value, str) and value.startswith("table:"):
+        return value  # already read (a definition written back, ValveSpring.replace)
     if not isinstance(value, list) or not value:
         raise InputError(
             f'load_points = {value!r} must be an array of tables, e.g. [{{ length = "38 mm", force = "250 N", '
             'tolerance = "5 %" }]'
         )
-    rows = []
+    rows, seen = [], []
     for i, row in enumerate(value):
         if not isinstance(row, dict):
             raise InputError(f"load_points[{i}] = {row!r} must be a table with length, force and tolerance")
@@ -609,5 +622,12 @@ def _load_points(value) -> str:
                 tol = to_si(t, "", f"load_points[{i}].tolerance") * force  # a fraction: "5 %"
             if not tol > 0:
                 raise InputError(f"load_points[{i}].tolerance = {t!r} must be positive (in % of the force or in N)")
+        for j, (other_length, other_force) in enumerate(seen):
+            if abs(other_length - length) <= 1e-9 and abs(other_force - force) > 1e-9:
+                raise InputError(
+                    f"load_points[{j}] and load_points[{i}] give two forces ({other_force:g} N and {force:g} N) at one "
+                    f"length {format_mm(length)}: a drawing gives one force per length"
+                )
+        seen.append((length, force))
         rows.append(f"{length!r} {force!r} {tol!r}")
     return "table: " + "; ".join(rows)
