@@ -182,7 +182,8 @@ def test_two_step_total_coils_need_the_low_pitch_coils():
             "disagrees with end_type",
         ),
         (
-            {"mean_diameter": "22 mm", "end_type": "closed", "total_coils": 7.5, "active_coils": 5},
+            # both counts give 1.25 dead coils per end, the given dead_coils 1 (issue 40: the counts give them)
+            {"mean_diameter": "22 mm", "dead_coils": 1, "total_coils": 7.5, "active_coils": 5},
             "total_coils = 7.5 and active_coils = 5 disagree",
         ),
         (
@@ -419,3 +420,22 @@ def test_a_named_wire_in_the_spring_table():
         ValveSpring.from_dict({**keys, "material": "SiCrx"})
     with pytest.raises(InputError, match=r"unknown key 'totl_coils' \(did you mean 'total_coils'\?\).*outer_diameter"):
         ValveSpring.from_dict({**keys, "totl_coils": 7.5})
+
+
+def test_both_coil_counts_give_the_dead_coils():
+    """Issue 40: total_coils = 6.8, active_coils = 5.0, end_type = "closed-ground" was refused
+    ("with 1 dead coil per end the total is the active coils + 2"); real valve springs have
+    0.75-1.25 dead coils per end.  Both counts give them, (6.8 - 5.0)/2 = 0.9, and the end type
+    the solid length (EN 13906-1 closed and ground: n_t d = 6.8 x 3.8 mm = 25.84 mm)."""
+    base = dict(type="one-step", wire_diameter="3.8 mm", outer_diameter="28 mm", free_length="48 mm")
+    base.update(installed_length="38 mm", material="SiCr", damping_ratio=0.05)
+    s = ValveSpring.from_dict({**base, "total_coils": 6.8, "active_coils": 5.0, "end_type": "closed-ground"})
+    assert (s.dead_coils, s.active_coils, s.total_coils) == (0.9, 5.0, 6.8)
+    assert s.solid_length == pytest.approx(6.8 * 3.8e-3, abs=1e-15)
+    k = s.spring_model.internal_parameters()["K1"]  # G d^4 / (8 D^3 n) with n = 5.0
+    g, d, dm = s.shear_modulus, 3.8e-3, 28e-3 - 3.8e-3
+    assert k == pytest.approx(g * d**4 / (8 * dm**3 * 5.0), rel=1e-12)
+    with pytest.raises(InputError, match="give 0.9 dead coils per end, but end_type = 'open' has none"):
+        ValveSpring.from_dict({**base, "total_coils": 6.8, "active_coils": 5.0, "end_type": "open"})
+    with pytest.raises(InputError, match="total_coils = 4 is below active_coils"):
+        ValveSpring.from_dict({**base, "total_coils": 4, "active_coils": 5.0})

@@ -465,17 +465,30 @@ def _from_drawing(mapping: dict) -> dict:
         for k in given:
             m.pop(k)
         m["mean_diameter"] = round(means[first], 12)  # 25.5 mm - 3.5 mm is 22 mm, not 22.000000000000002
+    drawn_dead = _dead_coils_of_the_counts(m)  # both coil counts give the dead coils (None: not both)
     if m.get("end_type"):
         end = m["end_type"]
         if end not in END_TYPES:
             raise InputError(f"end_type = {end!r} is not allowed; choose one of {', '.join(map(repr, END_TYPES))}")
-        nb = END_TYPES[end]
+        nb = END_TYPES[end] if drawn_dead is None else drawn_dead
+        if drawn_dead is not None and END_TYPES[end] == 0.0 and drawn_dead > 1e-9:
+            raise InputError(
+                f"total_coils and active_coils give {drawn_dead:g} dead coils per end, but end_type = {end!r} has "
+                "none: give a closed end type, or equal counts"
+            )
         if "dead_coils" in m and abs(float(m["dead_coils"]) - nb) > 1e-9:
             raise InputError(
-                f"dead_coils = {m['dead_coils']!r} disagrees with end_type = {end!r}, which has {nb:g} dead coil per "
-                "end (EN 13906-1); give one of them"
+                f"dead_coils = {m['dead_coils']!r} disagrees with "
+                + (
+                    f"end_type = {end!r}, which has {nb:g} dead coil per end (EN 13906-1)"
+                    if drawn_dead is None
+                    else f"total_coils and active_coils, which give {nb:g} per end"
+                )
+                + "; give one of them"
             )
         m["dead_coils"] = nb
+    elif drawn_dead is not None and "dead_coils" not in m:
+        m["dead_coils"] = drawn_dead
     coils = [k for k in ("total_coils", "active_coils") if k in m]
     if coils:
         if "dead_coils" not in m:
@@ -508,6 +521,23 @@ def _from_drawing(mapping: dict) -> dict:
     if "load_points" in m:
         m["load_points"] = _load_points(m["load_points"])
     return m
+
+
+def _dead_coils_of_the_counts(m: dict) -> float | None:
+    """The dead coils per end a drawing gives by both its coil counts, ``(n_t - n) / 2`` [-]
+    (real valve springs have 0.75-1.25: issue 40), or None when it gives fewer than both."""
+    if "total_coils" not in m or "active_coils" not in m:
+        return None
+    for k in ("total_coils", "active_coils"):
+        if isinstance(m[k], bool) or not isinstance(m[k], (int, float)):
+            raise InputError(f"{k} = {m[k]!r} must be a number of coils")
+    dead = (float(m["total_coils"]) - float(m["active_coils"])) / 2.0
+    if dead < -1e-12:
+        raise InputError(
+            f"total_coils = {m['total_coils']!r} is below active_coils = {m['active_coils']!r}: the total counts the "
+            "active coils and the dead ones"
+        )
+    return max(round(dead, 9), 0.0)  # (6.8 - 5.0) / 2 is 0.9, not 0.8999999999999999
 
 
 def _pitches(m: dict) -> None:
