@@ -210,7 +210,9 @@ class ServiceLife(Result):
             )
         )
         out.append(
-            "life: infinite (every speed at or below the endurance strength)"
+            "life: none, a static failure: the spectrum runs at or above the float speed (see the note)"
+            if s["static_failure"]
+            else "life: infinite (every speed at or below the endurance strength)"
             if s["infinite_life"]
             else f"life: {s['life_hours']:.4g} h (Miner, damage {s['damage_per_hour']:.3g} per hour)"
         )
@@ -236,6 +238,20 @@ class ServiceLife(Result):
             s["float_cam_rpm_new"] = self.float_new
             s["float_cam_rpm_relaxed"] = self.float_relaxed
         notes = list(self.notes)
+        past = self.past_float()
+        if past.any():
+            # the valve leaves the cam there (bounce, a toss to solid): no fatigue law holds, and
+            # Basquin extrapolated to a few cycles is no answer (issue 40)
+            share = float(np.asarray(sp.share, dtype=float)[past].sum())
+            s.update(life_hours=0.0, infinite_life=False, static_failure=True, share_past_float=share)
+            notes.append(
+                f"STATIC FAILURE: {share:.1%} of the running time is at or above the float speed "
+                f"({min(self.float_new, self.float_relaxed or self.float_new):.0f} cam rpm, new or relaxed), where the "
+                "valve leaves the cam; no fatigue life is given for such a duty (Miner over the speeds below it "
+                f"alone: {self.life['life_hours']:.4g} h)"
+            )
+        else:
+            s["static_failure"] = False
         if self.scan is not None:
             for key, what in (("float_cam_rpm_new", "new"), ("float_cam_rpm_relaxed", "relaxed")):
                 if s[key] is None:
@@ -246,6 +262,13 @@ class ServiceLife(Result):
         )
         s["notes"] = notes
         return s
+
+    def past_float(self) -> np.ndarray:
+        """Per spectrum speed: at or above the float speed of the new or the relaxed spring
+        (bool; all False without a valve train)."""
+        floats = [f for f in (self.float_new, self.float_relaxed) if f is not None]
+        speeds = self.spectrum.speeds_rpm
+        return speeds >= min(floats) if floats else np.zeros(speeds.size, dtype=bool)
 
     def columns(self) -> dict:
         pts = self.life["per_point"]
