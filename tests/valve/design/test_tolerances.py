@@ -368,3 +368,21 @@ def test_an_unreadable_chunk_is_computed_again_and_a_huge_seed_refused(tmp_path)
     np.testing.assert_array_equal(first.dataset["Fset"].values, again.dataset["Fset"].values)
     with pytest.raises(InputError, match=r"seed = 9223372036854775808 must be a whole number from 0 to 2\^63 - 1"):
         tolerance_study(sp, cam, tols, count=4, seed=2**63, speeds=[1500.0])
+
+
+def test_tails_of_a_small_sample_are_marked_extremes_with_the_normal_fit():
+    """Issue 40: the 0.135/99.865 % "percentiles" of 64-256 variants were the sample's extremes
+    (235.3/266.7 N against the analytic +-3 sigma 233.1/269.8 N).  Below TAIL_VARIANTS (741)
+    they are marked so, and the normal fit's mean -+ 3 sigma stands beside them."""
+    from springdyn.valve.design.tolerances import TAIL_VARIANTS
+
+    assert TAIL_VARIANTS == 741  # 1 / 0.00135
+    sp, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    res = tolerance_study(sp, cam, _tols(wire_diameter="+-0.02 mm"), count=16, seed=3, speeds=[1500.0, 2500.0])
+    s, v = res.summary, res.dataset["Fset"].values
+    assert s["tails"] == "sample extremes"
+    assert s["Fset_p0.135"] < v.min() + 0.01 * (v.max() - v.min())  # interpolated between the two lowest
+    assert s["Fset_p0.135_normal"] == pytest.approx(v.mean() - 3 * v.std(ddof=1), rel=1e-12)
+    assert s["Fset_p99.865_normal"] == pytest.approx(v.mean() + 3 * v.std(ddof=1), rel=1e-12)
+    assert any("columns are the sample's extremes" in n for n in s["notes"])
+    assert "0.135 % (min)" in res.describe()

@@ -132,6 +132,10 @@ FIGURES = (
 )
 #: Percentiles reported of every output [%].
 PERCENTILES = (0.135, 2.5, 50.0, 97.5, 99.865)
+#: Variants beyond which the 0.135 % and 99.865 % percentiles lie inside the sample: fewer, and
+#: those columns are the sample's extremes (the sample resolves a tail of 1/n at best), and
+#: ``{figure}_p0.135_normal`` / ``_p99.865_normal`` give the normal fit's mean -+ 3 sigma beside them.
+TAIL_VARIANTS = math.ceil(100.0 / PERCENTILES[0])
 #: Variants per chunk on disk (a killed run loses at most one chunk's work; the chunks run
 #: in parallel on the local threads or the Dask workers).
 CHUNK = 25
@@ -811,12 +815,18 @@ class ToleranceStudy(Result):
             resumed_variants=int(self.resumed),
         )
         ok = ds["refused"].values < 0.5
+        extremes = int(ok.sum()) < TAIL_VARIANTS  # the outer percentiles are the sample's extremes
+        s["tails"] = "sample extremes" if extremes else "percentiles"
         for k in self._figures():
             v = ds[k].values
             s[f"nominal_{k}"] = float(self.nominal[k])
             if ok.any():
                 for q, val in zip(PERCENTILES, np.percentile(v[ok], PERCENTILES)):
                     s[f"{k}_p{q:g}"] = float(val)
+                if extremes:  # the normal fit's 3 sigma beside them (PERCENTILES[0] is 3 sigma's tail)
+                    mean, sd = float(np.mean(v[ok])), float(np.std(v[ok], ddof=1)) if ok.sum() > 1 else 0.0
+                    s[f"{k}_p{PERCENTILES[0]:g}_normal"] = mean - 3.0 * sd
+                    s[f"{k}_p{PERCENTILES[-1]:g}_normal"] = mean + 3.0 * sd
         if "float_cam_rpm_scan" in self.nominal:
             s["nominal_float_cam_rpm_scan"] = float(self.nominal["float_cam_rpm_scan"])
         s["float_in_range_share"] = float(ds["float_in_range"].values[ok].mean()) if ok.any() else 0.0
@@ -851,8 +861,17 @@ class ToleranceStudy(Result):
             notes.append(f"clash onsets are swept speeds: resolved to {step:g} cam rpm (the step of the swept speeds)")
         if not self.float_only and s["clash_in_range_share"] < 1.0:
             notes.append(f"a clash onset beyond the range counts as its top speed {top:g} cam rpm (no clash within it)")
-        if n < 100:
-            notes.append(f"{n} variants: the outer percentiles (0.135 %, 99.865 %) need some thousands")
+        if extremes:
+            notes.append(
+                f"{int(ok.sum())} variants: the 0.135 % and 99.865 % columns are the sample's extremes (a tail that far "
+                f"out lies inside a sample of {TAIL_VARIANTS} or more, and is estimated from ten beyond it with some "
+                f"{10 * TAIL_VARIANTS}); the normal fit's mean -+ 3 sigma: "
+                + "; ".join(
+                    f"{k} {s[f'{k}_p0.135_normal']:.4g} to {s[f'{k}_p99.865_normal']:.4g}"
+                    for k in self._figures()
+                    if f"{k}_p0.135_normal" in s
+                )
+            )
         if ds.attrs["method"] == "sobol" and n & (n - 1):
             notes.append(f"Sobol points are balanced at powers of 2 (e.g. {2 ** int(math.log2(n) + 1)} variants)")
         s["notes"] = notes
@@ -895,8 +914,21 @@ class ToleranceStudy(Result):
                         *(f"{e * s[f'{k}_p{q}']:.4g}" for q in qs),
                     )
                 )
+        tail = " (min)" if s.get("tails") == "sample extremes" else ""
         out.append(
-            text_table(rows, headers=("output", "unit", "nominal", "0.135 %", "2.5 %", "50 %", "97.5 %", "99.865 %"))
+            text_table(
+                rows,
+                headers=(
+                    "output",
+                    "unit",
+                    "nominal",
+                    f"0.135 %{tail}",
+                    "2.5 %",
+                    "50 %",
+                    "97.5 %",
+                    "99.865 %" + tail.replace("min", "max"),
+                ),
+            )
         )
         fails = [(k[len("fail_share_") :], f"{v:.1%}") for k, v in s.items() if k.startswith("fail_share_")]
         out.append(text_table(fails, headers=("criterion", "variants failing")))
