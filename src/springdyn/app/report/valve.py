@@ -942,7 +942,7 @@ def _model_choice(crit, beside, alone, top) -> str:
     sm = alone.replace(spring=s).simulate(top).summary  # with the element check where coils clash
     if "clash_force_element_sensitivity" in sm:
         evidence = (
-            f"at {top:.0f} cam rpm its coils clash and the peak end forces with half the elements ({s.elements // 2}) "
+            f"at {top:.0f} cam rpm its coils clash and the peak end forces with twice the elements ({2 * s.elements}) "
             f"change by {100 * sm['clash_force_element_sensitivity']:.2f} % of Fset"
         )
     else:

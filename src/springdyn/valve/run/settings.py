@@ -130,8 +130,8 @@ class RunSettings:
         Compute speeds at which the cam event is shorter than one period of the spring's
         first surge mode (refused otherwise), flagged in the results' notes.
     check_elements : bool
-        Distributed model with clashing coils: run again with half the elements and report
-        how much the peak end forces change.
+        Distributed model with clashing coils: run again with twice the elements (at most
+        400) and report how much the peak end forces change.
 
     Examples
     --------
