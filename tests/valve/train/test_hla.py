@@ -194,6 +194,33 @@ def test_train_modes_take_the_adjusters_oil_column():
     assert separated_frequencies(_spring(), Cam.from_toml(CAM), vt, 2)["jump_frequency_Hz"] > 0
 
 
+def test_train_modes_at_full_lift_take_the_oil_column_at_its_load():
+    """Issue 40: the full-lift modes took the oil column at the supply pressure (3.3 N/um at
+    the valve instead of ~66 N/um under the full-lift load), so the full-lift train mode was
+    1046 Hz against 1493 Hz with the simple adjuster.  At full lift the chamber pressure carries
+    the pivot's load, (F_v (r - 1) - F_s) / A_p, and the aerated oil's bulk modulus is taken
+    there: by hand below; the train's full-lift mode then lies above the simple adjuster's."""
+    from springdyn.valve.run.train_modes import natural_frequencies
+
+    vt = ValveTrain.from_toml(TRAIN)
+    h, r = vt.hla, vt.ratio
+    f_valve = 487.0
+    p = (f_valve * (r - 1.0) - h.plunger_spring_force) / h.area
+    assert vt.hla_chamber_pressure(f_valve) == pytest.approx(p, rel=1e-12) and p > 10 * h.supply_pressure
+    assert vt.hla_chamber_pressure(0.0) == h.supply_pressure  # the check valve is open below it
+    beta = effective_bulk_modulus(P_ATM + p, h.oil.bulk_modulus, h.oil.air_fraction)
+    k_pivot = 1.0 / (1.0 / (beta * h.area**2 / h.chamber_volume) + 1.0 / h.socket_stiffness)
+    loaded = vt.without_hla_dynamics(valve_force=f_valve)
+    assert loaded.hla_stiffness == pytest.approx(k_pivot / (r - 1.0) ** 2, rel=1e-12)
+    assert loaded.hla_stiffness > 10 * vt.without_hla_dynamics().hla_stiffness
+    res = natural_frequencies(_spring(), Cam.from_toml(CAM), vt, 4)
+    simple = natural_frequencies(
+        _spring(), Cam.from_toml(CAM), ValveTrain.from_toml(example("valve/finger_follower.toml")), 4
+    )
+    assert res["full_lift_Hz"][3] > simple["full_lift_Hz"][3]
+    assert "at full lift (the chamber at" in res["notes"][0]
+
+
 def test_a_sweep_reports_pump_up_per_speed():
     """The sweep's valve_held_open_m column is the simulation's figure at that speed: 0 below
     the float speed, the pump-up above it (the same engine and steady state; to the

@@ -82,12 +82,11 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     separated_frequencies : the same train with the cam contact open (the jump frequency).
     """
     notes = []
+    with_hla = valve_train  # the train with its adjuster's dynamics (None: no [hla])
     if valve_train is not None and valve_train.hla is not None:
-        valve_train = valve_train.without_hla_dynamics()
-        notes.append(
-            "the hydraulic lash adjuster is linearised as its oil column at the supply pressure (stiffness "
-            f"{valve_train.hla_stiffness / 1e6:.3g} N/um at the valve) with the plunger-spring preload"
-        )
+        valve_train = valve_train.without_hla_dynamics()  # the base circle: the supply pressure
+    else:
+        with_hla = None
     setup = prepare(spring, cam, valve_train)
     nf = setup.nfree
     nm = setup.n_masses
@@ -103,6 +102,19 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     i_max = int(np.argmax(setup.table.h))
     theta = i_max * setup.table.dth
     h_max = float(setup.table.h[i_max])
+    if with_hla is not None:
+        # full lift: the oil column at the chamber pressure that carries the full-lift force
+        # (issue 40: at the supply pressure it was 3.3 N/um at the valve instead of ~66 N/um)
+        f_lift = float(static_force_at_lift(setup, valve_train.ratio * h_max))
+        base_k = valve_train.hla_stiffness
+        valve_train = with_hla.without_hla_dynamics(valve_force=f_lift)
+        setup = prepare(spring, cam, valve_train)
+        notes.append(
+            "the hydraulic lash adjuster is linearised as its oil column with the plunger-spring preload: "
+            f"{base_k / 1e6:.3g} N/um at the valve on the base circle (the supply pressure), "
+            f"{valve_train.hla_stiffness / 1e6:.3g} N/um at full lift (the chamber at "
+            f"{with_hla.hla_chamber_pressure(f_lift) / 1e5:.3g} bar carries {f_lift:.0f} N at the valve)"
+        )
     # rigid-train guess, then the static equilibrium of every mass
     sp_setup = spring.free_length - spring.installed_length
     if valve_train is None:

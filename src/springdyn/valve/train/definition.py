@@ -783,26 +783,51 @@ class ValveTrain(Parameters):
             self, geometry=None, rocker_inertia=j - self.follower_mass * (self.rocker_valve_arm / r) ** 2
         )
 
-    def without_hla_dynamics(self) -> ValveTrain:
+    def without_hla_dynamics(self, valve_force: float = 0.0) -> ValveTrain:
         """The preloaded-plunger train of the same base-circle force and oil-column stiffness.
 
         For analyses that linearise the train (natural frequencies): ``hla_preload`` the
         plunger spring's force at the valve, ``F_s / (r - 1)``, and ``hla_stiffness`` the oil
-        column ``beta_e A_p^2 / V`` at the supply pressure referred to the valve,
-        ``/ (r - 1)^2``, in series with the socket.  Without ``[hla]``: the train itself.
+        column ``beta_e A_p^2 / V`` referred to the valve, ``/ (r - 1)^2``, in series with the
+        socket.  The aerated oil's bulk modulus ``beta_e`` is taken at the chamber pressure
+        that carries ``valve_force``: the pivot's load ``F_p = F_v (r - 1)`` (a bucket's: ``F_v``)
+        less the plunger spring's, over the plunger area, and at least the supply pressure
+        (the check valve is open below it).  Without ``[hla]``: the train itself.
+
+        Parameters
+        ----------
+        valve_force : float
+            The force on the valve the adjuster carries [N] (0: the base circle, the supply
+            pressure; the full-lift spring force for the modes at full lift: issue 40).
         """
 
         if self.hla is None:
             return self
 
         h, r = self.hla, self.ratio
-        beta = h.oil.bulk_modulus_at(P_ATM + h.supply_pressure)
+        beta = h.oil.bulk_modulus_at(P_ATM + self.hla_chamber_pressure(valve_force))
         k_pivot = series_stiffness(beta * h.area**2 / h.chamber_volume, h.socket_stiffness)
         if self.bucket_hla:  # the oil column under the bucket, in series with the stem contact
             return dataclasses.replace(self, hla=None, hla_stiffness=k_pivot, hla_preload=h.plunger_spring_force)
         return dataclasses.replace(
             self, hla=None, hla_stiffness=k_pivot / (r - 1.0) ** 2, hla_preload=h.plunger_spring_force / (r - 1.0)
         )
+
+    def hla_chamber_pressure(self, valve_force: float) -> float:
+        """The adjuster's chamber pressure above the atmosphere [Pa] that carries ``valve_force``
+        [N] at the valve: ``max((F_p - F_s) / A_p, p_supply)`` with the pivot's load ``F_p = F_v (r -
+        1)`` (a bucket adjuster's ``F_v``) and the plunger spring's force ``F_s``.
+
+        Parameters
+        ----------
+        valve_force : float
+            The force at the valve [N].
+        """
+        h = self.hla
+        if h is None:
+            raise InputError("hla_chamber_pressure needs an adjuster ([hla])")
+        pivot = valve_force if self.bucket_hla else valve_force * (self.ratio - 1.0)
+        return max((pivot - h.plunger_spring_force) / h.area, h.supply_pressure)
 
     def with_hla(self, table, source: str | None = None) -> ValveTrain:
         """The same train with the adjuster's dynamics of an ``[hla]`` table (or an :class:`~springdyn.valve.train.hla.HLA`).
