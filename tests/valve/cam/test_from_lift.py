@@ -328,3 +328,24 @@ def test_cli_cam_from_lift_bad_input(capsys, tmp_path):
     )
     assert code == 2 and err.count("\n") == 1 and "--ramp-angle" in err
     assert not out_toml.exists()
+
+
+def test_an_event_only_table_in_crank_degrees_gives_the_full_tables_lobe(tmp_path):
+    """Issue 40: a valve-lift table over the event only (zero outside), or against crank
+    degrees, was refused; the user padded and halved by hand.  The example's table cut to its
+    event and written against crank degrees (a four-stroke's, twice the cam angle) gives the
+    same lobe as the whole table, to round-off, and both facts are stated (warnings)."""
+    theta, z = read_valve_lift_table(EXAMPLES / "valve_lift.csv")
+    open_rows = np.flatnonzero(z > 0)
+    lo, hi = open_rows[0] - 1, open_rows[-1] + 1  # one closed row at each end
+    f = tmp_path / "event.csv"
+    rows = "\n".join(f"{2 * math.degrees(a):.12g},{v:.17g}" for a, v in zip(theta[lo : hi + 1], z[lo : hi + 1]))
+    f.write_text("crank_angle_deg,valve_lift_m\n" + rows + "\n")
+    with pytest.warns(UserWarning) as record:
+        a, b = read_valve_lift_table(f)
+        whole = cam_from_valve_lift(theta, z, BUCKET)
+        event = cam_from_valve_lift(a, b, BUCKET)
+    said = " ".join(str(w.message) for w in record)
+    assert "read as a four-stroke's crank angle" in said and "covers the event only" in said
+    grid = np.radians(np.arange(0.0, 360.0, 0.25))
+    np.testing.assert_allclose(event.cam.lift_at(grid), whole.cam.lift_at(grid), atol=1e-12)

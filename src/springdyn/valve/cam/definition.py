@@ -39,7 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...core.errors import InputError
+from ...core.errors import FactWarning, InputError
 from ...core.io import read_csv_columns
 from ...core.params import Parameters, param
 from ...core.units import format_mm, rpm_to_hz
@@ -415,6 +415,8 @@ class Cam(Parameters):
 
 
 _ANGLE_UNITS = {"cam_angle_deg": math.pi / 180.0, "cam_angle_rad": 1.0}
+#: Crank-angle columns a cam card gives: read as a four-stroke's, cam angle = crank angle / 2.
+_CRANK_UNITS = {"crank_angle_deg": math.pi / 360.0, "crank_angle_rad": 0.5}
 _LIFT_UNITS = {"lift_mm": 1e-3, "lift_m": 1.0, "lift_um": 1e-6}
 
 
@@ -440,15 +442,24 @@ def read_angle_table(path, value_columns: dict) -> tuple[np.ndarray, np.ndarray]
         Cam angle [rad] and the value [SI].
     """
     cols = read_csv_columns(path)
-    a_key = next((k for k in _ANGLE_UNITS if k in cols), None)
+    units = {**_ANGLE_UNITS, **_CRANK_UNITS}
+    a_key = next((k for k in units if k in cols), None)
     v_key = next((k for k in value_columns if k in cols), None)
     if a_key is None or v_key is None:
         first, *rest = value_columns
         raise InputError(
-            f"{path}: needs columns cam_angle_deg (or cam_angle_rad) and {first} (or {', '.join(rest)}); "
-            f"found {', '.join(cols)}"
+            f"{path}: needs columns cam_angle_deg (or cam_angle_rad, crank_angle_deg) and {first} (or "
+            f"{', '.join(rest)}); found {', '.join(cols)}"
         )
-    return cols[a_key] * _ANGLE_UNITS[a_key], cols[v_key] * value_columns[v_key]
+    if a_key in _CRANK_UNITS:  # a cam card against crank degrees (issue 40): stated, not refused
+        warnings.warn(
+            FactWarning(
+                f"{path}: {a_key} read as a four-stroke's crank angle (cam angle = crank angle / 2)",
+                key=f"crank angles|{path}",
+            ),
+            stacklevel=2,
+        )
+    return cols[a_key] * units[a_key], cols[v_key] * value_columns[v_key]
 
 
 def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):
@@ -489,7 +500,21 @@ def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):
             )
         return angle[:-1].copy(), lift[:-1].copy()
     gap = angle[0] + TWO_PI - angle[-1]
-    if gap > 2.0 * float(np.median(d)) + 1e-12:
+    step = float(np.median(d))
+    if gap > 2.0 * step + 1e-12 and lift[0] <= 1e-12 and lift[-1] <= 1e-12:
+        # a table of the event only, closed at both ends (as cam cards give it, issue 40): the base
+        # circle between its last and its first row is filled with zero lift at the table's step
+        fill = angle[-1] + step * np.arange(1, int(math.floor((gap - 0.5 * step) / step)) + 1)
+        warnings.warn(
+            FactWarning(
+                f"{name}: the table covers the event only ({math.degrees(span):.6g} deg): the base circle's "
+                f"{math.degrees(gap):.6g} deg are filled with zero lift",
+                key=f"event only|{name}",
+            ),
+            stacklevel=3,
+        )
+        return np.concatenate([angle, fill]), np.concatenate([lift, np.zeros(fill.size)])
+    if gap > 2.0 * step + 1e-12:
         raise InputError(
             f"{name}: the table must cover one whole revolution: it spans {math.degrees(span):.6g} deg, leaving a "
             f"gap of {math.degrees(gap):.6g} deg before it repeats (give lift from 0 to 360 deg)"
