@@ -439,3 +439,25 @@ def test_both_coil_counts_give_the_dead_coils():
         ValveSpring.from_dict({**base, "total_coils": 6.8, "active_coils": 5.0, "end_type": "open"})
     with pytest.raises(InputError, match="total_coils = 4 is below active_coils"):
         ValveSpring.from_dict({**base, "total_coils": 4, "active_coils": 5.0})
+
+
+@pytest.mark.parametrize(
+    ("end_type", "dead", "solid_mm"),
+    [
+        # d = 3.5 mm, n = 5.5 active coils; n_t = n + 2 Nb
+        ("closed-ground", 1.0, 7.5 * 3.5),  # EN 13906-1: n_t d
+        ("closed", 1.0, (7.5 + 1.5) * 3.5),  # EN 13906-1: (n_t + 1.5) d
+        ("plain", 0.0, (5.5 + 1.0) * 3.5),  # Shigley Table 10-1: d (N_t + 1), N_t = N_a
+        ("plain-ground", 0.5, 6.5 * 3.5),  # Shigley Table 10-1: d N_t, N_t = N_a + 1
+        ("tapered", 0.75, (7.0 - 0.3) * 3.5),  # EN 13906-1 hot coiled: (n_t - 0.3) d, n_t = n + 1.5
+    ],
+)
+def test_every_end_type_has_its_dead_coils_and_solid_length(end_type, dead, solid_mm):
+    """Issue 40: plain, plain-ground and tapered (hot-wound) ends beside the closed ones, each
+    with its dead coils and its solid length by the standard, in both models."""
+    keys = {k: v for k, v in BASE.items()}
+    s = ValveSpring.from_dict({**keys, "mean_diameter": "22 mm", "end_type": end_type, "active_coils": 5.5})
+    assert s.dead_coils == dead and s.active_coils == pytest.approx(5.5, abs=1e-12)
+    assert s.solid_length == pytest.approx(solid_mm * 1e-3, abs=1e-12)
+    assert s.with_model("distributed").spring_model.geometry.solid_length == pytest.approx(s.solid_length, abs=1e-12)
+    assert s.spring_model.internal_parameters()["Lc"] == pytest.approx(s.solid_length, abs=1e-15)

@@ -138,7 +138,7 @@ class Requirements(Parameters):
         None,
         "coil ends (sets dead coils and solid length, EN 13906-1)",
         kind="str",
-        choices=("closed-ground", "closed", "open"),
+        choices=tuple(END_TYPES),
         default="closed-ground",
     )
     min_goodman_safety: float = param(

@@ -36,7 +36,11 @@ EXAMPLES = {"one-step": "valve_one_step.toml", "two-step": "valve_two_step.toml"
 #: Coil end types of a drawing: dead coils per end (EN 13906-1, cold-coiled compression
 #: springs: ``n_t = n + 2`` for closed ends; open ends have no dead coil).  Their solid lengths:
 #: :func:`springdyn.valve.spring.solid_length.solid_length`.
-END_TYPES = {"closed-ground": 1.0, "closed": 1.0, "open": 0.0}
+#: Dead coils per end of each end type [-] (:func:`springdyn.valve.spring.solid_length.en13906_solid_length`
+#: gives their solid lengths): closed ends one (EN 13906-1, cold coiled: ``n_t = n + 2``), plain
+#: (open) ends none, plain ground ends half a coil (Shigley, Table 10-1: ``N_t = N_a + 1``), the
+#: tapered ends of a hot-coiled bar three quarters (EN 13906-1, hot coiled: ``n_t = n + 1.5``).
+END_TYPES = {"closed-ground": 1.0, "closed": 1.0, "open": 0.0, "plain": 0.0, "plain-ground": 0.5, "tapered": 0.75}
 
 #: Keys of a drawing that the ``[spring]`` table reads into the model's own keys
 #: (:meth:`ValveSpring._prepare`): they are not fields of the definition.
@@ -114,8 +118,9 @@ class ValveSpring(Parameters):
     )
     end_type: str = param(
         None,
-        "coil ends as drawn: 'closed-ground', 'closed' (not ground) or 'open'; sets the dead coils and the "
-        "solid length per EN 13906-1 (default: the MMS document's solid length Dw (N1 + N2 + 0.5))",
+        "coil ends as drawn: 'closed-ground', 'closed' (not ground), 'plain' (or 'open'), 'plain-ground' or "
+        "'tapered' (hot coiled, closed and ground); sets the dead coils and the solid length per EN 13906-1 "
+        "and Shigley's Table 10-1 (default: the MMS document's solid length Dw (N1 + N2 + 0.5))",
         kind="str",
         choices=("", *END_TYPES),
         default="",

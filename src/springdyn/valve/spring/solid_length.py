@@ -43,11 +43,12 @@ def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: fl
 
 
 def en13906_solid_length(wire_diameter: float, total_coils: float, end_type: str) -> float:
-    """Solid length of a cold-coiled compression spring by its ends [m].
+    """Solid length of a compression spring by its ends [m].
 
-    EN 13906-1:2013, solid length of cold-coiled springs: ends closed and ground
-    ``Lc = n_t d``, closed and not ground ``Lc = (n_t + 1.5) d``; open (plain) ends
-    ``Lc = (n_t + 1) d`` (Shigley, Table 10-1: the standard covers closed ends only).
+    EN 13906-1:2013: cold-coiled springs, ends closed and ground ``Lc = n_t d``, closed and not
+    ground ``Lc = (n_t + 1.5) d``; hot-coiled springs (tapered bar ends, closed and ground)
+    ``Lc = (n_t - 0.3) d``.  Plain (open) ends ``Lc = (n_t + 1) d`` and plain ground ends
+    ``Lc = n_t d`` (Shigley, Table 10-1: the standard covers closed ends only).
 
     Parameters
     ----------
@@ -55,15 +56,17 @@ def en13906_solid_length(wire_diameter: float, total_coils: float, end_type: str
         Wire diameter d [m].
     total_coils : float
         Total coils n_t [-].
-    end_type : {"closed-ground", "closed", "open"}
+    end_type : {"closed-ground", "closed", "open", "plain", "plain-ground", "tapered"}
 
     Examples
     --------
     >>> round(en13906_solid_length(3.5e-3, 7.5, "closed-ground") * 1e3, 3)
     26.25
+    >>> round(en13906_solid_length(10e-3, 7.5, "tapered") * 1e3, 3)
+    72.0
     """
-    extra = {"closed-ground": 0.0, "closed": 1.5, "open": 1.0}[end_type]
-    return wire_diameter * (total_coils + extra)
+    extra = {"closed-ground": 0.0, "closed": 1.5, "open": 1.0, "plain": 1.0, "plain-ground": 0.0, "tapered": -0.3}
+    return wire_diameter * (total_coils + extra[end_type])
 
 
 def solid_length(spring) -> float:
