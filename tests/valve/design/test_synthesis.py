@@ -159,3 +159,25 @@ def test_dynamic_checks_with_a_cam_and_train(tmp_path):
     again = float_speed(sp, Cam.from_toml(req.cam), ValveTrain.from_toml(req.valve_train), scan, resolution=5.0)
     assert res.rows[0]["float_cam_rpm"] == again["float_cam_rpm"]
     assert not res.rows[0]["meets_all"] and res.rows[0]["margin_float"] < 0
+
+
+def test_an_earlier_runs_candidates_do_not_stay_beside_the_new_ones(tmp_path):
+    """Issue 40: `valve synthesize` into an earlier run's folder kept the old candidates beside
+    the new ones.  Writing a run's candidates removes the earlier ones it does not write."""
+    from types import SimpleNamespace
+
+    from springdyn.valve import ValveSpring
+    from springdyn.valve.design.synthesis import write_candidates
+
+    old = tmp_path / "candidate_05_two-step.toml"
+    old.write_text("[spring]\n")
+    other = tmp_path / "notes.txt"
+    other.write_text("mine")
+    row = dict(rank=1, kind="one-step", mass_kg=0.035, surge_frequency_Hz=450.0, goodman_safety=1.2)
+    row.update(installed_force_N=251.4, open_force_N=486.4, margin_goodman=0.1)
+    spring = ValveSpring.example("one-step").replace(tensile_strength=1.9e9)  # a synthesised spring names its wire's
+    result = SimpleNamespace(rows=[row], springs=[spring])
+    written = write_candidates(result, tmp_path, "req.toml")
+    assert [p.name for p in written] == ["candidate_01_one-step.toml"]
+    assert not old.exists() and other.read_text() == "mine"
+    assert ValveSpring.from_toml(written[0]).free_length == ValveSpring.example("one-step").free_length

@@ -913,6 +913,9 @@ def write_candidates(result: Synthesis, out_dir, source: str = "") -> list[Path]
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
+    # an earlier run's candidates that this one does not write are removed once its own are in
+    # place (issue 40: they stayed beside the new ones and read as part of this run)
+    earlier = set(out.glob("candidate_*_*.toml"))
     with output_set():
         for row, sp in zip(result.rows, result.springs):
             path = out / f"candidate_{row['rank']:02d}_{row['kind']}.toml"
@@ -927,4 +930,6 @@ def write_candidates(result: Synthesis, out_dir, source: str = "") -> list[Path]
             with atomic_open(path, "w", encoding="utf-8") as fh:
                 fh.write(dumps_toml({"spring": spring_table(sp)}, header))
             written.append(path)
+    for stale in sorted(earlier - set(written)):
+        stale.unlink(missing_ok=True)
     return written
