@@ -372,6 +372,8 @@ def test_a_model_error_carries_the_unit_slip():
         ),
         ({"shear_yield_strength": "2000 MPa", "tensile_strength": "1900 MPa"}, "is not below tensile_strength"),
         ({"contact_stiffness": "1e30 N/mm"}, "outside any coil contact"),
+        # a traceback (exit 70): a unit on dead_coils beside pitch keys
+        ({"dead_coils": "1 coil", "pitch": "7.5 mm", "free_length": None}, "dead_coils = '1 coil' must be a number"),
     ],
 )
 def test_nonsense_of_issue_40_is_refused(changes, message):

@@ -424,6 +424,20 @@ class ValveSpring(Parameters):
         return unlikely
 
 
+def _count(mapping: dict, key: str, default: float | None = None) -> float:
+    """A coil count of a drawing's table as a number [-] (issue 40: a string such as
+    ``"1 coil"`` beside pitch keys was a traceback): one message naming the key otherwise."""
+    if key not in mapping and default is not None:
+        return default
+    value = mapping[key]
+    if isinstance(value, bool):
+        raise InputError(f"{key} = {value!r} must be a number of coils")
+    try:
+        return float(to_si(value, "", key))
+    except InputError:
+        raise InputError(f"{key} = {value!r} must be a number of coils (a bare number, e.g. {key} = 1)") from None
+
+
 def _quantity(mapping: dict, key: str, unit: str) -> float:
 
     return to_si(mapping[key], unit, key)
@@ -481,7 +495,7 @@ def _from_drawing(mapping: dict) -> dict:
                 f"total_coils and active_coils give {drawn_dead:g} dead coils per end, but end_type = {end!r} has "
                 "none: give a closed end type, or equal counts"
             )
-        if "dead_coils" in m and abs(float(m["dead_coils"]) - nb) > 1e-9:
+        if "dead_coils" in m and abs(_count(m, "dead_coils") - nb) > 1e-9:
             raise InputError(
                 f"dead_coils = {m['dead_coils']!r} disagrees with "
                 + (
@@ -498,8 +512,8 @@ def _from_drawing(mapping: dict) -> dict:
     if coils:
         if "dead_coils" not in m:
             raise InputError(f"{coils[0]} needs dead_coils or end_type to count the dead coils")
-        nb = float(m["dead_coils"])
-        n1 = float(m.get("low_pitch_coils", 0.0))
+        nb = _count(m, "dead_coils")
+        n1 = _count(m, "low_pitch_coils", 0.0)
         if m.get("type") == "two-step" and "low_pitch_coils" not in m:
             raise InputError(f"{coils[0]} of a two-step spring needs low_pitch_coils (the closely wound coils)")
         totals = {}
@@ -514,7 +528,7 @@ def _from_drawing(mapping: dict) -> dict:
                 f"disagree: with {nb:g} dead coil(s) per end the total is the active coils + {2 * nb:g}; give one of them"
             )
         n2 = next(iter(totals.values())) - n1
-        if "high_pitch_coils" in m and abs(float(m["high_pitch_coils"]) - n2) > 1e-9:
+        if "high_pitch_coils" in m and abs(_count(m, "high_pitch_coils") - n2) > 1e-9:
             raise InputError(
                 f"high_pitch_coils = {m['high_pitch_coils']!r} disagrees with {' and '.join(coils)} "
                 f"(which give high_pitch_coils = {n2:g}); give one of them"
@@ -585,8 +599,8 @@ def _pitches(m: dict) -> None:
         raise InputError(
             f"high_pitch = {format_mm(pitch['high_pitch'])} must exceed low_pitch = {format_mm(pitch['low_pitch'])}"
         )
-    nb, n1 = float(m["dead_coils"]), float(m.get("low_pitch_coils", 0.0))
-    n_total = n1 + float(m["high_pitch_coils"])
+    nb, n1 = _count(m, "dead_coils"), _count(m, "low_pitch_coils", 0.0)
+    n_total = n1 + _count(m, "high_pitch_coils")
     if two and not n1 > nb:
         raise InputError(
             f"low_pitch_coils = {n1:g} must exceed dead_coils = {nb:g}: the low-pitch coils include the seat's dead coil"
