@@ -59,6 +59,17 @@ def test_static_table(capsys):
     assert "12.97 N" in out and "toggle cut-off" in out and "5 deg" in out
 
 
+def test_a_safety_factor_below_one_says_the_pivot_yields(capsys):
+    """Issue 40: a pivot safety factor of 0.42 was printed without the word that the mechanism
+    yields (Table 1's spring over 72 mm: 3.54 GPa against its allowable)."""
+    code, out, _ = run(capsys, "cfcs", "static", "table1", "--stroke", "72mm")
+    line = next(x for x in out.splitlines() if x.startswith("safety factor"))
+    assert code == 0 and "0.424" in line and "YIELDS" in line
+    code, out, _ = run(capsys, "cfcs", "static", "table1", "--stroke", "10mm")
+    line = next(x for x in out.splitlines() if x.startswith("safety factor"))
+    assert code == 0 and "YIELDS" not in line
+
+
 def test_dynamic(capsys, tmp_path):
     code, out, err = run(
         capsys,

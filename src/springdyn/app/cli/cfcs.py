@@ -228,6 +228,13 @@ def _load(config: str, model: str | None = None) -> CFCSParams:
     return params
 
 
+def _yields(safety, sep: str = "") -> str:
+    """The word beside a pivot safety factor below 1 (issue 40: 0.42 was printed without it)."""
+    if safety is None or safety >= 1.0:
+        return ""
+    return f"{sep}YIELDS: the pivot's stress exceeds the allowable (the mechanism takes a set)"
+
+
 def _fmt(value, unit="", display=None, digits=5):
     if value is None:
         return "n/a"
@@ -299,7 +306,7 @@ def _static_rows(s) -> list:
             _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
             "largest curvature of the strip" if beam else "E (h/2) theta_K3 / l",
         ),
-        ("safety factor", _fmt(s["safety_factor"], digits=3), ""),
+        ("safety factor", _fmt(s["safety_factor"], digits=3), _yields(s["safety_factor"])),
         *prbm_rows,
         *_beam_check_rows(s),
         ("max stroke for stress", _fmt(s["max_stroke_for_stress_m"], "m", "mm"), ""),
@@ -392,7 +399,7 @@ def _dynamic_rows(s) -> list:
         (
             "max pivot stress",
             _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-            f"safety factor {_fmt(s['safety_factor'], digits=3)}",
+            f"safety factor {_fmt(s['safety_factor'], digits=3)}" + _yields(s["safety_factor"], "; "),
         ),
         *_beam_check_rows(s),
         _cutoff_row(s),
@@ -479,7 +486,7 @@ def _driven_rows(s) -> list:
         (
             "max pivot stress",
             _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
-            f"safety factor {_fmt(s['safety_factor'], digits=3)}",
+            f"safety factor {_fmt(s['safety_factor'], digits=3)}" + _yields(s["safety_factor"], "; "),
         ),
         *_beam_check_rows(s),
         (

@@ -138,8 +138,13 @@ def section(model: CFCS, *, source: str, out_dir: Path, quiet: bool = True) -> S
             else "; no statistic depends on the toggle cut-off."
         ),
         f"The flexural pivot (K3 = {s['k3_N_m_per_rad']:.4g} N m/rad) reaches {s['max_stress_Pa'] / 1e9:.2f} GPa over the "
-        f"stroke: safety factor {s['safety_factor']:.2f} against {p.allowable_stress / 1e9:.2f} GPa; the pivot allows "
-        f"only {s['max_stroke_for_stress_m'] * 1e3:.1f} mm of stroke."
+        f"stroke: safety factor {s['safety_factor']:.2f} against {p.allowable_stress / 1e9:.2f} GPa"
+        + (
+            ": the pivot YIELDS (its stress exceeds the allowable, the mechanism takes a set)"
+            if s["safety_factor"] < 1
+            else ""
+        )
+        + f"; the pivot allows only {s['max_stroke_for_stress_m'] * 1e3:.1f} mm of stroke."
         if p.allowable_stress and s["max_stress_Pa"] is not None
         else f"The flexural pivot reaches {s['max_stress_Pa'] / 1e9:.2f} GPa over the stroke (no allowable stress given)."
         if s["max_stress_Pa"] is not None
