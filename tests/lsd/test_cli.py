@@ -371,14 +371,17 @@ def test_film_map_command(tmp_path, capsys):
     assert main(args + ["--csv", str(tmp_path / "m.csv"), "--plot", str(tmp_path / "m.png")]) == 0
     out = capsys.readouterr().out
     assert "inertia changes the oil force by more than 10 % from 1401 rpm" in out
-    assert re.search(r"at 100 um from 14100 rpm", out)
+    assert re.search(
+        r"at 100 um the film cavitates from 14100 rpm; cavitation changes the force by more than 10 % from 14100 rpm",
+        out,
+    )
     cols = read_csv_columns(tmp_path / "m.csv")
     assert len(cols["rpm"]) == 4 and "cavitation_change" in cols
     assert (tmp_path / "m.png").stat().st_size > 10_000
     assert main(args + ["--json"]) == 0
     d = _json(capsys)
     assert d["inertia_onset_rpm"] == pytest.approx(1401, abs=1)
-    assert d["cavitation_change"][1][1] > 0.5 and d["cavitation_onset_rpm"][1] == 14100.0
+    assert d["cavitation_change"][1][1] > 0.5 and d["cavitation_change_onset_rpm"][1] == 14100.0
     assert main(["lsd", "film", "C", "--steps", "8"]) == 2
 
 

@@ -253,7 +253,10 @@ def test_film_map_result():
     assert fm.cavitation_change[0].max() < 1e-9  # 3000 rpm: the film stays whole
     assert fm.cavitation_change[1, 1] > 0.5  # 14100 rpm, 100 um: most of the force lost
     assert fm.inertia_onset_rpm() == pytest.approx(0.1 / _model().film_time_constant * 30 / np.pi)
-    onset = fm.cavitation_onset_rpm()
+    onset = fm.cavitation_change_onset_rpm()
     assert np.isnan(onset[0]) or onset[0] == 14100.0
     assert onset[1] == 14100.0
+    # where the film first reaches the cavitation pressure, at or below the 10 % change's speed
+    start = fm.cavitation_start_rpm()
+    assert start[1] <= onset[1] and np.all(fm.min_pressure[0] > fm.cavitation_pressure)
     assert fm.summary["mean_pressure_residual_max_Pa"] < 1e-3 * 1e5

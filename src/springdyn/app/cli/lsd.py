@@ -225,9 +225,10 @@ def cmd_film(args) -> int:
         "inertia changes the oil force by more than 10 % "
         + (f"from {onset:.0f} rpm (omega tau = 0.1)" if onset is not None else "nowhere in the mapped speeds")
     )
-    for a, r in zip(amps, res.cavitation_onset_rpm()):
+    for a, r, r0 in zip(amps, res.cavitation_change_onset_rpm(), res.cavitation_start_rpm()):
         where = f"from {r:g} rpm" if np.isfinite(r) else "nowhere in the mapped speeds"
-        print(f"cavitation changes it by more than 10 % at {a * 1e6:.3g} um {where}")
+        start = f"from {r0:g} rpm" if np.isfinite(r0) else "nowhere in the mapped speeds"
+        print(f"at {a * 1e6:.3g} um the film cavitates {start}; cavitation changes the force by more than 10 % {where}")
     return 0
 
 
@@ -247,7 +248,10 @@ def _film_map_json(res) -> dict:
         "pressure_amplitude_Pa": res.pressure_amplitude.tolist(),
         "min_pressure_Pa": res.min_pressure.tolist(),
         "inertia_onset_rpm": res.inertia_onset_rpm(),
-        "cavitation_onset_rpm": [None if not np.isfinite(v) else float(v) for v in res.cavitation_onset_rpm()],
+        "cavitation_change_onset_rpm": [
+            None if not np.isfinite(v) else float(v) for v in res.cavitation_change_onset_rpm()
+        ],
+        "cavitation_start_rpm": [None if not np.isfinite(v) else float(v) for v in res.cavitation_start_rpm()],
         "supply_pressure_abs_Pa": res.supply_pressure,
         "cavitation_pressure_abs_Pa": res.cavitation_pressure,
         "threshold": res.threshold,
