@@ -640,8 +640,8 @@ def _pitches(m: dict) -> None:
 def _load_points(value) -> str:
     """``[{ length, force, tolerance }, ...]`` -> ``"table: L F tol; ..."`` in SI (tolerance in N, -1: none)."""
 
-    if isinstance(value, str) and value.startswith("table:"):
-        return value  # already read (a definition written back, ValveSpring.replace)
+    if isinstance(value, str) and (value == "" or value.startswith("table:")):
+        return value  # none, or already read (a definition's fields given back, ValveSpring.replace)
     if not isinstance(value, list) or not value:
         raise InputError(
             f'load_points = {value!r} must be an array of tables, e.g. [{{ length = "38 mm", force = "250 N", '
