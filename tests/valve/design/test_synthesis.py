@@ -36,20 +36,42 @@ def result():
     return synthesize(Requirements.from_dict(REQ), dynamics=False)
 
 
+def _linear_rate_forces(sp, lengths):
+    """EN 13906-1's F = R s by hand: R = G d^4 / (8 D^3 n), n = N1 + N2 - 2 Nb from free length,
+    N2 - Nb below the installed length of a two-step spring (independent of the package)."""
+    g, d, dm = sp.shear_modulus, sp.wire_diameter, sp.mean_diameter
+    n_free = sp.low_pitch_coils + sp.high_pitch_coils - 2 * sp.dead_coils
+    n_work = sp.high_pitch_coils - sp.dead_coils if sp.low_pitch_coils else n_free
+    fset = g * d**4 / (8 * dm**3 * n_free) * (sp.free_length - sp.installed_length)
+    return np.array([fset + g * d**4 / (8 * dm**3 * n_work) * (sp.installed_length - x) for x in lengths])
+
+
 def test_candidates_meet_the_load_points_and_every_requirement(result):
-    """The model's static forces equal the load points (1e-6: the secant steps converge to
-    round-off), and every requirement holds by the independent routes of the module
-    docstring (their margins agree with the search's to 1e-6)."""
+    """Issue 40 item 2: a one-step candidate meets both load points by the standard's linear
+    rate (by hand, 1e-9) and in the distributed model, which judges it, within the load-point
+    tolerance; a two-step candidate in the distributed model, with the linear rate between the
+    load points.  Every requirement holds by the independent routes of the module docstring
+    (their margins agree with the search's to 1e-6), the coil-bind clearance by EN 13906-1's
+    dynamic factor (1.5 Sa, cold coiled)."""
     req = Requirements.from_dict(REQ)
+    tol = req.load_point_tolerance
     assert len(result.springs) >= 2
     assert {r["kind"] for r in result.rows} == {"one-step", "two-step"}
     for sp, row in zip(result.springs, result.rows):
-        f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
-        assert f == pytest.approx([req.installed_force, req.open_force], rel=1e-6)
+        lengths = [req.installed_length, req.open_length]
+        linear = _linear_rate_forces(sp, lengths)
+        dist = sp.with_model("distributed").spring_model.static_force(np.array(lengths))
+        assert dist == pytest.approx([req.installed_force, req.open_force], rel=tol)
+        assert [row["distributed_installed_force_N"], row["distributed_open_force_N"]] == pytest.approx(dist, rel=1e-12)
+        assert [row["standard_installed_force_N"], row["standard_open_force_N"]] == pytest.approx(linear, rel=1e-9)
+        if sp.low_pitch_coils:
+            assert (linear[1] - linear[0]) / req.lift == pytest.approx(req.rate, rel=1e-9)
+        else:
+            assert linear == pytest.approx([req.installed_force, req.open_force], rel=1e-9)
         assert sp.mean_diameter + sp.wire_diameter <= req.max_outer_diameter
         assert sp.mean_diameter - sp.wire_diameter >= req.min_inner_diameter
         active = sp.high_pitch_coils - (sp.dead_coils if sp.low_pitch_coils else 2 * sp.dead_coils)
-        gaps = min_sum_of_gaps(sp.mean_diameter, sp.wire_diameter, active)
+        gaps = 1.5 * min_sum_of_gaps(sp.mean_diameter, sp.wire_diameter, active)
         assert req.open_length - solid_length(sp) >= gaps
         assert row["margin_coil_bind"] == pytest.approx((req.open_length - solid_length(sp) - gaps) / gaps, abs=1e-6)
         n = fatigue_assessment(sp, req.installed_force, req.open_force)["fatigue_safety_factor"]
@@ -174,10 +196,60 @@ def test_an_earlier_runs_candidates_do_not_stay_beside_the_new_ones(tmp_path):
     other = tmp_path / "notes.txt"
     other.write_text("mine")
     row = dict(rank=1, kind="one-step", mass_kg=0.035, surge_frequency_Hz=450.0, goodman_safety=1.2)
-    row.update(installed_force_N=251.4, open_force_N=486.4, margin_goodman=0.1)
+    row.update(installed_force_N=251.4, open_force_N=486.4, margin_goodman=0.1, transition_turns=0.5)
+    row.update(required_installed_force_N=251.4, required_open_force_N=486.4)
+    for key in ("standard", "distributed", "type_c"):
+        row.update({f"{key}_installed_force_N": 251.4, f"{key}_open_force_N": 486.4})
     spring = ValveSpring.example("one-step").replace(tensile_strength=1.9e9)  # a synthesised spring names its wire's
     result = SimpleNamespace(rows=[row], springs=[spring])
     written = write_candidates(result, tmp_path, "req.toml")
     assert [p.name for p in written] == ["candidate_01_one-step.toml"]
     assert not old.exists() and other.read_text() == "mine"
     assert ValveSpring.from_toml(written[0]).free_length == ValveSpring.example("one-step").free_length
+
+
+def test_the_transition_coils_make_the_distributed_model_meet_the_load_points(result, tmp_path):
+    """Issue 40 item 2: with the usual half-turn transitions the distributed model of a
+    candidate reads the load points several per cent high (its transition coils close inside
+    the stroke; candidate 1 of the docs' example: +7.6 % open); the synthesis writes the
+    transition at which it stays within half the tolerance, and the file read back gives the
+    same forces (1e-4: the file gives lengths to 6 significant digits)."""
+    from springdyn.valve import ValveSpring
+    from springdyn.valve.design.synthesis import TRANSITION_SHARE, load_point_forces
+
+    req = Requirements.from_dict(REQ)
+    sp, row = next((s, r) for s, r in zip(result.springs, result.rows) if r["kind"] == "one-step")
+    usual = load_point_forces(sp.replace(transition_turns=0.5), req)["distributed"]
+    assert usual[1] / req.open_force - 1.0 > req.load_point_tolerance
+    chosen = load_point_forces(sp, req)["distributed"]
+    assert sp.transition_turns < 0.5
+    assert chosen == pytest.approx(
+        [req.installed_force, req.open_force], rel=TRANSITION_SHARE * req.load_point_tolerance
+    )
+    path = tmp_path / "c.toml"
+    from springdyn.core.io import dumps_toml
+
+    path.write_text(dumps_toml({"spring": spring_table(sp)}, "candidate"))
+    back = ValveSpring.from_toml(path)
+    assert back.transition_turns == sp.transition_turns
+    assert load_point_forces(back, req)["distributed"] == pytest.approx(chosen, rel=1e-4)
+
+
+def test_type_c_states_its_stiffening_inside_the_stroke(result):
+    """Issue 40 item 2: Type C stiffens above F1 by its law; where F1 lies below the open force
+    while the drawing's coils are open, the candidate says so (its F1 and the length), and
+    stays silent where F1 lies beyond the stroke."""
+    from springdyn.valve.design.synthesis import type_c_stiffening_note
+
+    req = Requirements.from_dict(REQ)
+    for sp, row in zip(result.springs, result.rows):
+        p = sp.with_model("type-c").spring_model.internal_parameters()
+        note = type_c_stiffening_note(sp, req)
+        if p["F1"] >= req.open_force:
+            assert note == ""
+        elif note:
+            assert f"F1 = {p['F1']:.1f} N" in note and "still open" in note
+            assert row["type_c_note"] == note
+    assert any(r.get("type_c_note") for r in result.rows) or all(
+        s.with_model("type-c").spring_model.internal_parameters()["F1"] >= req.open_force for s in result.springs
+    )

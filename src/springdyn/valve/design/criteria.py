@@ -473,13 +473,20 @@ def spring_verdicts(
         out.append(
             Verdict(
                 "coil_bind",
-                "coil-bind clearance at full lift",
+                "coil-bind clearance at full lift"
+                + (" (dynamic)" if cb["coil_bind_clearance_source"].startswith("EN 13906-1 dynamic") else ""),
                 f"{cb['coil_bind_margin_m'] * 1e3:.2f} mm above solid ({cb['solid_length_m'] * 1e3:.2f} mm)",
                 f">= {cb['coil_bind_clearance_m'] * 1e3:.2f} mm ({cb['coil_bind_clearance_source']})",
                 bool(cb["coil_bind_ok"]),
                 "THROUGH SOLID (through_solid = true): forces rest on the closed coils' contact stiffness"
                 if cb["through_solid"]
-                else "installed length - cam lift - solid length",
+                else "installed length - cam lift - solid length"
+                + (
+                    f"; EN 13906-1's static Sa {cb['static_sum_of_gaps_m'] * 1e3:.2f} mm is "
+                    + ("met" if cb["static_gaps_ok"] else "missed too")
+                    if "static_sum_of_gaps_m" in cb
+                    else ""
+                ),
                 "statics",
             )
         )

@@ -12,12 +12,16 @@ A spring engineer starts from two load points and the space, not from a spring. 
 2. **Load points.**  The working rate ``k = (F_open - F_installed) / lift`` fixes the active
    coils (``k = G d^4 / (8 D^3 n)``, :func:`springdyn.valve.spring.formulas.free_length_stiffness`),
    the installed force the free length (``F_set = K1 (Lf - L_inst)``,
-   :func:`springdyn.valve.spring.formulas.setup_force`); each candidate that is kept is built as a
-   :class:`~springdyn.valve.spring.definition.ValveSpring` and its model's static force at both lengths
-   is checked against the load points.
+   :func:`springdyn.valve.spring.formulas.setup_force`): the standard's linear rates meet both load
+   points exactly.  Each candidate that is kept is built as a
+   :class:`~springdyn.valve.spring.definition.ValveSpring` with the transition coils
+   (``transition_turns``) at which the distributed model, coil by coil, meets the load points within
+   half their tolerance (:func:`choose_transition`); its forces by the standard, the distributed
+   model and Type C are stated (:func:`load_point_forces`), and where Type C's stiffening starts
+   inside the working stroke while the coils are open, so is that (:func:`type_c_stiffening_note`).
 3. **Requirements as margins** (:data:`MARGINS`, each a fraction, >= 0 where met): the
-   space, the coil-bind clearance at the open length (EN 13906-1's minimum sum of gaps by
-   default), the Goodman safety between the two load points (:mod:`springdyn.valve.spring.stress`,
+   space, the coil-bind clearance at the open length (EN 13906-1's dynamic clearance, 1.5 Sa
+   cold coiled or 2 Sa hot coiled, by default), the Goodman safety between the two load points (:mod:`springdyn.valve.spring.stress`,
    the material's strengths), the stress at solid length against EN 13906-1's permissible
    ``0.5 Rm`` (cold-coiled springs), the spring index ``4 <= D/d <= 16``, and the surge
    frequency when asked.
@@ -66,7 +70,10 @@ __all__ = [
     "read_requirements",
     "spring_table",
     "write_candidates",
-    "meet_load_points",
+    "choose_transition",
+    "load_point_forces",
+    "load_point_lines",
+    "type_c_stiffening_note",
 ]
 
 #: Low-pitch coils of the two-step candidates beyond the seat's dead coils [-] (the low-pitch
@@ -109,7 +116,8 @@ class Requirements(Parameters):
     )
     min_coil_bind_clearance: float = param(
         "m",
-        "smallest margin from the open length to the solid length (default: EN 13906-1's minimum sum of gaps Sa)",
+        "smallest margin from the open length to the solid length (default: EN 13906-1's dynamic clearance, "
+        "1.5 Sa cold coiled, 2 Sa hot coiled)",
         display="mm",
         nonnegative=True,
         default=None,
@@ -140,6 +148,22 @@ class Requirements(Parameters):
         kind="str",
         choices=tuple(END_TYPES),
         default="closed-ground",
+    )
+    coiling: str = param(
+        None,
+        "how the springs are wound: 'cold' or 'hot' (EN 13906-1's Sa and its dynamic factor; default: hot for "
+        "tapered ends, else cold)",
+        kind="str",
+        choices=("", *solid_length.COILINGS),
+        default="",
+    )
+    load_point_tolerance: float = param(
+        "",
+        "tolerance of both load points, a fraction or '3 %' (springdyn's default; give the drawing's): each "
+        "candidate meets the load points by the standard's linear rate exactly and in the distributed model "
+        "within half of it",
+        positive=True,
+        default=0.03,
     )
     min_goodman_safety: float = param(
         "",
@@ -190,6 +214,8 @@ class Requirements(Parameters):
                 f"{where}min_inner_diameter = {format_mm(self.min_inner_diameter)} must be below max_outer_diameter = "
                 f"{format_mm(self.max_outer_diameter)}"
             )
+        if self.coiling == "cold" and self.end_type == "tapered":
+            raise InputError(f"{where}coiling = 'cold' with end_type = 'tapered': tapered bar ends are hot coiled")
         if not self.min_wire_diameter < self.max_wire_diameter:
             raise InputError(f"{where}min_wire_diameter must be below max_wire_diameter")
         if self.min_float_cam_rpm is not None and not (self.cam and self.valve_train):
@@ -222,6 +248,12 @@ class Requirements(Parameters):
     def rate(self) -> float:
         """Working rate between the load points [N/m]."""
         return (self.open_force - self.installed_force) / self.lift
+
+    @property
+    def coiling_process(self) -> str:
+        """How the springs are wound, ``coiling`` or by the end type
+        (:func:`springdyn.valve.spring.solid_length.coiling_of`)."""
+        return solid_length.coiling_of(self)
 
     @property
     def dead_coils(self) -> float:
@@ -337,7 +369,7 @@ def evaluate(req: Requirements, d, dm, n1, n2, lf) -> dict:
     clearance = (
         req.min_coil_bind_clearance
         if req.min_coil_bind_clearance is not None
-        else solid_length.min_sum_of_gaps(dm, d, n_work)
+        else solid_length.dynamic_sum_of_gaps(dm, d, n_work, req.coiling_process)
     )
     index = dm / d
     tau_lo = stress.corrected_shear_stress(req.installed_force, dm, d)
@@ -484,6 +516,16 @@ class Synthesis(Result):
                 ),
             )
         )
+        for r in self.rows:
+            d = r["distributed_installed_force_N"], r["distributed_open_force_N"]
+            tc = r["type_c_installed_force_N"], r["type_c_open_force_N"]
+            out.append(
+                f"load points of {r['rank']}: {r['standard_installed_force_N']:.1f} / {r['standard_open_force_N']:.1f} N "
+                f"by EN 13906-1's linear rate; distributed {d[0]:.1f} / {d[1]:.1f} N (transition "
+                f"{r['transition_turns']:g} turn, judges the dynamics)"
+                + ("" if tc[0] is None else f"; Type C {tc[0]:.1f} / {tc[1]:.1f} N")
+                + (" (Type C stiffens inside the stroke: see the spring file)" if r.get("type_c_note") else "")
+            )
         if out_dir:
             out.append(f"the candidates' spring files and candidates.csv are in {out_dir}")
         return "\n".join(out + notes_lines(self.summary))
@@ -506,8 +548,14 @@ class Synthesis(Result):
         return s
 
     def columns(self) -> dict:
+        # numbers only, never NaN: a figure some candidates lack (no clash onset, Type C's forces
+        # where its equations do not hold) stays in the rows and the table, not in the columns
         keys = [k for k in self.rows[0] if not isinstance(self.rows[0][k], (list, dict, str))]
-        return {k: np.array([np.nan if r.get(k) is None else float(r[k]) for r in self.rows]) for k in keys}
+        keys = [k for k in keys if all(r.get(k) is not None for r in self.rows)]
+        out = {k: np.array([float(r[k]) for r in self.rows]) for k in keys}
+        if any("clash_onset_cam_rpm" in r for r in self.rows):
+            out["coil_clash"] = np.array([float(r.get("clash_onset_cam_rpm") is not None) for r in self.rows])
+        return out
 
     def to_xarray(self):
         import xarray as xr  # (here: xarray costs 0.4 s of start-up)
@@ -559,15 +607,22 @@ _UNITS = {"_m": "m", "_kg": "kg", "_N": "N", "_Hz": "Hz", "_rpm": "rpm", "_Pa": 
 SURGE_ITERATIONS = 3
 #: Resolution of the candidates' float speeds [rev/min] (a bisection after the scan).
 FLOAT_RESOLUTION = 5.0
-#: Secant steps that make the model's static forces at both lengths the load points.
-LOAD_POINT_ITERATIONS = 12
+
+
+#: Share of the load-point tolerance the distributed model's static forces may take when the
+#: synthesis chooses a candidate's transition coils (the rest is left to manufacture) [-].
+TRANSITION_SHARE = 0.5
+#: Shortest transition from a dead coil to the active pitch the synthesis writes [turns].
+MIN_TRANSITION_TURNS = 0.05
+#: Bisection steps on the transition turns [-] (0.45 turn / 2^8: to 0.002 turn).
+TRANSITION_STEPS = 8
 
 
 def _spring(req: Requirements, table: dict, i: int):
-    """The candidate ``i`` of the table as a ValveSpring whose model meets the load points:
-    the closed-form coils and free length, then secant steps on the model's own static force
-    (its rate from the installed to the open length sets the coils, its installed force the
-    free length)."""
+    """The candidate ``i`` of the table as a ValveSpring: the closed-form coils and free length
+    (the standard's linear rates meet both load points exactly, :func:`load_point_forces`), its
+    transition coils chosen so that the distributed model meets them too
+    (:func:`choose_transition`)."""
 
     n2 = float(table["high_pitch_coils"][i])
     try:
@@ -576,34 +631,145 @@ def _spring(req: Requirements, table: dict, i: int):
         # the Type C closed forms do not hold for it (e.g. a negative end mass of a two-step
         # spring): the distributed model, coil by coil from the geometry, describes it
         sp = _valve_spring(req, table, i, n2, float(table["free_length"][i]), model="distributed")
-    return meet_load_points(sp, req)
+    return choose_transition(sp, req)
 
 
-def meet_load_points(sp, req: Requirements):
-    """The spring with its coils and free length set so that its model's static force meets
-    both load points (secant steps: the model's rate between the lengths sets the coils, its
-    installed force the free length; to 1e-9 in a few steps).
+#: Secant steps on a two-step candidate's free length (its installed force in the distributed model).
+FREE_LENGTH_STEPS = 8
+
+
+def _two_step_free_length(sp, req: Requirements):
+    """A two-step candidate with the free length at which the distributed model carries the
+    installed force: its low-pitch coils close one by one before the installed length, which the
+    standard's linear rate K1 up to it does not know (the working rate K2 between the load
+    points is the standard's)."""
+
+    def installed(lf):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            d = dataclasses.replace(sp, model="distributed", free_length=float(lf))
+            return float(d.spring_model.static_force(req.installed_length))
+
+    lf = sp.free_length
+    k1 = formulas.free_length_stiffness(
+        sp.shear_modulus,
+        sp.wire_diameter,
+        sp.mean_diameter,
+        sp.low_pitch_coils + sp.high_pitch_coils - 2 * sp.dead_coils,
+    )
+    try:
+        for _ in range(FREE_LENGTH_STEPS):
+            f = installed(lf)
+            if abs(f / req.installed_force - 1.0) < 1e-6:
+                break
+            lf = lf + (req.installed_force - f) / k1  # the free rate as the slope: it converges monotonically
+        return dataclasses.replace(sp, free_length=float(lf))
+    except InputError:
+        return sp  # the geometry refuses the length: the row's check refuses the candidate
+
+
+def load_point_forces(sp, req: Requirements) -> dict:
+    """The spring's static forces at the installed and the open length by each description:
+    ``"standard"`` (EN 13906-1's linear rates, :func:`springdyn.valve.spring.formulas.linear_rate_force`),
+    ``"distributed"`` (coil by coil from the geometry, its transition coils closing one by one)
+    and ``"type-c"`` (the MMS law, stiffening above F1; None where its equations do not hold).
 
     Parameters
     ----------
     sp : ValveSpring
-        A spring near the load points (any model).
+        The spring.
     req : Requirements
-        The load points.
-    """
+        The load points' lengths.
 
-    n1, n2 = float(sp.low_pitch_coils), float(sp.high_pitch_coils)
-    fixed = req.dead_coils if n1 > 0 else 2.0 * req.dead_coils
-    for _ in range(LOAD_POINT_ITERATIONS):
-        f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
-        if abs(f[0] / req.installed_force - 1.0) < 1e-9 and abs(f[1] / req.open_force - 1.0) < 1e-9:
-            break
-        n2 = (n2 - fixed) * (f[1] - f[0]) / (req.open_force - req.installed_force) + fixed
-        sp = dataclasses.replace(sp, high_pitch_coils=float(n2))
-        f0 = float(sp.spring_model.static_force(req.installed_length))
-        k1 = sp.spring_model.internal_parameters()["K1"]
-        sp = dataclasses.replace(sp, free_length=float(sp.free_length + (req.installed_force - f0) / k1))
-    return sp
+    Returns
+    -------
+    dict
+        model name -> ndarray (installed, open) [N] or None.
+    """
+    lengths = np.array([req.installed_length, req.open_length])
+    two = sp.low_pitch_coils > 0
+    n1, n2, nb = sp.low_pitch_coils, sp.high_pitch_coils, sp.dead_coils
+    k1 = formulas.free_length_stiffness(sp.shear_modulus, sp.wire_diameter, sp.mean_diameter, n1 + n2 - 2.0 * nb)
+    k2 = formulas.free_length_stiffness(
+        sp.shear_modulus, sp.wire_diameter, sp.mean_diameter, formulas.active_coils_setup(n1, n2, nb, two)
+    )
+    out = {"standard": formulas.linear_rate_force(lengths, sp.free_length, sp.installed_length, k1, k2)}
+    for model in ("distributed", "type-c"):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                out[model] = np.asarray(sp.with_model(model).spring_model.static_force(lengths), dtype=float)
+        except InputError:
+            out[model] = None
+    return out
+
+
+def _load_point_error(forces, req: Requirements) -> float:
+    """Largest relative difference of two forces from the load points [-] (inf: none)."""
+    if forces is None:
+        return float("inf")
+    return float(max(abs(forces[0] / req.installed_force - 1.0), abs(forces[1] / req.open_force - 1.0)))
+
+
+def _meets_load_points(sp, forces: dict, req: Requirements) -> bool:
+    """Both load points within their tolerance in the distributed model (the judging one) and by
+    the standard's linear rate: a one-step spring's forces, a two-step spring's working rate
+    between the load points (its installed force is set by the free length of a spring whose
+    low-pitch coils close before it, :func:`_two_step_free_length`)."""
+    tol = req.load_point_tolerance
+    if _load_point_error(forces["distributed"], req) > tol:
+        return False
+    std = forces["standard"]
+    if sp.low_pitch_coils > 0:
+        return abs((std[1] - std[0]) / (req.open_force - req.installed_force) - 1.0) <= tol
+    return _load_point_error(std, req) <= tol
+
+
+def choose_transition(sp, req: Requirements):
+    """The spring with the longest transition coils (up to the usual
+    :data:`~springdyn.valve.spring.geometry.TRANSITION_TURNS`) at which the distributed model's
+    static forces stay within :data:`TRANSITION_SHARE` of the load-point tolerance.
+
+    A transition's coils start closed against the dead coil and close one by one as the spring
+    is compressed: a long one stiffens the spring inside the working stroke (candidate 1 of the
+    example: +7.6 % at the open length with half a turn), which the standard's linear rate does
+    not know. The chosen ``transition_turns`` goes into the spring file, so the drawing, the
+    model and the standard describe one spring.
+
+    Parameters
+    ----------
+    sp : ValveSpring
+        The candidate (its coils and free length from the standard's rates).
+    req : Requirements
+        The load points and their tolerance.
+    """
+    from ..spring.geometry import TRANSITION_TURNS  # (here: the geometry's default, one home)
+
+    limit = TRANSITION_SHARE * req.load_point_tolerance
+
+    def build(turns):
+        d = dataclasses.replace(sp, transition_turns=float(turns))
+        return _two_step_free_length(d, req) if d.low_pitch_coils > 0 else d
+
+    def error(turns):
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                d = build(turns).with_model("distributed")
+                f = d.spring_model.static_force(np.array([req.installed_length, req.open_length]))
+        except InputError:
+            return float("inf")
+        return _load_point_error(f, req)
+
+    if error(TRANSITION_TURNS) <= limit:
+        return build(TRANSITION_TURNS)
+    lo, hi = MIN_TRANSITION_TURNS, TRANSITION_TURNS
+    if error(lo) > limit:
+        return build(lo)  # the row's check refuses it
+    for _ in range(TRANSITION_STEPS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if error(mid) <= limit else (lo, mid)
+    return build(float(np.floor(lo * 1e3) / 1e3))
 
 
 def _valve_spring(req: Requirements, table: dict, i: int, n2: float, lf: float, model: str = "type-c"):
@@ -625,6 +791,7 @@ def _valve_spring(req: Requirements, table: dict, i: int, n2: float, lf: float, 
         damping_ratio=req.damping_ratio,
         tensile_strength=float(w["tensile_strength"]),
         end_type=req.end_type,
+        coiling=req.coiling,
         min_coil_bind_clearance=req.min_coil_bind_clearance,
         model=model,
     )
@@ -727,11 +894,10 @@ def _select(req: Requirements, screen: Requirements, table: dict, per_kind: int)
                     sp = _spring(screen, table, int(i))
             except InputError:
                 continue  # the model refuses it (its equations do not hold): the next
-            f = sp.spring_model.static_force(np.array([req.installed_length, req.open_length]))
-            err = max(abs(f[0] / req.installed_force - 1.0), abs(f[1] / req.open_force - 1.0))
-            if err > 0.01:  # the model's force differs from the closed form (e.g. coil contact before open)
-                continue
-            row = _row(req, sp, f, kind)
+            forces = load_point_forces(sp, req)
+            if not _meets_load_points(sp, forces, req):
+                continue  # the distributed model misses a load point (its coils close before open)
+            row = _row(req, sp, forces, kind)
             if row["smallest_margin"] < 0.0:  # the model's coils (e.g. the distributed fallback) miss a margin
                 continue
             springs.append(sp)
@@ -765,8 +931,8 @@ def _kind_note(table: dict, kind: int) -> str:
     )
 
 
-def _row(req, sp, f, kind) -> dict:
-    # the final spring (its coils and free length from the model's load points) judged again
+def _row(req, sp, forces, kind) -> dict:
+    # the final spring (its coils and free length from the standard's rates) judged again
     e = evaluate(req, sp.wire_diameter, sp.mean_diameter, sp.low_pitch_coils, sp.high_pitch_coils, sp.free_length)
     r = dict(
         kind="two-step" if kind else "one-step",
@@ -782,15 +948,66 @@ def _row(req, sp, f, kind) -> dict:
         surge_frequency_Hz=float(sp.spring_model.first_mode_installed),
         goodman_safety=float(e["goodman"][0]),
         tensile_strength_Pa=float(e["tensile_strength"][0]),
-        installed_force_N=float(f[0]),
-        open_force_N=float(f[1]),
+        transition_turns=float(sp.transition_turns),
+        required_installed_force_N=req.installed_force,
+        required_open_force_N=req.open_force,
     )
+    # the load points by the standard's linear rates, the distributed model and Type C
+    for name, key in (("standard", "standard"), ("distributed", "distributed"), ("type-c", "type_c")):
+        f = forces[name]
+        r[f"{key}_installed_force_N"] = None if f is None else float(f[0])
+        r[f"{key}_open_force_N"] = None if f is None else float(f[1])
+    r["installed_force_N"], r["open_force_N"] = r["standard_installed_force_N"], r["standard_open_force_N"]
+    note = type_c_stiffening_note(sp, req)
+    if note:
+        r["type_c_note"] = note
     for k in e:
         if k.startswith("margin_"):
             r[k] = float(e[k][0])
     r["smallest_margin"] = float(e["worst"][0])
     r["meets_all"] = r["smallest_margin"] >= 0.0
     return r
+
+
+#: Type C's open force departs from the linear rate by at least this before its stiffening is
+#: noted (the table's last digit of a per-cent figure) [-].
+TYPE_C_NOTE_FRACTION = 1e-3
+
+
+def type_c_stiffening_note(sp, req: Requirements) -> str:
+    """Where Type C's stiffening starts inside the working stroke while the drawing's coils are
+    still open ("" where it does not, or the Type C equations do not hold for the spring).
+
+    Type C stiffens its elements above ``F1 = Fset + (Ls - Lc - Pc) K2`` ([MMS],
+    :func:`springdyn.valve.spring.formulas.first_nonlinear_force`), a rule of the document, not a
+    coil that touches: a drawing whose active coils are open at the open length keeps its linear
+    rate there.
+
+    Parameters
+    ----------
+    sp : ValveSpring
+    req : Requirements
+    """
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            p = sp.with_model("type-c").spring_model.internal_parameters()
+    except InputError:
+        return ""
+    f_tc = float(sp.with_model("type-c").spring_model.static_force(req.open_length))
+    f_lin = float(load_point_forces(sp, req)["standard"][1])
+    if not (p["F1"] < req.open_force and abs(f_tc / f_lin - 1.0) >= TYPE_C_NOTE_FRACTION):
+        return ""
+    two = sp.low_pitch_coils > 0
+    n_open = formulas.active_coils_setup(sp.low_pitch_coils, sp.high_pitch_coils, sp.dead_coils, two)
+    gap = (req.open_length - solid_length.solid_length(sp)) / max(n_open, 1e-9)
+    start = req.installed_length - (p["F1"] - p["Fset"]) / p["K2"]
+    return (
+        f"Type C stiffens from F1 = {p['F1']:.1f} N at {start * 1e3:.2f} mm, inside the working stroke, while the "
+        f"drawing's active coils are still open (about {gap * 1e3:.2f} mm apart at the open length): its open force "
+        f"{f_tc:.1f} N ({f_tc / f_lin - 1.0:+.1%} against the linear rate) is its law's, not the "
+        "spring's; the standard's rate and the distributed model judge the load points"
+    )
 
 
 def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
@@ -808,12 +1025,9 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
     items = list(zip(springs, rows))
     it = progress(items, desc="dynamics") if progress is not None else items
     for sp, row in it:
-        # the candidate as designed (the standard's rate, EN 13906-1, which the Type C model
-        # keeps) run coil by coil: the distributed model's static forces differ by a few per
-        # cent (its end coils), which the row states
+        # the candidate as designed (the standard's rates, its transition coils written) run
+        # coil by coil: its static forces are the row's distributed ones
         model = sp.with_model("distributed")
-        f = model.spring_model.static_force(np.array([req.installed_length, req.open_length]))
-        row["distributed_installed_force_N"], row["distributed_open_force_N"] = float(f[0]), float(f[1])
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             t = sweep(model, cam, speeds, valve_train=vt).summary_table()
@@ -883,6 +1097,8 @@ def spring_table(sp) -> dict:
         "low_pitch_coils": float(sp.low_pitch_coils),
         "high_pitch_coils": round(float(sp.high_pitch_coils), 4),
         "end_type": sp.end_type,
+        **({"coiling": sp.coiling} if sp.coiling else {}),
+        **({"transition_turns": float(sp.transition_turns)} if sp.transition_turns is not None else {}),
         "youngs_modulus": f"{sp.youngs_modulus / 1e9:.6g} GPa",
         "shear_modulus": f"{sp.shear_modulus / 1e9:.6g} GPa",
         "density": f"{sp.density:.6g} kg/m^3",
@@ -894,6 +1110,41 @@ def spring_table(sp) -> dict:
     if sp.model != "type-c":  # the Type C closed forms do not hold for it
         table["model"] = sp.model
     return table
+
+
+def load_point_lines(row: dict) -> str:
+    """The load points of a candidate by the three descriptions (the spring file's header, the
+    synthesis table's notes).
+
+    Parameters
+    ----------
+    row : dict
+        A row of :attr:`Synthesis.rows`.
+    """
+
+    ref = (row["required_installed_force_N"], row["required_open_force_N"])
+
+    def pair(key):
+        fi, fo = row[f"{key}_installed_force_N"], row[f"{key}_open_force_N"]
+        if fi is None:
+            return "its equations do not hold for this spring"
+        return f"{fi:.1f} N installed ({fi / ref[0] - 1.0:+.1%}), {fo:.1f} N open ({fo / ref[1] - 1.0:+.1%})"
+
+    lines = [
+        f"load points {ref[0]:g} N installed, {ref[1]:g} N open; by EN 13906-1's linear rate: {pair('standard')}"
+        + (
+            " (a two-step spring's low-pitch coils close before the installed length: its free length is set for "
+            "the distributed model's installed force, the linear rate holds for the working stroke)"
+            if row["kind"] == "two-step"
+            else ""
+        ),
+        f"by the distributed model (transition {row['transition_turns']:g} turn at each end, written below; it "
+        f"judges the dynamics): {pair('distributed')}",
+        f"by Type C: {pair('type_c')}",
+    ]
+    if row.get("type_c_note"):
+        lines.append(f"note: {row['type_c_note']}")
+    return "\n".join(lines)
 
 
 def write_candidates(result: Synthesis, out_dir, source: str = "") -> list[Path]:
@@ -923,8 +1174,9 @@ def write_candidates(result: Synthesis, out_dir, source: str = "") -> list[Path]
             header = (
                 f"candidate {row['rank']} of springdyn valve synthesize{' for ' + source if source else ''}: "
                 f"{row['kind']}, {row['mass_kg'] * 1e3:.1f} g, f1 {row['surge_frequency_Hz']:.0f} Hz, Goodman "
-                f"{row['goodman_safety']:.3g}\nload points (model): {row['installed_force_N']:.1f} N at the installed "
-                f"length, {row['open_force_N']:.1f} N open\nmargins: {margins}"
+                f"{row['goodman_safety']:.3g}\n"
+                + load_point_lines(row)
+                + f"\nmargins: {margins}"
                 + (f"\nfloat speed {row['float_cam_rpm']:.0f} cam rpm" if row.get("float_cam_rpm") else "")
             )
             with atomic_open(path, "w", encoding="utf-8") as fh:

@@ -600,7 +600,7 @@ def _summarise(sim: Simulation) -> dict:
             notes.append(
                 f"coil bind: the cam leaves {cb['coil_bind_margin_m'] * 1e3:.3g} mm above the solid length "
                 f"{cb['solid_length_m'] * 1e3:.4g} mm, less than the coil-bind clearance "
-                f"{cb['coil_bind_clearance_m'] * 1e3:.3g} mm"
+                f"{cb['coil_bind_clearance_m'] * 1e3:.3g} mm ({cb['coil_bind_clearance_source']})"
             )
     if mon is not None:
         ext = mon["ext"]

@@ -23,9 +23,9 @@ from ...core.params import Parameters, describe_value, param
 from ...core.units import format_mm, format_quantity, to_si
 from . import formulas
 from .chains import make_model
-from .geometry import drawing_pitch_knots, end_allowance
+from .geometry import TRANSITION_TURNS, drawing_pitch_knots, end_allowance
 from .materials import MATERIALS, material
-from .solid_length import en13906_solid_length, solid_length, solid_length_source
+from .solid_length import COILINGS, en13906_solid_length, solid_length, solid_length_source
 from .stress import spring_strengths
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
@@ -125,6 +125,15 @@ class ValveSpring(Parameters):
         choices=("", *END_TYPES),
         default="",
     )
+    coiling: str = param(
+        None,
+        "how the spring is wound: 'cold' (valve springs, oil-tempered wire) or 'hot' (bar stock); sets EN "
+        "13906-1's minimum sum of gaps Sa and its dynamic factor (1.5 Sa cold, 2 Sa hot) that judges the "
+        "coil-bind clearance (default: hot for tapered ends, else cold)",
+        kind="str",
+        choices=("", *COILINGS),
+        default="",
+    )
     material: str = param(
         None,
         "named wire (SiCr, SiCrV, CrV, music-wire; springdyn.valve.spring.materials): its shear and Young's "
@@ -143,7 +152,8 @@ class ValveSpring(Parameters):
     min_coil_bind_clearance: float = param(
         "m",
         "smallest allowed margin between the shortest working length and the solid length "
-        "(default: EN 13906-1's minimum sum of gaps Sa = (0.0015 D^2/d + 0.1 d) n, D and d in mm)",
+        "(default: EN 13906-1's dynamic clearance, 1.5 Sa cold coiled or 2 Sa hot coiled, Sa the minimum sum of "
+        "gaps (0.0015 D^2/d + 0.1 d) n cold, 0.02 (D + d) n hot)",
         display="mm",
         nonnegative=True,
         default=None,
@@ -163,6 +173,14 @@ class ValveSpring(Parameters):
         default="type-c",
     )
     elements: int = param("", "wire elements of the distributed model", kind="int", default=50, positive=True)
+    transition_turns: float = param(
+        "",
+        "distributed model: turns over which the pitch rises from a closed dead coil to the active pitch at each "
+        "end (these coils close one by one under load; default 0.5, typical of coiled valve springs; a "
+        "synthesised spring states its own)",
+        positive=True,
+        default=None,
+    )
     pitch_profile: str = param(
         None,
         "distributed model: pitch against turns from the seat end, a CSV file (columns "
@@ -215,6 +233,11 @@ class ValveSpring(Parameters):
 
     def _validate(self) -> None:
 
+        if self.coiling == "cold" and self.end_type == "tapered":
+            raise InputError(
+                "coiling = 'cold' with end_type = 'tapered': tapered bar ends are hot coiled (EN 13906-1); "
+                "give coiling = 'hot' or another end_type"
+            )
         unlikely = self._check_geometry()
         try:
             _ = self.spring_model  # the model checks that its equations hold for this spring
@@ -606,7 +629,13 @@ def _pitches(m: dict) -> None:
             f"low_pitch_coils = {n1:g} must exceed dead_coils = {nb:g}: the low-pitch coils include the seat's dead coil"
         )
     s, p = drawing_pitch_knots(
-        n_total, nb, dw, n1, pitch["high_pitch" if two else "pitch"], pitch["low_pitch"] if two else None
+        n_total,
+        nb,
+        dw,
+        n1,
+        pitch["high_pitch" if two else "pitch"],
+        pitch["low_pitch"] if two else None,
+        transition=_count(m, "transition_turns", TRANSITION_TURNS) if "transition_turns" in m else None,
     )
     lc = en13906_solid_length(dw, n_total, m["end_type"]) if m.get("end_type") else dw * (n_total + 0.5)
     lf = end_allowance(lc, dw, n_total) + float(np.trapezoid(p, s))  # the geometry's a + int p ds

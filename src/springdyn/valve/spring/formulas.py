@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ...core.docstrings import ParameterDocs
 
 __all__ = [
@@ -30,6 +32,7 @@ __all__ = [
     "coil_pitch",
     "coil_contact_length",
     "setup_force",
+    "linear_rate_force",
     "onestep_model_variables",
     "twostep_model_variables",
     "first_nonlinear_force",
@@ -367,6 +370,33 @@ def setup_force(lf: float, ls: float, k1: float) -> float:
     [MMS], "Set-up load", Fset.
     """
     return (lf - ls) * k1
+
+
+def linear_rate_force(length, lf: float, ls: float, k1: float, k2: float):
+    """Static force of the standard's linear rates at a spring length [N].
+
+    ``K1 (Lf - L)`` from the free to the installed length and ``Fset + K2 (Ls - L)`` below it
+    (EN 13906-1's ``F = R s``; a two-step spring's low-pitch coils closed at the installed
+    length, [MMS] K2; a one-step spring has ``K2 = K1``).  No coil closes: the figure a spring
+    maker checks a drawing's load points with.
+
+    Parameters
+    ----------
+    length : float or array_like
+        Spring length [m].
+    lf, ls : float
+        Free and installed lengths [m].
+    k1, k2 : float
+        Rates from free length and from the installed length [N/m].
+
+    Examples
+    --------
+    >>> round(float(linear_rate_force(29e-3, 48e-3, 38e-3, 25143.0, 25143.0)), 2)
+    477.72
+    """
+    length = np.asarray(length, dtype=float)
+    fset = setup_force(lf, ls, k1)
+    return np.where(length >= ls, k1 * (lf - length), fset + k2 * (ls - length))
 
 
 @_DOCS.fill

@@ -210,6 +210,7 @@ def default_pitch_knots(
     low_pitch: float,
     field,
     allowance: float | None = None,
+    transition: float | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Knots (turns, pitch [m]) of the default pitch profile (see the module docstring).
 
@@ -229,9 +230,12 @@ def default_pitch_knots(
         ``field(name)`` describes a ``[spring]`` key for messages.
     allowance : float, optional
         End allowance ``a`` [m] (:func:`end_allowance`; default ``Dw/2``, the document's).
+    transition : float, optional
+        Turns of each transition [-] (default :data:`TRANSITION_TURNS`).
     """
+    transition = TRANSITION_TURNS if transition is None else transition
     active = n_total - 2 * dead
-    tr = min(TRANSITION_TURNS, active / 4.0) if dead > 0 else 0.0
+    tr = min(transition, active / 4.0) if dead > 0 else 0.0
     a = 0.5 * dw if allowance is None else allowance
     base = a + 2 * dead * dw  # free length of the closed dead coils and the ends
     if low_pitch <= 0:
@@ -253,7 +257,7 @@ def default_pitch_knots(
             "include the seat's dead coil"
         )
     rest = n_total - dead - low_pitch  # high-pitch active coils with their transitions
-    trh = min(TRANSITION_TURNS, rest / 4.0)
+    trh = min(transition, rest / 4.0)
     tre = trh if dead > 0 else 0.0
 
     def knots(delta):
@@ -292,7 +296,13 @@ def default_pitch_knots(
 
 
 def drawing_pitch_knots(
-    n_total: float, dead: float, dw: float, low_coils: float, pitch: float, low_pitch: float | None = None
+    n_total: float,
+    dead: float,
+    dw: float,
+    low_coils: float,
+    pitch: float,
+    low_pitch: float | None = None,
+    transition: float | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Knots (turns, pitch [m]) of a spring whose drawing gives the pitch of its sections.
 
@@ -317,21 +327,24 @@ def drawing_pitch_knots(
         Pitch of the (high-pitch) active coils [m].
     low_pitch : float, optional
         Pitch of the low-pitch active coils [m] (two-step).
+    transition : float, optional
+        Turns of each transition [-] (default :data:`TRANSITION_TURNS`).
     """
+    transition = TRANSITION_TURNS if transition is None else transition
     active = n_total - 2 * dead
     if low_pitch is None:
         if dead == 0:  # open ends: the active pitch throughout
             return np.array([0.0, n_total]), np.array([pitch, pitch])
-        tr = min(TRANSITION_TURNS, active / 4.0)
+        tr = min(transition, active / 4.0)
         s = [0.0, dead, dead + tr, n_total - dead - tr, n_total - dead, n_total]
         p = [dw, dw, pitch, pitch, dw, dw]
         return _dedupe(s, p)
     nl = low_coils - dead  # low-pitch active coils
     rest = n_total - dead - low_coils  # high-pitch active coils
-    trh = min(TRANSITION_TURNS, rest / 4.0)
+    trh = min(transition, rest / 4.0)
     if dead == 0:
         return _dedupe([0.0, low_coils, low_coils + trh, n_total], [low_pitch, low_pitch, pitch, pitch])
-    tr = min(TRANSITION_TURNS, nl / 2.0)
+    tr = min(transition, nl / 2.0)
     s = [0.0, dead, dead + tr, low_coils, low_coils + trh, n_total - dead - trh, n_total - dead, n_total]
     p = [dw, dw, low_pitch, low_pitch, pitch, pitch, dw, dw]
     return _dedupe(s, p)

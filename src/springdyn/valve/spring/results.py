@@ -304,7 +304,13 @@ class DesignFigures:
             verdict = "ok" if cb["coil_bind_ok"] else ("THROUGH SOLID" if cb["through_solid"] else "BELOW CLEARANCE")
             lines.append(
                 f"coil bind: {cb['coil_bind_margin_m'] * 1e3:.3f} mm above solid at full lift "
-                f"(clearance {cb['coil_bind_clearance_m'] * 1e3:.3f} mm): {verdict}"
+                f"(clearance {cb['coil_bind_clearance_m'] * 1e3:.3f} mm, {cb['coil_bind_clearance_source']}"
+                + (
+                    f"; static Sa {cb['static_sum_of_gaps_m'] * 1e3:.3f} mm"
+                    if cb["coil_bind_clearance_source"] != "min_coil_bind_clearance"
+                    else ""
+                )
+                + f"): {verdict}"
             )
         if "coil_contact_note" in fig:
             lines.append(f"note: {fig['coil_contact_note']}")

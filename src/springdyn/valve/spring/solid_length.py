@@ -1,9 +1,12 @@
 """Coil bind: the solid length against the shortest length a cam or a design lift asks for.
 
-:func:`min_sum_of_gaps` is EN 13906-1's recommended clearance between the working length and
-the solid length; :func:`check_coil_bind` compares the shortest length with the solid length
-and that clearance, refuses a spring driven past solid (unless ``through_solid`` is set) and
-warns below the clearance.  :func:`springdyn.valve.run.setup.prepare` (every cam-driven analysis)
+:func:`min_sum_of_gaps` is EN 13906-1's minimum sum of gaps Sa between the working length and
+the solid length of a statically loaded spring (cold or hot coiled); :func:`dynamic_sum_of_gaps`
+is the standard's practice under dynamic load (1.5 Sa cold coiled, 2 Sa hot coiled), the
+clearance a valve spring, dynamically loaded by definition, is judged by
+(:func:`coil_bind_clearance`, one home); :func:`check_coil_bind` compares the shortest length
+with the solid length and that clearance, refuses a spring driven past solid (unless
+``through_solid`` is set) and warns below the clearance.  :func:`springdyn.valve.run.setup.prepare` (every cam-driven analysis)
 and :meth:`~springdyn.valve.spring.chains.SpringModel.design_figures` call it.
 """
 
@@ -15,15 +18,36 @@ from ...core.errors import FactWarning, InputError
 from ...core.units import format_mm
 from .formulas import coil_contact_length
 
-__all__ = ["min_sum_of_gaps", "en13906_solid_length", "solid_length", "solid_length_source", "check_coil_bind"]
+__all__ = [
+    "COILINGS",
+    "DYNAMIC_GAP_FACTOR",
+    "min_sum_of_gaps",
+    "dynamic_sum_of_gaps",
+    "coiling_of",
+    "coil_bind_clearance",
+    "en13906_solid_length",
+    "solid_length",
+    "solid_length_source",
+    "check_coil_bind",
+]
+
+#: How the spring is wound: cold coiled (valve springs: oil-tempered wire, EN 10270-2) or hot
+#: coiled (bar stock, tapered ends; EN 13906-1 section 9).
+COILINGS = ("cold", "hot")
+
+#: EN 13906-1's factor on the minimum sum of gaps Sa under dynamic load: 1.5 for cold-coiled,
+#: 2 for hot-coiled springs (the practice of EN 13906-1 calculators, e.g. SpringONE's
+#: ``TCompressionSpringSolver``; docs/references.md [EN13906-1]).
+DYNAMIC_GAP_FACTOR = {"cold": 1.5, "hot": 2.0}
 
 
-def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: float) -> float:
-    """Minimum sum of the gaps between the active coils at the shortest working length [m].
+def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: float, coiling: str = "cold") -> float:
+    """Minimum sum of the gaps between the active coils at the shortest working length, static load [m].
 
-    ``Sa = (0.0015 D^2/d + 0.1 d) n`` with D and d in mm (EN 13906-1:2013, cylindrical
-    helical compression springs, "minimum sum of gaps between active coils"); in SI
-    ``Sa = (1.5e-3 D^2/d + 0.1 d) n``.
+    EN 13906-1:2013, "minimum sum of gaps between active coils" Sa: cold-coiled springs
+    ``Sa = (0.0015 D^2/d + 0.1 d) n`` with D and d in mm, in SI ``Sa = (1.5e-3 D^2/d + 0.1 d) n``;
+    hot-coiled springs ``Sa = 0.02 (D + d) n`` (dimensionless factor).  Under dynamic load the
+    standard asks for more: :func:`dynamic_sum_of_gaps`.
 
     Parameters
     ----------
@@ -33,13 +57,97 @@ def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: fl
         Wire diameter d [m].
     active_coils : float
         Active coils n [-].
+    coiling : {"cold", "hot"}
+        How the spring is wound (:data:`COILINGS`).
 
     Examples
     --------
     >>> round(min_sum_of_gaps(22e-3, 3.5e-3, 5.5) * 1e3, 3)
     3.066
+    >>> round(min_sum_of_gaps(100e-3, 20e-3, 6.0, "hot") * 1e3, 3)
+    14.4
     """
+    if coiling == "hot":
+        return 0.02 * (mean_diameter + wire_diameter) * active_coils
     return (1.5e-3 * mean_diameter**2 / wire_diameter + 0.1 * wire_diameter) * active_coils
+
+
+def dynamic_sum_of_gaps(
+    mean_diameter: float, wire_diameter: float, active_coils: float, coiling: str = "cold"
+) -> float:
+    """Minimum sum of the gaps between the active coils under dynamic load [m].
+
+    ``DYNAMIC_GAP_FACTOR[coiling] * Sa``: 1.5 Sa for cold-coiled, 2 Sa for hot-coiled springs
+    (EN 13906-1:2013 practice for dynamically loaded springs; :data:`DYNAMIC_GAP_FACTOR`,
+    :func:`min_sum_of_gaps`).
+
+    Parameters
+    ----------
+    mean_diameter : float
+        Mean coil diameter D [m].
+    wire_diameter : float
+        Wire diameter d [m].
+    active_coils : float
+        Active coils n [-].
+    coiling : {"cold", "hot"}
+        How the spring is wound (:data:`COILINGS`).
+
+    Examples
+    --------
+    >>> round(dynamic_sum_of_gaps(22e-3, 3.5e-3, 5.5) * 1e3, 3)
+    4.599
+    """
+    return DYNAMIC_GAP_FACTOR[coiling] * min_sum_of_gaps(mean_diameter, wire_diameter, active_coils, coiling)
+
+
+def coiling_of(spring) -> str:
+    """How ``spring`` is wound: its ``coiling`` key, else hot for tapered (hot-coiled) ends and
+    cold otherwise (valve springs are cold coiled from oil-tempered wire).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    """
+    given = getattr(spring, "coiling", "")
+    if given:
+        return given
+    return "hot" if getattr(spring, "end_type", "") == "tapered" else "cold"
+
+
+def coil_bind_clearance(spring) -> dict:
+    """The coil-bind clearance ``spring`` is judged by, with the figures it comes from.
+
+    ``min_coil_bind_clearance`` where the spring gives it; else EN 13906-1's dynamic clearance
+    :func:`dynamic_sum_of_gaps` (a valve spring is dynamically loaded).
+
+    Parameters
+    ----------
+    spring : ValveSpring
+
+    Returns
+    -------
+    dict
+        ``coil_bind_clearance_m`` (the clearance that judges) [m], ``coil_bind_clearance_source``
+        (what it is: "EN 13906-1 dynamic, 1.5 Sa (cold coiled)" or "min_coil_bind_clearance"),
+        ``static_sum_of_gaps_m`` (EN 13906-1's static Sa) [m], ``dynamic_sum_of_gaps_m`` [m],
+        ``coiling``.
+    """
+    coiling = coiling_of(spring)
+    active = spring.low_pitch_coils + spring.high_pitch_coils - 2.0 * spring.dead_coils
+    static = min_sum_of_gaps(spring.mean_diameter, spring.wire_diameter, active, coiling)
+    dynamic = DYNAMIC_GAP_FACTOR[coiling] * static
+    given = spring.min_coil_bind_clearance
+    return dict(
+        coil_bind_clearance_m=dynamic if given is None else given,
+        coil_bind_clearance_source=(
+            f"EN 13906-1 dynamic, {DYNAMIC_GAP_FACTOR[coiling]:g} Sa ({coiling} coiled)"
+            if given is None
+            else "min_coil_bind_clearance"
+        ),
+        static_sum_of_gaps_m=static,
+        dynamic_sum_of_gaps_m=dynamic,
+        coiling=coiling,
+    )
 
 
 def en13906_solid_length(wire_diameter: float, total_coils: float, end_type: str) -> float:
@@ -106,7 +214,8 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
 
     Raises :class:`InputError` when ``installed_length - lift`` is below the solid length
     (unless the spring sets ``through_solid``); warns when the margin is below the
-    coil-bind clearance (``min_coil_bind_clearance``, default :func:`min_sum_of_gaps`).
+    coil-bind clearance (:func:`coil_bind_clearance`: ``min_coil_bind_clearance``, default
+    EN 13906-1's dynamic clearance :func:`dynamic_sum_of_gaps`).
 
     Parameters
     ----------
@@ -121,16 +230,17 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
     -------
     dict
         ``solid_length_m`` with ``solid_length_source``, ``open_length_m``, ``coil_bind_margin_m`` (open length minus solid
-        length), ``coil_bind_clearance_m`` with ``coil_bind_clearance_source``, ``coil_bind_ok`` (margin at least the clearance),
-        ``through_solid`` (the spring is driven past solid, allowed by ``through_solid``).
+        length), the figures of :func:`coil_bind_clearance` (``coil_bind_clearance_m`` with
+        ``coil_bind_clearance_source``, ``static_sum_of_gaps_m``, ``dynamic_sum_of_gaps_m``,
+        ``coiling``), ``coil_bind_ok`` (margin at least the clearance), ``static_gaps_ok``
+        (margin at least the static Sa), ``through_solid`` (the spring is driven past solid,
+        allowed by ``through_solid``).
     """
     lc = solid_length(spring)
     open_length = spring.installed_length - lift
     margin = open_length - lc
-    clearance = spring.min_coil_bind_clearance
-    if clearance is None:
-        active = spring.low_pitch_coils + spring.high_pitch_coils - 2.0 * spring.dead_coils
-        clearance = min_sum_of_gaps(spring.mean_diameter, spring.wire_diameter, active)
+    gaps = coil_bind_clearance(spring)
+    clearance = gaps["coil_bind_clearance_m"]
     through = margin < -1e-9  # at the solid length itself (to rounding) is allowed
     if through and not spring.through_solid:
         raise InputError(
@@ -150,11 +260,17 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
             stacklevel=3,
         )
     elif margin < clearance:
+        below_static = margin < gaps["static_sum_of_gaps_m"]
         warnings.warn(
             FactWarning(
                 f"coil bind: {source} leaves {format_mm(margin)} above the solid length {format_mm(lc)}, less than "
-                f"the coil-bind clearance {format_mm(clearance)}"
-                + (" (EN 13906-1's minimum sum of gaps Sa)" if spring.min_coil_bind_clearance is None else ""),
+                + (
+                    f"the dynamic coil-bind clearance {format_mm(clearance)} (EN 13906-1: "
+                    f"{DYNAMIC_GAP_FACTOR[gaps['coiling']]:g} Sa for a dynamically loaded {gaps['coiling']}-coiled spring; static Sa {format_mm(gaps['static_sum_of_gaps_m'])}"
+                    + (", also missed)" if below_static else ", met)")
+                    if spring.min_coil_bind_clearance is None
+                    else f"min_coil_bind_clearance {format_mm(clearance)}"
+                ),
                 key=f"coil bind|{_spring_id(spring)}",
             ),
             stacklevel=3,
@@ -164,10 +280,8 @@ def check_coil_bind(spring, lift: float, source: str) -> dict:
         solid_length_source=solid_length_source(spring),
         open_length_m=open_length,
         coil_bind_margin_m=margin,
-        coil_bind_clearance_m=clearance,
+        **gaps,
         coil_bind_ok=bool(margin >= clearance),
-        coil_bind_clearance_source="EN 13906-1 Sa"
-        if spring.min_coil_bind_clearance is None
-        else "min_coil_bind_clearance",
+        static_gaps_ok=bool(margin >= gaps["static_sum_of_gaps_m"]),
         through_solid=bool(through),
     )

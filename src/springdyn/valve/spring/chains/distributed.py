@@ -319,6 +319,7 @@ class DistributedModel(SpringModel):
                 sp.low_pitch_coils if sp.two_step else 0.0,
                 sp._field,
                 allowance,
+                transition=sp.transition_turns,
             )
         if sp.diameter_profile:
             ds, dv = parse_profile(sp.diameter_profile, "diameter_profile", {"diameter_mm": 1e-3, "diameter_m": 1.0})
