@@ -234,6 +234,16 @@ def test_forward(capsys, tmp_path):
             "force",
         ),
         (["cfcs", "forward", "table1", "--t-end", "1s"], "forward needs --force"),
+        # issue 40, item 7: a zero was read as "not given" and the default (6 periods, 2000 or 400 samples) ran
+        (
+            ["cfcs", "dynamic", "table1", "--omega", "10", "--drive-stiffness", "20kN/m", "--periods", "0"],
+            "--periods = 0",
+        ),
+        (
+            ["cfcs", "dynamic", "table1", "--omega", "10", "--drive-stiffness", "20kN/m", "--samples", "0"],
+            "--samples = 0",
+        ),
+        (["cfcs", "dynamic", "table1", "--omega", "10", "--samples", "0"], "--samples = 0"),
     ],
 )
 def test_bad_input_exit_2(capsys, argv, match):

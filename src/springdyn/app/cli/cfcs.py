@@ -384,7 +384,9 @@ def _dynamic(args) -> int:
         mot = model.motion(omega, args.amplitude, args.offset, csv=args.motion)
         if driven:
             return _driven(args, model, mot)
-        res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples or 400)
+        res = model.dynamic(
+            motion=mot, cycles=args.cycles, samples_per_cycle=400 if args.samples is None else args.samples
+        )
     return _show(args, res, _dynamic_rows)
 
 
@@ -430,8 +432,8 @@ def _driven(args, model, mot) -> int:
     kw = dict(
         drive_stiffness=_q(args.drive_stiffness, "N/m", "--drive-stiffness") if args.drive_stiffness else None,
         drive_damping=_q(args.drive_damping, "N*s/m", "--drive-damping") if args.drive_damping else None,
-        periods=args.periods or DRIVEN_PERIODS,
-        samples_per_period=args.samples or DRIVEN_SAMPLES,
+        periods=DRIVEN_PERIODS if args.periods is None else args.periods,
+        samples_per_period=DRIVEN_SAMPLES if args.samples is None else args.samples,
         rtol=_q(args.rtol, "", "--rtol") if args.rtol else DRIVEN_RTOL,
         max_step=_q(args.max_step, "s", "--max-step") if args.max_step else None,
         sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing")
