@@ -382,6 +382,18 @@ def test_dynamic_with_a_compliant_drive(capsys, tmp_path):
     assert code == 2 and "--drive-stiffness" in err
 
 
+def test_a_rigid_drive_finishes(capsys):
+    """Issue 40, item 7: --drive-stiffness 1e15N/m ran without end; it is the rigid drive (stated bound)."""
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "10", "--drive-stiffness", "1e15N/m")
+    assert code == 0, err
+    assert "RIGID (from 1.91e+06 N/m)" in out and "note: RIGID DRIVE" in out
+    assert "peak-to-peak force         5.5828 N" in out  # the inverse dynamics' 5.58 N (rigid drive, 10 rad/s)
+    code, out, err = run(
+        capsys, "cfcs", "dynamic", "table1", "--omega", "10", "--offset", "0", "--drive-stiffness", "1e15N/m"
+    )
+    assert code == 2 and "--drive-stiffness = 1e+15 N/m is a rigid drive" in err and err.count("\n") == 1
+
+
 def test_driven_text_output_says_the_crank_sticks(capsys):
     """The text table names the sticking and the figure without tau_AF; a note says what sets the peak."""
     code, out, err = run(

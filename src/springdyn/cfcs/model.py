@@ -18,10 +18,13 @@ from ..core.units import format_quantity, to_si
 from .beam import beam_force_at_toggle, beam_force_curve, prbm_error
 from .drive import (
     DRIVE_SIGN_SMOOTHING,
+    RIGID_DRIVE_FREQUENCY_RATIO,
+    RIGID_DRIVE_LAG,
     TOGGLE_REST_FACTOR,
     drive_force,
     energy_balance,
     integrate_driven,
+    slider_effective_mass,
     toggle_sticking,
 )
 from .dynamics import energy, integrate_forward, inverse_dynamics
@@ -797,6 +800,16 @@ class CFCS:
         reported beside the headline (``peak_to_peak_without_axial_friction_N`` etc.; about 1.3 s
         more for the seed's case), with a note when tau_AF changes the peak-to-peak by more than 10 %.
 
+        A drive stiff enough to be rigid is not integrated (issue 40: 1e9 N/m took 49 s, 1e15 N/m did not
+        end): when ``k_d / (m_eff omega^2)``, the squared ratio of the slider's frequency on the drive to the
+        motion's (``m_eff = M / G^2``, the largest over the motion), is at least
+        :data:`~springdyn.cfcs.drive.RIGID_DRIVE_FREQUENCY_RATIO` and the drive deflects at most
+        :data:`~springdyn.cfcs.drive.RIGID_DRIVE_LAG` of the stroke under the largest spring force, the result
+        is the rigid drive's, :meth:`dynamic` over one period (a :class:`DynamicResult`, ``rigid_drive`` true,
+        with a note); a motion into the toggle zone with such a drive is refused (the rigid drive has no
+        finite force there).  Every result carries the ratios (``drive_frequency_ratio_squared``,
+        ``drive_lag_share``, ``drive_damping_ratio``, ``rigid_drive_stiffness_N_per_m``).
+
         Parameters
         ----------
         omega : float, optional
@@ -854,6 +867,9 @@ class CFCS:
         h = period / 400.0 if max_step is None else float(max_step)
         if not h > 0:
             raise InputError(f"max_step = {max_step!r} s must be positive")
+        stiffness = self._drive_stiffness_ratios(mot, k_d, c_d)
+        if stiffness["rigid_drive"]:
+            return self._rigid_drive(mot, stiffness, samples_per_period)
         vals = self._values(hi=p.max_deflection if self.beam else None)
         # start at rest where the drive balances the static force at t = 0 (away from the toggle)
         xd0 = float(mot(np.array([0.0]))[0][0])
@@ -889,8 +905,7 @@ class CFCS:
         summary = {
             "omega_rad_per_s": float(mot.omega),
             "motion": "drive " + mot.describe().replace("x(t)", "x_d(t)"),
-            "drive_stiffness_N_per_m": float(k_d),
-            "drive_damping_N_s_per_m": float(c_d),
+            **stiffness,
             **stats,
             "actuator_work_per_cycle_J": float(y[2][-1] - y[2][-1 - n]),
             "periodicity_change_percent": 100.0 * change / scale,
@@ -999,6 +1014,70 @@ class CFCS:
             )
         self._add_beam_check(summary, float(np.max(x[last])), float(np.min(x[last])))
         return DrivenResult(t, xd, x, v, th, thd, f, fs, y[2], y[3], y[4], residual, self._note_nulls(summary))
+
+    def _drive_stiffness_ratios(self, mot, k_d: float, c_d: float) -> dict:
+        """How stiff the drive is for this motion: ``(w_n/omega)^2 = k_d / (m_eff omega^2)`` with the largest
+        slider-referred mass over the motion (crank angles from the toggle cut-off up), and the drive's
+        deflection under the largest static force over the stroke; rigid when both pass their bounds."""
+        p = self.params
+        lo, hi = mot.bounds
+        x_cut = float(deflection_from_theta2(p.toggle_cutoff, p.r2, p.r3))
+        x = np.linspace(max(lo, x_cut), max(hi, x_cut), 101)
+        th = theta2_from_deflection(x, p.r2, p.r3)
+        m_eff = float(np.max(slider_effective_mass(th, p.crank_mass, p.coupler_mass, p.slider_mass, p.r2, p.r3)))
+        xs = np.linspace(max(lo, 0.0), hi, 101)
+        f_max = float(np.max(np.abs(self.spring_force(xs))))
+        ratio = k_d / (m_eff * mot.omega**2)
+        lag = f_max / (k_d * max(hi - lo, 1e-12))
+        return {
+            "rigid_drive": bool(ratio >= RIGID_DRIVE_FREQUENCY_RATIO and lag <= RIGID_DRIVE_LAG),
+            "drive_stiffness_N_per_m": float(k_d),
+            "drive_damping_N_s_per_m": float(c_d),
+            "drive_frequency_ratio_squared": float(ratio),
+            "drive_lag_share": float(lag),
+            "drive_damping_ratio": float(c_d / (2.0 * np.sqrt(k_d * m_eff))),
+            "slider_effective_mass_kg": m_eff,
+            "rigid_drive_stiffness_N_per_m": float(
+                max(RIGID_DRIVE_FREQUENCY_RATIO * m_eff * mot.omega**2, f_max / (RIGID_DRIVE_LAG * max(hi - lo, 1e-12)))
+            ),
+            "enters_toggle_zone": bool(lo < x_cut),
+        }
+
+    def _rigid_drive(self, mot, stiffness: dict, samples_per_period: int) -> DynamicResult:
+        """A drive stiff enough to be rigid: the inverse dynamics of :meth:`dynamic` over one period."""
+        p = self.params
+        k_d = stiffness["drive_stiffness_N_per_m"]
+        bound = (
+            f"(w_n/omega)^2 = k_d / (m_eff omega^2) >= {RIGID_DRIVE_FREQUENCY_RATIO:g} and a drive deflection under "
+            f"the largest spring force <= {RIGID_DRIVE_LAG:g} of the stroke"
+        )
+        if stiffness["enters_toggle_zone"]:
+            raise InputError(
+                f"drive_stiffness = {k_d:.4g} N/m is a rigid drive for this motion ({bound}), and the motion "
+                f"reaches the toggle (crank angles below toggle_cutoff = {p.toggle_cutoff:.4g} rad), where the "
+                "rigid drive's force has no finite value (it scales with the cut-off: cfcs dynamic without a drive "
+                "flags it toggle-dominated); give a drive below "
+                f"{stiffness['rigid_drive_stiffness_N_per_m']:.3g} N/m, or start the motion from a preload offset"
+            )
+        res = self.dynamic(motion=mot, cycles=1, samples_per_cycle=samples_per_period)
+        s = res.summary
+        s.update(stiffness)
+        s["motion"] = "drive " + s["motion"].replace("x(t)", "x_d(t)") + " (rigid: the slider follows it)"
+        note = (
+            f"RIGID DRIVE: k_d = {k_d:.4g} N/m (rigid from {stiffness['rigid_drive_stiffness_N_per_m']:.3g} N/m) gives (w_n/omega)^2 = {stiffness['drive_frequency_ratio_squared']:.3g} "
+            f"(m_eff = {stiffness['slider_effective_mass_kg']:.3g} kg) and deflects "
+            f"{stiffness['drive_lag_share']:.2g} of the stroke under the largest spring force; with {bound} the "
+            "slider follows the motion (without friction a critically damped drive at the bound is within 0.03 % of "
+            "the peak-to-peak), so this is the inverse dynamics of the rigid drive (one period, no integration)"
+        )
+        if stiffness["drive_damping_ratio"] < 1.0:
+            note += (
+                f"; with a damping ratio of {stiffness['drive_damping_ratio']:.2g} a real drive rings after each "
+                "reversal of the friction, with an overshoot set by the damping ratio, not the stiffness "
+                "(docs/cfcs.md, the rigid limit), which this result does not hold"
+            )
+        s.setdefault("notes", []).insert(0, note)
+        return res
 
     # -- forward dynamics ---------------------------------------------------------------
     def forward(

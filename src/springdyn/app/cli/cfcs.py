@@ -440,9 +440,27 @@ def _driven(args, model, mot) -> int:
         if args.sign_smoothing
         else DRIVE_SIGN_SMOOTHING,
     )
-    with as_options(periods="--periods", samples_per_period="--samples", rtol="--rtol", max_step="--max-step"):
+    with as_options(
+        periods="--periods",
+        samples_per_period="--samples",
+        rtol="--rtol",
+        max_step="--max-step",
+        drive_stiffness="--drive-stiffness",
+    ):
         res = model.driven(motion=mot, **kw)
-    return _show(args, res, _driven_rows)
+    return _show(args, res, _driven_rows if res.summary["rigid_drive"] is False else _rigid_drive_rows)
+
+
+def _rigid_drive_rows(s) -> list:
+    """A drive stiff enough to be rigid (``CFCS.driven`` gave the inverse dynamics)."""
+    return [
+        (
+            "drive",
+            f"k_d {s['drive_stiffness_N_per_m']:.4g} N/m: RIGID (from {s['rigid_drive_stiffness_N_per_m']:.3g} N/m)",
+            f"(w_n/omega)^2 {s['drive_frequency_ratio_squared']:.3g}, lag {s['drive_lag_share']:.2g} of the stroke",
+        ),
+        *_dynamic_rows(s),
+    ]
 
 
 def _driven_rows(s) -> list:
