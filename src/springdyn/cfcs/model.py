@@ -7,6 +7,7 @@ A thin layer over the physics functions of :mod:`~springdyn.cfcs.kinematics`,
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 
 import numpy as np
@@ -65,6 +66,20 @@ DEFAULT_AMPLITUDE = "40 %"
 #: inside its constant-force band, not through the toggle, where the dissipative terms of
 #: Eqs. (21)-(22) turned into a slider force diverge (correction CFCS-5 of docs/references.md).
 DEFAULT_OFFSET = "2.5 %"
+
+#: Relative change of a statistic [-] between the preload offset and half or twice it beyond which the
+#: statistic is named in ``offset_sensitive_statistics`` (issue 40: the dissipative figures move 20-50 %).
+OFFSET_TOLERANCE = 0.10
+
+#: Statistics of a dynamic result given at half and twice the preload offset.
+_OFFSET_STATS = (
+    "mean_force_N",
+    "peak_to_peak_N",
+    "force_max_N",
+    "force_min_N",
+    "pcf_percent",
+    "hysteresis_energy_per_cycle_J",
+)
 
 #: Relative change of a statistic [-] between the toggle cut-off and twice it above which the
 #: statistic is reported ``toggle_dominated``.
@@ -469,8 +484,9 @@ class CFCS:
                 f"[0, {format_quantity(stroke, 'm', 'mm')})"
             )
         x = np.linspace(0.0, stroke, n)
-        if start > 0:  # the start of the working range is a sample
-            x = np.unique(np.concatenate([x, [start]]))
+        starts = {"half": 0.5 * start, "double": 2.0 * start if 2.0 * start < stroke else None}
+        if start > 0:  # the start of the working range is a sample, and half and twice it (issue 40)
+            x = np.unique(np.concatenate([x, [start], [v for v in starts.values() if v is not None]]))
         th = theta2_from_deflection(x, p.r2, p.r3)
         f_prbm = static_force(th, p.k3, p.r2, p.r3)
         extra = {}
@@ -497,6 +513,28 @@ class CFCS:
             None if self.beam else (lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3)),
         )
         stats = {"pcf_compression_percent": percent_constant_force((f + fd)[work])}
+        offsets = {"offset_sensitive_statistics": []}
+        for tag, s0 in starts.items():
+            value = None if (start == 0 or s0 is None) else percent_constant_force((f + fd)[x >= s0])
+            offsets[f"pcf_compression_at_{tag}_offset_percent"] = value
+            offsets[f"working_start_{tag}_offset_m"] = None if value is None else float(s0)
+            # the dissipative figure is the deficit 100 - PCF (the band the friction adds)
+            gap, ref = 100.0 - (value or 0.0), 100.0 - stats["pcf_compression_percent"]
+            if value is not None and abs(gap - ref) > OFFSET_TOLERANCE * max(abs(ref), abs(gap), 1e-12):
+                offsets["offset_sensitive_statistics"] = ["pcf_compression_percent"]
+        if offsets["offset_sensitive_statistics"]:
+            shown = [
+                f"{format_quantity(starts[tag], 'm', 'mm', 3)}: {offsets[f'pcf_compression_at_{tag}_offset_percent']:.4g} %"
+                for tag in ("half", "double")
+                if offsets[f"pcf_compression_at_{tag}_offset_percent"] is not None
+            ]
+            offsets["notes"] = [
+                f"PRELOAD OFFSET: the compression branch's PCF over the working range from "
+                f"{format_quantity(start, 'm', 'mm', 3)} is {stats['pcf_compression_percent']:.4g} %, from "
+                f"{' and from '.join(shown)} (its deficit 100 - PCF, the band the friction adds, moves by more than "
+                f"{100 * OFFSET_TOLERANCE:g} %: tau_AF of Eq. (22) turned into a slider force goes as 1/theta2); the "
+                "offset is the installation's preload, not a property of the spring: give the application's (--offset)"
+            ]
         in_zone = bool(np.any(th[work] < p.toggle_cutoff))
         dominated, check = [], {}
         if in_zone:
@@ -519,6 +557,7 @@ class CFCS:
             "pcf_working_percent": percent_constant_force(f[work]),
             "working_start_m": float(start),
             "working_end_m": float(stroke),
+            **{k: v for k, v in offsets.items() if k != "notes"},
             "stroke_m": stroke,
             "kinematic_limit_m": p.max_deflection,
             **self._stress_summary(th, x, stress),
@@ -538,6 +577,7 @@ class CFCS:
                     "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
                 }
             )
+        summary.setdefault("notes", []).extend(offsets.get("notes", []))
         if not self.beam:
             check, fb = self._beam_check_on(x, 0.0, start)
             summary.setdefault("notes", []).extend(check.pop("notes"))
@@ -608,6 +648,7 @@ class CFCS:
         cycles: int = 2,
         samples_per_cycle: int = 400,
         motion=None,
+        offset_sensitivity: bool = True,
     ) -> DynamicResult:
         """Slider force along a prescribed periodic motion (inverse dynamics, Eqs. (19)-(25)).
 
@@ -631,6 +672,11 @@ class CFCS:
             Time grid [-]; statistics use whole cycles.
         motion : SinusoidMotion or TabulatedMotion, optional
             A ready-made motion (overrides omega/amplitude/offset).
+        offset_sensitivity : bool
+            Also give the statistics with the sinusoid started at half and at twice its offset
+            (``statistics_at_half_offset``, ``statistics_at_double_offset``, ``offset_sensitive_statistics``
+            and a note): the dissipative figures depend on where the motion starts, as tau_AF of Eq. (22)
+            turned into a slider force goes as ``1/theta2`` (issue 40) [-].
         """
         p = self.params
         if not (isinstance(cycles, (int, np.integer)) and cycles >= 1):
@@ -671,11 +717,67 @@ class CFCS:
             **self._beam_dynamics_summary(mot.omega),
             **self._toggle_summary(in_zone, dominated, check),
         }
+        if offset_sensitivity:
+            extra = self._offset_sensitivity(mot, t, stats, samples_per_cycle)
+            summary["notes"] = list(summary.get("notes", [])) + extra.pop("notes", [])
+            summary.update(extra)
         self._add_beam_check(summary, float(np.max(x)), float(np.min(x)))
         comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
         return DynamicResult(
             t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], self._note_nulls(summary)
         )
+
+    def _offset_sensitivity(self, mot, t, stats: dict, samples_per_cycle: int) -> dict:
+        """The statistics of a sinusoid started at half and at twice its offset (None beyond the kinematic
+        limit, or for a motion that is not a sinusoid from a positive offset), and a note."""
+        p = self.params
+        out = {
+            "offset_m": None,
+            "statistics_at_half_offset": None,
+            "statistics_at_double_offset": None,
+            "offset_sensitive_statistics": [],
+        }
+        if not (isinstance(mot, SinusoidMotion) and mot.offset > 0):
+            return out
+        out["offset_m"] = float(mot.offset)
+        changed, parts = set(), []
+        for tag, factor in (("half", 0.5), ("double", 2.0)):
+            other = dataclasses.replace(mot, offset=factor * mot.offset)
+            lo, hi = other.bounds
+            if hi > p.max_deflection:
+                parts.append(f"at twice the offset the motion passes the kinematic limit ({tag}: not computed)")
+                continue
+            vals = self._values(hi=hi)
+
+            def clipped(tt, other=other):
+                x, xd, xdd = other(tt)
+                return np.clip(x, 0.0, p.max_deflection), xd, xdd
+
+            c = inverse_dynamics(clipped, t, other.period, theta2_cutoff=p.toggle_cutoff, **vals)
+            st = {k: v for k, v in _dynamic_stats(t, c["force"], c["velocity"], samples_per_cycle).items()}
+            st["offset_m"] = float(other.offset)
+            st["toggle_zone_samples"] = int(np.count_nonzero(c["in_toggle_zone"]))
+            out[f"statistics_at_{tag}_offset"] = st
+            for k in _OFFSET_STATS:
+                a, b = stats[k], st[k]
+                if abs(b - a) > OFFSET_TOLERANCE * max(abs(a), abs(b)) and abs(b - a) > 1e-12:
+                    changed.add(k)
+            parts.append(
+                f"{format_quantity(other.offset, 'm', 'mm', 3)}: peak-to-peak {st['peak_to_peak_N']:.4g} N "
+                f"({_change(stats['peak_to_peak_N'], st['peak_to_peak_N'])}), largest {st['force_max_N']:.4g} N, "
+                f"PCF {st['pcf_percent']:.3g} %, hysteresis {st['hysteresis_energy_per_cycle_J']:.3g} J"
+                + (" (in the toggle zone)" if st["toggle_zone_samples"] else "")
+            )
+        out["offset_sensitive_statistics"] = [k for k in _OFFSET_STATS if k in changed]
+        if changed:
+            out["notes"] = [
+                f"PRELOAD OFFSET: {', '.join(out['offset_sensitive_statistics'])} move by more than "
+                f"{100 * OFFSET_TOLERANCE:g} % when the motion starts at half or twice its offset "
+                f"{format_quantity(mot.offset, 'm', 'mm', 3)} (tau_AF of Eq. (22) turned into a slider force goes "
+                f"as 1/theta2): from {'; from '.join(parts)}. The offset is the installation's preload, not a "
+                "property of the spring: give the application's (--offset)"
+            ]
+        return out
 
     def sweep(
         self,
@@ -690,7 +792,9 @@ class CFCS:
 
         Each frequency is one whole cycle of the sinusoid (the inverse problem has no
         transient); the statistics are given as configured and without tau_CF, tau_AF
-        and slider friction (``*_no_dissipation_*``).
+        and slider friction (``*_no_dissipation_*``), and the peak-to-peak force and the PCF
+        with the sinusoid started at half and at twice the offset (``peak_to_peak_at_half_offset_N``,
+        ``..._at_double_offset_...``; issue 40: they depend on it through tau_AF).
 
         Parameters
         ----------
@@ -727,12 +831,24 @@ class CFCS:
         zone = 0
         flags = np.zeros(omegas.size)
         dominated = set()
+        at_offsets = {}
         for i, w in enumerate(progress(omegas, total=omegas.size, desc="cfcs sweep", quiet=quiet)):
             for model, suffix in ((self, ""), (ideal, "_no_dissipation")):
-                r = model.dynamic(w, amplitude, offset, cycles=1, samples_per_cycle=samples_per_cycle)
+                r = model.dynamic(
+                    w, amplitude, offset, cycles=1, samples_per_cycle=samples_per_cycle, offset_sensitivity=not suffix
+                )
                 for k, src in keys.items():
                     unit = "percent" if k == "pcf" else "N"
                     stats[f"{k}{suffix}_{unit}"][i] = r.summary[src]
+                for tag in ("half", "double") if not suffix else ():
+                    st = r.summary[f"statistics_at_{tag}_offset"]
+                    if st is not None:
+                        at_offsets.setdefault(f"peak_to_peak_at_{tag}_offset_N", np.empty(omegas.size))[i] = st[
+                            "peak_to_peak_N"
+                        ]
+                        at_offsets.setdefault(f"pcf_at_{tag}_offset_percent", np.empty(omegas.size))[i] = st[
+                            "pcf_percent"
+                        ]
                 if r.summary["toggle_dominated"]:
                     flags[i] = 1.0
                     dominated.update(
@@ -744,6 +860,7 @@ class CFCS:
                         for s in r.summary["toggle_dominated_statistics"]
                     )
                 zone = max(zone, r.summary["toggle_zone_samples"])
+        stats.update(at_offsets)
         stats["toggle_dominated"] = flags
         notes = (
             [
@@ -1204,6 +1321,13 @@ class CFCS:
             "strip_frequency_ratio": float(omega) / w1,
             "strip_mass_kg": mass_per_length * p.pivot_length,
         }
+
+
+def _change(reference: float, value: float) -> str:
+    """``value`` against ``reference`` as a signed percentage, e.g. ``+35 %``."""
+    if reference == 0:
+        return "n/a"
+    return f"{100.0 * (value / reference - 1.0):+.3g} %"
 
 
 def _finite(value: float) -> float | None:

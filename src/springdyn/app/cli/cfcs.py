@@ -299,7 +299,7 @@ def _static_rows(s) -> list:
         (
             "PCF compression branch",
             _fmt(s["pcf_compression_percent"], "%", digits=4),
-            f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}",
+            f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}" + _static_offsets(s),
         ),
         (
             "max pivot stress",
@@ -319,6 +319,19 @@ def _static_rows(s) -> list:
         _cutoff_row(s),
         _toggle_row(s),
     ]
+
+
+def _static_offsets(s) -> str:
+    """The compression branch's PCF with the working range from half and twice the offset (issue 40)."""
+    parts = [
+        f"{_fmt(s[f'working_start_{tag}_offset_m'], 'm', 'mm', 3)}: {s[f'pcf_compression_at_{tag}_offset_percent']:.4g} %"
+        for tag in ("half", "double")
+        if s.get(f"pcf_compression_at_{tag}_offset_percent") is not None
+    ]
+    if not parts:
+        return ""
+    flag = "OFFSET-SENSITIVE, " if s.get("offset_sensitive_statistics") else ""
+    return f"; {flag}from " + ", ".join(parts)
 
 
 def _beam_check_rows(summary) -> list:
@@ -390,14 +403,36 @@ def _dynamic(args) -> int:
     return _show(args, res, _dynamic_rows)
 
 
+def _at_offsets(s, key: str, unit: str, digits: int = 4) -> str:
+    """The figure ``key`` with the motion started at half and at twice the preload offset (issue 40)."""
+    parts = []
+    for tag in ("half", "double"):
+        st = s.get(f"statistics_at_{tag}_offset")
+        if st is not None:
+            parts.append(f"{_fmt(st['offset_m'], 'm', 'mm', 3)}: {st[key]:.{digits}g} {unit}")
+    if not parts:
+        return ""
+    flag = "OFFSET-SENSITIVE, " if key in (s.get("offset_sensitive_statistics") or []) else ""
+    return f"{flag}from offset " + ", ".join(parts)
+
+
 def _dynamic_rows(s) -> list:
     return [
         ("input", s["motion"], ""),
-        ("mean force", _fmt(s["mean_force_N"], "N"), ""),
+        ("mean force", _fmt(s["mean_force_N"], "N"), _at_offsets(s, "mean_force_N", "N")),
         ("median force", _fmt(s["median_force_N"], "N"), ""),
-        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
-        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over one cycle"),
-        ("hysteresis per cycle", _fmt(s["hysteresis_energy_per_cycle_J"], "J"), ""),
+        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), _at_offsets(s, "peak_to_peak_N", "N")),
+        ("largest force", _fmt(s["force_max_N"], "N"), _at_offsets(s, "force_max_N", "N")),
+        (
+            "PCF Fmin/Fmax",
+            _fmt(s["pcf_percent"], "%", digits=4),
+            "over one cycle" + (f"; {_at_offsets(s, 'pcf_percent', '%', 3)}" if s.get("offset_m") else ""),
+        ),
+        (
+            "hysteresis per cycle",
+            _fmt(s["hysteresis_energy_per_cycle_J"], "J"),
+            _at_offsets(s, "hysteresis_energy_per_cycle_J", "J", 3),
+        ),
         (
             "max pivot stress",
             _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
@@ -533,18 +568,32 @@ def _sweep(args) -> int:
     if emit(res, args, json_data={**res.summary, **res.columns()}):
         return 0
     st = res.stats
+    extra = [k for k in ("peak_to_peak_at_half_offset_N", "peak_to_peak_at_double_offset_N") if k in st]
     rows = [
         (
             f"{w:.4g}",
             f"{st['mean_force_N'][i]:.4f}",
             f"{st['median_force_N'][i]:.4f}",
             f"{st['peak_to_peak_N'][i]:.4f}",
+            *(f"{st[k][i]:.4f}" for k in extra),
             f"{st['pcf_percent'][i]:.2f}",
             f"{st['pcf_no_dissipation_percent'][i]:.2f}",
         )
         for i, w in enumerate(res.omega)
     ]
-    print_table(rows, headers=("omega_rad_per_s", "mean_N", "median_N", "p2p_N", "pcf_%", "pcf_no_diss_%"))
+    heads = {"peak_to_peak_at_half_offset_N": "p2p_half_offset_N", "peak_to_peak_at_double_offset_N": "p2p_2x_offset_N"}
+    print_table(
+        rows,
+        headers=(
+            "omega_rad_per_s",
+            "mean_N",
+            "median_N",
+            "p2p_N",
+            *(heads[k] for k in extra),
+            "pcf_%",
+            "pcf_no_diss_%",
+        ),
+    )
     print(f"toggle cut-off {np.degrees(res.summary['toggle_cutoff_rad']):.4g} deg")
     if res.summary["toggle_dominated"]:
         print("TOGGLE-DOMINATED: " + res.summary["notes"][0])
