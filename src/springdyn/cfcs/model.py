@@ -16,7 +16,7 @@ from scipy.optimize import minimize_scalar
 from ..core.errors import InputError, SolverError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
-from .beam import beam_force_at_toggle, beam_force_curve, prbm_error
+from .beam import band_error_over_range_ends, beam_force_at_toggle, beam_force_curve, prbm_error
 from .drive import (
     DRIVE_SIGN_SMOOTHING,
     RIGID_DRIVE_FREQUENCY_RATIO,
@@ -56,6 +56,10 @@ __all__ = ["BEAM_CHECK_SAMPLES", "CFCS", "DEFAULT_AMPLITUDE", "DEFAULT_OFFSET", 
 #: Samples of the elastica in the beam check of a PRBM result (a test halves and doubles them:
 #: the band error moves by less than 1e-4 of itself).
 BEAM_CHECK_SAMPLES = 401
+
+#: Share of a range [-] over whose last part the range's end is moved to show how the PRBM's band error
+#: depends on it (``beam_band_error_min_percent``, ``..._max_percent``).
+BAND_ERROR_END_SHARE = 0.1
 
 #: Default sinusoid amplitude: 40 % of r2 + r3 (the paper's "40 % mechanism deflection",
 #: correction CFCS-4 of docs/references.md).
@@ -387,7 +391,15 @@ class CFCS:
     def _beam_check_on(self, x, lo: float = 0.0, working: float | None = None):
         """:meth:`beam_check` on the samples ``x`` (from 0, increasing); also the elastica's force there (or None)."""
         p = self.params
-        keys = ["beam_force_min_N", "beam_force_max_N", "beam_band_error_percent", "beam_force_error_percent"]
+        keys = [
+            "beam_force_min_N",
+            "beam_force_max_N",
+            "beam_band_error_percent",
+            "beam_force_error_percent",
+            "beam_band_error_min_percent",
+            "beam_band_error_max_percent",
+            "beam_band_error_ends_m",
+        ]
         if working is not None:
             keys.append("beam_working_band_error_percent")
         out = dict.fromkeys(keys)
@@ -413,6 +425,23 @@ class CFCS:
             beam_band_error_percent=_finite(100.0 * e["band_error"]),
             beam_force_error_percent=100.0 * e["force_error"],
         )
+        # the band error's dependence on where the range ends (issue 40): over the ends in its last tenth
+        xs = x[sel]
+        ends = xs[xs >= xs[0] + (1.0 - BAND_ERROR_END_SHARE) * (xs[-1] - xs[0])]
+        be = band_error_over_range_ends(xs, fp[sel], fb[sel], ends)
+        if ends.size > 1 and np.all(np.isfinite(be)):
+            out.update(
+                beam_band_error_min_percent=float(100.0 * np.min(be)),
+                beam_band_error_max_percent=float(100.0 * np.max(be)),
+                beam_band_error_ends_m=[float(ends[0]), float(ends[-1])],
+            )
+            notes.append(
+                f"beam check: the PRBM band error depends on where the range ends (a difference of extremes): "
+                f"{100 * np.min(be):+.3g} to {100 * np.max(be):+.3g} % for ends from "
+                f"{format_quantity(ends[0], 'm', 'mm', 4)} to {format_quantity(ends[-1], 'm', 'mm', 4)} (the last "
+                f"{100 * BAND_ERROR_END_SHARE:g} % of the range); the force error, max |F PRBM - F elastica| / F0 = "
+                f"{100 * e['force_error']:.3g} % over the whole range, is a largest difference and only grows with it"
+            )
         if working is not None:
             w = x >= working
             out["beam_working_band_error_percent"] = _finite(

@@ -354,6 +354,19 @@ def _beam_check_rows(summary) -> list:
             "(band PRBM - band elastica) / band elastica"
             + (f"; working range {working:+.3g} %" if working is not None else ""),
         ),
+        *(
+            [
+                (
+                    "  ... with the range's end",
+                    f"{s['beam_band_error_min_percent']:+.3g} .. {s['beam_band_error_max_percent']:+.3g} %",
+                    f"ends {_fmt(s['beam_band_error_ends_m'][0], 'm', 'mm', 4)} .. "
+                    f"{_fmt(s['beam_band_error_ends_m'][1], 'm', 'mm', 4)}: it depends on where the range ends; "
+                    "the force error only grows with it",
+                )
+            ]
+            if s.get("beam_band_error_min_percent") is not None
+            else []
+        ),
         ("PRBM force error", f"{s['beam_force_error_percent']:.3g} % of F0", "max |F PRBM - F elastica| / F0"),
     ]
 
