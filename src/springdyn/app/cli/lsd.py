@@ -431,7 +431,7 @@ def cmd_calibrate(args) -> int:
             )
     print_table(rows, headers=("rpm", "coefficient", "identified", "calibrated model", "difference"))
     for note in cal.notes:
-        print(f"note: {note}")
+        print(note if note.startswith("CAVEAT") else f"note: {note}")
     if args.toml:
         print(f"calibrated definition -> {args.toml}")
     return 0
