@@ -234,6 +234,16 @@ def test_forward(capsys, tmp_path):
             "force",
         ),
         (["cfcs", "forward", "table1", "--t-end", "1s"], "forward needs --force"),
+        # issue 40, item 7: a zero was read as "not given" and the default (6 periods, 2000 or 400 samples) ran
+        (
+            ["cfcs", "dynamic", "table1", "--omega", "10", "--drive-stiffness", "20kN/m", "--periods", "0"],
+            "--periods = 0",
+        ),
+        (
+            ["cfcs", "dynamic", "table1", "--omega", "10", "--drive-stiffness", "20kN/m", "--samples", "0"],
+            "--samples = 0",
+        ),
+        (["cfcs", "dynamic", "table1", "--omega", "10", "--samples", "0"], "--samples = 0"),
     ],
 )
 def test_bad_input_exit_2(capsys, argv, match):
@@ -370,6 +380,19 @@ def test_dynamic_with_a_compliant_drive(capsys, tmp_path):
     assert (tmp_path / "d.png").is_file()
     code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "14.7", "--periods", "3")
     assert code == 2 and "--drive-stiffness" in err
+
+
+def test_a_rigid_drive_finishes(capsys):
+    """Issue 40, item 7: --drive-stiffness 1e15N/m ran without end; it is the rigid drive (stated bound)."""
+    code, out, err = run(capsys, "cfcs", "dynamic", "table1", "--omega", "10", "--drive-stiffness", "1e15N/m")
+    assert code == 0, err
+    assert "RIGID (from 1.91e+06 N/m)" in out and "note: RIGID DRIVE" in out
+    row = next(line for line in out.splitlines() if line.startswith("peak-to-peak force"))
+    assert "5.5828 N" in row  # the inverse dynamics' 5.58 N (rigid drive, 10 rad/s)
+    code, out, err = run(
+        capsys, "cfcs", "dynamic", "table1", "--omega", "10", "--offset", "0", "--drive-stiffness", "1e15N/m"
+    )
+    assert code == 2 and "--drive-stiffness = 1e+15 N/m is a rigid drive" in err and err.count("\n") == 1
 
 
 def test_driven_text_output_says_the_crank_sticks(capsys):

@@ -136,6 +136,50 @@ def test_stiff_drive_with_friction_keeps_the_rigid_mean(model):
     assert s["peak_to_peak_N"] == pytest.approx(ref["peak_to_peak_N"], rel=0.1)
 
 
+def test_a_rigid_drive_is_not_integrated(model):
+    # issue 40, item 7: --drive-stiffness 1e15 N/m ran without end (1e9 N/m: 49 s).  Above the stated bound
+    # ((w_n/omega)^2 >= 1e5 and a lag <= 1e-4 of the stroke) the result is the rigid drive's inverse dynamics,
+    # the reference: the same statistics as CFCS.dynamic over one period of the same samples, exactly
+    ref = model.dynamic(10.0, cycles=1, samples_per_cycle=drv_samples()).summary
+    for k_d in (1e9, 1e15):
+        r = model.driven(10.0, drive_stiffness=k_d)
+        s = r.summary
+        assert s["rigid_drive"] is True and k_d >= s["rigid_drive_stiffness_N_per_m"]
+        assert s["drive_frequency_ratio_squared"] >= drv.RIGID_DRIVE_FREQUENCY_RATIO
+        for q in STATS:
+            assert s[q] == ref[q], q
+        assert s["notes"][0].startswith("RIGID DRIVE") and "damping ratio of 0" in s["notes"][0]
+    # the bound for Table 1 at 10 rad/s (m_eff = M/G^2 = 0.191 kg at the 4.5 mm preload): 1.9 MN/m
+    assert s["slider_effective_mass_kg"] == pytest.approx(0.191, abs=0.001)
+    assert s["rigid_drive_stiffness_N_per_m"] == pytest.approx(1e5 * 0.191 * 100, rel=0.01)
+    # a drive softer than the bound is integrated, and says how far from rigid it is
+    s = model.driven(10.0, drive_stiffness=2e4, periods=2, samples_per_period=200).summary
+    assert s["rigid_drive"] is False and s["drive_frequency_ratio_squared"] == pytest.approx(2e4 / 19.1, rel=0.01)
+    # into the toggle the rigid drive has no finite force: refused, naming the bound
+    with pytest.raises(InputError, match=r"rigid drive .* toggle .* give a drive below 1.\d+e\+07 N/m"):
+        model.driven(14.7, offset=0.0, drive_stiffness=1e15)
+
+
+def drv_samples() -> int:
+    from springdyn.cfcs.model import DRIVEN_SAMPLES
+
+    return DRIVEN_SAMPLES
+
+
+@pytest.mark.slow
+def test_the_rigid_drive_bound_is_where_the_drive_follows(table1):
+    # just below the bound the integrated drive (critically damped, no friction: the 1/k_d convergence of the
+    # test above) is within 0.1 % of the peak-to-peak of the rigid result given just above it (measured 0.026 %)
+    c = CFCS(table1.without_dissipation())
+    bound = c.driven(14.7, drive_stiffness=1e15).summary["rigid_drive_stiffness_N_per_m"]
+    above = c.driven(14.7, drive_stiffness=1.01 * bound).summary
+    k = 0.99 * bound
+    below = c.driven(14.7, drive_stiffness=k, drive_damping=2 * np.sqrt(k * above["slider_effective_mass_kg"])).summary
+    assert above["rigid_drive"] is True and below["rigid_drive"] is False
+    for q in STATS:
+        assert below[q] == pytest.approx(above[q], abs=1e-3 * above["peak_to_peak_N"]), q
+
+
 def _doc_drive_table() -> dict:
     """k_d [kN/m] -> peak-to-peak [N] of the drive-stiffness table of docs/cfcs.md."""
 

@@ -382,6 +382,10 @@ def test_film_map_command(tmp_path, capsys):
     d = _json(capsys)
     assert d["inertia_onset_rpm"] == pytest.approx(1401, abs=1)
     assert d["cavitation_change"][1][1] > 0.5 and d["cavitation_change_onset_rpm"][1] == 14100.0
+    # issue 40, item 8: the figures for air-saturated oil (0.9 bar abs) beside the vapour limit's
+    assert "19.5 um at the vapour limit" in out and "2.17 um with air-saturated oil" in out
+    assert "with air-saturated oil, at 100 um the film cavitates from 3000 rpm" in out
+    assert d["cavitation_sensitivity"]["aerated"]["cavitation_start_rpm"] == [3000.0, 3000.0]
     assert main(["lsd", "film", "C", "--steps", "8"]) == 2
 
 

@@ -37,8 +37,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.docstrings import ParameterDocs
-from .dynamics import crank_terms, integrate_crank, kinetic_energy
-from .kinematics import deflection_from_theta2
+from .dynamics import crank_terms, generalized_mass, integrate_crank, kinetic_energy
+from .kinematics import deflection_from_theta2, slider_jacobian
 from .statics import spring_energy
 
 __all__ = [
@@ -50,6 +50,9 @@ __all__ = [
     "energy_balance",
     "toggle_sticking",
     "TOGGLE_REST_FACTOR",
+    "slider_effective_mass",
+    "RIGID_DRIVE_FREQUENCY_RATIO",
+    "RIGID_DRIVE_LAG",
 ]
 
 #: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
@@ -132,6 +135,38 @@ def driven_rhs(t, y, motion, k_d, c_d, p, sign_smoothing):
     friction = pin + slider
     acc = (f * g - 0.5 * dm * thd * thd - torque - friction) / m
     return np.array([thd, acc, f * vd, friction * thd, c_d * (vd - v) ** 2])
+
+
+#: A drive is taken as rigid (the slider follows x_d, :meth:`springdyn.cfcs.model.CFCS.dynamic`) when
+#: ``k_d / (m_eff omega^2)``, the squared ratio of the slider's natural frequency on the drive to the
+#: motion's, is at least this (with :data:`RIGID_DRIVE_LAG`).  The driven result differs from the rigid
+#: one as ``1/k_d`` (tests/cfcs/test_drive.py: 0.095 % of the peak-to-peak at 1e6 N/m, 14.7 rad/s), so at
+#: the bound the difference is below 0.1 % of the peak-to-peak for a damped drive; integrating a stiffer
+#: drive only costs time (1e9 N/m: 49 s, 1e15 N/m: without end, issue 40).
+RIGID_DRIVE_FREQUENCY_RATIO = 1e5
+
+#: ... and when the drive's deflection under the mechanism's largest static force is at most this share
+#: of the motion's stroke [-].
+RIGID_DRIVE_LAG = 1e-4
+
+
+def slider_effective_mass(theta2, m2, m3, ms, r2, r3):
+    """Mass of the mechanism seen at the slider ``M(theta2) / G(theta2)^2`` [kg], ``G = dx/dtheta2``.
+
+    The kinetic energy ``M theta2'^2 / 2 = (M / G^2) x'^2 / 2`` (Eq. (19) of the CFCS paper with
+    ``x' = G theta2'``); infinite at the toggle, where G vanishes.
+
+    Parameters
+    ----------
+    theta2 : float or array_like
+        Crank angle [rad], not zero.
+    m2, m3, ms : float
+        Crank, coupler and slider masses [kg].
+    r2, r3 : float
+        Crank and coupler lengths [m].
+    """
+    g = slider_jacobian(theta2, r2, r3)
+    return generalized_mass(theta2, m2, m3, ms, r2, r3) / (g * g)
 
 
 #: The crank is "at rest" when ``|theta2'|`` is below this many times the sign smoothing v_s (the smoothed

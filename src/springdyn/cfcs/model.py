@@ -7,6 +7,7 @@ A thin layer over the physics functions of :mod:`~springdyn.cfcs.kinematics`,
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 
 import numpy as np
@@ -15,13 +16,16 @@ from scipy.optimize import minimize_scalar
 from ..core.errors import InputError, SolverError
 from ..core.progress import progress
 from ..core.units import format_quantity, to_si
-from .beam import beam_force_at_toggle, beam_force_curve, prbm_error
+from .beam import band_error_over_range_ends, beam_force_at_toggle, beam_force_curve, prbm_error
 from .drive import (
     DRIVE_SIGN_SMOOTHING,
+    RIGID_DRIVE_FREQUENCY_RATIO,
+    RIGID_DRIVE_LAG,
     TOGGLE_REST_FACTOR,
     drive_force,
     energy_balance,
     integrate_driven,
+    slider_effective_mass,
     toggle_sticking,
 )
 from .dynamics import energy, integrate_forward, inverse_dynamics
@@ -53,6 +57,10 @@ __all__ = ["BEAM_CHECK_SAMPLES", "CFCS", "DEFAULT_AMPLITUDE", "DEFAULT_OFFSET", 
 #: the band error moves by less than 1e-4 of itself).
 BEAM_CHECK_SAMPLES = 401
 
+#: Share of a range [-] over whose last part the range's end is moved to show how the PRBM's band error
+#: depends on it (``beam_band_error_min_percent``, ``..._max_percent``).
+BAND_ERROR_END_SHARE = 0.1
+
 #: Default sinusoid amplitude: 40 % of r2 + r3 (the paper's "40 % mechanism deflection",
 #: correction CFCS-4 of docs/references.md).
 DEFAULT_AMPLITUDE = "40 %"
@@ -62,6 +70,20 @@ DEFAULT_AMPLITUDE = "40 %"
 #: inside its constant-force band, not through the toggle, where the dissipative terms of
 #: Eqs. (21)-(22) turned into a slider force diverge (correction CFCS-5 of docs/references.md).
 DEFAULT_OFFSET = "2.5 %"
+
+#: Relative change of a statistic [-] between the preload offset and half or twice it beyond which the
+#: statistic is named in ``offset_sensitive_statistics`` (issue 40: the dissipative figures move 20-50 %).
+OFFSET_TOLERANCE = 0.10
+
+#: Statistics of a dynamic result given at half and twice the preload offset.
+_OFFSET_STATS = (
+    "mean_force_N",
+    "peak_to_peak_N",
+    "force_max_N",
+    "force_min_N",
+    "pcf_percent",
+    "hysteresis_energy_per_cycle_J",
+)
 
 #: Relative change of a statistic [-] between the toggle cut-off and twice it above which the
 #: statistic is reported ``toggle_dominated``.
@@ -369,7 +391,15 @@ class CFCS:
     def _beam_check_on(self, x, lo: float = 0.0, working: float | None = None):
         """:meth:`beam_check` on the samples ``x`` (from 0, increasing); also the elastica's force there (or None)."""
         p = self.params
-        keys = ["beam_force_min_N", "beam_force_max_N", "beam_band_error_percent", "beam_force_error_percent"]
+        keys = [
+            "beam_force_min_N",
+            "beam_force_max_N",
+            "beam_band_error_percent",
+            "beam_force_error_percent",
+            "beam_band_error_min_percent",
+            "beam_band_error_max_percent",
+            "beam_band_error_ends_m",
+        ]
         if working is not None:
             keys.append("beam_working_band_error_percent")
         out = dict.fromkeys(keys)
@@ -395,6 +425,23 @@ class CFCS:
             beam_band_error_percent=_finite(100.0 * e["band_error"]),
             beam_force_error_percent=100.0 * e["force_error"],
         )
+        # the band error's dependence on where the range ends (issue 40): over the ends in its last tenth
+        xs = x[sel]
+        ends = xs[xs >= xs[0] + (1.0 - BAND_ERROR_END_SHARE) * (xs[-1] - xs[0])]
+        be = band_error_over_range_ends(xs, fp[sel], fb[sel], ends)
+        if ends.size > 1 and np.all(np.isfinite(be)):
+            out.update(
+                beam_band_error_min_percent=float(100.0 * np.min(be)),
+                beam_band_error_max_percent=float(100.0 * np.max(be)),
+                beam_band_error_ends_m=[float(ends[0]), float(ends[-1])],
+            )
+            notes.append(
+                f"beam check: the PRBM band error depends on where the range ends (a difference of extremes): "
+                f"{100 * np.min(be):+.3g} to {100 * np.max(be):+.3g} % for ends from "
+                f"{format_quantity(ends[0], 'm', 'mm', 4)} to {format_quantity(ends[-1], 'm', 'mm', 4)} (the last "
+                f"{100 * BAND_ERROR_END_SHARE:g} % of the range); the force error, max |F PRBM - F elastica| / F0 = "
+                f"{100 * e['force_error']:.3g} % over the whole range, is a largest difference and only grows with it"
+            )
         if working is not None:
             w = x >= working
             out["beam_working_band_error_percent"] = _finite(
@@ -466,8 +513,9 @@ class CFCS:
                 f"[0, {format_quantity(stroke, 'm', 'mm')})"
             )
         x = np.linspace(0.0, stroke, n)
-        if start > 0:  # the start of the working range is a sample
-            x = np.unique(np.concatenate([x, [start]]))
+        starts = {"half": 0.5 * start, "double": 2.0 * start if 2.0 * start < stroke else None}
+        if start > 0:  # the start of the working range is a sample, and half and twice it (issue 40)
+            x = np.unique(np.concatenate([x, [start], [v for v in starts.values() if v is not None]]))
         th = theta2_from_deflection(x, p.r2, p.r3)
         f_prbm = static_force(th, p.k3, p.r2, p.r3)
         extra = {}
@@ -494,6 +542,28 @@ class CFCS:
             None if self.beam else (lambda xx: static_force(theta2_from_deflection(xx, p.r2, p.r3), p.k3, p.r2, p.r3)),
         )
         stats = {"pcf_compression_percent": percent_constant_force((f + fd)[work])}
+        offsets = {"offset_sensitive_statistics": []}
+        for tag, s0 in starts.items():
+            value = None if (start == 0 or s0 is None) else percent_constant_force((f + fd)[x >= s0])
+            offsets[f"pcf_compression_at_{tag}_offset_percent"] = value
+            offsets[f"working_start_{tag}_offset_m"] = None if value is None else float(s0)
+            # the dissipative figure is the deficit 100 - PCF (the band the friction adds)
+            gap, ref = 100.0 - (value or 0.0), 100.0 - stats["pcf_compression_percent"]
+            if value is not None and abs(gap - ref) > OFFSET_TOLERANCE * max(abs(ref), abs(gap), 1e-12):
+                offsets["offset_sensitive_statistics"] = ["pcf_compression_percent"]
+        if offsets["offset_sensitive_statistics"]:
+            shown = [
+                f"{format_quantity(starts[tag], 'm', 'mm', 3)}: {offsets[f'pcf_compression_at_{tag}_offset_percent']:.4g} %"
+                for tag in ("half", "double")
+                if offsets[f"pcf_compression_at_{tag}_offset_percent"] is not None
+            ]
+            offsets["notes"] = [
+                f"PRELOAD OFFSET: the compression branch's PCF over the working range from "
+                f"{format_quantity(start, 'm', 'mm', 3)} is {stats['pcf_compression_percent']:.4g} %, from "
+                f"{' and from '.join(shown)} (its deficit 100 - PCF, the band the friction adds, moves by more than "
+                f"{100 * OFFSET_TOLERANCE:g} %: tau_AF of Eq. (22) turned into a slider force goes as 1/theta2); the "
+                "offset is the installation's preload, not a property of the spring: give the application's (--offset)"
+            ]
         in_zone = bool(np.any(th[work] < p.toggle_cutoff))
         dominated, check = [], {}
         if in_zone:
@@ -516,6 +586,7 @@ class CFCS:
             "pcf_working_percent": percent_constant_force(f[work]),
             "working_start_m": float(start),
             "working_end_m": float(stroke),
+            **{k: v for k, v in offsets.items() if k != "notes"},
             "stroke_m": stroke,
             "kinematic_limit_m": p.max_deflection,
             **self._stress_summary(th, x, stress),
@@ -535,6 +606,7 @@ class CFCS:
                     "prbm_max_stress_Pa": float(np.max(extra["stress_prbm_Pa"])),
                 }
             )
+        summary.setdefault("notes", []).extend(offsets.get("notes", []))
         if not self.beam:
             check, fb = self._beam_check_on(x, 0.0, start)
             summary.setdefault("notes", []).extend(check.pop("notes"))
@@ -605,6 +677,7 @@ class CFCS:
         cycles: int = 2,
         samples_per_cycle: int = 400,
         motion=None,
+        offset_sensitivity: bool = True,
     ) -> DynamicResult:
         """Slider force along a prescribed periodic motion (inverse dynamics, Eqs. (19)-(25)).
 
@@ -628,6 +701,11 @@ class CFCS:
             Time grid [-]; statistics use whole cycles.
         motion : SinusoidMotion or TabulatedMotion, optional
             A ready-made motion (overrides omega/amplitude/offset).
+        offset_sensitivity : bool
+            Also give the statistics with the sinusoid started at half and at twice its offset
+            (``statistics_at_half_offset``, ``statistics_at_double_offset``, ``offset_sensitive_statistics``
+            and a note): the dissipative figures depend on where the motion starts, as tau_AF of Eq. (22)
+            turned into a slider force goes as ``1/theta2`` (issue 40) [-].
         """
         p = self.params
         if not (isinstance(cycles, (int, np.integer)) and cycles >= 1):
@@ -668,11 +746,67 @@ class CFCS:
             **self._beam_dynamics_summary(mot.omega),
             **self._toggle_summary(in_zone, dominated, check),
         }
+        if offset_sensitivity:
+            extra = self._offset_sensitivity(mot, t, stats, samples_per_cycle)
+            summary["notes"] = list(summary.get("notes", [])) + extra.pop("notes", [])
+            summary.update(extra)
         self._add_beam_check(summary, float(np.max(x)), float(np.min(x)))
         comps = {k: c[k] for k in ("force_inertia", "force_pin", "force_axial", "force_slider")}
         return DynamicResult(
             t, x, xd, c["theta2"], f, c["force_static"], comps, c["in_toggle_zone"], self._note_nulls(summary)
         )
+
+    def _offset_sensitivity(self, mot, t, stats: dict, samples_per_cycle: int) -> dict:
+        """The statistics of a sinusoid started at half and at twice its offset (None beyond the kinematic
+        limit, or for a motion that is not a sinusoid from a positive offset), and a note."""
+        p = self.params
+        out = {
+            "offset_m": None,
+            "statistics_at_half_offset": None,
+            "statistics_at_double_offset": None,
+            "offset_sensitive_statistics": [],
+        }
+        if not (isinstance(mot, SinusoidMotion) and mot.offset > 0):
+            return out
+        out["offset_m"] = float(mot.offset)
+        changed, parts = set(), []
+        for tag, factor in (("half", 0.5), ("double", 2.0)):
+            other = dataclasses.replace(mot, offset=factor * mot.offset)
+            lo, hi = other.bounds
+            if hi > p.max_deflection:
+                parts.append(f"at twice the offset the motion passes the kinematic limit ({tag}: not computed)")
+                continue
+            vals = self._values(hi=hi)
+
+            def clipped(tt, other=other):
+                x, xd, xdd = other(tt)
+                return np.clip(x, 0.0, p.max_deflection), xd, xdd
+
+            c = inverse_dynamics(clipped, t, other.period, theta2_cutoff=p.toggle_cutoff, **vals)
+            st = {k: v for k, v in _dynamic_stats(t, c["force"], c["velocity"], samples_per_cycle).items()}
+            st["offset_m"] = float(other.offset)
+            st["toggle_zone_samples"] = int(np.count_nonzero(c["in_toggle_zone"]))
+            out[f"statistics_at_{tag}_offset"] = st
+            for k in _OFFSET_STATS:
+                a, b = stats[k], st[k]
+                if abs(b - a) > OFFSET_TOLERANCE * max(abs(a), abs(b)) and abs(b - a) > 1e-12:
+                    changed.add(k)
+            parts.append(
+                f"{format_quantity(other.offset, 'm', 'mm', 3)}: peak-to-peak {st['peak_to_peak_N']:.4g} N "
+                f"({_change(stats['peak_to_peak_N'], st['peak_to_peak_N'])}), largest {st['force_max_N']:.4g} N, "
+                f"PCF {st['pcf_percent']:.3g} %, hysteresis {st['hysteresis_energy_per_cycle_J']:.3g} J"
+                + (" (in the toggle zone)" if st["toggle_zone_samples"] else "")
+            )
+        out["offset_sensitive_statistics"] = [k for k in _OFFSET_STATS if k in changed]
+        if changed:
+            out["notes"] = [
+                f"PRELOAD OFFSET: {', '.join(out['offset_sensitive_statistics'])} move by more than "
+                f"{100 * OFFSET_TOLERANCE:g} % when the motion starts at half or twice its offset "
+                f"{format_quantity(mot.offset, 'm', 'mm', 3)} (tau_AF of Eq. (22) turned into a slider force goes "
+                f"as 1/theta2): from {'; from '.join(parts)}. The offset is the installation's preload, not a "
+                "property of the spring: give the application's (--offset)"
+            ]
+        return out
 
     def sweep(
         self,
@@ -687,7 +821,9 @@ class CFCS:
 
         Each frequency is one whole cycle of the sinusoid (the inverse problem has no
         transient); the statistics are given as configured and without tau_CF, tau_AF
-        and slider friction (``*_no_dissipation_*``).
+        and slider friction (``*_no_dissipation_*``), and the peak-to-peak force and the PCF
+        with the sinusoid started at half and at twice the offset (``peak_to_peak_at_half_offset_N``,
+        ``..._at_double_offset_...``; issue 40: they depend on it through tau_AF).
 
         Parameters
         ----------
@@ -724,12 +860,24 @@ class CFCS:
         zone = 0
         flags = np.zeros(omegas.size)
         dominated = set()
+        at_offsets = {}
         for i, w in enumerate(progress(omegas, total=omegas.size, desc="cfcs sweep", quiet=quiet)):
             for model, suffix in ((self, ""), (ideal, "_no_dissipation")):
-                r = model.dynamic(w, amplitude, offset, cycles=1, samples_per_cycle=samples_per_cycle)
+                r = model.dynamic(
+                    w, amplitude, offset, cycles=1, samples_per_cycle=samples_per_cycle, offset_sensitivity=not suffix
+                )
                 for k, src in keys.items():
                     unit = "percent" if k == "pcf" else "N"
                     stats[f"{k}{suffix}_{unit}"][i] = r.summary[src]
+                for tag in ("half", "double") if not suffix else ():
+                    st = r.summary[f"statistics_at_{tag}_offset"]
+                    if st is not None:
+                        at_offsets.setdefault(f"peak_to_peak_at_{tag}_offset_N", np.empty(omegas.size))[i] = st[
+                            "peak_to_peak_N"
+                        ]
+                        at_offsets.setdefault(f"pcf_at_{tag}_offset_percent", np.empty(omegas.size))[i] = st[
+                            "pcf_percent"
+                        ]
                 if r.summary["toggle_dominated"]:
                     flags[i] = 1.0
                     dominated.update(
@@ -741,6 +889,7 @@ class CFCS:
                         for s in r.summary["toggle_dominated_statistics"]
                     )
                 zone = max(zone, r.summary["toggle_zone_samples"])
+        stats.update(at_offsets)
         stats["toggle_dominated"] = flags
         notes = (
             [
@@ -796,6 +945,16 @@ class CFCS:
         the same run without tau_AF (pin and slider friction only) is repeated and its statistics
         reported beside the headline (``peak_to_peak_without_axial_friction_N`` etc.; about 1.3 s
         more for the seed's case), with a note when tau_AF changes the peak-to-peak by more than 10 %.
+
+        A drive stiff enough to be rigid is not integrated (issue 40: 1e9 N/m took 49 s, 1e15 N/m did not
+        end): when ``k_d / (m_eff omega^2)``, the squared ratio of the slider's frequency on the drive to the
+        motion's (``m_eff = M / G^2``, the largest over the motion), is at least
+        :data:`~springdyn.cfcs.drive.RIGID_DRIVE_FREQUENCY_RATIO` and the drive deflects at most
+        :data:`~springdyn.cfcs.drive.RIGID_DRIVE_LAG` of the stroke under the largest spring force, the result
+        is the rigid drive's, :meth:`dynamic` over one period (a :class:`DynamicResult`, ``rigid_drive`` true,
+        with a note); a motion into the toggle zone with such a drive is refused (the rigid drive has no
+        finite force there).  Every result carries the ratios (``drive_frequency_ratio_squared``,
+        ``drive_lag_share``, ``drive_damping_ratio``, ``rigid_drive_stiffness_N_per_m``).
 
         Parameters
         ----------
@@ -854,6 +1013,9 @@ class CFCS:
         h = period / 400.0 if max_step is None else float(max_step)
         if not h > 0:
             raise InputError(f"max_step = {max_step!r} s must be positive")
+        stiffness = self._drive_stiffness_ratios(mot, k_d, c_d)
+        if stiffness["rigid_drive"]:
+            return self._rigid_drive(mot, stiffness, samples_per_period)
         vals = self._values(hi=p.max_deflection if self.beam else None)
         # start at rest where the drive balances the static force at t = 0 (away from the toggle)
         xd0 = float(mot(np.array([0.0]))[0][0])
@@ -889,8 +1051,7 @@ class CFCS:
         summary = {
             "omega_rad_per_s": float(mot.omega),
             "motion": "drive " + mot.describe().replace("x(t)", "x_d(t)"),
-            "drive_stiffness_N_per_m": float(k_d),
-            "drive_damping_N_s_per_m": float(c_d),
+            **stiffness,
             **stats,
             "actuator_work_per_cycle_J": float(y[2][-1] - y[2][-1 - n]),
             "periodicity_change_percent": 100.0 * change / scale,
@@ -999,6 +1160,70 @@ class CFCS:
             )
         self._add_beam_check(summary, float(np.max(x[last])), float(np.min(x[last])))
         return DrivenResult(t, xd, x, v, th, thd, f, fs, y[2], y[3], y[4], residual, self._note_nulls(summary))
+
+    def _drive_stiffness_ratios(self, mot, k_d: float, c_d: float) -> dict:
+        """How stiff the drive is for this motion: ``(w_n/omega)^2 = k_d / (m_eff omega^2)`` with the largest
+        slider-referred mass over the motion (crank angles from the toggle cut-off up), and the drive's
+        deflection under the largest static force over the stroke; rigid when both pass their bounds."""
+        p = self.params
+        lo, hi = mot.bounds
+        x_cut = float(deflection_from_theta2(p.toggle_cutoff, p.r2, p.r3))
+        x = np.linspace(max(lo, x_cut), max(hi, x_cut), 101)
+        th = theta2_from_deflection(x, p.r2, p.r3)
+        m_eff = float(np.max(slider_effective_mass(th, p.crank_mass, p.coupler_mass, p.slider_mass, p.r2, p.r3)))
+        xs = np.linspace(max(lo, 0.0), hi, 101)
+        f_max = float(np.max(np.abs(self.spring_force(xs))))
+        ratio = k_d / (m_eff * mot.omega**2)
+        lag = f_max / (k_d * max(hi - lo, 1e-12))
+        return {
+            "rigid_drive": bool(ratio >= RIGID_DRIVE_FREQUENCY_RATIO and lag <= RIGID_DRIVE_LAG),
+            "drive_stiffness_N_per_m": float(k_d),
+            "drive_damping_N_s_per_m": float(c_d),
+            "drive_frequency_ratio_squared": float(ratio),
+            "drive_lag_share": float(lag),
+            "drive_damping_ratio": float(c_d / (2.0 * np.sqrt(k_d * m_eff))),
+            "slider_effective_mass_kg": m_eff,
+            "rigid_drive_stiffness_N_per_m": float(
+                max(RIGID_DRIVE_FREQUENCY_RATIO * m_eff * mot.omega**2, f_max / (RIGID_DRIVE_LAG * max(hi - lo, 1e-12)))
+            ),
+            "enters_toggle_zone": bool(lo < x_cut),
+        }
+
+    def _rigid_drive(self, mot, stiffness: dict, samples_per_period: int) -> DynamicResult:
+        """A drive stiff enough to be rigid: the inverse dynamics of :meth:`dynamic` over one period."""
+        p = self.params
+        k_d = stiffness["drive_stiffness_N_per_m"]
+        bound = (
+            f"(w_n/omega)^2 = k_d / (m_eff omega^2) >= {RIGID_DRIVE_FREQUENCY_RATIO:g} and a drive deflection under "
+            f"the largest spring force <= {RIGID_DRIVE_LAG:g} of the stroke"
+        )
+        if stiffness["enters_toggle_zone"]:
+            raise InputError(
+                f"drive_stiffness = {k_d:.4g} N/m is a rigid drive for this motion ({bound}), and the motion "
+                f"reaches the toggle (crank angles below toggle_cutoff = {p.toggle_cutoff:.4g} rad), where the "
+                "rigid drive's force has no finite value (it scales with the cut-off: cfcs dynamic without a drive "
+                "flags it toggle-dominated); give a drive below "
+                f"{stiffness['rigid_drive_stiffness_N_per_m']:.3g} N/m, or start the motion from a preload offset"
+            )
+        res = self.dynamic(motion=mot, cycles=1, samples_per_cycle=samples_per_period)
+        s = res.summary
+        s.update(stiffness)
+        s["motion"] = "drive " + s["motion"].replace("x(t)", "x_d(t)") + " (rigid: the slider follows it)"
+        note = (
+            f"RIGID DRIVE: k_d = {k_d:.4g} N/m (rigid from {stiffness['rigid_drive_stiffness_N_per_m']:.3g} N/m) gives (w_n/omega)^2 = {stiffness['drive_frequency_ratio_squared']:.3g} "
+            f"(m_eff = {stiffness['slider_effective_mass_kg']:.3g} kg) and deflects "
+            f"{stiffness['drive_lag_share']:.2g} of the stroke under the largest spring force; with {bound} the "
+            "slider follows the motion (without friction a critically damped drive at the bound is within 0.03 % of "
+            "the peak-to-peak), so this is the inverse dynamics of the rigid drive (one period, no integration)"
+        )
+        if stiffness["drive_damping_ratio"] < 1.0:
+            note += (
+                f"; with a damping ratio of {stiffness['drive_damping_ratio']:.2g} a real drive rings after each "
+                "reversal of the friction, with an overshoot set by the damping ratio, not the stiffness "
+                "(docs/cfcs.md, the rigid limit), which this result does not hold"
+            )
+        s.setdefault("notes", []).insert(0, note)
+        return res
 
     # -- forward dynamics ---------------------------------------------------------------
     def forward(
@@ -1125,6 +1350,13 @@ class CFCS:
             "strip_frequency_ratio": float(omega) / w1,
             "strip_mass_kg": mass_per_length * p.pivot_length,
         }
+
+
+def _change(reference: float, value: float) -> str:
+    """``value`` against ``reference`` as a signed percentage, e.g. ``+35 %``."""
+    if reference == 0:
+        return "n/a"
+    return f"{100.0 * (value / reference - 1.0):+.3g} %"
 
 
 def _finite(value: float) -> float | None:

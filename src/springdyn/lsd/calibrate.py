@@ -36,7 +36,7 @@ from .identify import IdentificationSeries, _cycles, _frequency, _phasors, _solv
 from .model import LSDModel
 from .parameters import LSDParameters
 
-__all__ = ["calibrate", "Calibration", "fittable_parameters", "update_toml_text", "DEFAULT_FIT"]
+__all__ = ["calibrate", "Calibration", "fittable_parameters", "update_toml_text", "DEFAULT_FIT", "MIN_SPEEDS"]
 
 #: What is fitted unless told otherwise.
 DEFAULT_FIT = ("leakage_factor",)
@@ -81,6 +81,9 @@ class Calibration(Result):
     residuals : list of dict
         Per speed: ``rpm`` and, for each fitted coefficient, identified and model values
         and the relative difference.
+    caveat : str or None
+        What a calibration on fewer than :data:`MIN_SPEEDS` speeds (a single orbit) cannot say, and
+        what to record instead; None with enough speeds.
     """
 
     values: dict
@@ -93,6 +96,7 @@ class Calibration(Result):
     dof: int
     rms_relative_residual: float
     notes: list = dataclasses.field(default_factory=list)
+    caveat: str | None = None
 
     def to_dict(self) -> dict:
         """JSON-ready: each fitted key by its TOML name, ``<name>_ci`` ([low, high] or None), ``residuals``."""
@@ -105,6 +109,8 @@ class Calibration(Result):
         d["dof"] = self.dof
         d["fitted_coefficients"] = list(self.coefficients)
         d["rms_relative_residual"] = self.rms_relative_residual
+        d["speeds"] = len(self.residuals)
+        d["caveat"] = self.caveat
         d["residuals"] = self.residuals
         if self.notes:
             d["notes"] = list(self.notes)
@@ -396,6 +402,9 @@ def calibrate(
         for k, (nm, s) in enumerate(zip(names, scale)):
             half = t * np.sqrt(max(cov[k, k], 0.0)) * s
             intervals[nm] = (values[nm] - half, values[nm] + half)
+    caveat = _caveat(items, seconds is not None, names, m, dof, confidence)
+    if caveat:
+        notes.insert(0, caveat)
     calibrated = params.replace(**values)
     final = predictions(sol.x)
     residuals = []
@@ -419,4 +428,40 @@ def calibrate(
         dof=int(dof),
         rms_relative_residual=float(np.sqrt(np.mean(r * r))),
         notes=notes,
+        caveat=caveat,
+    )
+
+
+#: Fewest speeds [-] a calibration needs before its intervals say how well the parameters are known:
+#: one speed cannot show the frequency dependence that tells the viscous damping (constant) from the
+#: friction equivalents (~1/omega), and two leave no check of it.
+MIN_SPEEDS = 3
+
+
+def _caveat(items, two_excitations: bool, names, residuals: int, dof: int, confidence: float):
+    """What a calibration on too few speeds cannot say (issue 40: one orbit gave an interval of -119 to
+    +300 % and no word), or None."""
+    from scipy import stats
+
+    speeds = len(items)
+    if speeds >= MIN_SPEEDS:
+        return None
+    rpm = ", ".join(f"{it.rpm:.5g}" for it in items)
+    what = (
+        f"calibrated on {'a single orbit' if speeds == 1 and not two_excitations else f'{speeds} speed(s)'} "
+        f"({rpm} rpm{', one excitation' if not two_excitations else ', two excitations'})"
+    )
+    t = float(stats.t.ppf(0.5 + confidence / 2.0, dof)) if dof > 0 else None
+    interval = (
+        f"the {100 * confidence:g} % interval rests on {residuals} residuals and {dof} degree(s) of freedom "
+        f"(t = {t:.3g}) and measures only their scatter, not that error"
+        if t is not None
+        else "there are no degrees of freedom left for an interval"
+    )
+    cross = "" if two_excitations else "; one excitation per speed mixes direct and cross terms (Cxx - Kxy/w, --second)"
+    return (
+        f"CAVEAT: {what}. At {'one frequency' if speeds == 1 else 'two frequencies'} the viscous damping "
+        "(constant in frequency) and the friction equivalents (~1/omega) cannot be told apart, so the fitted "
+        f"{', '.join(names)} absorbs whatever the other parameters get wrong; {interval}{cross}. Record orbits "
+        f"at {MIN_SPEEDS} or more speeds over the range of use before using the value or its interval"
     )

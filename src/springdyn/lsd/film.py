@@ -43,6 +43,7 @@ from ..core.units import omega_to_rpm, rpm_to_omega
 from .damping import chamber_pressures
 
 __all__ = [
+    "AERATED_CAVITATION_PRESSURE",
     "FilmWarning",
     "FilmNetwork",
     "film_network",
@@ -71,6 +72,13 @@ _DOCS = ParameterDocs(
 DEFAULT_FEED_RATIO = 0.05
 #: Time steps per vibration period of :func:`film_harmonic` [-].
 DEFAULT_STEPS_PER_CYCLE = 512
+
+#: Cavitation pressure of air-saturated oil [Pa] (absolute), the figure beside the configured one (issue
+#: 40): oil from a vented sump holds air dissolved at atmospheric pressure and releases it as the film's
+#: pressure falls below that (gaseous cavitation, Zeidan and Vance 1990; Diaz and San Andres 2001,
+#: docs/references.md), long before the vapour limit (0 bar).  0.9 bar, 0.11 bar below the atmosphere,
+#: leaves an atmospheric supply a margin about nine times smaller than the vapour limit's.
+AERATED_CAVITATION_PRESSURE = 0.9e5
 
 
 class FilmWarning(UserWarning):
@@ -599,9 +607,55 @@ class FilmMap(Result):
         reached = self.min_pressure <= self.cavitation_pressure + 1e-9 * max(abs(self.cavitation_pressure), 1.0)
         return np.array([self.rpm[np.argmax(c)] if np.any(c) else np.nan for c in reached.T])
 
+    def cavitation_start_rpm_at(self, cavitation_pressure: float):
+        """Per orbit, the lowest mapped speed where the linear pressure amplitude reaches ``p_s - p_cav`` for
+        another cavitation pressure [rev/min] (where the film would start to cavitate); ``nan`` where never.
+
+        The film is linear until it cavitates, so this needs no film simulation; at the map's own
+        ``cavitation_pressure`` it is :meth:`cavitation_start_rpm`.
+
+        Parameters
+        ----------
+        cavitation_pressure : float
+            Absolute cavitation pressure [Pa].
+        """
+        reached = self.pressure_amplitude >= (self.supply_pressure - cavitation_pressure) * (1.0 - 1e-9)
+        return np.array([self.rpm[np.argmax(c)] if np.any(c) else np.nan for c in reached.T])
+
+    def whole_film_orbit(self, cavitation_pressure: float | None = None):
+        """Per speed, the largest forward orbit [m] on which the film stays whole: ``(p_s - p_cav)`` over the
+        linear pressure amplitude per metre of orbit (the map's cavitation pressure by default).
+
+        Parameters
+        ----------
+        cavitation_pressure : float, optional
+            Absolute cavitation pressure [Pa].
+        """
+        p_cav = self.cavitation_pressure if cavitation_pressure is None else float(cavitation_pressure)
+        per_metre = self.pressure_amplitude[:, 0] / self.amplitude[0]
+        return (self.supply_pressure - p_cav) / per_metre
+
+    def cavitation_sensitivity(self) -> dict:
+        """The cavitation figures at the vapour limit (0 bar) and for air-saturated oil
+        (:data:`AERATED_CAVITATION_PRESSURE`), beside the map's own (issue 40)."""
+        out = {}
+        for tag, p_cav in (("vapour_limit", 0.0), ("aerated", AERATED_CAVITATION_PRESSURE)):
+            start = self.cavitation_start_rpm_at(p_cav)
+            orbit = self.whole_film_orbit(p_cav)
+            out[tag] = {
+                "cavitation_pressure_abs_Pa": p_cav,
+                "cavitation_start_rpm": [None if np.isnan(v) else float(v) for v in start],
+                "whole_film_orbit_at_rpm_max_m": float(orbit[-1]),
+            }
+        out["whole_film_orbit_ratio"] = (
+            out["vapour_limit"]["whole_film_orbit_at_rpm_max_m"] / out["aerated"]["whole_film_orbit_at_rpm_max_m"]
+        )
+        return out
+
     def _summary(self) -> dict:
         onset = self.cavitation_change_onset_rpm()
         start = self.cavitation_start_rpm()
+        sens = self.cavitation_sensitivity()
         s = dict(
             name=self.name,
             rpm_min=float(self.rpm.min()),
@@ -621,6 +675,12 @@ class FilmMap(Result):
             cavitation_start_rpm_largest_orbit=None if np.isnan(start[-1]) else float(start[-1]),
             mean_pressure_residual_max_Pa=float(np.abs(self.mean_pressure_residual).max()),
             steps_per_period=int(self.steps),
+            whole_film_orbit_at_rpm_max_m=float(self.whole_film_orbit()[-1]),
+            aerated_cavitation_pressure_abs_Pa=AERATED_CAVITATION_PRESSURE,
+            cavitation_start_rpm_aerated_smallest_orbit=sens["aerated"]["cavitation_start_rpm"][0],
+            cavitation_start_rpm_aerated_largest_orbit=sens["aerated"]["cavitation_start_rpm"][-1],
+            whole_film_orbit_at_rpm_max_aerated_m=sens["aerated"]["whole_film_orbit_at_rpm_max_m"],
+            whole_film_orbit_at_rpm_max_vapour_limit_m=sens["vapour_limit"]["whole_film_orbit_at_rpm_max_m"],
         )
         return s
 

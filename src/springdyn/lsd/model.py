@@ -196,6 +196,7 @@ class LSDModel:
             "inertia_ratio": w * self.film_time_constant,
             "pressure_amplitude_Pa": per_unit * w * np.abs(z),
             "cavitation_margin_Pa": p.supply_pressure_absolute - p.cavitation_pressure,
+            "cavitation_pressure_Pa": p.cavitation_pressure,
         }
 
     # ---------------------------------------------------------------- damping
@@ -621,6 +622,24 @@ def _film_notes(film: dict, rpm) -> list:
             f"p_s - p_cav = {margin / 1e5:.3g} bar: the film cavitates and the linear oil coefficients "
             "overstate its force; use equivalent_coefficients(..., film=True) (CLI --film)"
         )
+    # the figure for air-saturated oil beside it (issue 40): gaseous cavitation near atmospheric pressure
+    from .film import AERATED_CAVITATION_PRESSURE
+
+    supply = margin + float(film.get("cavitation_pressure_Pa", 0.0))
+    aerated = supply - AERATED_CAVITATION_PRESSURE
+    if (
+        "cavitation_pressure_Pa" in film
+        and film["cavitation_pressure_Pa"] < AERATED_CAVITATION_PRESSURE
+        and np.any(amp > aerated)  # only where it matters: air-saturated oil would cavitate at some speed
+    ):
+        over = amp > aerated
+        where = f"from {rpm[int(np.argmax(over))]:g} rpm" if np.any(over) else "at none of these speeds"
+        notes.append(
+            f"cavitation pressure {film['cavitation_pressure_Pa'] / 1e5:.3g} bar abs (p_s - p_cav = {margin / 1e5:.3g} "
+            f"bar); oil saturated with air releases it near {AERATED_CAVITATION_PRESSURE / 1e5:.3g} bar (gaseous "
+            f"cavitation, p_s - p_cav = {aerated / 1e5:.3g} bar, {margin / aerated:.3g} times less): its film "
+            f"would cavitate {where} (largest linear pressure amplitude {amp.max() / 1e5:.3g} bar)"
+        )
     return notes
 
 
@@ -633,7 +652,7 @@ def _warn_film(film: dict, rpm) -> None:
     from .film import FilmWarning
 
     for note in _film_notes(film, rpm):
-        if not note.startswith("fluid inertia"):
+        if not note.startswith(("fluid inertia", "cavitation pressure")):  # noted, not warned
             warnings.warn(note, FilmWarning, stacklevel=3)
 
 

@@ -299,7 +299,7 @@ def _static_rows(s) -> list:
         (
             "PCF compression branch",
             _fmt(s["pcf_compression_percent"], "%", digits=4),
-            f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}",
+            f"friction {s['friction_model']}, tau_AF {'on' if s['axial_force'] else 'off'}" + _static_offsets(s),
         ),
         (
             "max pivot stress",
@@ -321,6 +321,19 @@ def _static_rows(s) -> list:
     ]
 
 
+def _static_offsets(s) -> str:
+    """The compression branch's PCF with the working range from half and twice the offset (issue 40)."""
+    parts = [
+        f"{_fmt(s[f'working_start_{tag}_offset_m'], 'm', 'mm', 3)}: {s[f'pcf_compression_at_{tag}_offset_percent']:.4g} %"
+        for tag in ("half", "double")
+        if s.get(f"pcf_compression_at_{tag}_offset_percent") is not None
+    ]
+    if not parts:
+        return ""
+    flag = "OFFSET-SENSITIVE, " if s.get("offset_sensitive_statistics") else ""
+    return f"; {flag}from " + ", ".join(parts)
+
+
 def _beam_check_rows(summary) -> list:
     """The beam check of a PRBM result (empty for the beam model)."""
     if "beam_band_error_percent" not in summary:
@@ -340,6 +353,19 @@ def _beam_check_rows(summary) -> list:
             f"{s['beam_band_error_percent']:+.3g} %",
             "(band PRBM - band elastica) / band elastica"
             + (f"; working range {working:+.3g} %" if working is not None else ""),
+        ),
+        *(
+            [
+                (
+                    "  ... with the range's end",
+                    f"{s['beam_band_error_min_percent']:+.3g} .. {s['beam_band_error_max_percent']:+.3g} %",
+                    f"ends {_fmt(s['beam_band_error_ends_m'][0], 'm', 'mm', 4)} .. "
+                    f"{_fmt(s['beam_band_error_ends_m'][1], 'm', 'mm', 4)}: it depends on where the range ends; "
+                    "the force error only grows with it",
+                )
+            ]
+            if s.get("beam_band_error_min_percent") is not None
+            else []
         ),
         ("PRBM force error", f"{s['beam_force_error_percent']:.3g} % of F0", "max |F PRBM - F elastica| / F0"),
     ]
@@ -384,18 +410,42 @@ def _dynamic(args) -> int:
         mot = model.motion(omega, args.amplitude, args.offset, csv=args.motion)
         if driven:
             return _driven(args, model, mot)
-        res = model.dynamic(motion=mot, cycles=args.cycles, samples_per_cycle=args.samples or 400)
+        res = model.dynamic(
+            motion=mot, cycles=args.cycles, samples_per_cycle=400 if args.samples is None else args.samples
+        )
     return _show(args, res, _dynamic_rows)
+
+
+def _at_offsets(s, key: str, unit: str, digits: int = 4) -> str:
+    """The figure ``key`` with the motion started at half and at twice the preload offset (issue 40)."""
+    parts = []
+    for tag in ("half", "double"):
+        st = s.get(f"statistics_at_{tag}_offset")
+        if st is not None:
+            parts.append(f"{_fmt(st['offset_m'], 'm', 'mm', 3)}: {st[key]:.{digits}g} {unit}")
+    if not parts:
+        return ""
+    flag = "OFFSET-SENSITIVE, " if key in (s.get("offset_sensitive_statistics") or []) else ""
+    return f"{flag}from offset " + ", ".join(parts)
 
 
 def _dynamic_rows(s) -> list:
     return [
         ("input", s["motion"], ""),
-        ("mean force", _fmt(s["mean_force_N"], "N"), ""),
+        ("mean force", _fmt(s["mean_force_N"], "N"), _at_offsets(s, "mean_force_N", "N")),
         ("median force", _fmt(s["median_force_N"], "N"), ""),
-        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), ""),
-        ("PCF Fmin/Fmax", _fmt(s["pcf_percent"], "%", digits=4), "over one cycle"),
-        ("hysteresis per cycle", _fmt(s["hysteresis_energy_per_cycle_J"], "J"), ""),
+        ("peak-to-peak force", _fmt(s["peak_to_peak_N"], "N"), _at_offsets(s, "peak_to_peak_N", "N")),
+        ("largest force", _fmt(s["force_max_N"], "N"), _at_offsets(s, "force_max_N", "N")),
+        (
+            "PCF Fmin/Fmax",
+            _fmt(s["pcf_percent"], "%", digits=4),
+            "over one cycle" + (f"; {_at_offsets(s, 'pcf_percent', '%', 3)}" if s.get("offset_m") else ""),
+        ),
+        (
+            "hysteresis per cycle",
+            _fmt(s["hysteresis_energy_per_cycle_J"], "J"),
+            _at_offsets(s, "hysteresis_energy_per_cycle_J", "J", 3),
+        ),
         (
             "max pivot stress",
             _fmt(s["max_stress_Pa"], "Pa", "GPa", 4),
@@ -430,17 +480,35 @@ def _driven(args, model, mot) -> int:
     kw = dict(
         drive_stiffness=_q(args.drive_stiffness, "N/m", "--drive-stiffness") if args.drive_stiffness else None,
         drive_damping=_q(args.drive_damping, "N*s/m", "--drive-damping") if args.drive_damping else None,
-        periods=args.periods or DRIVEN_PERIODS,
-        samples_per_period=args.samples or DRIVEN_SAMPLES,
+        periods=DRIVEN_PERIODS if args.periods is None else args.periods,
+        samples_per_period=DRIVEN_SAMPLES if args.samples is None else args.samples,
         rtol=_q(args.rtol, "", "--rtol") if args.rtol else DRIVEN_RTOL,
         max_step=_q(args.max_step, "s", "--max-step") if args.max_step else None,
         sign_smoothing=_q(args.sign_smoothing, "rad/s", "--sign-smoothing")
         if args.sign_smoothing
         else DRIVE_SIGN_SMOOTHING,
     )
-    with as_options(periods="--periods", samples_per_period="--samples", rtol="--rtol", max_step="--max-step"):
+    with as_options(
+        periods="--periods",
+        samples_per_period="--samples",
+        rtol="--rtol",
+        max_step="--max-step",
+        drive_stiffness="--drive-stiffness",
+    ):
         res = model.driven(motion=mot, **kw)
-    return _show(args, res, _driven_rows)
+    return _show(args, res, _driven_rows if res.summary["rigid_drive"] is False else _rigid_drive_rows)
+
+
+def _rigid_drive_rows(s) -> list:
+    """A drive stiff enough to be rigid (``CFCS.driven`` gave the inverse dynamics)."""
+    return [
+        (
+            "drive",
+            f"k_d {s['drive_stiffness_N_per_m']:.4g} N/m: RIGID (from {s['rigid_drive_stiffness_N_per_m']:.3g} N/m)",
+            f"(w_n/omega)^2 {s['drive_frequency_ratio_squared']:.3g}, lag {s['drive_lag_share']:.2g} of the stroke",
+        ),
+        *_dynamic_rows(s),
+    ]
 
 
 def _driven_rows(s) -> list:
@@ -513,18 +581,32 @@ def _sweep(args) -> int:
     if emit(res, args, json_data={**res.summary, **res.columns()}):
         return 0
     st = res.stats
+    extra = [k for k in ("peak_to_peak_at_half_offset_N", "peak_to_peak_at_double_offset_N") if k in st]
     rows = [
         (
             f"{w:.4g}",
             f"{st['mean_force_N'][i]:.4f}",
             f"{st['median_force_N'][i]:.4f}",
             f"{st['peak_to_peak_N'][i]:.4f}",
+            *(f"{st[k][i]:.4f}" for k in extra),
             f"{st['pcf_percent'][i]:.2f}",
             f"{st['pcf_no_dissipation_percent'][i]:.2f}",
         )
         for i, w in enumerate(res.omega)
     ]
-    print_table(rows, headers=("omega_rad_per_s", "mean_N", "median_N", "p2p_N", "pcf_%", "pcf_no_diss_%"))
+    heads = {"peak_to_peak_at_half_offset_N": "p2p_half_offset_N", "peak_to_peak_at_double_offset_N": "p2p_2x_offset_N"}
+    print_table(
+        rows,
+        headers=(
+            "omega_rad_per_s",
+            "mean_N",
+            "median_N",
+            "p2p_N",
+            *(heads[k] for k in extra),
+            "pcf_%",
+            "pcf_no_diss_%",
+        ),
+    )
     print(f"toggle cut-off {np.degrees(res.summary['toggle_cutoff_rad']):.4g} deg")
     if res.summary["toggle_dominated"]:
         print("TOGGLE-DOMINATED: " + res.summary["notes"][0])

@@ -229,7 +229,25 @@ def cmd_film(args) -> int:
         where = f"from {r:g} rpm" if np.isfinite(r) else "nowhere in the mapped speeds"
         start = f"from {r0:g} rpm" if np.isfinite(r0) else "nowhere in the mapped speeds"
         print(f"at {a * 1e6:.3g} um the film cavitates {start}; cavitation changes the force by more than 10 % {where}")
+    _print_cavitation_sensitivity(res)
     return 0
+
+
+def _print_cavitation_sensitivity(res) -> None:
+    """The cavitation figures for air-saturated oil and at the vapour limit beside the map's (issue 40)."""
+    sens = res.cavitation_sensitivity()
+    top = res.rpm.max()
+    print(
+        f"cavitation pressure: the film stays whole at {top:g} rpm on orbits up to "
+        f"{res.whole_film_orbit()[-1] * 1e6:.3g} um with p_cav {res.cavitation_pressure / 1e5:.3g} bar abs; "
+        f"{sens['vapour_limit']['whole_film_orbit_at_rpm_max_m'] * 1e6:.3g} um at the vapour limit (0 bar, "
+        f"degassed oil), {sens['aerated']['whole_film_orbit_at_rpm_max_m'] * 1e6:.3g} um with air-saturated oil "
+        f"({sens['aerated']['cavitation_pressure_abs_Pa'] / 1e5:.3g} bar, gaseous cavitation: "
+        f"{sens['whole_film_orbit_ratio']:.3g} times smaller)"
+    )
+    for a, r in zip(res.amplitude, sens["aerated"]["cavitation_start_rpm"]):
+        where = f"from {r:g} rpm" if r is not None else "nowhere in the mapped speeds"
+        print(f"  with air-saturated oil, at {a * 1e6:.3g} um the film cavitates {where}")
 
 
 def _percent(change: float) -> str:
@@ -252,6 +270,8 @@ def _film_map_json(res) -> dict:
             None if not np.isfinite(v) else float(v) for v in res.cavitation_change_onset_rpm()
         ],
         "cavitation_start_rpm": [None if not np.isfinite(v) else float(v) for v in res.cavitation_start_rpm()],
+        "whole_film_orbit_m": res.whole_film_orbit().tolist(),
+        "cavitation_sensitivity": res.cavitation_sensitivity(),
         "supply_pressure_abs_Pa": res.supply_pressure,
         "cavitation_pressure_abs_Pa": res.cavitation_pressure,
         "threshold": res.threshold,
@@ -431,7 +451,7 @@ def cmd_calibrate(args) -> int:
             )
     print_table(rows, headers=("rpm", "coefficient", "identified", "calibrated model", "difference"))
     for note in cal.notes:
-        print(f"note: {note}")
+        print(note if note.startswith("CAVEAT") else f"note: {note}")
     if args.toml:
         print(f"calibrated definition -> {args.toml}")
     return 0
