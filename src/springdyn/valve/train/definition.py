@@ -763,6 +763,7 @@ class ValveTrain(Parameters):
             kin = geom.kinematics(follower)
         except InputError as exc:
             raise InputError(f"{where}{exc}") from None
+        _check_drawn_ratio(kin, where)
         table["rocker_ratio"] = kin.ratio_at_rest
         table["rocker_valve_arm"] = kin.valve_arm_at_rest
         vt = cls.from_dict(table, source=source)
@@ -882,3 +883,31 @@ class ValveTrain(Parameters):
         lifter = lobe_lift - f_cam / self.cam_stiffness
         tip = r * (lifter - f_cam / self.pushrod_stiffness)
         return np.array([valve_lift, tip, lifter])
+
+
+def _check_drawn_ratio(kin, where: str = "") -> None:
+    """A drawn lever's ratio at rest within the bounds of ``[valve_train] rocker_ratio``, refused
+    naming the ``[geometry]`` keys that set it (the user set them, not ``rocker_ratio``).
+
+    Parameters
+    ----------
+    kin : LeverKinematics
+        The drawing's kinematics on the base circle.
+    where : str
+        The file, for messages (``"vt.toml: "``).
+    """
+    from ...core.units import format_quantity
+
+    meta = next(f.metadata for f in dataclasses.fields(ValveTrain) if f.name == "rocker_ratio")
+    lo, hi = meta["minimum"], meta["maximum"]
+    r = kin.ratio_at_rest
+    if lo <= r <= hi:
+        return
+    valve_arm = format_quantity(kin.valve_arm_at_rest, "m", "mm")
+    cam_arm = format_quantity(kin.cam_arm_at_rest, "m", "mm")
+    raise InputError(
+        f"{where}[geometry] the lever drawn has a ratio of {r:.4g} at rest: its valve arm (the pad, pad_x and "
+        f"pad_y, about the pivot, pivot_x and pivot_y) is {valve_arm} against the cam's arm (the roller, roller_x "
+        f"and roller_y) {cam_arm}; a valve-train lever's ratio is {lo:g} to {hi:g}: check these points of the "
+        "drawing (its units too)"
+    )
