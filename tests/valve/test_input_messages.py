@@ -357,3 +357,44 @@ def test_a_force_trace_is_checked_in_python_too():
         check_force_trace(np.r_[angle[:2], angle[1:]], np.full(angle.size + 1, 200.0))
     with pytest.raises(InputError, match="one revolution or more"):
         check_force_trace(np.r_[angle, 360.0, 370.0], np.full(angle.size + 2, 200.0))
+
+
+@pytest.fixture(scope="module")
+def setups():
+    from springdyn.valve import Cam, ValveSpring, ValveTrain
+    from springdyn.valve.run.setup import prepare
+
+    spring, cam = ValveSpring.from_toml(SPRING), Cam.from_toml(CAM)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the 9 mm cam's coil-bind clearance
+        return prepare(spring, cam, None), prepare(spring, cam, ValveTrain.from_toml(example("valve/valve_train.toml")))
+
+
+def test_likely_cause_reads_the_speed_not_coil_contact(setups):
+    """A failure at 4000 cam rpm of the direct-acting example (kinematic float near 2955 cam
+    rpm, 6.7 surge orders) is put down to the speed; the 9 mm cam stays above the length of
+    the coil-contact force statically, so coil contact is not named."""
+    from springdyn.valve.run.runner import kinematic_float_rpm, likely_causes, solver_error
+
+    alone, train = setups
+    assert kinematic_float_rpm(train) == pytest.approx(2955, abs=5)
+    causes = likely_causes(train, 4000.0)
+    assert causes[0].startswith("the speed: 4000 cam rpm is above the train's kinematic float speed, about 2955")
+    assert "6.7 cam orders" in causes[1]
+    assert not any("coil contact" in c for c in causes)
+    assert likely_causes(alone, 1000.0) == []
+    message = str(solver_error(1000.0, 1000.0 * math.pi / 30, dict(status=2, t=0.01, steps=9), alone))
+    assert "likely cause: the contact parameters" in message and "coil contact" not in message
+
+
+def test_likely_cause_names_the_gas_pressure_and_static_coil_contact(setups):
+    import dataclasses
+
+    from springdyn.valve.run.runner import likely_causes
+    from springdyn.valve.train.gas_force import GasForce
+
+    alone, train = setups
+    gas = dataclasses.replace(train, gas_force=GasForce(np.full(3600, 2000.0)))
+    assert any(c.startswith("the gas pressure: up to 2000 N on the valve head") for c in likely_causes(gas, 1000.0))
+    deep = dataclasses.replace(alone, table=dataclasses.replace(alone.table, h=alone.table.h * 1.5))
+    assert any(c.startswith("coil contact: the cam drives the spring") for c in likely_causes(deep, 1000.0))
