@@ -398,3 +398,23 @@ def test_likely_cause_names_the_gas_pressure_and_static_coil_contact(setups):
     assert any(c.startswith("the gas pressure: up to 2000 N on the valve head") for c in likely_causes(gas, 1000.0))
     deep = dataclasses.replace(alone, table=dataclasses.replace(alone.table, h=alone.table.h * 1.5))
     assert any(c.startswith("coil contact: the cam drives the spring") for c in likely_causes(deep, 1000.0))
+
+
+def test_the_simple_adjusters_placement_is_stated():
+    """The simple adjuster of a finger follower is stated where it sits (the valve side) with
+    what its placement does to the float speed; a bucket's and an [hla] table's are not."""
+    from springdyn.valve import ValveTrain
+
+    note = ValveTrain.from_toml(example("valve/finger_follower.toml")).adjuster_placement
+    assert "at the valve side of the lever" in note and "3364 cam rpm to 3000, 11 %" in note
+    assert ValveTrain.from_toml(example("valve/finger_follower_hla.toml")).adjuster_placement is None
+    assert ValveTrain.from_toml(example("valve/bucket_hla.toml")).adjuster_placement is None
+
+
+def test_train_modes_state_the_simple_adjusters_placement(capsys):
+    argv = ["valve", "train-modes", SPRING, "--cam", example("valve/cam_finger.toml"), "--valve-train",
+            example("valve/finger_follower.toml"), "--cam-rpm", "1000:2000:500"]  # fmt: skip
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert main(argv) == 0
+    assert "note: adjuster: the simple hydraulic adjuster (hla_stiffness = 20 N/um" in capsys.readouterr().out

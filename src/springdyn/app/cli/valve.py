@@ -429,6 +429,8 @@ def cmd_float(args) -> int:
     else:
         print(valve.coil_line(model.spring.coil_facts))
         print(res.describe())
+        if model.valve_train.adjuster_placement:
+            print(f"note: adjuster: {model.valve_train.adjuster_placement}")
     return 0
 
 
