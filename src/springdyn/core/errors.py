@@ -12,9 +12,44 @@ by its ``key``: a command shows it once.
 
 from __future__ import annotations
 
+import re
+
+#: A number written with float noise: more than 9 significant digits after the decimal point
+#: (``0.30000000000000004``, ``5.545454545454547``) or a float's ``.0`` on a long integer
+#: (``1000000000.0``), not inside a word, a path or a longer number.
+_NOISY_NUMBER = re.compile(r"(?<![\w./-])[-+]?(?:\d+\.\d{9,}|\d{7,}\.0)(?:[eE][-+]?\d+)?(?![\w.])")
+
+
+def plain_numbers(text: str) -> str:
+    """A message's echoed values with 6 significant digits: float noise removed.
+
+    The one home of how a message shows a value it echoes (every :class:`SpringdynError`
+    passes its message through it).
+
+    Parameters
+    ----------
+    text : str
+        The message [-].
+
+    Examples
+    --------
+    >>> plain_numbers("x = 0.30000000000000004 m, ratio 5.545454545454547, 1000000000.0 rpm, 0.25 mm")
+    'x = 0.3 m, ratio 5.54545, 1e+09 rpm, 0.25 mm'
+    """
+    return _NOISY_NUMBER.sub(lambda m: fmt_value(float(m.group(0))), text)
+
 
 class SpringdynError(Exception):
-    """Base class of every error springdyn raises on purpose."""
+    """Base class of every error springdyn raises on purpose.
+
+    Its message echoes values with 6 significant digits (:func:`plain_numbers`): a value read
+    in SI and converted back is shown as the user wrote it, not as ``0.30000000000000004``.
+    """
+
+    def __init__(self, *args):
+        if len(args) == 1 and isinstance(args[0], str):
+            args = (plain_numbers(args[0]),)
+        super().__init__(*args)
 
 
 class InputError(SpringdynError, ValueError):

@@ -351,10 +351,26 @@ def from_mapping(
     except InputError as exc:
         message = str(exc) + _bare_number_hint(cls, specs, mapping, kwargs)
         if source and not message.startswith(where):
-            raise InputError(f"{where}{prefix}{message}") from None
+            # a cross-key check names its table itself ("[friction] fluid_friction = ..."): once
+            tagged = message if message.startswith(f"[{section}]") else f"{prefix}{message}"
+            raise InputError(f"{where}{tagged}") from None
         if message != str(exc):
             raise InputError(message) from None
         raise
+
+
+#: The keys that choose what a table describes (its kind): checked before the table's other keys.
+KIND_KEYS = ("type", "kind", "law", "layout", "end_type")
+
+
+def _check_choices(cls, mapping: Mapping, where: str) -> None:
+    """The keys of a table that choose its kind (:data:`KIND_KEYS`: ``type``, ``end_type``, ``law``),
+    checked before the other keys are read: a bad kind is named as such, not as the problem it
+    makes of another key (``type = "twostep"`` beside ``low_pitch`` is a bad type, not a pitch
+    missing)."""
+    for f, meta in field_specs(cls):
+        if f.name in KIND_KEYS and meta.get("kind") == "str" and meta.get("choices") and f.name in mapping:
+            _convert(f.name, mapping[f.name], meta, where)
 
 
 def _bare_number_hint(cls, specs, mapping, kwargs) -> str:
@@ -580,11 +596,21 @@ class Parameters:
     @classmethod
     def from_dict(cls, mapping: Mapping[str, Any], *, source: str | None = None, **context):
         """Build from a mapping of the table's keys (values with units, or SI numbers)."""
+        where = f"{source}: " if source else ""
         if not isinstance(mapping, Mapping):
-            raise InputError(f"{source + ': ' if source else ''}[{cls.table}] must be a table of keys")
+            raise InputError(f"{where}[{cls.table}] must be a table of keys")
+        _check_choices(cls, mapping, f"{where}[{cls.table}] " if cls.table else where)
+        try:
+            prepared = cls._prepare(dict(mapping), source=source, **context)
+        except InputError as exc:  # a key the table reads into others: the file and the table named once
+            text = str(exc)
+            if source and not text.startswith(where):
+                text = f"{where}{text if text.startswith(f'[{cls.table}]') else f'[{cls.table}] {text}'}"
+                raise InputError(text) from None
+            raise
         return from_mapping(
             cls,
-            cls._prepare(dict(mapping), source=source, **context),
+            prepared,
             section=cls.table,
             source=source,
             cam_per_crank=context.get("cam_per_crank", 0.5),

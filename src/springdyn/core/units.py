@@ -203,10 +203,16 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
         try:
             # a temperature on an offset scale ("90 degC"): pint reads "90 * degC" as a product
             q = ureg.Quantity(float(offset[1]), offset[2].replace("°", "deg")) if offset else ureg.Quantity(text)
-        except Exception as exc:  # pint raises several types for bad text
+        except Exception as exc:  # pint raises several types for bad text: said in the user's words
+            unknown = getattr(exc, "unit_names", None) or getattr(exc, "args", [None])[:1]
+            why = (
+                f": {unknown[0]!r} is not a unit springdyn knows"
+                if type(exc).__name__ == "UndefinedUnitError" and unknown and isinstance(unknown[0], str)
+                else ""
+            )
             raise InputError(
                 f"{field} = {value!r} is not a quantity springdyn can read "
-                f"(expected something like '{_example(unit)}'): {str(exc).splitlines()[0] if str(exc) else exc}"
+                f"(expected a number and a unit, like '{_example(unit)}'){why}"
             ) from None
         if not isinstance(q, ureg.Quantity):  # a plain number
             q = ureg.Quantity(float(q), bare)
@@ -220,7 +226,9 @@ def to_si(value, unit: str, field: str, *, bare_unit: str | None = None) -> floa
         mag = q.to(target).magnitude
     except Exception as exc:
         if type(exc).__name__ != "DimensionalityError":
-            raise InputError(f"{field} = {value!r} cannot be converted to {unit or 'a number'}: {exc}") from None
+            raise InputError(
+                f"{field} = {value!r} cannot be converted to {unit or 'a number'} (for example '{_example(unit)}')"
+            ) from None
         want = "dimensionless" if not unit else f"a quantity convertible to {unit}"
         raise InputError(
             f"{field} = {value!r} has the wrong dimension: expected {want} (for example '{_example(unit)}')"

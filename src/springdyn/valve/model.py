@@ -277,7 +277,8 @@ class ValveModel:
                 "valve) to phase it"
             )
         if not Path(path).is_file():
-            raise InputError(f"path = {str(path)!r}: no such file (the cylinder pressure)")
+            what = "is a folder, not a CSV file" if Path(path).is_dir() else "no such file"
+            raise InputError(f"path = {str(path)!r}: {what} (the cylinder pressure)")
         gas = train_wing.GasForce.from_file(
             path,
             axis=crank_axis(self._need_cam("the gas force"), self.timing),

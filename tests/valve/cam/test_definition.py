@@ -118,7 +118,7 @@ def test_coarse_table_warns():
         ({"law": "3-4-5", "lift": "9 mm"}, r"law = '3-4-5' needs duration"),
         (
             {"law": "3-4-5", "lift": "9 mm", "duration": "120 deg", "ramp_height": "0.3 mm"},
-            r"both zero or both positive",
+            r"ramp_height is given without ramp_duration",
         ),
         ({"law": "3-4-5", "lift": "9 mm", "duraton": "120 deg"}, r"unknown key 'duraton'"),
         ({"law": "table"}, r'law = "table" needs file'),

@@ -295,7 +295,7 @@ def test_solver_failure_names_speed_time_and_cause(one_step, monkeypatch):
     with pytest.raises(
         SolverError,
         match=r"at 3000 cam rpm failed at t = 0\.0123 s \(cam angle 221\.40 deg.*step size "
-        r"collapsed; likely cause: the element stiffness",
+        r"collapsed; likely cause: the speed: the spring's first surge mode \(450 Hz\) is only 9\.0 cam orders",
     ):
         simulate(one_step, CAM, 3000)
 

@@ -98,6 +98,8 @@ def parse_range(
 
 def existing_file(path: str, option: str) -> Path:
     p = Path(path)
+    if p.is_dir():
+        raise InputError(f"{option}: {path}: is a folder, not a file")
     if not p.is_file():
         raise InputError(f"{option}: {path}: no such file")
     return p

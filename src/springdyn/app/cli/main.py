@@ -20,7 +20,7 @@ import warnings
 from pathlib import Path
 
 from springdyn import __version__
-from springdyn.core.errors import InputError, SolverError
+from springdyn.core.errors import InputError, SolverError, plain_numbers
 from springdyn.core.io import NonFiniteOutputError, check_output_file, check_output_folder, output_set
 
 from . import docs_cmd
@@ -42,7 +42,8 @@ class _Parser(argparse.ArgumentParser):
     """argparse whose errors are one line (usage only with ``--help``) and exit code 2."""
 
     def error(self, message):
-        raise UsageError(f"{self.prog}: {message} (see '{self.prog} --help')")
+        where = "" if self.prog == "springdyn" else f"{self.prog}: "  # (the line starts 'springdyn: error:')
+        raise UsageError(f"{where}{message} (see '{self.prog} --help')")
 
 
 #: Warnings of the running command: printed when it succeeds; when it fails, its one-line
@@ -53,7 +54,7 @@ _PENDING_WARNINGS: list[tuple[str, str]] = []
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
     """Keep a warning of the running command: once per text, and once per fact (its key)."""
-    text = f"springdyn: warning: {message}"
+    text = f"springdyn: warning: {plain_numbers(str(message))}"
     key = str(getattr(message, "key", "") or "")
     if any(t == text or (key and k == key) for k, t in _PENDING_WARNINGS):
         return  # said already: the same text, or the same fact reached by another path

@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 
-import numpy as np
-
 import springdyn.valve as valve
 from springdyn.app.cli import valve_cam_design, valve_friction, valve_synthesis
 from springdyn.app.cli.common import (
@@ -274,7 +272,7 @@ def cmd_design(args) -> int:
 
 
 def cmd_calibrate(args) -> int:
-    from springdyn.core.io import atomic_open, check_output_file, dumps_toml, read_csv_columns
+    from springdyn.core.io import atomic_open, check_output_file, dumps_toml
     from springdyn.core.params import load_toml
     from springdyn.core.units import format_quantity
 
@@ -288,20 +286,12 @@ def cmd_calibrate(args) -> int:
             raise InputError(
                 "--trace needs --cam (the cam of the measurement) and --cam-rpm or --engine-rpm (its speed)"
             )
-        cols = read_csv_columns(args.trace)
-        missing = [c for c in ("cam_angle_deg", "retainer_force_N") if c not in cols]
-        if missing:
-            raise InputError(
-                f"{args.trace}: no column {missing[0]!r}; the trace has cam_angle_deg and retainer_force_N"
-            )
+        from springdyn.valve.design.calibrate import read_force_trace
+
+        angle, force = read_force_trace(args.trace)
         model = model.replace(cam=valve.Cam.from_toml(args.cam))
-        with as_options(fit="--trace-fit"):
-            res = model.calibrate_trace(
-                rpm,
-                np.radians(cols["cam_angle_deg"]),
-                cols["retainer_force_N"],
-                [k.strip() for k in args.trace_fit.split(",") if k.strip()],
-            )
+        with as_options(fit="--trace-fit", cam_rpm=run_options(args, model)["cam_rpm"]):
+            res = model.calibrate_trace(rpm, angle, force, [k.strip() for k in args.trace_fit.split(",") if k.strip()])
         text = [f"{k}: {res['before'][k]:.6g} -> {v:.6g}" for k, v in res["values"].items()]
         text.append(f"rms deviation from the trace: {res['rms_before_N']:.3f} N -> {res['rms_N']:.3f} N")
         if "damping_ratio" in res["values"]:
@@ -352,6 +342,12 @@ def cmd_train_modes(args) -> int:
     if not 1 <= args.count <= 20:
         raise InputError(f"--count = {args.count} must be from 1 to 20")
     if args.cam_contact == "open":
+        speed = next((o for o, v in (("--cam-rpm", args.cam_rpm), ("--engine-rpm", args.engine_rpm)) if v), None)
+        if speed is not None:
+            raise InputError(
+                f"{speed} applies to --cam-contact closed (its cam-order resonance table): the separated train's "
+                "frequencies do not depend on the speed; remove it"
+            )
         lift = quantity(args.valve_lift, "m", "--valve-lift") if args.valve_lift is not None else None
         with as_options(count="--count", valve_lift="--valve-lift"):
             res = model.separated_frequencies(args.count, lift)
@@ -433,6 +429,8 @@ def cmd_float(args) -> int:
     else:
         print(valve.coil_line(model.spring.coil_facts))
         print(res.describe())
+        if model.valve_train.adjuster_placement:
+            print(f"note: adjuster: {model.valve_train.adjuster_placement}")
     return 0
 
 

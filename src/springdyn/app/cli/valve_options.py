@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import re
 
+import numpy as np
+
 import springdyn.valve as valve
 from springdyn.app.cli.common import as_options, parse_range, quantity
 from springdyn.core.errors import InputError
@@ -238,8 +240,31 @@ def cam_rpm_from_args(args, *, ranged: bool, model: valve.ValveModel | None = No
         values = cam(parse_range(text, "rpm", option, bare_unit="rpm"))
         if (values <= 0).any():
             raise InputError(f"{option} = {text!r}: every speed must be positive")
+        _check_top_speed(values, option, text)
         return values
     value = cam(quantity(text, "rpm", option, bare_unit="rpm"))
     if not value > 0:
         raise InputError(f"{option} = {text!r} must be a positive speed")
+    _check_top_speed(value, option, text)
     return value
+
+
+#: The fastest camshaft a speed option takes [rev/min] (as the cam analysis and checks: far
+#: above any engine's, 10 000 cam rpm at a racing engine's 20 000 rpm).
+MAX_OPTION_CAM_RPM = 100_000.0
+
+
+def _check_top_speed(cam_rpm, option: str, text: str) -> None:
+    """A speed option's cam speeds below :data:`MAX_OPTION_CAM_RPM`, refused naming the option as
+    the user gave it (``--engine-rpm = 1e9 (a cam speed of 5e+08 rpm)``), for every command."""
+    values = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
+    top = float(np.max(values))
+    if top <= MAX_OPTION_CAM_RPM:
+        return
+    one = values.size == 1  # the one value as a number (as the library's messages show it)
+    shown = f"{quantity(text, 'rpm', option, bare_unit='rpm'):g}" if one else repr(text)
+    cam = f" (a cam speed {'of' if one else 'up to'} {top:g} rpm)" if option == "--engine-rpm" else ""
+    raise InputError(
+        f"{option} = {shown}{cam}: beyond any engine, a camshaft turns at most {MAX_OPTION_CAM_RPM:g} rpm "
+        "(a racing engine's 20000 rpm is 10000 cam rpm)"
+    )

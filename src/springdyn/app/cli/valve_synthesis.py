@@ -7,7 +7,7 @@ from __future__ import annotations
 import springdyn.valve as valve
 import springdyn.valve.design as design
 from springdyn.app.cli.common import add_output_options, announce_written, close_figure, print_json
-from springdyn.app.cli.valve_options import add_inputs, add_speed_options, cam_rpm_from_args, model_of
+from springdyn.app.cli.valve_options import add_inputs, add_speed_options, cam_rpm_from_args, model_of, run_options
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "register_tolerance", "register_life", "cmd_synthesize", "cmd_tolerance", "cmd_life"]
@@ -128,20 +128,21 @@ def cmd_tolerance(args) -> int:
         return progress(items, total=total, desc=desc, quiet=args.quiet)
 
     try:
-        res = model.tolerance_study(
-            tols,
-            criteria,
-            count=int(count),
-            seed=int(seed),
-            speeds=speeds,
-            method=args.method,
-            out_dir=args.out_dir,
-            client=client,
-            progress=bar,
-            float_only=args.float_only,
-            resolution=resolution,
-            workers=workers,
-        )
+        with as_options(**run_options(args, model)):  # a speed refused named as the user gave it
+            res = model.tolerance_study(
+                tols,
+                criteria,
+                count=int(count),
+                seed=int(seed),
+                speeds=speeds,
+                method=args.method,
+                out_dir=args.out_dir,
+                client=client,
+                progress=bar,
+                float_only=args.float_only,
+                resolution=resolution,
+                workers=workers,
+            )
     finally:
         if client is not None:
             client.close()

@@ -193,7 +193,14 @@ class Cam(Parameters):
                 f"duration + 2 ramp_duration = {deg + 2 * math.degrees(self.ramp_duration):.6g} deg exceeds one revolution"
             )
         if (self.ramp_height > 0) != (self.ramp_duration > 0):
-            raise InputError("ramp_height and ramp_duration must be both zero or both positive")
+            given, missing = (
+                ("ramp_height", "ramp_duration") if self.ramp_height > 0 else ("ramp_duration", "ramp_height")
+            )
+            raise InputError(
+                f"{given} is given without {missing} (zero or missing): a ramp has both, its height and its "
+                f'duration (e.g. ramp_height = "0.25 mm", ramp_duration = "20 deg"); give {missing}, or '
+                f"remove {given} for no ramps"
+            )
         if self.ramp_height >= self.lift:
             raise InputError(
                 f"ramp_height = {format_mm(self.ramp_height)} must be smaller than lift = {format_mm(self.lift)}"
@@ -418,15 +425,55 @@ _ANGLE_UNITS = {"cam_angle_deg": math.pi / 180.0, "cam_angle_rad": 1.0}
 #: Crank-angle columns a cam card gives: read as a four-stroke's, cam angle = crank angle / 2.
 _CRANK_UNITS = {"crank_angle_deg": math.pi / 360.0, "crank_angle_rad": 0.5}
 _LIFT_UNITS = {"lift_mm": 1e-3, "lift_m": 1.0, "lift_um": 1e-6}
+#: The largest lift a lift table may hold [m]: valve lifts of engines with valve springs are
+#: 5-20 mm; a table beyond 50 mm holds another unit than its column says (mm in a ``_m`` column).
+MAX_LIFT = 0.05
 
 
 def read_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
     """Read a lift table CSV: ``cam_angle_deg`` (or ``cam_angle_rad``) and ``lift_mm``
     (or ``lift_m``, ``lift_um``).  Returns SI arrays (rad, m)."""
-    return read_angle_table(path, _LIFT_UNITS)
+    return read_angle_table(path, _LIFT_UNITS, most=MAX_LIFT)
 
 
-def read_angle_table(path, value_columns: dict) -> tuple[np.ndarray, np.ndarray]:
+def check_lift_bound(lift, name: str, column: str | None = None, value_columns=None) -> None:
+    """A lift table's lift within :data:`MAX_LIFT`, else the row, its value and the likely slip
+    named (millimetres in a metre column): the one home of the lift's physical bound.
+
+    Parameters
+    ----------
+    lift : ndarray
+        The lift [m].
+    name : str
+        The table, for messages (its file).
+    column : str, optional
+        The column the lift came from (None: arrays given in Python, in metres).
+    value_columns : dict, optional
+        The table's accepted lift columns and their factor to SI, to name the right one.
+    """
+    lift = np.asarray(lift, dtype=float)
+    if not lift.size or not np.nanmax(lift) > MAX_LIFT:
+        return
+    i = int(np.nanargmax(lift))
+    if column is None:
+        raise InputError(
+            f"{name}: row {i + 2}: a lift of {lift[i] * 1e3:.6g} mm is beyond any valve lift (at most "
+            f"{MAX_LIFT * 1e3:g} mm): the lift is taken in metres"
+        )
+    factor = (value_columns or {}).get(column, 1.0)
+    mm = next((k for k, f in (value_columns or {}).items() if f == 1e-3), None)
+    hint = (
+        f": the column holds millimetres? name it {mm} (the column's name gives the unit)"
+        if mm and factor > 1e-3
+        else ": check the column's unit"
+    )
+    raise InputError(
+        f"{name}: row {i + 2}, column {column!r}: {lift[i] / factor:.6g} is a lift of {lift[i] * 1e3:.6g} mm, "
+        f"beyond any valve lift (at most {MAX_LIFT * 1e3:g} mm){hint}"
+    )
+
+
+def read_angle_table(path, value_columns: dict, most: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """A CSV of a quantity against cam angle, each column named with its unit.
 
     Parameters
@@ -436,6 +483,10 @@ def read_angle_table(path, value_columns: dict) -> tuple[np.ndarray, np.ndarray]
     value_columns : dict
         Accepted value columns and their factor to SI, e.g. ``{"lift_mm": 1e-3, "lift_m": 1.0}``.
 
+    most : float, optional
+        The largest value the table may hold [SI] (a lift table: :data:`MAX_LIFT`,
+        :func:`check_lift_bound`).
+
     Returns
     -------
     angle, value : ndarray
@@ -443,6 +494,13 @@ def read_angle_table(path, value_columns: dict) -> tuple[np.ndarray, np.ndarray]
     """
     cols = read_csv_columns(path)
     units = {**_ANGLE_UNITS, **_CRANK_UNITS}
+    for kind, accepted in (("angle", units), ("lift" if most is not None else "value", value_columns)):
+        both = [k for k in accepted if k in cols]
+        if len(both) > 1:
+            raise InputError(
+                f"{path}: the columns {' and '.join(both)} both give the {kind}: keep one of them (the column's "
+                "name gives the unit)"
+            )
     a_key = next((k for k in units if k in cols), None)
     v_key = next((k for k in value_columns if k in cols), None)
     if a_key is None or v_key is None:
@@ -459,7 +517,10 @@ def read_angle_table(path, value_columns: dict) -> tuple[np.ndarray, np.ndarray]
             ),
             stacklevel=2,
         )
-    return cols[a_key] * units[a_key], cols[v_key] * value_columns[v_key]
+    value = cols[v_key] * value_columns[v_key]
+    if most is not None:
+        check_lift_bound(value, str(path), v_key, value_columns)
+    return cols[a_key] * units[a_key], value
 
 
 def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):
@@ -489,6 +550,7 @@ def _normalise_table(angle: np.ndarray, lift: np.ndarray, name: str):
     if np.any(lift < 0):
         i = int(np.argmax(lift < 0))
         raise InputError(f"{name}: lift must not be negative: row {i + 2} has {lift[i] * 1e3:.6g} mm")
+    check_lift_bound(lift, name)
     span = angle[-1] - angle[0]
     if span > TWO_PI + 1e-9:
         raise InputError(f"{name}: the table spans {math.degrees(span):.6g} deg, more than one revolution (360 deg)")

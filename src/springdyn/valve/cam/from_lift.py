@@ -45,7 +45,7 @@ from ...core.params import Parameters, param
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import format_mm
 from .analysis import CHECK_HEIGHTS
-from .definition import Cam, _normalise_table, read_angle_table
+from .definition import MAX_LIFT, Cam, _normalise_table, read_angle_table
 
 __all__ = [
     "CamCard",
@@ -333,7 +333,7 @@ def read_valve_lift_table(path) -> tuple[np.ndarray, np.ndarray]:
         The CSV file.
     """
 
-    return read_angle_table(path, _LIFT_COLUMNS)
+    return read_angle_table(path, _LIFT_COLUMNS, most=MAX_LIFT)
 
 
 def _lobe_height(height: float, measure: str, valve_train) -> float:

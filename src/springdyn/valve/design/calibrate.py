@@ -17,6 +17,7 @@ import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
 from ...core.errors import InputError
+from ...core.io import read_csv_columns
 from ..run.simulation import simulate
 from ..spring.materials import MATERIALS
 
@@ -24,6 +25,8 @@ __all__ = [
     "load_point_check",
     "calibrate",
     "calibrate_trace",
+    "read_force_trace",
+    "check_force_trace",
     "calibrated_keys",
     "load_point_lines",
     "FIT_PARAMETERS",
@@ -136,6 +139,85 @@ def calibrate(spring, fit: str = "shear_modulus") -> dict:
 TRACE_PARAMETERS = ("damping_ratio", "contact_stiffness")
 
 
+#: The columns of a measured retainer-force trace.
+TRACE_COLUMNS = ("cam_angle_deg", "retainer_force_N")
+
+
+def check_force_trace(cam_angle_deg, retainer_force, name: str = "the trace") -> None:
+    """A measured retainer-force trace a fit can use, else the row and its value named.
+
+    The cam angles increase (no repeated or backward angle) over at most one revolution; the
+    forces are finite and none negative (the spring pushes on its retainer), and not all zero
+    (a trace of nothing measured).  Rows count as a CSV file's: the header is row 1.
+
+    Parameters
+    ----------
+    cam_angle_deg : array_like
+        Cam angles [deg].
+    retainer_force : array_like
+        Retainer forces [N].
+    name : str
+        The trace, for messages (its file) [-].
+    """
+    angle = np.asarray(cam_angle_deg, dtype=float)
+    force = np.asarray(retainer_force, dtype=float)
+    if angle.ndim != 1 or angle.shape != force.shape or angle.size < 8:
+        raise InputError(
+            f"{name}: a trace needs at least 8 samples of cam angle and retainer force of one length "
+            f"(found {angle.size} and {force.size})"
+        )
+    for column, values in zip(TRACE_COLUMNS, (angle, force)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise InputError(f"{name}: row {bad[0] + 2}, column {column}: {values[bad[0]]} is not a finite number")
+    steps = np.diff(angle)
+    if np.any(steps <= 0):
+        i = int(np.argmax(steps <= 0))
+        how = "repeats" if steps[i] == 0 else "goes back from"
+        raise InputError(
+            f"{name}: row {i + 3}, column cam_angle_deg: {angle[i + 1]:.6g} deg {how} the row before "
+            f"({angle[i]:.6g} deg): the cam angles of a trace increase (one revolution, each angle once)"
+        )
+    if angle[-1] - angle[0] >= 360.0:
+        raise InputError(
+            f"{name}: the cam angles span {angle[-1] - angle[0]:.6g} deg, one revolution or more: give one "
+            "revolution, each angle once (average the revolutions of a measurement first)"
+        )
+    if np.any(force < 0):
+        i = int(np.argmax(force < 0))
+        raise InputError(
+            f"{name}: row {i + 2}, column retainer_force_N: {force[i]:.6g} N is negative: the spring pushes on its "
+            "retainer (a compressive force is positive here)"
+        )
+    if not np.any(force > 0):
+        raise InputError(f"{name}: every retainer_force_N is zero: the trace holds no measured force")
+
+
+def read_force_trace(path):
+    """A measured retainer-force trace from a CSV file (:data:`TRACE_COLUMNS`), checked
+    (:func:`check_force_trace`, naming the file, the row and the value).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file.
+
+    Returns
+    -------
+    cam_angle, retainer_force : ndarray
+        Cam angles [rad] and retainer forces [N].
+    """
+    cols = read_csv_columns(path)
+    missing = [c for c in TRACE_COLUMNS if c not in cols]
+    if missing:
+        raise InputError(
+            f"{path}: no column {missing[0]!r}; a trace has the columns {' and '.join(TRACE_COLUMNS)} "
+            f"(found: {', '.join(cols)})"
+        )
+    check_force_trace(cols["cam_angle_deg"], cols["retainer_force_N"], str(path))
+    return np.radians(cols["cam_angle_deg"]), cols["retainer_force_N"]
+
+
 def calibrate_trace(
     spring, cam, cam_rpm: float, cam_angle, retainer_force, fit=TRACE_PARAMETERS, valve_train=None
 ) -> dict:
@@ -171,10 +253,9 @@ def calibrate_trace(
     bad = [f for f in fit if f not in TRACE_PARAMETERS]
     if bad or not fit:
         raise InputError(f"fit = {fit!r}: a force trace fits {', '.join(TRACE_PARAMETERS)}")
+    check_force_trace(np.degrees(np.asarray(cam_angle, dtype=float)), retainer_force)
     theta = np.mod(np.asarray(cam_angle, dtype=float), 2 * np.pi)
     measured = np.asarray(retainer_force, dtype=float)
-    if theta.shape != measured.shape or theta.size < 8 or not np.all(np.isfinite(measured)):
-        raise InputError("the trace needs at least 8 finite samples of cam angle and retainer force of one length")
     start = {
         "damping_ratio": spring.damping_ratio,
         "contact_stiffness": float(spring.spring_model.turn_contact_stiffness(spring.mean_diameter))

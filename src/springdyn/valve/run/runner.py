@@ -19,7 +19,7 @@ from ...core.errors import SolverError
 from ..engine import STATUS, integrate_speeds
 from .periodicity import BAND_REVOLUTIONS
 from .settings import BS3_MIN_ELEMENTS, MAX_STEP_FRACTION, PAIR, VELOCITY_TOLERANCE_DIVISOR, RunSettings
-from .setup import SimulationSetup
+from .setup import SimulationSetup, static_force_at_lift
 
 __all__ = ["run_speeds", "engine_args", "velocity_tolerance", "runge_kutta_pair", "solver_error"]
 
@@ -141,8 +141,89 @@ def run_speeds(
     return res
 
 
-def solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
+#: Cam orders the spring's first surge mode keeps above the cam speed in valve trains (fewer:
+#: the spring surges hard, a likely cause of a failed run).
+SURGE_ORDERS = 10.0
+
+
+def kinematic_float_rpm(setup: SimulationSetup) -> float | None:
+    """The cam speed [rev/min] above which the spring's static force no longer decelerates the
+    valve train's moving mass over the nose (the rigid train's kinematic limit, ``F_s(z) = m r
+    omega^2 |h''|`` at the worst cam angle; the valve floats near it).  None without a train.
+
+    Parameters
+    ----------
+    setup : SimulationSetup
+        The spring, cam table and valve train.
+    """
+    vt = setup.valve_train
+    if vt is None:
+        return None
+    table = setup.table
+    r = vt.ratio
+    closing = table.ddh < 0.0  # where the lobe decelerates the train (over the nose)
+    if not np.any(closing):
+        return None
+    lift = np.maximum(r * table.h[closing] - vt.lash, 0.0)
+    force = static_force_at_lift(setup, lift)
+    mass = vt.moving_mass + setup.spring.spring_model.internal_parameters()["M"] / 3.0
+    omega2 = force / (mass * r * -table.ddh[closing])
+    return float(math.sqrt(float(np.min(omega2))) * 60.0 / (2.0 * math.pi))
+
+
+def likely_causes(setup: SimulationSetup | None, cam_rpm: float) -> list[str]:
+    """What in the run's own state makes an integration fail, in words (first the likeliest):
+    the speed (above the kinematic float speed, or the surge mode few cam orders above it), the
+    gas pressure, the cam driving the spring into coil contact statically.  Empty when none
+    applies.
+
+    Parameters
+    ----------
+    setup : SimulationSetup or None
+        The run's spring, cam, train and gas force.
+    cam_rpm : float
+        Cam speed [rev/min].
+    """
+    if setup is None:
+        return []
+    causes = []
+    spring = setup.spring.spring_model
+    floats = kinematic_float_rpm(setup)
+    if floats is not None and cam_rpm > floats:
+        causes.append(
+            f"the speed: {cam_rpm:g} cam rpm is above the train's kinematic float speed, about {floats:.0f} cam rpm "
+            "(the spring's force no longer holds the train on the nose): the valve leaves the cam and lands hard"
+        )
+    f1 = float(spring.first_mode_installed)
+    orders = f1 * 60.0 / cam_rpm
+    if orders < SURGE_ORDERS:
+        causes.append(
+            f"the speed: the spring's first surge mode ({f1:.0f} Hz) is only {orders:.1f} cam orders above "
+            f"{cam_rpm:g} cam rpm (valve trains keep {SURGE_ORDERS:g} or more): the coils surge hard and clash"
+        )
+    if setup.gas_force is not None:
+        fset = float(spring.internal_parameters()["Fset"])
+        peak = float(np.max(setup.gas_force.force))
+        if peak > fset:
+            causes.append(
+                f"the gas pressure: up to {peak:.0f} N on the valve head against the spring's {fset:.0f} N at "
+                "installed length (the cam opens the valve against it)"
+            )
+    r = setup.valve_train.ratio if setup.valve_train is not None else 1.0
+    depth = float(np.max(setup.table.h)) * r - float(spring.lift_at_coil_contact)
+    if depth > 0.0:
+        causes.append(
+            f"coil contact: the cam drives the spring {depth * 1e3:.3g} mm past the length of its coil-contact "
+            "force even statically"
+        )
+    return causes
+
+
+def solver_error(cam_rpm: float, omega: float, info: dict, setup: SimulationSetup | None = None) -> SolverError:
     """The message of a failed integration: the speed, the time and cam angle, the cause.
+
+    The likely cause is read from the run's state (:func:`likely_causes`); without a cause
+    there, the tolerances or the contact parameters.
 
     Parameters
     ----------
@@ -152,16 +233,24 @@ def solver_error(cam_rpm: float, omega: float, info: dict) -> SolverError:
         Cam speed [rad/s].
     info : dict
         The engine's ``status``, ``t`` [s] and ``steps`` (and ``message`` from SciPy).
+    setup : SimulationSetup, optional
+        The run's spring, cam, train and gas force (the state the cause is read from).
     """
     t = info["t"]
     angle = math.degrees(omega * t) % 360.0
     why = STATUS.get(info["status"], info.get("message", "failed"))
-    cause = {
-        1: "the step size became very small for very long: the spring is driven deep into coil contact, or the "
-        "tolerances are too tight",
-        2: "the element stiffness became extreme (deep coil contact) or the contact parameters are inconsistent",
-        3: "the response diverged: check masses, stiffnesses and contact parameters",
-    }.get(info["status"], "see the message")
+    causes = likely_causes(setup, cam_rpm)
+    cause = (
+        "; or ".join(causes)
+        if causes
+        else {
+            1: "the tolerances are too tight for the run (--rtol, --atol), or a contact is far stiffer than the "
+            "rest of the train",
+            2: "the contact parameters (contact stiffnesses, damping) are inconsistent with the masses, or the "
+            "tolerances are too tight",
+            3: "the response diverged: check masses, stiffnesses and contact parameters",
+        }.get(info["status"], "see the message")
+    )
     return SolverError(
         f"valve simulation at {cam_rpm:g} cam rpm failed at t = {t:.6g} s (cam angle {angle:.2f} deg, "
         f"after {info['steps']} steps): {why}; likely cause: {cause}"

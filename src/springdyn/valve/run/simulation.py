@@ -130,7 +130,7 @@ def simulate(
             method=runge_kutta_pair(setup, settings),
         )
         if info["status"] != 0 or not np.isfinite(res["extra"]).all():
-            raise solver_error(cam_rpm, omega, info)
+            raise solver_error(cam_rpm, omega, info, setup)
         done = int(res["revolutions"][0])
         time = (done - 1) * period + np.arange(n) * (period / n)
         sim = _from_extra(setup, cam_rpm, done, time, res["extra"][0], float(res["periodicity"][0]), info)
@@ -181,7 +181,7 @@ def _simulate_scipy(setup, cam_rpm, settings: RunSettings, n: int) -> Simulation
         )
         steps += int(info["steps"])
         if info["status"] != 0 or not np.all(np.isfinite(states)):
-            raise solver_error(cam_rpm, omega, info)
+            raise solver_error(cam_rpm, omega, info, setup)
         y = states[-1]
         forces = _check_forces(setup, omega, t_rev[:n], states[:n])
         if before is not None:

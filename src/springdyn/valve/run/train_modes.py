@@ -82,6 +82,8 @@ def natural_frequencies(spring: ValveSpring, cam: Cam, valve_train: ValveTrain |
     separated_frequencies : the same train with the cam contact open (the jump frequency).
     """
     notes = []
+    if valve_train is not None and valve_train.adjuster_placement:
+        notes.append(f"adjuster: {valve_train.adjuster_placement}")
     with_hla = valve_train  # the train with its adjuster's dynamics (None: no [hla])
     if valve_train is not None and valve_train.hla is not None:
         valve_train = valve_train.without_hla_dynamics()  # the base circle: the supply pressure

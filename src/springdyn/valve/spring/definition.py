@@ -595,8 +595,15 @@ def _pitches(m: dict) -> None:
     need = ("low_pitch", "high_pitch") if two else ("pitch",)
     if set(given) != set(need):
         kind = "a two-step" if two else "a one-step"
+        missing = [k for k in need if k not in given]
+        extra = [k for k in given if k not in need]
+        said = (f"missing key {missing[0]!r}" if missing else "") + (
+            f"{'; ' if missing else ''}{', '.join(extra)} {'does' if len(extra) == 1 else 'do'} not apply"
+            if extra
+            else ""
+        )
         raise InputError(
-            f"{', '.join(given)}: {kind} spring's drawing gives {' and '.join(need)} "
+            f"{said}: {kind} spring's drawing gives {' and '.join(need)} "
             + (
                 "(the pitches of the low- and the high-pitch active coils)"
                 if two

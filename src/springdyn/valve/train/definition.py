@@ -375,6 +375,30 @@ class ValveTrain(Parameters):
         return 15.0 if self.hla_preload is None else self.hla_preload
 
     @property
+    def adjuster_placement(self) -> str | None:
+        """Where a simple hydraulic adjuster's compliance sits in the model, and what that does
+        to the float speed, in words; None where the model has the adjuster where it is (a
+        bucket's, or an ``[hla]`` table's) or there is none.
+
+        The simple adjuster (``lash_adjuster = "hydraulic"``, ``hla_stiffness``, no ``[hla]``) of
+        a lever train is a stiffness in series at the valve side of the lever (:attr:`tip_stiffness`,
+        with the rocker and the stem); a finger follower's adjuster carries its pivot and a
+        pushrod train's sits in its lifter, at the lever's other end.  The placement moves the
+        float speed: the finger example's 3364 cam rpm (the compliance at the valve side) to 3000
+        (at the pivot), 11 %, measured in issue 40.
+        """
+        if not self.hydraulic or self.hla is not None or self.layout == "direct-acting":
+            return None
+        where = "carries the finger's pivot" if self.layout == "rocker" else "sits in the pushrod's lifter"
+        return (
+            f"the simple hydraulic adjuster (hla_stiffness = {self.hla_k / 1e6:.3g} N/um, no [hla] table) is a "
+            "compliance in series at the valve side of the lever, with the rocker and the stem; a real adjuster "
+            f"{where}, at the lever's other end: placed there, the same compliance moves the float speed (the "
+            "finger example's 3364 cam rpm to 3000, 11 %, measured in issue 40); an [hla] table puts the "
+            "adjuster at the pivot with its oil column"
+        )
+
+    @property
     def bucket_hla(self) -> bool:
         """A hydraulic bucket: ``[hla]`` dynamics inside a direct-acting train's bucket."""
         return self.hla is not None and self.layout == "direct-acting"
@@ -763,6 +787,7 @@ class ValveTrain(Parameters):
             kin = geom.kinematics(follower)
         except InputError as exc:
             raise InputError(f"{where}{exc}") from None
+        _check_drawn_ratio(kin, where)
         table["rocker_ratio"] = kin.ratio_at_rest
         table["rocker_valve_arm"] = kin.valve_arm_at_rest
         vt = cls.from_dict(table, source=source)
@@ -882,3 +907,31 @@ class ValveTrain(Parameters):
         lifter = lobe_lift - f_cam / self.cam_stiffness
         tip = r * (lifter - f_cam / self.pushrod_stiffness)
         return np.array([valve_lift, tip, lifter])
+
+
+def _check_drawn_ratio(kin, where: str = "") -> None:
+    """A drawn lever's ratio at rest within the bounds of ``[valve_train] rocker_ratio``, refused
+    naming the ``[geometry]`` keys that set it (the user set them, not ``rocker_ratio``).
+
+    Parameters
+    ----------
+    kin : LeverKinematics
+        The drawing's kinematics on the base circle.
+    where : str
+        The file, for messages (``"vt.toml: "``).
+    """
+    from ...core.units import format_quantity
+
+    meta = next(f.metadata for f in dataclasses.fields(ValveTrain) if f.name == "rocker_ratio")
+    lo, hi = meta["minimum"], meta["maximum"]
+    r = kin.ratio_at_rest
+    if lo <= r <= hi:
+        return
+    valve_arm = format_quantity(kin.valve_arm_at_rest, "m", "mm")
+    cam_arm = format_quantity(kin.cam_arm_at_rest, "m", "mm")
+    raise InputError(
+        f"{where}[geometry] the lever drawn has a ratio of {r:.4g} at rest: its valve arm (the pad, pad_x and "
+        f"pad_y, about the pivot, pivot_x and pivot_y) is {valve_arm} against the cam's arm (the roller, roller_x "
+        f"and roller_y) {cam_arm}; a valve-train lever's ratio is {lo:g} to {hi:g}: check these points of the "
+        "drawing (its units too)"
+    )

@@ -161,6 +161,8 @@ _MIN_LOAD_PER_WIDTH = 1.0
 #: Revolutions the roller's spin may take to repeat (it repeats after the first stick).
 _SPIN_REVOLUTIONS = 40
 
+#: The ``[friction]`` keys of a roller follower's roller: a flat follower refuses them.
+ROLLER_KEYS = ("roller_mass", "roller_inertia", "roller_bearing_friction", "roller_pin_radius")
 #: Where each default comes from (stated in the docs and the generated TOML reference).
 DEFAULT_SOURCES = {
     "surface_roughness": (
@@ -311,6 +313,16 @@ class Friction(HoldsOil, Parameters):
         if "friction" not in doc:
             return None
         oil, rest = oil_of(doc, source)
+        follower = doc.get("follower")
+        if isinstance(follower, Mapping) and follower.get("kind") == "flat" and isinstance(rest["friction"], Mapping):
+            given = [k for k in ROLLER_KEYS if k in rest["friction"]]
+            if given:
+                raise InputError(
+                    f"{source + ': ' if source else ''}[friction] {', '.join(given)}: [follower] kind = 'flat' has no "
+                    "roller (a bucket or flat tappet slides on the cam): remove "
+                    + ("it" if len(given) == 1 else "them")
+                    + ", or describe the roller follower (kind = 'roller', roller_radius)"
+                )
         return cls.from_dict(rest["friction"], source=source, oil=oil)
 
     # -- resolved values ---------------------------------------------------------------

@@ -29,12 +29,29 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.io import read_csv_columns
 
-__all__ = ["gas_force", "GasForce", "read_pressure_trace", "PRESSURE_COLUMNS", "GAS_SAMPLES"]
+__all__ = [
+    "gas_force",
+    "GasForce",
+    "read_pressure_trace",
+    "PRESSURE_COLUMNS",
+    "GAS_SAMPLES",
+    "MAX_CYLINDER_PRESSURE",
+    "GAP_NOTE_DEG",
+    "MAX_GAP_DEG",
+]
 
 #: Columns a pressure trace may give the (absolute) cylinder pressure in, with their factor to Pa.
 PRESSURE_COLUMNS = {"pressure_Pa": 1.0, "pressure_kPa": 1e3, "pressure_bar": 1e5, "pressure_MPa": 1e6}
 #: Samples of the gas force over one camshaft revolution (0.1 cam deg).
 GAS_SAMPLES = 3600
+#: The highest cylinder pressure a trace may hold [Pa]: peak firing pressures of engines reach
+#: 200-300 bar (heavy-duty diesels); 500 bar is beyond any, a trace above it is in another unit.
+MAX_CYLINDER_PRESSURE = 500e5
+#: A gap between a trace's rows [crank deg] above which the linear interpolation across it is
+#: stated (a warning naming the gap) ...
+GAP_NOTE_DEG = 10.0
+#: ... and above which the trace is refused: the pressure over such a gap is not known.
+MAX_GAP_DEG = 90.0
 
 
 def gas_force(cylinder_pressure, port_pressure, seat_diameter):
@@ -85,7 +102,47 @@ def read_pressure_trace(path) -> tuple[np.ndarray, np.ndarray]:
         raise InputError(f"{path}: crank_angle_deg must increase, over at least 8 rows")
     if np.any(pressure < 0):
         raise InputError(f"{path}: an absolute pressure cannot be negative (row {int(np.argmin(pressure)) + 2})")
+    if np.max(pressure) > MAX_CYLINDER_PRESSURE:
+        i = int(np.argmax(pressure))
+        raise InputError(
+            f"{path}: row {i + 2}, column {given[0]!r}: {cols[given[0]][i]:.6g} is {pressure[i] / 1e5:.6g} bar, beyond "
+            f"any cylinder pressure (at most {MAX_CYLINDER_PRESSURE / 1e5:g} bar; engines fire at up to 300 bar): "
+            "check the column's unit (" + ", ".join(PRESSURE_COLUMNS) + ")"
+        )
     return angle, pressure
+
+
+def _check_gaps(crank: np.ndarray, cycle_deg: float, source: str) -> None:
+    """The trace's largest gap between rows (the cycle's wrap from the last row to the first
+    included): refused above :data:`MAX_GAP_DEG`, stated in a warning above :data:`GAP_NOTE_DEG`
+    (the pressure is interpolated linearly across it)."""
+    import warnings
+
+    from ...core.errors import FactWarning
+
+    ends = np.append(crank, crank[0] + cycle_deg)
+    steps = np.diff(ends)
+    i = int(np.argmax(steps))
+    gap = float(steps[i])
+    if gap <= GAP_NOTE_DEG:
+        return
+    start, stop = float(ends[i]), float(ends[i + 1])
+    stop_text = f"{stop:g} deg" + (f" ({stop - cycle_deg:g} deg, the first row)" if i + 1 == crank.size else "")
+    where = f"{source}: no rows from {start:g} deg to {stop_text}, a gap of {gap:g} crank deg"
+    if gap > MAX_GAP_DEG:
+        raise InputError(
+            f"{where}: the cylinder pressure over it is not known (a trace may leave gaps of up to "
+            f"{MAX_GAP_DEG:g} crank deg, interpolated linearly); give the whole {cycle_deg:g}-deg cycle"
+        )
+    more = int(np.count_nonzero(steps > GAP_NOTE_DEG)) - 1
+    warnings.warn(
+        FactWarning(
+            f"{where}{f' (and {more} more gaps above {GAP_NOTE_DEG:g} deg)' if more else ''}: the pressure is "
+            "interpolated linearly across it",
+            key=f"pressure gap|{source}",
+        ),
+        stacklevel=3,
+    )
 
 
 @dataclass(frozen=True)
@@ -131,6 +188,7 @@ class GasForce:
                 f"{source or 'the pressure trace'}: its crank angles span {span:g} deg; a {axis.cycle_deg:g}-deg "
                 "engine cycle is needed (one trace row per crank angle of the cycle)"
             )
+        _check_gaps(crank, axis.cycle_deg, source or "the pressure trace")
         cam_deg = np.arange(GAS_SAMPLES) * (360.0 / GAS_SAMPLES)
         phi = axis.crank_deg(cam_deg)
         p = np.interp(phi, crank, pressure, period=axis.cycle_deg)

@@ -315,8 +315,8 @@ class LeverGeometry(Parameters):
         if b < 0.1 * w:
             raise InputError(
                 f"[geometry] the pad moves across the valve axis, not along it: its moment arm about the pivot is "
-                f"{format_mm(b)} of a distance {format_mm(w)} (the pivot-pad line must cross the valve axis "
-                "clearly; check valve_angle)"
+                f"{format_mm(b if abs(b) > 1e-9 * w else 0.0)} of a distance {format_mm(w)} (the pivot-pad line "
+                "must cross the valve axis clearly; check pad_x, pad_y against pivot_x, pivot_y, and valve_angle)"
             )
         if self.roller_arm() == 0.0:
             raise InputError("[geometry] the roller centre is on the pivot")
