@@ -84,6 +84,14 @@ def register_tolerance(vsub) -> None:
     p.add_argument(
         "--resolution", default="5", metavar="RPM", help="final bracket of each float speed in cam rpm (default 5)"
     )
+    p.add_argument(
+        "--periodicity-tol",
+        dest="variant_periodicity_tol",  # (not the run options' periodicity_tol: no --revolutions here)
+        default=f"{100 * valve.PERIODICITY_TOL:g} %",
+        metavar="TOL",
+        help="every run of a variant goes to its periodic steady state within TOL of Fset; a variant whose runs "
+        f"do not is flagged and left out of the percentiles and shares (default {100 * valve.PERIODICITY_TOL:g} %%)",
+    )
     p.add_argument("--workers", metavar="N", help="local threads the chunks run on (default: 2, both cores)")
     p.add_argument(
         "--scheduler", metavar="ADDRESS", help="run the chunks on a Dask scheduler, e.g. tcp://127.0.0.1:8786"
@@ -105,6 +113,12 @@ def cmd_tolerance(args) -> int:
     seed = quantity(args.seed, "", "--seed")
     if seed != int(seed) or not 0 <= seed < 2**63:
         raise InputError(f"--seed = {args.seed!r} must be a whole number from 0 to 2^63 - 1")
+    tol = quantity(args.variant_periodicity_tol, "", "--periodicity-tol")
+    if not 1e-7 <= tol <= 0.5:
+        raise InputError(
+            f"--periodicity-tol = {args.variant_periodicity_tol!r} must be from 1e-05 % to 50 % of Fset "
+            f"(default {100 * valve.PERIODICITY_TOL:g} %)"
+        )
     model = model_of(args)
     tols, criteria = design.read_tolerances(args.tolerances)
     if "lash" in tols and model.valve_train is None:
@@ -141,6 +155,7 @@ def cmd_tolerance(args) -> int:
             float_only=args.float_only,
             resolution=resolution,
             workers=workers,
+            periodicity_tol=tol,
         )
     finally:
         if client is not None:
