@@ -127,7 +127,7 @@ def test_vary_adds_a_dimension_and_skips_invalid(spring):
     # a longer installed length gives a smaller set-up force: static min follows Fset
     fset = [s.spring_model.internal_parameters()["Fset"] for s in res.springs]
     np.testing.assert_allclose(ds["min_static_force_N"].values[:, 0], fset, rtol=1e-12)
-    with pytest.raises(InputError, match=r"vary: installed_length = 20 mm: installed_length = 20 mm is at or below"):
+    with pytest.raises(InputError, match=r"vary: installed_length = 20 mm is at or below"):  # named once
         sweep(spring, CAM, [1000.0], vary=("installed_length", np.array([0.020])))
     with pytest.raises(InputError, match=r"vary = 'colour': not a numeric spring field"):
         sweep(spring, CAM, [1000.0], vary=("colour", np.array([1.0])))

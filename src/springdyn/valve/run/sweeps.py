@@ -1052,8 +1052,9 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid, gas_force=None)
             kept.append(v)
         except InputError as exc:
             if on_invalid == "stop":
+                said = str(exc).startswith(f"{name} = ")  # the spring's message names the value already
                 raise InputError(
-                    f"vary: {_describe(name, v)}: {exc} (on_invalid='skip' leaves such values out)"
+                    f"vary: {exc if said else f'{_describe(name, v)}: {exc}'} (on_invalid='skip' leaves such values out)"
                 ) from None
             skipped.append((float(v), str(exc)))
             warnings.warn(f"vary: {_describe(name, v)} skipped: {exc}", stacklevel=3)
