@@ -227,7 +227,10 @@ def _server(reply):
             b"HTTP/1.1 400 Bad Request\r\n\r\n",
             "is not a Dask scheduler (it sent 'HTTP/1.1 400 Bad Request', not a Dask",
         ),
-        (b"\xff" * 64, "is not a Dask scheduler (it sent"),  # dask read this as a 3 EiB message (exit 70)
+        (
+            b"\xff" * 64,
+            "is not a Dask scheduler (it sent the bytes ff ff ff ff ff ff ff ff ff ff ff ff ff ff ff ff, not",
+        ),  # dask read this as a 3 EiB message (exit 70)
         (None, "something listens there but sent no Dask greeting within 1 s"),  # dask waited for ever
     ],
     ids=["http", "garbage", "silent"],

@@ -246,8 +246,10 @@ def _probe_scheduler(address: str, timeout: float) -> None:
             with contextlib.suppress(OSError):
                 sock.settimeout(0.05)
                 got += sock.recv(40 - len(got))
-        text = got[:40].decode("ascii", "replace").replace("\r", "\n").split("\n")[0] or got[:16].hex()
-        return "".join(c if c.isprintable() else "." for c in text)
+        line = got[:40].replace(b"\r", b"\n").split(b"\n")[0]
+        if line and all(32 <= b < 127 for b in line):
+            return repr(line.decode("ascii"))  # a text protocol's greeting: 'HTTP/1.1 400 Bad Request'
+        return f"the bytes {got[:16].hex(' ')}"
 
     with sock:
         try:
@@ -266,15 +268,15 @@ def _probe_scheduler(address: str, timeout: float) -> None:
             what = (
                 f"something listens there but sent no Dask greeting within {timeout:g} s"
                 if not got
-                else f"what answers there is not a Dask scheduler (it sent {shown()!r} and no more within {timeout:g} s)"
+                else f"what answers there is not a Dask scheduler (it sent {shown()} and no more within {timeout:g} s)"
             )
             raise InputError(f"{where}: {what}; {expected}") from None
         except (ConnectionError, OSError):
-            what = "the connection was closed without a Dask greeting" if not got else f"it sent {shown()!r} and closed"
+            what = "the connection was closed without a Dask greeting" if not got else f"it sent {shown()} and closed"
             raise InputError(f"{where}: not a Dask scheduler ({what}); {expected}") from None
         except ValueError:
             raise InputError(
-                f"{where}: what answers there is not a Dask scheduler (it sent {shown()!r}, not a Dask message); {expected}"
+                f"{where}: what answers there is not a Dask scheduler (it sent {shown()}, not a Dask message); {expected}"
             ) from None
 
 
