@@ -13,6 +13,9 @@ import contextlib
 import dataclasses
 import math
 import os
+import socket
+import struct
+import time
 import warnings
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
@@ -201,11 +204,7 @@ def _probe_scheduler(address: str, timeout: float) -> None:
     8-byte frame count, the frames' lengths and msgpack frames naming its ``pickle-protocol``)
     and refuse anything else before ``dask.distributed.Client`` is given the address (issue 40:
     a port that is not a scheduler's made it allocate 3 EiB, exit 70, or wait for ever)."""
-    import socket
-    import struct
-    import time
-
-    from distributed.comm.addressing import parse_address, parse_host_port
+    from distributed.comm.addressing import parse_address, parse_host_port  # (here: dask is an optional extra)
 
     where = f"scheduler = {address!r}"
     expected = "expected a Dask scheduler's address, e.g. tcp://127.0.0.1:8786 (the one `dask scheduler` prints)"
