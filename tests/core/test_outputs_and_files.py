@@ -138,19 +138,100 @@ def test_csv_cells_are_plain_numbers(tmp_path):
 
 def test_stale_temporaries_of_a_killed_run_are_removed(tmp_path):
     """Issue 27: a run killed while writing leaves '.<name>.XXXX<suffix>' beside the file; the
-    next write of the same file removes it once it is older than an hour (a younger one may
-    belong to a run still going)."""
+    next write of the same file removes such a temporary of an earlier version once it is older
+    than an hour (a younger one may belong to a run still going)."""
     import os
     import time
 
     from springdyn.core.io import atomic_path
 
     target = tmp_path / "out.csv"
-    old = tmp_path / ".out.csv.abc123.csv"
-    young = tmp_path / ".out.csv.def456.csv"
+    old = tmp_path / ".out.csv.abc12345.csv"
+    young = tmp_path / ".out.csv.def45678.csv"
     for f in (old, young):
         f.write_text("partial")
     os.utime(old, (time.time() - 7200, time.time() - 7200))
     with atomic_path(target) as tmp:
         tmp.write_text("a\n1\n")
     assert target.read_text() == "a\n1\n" and not old.exists() and young.exists()
+
+
+def test_a_killed_runs_temporaries_are_swept_by_the_next_write_in_the_folder(tmp_path):
+    """Issue 40: a SIGKILLed sweep's temporaries were left for ever (only the same file's,
+    after an hour, were removed).  Temporaries are named '.<name>.<pid>-XXXXXXXX.tmp<suffix>';
+    the first write of a process in a folder removes those of any file whose process is gone,
+    keeps a live process's (this one's) and leaves other files alone."""
+    import subprocess
+    import sys
+
+    from springdyn.core import io
+
+    gone = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    dead = int(gone.stdout)  # a process that has ended
+    stale = tmp_path / f".sweep.nc.{dead}-abcd1234.tmp.nc"
+    live = tmp_path / f".other.csv.{os.getpid()}-efgh5678.tmp.csv"
+    mine = tmp_path / ".notes.txt"  # a hidden file of the user's, not a temporary
+    for f in (stale, live, mine):
+        f.write_text("partial")
+    io._SWEPT.discard(os.path.abspath(tmp_path))
+    with io.atomic_path(tmp_path / "out.csv") as tmp:
+        assert io.TEMPORARY_NAME.match(tmp.name) and f".out.csv.{os.getpid()}-" in tmp.name
+        tmp.write_text("a\n1\n")
+    assert not stale.exists() and live.exists() and mine.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([live.name, mine.name, "out.csv"])
+
+
+def test_a_write_error_names_the_output_not_its_temporary(tmp_path, monkeypatch, capsys):
+    """Issue 40: exit-74 messages named the hidden temporary ('cannot write
+    /dir/.sweep_summary.csv.k2j3x9.csv: No space left on device').  An OS error while writing,
+    renaming or creating the temporary names the output file the user asked for."""
+    import errno
+
+    from springdyn.app.cli.main import main
+    from springdyn.core import io
+
+    target = tmp_path / "out.csv"
+    with pytest.raises(OSError) as caught:
+        with io.atomic_path(target) as tmp:
+            raise OSError(errno.ENOSPC, f"No space left on device writing {tmp}", str(tmp))
+    assert caught.value.filename == str(target) and ".tmp" not in str(caught.value)
+    assert caught.value.errno == errno.ENOSPC and list(tmp_path.iterdir()) == []
+
+    def refuse(src, dst, **kw):
+        raise PermissionError(errno.EACCES, "Permission denied", str(src), None, str(dst))
+
+    monkeypatch.setattr(io.os, "replace", refuse)
+    out = tmp_path / "curve.csv"
+    from tests.paths import example
+
+    spring = example("valve/one_step_spring.toml")
+    assert main(["valve", "curve", spring, "--csv", str(out)]) == 74
+    err = capsys.readouterr().err
+    assert f"springdyn: cannot write {out}: Permission denied" in err and ".tmp" not in err
+
+    monkeypatch.undo()
+
+    def no_temporary(*args, **kw):
+        raise PermissionError(errno.EACCES, "Permission denied", str(tmp_path / f".out.csv.{os.getpid()}-x.tmp.csv"))
+
+    monkeypatch.setattr(io.tempfile, "mkstemp", no_temporary)
+    with pytest.raises(PermissionError, match="Permission denied") as caught:
+        with io.atomic_path(target):
+            pass
+    assert caught.value.filename == str(target)
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into any folder")
+def test_an_unwritable_folder_names_the_output_file(tmp_path):
+    """A folder made read-only after the command's checks: the message names the output file."""
+    from springdyn.core import io
+
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    folder.chmod(0o500)
+    try:
+        with pytest.raises(PermissionError) as caught:
+            io.write_csv(folder / "out.csv", {"a": [1.0]})
+        assert caught.value.filename == str(folder / "out.csv")
+    finally:
+        folder.chmod(0o700)

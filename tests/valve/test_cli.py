@@ -277,3 +277,36 @@ def test_options_of_issue_40_are_refused_not_ignored(capsys, tmp_path):
         code, _, err = run(capsys, *map(str, argv))
         assert code == 2 and message in err and "Traceback" not in err, (argv, err)
     assert lift.read_bytes() == before
+
+
+def test_study_commands_answer_a_new_users_mistakes_in_the_options_words(capsys, tmp_path):
+    """Issue 40, item 7: `valve tolerance --out FILE` (an existing file) failed at the end with
+    exit 74 ('cannot write FILE/chunks: Not a directory'); `--samples abc` answered with the unit
+    parser's words ("'abc' is not defined in the unit registry"); `valve sweep --workers x` with
+    argparse's ('invalid int value'); a --vary value the spring refuses named itself twice and
+    the API's `on_invalid='skip'`.  Each is one line naming the option, exit 2."""
+    from tests.paths import example
+
+    spring, cam = example("valve/one_step_spring.toml"), example("valve/cam_345.toml")
+    tol = tmp_path / "tol.toml"
+    tol.write_text('[tolerances]\nwire_diameter = "+-0.02 mm"\n')
+    study = ["valve", "tolerance", spring, "--cam", cam, "--tolerances", str(tol), "--cam-rpm", "1500,2500"]
+    sweep = ["valve", "sweep", spring, "--cam", cam, "--cam-rpm", "1000,2000", "--out", str(tmp_path / "s")]
+    cases = [
+        (study + ["--samples", "4", "--out", str(tol)], f"--out = {str(tol)!r} is an existing file: give a folder"),
+        (study + ["--samples", "abc", "--out", str(tmp_path / "o")], "--samples = 'abc' must be a whole number from 1"),
+        (study + ["--samples", "4", "--seed", "1.5", "--out", str(tmp_path / "o")], "--seed = '1.5' must be a whole"),
+        (sweep + ["--workers", "x"], "--workers = 'x' must be a whole number of at least 1"),
+        (
+            sweep + ["--vary", "installed_length=0.1mm:0.3mm:0.1mm"],
+            "--vary: installed_length = 0.1 mm is at or below coil contact",
+        ),
+    ]
+    for argv, words in cases:
+        assert main(argv) == 2, argv
+        err = capsys.readouterr().err
+        assert err.startswith(f"springdyn: error: {words}") and err.count("\n") == 1, err
+        assert "on_invalid" not in err and "registry" not in err and "invalid int" not in err
+    assert main(sweep + ["--vary", "installed_length=0.1mm:0.3mm:0.1mm"]) == 2
+    assert "(--on-invalid skip leaves such values out)" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()  # refused before any work

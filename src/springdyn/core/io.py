@@ -57,7 +57,10 @@ class _OutputSet:
 
     def commit(self) -> None:
         for path, tmp in list(self.pending.items()):
-            os.replace(tmp, path)
+            try:
+                os.replace(tmp, path)
+            except OSError as exc:  # named by the file it was to become, not the temporary
+                raise _naming_output(exc, tmp, path) from exc
             del self.pending[path]
 
     def discard(self) -> None:
@@ -112,25 +115,98 @@ def direct_outputs():
         _SETS.pop()
 
 
-#: A temporary of :func:`atomic_path` older than this [s] was left by a killed run: the next
-#: write of the same file removes it.
-STALE_TEMPORARY_SECONDS = 3600.0
+#: A temporary of :func:`atomic_path` older than this [s] whose process number is alive (it
+#: may be another process's, the number reused: a container's processes get the same low
+#: numbers run after run) was left by a killed run: the next write in its folder removes it.
+STALE_TEMPORARY_SECONDS = 86400.0
+#: A temporary of earlier versions (``.<name>.XXXXXXXX<suffix>``, no process number) older than
+#: this [s]: the next write of the same file removes it.
+LEGACY_TEMPORARY_SECONDS = 3600.0
+#: The temporaries of :func:`atomic_path`: ``.<name>.<pid>-<8 characters>.tmp<suffix>`` (the
+#: final name, the writing process's number, :func:`tempfile.mkstemp`'s random part, the
+#: final name's suffix kept for writers that read it, NetCDF and PNG).
+TEMPORARY_NAME = re.compile(r"^\.(?P<name>.+)\.(?P<pid>\d+)-[a-z0-9_]{8}\.tmp(?P<suffix>\.[^.]*)?$")
+#: When this process started [s since the epoch] (a temporary with this process's number that
+#: is older was left by an earlier process of the same number).
+_STARTED = __import__("time").time()
+#: Folders swept of stale temporaries by this process (once a folder: a study's chunk folder
+#: takes 400,000 writes).
+_SWEPT: set = set()
+
+
+def temporary_name(path: Path) -> str:
+    """The prefix :func:`atomic_path` gives its temporary of ``path`` (``.<name>.<pid>-``)."""
+    return f".{path.name[:100]}.{os.getpid()}-"
+
+
+def _alive(pid: int) -> bool:
+    """Whether a process of number ``pid`` runs (on this machine)."""
+    if pid <= 0:
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):
+        return True  # another user's process, or a number we may not ask about: keep
+    return True
+
+
+def sweep_temporaries(folder: Path) -> list[Path]:
+    """Remove the temporaries killed runs left in ``folder`` (:data:`TEMPORARY_NAME`): one whose
+    process is gone, one of this process's number older than this process, one older than
+    :data:`STALE_TEMPORARY_SECONDS`.  A live process's temporary is kept.  Returns those removed.
+
+    Parameters
+    ----------
+    folder : Path
+        The folder [-].
+    """
+    import time
+
+    removed = []
+    now = time.time()
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return removed
+    for entry in entries:
+        found = TEMPORARY_NAME.match(entry.name)
+        if not found:
+            continue
+        with contextlib.suppress(OSError):
+            if not entry.is_file(follow_symlinks=False):
+                continue
+            pid, age = int(found["pid"]), now - entry.stat(follow_symlinks=False).st_mtime
+            if pid == os.getpid():
+                stale = now - age < _STARTED - 1.0  # written before this process started
+            else:
+                stale = not _alive(pid) or age > STALE_TEMPORARY_SECONDS
+            if stale:
+                os.unlink(entry.path)
+                removed.append(Path(entry.path))
+    return removed
 
 
 def _remove_stale_temporaries(path: Path, suffix: str) -> None:
-    """Remove the temporaries a killed run left beside ``path`` (``.<name>.XXXXXXXX<suffix>``,
-    older than :data:`STALE_TEMPORARY_SECONDS`)."""
+    """Remove the temporaries killed runs left in ``path``'s folder: this version's
+    (:func:`sweep_temporaries`, once a folder and process) and an earlier version's of the same
+    file (``.<name>.XXXXXXXX<suffix>``, older than :data:`LEGACY_TEMPORARY_SECONDS`)."""
     import time
 
     folder = path.parent if str(path.parent) else Path(".")
+    where = os.path.abspath(folder)
+    if where not in _SWEPT:
+        _SWEPT.add(where)
+        sweep_temporaries(folder)
     now = time.time()
     try:
-        candidates = list(folder.glob(f".{glob_escape(path.name[:100])}.*{glob_escape(suffix)}"))
+        candidates = list(folder.glob(f".{glob_escape(path.name[:100])}.????????{glob_escape(suffix)}"))
     except OSError:
         return
     for old in candidates:
         with contextlib.suppress(OSError):
-            if old.is_file() and now - old.stat().st_mtime > STALE_TEMPORARY_SECONDS:
+            if old.is_file() and now - old.stat().st_mtime > LEGACY_TEMPORARY_SECONDS:
                 old.unlink()
 
 
@@ -141,19 +217,48 @@ def glob_escape(text: str) -> str:
     return glob.escape(text)
 
 
+def _naming_output(exc: OSError, tmp, path: Path) -> OSError:
+    """``exc`` (raised while writing ``tmp``, the temporary of ``path``) naming ``path``: a
+    message names the file the user asked for, not the hidden temporary (issue 40).  Errors of
+    springdyn's own kinds (standard output's) and errors about other files are returned as
+    they are."""
+    if type(exc).__module__ != "builtins":
+        return exc
+    named = None if exc.filename is None else str(exc.filename)
+    if named is not None and named != str(tmp) and not Path(named).name.startswith(temporary_name(path)):
+        return exc  # about another file (a folder that cannot be made): named already
+    text = exc.strerror or str(exc)
+    for name in {str(tmp), named} - {None, "None"}:
+        text = text.replace(name, str(path))
+    if exc.errno is None:
+        new = OSError(text)
+        new.filename = str(path)
+        return new
+    return OSError(exc.errno, text, str(path))
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
 
     On an exception the temporary file is removed and ``path`` is left untouched.  Inside
-    :func:`output_set` the rename waits for the end of the set.
+    :func:`output_set` the rename waits for the end of the set.  The temporary is
+    ``.<name>.<pid>-XXXXXXXX.tmp<suffix>`` (:data:`TEMPORARY_NAME`); the first write of a
+    process in a folder removes the temporaries killed runs left there
+    (:func:`sweep_temporaries`).  An :class:`OSError` names ``path``, not the temporary.
     """
     path = Path(path)
-    if path.parent and not path.parent.exists():
-        path.parent.mkdir(parents=True, exist_ok=True)
-    _remove_stale_temporaries(path, suffix or path.suffix)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:100]}.", suffix=suffix or path.suffix, dir=path.parent or ".")
-    os.close(fd)
+    tmp = None
+    try:
+        if path.parent and not path.parent.exists():
+            path.parent.mkdir(parents=True, exist_ok=True)
+        _remove_stale_temporaries(path, suffix or path.suffix)
+        fd, tmp = tempfile.mkstemp(
+            prefix=temporary_name(path), suffix=f".tmp{suffix or path.suffix}", dir=path.parent or "."
+        )
+        os.close(fd)
+    except OSError as exc:
+        raise _naming_output(exc, tmp, path) from exc
     tmp = Path(tmp)
     try:
         yield tmp
@@ -164,9 +269,13 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
             _SETS[-1].add(tmp, path)
         else:
             os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()
+        if isinstance(exc, OSError):
+            new = _naming_output(exc, tmp, path)
+            if new is not exc:
+                raise new from exc
         raise
 
 

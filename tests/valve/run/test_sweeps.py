@@ -127,7 +127,7 @@ def test_vary_adds_a_dimension_and_skips_invalid(spring):
     # a longer installed length gives a smaller set-up force: static min follows Fset
     fset = [s.spring_model.internal_parameters()["Fset"] for s in res.springs]
     np.testing.assert_allclose(ds["min_static_force_N"].values[:, 0], fset, rtol=1e-12)
-    with pytest.raises(InputError, match=r"vary: installed_length = 20 mm: installed_length = 20 mm is at or below"):
+    with pytest.raises(InputError, match=r"vary: installed_length = 20 mm is at or below"):  # named once
         sweep(spring, CAM, [1000.0], vary=("installed_length", np.array([0.020])))
     with pytest.raises(InputError, match=r"vary = 'colour': not a numeric spring field"):
         sweep(spring, CAM, [1000.0], vary=("colour", np.array([1.0])))
@@ -179,10 +179,113 @@ def test_unreachable_scheduler_fails_fast():
 
     t = time.monotonic()
     with pytest.raises(
-        InputError, match=r"scheduler = 'tcp://127.0.0.1:9': cannot reach a Dask scheduler there within 1 s"
+        InputError, match=r"scheduler = 'tcp://127.0.0.1:9': cannot reach a Dask scheduler there \(Connection refused\)"
     ):
         connect("tcp://127.0.0.1:9", timeout=1.0)
     assert time.monotonic() - t < 10
+
+
+def _server(reply):
+    """A local TCP server on a free port that answers each connection with ``reply`` (None:
+    accepts and says nothing); returns its address and a function that stops it."""
+    import socket
+    import threading
+
+    listener = socket.socket()
+    listener.bind(("127.0.0.1", 0))
+    listener.listen()
+    listener.settimeout(0.1)
+    stop, held = threading.Event(), []
+
+    def serve():
+        while not stop.is_set():
+            try:
+                conn, _ = listener.accept()
+            except OSError:
+                continue
+            held.append(conn)
+            if reply is not None:
+                conn.sendall(reply)
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+
+    def close():
+        stop.set()
+        thread.join()
+        for c in held:
+            c.close()
+        listener.close()
+
+    return f"tcp://127.0.0.1:{listener.getsockname()[1]}", close
+
+
+@pytest.mark.parametrize(
+    "reply, words",
+    [
+        (
+            b"HTTP/1.1 400 Bad Request\r\n\r\n",
+            "is not a Dask scheduler (it sent 'HTTP/1.1 400 Bad Request', not a Dask",
+        ),
+        (
+            b"\xff" * 64,
+            "is not a Dask scheduler (it sent the bytes ff ff ff ff ff ff ff ff ff ff ff ff ff ff ff ff, not",
+        ),  # dask read this as a 3 EiB message (exit 70)
+        (None, "something listens there but sent no Dask greeting within 1 s"),  # dask waited for ever
+    ],
+    ids=["http", "garbage", "silent"],
+)
+def test_a_port_that_is_not_a_dask_scheduler_is_refused_within_the_timeout(reply, words):
+    """Issue 40: --scheduler at a port that is not a Dask scheduler's allocated 3 EiB (exit 70)
+    or hung.  The address is probed first: what answers must greet as a Dask scheduler does
+    (its handshake) within the timeout; anything else is refused naming the address and what
+    is expected, within about the timeout."""
+    import time
+
+    address, close = _server(reply)
+    try:
+        t = time.monotonic()
+        with pytest.raises(InputError) as caught:
+            connect(address, timeout=1.0)
+        assert time.monotonic() - t < 3.0
+    finally:
+        close()
+    text = str(caught.value)
+    assert text.startswith(f"scheduler = {address!r}: ") and words in text
+    assert text.endswith(
+        "expected a Dask scheduler's address, e.g. tcp://127.0.0.1:8786 (the one `dask scheduler` prints)"
+    )
+
+
+def test_the_cli_refuses_a_port_that_is_not_a_dask_scheduler(capsys):
+    """The same through ``valve sweep --scheduler``: exit 2, one line naming --scheduler."""
+    address, close = _server(b"SSH-2.0-OpenSSH_9.6\r\n")
+    try:
+        args = [
+            "valve",
+            "sweep",
+            str(EX / "one_step_spring.toml"),
+            "--cam",
+            str(EX / "cam_345.toml"),
+            "--cam-rpm",
+            "1000,2000",
+        ]
+        code = main([*args, "--scheduler", address])
+    finally:
+        close()
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith(f"springdyn: error: --scheduler = {address!r}: what answers there is not a Dask scheduler")
+    assert "SSH-2.0-OpenSSH_9.6" in err and "Traceback" not in err and err.count("\n") == 1
+
+
+def test_a_dask_scheduler_passes_the_probe():
+    """A real scheduler (in this process, no workers) greets as the probe expects."""
+    from dask.distributed import LocalCluster
+
+    with LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
+        client = connect(cluster.scheduler_address, timeout=5.0)
+        client.close()
 
 
 def test_cli_sweep(capsys, tmp_path):

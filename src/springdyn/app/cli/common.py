@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import math
 import re
 import sys
 from pathlib import Path
@@ -24,6 +25,7 @@ __all__ = [
     "print_table",
     "add_output_options",
     "existing_file",
+    "whole_number",
     "as_options",
     "close_figure",
 ]
@@ -94,6 +96,39 @@ def parse_range(
     if len(items) > max_points:
         raise InputError(f"{option} = {text!r} gives more than {max_points} values")
     return np.asarray([to_si(item, unit, option, bare_unit=bare_unit) for item in items], dtype=float)
+
+
+def whole_number(text, option: str, low: int, high: int | None, allowed: str) -> int:
+    """A whole-number option (``--samples``, ``--seed``, ``--workers``): ``1e6`` and ``64`` are
+    read, anything else is refused naming the option, the value and ``allowed`` (e.g. "from 1
+    to 10000000"), not with a unit parser's words.
+
+    Parameters
+    ----------
+    text : str
+        The value as given [-].
+    option : str
+        The option, for messages [-].
+    low, high : int
+        The range (``high`` None: no upper end) [-].
+    allowed : str
+        The range in words [-].
+    """
+    message = f"{option} = {str(text)!r} must be a whole number {allowed}"
+    t = str(text).strip()
+    try:
+        value = int(t)  # exactly, however large
+    except ValueError:
+        try:
+            number = float(t)  # 1e6
+        except ValueError:
+            raise InputError(message) from None
+        if not math.isfinite(number) or number != int(number):
+            raise InputError(message) from None
+        value = int(number)
+    if value < low or (high is not None and value > high):
+        raise InputError(message)
+    return value
 
 
 def existing_file(path: str, option: str) -> Path:

@@ -22,6 +22,7 @@ from springdyn.app.cli.common import (
     parse_range,
     print_json,
     quantity,
+    whole_number,
 )
 from springdyn.app.cli.valve_options import (
     TRAIN_HELP,
@@ -198,7 +199,7 @@ def register(sub) -> None:
         help="a --vary value that makes the spring invalid: stop (default) or skip it",
     )
     p.add_argument("--out", default="valve-sweep", metavar="DIR", help="output folder (default valve-sweep)")
-    p.add_argument("--workers", type=int, metavar="N", help="local threads (default: 2, both cores)")
+    p.add_argument("--workers", metavar="N", help="local threads (default: 2, both cores)")
     p.add_argument(
         "--scheduler", metavar="ADDRESS", help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786"
     )
@@ -452,15 +453,17 @@ def cmd_sweep(args) -> int:
     model = model_of(args)
     rpms = cam_rpm_from_args(args, ranged=True, model=model)
     vary = parse_vary(args.vary) if args.vary else None
-    if args.workers is not None and args.workers < 1:
-        raise InputError(f"--workers = {args.workers} must be at least 1")
+    workers = None if args.workers is None else whole_number(args.workers, "--workers", 1, None, "of at least 1")
     with as_options(scheduler="--scheduler"):
         client = valve.connect(args.scheduler) if args.scheduler is not None else None
     try:
         with as_options(vary="--vary", workers="--workers", **run_options(args, model)):
-            res = model.sweep(
-                rpms, vary=vary, on_invalid=args.on_invalid, workers=args.workers, client=client, quiet=args.quiet
-            )
+            try:
+                res = model.sweep(
+                    rpms, vary=vary, on_invalid=args.on_invalid, workers=workers, client=client, quiet=args.quiet
+                )
+            except InputError as exc:  # the option's name, not the API's
+                raise InputError(str(exc).replace("on_invalid='skip'", "--on-invalid skip")) from None
     finally:
         if client is not None:
             client.close()

@@ -84,6 +84,14 @@ def register_tolerance(vsub) -> None:
     p.add_argument(
         "--resolution", default="5", metavar="RPM", help="final bracket of each float speed in cam rpm (default 5)"
     )
+    p.add_argument(
+        "--periodicity-tol",
+        dest="variant_periodicity_tol",  # (not the run options' periodicity_tol: no --revolutions here)
+        default=f"{100 * valve.PERIODICITY_TOL:g} %",
+        metavar="TOL",
+        help="every run of a variant goes to its periodic steady state within TOL of Fset; a variant whose runs "
+        f"do not is flagged and left out of the percentiles and shares (default {100 * valve.PERIODICITY_TOL:g} %%)",
+    )
     p.add_argument("--workers", metavar="N", help="local threads the chunks run on (default: 2, both cores)")
     p.add_argument(
         "--scheduler", metavar="ADDRESS", help="run the chunks on a Dask scheduler, e.g. tcp://127.0.0.1:8786"
@@ -96,15 +104,19 @@ def cmd_tolerance(args) -> int:
     """``springdyn valve tolerance``: sample, run in chunks, summarise."""
     from pathlib import Path
 
-    from springdyn.app.cli.common import as_options, quantity
+    from springdyn.app.cli.common import as_options, quantity, whole_number
+    from springdyn.core.io import check_output_folder
     from springdyn.core.progress import progress
 
-    count = quantity(args.samples, "", "--samples")
-    if count != int(count) or not 1 <= count <= 10_000_000:
-        raise InputError(f"--samples = {args.samples!r} must be a whole number from 1 to 10000000")
-    seed = quantity(args.seed, "", "--seed")
-    if seed != int(seed) or not 0 <= seed < 2**63:
-        raise InputError(f"--seed = {args.seed!r} must be a whole number from 0 to 2^63 - 1")
+    check_output_folder(args.out_dir, "--out")  # before any work (an existing file failed with exit 74 at the end)
+    count = whole_number(args.samples, "--samples", 1, 10_000_000, "from 1 to 10000000")
+    seed = whole_number(args.seed, "--seed", 0, 2**63 - 1, "from 0 to 2^63 - 1")
+    tol = quantity(args.variant_periodicity_tol, "", "--periodicity-tol")
+    if not 1e-7 <= tol <= 0.5:
+        raise InputError(
+            f"--periodicity-tol = {args.variant_periodicity_tol!r} must be from 1e-05 % to 50 % of Fset "
+            f"(default {100 * valve.PERIODICITY_TOL:g} %)"
+        )
     model = model_of(args)
     tols, criteria = design.read_tolerances(args.tolerances)
     if "lash" in tols and model.valve_train is None:
@@ -115,12 +127,7 @@ def cmd_tolerance(args) -> int:
     resolution = quantity(args.resolution, "rpm", "--resolution", bare_unit="rpm")
     if not resolution > 0:
         raise InputError(f"--resolution = {args.resolution!r} must be a positive speed (cam rpm)")
-    workers = None
-    if args.workers is not None:
-        workers = quantity(args.workers, "", "--workers")
-        if workers != int(workers) or workers < 1:
-            raise InputError(f"--workers = {args.workers!r} must be a whole number of at least 1")
-        workers = int(workers)
+    workers = None if args.workers is None else whole_number(args.workers, "--workers", 1, None, "of at least 1")
     with as_options(scheduler="--scheduler"):
         client = valve.connect(args.scheduler) if args.scheduler is not None else None
 
@@ -142,6 +149,7 @@ def cmd_tolerance(args) -> int:
                 float_only=args.float_only,
                 resolution=resolution,
                 workers=workers,
+                periodicity_tol=tol,
             )
     finally:
         if client is not None:

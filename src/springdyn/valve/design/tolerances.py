@@ -29,7 +29,11 @@ runs no sweep: each variant's float speed is searched from the nominal's
 (:func:`springdyn.valve.run.float_search.float_speed_near`, four to five speeds a variant).
 
 **Outputs**: ``variants.nc`` (dimension ``variant``: the inputs under their names and the
-outputs), percentiles, the share of variants that fail each criterion, histograms.  The
+outputs, each variant's ``settled`` flag), percentiles, the share of variants that fail each
+criterion, histograms; a variant that did not settle (a residual above ``periodicity_tol``)
+is counted and left out of the percentiles, shares and histograms.  The sample is drawn chunk
+by chunk as the chunks are submitted (:func:`sample_chunks`), a few chunks in flight per
+thread: a study of any size starts at once and holds a few chunks, not its whole sample.  The
 variants run in chunks of :data:`CHUNK`, on the local threads or a Dask cluster, written to
 ``DIR/chunks/`` as they finish: a killed run resumes from them (a chunk belongs to its
 sample: the seed, the count, the method, the table, the speeds, the resolution and the kind
@@ -46,8 +50,7 @@ import os
 import threading
 import warnings
 import zipfile
-from concurrent.futures import ThreadPoolExecutor
-from concurrent.futures import as_completed as completed
+from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -56,12 +59,13 @@ from scipy.special import ndtri
 from scipy.stats import qmc
 
 from ...core.errors import InputError
-from ...core.io import atomic_path, direct_outputs
+from ...core.io import atomic_path, direct_outputs, glob_escape
 from ...core.params import load_toml
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import format_quantity, omega_to_rpm, to_si
 from .. import run
 from ..run.float_search import FLOAT_RESOLUTION
+from ..run.periodicity import PERIODICITY_TOL
 from ..spring.formulas import active_coils_free
 from . import criteria
 from .criteria import Criteria
@@ -73,6 +77,7 @@ __all__ = [
     "Criteria",
     "read_tolerances",
     "sample",
+    "sample_chunks",
     "run_variant",
     "run_variant_float",
     "tolerance_study",
@@ -103,7 +108,10 @@ TOLERANCED = {
 #: 0; a variant the model refuses has ``refused`` 1 and zeros (no NaN in an output);
 #: ``periodicity`` is the largest change between the last two revolutions of any speed the
 #: variant ran [fraction of Fset] (the residual beside its figures), ``simulations`` the speeds
-#: it ran, each to its periodic steady state.
+#: it ran, each to its periodic steady state.  ``variants.nc`` adds ``settled``: 0 where the
+#: residual is above the study's ``periodicity_tol`` (the variant is kept there, flagged, and
+#: left out of the percentiles and the failing shares, with a note "N of M variants did not
+#: settle").
 OUTPUTS = {
     "Fset": "N",
     "f1": "Hz",
@@ -293,23 +301,64 @@ def sample(tolerances: dict, nominal: dict, count: int, seed: int, method: str =
     method : {"sobol", "monte-carlo"}
         Scrambled Sobol points or pseudo-random ones.
     """
+    return next(sample_chunks(tolerances, nominal, count, seed, method, size=max(int(count), 1)))[2]
+
+
+def sample_chunks(tolerances: dict, nominal: dict, count: int, seed: int, method: str = "sobol", size: int = 0):
+    """The sample of :func:`sample` drawn lazily, ``size`` variants at a time: ``(lo, hi,
+    values)`` for the variants ``lo`` to ``hi - 1``, each chunk drawn when it is asked for
+    from one stream (the same values to the bit as :func:`sample` draws at once), so that a
+    study of 10,000,000 variants holds one chunk of its sample, not all of it.  The bands
+    are checked (:func:`_check_band`) before the first chunk.
+
+    Parameters
+    ----------
+    tolerances : dict
+        name -> (Tolerance, relative) (:func:`read_tolerances`).
+    nominal : dict
+        name -> nominal value [SI] (:func:`nominal_values`).
+    count : int
+        Variants [-].
+    seed : int
+        Seed of the generator [-].
+    method : {"sobol", "monte-carlo"}
+        Scrambled Sobol points or pseudo-random ones.
+    size : int
+        Variants per chunk [-] (0: :data:`CHUNK`).
+    """
     names = list(tolerances)
     if method == "sobol":
-        with warnings.catch_warnings():  # balanced at powers of 2; ToleranceStudy notes it
-            warnings.simplefilter("ignore")
-            u = qmc.Sobol(d=len(names), scramble=True, seed=seed).random(count)
+        engine = qmc.Sobol(d=len(names), scramble=True, seed=seed)
+
+        def draw(n):
+            with warnings.catch_warnings():  # balanced at powers of 2; ToleranceStudy notes it
+                warnings.simplefilter("ignore")
+                return engine.random(n)
+
     elif method == "monte-carlo":
-        u = np.random.default_rng(seed).random((count, len(names)))
+        rng = np.random.default_rng(seed)
+
+        def draw(n):  # one double a number, row by row: chunks give the values of one draw
+            return rng.random((n, len(names)))
+
     else:
         raise InputError(f"method = {method!r} must be 'sobol' or 'monte-carlo'")
-    out = {}
-    for j, name in enumerate(names):
+    bands = {}
+    for name in names:
         tol, rel = tolerances[name]
         scale = nominal[name] if rel else 1.0
         t = dataclasses.replace(tol, half_width=tol.half_width * scale, sigma=tol.sigma * scale)
         _check_band(name, t, nominal[name])
-        out[name] = t.values(nominal[name], u[:, j])
-    return out
+        bands[name] = t
+    return _draw_chunks(names, bands, nominal, int(count), draw, int(size) or CHUNK)
+
+
+def _draw_chunks(names, bands, nominal, count, draw, size):
+    """The chunks of :func:`sample_chunks` (a generator: nothing is drawn before it is asked for)."""
+    for lo in range(0, count, size):
+        hi = min(lo + size, count)
+        u = draw(hi - lo)
+        yield lo, hi, {name: bands[name].values(nominal[name], u[:, j]) for j, name in enumerate(names)}
 
 
 #: The parameters that may be zero (no lash is a lash); every other toleranced one must stay positive.
@@ -382,6 +431,7 @@ def run_variant(
     rated_rpm: float | None = None,
     resolution: float = FLOAT_RESOLUTION,
     max_clash_severity: float | None = None,
+    periodicity_tol: float | None = None,
 ) -> dict:
     """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]: its statics and
     its speed study (:func:`springdyn.valve.run.studies.speed_study`: the float speed to
@@ -404,9 +454,12 @@ def run_variant(
     max_clash_severity : float, optional
         Largest clash severity that is no clash [fraction of Fset] (``[criteria]``; default the run's,
         :data:`springdyn.valve.run.verdicts.MAX_CLASH_SEVERITY`).
+    periodicity_tol : float, optional
+        The periodic steady state each speed runs to [fraction of Fset] (default the run's,
+        :data:`springdyn.valve.run.periodicity.PERIODICITY_TOL`).
     """
     top = float(np.max(speeds))
-    r = run.speed_study(spring, cam, valve_train, speeds, rated_rpm, resolution, max_clash_severity)
+    r = run.speed_study(spring, cam, valve_train, speeds, rated_rpm, resolution, max_clash_severity, periodicity_tol)
     p = spring.spring_model.internal_parameters()
     return dict(
         Fset=float(p["Fset"]),
@@ -424,7 +477,15 @@ def run_variant(
     )
 
 
-def run_variant_float(spring, cam, valve_train, speeds, guess_rpm: float, resolution: float = FLOAT_RESOLUTION) -> dict:
+def run_variant_float(
+    spring,
+    cam,
+    valve_train,
+    speeds,
+    guess_rpm: float,
+    resolution: float = FLOAT_RESOLUTION,
+    periodicity_tol: float | None = None,
+) -> dict:
     """The outputs of :data:`FLOAT_OUTPUTS` of one variant: its statics and its float speed,
     found near ``guess_rpm`` (the nominal's) within the speed range by
     :func:`springdyn.valve.run.float_search.float_speed_near` (four to five speeds, not a sweep).
@@ -440,9 +501,13 @@ def run_variant_float(spring, cam, valve_train, speeds, guess_rpm: float, resolu
         Where the search starts [rev/min].
     resolution : float
         Width of the float speed's final bracket [rev/min].
+    periodicity_tol : float, optional
+        The periodic steady state each trial speed runs to [fraction of Fset] (default the run's).
     """
 
-    near = run.variant_float_speed(spring, cam, valve_train, guess_rpm, float(speeds[0]), float(speeds[-1]), resolution)
+    near = run.variant_float_speed(
+        spring, cam, valve_train, guess_rpm, float(speeds[0]), float(speeds[-1]), resolution, periodicity_tol
+    )
     return dict(
         Fset=float(spring.spring_model.internal_parameters()["Fset"]),
         f1=float(spring.spring_model.first_mode_installed),
@@ -509,9 +574,20 @@ def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=
                 warnings.simplefilter("ignore")
                 sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
                 if plan.get("guess") is not None:
-                    r = run_variant_float(sp, c, vt, speeds, plan["guess"], plan["resolution"])
+                    r = run_variant_float(
+                        sp, c, vt, speeds, plan["guess"], plan["resolution"], plan.get("periodicity_tol")
+                    )
                 else:
-                    r = run_variant(sp, c, vt, speeds, plan["rated"], plan["resolution"], plan["clash_limit"])
+                    r = run_variant(
+                        sp,
+                        c,
+                        vt,
+                        speeds,
+                        plan["rated"],
+                        plan["resolution"],
+                        plan["clash_limit"],
+                        plan.get("periodicity_tol"),
+                    )
         except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
             r = dict({k: 0.0 for k in names}, refused=1.0)
         for k in names:
@@ -536,6 +612,7 @@ def tolerance_study(
     float_only: bool = False,
     resolution: float = FLOAT_RESOLUTION,
     workers: int | None = None,
+    periodicity_tol: float | None = None,
 ) -> ToleranceStudy:
     """The spring across its tolerances (module docstring).
 
@@ -571,6 +648,12 @@ def tolerance_study(
         Width of the float speeds' final bracket [rev/min].
     workers : int, optional
         Local threads the chunks run on [-] (default: the cores, at most 2).
+    periodicity_tol : float, optional
+        The periodic steady state every run of a variant goes to, and the residual a variant
+        must keep to count as settled [fraction of Fset] (default
+        :data:`springdyn.valve.run.periodicity.PERIODICITY_TOL`, 0.2 %): a variant whose
+        largest residual is above it is flagged (``settled`` 0) and left out of the
+        percentiles and the failing shares.
     """
     import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
@@ -586,20 +669,44 @@ def tolerance_study(
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**63:
         # the seed goes into the NetCDF file as a 64-bit integer (a larger one failed there, after the study)
         raise InputError(f"seed = {seed!r} must be a whole number from 0 to 2^63 - 1")
+    if periodicity_tol is not None and not (
+        isinstance(periodicity_tol, (int, float)) and 1e-7 <= periodicity_tol <= 0.5
+    ):
+        raise InputError(
+            f"periodicity_tol = {periodicity_tol!r} must be a fraction of Fset from 1e-07 to 0.5 "
+            f"(default {PERIODICITY_TOL:g}, i.e. {100 * PERIODICITY_TOL:g} %)"
+        )
+    tol = PERIODICITY_TOL if periodicity_tol is None else float(periodicity_tol)
     speeds = np.sort(np.atleast_1d(np.asarray(speeds, dtype=float)))
     nominal = nominal_values(spring, cam, valve_train)
-    values = sample(tolerances, nominal, count, seed, method)
+    chunks = sample_chunks(tolerances, nominal, count, seed, method)  # lazy: one chunk drawn at a time
     # in service up to the float speed the criteria ask for: the Goodman safety and the peak
     # force are judged there (above it the valve may float)
     rated = None if criteria.min_float_cam_rpm is None else omega_to_rpm(criteria.min_float_cam_rpm)
-    plan = dict(rated=rated, resolution=float(resolution), guess=None, clash_limit=criteria.max_clash_severity)
+    # the runs' own tolerance only when it is not theirs already (the default study's runs and
+    # chunk keys are those of earlier versions)
+    run_tol = None if tol == PERIODICITY_TOL else tol
+    plan = dict(
+        rated=rated,
+        resolution=float(resolution),
+        guess=None,
+        clash_limit=criteria.max_clash_severity,
+        periodicity_tol=run_tol,
+    )
     if float_only:
         # the nominal's float speed from a scan of the range (the definition), then by the
         # variants' search from there: its float speed starts every search
 
-        scan = run.float_speed(spring, cam, valve_train, speeds, resolution=float(resolution))
+        scan = run.float_speed(
+            spring,
+            cam,
+            valve_train,
+            speeds,
+            resolution=float(resolution),
+            **({} if run_tol is None else dict(periodicity_tol=run_tol)),
+        )
         scanned = float(speeds[-1] if scan.float_cam_rpm is None else scan.float_cam_rpm)
-        nominal_out = run_variant_float(spring, cam, valve_train, speeds, scanned, float(resolution))
+        nominal_out = run_variant_float(spring, cam, valve_train, speeds, scanned, float(resolution), run_tol)
         nominal_out["float_cam_rpm_scan"] = scanned
         plan["guess"] = nominal_out["float_cam_rpm"]
     names = FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)
@@ -613,33 +720,35 @@ def tolerance_study(
         bool(float_only),
         criteria.max_clash_severity,
         definition_fingerprint([spring, cam, valve_train]),  # chunks of another spring, cam or train are not these
+        *(() if run_tol is None else (repr(run_tol),)),
     )
     key += "" if (rated is None or float_only) else f"r{rated:.0f}"
     chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
     if chunk_dir is not None:
         chunk_dir.mkdir(parents=True, exist_ok=True)
-    bounds = [(lo, min(lo + CHUNK, count)) for lo in range(0, count, CHUNK)]
     done, resumed = {}, 0
-    for lo, hi in bounds:
-        f = None if chunk_dir is None else chunk_dir / f"{key}_{lo:08d}.npz"
-        if f is not None and f.exists():
-            try:
-                with np.load(f) as z:
-                    done[lo] = {k: np.asarray(z[k], dtype=float) for k in names}
-                if any(v.shape != (hi - lo,) or not np.all(np.isfinite(v)) for v in done[lo].values()):
-                    raise ValueError("wrong shape or not finite")
-            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
-                done.pop(lo, None)  # an unreadable chunk (a torn write, a foreign file): computed again
-                f.unlink(missing_ok=True)
-                continue
-            resumed += hi - lo
-    todo = [(lo, hi) for lo, hi in bounds if lo not in done]
-
-    def part(lo, hi):
-        return {k: v[lo:hi].copy() for k, v in values.items()}
+    # the chunks on disk, not every chunk of the sample (400,000 of them at 10,000,000 variants)
+    on_disk = [] if chunk_dir is None else sorted(chunk_dir.glob(f"{glob_escape(key)}_*.npz"))
+    for f in on_disk:
+        lo = f.name[len(key) + 1 : -len(".npz")]
+        if not (lo.isdigit() and len(lo) == 8 and int(lo) % CHUNK == 0 and int(lo) < count):
+            continue  # another sample's (its key goes on, e.g. r3000) or a foreign file
+        lo = int(lo)
+        hi = min(lo + CHUNK, count)
+        try:
+            with np.load(f) as z:
+                got = {k: np.asarray(z[k], dtype=float) for k in names}
+            if any(v.shape != (hi - lo,) or not np.all(np.isfinite(v)) for v in got.values()):
+                raise ValueError("wrong shape or not finite")
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            f.unlink(missing_ok=True)  # an unreadable chunk (a torn write, a foreign file): computed again
+            continue
+        done[lo] = np.stack([got[k] for k in names])
+        resumed += hi - lo
+    todo = math.ceil(count / CHUNK) - len(done)
 
     def store(lo, res):
-        done[lo] = res
+        done[lo] = np.stack([np.asarray(res[k], dtype=float) for k in names])  # one array a chunk
         if chunk_dir is not None:
             # committed now, not with the command's other outputs: a killed or interrupted study
             # resumes from every chunk that finished (issue 40)
@@ -647,17 +756,33 @@ def tolerance_study(
                 with open(tmp, "wb") as fh:
                     np.savez(fh, **res)
 
+    # the chunks still to run, drawn from the sample as they are submitted (a chunk read back
+    # is drawn too, and dropped: the stream stays the sample's)
+    waiting = ((lo, values) for lo, _, values in chunks if lo not in done)
     if client is not None and todo:
-        futures = [
-            client.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), plan, pure=False)
-            for lo, hi in todo
-        ]
         from dask.distributed import as_completed  # (here: dask is an optional extra)
 
-        where = {f.key: lo for f, (lo, _) in zip(futures, todo)}
-        it = as_completed(futures, loop=client.loop)  # the study's client, not a default one (it may have none)
-        for fut in progress(it, total=len(futures), desc="variants") if progress else it:
-            store(where[fut.key], fut.result())
+        # a bounded number of chunks in flight: the sample and the futures of 10,000,000
+        # variants are never held at once
+        limit = IN_FLIGHT * max(1, sum(client.nthreads().values()))
+        where = {}
+
+        def submit():
+            item = next(waiting, None)
+            if item is None:
+                return None
+            fut = client.submit(_run_chunk, spring, cam, valve_train, speeds, item[1], plan, pure=False)
+            where[fut.key] = item[0]
+            return fut
+
+        first = [fut for fut in (submit() for _ in range(min(limit, todo))) if fut is not None]
+        it = as_completed(first, loop=client.loop)  # the study's client, not a default one (it may have none)
+        for fut in progress(it, total=todo, desc="variants") if progress else it:
+            store(where.pop(fut.key), fut.result())
+            fut.release()
+            nxt = submit()
+            if nxt is not None:
+                it.add(nxt)
     elif todo:
         # the engine releases the GIL: the chunks run on threads, each its variants in turn
 
@@ -665,22 +790,31 @@ def tolerance_study(
         stop = threading.Event()
         pool = ThreadPoolExecutor(max_workers=threads)
         try:
-            futures = {
-                pool.submit(_run_chunk, spring, cam, valve_train, speeds, part(lo, hi), plan, stop): lo
-                for lo, hi in todo
-            }
-            it = completed(futures)
-            for fut in progress(it, total=len(futures), desc="variants") if progress else it:
-                store(futures[fut], fut.result())
+            it = _bounded(pool, waiting, IN_FLIGHT * threads, spring, cam, valve_train, speeds, plan, stop)
+            for lo, res in progress(it, total=todo, desc="variants") if progress else it:
+                store(lo, res)
         except BaseException:  # Ctrl-C, SIGTERM (the CLI's), an error: stop within a variant, keep the chunks
             stop.set()
             pool.shutdown(wait=True, cancel_futures=True)
             raise
         pool.shutdown(wait=True)
-    outputs = {k: np.concatenate([done[lo][k] for lo, _ in bounds]) for k in names}
+    values = sample(tolerances, nominal, count, seed, method)  # the chunks' values, drawn at once
+    stacked = np.concatenate([done[lo] for lo in range(0, count, CHUNK)], axis=1)
+    done.clear()
+    outputs = {k: stacked[j] for j, k in enumerate(names)}
+    settled = (outputs["refused"] < 0.5) & (outputs["periodicity"] <= tol)
     units = {k: TOLERANCED[k][0] for k in values}
     data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
     data.update({k: ("variant", v, {"units": OUTPUTS[k]}) for k, v in outputs.items()})
+    data["settled"] = (
+        "variant",
+        settled.astype(np.int8),
+        {
+            "units": "1",
+            "long_name": "every run of the variant settled: periodicity within periodicity_tol "
+            "(0: left out of the percentiles and shares; a refused variant ran nothing)",
+        },
+    )
     ds = xr.Dataset(
         data,
         coords={"variant": ("variant", np.arange(count))},
@@ -691,11 +825,12 @@ def tolerance_study(
             sample_key=key,
             study="float speed" if float_only else "full",
             float_resolution_rpm=float(resolution),
+            periodicity_tol=tol,
         ),
     )
     if not float_only:
         nominal_out = run_variant(
-            spring, cam, valve_train, speeds, rated, float(resolution), criteria.max_clash_severity
+            spring, cam, valve_train, speeds, rated, float(resolution), criteria.max_clash_severity, run_tol
         )
     study = ToleranceStudy(
         dataset=ds,
@@ -711,6 +846,32 @@ def tolerance_study(
         with atomic_path(Path(out_dir) / "variants.nc") as tmp:
             ds.to_netcdf(tmp)
     return study
+
+
+#: Chunks in flight per thread (local) or per worker thread (Dask): enough to keep every
+#: thread busy, few enough that a study of any size holds a few chunks' samples and futures.
+IN_FLIGHT = 2
+
+
+def _bounded(pool, waiting, limit, spring, cam, valve_train, speeds, plan, stop):
+    """``(lo, outputs)`` of each chunk of ``waiting`` as it finishes on ``pool``, at most
+    ``limit`` submitted at a time (the next chunk is drawn when one finishes)."""
+    pending = {}
+
+    def top_up():
+        while len(pending) < limit:
+            item = next(waiting, None)
+            if item is None:
+                return
+            lo, values = item
+            pending[pool.submit(_run_chunk, spring, cam, valve_train, speeds, values, plan, stop)] = lo
+
+    top_up()
+    while pending:
+        finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+        for fut in sorted(finished, key=lambda f: pending[f]):
+            yield pending.pop(fut), fut.result()
+        top_up()
 
 
 @dataclass(frozen=True, repr=False)
@@ -800,6 +961,15 @@ class ToleranceStudy(Result):
             ]
         return out
 
+    def unsettled(self) -> np.ndarray:
+        """The variants that ran and did not settle: a run's periodicity residual above the
+        study's ``periodicity_tol`` (boolean array over the variants).  They stay in
+        ``variants.nc`` flagged (``settled`` 0) and are left out of the percentiles, the
+        histograms and the failing shares (their figures are not a steady state's)."""
+        ds = self.dataset
+        tol = float(ds.attrs.get("periodicity_tol", PERIODICITY_TOL))
+        return (ds["refused"].values < 0.5) & ~(ds["periodicity"].values <= tol)
+
     def _figures(self) -> list:
         """The outputs that are figures in this study."""
         return [k for k in FIGURES if k in self.dataset and (self.floats or k != "float_cam_rpm")]
@@ -814,7 +984,13 @@ class ToleranceStudy(Result):
             seed=ds.attrs["seed"],
             resumed_variants=int(self.resumed),
         )
-        ok = ds["refused"].values < 0.5
+        unsettled = self.unsettled()
+        judged = ~unsettled  # the variants the percentiles and shares count (refused ones fail)
+        ok = (ds["refused"].values < 0.5) & judged
+        tol = float(ds.attrs.get("periodicity_tol", PERIODICITY_TOL))
+        s["periodicity_tol"] = tol
+        s["unsettled_variants"] = int(unsettled.sum())
+        s["max_periodicity_unsettled"] = float(ds["periodicity"].values[unsettled].max()) if unsettled.any() else 0.0
         extremes = int(ok.sum()) < TAIL_VARIANTS  # the outer percentiles are the sample's extremes
         s["tails"] = "sample extremes" if extremes else "percentiles"
         for k in self._figures():
@@ -833,18 +1009,27 @@ class ToleranceStudy(Result):
         if not self.float_only:
             s["clash_in_range_share"] = float(ds["clash_in_range"].values[ok].mean()) if ok.any() else 0.0
         s["max_periodicity"] = float(ds["periodicity"].values[ok].max()) if ok.any() else 0.0
-        fails = self.failures()
+        fails = {k: f[judged] for k, f in self.failures().items()}
         for k, f in fails.items():
-            s[f"fail_share_{k}"] = float(np.mean(f))
-        s["fail_share_any"] = float(np.mean(np.any(np.stack(list(fails.values())), axis=0))) if fails else 0.0
+            s[f"fail_share_{k}"] = float(np.mean(f)) if f.size else 0.0
+        s["fail_share_any"] = (
+            float(np.mean(np.any(np.stack(list(fails.values())), axis=0))) if fails and judged.any() else 0.0
+        )
         notes = []
+        if unsettled.any():
+            notes.append(
+                f"{int(unsettled.sum())} of {n} variants did not settle (left out of the percentiles and the failing "
+                f"shares): a run's last two revolutions differ by up to {100 * s['max_periodicity_unsettled']:.3g} % "
+                f"of Fset, above the study's {100 * tol:g} %; variants.nc keeps them with settled = 0"
+            )
         if self.float_only:
             notes.append(
                 "a float-speed study: each variant's statics and float speed, searched from the nominal's; "
                 "Goodman safety, peak force and coil clash are not computed (run without --float-only)"
             )
-        if not ok.all():
-            notes.append(f"{int((~ok).sum())} variants refused by the model (counted as failing)")
+        refused = int((ds["refused"].values > 0.5).sum())
+        if refused:
+            notes.append(f"{refused} variants refused by the model (counted as failing)")
         top = float(self.speeds[-1])
         if self.floats and s["float_in_range_share"] < 1.0:
             notes.append(
@@ -934,7 +1119,8 @@ class ToleranceStudy(Result):
         out.append(text_table(fails, headers=("criterion", "variants failing")))
         out.append(
             f"periodic steady state: the last two revolutions of every speed run agree within "
-            f"{100 * s['max_periodicity']:.3g} % of Fset (largest residual over the variants)"
+            f"{100 * s['max_periodicity']:.3g} % of Fset (largest residual over the "
+            + ("settled variants)" if s["unsettled_variants"] else "variants)")
         )
         return "\n".join(out + notes_lines(s))
 
@@ -959,7 +1145,7 @@ class ToleranceStudy(Result):
         limits = self.limits()
         for a, k in zip(axes, names):
             v = ds[k].values
-            a.hist(v[ds["refused"].values < 0.5], bins=30, color="C0", alpha=0.8)
+            a.hist(v[(ds["refused"].values < 0.5) & ~self.unsettled()], bins=30, color="C0", alpha=0.8)
             a.axvline(self.nominal[k], color="k", lw=1, label="nominal")
             _draw_limits(a, limits.get(k, ()))
             a.set_xlabel(f"{k} [{OUTPUTS[k]}]")

@@ -38,6 +38,7 @@ def speed_study(
     rated_rpm: float | None = None,
     resolution: float = FLOAT_RESOLUTION,
     max_clash_severity: float | None = None,
+    periodicity_tol: float | None = None,
 ) -> dict:
     """A design over its speeds [rev/min]: the float speed to ``resolution``, the smallest
     Goodman safety and the largest retainer force up to ``rated_rpm`` (default: all), the lowest
@@ -70,6 +71,9 @@ def speed_study(
     max_clash_severity : float, optional
         Largest clash severity that is no clash [fraction of Fset] (default
         :data:`springdyn.valve.run.verdicts.MAX_CLASH_SEVERITY`).
+    periodicity_tol : float, optional
+        The periodic steady state each speed runs to [fraction of Fset] (default the run's,
+        :data:`springdyn.valve.run.periodicity.PERIODICITY_TOL`).
 
     Returns
     -------
@@ -80,9 +84,10 @@ def speed_study(
         ``periodicity`` (the largest residual of any speed run [fraction of Fset]) and
         ``simulations`` (the speeds run).
     """
+    tol = {} if periodicity_tol is None else dict(periodicity_tol=float(periodicity_tol))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1)
+        sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1, **tol)
     t = sw.summary_table()
     rpm = np.asarray(t["cam_rpm"], dtype=float)
     severity = np.asarray(t["clash_severity"], dtype=float)
@@ -93,7 +98,7 @@ def speed_study(
     runs = rpm.size
     if k > 0 and f - rpm[k - 1] > resolution:
         near = float_speed_near(
-            prepare(spring, cam, valve_train), 0.5 * (rpm[k - 1] + f), rpm[k - 1], f, resolution=resolution
+            prepare(spring, cam, valve_train), 0.5 * (rpm[k - 1] + f), rpm[k - 1], f, resolution=resolution, **tol
         )
         f = near["float_cam_rpm"]
         periodicity = max(periodicity, near["periodicity"])
@@ -122,7 +127,7 @@ def speed_study(
             break
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            more = sweep(spring, cam, sorted(new), valve_train=valve_train, workers=1).summary_table()
+            more = sweep(spring, cam, sorted(new), valve_train=valve_train, workers=1, **tol).summary_table()
         worst |= {
             float(r): (float(g), float(x))
             for r, g, x in zip(more["cam_rpm"], more["fatigue_safety_factor"], more["max_retainer_force_N"])
@@ -140,7 +145,16 @@ def speed_study(
     )
 
 
-def variant_float_speed(spring, cam, valve_train, guess_rpm: float, lo_rpm: float, hi_rpm: float, resolution: float):
+def variant_float_speed(
+    spring,
+    cam,
+    valve_train,
+    guess_rpm: float,
+    lo_rpm: float,
+    hi_rpm: float,
+    resolution: float,
+    periodicity_tol: float | None = None,
+):
     """The float speed of a design near ``guess_rpm`` within ``[lo_rpm, hi_rpm]``
     (:func:`springdyn.valve.run.float_search.float_speed_near` on its prepared set-up).
 
@@ -154,5 +168,8 @@ def variant_float_speed(spring, cam, valve_train, guess_rpm: float, lo_rpm: floa
         The speed range [rev/min].
     resolution : float
         Width of the final bracket [rev/min].
+    periodicity_tol : float, optional
+        The periodic steady state each trial speed runs to [fraction of Fset] (default the run's).
     """
-    return float_speed_near(prepare(spring, cam, valve_train), guess_rpm, lo_rpm, hi_rpm, resolution=resolution)
+    tol = {} if periodicity_tol is None else dict(periodicity_tol=float(periodicity_tol))
+    return float_speed_near(prepare(spring, cam, valve_train), guess_rpm, lo_rpm, hi_rpm, resolution=resolution, **tol)

@@ -9,9 +9,13 @@ are identical bit for bit.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import math
 import os
+import socket
+import struct
+import time
 import warnings
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
@@ -190,15 +194,105 @@ def _liftoff_rows(setup, cam_rpm, mon, gap, points) -> np.ndarray:
     return rows
 
 
+#: Largest first message of a Dask scheduler [bytes] (its handshake: a few hundred bytes).
+MAX_GREETING = 2**20
+
+
+def _probe_scheduler(address: str, timeout: float) -> None:
+    """Check within ``timeout`` s that a Dask scheduler answers at ``address`` (tcp): connect,
+    read its first message (a Dask comm greets first with its handshake: an 8-byte length (native order, as dask writes it), an
+    8-byte frame count, the frames' lengths and msgpack frames naming its ``pickle-protocol``)
+    and refuse anything else before ``dask.distributed.Client`` is given the address (issue 40:
+    a port that is not a scheduler's made it allocate 3 EiB, exit 70, or wait for ever)."""
+    from distributed.comm.addressing import parse_address, parse_host_port  # (here: dask is an optional extra)
+
+    where = f"scheduler = {address!r}"
+    expected = "expected a Dask scheduler's address, e.g. tcp://127.0.0.1:8786 (the one `dask scheduler` prints)"
+    try:
+        scheme, loc = parse_address(address)
+        if scheme != "tcp":
+            return  # tls, inproc, ucx: the Client's own bounded connect judges them
+        host, port = parse_host_port(loc, default_port=8786)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{where}: not an address ({exc}); {expected}") from None
+    deadline = time.monotonic() + timeout
+    try:
+        sock = socket.create_connection((host, int(port)), timeout=timeout)
+    except TimeoutError:
+        raise InputError(f"{where}: no answer within {timeout:g} s; {expected}") from None
+    except OSError as exc:
+        raise InputError(
+            f"{where}: cannot reach a Dask scheduler there ({exc.strerror or exc}); is it running? {expected}"
+        ) from None
+    got = b""
+
+    def read(n: int) -> bytes:
+        nonlocal got
+        while len(got) < n:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError()
+            sock.settimeout(left)
+            part = sock.recv(min(n - len(got), 65536))
+            if not part:
+                raise ConnectionError()
+            got += part
+        return got[:n]
+
+    def shown() -> str:
+        nonlocal got
+        if len(got) < 40:  # the rest of its first line, if it came with it
+            with contextlib.suppress(OSError):
+                sock.settimeout(0.05)
+                got += sock.recv(40 - len(got))
+        line = got[:40].replace(b"\r", b"\n").split(b"\n")[0]
+        if line and all(32 <= b < 127 for b in line):
+            return repr(line.decode("ascii"))  # a text protocol's greeting: 'HTTP/1.1 400 Bad Request'
+        return f"the bytes {got[:16].hex(' ')}"
+
+    with sock:
+        try:
+            (size,) = struct.unpack("Q", read(8))
+            if not 16 <= size <= MAX_GREETING:
+                raise ValueError()
+            (frames,) = struct.unpack("Q", read(16)[8:])
+            if not 1 <= frames <= 64 or 8 + 8 * frames > size:
+                raise ValueError()
+            lengths = struct.unpack(f"{frames}Q", read(16 + 8 * frames)[16:])
+            if sum(lengths) != size - 8 - 8 * frames:
+                raise ValueError()
+            if b"pickle-protocol" not in read(8 + size):
+                raise ValueError()
+        except TimeoutError:
+            what = (
+                f"something listens there but sent no Dask greeting within {timeout:g} s"
+                if not got
+                else f"what answers there is not a Dask scheduler (it sent {shown()} and no more within {timeout:g} s)"
+            )
+            raise InputError(f"{where}: {what}; {expected}") from None
+        except (ConnectionError, OSError):
+            what = "the connection was closed without a Dask greeting" if not got else f"it sent {shown()} and closed"
+            raise InputError(f"{where}: not a Dask scheduler ({what}); {expected}") from None
+        except ValueError:
+            raise InputError(
+                f"{where}: what answers there is not a Dask scheduler (it sent {shown()}, not a Dask message); {expected}"
+            ) from None
+
+
 def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
-    """A ``dask.distributed.Client`` for ``address``, or an InputError within ``timeout`` s.
+    """A ``dask.distributed.Client`` for ``address``, or an InputError within about ``timeout`` s.
+
+    A tcp address is probed first (:func:`_probe_scheduler`): what answers must greet as a
+    Dask scheduler does within ``timeout``; a port that is closed, silent or another server's
+    is refused naming the address and what is expected.  The client's own connection is
+    bounded by ``timeout`` too.
 
     Parameters
     ----------
     address : str
         Scheduler address, e.g. ``tcp://127.0.0.1:8786``.
     timeout : float
-        Seconds [s] to wait for the scheduler.
+        Seconds [s] to wait for the scheduler (the probe, then the client, each).
     """
     if not isinstance(address, str) or not address.strip():
         raise InputError(f"scheduler = {address!r}: give a Dask scheduler's address, e.g. tcp://127.0.0.1:8786")
@@ -206,6 +300,7 @@ def connect(address: str, timeout: float = SCHEDULER_TIMEOUT):
         from dask.distributed import Client  # (here: dask is an optional extra)
     except ImportError:
         raise InputError(f"scheduler = {address!r}: Dask is not installed; install springdyn[dask]") from None
+    _probe_scheduler(address, timeout)
     try:
         # not the process's default client: the runs hand it their chunks themselves, and a
         # default one outlives its close in dask's configuration (later dask computations,
@@ -958,8 +1053,9 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid, gas_force=None)
             kept.append(v)
         except InputError as exc:
             if on_invalid == "stop":
+                said = str(exc).startswith(f"{name} = ")  # the spring's message names the value already
                 raise InputError(
-                    f"vary: {_describe(name, v)}: {exc} (on_invalid='skip' leaves such values out)"
+                    f"vary: {exc if said else f'{_describe(name, v)}: {exc}'} (on_invalid='skip' leaves such values out)"
                 ) from None
             skipped.append((float(v), str(exc)))
             warnings.warn(f"vary: {_describe(name, v)} skipped: {exc}", stacklevel=3)
