@@ -48,6 +48,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
+from ...core.units import format_quantity
 from ..cam.follower import Follower
 from ..engine import layout as L
 from .hla import HLA, P_ATM
@@ -920,8 +921,6 @@ def _check_drawn_ratio(kin, where: str = "") -> None:
     where : str
         The file, for messages (``"vt.toml: "``).
     """
-    from ...core.units import format_quantity
-
     meta = next(f.metadata for f in dataclasses.fields(ValveTrain) if f.name == "rocker_ratio")
     lo, hi = meta["minimum"], meta["maximum"]
     r = kin.ratio_at_rest

@@ -21,12 +21,13 @@ loads on the valve train).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ...core.errors import InputError
+from ...core.errors import FactWarning, InputError
 from ...core.io import read_csv_columns
 
 __all__ = [
@@ -116,10 +117,6 @@ def _check_gaps(crank: np.ndarray, cycle_deg: float, source: str) -> None:
     """The trace's largest gap between rows (the cycle's wrap from the last row to the first
     included): refused above :data:`MAX_GAP_DEG`, stated in a warning above :data:`GAP_NOTE_DEG`
     (the pressure is interpolated linearly across it)."""
-    import warnings
-
-    from ...core.errors import FactWarning
-
     ends = np.append(crank, crank[0] + cycle_deg)
     steps = np.diff(ends)
     i = int(np.argmax(steps))
