@@ -6,6 +6,8 @@ right only where the damper orbits near it.  The example is the rotor of
 Type C dampers with leakage factor 20 at nodes 0 and 2).
 """
 
+import json
+import re
 import warnings
 
 import numpy as np
@@ -129,3 +131,28 @@ def test_fixed_50um_export_misses_the_disk_peak_where_the_damper_orbits_far_from
     assert peak_f / peak_c - 1 > 0.20
     # the fixed export's own residual says it: the orbit is far from 50 um
     assert fixed.residual.min() > 0.3
+
+
+def test_cli_rotor_prints_the_amplitude_per_speed_and_the_fixed_export_beside(rs, tmp_path, capsys):
+    from springdyn.app.cli.main import main
+    from tests.paths import EXAMPLES
+
+    # the example damper (Type C, leakage factor 20) as a TOML file
+    text = (EXAMPLES / "lsd" / "type_c.toml").read_text()
+    cfg = tmp_path / "c20.toml"
+    cfg.write_text(text.replace("leakage_factor = 1.0", "leakage_factor = 20.0", 1))
+    assert main(["lsd", "rotor", str(cfg), "--unbalance", "0.15g*m", "--rpm", "1800,1900"]) == 0
+    out = capsys.readouterr().out
+    assert "amplitude used um" in out and "residual" in out
+    assert re.search(r"^1900\s+21\.\d+\s+20\.9\d\s+\d+\s+\S+e-03\s+20\.9\d\s+ok", out, re.M)
+    assert re.search(r"50 um at every speed .*disk peak 31\.\d+ um at 1800 rpm, \+5\d\.\d %", out)
+    assert main(["lsd", "rotor", str(cfg), "--unbalance", "0.15g*m", "--rpm", "1900", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["mode"] == "consistent" and data["converged"] == [True]
+    assert data["node0_amplitude_m"][0] == pytest.approx(21.16e-6, rel=0.01)
+    # bad input: exit 2, one line naming the option
+    assert main(["lsd", "rotor", str(cfg), "--unbalance", "-1g*m"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--unbalance" in err[0]
+    assert main(["lsd", "rotor", str(cfg), "--unbalance", "0.1g*m", "--amplitude", "often"]) == 2
+    assert "--amplitude" in capsys.readouterr().err

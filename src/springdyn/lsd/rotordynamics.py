@@ -47,6 +47,7 @@ __all__ = [
     "amplitude_consistent_response",
     "orbit_dependent_element",
     "orbit_major_semi_axis",
+    "example_rotor",
     "ConsistentResponse",
     "TableInterpolant",
     "DEFAULT_RPM_RANGE",
@@ -946,3 +947,28 @@ def amplitude_consistent_response(
         relaxation=float(relaxation),
         notes=notes,
     )
+
+
+def example_rotor(bearings):
+    """The rotor of ``examples/lsd/rotor_with_lsd.py``: dampers at nodes 0 and 2, a disk at node 1.
+
+    Two steel shaft elements 0.1 m long, 80 mm diameter (Timoshenko, gyroscopic), a disk
+    0.2 m in diameter and 50 mm wide on an 80 mm bore at node 1 (about 18 kg in all).
+
+    Parameters
+    ----------
+    bearings : list
+        Two ``ross.BearingElement``, at nodes 0 and 2.
+
+    Returns
+    -------
+    ross.Rotor
+    """
+    ross = _import_ross()
+    steel = ross.Material(name="steel_lsd_example_rotor", rho=7810, E=211e9, G_s=81.2e9)
+    shaft = [
+        ross.ShaftElement(0.1, 0.0, 0.08, material=steel, shear_effects=True, rotary_inertia=True, gyroscopic=True)
+        for _ in range(2)
+    ]
+    disk = ross.DiskElement.from_geometry(n=1, material=steel, width=0.05, i_d=0.08, o_d=0.2)
+    return ross.Rotor(shaft, [disk], list(bearings))
