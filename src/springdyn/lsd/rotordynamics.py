@@ -28,6 +28,7 @@ synchronous analyses equals the spin speed.
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 
 import numpy as np
@@ -43,6 +44,11 @@ __all__ = [
     "whirl_consistent_mode",
     "nonlinear_force",
     "small_orbit_element",
+    "amplitude_consistent_response",
+    "orbit_dependent_element",
+    "orbit_major_semi_axis",
+    "example_rotor",
+    "ConsistentResponse",
     "TableInterpolant",
     "DEFAULT_RPM_RANGE",
     "DEFAULT_POINTS",
@@ -500,3 +506,469 @@ def nonlinear_force(
     force.history = []
     force.reset = reset
     return force
+
+
+# ----------------------------------------------------------------- the amplitude the rotor reaches
+#: Default relative tolerance of the amplitude iteration, ``|orbit - A| / A`` [-].
+AMPLITUDE_RTOL = 0.01
+#: Default relaxation of the amplitude iteration, ``A <- A + r (orbit - A)`` [-].
+AMPLITUDE_RELAXATION = 0.5
+#: Relative change of a damper's dynamic stiffness below which the coefficients are taken as
+#: independent of the amplitude (then the first orbit is the fixed point) [-].
+_SAME_COEFFICIENTS = 1e-12
+
+
+def orbit_major_semi_axis(X, Y):
+    """Largest displacement over a cycle of the synchronous orbit ``x = Re(X e^(jwt))``, ``y = Re(Y e^(jwt))``.
+
+    With ``z = x + j y = F e^(jwt) + B e^(-jwt)``, ``F = (X + jY)/2``, ``B = conj(X - jY)/2``
+    (forward and backward circles), the orbit is an ellipse of semi-axes ``|F| + |B|`` and
+    ``||F| - |B||``; the first is returned (a circle's radius on a forward circular orbit).
+
+    Parameters
+    ----------
+    X, Y : array_like of complex
+        Complex amplitudes of the x and y displacements [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Major semi-axis [m].
+    """
+    X, Y = np.asarray(X, dtype=complex), np.asarray(Y, dtype=complex)
+    return 0.5 * (np.abs(X + 1j * Y) + np.abs(X - 1j * Y))
+
+
+def _per_speed_coefficients(model, omega, amplitudes, motion):
+    """``K, C, M`` [N/m, N s/m, kg], shape ``(len(omega), 2, 2)``, each speed at its own amplitude [m]."""
+    from .film import FilmWarning
+    from .stiffness import PreloadExceededWarning
+
+    K = np.empty((omega.size, 2, 2))
+    C = np.empty((omega.size, 2, 2))
+    with warnings.catch_warnings():
+        # said once per run (ConsistentResponse.notes), not at every iterate
+        warnings.simplefilter("ignore", FilmWarning)
+        warnings.simplefilter("ignore", PreloadExceededWarning)
+        for i, (w, a) in enumerate(zip(omega, amplitudes)):
+            c = model.coefficients(omega=[float(w)], amplitude=float(a), motion=motion)
+            K[i], C[i] = c.K[0], c.C[0]
+    M = np.broadcast_to(model.added_mass, K.shape).copy()
+    return K, C, M
+
+
+@_DOCS.fill
+def orbit_dependent_element(
+    model, n: int, omega, amplitude, *, motion: str = "circular", added_mass: bool = True, **kwargs
+):
+    """``ross.BearingElement`` whose coefficients at each table frequency are taken at that speed's own amplitude.
+
+    The export of :func:`amplitude_consistent_response`: at ``omega[i]`` the coefficients
+    are the damper's at ``amplitude[i]``.  Exact at the table frequencies (an interpolating
+    spline through them); between them interpolated; beyond them refused
+    (:class:`TableInterpolant`, ``outside="raise"``).
+
+    Parameters
+    ----------
+    {model n}
+    omega : array_like
+        Table frequencies [rad/s], positive and increasing.
+    amplitude : array_like
+        Vibration amplitude at each frequency [m].
+    motion : {"linear", "circular"}
+        Motion of the O-ring Coulomb equivalent (an unbalance orbit is circular).
+    added_mass : bool
+        Include the oil's added mass ``mxx ... myy`` [kg].
+    **kwargs
+        Passed on to ``ross.BearingElement`` (``tag`` ...).
+
+    Returns
+    -------
+    ross.BearingElement
+        ``amplitude`` holds the amplitude [m] of each table frequency.
+    """
+    w = np.atleast_1d(np.asarray(omega, dtype=float))
+    a = np.broadcast_to(np.asarray(amplitude, dtype=float), w.shape)
+    if w.ndim != 1 or np.any(~np.isfinite(w)) or np.any(w <= 0) or np.any(np.diff(w) <= 0):
+        raise InputError(f"omega = {w.tolist()} rad/s must be positive and increasing")
+    ross = _import_ross()
+    K, C, M = _per_speed_coefficients(model, w, a, motion)
+    kwargs.setdefault("tag", f"LSD {model.params.name}")
+    values = {name: (K if name[0] == "k" else C)[(slice(None),) + _INDEX["k" + name[1:]]] for name in _NAMES}
+    if added_mass:
+        kwargs.update(_mass_kwargs(model))
+    elem = ross.BearingElement(n=n, frequency=w, **values, **kwargs)
+    for name in _NAMES:
+        setattr(
+            elem,
+            f"{name}_interpolated",
+            TableInterpolant(w, values[name], w[0], w[-1], "raise", f"{name} of {kwargs['tag']}"),
+        )
+    elem.amplitude = np.array(a)
+    return elem
+
+
+def _unbalance_list(unbalance):
+    """``[(node, magnitude [kg m], phase [rad]), ...]`` from one triple or a list of them."""
+    items = [unbalance] if np.ndim(unbalance) == 1 and not isinstance(unbalance[0], (tuple, list)) else unbalance
+    out = []
+    for u in items:
+        try:
+            node, mag, phase = u
+            node, mag, phase = int(node), float(mag), float(phase)
+        except (TypeError, ValueError):
+            raise InputError(f"unbalance = {unbalance!r} must be (node, magnitude in kg m, phase in rad)") from None
+        if not (np.isfinite(mag) and mag > 0 and np.isfinite(phase)):
+            raise InputError(f"unbalance magnitude = {mag!r} kg m must be positive (phase {phase!r} rad finite)")
+        out.append((node, mag, phase))
+    return out
+
+
+@dataclasses.dataclass
+class ConsistentResponse:
+    """Unbalance response of a ROSS rotor with each damper's coefficients at the orbit it reaches.
+
+    Attributes
+    ----------
+    rpm : numpy.ndarray
+        Speeds [rev/min] (vibration frequency = spin speed).
+    nodes : list of int
+        Damper nodes, in the order of the columns below.
+    amplitude : numpy.ndarray
+        ``(speeds, dampers)``: the amplitude each damper's coefficients were taken at [m].
+    orbit : numpy.ndarray
+        ``(speeds, dampers)``: the major semi-axis of the damper node's orbit in ROSS's
+        response with those coefficients [m].
+    residual : numpy.ndarray
+        ``max |orbit - amplitude| / amplitude`` over the dampers, per speed [-].
+    iterations : numpy.ndarray
+        Rotor solves per speed until the residual fell below ``rtol`` (0: a fixed amplitude) [-].
+    converged : numpy.ndarray of bool
+        ``residual <= rtol`` and the ring moves.
+    held : numpy.ndarray of bool
+        The iterate fell to the model's smallest amplitude (1 nm) with the orbit still below
+        it: the friction holds the ring, no equivalent-viscous coefficient applies.
+    K, C, M : numpy.ndarray
+        ``(dampers, speeds, 2, 2)``: the coefficients used [N/m], [N s/m], [kg].
+    response : ross.ForcedResponseResults
+        ROSS's unbalance response of the rotor with those coefficients (``forced_resp``:
+        ``(ndof, speeds)`` complex amplitudes [m]).
+    rotor : ross.Rotor
+        The rotor with the :func:`orbit_dependent_element` bearings.
+    mode : str
+        ``"consistent"`` or ``"fixed"`` (one amplitude at every speed).
+    rtol, relaxation : float
+        The iteration's tolerance and relaxation [-].
+    notes : list of str
+    """
+
+    rpm: np.ndarray
+    nodes: list
+    amplitude: np.ndarray
+    orbit: np.ndarray
+    residual: np.ndarray
+    iterations: np.ndarray
+    converged: np.ndarray
+    held: np.ndarray
+    K: np.ndarray
+    C: np.ndarray
+    M: np.ndarray
+    response: object
+    rotor: object
+    mode: str
+    rtol: float
+    relaxation: float
+    notes: list
+
+    def orbit_at(self, node: int) -> np.ndarray:
+        """Major semi-axis of node ``node``'s orbit per speed [m] (ROSS's response)."""
+        nd = int(self.rotor.number_dof)
+        if not (0 <= nd * int(node) + 1 < self.rotor.ndof):
+            raise InputError(f"node = {node!r} is not a node of the rotor ({self.rotor.ndof // nd} nodes)")
+        q = self.response.forced_resp
+        return orbit_major_semi_axis(q[nd * int(node)], q[nd * int(node) + 1])
+
+    def peak(self, node: int) -> tuple:
+        """``(rpm, orbit [m])`` of node ``node``'s largest orbit over the converged speeds.
+
+        With a fixed amplitude (``mode == "fixed"``) every speed counts: the linear response is
+        exact for the coefficients it was given, and ``residual`` says how far they are from
+        the orbit.
+
+        Raises
+        ------
+        SolverError
+            No speed converged (a figure from unconverged speeds is not a result).
+        """
+        ok = self.converged if self.mode == "consistent" else np.ones(self.rpm.size, dtype=bool)
+        if not np.any(ok):
+            raise SolverError(
+                f"no speed converged (largest residual {self.residual.max():.3g} against rtol {self.rtol:g})"
+            )
+        r = np.where(ok, self.orbit_at(node), -np.inf)
+        k = int(np.argmax(r))
+        return float(self.rpm[k]), float(r[k])
+
+    def to_dict(self) -> dict:
+        """JSON-ready columns (SI, unit in the name) and the notes."""
+        out = {"mode": self.mode, "rtol": self.rtol, "rpm": self.rpm.tolist(), "nodes": list(self.nodes)}
+        for j, n in enumerate(self.nodes):
+            out[f"node{n}_amplitude_m"] = self.amplitude[:, j].tolist()
+            out[f"node{n}_orbit_m"] = self.orbit[:, j].tolist()
+            for name in _NAMES:
+                A = self.K if name[0] == "k" else self.C
+                unit = "N_per_m" if name[0] == "k" else "Ns_per_m"
+                out[f"node{n}_{name}_{unit}"] = A[(j, slice(None)) + _INDEX["k" + name[1:]]].tolist()
+        out.update(
+            residual=self.residual.tolist(),
+            iterations=self.iterations.tolist(),
+            converged=self.converged.tolist(),
+            held=self.held.tolist(),
+            notes=list(self.notes),
+        )
+        return out
+
+
+def _dynamic_stiffness(K, C, M, w):
+    return K - (w**2)[:, None, None] * M + 1j * w[:, None, None] * C
+
+
+def amplitude_consistent_response(
+    build_rotor,
+    dampers: dict,
+    rpm,
+    unbalance,
+    *,
+    amplitude="consistent",
+    start_amplitude: float = 50e-6,
+    rtol: float = AMPLITUDE_RTOL,
+    relaxation: float = AMPLITUDE_RELAXATION,
+    max_iterations: int = 100,
+    motion: str = "circular",
+    added_mass: bool = True,
+) -> ConsistentResponse:
+    """Unbalance response of a ROSS rotor with each damper's coefficients at the amplitude it reaches.
+
+    ``to_ross`` takes the friction equivalents at one amplitude (50 um by default); a damper
+    that orbits at 16 um has several times that friction damping.  Per speed this iterates
+
+    1. the damper coefficients at amplitude ``A`` (:meth:`~springdyn.lsd.LSDModel.coefficients`,
+       the closed forms: the friction equivalents fall as ``1/A``);
+    2. the rotor's synchronous response at that speed with those coefficients (the ROSS
+       rotor's ``M``, ``K(w)``, ``C(w)``, ``G`` with the dampers' ``K - w^2 M_a + j w C``
+       added at their nodes: ROSS's own ``transfer_matrix`` algebra);
+    3. the damper node's orbit ``A_new`` (major semi-axis, :func:`orbit_major_semi_axis`);
+
+    with ``A <- A + relaxation (A_new - A)`` until ``max |A_new - A| / A <= rtol`` over the
+    dampers, at most ``max_iterations`` rotor solves.  Where the coefficients at ``A_new``
+    equal those at ``A`` (relative change of ``K - w^2 M + j w C`` below 1e-12: a damper
+    without friction) ``A_new`` is taken at once: the response cannot change, one solve.
+    The rotor is then built with :func:`orbit_dependent_element` bearings (each speed's
+    coefficients at its own amplitude) and ROSS's ``run_unbalance_response`` gives the
+    response; the residual reported is that response's ``|orbit - A| / A``.
+
+    Parameters
+    ----------
+    build_rotor : callable
+        ``build_rotor(bearings) -> ross.Rotor``; ``bearings`` is a list of
+        ``ross.BearingElement``, one per damper in the order of ``dampers``.
+    dampers : dict
+        ``{node: LSDModel}``.
+    rpm : array_like
+        Speeds [rev/min], positive and increasing.
+    unbalance : tuple or list of tuple
+        ``(node, magnitude [kg m], phase [rad])``, or a list of them.
+    amplitude : "consistent" or float
+        ``"consistent"`` (iterate), or one amplitude [m] at every speed (the fixed export,
+        its residual then says how far the orbit is from it).
+    start_amplitude : float
+        First iterate [m] (where several amplitudes are consistent, the iteration finds the
+        one it reaches from here).
+    rtol : float
+        Tolerance on ``|A_new - A| / A`` [-] (default 1 %).
+    relaxation : float
+        ``0 < r <= 1`` [-] (default 0.5).
+    max_iterations : int
+        Bound on the rotor solves per speed [-].
+    motion : {"linear", "circular"}
+        Motion of the O-ring Coulomb equivalent; an unbalance orbit is a circle (default).
+    added_mass : bool
+        Include the oil's added mass [kg].
+
+    Returns
+    -------
+    ConsistentResponse
+        Per speed: the amplitude used, the iterations, the residual, the coefficients; the
+        rotor and ROSS's response with them.
+    """
+    from .model import MIN_AMPLITUDE
+
+    if not isinstance(dampers, dict) or not dampers:
+        raise InputError(f"dampers = {dampers!r} must be a dict {{node: LSDModel}} with at least one damper")
+    rpm = np.atleast_1d(np.asarray(rpm, dtype=float))
+    if rpm.ndim != 1 or np.any(~np.isfinite(rpm)) or np.any(rpm <= 0) or np.any(np.diff(rpm) <= 0):
+        raise InputError(f"rpm = {rpm.tolist()} must be positive and increasing")
+    fixed = not (isinstance(amplitude, str) and amplitude == "consistent")
+    if fixed:
+        if isinstance(amplitude, str) or not (np.isfinite(amplitude) and amplitude >= MIN_AMPLITUDE):
+            raise InputError(f"amplitude = {amplitude!r} must be 'consistent' or an amplitude of at least 1e-9 m")
+    for name, value, low, high in (
+        ("rtol", rtol, 0.0, 0.5),
+        ("relaxation", relaxation, 0.0, 1.0),
+        ("start_amplitude", start_amplitude, MIN_AMPLITUDE, 0.01),
+    ):
+        if not (np.isfinite(value) and low < value <= high):
+            raise InputError(f"{name} = {value!r} must lie in ({low:g}, {high:g}]")
+    if int(max_iterations) != max_iterations or max_iterations < 1:
+        raise InputError(f"max_iterations = {max_iterations!r} must be a whole number of at least 1")
+    if motion not in ("linear", "circular"):
+        raise InputError(f"motion = {motion!r} is not allowed; choose 'linear' or 'circular'")
+    ross = _import_ross()
+    unb = _unbalance_list(unbalance)
+    nodes = [int(n) for n in dampers]
+    models = [dampers[n] for n in dampers]
+    w = rpm_to_omega(rpm)
+    ns, nd = w.size, len(nodes)
+
+    # the rotor without the dampers (zero-coefficient elements at their nodes)
+    bare = build_rotor([ross.BearingElement(n, kxx=0.0, cxx=0.0, tag=f"damper{j}") for j, n in enumerate(nodes)])
+    per, ndof = int(bare.number_dof), int(bare.ndof)
+    for n in nodes + [u[0] for u in unb]:
+        if not (0 <= per * n + 1 < ndof):
+            raise InputError(f"node = {n} is not a node of the rotor ({ndof // per} nodes)")
+    D0 = np.array([-(wi**2) * bare.M(wi) + 1j * wi * (bare.C(wi) + wi * bare.G()) + bare.K(wi) for wi in w])
+    F = np.zeros((ns, ndof), dtype=complex)
+    for n, mag, phase in unb:  # ROSS's synchronous unbalance force
+        F[:, per * n] += w**2 * mag * np.exp(1j * phase)
+        F[:, per * n + 1] += -1j * w**2 * mag * np.exp(1j * phase)
+    ix = [(per * n, per * n + 1) for n in nodes]
+
+    def coefficients(A):
+        mats = [_per_speed_coefficients(m, w, A[:, j], motion) for j, m in enumerate(models)]
+        if not added_mass:
+            mats = [(K, C, np.zeros_like(M)) for K, C, M in mats]
+        return mats
+
+    def orbits(mats, active):
+        D = D0[active].copy()
+        for j, (K, C, M) in enumerate(mats):
+            H = _dynamic_stiffness(K[active], C[active], M[active], w[active])
+            D[:, ix[j][0] : ix[j][1] + 1, ix[j][0] : ix[j][1] + 1] += H
+        q = np.linalg.solve(D, F[active][..., None])[..., 0]
+        return np.column_stack([orbit_major_semi_axis(q[:, a], q[:, b]) for a, b in ix])
+
+    A = np.full((ns, nd), float(amplitude if fixed else start_amplitude))
+    iterations = np.zeros(ns, dtype=int)
+    held = np.zeros(ns, dtype=bool)
+    if not fixed:
+        active = np.ones(ns, dtype=bool)
+        mats = coefficients(A)
+        for _ in range(int(max_iterations)):
+            new = orbits(mats, active)
+            iterations[active] += 1
+            idx = np.flatnonzero(active)
+            res = np.max(np.abs(new - A[idx]) / A[idx], axis=1)
+            done = res <= rtol
+            # a damper whose coefficients do not depend on the amplitude: the orbit is the answer
+            trial = A.copy()
+            trial[idx] = np.maximum(new, MIN_AMPLITUDE)
+            mats_new = coefficients(trial)
+            same = np.ones(idx.size, dtype=bool)
+            for (K0, C0, M0), (K1, C1, M1) in zip(mats, mats_new):
+                H0 = _dynamic_stiffness(K0[idx], C0[idx], M0[idx], w[idx])
+                H1 = _dynamic_stiffness(K1[idx], C1[idx], M1[idx], w[idx])
+                scale = np.linalg.norm(H0, axis=(1, 2))
+                same &= np.linalg.norm(H1 - H0, axis=(1, 2)) <= _SAME_COEFFICIENTS * scale
+            step = A[idx] + relaxation * (new - A[idx])
+            step = np.where(same[:, None], new, step)
+            floor = (A[idx] <= MIN_AMPLITUDE * (1 + 1e-9)) & (new < A[idx])
+            held[idx] = np.any(floor, axis=1) & ~done
+            keep = done | held[idx]
+            A[idx] = np.where(keep[:, None] & ~same[:, None], A[idx], np.maximum(step, MIN_AMPLITUDE))
+            active[idx] = ~(keep | same)
+            mats = coefficients(A)
+            if not active.any():
+                break
+
+    tags = [f"LSD {m.params.name} node {n}" for n, m in zip(nodes, models)]
+    bearings = [
+        orbit_dependent_element(m, n, w, A[:, j], motion=motion, added_mass=added_mass, tag=t)
+        for j, (n, m, t) in enumerate(zip(nodes, models, tags))
+    ]
+    rotor = build_rotor(bearings)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # ROSS's own deprecation chatter
+        resp = rotor.run_unbalance_response([u[0] for u in unb], [u[1] for u in unb], [u[2] for u in unb], frequency=w)
+    q = resp.forced_resp
+    orbit = np.column_stack([orbit_major_semi_axis(q[a], q[b]) for a, b in ix])
+    residual = np.max(np.abs(orbit - A) / A, axis=1)
+    converged = (residual <= rtol) & ~held
+    mats = coefficients(A)
+    K = np.array([m[0] for m in mats])
+    C = np.array([m[1] for m in mats])
+    M = np.array([m[2] for m in mats])
+    notes = []
+    if np.any(held):
+        notes.append(
+            f"at {', '.join(f'{r:g}' for r in rpm[held])} rpm the friction holds the ring (the iterate fell to "
+            f"{MIN_AMPLITUDE:g} m with the orbit still smaller): no equivalent-viscous coefficient applies there; "
+            "those speeds are not results"
+        )
+    bad = ~converged & ~held
+    if np.any(bad):
+        what = "far from the fixed amplitude" if fixed else f"not converged in {max_iterations} solves"
+        notes.append(
+            f"at {', '.join(f'{r:g}' for r in rpm[bad])} rpm the orbit is {what} (residual up to "
+            f"{residual[bad].max():.3g} against rtol {rtol:g})"
+        )
+    preload = [m.params.preload for m in models]
+    over = np.any(A > np.array(preload)[None, :], axis=1)
+    if np.any(over):
+        notes.append(
+            f"at {', '.join(f'{r:g}' for r in rpm[over])} rpm the amplitude exceeds the pack preload: the packs lift "
+            "off and the coefficients are those of the first harmonic only"
+        )
+    return ConsistentResponse(
+        rpm=rpm,
+        nodes=nodes,
+        amplitude=A,
+        orbit=orbit,
+        residual=residual,
+        iterations=iterations,
+        converged=converged,
+        held=held,
+        K=K,
+        C=C,
+        M=M,
+        response=resp,
+        rotor=rotor,
+        mode="fixed" if fixed else "consistent",
+        rtol=float(rtol),
+        relaxation=float(relaxation),
+        notes=notes,
+    )
+
+
+def example_rotor(bearings):
+    """The rotor of ``examples/lsd/rotor_with_lsd.py``: dampers at nodes 0 and 2, a disk at node 1.
+
+    Two steel shaft elements 0.1 m long, 80 mm diameter (Timoshenko, gyroscopic), a disk
+    0.2 m in diameter and 50 mm wide on an 80 mm bore at node 1 (about 18 kg in all).
+
+    Parameters
+    ----------
+    bearings : list
+        Two ``ross.BearingElement``, at nodes 0 and 2.
+
+    Returns
+    -------
+    ross.Rotor
+    """
+    ross = _import_ross()
+    steel = ross.Material(name="steel_lsd_example_rotor", rho=7810, E=211e9, G_s=81.2e9)
+    shaft = [
+        ross.ShaftElement(0.1, 0.0, 0.08, material=steel, shear_effects=True, rotary_inertia=True, gyroscopic=True)
+        for _ in range(2)
+    ]
+    disk = ross.DiskElement.from_geometry(n=1, material=steel, width=0.05, i_d=0.08, o_d=0.2)
+    return ross.Rotor(shaft, [disk], list(bearings))

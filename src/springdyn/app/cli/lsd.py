@@ -61,6 +61,26 @@ def register(sub) -> None:
     add_output_options(p)
     p.set_defaults(func=cmd_film)
 
+    p = lsub.add_parser(
+        "rotor",
+        help="unbalance response of the example ROSS rotor on two dampers, at the amplitude the damper reaches",
+    )
+    p.add_argument("config", metavar="CFG.toml", help="damper definition; or A, B, C")
+    p.add_argument("--unbalance", required=True, help="unbalance at the disk, e.g. 0.15g*m (bare number: kg m)")
+    p.add_argument("--rpm", default="1000:4000:100", help="speeds, START:STOP:STEP or a list (default 1000:4000:100)")
+    p.add_argument(
+        "--amplitude",
+        default="consistent",
+        help="'consistent' (default: each speed's coefficients at the orbit the damper reaches) or one "
+        "amplitude at every speed, e.g. 50um (to_ross's default)",
+    )
+    p.add_argument("--rtol", type=float, default=0.01, help="tolerance of |orbit - A| / A (default 0.01)")
+    p.add_argument(
+        "--motion", choices=("circular", "linear"), default="circular", help="motion of the O-ring equivalent"
+    )
+    add_output_options(p, csv=False, plot=False)
+    p.set_defaults(func=cmd_rotor)
+
     p = lsub.add_parser("rig", help="simulate the thesis' test rig (eccentric shaft or shakes)")
     p.add_argument("config", metavar="CFG.toml", help="damper definition; or A, B, C")
     p.add_argument("--rpm", help="shaft speed in rpm (one orbit per revolution)")
@@ -277,6 +297,79 @@ def _film_map_json(res) -> dict:
         "threshold": res.threshold,
     }
     return d
+
+
+def cmd_rotor(args) -> int:
+    from springdyn.core.errors import SolverError
+    from springdyn.lsd.model import LSDModel
+    from springdyn.lsd.rotordynamics import amplitude_consistent_response, example_rotor
+
+    model = LSDModel(_params(args.config))
+    rpm = parse_range(args.rpm, "rpm", "--rpm")
+    unbalance = quantity(args.unbalance, "kg*m", "--unbalance")
+    if not unbalance > 0:
+        raise InputError(f"--unbalance = {args.unbalance!r} must be positive, e.g. 0.15g*m")
+    consistent = args.amplitude.strip().lower() == "consistent"
+    amplitude = "consistent" if consistent else quantity(args.amplitude, "m", "--amplitude")
+    if not (np.isfinite(args.rtol) and 0 < args.rtol <= 0.5):
+        raise InputError(f"--rtol = {args.rtol!r} must lie in (0, 0.5]")
+    dampers = {0: model, 2: model}
+    run = dict(rtol=args.rtol, motion=args.motion)
+    res = amplitude_consistent_response(example_rotor, dampers, rpm, (1, unbalance, 0.0), amplitude=amplitude, **run)
+    fixed = None
+    if consistent:
+        fixed = amplitude_consistent_response(example_rotor, dampers, rpm, (1, unbalance, 0.0), amplitude=50e-6, **run)
+    disk = res.orbit_at(1)
+    if args.json:
+        data = res.to_dict()
+        data["disk_orbit_m"] = disk.tolist()
+        if fixed is not None:
+            data["fixed_50um_disk_orbit_m"] = fixed.orbit_at(1).tolist()
+        print_json(data)
+        return 0
+    what = "at the orbit each speed reaches" if consistent else f"at {amplitude * 1e6:.4g} um at every speed"
+    print(
+        f"{model.params.name} at nodes 0 and 2 of the example rotor ({res.rotor.m:.2f} kg), unbalance "
+        f"{unbalance * 1e3:.4g} g m at the disk (node 1); damper coefficients {what} (rtol {args.rtol:g})"
+    )
+    rows = []
+    for k, r in enumerate(res.rpm):
+        if res.held[k]:
+            status = "held"
+        elif res.converged[k]:
+            status = "ok"
+        else:
+            status = "off" if not consistent else "not converged"
+        rows.append(
+            (
+                f"{r:g}",
+                f"{res.amplitude[k, 0] * 1e6:.4g}",
+                f"{res.orbit[k, 0] * 1e6:.4g}",
+                f"{res.iterations[k]:d}",
+                f"{res.residual[k]:.2e}",
+                f"{disk[k] * 1e6:.4g}",
+                status,
+            )
+        )
+    print_table(rows, headers=("rpm", "amplitude used um", "damper orbit um", "iterations", "residual", "disk um", ""))
+    try:
+        peak_rpm, peak = res.peak(1)
+    except SolverError as exc:
+        print(f"disk peak: none ({exc})")
+    else:
+        k = int(np.flatnonzero(res.rpm == peak_rpm)[0])
+        print(
+            f"disk peak {peak * 1e6:.4g} um at {peak_rpm:g} rpm; damper amplitude {res.amplitude[k, 0] * 1e6:.4g} um, "
+            f"orbit {res.orbit[k, 0] * 1e6:.4g} um (residual {res.residual[k]:.2e})"
+        )
+        if fixed is not None:
+            f_rpm, f_peak = fixed.peak(1)
+            print(
+                f"with the coefficients at 50 um at every speed (to_ross's default): disk peak {f_peak * 1e6:.4g} um at "
+                f"{f_rpm:g} rpm, {100 * (f_peak / peak - 1):+.1f} % against the consistent peak"
+            )
+    print_notes({"notes": res.notes})
+    return 0
 
 
 def cmd_rig(args) -> int:
