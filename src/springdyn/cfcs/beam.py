@@ -421,7 +421,8 @@ def prbm_error(deflection, force_prbm, force_beam, force_ref):
 
     Parameters
     ----------
-    {deflection}
+    deflection : array_like
+        Slider deflections from the start of the range, increasing [m].
     force_prbm : array_like
         PRBM static force at the deflections [N].
     force_beam : array_like
@@ -456,7 +457,8 @@ def band_error_over_range_ends(deflection, force_prbm, force_beam, ends):
 
     Parameters
     ----------
-    {deflection}
+    deflection : array_like
+        Slider deflections from the start of the range, increasing [m].
     force_prbm : array_like
         PRBM static force at the deflections [N].
     force_beam : array_like

@@ -156,8 +156,7 @@ def _convert(name: str, value: Any, meta: Mapping, where: str) -> Any:
             raise InputError(f"{label} = {value!r} must be a string")
         choices = meta.get("choices")
         if choices and value not in choices:
-            allowed = ", ".join(repr(c) for c in choices)
-            raise InputError(f"{label} = {value!r} is not allowed; choose one of {allowed}")
+            raise InputError(f"{label} = {value!r} is not allowed; choose one of {_allowed(choices)}")
         return value
     raise AssertionError(f"unknown field kind {kind}")
 
@@ -217,6 +216,12 @@ def _check_one(name: str, value: Any, meta: Mapping, where: str = "", plausible:
             raise InputError(f"{sub} = {shown} must be {rng} ({meta.get('doc') or 'a count'})")
 
 
+def _allowed(choices) -> str:
+    """The allowed values of a choice key for a message ('' is "leave the key out")."""
+    named = ", ".join(repr(c) for c in choices if c != "")
+    return named + (" (or leave the key out for its default)" if "" in choices else "")
+
+
 def _check_type(name: str, value: Any, meta: Mapping, default: Any) -> None:
     """Types are checked like values: a wrong type is an InputError naming the field."""
     if value is None and default is None:
@@ -262,8 +267,7 @@ def check_fields(obj) -> None:
         )
         _check_type(f.name, value, meta, default)
         if meta["kind"] == "str" and meta.get("choices") and value not in meta["choices"]:
-            allowed = ", ".join(repr(c) for c in meta["choices"])
-            raise InputError(f"{f.name} = {value!r} is not allowed; choose one of {allowed}")
+            raise InputError(f"{f.name} = {value!r} is not allowed; choose one of {_allowed(meta['choices'])}")
         _check_one(f.name, value, meta, plausible=getattr(type(obj), "plausible_ranges", True))
 
 

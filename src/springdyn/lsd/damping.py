@@ -41,6 +41,10 @@ __all__ = [
     "ATMOSPHERIC_PRESSURE",
 ]
 
+#: Smallest vibration amplitude [m] of the coefficients: 1 nm, below any measurable damper
+#: vibration (the friction equivalents grow as 1 / amplitude).
+MIN_AMPLITUDE = 1e-9
+
 #: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
 _DOCS = ParameterDocs(
     """

@@ -32,9 +32,8 @@ __all__ = ["LSDModel", "LSDCoefficients", "COEFFICIENT_NAMES", "MASS_NAMES", "FI
 #: The eight coefficients in ROSS order, with their SI unit suffix.
 COEFFICIENT_NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
 
-#: Smallest vibration amplitude [m] of the coefficients: 1 nm, below any measurable damper
-#: vibration (the friction equivalents grow as 1 / amplitude).
-MIN_AMPLITUDE = 1e-9
+#: Smallest vibration amplitude [m] of the coefficients (:data:`springdyn.lsd.damping.MIN_AMPLITUDE`).
+MIN_AMPLITUDE = damping.MIN_AMPLITUDE
 
 
 class LSDModel:

@@ -36,6 +36,7 @@ import numpy as np
 from ..core.docstrings import ParameterDocs
 from ..core.errors import InputError, SolverError
 from ..core.units import omega_to_rpm, rpm_to_omega
+from .damping import MIN_AMPLITUDE
 from .forces import interleaf_friction_forces, oring_friction_force, pack_spring_forces
 
 __all__ = [
@@ -681,7 +682,13 @@ class ConsistentResponse:
     notes: list
 
     def orbit_at(self, node: int) -> np.ndarray:
-        """Major semi-axis of node ``node``'s orbit per speed [m] (ROSS's response)."""
+        """Major semi-axis of node ``node``'s orbit per speed [m] (ROSS's response).
+
+        Parameters
+        ----------
+        node : int
+            A node of the rotor [-].
+        """
         nd = int(self.rotor.number_dof)
         if not (0 <= nd * int(node) + 1 < self.rotor.ndof):
             raise InputError(f"node = {node!r} is not a node of the rotor ({self.rotor.ndof // nd} nodes)")
@@ -694,6 +701,11 @@ class ConsistentResponse:
         With a fixed amplitude (``mode == "fixed"``) every speed counts: the linear response is
         exact for the coefficients it was given, and ``residual`` says how far they are from
         the orbit.
+
+        Parameters
+        ----------
+        node : int
+            A node of the rotor [-].
 
         Raises
         ------
@@ -801,8 +813,6 @@ def amplitude_consistent_response(
         Per speed: the amplitude used, the iterations, the residual, the coefficients; the
         rotor and ROSS's response with them.
     """
-    from .model import MIN_AMPLITUDE
-
     if not isinstance(dampers, dict) or not dampers:
         raise InputError(f"dampers = {dampers!r} must be a dict {{node: LSDModel}} with at least one damper")
     rpm = np.atleast_1d(np.asarray(rpm, dtype=float))

@@ -80,6 +80,7 @@ _EXPORTS = {
     "load_points_text": "spring.results",
     "separated_train_text": "run.train_modes",
     "calibrated_keys": "design.calibrate",
+    "read_force_trace": "design.calibrate",
     "load_point_lines": "design.calibrate",
 }
 

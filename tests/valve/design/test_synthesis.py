@@ -127,6 +127,8 @@ def test_infeasible_requirements_name_the_binding_ones():
         ({"min_float_cam_rpm": "4000 rpm"}, "needs cam and valve_train"),
         ({"material": "custom"}, "needs shear_modulus"),
         ({"lift": "40 mm"}, "must be below installed_length"),
+        ({"load_point_tolerance": "150 %"}, "must be at most 0.5"),
+        ({"coiling": "cold", "end_type": "tapered"}, "tapered bar ends are hot coiled"),
     ],
 )
 def test_bad_requirements(change, message):

@@ -66,8 +66,10 @@ def test_coiling_key():
     assert coil_bind_clearance(sp.replace(end_type="tapered", dead_coils=0.75))["coiling"] == "hot"
     with pytest.raises(InputError, match="tapered bar ends are hot coiled"):
         sp.replace(end_type="tapered", dead_coils=0.75, coiling="cold")
-    with pytest.raises(InputError, match="coiling"):
+    with pytest.raises(InputError, match=r"coiling = 'warm' is not allowed; choose one of 'cold', 'hot' \(or leave"):
         sp.replace(coiling="warm")
+    with pytest.raises(InputError, match="transition_turns = 3 is more than 1 turn"):
+        sp.replace(transition_turns=3.0)
     given = coil_bind_clearance(sp.replace(min_coil_bind_clearance=0.5e-3))
     assert given["coil_bind_clearance_m"] == 0.5e-3 and given["coil_bind_clearance_source"] == "min_coil_bind_clearance"
 

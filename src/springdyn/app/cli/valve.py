@@ -287,9 +287,7 @@ def cmd_calibrate(args) -> int:
             raise InputError(
                 "--trace needs --cam (the cam of the measurement) and --cam-rpm or --engine-rpm (its speed)"
             )
-        from springdyn.valve.design.calibrate import read_force_trace
-
-        angle, force = read_force_trace(args.trace)
+        angle, force = valve.read_force_trace(args.trace)
         model = model.replace(cam=valve.Cam.from_toml(args.cam))
         with as_options(fit="--trace-fit", cam_rpm=run_options(args, model)["cam_rpm"]):
             res = model.calibrate_trace(rpm, angle, force, [k.strip() for k in args.trace_fit.split(",") if k.strip()])

@@ -214,6 +214,11 @@ class Requirements(Parameters):
                 f"{where}min_inner_diameter = {format_mm(self.min_inner_diameter)} must be below max_outer_diameter = "
                 f"{format_mm(self.max_outer_diameter)}"
             )
+        if not self.load_point_tolerance <= 0.5:
+            raise InputError(
+                f"{where}load_point_tolerance = {self.load_point_tolerance:g} must be at most 0.5 (50 %): a fraction "
+                "of the load points' forces, e.g. '3 %'"
+            )
         if self.coiling == "cold" and self.end_type == "tapered":
             raise InputError(f"{where}coiling = 'cold' with end_type = 'tapered': tapered bar ends are hot coiled")
         if not self.min_wire_diameter < self.max_wire_diameter:

@@ -48,6 +48,9 @@ DRAWING_KEYS = ("total_coils", "active_coils", "outer_diameter", "inner_diameter
 #: The drawing's pitches of the active coils [m]: ``pitch`` (one-step), ``low_pitch`` and
 #: ``high_pitch`` (two-step); they become the ``pitch_profile`` (:func:`_pitches`).
 PITCH_KEYS = ("pitch", "low_pitch", "high_pitch")
+#: Longest transition from a dead coil to the active pitch a ``[spring]`` may give [turns].
+MAX_TRANSITION_TURNS = 1.0
+
 #: How the pitches are joined (for messages): :data:`springdyn.valve.spring.geometry.TRANSITION_TURNS`.
 TRANSITION_TURNS_TEXT = "a transition of half a turn between sections"
 
@@ -233,6 +236,11 @@ class ValveSpring(Parameters):
 
     def _validate(self) -> None:
 
+        if self.transition_turns is not None and self.transition_turns > MAX_TRANSITION_TURNS:
+            raise InputError(
+                f"transition_turns = {self.transition_turns:g} is more than {MAX_TRANSITION_TURNS:g} turn: the pitch of a "
+                "coiled spring reaches the active pitch within a turn of the dead coil"
+            )
         if self.coiling == "cold" and self.end_type == "tapered":
             raise InputError(
                 "coiling = 'cold' with end_type = 'tapered': tapered bar ends are hot coiled (EN 13906-1); "
