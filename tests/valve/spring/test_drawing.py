@@ -461,3 +461,23 @@ def test_every_end_type_has_its_dead_coils_and_solid_length(end_type, dead, soli
     assert s.solid_length == pytest.approx(solid_mm * 1e-3, abs=1e-12)
     assert s.with_model("distributed").spring_model.geometry.solid_length == pytest.approx(s.solid_length, abs=1e-12)
     assert s.spring_model.internal_parameters()["Lc"] == pytest.approx(s.solid_length, abs=1e-15)
+
+
+def test_type_c_states_its_stiffening_at_a_load_point():
+    """Issue 40 item 2: Type C reads the one-step example +1.8 % above EN 13906-1's linear rate at
+    full lift (29 mm; its F1 law, the coils still 1 mm apart); the load-point check gives the
+    linear-rate force by hand (K1 = G d^4 / (8 D^3 n), n = 5.5) beside the model's and says
+    where the model's law, not the coils, stiffens it."""
+    from springdyn.valve.spring.results import load_points_text
+
+    sp = ValveSpring.example("one-step").replace(
+        load_points='[{ length = "38 mm", force = "251.4 N" }, { length = "29 mm", force = "477.7 N" }]'
+    )
+    rows = sp.spring_model.load_point_check()
+    k1 = 78.5e9 * 3.5e-3**4 / (8 * 22e-3**3 * 5.5)
+    assert [r["linear_force_N"] for r in rows] == pytest.approx([k1 * 10e-3, k1 * 19e-3], rel=1e-12)
+    assert [r["stiffened_by_law"] for r in rows] == [False, True]
+    assert rows[1]["model_force_N"] / rows[1]["linear_force_N"] - 1 == pytest.approx(0.0183, abs=5e-4)
+    assert "+1.83% against EN 13906-1's linear rate" in load_points_text(rows)
+    dist = sp.replace(model="distributed").spring_model.load_point_check()
+    assert not any(r["stiffened_by_law"] for r in dist)

@@ -692,21 +692,17 @@ def load_point_forces(sp, req: Requirements) -> dict:
         model name -> ndarray (installed, open) [N] or None.
     """
     lengths = np.array([req.installed_length, req.open_length])
-    two = sp.low_pitch_coils > 0
-    n1, n2, nb = sp.low_pitch_coils, sp.high_pitch_coils, sp.dead_coils
-    k1 = formulas.free_length_stiffness(sp.shear_modulus, sp.wire_diameter, sp.mean_diameter, n1 + n2 - 2.0 * nb)
-    k2 = formulas.free_length_stiffness(
-        sp.shear_modulus, sp.wire_diameter, sp.mean_diameter, formulas.active_coils_setup(n1, n2, nb, two)
-    )
-    out = {"standard": formulas.linear_rate_force(lengths, sp.free_length, sp.installed_length, k1, k2)}
+    out = {}
     for model in ("distributed", "type-c"):
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                out[model] = np.asarray(sp.with_model(model).spring_model.static_force(lengths), dtype=float)
+                m = sp.with_model(model).spring_model
+                out.setdefault("standard", np.asarray(m.linear_rate_force(lengths), dtype=float))
+                out[model] = np.asarray(m.static_force(lengths), dtype=float)
         except InputError:
             out[model] = None
-    return out
+    return {"standard": out["standard"], "distributed": out["distributed"], "type-c": out["type-c"]}
 
 
 def _load_point_error(forces, req: Requirements) -> float:
@@ -996,17 +992,18 @@ def type_c_stiffening_note(sp, req: Requirements) -> str:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            p = sp.with_model("type-c").spring_model.internal_parameters()
+            model = sp.with_model("type-c").spring_model
+            p = model.internal_parameters()
     except InputError:
         return ""
-    f_tc = float(sp.with_model("type-c").spring_model.static_force(req.open_length))
-    f_lin = float(load_point_forces(sp, req)["standard"][1])
+    f_tc = float(model.static_force(req.open_length))
+    f_lin = float(model.linear_rate_force(req.open_length))
     if not (p["F1"] < req.open_force and abs(f_tc / f_lin - 1.0) >= TYPE_C_NOTE_FRACTION):
         return ""
     two = sp.low_pitch_coils > 0
     n_open = formulas.active_coils_setup(sp.low_pitch_coils, sp.high_pitch_coils, sp.dead_coils, two)
     gap = (req.open_length - solid_length.solid_length(sp)) / max(n_open, 1e-9)
-    start = req.installed_length - (p["F1"] - p["Fset"]) / p["K2"]
+    start = model.stiffening_start_length()
     return (
         f"Type C stiffens from F1 = {p['F1']:.1f} N at {start * 1e3:.2f} mm, inside the working stroke, while the "
         f"drawing's active coils are still open (about {gap * 1e3:.2f} mm apart at the open length): its open force "

@@ -241,6 +241,8 @@ class ValveSpring(Parameters):
                 f"transition_turns = {self.transition_turns:g} is more than {MAX_TRANSITION_TURNS:g} turn: the pitch of a "
                 "coiled spring reaches the active pitch within a turn of the dead coil"
             )
+        if self.load_points and not self.load_points.startswith("table:"):
+            object.__setattr__(self, "load_points", _load_points(self.load_points))  # the API's TOML text, read once
         if self.coiling == "cold" and self.end_type == "tapered":
             raise InputError(
                 "coiling = 'cold' with end_type = 'tapered': tapered bar ends are hot coiled (EN 13906-1); "
@@ -686,6 +688,13 @@ def _load_points(value) -> str:
 
     if isinstance(value, str) and (value == "" or value.startswith("table:")):
         return value  # none, or already read (a definition's fields given back, ValveSpring.replace)
+    if isinstance(value, str) and value.lstrip().startswith("["):
+        import tomllib  # (here: only a TOML array given as text in the API needs it)
+
+        try:
+            value = tomllib.loads(f"load_points = {value}")["load_points"]
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError(f"load_points = {value!r} is not a TOML array of tables ({exc})") from None
     if not isinstance(value, list) or not value:
         raise InputError(
             f'load_points = {value!r} must be an array of tables, e.g. [{{ length = "38 mm", force = "250 N", '

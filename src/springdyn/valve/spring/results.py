@@ -116,23 +116,43 @@ def load_points_text(rows: list) -> str:
     Parameters
     ----------
     rows : list of dict
-        ``length_m`` [m], ``force_N``, ``model_force_N``, ``deviation_N`` [N],
-        ``deviation_percent`` [%], ``tolerance_N`` [N] and ``within_tolerance`` per load point.
+        ``length_m`` [m], ``force_N``, ``model_force_N``, ``linear_force_N``, ``deviation_N`` [N],
+        ``deviation_percent`` [%], ``tolerance_N`` [N], ``within_tolerance`` and
+        ``stiffened_by_law`` per load point.
     """
-    return "load points of the drawing against the model's static force:\n" + text_table(
+    text = "load points of the drawing against the model's static force:\n" + text_table(
         [
             (
                 f"{r['length_m'] * 1e3:.3f}",
                 f"{r['force_N']:.1f}",
                 f"{r['model_force_N']:.1f}",
+                f"{r['linear_force_N']:.1f}",
                 f"{r['deviation_N']:+.1f} ({r['deviation_percent']:+.2f} %)",
                 "-" if r["tolerance_N"] is None else f"+-{r['tolerance_N']:.1f}",
                 {None: "-", True: "ok", False: "OUTSIDE"}[r["within_tolerance"]],
             )
             for r in rows
         ],
-        headers=("length [mm]", "drawing [N]", "model [N]", "deviation [N]", "tolerance [N]", ""),
+        headers=(
+            "length [mm]",
+            "drawing [N]",
+            "model [N]",
+            "linear rate [N]",
+            "deviation [N]",
+            "tolerance [N]",
+            "",
+        ),
     )
+    stiff = [r for r in rows if r.get("stiffened_by_law")]
+    if stiff:
+        worst = max(stiff, key=lambda r: abs(r["model_force_N"] / r["linear_force_N"] - 1.0))
+        text += (
+            "\nnote: Type C stiffens above its F1 by its law, not by coils that touch: at "
+            + ", ".join(f"{r['length_m'] * 1e3:.3f}" for r in stiff)
+            + f" mm it reads up to {worst['model_force_N'] / worst['linear_force_N'] - 1.0:+.2%} against EN 13906-1's "
+            "linear rate (the spring maker's figure); the distributed model follows the coils"
+        )
+    return text
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ import numpy as np
 
 from ....core.errors import InputError
 from ....core.units import format_mm
-from .. import stress
+from .. import formulas, stress
 from ..elements import damping_coefficient, law_force, law_stiffness
 from ..modes import chain_frequencies, mode_labels, surge_margin
 from ..results import StaticCurve
@@ -379,15 +379,41 @@ class SpringModel:
         """First natural frequency of the chain at installed length [Hz] (kept: every run checks it)."""
         return float(self.modes(self.spring.installed_length, 1)[0])
 
+    def linear_rate_force(self, length):
+        """EN 13906-1's linear-rate force at a spring length [N]: ``K1`` from free length, a
+        two-step spring's ``K2`` below the installed length, no coil closing
+        (:func:`springdyn.valve.spring.formulas.linear_rate_force`; the figure a spring maker
+        checks a drawing's load points with).
+
+        Parameters
+        ----------
+        length : float or array_like
+            Spring length [m].
+        """
+        sp = self.spring
+        n1, n2, nb = sp.low_pitch_coils, sp.high_pitch_coils, sp.dead_coils
+        g, d, dm = sp.shear_modulus, sp.wire_diameter, sp.mean_diameter
+        k1 = formulas.free_length_stiffness(g, d, dm, formulas.active_coils_free(n1, n2, nb))
+        k2 = formulas.free_length_stiffness(g, d, dm, formulas.active_coils_setup(n1, n2, nb, sp.two_step))
+        return formulas.linear_rate_force(length, sp.free_length, sp.installed_length, k1, k2)
+
+    def stiffening_start_length(self) -> float | None:
+        """Length [m] below which the model's force law stiffens by a rule rather than by coils
+        that touch (Type C: above its F1); None for a model that follows the coils.
+        """
+        return None
+
     def load_point_check(self) -> list[dict]:
         """The model's static force at each load point of the drawing (``load_points``).
 
         Returns
         -------
         list of dict
-            ``length_m``, ``force_N`` (the drawing's), ``model_force_N``, ``deviation_N``
-            (model minus drawing), ``deviation_percent``, ``tolerance_N`` (None: not given) and
-            ``within_tolerance`` (None without a tolerance).
+            ``length_m``, ``force_N`` (the drawing's), ``model_force_N``, ``linear_force_N``
+            (EN 13906-1's linear rate, :meth:`linear_rate_force`), ``stiffened_by_law`` (the
+            model's law stiffens there while the coils are open, :meth:`stiffening_start_length`),
+            ``deviation_N`` (model minus drawing), ``deviation_percent``, ``tolerance_N`` (None:
+            not given) and ``within_tolerance`` (None without a tolerance).
         """
         rows = []
         for p in self.spring.load_point_table:
@@ -399,11 +425,14 @@ class SpringModel:
             f = float(self.static_force(p["length"]))
             dev = f - p["force"]
             tol = p["tolerance"]
+            start = self.stiffening_start_length()
             rows.append(
                 dict(
                     length_m=p["length"],
                     force_N=p["force"],
                     model_force_N=f,
+                    linear_force_N=float(self.linear_rate_force(p["length"])),
+                    stiffened_by_law=bool(start is not None and p["length"] < start),
                     deviation_N=dev,
                     deviation_percent=100.0 * dev / p["force"],
                     tolerance_N=tol,

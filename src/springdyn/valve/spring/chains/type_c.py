@@ -114,6 +114,12 @@ class TypeCModel(SpringModel):
             )
 
     # ------------------------------------------------------------------ parameters
+    def stiffening_start_length(self) -> float:
+        """Length [m] where the elements' force reaches F1 and the law stiffens (1.15 K2 above
+        it, [MMS]): ``Ls - (F1 - Fset) / K2``, a rule of the document, not coils that touch."""
+        p = self.internal_parameters()
+        return float(self.spring.installed_length - (p["F1"] - p["Fset"]) / p["K2"])
+
     def internal_parameters(self) -> dict:
         """Internal parameters and model variables (SI), under the CLI's JSON keys.
 
