@@ -247,19 +247,27 @@ def bearing_element(
         # said in elem.film_notes, not warned at every export (the amplitude is the friction's)
         warnings.simplefilter("ignore", FilmWarning)
         coeffs = model.coefficients(omega=w, amplitude=amplitude, motion=motion)
-    K, C = coeffs.K, coeffs.C
+    elem = _table_element(ross, model, n, w, coeffs.K, coeffs.C, (w_low, w_high, outside), added_mass, kwargs)
+    elem.film_notes = coeffs.summary.get("notes", [])
+    return elem
+
+
+def _table_element(ross, model, n, w, K, C, bounds, added_mass, kwargs):
+    """A ``ross.BearingElement`` at node ``n`` from the coefficient tables ``K``, ``C`` over the
+    frequencies ``w`` [rad/s], each coefficient read between the table's points
+    (:class:`TableInterpolant`, ``bounds = (w_low, w_high, outside)``)."""
     kwargs.setdefault("tag", f"LSD {model.params.name}")
     values = {name: (K if name[0] == "k" else C)[(slice(None),) + _INDEX["k" + name[1:]]] for name in _NAMES}
     if added_mass:
         kwargs.update(_mass_kwargs(model))
     elem = ross.BearingElement(n=n, frequency=w, **values, **kwargs)
+    w_low, w_high, outside = bounds
     for name in _NAMES:
         setattr(
             elem,
             f"{name}_interpolated",
             TableInterpolant(w, values[name], w_low, w_high, outside, f"{name} of {kwargs['tag']}"),
         )
-    elem.film_notes = coeffs.summary.get("notes", [])
     return elem
 
 
@@ -594,17 +602,7 @@ def orbit_dependent_element(
         raise InputError(f"omega = {w.tolist()} rad/s must be positive and increasing")
     ross = _import_ross()
     K, C, M = _per_speed_coefficients(model, w, a, motion)
-    kwargs.setdefault("tag", f"LSD {model.params.name}")
-    values = {name: (K if name[0] == "k" else C)[(slice(None),) + _INDEX["k" + name[1:]]] for name in _NAMES}
-    if added_mass:
-        kwargs.update(_mass_kwargs(model))
-    elem = ross.BearingElement(n=n, frequency=w, **values, **kwargs)
-    for name in _NAMES:
-        setattr(
-            elem,
-            f"{name}_interpolated",
-            TableInterpolant(w, values[name], w[0], w[-1], "raise", f"{name} of {kwargs['tag']}"),
-        )
+    elem = _table_element(ross, model, n, w, K, C, (w[0], w[-1], "raise"), added_mass, kwargs)
     elem.amplitude = np.array(a)
     return elem
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import warnings
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import FactWarning, InputError
 from ...core.units import format_mm
 from .formulas import coil_contact_length
@@ -40,7 +41,22 @@ COILINGS = ("cold", "hot")
 #: ``TCompressionSpringSolver``; docs/references.md [EN13906-1]).
 DYNAMIC_GAP_FACTOR = {"cold": 1.5, "hot": 2.0}
 
+#: Parameter descriptions shared by the sums of gaps (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    mean_diameter : float
+        Mean coil diameter D [m].
+    wire_diameter : float
+        Wire diameter d [m].
+    active_coils : float
+        Active coils n [-].
+    coiling : {"cold", "hot"}
+        How the spring is wound (:data:`COILINGS`).
+    """
+)
 
+
+@_DOCS.fill
 def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: float, coiling: str = "cold") -> float:
     """Minimum sum of the gaps between the active coils at the shortest working length, static load [m].
 
@@ -51,14 +67,7 @@ def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: fl
 
     Parameters
     ----------
-    mean_diameter : float
-        Mean coil diameter D [m].
-    wire_diameter : float
-        Wire diameter d [m].
-    active_coils : float
-        Active coils n [-].
-    coiling : {"cold", "hot"}
-        How the spring is wound (:data:`COILINGS`).
+    {mean_diameter wire_diameter active_coils coiling}
 
     Examples
     --------
@@ -72,6 +81,7 @@ def min_sum_of_gaps(mean_diameter: float, wire_diameter: float, active_coils: fl
     return (1.5e-3 * mean_diameter**2 / wire_diameter + 0.1 * wire_diameter) * active_coils
 
 
+@_DOCS.fill
 def dynamic_sum_of_gaps(
     mean_diameter: float, wire_diameter: float, active_coils: float, coiling: str = "cold"
 ) -> float:
@@ -83,14 +93,7 @@ def dynamic_sum_of_gaps(
 
     Parameters
     ----------
-    mean_diameter : float
-        Mean coil diameter D [m].
-    wire_diameter : float
-        Wire diameter d [m].
-    active_coils : float
-        Active coils n [-].
-    coiling : {"cold", "hot"}
-        How the spring is wound (:data:`COILINGS`).
+    {mean_diameter wire_diameter active_coils coiling}
 
     Examples
     --------
