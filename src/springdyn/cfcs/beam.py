@@ -71,6 +71,10 @@ _DOCS = ParameterDocs(
         RK4 steps along the strip [-].
     r2, r3 : float
         Crank and coupler lengths [m].
+    force_prbm : array_like
+        PRBM static force at the deflections [N].
+    force_beam : array_like
+        Elastica force of the same strip at the deflections [N].
     """
 )
 
@@ -421,12 +425,7 @@ def prbm_error(deflection, force_prbm, force_beam, force_ref):
 
     Parameters
     ----------
-    deflection : array_like
-        Slider deflections from the start of the range, increasing [m].
-    force_prbm : array_like
-        PRBM static force at the deflections [N].
-    force_beam : array_like
-        Elastica force of the same strip at the deflections [N].
+    {deflection force_prbm force_beam}
     force_ref : float
         Reference force F0 [N] of the force error (the elastica's force at the toggle).
 
@@ -447,6 +446,7 @@ def prbm_error(deflection, force_prbm, force_beam, force_ref):
     }
 
 
+@_DOCS.fill
 def band_error_over_range_ends(deflection, force_prbm, force_beam, ends):
     """Band error ``(B_prbm - B_beam) / B_beam`` [-] of the ranges from the first deflection to each end.
 
@@ -457,12 +457,7 @@ def band_error_over_range_ends(deflection, force_prbm, force_beam, ends):
 
     Parameters
     ----------
-    deflection : array_like
-        Slider deflections from the start of the range, increasing [m].
-    force_prbm : array_like
-        PRBM static force at the deflections [N].
-    force_beam : array_like
-        Elastica force of the same strip at the deflections [N].
+    {deflection force_prbm force_beam}
     ends : array_like
         Ends of the ranges, samples of ``deflection`` [m].
 

@@ -58,6 +58,7 @@ import numpy as np
 from scipy.special import ndtri
 from scipy.stats import qmc
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from ...core.io import atomic_path, direct_outputs, glob_escape
 from ...core.params import load_toml
@@ -85,6 +86,22 @@ __all__ = [
     "OUTPUTS",
     "FLOAT_OUTPUTS",
 ]
+
+#: Parameter descriptions shared by the sample's docstrings (``{name}`` lines).
+_DOCS = ParameterDocs(
+    """
+    tolerances : dict
+        name -> (Tolerance, relative) (:func:`read_tolerances`).
+    nominal : dict
+        name -> nominal value [SI] (:func:`nominal_values`).
+    count : int
+        Variants [-].
+    seed : int
+        Seed of the generator [-].
+    method : {"sobol", "monte-carlo"}
+        Scrambled Sobol points or pseudo-random ones.
+    """
+)
 
 #: The parameters a ``[tolerances]`` table may name, with their SI unit and where they live
 #: (a drawing's outer or inner diameter is the coil diameter as drawn: the mean diameter is
@@ -285,25 +302,18 @@ def mean_active_pitch(spring) -> float:
     return (spring.free_length - (2.0 * spring.dead_coils + 1.0) * spring.wire_diameter) / na
 
 
+@_DOCS.fill
 def sample(tolerances: dict, nominal: dict, count: int, seed: int, method: str = "sobol") -> dict:
     """Sampled values of the toleranced parameters [SI], reproducible from the seed.
 
     Parameters
     ----------
-    tolerances : dict
-        name -> (Tolerance, relative) (:func:`read_tolerances`).
-    nominal : dict
-        name -> nominal value [SI] (:func:`nominal_values`).
-    count : int
-        Variants [-].
-    seed : int
-        Seed of the generator [-].
-    method : {"sobol", "monte-carlo"}
-        Scrambled Sobol points or pseudo-random ones.
+    {tolerances nominal count seed method}
     """
     return next(sample_chunks(tolerances, nominal, count, seed, method, size=max(int(count), 1)))[2]
 
 
+@_DOCS.fill
 def sample_chunks(tolerances: dict, nominal: dict, count: int, seed: int, method: str = "sobol", size: int = 0):
     """The sample of :func:`sample` drawn lazily, ``size`` variants at a time: ``(lo, hi,
     values)`` for the variants ``lo`` to ``hi - 1``, each chunk drawn when it is asked for
@@ -313,16 +323,7 @@ def sample_chunks(tolerances: dict, nominal: dict, count: int, seed: int, method
 
     Parameters
     ----------
-    tolerances : dict
-        name -> (Tolerance, relative) (:func:`read_tolerances`).
-    nominal : dict
-        name -> nominal value [SI] (:func:`nominal_values`).
-    count : int
-        Variants [-].
-    seed : int
-        Seed of the generator [-].
-    method : {"sobol", "monte-carlo"}
-        Scrambled Sobol points or pseudo-random ones.
+    {tolerances nominal count seed method}
     size : int
         Variants per chunk [-] (0: :data:`CHUNK`).
     """
