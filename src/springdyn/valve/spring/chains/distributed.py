@@ -217,6 +217,12 @@ def graded_coil_law(k_slice, gap, k_contact, onset, pieces: int = CLOSING_PIECES
     """
     k_open = 1.0 / np.sum(1.0 / k_slice)
     k_closed = 1.0 / np.sum(1.0 / (k_slice + k_contact))
+    if all(np.ptp(v) == 0.0 for v in (k_slice, gap, k_contact, onset)):
+        # a uniform element (its slices alike, as along a constant pitch): coil_law exactly,
+        # the rows the pieces would fill unused
+        law = np.full((pieces + 2, 4), np.inf)
+        law[:3] = coil_law(k_open, float(np.sum(gap)), k_closed - k_open, float(np.sum(onset)))
+        return law
     f_first = float(np.min(k_slice * gap))
     f_last = float(np.max(k_slice * (gap + onset) + 0.5 * k_contact * onset))
     f_grid = f_first + (f_last - f_first) * np.linspace(0.0, 1.0, 801) ** 3
