@@ -534,19 +534,25 @@ def _wire_keys(mapping: dict) -> dict:
     diameter (the closed dead coils' pitch and the nominal wire)."""
     m = dict(mapping)
     shape = m.get("wire_shape", "round")
-    if shape != "round" and shape in WIRE_SHAPES:
-        if "wire_height" in m:
-            h = _quantity(m, "wire_height", "m")
-            if "wire_diameter" in m and abs(_quantity(m, "wire_diameter", "m") - h) > 1e-9 * h:
-                raise InputError(
-                    f"wire_diameter = {m['wire_diameter']!r} and wire_height = {m['wire_height']!r} disagree: the "
-                    f"wire_diameter of {shape} wire is its axial height; give wire_width and wire_height alone"
-                )
-            m["wire_diameter"] = h
-        elif "wire_diameter" in m:
+    if shape not in WIRE_SHAPES:
+        raise InputError(f"wire_shape = {shape!r} is not allowed; choose one of {', '.join(map(repr, WIRE_SHAPES))}")
+    if shape != "round":
+        if "wire_diameter" in m and "wire_height" not in m:
             raise InputError(
                 f"wire_shape = {shape!r} takes wire_width (radial) and wire_height (axial), not wire_diameter"
             )
+        missing = [k for k in ("wire_width", "wire_height") if k not in m]
+        if missing:
+            raise InputError(
+                f"wire_shape = {shape!r} needs wire_width (radial) and wire_height (axial): missing {missing[0]}"
+            )
+        h = _quantity(m, "wire_height", "m")
+        if "wire_diameter" in m and abs(_quantity(m, "wire_diameter", "m") - h) > 1e-9 * h:
+            raise InputError(
+                f"wire_diameter = {m['wire_diameter']!r} and wire_height = {m['wire_height']!r} disagree: the "
+                f"wire_diameter of {shape} wire is its axial height; give wire_width and wire_height alone"
+            )
+        m["wire_diameter"] = h
     profile = m.get("wire_diameter_profile")
     if isinstance(profile, list) and "wire_diameter" not in m:
         values = []

@@ -73,9 +73,9 @@ __all__ = [
 #: The wire shapes of ``[spring]`` ``wire_shape``.
 WIRE_SHAPES = ("round", "ovate", "rectangular")
 
-#: Odd terms of Saint-Venant's series for the rectangle: with 40 the sums are converged to
-#: 1e-12 for every side ratio (the terms fall as ``1/m^5`` and ``1/cosh``).
-SERIES_TERMS = 40
+#: Odd terms of Saint-Venant's series for the rectangle: the rest of the ``1/m^5`` sum after
+#: ``M`` terms is about ``1/(128 M^4)``, 1e-13 with 500 (and ``1/cosh`` falls faster).
+SERIES_TERMS = 500
 
 _DOCS = ParameterDocs(
     """
