@@ -83,6 +83,10 @@ _DOCS = ParameterDocs(
         Dimension of the section in the coil's radial direction b [m].
     height : float or array_like
         Dimension of the section along the spring's axis h [m].
+    torsion_constant : float or ndarray
+        Saint-Venant's torsion constant ``J`` [m^4].
+    stress_modulus : float or ndarray
+        ``T / tau_max`` [m^3]: the largest shear stress is the torque over it.
     """
 )
 
@@ -106,10 +110,7 @@ def rectangle_torsion(width, height):
 
     Returns
     -------
-    torsion_constant : float or ndarray
-        ``J`` [m^4].
-    stress_modulus : float or ndarray
-        ``alpha l t^2`` [m^3]: the largest shear stress is the torque over it.
+    {torsion_constant stress_modulus}
 
     Notes
     -----
@@ -148,14 +149,15 @@ def ellipse_torsion(width, height):
 
     Parameters
     ----------
-    {width height}
+    width, height : float or array_like
+        The oval's axes across the coil (radial, ``b``) and along the spring's axis (``h``) [m].
 
     Returns
     -------
     torsion_constant : float or ndarray
-        ``J`` [m^4].
+        ``pi a^3 c^3/(a^2 + c^2)`` [m^4].
     stress_modulus : float or ndarray
-        ``pi a_max a_min^2 / 2`` [m^3].
+        ``pi a_max a_min^2 / 2`` [m^3]: the torque over the largest stress.
 
     Notes
     -----
@@ -453,6 +455,7 @@ def equivalent_diameters(spring) -> dict:
     Parameters
     ----------
     spring : ValveSpring
+        Its wire: ``wire_shape`` with its dimensions, or a ``wire_diameter_profile``.
 
     Returns
     -------
