@@ -53,7 +53,7 @@ import numpy as np
 
 from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
-from .stress import bergstraesser_factor
+from . import stress  # (the module: the stress factor stays at its one home)
 
 __all__ = [
     "WIRE_SHAPES",
@@ -286,7 +286,7 @@ class WireSection:
             Mean coil diameter D [m].
         """
         w = self.spring_index(mean_diameter)
-        return rectangular_curvature_factor(w) if self.shape == "rectangular" else bergstraesser_factor(w)
+        return rectangular_curvature_factor(w) if self.shape == "rectangular" else stress.bergstraesser_factor(w)
 
     @property
     def stress_modulus(self) -> float:
@@ -384,7 +384,7 @@ def stress_per_force(spring, mean_diameters=None, turns=None) -> float:
             ratio = np.maximum(ratio, thin.shear_stress(1.0, dm.max()))
         return float(np.max(ratio))
     d = np.interp(np.asarray(turns, dtype=float), *prof)
-    k = bergstraesser_factor(dm / d)
+    k = stress.bergstraesser_factor(dm / d)
     return float(np.max(k * 8.0 * dm / (math.pi * d**3)))
 
 
