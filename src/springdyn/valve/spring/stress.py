@@ -6,7 +6,8 @@ and the direct shear (EN 13906-1, Eq. (22); Bergstraesser's factor) it is
 
     tau = k 8 F D / (pi d^3),   k = (w + 0.5) / (w - 0.75) = (4w + 2) / (4w - 3),   w = D / d
 
-(:func:`corrected_shear_stress`, :func:`bergstraesser_factor`).  Wahl's factor
+(:func:`corrected_shear_stress`, :func:`bergstraesser_factor`); ovate and rectangular wire
+have their own sections and factors (:mod:`springdyn.valve.spring.wire`).  Wahl's factor
 (:func:`wahl_factor`) is given beside it for comparison; every stress springdyn judges is
 Bergstraesser's.
 
@@ -315,8 +316,8 @@ def fatigue_assessment(spring, force_min, force_max) -> dict:
     Returns
     -------
     dict
-        ``min_shear_stress_Pa``, ``max_shear_stress_Pa`` (the corrected stress of EN 13906-1 at
-        the critical element), ``fatigue_safety_factor`` (the smallest over the elements),
+        ``min_shear_stress_Pa``, ``max_shear_stress_Pa`` (the corrected stress of the wire's
+        section, EN 13906-1's for round wire, at the critical element), ``fatigue_safety_factor`` (the smallest over the elements),
         ``critical_element`` (its index, 0 at the seat), and the strengths.
     """
     per_force = spring.spring_model.stress_per_force  # the section's corrected stress per newton (wire.py)

@@ -54,6 +54,7 @@ import numpy as np
 from ...core.docstrings import ParameterDocs
 from ...core.errors import InputError
 from . import stress  # (the module: the stress factor stays at its one home)
+from .geometry import parse_profile
 
 __all__ = [
     "WIRE_SHAPES",
@@ -355,8 +356,6 @@ def section_profile(spring):
     value = getattr(spring, "wire_diameter_profile", "")
     if not value:
         return None
-    from .geometry import parse_profile  # (here: geometry imports this module's sections)
-
     return parse_profile(value, "wire_diameter_profile", {"wire_diameter_mm": 1e-3, "wire_diameter_m": 1.0})
 
 
