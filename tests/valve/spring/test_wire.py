@@ -371,3 +371,36 @@ def test_ovate_beehive_example_against_its_continuum():
     assert p["f1"] == pytest.approx(freqs[0], abs=0, rel=5e-3)
     # a realistic valve spring: 200-250 N installed, a first surge mode above 500 Hz
     assert 200 < p["Fset"] < 250 and p["f2"] > 500
+
+
+def test_wire_diameter_profile_inputs(tmp_path):
+    """A CSV profile is the TOML array's spring; a profile that does not span the coils, or whose
+    wire reaches the pitch, is refused; Type C takes the round wire of the active coils in series
+    (``(mean d^-4)^(-1/4)``, by hand for a linear taper to 1e-6: a trapezoid over 2001 points, 1e-8)."""
+    base = {**ONE_STEP, "model": "distributed", "wire_diameter": "3.7 mm"}
+    pairs = [[0, "3.7 mm"], [7.5, "3.3 mm"]]
+    a = ValveSpring.from_dict({**base, "wire_diameter_profile": pairs})
+    (tmp_path / "wire.csv").write_text("turns,wire_diameter_mm\n0,3.7\n7.5,3.3\n")
+    b = ValveSpring.from_dict({**base, "wire_diameter_profile": "wire.csv"}, base_dir=tmp_path)
+    np.testing.assert_allclose(b.spring_model.modes(38e-3, 3), a.spring_model.modes(38e-3, 3), rtol=1e-12)
+    with pytest.raises(InputError, match="turns must run from 0"):
+        ValveSpring.from_dict({**base, "wire_diameter_profile": [[0, "3.7 mm"], [6, "3.3 mm"]]})
+    with pytest.raises(InputError, match="below the pitch"):
+        ValveSpring.from_dict(
+            {
+                **base,
+                "wire_diameter_profile": [
+                    [0, "3.7 mm"],
+                    [3.9, "3.6 mm"],
+                    [4, "7.5 mm"],
+                    [4.1, "3.6 mm"],
+                    [7.5, "3.3 mm"],
+                ],
+            }
+        )
+    typec = a.with_model("type-c").spring_model.internal_parameters()
+    # d(s) = 3.7 - 0.4 s/7.5 mm over the active turns 1 to 6.5: mean of d^-4 in closed form
+    d1, d2 = 3.7e-3 - 0.4e-3 / 7.5, 3.7e-3 - 0.4e-3 * 6.5 / 7.5
+    mean = (d2**-3 - d1**-3) / (3 * (d1 - d2))
+    rate_d = mean**-0.25
+    assert typec["K1"] == pytest.approx(78.5e9 * rate_d**4 / (8 * 5.5 * 22e-3**3), abs=0, rel=1e-6)

@@ -471,6 +471,6 @@ def equivalent_diameters(spring) -> dict:
     total = spring.low_pitch_coils + spring.high_pitch_coils
     active = np.linspace(spring.dead_coils, total - spring.dead_coils, 2001)
     every = np.linspace(0.0, total, 2001)
-    rate = float(np.mean(np.interp(active, *prof) ** -4.0) ** -0.25)
-    mass = float(np.sqrt(np.mean(np.interp(every, *prof) ** 2)))
+    rate = float((np.trapezoid(np.interp(active, *prof) ** -4.0, active) / (active[-1] - active[0])) ** -0.25)
+    mass = float(np.sqrt(np.trapezoid(np.interp(every, *prof) ** 2, every) / total))
     return dict(rate=rate, mass=mass, surge=rate * rate / mass)
