@@ -81,6 +81,7 @@ _EXPORTS = {
     "coil_line": "spring.results",
     "load_points_text": "spring.results",
     "separated_train_text": "run.train_modes",
+    "crank_words": "cam.timing",
     "calibrated_keys": "design.calibrate",
     "read_force_trace": "design.calibrate",
     "load_point_lines": "design.calibrate",
