@@ -308,13 +308,15 @@ class Piston(Parameters):
     clearance_table: str = param(
         None,
         "instead of the geometry: a CSV of the seated valve's travel to the piston against crank angle from the "
-        "gas-exchange TDC (crank_angle_deg, clearance_mm | clearance_m | clearance_in), as the checking-spring "
+        "gas-exchange TDC (crank_angle_deg and clearance_mm, clearance_m or clearance_in), as the checking-spring "
         "method measures it",
         kind="str",
         default=None,
     )
 
     table = "piston"
+    examples = {"exhaust": "valve_piston.toml"}
+    default_example = "exhaust"
 
     @classmethod
     def _prepare(cls, mapping: dict, *, base_dir=None, **context) -> dict:
