@@ -5,16 +5,8 @@ from __future__ import annotations
 
 import springdyn.valve as valve
 import springdyn.valve.design as design
+from springdyn.app.cli import valve_options as vo
 from springdyn.app.cli.common import add_output_options, as_options, emit, quantity
-from springdyn.app.cli.valve_options import (
-    add_inputs,
-    add_revolution_options,
-    add_speed_options,
-    add_tolerance_options,
-    cam_rpm_from_args,
-    model_of,
-    run_options,
-)
 from springdyn.core.errors import InputError
 
 __all__ = ["register", "cmd_clearance"]
@@ -28,8 +20,8 @@ def register(vsub) -> None:
         "crank-slider ([piston] with the cam's [timing]), its minimum and crank angle at each speed, the static "
         "clearance beside it, the speed map",
     )
-    add_inputs(p, train="file with a [valve_train] table (and [piston], unless --piston)", train_required=True)
-    add_speed_options(p, ranged=True)
+    vo.add_inputs(p, train="file with a [valve_train] table (and [piston], unless --piston)", train_required=True)
+    vo.add_speed_options(p, ranged=True)
     p.add_argument(
         "--piston",
         metavar="PISTON.toml",
@@ -41,26 +33,26 @@ def register(vsub) -> None:
         help=f"smallest clearance along the valve's axis (default "
         f"{design.MIN_VALVE_PISTON_CLEARANCE * 1e3:g} mm, [criteria] min_valve_piston_clearance)",
     )
-    add_revolution_options(p)
+    vo.add_revolution_options(p)
     p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
-    add_tolerance_options(p)
+    vo.add_tolerance_options(p)
     add_output_options(p)
     p.set_defaults(func=cmd_clearance)
 
 
 def cmd_clearance(args) -> int:
     """``springdyn valve clearance``: sweep the speeds, then the clearance of each."""
-    model = model_of(args)
+    model = vo.model_of(args)
     if args.piston:
         piston = valve.Piston.in_file(args.piston)
         if piston is None:
             raise InputError(f"--piston = {args.piston!r}: the file has no [piston] table")
         model = model.replace(piston=piston)
-    speeds = cam_rpm_from_args(args, ranged=True, model=model)
+    speeds = vo.cam_rpm_from_args(args, ranged=True, model=model)
     limit = quantity(args.limit, "m", "--limit") if args.limit is not None else None
     if limit is not None and not limit > 0:
         raise InputError(f"--limit = {args.limit!r} must be a positive clearance, e.g. 1mm")
-    with as_options(**run_options(args, model)):
+    with as_options(**vo.run_options(args, model)):
         res = model.valve_clearance(speeds, limit=limit, quiet=args.quiet)
     if not emit(res, args, json_data=dict(res.summary)):
         print(res.describe())

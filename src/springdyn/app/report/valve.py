@@ -239,6 +239,14 @@ def _criterion(v) -> Criterion:
     return Criterion(v.label, v.value, v.limit, v.passed, v.note, v.model)
 
 
+def _write_result(result, stem: Path, caption: str, files: list, figures: list) -> None:
+    """A result's CSV and figure beside the section (``stem.csv``, ``stem.png``), the figure with
+    its caption."""
+    files.append(result.to_csv(stem.with_suffix(".csv")))
+    plt.close(result.plot(stem.with_suffix(".png")))
+    figures.append((stem.with_suffix(".png"), caption))
+
+
 def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
     """The run-up through the float speed f [cam rpm] at [report] run_up_rate: where the valve
     first floats against the momentary speed (:meth:`ValveModel.run_up_through_float`)."""
@@ -246,14 +254,13 @@ def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
     rate = rs.cam_rpm(rs.run_up_rate)  # cam rpm per second
     ramp = model.run_up_through_float(f, rate)
     r = ramp.summary
-    plt.close(ramp.plot(out_dir / "run_up.png"))
-    files.append(ramp.to_csv(out_dir / "run_up.csv"))
-    figures.append(
-        (
-            out_dir / "run_up.png",
-            f"Run-up from {ramp.start_rpm:.0f} to {ramp.end_rpm:.0f} cam rpm at {rate:.0f} cam rpm/s "
-            f"({_describe_model(model.spring).split(',')[0]}): lift-off and float against the momentary speed",
-        )
+    _write_result(
+        ramp,
+        out_dir / "run_up",
+        f"Run-up from {ramp.start_rpm:.0f} to {ramp.end_rpm:.0f} cam rpm at {rate:.0f} cam rpm/s "
+        f"({_describe_model(model.spring).split(',')[0]}): lift-off and float against the momentary speed",
+        files,
+        figures,
     )
     onset = r["float_onset_cam_rpm"]
     where = (
@@ -698,15 +705,14 @@ def _clearance_part(model, rs, report_speeds, out_dir, files, figures, findings,
     speeds = np.linspace(report_speeds[0], report_speeds[-1] * (1.0 + crit.float_margin), CLEARANCE_SPEEDS)
     res = model.valve_clearance(speeds, limit=crit.min_valve_piston_clearance)
     s = res.summary
-    files.append(res.to_csv(out_dir / "valve_clearance.csv"))
-    plt.close(res.plot(out_dir / "valve_clearance.png"))
-    figures.append(
-        (
-            out_dir / "valve_clearance.png",
-            f"{s['valve'].capitalize()} valve-to-piston clearance ([piston]): the smallest against engine speed with "
-            "the static (rigid train) one beside it, and the clearance over crank angle and speed "
-            f"({_describe_model(model.spring).split(',')[0]})",
-        )
+    _write_result(
+        res,
+        out_dir / "valve_clearance",
+        f"{s['valve'].capitalize()} valve-to-piston clearance ([piston]): the smallest against engine speed with the "
+        "static (rigid train) one beside it, and the clearance over crank angle and speed "
+        f"({_describe_model(model.spring).split(',')[0]})",
+        files,
+        figures,
     )
     axis = model.crank_axis
     findings.append(

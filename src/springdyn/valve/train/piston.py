@@ -59,11 +59,11 @@ from pathlib import Path
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.io import read_csv_columns
 from ...core.params import Parameters, load_toml, param
 from ...core.results import Result, text_table
 from ..cam.from_lift import valve_lift_from_lobe_lift
 from ..cam.timing import crank_words
+from .gas_force import read_crank_table
 
 __all__ = [
     "Piston",
@@ -230,25 +230,15 @@ def read_clearance_table(path) -> tuple[np.ndarray, np.ndarray]:
     path : str or path-like
         The CSV file.
     """
-    cols = read_csv_columns(path)
-    if "crank_angle_deg" not in cols:
-        raise InputError(f"{path}: no column 'crank_angle_deg' (found: {', '.join(cols)})")
-    given = [c for c in CLEARANCE_COLUMNS if c in cols]
-    if len(given) != 1:
-        raise InputError(
-            f"{path}: give the seated valve's clearance to the piston in one column of "
-            f"{', '.join(CLEARANCE_COLUMNS)} (found: {', '.join(cols)})"
-        )
-    angle = np.asarray(cols["crank_angle_deg"], dtype=float)
-    clearance = np.asarray(cols[given[0]], dtype=float) * CLEARANCE_COLUMNS[given[0]]
-    if angle.size < 2 or np.any(np.diff(angle) <= 0):
-        raise InputError(f"{path}: crank_angle_deg must increase, over at least 2 rows")
+    angle, clearance, given, _ = read_crank_table(
+        path, CLEARANCE_COLUMNS, "the seated valve's clearance to the piston", 2
+    )
     if angle[0] < -360.0 or angle[-1] > 360.0:
         raise InputError(f"{path}: crank_angle_deg must lie from -360 to 360 deg (from the gas-exchange TDC)")
     if np.any(clearance < 0):
         i = int(np.argmin(clearance))
         raise InputError(
-            f"{path}: row {i + 2}, column {given[0]!r}: a seated valve's clearance to the piston cannot be negative"
+            f"{path}: row {i + 2}, column {given!r}: a seated valve's clearance to the piston cannot be negative"
         )
     return angle, clearance
 
