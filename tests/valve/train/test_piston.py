@@ -199,3 +199,16 @@ def test_cli_clearance_json_and_without_a_piston(capsys, tmp_path):
         + ["--valve-train", example("valve/valve_train.toml"), "--cam-rpm", "2500"]
     )
     assert code == 2 and "[piston]" in capsys.readouterr().err
+    piston = str(tmp_path / "piston.toml")
+    (tmp_path / "piston.toml").write_text(open(ENGINE).read().split("[piston]", 1)[0].split("[valve_train]")[0])
+    code = main(
+        ["valve", "clearance", SPRING, "--cam", example("valve/cam_timing.toml"), "--piston", piston]
+        + ["--valve-train", example("valve/valve_train.toml"), "--cam-rpm", "2500"]
+    )
+    assert code == 2 and "no [piston] table" in capsys.readouterr().err
+    code = main(
+        ["valve", "clearance", SPRING, "--cam", example("valve/cam_timing.toml"), "--piston", ENGINE]
+        + ["--valve-train", example("valve/valve_train.toml"), "--cam-rpm", "2500", "--limit", "2mm"]
+    )
+    out = capsys.readouterr().out
+    assert code == 0 and "intake valve" in out and "limit >= 2 mm: FAIL" in out  # the intake's static 1.5 mm

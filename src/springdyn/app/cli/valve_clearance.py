@@ -33,6 +33,7 @@ def register(vsub) -> None:
         help=f"smallest clearance along the valve's axis (default "
         f"{design.MIN_VALVE_PISTON_CLEARANCE * 1e3:g} mm, [criteria] min_valve_piston_clearance)",
     )
+    vo.add_gas_options(p)
     vo.add_revolution_options(p)
     p.add_argument("--points-per-revolution", type=int, default=720, metavar="N", help="output points (default 720)")
     vo.add_tolerance_options(p)

@@ -535,7 +535,11 @@ class ValveClearance(Result):
             f"{crank_words(s['static_min_clearance_crank_angle_deg'])}",
             f"smallest: {1e3 * s['min_clearance_m']:.3f} mm at {s['min_clearance_cam_rpm']:.0f} cam rpm "
             f"({s['min_clearance_engine_rpm']:.0f} engine rpm), {crank_words(s['min_clearance_crank_angle_deg'])}; "
-            f"{1e3 * s['clearance_lost_to_dynamics_m']:.3f} mm less than static"
+            + (
+                f"{1e3 * s['clearance_lost_to_dynamics_m']:.3f} mm below the static"
+                if s["clearance_lost_to_dynamics_m"] >= 0.0
+                else f"{-1e3 * s['clearance_lost_to_dynamics_m']:.3f} mm above the static (the train's deflection)"
+            )
             + (
                 f"; limit >= {1e3 * self.limit:g} mm: {'PASS' if s['clearance_ok'] else 'FAIL'}"
                 if self.limit is not None
