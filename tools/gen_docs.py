@@ -51,6 +51,7 @@ PARAMETER_TABLES = {
     "geometry": ("springdyn.valve.train.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
     "friction": ("springdyn.valve.train.friction:Friction", "valve_train_follower.toml"),
     "oil": ("springdyn.valve.train.oil:Oil", "valve_train_finger_hla.toml"),
+    "piston": ("springdyn.valve.train.piston:Piston", "valve_piston.toml"),
     "requirements": ("springdyn.valve.design.synthesis:Requirements", "valve_requirements.toml"),
     "criteria": ("springdyn.valve.design.criteria:Criteria", "valve_tolerances.toml"),
     "spectrum": ("springdyn.valve.design.life:LoadSpectrum", "valve_spectrum.toml"),
@@ -125,6 +126,14 @@ CROSS_KEY_RULES = {
     ],
     "friction": [
         ("`fluid_friction` <= `boundary_friction`", {"fluid_friction": 0.2}),
+    ],
+    "piston": [
+        ("`rod_length` above half the `stroke` plus the `pin_offset`", {"rod_length": "40 mm"}),
+        ("`tdc_clearance` plus the pocket the head fits above 0", {"tdc_clearance": "-2 mm"}),
+        ("`pocket_depth` needs `pocket_diameter` and `valve_head_diameter`", {"pocket_diameter": None}),
+        ("`valve_head_diameter` below the `bore`", {"valve_head_diameter": "90 mm"}),
+        ("`valve_angle` at most 60 deg", {"valve_angle": "70 deg"}),
+        ("`clearance_table` or the geometry, not both", {"clearance_table": "checked.csv"}),
     ],
     "oil": [
         ("`viscosity_100` < `viscosity_40`", {"viscosity_100": "80 mm^2/s"}),
@@ -440,6 +449,7 @@ def toml_reference() -> str:
         "geometry": "beside `[valve_train]` (layout `rocker`) and a roller `[follower]`: `springdyn valve kinematics`, `simulate/float/sweep/cam-from-lift --valve-train`, `springdyn report`",
         "friction": "beside `[valve_train]` and `[follower]`: `springdyn valve friction --valve-train`",
         "oil": "beside `[valve_train]`: the one oil of `[hla]` and `[friction]` (their older oil keys mean the same)",
+        "piston": "in the valve-train, cam or spring file (once), with `[timing]`: `springdyn valve clearance`, `springdyn report`",
         "requirements": "`springdyn valve synthesize` (a file of its own)",
         "criteria": "beside `[tolerances]`: `springdyn valve tolerance --tolerances`",
         "spectrum": "`springdyn valve life --spectrum` (a file of its own)",

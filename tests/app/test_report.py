@@ -333,3 +333,38 @@ def test_report_synthesises_a_new_spring_and_proves_it_across_tolerances(tmp_pat
     f.write_text(f.read_text().replace('tolerances = "tol.toml"', 'tolerances = "missing.toml"'))
     with pytest.raises(InputError, match=r"\[report\] tolerances = 'missing.toml': no such file"):
         load(tomllib.loads(f.read_text()), f)
+
+
+def test_report_judges_the_valve_to_piston_clearance(tmp_path, monkeypatch):
+    """A definition with [piston] (issue 41, item 3): the report's clearance part writes the speed
+    map and its figure and judges the row; [piston] without [timing] is refused."""
+    import springdyn.app.report.valve as rv
+    from springdyn.core.params import load_toml
+    from tests.paths import example
+
+    doc = {**load_toml(example("valve/one_step_spring.toml")), **load_toml(example("valve/bucket_piston.toml"))}
+    doc["report"] = {"models": "type-c", "min_engine_rpm": "5000 rpm", "max_engine_rpm": "7300 rpm"}
+    d = rv.load(doc, tmp_path / "def.toml")
+    monkeypatch.setattr(rv, "CLEARANCE_SPEEDS", 3)  # 5000, 6650 and 8030 engine rpm: below and past the float speed
+    files, figures, findings, criteria, commands = [], [], [], [], []
+    rv._clearance_part(
+        d.model,
+        d.settings,
+        d.settings.report_speeds,
+        tmp_path,
+        files,
+        figures,
+        findings,
+        criteria,
+        commands,
+        "def.toml",
+    )
+    assert (tmp_path / "valve_clearance.csv").is_file() and (tmp_path / "valve_clearance.png").is_file()
+    (row,) = criteria
+    assert (
+        "valve-to-piston clearance" in row.name and row.passed is False
+    )  # the floating exhaust valve meets the piston
+    assert "THE VALVE MEETS THE PISTON" in findings[0] and "valve clearance" in commands[0]
+    del doc["timing"]
+    with pytest.raises(InputError, match=r"\[piston\] needs \[timing\]"):
+        rv.load(doc, tmp_path / "def.toml")

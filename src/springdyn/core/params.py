@@ -409,6 +409,7 @@ KNOWN_TABLES = (
     "geometry",
     "friction",
     "oil",
+    "piston",
     "requirements",
     "tolerances",
     "criteria",

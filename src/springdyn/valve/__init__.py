@@ -47,6 +47,7 @@ _EXPORTS = {
     "Friction": "train.friction",
     "Oil": "train.oil",
     "oil_of": "train.oil",
+    "Piston": "train.piston",
     # the spring models
     "Chain": "spring.chains",
     "SpringModel": "spring.chains",
@@ -59,6 +60,7 @@ _EXPORTS = {
     "FloatSpeedResult": "run.results",
     "NaturalFrequencies": "run.results",
     "SpeedSweep": "run.sweeps",
+    "ValveClearance": "train.piston",
     # the analyses as functions (ValveModel's methods call them)
     "simulate": "run.simulation",
     "float_speed": "run.float_search",
@@ -79,6 +81,7 @@ _EXPORTS = {
     "coil_line": "spring.results",
     "load_points_text": "spring.results",
     "separated_train_text": "run.train_modes",
+    "crank_words": "cam.timing",
     "calibrated_keys": "design.calibrate",
     "read_force_trace": "design.calibrate",
     "load_point_lines": "design.calibrate",
