@@ -31,6 +31,14 @@ REQ = dict(
 )
 
 
+def _with_bucket_train(**changes) -> Requirements:
+    """REQ with the bucket train and its polydyne cam (the dynamic checks), and ``changes``."""
+    ex = EXAMPLES / "valve"
+    return Requirements.from_dict(
+        dict(REQ, cam=str(ex / "cam_polydyne_ramps.toml"), valve_train=str(ex / "valve_train.toml"), **changes)
+    )
+
+
 @pytest.fixture(scope="module")
 def result():
     return synthesize(Requirements.from_dict(REQ), dynamics=False)
@@ -162,17 +170,7 @@ def test_dynamic_checks_with_a_cam_and_train(tmp_path):
 
     from springdyn.valve import Cam, ValveTrain, float_speed
 
-    ex = EXAMPLES / "valve"
-    req = Requirements.from_dict(
-        dict(
-            REQ,
-            cam=str(ex / "cam_polydyne_ramps.toml"),
-            valve_train=str(ex / "valve_train.toml"),
-            min_cam_rpm="2800 rpm",
-            max_cam_rpm="4000 rpm",
-            min_float_cam_rpm="3900 rpm",
-        )
-    )
+    req = _with_bucket_train(min_cam_rpm="2800 rpm", max_cam_rpm="4000 rpm", min_float_cam_rpm="3900 rpm")
     res = synthesize(req, per_kind=1, judge_all=True)
     assert all("float_cam_rpm" in r and "dynamic_goodman_safety" in r for r in res.rows)
     assert any("no candidate reaches the float speed" in n for n in res.summary["notes"])
@@ -194,17 +192,11 @@ def test_the_screen_ranks_first_the_candidate_judging_all_ranks_first(monkeypatc
     distributed runs."""
     from springdyn.valve.design import synthesis
 
-    ex = EXAMPLES / "valve"
-    req = Requirements.from_dict(
-        dict(
-            REQ,
-            cam=str(ex / "cam_polydyne_ramps.toml"),
-            valve_train=str(ex / "valve_train.toml"),
-            min_cam_rpm="1500 rpm",
-            max_cam_rpm="2400 rpm",
-            min_float_cam_rpm="2600 rpm",
-            min_goodman_safety=1.0,  # every candidate meets it at speed: one round, no surge allowance
-        )
+    req = _with_bucket_train(
+        min_cam_rpm="1500 rpm",
+        max_cam_rpm="2400 rpm",
+        min_float_cam_rpm="2600 rpm",
+        min_goodman_safety=1.0,  # every candidate meets it at speed: one round, no surge allowance
     )
     runs = []
 
