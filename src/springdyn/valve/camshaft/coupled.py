@@ -193,6 +193,18 @@ class CamshaftModel:
         """
         return CamshaftModel(self.shaft.replace(**changes), self.lobes, self.settings)
 
+    def with_settings(self, settings: RunSettings | None = None, **changes) -> CamshaftModel:
+        """The same camshaft with its valves run with other settings.
+
+        Parameters
+        ----------
+        settings : RunSettings, optional
+            New settings (default: this model's).
+        **changes
+            Fields of :class:`RunSettings` to change.
+        """
+        return CamshaftModel(self.shaft, self.lobes, RunSettings.of(settings or self.settings, **changes))
+
     def setup(self, i: int):
         """The engine's set-up of lobe ``i``'s valve on its own cam (shared by lobes of the same files).
 

@@ -173,10 +173,9 @@ def periodic_twist(inertia_matrix, stiffness_matrix, damping_matrix, torque, ome
     out = np.zeros_like(t)
     n = torque.shape[-1]
     top = t.shape[-1] - (1 if n % 2 == 0 else 0)
-    for k in range(top):
-        w = k * omega
-        a = stiffness_matrix - w * w * inertia_matrix + 1j * w * damping_matrix
-        out[:, k] = np.linalg.solve(a, t[:, k])
+    w = (np.arange(top) * omega)[:, None, None]
+    a = stiffness_matrix[None] - w * w * inertia_matrix[None] + 1j * w * damping_matrix[None]
+    out[:, :top] = np.linalg.solve(a, t[:, :top].T[:, :, None])[:, :, 0].T  # one system per harmonic
     return out
 
 
