@@ -193,17 +193,16 @@ class CamshaftModel:
         """
         return CamshaftModel(self.shaft.replace(**changes), self.lobes, self.settings)
 
-    def with_settings(self, settings: RunSettings | None = None, **changes) -> CamshaftModel:
-        """The same camshaft with its valves run with other settings.
+    def with_settings(self, **changes) -> CamshaftModel:
+        """The same camshaft, its valves run with these fields of :class:`RunSettings` changed
+        (``points_per_revolution=720``, ``rtol=1e-9``, ...).
 
         Parameters
         ----------
-        settings : RunSettings, optional
-            New settings (default: this model's).
         **changes
-            Fields of :class:`RunSettings` to change.
+            Fields of :class:`RunSettings` and their values.
         """
-        return CamshaftModel(self.shaft, self.lobes, RunSettings.of(settings or self.settings, **changes))
+        return CamshaftModel(self.shaft, self.lobes, RunSettings.of(self.settings, **changes))
 
     def setup(self, i: int):
         """The engine's set-up of lobe ``i``'s valve on its own cam (shared by lobes of the same files).

@@ -23,8 +23,9 @@ EVENTS = ("opening", "closing", "peak")
 CRANK_PER_CAM = 2.0
 
 
-def _deg(x) -> float | None:
-    return None if x is None or not math.isfinite(x) else math.degrees(float(x))
+def _labels(names) -> list[str]:
+    """The lobes' names as column labels (no spaces: ``cylinder_1``)."""
+    return [str(n).replace(" ", "_") for n in names]
 
 
 @dataclass(repr=False)
@@ -219,7 +220,7 @@ class CamshaftRun(Result):
     def to_xarray(self):
         import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
-        names = list(self.lobe_names)
+        names = _labels(self.lobe_names)
         err = np.where(np.isfinite(self.timing_error), self.timing_error, 0.0)
         dims = ("cam_angle", "lobe")
         ds = xr.Dataset(
@@ -372,7 +373,7 @@ class CamshaftSweep(Result):
         for j, ev in enumerate(EVENTS):
             data[f"{ev}_error"] = (("cam_rpm", "lobe"), self.timing_error[:, :, j], {"units": "rad"})
         return xr.Dataset(
-            data, coords={"cam_rpm": (dims, self.cam_rpm, {"units": "rpm"}), "lobe": ("lobe", list(self.lobe_names))}
+            data, coords={"cam_rpm": (dims, self.cam_rpm, {"units": "rpm"}), "lobe": ("lobe", _labels(self.lobe_names))}
         )
 
     def _plot(self, ax=None):
