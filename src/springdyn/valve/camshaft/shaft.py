@@ -192,7 +192,7 @@ def harmonics_on_grid(spectrum, n_from: int, points: int, shift: float = 0.0):
     n_from : int
         Samples the spectrum was taken from [-].
     points : int
-        Samples of the new grid [-] (at least ``n_from``).
+        Samples of the new grid [-] (a coarser grid keeps the harmonics it resolves).
     shift : float
         Angle added to the new grid [rad].
 
@@ -205,6 +205,7 @@ def harmonics_on_grid(spectrum, n_from: int, points: int, shift: float = 0.0):
     k = np.arange(x.shape[-1])
     x = x * np.exp(1j * k * shift) * (points / n_from)
     pad = np.zeros(x.shape[:-1] + (points // 2 + 1,), dtype=complex)
-    pad[..., : x.shape[-1]] = x
+    top = min(x.shape[-1], points // 2)  # harmonics the new grid resolves (its Nyquist one left out)
+    pad[..., :top] = x[..., :top]
     kk = np.arange(pad.shape[-1])
     return tuple(np.fft.irfft(pad * (1j * kk) ** p, n=points, axis=-1) for p in (0, 1, 2))
