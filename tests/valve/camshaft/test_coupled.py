@@ -1,5 +1,5 @@
 """Valves on a twisting camshaft (springdyn.valve.camshaft.coupled): the rigid-shaft limit
-reproduces each valve alone to the float; the distorted table is the chain rule; the drive
+reproduces each valve alone to the float (and its drive torque with friction); the distorted table is the chain rule; the drive
 torque's mean balances the lobes' and the bearings' (the periodic chain stores no energy over
 a revolution); the example converges.
 
@@ -33,12 +33,15 @@ def test_rigid_shaft_runs_each_valve_exactly_as_alone(model):
     alone = ValveModel.from_files(
         example("valve/one_step_spring.toml"),
         example("valve/cam_polydyne_ramps.toml"),
-        example("valve/valve_train.toml"),
-    ).simulate(2000.0)
+        example("valve/valve_train_with_follower.toml"),
+    )
+    sim_alone = alone.simulate(2000.0)
     for sim in run.simulations:
-        assert np.array_equal(sim.cam_contact_force, alone.cam_contact_force)
-        assert np.array_equal(sim.valve_lift, alone.valve_lift)
-        assert np.array_equal(sim.retainer_force, alone.retainer_force)
+        assert np.array_equal(sim.cam_contact_force, sim_alone.cam_contact_force)
+        assert np.array_equal(sim.valve_lift, sim_alone.valve_lift)
+        assert np.array_equal(sim.retainer_force, sim_alone.retainer_force)
+    # lobe 1's torque is the valve's drive torque with its friction, as `valve friction` gives it
+    np.testing.assert_allclose(run.lobe_torque[0], alone.friction(2000.0).drive_torque, rtol=1e-12, atol=1e-12)
     assert not run.twist.any() and run.iterations == 0
     assert not run.timing_error.any()
     # the lobes' torques in the shaft's angle: lobe 3 (phase 90 deg) is lobe 1's, 90 deg later

@@ -10,7 +10,9 @@ angle ``u = psi - phase_i``):
 exactly (:func:`distorted_table`); the existing single-valve engine runs each valve on its
 table, unchanged.  The lobe's load torque follows by virtual work, ``Q_i = F_i s'(theta_i)``
 (the follower's force on the cam along its axis times the lobe's lift per cam angle;
-frictionless, :func:`lobe_torque`); the shaft's periodic twist under the torques is linear
+frictionless, :func:`lobe_torque`), or with the train's ``[follower]`` the drive torque with the
+contact's, guide's and pivot's friction (:func:`~springdyn.valve.train.friction.friction_along_cam`,
+at the lobe's actual angle and the nominal speed); the shaft's periodic twist under the torques is linear
 and solved per harmonic of the cam speed (:func:`~springdyn.valve.camshaft.shaft.periodic_twist`).
 The loop (:func:`camshaft_run`): twist -> tables -> valves -> torques -> twist, under-relaxed,
 until the twist changes by less than the tolerance.  Its first pass is the rigid shaft (no
@@ -34,7 +36,9 @@ from ...core.errors import InputError
 from ...core.progress import progress
 from ...core.units import rpm_to_omega
 from ..engine.cam_table import CamTable
+from ..train.friction import friction_along_cam
 from ..run.settings import CAM_SAMPLES, POINTS_PER_REVOLUTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
+from ..run.friction import train_friction_loads
 from ..run.setup import prepare
 from ..run.simulation import simulate
 from .definition import Camshaft, check_lobes, read_camshaft, shaft_chain
@@ -275,8 +279,20 @@ def _run_valves(model: CamshaftModel, cam_rpm: float, spectrum, n: int, settings
         sim = simulate(lb.spring, lb.cam, cam_rpm, valve_train=lb.valve_train, settings=settings, setup=setup)
         sims.append(sim)
         twists.append(phi)
-        torques.append(lobe_torque(sim.cam_contact_force, lb.cam.evaluate(u + phi)[1]))
+        torques.append(_load_torque(lb, sim, u, phi, rpm_to_omega(cam_rpm)))
     return sims, np.array(twists), np.array(torques)
+
+
+def _load_torque(lobe, sim, u, phi, omega: float) -> np.ndarray:
+    """A lobe's load torque [N m] over its own angle ``u``: ``F s'`` (:func:`lobe_torque`), or with
+    the train's ``[follower]`` the drive torque with the contact's, the guide's and a pivot's
+    friction (:func:`~springdyn.valve.train.friction.friction_along_cam`) at the lobe's actual angle."""
+    h, dh, ddh = lobe.cam.evaluate(u + phi)
+    if lobe.follower is None:
+        return lobe_torque(sim.cam_contact_force, dh)
+    force = np.maximum(sim.cam_contact_force, 0.0)
+    loads = train_friction_loads(sim, lobe.friction)
+    return friction_along_cam(u, float(omega), h, dh, ddh, force, lobe.follower, lobe.friction, **loads).drive_torque
 
 
 def _shaft_frame(model: CamshaftModel, per_lobe: np.ndarray) -> np.ndarray:

@@ -35,8 +35,11 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, load_toml, param
 from ..cam.definition import Cam
+from ..cam.follower import Follower
 from ..spring.definition import ValveSpring
 from ..train.definition import ValveTrain
+from ..train.friction import Friction
+from ..train.oil import oil_of
 from .shaft import chain_matrices, polar_moment, segment_inertia, segment_stiffness
 
 __all__ = ["Camshaft", "LobeDefinition", "Lobe", "read_camshaft", "ShaftChain", "shaft_chain"]
@@ -169,6 +172,10 @@ class Lobe:
     spring: ValveSpring
     cam: Cam
     valve_train: ValveTrain
+    #: The follower (``[follower]`` beside the train): with it the lobe's torque has its friction.
+    follower: Follower | None = None
+    #: The train's ``[friction]`` (its defaults with the train's oil where the file has none).
+    friction: Friction | None = None
 
 
 def read_camshaft(path) -> tuple[Camshaft, tuple[Lobe, ...]]:
@@ -205,6 +212,7 @@ def read_camshaft(path) -> tuple[Camshaft, tuple[Lobe, ...]]:
             raise InputError(
                 f"{source}: lobe {i + 1}: a drawn lever ([geometry]) is not taken on a camshaft yet; give its ratio"
             )
+        follower, friction = once(_Contact, d.valve_train)
         lobes.append(
             Lobe(
                 name=d.name or f"lobe {i + 1}",
@@ -214,9 +222,24 @@ def read_camshaft(path) -> tuple[Camshaft, tuple[Lobe, ...]]:
                 spring=once(ValveSpring, d.spring),
                 cam=once(Cam, d.cam),
                 valve_train=vt,
+                follower=follower,
+                friction=friction,
             )
         )
     return shaft, check_lobes(shaft, tuple(lobes), source)
+
+
+class _Contact:
+    """The follower and the friction of a valve-train file (read once per file, as the other tables)."""
+
+    @staticmethod
+    def from_toml(path):
+        follower = Follower.in_file(path)
+        if follower is None:
+            return None, None
+        doc = load_toml(path)
+        friction = Friction.in_document(doc, source=str(path)) or Friction(oil=oil_of(doc, source=str(path))[0])
+        return follower, friction
 
 
 def check_lobes(shaft: Camshaft, lobes: tuple, source: str = "camshaft") -> tuple:
