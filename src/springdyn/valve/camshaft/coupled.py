@@ -36,11 +36,11 @@ from ...core.errors import InputError
 from ...core.progress import progress
 from ...core.units import rpm_to_omega
 from ..engine.cam_table import CamTable
-from ..train.friction import friction_along_cam
-from ..run.settings import CAM_SAMPLES, POINTS_PER_REVOLUTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
 from ..run.friction import train_friction_loads
+from ..run.settings import CAM_SAMPLES, POINTS_PER_REVOLUTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
 from ..run.setup import prepare
 from ..run.simulation import simulate
+from ..train.friction import friction_along_cam
 from .definition import Camshaft, check_lobes, read_camshaft, shaft_chain
 from .results import CamshaftRun, CamshaftSweep, TorsionalModes
 from .shaft import harmonics_on_grid, periodic_twist, torsional_modes
