@@ -18,9 +18,10 @@ import warnings
 from pathlib import Path
 
 #: A valve run on the camshaft may cost at most this many times one alone.  It takes the same engine
-#: steps on its twisting lobe's table as alone (checked at 1000, 2000 and 3000 cam rpm); measured
-#: 2.2 on a shared 2-core machine, where one run alone at 3000 cam rpm took 51-80 ms and one on the
-#: camshaft 67-78 ms: the rest is the floating valves at 3500 cam rpm and the load of the machine.
+#: steps on its twisting lobe's table as alone (checked at 1000, 2000 and 3000 cam rpm); the rest is
+#: the lobe's table sampled anew (7200 cam evaluations, some 4 ms), the friction of its revolution
+#: (the example's bucket with [friction], some 5-10 ms) and the shaft's FFTs.  Measured 2.2-2.4 on
+#: a shared 2-core machine (19-50 ms for a run alone at these speeds).
 BUDGET = 3.0
 #: Repetitions, interleaved; the best time of each is compared.
 REPEATS = 2
