@@ -287,12 +287,8 @@ class ShaftChain:
     order: np.ndarray  #: node index of each lobe (in the file's order) [-]
     drive_stiffness: float
     drive_damping: float
+    #: (J, K, C) of :func:`~springdyn.valve.camshaft.shaft.chain_matrices`.
     matrices: tuple = field(repr=False, default=())
-
-    @property
-    def bearing_drag(self) -> np.ndarray:
-        """The bearings' damping per node [N m s/rad] (times the cam speed: their mean drag)."""
-        return self.ground_damping
 
 
 def shaft_chain(shaft: Camshaft, lobes: tuple) -> ShaftChain:

@@ -152,7 +152,7 @@ def periodic_twist(inertia_matrix, stiffness_matrix, damping_matrix, torque, ome
     Parameters
     ----------
     inertia_matrix, stiffness_matrix, damping_matrix : ndarray (N, N)
-        J, K, C (:func:`chain_matrices`).
+        J [kg m^2], K [N m/rad], C [N m s/rad] (:func:`chain_matrices`).
     torque : ndarray (N, n)
         Torque on each node [N m] at the cam angles ``2 pi j / n`` of one revolution (positive
         along the rotation).
@@ -188,7 +188,7 @@ def harmonics_on_grid(spectrum, n_from: int, points: int, shift: float = 0.0):
     Parameters
     ----------
     spectrum : ndarray (..., n_from//2 + 1)
-        numpy.fft.rfft of the samples.
+        numpy.fft.rfft of the samples [their unit, e.g. rad].
     n_from : int
         Samples the spectrum was taken from [-].
     points : int
