@@ -143,7 +143,16 @@ def _film_map():
     return film_effect_map(_lsd(), [3000.0, 14100.0], [20e-6, 100e-6], steps=128)
 
 
+def _camshaft():
+    return springdyn.valve.CamshaftModel.from_toml(example("valve/camshaft_4lobe.toml")).with_settings(
+        points_per_revolution=360
+    )
+
+
 FACTORIES = {
+    "springdyn.valve.camshaft.results.TorsionalModes": lambda: _camshaft().modes(),
+    "springdyn.valve.camshaft.results.CamshaftRun": lambda: _camshaft().simulate(2000.0),
+    "springdyn.valve.camshaft.results.CamshaftSweep": lambda: _camshaft().sweep([1500.0, 2500.0]),
     "springdyn.lsd.calibrate.Calibration": _calibration,
     "springdyn.lsd.film.FilmMap": _film_map,
     "springdyn.lsd.jeffcott.UnbalanceResponse": _unbalance,

@@ -56,6 +56,8 @@ PARAMETER_TABLES = {
     "criteria": ("springdyn.valve.design.criteria:Criteria", "valve_tolerances.toml"),
     "spectrum": ("springdyn.valve.design.life:LoadSpectrum", "valve_spectrum.toml"),
     "cam_card": ("springdyn.valve.cam.from_lift:CamCard", "valve_cam_card.toml"),
+    "camshaft": ("springdyn.valve.camshaft.definition:Camshaft", "valve_camshaft.toml"),
+    "camshaft.lobes": ("springdyn.valve.camshaft.definition:LobeDefinition", "valve_camshaft.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
     "lsd": ("springdyn.lsd.parameters:LSDParameters", "lsd_type_c.toml"),
@@ -223,9 +225,10 @@ API_TOPICS = {
 API_ORDER = {
     "api-valve.md": (
         "springdyn.valve",
-        ("model", "spring", "cam", "train", "run", "design", "engine"),
+        ("model", "spring", "cam", "train", "run", "design", "camshaft", "engine"),
         "The modules follow the wings: the facade `springdyn.valve`, the front door `springdyn.valve.model`, "
-        "then `spring`, `cam`, `train`, `run` and `design`, and the compiled `engine` (the ground floor) last; "
+        "then `spring`, `cam`, `train`, `run`, `design` and `camshaft`, and the compiled `engine` (the ground "
+        "floor) last; "
         "in each wing its package first, then its modules in the order of the package's module map.",
     ),
 }
@@ -454,6 +457,8 @@ def toml_reference() -> str:
         "criteria": "beside `[tolerances]`: `springdyn valve tolerance --tolerances`",
         "spectrum": "`springdyn valve life --spectrum` (a file of its own)",
         "cam_card": "`springdyn valve cam-from-lift --card` (with a `[timing]` table beside it)",
+        "camshaft": "`springdyn valve camshaft` (a file of its own, with its `[[camshaft.lobes]]`)",
+        "camshaft.lobes": "each lobe of `[camshaft]` (`[[camshaft.lobes]]`, one table per lobe): `springdyn valve camshaft`",
         "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",
         "lsd": "`springdyn lsd coefficients/rig`, `lsd identify --model`, `springdyn report`",

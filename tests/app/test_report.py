@@ -369,3 +369,31 @@ def test_report_judges_the_valve_to_piston_clearance(tmp_path, monkeypatch):
     del doc["timing"]
     with pytest.raises(InputError, match=r"\[piston\] needs \[timing\]"):
         rv.load(doc, tmp_path / "def.toml")
+
+
+def test_report_runs_the_camshaft_beside_the_definition(tmp_path):
+    """[report] camshaft (issue 41): the file is read beside the definition and its finding states
+    the drive torque, the twist and the timing error with its figures and tables."""
+    import tomllib
+
+    from springdyn.app.report.valve import _camshaft_finding, load
+
+    text = (ROOT / "examples" / "report" / "report_valve_one_step.toml").read_text()
+    f = tmp_path / "engine.toml"
+    shaft = ROOT / "examples" / "valve" / "camshaft_4lobe.toml"
+    f.write_text(text.split("[report]")[0] + f'\n[report]\ncamshaft = "{shaft}"\nmodels = "type-c"\n')
+    d = load(tomllib.loads(f.read_text()), f)
+    model, where = d.camshaft
+    assert where == shaft and len(model.lobes) == 4
+    files, figures = [], []
+    (tmp_path / "out").mkdir()
+    text = _camshaft_finding(
+        model.with_settings(points_per_revolution=720), (1000.0, 2000.0), tmp_path / "out", files, figures
+    )
+    assert text.startswith("Camshaft ([report] camshaft, 4 lobes, torsional modes 423,")
+    assert "largest timing error over the speeds" in text and "NOT converged" not in text
+    assert {p.name for p, _ in figures} == {"camshaft.png", "camshaft_sweep.png"} and len(files) == 2
+    bad = tmp_path / "bad.toml"
+    bad.write_text(f.read_text().replace(str(shaft), "nowhere.toml"))
+    with pytest.raises(InputError, match="camshaft = 'nowhere.toml': no such file"):
+        load(tomllib.loads(bad.read_text()), bad)

@@ -21,6 +21,9 @@ keeps the order):
   run, the rules that judge a run, results and figures;
 - :mod:`~springdyn.valve.design` -- springs from requirements, across tolerances, over their
   life, calibrated to their drawing, and the one set of pass/fail criteria;
+- :mod:`~springdyn.valve.camshaft` -- several valves on one camshaft with its torsion and timing
+  drive (:class:`CamshaftModel`): each valve's run on its twisting lobe, the drive torque, the
+  twist and the timing errors, the shaft's torsional modes;
 - :mod:`~springdyn.valve.model` -- :class:`ValveModel` on top, the front door the CLI and the
   report call.
 
@@ -61,6 +64,12 @@ _EXPORTS = {
     "NaturalFrequencies": "run.results",
     "SpeedSweep": "run.sweeps",
     "ValveClearance": "train.piston",
+    # several valves on one camshaft with its torsion (issue 41)
+    "CamshaftModel": "camshaft.coupled",
+    "Camshaft": "camshaft.definition",
+    "CamshaftRun": "camshaft.results",
+    "CamshaftSweep": "camshaft.results",
+    "TorsionalModes": "camshaft.results",
     # the analyses as functions (ValveModel's methods call them)
     "simulate": "run.simulation",
     "float_speed": "run.float_search",

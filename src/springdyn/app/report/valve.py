@@ -99,6 +99,13 @@ class ReportSettings(Parameters):
         kind="str",
         default=None,
     )
+    camshaft: str = param(
+        None,
+        "a camshaft beside the definition (a file with [camshaft] and its [[camshaft.lobes]]): the report runs its "
+        "valves on the twisting shaft at the low, middle and top speed (springdyn valve camshaft)",
+        kind="str",
+        default=None,
+    )
     tolerance_samples: int = param(
         "", "variants of the tolerance study (Sobol points: a power of 2)", kind="int", default=64, positive=True
     )
@@ -154,6 +161,8 @@ class ValveDefinition:
     requirements: object = None
     #: ``[report] tolerances``: (tolerances, Criteria), or None.
     tolerances: object = None
+    #: ``[report] camshaft``: (CamshaftModel, its file), or None.
+    camshaft: object = None
 
     @property
     def spring(self):
@@ -231,7 +240,11 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         tolerances = design.read_tolerances(_beside(path, settings.tolerances, "tolerances"))
         if "lash" in tolerances[0] and vt is None:
             raise InputError(f"{path}: [report] tolerances: lash is the valve train's: give a [valve_train] table")
-    return ValveDefinition(model, cam_given, settings, requirements, tolerances)
+    camshaft = None
+    if settings.camshaft is not None:
+        f = _beside(path, settings.camshaft, "camshaft")
+        camshaft = (valve.CamshaftModel.from_toml(f), f)
+    return ValveDefinition(model, cam_given, settings, requirements, tolerances, camshaft)
 
 
 def _criterion(v) -> Criterion:
@@ -314,6 +327,31 @@ def _friction_finding(model, report_speeds, out_dir, files, figures) -> str:
         f"{top['friction_power_W']:.1f} W at {axis.per_cam * speeds[-1]:.0f} engine rpm ({parts}); mean camshaft "
         f"drive torque {top['mean_drive_torque_N_m']:.2f} N m, peaks {top['min_drive_torque_N_m']:.1f} / "
         f"{top['max_drive_torque_N_m']:.1f} N m; smallest film parameter {top.get('min_film_parameter', float('nan')):.2g}."
+    )
+
+
+def _camshaft_finding(camshaft, report_speeds, out_dir, files, figures) -> str:
+    """The valves on the twisting camshaft of ``[report] camshaft`` at the report's speeds
+    (:meth:`springdyn.valve.CamshaftModel.sweep`): drive torque, twist, timing errors, modes."""
+    sweep = camshaft.sweep(np.asarray(report_speeds, dtype=float))
+    top = sweep.runs[-1]
+    plt.close(sweep.plot(out_dir / "camshaft_sweep.png"))
+    plt.close(top.plot(out_dir / "camshaft.png"))
+    files += [sweep.to_csv(out_dir / "camshaft_sweep.csv"), top.to_csv(out_dir / "camshaft.csv")]
+    figures += [
+        (out_dir / "camshaft.png", f"The camshaft at {top.cam_rpm:g} cam rpm: drive torque, twist and valve lifts"),
+        (out_dir / "camshaft_sweep.png", "The camshaft over speed: drive torque and each valve's timing error"),
+    ]
+    m, t = sweep.summary, top.summary
+    return (
+        f"Camshaft ([report] camshaft, {len(camshaft.lobes)} lobes, torsional modes "
+        + ", ".join(f"{f:.0f}" for f in sweep.modes_Hz[:3])
+        + f" Hz): at {top.cam_rpm:g} cam rpm the drive torque swings {t['min_drive_torque_N_m']:.1f} / "
+        f"{t['max_drive_torque_N_m']:.1f} N m about {t['mean_drive_torque_N_m']:.2f} N m, the lobes twist by up to "
+        f"{t['max_twist_deg']:.3f} deg; the largest timing error over the speeds is {m['max_timing_error_deg']:.3f} cam "
+        f"deg ({m['max_timing_error_crank_deg']:.3f} crank deg) at {m['max_timing_error_cam_rpm']:g} cam rpm"
+        + ("" if m["converged"] else "; NOT converged at every speed (the valves float?)")
+        + "."
     )
 
 
@@ -516,6 +554,10 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         )
     if vt is not None:
         _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, findings, criteria, commands, source)
+    if d.camshaft is not None:
+        shaft, shaft_file = d.camshaft
+        findings.append(_camshaft_finding(shaft, report_speeds, out_dir, files, figures))
+        commands.append(f"springdyn valve camshaft {shaft_file} --cam-rpm {top:g}")
     if d.requirements is not None or d.tolerances is not None:
         _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet)
     inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
