@@ -34,7 +34,7 @@ def main(argv=None) -> int:
     from springdyn.valve.design import synthesis
 
     simulate(
-        ValveSpring.example("one-step").with_model("distributed"), Cam(lift=9e-3, duration=2.1), 3000.0
+        ValveSpring.example("one-step").with_model("distributed"), Cam(law="3-4-5", lift=9e-3, duration=2.1), 3000.0
     )  # engine from the cache
     runs = []
     sweep = synthesis.sweep
