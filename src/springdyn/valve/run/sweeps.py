@@ -33,7 +33,7 @@ from ...core.results import Result, notes_lines, units_from_name
 from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
 from ..cam.timing import CrankAngles
-from ..engine import EXT, extra_layout
+from ..engine import EXT
 from ..spring.definition import ValveSpring
 from ..spring.results import coil_line
 from ..train.definition import ValveTrain
@@ -104,7 +104,7 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
     mon = run_speeds(setup, rpm_to_omega(cam_rpm), settings, points, warm_start=settings.periodic)
     ex, status = mon["extra"], mon["status"]
     last = slice(0, points)
-    lay = extra_layout(setup.n_masses)
+    lay = setup.layout
     ne = setup.n_masses + 1
     f = ex[:, :, lay["force"]]
     contact = ex[:, last, lay["compression"]] >= setup.spring.spring_model.contact_gaps
@@ -335,7 +335,7 @@ def _chunks(cam_rpm: np.ndarray, max_size: int) -> list[np.ndarray]:
 def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc):
     """Run all speeds for one setup; returns the chunk outputs concatenated in the order of
     ``cam_rpm`` (the chunks run them ascending)."""
-    per_speed = 8 * points * (extra_layout(setup.n_masses)["size"] + 1)  # the last revolution's outputs
+    per_speed = 8 * points * (setup.layout["size"] + 1)  # the last revolution's outputs
     max_size = max(1, CHUNK_BYTES // per_speed)
     order = np.argsort(cam_rpm, kind="stable")
     chunks = _chunks(cam_rpm[order], max_size)

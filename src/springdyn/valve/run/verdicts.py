@@ -163,7 +163,11 @@ def transition_elements(spring_model) -> np.ndarray:
     Returns
     -------
     ndarray of bool (N + 1,)
+        (A spring pack's: each spring's, one after the other.)
     """
+    models = getattr(spring_model, "models", None)
+    if models is not None:  # a spring pack: each spring against its own coils
+        return np.concatenate([transition_elements(m) for m in models])
     f = np.asarray(spring_model.contact_forces, dtype=float)
     finite = np.isfinite(f)
     if not finite.any():
