@@ -49,6 +49,7 @@ from .cam.follower import Follower
 from .cam.timing import Timing, cam_rpm_from_engine_rpm, crank_axis
 from .run.settings import RunSettings
 from .spring.definition import ValveSpring
+from .spring.pack import SpringPack
 from .train.definition import ValveTrain
 
 __all__ = ["ValveModel", "RUN_UP_WINDOW", "FLOAT_SCAN"]
@@ -84,8 +85,9 @@ class ValveModel:
 
     Parameters
     ----------
-    spring : ValveSpring
-        The spring definition (its ``model`` key chooses Type C or the distributed chain).
+    spring : ValveSpring or SpringPack
+        The spring definition (its ``model`` key chooses Type C or the distributed chain), or
+        a pack of two or three nested springs (:class:`~springdyn.valve.spring.pack.SpringPack`).
     cam : Cam, optional
         The cam; needed by every analysis under the cam.
     valve_train : ValveTrain, optional
@@ -121,8 +123,11 @@ class ValveModel:
         gas_force=None,
         oil=None,
     ):
-        if not isinstance(spring, ValveSpring):
-            raise InputError(f"spring = {spring!r} must be a ValveSpring (ValveSpring.from_toml(...) or .example())")
+        if not isinstance(spring, (ValveSpring, SpringPack)):
+            raise InputError(
+                f"spring = {spring!r} must be a ValveSpring (ValveSpring.from_toml(...) or .example()) or a "
+                "SpringPack (SpringPack.from_toml(...))"
+            )
         if cam is not None and not isinstance(cam, Cam):
             raise InputError(f"cam = {cam!r} must be a Cam or None")
         if valve_train is not None and not isinstance(valve_train, ValveTrain):
@@ -156,7 +161,8 @@ class ValveModel:
     ) -> ValveModel:
         """A model of definition files: ``[spring]``, ``[cam]`` (with its ``[timing]``, or the
         spring file's), ``[valve_train]`` (with its ``[hla]``, ``[geometry]``, ``[follower]`` and
-        ``[friction]``).
+        ``[friction]``).  A spring file with ``[inner_spring]`` is a spring pack
+        (:class:`~springdyn.valve.spring.pack.SpringPack`: ``[third_spring]``, ``[pack]``, ``[damper]``).
 
         Parameters
         ----------
@@ -171,7 +177,10 @@ class ValveModel:
         crank_angles : bool, optional
             Crank angles in the results (default: when a ``[timing]`` table is given).
         """
-        sp = ValveSpring.from_toml(spring).with_model(model)
+        if SpringPack.in_document(load_toml(spring)):  # [inner_spring]: a spring pack
+            sp = SpringPack.from_toml(spring).with_model(model)
+        else:
+            sp = ValveSpring.from_toml(spring).with_model(model)
         c = Cam.from_toml(cam) if cam is not None else None
         vt = ValveTrain.from_toml(valve_train) if valve_train is not None else None
         timing = (Timing.in_file(cam) if cam is not None else None) or Timing.in_file(spring)

@@ -215,6 +215,9 @@ class Simulation(CrankAngles, Result):
             out.append(f"END SEPARATION at the {ev['end']} {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms)")
         if vt is not None:
             out += _train_lines(s, angles)
+        if self.pack is not None:
+            out += _pack_lines(s)
+            return "\n".join(out + notes_lines(s))
         fs, fd = s["static_fatigue_safety_factor"], s["fatigue_safety_factor"]
         out.append(
             "fatigue safety factor (Goodman): static "
@@ -279,6 +282,15 @@ class Simulation(CrankAngles, Result):
             )
         if self.gas_force is not None:
             data.update(gas_force=(dims, self.gas_force, {"units": "N", "long_name": "gas force on the valve"}))
+        if self.pack is not None:
+            for k, name in enumerate(self.spring.names):
+                data[f"{name}_retainer_force"] = (dims, self.pack["retainer_force"][k], {"units": "N"})
+                data[f"{name}_seat_force"] = (dims, self.pack["seat_force"][k], {"units": "N"})
+            data.update(
+                damper_force=(dims, self.pack["damper_force"], {"units": "N", "long_name": "friction damper force"}),
+                damper_slip=(dims, self.pack["damper_slip"], {"units": "m/s", "long_name": "friction damper slip"}),
+                dissipation=(dims, self.pack["dissipation"], {"units": "W", "long_name": "power dissipated"}),
+            )
         if self.hla is not None:
             data.update(
                 hla_collapse=(dims, self.hla["collapse"], {"units": "m"}),
@@ -1123,6 +1135,30 @@ def _clash_text(cc: dict) -> str:
         f"element's force through the contact; {cc['impacts']} closing event{'s' if cc['impacts'] != 1 else ''} over "
         f"{cc['duration_deg']:.1f} cam degrees"
     )
+
+
+def _pack_lines(s: dict) -> list[str]:
+    """The lines of a spring pack's summary: each spring's forces, fatigue, stress and room to
+    solid, and the energy balance of the revolution."""
+    out = []
+    for name, v in s["springs"].items():
+        fd, fs = v["fatigue_safety_factor"], v["static_fatigue_safety_factor"]
+        out.append(
+            f"{name} spring: retainer force {v['min_retainer_force_N']:.1f}-{v['max_retainer_force_N']:.1f} N; "
+            "Goodman safety static "
+            + (f"{fs:.2f}" if fs is not None else "-")
+            + ", dynamic "
+            + (f"{fd:.2f}" if fd is not None else "-")
+            + f"; peak stress {v['peak_shear_stress_Pa'] / 1e6:.0f} MPa "
+            + ("ok" if v["wire_stress_ok"] else "OVERSTRESS")
+            + f"; {v['min_length_to_solid_m'] * 1e3:.2f} mm from solid at least"
+        )
+    out.append(
+        f"energy per revolution: the retainer's work {s['retainer_work_per_revolution_J'] * 1e3:.2f} mJ, dissipated "
+        f"{s['dissipated_energy_per_revolution_J'] * 1e3:.2f} mJ, of which the friction damper "
+        f"{s['damper_energy_per_revolution_J'] * 1e3:.2f} mJ"
+    )
+    return out
 
 
 def pack_energy(sim) -> dict:

@@ -158,13 +158,13 @@ class FrictionDamper(Parameters):
         return self.friction_force if self.friction_force is not None else self.normal_load * self.friction_coefficient
 
 
-def diameter_growth(mean_diameter, wire_diameter, active_coils, free_length, length):
+def diameter_growth(mean_diameter, wire_diameter, active_coils, free_length, solid_length, length):
     """Growth of a helical spring's coil diameter [m] compressed from its free length to ``length``.
 
-    The wire's length is kept: a turn of pitch ``m`` has the length ``sqrt((pi D)^2 + m^2)``, so
-    ``D(L)^2 = D0^2 + (m0^2 - m^2) / pi^2`` with ``m = L / n``.  EN 13906-1:2013, 9.2, gives
-    its value at the solid length by the approximation ``0.1 (m^2 - 0.8 m d - 0.2 d^2) / D``
-    for ends ground; this is the same wire-length relation, exact, at any length.
+    The wire's length in a turn is kept: a turn of pitch ``m`` and mean diameter ``D`` has the
+    length ``sqrt((pi D)^2 + m^2)``, so ``D(L)^2 = D0^2 + (m0^2 - m^2) / pi^2`` (Wahl 1963,
+    ch. 5, the change of the coil diameter under deflection), with the active pitch
+    ``m = (L - Lc) / n + d`` (the coils touch, ``m = d``, at the solid length ``Lc``).
 
     Parameters
     ----------
@@ -172,13 +172,14 @@ def diameter_growth(mean_diameter, wire_diameter, active_coils, free_length, len
         Mean coil and wire diameters [m].
     active_coils : float
         Active coils [-].
-    free_length, length : float or ndarray
-        Free length and the length reached [m].
+    free_length, solid_length : float
+        Free and solid lengths [m].
+    length : float or ndarray
+        The length reached [m].
     """
-    del wire_diameter  # (the exact relation does not need it; kept for the standard's signature)
     n = float(active_coils)
-    m0 = float(free_length) / (n + 2.0)
-    m = np.asarray(length, dtype=float) / (n + 2.0)
+    m0 = (float(free_length) - solid_length) / n + wire_diameter
+    m = (np.maximum(np.asarray(length, dtype=float), solid_length) - solid_length) / n + wire_diameter
     return np.sqrt(mean_diameter**2 + (m0**2 - m**2) / math.pi**2) - mean_diameter
 
 
@@ -199,7 +200,9 @@ def radial_clearance(outer: ValveSpring, inner: ValveSpring, lift: float = 0.0) 
 
     def grown(s, dm):
         return dm + float(
-            diameter_growth(dm, s.wire_diameter, s.active_coils, s.free_length, s.installed_length - lift)
+            diameter_growth(
+                dm, s.wire_diameter, s.active_coils, s.free_length, s.solid_length, s.installed_length - lift
+            )
         )
 
     return 0.5 * (
@@ -314,6 +317,12 @@ class SpringPack:
         options = PackOptions.from_dict(doc["pack"], source=source) if "pack" in doc else None
         damper = FrictionDamper.from_dict(doc["damper"], source=source) if "damper" in doc else None
         return cls(springs, options, damper)
+
+    def with_model(self, model: str | None) -> SpringPack:
+        """The same pack with every spring in the model ``model`` (None: unchanged)."""
+        if model is None:
+            return self
+        return SpringPack([s.with_model(model) for s in self.springs], self.options, self.damper)
 
     def replace_spring(self, index: int, spring: ValveSpring) -> SpringPack:
         """The same pack with spring ``index`` (0 outer) replaced."""
@@ -597,6 +606,15 @@ class PackModel:
         """``(masses, laws, xset, c0, chains, damper)`` of the engine (:func:`springdyn.valve.engine.model_of`)."""
         ch = self.chain
         return ch.masses, ch.laws, ch.setup_compressions, ch.c0_array, ch.chains, self.damper
+
+    def static_force(self, length):
+        """The pack's static force [N] at the outer spring's length(s) [m] (the same lift for every spring)."""
+        return self.pack.static_force(self.pack.installed_length - np.asarray(length, dtype=float))
+
+    def modes(self, length: float, count: int = 5) -> np.ndarray:
+        """The pack's lowest ``count`` natural frequencies [Hz], ends fixed, at the outer spring's ``length`` [m]
+        (:meth:`SpringPack.modes`)."""
+        return self.pack.modes(self.pack.installed_length - float(length))["pack"][: int(count)]
 
     def internal_parameters(self) -> dict:
         """The pack's ``Fset`` and ``M`` (sums), ``f1`` and ``Fcon`` (the smallest of its springs')."""
