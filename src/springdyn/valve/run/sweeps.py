@@ -105,7 +105,6 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
     ex, status = mon["extra"], mon["status"]
     last = slice(0, points)
     lay = setup.layout
-    ne = setup.n_masses + 1
     f = ex[:, :, lay["force"]]
     contact = ex[:, last, lay["compression"]] >= setup.spring.spring_model.contact_gaps
     ev = mon["events"]
@@ -114,8 +113,8 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         np.moveaxis(ex[:, last, lay["compression"]], -1, 0), np.moveaxis(f[:, last], -1, 0)
     )  # (N + 1, speeds, points)
     out = dict(
-        retainer=f[:, last, ne - 1],
-        seat=f[:, last, 0],
+        retainer=ex[:, last, lay["retainer_total"]],
+        seat=ex[:, last, lay["seat_total"]],
         contact=contact.any(axis=2),
         contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
         **{key: mon[key] for key in ("periodicity", "revolutions", "settled", "band_lo", "band_hi", "ext")},

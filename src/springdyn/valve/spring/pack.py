@@ -616,6 +616,12 @@ class PackModel:
         (:meth:`SpringPack.modes`)."""
         return self.pack.modes(self.pack.installed_length - float(length))["pack"][: int(count)]
 
+    def initial_condition(self, total_compression: float) -> dict:
+        """The chains' static state at the outer spring's total compression ``(Lf - Ls) + lift`` [m]:
+        ``displacements`` of every chain's masses from their set-up [m] (:meth:`SpringPack.initial_displacements`)."""
+        lift = float(total_compression) - (self.pack.free_length - self.pack.installed_length)
+        return dict(displacements=self.pack.initial_displacements(lift), force=float(self.pack.static_force(lift)))
+
     def internal_parameters(self) -> dict:
         """The pack's ``Fset`` and ``M`` (sums), ``f1`` and ``Fcon`` (the smallest of its springs')."""
         ps = [m.internal_parameters() for m in self.models]
