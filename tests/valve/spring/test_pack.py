@@ -6,8 +6,8 @@ References, written here independently of the code they check:
   share only their ends: held at both, they are two copies of one chain), and twice its
   static force (the one spring's model, :meth:`SpringModel.static_force`);
 - the coil diameter under compression from the wire length of a turn, ``sqrt((pi D)^2 + m^2)``,
-  kept (Wahl 1963, ch. 5): written out here for the hand values;
-- the friction law: ``-F tanh(v / v_reg)`` (Andersson, Soederberg and Bjoerklund 2007, eq. 4).
+  kept ([Wahl]): written out here for the hand values;
+- the friction law: ``-F tanh(v / v_reg)`` ([Andersson], the smooth Coulomb model).
 """
 
 import math

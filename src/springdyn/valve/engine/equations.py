@@ -461,8 +461,8 @@ def element_force(laws, c0, j, xj, rate, unilateral):
 
 def damper_friction(force, slip, v_reg):
     """The friction damper's force [N] on its node at the sliding velocity ``slip`` [m/s]: Coulomb
-    friction regularised by ``tanh``, ``-F tanh(v / v_reg)`` (Andersson, Soederberg and
-    Bjoerklund 2007, eq. 4, the smooth Coulomb law; exact Coulomb as ``v_reg`` -> 0).
+    friction regularised by ``tanh``, ``-F tanh(v / v_reg)`` ([Andersson], the smooth Coulomb
+    model; exact Coulomb as ``v_reg`` -> 0).
 
     Parameters
     ----------

@@ -270,7 +270,9 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         f", less the lash {lash * 1e3:.4g} mm)" if lash else ")"
     )
     springs = spring.springs if isinstance(spring, SpringPack) else (spring,)
-    binds = [check_coil_bind(s, max(float(h[i_max]) - lash, 0.0), cause) for s in springs]
+    binds = []
+    for one in springs:
+        binds.append(check_coil_bind(one, max(float(h[i_max]) - lash, 0.0), cause))
     coil_bind = min(binds, key=lambda b: b["coil_bind_margin_m"])  # a pack's: the spring nearest bind
     open_length = spring.installed_length - h[i_max]
     if open_length < spring.spring_model.min_length:

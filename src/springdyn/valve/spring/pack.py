@@ -97,7 +97,7 @@ class PackOptions(Parameters):
     friction_velocity: float = param(
         "m/s",
         "regularising velocity of the friction laws: below it the friction force grows linearly with the sliding "
-        "speed (Andersson et al. 2007; valve springs slide at metres per second)",
+        "speed ([Andersson]; valve springs slide at metres per second)",
         display="mm/s",
         positive=True,
         default=0.01,
@@ -162,8 +162,8 @@ def diameter_growth(mean_diameter, wire_diameter, active_coils, free_length, sol
     """Growth of a helical spring's coil diameter [m] compressed from its free length to ``length``.
 
     The wire's length in a turn is kept: a turn of pitch ``m`` and mean diameter ``D`` has the
-    length ``sqrt((pi D)^2 + m^2)``, so ``D(L)^2 = D0^2 + (m0^2 - m^2) / pi^2`` (Wahl 1963,
-    ch. 5, the change of the coil diameter under deflection), with the active pitch
+    length ``sqrt((pi D)^2 + m^2)``, so ``D(L)^2 = D0^2 + (m0^2 - m^2) / pi^2`` ([Wahl], the change
+    of the coil diameter under deflection), with the active pitch
     ``m = (L - Lc) / n + d`` (the coils touch, ``m = d``, at the solid length ``Lc``).
 
     Parameters
@@ -259,7 +259,7 @@ class SpringPack:
     >>> inner = outer.replace(mean_diameter=0.0145, wire_diameter=0.0025, high_pitch_coils=8.0)
     >>> pack = SpringPack((outer, inner))
     >>> [round(f) for f in pack.setup_forces]
-    [251, 94]
+    [251, 210]
     """
 
     def __init__(self, springs, options: PackOptions | None = None, damper: FrictionDamper | None = None):
