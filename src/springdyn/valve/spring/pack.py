@@ -106,7 +106,13 @@ class PackOptions(Parameters):
     table = "pack"
 
     def hand(self, position: str) -> str:
-        """The coiling hand of the spring at ``position`` (``outer``, ``inner``, ``third``)."""
+        """The coiling hand (``right`` or ``left``) of a spring of the pack.
+
+        Parameters
+        ----------
+        position : {"outer", "inner", "third"}
+            The spring [-].
+        """
         return getattr(self, f"{position}_hand")
 
 
@@ -235,7 +241,13 @@ class PackChain:
     mass_names: tuple  #: ``<spring>:<mass>`` [-]
 
     def tangent_stiffness(self, compressions) -> np.ndarray:
-        """Element tangent stiffnesses [N/m] at the given compressions [m] (every chain's)."""
+        """Element tangent stiffnesses [N/m] at the given compressions (every chain's).
+
+        Parameters
+        ----------
+        compressions : ndarray (N + C, ...)
+            Element compressions [m].
+        """
         x = np.asarray(compressions, dtype=float)
         return np.stack([law_stiffness(x[j], self.laws[j]) for j in range(self.laws.shape[0])])
 
@@ -279,13 +291,25 @@ class SpringPack:
     # ------------------------------------------------------------------ construction
     @classmethod
     def from_toml(cls, path) -> SpringPack:
-        """The pack of a TOML file: ``[spring]``, ``[inner_spring]``, ``[third_spring]``, ``[pack]``, ``[damper]``."""
+        """The pack of a TOML file: ``[spring]``, ``[inner_spring]``, ``[third_spring]``, ``[pack]``, ``[damper]``.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file.
+        """
         doc = load_toml(path)
         return cls.from_document(doc, source=str(path), base_dir=Path(path).parent)
 
     @classmethod
     def in_document(cls, doc: dict) -> bool:
-        """Whether a definition document holds a pack (an ``[inner_spring]`` table)."""
+        """Whether a definition document holds a pack (an ``[inner_spring]`` table).
+
+        Parameters
+        ----------
+        doc : dict
+            The document (:func:`springdyn.core.params.load_toml`).
+        """
         return "inner_spring" in doc
 
     @classmethod
@@ -319,13 +343,27 @@ class SpringPack:
         return cls(springs, options, damper)
 
     def with_model(self, model: str | None) -> SpringPack:
-        """The same pack with every spring in the model ``model`` (None: unchanged)."""
+        """The same pack with every spring in another model.
+
+        Parameters
+        ----------
+        model : {"type-c", "distributed"} or None
+            The spring model (None: unchanged) [-].
+        """
         if model is None:
             return self
         return SpringPack([s.with_model(model) for s in self.springs], self.options, self.damper)
 
     def replace_spring(self, index: int, spring: ValveSpring) -> SpringPack:
-        """The same pack with spring ``index`` (0 outer) replaced."""
+        """The same pack with one spring replaced.
+
+        Parameters
+        ----------
+        index : int
+            Which (0: the outer) [-].
+        spring : ValveSpring
+            The new spring.
+        """
         springs = list(self.springs)
         springs[index] = spring
         return SpringPack(springs, self.options, self.damper)
@@ -391,7 +429,13 @@ class SpringPack:
 
     # ------------------------------------------------------------------ statics
     def static_forces(self, lift) -> np.ndarray:
-        """Each spring's static force [N] at the lift(s) ``lift`` [m] from the installed lengths, (springs, ...)."""
+        """Each spring's static force [N], shape (springs, ...).
+
+        Parameters
+        ----------
+        lift : float or array_like
+            Lift(s) from the installed lengths [m].
+        """
         lift = np.asarray(lift, dtype=float)
         return np.stack(
             [
@@ -401,11 +445,23 @@ class SpringPack:
         )
 
     def static_force(self, lift) -> np.ndarray:
-        """The pack's static force [N] at the lift(s) ``lift`` [m]: the sum of its springs'."""
+        """The pack's static force [N]: the sum of its springs'.
+
+        Parameters
+        ----------
+        lift : float or array_like
+            Lift(s) from the installed lengths [m].
+        """
         return self.static_forces(lift).sum(axis=0)
 
     def initial_displacements(self, lift: float) -> np.ndarray:
-        """The chains' static mass displacements [m] from their set-up at ``lift`` [m], one chain after the other."""
+        """The chains' static mass displacements [m] from their set-up, one chain after the other.
+
+        Parameters
+        ----------
+        lift : float
+            Lift from the installed lengths [m].
+        """
         return np.concatenate(
             [
                 s.spring_model.initial_condition(s.free_length - s.installed_length + lift)["displacements"]
@@ -424,7 +480,7 @@ class SpringPack:
         lift : float
             Lift from the installed lengths [m].
         count : int, optional
-            Frequencies per spring (default: every one).
+            Frequencies per spring [-] (default: every one).
 
         Returns
         -------
@@ -476,8 +532,14 @@ class SpringPack:
         return fit
 
     def solid_and_bind(self, lift: float) -> dict:
-        """Each spring's coil-bind figures at ``lift`` [m] (:func:`springdyn.valve.spring.solid_length.check_coil_bind`),
-        and the pack's solid height (the longest spring's solid length, seat steps aside)."""
+        """Each spring's coil-bind figures (:func:`springdyn.valve.spring.solid_length.check_coil_bind`),
+        and the pack's solid height (the longest spring's solid length, seat steps aside).
+
+        Parameters
+        ----------
+        lift : float
+            Lift from the installed lengths [m].
+        """
         out = {
             name: check_coil_bind(s, lift, f"the lift {lift * 1e3:.4g} mm ({name} spring)")
             for name, s in zip(self.names, self.springs)
@@ -504,9 +566,15 @@ class SpringPack:
         }
 
     def static_figures(self, lift: float) -> dict:
-        """The pack's static design figures at installed length and at ``lift`` [m]: each spring's
+        """The pack's static design figures at installed length and at a lift: each spring's
         force, corrected shear stress and static Goodman safety, the total, the modes, the fit
-        and the coil bind.  Flat keys ``<spring>_<quantity>_<unit>``."""
+        and the coil bind.  Flat keys ``<spring>_<quantity>_<unit>``.
+
+        Parameters
+        ----------
+        lift : float
+            Lift from the installed lengths [m].
+        """
         f0 = self.static_forces(0.0)
         f1 = self.static_forces(lift)
         modes = self.modes(0.0)
@@ -534,7 +602,15 @@ class SpringPack:
 
     # ------------------------------------------------------------------ the friction rows
     def node(self, name: str, height: float) -> int:
-        """The pack's mass index nearest the ``height`` fraction of spring ``name``'s length from the seat."""
+        """The pack's mass index nearest a point of a spring.
+
+        Parameters
+        ----------
+        name : {"outer", "inner", "third"}
+            The spring [-].
+        height : float
+            The point, a fraction of the spring's length from the seat [-].
+        """
         k = self.names.index(name)
         first, last = self.spring_model.chain.chains[k], self.spring_model.chain.chains[k + 1]
         n = last - first
@@ -608,17 +684,37 @@ class PackModel:
         return ch.masses, ch.laws, ch.setup_compressions, ch.c0_array, ch.chains, self.damper
 
     def static_force(self, length):
-        """The pack's static force [N] at the outer spring's length(s) [m] (the same lift for every spring)."""
+        """The pack's static force [N] (the same lift for every spring).
+
+        Parameters
+        ----------
+        length : float or array_like
+            The outer spring's length(s) [m].
+        """
         return self.pack.static_force(self.pack.installed_length - np.asarray(length, dtype=float))
 
     def modes(self, length: float, count: int = 5) -> np.ndarray:
-        """The pack's lowest ``count`` natural frequencies [Hz], ends fixed, at the outer spring's ``length`` [m]
-        (:meth:`SpringPack.modes`)."""
+        """The pack's lowest natural frequencies [Hz], ends fixed (:meth:`SpringPack.modes`).
+
+        Parameters
+        ----------
+        length : float
+            The outer spring's length [m] (the lift from its installed length is every spring's).
+        count : int
+            How many [-].
+        """
         return self.pack.modes(self.pack.installed_length - float(length))["pack"][: int(count)]
 
     def initial_condition(self, total_compression: float) -> dict:
-        """The chains' static state at the outer spring's total compression ``(Lf - Ls) + lift`` [m]:
-        ``displacements`` of every chain's masses from their set-up [m] (:meth:`SpringPack.initial_displacements`)."""
+        """The chains' static state at the outer spring's total compression: ``displacements`` of
+        every chain's masses from their set-up [m] (:meth:`SpringPack.initial_displacements`) and
+        the pack's ``force`` [N].
+
+        Parameters
+        ----------
+        total_compression : float
+            The outer spring's ``(Lf - Ls) + lift`` [m].
+        """
         lift = float(total_compression) - (self.pack.free_length - self.pack.installed_length)
         return dict(displacements=self.pack.initial_displacements(lift), force=float(self.pack.static_force(lift)))
 
@@ -662,17 +758,39 @@ class PackModel:
         return np.concatenate(parts, axis=0)
 
     def contact_share(self, elastic_force) -> np.ndarray:
-        """Each spring's :meth:`springdyn.valve.spring.chains.SpringModel.contact_share` [N]."""
+        """Each spring's :meth:`springdyn.valve.spring.chains.SpringModel.contact_share` [N].
+
+        Parameters
+        ----------
+        elastic_force : ndarray (N + C, ...)
+            Elastic (law) force of each element [N].
+        """
         return self._per_spring("contact_share", elastic_force)
 
     def wire_forces(self, compression, force) -> np.ndarray:
-        """Each spring's :meth:`springdyn.valve.spring.chains.SpringModel.wire_forces` [N]."""
+        """Each spring's :meth:`springdyn.valve.spring.chains.SpringModel.wire_forces` [N].
+
+        Parameters
+        ----------
+        compression : ndarray (N + C, ...)
+            Element compressions [m].
+        force : ndarray (N + C, ...)
+            Element forces [N].
+        """
         return self._per_spring("wire_forces", compression, force)
 
     def clash(self, contact, static_force) -> np.ndarray:
         """Coil clash of each spring against its own static force at the same lift
-        (:meth:`springdyn.valve.spring.chains.SpringModel.clash`); ``static_force`` is the pack's [N]
-        and is split by the springs' static shares at installed length."""
+        (:meth:`springdyn.valve.spring.chains.SpringModel.clash`); ``static_force`` is the pack's
+        and is split by the springs' static shares at installed length.
+
+        Parameters
+        ----------
+        contact : ndarray of bool (N + C, ...)
+            Each element past its contact compression [-].
+        static_force : ndarray (...)
+            The pack's static force at the same instants [N].
+        """
         share = np.array(self.pack.setup_forces) / sum(self.pack.setup_forces)
         parts = [
             m.clash(np.asarray(contact)[r], share[k] * np.asarray(static_force))
