@@ -366,6 +366,14 @@ class ValveModel:
         """
         return cam_rpm_from_engine_rpm(engine_rpm, self.strokes)
 
+    def _one_spring(self, what: str) -> None:
+        """Refuse a spring pack where an analysis covers one spring only (docs/valve-spring.md, "Spring packs")."""
+        if isinstance(self.spring, SpringPack):
+            raise InputError(
+                f"{what} covers one spring, not a spring pack ({self.spring!r}): run it on each spring's own "
+                "file, or run the pack through valve simulate, sweep or float"
+            )
+
     def _need_cam(self, what: str) -> Cam:
         if self.cam is None:
             raise InputError(f"{what} needs a cam: ValveModel(spring, cam=Cam(...))")
@@ -389,6 +397,7 @@ class ValveModel:
     def parameter_table(self):
         """The internal parameters with their units and meaning, the coils and the drawing's load
         points (:class:`~springdyn.valve.spring.results.SpringParameters`)."""
+        self._one_spring("valve params")
         return spring_wing.SpringParameters.of(self.spring)
 
     def static_force(self, length):
@@ -409,6 +418,7 @@ class ValveModel:
         ----------
         {start_stop points}
         """
+        self._one_spring("valve curve")
         return self.chain_model.static_curve(start, stop, points)
 
     @_DOCS.fill
@@ -430,6 +440,7 @@ class ValveModel:
         ----------
         {length count}
         """
+        self._one_spring("valve modes")
         return spring_wing.ChainModes.of(self.spring, length, count)
 
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None):
@@ -444,6 +455,7 @@ class ValveModel:
         cam_rpm : float, optional
             Cam speed [rev/min] for the surge margin.
         """
+        self._one_spring("valve design")
         if lift is None and self.cam is not None:
             lift = self.cam.lift
         return spring_wing.DesignFigures(self.spring, self.chain_model.design_figures(lift, cam_rpm), cam_rpm)
@@ -458,6 +470,7 @@ class ValveModel:
         length : float, optional
             Spring length [m] (default: installed).
         """
+        self._one_spring("valve frf")
         return spring_wing.dynamic_stiffness(self.spring, frequency, length)
 
     def calibrate(self, fit: str = "shear_modulus") -> dict:
@@ -469,6 +482,7 @@ class ValveModel:
         fit : {"shear_modulus", "active_coils"}
             What to fit.
         """
+        self._one_spring("valve calibrate")
         return design_wing.calibrate(self.spring, fit)
 
     def calibrate_trace(self, cam_rpm: float, cam_angle, retainer_force, fit=("damping_ratio", "contact_stiffness")):
@@ -481,6 +495,7 @@ class ValveModel:
             The measurement's cam speed [rev/min], cam angles [rad] and retainer forces [N], and
             what to fit, as :func:`~springdyn.valve.design.calibrate.calibrate_trace` takes them.
         """
+        self._one_spring("the trace calibration")
         return design_wing.calibrate_trace(
             self.spring, self._need_cam("calibrate_trace"), cam_rpm, cam_angle, retainer_force, fit
         )
@@ -697,6 +712,7 @@ class ValveModel:
         float_scan : bool
             Also find the steady-state float speed of the range.
         """
+        self._one_spring("a speed ramp")
         return run_wing.speed_ramp(
             self.spring,
             self._need_cam("speed_ramp"),
@@ -733,6 +749,7 @@ class ValveModel:
         cam_rpm : float
             Cam speed [rev/min].
         """
+        self._one_spring("valve friction")
         if self.follower is None:
             raise InputError(
                 "friction at the cam needs the follower: a [follower] table beside [valve_train] (see "
@@ -775,6 +792,7 @@ class ValveModel:
             Further options of :func:`springdyn.valve.design.tolerances.tolerance_study` (count,
             seed, speeds, method, out_dir, client, progress, float_only, resolution, workers).
         """
+        self._one_spring("valve tolerance")
         study = design_wing.tolerance_study(
             self.spring,
             self._need_cam("tolerance_study"),
@@ -795,6 +813,7 @@ class ValveModel:
         float_speeds : array_like, optional
             Cam speeds of the float-speed scans [rev/min].
         """
+        self._one_spring("valve life")
         return design_wing.service_life(
             self.spring, self._need_cam("service_life"), spectrum, self.valve_train, float_speeds
         )
