@@ -8,6 +8,7 @@ clearance.
 """
 
 import math
+from pathlib import Path
 
 import pytest
 
@@ -15,20 +16,8 @@ from springdyn.core.errors import InputError
 from springdyn.valve.design.pack_synthesis import inner_spring_for
 from springdyn.valve.spring import ValveSpring
 
-OUTER = dict(
-    type="one-step",
-    mean_diameter="24 mm",
-    wire_diameter="3.8 mm",
-    free_length="53 mm",
-    installed_length="43 mm",
-    dead_coils=1.0,
-    low_pitch_coils=0.0,
-    high_pitch_coils=7.0,
-    youngs_modulus="206 GPa",
-    shear_modulus="78.5 GPa",
-    density="7850 kg/m^3",
-    damping_ratio=0.05,
-)
+#: The outer spring of the dual-spring example: 24 x 3.8 mm, 7 coils, Lf 53 mm, Ls 43 mm, G 78.5 GPa.
+EXAMPLE = Path(__file__).parents[3] / "examples" / "valve" / "dual_spring_damper.toml"
 
 
 def _tau(force, d_mean, d_wire):
@@ -37,7 +26,7 @@ def _tau(force, d_mean, d_wire):
 
 
 def test_the_inner_spring_carries_its_share_at_the_outers_stress():
-    outer = ValveSpring.from_dict(OUTER)
+    outer = ValveSpring.from_toml(EXAMPLE)
     share, lift, clearance = 0.33, 9e-3, 1e-3
     r = inner_spring_for(outer, share, lift, clearance, installed_length=0.041)
     inner = r["spring"]
@@ -58,6 +47,6 @@ def test_the_inner_spring_carries_its_share_at_the_outers_stress():
 
 
 def test_an_impossible_split_is_refused():
-    outer = ValveSpring.from_dict(OUTER)
+    outer = ValveSpring.from_toml(EXAMPLE)
     with pytest.raises(InputError, match="share"):
         inner_spring_for(outer, 0.9, 9e-3)

@@ -17,7 +17,7 @@ a stated friction force, or a normal load times a friction coefficient, between 
 one spring (its mass nearest the ``height`` fraction from the seat) and the seat or a
 point of another spring.  Where the outer spring's inside diameter is smaller than the
 inner spring's outside diameter (:func:`radial_clearance`, the coils' diameter growth
-under compression of EN 13906-1 included), the springs touch: the pack refuses them, or,
+under compression included, [Wahl]), the springs touch: the pack refuses them, or,
 with ``[pack] interference = "rub"`` and a ``radial_stiffness``, they rub with the normal
 load of the interference (:class:`PackOptions`).
 """
@@ -42,17 +42,8 @@ from .solid_length import check_coil_bind
 from .statics import series_force
 from .stress import corrected_shear_stress, fatigue_assessment
 
-__all__ = [
-    "SpringPack",
-    "PackOptions",
-    "FrictionDamper",
-    "PackModel",
-    "PackChain",
-    "SPRING_TABLES",
-    "POSITIONS",
-    "diameter_growth",
-    "radial_clearance",
-]
+__all__ = ["SpringPack", "PackOptions", "FrictionDamper", "PackModel", "PackChain", "SPRING_TABLES", "POSITIONS"]
+__all__ += ["diameter_growth", "radial_clearance"]
 
 #: The tables of a pack's springs, outer first.
 SPRING_TABLES = ("spring", "inner_spring", "third_spring")
