@@ -512,78 +512,114 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
     xset = m.xset
     c0 = m.c0
     chains = m.chains
-    nm = masses.shape[0]
-    nc = chains.shape[0] - 1
-    ne = nm + nc
-    rec = extra.shape[0] > 0
     f_top = 0.0
-    f_seat = 0.0
-    x_seat = 1.0
-    x_top = 1.0
-    power = 0.0
-    for k in range(nc):
+    for k in range(chains.shape[0] - 1):
         first = chains[k]
         last = chains[k + 1]  # the chain's masses first .. last - 1, its elements first + k .. last + k
         f_prev = 0.0
         u_lo = 0.0
         v_lo = 0.0
         for i in range(first, last + 1):
-            j = i + k
             if i < last:
                 u_hi = s[i]
                 v_hi = s[nfree + i]
             else:
                 u_hi = u_top
                 v_hi = v_top
-            xj = xset[j] + u_hi - u_lo
-            rate = v_hi - v_lo
-            force = element_force(laws, c0, j, xj, rate, i == first or i == last)
-            if rec:
-                extra[j] = force
-                extra[ne + j] = xj
-                if i < last:
-                    extra[2 * ne + X_DISP + i] = u_hi
-                if force != 0.0:  # the damping's share: the force less the elastic law's
-                    power += (force - element_force(laws, c0, j, xj, 0.0, False)) * rate
+            force = element_force(laws, c0, i + k, xset[i + k] + u_hi - u_lo, v_hi - v_lo, i == first or i == last)
             if i > first:
                 out[i - 1] = s[nfree + i - 1]
                 out[nfree + i - 1] = (force - f_prev) / masses[i - 1]
-            if rec:
-                if i == first:
-                    f_seat += force
-                    x_seat = xj if k == 0 else min(x_seat, xj)
-                if i == last:
-                    x_top = xj if k == 0 else min(x_top, xj)
             f_prev = force
             u_lo = u_hi
             v_lo = v_hi
         f_top += f_prev
-    f_damper = 0.0
-    slip = 0.0
     dampers = m.damper
     for r in range(dampers.shape[0]):
         if dampers[r, DAMPER_FORCE] > 0.0:
-            node = int(dampers[r, DAMPER_NODE])
-            other = int(dampers[r, DAMPER_OTHER])
-            v_rel = s[nfree + node] - (s[nfree + other] if other >= 0 else 0.0)
-            f_r = damper_friction(dampers[r, DAMPER_FORCE], v_rel, dampers[r, DAMPER_VREG])
+            node, other, f_r, _ = _damper_row(s, nfree, dampers, r)
             out[nfree + node] += f_r / masses[node]
             if other >= 0:
                 out[nfree + other] -= f_r / masses[other]
-            power -= f_r * v_rel
-            if r == 0:
-                f_damper = f_r
-                slip = v_rel
-    if rec:
-        b = 2 * ne + X_DISP + nm
-        extra[b + XT_SEAT_TOTAL] = f_seat
-        extra[b + XT_RETAINER_TOTAL] = f_top
-        extra[b + XT_SEAT_COMPRESSION] = x_seat
-        extra[b + XT_RETAINER_COMPRESSION] = x_top
-        extra[b + XT_DAMPER_FORCE] = f_damper
-        extra[b + XT_DAMPER_SLIP] = slip
-        extra[b + XT_DISSIPATION] = power
+    if extra.shape[0] > 0:  # (the record is called, not inlined: see _RECORDS)
+        _record_chains(s, m, nfree, u_top, v_top, extra)
     return f_top
+
+
+def _damper_row(s, nfree, dampers, r):
+    """Friction row ``r`` of ``dampers`` (layout ``DAMPER_*``) at the state ``s``: its node, its
+    counterpart (-1: the seat), its force on the node [N] and the sliding velocity [m/s]."""
+    node = int(dampers[r, DAMPER_NODE])
+    other = int(dampers[r, DAMPER_OTHER])
+    v_rel = s[nfree + node] - (s[nfree + other] if other >= 0 else 0.0)
+    return node, other, damper_friction(dampers[r, DAMPER_FORCE], v_rel, dampers[r, DAMPER_VREG]), v_rel
+
+
+@_DOCS.fill
+def _record_chains(s, m, nfree, u_top, v_top, extra):
+    """Record the chains' element forces, compressions and mass displacements, the totals at
+    the seat and the retainer, the end contacts' smallest compressions, the first damper's
+    force and slip and the power dissipated by the elements' damping and every damper into
+    ``extra`` (:func:`.layout.extra_layout`; the forces as :func:`chain_forces` computes them).
+
+    Parameters
+    ----------
+    s : ndarray
+        State: displacements [m] then velocities [m/s].
+    {m nfree}
+    u_top, v_top : float
+        Displacement [m] and velocity [m/s] of the retainer end.
+    extra : ndarray
+        Receives the outputs [N, m, m/s, W].
+    """
+    laws = m.laws
+    xset = m.xset
+    c0 = m.c0
+    chains = m.chains
+    nm = m.masses.shape[0]
+    ne = laws.shape[0]
+    f_seat = 0.0
+    f_ret = 0.0
+    power = 0.0
+    x_seat = np.inf
+    x_top = np.inf
+    for k in range(chains.shape[0] - 1):
+        first = chains[k]
+        last = chains[k + 1]
+        for i in range(first, last + 1):
+            j = i + k
+            lo = i > first
+            hi = i < last
+            xj = xset[j] + (s[i] if hi else u_top) - (s[i - 1] if lo else 0.0)
+            rate = (s[nfree + i] if hi else v_top) - (s[nfree + i - 1] if lo else 0.0)
+            force = element_force(laws, c0, j, xj, rate, not (lo and hi))
+            extra[j] = force
+            extra[ne + j] = xj
+            if hi:
+                extra[2 * ne + X_DISP + i] = s[i]
+            if force != 0.0:  # the damping's share: the force less the elastic law's
+                power += (force - element_force(laws, c0, j, xj, 0.0, False)) * rate
+            if not lo:
+                f_seat += force
+                x_seat = min(x_seat, xj)
+            if not hi:
+                f_ret += force
+                x_top = min(x_top, xj)
+    b = 2 * ne + X_DISP + nm
+    extra[b + XT_DAMPER_FORCE] = 0.0
+    extra[b + XT_DAMPER_SLIP] = 0.0
+    dampers = m.damper
+    for r in range(dampers.shape[0] - 1, -1, -1):  # the first row's force and slip are recorded
+        if dampers[r, DAMPER_FORCE] > 0.0:
+            _, _, f_r, v_rel = _damper_row(s, nfree, dampers, r)
+            power -= f_r * v_rel
+            extra[b + XT_DAMPER_FORCE] = f_r
+            extra[b + XT_DAMPER_SLIP] = v_rel
+    extra[b + XT_SEAT_TOTAL] = f_seat
+    extra[b + XT_RETAINER_TOTAL] = f_ret
+    extra[b + XT_SEAT_COMPRESSION] = x_seat
+    extra[b + XT_RETAINER_COMPRESSION] = x_top
+    extra[b + XT_DISSIPATION] = power
 
 
 @_DOCS.fill
@@ -1399,7 +1435,7 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
 #: The records of the extra outputs, called (only where there are outputs), not inlined: inlined
 #: into every right-hand side (the train's, the spring's, the step's and rhs_call's) their
 #: stores made a sixth of the engine's code for numba to type and compile.
-_RECORDS = ("_record_tail", "_record_hla", "_record_no_hla")
+_RECORDS = ("_record_tail", "_record_hla", "_record_no_hla", "_record_chains")
 
 _TWINS = twins(
     globals(),
@@ -1408,6 +1444,8 @@ _TWINS = twins(
         "cam_at",
         "element_force",
         "damper_friction",
+        "_damper_row",
+        "_record_chains",
         "chain_forces",
         "_record_tail",
         "_record_hla",
