@@ -954,6 +954,11 @@ def sweep(
         Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one
         (``revolutions=3``, ``rtol=1e-7``, ...): they change ``settings``.
     """
+    if vary is not None and getattr(spring, "springs", None) is not None:
+        raise InputError(
+            f"vary = {vary[0]!r}: a sweep varies a field of one spring, not of a spring pack; vary it in that "
+            "spring's own file, or build the packs in Python (SpringPack.replace_spring)"
+        )
     try:
         cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
     except (TypeError, ValueError):
