@@ -116,13 +116,43 @@ def _friction():
     ]
 
 
+def _valve_clearance():
+    """The clearance map of the bucket example's [piston] over a cam lift and a raised copy of it
+    (no run: the valve lifts given)."""
+    from springdyn.valve.cam.timing import Timing, crank_axis
+    from springdyn.valve.train.piston import Piston, clearance_map
+
+    cam = _valve_cam()
+    theta = np.radians(np.arange(0.0, 360.0, 1.0))
+    lift = cam.lift_at(theta)
+    return clearance_map(
+        Piston.in_file(example("valve/bucket_piston.toml")),
+        crank_axis(cam, Timing.from_dict({"lobe_centre": "104 deg", "valve": "exhaust"})),
+        theta,
+        np.stack([lift, 1.1 * lift]),
+        lift,
+        [2000.0, 4000.0],
+        valve="exhaust",
+        limit=1e-3,
+    )
+
+
 def _film_map():
     from springdyn.lsd.film import film_effect_map
 
     return film_effect_map(_lsd(), [3000.0, 14100.0], [20e-6, 100e-6], steps=128)
 
 
+def _camshaft():
+    return springdyn.valve.CamshaftModel.from_toml(example("valve/camshaft_4lobe.toml")).with_settings(
+        points_per_revolution=360
+    )
+
+
 FACTORIES = {
+    "springdyn.valve.camshaft.results.TorsionalModes": lambda: _camshaft().modes(),
+    "springdyn.valve.camshaft.results.CamshaftRun": lambda: _camshaft().simulate(2000.0),
+    "springdyn.valve.camshaft.results.CamshaftSweep": lambda: _camshaft().sweep([1500.0, 2500.0]),
     "springdyn.lsd.calibrate.Calibration": _calibration,
     "springdyn.lsd.film.FilmMap": _film_map,
     "springdyn.lsd.jeffcott.UnbalanceResponse": _unbalance,
@@ -173,6 +203,7 @@ FACTORIES = {
         cam_rpm=3000.0,
     ),
     "springdyn.valve.train.friction.FrictionAnalysis": lambda: _friction()[0],
+    "springdyn.valve.train.piston.ValveClearance": _valve_clearance,
     "springdyn.valve.run.friction.FrictionSweep": lambda: importlib.import_module(
         "springdyn.valve.run.friction"
     ).friction_over_speed(_friction()),

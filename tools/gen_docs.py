@@ -53,10 +53,13 @@ PARAMETER_TABLES = {
     "geometry": ("springdyn.valve.train.lever:LeverGeometry", "valve_train_finger_geometry.toml"),
     "friction": ("springdyn.valve.train.friction:Friction", "valve_train_follower.toml"),
     "oil": ("springdyn.valve.train.oil:Oil", "valve_train_finger_hla.toml"),
+    "piston": ("springdyn.valve.train.piston:Piston", "valve_piston.toml"),
     "requirements": ("springdyn.valve.design.synthesis:Requirements", "valve_requirements.toml"),
     "criteria": ("springdyn.valve.design.criteria:Criteria", "valve_tolerances.toml"),
     "spectrum": ("springdyn.valve.design.life:LoadSpectrum", "valve_spectrum.toml"),
     "cam_card": ("springdyn.valve.cam.from_lift:CamCard", "valve_cam_card.toml"),
+    "camshaft": ("springdyn.valve.camshaft.definition:Camshaft", "valve_camshaft.toml"),
+    "camshaft.lobes": ("springdyn.valve.camshaft.definition:LobeDefinition", "valve_camshaft.toml"),
     "report": ("springdyn.app.report.valve:ReportSettings", "report_engine.toml"),
     "cfcs": ("springdyn.cfcs.params:CFCSParams", "cfcs_table1.toml"),
     "lsd": ("springdyn.lsd.parameters:LSDParameters", "lsd_type_c.toml"),
@@ -127,6 +130,14 @@ CROSS_KEY_RULES = {
     ],
     "friction": [
         ("`fluid_friction` <= `boundary_friction`", {"fluid_friction": 0.2}),
+    ],
+    "piston": [
+        ("`rod_length` above half the `stroke` plus the `pin_offset`", {"rod_length": "40 mm"}),
+        ("`tdc_clearance` plus the pocket the head fits above 0", {"tdc_clearance": "-2 mm"}),
+        ("`pocket_depth` needs `pocket_diameter` and `valve_head_diameter`", {"pocket_diameter": None}),
+        ("`valve_head_diameter` below the `bore`", {"valve_head_diameter": "90 mm"}),
+        ("`valve_angle` at most 60 deg", {"valve_angle": "70 deg"}),
+        ("`clearance_table` or the geometry, not both", {"clearance_table": "checked.csv"}),
     ],
     "oil": [
         ("`viscosity_100` < `viscosity_40`", {"viscosity_100": "80 mm^2/s"}),
@@ -216,9 +227,10 @@ API_TOPICS = {
 API_ORDER = {
     "api-valve.md": (
         "springdyn.valve",
-        ("model", "spring", "cam", "train", "run", "design", "engine"),
+        ("model", "spring", "cam", "train", "run", "design", "camshaft", "engine"),
         "The modules follow the wings: the facade `springdyn.valve`, the front door `springdyn.valve.model`, "
-        "then `spring`, `cam`, `train`, `run` and `design`, and the compiled `engine` (the ground floor) last; "
+        "then `spring`, `cam`, `train`, `run`, `design` and `camshaft`, and the compiled `engine` (the ground "
+        "floor) last; "
         "in each wing its package first, then its modules in the order of the package's module map.",
     ),
 }
@@ -444,10 +456,13 @@ def toml_reference() -> str:
         "geometry": "beside `[valve_train]` (layout `rocker`) and a roller `[follower]`: `springdyn valve kinematics`, `simulate/float/sweep/cam-from-lift --valve-train`, `springdyn report`",
         "friction": "beside `[valve_train]` and `[follower]`: `springdyn valve friction --valve-train`",
         "oil": "beside `[valve_train]`: the one oil of `[hla]` and `[friction]` (their older oil keys mean the same)",
+        "piston": "in the valve-train, cam or spring file (once), with `[timing]`: `springdyn valve clearance`, `springdyn report`",
         "requirements": "`springdyn valve synthesize` (a file of its own)",
         "criteria": "beside `[tolerances]`: `springdyn valve tolerance --tolerances`",
         "spectrum": "`springdyn valve life --spectrum` (a file of its own)",
         "cam_card": "`springdyn valve cam-from-lift --card` (with a `[timing]` table beside it)",
+        "camshaft": "`springdyn valve camshaft` (a file of its own, with its `[[camshaft.lobes]]`)",
+        "camshaft.lobes": "each lobe of `[camshaft]` (`[[camshaft.lobes]]`, one table per lobe): `springdyn valve camshaft`",
         "report": "`springdyn report` (beside a `[spring]` table)",
         "cfcs": "`springdyn cfcs static/dynamic/sweep/forward`, `springdyn report`",
         "lsd": "`springdyn lsd coefficients/rig`, `lsd identify --model`, `springdyn report`",

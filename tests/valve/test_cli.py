@@ -310,3 +310,37 @@ def test_study_commands_answer_a_new_users_mistakes_in_the_options_words(capsys,
     assert main(sweep + ["--vary", "installed_length=0.1mm:0.3mm:0.1mm"]) == 2
     assert "(--on-invalid skip leaves such values out)" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()  # refused before any work
+
+
+def test_camshaft_one_speed_json_and_out(capsys, tmp_path):
+    """``valve camshaft``: the summary as JSON with the modes, the tables and figure in --out."""
+    from tests.paths import example
+
+    out_dir = tmp_path / "cs"
+    code, out, _ = run(
+        capsys,
+        "valve",
+        "camshaft",
+        example("valve/camshaft_4lobe.toml"),
+        "--cam-rpm",
+        "2000",
+        "--json",
+        "--quiet",
+        "--out",
+        str(out_dir),
+    )
+    assert code == 0
+    data = json.loads(out)
+    assert data["converged"] and data["lobe_count"] == 4
+    assert data["modes_Hz"][0] == pytest.approx(423.2, abs=0.1)  # the example's first torsional mode
+    assert sorted(p.name for p in out_dir.iterdir()) == ["camshaft.csv", "camshaft.png", "torsional-modes.csv"]
+    with open(out_dir / "camshaft.csv", newline="") as fh:
+        header = next(csv.reader(fh))
+    assert "drive_torque_N_m" in header and "twist_cylinder_1_rad" in header
+
+
+def test_camshaft_without_lobes_is_bad_input(capsys, tmp_path):
+    f = tmp_path / "shaft.toml"
+    f.write_text('[camshaft]\nsprocket_inertia = "1e-3 kg*m^2"\ndrive_stiffness = "1e4 N*m/rad"\n', encoding="utf-8")
+    code, _, err = run(capsys, "valve", "camshaft", str(f), "--cam-rpm", "2000")
+    assert code == 2 and "[[camshaft.lobes]]" in err and len(err.strip().splitlines()) == 1

@@ -413,6 +413,7 @@ KNOWN_TABLES = (
     "geometry",
     "friction",
     "oil",
+    "piston",
     "requirements",
     "tolerances",
     "criteria",

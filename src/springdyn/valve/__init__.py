@@ -21,6 +21,9 @@ keeps the order):
   run, the rules that judge a run, results and figures;
 - :mod:`~springdyn.valve.design` -- springs from requirements, across tolerances, over their
   life, calibrated to their drawing, and the one set of pass/fail criteria;
+- :mod:`~springdyn.valve.camshaft` -- several valves on one camshaft with its torsion and timing
+  drive (:class:`CamshaftModel`): each valve's run on its twisting lobe, the drive torque, the
+  twist and the timing errors, the shaft's torsional modes;
 - :mod:`~springdyn.valve.model` -- :class:`ValveModel` on top, the front door the CLI and the
   report call.
 
@@ -47,6 +50,7 @@ _EXPORTS = {
     "Friction": "train.friction",
     "Oil": "train.oil",
     "oil_of": "train.oil",
+    "Piston": "train.piston",
     # the spring models
     "Chain": "spring.chains",
     "SpringModel": "spring.chains",
@@ -59,6 +63,13 @@ _EXPORTS = {
     "FloatSpeedResult": "run.results",
     "NaturalFrequencies": "run.results",
     "SpeedSweep": "run.sweeps",
+    "ValveClearance": "train.piston",
+    # several valves on one camshaft with its torsion (issue 41)
+    "CamshaftModel": "camshaft.coupled",
+    "Camshaft": "camshaft.definition",
+    "CamshaftRun": "camshaft.results",
+    "CamshaftSweep": "camshaft.results",
+    "TorsionalModes": "camshaft.results",
     # the analyses as functions (ValveModel's methods call them)
     "simulate": "run.simulation",
     "float_speed": "run.float_search",
@@ -79,6 +90,7 @@ _EXPORTS = {
     "coil_line": "spring.results",
     "load_points_text": "spring.results",
     "separated_train_text": "run.train_modes",
+    "crank_words": "cam.timing",
     "calibrated_keys": "design.calibrate",
     "read_force_trace": "design.calibrate",
     "load_point_lines": "design.calibrate",

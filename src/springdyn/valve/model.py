@@ -107,6 +107,9 @@ class ValveModel:
         the friction's where no ``friction`` is given (default: the oil's defaults).
     gas_force : GasForce, optional
         The cylinder's gas force on the valve over a cam revolution [N] (needs a valve train).
+    piston : Piston, optional
+        The ``[piston]`` table under the valve: the valve-to-piston clearance
+        (:meth:`valve_clearance`; with ``timing``).
     """
 
     def __init__(
@@ -122,6 +125,7 @@ class ValveModel:
         friction=None,
         gas_force=None,
         oil=None,
+        piston=None,
     ):
         if not isinstance(spring, (ValveSpring, SpringPack)):
             raise InputError(
@@ -147,6 +151,9 @@ class ValveModel:
         self.friction_table = friction
         self.oil = oil if oil is not None or friction is None else friction.oil
         self.gas_force = gas_force
+        if piston is not None and not isinstance(piston, train_wing.Piston):
+            raise InputError(f"piston = {piston!r} must be a Piston ([piston] table) or None")
+        self.piston = piston
 
     @classmethod
     def from_files(
@@ -161,8 +168,9 @@ class ValveModel:
     ) -> ValveModel:
         """A model of definition files: ``[spring]``, ``[cam]`` (with its ``[timing]``, or the
         spring file's), ``[valve_train]`` (with its ``[hla]``, ``[geometry]``, ``[follower]`` and
-        ``[friction]``).  A spring file with ``[inner_spring]`` is a spring pack
-        (:class:`~springdyn.valve.spring.pack.SpringPack`: ``[third_spring]``, ``[pack]``, ``[damper]``).
+        ``[friction]``), and a ``[piston]`` table in any of them.  A spring file with
+        ``[inner_spring]`` is a spring pack (:class:`~springdyn.valve.spring.pack.SpringPack`:
+        ``[third_spring]``, ``[pack]``, ``[damper]``).
 
         Parameters
         ----------
@@ -200,6 +208,7 @@ class ValveModel:
             follower=follower,
             friction=friction,
             oil=oil,
+            piston=_piston_of(valve_train, cam, spring),
         )
 
     def __repr__(self) -> str:
@@ -232,6 +241,7 @@ class ValveModel:
             friction=self.friction_table,
             gas_force=self.gas_force,
             oil=self.oil,
+            piston=self.piston,
         )
         unknown = sorted(set(changes) - set(args))
         if unknown:
@@ -740,6 +750,52 @@ class ValveModel:
         ramp = self.speed_ramp(a * float_cam_rpm, b * float_cam_rpm, rate_rpm_per_s, float_scan=False)
         return dataclasses.replace(ramp, steady_float_cam_rpm=float(float_cam_rpm))  # known: its figure marks it
 
+    def valve_clearance(self, cam_rpm, *, limit: float | None = None, quiet: bool = True, workers=None, **changes):
+        """The valve-to-piston clearance over the speeds: the simulated valve (float and bounce
+        included) against the piston's crank-slider of the ``[piston]`` table, its smallest value
+        and crank angle at each speed, the rigid train's (static) clearance beside it
+        (:class:`~springdyn.valve.train.piston.ValveClearance`, the speed map; needs a valve
+        train and the ``[timing]`` table).
+
+        Parameters
+        ----------
+        cam_rpm : array_like
+            Cam speeds [rev/min] (a sweep, :meth:`sweep`).
+        limit : float, optional
+            Smallest clearance [m] (default: :class:`~springdyn.valve.design.criteria.Criteria`'s
+            ``min_valve_piston_clearance``).
+        quiet : bool
+            No progress bar.
+        workers : int, optional
+            Local threads of the sweep [-].
+        **changes
+            Fields of :class:`RunSettings` to change for this sweep.
+        """
+        if self.piston is None:
+            raise InputError(
+                "the valve-to-piston clearance needs the piston: a [piston] table (bore, stroke, rod_length, "
+                "tdc_clearance, ... or clearance_table) in the valve-train, cam or spring file"
+            )
+        vt = self._need_train("the valve-to-piston clearance")
+        cam = self._need_cam("the valve-to-piston clearance")
+        if self.timing is None:
+            raise InputError(
+                "the valve-to-piston clearance is against crank angle: the cam file needs a [timing] table "
+                "(lobe_centre, valve) to place the valve's lift on the piston's stroke"
+            )
+        sw = self.sweep(cam_rpm, quiet=quiet, workers=workers, **changes)
+        limit = design_wing.Criteria().min_valve_piston_clearance if limit is None else limit
+        return train_wing.clearance_map(
+            self.piston,
+            crank_axis(cam, self.timing),
+            sw.cam_angle,
+            sw.data["valve_lift"][0],
+            train_wing.static_valve_lift(cam, vt, sw.cam_angle),
+            sw.cam_rpm,
+            valve=self.timing.valve,
+            limit=limit,
+        )
+
     def friction(self, cam_rpm: float):
         """The train's friction over a simulated revolution at ``cam_rpm``
         (:class:`~springdyn.valve.train.friction.FrictionAnalysis`; needs the follower).
@@ -817,3 +873,17 @@ class ValveModel:
         return design_wing.service_life(
             self.spring, self._need_cam("service_life"), spectrum, self.valve_train, float_speeds
         )
+
+
+def _piston_of(*paths):
+    """The one ``[piston]`` table of the definition files (None: none has one)."""
+    found = {}
+    for path in paths:
+        if path is not None and Path(path).resolve() not in found:
+            piston = train_wing.Piston.in_file(path)
+            if piston is not None:
+                found[Path(path).resolve()] = (path, piston)
+    if len(found) > 1:
+        names = ", ".join(str(p) for p, _ in found.values())
+        raise InputError(f"[piston] is given in {names}: give the piston once (in the valve-train file)")
+    return next(iter(found.values()))[1] if found else None

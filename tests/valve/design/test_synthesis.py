@@ -31,6 +31,14 @@ REQ = dict(
 )
 
 
+def _with_bucket_train(**changes) -> Requirements:
+    """REQ with the bucket train and its polydyne cam (the dynamic checks), and ``changes``."""
+    ex = EXAMPLES / "valve"
+    return Requirements.from_dict(
+        dict(REQ, cam=str(ex / "cam_polydyne_ramps.toml"), valve_train=str(ex / "valve_train.toml"), **changes)
+    )
+
+
 @pytest.fixture(scope="module")
 def result():
     return synthesize(Requirements.from_dict(REQ), dynamics=False)
@@ -162,18 +170,8 @@ def test_dynamic_checks_with_a_cam_and_train(tmp_path):
 
     from springdyn.valve import Cam, ValveTrain, float_speed
 
-    ex = EXAMPLES / "valve"
-    req = Requirements.from_dict(
-        dict(
-            REQ,
-            cam=str(ex / "cam_polydyne_ramps.toml"),
-            valve_train=str(ex / "valve_train.toml"),
-            min_cam_rpm="2800 rpm",
-            max_cam_rpm="4000 rpm",
-            min_float_cam_rpm="3900 rpm",
-        )
-    )
-    res = synthesize(req, per_kind=1)
+    req = _with_bucket_train(min_cam_rpm="2800 rpm", max_cam_rpm="4000 rpm", min_float_cam_rpm="3900 rpm")
+    res = synthesize(req, per_kind=1, judge_all=True)
     assert all("float_cam_rpm" in r and "dynamic_goodman_safety" in r for r in res.rows)
     assert any("no candidate reaches the float speed" in n for n in res.summary["notes"])
     sp = res.springs[0].with_model("distributed")
@@ -183,6 +181,46 @@ def test_dynamic_checks_with_a_cam_and_train(tmp_path):
     again = float_speed(sp, Cam.from_toml(req.cam), ValveTrain.from_toml(req.valve_train), scan, resolution=5.0)
     assert res.rows[0]["float_cam_rpm"] == again["float_cam_rpm"]
     assert not res.rows[0]["meets_all"] and res.rows[0]["margin_float"] < 0
+
+
+@pytest.mark.slow  # the distributed model over a speed range, screened and for every candidate (~30 s)
+def test_the_screen_ranks_first_the_candidate_judging_all_ranks_first(monkeypatch):
+    """Issue 42, item 4: the dynamic checks run lightest first and stop at the first candidate
+    that meets every requirement.  Reference: the same synthesis with ``judge_all`` (every
+    candidate run, float searched for each): the same first candidate with the same figures
+    (to the bit: the same runs), every candidate the screen ran with the same row, and fewer
+    distributed runs."""
+    from springdyn.valve.design import synthesis
+
+    req = _with_bucket_train(
+        min_cam_rpm="1500 rpm",
+        max_cam_rpm="2400 rpm",
+        min_float_cam_rpm="2600 rpm",
+        min_goodman_safety=1.0,  # every candidate meets it at speed: one round, no surge allowance
+    )
+    runs = []
+
+    def counted(*args, **kwargs):
+        runs.append(1)
+        return sweep(*args, **kwargs)
+
+    sweep = synthesis.sweep
+    monkeypatch.setattr(synthesis, "sweep", counted)
+    screened = synthesize(req, per_kind=2)
+    n_screened = len(runs)
+    every = synthesize(req, per_kind=2, judge_all=True)
+    assert every.rows[0]["meets_all"] and screened.rows[0]["meets_all"]
+    assert screened.springs[0] == every.springs[0]
+    same = {k: v for k, v in every.rows[0].items() if k != "dynamics"}
+    assert {k: v for k, v in screened.rows[0].items() if k != "dynamics"} == same
+    assert any(r["meets_all"] is None for r in screened.rows)  # heavier ones were not run
+    for r in screened.rows:
+        if r["meets_all"] is not None and "float_cam_rpm" in r:
+            twin = next(e for e in every.rows if e["mass_kg"] == r["mass_kg"])
+            assert twin["float_cam_rpm"] == r["float_cam_rpm"]
+    assert n_screened < len(runs) - n_screened
+    assert "not run in the distributed model" in screened.describe()
+    assert np.all(np.isfinite(np.concatenate(list(screened.columns().values()))))
 
 
 def test_an_earlier_runs_candidates_do_not_stay_beside_the_new_ones(tmp_path):

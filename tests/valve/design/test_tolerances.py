@@ -503,3 +503,17 @@ def test_a_ten_million_variant_study_commits_chunks_with_bounded_memory(monkeypa
         tracemalloc.stop()
     assert len(list((tmp_path / "chunks").glob("*.npz"))) >= 40  # committed as they finished
     assert peak < 10_000_000, peak  # bytes (the sample alone would be 240 MB)
+
+
+def test_profiled_wire_tolerances_take_its_radial_width():
+    """Ovate wire (examples/valve/beehive_ovate.toml, 4.0 mm across the coil): the drawn outer
+    diameter is D + b with the radial width b (21 + 4 = 25 mm), an outer-diameter variant keeps
+    D = De - b, and a wire_diameter tolerance of its section is refused by name."""
+    spring = ValveSpring.from_toml(example("valve/beehive_ovate.toml"))
+    cam = Cam.from_toml(example("valve/cam_345.toml"))
+    nominal = nominal_values(spring, cam, None)
+    assert nominal["outer_diameter"] == pytest.approx(25e-3, abs=1e-12)
+    sp, _, _ = variant(spring, cam, None, {"outer_diameter": 25.2e-3})
+    assert sp.mean_diameter == pytest.approx(21.2e-3, abs=1e-12)
+    with pytest.raises(InputError, match="wire_diameter: the spring's wire is ovate"):
+        variant(spring, cam, None, {"wire_diameter": 3.5e-3})

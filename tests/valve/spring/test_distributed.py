@@ -463,3 +463,23 @@ def test_clash_forces_converge_in_elements(name, lift, rpm):
     for key in keys:
         assert abs(runs[50][key] - runs[200][key]) < 0.02 * fset, (key, runs[50][key], runs[200][key])
         assert abs(runs[100][key] - runs[200][key]) < 0.01 * fset, (key, runs[100][key], runs[200][key])
+
+
+def test_a_uniform_element_is_coil_law_and_its_neighbours_follow_it():
+    """A uniform element (every turn-slice alike) takes :func:`coil_law` exactly (the closed
+    form the graded law's docstring states for it); an element whose slices differ by 1e-9
+    takes the graded pieces, which agree with it to 2e-5 of the force at every compression
+    (CLOSING_PIECES quadratics through the contact onset; measured 5.1e-6 there)."""
+    from springdyn.valve.spring.chains.distributed import coil_law, graded_coil_law
+    from springdyn.valve.spring.elements import law_force
+
+    n = 64
+    ks, gap, kc, onset = np.full(n, 8.4e7), np.full(n, 6.6e-6), np.full(n, 8.6e9), np.full(n, 2.8e-6)
+    law = graded_coil_law(ks, gap, kc, onset)
+    exact = coil_law(ks[0] / n, gap.sum(), (ks[0] + kc[0]) / n - ks[0] / n, onset.sum())
+    np.testing.assert_allclose(law[:3], exact, rtol=1e-13)  # 1/sum(1/k) against k/n: round-off
+    assert np.all(np.isinf(law[3:]))
+    near = graded_coil_law(ks * (1 + 1e-9 * np.linspace(-1, 1, n)), gap, kc, onset)
+    x = np.linspace(0.0, 3 * (gap.sum() + onset.sum()), 2001)
+    f = law_force(x, law)
+    assert np.all(np.abs(law_force(x, near) - f) <= 2e-5 * np.maximum(f, ks[0] / n * gap.sum()))

@@ -118,3 +118,26 @@ def test_the_engines_element_force_is_the_element_law_with_its_damping():
                 assert got == pytest.approx(want, rel=1e-12, abs=1e-9)
                 end = element_force(chain.laws, c0, j, x, rate, True)
                 assert end == (0.0 if (x <= 0.0 or want < 0.0) else pytest.approx(want, rel=1e-12, abs=1e-9))
+
+
+def test_laws_of_a_whole_chain_at_once_match_them_one_by_one():
+    """Issue 42 (the statics of a synthesis): ``law_force``, ``law_stiffness`` and
+    ``law_compression`` take the ``(E, S, 4)`` laws of a chain with the element as the first
+    axis.  Reference: the same functions element by element (identical to round-off)."""
+    import warnings
+
+    from springdyn.valve import ValveSpring
+    from springdyn.valve.spring.elements import law_compression, law_force, law_stiffness
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for model in ("type-c", "distributed"):
+            laws = ValveSpring.example("two-step").with_model(model).spring_model.chain.laws
+            x = np.linspace(-1e-4, 3e-3, 37)[None, :] * np.linspace(0.5, 1.5, laws.shape[0])[:, None]
+            f = np.linspace(-10.0, 900.0, 37)
+            for fn, arg in ((law_force, x), (law_stiffness, x)):
+                one = np.stack([fn(arg[j], laws[j]) for j in range(laws.shape[0])])
+                np.testing.assert_allclose(fn(arg, laws), one, rtol=1e-14, atol=0)
+            fb = np.broadcast_to(f, (laws.shape[0], f.size))
+            one = np.stack([law_compression(f, laws[j]) for j in range(laws.shape[0])])
+            np.testing.assert_allclose(law_compression(fb, laws), one, rtol=1e-14, atol=1e-18)

@@ -5,6 +5,8 @@
 - :mod:`.valve`, :mod:`.cfcs`, :mod:`.lsd` -- each family's commands (:mod:`.valve_cam_design`:
   the valve commands that design and check a cam and a lever, ``cam-from-lift``, ``cam-check``
   and ``kinematics``; :mod:`.valve_friction`: ``friction``, the drive torque and friction power;
+  :mod:`.valve_clearance`: ``clearance``, the valve-to-piston clearance over speed;
+  :mod:`.valve_camshaft`: ``camshaft``, several valves on one twisting camshaft;
   :mod:`.valve_synthesis`: ``synthesize``, ``tolerance`` and ``life``, springs from
   requirements, across their tolerances, relaxed and under a load spectrum;
   :mod:`.valve_options`: the options every valve command shares and the model it builds);

@@ -12,7 +12,7 @@ from __future__ import annotations
 import dataclasses
 
 import springdyn.valve as valve
-from springdyn.app.cli import valve_cam_design, valve_friction, valve_synthesis
+from springdyn.app.cli import valve_cam_design, valve_camshaft, valve_clearance, valve_friction, valve_synthesis
 from springdyn.app.cli.common import (
     add_output_options,
     announce_written,
@@ -209,6 +209,8 @@ def register(sub) -> None:
 
     valve_cam_design.register(vsub)  # cam-from-lift, cam-check, kinematics
     valve_friction.register(vsub)
+    valve_clearance.register(vsub)
+    valve_camshaft.register(vsub)
     valve_synthesis.register(vsub)
     valve_synthesis.register_tolerance(vsub)
     valve_synthesis.register_life(vsub)

@@ -25,6 +25,12 @@ def register(vsub) -> None:
     p.add_argument(
         "--per-kind", type=int, default=3, metavar="N", help="candidates of each kind (one-step, two-step; default 3)"
     )
+    p.add_argument(
+        "--judge-all",
+        action="store_true",
+        help="run the distributed model on every candidate (by default the runs stop at the lightest candidate that "
+        "meets every requirement: no heavier one can rank above it)",
+    )
     add_output_options(p)
     p.set_defaults(func=cmd_synthesize)
 
@@ -42,7 +48,7 @@ def cmd_synthesize(args) -> int:
     def bar(items, desc):
         return progress(items, desc=desc, quiet=args.quiet)
 
-    res = design.synthesize(req, per_kind=args.per_kind, base_dir=base, progress=bar)
+    res = design.synthesize(req, per_kind=args.per_kind, base_dir=base, judge_all=args.judge_all, progress=bar)
     written = design.write_candidates(res, args.out_dir, str(args.requirements))
     written.append(res.to_csv(args.csv if args.csv else f"{args.out_dir}/candidates.csv"))
     if args.plot:

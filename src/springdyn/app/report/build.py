@@ -30,6 +30,7 @@ SUPPORT_TABLES = {
     "geometry": "spring",
     "friction": "spring",
     "oil": "spring",
+    "piston": "spring",
     "report": "spring",
 }
 #: Built-in definitions of ``springdyn demo`` (shipped in springdyn/data, copies in examples/report).

@@ -56,6 +56,9 @@ class ReportSettings(Parameters):
     min_goodman_safety: float = param_like(design.Criteria, "min_goodman_safety", "the [criteria] key")
     max_seating_velocity: float = param_like(design.Criteria, "max_seating_velocity", "the [criteria] key")
     max_clash_severity: float = param_like(design.Criteria, "max_clash_severity", "the [criteria] key")
+    min_valve_piston_clearance: float = param_like(
+        design.Criteria, "min_valve_piston_clearance", "the [criteria] key; with [piston]"
+    )
 
     run_up_rate: float = param(
         "1/s^2",
@@ -96,6 +99,13 @@ class ReportSettings(Parameters):
         kind="str",
         default=None,
     )
+    camshaft: str = param(
+        None,
+        "a camshaft beside the definition (a file with [camshaft] and its [[camshaft.lobes]]): the report runs its "
+        "valves on the twisting shaft at the low, middle and top speed (springdyn valve camshaft)",
+        kind="str",
+        default=None,
+    )
     tolerance_samples: int = param(
         "", "variants of the tolerance study (Sobol points: a power of 2)", kind="int", default=64, positive=True
     )
@@ -119,6 +129,7 @@ class ReportSettings(Parameters):
             float_margin=self.float_margin,
             max_seating_velocity=self.max_seating_velocity,
             max_clash_severity=self.max_clash_severity,
+            min_valve_piston_clearance=self.min_valve_piston_clearance,
         )
 
     def cam_rpm(self, engine_rad_s: float) -> float:
@@ -150,6 +161,8 @@ class ValveDefinition:
     requirements: object = None
     #: ``[report] tolerances``: (tolerances, Criteria), or None.
     tolerances: object = None
+    #: ``[report] camshaft``: (CamshaftModel, its file), or None.
+    camshaft: object = None
 
     @property
     def spring(self):
@@ -198,8 +211,14 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         raise InputError(f"{path}: [friction] needs a [follower] table in the same file (the contact at the cam)")
     friction = valve.Friction.in_document(doc, source=str(path))
     oil = valve.oil_of(doc, source=str(path))[0] if vt is not None else None
+    piston = None
+    if "piston" in doc:  # the valve-to-piston clearance: the train's valve over the piston, placed by [timing]
+        need = [t for t, ok in (("[valve_train]", vt is not None), ("[timing]", timing is not None)) if not ok]
+        if need:
+            raise InputError(f"{path}: [piston] needs {' and '.join(need)} (the valve's lift against crank angle)")
+        piston = valve.Piston.from_dict(doc["piston"], source=str(path), base_dir=Path(path).parent)
     model = valve.ValveModel(
-        spring, cam, vt, timing=timing, crank_angles=True, follower=follower, friction=friction, oil=oil
+        spring, cam, vt, timing=timing, crank_angles=True, follower=follower, friction=friction, oil=oil, piston=piston
     )
     if settings.cylinder_pressure is not None:
         need = [t for t, ok in (("[valve_train]", vt is not None), ("[timing]", timing is not None)) if not ok]
@@ -221,12 +240,24 @@ def load(doc: dict, path: Path) -> ValveDefinition:
         tolerances = design.read_tolerances(_beside(path, settings.tolerances, "tolerances"))
         if "lash" in tolerances[0] and vt is None:
             raise InputError(f"{path}: [report] tolerances: lash is the valve train's: give a [valve_train] table")
-    return ValveDefinition(model, cam_given, settings, requirements, tolerances)
+    camshaft = None
+    if settings.camshaft is not None:
+        f = _beside(path, settings.camshaft, "camshaft")
+        camshaft = (valve.CamshaftModel.from_toml(f), f)
+    return ValveDefinition(model, cam_given, settings, requirements, tolerances, camshaft)
 
 
 def _criterion(v) -> Criterion:
     """A judged criterion (:class:`springdyn.valve.design.Verdict`) as a row of the report."""
     return Criterion(v.label, v.value, v.limit, v.passed, v.note, v.model)
+
+
+def _write_result(result, stem: Path, caption: str, files: list, figures: list) -> None:
+    """A result's CSV and figure beside the section (``stem.csv``, ``stem.png``), the figure with
+    its caption."""
+    files.append(result.to_csv(stem.with_suffix(".csv")))
+    plt.close(result.plot(stem.with_suffix(".png")))
+    figures.append((stem.with_suffix(".png"), caption))
 
 
 def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
@@ -236,14 +267,13 @@ def _run_up_finding(model, f, rs, out_dir, files, figures) -> str:
     rate = rs.cam_rpm(rs.run_up_rate)  # cam rpm per second
     ramp = model.run_up_through_float(f, rate)
     r = ramp.summary
-    plt.close(ramp.plot(out_dir / "run_up.png"))
-    files.append(ramp.to_csv(out_dir / "run_up.csv"))
-    figures.append(
-        (
-            out_dir / "run_up.png",
-            f"Run-up from {ramp.start_rpm:.0f} to {ramp.end_rpm:.0f} cam rpm at {rate:.0f} cam rpm/s "
-            f"({_describe_model(model.spring).split(',')[0]}): lift-off and float against the momentary speed",
-        )
+    _write_result(
+        ramp,
+        out_dir / "run_up",
+        f"Run-up from {ramp.start_rpm:.0f} to {ramp.end_rpm:.0f} cam rpm at {rate:.0f} cam rpm/s "
+        f"({_describe_model(model.spring).split(',')[0]}): lift-off and float against the momentary speed",
+        files,
+        figures,
     )
     onset = r["float_onset_cam_rpm"]
     where = (
@@ -297,6 +327,31 @@ def _friction_finding(model, report_speeds, out_dir, files, figures) -> str:
         f"{top['friction_power_W']:.1f} W at {axis.per_cam * speeds[-1]:.0f} engine rpm ({parts}); mean camshaft "
         f"drive torque {top['mean_drive_torque_N_m']:.2f} N m, peaks {top['min_drive_torque_N_m']:.1f} / "
         f"{top['max_drive_torque_N_m']:.1f} N m; smallest film parameter {top.get('min_film_parameter', float('nan')):.2g}."
+    )
+
+
+def _camshaft_finding(camshaft, report_speeds, out_dir, files, figures) -> str:
+    """The valves on the twisting camshaft of ``[report] camshaft`` at the report's speeds
+    (:meth:`springdyn.valve.CamshaftModel.sweep`): drive torque, twist, timing errors, modes."""
+    sweep = camshaft.sweep(np.asarray(report_speeds, dtype=float))
+    top = sweep.runs[-1]
+    plt.close(sweep.plot(out_dir / "camshaft_sweep.png"))
+    plt.close(top.plot(out_dir / "camshaft.png"))
+    files += [sweep.to_csv(out_dir / "camshaft_sweep.csv"), top.to_csv(out_dir / "camshaft.csv")]
+    figures += [
+        (out_dir / "camshaft.png", f"The camshaft at {top.cam_rpm:g} cam rpm: drive torque, twist and valve lifts"),
+        (out_dir / "camshaft_sweep.png", "The camshaft over speed: drive torque and each valve's timing error"),
+    ]
+    m, t = sweep.summary, top.summary
+    return (
+        f"Camshaft ([report] camshaft, {len(camshaft.lobes)} lobes, torsional modes "
+        + ", ".join(f"{f:.0f}" for f in sweep.modes_Hz[:3])
+        + f" Hz): at {top.cam_rpm:g} cam rpm the drive torque swings {t['min_drive_torque_N_m']:.1f} / "
+        f"{t['max_drive_torque_N_m']:.1f} N m about {t['mean_drive_torque_N_m']:.2f} N m, the lobes twist by up to "
+        f"{t['max_twist_deg']:.3f} deg; the largest timing error over the speeds is {m['max_timing_error_deg']:.3f} cam "
+        f"deg ({m['max_timing_error_crank_deg']:.3f} crank deg) at {m['max_timing_error_cam_rpm']:g} cam rpm"
+        + ("" if m["converged"] else "; NOT converged at every speed (the valves float?)")
+        + "."
     )
 
 
@@ -499,6 +554,10 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         )
     if vt is not None:
         _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, findings, criteria, commands, source)
+    if d.camshaft is not None:
+        shaft, shaft_file = d.camshaft
+        findings.append(_camshaft_finding(shaft, report_speeds, out_dir, files, figures))
+        commands.append(f"springdyn valve camshaft {shaft_file} --cam-rpm {top:g}")
     if d.requirements is not None or d.tolerances is not None:
         _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet)
     inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
@@ -657,6 +716,8 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
                 )
             )
         )
+    if model.piston is not None:
+        _clearance_part(model, rs, report_speeds, out_dir, files, figures, findings, criteria, commands, source)
     if train.gas_force is not None:
         findings.append(_gas_finding(train, top))
     if model.follower is not None:
@@ -673,6 +734,44 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
 
 
 _MODEL_NAMES = {"type-c": "Type C", "distributed": "distributed"}
+
+#: Speeds of the valve-to-piston clearance's sweep in the report [-]: from the lowest report
+#: speed to the over-speed the float criterion asks the valve to survive.
+CLEARANCE_SPEEDS = 9
+
+
+def _clearance_part(model, rs, report_speeds, out_dir, files, figures, findings, criteria, commands, source):
+    """``[piston]``: the valve-to-piston clearance from the lowest speed up to the float margin
+    above the top speed (:meth:`ValveModel.valve_clearance`), its speed map and its criterion."""
+    crit = rs.criteria
+    speeds = np.linspace(report_speeds[0], report_speeds[-1] * (1.0 + crit.float_margin), CLEARANCE_SPEEDS)
+    res = model.valve_clearance(speeds, limit=crit.min_valve_piston_clearance)
+    s = res.summary
+    _write_result(
+        res,
+        out_dir / "valve_clearance",
+        f"{s['valve'].capitalize()} valve-to-piston clearance ([piston]): the smallest against engine speed with the "
+        "static (rigid train) one beside it, and the clearance over crank angle and speed "
+        f"({_describe_model(model.spring).split(',')[0]})",
+        files,
+        figures,
+    )
+    axis = model.crank_axis
+    findings.append(
+        f"Valve-to-piston clearance ({s['valve']} valve, [piston]): the simulated valve comes within "
+        f"{s['min_clearance_m'] * 1e3:.2f} mm of the piston at {axis.per_cam * s['min_clearance_cam_rpm']:.0f} engine "
+        f"rpm, {valve.crank_words(s['min_clearance_crank_angle_deg'])} (along the valve's axis); the rigid train's "
+        f"static clearance is {s['static_min_clearance_m'] * 1e3:.2f} mm at "
+        f"{valve.crank_words(s['static_min_clearance_crank_angle_deg'])}"
+        + ("; THE VALVE MEETS THE PISTON" if s["valve_meets_piston"] else "")
+        + "."
+    )
+    criteria.append(_criterion(design.clearance_verdict(crit, res, model=model.spring.model)))
+    commands.append(
+        f"springdyn valve clearance {source} --cam {source} --valve-train {source} "
+        f"--cam-rpm {','.join(f'{r:.0f}' for r in speeds)} --plot valve_clearance.png"
+    )
+
 
 #: Width of the final bracket of the judging model's float search [rev/min]: the distributed
 #: chain costs some ten times Type C per speed, and the bracket is stated beside the figure.

@@ -41,6 +41,8 @@ _EXPORTS = {
     "float_verdict": "criteria",
     "pump_up_verdict": "criteria",
     "seating_verdict": "criteria",
+    "clearance_verdict": "criteria",
+    "MIN_VALVE_PISTON_CLEARANCE": "criteria",
     "MIN_GOODMAN_SAFETY": "criteria",
     "MIN_SURGE_MARGIN": "criteria",
     "FLOAT_MARGIN": "criteria",

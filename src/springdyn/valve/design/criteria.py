@@ -27,6 +27,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.params import Parameters, param
 from ...core.units import omega_to_rpm
+from ..cam.timing import crank_words
 from ..run import verdicts
 
 __all__ = [
@@ -47,6 +48,8 @@ __all__ = [
     "float_verdict",
     "pump_up_verdict",
     "seating_verdict",
+    "MIN_VALVE_PISTON_CLEARANCE",
+    "clearance_verdict",
 ]
 
 #: Smallest fatigue safety factor on the Goodman line (1.1-1.3 in spring practice) [-].
@@ -58,6 +61,14 @@ FLOAT_MARGIN = 0.1
 #: Largest seat impact velocity of the valve up to the top speed [m/s] (a common design limit of
 #: passenger-car valve trains is about 0.5 m/s).
 MAX_SEATING_VELOCITY = 0.5
+#: Smallest valve-to-piston clearance of the simulated valve (float and bounce included) along
+#: its axis [m].  Engine builders ask 2.0 mm (0.080 in) at the intake and 2.5 mm (0.100 in) at the
+#: exhaust of the seated valve's travel less the cam's lift, checked by hand with light springs
+#: [LC Engineering], [moparts]: a margin that covers float, rod stretch, thermal growth and bearing
+#: clearances together.  The simulated lift carries the float and the bounce itself, so the limit
+#: on it keeps only the rest: 1 mm (rod stretch 0.1-0.3 mm at speed, the valve's growth 0.2-0.3 mm,
+#: bearing clearances and the timing drive's stretch).
+MIN_VALVE_PISTON_CLEARANCE = 1.0e-3
 #: Largest clash severity [fraction of Fset] (:data:`springdyn.valve.run.verdicts.MAX_CLASH_SEVERITY`, its home).
 MAX_CLASH_SEVERITY = verdicts.MAX_CLASH_SEVERITY
 #: The spring model whose runs judge the criteria where it runs the spring: the distributed
@@ -147,6 +158,14 @@ RULES = {
             "<=",
             None,
             "the valve lift a hydraulic lash adjuster holds on the base circle",
+        ),
+        Rule(
+            "valve_piston_clearance",
+            "valve-to-piston clearance",
+            ">=",
+            "min_valve_piston_clearance",
+            "the seated valve's travel to the piston less its simulated lift (float and bounce included), the "
+            "smallest over the cycle and the speeds, along the valve's axis",
         ),
         Rule(
             "max_retainer_force",
@@ -306,6 +325,14 @@ class Criteria(Parameters):
     )
     max_retainer_force: float = param(
         "N", "largest retainer force over the speeds (optional)", positive=True, default=None
+    )
+    min_valve_piston_clearance: float = param(
+        "m",
+        "smallest valve-to-piston clearance of the simulated valve along its axis, with [piston] (builders ask "
+        "2-2.5 mm of the static check; the simulated float is in the figure, the rest of the margin about 1 mm)",
+        display="mm",
+        positive=True,
+        default=MIN_VALVE_PISTON_CLEARANCE,
     )
     installed_force_band: float = param(
         "",
@@ -692,5 +719,39 @@ def seating_verdict(
         limit_text=f"<= {criteria.max_seating_velocity:g} m/s ([report] max_seating_velocity)",
         note="the valve's impact on its seat, the largest of the band over the scanned speeds within 25 rpm and, "
         "where a speed does not settle, its last revolutions" + (f"; {beside}" if beside else ""),
+        model=name,
+    )
+
+
+def clearance_verdict(criteria: Criteria, clearance, *, model: str = "") -> Verdict:
+    """The smallest valve-to-piston clearance over the speeds against
+    :attr:`Criteria.min_valve_piston_clearance`.
+
+    Parameters
+    ----------
+    criteria : Criteria
+        The limits.
+    clearance : ValveClearance
+        The clearance over the speeds (:meth:`springdyn.valve.ValveModel.valve_clearance`).
+    model : str
+        The spring model of the runs (empty: not named) [-].
+    """
+    s = clearance.summary
+    name = _model_name(model) if model else ""
+    limit = criteria.min_valve_piston_clearance
+    rpm = clearance.cam_rpm
+    return verdict(
+        "valve_piston_clearance",
+        s["min_clearance_m"],
+        limit,
+        label=f"{s['valve']} valve-to-piston clearance, {rpm[0]:.0f}-{rpm[-1]:.0f} cam rpm"
+        + (f", {name}" if name else ""),
+        value_text=f"{s['min_clearance_m'] * 1e3:.2f} mm at {s['min_clearance_cam_rpm']:.0f} cam rpm, "
+        f"{crank_words(s['min_clearance_crank_angle_deg'])}",
+        limit_text=f">= {limit * 1e3:g} mm ([criteria] min_valve_piston_clearance)",
+        note=f"static (rigid train) {s['static_min_clearance_m'] * 1e3:.2f} mm at "
+        f"{crank_words(s['static_min_clearance_crank_angle_deg'])}; "
+        + RULES["valve_piston_clearance"].definition
+        + "; [piston] geometry or measured table",
         model=name,
     )

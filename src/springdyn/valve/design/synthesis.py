@@ -29,7 +29,11 @@ A spring engineer starts from two load points and the space, not from a spring. 
    spring's mass is moving mass of the valve train: a third of it at the retainer).
 5. **Dynamics.**  With a cam (and a valve train), the best candidates of each kind are run
    with the distributed model over the speed range: float speed, peak retainer force, coil
-   clash (:func:`springdyn.valve.float_speed`, :func:`springdyn.valve.simulate`).
+   clash (:func:`springdyn.valve.float_speed`, :func:`springdyn.valve.simulate`).  They are
+   run lightest first and the runs screen (issue 42): once a candidate meets every
+   requirement no heavier one is run (it cannot rank above it), and one that misses a
+   requirement already gets no float search; ``judge_all`` runs everything.  The first
+   candidate is the same either way.
 
 Infeasible requirements get a message that names the binding requirements and how far the
 best candidate misses each (:func:`infeasibility`).
@@ -483,9 +487,9 @@ class Synthesis(Result):
             f"{req.installed_force:g} N at {req.installed_length * 1e3:g} mm, {req.open_force:g} N at "
             f"{req.open_length * 1e3:g} mm (lift {req.lift * 1e3:g} mm), material {req.material}"
         ]
-        names = [k for k in self.rows[0] if k.startswith("margin_")]
         rows = []
         for r in self.rows:
+            names = [k for k in r if k.startswith("margin_")]
             rows.append(
                 (
                     r["rank"],
@@ -499,7 +503,7 @@ class Synthesis(Result):
                     f"{r['goodman_safety']:.2f}",
                     "-" if r.get("float_cam_rpm", "-") in ("-", None) else f"{r['float_cam_rpm']:.0f}",
                     f"{r['smallest_margin']:+.1%} ({min(names, key=lambda k: r[k])[len('margin_') :]})",
-                    "yes" if r["meets_all"] else "NO",
+                    "not run" if r["meets_all"] is None else ("yes" if r["meets_all"] else "NO"),
                 )
             )
         out.append(
@@ -531,6 +535,12 @@ class Synthesis(Result):
                 + ("" if tc[0] is None else f"; Type C {tc[0]:.1f} / {tc[1]:.1f} N")
                 + (" (Type C stiffens inside the stroke: see the spring file)" if r.get("type_c_note") else "")
             )
+        unrun = [str(r["rank"]) for r in self.rows if r["meets_all"] is None]
+        if unrun:
+            out.append(
+                f"not run in the distributed model: {', '.join(unrun)}, heavier than candidate 1, which meets every "
+                "requirement (they cannot rank above it; --judge-all runs them)"
+            )
         if out_dir:
             out.append(f"the candidates' spring files and candidates.csv are in {out_dir}")
         return "\n".join(out + notes_lines(self.summary))
@@ -560,6 +570,9 @@ class Synthesis(Result):
         out = {k: np.array([float(r[k]) for r in self.rows]) for k in keys}
         if any("clash_onset_cam_rpm" in r for r in self.rows):
             out["coil_clash"] = np.array([float(r.get("clash_onset_cam_rpm") is not None) for r in self.rows])
+        if any(r["meets_all"] is None for r in self.rows):  # the screen left some out: 0/1 and run 0/1
+            out["meets_all"] = np.array([float(bool(r["meets_all"])) for r in self.rows])
+            out["dynamics_run"] = np.array([float(r["meets_all"] is not None) for r in self.rows])
         return out
 
     def to_xarray(self):
@@ -799,7 +812,13 @@ def _valve_spring(req: Requirements, table: dict, i: int, n2: float, lf: float, 
 
 
 def synthesize(
-    req: Requirements, *, per_kind: int = 3, base_dir=None, dynamics: bool = True, progress=None
+    req: Requirements,
+    *,
+    per_kind: int = 3,
+    base_dir=None,
+    dynamics: bool = True,
+    judge_all: bool = False,
+    progress=None,
 ) -> Synthesis:
     """The best springs for the requirements (see the module docstring).
 
@@ -813,6 +832,11 @@ def synthesize(
         Folder of the requirements file (its ``cam`` and ``valve_train`` paths are relative to it).
     dynamics : bool
         Run the dynamic checks when the requirements name a cam.
+    judge_all : bool
+        Run the dynamic checks on every candidate.  By default they screen (module docstring,
+        5): a candidate heavier than one that meets every requirement cannot rank first and is
+        not run, nor is the float search of one that misses a requirement already; the first
+        candidate and its figures are the same (``tests/valve/design/test_synthesis.py``).
     progress : callable, optional
         ``progress(iterable, desc=...)`` wrapper for the dynamic runs.
 
@@ -858,18 +882,25 @@ def synthesize(
         kept = (springs, rows, notes, table)
         if not (dynamics and req.cam):
             break
-        _dynamics(req, springs, rows, base_dir, progress, notes)
-        dyn = [r["dynamic_goodman_safety"] for r in rows]
+        _dynamics(req, springs, rows, base_dir, progress, notes, judge_all)
         if any(r["meets_all"] for r in rows) or min(r["margin_goodman_dynamic"] for r in rows) >= 0.0:
             break
+        # no candidate meets everything: every one was run (a screen stops only at one that does)
+        dyn = [r["dynamic_goodman_safety"] for r in rows]
         allowance *= min(req.min_goodman_safety / max(g, 1e-6) for g in dyn) * 1.02
     springs, rows, notes, table = kept
-    order = sorted(range(len(rows)), key=lambda k: (not rows[k]["meets_all"], rows[k]["mass_kg"]))
+    order = sorted(range(len(rows)), key=lambda k: (_standing(rows[k]), rows[k]["mass_kg"]))
     rows = [rows[k] for k in order]
     springs = [springs[k] for k in order]
     for rank, r in enumerate(rows, 1):
         r["rank"] = rank
     return Synthesis(requirements=req, springs=springs, rows=rows, searched=int(table["physical"].sum()), notes=notes)
+
+
+def _standing(row: dict) -> int:
+    """A candidate's place in the ranking before its mass: 0 meets every requirement, 1 not
+    judged (the screen did not run it), 2 misses one."""
+    return 0 if row["meets_all"] else (1 if row["meets_all"] is None else 2)
 
 
 def _select(req: Requirements, screen: Requirements, table: dict, per_kind: int):
@@ -1012,8 +1043,15 @@ def type_c_stiffening_note(sp, req: Requirements) -> str:
     )
 
 
-def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
-    """The distributed model of each candidate over the speed range (module docstring, 5)."""
+def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = False) -> None:
+    """The distributed model of each candidate over the speed range (module docstring, 5).
+
+    The candidates are run lightest first, the ranking's order among those that meet every
+    requirement.  Unless ``judge_all``, the runs stop at the first candidate that meets every
+    requirement (no heavier one can rank above it; their rows say they were not run and their
+    ``meets_all`` is ``None``), and a candidate that misses a requirement at speed (Goodman,
+    clash) or statically gets no float search (it cannot meet all, whatever its float speed).
+    """
 
     base = Path(base_dir) if base_dir is not None else Path(".")
 
@@ -1024,9 +1062,17 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
     cam = Cam.from_toml(path(req.cam))
     vt = ValveTrain.from_toml(path(req.valve_train)) if req.valve_train else None
     speeds = req.speeds()
-    items = list(zip(springs, rows))
-    it = progress(items, desc="dynamics") if progress is not None else items
-    for sp, row in it:
+    order = sorted(range(len(rows)), key=lambda k: rows[k]["mass_kg"])
+    it = progress(order, desc="dynamics") if progress is not None else order
+    winner = None
+    for k in it:
+        sp, row = springs[k], rows[k]
+        if winner is not None and not judge_all:
+            row["meets_all"] = None
+            row["dynamics"] = (
+                f"not run: heavier than the {rows[winner]['mass_kg'] * 1e3:.1f} g candidate that meets all"
+            )
+            continue
         # the candidate as designed (the standard's rates, its transition coils written) run
         # coil by coil: its static forces are the row's distributed ones
         model = sp.with_model("distributed")
@@ -1042,7 +1088,11 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
             clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
             row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
             row["max_clash_severity"] = float(np.max(t["clash_severity"]))
-            if vt is not None:
+            missed = [key[len("margin_") :] for key, v in row.items() if key.startswith("margin_") and v < 0.0]
+            row["dynamics"] = "run"
+            if vt is not None and missed and not judge_all:
+                row["dynamics"] = f"run; float speed not searched: misses {', '.join(missed)} already"
+            elif vt is not None:
                 need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
                 scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
                 res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION)
@@ -1053,7 +1103,9 @@ def _dynamics(req, springs, rows, base_dir, progress, notes) -> None:
                     row["margin_float"] = criteria.margin("float_speed", scan[-1] if fl is None else fl, need)
         row["smallest_margin"] = min(v for key, v in row.items() if key.startswith("margin_"))
         row["meets_all"] = row["smallest_margin"] >= 0.0
-    if not any(r["margin_goodman_dynamic"] >= 0 for r in rows):
+        if row["meets_all"] and winner is None:
+            winner = k
+    if not any(r.get("margin_goodman_dynamic", 0.0) >= 0 for r in rows):
         best = max(r["dynamic_goodman_safety"] for r in rows)
         notes.append(
             f"no candidate keeps the Goodman safety {req.min_goodman_safety:g} over the speed range with its surge "

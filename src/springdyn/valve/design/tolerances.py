@@ -276,8 +276,8 @@ def nominal_values(spring, cam, valve_train) -> dict:
     valve_train : ValveTrain or None
     """
     out = {k: float(getattr(spring, k)) for k, (_, where) in TOLERANCED.items() if where == "spring"}
-    out["outer_diameter"] = float(spring.mean_diameter + spring.wire_diameter)
-    out["inner_diameter"] = float(spring.mean_diameter - spring.wire_diameter)
+    out["outer_diameter"] = float(spring.mean_diameter + spring.wire.width)  # the wire across the coil
+    out["inner_diameter"] = float(spring.mean_diameter - spring.wire.width)
     out["pitch"] = mean_active_pitch(spring)
     out["lift"] = float(cam.max_lift)
     out["lash"] = float(valve_train.lash) if valve_train is not None else 0.0
@@ -400,7 +400,12 @@ def variant(spring, cam, valve_train, values: dict):
     """
 
     spring_changes = {k: float(v) for k, v in values.items() if TOLERANCED[k][1] == "spring"}
-    wire = spring_changes.get("wire_diameter", spring.wire_diameter)
+    if "wire_diameter" in spring_changes and spring.wire_shape != "round":
+        raise InputError(
+            f"[tolerances] wire_diameter: the spring's wire is {spring.wire_shape} (wire_width by wire_height); "
+            "a tolerance of its section is not supported: tolerance the other keys"
+        )
+    wire = spring_changes.get("wire_diameter", spring.wire.width)  # across the coil: D = De - b = Di + b
     if "outer_diameter" in values:  # the drawn coil diameter with this variant's wire
         spring_changes["mean_diameter"] = float(values["outer_diameter"]) - wire
     if "inner_diameter" in values:

@@ -16,6 +16,8 @@ natural frequencies, and the models that turn it into a chain of masses.
 - :mod:`.modes` -- natural frequencies of the linearised chain, surge margin;
 - :mod:`.solid_length` -- solid length by the end type (EN 13906-1), the coil-bind clearance;
 - :mod:`.stress` -- the wire's corrected shear stress, strengths and Goodman safety;
+- :mod:`.wire` -- the wire's cross-section (round, ovate, rectangular; a wire diameter along
+  the coil): torsion constant, stress factor, area, axial height;
 - :mod:`.frf` -- the linearised dynamic stiffness;
 - :mod:`.chains` -- the spring models (:class:`TypeCModel`, the distributed chain) behind one
   interface, :class:`SpringModel`;
@@ -44,6 +46,7 @@ _EXPORTS = {
     "MODELS": "chains",
     "material": "materials",
     "Material": "materials",
+    "WireSection": "wire",
     "SpringPack": "pack",
     "PackOptions": "pack",
     "FrictionDamper": "pack",

@@ -27,6 +27,7 @@ from .geometry import TRANSITION_TURNS, drawing_pitch_knots, end_allowance
 from .materials import MATERIALS, material
 from .solid_length import COILINGS, en13906_solid_length, solid_length, solid_length_source
 from .stress import spring_strengths
+from .wire import WIRE_SHAPES, wire_section
 
 __all__ = ["ValveSpring", "EXAMPLES", "MODEL_NAMES", "END_TYPES", "DRAWING_KEYS"]
 
@@ -199,6 +200,37 @@ class ValveSpring(Parameters):
         kind="str",
         default="",
     )
+    wire_shape: str = param(
+        None,
+        "the wire's cross-section: 'round' (wire_diameter), 'ovate' (an oval of wire_width radial by wire_height "
+        "axial, the beehive springs' wire) or 'rectangular' (wire_width by wire_height); sets the rate, stress, "
+        "mass, solid length and surge of both models (springdyn.valve.spring.wire)",
+        kind="str",
+        choices=WIRE_SHAPES,
+        default="round",
+    )
+    wire_width: float = param(
+        "m",
+        "ovate or rectangular wire: its dimension across the coil (radial)",
+        display="mm",
+        positive=True,
+        default=None,
+    )
+    wire_height: float = param(
+        "m",
+        "ovate or rectangular wire: its dimension along the spring's axis (it stacks to the solid length)",
+        display="mm",
+        positive=True,
+        default=None,
+    )
+    wire_diameter_profile: str = param(
+        None,
+        "distributed model, round wire: the wire diameter against turns from the seat end, a CSV file (columns "
+        "turns, wire_diameter_mm) or an array of [turns, diameter] pairs (default: wire_diameter throughout; "
+        "wire_diameter, when not given, is its largest)",
+        kind="str",
+        default="",
+    )
 
     table = "spring"
     plausible_ranges = False  # _check_geometry's ranges say more (the likely unit slip)
@@ -213,9 +245,9 @@ class ValveSpring(Parameters):
         profiles: a TOML array becomes an inline table (SI); a relative CSV path is taken from
         the TOML file's folder."""
 
-        mapping = _from_drawing(mapping)
+        mapping = _from_drawing(_wire_keys(mapping))
 
-        for key in ("pitch_profile", "diameter_profile"):
+        for key in ("pitch_profile", "diameter_profile", "wire_diameter_profile"):
             value = mapping.get(key)
             if isinstance(value, list):
                 rows = []
@@ -235,6 +267,7 @@ class ValveSpring(Parameters):
         return mapping
 
     def _validate(self) -> None:
+        self._check_wire()
 
         if self.transition_turns is not None and self.transition_turns > MAX_TRANSITION_TURNS:
             raise InputError(
@@ -266,6 +299,43 @@ class ValveSpring(Parameters):
                 frame, level = frame.f_back, level + 1
         for message in unlikely:
             warnings.warn(message, UserWarning, stacklevel=level)
+
+    def _check_wire(self) -> None:
+        """The wire's keys agree with its shape (:mod:`springdyn.valve.spring.wire`)."""
+        given = [k for k in ("wire_width", "wire_height") if getattr(self, k) is not None]
+        if self.wire_shape == "round":
+            if given:
+                raise InputError(
+                    f"{given[0]} applies to ovate and rectangular wire: give wire_shape = 'ovate' or 'rectangular', "
+                    "or wire_diameter alone for round wire"
+                )
+            return
+        if len(given) < 2:
+            missing = "wire_height" if "wire_width" in given else "wire_width"
+            raise InputError(
+                f"wire_shape = {self.wire_shape!r} needs wire_width (radial) and wire_height (axial): missing {missing}"
+            )
+        if self.wire_diameter_profile:
+            raise InputError(
+                f"wire_diameter_profile is a round wire's: wire_shape = {self.wire_shape!r} takes one section "
+                "(wire_width, wire_height)"
+            )
+        if abs(self.wire_diameter - self.wire_height) > 1e-9 * self.wire_height:
+            raise InputError(
+                f"{self._field('wire_diameter')} and {self._field('wire_height')} disagree: the wire_diameter of "
+                f"{self.wire_shape} wire is its axial height (it stacks to the solid length); give wire_height alone"
+            )
+        ratio = self.wire_width / self.wire_height
+        if not 0.2 <= ratio <= 5.0:
+            raise InputError(
+                f"{self._field('wire_width')} / {self._field('wire_height')} = {ratio:.3g} must lie between 0.2 and 5 "
+                "(profiled spring wire; are the two swapped or a unit slipped?)"
+            )
+
+    @property
+    def wire(self):
+        """The wire's nominal cross-section (:class:`springdyn.valve.spring.wire.WireSection`)."""
+        return wire_section(self)
 
     @property
     def total_coils(self) -> float:
@@ -420,11 +490,12 @@ class ValveSpring(Parameters):
                 f"{self._field('shear_modulus')} exceeds {self._field('youngs_modulus')}: for a metal "
                 "G is about 0.4 E (are the two swapped?)"
             )
-        index = self.mean_diameter / self.wire_diameter
+        radial = "wire_diameter" if self.wire_shape == "round" else "wire_width"
+        index = self.mean_diameter / getattr(self, radial)
         if not 3.0 <= index <= 20.0:
             raise InputError(
-                f"spring index C = mean_diameter / wire_diameter = {show(self.mean_diameter, 'm', 'mm')} / "
-                f"{show(self.wire_diameter, 'm', 'mm')} = {index:.4g} must lie between 3 and 20 (EN 13906-1 recommends 4 to "
+                f"spring index C = mean_diameter / {radial} = {show(self.mean_diameter, 'm', 'mm')} / "
+                f"{show(getattr(self, radial), 'm', 'mm')} = {index:.4g} must lie between 3 and 20 (EN 13906-1 recommends 4 to "
                 "20; below 3 the wire cannot be coiled, above 20 the coils are unstable)"
                 + (": is the wire diameter given as the mean diameter?" if index < 1 else "")
             )
@@ -455,6 +526,42 @@ class ValveSpring(Parameters):
                 f"solid length Lc = {format_mm(lc)} ({self.coil_facts['solid_length_source']})"
             )
         return unlikely
+
+
+def _wire_keys(mapping: dict) -> dict:
+    """The wire's keys in the model's: ``wire_diameter`` of ovate and rectangular wire is its axial
+    height (given or not, it must be ``wire_height``); of a ``wire_diameter_profile`` its largest
+    diameter (the closed dead coils' pitch and the nominal wire)."""
+    m = dict(mapping)
+    shape = m.get("wire_shape", "round")
+    if shape not in WIRE_SHAPES:
+        raise InputError(f"wire_shape = {shape!r} is not allowed; choose one of {', '.join(map(repr, WIRE_SHAPES))}")
+    if shape != "round":
+        if "wire_diameter" in m and "wire_height" not in m:
+            raise InputError(
+                f"wire_shape = {shape!r} takes wire_width (radial) and wire_height (axial), not wire_diameter"
+            )
+        missing = [k for k in ("wire_width", "wire_height") if k not in m]
+        if missing:
+            raise InputError(
+                f"wire_shape = {shape!r} needs wire_width (radial) and wire_height (axial): missing {missing[0]}"
+            )
+        h = _quantity(m, "wire_height", "m")
+        if "wire_diameter" in m and abs(_quantity(m, "wire_diameter", "m") - h) > 1e-9 * h:
+            raise InputError(
+                f"wire_diameter = {m['wire_diameter']!r} and wire_height = {m['wire_height']!r} disagree: the "
+                f"wire_diameter of {shape} wire is its axial height; give wire_width and wire_height alone"
+            )
+        m["wire_diameter"] = h
+    profile = m.get("wire_diameter_profile")
+    if isinstance(profile, list) and "wire_diameter" not in m:
+        values = []
+        for i, row in enumerate(profile):
+            if isinstance(row, list) and len(row) == 2:
+                values.append(to_si(row[1], "m", f"wire_diameter_profile[{i}][1]"))
+        if values:
+            m["wire_diameter"] = max(values)
+    return m
 
 
 def _count(mapping: dict, key: str, default: float | None = None) -> float:
@@ -500,9 +607,10 @@ def _from_drawing(mapping: dict) -> dict:
             m.setdefault(key, value)  # each of the wire's values unless the table gives its own
     given = [k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if k in m]
     if any(k != "mean_diameter" for k in given):
-        if "wire_diameter" not in m:
-            raise InputError(f"{given[-1]} needs wire_diameter to give the mean coil diameter")
-        d = _quantity(m, "wire_diameter", "m")
+        radial = "wire_width" if m.get("wire_shape", "round") != "round" else "wire_diameter"
+        if radial not in m:
+            raise InputError(f"{given[-1]} needs {radial} to give the mean coil diameter")
+        d = _quantity(m, radial, "m")
         means = {
             k: _quantity(m, k, "m") + {"mean_diameter": 0.0, "outer_diameter": -d, "inner_diameter": d}[k]
             for k in given
@@ -512,7 +620,7 @@ def _from_drawing(mapping: dict) -> dict:
             if abs(means[k] - means[first]) > 1e-6:
                 raise InputError(
                     f"{first} and {k} disagree: they give mean coil diameters of {format_mm(means[first])} and "
-                    f"{format_mm(means[k])} (wire_diameter {format_mm(d)}); give one of them"
+                    f"{format_mm(means[k])} ({radial} {format_mm(d)}); give one of them"
                 )
         for k in given:
             m.pop(k)

@@ -34,8 +34,9 @@ __all__ = [
 #: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
 _DOCS = ParameterDocs(
     """
-    law : ndarray, shape (S, 4)
-        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``.
+    law : ndarray, shape (S, 4) or (E, S, 4)
+        Element law, rows ``(x_start [m], a [N/m^2], b [N/m], c [N])``; or the laws of ``E``
+        elements at once, the first axis of ``x`` (or ``force``) then the element's.
     x : float or array_like
         Element compression [m].
     """
@@ -167,12 +168,26 @@ def low_pitch_law(ks: float, fset: float, dw: float):
     return law, dict(x1=x1, x2=x2)
 
 
-def _segment(x, law):
+def _coefficients(x, law, rows=None):
+    """The segment coefficients ``a, b, c`` of ``law`` at ``x``, shaped like ``x``.
+
+    ``law`` is one law ``(S, 4)`` or one law per element ``(E, S, 4)``; with ``E`` laws the first
+    axis of ``x`` is the element's (``x`` of shape ``(E, ...)``), so a whole chain is evaluated at
+    once.  The segment of ``x`` is the last whose start (``rows``, by default the laws' ``x_start``
+    column) it reaches.
+    """
     x = np.asarray(x, dtype=float)
-    seg = np.zeros(x.shape, dtype=np.intp)
-    for start in law[1:, 0]:
-        seg += x >= start
-    return seg
+    starts = law[..., 1:, 0] if rows is None else rows
+    if law.ndim == 2:
+        seg = np.zeros(x.shape, dtype=np.intp)
+        for start in starts:
+            seg += x >= start
+        return law[seg, 1], law[seg, 2], law[seg, 3]
+    e = law.shape[0]
+    flat = x.reshape(e, -1)
+    seg = np.count_nonzero(flat[:, None, :] >= starts[:, :, None], axis=1)
+    a, b, c = (np.take_along_axis(law[:, :, j], seg, axis=1).reshape(x.shape) for j in (1, 2, 3))
+    return a, b, c
 
 
 @_DOCS.fill
@@ -190,8 +205,7 @@ def law_force(x, law: np.ndarray):
     [MMS], "Spring load for Kh1 becomes as follows" (and likewise Kh2, Ks).
     """
     x = np.asarray(x, dtype=float)
-    s = _segment(x, law)
-    a, b, c = law[s, 1], law[s, 2], law[s, 3]
+    a, b, c = _coefficients(x, law)
     return (a * x + b) * x + c
 
 
@@ -209,8 +223,8 @@ def law_stiffness(x, law: np.ndarray):
     "Damping Coefficient").
     """
     x = np.asarray(x, dtype=float)
-    s = _segment(x, law)
-    return 2.0 * law[s, 1] * x + law[s, 2]
+    a, b, _ = _coefficients(x, law)
+    return 2.0 * a * x + b
 
 
 @_DOCS.fill
@@ -229,12 +243,11 @@ def law_compression(force, law: np.ndarray):
     used for the series equilibrium of correction MMS-10 of docs/references.md.
     """
     force = np.asarray(force, dtype=float)
-    f_start = law_force(law[1:, 0], law)  # force at each later segment start (inf if unused)
-    f_start = np.where(np.isfinite(law[1:, 0]), f_start, np.inf)
-    s = np.zeros(force.shape, dtype=np.intp)
-    for f in f_start:
-        s += force >= f
-    a, b, c = law[s, 1], law[s, 2], law[s, 3]
+    starts = law[..., 1:, 0]
+    with np.errstate(invalid="ignore"):  # unused rows: inf starts, their force inf below
+        f_start = law_force(starts, law)  # force at each later segment start (inf if unused)
+    f_start = np.where(np.isfinite(starts), f_start, np.inf)
+    a, b, c = _coefficients(force, law, f_start)
     d = force - c
     return 2.0 * d / (b + np.sqrt(np.maximum(b * b + 4.0 * a * d, 0.0)))
 

@@ -54,27 +54,41 @@ _DOCS = ParameterDocs(
 TRANSITION_TURNS = 0.5
 
 
-def turn_compliance(mean_diameter, wire_diameter, pitch, shear_modulus, youngs_modulus):
+def turn_compliance(
+    mean_diameter, wire_diameter, pitch, shear_modulus, youngs_modulus, torsion_constant=None, bending_inertia=None
+):
     """Axial compliance of one turn of an open-coiled helix [m/N], torsion and bending.
 
     ``c = 8 D^3 / (G d^4 cos a) (cos^2 a + (2 G/E) sin^2 a)``, ``tan a = p/(pi D)``: the
     energy method for an axially loaded open-coiled helix (Wahl, *Mechanical Springs*,
     2nd ed., 1963, ch. 3; Timoshenko, *Strength of Materials* II).  For ``a -> 0`` it is the
-    closed-coil ``8 D^3/(G d^4)``.
+    closed-coil ``8 D^3/(G d^4)``.  Any section: ``c = pi D^3/(4 cos a) (cos^2 a/(G J) +
+    sin^2 a/(E I))`` with its torsion constant ``J`` and the second moment ``I`` of the bending
+    across the coil's radius (:mod:`springdyn.valve.spring.wire`; round wire ``J = 2 I = pi d^4/32``
+    gives the line above).
 
     Parameters
     ----------
     mean_diameter : float or ndarray
         Mean coil diameter D [m].
-    wire_diameter : float
-        Wire diameter d [m].
+    wire_diameter : float or ndarray
+        Wire diameter d [m] (round wire; unused with ``torsion_constant``).
     pitch : float or ndarray
         Pitch p [m].
     shear_modulus, youngs_modulus : float
         G and E [Pa].
+    torsion_constant, bending_inertia : float or ndarray, optional
+        ``J`` and ``I`` of a section that is not round [m^4].
     """
     a = np.arctan2(pitch, np.pi * mean_diameter)
     ca, sa = np.cos(a), np.sin(a)
+    if torsion_constant is not None:
+        return (
+            np.pi
+            * mean_diameter**3
+            / (4.0 * ca)
+            * (ca * ca / (shear_modulus * torsion_constant) + sa * sa / (youngs_modulus * bending_inertia))
+        )
     return (
         8.0
         * mean_diameter**3
@@ -143,7 +157,9 @@ class CoilGeometry:
     pitch_v: np.ndarray  # pitch at the knots [m]
     diameter_s: np.ndarray  # knots [turns]
     diameter_v: np.ndarray  # mean diameter at the knots [m]
-    end_allowance: float | None = None  # a [m]: solid length minus N Dw (None: Dw/2)
+    end_allowance: float | None = None  # a [m]: solid length minus the wire stack (None: Dw/2)
+    height_s: np.ndarray | None = None  # knots of a wire that varies along the coil [turns] (None: one wire)
+    height_v: np.ndarray | None = None  # its axial height at the knots [m]
 
     @property
     def allowance(self) -> float:
@@ -170,6 +186,19 @@ class CoilGeometry:
         """
         return np.interp(s, self.diameter_s, self.diameter_v)
 
+    @_DOCS.fill
+    def height(self, s):
+        """Axial height of the wire [m] at turns ``s`` from the seat end (the wire diameter, or
+        the ``wire_height`` of a profiled wire).
+
+        Parameters
+        ----------
+        {s}
+        """
+        if self.height_s is None:
+            return np.full(np.shape(s), self.wire_diameter)
+        return np.interp(s, self.height_s, self.height_v)
+
     @property
     def free_length(self) -> float:
         """``a + int p ds`` [m] (``a``: :attr:`allowance`)."""
@@ -177,7 +206,9 @@ class CoilGeometry:
 
     @property
     def solid_length(self) -> float:
-        """Wire stack ``a + N Dw`` [m]: the spring's solid length."""
+        """Wire stack ``a + N Dw`` [m] (``a + int h ds`` for a wire that varies): the spring's solid length."""
+        if self.height_s is not None:
+            return self.allowance + float(np.trapezoid(self.height_v, self.height_s))
         return self.allowance + self.wire_diameter * self.turns
 
 

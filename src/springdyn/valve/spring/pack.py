@@ -183,9 +183,10 @@ def diameter_growth(mean_diameter, wire_diameter, active_coils, free_length, sol
 def radial_clearance(outer: ValveSpring, inner: ValveSpring, lift: float = 0.0) -> float:
     """Radial clearance [m] between a pack's outer and inner spring at a lift; negative: they interfere.
 
-    ``((Do - dwo + growth_o) - (Di + dwi + growth_i)) / 2``: the outer spring's inside
-    diameter less the inner spring's outside diameter, each grown by its compression from
-    free length (:func:`diameter_growth`).
+    ``((Do - bo + growth_o) - (Di + bi + growth_i)) / 2``: the outer spring's inside
+    diameter less the inner spring's outside diameter (``b`` the wire's radial width, the
+    diameter of round wire), each grown by its compression from free length
+    (:func:`diameter_growth`, the pitch at solid the wire's axial height).
 
     Parameters
     ----------
@@ -198,13 +199,13 @@ def radial_clearance(outer: ValveSpring, inner: ValveSpring, lift: float = 0.0) 
     def grown(s, dm):
         return dm + float(
             diameter_growth(
-                dm, s.wire_diameter, s.active_coils, s.free_length, s.solid_length, s.installed_length - lift
+                dm, s.wire.height, s.active_coils, s.free_length, s.solid_length, s.installed_length - lift
             )
         )
 
     return 0.5 * (
-        (grown(outer, _smallest_diameter(outer)) - outer.wire_diameter)
-        - (grown(inner, _largest_diameter(inner)) + inner.wire_diameter)
+        (grown(outer, _smallest_diameter(outer)) - outer.wire.width)
+        - (grown(inner, _largest_diameter(inner)) + inner.wire.width)
     )
 
 

@@ -284,9 +284,11 @@ class DesignFigures:
     def describe(self) -> str:
         """The figures in words and a table per state."""
         fig = self.figures
+        round_wire = fig.get("wire_section", "round").startswith("round")
         lines = [
             f"spring index C = {fig['spring_index']:.3f}, Bergstraesser k = {fig['bergstraesser_factor']:.4f}, "
-            f"Wahl k = {fig['wahl_factor']:.4f}",
+            f"Wahl k = {fig['wahl_factor']:.4f}"
+            + ("" if round_wire else f"; wire {fig['wire_section']}, stress factor {fig['stress_factor']:.4f}"),
             f"coils: {fig['total_coils']:g} total, {fig['active_coils']:g} active ({fig['dead_coils_per_end']:g} dead "
             f"per end); solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm ({fig['solid_length_source']}); "
             f"spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g",

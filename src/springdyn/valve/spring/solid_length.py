@@ -18,6 +18,7 @@ from ...core.docstrings import ParameterDocs
 from ...core.errors import FactWarning, InputError
 from ...core.units import format_mm
 from .formulas import coil_contact_length
+from .wire import end_height, wire_stack
 
 __all__ = [
     "COILINGS",
@@ -183,13 +184,23 @@ def en13906_solid_length(wire_diameter: float, total_coils: float, end_type: str
 def solid_length(spring) -> float:
     """Solid length [m]: by the spring's ``end_type`` (:func:`en13906_solid_length`), else
     the MMS document's ``Lc = Dw (N1 + N2 + 1/2)`` ([MMS];
-    :func:`springdyn.valve.spring.formulas.coil_contact_length`).
+    :func:`springdyn.valve.spring.formulas.coil_contact_length`).  ``Dw`` is the wire's axial
+    height (ovate and rectangular wire, :mod:`springdyn.valve.spring.wire`); a wire that varies
+    along the coil stacks ``int d ds`` (:func:`springdyn.valve.spring.wire.wire_stack`) and the
+    ends add their part at the ends' wire.
 
     Parameters
     ----------
     spring : ValveSpring
     """
     total = spring.low_pitch_coils + spring.high_pitch_coils
+    if getattr(spring, "wire_diameter_profile", ""):
+        # a wire that varies along the coil: its stack, and what the ends add at the ends' wire
+        stack, end = wire_stack(spring), end_height(spring)
+        if getattr(spring, "end_type", ""):
+            return stack + en13906_solid_length(end, 0.0, spring.end_type)
+        return stack + coil_contact_length(end, 0.0, 0.0)  # the document's half wire
+    # (ovate and rectangular wire: wire_diameter is the axial height, wire.py)
     if getattr(spring, "end_type", ""):
         return en13906_solid_length(spring.wire_diameter, total, spring.end_type)
     return coil_contact_length(spring.wire_diameter, spring.low_pitch_coils, spring.high_pitch_coils)

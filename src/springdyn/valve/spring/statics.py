@@ -36,7 +36,8 @@ def element_compressions(force, laws: np.ndarray) -> np.ndarray:
     ndarray, shape (n_elements,) or (n_elements, n)
         Compressions [m].
     """
-    return np.stack([law_compression(force, law) for law in laws])
+    force = np.asarray(force, dtype=float)
+    return law_compression(np.broadcast_to(force, (laws.shape[0],) + force.shape), laws)
 
 
 def series_compliance(force, laws: np.ndarray):
@@ -51,7 +52,7 @@ def series_compliance(force, laws: np.ndarray):
         (see :mod:`springdyn.valve.spring.elements`).
     """
     x = element_compressions(force, laws)
-    return sum(1.0 / law_stiffness(xj, law) for xj, law in zip(x, laws))
+    return np.sum(1.0 / law_stiffness(x, laws), axis=0)
 
 
 def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, max_iter: int = 100):
@@ -81,14 +82,14 @@ def series_force(total_compression, laws: np.ndarray, *, rtol: float = 1e-12, ma
         If Newton's method does not converge (it always does for valid laws).
     """
     dl = np.asarray(total_compression, dtype=float)
-    k_lin = 1.0 / sum(1.0 / law[0, 2] for law in laws)
+    k_lin = 1.0 / np.sum(1.0 / laws[:, 0, 2])
     # Start at the force of the all-linear chain: exact in the linear range and, because
     # the elements only stiffen, never above the root (so convergence stays monotone).
     force = dl * k_lin
     for _ in range(max_iter):
         x = element_compressions(force, laws)
         resid = dl - x.sum(axis=0)
-        comp = sum(1.0 / law_stiffness(xj, law) for xj, law in zip(x, laws))
+        comp = np.sum(1.0 / law_stiffness(x, laws), axis=0)
         step = resid / comp
         force = force + step
         if np.all(np.abs(step) <= rtol * np.maximum(np.abs(force), 1e-300) + 1e-300):
@@ -116,8 +117,7 @@ def series_state(total_compression, laws: np.ndarray):
     """
     force = series_force(total_compression, laws)
     x = element_compressions(force, laws)
-    comp = sum(1.0 / law_stiffness(xj, law) for xj, law in zip(x, laws))
-    return force, x, 1.0 / comp
+    return force, x, 1.0 / np.sum(1.0 / law_stiffness(x, laws), axis=0)
 
 
 def element_forces(compressions, laws: np.ndarray) -> np.ndarray:
@@ -131,4 +131,4 @@ def element_forces(compressions, laws: np.ndarray) -> np.ndarray:
         Element laws [m, N]: per element, segments ``x_start [m], a [N/m^2], b [N/m], c [N]``
         (see :mod:`springdyn.valve.spring.elements`).
     """
-    return np.stack([law_force(xj, law) for xj, law in zip(compressions, laws)])
+    return law_force(np.asarray(compressions, dtype=float), laws)

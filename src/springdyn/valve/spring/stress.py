@@ -6,7 +6,8 @@ and the direct shear (EN 13906-1, Eq. (22); Bergstraesser's factor) it is
 
     tau = k 8 F D / (pi d^3),   k = (w + 0.5) / (w - 0.75) = (4w + 2) / (4w - 3),   w = D / d
 
-(:func:`corrected_shear_stress`, :func:`bergstraesser_factor`).  Wahl's factor
+(:func:`corrected_shear_stress`, :func:`bergstraesser_factor`); ovate and rectangular wire
+have their own sections and factors (:mod:`springdyn.valve.spring.wire`).  Wahl's factor
 (:func:`wahl_factor`) is given beside it for comparison; every stress springdyn judges is
 Bergstraesser's.
 
@@ -306,7 +307,8 @@ def fatigue_assessment(spring, force_min, force_max) -> dict:
     Parameters
     ----------
     spring : ValveSpring
-        Wire diameter, mean coil diameter (the largest of a diameter profile: the
+        Its model's corrected stress per newton (``spring_model.stress_per_force``: the wire's
+        section and factor, the largest over the coils of a diameter or wire profile: the
         conservative choice) and strengths (:func:`spring_strengths`).
     force_min, force_max : float or array_like
         Smallest and largest force of the cycle [N] (per element for an array).
@@ -314,17 +316,15 @@ def fatigue_assessment(spring, force_min, force_max) -> dict:
     Returns
     -------
     dict
-        ``min_shear_stress_Pa``, ``max_shear_stress_Pa`` (the corrected stress of EN 13906-1 at
-        the critical element), ``fatigue_safety_factor`` (the smallest over the elements),
+        ``min_shear_stress_Pa``, ``max_shear_stress_Pa`` (the corrected stress of the wire's
+        section, EN 13906-1's for round wire, at the critical element), ``fatigue_safety_factor`` (the smallest over the elements),
         ``critical_element`` (its index, 0 at the seat), and the strengths.
     """
-    d = spring.wire_diameter
-    big = getattr(spring.spring_model, "largest_mean_diameter", None)
-    dm = float(big()) if callable(big) else spring.mean_diameter
+    per_force = spring.spring_model.stress_per_force  # the section's corrected stress per newton (wire.py)
     lo = np.atleast_1d(np.asarray(force_min, dtype=float))
     hi = np.atleast_1d(np.asarray(force_max, dtype=float))
-    tau_lo = corrected_shear_stress(np.maximum(lo, 0.0), dm, d)
-    tau_hi = corrected_shear_stress(np.maximum(hi, 0.0), dm, d)
+    tau_lo = per_force * np.maximum(lo, 0.0)
+    tau_hi = per_force * np.maximum(hi, 0.0)
     st = spring_strengths(spring)
     demand = (
         0.5 * (tau_hi - tau_lo) / st["endurance_shear_strength_Pa"]

@@ -7,6 +7,8 @@
 - :mod:`.gas_force` -- the cylinder's gas force on the valve head;
 - :mod:`.friction` -- the friction laws of the cam contact, the roller, the stem guide and
   the pivot, the camshaft drive torque along the cam (``[friction]``);
+- :mod:`.piston` -- the piston's crank-slider under the valve and the valve-to-piston
+  clearance (``[piston]``);
 - :mod:`.oil` -- the engine oil (``[oil]``): viscosity by Walther's equation, density,
   bulk modulus with free air.
 
@@ -24,6 +26,10 @@ _EXPORTS = {
     "Friction": "friction",
     "Oil": "oil",
     "oil_of": "oil",
+    "Piston": "piston",
+    "ValveClearance": "piston",
+    "clearance_map": "piston",
+    "static_valve_lift": "piston",
 }
 __all__ = sorted(_EXPORTS)
 

@@ -32,6 +32,7 @@ from ...core.io import read_csv_columns
 
 __all__ = [
     "gas_force",
+    "read_crank_table",
     "GasForce",
     "read_pressure_trace",
     "PRESSURE_COLUMNS",
@@ -77,6 +78,35 @@ def gas_force(cylinder_pressure, port_pressure, seat_diameter):
     return (np.asarray(cylinder_pressure, dtype=float) - port_pressure) * (0.25 * math.pi * seat_diameter**2)
 
 
+def read_crank_table(path, columns: dict, what: str, min_rows: int):
+    """A CSV of a quantity against crank angle: ``crank_angle_deg`` (increasing, at least
+    ``min_rows`` rows) and the quantity in one of ``columns`` (name -> factor to SI).
+
+    Returns the crank angles [deg], the values [SI], the column given and every column.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The CSV file.
+    columns : dict
+        The columns the quantity may be given in, with their factors to SI [-].
+    what : str
+        The quantity, for messages [-].
+    min_rows : int
+        The fewest rows [-].
+    """
+    cols = read_csv_columns(path)
+    if "crank_angle_deg" not in cols:
+        raise InputError(f"{path}: no column 'crank_angle_deg' (found: {', '.join(cols)})")
+    given = [c for c in columns if c in cols]
+    if len(given) != 1:
+        raise InputError(f"{path}: give {what} in one column of {', '.join(columns)} (found: {', '.join(cols)})")
+    angle = np.asarray(cols["crank_angle_deg"], dtype=float)
+    if angle.size < min_rows or np.any(np.diff(angle) <= 0):
+        raise InputError(f"{path}: crank_angle_deg must increase, over at least {min_rows} rows")
+    return angle, np.asarray(cols[given[0]], dtype=float) * columns[given[0]], given[0], cols
+
+
 def read_pressure_trace(path) -> tuple[np.ndarray, np.ndarray]:
     """A cylinder-pressure trace: crank angle [deg from the gas-exchange TDC] and pressure [Pa].
 
@@ -88,25 +118,13 @@ def read_pressure_trace(path) -> tuple[np.ndarray, np.ndarray]:
     path : str or path-like
         The CSV file.
     """
-    cols = read_csv_columns(path)
-    if "crank_angle_deg" not in cols:
-        raise InputError(f"{path}: no column 'crank_angle_deg' (found: {', '.join(cols)})")
-    given = [c for c in PRESSURE_COLUMNS if c in cols]
-    if len(given) != 1:
-        raise InputError(
-            f"{path}: give the cylinder pressure in one column of {', '.join(PRESSURE_COLUMNS)} "
-            f"(found: {', '.join(cols)})"
-        )
-    angle = np.asarray(cols["crank_angle_deg"], dtype=float)
-    pressure = np.asarray(cols[given[0]], dtype=float) * PRESSURE_COLUMNS[given[0]]
-    if angle.size < 8 or np.any(np.diff(angle) <= 0):
-        raise InputError(f"{path}: crank_angle_deg must increase, over at least 8 rows")
+    angle, pressure, given, cols = read_crank_table(path, PRESSURE_COLUMNS, "the cylinder pressure", 8)
     if np.any(pressure < 0):
         raise InputError(f"{path}: an absolute pressure cannot be negative (row {int(np.argmin(pressure)) + 2})")
     if np.max(pressure) > MAX_CYLINDER_PRESSURE:
         i = int(np.argmax(pressure))
         raise InputError(
-            f"{path}: row {i + 2}, column {given[0]!r}: {cols[given[0]][i]:.6g} is {pressure[i] / 1e5:.6g} bar, beyond "
+            f"{path}: row {i + 2}, column {given!r}: {cols[given][i]:.6g} is {pressure[i] / 1e5:.6g} bar, beyond "
             f"any cylinder pressure (at most {MAX_CYLINDER_PRESSURE / 1e5:g} bar; engines fire at up to 300 bar): "
             "check the column's unit (" + ", ".join(PRESSURE_COLUMNS) + ")"
         )

@@ -20,6 +20,7 @@ from ..modes import chain_frequencies, mode_labels, surge_margin
 from ..results import StaticCurve
 from ..solid_length import check_coil_bind
 from ..statics import element_compressions, series_force, series_state
+from ..wire import equivalent_diameters, stress_per_force
 
 __all__ = ["Chain", "SpringModel"]
 
@@ -375,6 +376,13 @@ class SpringModel:
         return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x), count)
 
     @cached_property
+    def stress_per_force(self) -> float:
+        """The wire's largest corrected shear stress per newton of spring force [Pa/N]
+        (:func:`springdyn.valve.spring.wire.stress_per_force`: the section's factor; the
+        distributed model takes the largest over its coils)."""
+        return stress_per_force(self.spring)
+
+    @cached_property
     def first_mode_installed(self) -> float:
         """First natural frequency of the chain at installed length [Hz] (kept: every run checks it)."""
         return float(self.modes(self.spring.installed_length, 1)[0])
@@ -392,7 +400,7 @@ class SpringModel:
         """
         sp = self.spring
         n1, n2, nb = sp.low_pitch_coils, sp.high_pitch_coils, sp.dead_coils
-        g, d, dm = sp.shear_modulus, sp.wire_diameter, sp.mean_diameter
+        g, d, dm = sp.shear_modulus, equivalent_diameters(sp)["rate"], sp.mean_diameter
         k1 = formulas.free_length_stiffness(g, d, dm, formulas.active_coils_free(n1, n2, nb))
         k2 = formulas.free_length_stiffness(g, d, dm, formulas.active_coils_setup(n1, n2, nb, sp.two_step))
         return formulas.linear_rate_force(length, sp.free_length, sp.installed_length, k1, k2)
@@ -476,7 +484,8 @@ class SpringModel:
             ``rate_free_N_per_m``, ``model`` (and ``elements``), ``surge_frequency_definition``,
             ``surge_frequency_free_Hz`` (the chain's at free length) and, per state (``installed``,
             ``open`` if lift is given, ``coil_contact``): ``length_m``, ``force_N``,
-            ``shear_stress_Pa`` (Bergstraesser-corrected), ``surge_frequency_Hz`` (first
+            ``shear_stress_Pa`` (corrected by the section's factor, ``stress_factor``, of
+            ``wire_section``: Bergstraesser's for round wire), ``surge_frequency_Hz`` (first
             mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
         """
         if cam_rpm is not None and (
@@ -489,12 +498,15 @@ class SpringModel:
                 "margin is the surge frequency over the camshaft frequency"
             )
         p = self.internal_parameters()
-        c = stress.spring_index(self.spring.mean_diameter, self.spring.wire_diameter)
+        wire = self.spring.wire
+        c = wire.spring_index(self.spring.mean_diameter)
         kb = stress.bergstraesser_factor(c)
         out = dict(
             spring_index=c,
             bergstraesser_factor=kb,
             wahl_factor=stress.wahl_factor(c),
+            wire_section=wire.label,
+            stress_factor=float(wire.stress_factor(self.spring.mean_diameter)),
             **{k: v for k, v in self.spring.coil_facts.items() if k != "free_length_m"},
             spring_mass_kg=p["M"],
             rate_free_N_per_m=p["K1"],
@@ -526,9 +538,7 @@ class SpringModel:
             st = dict(
                 length_m=length,
                 force_N=force,
-                shear_stress_Pa=float(
-                    stress.corrected_shear_stress(force, self.spring.mean_diameter, self.spring.wire_diameter)
-                ),
+                shear_stress_Pa=float(force * self.stress_per_force),
                 surge_frequency_Hz=f_surge,
             )
             if cam_rpm is not None:

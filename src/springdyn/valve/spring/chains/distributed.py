@@ -55,6 +55,7 @@ from ..geometry import (
 )
 from ..modes import chain_eigenvalues, chain_frequencies
 from ..statics import element_compressions, series_force
+from ..wire import equivalent_diameters, section_along, section_profile, stress_per_force, wire_stack
 from .base import Chain, SpringModel
 
 #: Parameter descriptions shared by this module's docstrings (``{name}`` lines).
@@ -217,6 +218,12 @@ def graded_coil_law(k_slice, gap, k_contact, onset, pieces: int = CLOSING_PIECES
     """
     k_open = 1.0 / np.sum(1.0 / k_slice)
     k_closed = 1.0 / np.sum(1.0 / (k_slice + k_contact))
+    if all(np.ptp(v) == 0.0 for v in (k_slice, gap, k_contact, onset)):
+        # a uniform element (its slices alike, as along a constant pitch): coil_law exactly,
+        # the rows the pieces would fill unused
+        law = np.full((pieces + 2, 4), np.inf)
+        law[:3] = coil_law(k_open, float(np.sum(gap)), k_closed - k_open, float(np.sum(onset)))
+        return law
     f_first = float(np.min(k_slice * gap))
     f_last = float(np.max(k_slice * (gap + onset) + 0.5 * k_contact * onset))
     f_grid = f_first + (f_last - f_first) * np.linspace(0.0, 1.0, 801) ** 3
@@ -300,11 +307,16 @@ class DistributedModel(SpringModel):
         """Pitch and diameter profiles (given, or the defaults from the ``[spring]`` keys)."""
         sp = self.spring
         n_total = sp.low_pitch_coils + sp.high_pitch_coils
-        allowance = end_allowance(sp.solid_length, sp.wire_diameter, n_total)  # Lc: the spring's one solid length
+        wire = section_profile(sp)  # a wire diameter that varies along the coil (None: one wire)
+        if wire is not None:
+            check_profile_span(wire[0], n_total, "wire_diameter_profile")
+            allowance = sp.solid_length - wire_stack(sp)  # Lc: the spring's one solid length
+        else:
+            allowance = end_allowance(sp.solid_length, sp.wire_diameter, n_total)  # Lc: the spring's one solid length
         if sp.pitch_profile:
             ps, pv = parse_profile(sp.pitch_profile, "pitch_profile", {"pitch_mm": 1e-3, "pitch_m": 1.0})
             check_profile_span(ps, n_total, "pitch_profile")
-            if np.any(pv < sp.wire_diameter * (1 - 1e-9)):
+            if np.any(pv < sp.wire_diameter * (1 - 1e-9)) and wire is None:
                 raise InputError(
                     f"pitch_profile: a pitch below the wire diameter {format_quantity(sp.wire_diameter, 'm', 'mm')} "
                     "is impossible (the coils would overlap)"
@@ -328,7 +340,17 @@ class DistributedModel(SpringModel):
                 raise InputError("diameter_profile: the mean diameter must exceed the wire diameter everywhere")
         else:
             ds, dv = np.array([0.0, n_total]), np.full(2, sp.mean_diameter)
-        g = CoilGeometry(n_total, sp.dead_coils, sp.wire_diameter, ps, pv, ds, dv, allowance)
+        g = CoilGeometry(
+            n_total, sp.dead_coils, sp.wire_diameter, ps, pv, ds, dv, allowance, *(wire if wire is not None else ())
+        )
+        if wire is not None:
+            grid = np.linspace(0.0, n_total, 4001)
+            thin = g.height(grid)
+            if np.any(g.pitch(grid) < thin * (1 - 1e-9)) or np.any(g.diameter(grid) <= thin):
+                raise InputError(
+                    "wire_diameter_profile: the wire diameter must stay below the pitch (the coils would overlap) "
+                    "and below the mean diameter at every turn"
+                )
         if sp.pitch_profile and abs(g.free_length - sp.free_length) > 0.005 * sp.free_length:
             raise InputError(
                 f"pitch_profile gives the free length a + int p ds = {format_quantity(g.free_length, 'm', 'mm')} "
@@ -376,12 +398,24 @@ class DistributedModel(SpringModel):
         ``onset`` [m] (:func:`slice_states`), and wire ``length`` [m]."""
         sp, g = self.spring, self.geometry
         d, p = g.diameter(s), g.pitch(s)
+        wire = section_along(sp, s)  # the section at each slice (wire.py)
+        h = wire["height"]
+        c = turn_compliance(
+            d,
+            wire.get("wire_diameter"),
+            p,
+            sp.shear_modulus,
+            sp.youngs_modulus,
+            wire.get("torsion_constant"),
+            wire.get("bending_inertia"),
+        )
         return dict(
-            c=turn_compliance(d, sp.wire_diameter, p, sp.shear_modulus, sp.youngs_modulus) * width,
-            gap=np.maximum(p - sp.wire_diameter, 0.0) * width,
+            c=c * width,
+            gap=np.maximum(p - h, 0.0) * width,
             kc=self.turn_contact_stiffness(d) / width,
-            onset=np.broadcast_to(CONTACT_ONSET * sp.wire_diameter * width, np.shape(s)),
+            onset=np.broadcast_to(CONTACT_ONSET * h * width, np.shape(s)),
             length=wire_length_per_turn(d, p) * width,
+            area=wire["area"],
         )
 
     @cached_property
@@ -396,15 +430,15 @@ class DistributedModel(SpringModel):
         laws = [graded_coil_law(1.0 / sl["c"][i], sl["gap"][i], sl["kc"][i], sl["onset"][i]) for i in range(n)]
         # the last turn-slice of the element touches: the element is closed throughout
         closing = np.max(sl["gap"] / sl["c"], axis=1)
-        area = np.pi * sp.wire_diameter**2 / 4
         dead = np.linspace(0.0, g.dead_coils, 65)
         dead_mass = [
-            sp.density * area * float(np.trapezoid(wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
+            sp.density
+            * float(np.trapezoid(section_along(sp, x)["area"] * wire_length_per_turn(g.diameter(x), g.pitch(x)), x))
             for x in (dead, g.turns - dead[::-1])
         ]
         return dict(
             gap=np.sum(sl["gap"], axis=1),
-            mass=sp.density * area * np.sum(sl["length"], axis=1),
+            mass=sp.density * np.sum(sl["area"] * sl["length"], axis=1),
             laws=laws,
             closing=closing,
             dead_mass=dead_mass,
@@ -479,6 +513,15 @@ class DistributedModel(SpringModel):
     def _parameters_setup_force(self) -> float:
         return float(self.chain.setup_force)
 
+    @cached_property
+    def stress_per_force(self) -> float:
+        """The wire's largest corrected shear stress per newton of spring force over the active
+        coils [Pa/N] (:func:`springdyn.valve.spring.wire.stress_per_force` at each coil's mean
+        diameter and wire: a beehive's largest coil, a profile's thinnest wire)."""
+        g = self.geometry
+        s = np.linspace(g.dead_coils, g.turns - g.dead_coils, 401)
+        return stress_per_force(self.spring, g.diameter(s), s)
+
     @property
     def element_positions(self) -> np.ndarray:
         """Middle of each wire element [turns from the seat end]."""
@@ -506,7 +549,9 @@ class DistributedModel(SpringModel):
             f1=float(f_free),
             f2=float(f_set),
             f_continuum=float(
-                formulas.surge_frequency(sp.shear_modulus, sp.density, sp.wire_diameter, sp.mean_diameter, active)
+                formulas.surge_frequency(
+                    sp.shear_modulus, sp.density, equivalent_diameters(sp)["surge"], sp.mean_diameter, active
+                )
             ),
             Lc=float(g.solid_length),
             Fset=float(ch.setup_force),

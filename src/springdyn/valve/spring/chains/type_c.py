@@ -17,6 +17,7 @@ from .. import formulas
 from ..elements import hardening_law, law_compression, linear_law, low_pitch_law
 from ..formulas import PARAMETER_UNITS
 from ..statics import element_compressions
+from ..wire import equivalent_diameters
 from .base import Chain, SpringModel  # noqa: F401 (Chain: the return type)
 
 __all__ = ["TypeCModel", "PARAMETER_UNITS"]
@@ -138,13 +139,15 @@ class TypeCModel(SpringModel):
         na1 = formulas.active_coils_free(n1, n2, nb)
         na2 = formulas.active_coils_setup(n1, n2, nb, self.two_step)
         k = self.spring.contact_stiffness or formulas.contact_stiffness(do, self.spring.youngs_modulus)
-        k1 = formulas.free_length_stiffness(g, dw, do, na1)
-        k2 = formulas.setup_stiffness(g, dw, do, na2) if self.two_step else k1
+        # the wire's section: the round wires of its rate, surge and mass (wire.py); dw stacks axially
+        wire = equivalent_diameters(self.spring)
+        k1 = formulas.free_length_stiffness(g, wire["rate"], do, na1)
+        k2 = formulas.setup_stiffness(g, wire["rate"], do, na2) if self.two_step else k1
         n1p = formulas.pitch_correction(lf, dw, n1, n2, na1, do)
         n2p = formulas.pitch_correction(ls, dw, n1, n2, na2, do)
-        f1 = formulas.surge_frequency(g, rho, dw, do, na1 + n1p)
-        f2 = formulas.surge_frequency(g, rho, dw, do, na2 + n2p)
-        m_total = formulas.total_mass(rho, do, dw, n1, n2)
+        f1 = formulas.surge_frequency(g, rho, wire["surge"], do, na1 + n1p)
+        f2 = formulas.surge_frequency(g, rho, wire["surge"], do, na2 + n2p)
+        m_total = formulas.total_mass(rho, do, wire["mass"], n1, n2)
         pc = formulas.coil_pitch(ls, dw, n1, n2)
         lc = self.spring.solid_length  # the spring's one solid length (the document's without end_type)
         fset = formulas.setup_force(lf, ls, k1)
