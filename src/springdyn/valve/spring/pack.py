@@ -198,9 +198,7 @@ def radial_clearance(outer: ValveSpring, inner: ValveSpring, lift: float = 0.0) 
 
     def grown(s, dm):
         return dm + float(
-            diameter_growth(
-                dm, s.wire.height, s.active_coils, s.free_length, s.solid_length, s.installed_length - lift
-            )
+            diameter_growth(dm, s.wire.height, s.active_coils, s.free_length, s.solid_length, s.installed_length - lift)
         )
 
     return 0.5 * (
