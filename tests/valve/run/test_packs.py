@@ -5,7 +5,6 @@ References, written here independently of the code they check:
 
 - on the bucket train, two identical springs side by side are one chain of twice the masses,
   element stiffnesses and damping (the one spring's arrays doubled here, run as one chain);
-
 - two identical chains side by side between the seat and one retainer that follows the cam
   are the one chain twice: each carries the one spring's forces, the pack twice them (the
   equations of motion of each chain are the single spring's, :func:`springdyn.valve.engine.chain_forces`);
