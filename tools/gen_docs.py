@@ -43,6 +43,8 @@ __all__ = [
 #: TOML table -> (parameter class ``module:qualname``, built-in example file in ``springdyn/data``).
 PARAMETER_TABLES = {
     "spring": ("springdyn.valve.spring.definition:ValveSpring", "valve_one_step.toml"),
+    "pack": ("springdyn.valve.spring.pack:PackOptions", "valve_dual_spring_damper.toml"),
+    "damper": ("springdyn.valve.spring.pack:FrictionDamper", "valve_dual_spring_damper.toml"),
     "cam": ("springdyn.valve.cam.definition:Cam", "valve_cam_345.toml"),
     "timing": ("springdyn.valve.cam.timing:Timing", "valve_cam_timing.toml"),
     "valve_train": ("springdyn.valve.train.definition:ValveTrain", "valve_train_direct_acting.toml"),
@@ -444,6 +446,8 @@ def toml_reference() -> str:
     ]
     users = {
         "spring": "`springdyn valve params/curve/modes/design/simulate/float/sweep`, `springdyn report`",
+        "pack": "beside `[spring]` and `[inner_spring]` (a spring pack, springdyn.valve.spring.pack): `springdyn valve simulate/float/sweep`",
+        "damper": "beside `[spring]` and `[inner_spring]`: a spring pack's friction damper, `springdyn valve simulate/float/sweep`",
         "cam": "`springdyn valve simulate/float/sweep --cam`, `springdyn report`",
         "timing": "beside `[cam]`: crank angles from TDC in `springdyn valve cam/simulate/sweep`, `springdyn report`",
         "valve_train": "`springdyn valve simulate/float/sweep/train-modes --valve-train`, `springdyn report`",

@@ -401,6 +401,10 @@ def _bare_number_hint(cls, specs, mapping, kwargs) -> str:
 #: Every table a springdyn definition file may hold; any other table is an error.
 KNOWN_TABLES = (
     "spring",
+    "inner_spring",
+    "third_spring",
+    "pack",
+    "damper",
     "cam",
     "timing",
     "valve_train",

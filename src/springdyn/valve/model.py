@@ -49,6 +49,7 @@ from .cam.follower import Follower
 from .cam.timing import Timing, cam_rpm_from_engine_rpm, crank_axis
 from .run.settings import RunSettings
 from .spring.definition import ValveSpring
+from .spring.pack import SpringPack
 from .train.definition import ValveTrain
 
 __all__ = ["ValveModel", "RUN_UP_WINDOW", "FLOAT_SCAN"]
@@ -84,8 +85,9 @@ class ValveModel:
 
     Parameters
     ----------
-    spring : ValveSpring
-        The spring definition (its ``model`` key chooses Type C or the distributed chain).
+    spring : ValveSpring or SpringPack
+        The spring definition (its ``model`` key chooses Type C or the distributed chain), or
+        a pack of two or three nested springs (:class:`~springdyn.valve.spring.pack.SpringPack`).
     cam : Cam, optional
         The cam; needed by every analysis under the cam.
     valve_train : ValveTrain, optional
@@ -125,8 +127,11 @@ class ValveModel:
         oil=None,
         piston=None,
     ):
-        if not isinstance(spring, ValveSpring):
-            raise InputError(f"spring = {spring!r} must be a ValveSpring (ValveSpring.from_toml(...) or .example())")
+        if not isinstance(spring, (ValveSpring, SpringPack)):
+            raise InputError(
+                f"spring = {spring!r} must be a ValveSpring (ValveSpring.from_toml(...) or .example()) or a "
+                "SpringPack (SpringPack.from_toml(...))"
+            )
         if cam is not None and not isinstance(cam, Cam):
             raise InputError(f"cam = {cam!r} must be a Cam or None")
         if valve_train is not None and not isinstance(valve_train, ValveTrain):
@@ -163,7 +168,9 @@ class ValveModel:
     ) -> ValveModel:
         """A model of definition files: ``[spring]``, ``[cam]`` (with its ``[timing]``, or the
         spring file's), ``[valve_train]`` (with its ``[hla]``, ``[geometry]``, ``[follower]`` and
-        ``[friction]``), and a ``[piston]`` table in any of them.
+        ``[friction]``), and a ``[piston]`` table in any of them.  A spring file with
+        ``[inner_spring]`` is a spring pack (:class:`~springdyn.valve.spring.pack.SpringPack`:
+        ``[third_spring]``, ``[pack]``, ``[damper]``).
 
         Parameters
         ----------
@@ -178,7 +185,10 @@ class ValveModel:
         crank_angles : bool, optional
             Crank angles in the results (default: when a ``[timing]`` table is given).
         """
-        sp = ValveSpring.from_toml(spring).with_model(model)
+        if SpringPack.in_document(load_toml(spring)):  # [inner_spring]: a spring pack
+            sp = SpringPack.from_toml(spring).with_model(model)
+        else:
+            sp = ValveSpring.from_toml(spring).with_model(model)
         c = Cam.from_toml(cam) if cam is not None else None
         vt = ValveTrain.from_toml(valve_train) if valve_train is not None else None
         timing = (Timing.in_file(cam) if cam is not None else None) or Timing.in_file(spring)
@@ -366,6 +376,14 @@ class ValveModel:
         """
         return cam_rpm_from_engine_rpm(engine_rpm, self.strokes)
 
+    def _one_spring(self, what: str) -> None:
+        """Refuse a spring pack where an analysis covers one spring only (docs/valve-spring.md, "Spring packs")."""
+        if isinstance(self.spring, SpringPack):
+            raise InputError(
+                f"{what} covers one spring, not a spring pack ({self.spring!r}): run it on each spring's own "
+                "file, or run the pack through valve simulate, sweep or float"
+            )
+
     def _need_cam(self, what: str) -> Cam:
         if self.cam is None:
             raise InputError(f"{what} needs a cam: ValveModel(spring, cam=Cam(...))")
@@ -389,6 +407,7 @@ class ValveModel:
     def parameter_table(self):
         """The internal parameters with their units and meaning, the coils and the drawing's load
         points (:class:`~springdyn.valve.spring.results.SpringParameters`)."""
+        self._one_spring("valve params")
         return spring_wing.SpringParameters.of(self.spring)
 
     def static_force(self, length):
@@ -409,6 +428,7 @@ class ValveModel:
         ----------
         {start_stop points}
         """
+        self._one_spring("valve curve")
         return self.chain_model.static_curve(start, stop, points)
 
     @_DOCS.fill
@@ -430,6 +450,7 @@ class ValveModel:
         ----------
         {length count}
         """
+        self._one_spring("valve modes")
         return spring_wing.ChainModes.of(self.spring, length, count)
 
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None):
@@ -444,6 +465,7 @@ class ValveModel:
         cam_rpm : float, optional
             Cam speed [rev/min] for the surge margin.
         """
+        self._one_spring("valve design")
         if lift is None and self.cam is not None:
             lift = self.cam.lift
         return spring_wing.DesignFigures(self.spring, self.chain_model.design_figures(lift, cam_rpm), cam_rpm)
@@ -458,6 +480,7 @@ class ValveModel:
         length : float, optional
             Spring length [m] (default: installed).
         """
+        self._one_spring("valve frf")
         return spring_wing.dynamic_stiffness(self.spring, frequency, length)
 
     def calibrate(self, fit: str = "shear_modulus") -> dict:
@@ -469,6 +492,7 @@ class ValveModel:
         fit : {"shear_modulus", "active_coils"}
             What to fit.
         """
+        self._one_spring("valve calibrate")
         return design_wing.calibrate(self.spring, fit)
 
     def calibrate_trace(self, cam_rpm: float, cam_angle, retainer_force, fit=("damping_ratio", "contact_stiffness")):
@@ -481,6 +505,7 @@ class ValveModel:
             The measurement's cam speed [rev/min], cam angles [rad] and retainer forces [N], and
             what to fit, as :func:`~springdyn.valve.design.calibrate.calibrate_trace` takes them.
         """
+        self._one_spring("the trace calibration")
         return design_wing.calibrate_trace(
             self.spring, self._need_cam("calibrate_trace"), cam_rpm, cam_angle, retainer_force, fit
         )
@@ -697,6 +722,7 @@ class ValveModel:
         float_scan : bool
             Also find the steady-state float speed of the range.
         """
+        self._one_spring("a speed ramp")
         return run_wing.speed_ramp(
             self.spring,
             self._need_cam("speed_ramp"),
@@ -779,6 +805,7 @@ class ValveModel:
         cam_rpm : float
             Cam speed [rev/min].
         """
+        self._one_spring("valve friction")
         if self.follower is None:
             raise InputError(
                 "friction at the cam needs the follower: a [follower] table beside [valve_train] (see "
@@ -821,6 +848,7 @@ class ValveModel:
             Further options of :func:`springdyn.valve.design.tolerances.tolerance_study` (count,
             seed, speeds, method, out_dir, client, progress, float_only, resolution, workers).
         """
+        self._one_spring("valve tolerance")
         study = design_wing.tolerance_study(
             self.spring,
             self._need_cam("tolerance_study"),
@@ -841,6 +869,7 @@ class ValveModel:
         float_speeds : array_like, optional
             Cam speeds of the float-speed scans [rev/min].
         """
+        self._one_spring("valve life")
         return design_wing.service_life(
             self.spring, self._need_cam("service_life"), spectrum, self.valve_train, float_speeds
         )

@@ -150,14 +150,15 @@ def test_the_engine_refuses_a_made_up_kind_before_it_runs():
 
 def test_the_extra_outputs_are_read_where_they_are_written():
     """The periodicity channel of an adjuster reads the slot ``extra_layout`` names ``hla_check``,
-    the monitor's lift-off channel the ``cam_gap``."""
-    for n in (5, 12):
-        lay = L.extra_layout(n)
+    the end forces the pack's totals, the monitor's lift-off channel the ``cam_gap``."""
+    for n, chains in ((5, 1), (12, 1), (10, 2), (15, 3)):
+        lay = L.extra_layout(n, chains)
         e = np.arange(lay["size"], dtype=float)
         row = np.empty(L.N_CHECK)
-        loop.check_channels.py_func(e, n + 1, row)
+        loop.check_channels.py_func(e, n + chains, n, row)
         assert row[L.CHK_HLA] == lay["hla_check"]
-        assert lay["size"] == lay["hla_check"] + 1
+        assert (row[L.CHK_SEAT], row[L.CHK_RETAINER]) == (lay["seat_total"], lay["retainer_total"])
+        assert lay["size"] == lay["dissipation"] + 1
         assert [lay[k] for k in ("cam_gap", "hla_collapse", "hla_pressure", "socket_force")] == list(
             range(lay["cam_gap"], lay["cam_gap"] + 4)
         )

@@ -2,6 +2,8 @@
 
 - :mod:`.synthesis` -- valve springs from requirements (``[requirements]``): the lightest
   springs that meet load points, space, Goodman, surge and float speed, ranked;
+- :mod:`.pack_synthesis` -- the inner spring of a pack for a given outer spring and force
+  split (equal stress, the radial clearance kept);
 - :mod:`.tolerances` -- a spring across its manufacturing tolerances (``[tolerances]``,
   ``[criteria]``): Sobol or Monte Carlo variants, percentiles, failing shares;
 - :mod:`.life` -- relaxation at the service temperature and the life against a load
@@ -23,6 +25,7 @@ _EXPORTS = {
     "read_requirements": "synthesis",
     "synthesize": "synthesis",
     "write_candidates": "synthesis",
+    "inner_spring_for": "pack_synthesis",
     "tolerance_study": "tolerances",
     "read_tolerances": "tolerances",
     "calibrate": "calibrate",

@@ -39,6 +39,7 @@ _EXPORTS = {
     "hermite5": "equations",
     "chain_rhs": "equations",
     "train_response": "equations",
+    "damper_friction": "equations",
     "rhs_call": "equations",
     "NO_EXTRA": "equations",
     "EngineModel": "equations",

@@ -138,7 +138,7 @@ def integrate_speeds(
     omegas = np.ascontiguousarray(omegas, dtype=float)
     m = model_of(args)
     vt = train_of(args[9])
-    size = extra_layout(m.masses.shape[0])["size"]
+    size = extra_layout(m.masses.shape[0], m.chains.shape[0] - 1)["size"]
     k = omegas.size
     out = SpeedOutputs(
         extra=np.empty((k, points, size)),  # every row written, NaN on a failed speed
@@ -213,7 +213,7 @@ def integrate(
     vt = train_of(args[9])
     out = np.full((t_out.size, y0.size), np.nan)
     t_out = np.ascontiguousarray(t_out, dtype=float)
-    size = extra_layout(m.masses.shape[0])["size"]
+    size = extra_layout(m.masses.shape[0], m.chains.shape[0] - 1)["size"]
     gaps = np.full(m.laws.shape[0], np.inf)
     tol = Tolerances(float(rtol), atol_vector(len(y0), atol, atol_velocity), float(h_max), int(max_steps))
     off = new_monitor(np.empty(0), np.empty((0, 4)), np.zeros(1, dtype=np.int64), gaps, 0.0, vt)

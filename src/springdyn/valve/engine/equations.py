@@ -44,10 +44,15 @@ from ...core.docstrings import ParameterDocs
 from ...numerics.jit import kernel, rebind, twins
 from .hydraulics import effective_bulk_modulus, orifice_flow
 from .layout import (
+    DAMPER_FORCE,
+    DAMPER_NODE,
+    DAMPER_OTHER,
+    DAMPER_VREG,
     H_INFLOW,
     H_LEAK,
     H_PLUNGER,
     H_PRESSURE,
+    N_TAIL,
     P_CAVITATION,
     S_BUCKET,
     S_BUCKET_HLA,
@@ -116,11 +121,18 @@ from .layout import (
     X_SEAT_FORCE,
     X_TOP,
     XT_CAM_GAP,
+    XT_DAMPER_FORCE,
+    XT_DAMPER_SLIP,
+    XT_DISSIPATION,
     XT_HLA_CHECK,
     XT_HLA_COLLAPSE,
     XT_HLA_INFLOW,
     XT_HLA_LEAK,
     XT_HLA_PRESSURE,
+    XT_RETAINER_COMPRESSION,
+    XT_RETAINER_TOTAL,
+    XT_SEAT_COMPRESSION,
+    XT_SEAT_TOTAL,
     XT_SOCKET_FORCE,
 )
 
@@ -132,6 +144,8 @@ __all__ = [
     "cam_at",
     "element_force",
     "chain_forces",
+    "damper_friction",
+    "NO_DAMPER",
     "spring_rhs",
     "train_rhs",
     "CamDrive",
@@ -227,6 +241,18 @@ class EngineModel(NamedTuple):
     cam_dh: np.ndarray  #: its first derivative [m/rad]
     cam_ddh: np.ndarray  #: its second derivative [m/rad^2]
     dth: float  #: table step [rad]
+    #: the first mass of each parallel chain, then the mass count (C + 1,) [-]: ``[0, N]`` for
+    #: one spring; a spring pack's chains lie one after the other (:func:`chain_forces`)
+    chains: np.ndarray
+    #: the friction dampers, one row each (R, :data:`.layout.DAMPER_SIZE`; layout ``DAMPER_*``)
+    #: [-, -, N, m/s]: a flat-wound damper, the rubbing of interfering springs
+    damper: np.ndarray
+
+
+#: The chains of one spring of ``n`` masses (:attr:`EngineModel.chains`), cached by ``n``.
+_ONE_CHAIN: dict = {}
+#: No friction damper (:attr:`EngineModel.damper`).
+NO_DAMPER = np.array([[0.0, -1.0, 0.0, 1.0]])
 
 
 #: What the engine says of a parameter vector whose ``VT_KIND`` names no kind of train.
@@ -308,10 +334,25 @@ def model_of(args) -> EngineModel:
         ``(masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth, omega, vt)``: masses [kg],
         element laws [m, N], set-up compressions [m], damping [N s/m], cam table [m, m/rad,
         m/rad^2], table step [rad], speed [rad/s] and valve-train parameters
-        (:meth:`springdyn.valve.run.setup.SimulationSetup.args`).
+        (:func:`springdyn.valve.run.runner.engine_args`); a spring pack's add its chains'
+        first masses and its friction damper (:attr:`EngineModel.chains`, :attr:`EngineModel.damper`).
     """
     masses, laws, xset, c0, cam_h, cam_dh, cam_ddh, dth = args[:8]
-    return EngineModel(masses, laws, xset, _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth))
+    if len(args) > 10:
+        chains = np.ascontiguousarray(args[10], dtype=np.int64)
+        damper = np.array(np.reshape(args[11], (-1, 4)), dtype=float)
+    else:
+        n = masses.shape[0]
+        chains = _ONE_CHAIN.get(n)
+        if chains is None:
+            chains = _ONE_CHAIN[n] = np.array([0, n], dtype=np.int64)
+        damper = NO_DAMPER
+    if chains[-1] != masses.shape[0] or laws.shape[0] != masses.shape[0] + chains.shape[0] - 1:
+        raise ValueError(
+            f"chains {chains.tolist()} do not fit {masses.shape[0]} masses and {laws.shape[0]} elements "
+            "(each chain has one element more than masses)"
+        )
+    return EngineModel(masses, laws, xset, _c0_array(c0, laws), cam_h, cam_dh, cam_ddh, float(dth), chains, damper)
 
 
 def hermite5(x, p0, v0, a0, p1, v1, a1):
@@ -418,62 +459,167 @@ def element_force(laws, c0, j, xj, rate, unilateral):
     return force
 
 
+def damper_friction(force, slip, v_reg):
+    """The friction damper's force [N] on its node at the sliding velocity ``slip`` [m/s]: Coulomb
+    friction regularised by ``tanh``, ``-F tanh(v / v_reg)`` ([Andersson], the smooth Coulomb
+    model; exact Coulomb as ``v_reg`` -> 0).
+
+    Parameters
+    ----------
+    force : float
+        The Coulomb force, normal load times friction coefficient [N].
+    slip : float
+        The node's velocity less its counterpart's [m/s].
+    v_reg : float
+        Regularising velocity [m/s].
+    """
+    return -force * math.tanh(slip / v_reg)
+
+
 @_DOCS.fill
 def chain_forces(s, m, nfree, u_top, v_top, out, extra):
-    """The element forces of the chain and the accelerations of its masses ([MMS], MMS-7).
+    """The element forces of the chains and the accelerations of their masses ([MMS], MMS-7).
 
-    The two end elements carry compression only (correction MMS-7).
+    One spring is one chain; a spring pack's chains (``m.chains``) stand side by side between
+    the seat (node 0 of each) and the one retainer end, each with its own two end contacts,
+    which carry compression only (correction MMS-7).  A friction damper (``m.damper``) acts
+    on one mass against the seat or a mass of another chain (:func:`damper_friction`); so does
+    each further row of ``m.damper`` (springs that rub where their diameters interfere).
 
     Parameters
     ----------
     s : ndarray
         State: displacements [m] then velocities [m/s].
     m : EngineModel
-        The chain's arrays [kg, m, N, N s/m].
+        The chains' arrays [kg, m, N, N s/m].
     {nfree}
     u_top, v_top : float
         Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
     out : ndarray
         Receives the derivatives of the masses' states [m/s, m/s^2].
     extra : ndarray
-        Empty, or receives element forces [N], compressions [m] and mass displacements [m].
+        Empty, or receives element forces [N], compressions [m], mass displacements [m], the
+        totals at the seat and the retainer [N], the end contacts' smallest compressions [m],
+        the damper's force [N] and slip [m/s] and the power dissipated [W].
 
     Returns
     -------
     float
-        Force of the last element, on the retainer end [N].
+        Force on the retainer end, every chain's last element's [N].
     """
     masses = m.masses
     laws = m.laws
     xset = m.xset
     c0 = m.c0
-    nm = masses.shape[0]
-    ne = nm + 1
-    rec = extra.shape[0] > 0
-    f_prev = 0.0
-    u_lo = 0.0
-    v_lo = 0.0
-    for j in range(ne):
-        if j < nm:
-            u_hi = s[j]
-            v_hi = s[nfree + j]
-        else:
-            u_hi = u_top
-            v_hi = v_top
-        xj = xset[j] + u_hi - u_lo
-        force = element_force(laws, c0, j, xj, v_hi - v_lo, j == 0 or j == ne - 1)
-        if rec:
+    chains = m.chains
+    f_top = 0.0
+    for k in range(chains.shape[0] - 1):
+        first = chains[k]
+        last = chains[k + 1]  # the chain's masses first .. last - 1, its elements first + k .. last + k
+        f_prev = 0.0
+        u_lo = 0.0
+        v_lo = 0.0
+        for i in range(first, last + 1):
+            if i < last:
+                u_hi = s[i]
+                v_hi = s[nfree + i]
+            else:
+                u_hi = u_top
+                v_hi = v_top
+            force = element_force(laws, c0, i + k, xset[i + k] + u_hi - u_lo, v_hi - v_lo, i == first or i == last)
+            if i > first:
+                out[i - 1] = s[nfree + i - 1]
+                out[nfree + i - 1] = (force - f_prev) / masses[i - 1]
+            f_prev = force
+            u_lo = u_hi
+            v_lo = v_hi
+        f_top += f_prev
+    dampers = m.damper
+    for r in range(dampers.shape[0]):
+        if dampers[r, DAMPER_FORCE] > 0.0:
+            node, other, f_r, _ = _damper_row(s, nfree, dampers, r)
+            out[nfree + node] += f_r / masses[node]
+            if other >= 0:
+                out[nfree + other] -= f_r / masses[other]
+    if extra.shape[0] > 0:  # (the record is called, not inlined: see _RECORDS)
+        _record_chains(s, m, nfree, u_top, v_top, extra)
+    return f_top
+
+
+def _damper_row(s, nfree, dampers, r):
+    """Friction row ``r`` of ``dampers`` (layout ``DAMPER_*``) at the state ``s``: its node, its
+    counterpart (-1: the seat), its force on the node [N] and the sliding velocity [m/s]."""
+    node = int(dampers[r, DAMPER_NODE])
+    other = int(dampers[r, DAMPER_OTHER])
+    v_rel = s[nfree + node] - (s[nfree + other] if other >= 0 else 0.0)
+    return node, other, damper_friction(dampers[r, DAMPER_FORCE], v_rel, dampers[r, DAMPER_VREG]), v_rel
+
+
+@_DOCS.fill
+def _record_chains(s, m, nfree, u_top, v_top, extra):
+    """Record the chains' element forces, compressions and mass displacements, the totals at
+    the seat and the retainer, the end contacts' smallest compressions, the first damper's
+    force and slip and the power dissipated by the elements' damping and every damper into
+    ``extra`` (:func:`.layout.extra_layout`; the forces as :func:`chain_forces` computes them).
+
+    Parameters
+    ----------
+    s : ndarray
+        State: displacements [m] then velocities [m/s].
+    {m nfree}
+    u_top, v_top : float
+        Displacement [m] and velocity [m/s] of the retainer end.
+    extra : ndarray
+        Receives the outputs [N, m, m/s, W].
+    """
+    laws = m.laws
+    xset = m.xset
+    c0 = m.c0
+    chains = m.chains
+    nm = m.masses.shape[0]
+    ne = laws.shape[0]
+    f_seat = 0.0
+    f_ret = 0.0
+    power = 0.0
+    x_seat = np.inf
+    x_top = np.inf
+    for k in range(chains.shape[0] - 1):
+        first = chains[k]
+        last = chains[k + 1]
+        for i in range(first, last + 1):
+            j = i + k
+            lo = i > first
+            hi = i < last
+            xj = xset[j] + (s[i] if hi else u_top) - (s[i - 1] if lo else 0.0)
+            rate = (s[nfree + i] if hi else v_top) - (s[nfree + i - 1] if lo else 0.0)
+            force = element_force(laws, c0, j, xj, rate, not (lo and hi))
             extra[j] = force
             extra[ne + j] = xj
-            if j < nm:
-                extra[2 * ne + X_DISP + j] = u_hi
-        if j > 0:
-            out[j - 1] = s[nfree + j - 1]
-            out[nfree + j - 1] = (force - f_prev) / masses[j - 1]
-        f_prev = force
-        u_lo = u_hi
-        v_lo = v_hi
-    return f_prev
+            if hi:
+                extra[2 * ne + X_DISP + i] = s[i]
+            if force != 0.0:  # the damping's share: the force less the elastic law's
+                power += (force - element_force(laws, c0, j, xj, 0.0, False)) * rate
+            if not lo:
+                f_seat += force
+                x_seat = min(x_seat, xj)
+            if not hi:
+                f_ret += force
+                x_top = min(x_top, xj)
+    b = 2 * ne + X_DISP + nm
+    extra[b + XT_DAMPER_FORCE] = 0.0
+    extra[b + XT_DAMPER_SLIP] = 0.0
+    dampers = m.damper
+    for r in range(dampers.shape[0] - 1, -1, -1):  # the first row's force and slip are recorded
+        if dampers[r, DAMPER_FORCE] > 0.0:
+            _, _, f_r, v_rel = _damper_row(s, nfree, dampers, r)
+            power -= f_r * v_rel
+            extra[b + XT_DAMPER_FORCE] = f_r
+            extra[b + XT_DAMPER_SLIP] = v_rel
+    extra[b + XT_SEAT_TOTAL] = f_seat
+    extra[b + XT_RETAINER_TOTAL] = f_ret
+    extra[b + XT_SEAT_COMPRESSION] = x_seat
+    extra[b + XT_RETAINER_COMPRESSION] = x_top
+    extra[b + XT_DISSIPATION] = power
 
 
 @_DOCS.fill
@@ -506,7 +652,7 @@ def _record_tail(extra, ne, nm, lift, dlift, f_cam, f_seat, z, gap):
 
 
 @_DOCS.fill
-def _record_hla(extra, ne, nm, s, h, vt, collapse, socket):
+def _record_hla(extra, s, h, vt, collapse, socket):
     """Record an adjuster's outputs (offsets ``XT_HLA_*`` of :mod:`.layout`) into ``extra``
     unless it is empty: its collapse, chamber pressure above the supply, socket force, the oil
     volumes in and out since the start and the collapse as a periodicity force.
@@ -514,8 +660,8 @@ def _record_hla(extra, ne, nm, s, h, vt, collapse, socket):
     Parameters
     ----------
     extra : ndarray
-        Empty, or the extra outputs [N, m, m/s, Pa, m^3] (:func:`.layout.extra_layout`).
-    {ne_nm}
+        Empty, or the extra outputs [N, m, m/s, Pa, m^3] (:func:`.layout.extra_layout`; its
+        tail, :data:`.layout.N_TAIL` values, ends it).
     s : ndarray
         State [m, m/s, Pa, m^3].
     h : int
@@ -527,7 +673,7 @@ def _record_hla(extra, ne, nm, s, h, vt, collapse, socket):
         Socket force [N].
     """
     if extra.shape[0] > 0:
-        b = 2 * ne + X_DISP + nm
+        b = extra.shape[0] - N_TAIL
         extra[b + XT_HLA_COLLAPSE] = collapse
         extra[b + XT_HLA_PRESSURE] = s[h + H_PRESSURE] - vt[VT_HLA_PS]
         extra[b + XT_SOCKET_FORCE] = socket
@@ -775,8 +921,9 @@ def spring_rhs(t, s, m, omega, vt, out, extra):
     dlift = slope * omega
     chain_forces(s, m, nm, lift, dlift, out, extra)
     if extra.shape[0] > 0:  # (the records are called, not inlined: see _RECORDS)
-        _record_tail(extra, nm + 1, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
-        _record_no_hla(extra, nm + 1, nm)
+        ne = m.laws.shape[0]
+        _record_tail(extra, ne, nm, lift, dlift, 0.0, 0.0, lift, 1.0)
+        _record_no_hla(extra, ne, nm)
 
 
 class CamDrive(NamedTuple):
@@ -969,7 +1116,7 @@ def lever_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     out[nfree + nm + S_PIVOT] = (f_cam * (kap - c / vt[VT_RATIO]) - sock) / vt[VT_HLA_MA]
     if extra.shape[0] > 0:
         h = nm + S_LEVER_HLA
-        _record_hla(extra, nm + 1, nm, s, h, vt, s[h + H_PLUNGER] - vt[VT_HLA_Y0], sock)
+        _record_hla(extra, s, h, vt, s[h + H_PLUNGER] - vt[VT_HLA_Y0], sock)
     return f_cam, f_valve, gap
 
 
@@ -1034,7 +1181,7 @@ def bucket_hla_rhs(s, nm, nfree, vt, cam, out, extra):
     raw_s = vt[VT_HLA_KS] * pen_s + vt[VT_HLA_CS] * (s[nfree + h + H_PLUNGER] - s[nfree + nm + S_VALVE])
     gap = min(min(pen, raw / vt[VT_K_CAM]), min(pen_s, raw_s / vt[VT_HLA_KS]))
     if extra.shape[0] > 0:
-        _record_hla(extra, nm + 1, nm, s, h, vt, yb - s[h + H_PLUNGER] - vt[VT_HLA_Y0], f_valve)
+        _record_hla(extra, s, h, vt, yb - s[h + H_PLUNGER] - vt[VT_HLA_Y0], f_valve)
     return f_cam, f_valve, gap
 
 
@@ -1072,7 +1219,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     zd = s[nfree + nm + S_VALVE]
     f_spring = chain_forces(s, m, nfree, z, zd, out, extra)
     if extra.shape[0] > 0:  # an adjuster overwrites them
-        _record_no_hla(extra, nm + 1, nm)
+        _record_no_hla(extra, m.laws.shape[0], nm)
     f_seat = seat_force(vt, z, zd)
     if kind == TRAIN_DIRECT:
         f_cam, f_valve, gap = direct_acting_rhs(s, nm, nfree, vt, cam, out, extra)
@@ -1090,7 +1237,7 @@ def train_rhs(t, s, m, omega, vt, out, extra):
     # the gas force pushes the valve towards its seat (springdyn.valve.train.gas_force)
     out[nfree + nm + S_VALVE] = (f_valve + f_seat - f_spring - gas_force_at(vt, theta)) / vt[VT_MASS]
     if extra.shape[0] > 0:
-        _record_tail(extra, nm + 1, nm, lift, dlift, f_cam, f_seat, z, gap)
+        _record_tail(extra, m.laws.shape[0], nm, lift, dlift, f_cam, f_seat, z, gap)
 
 
 def _contact(k, c, pen, rate):
@@ -1288,7 +1435,7 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
 #: The records of the extra outputs, called (only where there are outputs), not inlined: inlined
 #: into every right-hand side (the train's, the spring's, the step's and rhs_call's) their
 #: stores made a sixth of the engine's code for numba to type and compile.
-_RECORDS = ("_record_tail", "_record_hla", "_record_no_hla")
+_RECORDS = ("_record_tail", "_record_hla", "_record_no_hla", "_record_chains")
 
 _TWINS = twins(
     globals(),
@@ -1296,6 +1443,9 @@ _TWINS = twins(
         "hermite5",
         "cam_at",
         "element_force",
+        "damper_friction",
+        "_damper_row",
+        "_record_chains",
         "chain_forces",
         "_record_tail",
         "_record_hla",

@@ -166,8 +166,24 @@ XT_SOCKET_FORCE = 3  #: the socket force [N]
 XT_HLA_INFLOW = 4  #: oil in through the check valve since the start [m^3]
 XT_HLA_LEAK = 5  #: oil out through the clearance since the start [m^3]
 XT_HLA_CHECK = 6  #: the collapse as a periodicity force [N] (:data:`CHK_HLA`)
-N_TAIL = 7
-N_HLA_EXTRA = N_TAIL - 1  #: the adjuster's outputs in the tail [-]
+N_HLA_EXTRA = 6  #: the adjuster's outputs in the tail [-]
+# a spring pack's parallel chains (one chain: the end elements' own values)
+XT_SEAT_TOTAL = 7  #: the seat force, the sum of every chain's first element [N]
+XT_RETAINER_TOTAL = 8  #: the retainer force, the sum of every chain's last element [N]
+XT_SEAT_COMPRESSION = 9  #: the smallest compression of the chains' seat contacts [m]
+XT_RETAINER_COMPRESSION = 10  #: the smallest compression of the chains' retainer contacts [m]
+XT_DAMPER_FORCE = 11  #: a friction damper's force on its node (:data:`DAMPER_SIZE`) [N]
+XT_DAMPER_SLIP = 12  #: its sliding velocity, the node's less its counterpart's [m/s]
+#: the power the chains dissipate, their elements' damping and the friction damper [W]
+XT_DISSIPATION = 13
+N_TAIL = 14
+
+# --- a spring pack: parallel chains between the seat and the one retainer ------------------
+#: A friction damper's row of ``EngineModel.damper``: the node it acts on (a
+#: mass index), its counterpart (a mass index, or -1 for the seat), the Coulomb force [N]
+#: and the regularising velocity [m/s] (0 force: no damper).
+DAMPER_NODE, DAMPER_OTHER, DAMPER_FORCE, DAMPER_VREG = range(4)
+DAMPER_SIZE = 4
 
 #: Names of the ``extra`` outputs for the 5-mass Type C chain (:func:`extra_layout` for any N).
 EXTRA = (
@@ -200,16 +216,28 @@ EXTRA = (
     "hla_inflow",
     "hla_leak",
     "hla_check",
+    "seat_total",
+    "retainer_total",
+    "seat_compression",
+    "retainer_compression",
+    "damper_force",
+    "damper_slip",
+    "dissipation",
 )
 
 
-def extra_layout(n_masses: int) -> dict:
+def extra_layout(n_masses: int, n_chains: int = 1) -> dict:
     """Slices / indices of the ``extra`` output of the right-hand side for a chain of ``n_masses``.
+
+    A spring pack's chains lie one after the other: ``n_masses`` masses in all and
+    ``n_masses + n_chains`` elements, each chain's from its seat element to its retainer element.
 
     Parameters
     ----------
     n_masses : int
-        Number of chain masses (5 for Type C) [-].
+        Number of chain masses (5 for Type C), of all the pack's chains [-].
+    n_chains : int
+        Parallel chains between the seat and the retainer (the springs of a pack) [-].
 
     Returns
     -------
@@ -219,9 +247,12 @@ def extra_layout(n_masses: int) -> dict:
         ``displacement`` (slice over the masses), ``cam_gap``, the adjuster's ``hla_collapse``
         [m], ``hla_pressure`` [Pa], ``socket_force`` [N], ``hla_inflow`` and ``hla_leak``
         (volumes since the start [m^3]), ``hla_check`` (the collapse as a periodicity force
-        [N], :data:`CHK_HLA`) (ints) and ``size``.
+        [N], :data:`CHK_HLA`), the pack's totals ``seat_total``, ``retainer_total`` [N],
+        ``seat_compression``, ``retainer_compression`` [m], the friction damper's
+        ``damper_force`` [N], ``damper_slip`` [m/s] and the chains' ``dissipation`` [W]
+        (ints) and ``size``.
     """
-    ne = n_masses + 1
+    ne = n_masses + n_chains
     b = 2 * ne
     tail = b + X_DISP + n_masses
     return dict(
@@ -240,6 +271,13 @@ def extra_layout(n_masses: int) -> dict:
         hla_inflow=tail + XT_HLA_INFLOW,
         hla_leak=tail + XT_HLA_LEAK,
         hla_check=tail + XT_HLA_CHECK,
+        seat_total=tail + XT_SEAT_TOTAL,
+        retainer_total=tail + XT_RETAINER_TOTAL,
+        seat_compression=tail + XT_SEAT_COMPRESSION,
+        retainer_compression=tail + XT_RETAINER_COMPRESSION,
+        damper_force=tail + XT_DAMPER_FORCE,
+        damper_slip=tail + XT_DAMPER_SLIP,
+        dissipation=tail + XT_DISSIPATION,
         size=tail + N_TAIL,
     )
 

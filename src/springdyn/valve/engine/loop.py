@@ -40,6 +40,8 @@ from .layout import (
     X_DISP,
     X_SEAT_FORCE,
     XT_HLA_CHECK,
+    XT_RETAINER_TOTAL,
+    XT_SEAT_TOTAL,
 )
 from .monitor import finish_monitor, monitor_step, new_monitor
 
@@ -206,6 +208,7 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
     """
     n = y.shape[0]
     ne = m.laws.shape[0]
+    nm = m.masses.shape[0]
     last = tab.c.shape[0] - 1  # stages; the last is the step's end (FSAL)
     monitor = mon.ext.shape[0] > 0
     want_out = out.shape[0] > 0
@@ -241,10 +244,10 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
         if want_x:
             rhs_call(t, y, m, omega, vt, dbuf, xout[iout])
             if want_f:
-                check_channels(xout[iout], ne, fout[iout])
+                check_channels(xout[iout], ne, nm, fout[iout])
         elif want_f:
             rhs_call(t, y, m, omega, vt, dbuf, ebuf)
-            check_channels(ebuf, ne, fout[iout])
+            check_channels(ebuf, ne, nm, fout[iout])
         iout += 1
     istop = 0
     nstops = stops.shape[0]
@@ -286,14 +289,14 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
                 if want_x:
                     rhs_call(t_out[iout], ybuf, m, omega, vt, dbuf, xout[iout])
                     if want_f:
-                        check_channels(xout[iout], ne, fout[iout])
+                        check_channels(xout[iout], ne, nm, fout[iout])
                     # an output inside the step is its interior sample
                     if 0.0 < fr < 1.0 and (mid_row < 0 or abs(fr - 0.5) < abs(th_m - 0.5)):
                         mid_row = iout
                         th_m = fr
                 elif want_f:
                     rhs_call(t_out[iout], ybuf, m, omega, vt, dbuf, ebuf)
-                    check_channels(ebuf, ne, fout[iout])
+                    check_channels(ebuf, ne, nm, fout[iout])
                 iout += 1
             if monitor:
                 monitor_step(mon, rc, rc_prev, t, h, t_new, th_m, mid_row, m, omega, vt, ybuf, dbuf, ebuf, eend, xout)
@@ -320,16 +323,18 @@ def integrate_loop(y, t0, t_end, t_out, m, omega, vt, tab, tol, ctl, stops, out,
 
 
 @kernel(inline="always")
-def check_channels(e, ne, row):
+def check_channels(e, ne, nm, row):
     """The forces that judge periodicity (columns ``CHK_*`` of :mod:`.layout`) from the extra
-    outputs ``e`` of a chain of ``ne`` elements: seat and retainer end forces, cam contact
-    and valve-seat forces, an adjuster's collapse as a force [N]."""
+    outputs ``e`` of chains of ``ne`` elements and ``nm`` masses: seat and retainer end forces
+    (a spring pack's totals), cam contact and valve-seat forces, an adjuster's collapse as a
+    force [N]."""
     b = 2 * ne
-    row[CHK_SEAT] = e[0]
-    row[CHK_RETAINER] = e[ne - 1]
+    tail = b + X_DISP + nm
+    row[CHK_SEAT] = e[tail + XT_SEAT_TOTAL]
+    row[CHK_RETAINER] = e[tail + XT_RETAINER_TOTAL]
     row[CHK_CAM] = e[b + X_CAM_FORCE]
     row[CHK_VALVE_SEAT] = e[b + X_SEAT_FORCE]
-    row[CHK_HLA] = e[b + X_DISP + (ne - 1) + XT_HLA_CHECK]  # the adjuster's collapse as a force
+    row[CHK_HLA] = e[tail + XT_HLA_CHECK]  # the adjuster's collapse as a force
 
 
 class Variant(NamedTuple):

@@ -53,6 +53,10 @@ from .layout import (
     X_LIFT,
     X_TOP,
     XT_CAM_GAP,
+    XT_RETAINER_COMPRESSION,
+    XT_RETAINER_TOTAL,
+    XT_SEAT_COMPRESSION,
+    XT_SEAT_TOTAL,
 )
 
 __all__ = ["Monitor", "new_monitor", "monitor_step", "finish_monitor"]
@@ -135,14 +139,15 @@ def _signal(k, e, ne, nm, open_lift):
     force, seat force, -seat force, -cam contact force while the valve is open (off its
     seat, the lobe lift past ``open_lift`` [m]; ramp impacts on the seated valve are not
     float)."""
+    tail = 2 * ne + X_DISP + nm  # the pack's totals (one spring: its end elements' forces)
     if k == SIG_RETAINER_MAX:
-        return e[ne - 1]
+        return e[tail + XT_RETAINER_TOTAL]
     if k == SIG_RETAINER_MIN:
-        return -e[ne - 1]
+        return -e[tail + XT_RETAINER_TOTAL]
     if k == SIG_SEAT_MAX:
-        return e[0]
+        return e[tail + XT_SEAT_TOTAL]
     if k == SIG_SEAT_MIN:
-        return -e[0]
+        return -e[tail + XT_SEAT_TOTAL]
     if e[2 * ne + X_LIFT] > open_lift and e[2 * ne + X_TOP] > 0.0:
         return -e[2 * ne + X_CAM_FORCE]
     return -np.inf
@@ -153,10 +158,10 @@ def _channel(c, e, ne, nm, open_lift, gaps):
     """Event channel ``c``, active while negative: the seat / retainer end compression, the
     smallest gap of the train's links while the valve is open (lift-off), then the coil gap
     left in each element."""
-    if c == CH_SEAT:
-        return e[ne]
+    if c == CH_SEAT:  # the smallest compression of the chains' end contacts
+        return e[2 * ne + X_DISP + nm + XT_SEAT_COMPRESSION]
     if c == CH_RETAINER:
-        return e[2 * ne - 1]
+        return e[2 * ne + X_DISP + nm + XT_RETAINER_COMPRESSION]
     if c == CH_TRAIN:
         if e[2 * ne + X_LIFT] > open_lift and e[2 * ne + X_TOP] > 0.0:
             return e[2 * ne + X_DISP + nm + XT_CAM_GAP]
@@ -177,7 +182,7 @@ def golden_max(rc, t, h, lo, hi, k, m, omega, vt, open_lift, ybuf, dbuf, ebuf):
     """Golden-section maximum of extreme signal ``k`` over the step fractions [lo, hi]; returns
     (value, fraction)."""
     ne = m.laws.shape[0]
-    nm = ne - 1
+    nm = m.masses.shape[0]
     g = 0.6180339887498949
     a = lo
     b = hi
@@ -215,7 +220,7 @@ def bisect_crossing(rc, t, h, lo, hi, c, landing, m, omega, vt, open_lift, gaps,
     """Step fraction in [lo, hi] where channel ``c`` (or, with ``landing``, the valve lift)
     changes sign, to 6e-8 of the step (the state at ``lo`` is on the old side)."""
     ne = m.laws.shape[0]
-    nm = ne - 1
+    nm = m.masses.shape[0]
     _eval_at(rc, lo, t, h, m, omega, vt, ybuf, dbuf, ebuf)
     if landing:
         neg_lo = ebuf[2 * ne + X_TOP] <= 0.0
@@ -263,7 +268,7 @@ def monitor_step(mon, rc, rc_prev, t, h, t_new, th_m, mid_row, m, omega, vt, ybu
     evaluated here) and its end (``eend``, the extra outputs of the last stage).
     """
     ne = m.laws.shape[0]
-    nm = ne - 1
+    nm = m.masses.shape[0]
     nfree = ybuf.shape[0] // 2
     nch = N_FIXED_CHANNELS + ne
     sc = mon.sc

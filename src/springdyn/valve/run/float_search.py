@@ -23,7 +23,7 @@ import numpy as np
 from ...core.errors import InputError, SolverError
 from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
-from ..engine import STATUS, extra_layout
+from ..engine import STATUS
 from ..spring.definition import ValveSpring
 from ..train.definition import ValveTrain
 from .results import FloatSpeedResult
@@ -326,7 +326,7 @@ def float_speed_near(
 
 
 def _gap_column(setup) -> int:
-    return extra_layout(setup.n_masses)["cam_gap"]
+    return setup.layout["cam_gap"]
 
 
 def _search_failure(rpm, r):

@@ -85,6 +85,11 @@ class Simulation(CrankAngles, Result):
     #: :class:`~springdyn.valve.cam.timing.CrankAxis` (:func:`~springdyn.valve.cam.timing.crank_axis`),
     #: None for cam angles only (the CLI sets it for an engine speed or a ``[timing]`` table).
     crank_axis: object = None
+    #: A spring pack's outputs (:class:`~springdyn.valve.spring.pack.SpringPack`): each spring's
+    #: ``retainer_force`` and ``seat_force`` (springs, samples) [N], the first friction
+    #: damper's ``damper_force`` [N] and ``damper_slip`` [m/s], the chains' ``dissipation`` [W]
+    #: (their elements' damping and every damper); None for one spring.
+    pack: dict | None = None
 
     #: Change of the peak end forces with twice the elements [fraction of Fset] above which
     #: the clash forces are flagged as not converged.
@@ -210,6 +215,9 @@ class Simulation(CrankAngles, Result):
             out.append(f"END SEPARATION at the {ev['end']} {angles(ev)} ({ev['duration_s'] * 1e3:.3f} ms)")
         if vt is not None:
             out += _train_lines(s, angles)
+        if self.pack is not None:
+            out += _pack_lines(s)
+            return "\n".join(out + notes_lines(s))
         fs, fd = s["static_fatigue_safety_factor"], s["fatigue_safety_factor"]
         out.append(
             "fatigue safety factor (Goodman): static "
@@ -274,6 +282,15 @@ class Simulation(CrankAngles, Result):
             )
         if self.gas_force is not None:
             data.update(gas_force=(dims, self.gas_force, {"units": "N", "long_name": "gas force on the valve"}))
+        if self.pack is not None:
+            for k, name in enumerate(self.spring.names):
+                data[f"{name}_retainer_force"] = (dims, self.pack["retainer_force"][k], {"units": "N"})
+                data[f"{name}_seat_force"] = (dims, self.pack["seat_force"][k], {"units": "N"})
+            data.update(
+                damper_force=(dims, self.pack["damper_force"], {"units": "N", "long_name": "friction damper force"}),
+                damper_slip=(dims, self.pack["damper_slip"], {"units": "m/s", "long_name": "friction damper slip"}),
+                dissipation=(dims, self.pack["dissipation"], {"units": "W", "long_name": "power dissipated"}),
+            )
         if self.hla is not None:
             data.update(
                 hla_collapse=(dims, self.hla["collapse"], {"units": "m"}),
@@ -1120,6 +1137,115 @@ def _clash_text(cc: dict) -> str:
     )
 
 
+def _pack_lines(s: dict) -> list[str]:
+    """The lines of a spring pack's summary: each spring's forces, fatigue, stress and room to
+    solid, and the energy balance of the revolution."""
+    out = []
+    for name, v in s["springs"].items():
+        fd, fs = v["fatigue_safety_factor"], v["static_fatigue_safety_factor"]
+        out.append(
+            f"{name} spring: retainer force {v['min_retainer_force_N']:.1f}-{v['max_retainer_force_N']:.1f} N; "
+            "Goodman safety static "
+            + (f"{fs:.2f}" if fs is not None else "-")
+            + ", dynamic "
+            + (f"{fd:.2f}" if fd is not None else "-")
+            + f"; peak stress {v['peak_shear_stress_Pa'] / 1e6:.0f} MPa "
+            + ("ok" if v["wire_stress_ok"] else "OVERSTRESS")
+            + f"; {v['min_length_to_solid_m'] * 1e3:.2f} mm from solid at least"
+        )
+    out.append(
+        f"energy per revolution: the retainer's work {s['retainer_work_per_revolution_J'] * 1e3:.2f} mJ, dissipated "
+        f"{s['dissipated_energy_per_revolution_J'] * 1e3:.2f} mJ, of which the friction damper "
+        f"{s['damper_energy_per_revolution_J'] * 1e3:.2f} mJ"
+    )
+    return out
+
+
+def pack_energy(sim) -> dict:
+    """The energy balance of a spring pack over the simulated revolution [J]: the work the
+    retainer does on the springs, ``oint F_r dz`` (the retainer's displacement ``z`` by central
+    differences over the periodic samples), the energy the chains dissipate (their elements'
+    damping and the friction dampers, ``oint P dt``) and the first damper's share.  Over a
+    periodic revolution the springs' elastic and kinetic energies return, so the work equals
+    the dissipation (to the quadrature's error: the trapezoidal rule, exact to
+    ``O(h^2)``, on the output grid).
+
+    Parameters
+    ----------
+    sim : Simulation
+        A simulation of a pack (its :attr:`Simulation.pack` outputs).
+    """
+    pk = sim.pack
+    z = sim.valve_lift if sim.valve_lift is not None else sim.lift
+    dz = 0.5 * (np.roll(z, -1) - np.roll(z, 1))
+    dt = float(sim.time[1] - sim.time[0])
+    return dict(
+        retainer_work_per_revolution_J=float(np.sum(sim.retainer_force * dz)),
+        dissipated_energy_per_revolution_J=float(np.sum(pk["dissipation"]) * dt),
+        damper_energy_per_revolution_J=float(-np.sum(pk["damper_force"] * pk["damper_slip"]) * dt),
+    )
+
+
+def _pack_durability(sim, s: dict, notes: list) -> dict:
+    """Each spring's wire fatigue, stress and length to solid over the simulated cycle (the
+    figures of :func:`_durability` per spring, under ``springs``); the pack's own keys are the
+    Goodman-critical spring's, and its energy balance (:func:`pack_energy`)."""
+    pack = sim.spring
+    model = pack.spring_model
+    share = sim.contact_share
+    wire_all = sim.element_force - share
+    z = sim.valve_lift if sim.valve_lift is not None else sim.lift
+    static = pack.static_forces(np.array([max(float(z.min()), 0.0), float(z.max())]))
+    per = {}
+    for k, (name, spring, r) in enumerate(zip(pack.names, pack.springs, model.element_ranges())):
+        wire = wire_all[r]
+        ends = sim.element_force[r]
+        f = verdicts.wire_fatigue(
+            spring,
+            np.where(np.isfinite(wire).all(axis=1), wire.min(axis=1), np.nan),
+            wire.max(axis=1),
+            (float(ends[0].min()), float(ends[-1].min())),
+            (float(ends[0].max()), float(ends[-1].max())),
+            float(static[k, 0]),
+            float(static[k, 1]),
+        )
+        length = spring.free_length - sim.element_compression[r].sum(axis=0)
+        per[name] = dict(
+            max_retainer_force_N=float(sim.pack["retainer_force"][k].max()),
+            min_retainer_force_N=float(sim.pack["retainer_force"][k].min()),
+            fatigue_safety_factor=f["fatigue_safety_factor"],
+            static_fatigue_safety_factor=f["static_fatigue_safety_factor"],
+            max_shear_stress_Pa=f["max_shear_stress_Pa"],
+            peak_shear_stress_Pa=f["peak_shear_stress_Pa"],
+            wire_stress_ok=f["wire_stress_ok"],
+            min_length_to_solid_m=float(max(length.min() - spring.solid_length, 0.0)),
+            fatigue=f,
+        )
+        if not f["wire_stress_ok"]:
+            notes.append(
+                f"WIRE OVERSTRESS: the {name} spring reaches {f['peak_shear_stress_Pa'] / 1e6:.0f} MPa at "
+                f"{sim.cam_rpm:g} cam rpm, above the {f['shear_stress_limit_source']} "
+                f"{f['shear_stress_limit_Pa'] / 1e6:.0f} MPa"
+            )
+    critical = min(per, key=lambda n: per[n]["fatigue_safety_factor"] or np.inf)
+    f = per[critical]["fatigue"]
+    keys = (
+        "static_fatigue_safety_factor fatigue_safety_factor static_min_shear_stress_Pa static_max_shear_stress_Pa "
+        "min_shear_stress_Pa max_shear_stress_Pa endurance_shear_strength_Pa ultimate_shear_strength_Pa "
+        "shear_stress_limit_Pa max_wire_force_N peak_shear_stress_Pa wire_stress_ok"
+    )
+    out = {key: f[key] for key in keys.split()}
+    out["fatigue_critical_spring"] = critical
+    out["wire_stress_ok"] = all(v["wire_stress_ok"] for v in per.values())
+    out["peak_shear_stress_Pa"] = max(v["peak_shear_stress_Pa"] for v in per.values())
+    out["min_length_to_solid_m"] = min(v["min_length_to_solid_m"] for v in per.values())
+    for v in per.values():
+        v.pop("fatigue")
+    out["springs"] = per
+    out.update(pack_energy(sim))
+    return out
+
+
 def _durability(sim, s: dict, notes: list) -> dict:
     """Fatigue of the wire over the simulated cycle, beside the static one (issue 13).
 
@@ -1131,6 +1257,8 @@ def _durability(sim, s: dict, notes: list) -> dict:
     element.  Also the smallest length to solid, and for the distributed model the smallest
     coil gap.
     """
+    if sim.pack is not None:
+        return _pack_durability(sim, s, notes)
     model = sim.spring.spring_model
     share = sim.contact_share
     wire = sim.element_force - share  # SpringModel.wire_forces, with the share computed once

@@ -25,7 +25,7 @@ from ...core.results import Result, notes_lines, text_table
 from ...core.units import omega_to_rpm, rpm_to_omega
 from ..engine import integrate, rhs_call
 from ..engine.equations import model_of, train_of
-from ..engine.layout import VT_ALPHA, extra_layout
+from ..engine.layout import VT_ALPHA
 from ..spring.results import coil_line
 from . import verdicts
 from .float_search import float_speed
@@ -160,7 +160,7 @@ def speed_ramp(
             f"the speed ramp from {start_rpm:g} to {end_rpm:g} cam rpm stopped at t = {info['t']:.4g} s "
             f"(status {info['status']}): {info}"
         )
-    lay = extra_layout(setup.n_masses)
+    lay = setup.layout
     m = model_of(args)
     tr = train_of(vt)
     extra = np.empty((t_out.size, lay["size"]))

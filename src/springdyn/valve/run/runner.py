@@ -34,9 +34,13 @@ def engine_args(setup: SimulationSetup, omega: float) -> tuple:
     omega : float
         Cam speed [rad/s].
     """
-    ch = setup.spring.spring_model.chain
+    model = setup.spring.spring_model
+    ch = model.chain
     t = setup.table
-    return (ch.masses, ch.laws, ch.setup_compressions, ch.c0_array, t.h, t.dh, t.ddh, t.dth, omega, setup.vt)
+    args = (ch.masses, ch.laws, ch.setup_compressions, ch.c0_array, t.h, t.dh, t.ddh, t.dth, omega, setup.vt)
+    if setup.n_chains > 1:  # a spring pack: its chains' first masses and its friction rows
+        return (*args, ch.chains, model.damper)
+    return args
 
 
 def runge_kutta_pair(setup: SimulationSetup, settings: RunSettings | None = None) -> str:

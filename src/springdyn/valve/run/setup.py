@@ -24,8 +24,9 @@ from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
 from ..engine import series_force_compiled
 from ..engine.cam_table import CamTable
-from ..engine.layout import VT_GAS_N, VT_GEOM_N, VT_SIZE
+from ..engine.layout import VT_GAS_N, VT_GEOM_N, VT_SIZE, extra_layout
 from ..spring.definition import ValveSpring
+from ..spring.pack import SpringPack
 from ..spring.solid_length import check_coil_bind
 from ..spring.statics import series_force
 from ..train.definition import KERNEL_SIZE, ValveTrain
@@ -64,7 +65,7 @@ class SimulationSetup:
     """Everything the engine needs for one spring, cam and valve train (speed-independent; data
     only, made by :func:`prepare`)."""
 
-    spring: ValveSpring
+    spring: ValveSpring | SpringPack
     cam: Cam
     valve_train: ValveTrain | None
     #: The lift table the engine reads (the lobe's, or a drawn lever's equivalent lobe lift).
@@ -86,8 +87,18 @@ class SimulationSetup:
 
     @property
     def n_masses(self) -> int:
-        """Masses of the spring's chain."""
+        """Masses of the spring's chain (a spring pack's: of all its chains)."""
         return len(self.spring.spring_model.chain.masses)
+
+    @property
+    def n_chains(self) -> int:
+        """Parallel chains: the springs of a pack, 1 for one spring."""
+        return len(self.spring.springs) if isinstance(self.spring, SpringPack) else 1
+
+    @property
+    def layout(self) -> dict:
+        """The engine's extra outputs by name (:func:`springdyn.valve.engine.extra_layout`)."""
+        return extra_layout(self.n_masses, self.n_chains)
 
     @property
     def nfree(self) -> int:
@@ -107,6 +118,8 @@ def static_force_at_lift(setup: SimulationSetup, lift) -> np.ndarray:
     """
     sp = setup.spring
     lift = np.asarray(lift, dtype=float)
+    if isinstance(sp, SpringPack):
+        return sp.static_force(lift)
     dl = np.ascontiguousarray((sp.free_length - sp.installed_length) + lift.ravel())
     force = np.empty_like(dl)
     series_force_compiled(dl, sp.spring_model.chain.laws, force, *sp.spring_model.force_table)
@@ -253,12 +266,14 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
         h = h * valve_train.ratio  # the rigid valve lift checks the spring; the engine gets the lobe lift
     i_max = int(np.argmax(h))
     lash = valve_train.lash if valve_train is not None else 0.0
-    coil_bind = check_coil_bind(
-        spring,
-        max(float(h[i_max]) - lash, 0.0),
-        f"the cam (valve lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} cam deg"
-        + (f", less the lash {lash * 1e3:.4g} mm)" if lash else ")"),
+    cause = f"the cam (valve lift {h[i_max] * 1e3:.4g} mm at {deg(i_max):.1f} cam deg" + (
+        f", less the lash {lash * 1e3:.4g} mm)" if lash else ")"
     )
+    springs = spring.springs if isinstance(spring, SpringPack) else (spring,)
+    binds = []
+    for one in springs:
+        binds.append(check_coil_bind(one, max(float(h[i_max]) - lash, 0.0), cause))
+    coil_bind = min(binds, key=lambda b: b["coil_bind_margin_m"])  # a pack's: the spring nearest bind
     open_length = spring.installed_length - h[i_max]
     if open_length < spring.spring_model.min_length:
         raise InputError(
@@ -270,9 +285,7 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     lift_fcon = spring.spring_model.lift_at_coil_contact
     if h[i_max] > lift_fcon:
         over = np.flatnonzero(h > lift_fcon)
-        peak = float(
-            series_force(spring.free_length - spring.installed_length + h[i_max], spring.spring_model.chain.laws)
-        )
+        peak = float(_lift_force(spring, h[i_max]))
         warnings.warn(
             f"the cam lift drives the spring into coil contact even statically: from cam angle "
             f"{deg(over[0]):.1f} deg to {deg(over[-1]):.1f} deg the static force "
@@ -304,6 +317,20 @@ def prepare(spring: ValveSpring, cam: Cam, valve_train: ValveTrain | None = None
     )
 
 
+def _lift_force(spring, lift) -> float:
+    """The static force [N] of a spring or a pack (its springs' sum) at a lift [m] from installed length."""
+    if isinstance(spring, SpringPack):
+        return float(spring.static_force(lift))
+    return float(series_force(spring.free_length - spring.installed_length + lift, spring.spring_model.chain.laws))
+
+
+def _displacements(spring, lift) -> np.ndarray:
+    """The chain's (a pack's: every chain's) static mass displacements [m] at a lift [m] from installed length."""
+    if isinstance(spring, SpringPack):
+        return spring.initial_displacements(lift)
+    return spring.spring_model.initial_condition(spring.free_length - spring.installed_length + lift)["displacements"]
+
+
 def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | None):
     """Static equilibrium at cam angle 0: displacements from set-up, zero velocities.
 
@@ -311,17 +338,14 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
     hydraulic adjuster, the one at which the train rests on the cam with the plunger
     force (the seat carries the rest of the spring force).
     """
-    setup = spring.free_length - spring.installed_length
     nm = len(spring.spring_model.chain.masses)
     if valve_train is None:
         if lift0 == 0.0:  # the set-up state itself: every displacement is zero by definition
             return np.zeros(2 * nm), 0.0
-        u = spring.initial_condition(setup + lift0)["displacements"]
-        return np.concatenate([u, np.zeros(nm)]), 0.0
+        return np.concatenate([_displacements(spring, lift0), np.zeros(nm)]), 0.0
 
     from scipy.optimize import brentq  # (here: a train's run only; scipy.optimize costs 0.2-0.5 s of start-up)
 
-    laws = spring.spring_model.chain.laws
     vt = valve_train
     r = vt.ratio
     k_train = vt.stiffness_at_valve
@@ -331,7 +355,7 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
         return -vt.seat_stiffness * z if z < 0 else 0.0
 
     def spring_force(z):
-        return float(series_force(setup + z, laws))
+        return _lift_force(spring, z)
 
     z_lo = -2.0 * (fset + 1.0) / vt.seat_stiffness
     if vt.hydraulic:
@@ -356,6 +380,6 @@ def _initial_state(spring: ValveSpring, lift0: float, valve_train: ValveTrain | 
         z_hi = max(r * lift0 - lash, 0.0) + 1e-6
         z0 = brentq(lambda z: train(z) + seat(z) - spring_force(z), z_lo, z_hi, xtol=1e-16, rtol=1e-15)
         force = train(z0)
-    u = spring.spring_model.initial_condition(setup + z0)["displacements"]
+    u = _displacements(spring, z0)
     pos = vt.static_state(lift0, z0, force)
     return np.concatenate([u, pos, np.zeros(nm + pos.size)]), float(lash)

@@ -16,7 +16,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
-from ..engine import EXT, extra_layout, integrate_scipy, train_response
+from ..engine import EXT, integrate_scipy, train_response
 from ..engine.layout import EXT_VALUES, VT_HLA_KCHK
 from ..spring.definition import ValveSpring
 from ..spring.elements import damping_coefficient, law_force
@@ -218,6 +218,8 @@ def _check_element_count(sim, setup: SimulationSetup, cam_rpm: float, settings: 
     error (issue 40: against half the elements the flag was false at every clash speed of two
     test springs whose true error against 200 elements was 0.03-1.6 % of Fset)."""
     sp = sim.spring
+    if getattr(sp, "springs", None) is not None:  # a spring pack: no element check (docs/valve-packs.md)
+        return
     if sp.model != "distributed" or not sp.spring_model.clashing_coils(sim):
         return
     finer = min(2 * sp.elements, MAX_CHECK_ELEMENTS)
@@ -334,7 +336,7 @@ def _run_record(setup: SimulationSetup, cam_rpm, revolutions, prev_err, info) ->
 def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err, info) -> Simulation:
     """Build the results from the compiled kernel's own force evaluation (:data:`engine.EXTRA`)
     over the last revolution, ``e``; ``prev_err`` is its periodicity error [fraction of Fset]."""
-    lay = extra_layout(setup.n_masses)
+    lay = setup.layout
     force, x = e[:, lay["force"]].T, e[:, lay["compression"]].T
     lift = e[:, lay["lift"]]
     if setup.valve_train is None:  # the lift of the cam table at the output angles: kept per cam
@@ -346,14 +348,21 @@ def _from_extra(setup: SimulationSetup, cam_rpm, revolutions, time, e, prev_err,
         time=time,
         cam_angle=output_angles(time.size),
         lift=lift,
-        retainer_force=force[-1],
-        seat_force=force[0],
+        retainer_force=e[:, lay["retainer_total"]],
+        seat_force=e[:, lay["seat_total"]],
         static_force=static,
         element_compression=x,
         element_force=force,
         element_contact=x >= setup.spring.spring_model.contact_gaps[:, None],
         mass_displacement=e[:, lay["displacement"]].T,
     )
+    if setup.n_chains > 1:  # a spring pack: each spring's end forces, the friction and the dissipation
+        ranges = setup.spring.spring_model.element_ranges()
+        sim.pack = dict(
+            retainer_force=np.stack([force[r][-1] for r in ranges]),
+            seat_force=np.stack([force[r][0] for r in ranges]),
+            **{k: e[:, lay[k]] for k in ("damper_force", "damper_slip", "dissipation")},
+        )
     if setup.valve_train is not None:
         sim.valve_lift = e[:, lay["top_displacement"]]
         sim.cam_contact_force = e[:, lay["cam_contact_force"]]

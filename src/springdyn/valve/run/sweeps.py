@@ -33,7 +33,7 @@ from ...core.results import Result, notes_lines, units_from_name
 from ...core.units import rpm_to_omega
 from ..cam.definition import Cam
 from ..cam.timing import CrankAngles
-from ..engine import EXT, extra_layout
+from ..engine import EXT
 from ..spring.definition import ValveSpring
 from ..spring.results import coil_line
 from ..train.definition import ValveTrain
@@ -104,8 +104,7 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
     mon = run_speeds(setup, rpm_to_omega(cam_rpm), settings, points, warm_start=settings.periodic)
     ex, status = mon["extra"], mon["status"]
     last = slice(0, points)
-    lay = extra_layout(setup.n_masses)
-    ne = setup.n_masses + 1
+    lay = setup.layout
     f = ex[:, :, lay["force"]]
     contact = ex[:, last, lay["compression"]] >= setup.spring.spring_model.contact_gaps
     ev = mon["events"]
@@ -114,8 +113,8 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         np.moveaxis(ex[:, last, lay["compression"]], -1, 0), np.moveaxis(f[:, last], -1, 0)
     )  # (N + 1, speeds, points)
     out = dict(
-        retainer=f[:, last, ne - 1],
-        seat=f[:, last, 0],
+        retainer=ex[:, last, lay["retainer_total"]],
+        seat=ex[:, last, lay["seat_total"]],
         contact=contact.any(axis=2),
         contact_force=np.where(contact, f[:, last], 0.0).max(axis=2),
         **{key: mon[key] for key in ("periodicity", "revolutions", "settled", "band_lo", "band_hi", "ext")},
@@ -335,7 +334,7 @@ def _chunks(cam_rpm: np.ndarray, max_size: int) -> list[np.ndarray]:
 def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc):
     """Run all speeds for one setup; returns the chunk outputs concatenated in the order of
     ``cam_rpm`` (the chunks run them ascending)."""
-    per_speed = 8 * points * (extra_layout(setup.n_masses)["size"] + 1)  # the last revolution's outputs
+    per_speed = 8 * points * (setup.layout["size"] + 1)  # the last revolution's outputs
     max_size = max(1, CHUNK_BYTES // per_speed)
     order = np.argsort(cam_rpm, kind="stable")
     chunks = _chunks(cam_rpm[order], max_size)
@@ -955,6 +954,11 @@ def sweep(
         Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one
         (``revolutions=3``, ``rtol=1e-7``, ...): they change ``settings``.
     """
+    if vary is not None and getattr(spring, "springs", None) is not None:
+        raise InputError(
+            f"vary = {vary[0]!r}: a sweep varies a field of one spring, not of a spring pack; vary it in that "
+            "spring's own file, or build the packs in Python (SpringPack.replace_spring)"
+        )
     try:
         cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
     except (TypeError, ValueError):

@@ -13,7 +13,7 @@ import numpy as np
 from ...core.errors import InputError, SolverError
 from ...core.results import text_table
 from ..cam.definition import Cam
-from ..engine import NO_EXTRA, chain_rhs, extra_layout, model_of, train_of
+from ..engine import NO_EXTRA, chain_rhs, model_of, train_of
 from ..engine.layout import VT_LASH, VT_M_LEVER, VT_M_LIFTER, VT_MASS
 from ..spring.definition import ValveSpring
 from ..train.definition import ValveTrain
@@ -157,7 +157,7 @@ def _contacts(setup: SimulationSetup, theta: float, u: np.ndarray) -> tuple:
     of the masses at rest at positions ``u`` [m], cam at ``theta`` [rad]."""
     nf = setup.nfree
     omega = 1e-9
-    lay = extra_layout(setup.n_masses)
+    lay = setup.layout
     extra = np.zeros(lay["size"])
     out = np.empty(2 * nf)
     y = np.concatenate([u, np.zeros(nf)])

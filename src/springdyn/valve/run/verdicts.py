@@ -163,7 +163,11 @@ def transition_elements(spring_model) -> np.ndarray:
     Returns
     -------
     ndarray of bool (N + 1,)
+        (A spring pack's: each spring's, one after the other.)
     """
+    models = getattr(spring_model, "models", None)
+    if models is not None:  # a spring pack: each spring against its own coils
+        return np.concatenate([transition_elements(m) for m in models])
     f = np.asarray(spring_model.contact_forces, dtype=float)
     finite = np.isfinite(f)
     if not finite.any():
@@ -267,6 +271,40 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     return {key: (v if v.ndim else v[()]) for key, v in ((key, np.asarray(v)) for key, v in out.items())}
 
 
+def _pack_wire_fatigue(pack, wire_lo, wire_hi, static_lo: float, static_hi: float) -> dict:
+    """:func:`wire_fatigue` of a spring pack: each spring's from its own elements (its end
+    elements' ranges from the output grid) and its share of the static force (its share at
+    installed length); the pack's figures are the Goodman-critical spring's, the peak stress
+    the largest of any spring, ``critical_spring`` names it."""
+    lo = np.asarray(wire_lo, dtype=float)
+    hi = np.asarray(wire_hi, dtype=float)
+    share = np.array(pack.setup_forces) / sum(pack.setup_forces)
+    each = []
+    for k, (spring, r) in enumerate(zip(pack.springs, pack.spring_model.element_ranges())):
+        f = wire_fatigue(
+            spring,
+            lo[r],
+            hi[r],
+            (lo[r][0], lo[r][-1]),
+            (hi[r][0], hi[r][-1]),
+            share[k] * static_lo,
+            share[k] * static_hi,
+        )
+        f["fatigue_critical_element"] += r.start
+        f["peak_shear_stress_element"] += r.start
+        each.append(f)
+    k = min(range(len(each)), key=lambda i: each[i]["fatigue_safety_factor"] or np.inf)
+    top = max(range(len(each)), key=lambda i: each[i]["peak_shear_stress_Pa"])
+    out = dict(each[k], critical_spring=pack.names[k])
+    out.update(
+        peak_shear_stress_Pa=each[top]["peak_shear_stress_Pa"],
+        peak_shear_stress_element=each[top]["peak_shear_stress_element"],
+        wire_stress_ok=all(f["wire_stress_ok"] for f in each),
+        max_wire_force_N=max(f["max_wire_force_N"] for f in each),
+    )
+    return out
+
+
 @_DOCS.fill
 def valve_held_open(lobe_lift, valve_lift) -> np.ndarray:
     """The smallest valve lift [m] while the lobe is on its base circle (0 when it closes;
@@ -327,6 +365,8 @@ def wire_fatigue(spring, wire_lo, wire_hi, end_lo, end_hi, static_lo: float, sta
         (the largest stress of any element, index), ``shear_stress_limit_Pa`` and its source,
         ``wire_stress_ok``, the strengths and ``max_wire_force_N``.
     """
+    if getattr(spring, "springs", None) is not None:
+        return _pack_wire_fatigue(spring, wire_lo, wire_hi, static_lo, static_hi)
     lo = np.array(wire_lo, dtype=float)
     hi = np.array(wire_hi, dtype=float)
     rows = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi))

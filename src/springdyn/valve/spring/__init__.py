@@ -21,6 +21,9 @@ natural frequencies, and the models that turn it into a chain of masses.
 - :mod:`.frf` -- the linearised dynamic stiffness;
 - :mod:`.chains` -- the spring models (:class:`TypeCModel`, the distributed chain) behind one
   interface, :class:`SpringModel`;
+- :mod:`.pack` -- :class:`SpringPack`, two or three nested springs between one seat and one
+  retainer (``[inner_spring]``, ``[third_spring]``, ``[pack]``, ``[damper]``): their forces,
+  modes, fit, stress and coil bind, and the chains the engine runs side by side;
 - :mod:`.results` -- :class:`StaticCurve`, and :mod:`.plots` its figure.
 
 It imports only the engine below it (nothing here needs a cam).
@@ -44,6 +47,9 @@ _EXPORTS = {
     "material": "materials",
     "Material": "materials",
     "WireSection": "wire",
+    "SpringPack": "pack",
+    "PackOptions": "pack",
+    "FrictionDamper": "pack",
 }
 __all__ = sorted(_EXPORTS)
 
