@@ -39,6 +39,8 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from numba import types
+from numba.extending import overload
 
 from ...core.docstrings import ParameterDocs
 from ...numerics.jit import kernel, rebind, twins
@@ -245,8 +247,10 @@ class EngineModel(NamedTuple):
     #: one spring; a spring pack's chains lie one after the other (:func:`chain_forces`)
     chains: np.ndarray
     #: the friction dampers, one row each (R, :data:`.layout.DAMPER_SIZE`; layout ``DAMPER_*``)
-    #: [-, -, N, m/s]: a flat-wound damper, the rubbing of interfering springs
-    damper: np.ndarray
+    #: [-, -, N, m/s]: a flat-wound damper, the rubbing of interfering springs; a spring pack's
+    #: (:data:`NO_DAMPER` for none), None for one spring, which selects its own compiled chain
+    #: (:func:`chain_forces`)
+    damper: np.ndarray | None
 
 
 #: The chains of one spring of ``n`` masses (:attr:`EngineModel.chains`), cached by ``n``.
@@ -346,7 +350,7 @@ def model_of(args) -> EngineModel:
         chains = _ONE_CHAIN.get(n)
         if chains is None:
             chains = _ONE_CHAIN[n] = np.array([0, n], dtype=np.int64)
-        damper = NO_DAMPER
+        damper = None  # one spring: its own compiled chain (chain_forces)
     if chains[-1] != masses.shape[0] or laws.shape[0] != masses.shape[0] + chains.shape[0] - 1:
         raise ValueError(
             f"chains {chains.tolist()} do not fit {masses.shape[0]} masses and {laws.shape[0]} elements "
@@ -478,7 +482,112 @@ def damper_friction(force, slip, v_reg):
 
 @_DOCS.fill
 def chain_forces(s, m, nfree, u_top, v_top, out, extra):
-    """The element forces of the chains and the accelerations of their masses ([MMS], MMS-7).
+    """The element forces and the accelerations of the masses ([MMS], MMS-7): one spring's
+    chain (:func:`one_chain_forces`, ``m.damper`` None) or a spring pack's chains
+    (:func:`pack_chain_forces`).
+
+    The compiled engine chooses by the *type* of ``m.damper`` (an overload, :func:`_choose_chains`),
+    so a single spring's kernels hold no code of the pack's, and a pack's variant compiles only
+    when a pack runs (issue 41: the cold first result of one spring is not slowed by packs).
+
+    Parameters
+    ----------
+    s : ndarray
+        State: displacements [m] then velocities [m/s].
+    m : EngineModel
+        The chains' arrays [kg, m, N, N s/m].
+    {nfree}
+    u_top, v_top : float
+        Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
+    out : ndarray
+        Receives the derivatives of the masses' states [m/s, m/s^2].
+    extra : ndarray
+        Empty, or receives the outputs (:func:`.layout.extra_layout`).
+
+    Returns
+    -------
+    float
+        Force on the retainer end [N].
+    """
+    if m.damper is None:
+        return one_chain_forces(s, m, nfree, u_top, v_top, out, extra)
+    return pack_chain_forces(s, m, nfree, u_top, v_top, out, extra)
+
+
+@_DOCS.fill
+def one_chain_forces(s, m, nfree, u_top, v_top, out, extra):
+    """The element forces of one spring's chain and the accelerations of its masses ([MMS], MMS-7).
+
+    Element ``j`` joins nodes ``j`` and ``j + 1``; the two end elements are contacts that carry
+    compression only (correction MMS-7).  The chain of :func:`pack_chain_forces` with one chain
+    and no damper, written for it alone: the engine of a single spring compiles this one.
+
+    Parameters
+    ----------
+    s : ndarray
+        State: displacements [m] then velocities [m/s].
+    m : EngineModel
+        The chain's arrays [kg, m, N, N s/m].
+    {nfree}
+    u_top, v_top : float
+        Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
+    out : ndarray
+        Receives the derivatives of the masses' states [m/s, m/s^2].
+    extra : ndarray
+        Empty, or receives element forces [N], compressions [m], mass displacements [m], the
+        end forces as the seat and retainer totals [N] and the end elements' compressions [m]
+        (no damper, and no dissipation recorded: 0).
+
+    Returns
+    -------
+    float
+        Force on the retainer end, the last element's [N].
+    """
+    masses = m.masses
+    laws = m.laws
+    xset = m.xset
+    c0 = m.c0
+    nm = masses.shape[0]
+    ne = nm + 1
+    rec = extra.shape[0] > 0
+    f_prev = 0.0
+    u_lo = 0.0
+    v_lo = 0.0
+    for j in range(ne):
+        if j < nm:
+            u_hi = s[j]
+            v_hi = s[nfree + j]
+        else:
+            u_hi = u_top
+            v_hi = v_top
+        xj = xset[j] + u_hi - u_lo
+        force = element_force(laws, c0, j, xj, v_hi - v_lo, j == 0 or j == ne - 1)
+        if rec:
+            extra[j] = force
+            extra[ne + j] = xj
+            if j < nm:
+                extra[2 * ne + X_DISP + j] = u_hi
+        if j > 0:
+            out[j - 1] = s[nfree + j - 1]
+            out[nfree + j - 1] = (force - f_prev) / masses[j - 1]
+        f_prev = force
+        u_lo = u_hi
+        v_lo = v_hi
+    if rec:
+        b = 2 * ne + X_DISP + nm
+        extra[b + XT_SEAT_TOTAL] = extra[0]
+        extra[b + XT_RETAINER_TOTAL] = f_prev
+        extra[b + XT_SEAT_COMPRESSION] = extra[ne]
+        extra[b + XT_RETAINER_COMPRESSION] = extra[2 * ne - 1]
+        extra[b + XT_DAMPER_FORCE] = 0.0
+        extra[b + XT_DAMPER_SLIP] = 0.0
+        extra[b + XT_DISSIPATION] = 0.0
+    return f_prev
+
+
+@_DOCS.fill
+def pack_chain_forces(s, m, nfree, u_top, v_top, out, extra):
+    """The element forces of a spring pack's chains and the accelerations of their masses ([MMS], MMS-7).
 
     One spring is one chain; a spring pack's chains (``m.chains``) stand side by side between
     the seat (node 0 of each) and the one retainer end, each with its own two end contacts,
@@ -1446,7 +1555,8 @@ _TWINS = twins(
         "damper_friction",
         "_damper_row",
         "_record_chains",
-        "chain_forces",
+        "one_chain_forces",
+        "pack_chain_forces",
         "_record_tail",
         "_record_hla",
         "_record_no_hla",
@@ -1483,6 +1593,27 @@ for _name in ("lever_hla_rhs", "bucket_hla_forces", *_RECORDS):
 _TWINS["__globals__"]["lever_ratio_at"] = kernel(
     rebind(lever_ratio_at, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
 )
+
+
+def _choose_chains(s, m, nfree, u_top, v_top, out, extra):
+    """:func:`chain_forces` for compiled code: the twin of :func:`one_chain_forces` for a model
+    whose ``damper`` is None (one spring), else that of :func:`pack_chain_forces`; chosen when
+    numba types the call, so each variant compiles its own chain only."""
+    if isinstance(m, types.BaseNamedTuple) and isinstance(m.types[_DAMPER_FIELD], types.NoneType):
+        return _TWINS["one_chain_forces"].py_func
+    return _TWINS["pack_chain_forces"].py_func
+
+
+_DAMPER_FIELD = EngineModel._fields.index("damper")
+
+
+def _chain_forces_stub(s, m, nfree, u_top, v_top, out, extra):  # pragma: no cover - numba only
+    raise NotImplementedError("compiled code calls chain_forces through its overload (_choose_chains)")
+
+
+overload(_chain_forces_stub, inline="always", jit_options={"fastmath": FASTMATH})(_choose_chains)
+_TWINS["__globals__"]["chain_forces"] = _chain_forces_stub
+
 #: :func:`spring_rhs` and :func:`train_rhs` compiled to be inlined into the integration step
 #: (their one hot call site, :mod:`.stepping`, chooses by the type of ``vt``).
 spring_rhs_hot = _TWINS["spring_rhs"]
