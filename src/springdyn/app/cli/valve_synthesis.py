@@ -268,7 +268,7 @@ def cmd_synthesize_inner(args) -> int:
         f"{args.lift} --clearance {args.clearance}"
         + (f" --installed-length {args.installed_length}" if args.installed_length else "")
         + "\n"
-        + design.inner_spring_text(figures, share)
+        + design.inner_spring_text(figures)
     )
     with atomic_open(out, "w", encoding="utf-8") as fh:
         fh.write(dumps_toml(design.pack_file_tables(doc["spring"], result, damper), header))
@@ -276,5 +276,5 @@ def cmd_synthesize_inner(args) -> int:
     if args.json:
         print_json(dict(figures, written=str(out)))
     else:
-        print(design.inner_spring_text(figures, share))
+        print(design.inner_spring_text(figures))
     return 0

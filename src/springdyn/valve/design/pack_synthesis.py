@@ -60,7 +60,7 @@ def inner_spring_for(
     -------
     dict
         ``spring`` (the inner :class:`ValveSpring`), ``pack`` (the :class:`SpringPack` of the
-        two, opposite hands), ``target_set_force_N``, ``target_open_force_N``,
+        two, opposite hands), ``share`` (as asked), ``target_set_force_N``, ``target_open_force_N``,
         ``set_force_N``, ``open_force_N`` (the inner's forces, its model's), ``shear_stress_Pa``
         (the inner's at full lift, the outer's beside it as ``outer_shear_stress_Pa``),
         ``radial_clearance_m``, ``coil_bind_margin_m``.
@@ -118,6 +118,7 @@ def inner_spring_for(
     return dict(
         spring=spring,
         pack=pack,
+        share=float(share),
         target_set_force_N=f_set,
         target_open_force_N=f_open,
         set_force_N=float(forces[0]),
@@ -136,7 +137,7 @@ def inner_spring_figures(design: dict, lift: float, count: int = 5) -> dict:
     length and full lift and its share of the pack's, the corrected stress at full lift and the
     static Goodman safety (installed to full lift, :meth:`SpringPack.stress`), the radial
     clearance installed and at coil bind, the coil-bind margins, and the pack's lowest natural
-    frequencies (its springs', ends held, :meth:`SpringPack.modes`).
+    frequencies (its springs', ends held, :meth:`SpringPack.modes`); ``share`` as asked.
 
     Parameters
     ----------
@@ -158,6 +159,7 @@ def inner_spring_figures(design: dict, lift: float, count: int = 5) -> dict:
         inner_active_coils=float(inner.active_coils),
         inner_total_coils=float(inner.high_pitch_coils),
         inner_hand=pack.options.hand("inner"),
+        share=design["share"],
         lift_m=float(lift),
     )
     fig = pack.static_figures(float(lift))
@@ -175,20 +177,12 @@ def inner_spring_figures(design: dict, lift: float, count: int = 5) -> dict:
     return out
 
 
-def inner_spring_text(figures: dict, share: float) -> str:
-    """:func:`inner_spring_figures` in words (what ``springdyn valve synthesize-inner`` prints).
-
-    Parameters
-    ----------
-    figures : dict
-        :func:`inner_spring_figures`.
-    share : float
-        The inner's share asked for [-].
-    """
-    f = figures
-    mm = 1e3
+def inner_spring_text(figures: dict) -> str:
+    """:func:`inner_spring_figures` in words: what ``springdyn valve synthesize-inner`` prints
+    (``figures``, a dict of SI values [-]) and its pack file's header."""
+    f, mm = figures, 1e3
     lines = [
-        f"inner spring for {share:.1%} of the pack's force at {f['lift_m'] * mm:.3g} mm lift (one-step, "
+        f"inner spring for {f['share']:.1%} of the pack's force at {f['lift_m'] * mm:.3g} mm lift (one-step, "
         f"{f['inner_hand']}-hand, the outer's wire material):",
         f"  mean diameter {f['inner_mean_diameter_m'] * mm:.4g} mm, wire {f['inner_wire_diameter_m'] * mm:.4g} mm "
         f"(outside {f['inner_outer_diameter_m'] * mm:.4g} mm, inside {f['inner_inner_diameter_m'] * mm:.4g} mm)",
