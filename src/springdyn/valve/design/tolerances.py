@@ -270,11 +270,8 @@ def read_tolerances(path) -> tuple[dict, Criteria]:
 def _check_diameters(tols: dict, where: str) -> None:
     """One toleranced coil diameter a spring (mean, or the drawing's outer or inner)."""
     for prefix in {split_name(k)[0] for k in tols}:
-        diameters = [
-            k
-            for k in tols
-            if split_name(k)[0] == prefix and split_name(k)[1] in ("mean_diameter", "outer_diameter", "inner_diameter")
-        ]
+        table = "" if prefix is None else f"{prefix}."
+        diameters = [table + k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if table + k in tols]
         if len(diameters) > 1:
             raise InputError(
                 f"{where}: [tolerances] {diameters[0]} and {diameters[1]} both vary the coil diameter; give one of "
