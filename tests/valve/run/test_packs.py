@@ -169,3 +169,16 @@ def test_a_sweep_varies_one_spring_of_a_pack():
     ):
         with pytest.raises(InputError, match=match):
             model.sweep([3000.0], vary=(name, [0.05]))
+
+
+def test_cli_sweep_refuses_a_bare_field_of_a_pack(capsys, tmp_path):
+    """``valve sweep --vary`` on a pack file: a bare field is refused with exit 2, naming the option
+    and the fields of each spring (before any run)."""
+    from springdyn.app.cli.main import main
+
+    root = Path(__file__).parents[3] / "examples" / "valve"
+    args = ["valve", "sweep", str(root / "dual_spring_damper.toml"), "--cam", str(root / "cam_polydyne_ramps.toml")]
+    args += ["--cam-rpm", "3000", "--vary", "free_length=50mm:52mm:1mm", "--out", str(tmp_path / "o")]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "--vary = free_length: a spring pack has 2 springs" in err and "inner_spring.free_length" in err
