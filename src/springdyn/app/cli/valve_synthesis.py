@@ -77,7 +77,8 @@ def register_tolerance(vsub) -> None:
     """Add ``tolerance`` to the ``springdyn valve`` sub-commands ``vsub``."""
     p = vsub.add_parser(
         "tolerance",
-        help="a spring across its manufacturing tolerances ([tolerances], [criteria]): Monte Carlo or Sobol "
+        help="a spring (or a spring pack, each spring's own) across its manufacturing tolerances ([tolerances], "
+        "[criteria]): Monte Carlo or Sobol "
         "variants swept over the speeds (or, with --float-only, each variant's float speed searched from the "
         "nominal's); variants.nc, percentiles, failing shares, histograms (resumable)",
     )
