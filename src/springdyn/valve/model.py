@@ -835,8 +835,8 @@ class ValveModel:
         )
 
     def tolerance_study(self, tolerances: dict, criteria=None, **options):
-        """The spring across its manufacturing tolerances
-        (:class:`~springdyn.valve.design.tolerances.ToleranceStudy`).
+        """The spring (or the spring pack, each spring's own tolerances) across its manufacturing
+        tolerances (:class:`~springdyn.valve.design.tolerances.ToleranceStudy`).
 
         Parameters
         ----------
@@ -848,7 +848,6 @@ class ValveModel:
             Further options of :func:`springdyn.valve.design.tolerances.tolerance_study` (count,
             seed, speeds, method, out_dir, client, progress, float_only, resolution, workers).
         """
-        self._one_spring("valve tolerance")
         study = design_wing.tolerance_study(
             self.spring,
             self._need_cam("tolerance_study"),

@@ -15,6 +15,7 @@ import pytest
 from springdyn.core.errors import InputError
 from springdyn.valve.design.pack_synthesis import inner_spring_for
 from springdyn.valve.spring import ValveSpring
+from tests.paths import example
 
 #: The outer spring of the dual-spring example: 24 x 3.8 mm, 7 coils, Lf 53 mm, Ls 43 mm, G 78.5 GPa.
 EXAMPLE = Path(__file__).parents[3] / "examples" / "valve" / "dual_spring_damper.toml"
@@ -50,3 +51,54 @@ def test_an_impossible_split_is_refused():
     outer = ValveSpring.from_toml(EXAMPLE)
     with pytest.raises(InputError, match="share"):
         inner_spring_for(outer, 0.9, 9e-3)
+
+
+def _mm(text):
+    """A length of the written file, ``"15.5094 mm"``, in metres."""
+    value, unit = text.split()
+    assert unit == "mm"
+    return float(value) * 1e-3
+
+
+def test_cli_synthesize_inner_writes_a_pack_with_the_split(capsys, tmp_path):
+    """``valve synthesize-inner`` on the example's outer spring: the written pack file reloads as
+    a pack the other commands take, and its inner spring carries the requested share of the
+    force at installed length and at full lift, by hand from the written drawings: each spring's
+    rate ``G d^4 / (8 D^3 n)`` (``n`` the total coils less a dead coil at each end) times its
+    compression (the file's values are written to 6 digits: the share within 1e-4)."""
+    import json
+    import tomllib
+
+    from springdyn.app.cli.main import main
+    from springdyn.valve import ValveModel
+
+    out = tmp_path / "pack.toml"
+    args = ["valve", "synthesize-inner", str(EXAMPLE), "--share", "35 %", "--lift", "9mm", "--clearance", "1mm"]
+    assert main([*args, "--installed-length", "41mm", "--out", str(out), "--json"]) == 0
+    figures = json.loads(capsys.readouterr().out)
+    doc = tomllib.loads(out.read_text())
+    assert set(doc) == {"spring", "inner_spring", "pack", "damper"}  # the example's damper kept
+    rates, lengths = [], []
+    for table in (doc["spring"], doc["inner_spring"]):
+        d, dm = _mm(table["wire_diameter"]), _mm(table["mean_diameter"])
+        n = table["high_pitch_coils"] + table["low_pitch_coils"] - 2.0 * table["dead_coils"]
+        rates.append(78.5e9 * d**4 / (8.0 * dm**3 * n))
+        lengths.append((_mm(table["free_length"]), _mm(table["installed_length"])))
+    for lift in (0.0, 9e-3):
+        (k_o, k_i), ((lf_o, ls_o), (lf_i, ls_i)) = rates, lengths
+        f_o, f_i = k_o * (lf_o - ls_o + lift), k_i * (lf_i - ls_i + lift)
+        assert f_i / (f_o + f_i) == pytest.approx(0.35, abs=1e-4)
+    assert _mm(doc["inner_spring"]["installed_length"]) == pytest.approx(0.041)
+    assert _mm(doc["inner_spring"]["mean_diameter"]) + _mm(doc["inner_spring"]["wire_diameter"]) == pytest.approx(
+        0.024 - 0.0038 - 2e-3, rel=1e-5
+    )
+    model = ValveModel.from_files(str(out), example("valve/cam_polydyne_ramps.toml"), example("valve/valve_train.toml"))
+    assert model.spring.setup_forces == pytest.approx(
+        [figures["outer_installed_force_N"], figures["inner_installed_force_N"]], rel=1e-4
+    )
+    assert (doc["pack"]["outer_hand"], doc["pack"]["inner_hand"]) == ("right", "left")
+    assert figures["radial_clearance_installed_m"] == pytest.approx(1e-3, abs=0.1e-3)  # 1 mm, grown a little
+    assert len(figures["pack_modes_Hz"]) == 5 and figures["inner_goodman_safety"] > 1.0
+    assert main([*args, "--share", "90 %", "--out", str(tmp_path / "bad.toml")]) == 2
+    assert "--share = 0.9 must be from 0.05 to 0.7" in capsys.readouterr().err
+    assert not (tmp_path / "bad.toml").exists()

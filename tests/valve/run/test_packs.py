@@ -139,3 +139,46 @@ def test_two_identical_springs_on_the_bucket_train_are_one_spring_of_twice_every
     f_pack = f_pack[:, extra_layout(2 * nm, 2)["retainer_total"]]
     f_one = f_one[:, extra_layout(nm, 1)["retainer_total"]]
     assert np.max(np.abs(f_pack - f_one)) < 1e-5 * f_pack.max()
+
+
+def test_a_sweep_varies_one_spring_of_a_pack():
+    """A sweep's design variable on a pack names one spring's field (``inner_spring.wire_diameter``):
+    each value is the pack built with that spring replaced (``SpringPack.replace_spring``, run
+    here on its own), the spring's own value the pack's sweep to the bit; a bare field names no
+    spring and is refused, as is a spring the pack does not hold."""
+    from springdyn.core.errors import InputError
+    from springdyn.valve import ValveModel
+
+    root = Path(__file__).parents[3] / "examples" / "valve"
+    model = ValveModel.from_files(
+        root / "dual_spring_damper.toml", root / "cam_polydyne_ramps.toml", root / "valve_train.toml"
+    )
+    pack = model.spring
+    own = pack.springs[1].wire_diameter
+    sw = model.sweep([3000.0], vary=("inner_spring.wire_diameter", [own, 2.7e-3])).summary_table()
+    thick = model.replace(spring=pack.replace_spring(1, pack.springs[1].replace(wire_diameter=2.7e-3)))
+    for k, m in enumerate((model, thick)):
+        alone = m.sweep([3000.0]).summary_table()
+        for key in ("max_retainer_force_N", "min_retainer_force_N", "fatigue_safety_factor"):
+            assert sw[key][k] == alone[key][0]
+    assert sw["inner_spring.wire_diameter_m"].tolist() == [own, 2.7e-3]
+    for name, match in (
+        ("wire_diameter", "name the spring's field: spring.wire_diameter or inner_spring.wire_diameter"),
+        ("third_spring.free_length", "no \\[third_spring\\]"),
+        ("inner_spring.type", "not a numeric spring field"),
+    ):
+        with pytest.raises(InputError, match=match):
+            model.sweep([3000.0], vary=(name, [0.05]))
+
+
+def test_cli_sweep_refuses_a_bare_field_of_a_pack(capsys, tmp_path):
+    """``valve sweep --vary`` on a pack file: a bare field is refused with exit 2, naming the option
+    and the fields of each spring (before any run)."""
+    from springdyn.app.cli.main import main
+
+    root = Path(__file__).parents[3] / "examples" / "valve"
+    args = ["valve", "sweep", str(root / "dual_spring_damper.toml"), "--cam", str(root / "cam_polydyne_ramps.toml")]
+    args += ["--cam-rpm", "3000", "--vary", "free_length=50mm:52mm:1mm", "--out", str(tmp_path / "o")]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "--vary = free_length: a spring pack has 2 springs" in err and "inner_spring.free_length" in err

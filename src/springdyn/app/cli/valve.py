@@ -190,7 +190,8 @@ def register(sub) -> None:
     p.add_argument(
         "--vary",
         metavar="FIELD=START:STOP:STEP",
-        help="also sweep a numeric spring field, e.g. installed_length=36mm:40mm:0.5mm",
+        help="also sweep a numeric spring field, e.g. installed_length=36mm:40mm:0.5mm; of a spring pack, one "
+        "spring's, named by its table: inner_spring.wire_diameter=2.5mm:2.7mm:0.1mm (spring.<field>: the outer)",
     )
     p.add_argument(
         "--on-invalid",
@@ -212,6 +213,7 @@ def register(sub) -> None:
     valve_clearance.register(vsub)
     valve_camshaft.register(vsub)
     valve_synthesis.register(vsub)
+    valve_synthesis.register_inner(vsub)
     valve_synthesis.register_tolerance(vsub)
     valve_synthesis.register_life(vsub)
 
@@ -440,11 +442,12 @@ def parse_vary(text: str):
     if "=" not in text:
         raise InputError(f"--vary {text!r} must read FIELD=START:STOP:STEP, e.g. installed_length=36mm:40mm:0.5mm")
     name, rng = (t.strip() for t in text.split("=", 1))
+    field = name.rpartition(".")[2]  # a spring pack's: inner_spring.wire_diameter (the sweep checks the table)
     meta = {f.name: f.metadata for f in dataclasses.fields(valve.ValveSpring)}
-    if name not in meta or meta[name].get("kind") != "quantity":
+    if field not in meta or meta[field].get("kind") != "quantity":
         numeric = [k for k, m in meta.items() if m.get("kind") == "quantity"]
         raise InputError(f"--vary {name}: not a numeric spring field; choose one of {', '.join(numeric)}")
-    return name, parse_range(rng, meta[name]["unit"], f"--vary {name}")
+    return name, parse_range(rng, meta[field]["unit"], f"--vary {name}")
 
 
 def cmd_sweep(args) -> int:

@@ -1,6 +1,8 @@
-"""``springdyn valve synthesize``, ``tolerance`` and ``life``: valve springs from requirements,
-proven across tolerances, relaxed and loaded by a spectrum (thin layer over
-:mod:`springdyn.valve.design.synthesis`, :mod:`springdyn.valve.design.tolerances` and :mod:`springdyn.valve.design.life`)."""
+"""``springdyn valve synthesize``, ``synthesize-inner``, ``tolerance`` and ``life``: valve springs
+from requirements, a pack's inner spring for its outer spring, proven across tolerances, relaxed
+and loaded by a spectrum (thin layer over :mod:`springdyn.valve.design.synthesis`,
+:mod:`springdyn.valve.design.pack_synthesis`, :mod:`springdyn.valve.design.tolerances` and
+:mod:`springdyn.valve.design.life`)."""
 
 from __future__ import annotations
 
@@ -10,7 +12,16 @@ from springdyn.app.cli.common import add_output_options, announce_written, close
 from springdyn.app.cli.valve_options import add_inputs, add_speed_options, cam_rpm_from_args, model_of, run_options
 from springdyn.core.errors import InputError
 
-__all__ = ["register", "register_tolerance", "register_life", "cmd_synthesize", "cmd_tolerance", "cmd_life"]
+__all__ = [
+    "register",
+    "register_tolerance",
+    "register_life",
+    "register_inner",
+    "cmd_synthesize",
+    "cmd_tolerance",
+    "cmd_life",
+    "cmd_synthesize_inner",
+]
 
 
 def register(vsub) -> None:
@@ -66,7 +77,8 @@ def register_tolerance(vsub) -> None:
     """Add ``tolerance`` to the ``springdyn valve`` sub-commands ``vsub``."""
     p = vsub.add_parser(
         "tolerance",
-        help="a spring across its manufacturing tolerances ([tolerances], [criteria]): Monte Carlo or Sobol "
+        help="a spring (or a spring pack, each spring's own) across its manufacturing tolerances ([tolerances], "
+        "[criteria]): Monte Carlo or Sobol "
         "variants swept over the speeds (or, with --float-only, each variant's float speed searched from the "
         "nominal's); variants.nc, percentiles, failing shares, histograms (resumable)",
     )
@@ -195,4 +207,75 @@ def cmd_life(args) -> int:
     res = model.service_life(spec)
     if not emit(res, args, json_data=dict(res.summary)):
         print(res.describe(str(args.spring)))
+    return 0
+
+
+def register_inner(vsub) -> None:
+    """Add ``synthesize-inner`` to the ``springdyn valve`` sub-commands ``vsub``."""
+    p = vsub.add_parser(
+        "synthesize-inner",
+        help="the inner spring of a pack for a given outer spring and force split: its drawing (equal stress with "
+        "the outer at full lift, the radial clearance kept), forces, stress, Goodman, clearance and the pack's "
+        "modes; writes the pack file",
+    )
+    p.add_argument(
+        "outer", metavar="OUTER.toml", help="file with the outer spring's [spring] table (a pack file: its [spring])"
+    )
+    p.add_argument(
+        "--share",
+        required=True,
+        metavar="S",
+        help="the inner spring's share of the pack's force at installed length and full lift, e.g. '35 %%' or 0.35 "
+        "(5 to 70 %%)",
+    )
+    p.add_argument("--lift", required=True, metavar="LIFT", help="valve lift at the springs, e.g. 9mm")
+    p.add_argument(
+        "--clearance",
+        default="0.5 mm",
+        metavar="C",
+        help="radial clearance between the outer spring's inside and the inner's outside (default 0.5 mm)",
+    )
+    p.add_argument(
+        "--installed-length",
+        metavar="L",
+        help="the inner spring's installed length (default: the outer's; a seat step shortens it), e.g. 41mm",
+    )
+    p.add_argument(
+        "--out", dest="pack_out", required=True, metavar="PACK.toml", help="write the pack file (outer + inner) there"
+    )
+    p.add_argument("--json", action="store_true", help="print JSON (SI values)")
+    p.set_defaults(func=cmd_synthesize_inner)
+
+
+def cmd_synthesize_inner(args) -> int:
+    """``springdyn valve synthesize-inner``: the inner spring, its figures, the pack file."""
+    from springdyn.app.cli.common import as_options, quantity
+    from springdyn.core.io import atomic_open, check_output_file, dumps_toml
+    from springdyn.core.params import load_toml
+
+    out = check_output_file(args.pack_out, "--out")  # before any work
+    share = quantity(args.share, "", "--share")
+    lift = quantity(args.lift, "m", "--lift")
+    clearance = quantity(args.clearance, "m", "--clearance")
+    installed = quantity(args.installed_length, "m", "--installed-length") if args.installed_length else None
+    doc = load_toml(args.outer)
+    outer = valve.ValveSpring.from_toml(args.outer)
+    with as_options(share="--share", lift="--lift", clearance="--clearance"):
+        result = design.inner_spring_for(outer, share, lift, clearance, installed_length=installed)
+    figures = design.inner_spring_figures(result, lift)
+    damper = doc.get("damper") if "third" not in (doc.get("damper") or {}).values() else None
+    header = (
+        f"the inner spring for {args.outer} by springdyn valve synthesize-inner --share {args.share} --lift "
+        f"{args.lift} --clearance {args.clearance}"
+        + (f" --installed-length {args.installed_length}" if args.installed_length else "")
+        + "\n"
+        + design.inner_spring_text(figures)
+    )
+    with atomic_open(out, "w", encoding="utf-8") as fh:
+        fh.write(dumps_toml(design.pack_file_tables(doc["spring"], result, damper), header))
+    announce_written([out], args)
+    if args.json:
+        print_json(dict(figures, written=str(out)))
+    else:
+        print(design.inner_spring_text(figures))
     return 0

@@ -23,12 +23,14 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.errors import InputError
+from ...core.results import text_table
 from ..spring.definition import ValveSpring
 from ..spring.formulas import active_coils_for_rate
 from ..spring.pack import PackOptions, SpringPack, radial_clearance
 from ..spring.stress import corrected_shear_stress
+from .synthesis import spring_table
 
-__all__ = ["inner_spring_for"]
+__all__ = ["inner_spring_for", "inner_spring_figures", "inner_spring_text", "pack_file_tables"]
 
 
 def inner_spring_for(
@@ -58,7 +60,7 @@ def inner_spring_for(
     -------
     dict
         ``spring`` (the inner :class:`ValveSpring`), ``pack`` (the :class:`SpringPack` of the
-        two, opposite hands), ``target_set_force_N``, ``target_open_force_N``,
+        two, opposite hands), ``share`` (as asked), ``target_set_force_N``, ``target_open_force_N``,
         ``set_force_N``, ``open_force_N`` (the inner's forces, its model's), ``shear_stress_Pa``
         (the inner's at full lift, the outer's beside it as ``outer_shear_stress_Pa``),
         ``radial_clearance_m``, ``coil_bind_margin_m``.
@@ -116,6 +118,7 @@ def inner_spring_for(
     return dict(
         spring=spring,
         pack=pack,
+        share=float(share),
         target_set_force_N=f_set,
         target_open_force_N=f_open,
         set_force_N=float(forces[0]),
@@ -125,3 +128,124 @@ def inner_spring_for(
         radial_clearance_m=radial_clearance(outer, spring),
         coil_bind_margin_m=float(spring.installed_length - lift - spring.solid_length),
     )
+
+
+def inner_spring_figures(design: dict, lift: float, count: int = 5) -> dict:
+    """The figures of an inner spring of :func:`inner_spring_for` and its pack, flat in SI
+    (keys ``<quantity>_<unit>``): the inner's drawing (mean, wire, outside and inside diameters,
+    free and installed lengths, active and total coils, hand), each spring's forces at installed
+    length and full lift and its share of the pack's, the corrected stress at full lift and the
+    static Goodman safety (installed to full lift, :meth:`SpringPack.stress`), the radial
+    clearance installed and at coil bind, the coil-bind margins, and the pack's lowest natural
+    frequencies (its springs', ends held, :meth:`SpringPack.modes`); ``share`` as asked.
+
+    Parameters
+    ----------
+    design : dict
+        What :func:`inner_spring_for` returned.
+    lift : float
+        Valve lift [m] (the one it was designed for).
+    count : int
+        Natural frequencies of the pack [-].
+    """
+    pack, inner = design["pack"], design["spring"]
+    out = dict(
+        inner_mean_diameter_m=inner.mean_diameter,
+        inner_wire_diameter_m=inner.wire_diameter,
+        inner_outer_diameter_m=inner.mean_diameter + inner.wire_diameter,
+        inner_inner_diameter_m=inner.mean_diameter - inner.wire_diameter,
+        inner_free_length_m=inner.free_length,
+        inner_installed_length_m=inner.installed_length,
+        inner_active_coils=float(inner.active_coils),
+        inner_total_coils=float(inner.high_pitch_coils),
+        inner_hand=pack.options.hand("inner"),
+        share=design["share"],
+        lift_m=float(lift),
+    )
+    fig = pack.static_figures(float(lift))
+    for name in pack.names:
+        for key in ("installed_force_N", "open_force_N", "force_share", "max_shear_stress_Pa", "goodman_safety"):
+            out[f"{name}_{key}"] = fig[f"{name}_{key}"]
+        out[f"{name}_first_mode_Hz"] = fig[f"{name}_first_mode_Hz"]
+        out[f"{name}_coil_bind_margin_m"] = fig[f"{name}_coil_bind_margin_m"]
+    out["inner_target_installed_force_N"] = design["target_set_force_N"]
+    out["inner_target_open_force_N"] = design["target_open_force_N"]
+    fit = pack.fit["outer_inner"]
+    out["radial_clearance_installed_m"] = fit["radial_clearance_installed_m"]
+    out["radial_clearance_at_bind_m"] = fit["radial_clearance_at_bind_m"]
+    out["pack_modes_Hz"] = [float(f) for f in pack.modes(0.0)["pack"][: int(count)]]
+    return out
+
+
+def inner_spring_text(figures: dict) -> str:
+    """:func:`inner_spring_figures` in words: what ``springdyn valve synthesize-inner`` prints
+    (``figures``, a dict of SI values [-]) and its pack file's header."""
+    f, mm = figures, 1e3
+    lines = [
+        f"inner spring for {f['share']:.1%} of the pack's force at {f['lift_m'] * mm:.3g} mm lift (one-step, "
+        f"{f['inner_hand']}-hand, the outer's wire material):",
+        f"  mean diameter {f['inner_mean_diameter_m'] * mm:.4g} mm, wire {f['inner_wire_diameter_m'] * mm:.4g} mm "
+        f"(outside {f['inner_outer_diameter_m'] * mm:.4g} mm, inside {f['inner_inner_diameter_m'] * mm:.4g} mm)",
+        f"  free length {f['inner_free_length_m'] * mm:.4g} mm, installed {f['inner_installed_length_m'] * mm:.4g} mm, "
+        f"{f['inner_active_coils']:.4g} active coils of {f['inner_total_coils']:.4g}",
+    ]
+    rows = [
+        (
+            name,
+            f"{f[f'{name}_installed_force_N']:.1f}",
+            f"{f[f'{name}_open_force_N']:.1f}",
+            f"{f[f'{name}_force_share']:.1%}",
+            f"{f[f'{name}_max_shear_stress_Pa'] / 1e6:.0f}",
+            f"{f[f'{name}_goodman_safety']:.3g}",
+            f"{f[f'{name}_first_mode_Hz']:.0f}",
+            f"{f[f'{name}_coil_bind_margin_m'] * mm:.2f}",
+        )
+        for name in ("outer", "inner")
+    ]
+    lines.append(
+        text_table(
+            rows,
+            headers=(
+                "spring",
+                "installed N",
+                "open N",
+                "share open",
+                "stress open MPa",
+                "Goodman (static)",
+                "f1 Hz",
+                "to bind mm",
+            ),
+        )
+    )
+    lines.append(
+        f"radial clearance to the outer spring: {f['radial_clearance_installed_m'] * mm:.3g} mm installed, "
+        f"{f['radial_clearance_at_bind_m'] * mm:.3g} mm at coil bind (the coils' diameter growth included)"
+    )
+    lines.append("pack's first modes: " + ", ".join(f"{x:.0f}" for x in f["pack_modes_Hz"]) + " Hz (ends held)")
+    return "\n".join(lines)
+
+
+def pack_file_tables(outer_table: dict, design: dict, damper: dict | None = None) -> dict:
+    """The tables of a pack file of the outer spring and the inner of :func:`inner_spring_for`:
+    ``[spring]`` (the outer's table as it was given), ``[inner_spring]`` (the inner's drawing,
+    :func:`springdyn.valve.design.synthesis.spring_table`), ``[pack]`` (the hands) and, when
+    given, ``[damper]``.
+
+    Parameters
+    ----------
+    outer_table : dict
+        The outer spring's ``[spring]`` table, as read [-].
+    design : dict
+        What :func:`inner_spring_for` returned.
+    damper : dict, optional
+        A ``[damper]`` table to keep [-].
+    """
+    opt = design["pack"].options
+    doc = {
+        "spring": dict(outer_table),
+        "inner_spring": spring_table(design["spring"]),
+        "pack": {"outer_hand": opt.outer_hand, "inner_hand": opt.inner_hand},
+    }
+    if damper:
+        doc["damper"] = dict(damper)
+    return doc

@@ -1156,7 +1156,8 @@ def spring_table(sp) -> dict:
         "youngs_modulus": f"{sp.youngs_modulus / 1e9:.6g} GPa",
         "shear_modulus": f"{sp.shear_modulus / 1e9:.6g} GPa",
         "density": f"{sp.density:.6g} kg/m^3",
-        "tensile_strength": f"{sp.tensile_strength / 1e6:.6g} MPa",
+        # (None: the spring's default strengths)
+        **({"tensile_strength": f"{sp.tensile_strength / 1e6:.6g} MPa"} if sp.tensile_strength is not None else {}),
         "damping_ratio": float(sp.damping_ratio),
     }
     if sp.min_coil_bind_clearance is not None:

@@ -68,6 +68,8 @@ from .. import run
 from ..run.float_search import FLOAT_RESOLUTION
 from ..run.periodicity import PERIODICITY_TOL
 from ..spring.formulas import active_coils_free
+from ..spring.pack import SPRING_TABLES, SpringPack
+from ..train.piston import static_valve_lift
 from . import criteria
 from .criteria import Criteria
 
@@ -85,6 +87,12 @@ __all__ = [
     "ToleranceStudy",
     "OUTPUTS",
     "FLOAT_OUTPUTS",
+    "PACK_TOLERANCED",
+    "PACK_FIGURES",
+    "tolerances_for",
+    "pack_nominal_values",
+    "pack_variant",
+    "pack_figures",
 ]
 
 #: Parameter descriptions shared by the sample's docstrings (``{name}`` lines).
@@ -209,9 +217,7 @@ def parse_tolerance(name: str, value) -> tuple[Tolerance, bool]:
         ``"+-0.02 mm"``, ``"+-2 %"``, or ``{distribution = "normal", sigma = "0.01 mm"}``.
     """
     where = f"[tolerances] {name}"
-    if name not in TOLERANCED:
-        raise InputError(f"{where}: not a toleranced parameter; allowed: {', '.join(TOLERANCED)}")
-    unit = TOLERANCED[name][0]
+    unit = unit_of(name)
     if isinstance(value, str):
         text = value.strip()
         for prefix in ("+-", "±", "+/-"):
@@ -256,25 +262,35 @@ def read_tolerances(path) -> tuple[dict, Criteria]:
     doc = load_toml(path, allowed=("tolerances", "criteria"))
     if "tolerances" not in doc or not doc["tolerances"]:
         raise InputError(f'{path}: no [tolerances] table (e.g. wire_diameter = "+-0.02 mm")')
-    tols = {k: parse_tolerance(k, v) for k, v in doc["tolerances"].items()}
-    diameters = [k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if k in tols]
-    if len(diameters) > 1:
-        raise InputError(
-            f"{path}: [tolerances] {diameters[0]} and {diameters[1]} both vary the coil diameter; give one of them "
-            "(the drawing's)"
-        )
+    tols = {k: parse_tolerance(k, v) for k, v in _flat_tolerances(doc["tolerances"]).items()}
+    _check_diameters(tols, str(path))
     return tols, Criteria.from_dict(doc.get("criteria", {}), source=str(path))
 
 
+def _check_diameters(tols: dict, where: str) -> None:
+    """One toleranced coil diameter a spring (mean, or the drawing's outer or inner)."""
+    for prefix in {split_name(k)[0] for k in tols}:
+        table = "" if prefix is None else f"{prefix}."
+        diameters = [table + k for k in ("mean_diameter", "outer_diameter", "inner_diameter") if table + k in tols]
+        if len(diameters) > 1:
+            raise InputError(
+                f"{where}: [tolerances] {diameters[0]} and {diameters[1]} both vary the coil diameter; give one of "
+                "them (the drawing's)"
+            )
+
+
 def nominal_values(spring, cam, valve_train) -> dict:
-    """The nominal value of every toleranced parameter [SI] (:data:`TOLERANCED`).
+    """The nominal value of every toleranced parameter [SI] (:data:`TOLERANCED`; a spring
+    pack's, :func:`pack_nominal_values`).
 
     Parameters
     ----------
-    spring : ValveSpring
+    spring : ValveSpring or SpringPack
     cam : Cam
     valve_train : ValveTrain or None
     """
+    if isinstance(spring, SpringPack):
+        return pack_nominal_values(spring, cam, valve_train)
     out = {k: float(getattr(spring, k)) for k, (_, where) in TOLERANCED.items() if where == "spring"}
     out["outer_diameter"] = float(spring.mean_diameter + spring.wire.width)  # the wire across the coil
     out["inner_diameter"] = float(spring.mean_diameter - spring.wire.width)
@@ -372,7 +388,7 @@ def _check_band(name: str, tol: Tolerance, nominal: float) -> None:
     a normal one's ``nominal - 7.03 sigma`` (the sampler's most extreme point, u = 1e-12)."""
     low = nominal - (tol.half_width if tol.kind == "uniform" else 7.03 * tol.sigma)
     if low < 0.0 or (low == 0.0 and name not in MAY_BE_ZERO):
-        unit = TOLERANCED[name][0]
+        unit = unit_of(name)
         display = {"m": "mm", "Pa": "GPa"}.get(unit, unit)
         band = (
             f"+-{format_quantity(tol.half_width, unit, display)}"
@@ -388,17 +404,19 @@ def _check_band(name: str, tol: Tolerance, nominal: float) -> None:
 
 
 def variant(spring, cam, valve_train, values: dict):
-    """The spring, cam and train with the values ``values`` [SI] (name -> value).
+    """The spring, cam and train with the values ``values`` [SI] (name -> value; a spring
+    pack's, :func:`pack_variant`).
 
     Parameters
     ----------
-    spring : ValveSpring
+    spring : ValveSpring or SpringPack
     cam : Cam
     valve_train : ValveTrain or None
     values : dict
         Values of toleranced parameters [SI].
     """
-
+    if isinstance(spring, SpringPack):
+        return pack_variant(spring, cam, valve_train, values)
     spring_changes = {k: float(v) for k, v in values.items() if TOLERANCED[k][1] == "spring"}
     if "wire_diameter" in spring_changes and spring.wire_shape != "round":
         raise InputError(
@@ -427,6 +445,221 @@ def variant(spring, cam, valve_train, values: dict):
     if "lash" in values and vt is not None:
         vt = dataclasses.replace(vt, lash=max(float(values["lash"]), 0.0))
     return sp, c, vt
+
+
+# ----------------------------------------------------------------------------- spring packs
+#: The toleranced values of a spring pack beyond its springs' (``[damper]``'s Coulomb force).
+PACK_TOLERANCED = {"damper.friction_force": ("N", "damper")}
+#: Where a spring's own keys live in :data:`TOLERANCED` (the spring, its drawing, its coiling).
+SPRING_KEYS = ("spring", "drawing", "coiling")
+#: A pack variant's figures per spring, ``<spring>_<figure>`` (``outer_Fset``, ``inner_f1``, ...),
+#: with their units: its installed force and first mode (its model's, as the single spring's
+#: ``Fset`` and ``f1``), its static force at full valve lift and its static Goodman safety
+#: (installed to full lift); beside them ``<a>_<b>_radial_clearance`` [m], the smaller of two
+#: neighbours' clearances installed and at coil bind (:func:`springdyn.valve.spring.pack.radial_clearance`).
+PACK_FIGURES = {"Fset": "N", "f1": "Hz", "open_force": "N", "static_goodman_safety": "1"}
+
+
+def split_name(name: str) -> tuple:
+    """``(table, key)`` of a ``[tolerances]`` name: ``("inner_spring", "wire_diameter")`` for
+    ``inner_spring.wire_diameter``, ``(None, "wire_diameter")`` for a bare key.
+
+    Parameters
+    ----------
+    name : str
+        The name [-].
+    """
+    table, dot, key = str(name).rpartition(".")
+    return (table, key) if dot else (None, key)
+
+
+def unit_of(name: str) -> str:
+    """The SI unit of a toleranced name (a bare key, a pack spring's ``<table>.<key>`` or
+    ``damper.friction_force``); refuses any other name.
+
+    Parameters
+    ----------
+    name : str
+        The name [-].
+    """
+    if name in PACK_TOLERANCED:
+        return PACK_TOLERANCED[name][0]
+    table, key = split_name(name)
+    if table is None and key in TOLERANCED:
+        return TOLERANCED[key][0]
+    if table in SPRING_TABLES and TOLERANCED.get(key, ("", ""))[1] in SPRING_KEYS:
+        return TOLERANCED[key][0]
+    spring_keys = [k for k, (_, where) in TOLERANCED.items() if where in SPRING_KEYS]
+    raise InputError(
+        f"[tolerances] {name}: not a toleranced parameter; allowed: {', '.join(TOLERANCED)}; for a spring pack "
+        f"also a spring's own, {' or '.join(f'{t}.<key>' for t in SPRING_TABLES)} (<key>: {', '.join(spring_keys)}), "
+        f"and {', '.join(PACK_TOLERANCED)}"
+    )
+
+
+def _flat_tolerances(table: dict) -> dict:
+    """The ``[tolerances]`` table with a pack's sub-tables (``inner_spring.wire_diameter = ...``,
+    a dotted key, or ``[tolerances.inner_spring]``) as dotted names."""
+    out = {}
+    for k, v in table.items():
+        if isinstance(v, dict) and (k in SPRING_TABLES or k == "damper"):
+            out.update({f"{k}.{key}": value for key, value in v.items()})
+        else:
+            out[k] = v
+    return out
+
+
+def tolerances_for(spring, tolerances: dict) -> dict:
+    """The tolerances of a study of ``spring``, every name naming one value of its definition.
+
+    A single spring takes the bare keys.  A spring pack takes each spring's own keys under its
+    table, ``spring.<key>`` (the outer), ``inner_spring.<key>``, ``third_spring.<key>``, and
+    ``damper.friction_force``; a bare drawing key (``wire_diameter``) is every spring's, drawn
+    independently for each (the springs are made separately: ``spring.wire_diameter``,
+    ``inner_spring.wire_diameter``, ...); the bare ``installed_length`` is the head's (one seat,
+    one retainer: the same shift of every spring's installed length, added to a spring's own
+    ``<table>.installed_length``, its seat step); ``lift`` and ``lash`` are the cam's and the train's.
+
+    Parameters
+    ----------
+    spring : ValveSpring or SpringPack
+        The design [-].
+    tolerances : dict
+        name -> (Tolerance, relative) (:func:`read_tolerances`).
+
+    Returns
+    -------
+    dict
+        name -> (Tolerance, relative), a pack's drawing keys expanded to each spring's.
+    """
+    if not isinstance(spring, SpringPack):
+        named = [k for k in tolerances if split_name(k)[0] is not None]
+        if named:
+            raise InputError(
+                f"[tolerances] {named[0]} names a spring of a pack, but the spring file holds one spring: name its "
+                f"keys without a table ({split_name(named[0])[1]}), or give a pack file ([inner_spring])"
+            )
+        return dict(tolerances)
+    tables = SPRING_TABLES[: len(spring.springs)]
+    out = {}
+    for name, tol in tolerances.items():
+        table, key = split_name(name)
+        if table is None and TOLERANCED[key][1] in SPRING_KEYS and key != "installed_length":
+            for t in tables:
+                if f"{t}.{key}" in tolerances:
+                    raise InputError(
+                        f"[tolerances] {key} (every spring's) and {t}.{key} (that spring's) both vary {t}'s {key}: "
+                        "give one of them"
+                    )
+                out[f"{t}.{key}"] = tol
+        elif table in SPRING_TABLES and table not in tables:
+            raise InputError(f"[tolerances] {name}: the pack has no [{table}] (its springs: {', '.join(tables)})")
+        elif table == "damper" and spring.damper is None:
+            raise InputError(f"[tolerances] {name}: the pack has no [damper]")
+        else:
+            out[name] = tol
+    _check_diameters(out, "the spring pack")
+    return out
+
+
+def pack_nominal_values(pack, cam, valve_train) -> dict:
+    """The nominal value of every toleranced value of a spring pack [SI] (:func:`tolerances_for`):
+    each spring's under its table's name, the head's ``installed_length`` (the outer spring's),
+    ``lift``, ``lash`` and, with a damper, ``damper.friction_force``.
+
+    Parameters
+    ----------
+    pack : SpringPack
+    cam : Cam
+    valve_train : ValveTrain or None
+    """
+    out = {}
+    for table, s in zip(SPRING_TABLES, pack.springs):
+        one = nominal_values(s, cam, valve_train)
+        out.update({f"{table}.{k}": v for k, v in one.items() if TOLERANCED[k][1] in SPRING_KEYS})
+    out.update({k: v for k, v in one.items() if TOLERANCED[k][1] not in SPRING_KEYS})  # the cam's, the train's
+    out["installed_length"] = float(pack.installed_length)
+    if pack.damper is not None:
+        out["damper.friction_force"] = float(pack.damper.force)
+    return out
+
+
+def pack_variant(pack, cam, valve_train, values: dict):
+    """The pack, cam and train with the values ``values`` [SI] (name -> value, names of
+    :func:`tolerances_for`): each spring the single spring's :func:`variant` of its own values,
+    every installed length shifted by the head's, the damper's force, the cam's lift and the
+    train's lash.  A pack whose springs then interfere is refused as the pack refuses it
+    (:class:`springdyn.valve.spring.pack.SpringPack`).
+
+    Parameters
+    ----------
+    pack : SpringPack
+    cam : Cam
+    valve_train : ValveTrain or None
+    values : dict
+        Values of toleranced parameters [SI].
+    """
+    shift = float(values["installed_length"]) - pack.installed_length if "installed_length" in values else 0.0
+    springs = []
+    for table, s in zip(SPRING_TABLES, pack.springs):
+        own = {split_name(k)[1]: float(v) for k, v in values.items() if split_name(k)[0] == table}
+        if shift:
+            own["installed_length"] = own.get("installed_length", s.installed_length) + shift
+        springs.append(variant(s, cam, None, own)[0])
+    damper = pack.damper
+    if "damper.friction_force" in values:
+        force = float(values["damper.friction_force"])
+        damper = damper.replace(friction_force=force, normal_load=None, friction_coefficient=None)
+    _, c, vt = variant(pack.outer, cam, valve_train, {k: values[k] for k in ("lift", "lash") if k in values})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the nominal pack's warnings (its hands) were given once
+        return SpringPack(springs, pack.options, damper), c, vt
+
+
+def pack_outputs(pack) -> dict:
+    """The outputs of a pack variant beyond :data:`OUTPUTS` (:data:`PACK_FIGURES`), name -> unit.
+
+    Parameters
+    ----------
+    pack : SpringPack
+    """
+    out = {f"{name}_{k}": unit for name in pack.names for k, unit in PACK_FIGURES.items()}
+    out.update({f"{pair}_radial_clearance": "m" for pair in pack.fit})
+    return out
+
+
+def pack_figures(pack, cam, valve_train) -> dict:
+    """A pack variant's figures per spring (:data:`PACK_FIGURES`) and its radial clearances [SI].
+
+    The full valve lift is the rigid train's (:func:`springdyn.valve.train.piston.static_valve_lift`,
+    the cam's lift for the spring alone); the static Goodman safety is each spring's between its
+    installed force and its force there (:meth:`springdyn.valve.spring.pack.SpringPack.stress`).
+
+    Parameters
+    ----------
+    pack : SpringPack
+    cam : Cam
+    valve_train : ValveTrain or None
+    """
+    lift = float(np.max(static_valve_lift(cam, valve_train, np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False))))
+    forces = pack.static_forces(np.array([0.0, lift]))
+    goodman = pack.stress(forces[:, 0], forces[:, 1])
+    out = {}
+    for k, (name, s) in enumerate(zip(pack.names, pack.springs)):
+        out[f"{name}_Fset"] = float(s.spring_model.internal_parameters()["Fset"])
+        out[f"{name}_f1"] = float(s.spring_model.first_mode_installed)
+        out[f"{name}_open_force"] = float(forces[k, 1])
+        out[f"{name}_static_goodman_safety"] = float(goodman[name]["fatigue_safety_factor"] or 0.0)
+    for pair, fit in pack.fit.items():
+        out[f"{pair}_radial_clearance"] = float(
+            min(fit["radial_clearance_installed_m"], fit["radial_clearance_at_bind_m"])
+        )
+    return out
+
+
+def _with_pack_figures(outputs: dict, spring, cam, valve_train) -> dict:
+    """A variant's outputs, with a pack's :func:`pack_figures` added (a single spring's as they are)."""
+    return dict(outputs, **pack_figures(spring, cam, valve_train)) if isinstance(spring, SpringPack) else outputs
 
 
 def run_variant(
@@ -467,7 +700,7 @@ def run_variant(
     top = float(np.max(speeds))
     r = run.speed_study(spring, cam, valve_train, speeds, rated_rpm, resolution, max_clash_severity, periodicity_tol)
     p = spring.spring_model.internal_parameters()
-    return dict(
+    out = dict(
         Fset=float(p["Fset"]),
         f1=float(spring.spring_model.first_mode_installed),
         float_cam_rpm=top if r["float_cam_rpm"] is None else r["float_cam_rpm"],
@@ -481,6 +714,7 @@ def run_variant(
         periodicity=r["periodicity"],
         simulations=float(r["simulations"]),
     )
+    return _with_pack_figures(out, spring, cam, valve_train)
 
 
 def run_variant_float(
@@ -514,7 +748,7 @@ def run_variant_float(
     near = run.variant_float_speed(
         spring, cam, valve_train, guess_rpm, float(speeds[0]), float(speeds[-1]), resolution, periodicity_tol
     )
-    return dict(
+    out = dict(
         Fset=float(spring.spring_model.internal_parameters()["Fset"]),
         f1=float(spring.spring_model.first_mode_installed),
         float_cam_rpm=near["float_cam_rpm"],
@@ -523,6 +757,7 @@ def run_variant_float(
         periodicity=near["periodicity"],
         simulations=float(near["evaluations"]),
     )
+    return _with_pack_figures(out, spring, cam, valve_train)
 
 
 def definition_fingerprint(value):
@@ -533,8 +768,11 @@ def definition_fingerprint(value):
     Parameters
     ----------
     value : object
-        A definition (a dataclass: ``ValveSpring``, ``Cam``, ``ValveTrain``, ...), or a field's value.
+        A definition (a dataclass: ``ValveSpring``, ``Cam``, ``ValveTrain``, ...; a
+        ``SpringPack`` as its springs, options and damper), or a field's value.
     """
+    if isinstance(value, SpringPack):  # not a dataclass: its repr rounds the springs
+        return ["SpringPack", *(definition_fingerprint(v) for v in (value.springs, value.options, value.damper))]
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return [type(value).__name__] + [
             [f.name, definition_fingerprint(getattr(value, f.name))] for f in dataclasses.fields(value)
@@ -570,7 +808,7 @@ def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=
     ``stop`` (a :class:`threading.Event`, local threads only): set, the chunk ends before its
     next variant (an interrupted study stops within one variant, its finished chunks kept)."""
 
-    names = FLOAT_OUTPUTS if plan.get("guess") is not None else tuple(OUTPUTS)
+    names = (FLOAT_OUTPUTS if plan.get("guess") is not None else tuple(OUTPUTS)) + tuple(plan.get("pack", ()))
     rows = {k: [] for k in names}
     for i in range(len(next(iter(values.values())))):
         if stop is not None and stop.is_set():
@@ -684,6 +922,8 @@ def tolerance_study(
         )
     tol = PERIODICITY_TOL if periodicity_tol is None else float(periodicity_tol)
     speeds = np.sort(np.atleast_1d(np.asarray(speeds, dtype=float)))
+    tolerances = tolerances_for(spring, tolerances)  # a pack's: each spring's own
+    extra = pack_outputs(spring) if isinstance(spring, SpringPack) else {}
     nominal = nominal_values(spring, cam, valve_train)
     chunks = sample_chunks(tolerances, nominal, count, seed, method)  # lazy: one chunk drawn at a time
     # in service up to the float speed the criteria ask for: the Goodman safety and the peak
@@ -699,6 +939,8 @@ def tolerance_study(
         clash_limit=criteria.max_clash_severity,
         periodicity_tol=run_tol,
     )
+    if extra:
+        plan["pack"] = tuple(extra)
     if float_only:
         # the nominal's float speed from a scan of the range (the definition), then by the
         # variants' search from there: its float speed starts every search
@@ -715,7 +957,7 @@ def tolerance_study(
         nominal_out = run_variant_float(spring, cam, valve_train, speeds, scanned, float(resolution), run_tol)
         nominal_out["float_cam_rpm_scan"] = scanned
         plan["guess"] = nominal_out["float_cam_rpm"]
-    names = FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)
+    names = (FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)) + tuple(extra)
     key = _key(
         tolerances,
         count,
@@ -809,9 +1051,9 @@ def tolerance_study(
     done.clear()
     outputs = {k: stacked[j] for j, k in enumerate(names)}
     settled = (outputs["refused"] < 0.5) & (outputs["periodicity"] <= tol)
-    units = {k: TOLERANCED[k][0] for k in values}
+    units = {k: unit_of(k) for k in values}
     data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
-    data.update({k: ("variant", v, {"units": OUTPUTS[k]}) for k, v in outputs.items()})
+    data.update({k: ("variant", v, {"units": OUTPUTS.get(k) or extra[k]}) for k, v in outputs.items()})
     data["settled"] = (
         "variant",
         settled.astype(np.int8),
@@ -847,6 +1089,7 @@ def tolerance_study(
         floats=valve_train is not None,
         tolerances={k: (t.kind, t.half_width, t.sigma, rel) for k, (t, rel) in tolerances.items()},
         float_only=bool(float_only),
+        pack_outputs=extra,
     )
     if out_dir is not None:
         with atomic_path(Path(out_dir) / "variants.nc") as tmp:
@@ -897,6 +1140,8 @@ class ToleranceStudy(Result):
     #: Engine turns per cam turn [-] of the engine speeds shown beside the cam's (a
     #: four-stroke's 2; the CLI sets the ``[timing]``'s).
     engine_per_cam: float = 2.0
+    #: A spring pack's figures per spring and its clearances (:func:`pack_outputs`), name -> unit.
+    pack_outputs: dict = field(default_factory=dict)
 
     title = "tolerance study"
     cheap_plot = True
@@ -978,7 +1223,13 @@ class ToleranceStudy(Result):
 
     def _figures(self) -> list:
         """The outputs that are figures in this study."""
-        return [k for k in FIGURES if k in self.dataset and (self.floats or k != "float_cam_rpm")]
+        return [k for k in FIGURES if k in self.dataset and (self.floats or k != "float_cam_rpm")] + list(
+            self.pack_outputs
+        )
+
+    def _unit(self, name: str) -> str:
+        """The unit of an output (:data:`OUTPUTS`, or a pack's figure's)."""
+        return OUTPUTS.get(name) or self.pack_outputs[name]
 
     def _summary(self) -> dict:
         ds = self.dataset
@@ -1091,10 +1342,10 @@ class ToleranceStudy(Result):
         ]
         rows = []
         qs = ("0.135", "2.5", "50", "97.5", "99.865")
-        for k in FIGURES:
+        for k in (*FIGURES, *self.pack_outputs):
             if f"{k}_p50" not in s:
                 continue
-            rows.append((k, OUTPUTS[k], f"{s[f'nominal_{k}']:.4g}", *(f"{s[f'{k}_p{q}']:.4g}" for q in qs)))
+            rows.append((k, self._unit(k), f"{s[f'nominal_{k}']:.4g}", *(f"{s[f'{k}_p{q}']:.4g}" for q in qs)))
             if k.endswith("_cam_rpm"):  # the same speeds on the crankshaft
                 e = self.engine_per_cam
                 rows.append(
@@ -1154,7 +1405,7 @@ class ToleranceStudy(Result):
             a.hist(v[(ds["refused"].values < 0.5) & ~self.unsettled()], bins=30, color="C0", alpha=0.8)
             a.axvline(self.nominal[k], color="k", lw=1, label="nominal")
             _draw_limits(a, limits.get(k, ()))
-            a.set_xlabel(f"{k} [{OUTPUTS[k]}]")
+            a.set_xlabel(f"{k} [{self._unit(k)}]")
             a.set_ylabel("variants")
             a.yaxis.get_major_locator().set_params(integer=True)
             a.ticklabel_format(axis="x", useOffset=False)

@@ -898,6 +898,7 @@ class SpeedSweep(CrankAngles, Result):
 
 
 def _field_unit(name: str) -> str:
+    name = name.rpartition(".")[2]  # a pack's spring field: inner_spring.wire_diameter
     meta = {f.name: f.metadata for f in dataclasses.fields(ValveSpring)}
     return meta[name]["unit"].replace("/", "_per_").replace("^", "") if name in meta else ""
 
@@ -938,7 +939,8 @@ def sweep(
         reports bands; speeds beyond reason are refused unless ``allow_extreme_speeds``.
     vary : (str, array_like), optional
         A numeric :class:`ValveSpring` field and its values [SI unit of the field], an
-        extra dimension.
+        extra dimension; of a spring pack, one spring's field named by its table
+        (``inner_spring.wire_diameter``, :meth:`springdyn.valve.spring.pack.SpringPack.spring_field`).
     on_invalid : {"stop", "skip"}
         What to do with a design value that makes the spring invalid.
     workers : int, optional
@@ -954,11 +956,6 @@ def sweep(
         Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one
         (``revolutions=3``, ``rtol=1e-7``, ...): they change ``settings``.
     """
-    if vary is not None and getattr(spring, "springs", None) is not None:
-        raise InputError(
-            f"vary = {vary[0]!r}: a sweep varies a field of one spring, not of a spring pack; vary it in that "
-            "spring's own file, or build the packs in Python (SpringPack.replace_spring)"
-        )
     try:
         cam_rpm = np.atleast_1d(np.asarray(cam_rpm, dtype=float))
     except (TypeError, ValueError):
@@ -1036,7 +1033,7 @@ def describe_design_value(name: str, value: float) -> str:
 
 def _describe(name: str, value: float) -> str:
     meta = {f.name: f.metadata for f in dataclasses.fields(ValveSpring)}
-    return f"{name} = {describe_value(float(value), meta[name])}"
+    return f"{name} = {describe_value(float(value), meta[name.rpartition('.')[2]])}"
 
 
 def _design_variants(spring, cam, valve_train, vary, on_invalid, gas_force=None):
@@ -1045,13 +1042,26 @@ def _design_variants(spring, cam, valve_train, vary, on_invalid, gas_force=None)
         return [spring], [prepare(spring, cam, valve_train, gas_force)], np.array([np.nan]), []
     name, values = vary
     numeric = [f.name for f in dataclasses.fields(ValveSpring) if f.metadata.get("kind") == "quantity"]
-    if name not in numeric:
+    pack = getattr(spring, "springs", None) is not None
+    if pack:  # a spring pack: one spring's field, inner_spring.wire_diameter
+        with_value = spring.with_field
+        try:
+            spring.spring_field(name)
+        except InputError as exc:
+            raise InputError(f"vary = {exc}") from None
+    elif "." in name:
+        raise InputError(
+            f"vary = {name!r}: the spring file holds one spring: name its field ({name.rpartition('.')[2]})"
+        )
+    else:
+        with_value = lambda n, v: spring.replace(**{n: v})  # noqa: E731
+    if name.rpartition(".")[2] not in numeric:
         raise InputError(f"vary = {name!r}: not a numeric spring field; choose one of {', '.join(numeric)}")
     values = np.atleast_1d(np.asarray(values, dtype=float))
     springs, setups, kept, skipped = [], [], [], []
     for v in values:
         try:
-            sp = spring.replace(**{name: float(v)})
+            sp = with_value(name, float(v))
             setups.append(prepare(sp, cam, valve_train, gas_force))
             springs.append(sp)
             kept.append(v)

@@ -358,6 +358,41 @@ class SpringPack:
         springs[index] = spring
         return SpringPack(springs, self.options, self.damper)
 
+    def spring_field(self, name: str) -> tuple[int, str]:
+        """The spring and the field a design value of the pack names: ``inner_spring.wire_diameter``
+        is ``(1, "wire_diameter")`` (the tables of the pack file: ``spring`` the outer,
+        ``inner_spring``, ``third_spring``).  A bare field is refused: it names no spring.
+
+        Parameters
+        ----------
+        name : str
+            ``<table>.<field>`` [-].
+        """
+        tables = SPRING_TABLES[: len(self.springs)]
+        table, dot, key = str(name).rpartition(".")
+        if not dot:
+            raise InputError(
+                f"{name}: a spring pack has {len(tables)} springs; name the spring's field: "
+                + " or ".join(f"{t}.{name}" for t in tables)
+                + " (spring: the outer)"
+            )
+        if table not in tables:
+            raise InputError(f"{name}: the pack has no [{table}]; its springs: {', '.join(tables)}")
+        return tables.index(table), key
+
+    def with_field(self, name: str, value: float) -> SpringPack:
+        """The same pack with one spring's field changed (:meth:`spring_field`, :meth:`replace_spring`).
+
+        Parameters
+        ----------
+        name : str
+            ``<table>.<field>`` [-].
+        value : float
+            The field's new value [SI].
+        """
+        index, key = self.spring_field(name)
+        return self.replace_spring(index, self.springs[index].replace(**{key: value}))
+
     def __repr__(self) -> str:
         parts = [
             f"{name} {s.model} ({s.mean_diameter * 1e3:.4g} x {s.wire_diameter * 1e3:.3g} mm, {self.options.hand(name)})"
