@@ -179,7 +179,13 @@ def inner_spring_figures(design: dict, lift: float, count: int = 5) -> dict:
 
 def inner_spring_text(figures: dict) -> str:
     """:func:`inner_spring_figures` in words: what ``springdyn valve synthesize-inner`` prints
-    (``figures``, a dict of SI values [-]) and its pack file's header."""
+    and its pack file's header.
+
+    Parameters
+    ----------
+    figures : dict
+        :func:`inner_spring_figures`' SI values [m, N, Pa, Hz, -].
+    """
     f, mm = figures, 1e3
     lines = [
         f"inner spring for {f['share']:.1%} of the pack's force at {f['lift_m'] * mm:.3g} mm lift (one-step, "
