@@ -1187,7 +1187,8 @@ def pack_energy(sim) -> dict:
 
 
 def _pack_durability(sim, s: dict, notes: list) -> dict:
-    """Each spring's wire fatigue, stress and length to solid over the simulated cycle (the
+    """Each spring's wire fatigue, stress, length to solid and coil clash (over its own Fset,
+    :func:`springdyn.valve.run.verdicts.spring_clashes`) over the simulated cycle (the
     figures of :func:`_durability` per spring, under ``springs``); the pack's own keys are the
     Goodman-critical spring's, and its energy balance (:func:`pack_energy`)."""
     pack = sim.spring
@@ -1197,6 +1198,7 @@ def _pack_durability(sim, s: dict, notes: list) -> dict:
     z = sim.valve_lift if sim.valve_lift is not None else sim.lift
     static = pack.static_forces(np.array([max(float(z.min()), 0.0), float(z.max())]))
     per = {}
+    clash = verdicts.spring_clashes(model, sim.element_compression, sim.static_force, 60.0 / sim.cam_rpm)
     for k, (name, spring, r) in enumerate(zip(pack.names, pack.springs, model.element_ranges())):
         wire = wire_all[r]
         ends = sim.element_force[r]
@@ -1219,6 +1221,9 @@ def _pack_durability(sim, s: dict, notes: list) -> dict:
             peak_shear_stress_Pa=f["peak_shear_stress_Pa"],
             wire_stress_ok=f["wire_stress_ok"],
             min_length_to_solid_m=float(max(length.min() - spring.solid_length, 0.0)),
+            clash_class=verdicts.CLASH_CLASSES[int(clash[name]["class_index"])],
+            clash_severity=float(clash[name]["severity"]),
+            coil_clash=bool(clash[name]["clash"]),
             fatigue=f,
         )
         if not f["wire_stress_ok"]:

@@ -37,6 +37,7 @@ __all__ = [
     "CLASH_CLASSES",
     "transition_elements",
     "coil_clash",
+    "spring_clashes",
     "clashes",
     "valve_held_open",
     "pumps_up",
@@ -271,15 +272,54 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     return {key: (v if v.ndim else v[()]) for key, v in ((key, np.asarray(v)) for key, v in out.items())}
 
 
-def _pack_wire_fatigue(pack, wire_lo, wire_hi, static_lo: float, static_hi: float) -> dict:
+def spring_clashes(spring_model, compression, static_force, period, limit: float | None = None) -> dict:
+    """Each spring's coil clash in a spring pack: :func:`coil_clash` of its own chain, on its own
+    elements, against its share of the pack's static force (its share at installed length, as
+    :meth:`springdyn.valve.spring.pack.PackModel.clash` splits it), its severity over its own
+    set-up force.  The pack's :func:`coil_clash` grades the same closings over the pack's Fset.
+
+    Parameters
+    ----------
+    spring_model : PackModel
+        The pack's model (one spring's model: no springs) [-].
+    compression : array_like (N + C, ..., n)
+        Every chain's element compressions, one chain after the other [m].
+    static_force : array_like (..., n)
+        The pack's static force at the same instants [N].
+    period : float or array_like (...)
+        Duration of the revolution [s].
+    limit : float, optional
+        Largest severity that is no clash [fraction of the spring's Fset].
+
+    Returns
+    -------
+    dict
+        Spring name -> :func:`coil_clash`'s dict (empty for one spring).
+    """
+    models = getattr(spring_model, "models", None)
+    if models is None:
+        return {}
+    pack = spring_model.pack
+    share = np.array(pack.setup_forces) / sum(pack.setup_forces)
+    x, static = np.asarray(compression, dtype=float), np.asarray(static_force, dtype=float)
+    return {
+        name: coil_clash(m, x[r], share[k] * static, period, limit)
+        for k, (name, m, r) in enumerate(zip(pack.names, models, spring_model.element_ranges()))
+    }
+
+
+def _pack_wire_fatigue(pack, wire_lo, wire_hi, static_lo, static_hi) -> dict:
     """:func:`wire_fatigue` of a spring pack: each spring's from its own elements (its end
-    elements' ranges from the output grid) and its share of the static force (its share at
-    installed length); the pack's figures are the Goodman-critical spring's, the peak stress
-    the largest of any spring, ``critical_spring`` names it."""
+    elements' ranges from the output grid) and its own static force range (``static_lo``,
+    ``static_hi`` per spring; a pack's total alone: its share at installed length); the pack's figures are the Goodman-critical spring's, the peak stress
+    the largest of any spring, ``critical_spring`` names it; ``springs`` holds each spring's
+    figures by name (its elements counted from its own seat end)."""
     lo = np.asarray(wire_lo, dtype=float)
     hi = np.asarray(wire_hi, dtype=float)
     share = np.array(pack.setup_forces) / sum(pack.setup_forces)
-    each = []
+    if np.ndim(static_lo) == 0:  # the pack's total: split by the shares at installed length
+        static_lo, static_hi = share * float(static_lo), share * float(static_hi)
+    each, own = [], {}
     for k, (spring, r) in enumerate(zip(pack.springs, pack.spring_model.element_ranges())):
         f = wire_fatigue(
             spring,
@@ -287,15 +327,16 @@ def _pack_wire_fatigue(pack, wire_lo, wire_hi, static_lo: float, static_hi: floa
             hi[r],
             (lo[r][0], lo[r][-1]),
             (hi[r][0], hi[r][-1]),
-            share[k] * static_lo,
-            share[k] * static_hi,
+            float(static_lo[k]),
+            float(static_hi[k]),
         )
+        own[pack.names[k]] = dict(f)
         f["fatigue_critical_element"] += r.start
         f["peak_shear_stress_element"] += r.start
         each.append(f)
     k = min(range(len(each)), key=lambda i: each[i]["fatigue_safety_factor"] or np.inf)
     top = max(range(len(each)), key=lambda i: each[i]["peak_shear_stress_Pa"])
-    out = dict(each[k], critical_spring=pack.names[k])
+    out = dict(each[k], critical_spring=pack.names[k], springs=own)
     out.update(
         peak_shear_stress_Pa=each[top]["peak_shear_stress_Pa"],
         peak_shear_stress_element=each[top]["peak_shear_stress_element"],
@@ -352,8 +393,9 @@ def wire_fatigue(spring, wire_lo, wire_hi, end_lo, end_hi, static_lo: float, sta
         Each element's smallest and largest wire torsion as an axial force [N] (NaN: no wire).
     end_lo, end_hi : array_like (2,)
         The smallest and largest seat and retainer forces [N] (true extremes).
-    static_lo, static_hi : float
-        The static force's range over the cycle [N] (installed to open).
+    static_lo, static_hi : float or array_like (springs,)
+        The static force's range over the cycle [N] (installed to open); of a spring pack, each
+        spring's (a pack's total alone is split by the springs' shares at installed length).
 
     Returns
     -------
