@@ -260,7 +260,7 @@ class ValveSpring(Parameters):
             raise InputError(
                 f"{path}: [{pack[0]}] makes this file a spring pack, and a ValveSpring is one spring: read it with "
                 "SpringPack.from_toml or ValveModel.from_files, run it through springdyn valve simulate, sweep, "
-                "float, train-modes or springdyn report, or give one spring's own file"
+                "float, train-modes, clearance, cam-check or springdyn report, or give one spring's own file"
             )
         if cls.table not in doc:
             return super().from_toml(path)  # the missing table's own message
