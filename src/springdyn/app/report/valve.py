@@ -517,7 +517,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             if clash.size
             else "no coil clash occurs in that range"
         )
-        + (" (the pack's: its closings over the pack's Fset; each spring's own below)." if pack else ".")
+        + (" (in any spring of the pack, each over its own Fset)." if pack else ".")
     )
     # the surge frequency and margin of the model that judges, the other's beside
     judge_spring = crit_sweep.spring

@@ -1082,7 +1082,7 @@ def _clash_impacts(sim, events: list) -> dict:
     share = np.nan_to_num(sim.contact_share)
     cc = verdicts.coil_clash(model, sim.element_compression, sim.static_force, 60.0 / sim.cam_rpm)
     closing = cc["closing"]
-    fset = model.chain.setup_force
+    fset = model.element_setup_forces()  # each element's own spring's Fset (verdicts.coil_clash)
     deg = sim.cam_angle_deg
     index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
     count, duration, peak = 0, 0.0, 0.0
@@ -1092,12 +1092,13 @@ def _clash_impacts(sim, events: list) -> dict:
         ev["peak_force_through_contact_N"] = float(share[np.ix_(rows, mask)].max()) if mask.any() else 0.0
         block = np.ix_(rows, mask)
         ev["dynamic_closing"] = bool(closing[block].any()) if mask.any() else False
-        ev["clash_severity"] = float(np.where(closing[block], share[block], 0.0).max()) / fset if mask.any() else 0.0
+        through = np.where(closing[block], share[block], 0.0) if mask.any() else np.zeros((1, 1))
+        ev["clash_severity"] = float((through / fset[rows][:, None]).max()) if mask.any() else 0.0
         ev["clash"] = ev["clash_severity"] > verdicts.MAX_CLASH_SEVERITY
         if ev["dynamic_closing"]:
             count += 1
             duration += ev["duration_deg"]
-            peak = max(peak, ev["clash_severity"] * fset)
+            peak = max(peak, float(through.max()))
     return dict(
         clash_class=verdicts.CLASH_CLASSES[int(cc["class_index"])],
         clash_severity=float(cc["severity"]),

@@ -202,7 +202,8 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     static spring does), ``"active"`` where an active coil does (the surge closing the active
     coils), ``"none"`` without one.  Its *severity* [fraction of Fset]: the largest force the
     dynamically closed coils pass through their contact (:meth:`SpringModel.contact_share`,
-    the force that is no torsion of the wire) over the set-up force.  That force is the
+    the force that is no torsion of the wire) over the set-up force (a spring pack's: each
+    spring's over its own, :meth:`SpringModel.element_setup_forces`).  That force is the
     impact: the momentum of the closing coils stopped by the contact stiffness of closed turns,
     it loads the coil surfaces (wear, noise) and adds to the end forces; an element merely
     reaching its gap passes none.  The same figure from each model's own chain and contact law
@@ -241,12 +242,14 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     elastic = np.stack([law_force(x[j], law) for j, law in enumerate(model.chain.laws)])
     share = np.nan_to_num(model.contact_share(elastic))
     through = np.where(closing, share, 0.0)
-    fset = model.chain.setup_force
-    worst = through.max(axis=(0, -1))
-    # the contact's share of the element's force where the force through contact is largest
-    lead = worst.shape
+    # over each element's own spring's Fset (a spring pack's springs each over its own)
+    graded = through / model.element_setup_forces().reshape((-1,) + (1,) * (x.ndim - 1))
+    severity = graded.max(axis=(0, -1))
+    # the contact's share of the element's force where the graded force through contact is largest
+    lead = severity.shape
     pick = lambda a: np.moveaxis(a, 0, -2).reshape(lead + (-1,))  # noqa: E731
-    k = np.argmax(pick(through), axis=-1)[..., None]
+    k = np.argmax(pick(graded), axis=-1)[..., None]
+    worst = np.take_along_axis(pick(through), k, axis=-1)[..., 0]
     at_worst = np.take_along_axis(pick(elastic), k, axis=-1)[..., 0]
     frac = np.where(worst > 0.0, worst / np.where(at_worst > 0.0, at_worst, 1.0), 0.0)
     # the closing velocity: the compression's rate over the sample before each dynamic closing starts
@@ -258,7 +261,6 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     trans = transition_elements(model).reshape((-1,) + (1,) * (rows.ndim - 1))
     transition = (rows & trans).any(axis=0)
     active = (rows & ~trans).any(axis=0)
-    severity = worst / fset
     out = dict(
         closing=closing,
         severity=severity,
@@ -276,7 +278,8 @@ def spring_clashes(spring_model, compression, static_force, period, limit: float
     """Each spring's coil clash in a spring pack: :func:`coil_clash` of its own chain, on its own
     elements, against its share of the pack's static force (its share at installed length, as
     :meth:`springdyn.valve.spring.pack.PackModel.clash` splits it), its severity over its own
-    set-up force.  The pack's :func:`coil_clash` grades the same closings over the pack's Fset.
+    set-up force.  The pack's :func:`coil_clash` is its worst spring's (each element over its own
+    spring's Fset, :meth:`~springdyn.valve.spring.chains.SpringModel.element_setup_forces`).
 
     Parameters
     ----------

@@ -781,6 +781,11 @@ class PackModel:
         ]
         return np.concatenate(parts, axis=0)
 
+    def element_setup_forces(self) -> np.ndarray:
+        """Each element's own spring's set-up force [N] (N + C,): a coil clash in a spring is graded
+        over that spring's Fset, not the pack's."""
+        return np.concatenate([m.element_setup_forces() for m in self.models])
+
     def contact_share(self, elastic_force) -> np.ndarray:
         """Each spring's :meth:`springdyn.valve.spring.chains.SpringModel.contact_share` [N].
 

@@ -174,6 +174,11 @@ class SpringModel:
         below = np.asarray(static_force)[None, ...] < self.contact_forces.reshape(shape) - margin
         return np.asarray(contact, bool) & below
 
+    def element_setup_forces(self) -> np.ndarray:
+        """The set-up force [N] each element's coil clash is graded over (N + 1,): the spring's Fset
+        (a spring pack's: each element's own spring's, :class:`springdyn.valve.spring.pack.PackModel`)."""
+        return np.full(len(self.chain.laws), float(self.chain.setup_force))
+
     def contact_share(self, elastic_force) -> np.ndarray:
         """The part of each element's elastic force [N] that closed coils pass through their
         contact, not the wire in torsion (the wire's torsion is the rest).
