@@ -203,6 +203,10 @@ print("variants", sorted(k.py_func.__qualname__ for k in loop._COMPILED.values()
 print("trains", sorted({str(sig[6]) for k in loop._COMPILED.values() for sig in k.signatures}))
 print("unused", [k.py_func.__name__ for k in (erk.stage_state, erk.error_norm, erk.tsit5_stage_state,
                                               erk.tsit5_error_norm, erk.dense_coefficients) if k.signatures])
+from springdyn.valve.engine import equations
+g = equations._TWINS["__globals__"]
+print("models", sorted({str(sig[4]).count("none") for k in loop._COMPILED.values() for sig in k.signatures}))
+print("pack", [name for name in ("_record_chains",) if g[name].signatures])
 """
 
 
@@ -217,6 +221,9 @@ def test_a_type_c_run_compiles_only_its_pair_and_model(tmp_path):
     assert out["variants"] == "['integrate_loop_dopri5_spring']"
     assert out["trains"] == "['none']"  # the spring alone: no valve-train variant
     assert out["unused"] == "[]"  # no Bogacki-Shampine or Tsitouras kernel
+    # one spring's model (its damper None, equations.chain_forces): none of a spring pack's code
+    assert out["models"] == "[1]"
+    assert out["pack"] == "[]"
 
 
 def test_the_installed_numba_is_within_the_pin():

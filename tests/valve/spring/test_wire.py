@@ -12,6 +12,7 @@ continuum (the wave equation of the wire with properties varying along it) of th
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -19,7 +20,7 @@ import scipy.sparse as sps
 from scipy.linalg import eigh_tridiagonal
 from scipy.sparse.linalg import spsolve
 
-from springdyn.core.errors import InputError
+from springdyn.core.errors import FactWarning, InputError
 from springdyn.valve import ValveModel, ValveSpring
 from springdyn.valve.spring import wire as wire_module
 from tests.paths import EXAMPLES
@@ -410,3 +411,14 @@ def test_wire_diameter_profile_inputs(tmp_path):
     mean = (d2**-3 - d1**-3) / (3 * (d1 - d2))
     rate_d = mean**-0.25
     assert typec["K1"] == pytest.approx(78.5e9 * rate_d**4 / (8 * 5.5 * 22e-3**3), abs=0, rel=1e-6)
+
+
+def test_type_c_says_it_takes_one_mean_diameter_for_a_beehive():
+    """Type C's closed forms ([MMS]) have one mean diameter: a diameter profile is the
+    distributed model's, and Type C says so once (a FactWarning) instead of ignoring it."""
+    beehive = ValveSpring.from_toml(EXAMPLES / "valve" / "beehive_ovate.toml")
+    with pytest.warns(FactWarning, match="Type C and diameter_profile"):
+        beehive.with_model("type-c").spring_model
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FactWarning)
+        beehive.spring_model  # the distributed model follows the profile: nothing to say

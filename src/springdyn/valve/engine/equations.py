@@ -502,7 +502,7 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
     out : ndarray
         Receives the derivatives of the masses' states [m/s, m/s^2].
     extra : ndarray
-        Empty, or receives the outputs (:func:`.layout.extra_layout`).
+        Empty, or receives the outputs [N, m, m/s, W] (:func:`.layout.extra_layout`).
 
     Returns
     -------

@@ -193,7 +193,15 @@ def rectangular_curvature_factor(spring_index):
     Young & Budynas, *Roark's Formulas for Stress and Strain*, 7th ed., 2002, helical springs of
     rectangular wire (``1 + 1.2 (c/R) + 0.56 (c/R)^2 + 0.5 (c/R)^3`` with ``c/R = b/D``), after
     Goehner (1932) and Liesecke (1933) whose factors Wahl, *Mechanical Springs*, 1963, ch. 12
-    gives.
+    gives.  The constants are as this project knows the book, not read from a copy for this
+    release (a search of public sources found none, 2026-11-28; docs/references.md [Roark]):
+    plausible (at ``w = 6`` it is 1.218, beside Bergstraesser's 1.238 for round wire), not
+    verified.  Springdyn multiplies it by the exact Saint-Venant stress of the straight bar
+    (:func:`rectangle_torsion`), where Roark's rectangular-wire formula multiplies it by the
+    approximation ``P R (3b + 1.8t)/(8 b^2 t^2)``: the two differ by up to 4 % (+0.1 % square,
+    +3 % at 1.5:1, +4 % at 2:1), springdyn's the higher.  For wire wound flatwise (the long side
+    radial) the straight bar's largest stress is on the axial faces; that the factor applies
+    there too is an assumption ([Wahl-1952] treats flatwise springs separately).
 
     Examples
     --------

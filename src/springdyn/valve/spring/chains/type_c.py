@@ -8,11 +8,12 @@ element laws (:mod:`springdyn.valve.spring.elements`) of the one-step and two-st
 
 from __future__ import annotations
 
+import warnings
 from functools import cached_property
 
 import numpy as np
 
-from ....core.errors import InputError
+from ....core.errors import FactWarning, InputError
 from .. import formulas
 from ..elements import hardening_law, law_compression, linear_law, low_pitch_law
 from ..formulas import PARAMETER_UNITS
@@ -57,6 +58,16 @@ class TypeCModel(SpringModel):
     def __init__(self, spring):
         super().__init__(spring)
         self.check()
+        if spring.diameter_profile:  # (a wire_diameter_profile it takes: wire.equivalent_diameters)
+            warnings.warn(
+                FactWarning(
+                    f"Type C and diameter_profile: the document's closed forms take one mean_diameter "
+                    f'({spring.mean_diameter * 1e3:.4g} mm), not the profile; model = "distributed" follows it '
+                    "coil by coil",
+                    key=f"type c profile|{spring.diameter_profile!r}",
+                ),
+                stacklevel=3,
+            )
 
     @property
     def two_step(self) -> bool:
