@@ -2,6 +2,7 @@
 
 import csv
 import json
+import math
 from importlib import resources
 
 import pytest
@@ -344,3 +345,39 @@ def test_camshaft_without_lobes_is_bad_input(capsys, tmp_path):
     f.write_text('[camshaft]\nsprocket_inertia = "1e-3 kg*m^2"\ndrive_stiffness = "1e4 N*m/rad"\n', encoding="utf-8")
     code, _, err = run(capsys, "valve", "camshaft", str(f), "--cam-rpm", "2000")
     assert code == 2 and "[[camshaft.lobes]]" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_spring_pack_file_in_the_commands_of_one_spring_of_the_cam_and_of_a_camshaft(capsys, tmp_path):
+    """A spring pack's file (issue 41): the commands of one spring refuse it in one line (exit 2)
+    naming the commands that take a pack; cam-check takes it, its kinematic load with a third of the
+    springs' mass ([MMS]'s spring mass ``rho (pi d^2/4) pi D (N - 0.7)`` of each, by hand here)
+    beside the train's; a camshaft's lobe refuses it naming the pack's table."""
+    import re
+
+    from tests.paths import EXAMPLES
+
+    pack = str(EXAMPLES / "valve" / "dual_spring_damper.toml")
+    for argv in (("params", pack), ("design", pack, "--lift", "9mm"), ("curve", pack)):
+        code, out, err = run(capsys, "valve", *argv)
+        assert code == 2 and out == "" and len(err.strip().splitlines()) == 1, err
+        assert "not a spring pack" in err and "springdyn report" in err
+    train = str(EXAMPLES / "valve" / "valve_train_with_follower.toml")
+    cam = str(EXAMPLES / "valve" / "cam_polydyne_ramps.toml")
+    code, out, err = run(
+        capsys, "valve", "cam-check", cam, "--valve-train", train, "--spring", pack, "--cam-rpm", "3000", "--json"
+    )
+    assert code == 0, err
+    spring_mass = sum(
+        7850 * (math.pi * d**2 / 4) * math.pi * dm * (n - 0.7)
+        for d, dm, n in ((3.8e-3, 24e-3, 7), (2.6e-3, 15.5e-3, 9))
+    )
+    from springdyn.valve import ValveTrain
+
+    moving = ValveTrain.from_toml(train).moving_mass + spring_mass / 3
+    assert json.loads(out)["moving_mass_kg"] == pytest.approx(moving, rel=1e-9)
+    shaft = (EXAMPLES / "valve" / "camshaft_4lobe.toml").read_text()
+    shaft = re.sub(r'= "(\w+\.toml)"', lambda m: f'= "{EXAMPLES / "valve" / m.group(1)}"', shaft)
+    f = tmp_path / "camshaft.toml"
+    f.write_text(shaft.replace(str(EXAMPLES / "valve" / "one_step_spring.toml"), pack, 1))
+    code, out, err = run(capsys, "valve", "camshaft", str(f), "--cam-rpm", "3000")
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "[inner_spring] makes this file a spring pack" in err

@@ -41,6 +41,7 @@ _EXPORTS = {
     "RunSettings": "run.settings",
     # the definitions
     "ValveSpring": "spring.definition",
+    "SpringPack": "spring.pack",
     "MODEL_NAMES": "spring.definition",
     "Cam": "cam.definition",
     "Timing": "cam.timing",

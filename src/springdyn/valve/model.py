@@ -381,7 +381,8 @@ class ValveModel:
         if isinstance(self.spring, SpringPack):
             raise InputError(
                 f"{what} covers one spring, not a spring pack ({self.spring!r}): run it on each spring's own "
-                "file, or run the pack through valve simulate, sweep or float"
+                "file, or run the pack through valve simulate, sweep, float, train-modes, clearance, cam-check or "
+                "springdyn report"
             )
 
     def _need_cam(self, what: str) -> Cam:

@@ -8,6 +8,11 @@ References, written here independently of the code they check:
 - two identical chains side by side between the seat and one retainer that follows the cam
   are the one chain twice: each carries the one spring's forces, the pack twice them (the
   equations of motion of each chain are the single spring's, :func:`springdyn.valve.engine.chain_forces`);
+- each spring's coil clash is graded over its own set-up force: two identical springs nested, each
+  is the one spring's clash, and so is the pack's (its worst spring's; over the pack's Fset, twice
+  the one's, it would be half);
+- each spring's static force is its rate times its compression (the rate ``G d^4/(8 D^3 n)`` by
+  hand from the example's TOML values), and the springs' forces at the retainer sum to the pack's;
 - the work-energy theorem over a periodic revolution: the elastic and kinetic energies of the
   chains return, so the work the retainer does on the springs, ``oint F_r dh``, equals the
   energy dissipated, ``oint sum_j c_j(x_j) x_j'^2 dt`` of the elements' dampers plus
@@ -23,12 +28,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from springdyn.valve import ValveTrain
+from springdyn.core.errors import InputError
+from springdyn.valve import ValveModel, ValveTrain
 from springdyn.valve.cam import Cam
 from springdyn.valve.engine import extra_layout, integrate_speeds
 from springdyn.valve.run.runner import engine_args
 from springdyn.valve.run.setup import prepare
 from springdyn.valve.run.simulation import simulate
+from springdyn.valve.run.verdicts import coil_clash, spring_clashes
 from springdyn.valve.spring import ValveSpring
 from springdyn.valve.spring.elements import damping_coefficient
 from springdyn.valve.spring.pack import FrictionDamper, PackOptions, SpringPack
@@ -121,7 +128,7 @@ def test_two_identical_springs_on_the_bucket_train_are_one_spring_of_twice_every
     (measured 2e-6: the two runs take different steps, their states differ in number, at
     rtol 1e-8)."""
     root = Path(__file__).parents[3] / "examples" / "valve"
-    spring = ValveSpring.from_toml(root / "dual_spring_damper.toml")  # its [spring]: the outer alone
+    spring = SpringPack.from_toml(root / "dual_spring_damper.toml").outer  # the outer spring alone
     cam = Cam.from_toml(root / "cam_polydyne_ramps.toml")
     train = ValveTrain.from_toml(root / "valve_train.toml")
     pack = prepare(SpringPack((spring, spring), PackOptions(interference="ignore")), cam, train)
@@ -141,14 +148,73 @@ def test_two_identical_springs_on_the_bucket_train_are_one_spring_of_twice_every
     assert np.max(np.abs(f_pack - f_one)) < 1e-5 * f_pack.max()
 
 
+def test_each_springs_coil_clash_is_graded_over_its_own_fset(spring):
+    """A revolution of 8 samples at 4 mm lift with one active element pushed 0.5 mm past its coil
+    contact in two samples: two identical springs nested each have the one spring's severity
+    (spring_clashes), and the pack's severity is the same (its worst spring's, each element over its
+    own spring's Fset: not the half the pack's Fset would give); exact."""
+    model = spring.spring_model
+    _, x0, _ = model.static_state(spring.installed_length - 4e-3)
+    closes = model.contact_compressions()
+    j = int(np.flatnonzero(np.isfinite(closes))[0])
+    x = np.tile(x0[:, None], (1, 8))
+    x[j, 3:5] = closes[j] + 0.5e-3
+    static = np.full(8, float(model.static_force(spring.installed_length - 4e-3)))
+    one = coil_clash(model, x, static, 0.02)
+    assert one["severity"] > 0.1 and one["clash"]
+    pack = SpringPack((spring, spring), PackOptions(interference="ignore"))
+    both = np.concatenate([x, x])
+    each = spring_clashes(pack.spring_model, both, 2.0 * static, 0.02)
+    assert list(each) == ["outer", "inner"]
+    for c in each.values():
+        assert c["severity"] == pytest.approx(one["severity"], rel=1e-12) and c["clash"]
+    assert coil_clash(pack.spring_model, both, 2.0 * static, 0.02)["severity"] == pytest.approx(
+        one["severity"], rel=1e-12
+    )
+    assert spring_clashes(model, x, static, 0.02) == {}  # one spring: no springs of its own
+
+
+def test_each_spring_over_a_sweep_on_the_bucket_train():
+    """The example pack on the bucket train over two speeds: each spring's columns of the sweep
+    (SpeedSweep.spring_table).  Its smallest static force is its rate times its set-up compression
+    by hand (the valve seated, to 1e-9); its static Goodman safety is the simulation's (the same
+    static range by another path, the sweep's grid against the run's: to 1e-3); the springs'
+    forces at the retainer sum to the pack's (to 1e-9 of the peak)."""
+    root = Path(__file__).parents[3] / "examples" / "valve"
+    model = ValveModel.from_files(
+        root / "dual_spring_damper.toml", root / "cam_polydyne_ramps.toml", root / "valve_train.toml"
+    )
+    sw = model.sweep([2500.0, 3500.0])
+    g = 78.5e9
+    rate = {"outer": g * 3.8e-3**4 / (8 * 24e-3**3 * 5), "inner": g * 2.6e-3**4 / (8 * 15.5e-3**3 * 7)}
+    set_up = {"outer": 10e-3, "inner": 7e-3}
+    sim = model.simulate(3500.0)
+    for name in ("outer", "inner"):
+        t = sw.spring_table(name)
+        assert np.allclose(t["min_static_force_N"], rate[name] * set_up[name], rtol=1e-9)
+        assert t["static_fatigue_safety_factor"][1] == pytest.approx(
+            sim.summary["springs"][name]["static_fatigue_safety_factor"], rel=1e-3
+        )
+        assert t["fatigue_safety_factor"][1] == pytest.approx(
+            sim.summary["springs"][name]["fatigue_safety_factor"], rel=1e-3
+        )
+        assert set(t) >= {"cam_rpm", "min_retainer_force_N", "clash_severity", "peak_shear_stress_Pa"}
+    peak = float(np.max(sim.retainer_force))
+    assert np.max(np.abs(sim.pack["retainer_force"].sum(axis=0) - sim.retainer_force)) < 1e-9 * peak
+    table = sw.summary_table()
+    both = np.minimum(
+        sw.spring_table("outer")["fatigue_safety_factor"], sw.spring_table("inner")["fatigue_safety_factor"]
+    )
+    assert np.allclose(table["fatigue_safety_factor"], both, rtol=1e-12)  # the pack's: its critical spring's
+    with pytest.raises(InputError, match="third"):
+        sw.spring_table("third")
+
+
 def test_a_sweep_varies_one_spring_of_a_pack():
     """A sweep's design variable on a pack names one spring's field (``inner_spring.wire_diameter``):
     each value is the pack built with that spring replaced (``SpringPack.replace_spring``, run
     here on its own), the spring's own value the pack's sweep to the bit; a bare field names no
     spring and is refused, as is a spring the pack does not hold."""
-    from springdyn.core.errors import InputError
-    from springdyn.valve import ValveModel
-
     root = Path(__file__).parents[3] / "examples" / "valve"
     model = ValveModel.from_files(
         root / "dual_spring_damper.toml", root / "cam_polydyne_ramps.toml", root / "valve_train.toml"

@@ -104,3 +104,57 @@ def test_the_friction_law_is_coulomb_regularised():
     for v in (-2.0, -0.01, 0.0, 0.003, 1.0):
         assert damper_friction(20.0, v, 0.01) == pytest.approx(-20.0 * math.tanh(v / 0.01), abs=1e-15)
     assert damper_friction(20.0, 5.0, 0.01) == pytest.approx(-20.0, rel=1e-12)  # sliding: the Coulomb force
+
+
+@pytest.mark.parametrize("table", ["inner_spring", "third_spring", "pack", "damper"])
+def test_a_pack_file_is_no_single_spring(tmp_path, table):
+    """ValveSpring.from_toml refuses a file with a pack's table rather than read its outer spring
+    alone; the message names the table and the readers of packs."""
+    doc = EXAMPLE.read_text().split("[inner_spring]")[0]
+    body = {"inner_spring": "[inner_spring]\n", "third_spring": "[third_spring]\n", "pack": "[pack]\n"}
+    f = tmp_path / "pack.toml"
+    f.write_text(doc + body.get(table, "[damper]\nfriction_force = '5 N'\n"))
+    with pytest.raises(InputError, match=rf"\[{table}\] makes this file a spring pack.*SpringPack.from_toml"):
+        ValveSpring.from_toml(f)
+    f.write_text(doc)  # its outer spring alone is one spring
+    assert ValveSpring.from_toml(f) == SpringPack.from_toml(EXAMPLE).outer
+
+
+def test_the_packs_design_figures_against_the_rate_by_hand():
+    """The example pack at 9 mm lift: each spring's force is its rate G d^4 / (8 D^3 n) (n the active
+    coils of the Type C chain, N2 - 2 Nb) times its compression (Lf - Ls, and + 9 mm), written from the
+    TOML's values; the pack's forces are their sums.  Installed to 1e-9; at full lift to 1e-3: the
+    Type C element laws leave their straight line past F1 (measured 1e-4 of the force here)."""
+    pack = SpringPack.from_toml(EXAMPLE)
+    fig = pack.design_figures(9e-3, cam_rpm=3500.0)
+    g = 78.5e9
+    rate = {"outer": g * 3.8e-3**4 / (8 * 24e-3**3 * (7 - 2)), "inner": g * 2.6e-3**4 / (8 * 15.5e-3**3 * (9 - 2))}
+    set_up = {"outer": 53e-3 - 43e-3, "inner": 48e-3 - 41e-3}
+    for name in ("outer", "inner"):
+        own = fig["springs"][name]
+        assert own["installed"]["force_N"] == pytest.approx(rate[name] * set_up[name], rel=1e-9)
+        assert own["open"]["force_N"] == pytest.approx(rate[name] * (set_up[name] + 9e-3), rel=1e-3)
+        assert own["stress_factor_name"].startswith("Bergstraesser")
+    hand_installed = sum(rate[n] * set_up[n] for n in rate)
+    assert fig["installed_force_N"] == pytest.approx(hand_installed, rel=1e-9)
+    opened = [fig["springs"][n]["open"]["force_N"] for n in ("outer", "inner")]
+    assert fig["open_force_N"] == pytest.approx(sum(opened), rel=1e-12)
+    assert fig["force_share"]["inner"] == pytest.approx(opened[1] / sum(opened), rel=1e-12)
+    # the modes with the ends held are each spring's own, labelled by it (the chains share their ends)
+    assert fig["modes_Hz"] == sorted(fig["modes_Hz"])
+    for name, s in zip(pack.names, pack.springs):
+        own = [f for f, n in zip(fig["modes_Hz"], fig["mode_springs"]) if n == name]
+        assert np.allclose(own, s.spring_model.modes(s.installed_length, 3), rtol=1e-12)
+    assert fig["pack_solid_length_m"] == pytest.approx(max(s.solid_length for s in pack.springs))
+    # the static figures' stress is the wire's section's: an inner of rectangular wire, Roark's factor
+    flat = pack.replace_spring(
+        1, pack.springs[1].replace(wire_shape="rectangular", wire_width=2.4e-3, wire_height=2.6e-3)
+    )
+    s = flat.springs[1]
+    force = flat.static_figures(9e-3)["inner_open_force_N"]
+    w = 15.5e-3 / 2.4e-3
+    roark = 1 + 1.2 / w + 0.56 / w**2 + 0.5 / w**3
+    z = s.wire.stress_modulus  # the section's T / tau_max (tests/valve/spring/test_wire.py: Timoshenko's table)
+    assert flat.static_figures(9e-3)["inner_max_shear_stress_Pa"] == pytest.approx(
+        roark * force * 15.5e-3 / 2 / z, rel=1e-9
+    )

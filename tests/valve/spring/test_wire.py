@@ -21,7 +21,7 @@ from scipy.linalg import eigh_tridiagonal
 from scipy.sparse.linalg import spsolve
 
 from springdyn.core.errors import FactWarning, InputError
-from springdyn.valve import ValveSpring
+from springdyn.valve import ValveModel, ValveSpring
 from springdyn.valve.spring import wire as wire_module
 from tests.paths import EXAMPLES
 
@@ -206,6 +206,12 @@ def test_type_c_rate_mass_surge_and_stress_of_profiled_wire(shape, width, height
     tau = factor * fig["installed"]["force_N"] * d_mean / 2 / z
     assert fig["installed"]["shear_stress_Pa"] == pytest.approx(tau, abs=0, rel=1e-9)
     assert fig["stress_factor"] == pytest.approx(factor, abs=0, rel=1e-12)
+    # the factor is named by what it is: Goehner's (Roark) for rectangular wire, never "Bergstraesser"
+    named = "Goehner" if shape == "rectangular" else "Bergstraesser"
+    assert named in fig["stress_factor_name"] and named in spring.wire.stress_factor_name
+    text = ValveModel(spring).design_figures(lift=2e-3).describe().splitlines()[0]
+    assert f"stress factor {factor:.4f} ({fig['stress_factor_name']})" in text
+    assert ("Bergstraesser" in text) == (shape == "ovate")
 
 
 def test_roark_factor_against_hand_values():

@@ -78,7 +78,8 @@ def register(vsub) -> None:
     p.add_argument(
         "--spring",
         metavar="SPRING.toml",
-        help="the valve spring: the kinematic load (spring force + inertia) and the Hertz stress",
+        help="the valve spring or a spring pack's file: the kinematic load (spring force + inertia) and the Hertz "
+        "stress",
     )
     p.add_argument(
         "--model",
@@ -177,7 +178,8 @@ def cmd_cam_check(args) -> int:
         raise InputError("--cam-rpm and --engine-rpm set the speed of the load: give the spring with --spring")
     if args.model is not None and args.spring is None:
         raise InputError("--model applies to the spring: give it with --spring")
-    spring = valve.ValveSpring.from_toml(args.spring).with_model(args.model) if args.spring else None
+    # the spring file's spring, or its pack (the kinematic load: the pack's static force, a third of its springs' mass)
+    spring = valve.ValveModel.from_files(args.spring, model=args.model).spring if args.spring else None
     with as_options(cam_rpm=run_options(args, timing=timing)["cam_rpm"]):
         res = cam.check_cam(lobe, vt, follower, spring=spring, cam_rpm=rpm)
     if not emit(res, args, json_data=dict(res.summary)):

@@ -22,6 +22,10 @@ __all__ = ["build_report", "demo_definitions", "DEMO_DEFINITIONS", "DEMO_LABEL",
 MODEL_TABLES = {"spring": "valve", "cfcs": "cfcs", "lsd": "lsd"}
 #: Tables that only complete another one.
 SUPPORT_TABLES = {
+    "inner_spring": "spring",
+    "third_spring": "spring",
+    "pack": "spring",
+    "damper": "spring",
     "cam": "spring",
     "timing": "spring",
     "valve_train": "spring",

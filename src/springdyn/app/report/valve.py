@@ -25,6 +25,9 @@ from springdyn.core.units import format_quantity, omega_to_rpm, rpm_to_omega
 
 __all__ = ["load", "section", "ValveDefinition", "ReportSettings", "DEFAULT_CAM"]
 
+#: The tables that make a definition a spring pack (:class:`springdyn.valve.SpringPack`).
+PACK_TABLES = ("inner_spring", "third_spring", "pack", "damper")
+
 #: Cam used when a definition has a [spring] but no [cam] table.
 DEFAULT_CAM = dict(law="3-4-5", lift="9 mm", duration="120 deg")
 
@@ -187,8 +190,11 @@ def _beside(path: Path, name: str, key: str) -> Path:
 
 
 def load(doc: dict, path: Path) -> ValveDefinition:
-    """Validate the [spring], [cam], [valve_train] and [report] tables of a definition."""
-    spring = valve.ValveSpring.from_dict(doc["spring"], source=str(path))
+    """Validate the [spring] (or a spring pack's tables), [cam], [valve_train] and [report] tables of a definition."""
+    if any(t in doc for t in PACK_TABLES):  # a spring pack: [inner_spring] ([third_spring], [pack], [damper])
+        spring = valve.SpringPack.from_document(doc, source=str(path), base_dir=Path(path).parent)
+    else:
+        spring = valve.ValveSpring.from_dict(doc["spring"], source=str(path))
     cam_given = "cam" in doc
     cam = valve.Cam.from_dict(doc["cam"] if cam_given else DEFAULT_CAM, source=str(path), base_dir=Path(path).parent)
     for table in ("follower", "geometry"):
@@ -234,6 +240,12 @@ def load(doc: dict, path: Path) -> ValveDefinition:
             raise InputError(f"{path}: [report] cylinder_pressure = {settings.cylinder_pressure!r}: no such file")
         model = model.with_gas_pressure(trace, settings.port_pressure)
     requirements = tolerances = None
+    for key in ("requirements", "tolerances"):
+        if getattr(settings, key) is not None and isinstance(spring, valve.SpringPack):
+            raise InputError(
+                f"{path}: [report] {key} studies one spring, and this definition is a spring pack: give it in a "
+                "definition of one spring (the pack's report covers the pack's own analyses)"
+            )
     if settings.requirements is not None:
         requirements = design.read_requirements(_beside(path, settings.requirements, "requirements"))
     if settings.tolerances is not None:
@@ -356,15 +368,15 @@ def _camshaft_finding(camshaft, report_speeds, out_dir, files, figures) -> str:
 
 
 def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:
-    """Run the valve analyses of one definition into ``out_dir`` and describe them."""
+    """Run the valve analyses of one definition into ``out_dir`` and describe them (a spring
+    pack's: each spring's figures beside the pack's, :func:`_pack_part`)."""
     rs = d.settings
     train = d.model.with_model("distributed") if rs.models == "distributed" else d.model
     sp, lobe, vt = train.spring, train.cam, train.valve_train
-    criteria_set = rs.criteria
+    pack = isinstance(sp, valve.SpringPack)
     report_speeds, sweep_speeds = rs.report_speeds, rs.sweep_speeds
     top = report_speeds[-1]
-    p = sp.spring_model.internal_parameters()
-    files, figures, findings = [], [], []
+    files, figures, findings, tables = [], [], [], []
     # the report is set for an engine: crank angles and engine speeds beside the cam's
     axis = train.crank_axis
     # the spring alone is driven by the valve lift: the lobe lift times the rocker ratio, or the
@@ -384,21 +396,25 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"The spring-alone analyses drive the spring with the valve lift of the rigid train: the "
             f"lobe lift ({lobe.max_lift * 1e3:.3g} mm) times the rocker ratio {vt.ratio:g}."
         )
-    files.append(write_json(out_dir / "params.json", p))
-    curve = alone.static_curve()
-    files.append(curve.to_csv(out_dir / "static_curve.csv"))
-    plt.close(curve.plot(out_dir / "static_curve.png"))
-    figures.append(
-        (
-            out_dir / "static_curve.png",
-            "Static force and tangent stiffness vs length, with the set-up "
-            "length and the breakpoint forces F1, F2, Fcon (document Figs. 40.34-40.36)",
-        )
-    )
     lift = cam.max_lift
-    figs = alone.design_figures(lift=lift, cam_rpm=top).figures
+    if pack:  # each spring's internal parameters and design figures, and the pack's (SpringPack.design_figures)
+        p = {name: s.spring_model.internal_parameters() for name, s in zip(sp.names, sp.springs)}
+        figs = sp.design_figures(lift, cam_rpm=top)
+    else:
+        p = sp.spring_model.internal_parameters()
+        curve = alone.static_curve()
+        files.append(curve.to_csv(out_dir / "static_curve.csv"))
+        plt.close(curve.plot(out_dir / "static_curve.png"))
+        figures.append(
+            (
+                out_dir / "static_curve.png",
+                "Static force and tangent stiffness vs length, with the set-up "
+                "length and the breakpoint forces F1, F2, Fcon (document Figs. 40.34-40.36)",
+            )
+        )
+        figs = alone.design_figures(lift=lift, cam_rpm=top).figures
+    files.append(write_json(out_dir / "params.json", p))
     files.append(write_json(out_dir / "design.json", figs))
-    modes_free = alone.modes(sp.free_length, 3)
 
     sims = {}
     for rpm in report_speeds:
@@ -411,9 +427,10 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         figures.append(
             (
                 stem.with_suffix(".png"),
-                f"Spring alone at {axis.per_cam * rpm:.0f} engine rpm ({rpm:.0f} cam rpm, {_describe_model(sp)}): "
-                "retainer and seat force against the static (massless) force over the crank angle, mass "
-                "displacements, cam-order spectrum",
+                f"Spring{' pack' if pack else ''} alone at {axis.per_cam * rpm:.0f} engine rpm ({rpm:.0f} cam rpm, "
+                f"{_describe_model(sp)}): retainer and seat force against the static (massless) force over the crank "
+                + ("angle, each spring's force at the retainer, " if pack else "angle, ")
+                + "mass displacements, cam-order spectrum",
             )
         )
     sw = alone.sweep(sweep_speeds, quiet=quiet)
@@ -425,6 +442,14 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"Peak and minimum forces over the speed range against the static values ({_describe_model(sp)})",
         )
     )
+    if pack:
+        figures.append(
+            (
+                out_dir / "sweep_springs.png",
+                f"Each spring of the pack over the speed range: its retainer force against its static force, its "
+                f"Goodman safety ({_describe_model(sp)})",
+            )
+        )
     figures.append(
         (
             out_dir / "sweep_campbell.png",
@@ -476,7 +501,7 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
             f"retainer force is {s['max_retainer_force_N']:.1f} N, "
             f"{s['max_retainer_force_ratio']:.3f} times the static peak of {s['max_static_force_N']:.1f} N; the seat "
             f"force swings from {s['min_seat_force_N']:.1f} to {s['max_seat_force_N']:.1f} N (surge amplitude "
-            f"{s['seat_surge_amplitude_N']:.1f} N); {contact}."
+            f"{s['seat_surge_amplitude_N']:.1f} N); {contact}." + (_energy_words(sp, s) if pack else "")
         )
     table = sw.summary_table()
     k = int(np.argmax(table["max_retainer_force_N"]))
@@ -488,65 +513,40 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         f"{table['max_retainer_force_N'][k]:.1f} N at {axis.per_cam * sweep_speeds[k]:.0f} engine rpm; "
         + (
             f"coil clash occurs from {axis.per_cam * clash[0]:.0f} engine rpm on ({clash.size} of {sweep_speeds.size} "
-            "speeds)."
+            "speeds)"
             if clash.size
-            else "no coil clash occurs in that range."
+            else "no coil clash occurs in that range"
         )
+        + (" (in any spring of the pack, each over its own Fset)." if pack else ".")
     )
     # the surge frequency and margin of the model that judges, the other's beside
     judge_spring = crit_sweep.spring
-    figs_judge = (
-        figs
-        if judge_spring.model == sp.model
-        else alone.replace(spring=judge_spring).design_figures(lift=lift, cam_rpm=top).figures
-    )
-    fi = figs_judge["installed"]
-    findings.append(
-        f"First surge frequency f1 = {fi['surge_frequency_Hz']:.1f} Hz at installed length "
-        f"({judge_spring.spring_model.surge_frequency_definition}; "
-        f"{figs_judge['open']['surge_frequency_Hz']:.1f} Hz at full lift); at {top:.0f} cam rpm that is cam order "
-        f"{fi['surge_frequency_Hz'] / (top / 60):.1f}, a surge margin of {fi['surge_margin']:.1f} "
-        "(rule of thumb: 10-13 or more)"
-        + (
-            f"; Type C's chain: {figs['installed']['surge_frequency_Hz']:.1f} Hz, margin "
-            f"{figs['installed']['surge_margin']:.1f}"
-            if figs_judge is not figs
-            else ""
-        )
-        + (
-            f"; the document's closed form at free length (Wahl with n1', Type C's calibration) {p['f1']:.1f} Hz"
-            if sp.model == "type-c"
-            else ""
-        )
-        + "."
-    )
-    findings.append(
-        f"Corrected shear stress (Bergstraesser k = {figs['bergstraesser_factor']:.3f}): "
-        f"{figs['installed']['shear_stress_Pa'] / 1e6:.0f} MPa installed, {figs['open']['shear_stress_Pa'] / 1e6:.0f} MPa "
-        f"at {lift * 1e3:.3g} mm lift, {figs['coil_contact']['shear_stress_Pa'] / 1e6:.0f} MPa at coil contact."
-    )
-    verdicts = design.spring_verdicts(
-        criteria_set,
-        figs_judge,
-        crit_sweep.summary_table(),
-        crit_sweep.cam_rpm,
-        model=crit_sweep.spring.model,
-        rated_cam_rpm=top,
-        wire_limit=crit_sweep.spring.strengths["shear_stress_limit_Pa"],
-        beside=beside.summary_table() if beside is not None else None,
-        beside_design=figs if figs_judge is not figs else None,
-    )
-    criteria = [_criterion(v) for v in verdicts]
+    if judge_spring.model == sp.model:
+        figs_judge = figs
+    elif pack:
+        figs_judge = judge_spring.design_figures(lift, cam_rpm=top)
+    else:
+        figs_judge = alone.replace(spring=judge_spring).design_figures(lift=lift, cam_rpm=top).figures
+    if pack:
+        criteria = [_criterion(v) for v in _pack_part(figs, figs_judge, crit_sweep, beside, rs, top)]
+        findings += _pack_findings(sp, figs_judge, crit_sweep.spring.model)
+        tables += _pack_tables(sp, figs, sims, lift)
+    else:
+        criteria = [_criterion(v) for v in _one_spring_part(figs, figs_judge, crit_sweep, beside, rs, top)]
+        findings += _one_spring_findings(sp, p, figs, figs_judge, judge_spring, lift, top)
     if not d.cam_given:
         findings.append("The definition has no [cam] table: the built-in 3-4-5 cam (9 mm over 120 deg) was used.")
     speeds = f"{sweep_speeds[0]:g}:{sweep_speeds[-1]:g}:{sweep_speeds[1] - sweep_speeds[0]:g}"
     commands = [
-        f"springdyn valve params {source}",
-        f"springdyn valve design {source} --lift {lift * 1e3:g}mm --cam-rpm {top:g} --model {judge_spring.model}",
-        f"springdyn valve curve {source} --plot curve.png",
         f"springdyn valve simulate {source} --cam {source} --cam-rpm {top:g} --plot sim.png --json",
         f"springdyn valve sweep {source} --cam {source} --cam-rpm {speeds} --model {judge_spring.model} --out sweep",
     ]
+    if not pack:  # the spring's own commands (a pack's refuse it: docs/valve-spring.md, "Spring packs")
+        commands[:0] = [
+            f"springdyn valve params {source}",
+            f"springdyn valve design {source} --lift {lift * 1e3:g}mm --cam-rpm {top:g} --model {judge_spring.model}",
+            f"springdyn valve curve {source} --plot curve.png",
+        ]
     if beside is not None:
         commands.append(
             f"springdyn valve sweep {source} --cam {source} --cam-rpm {speeds} --model {beside.spring.model} "
@@ -560,21 +560,12 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         commands.append(f"springdyn valve camshaft {shaft_file} --cam-rpm {top:g}")
     if d.requirements is not None or d.tolerances is not None:
         _new_spring_and_tolerances(d, lobe, top, out_dir, files, figures, findings, criteria, commands, source, quiet)
-    inputs = parameter_rows(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
+    inputs = _spring_inputs(sp) + [(f"cam.{k}", v, m) for k, v, m in parameter_rows(cam) if k != "file" or v]
     if vt is not None:
         inputs += [(f"valve_train.{k}", v, m) for k, v, m in parameter_rows(vt)]
         if vt.hla is not None:
             inputs += [(f"hla.{k}", v, m) for k, v, m in parameter_rows(vt.hla)]
-    units = valve.PARAMETER_UNITS
-    derived = [(k, format_quantity(v, *units[k][:2]), sp.spring_model.parameter_meaning(k)) for k, v in p.items()]
-    derived.append(
-        (
-            "chain modes",
-            ", ".join(f"{f:.1f}" for f in modes_free) + " Hz",
-            f"first three of the {sp.spring_model.name} chain, ends fixed, free length",
-        )
-    )
-    derived.append(("spring index", f"{figs['spring_index']:.3f}", "D/d"))
+    derived = _derived_rows(sp, p, figs, alone) if not pack else _pack_derived_rows(sp, p)
     if vt is None:
         criteria.append(
             Criterion(
@@ -595,8 +586,241 @@ def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = Tru
         derived=derived,
         findings=findings,
         figures=figures,
+        tables=tables,
         files=files,
     )
+
+
+def _one_spring_part(figs, figs_judge, crit_sweep, beside, rs, top) -> list:
+    """The criteria of one spring over the judging model's sweep (:func:`springdyn.valve.design.spring_verdicts`)."""
+    return design.spring_verdicts(
+        rs.criteria,
+        figs_judge,
+        crit_sweep.summary_table(),
+        crit_sweep.cam_rpm,
+        model=crit_sweep.spring.model,
+        rated_cam_rpm=top,
+        wire_limit=crit_sweep.spring.strengths["shear_stress_limit_Pa"],
+        beside=beside.summary_table() if beside is not None else None,
+        beside_design=figs if figs_judge is not figs else None,
+    )
+
+
+def _one_spring_findings(sp, p, figs, figs_judge, judge_spring, lift, top) -> list[str]:
+    """One spring's surge frequency (the judging model's, Type C's beside) and corrected stress in words."""
+    fi = figs_judge["installed"]
+    surge = (
+        f"First surge frequency f1 = {fi['surge_frequency_Hz']:.1f} Hz at installed length "
+        f"({judge_spring.spring_model.surge_frequency_definition}; "
+        f"{figs_judge['open']['surge_frequency_Hz']:.1f} Hz at full lift); at {top:.0f} cam rpm that is cam order "
+        f"{fi['surge_frequency_Hz'] / (top / 60):.1f}, a surge margin of {fi['surge_margin']:.1f} "
+        "(rule of thumb: 10-13 or more)"
+        + (
+            f"; Type C's chain: {figs['installed']['surge_frequency_Hz']:.1f} Hz, margin "
+            f"{figs['installed']['surge_margin']:.1f}"
+            if figs_judge is not figs
+            else ""
+        )
+        + (
+            f"; the document's closed form at free length (Wahl with n1', Type C's calibration) {p['f1']:.1f} Hz"
+            if sp.model == "type-c"
+            else ""
+        )
+        + "."
+    )
+    return [surge, "Corrected shear stress " + _stress_words(figs, lift) + "."]
+
+
+def _stress_words(figs: dict, lift: float) -> str:
+    """``(<the factor's name> = 1.226): 330 MPa installed, ...``: a spring's corrected stresses
+    (:meth:`springdyn.valve.SpringModel.design_figures`), the factor named by what its wire uses."""
+    return (
+        f"({figs['stress_factor_name']} = {figs['stress_factor']:.3f}, wire {figs['wire_section']}): "
+        f"{figs['installed']['shear_stress_Pa'] / 1e6:.0f} MPa installed, {figs['open']['shear_stress_Pa'] / 1e6:.0f} "
+        f"MPa at {lift * 1e3:.3g} mm lift, {figs['coil_contact']['shear_stress_Pa'] / 1e6:.0f} MPa at coil contact"
+    )
+
+
+def _derived_rows(sp, p, figs, alone) -> list[tuple]:
+    """One spring's internal parameters, its chain's modes at free length and its index."""
+    units = valve.PARAMETER_UNITS
+    derived = [(k, format_quantity(v, *units[k][:2]), sp.spring_model.parameter_meaning(k)) for k, v in p.items()]
+    derived.append(
+        (
+            "chain modes",
+            ", ".join(f"{f:.1f}" for f in alone.modes(sp.free_length, 3)) + " Hz",
+            f"first three of the {sp.spring_model.name} chain, ends fixed, free length",
+        )
+    )
+    derived.append(("spring index", f"{figs['spring_index']:.3f}", "D/d"))
+    return derived
+
+
+#: A pack's internal parameters its table shows already (installed force, mass, rate at free length).
+PACK_TABLE_PARAMETERS = ("Fset", "M", "K1")
+
+
+def _pack_derived_rows(pack, p) -> list[tuple]:
+    """Each spring's internal parameters of its model, but those of the pack's table."""
+    units = valve.PARAMETER_UNITS
+    return [
+        (f"{name}: {k}", format_quantity(v, *units[k][:2]), s.spring_model.parameter_meaning(k))
+        for name, s in zip(pack.names, pack.springs)
+        for k, v in p[name].items()
+        if k not in PACK_TABLE_PARAMETERS
+    ]
+
+
+def _spring_inputs(sp) -> list[tuple]:
+    """The spring's input rows; a pack's: each spring's under its table's name, then [pack] and [damper]."""
+    if not isinstance(sp, valve.SpringPack):
+        return parameter_rows(sp)
+    rows = []
+    for table, s in zip(("spring", "inner_spring", "third_spring"), sp.springs):
+        rows += [(f"{table}.{k}", v, m) for k, v, m in parameter_rows(s)]
+    rows += [(f"pack.{k}", v, m) for k, v, m in parameter_rows(sp.options)]
+    if sp.damper is not None:
+        rows += [(f"damper.{k}", v, m) for k, v, m in parameter_rows(sp.damper)]
+    return rows
+
+
+# ----------------------------------------------------------------------------- spring packs
+def _pack_part(figs, figs_judge, crit_sweep, beside, rs, top) -> list:
+    """A spring pack's criteria: each spring's (:func:`springdyn.valve.design.spring_verdicts` on
+    its own design figures and its own columns of the judging model's sweep,
+    :meth:`springdyn.valve.SpeedSweep.spring_table`), labelled by the spring."""
+    out = []
+    judge = crit_sweep.spring
+    for name, s in zip(judge.names, judge.springs):
+        verdicts = design.spring_verdicts(
+            rs.criteria,
+            figs_judge["springs"][name],
+            crit_sweep.spring_table(name),
+            crit_sweep.cam_rpm,
+            model=judge.model,
+            rated_cam_rpm=top,
+            wire_limit=s.strengths["shear_stress_limit_Pa"],
+            beside=beside.spring_table(name) if beside is not None else None,
+            beside_design=figs["springs"][name] if figs_judge is not figs else None,
+        )
+        for v in verdicts:
+            own = {
+                "coil_clash": "; the severity over this spring's own Fset, against its share of the pack's static "
+                "force (its share at installed length)",
+                "min_retainer_force": "; this spring's end force at the retainer (the pack's springs leave it one "
+                "by one)",
+                "surge_margin": "; the pack's modes with its ends held are its springs' own (the chains share only "
+                "their ends): each spring's first mode judges its surge",
+            }.get(v.name, "")
+            out.append(dataclasses.replace(v, label=f"{name} spring: {v.label}", note=v.note + own))
+    return out
+
+
+def _pack_findings(pack, figs, model: str) -> list[str]:
+    """The pack's fit, modes and friction damper in words (:meth:`springdyn.valve.SpringPack.design_figures`)."""
+    fit = "; ".join(
+        f"the {a.replace('_', ' and ')} springs' radial clearance is {f['radial_clearance_installed_m'] * 1e3:.2f} mm "
+        f"installed and {f['radial_clearance_at_bind_m'] * 1e3:.2f} mm at coil bind"
+        + (f" (they interfere by {f['interference_m'] * 1e3:.2f} mm)" if f["interference_m"] > 0 else "")
+        for a, f in figs["fit"].items()
+    )
+    modes = ", ".join(f"{f:.0f} Hz ({n})" for f, n in zip(figs["modes_Hz"], figs["mode_springs"]))
+    d = pack.damper
+    damper = (
+        f"The friction damper ([damper]): Coulomb friction of {d.force:.3g} N "
+        + (
+            f"({d.normal_load:.3g} N normal load x {d.friction_coefficient:g})"
+            if d.normal_load is not None
+            else "(friction_force)"
+        )
+        + f" on the {d.acts_on} spring at {100 * d.height:.0f} % of its length from the seat, against the "
+        + (d.against if d.against == "seat" else f"{d.against} spring")
+        + "; its energy at each speed is in the sentences above."
+        if d is not None
+        else "The pack has no friction damper ([damper]): only the elements' damping dissipates."
+    )
+    return [
+        f"The pack ({', '.join(f'{n} {pack.options.hand(n)}-hand' for n in pack.names)}; one seat, one retainer, one "
+        f"lift; each spring at its own installed length): {fit}; solid height {figs['pack_solid_length_m'] * 1e3:.2f} "
+        "mm (the longest spring's solid length, seat steps aside).",
+        f"Natural frequencies of the pack with its ends held, installed ({_MODEL_NAMES[model]} chains): {modes}. The "
+        "chains share only their ends, so these are each spring's own; each spring's first judges its surge margin "
+        "(criteria). The pack on the valve train (the modes of springs, valve and train together) is the valve "
+        "train's sentence below, not judged.",
+        damper,
+    ]
+
+
+def _energy_words(pack, s: dict) -> str:
+    """A spring pack's revolution in words: the energy balance (a simulation's summary,
+    :func:`springdyn.valve.run.results.pack_energy`; each spring's forces are the pack's table)."""
+    work, lost, damper = (
+        s[f"{k}_per_revolution_J"] * 1e3 for k in ("retainer_work", "dissipated_energy", "damper_energy")
+    )
+    return (
+        f" Over the revolution the retainer does {work:.2f} mJ of work on the pack and {lost:.2f} mJ are "
+        f"dissipated (elements' damping and friction; a periodic revolution returns the rest)"
+        + (f", {damper:.2f} mJ of it by the friction damper" if pack.damper is not None else "")
+        + "."
+    )
+
+
+def _pack_tables(pack, figs, sims, lift) -> list[tuple]:
+    """Each spring's static figures beside the pack's (:meth:`springdyn.valve.SpringPack.design_figures`)."""
+    names = pack.names
+    each = [figs["springs"][n] for n in names]
+    mm = lift * 1e3
+
+    def row(label, values, total="-"):
+        return (label, *values, total)
+
+    rows = [
+        row(
+            "model; wire; hand",
+            [f"{f['model']}; {f['wire_section']}; {pack.options.hand(n)}" for f, n in zip(each, names)],
+        ),
+        row(
+            "static force installed [N] (each spring at its own installed length)",
+            [f"{f['installed']['force_N']:.1f}" for f in each],
+            f"{figs['installed_force_N']:.1f}",
+        ),
+        row(
+            f"static force at {mm:.3g} mm lift [N] (share of the pack's)",
+            [f"{f['open']['force_N']:.1f} ({100 * figs['force_share'][n]:.1f} %)" for f, n in zip(each, names)],
+            f"{figs['open_force_N']:.1f}",
+        ),
+        row(
+            f"corrected shear stress installed / at {mm:.3g} mm lift [MPa] (the wire's factor)",
+            [
+                f"{f['installed']['shear_stress_Pa'] / 1e6:.0f} / {f['open']['shear_stress_Pa'] / 1e6:.0f} "
+                f"({f['stress_factor_name']} = {f['stress_factor']:.3f})"
+                for f in each
+            ],
+        ),
+        row(
+            "spring rate at free length [N/mm] (the model's)",
+            [f"{f['rate_free_N_per_m'] / 1e3:.2f}" for f in each],
+        ),
+        row("spring mass [g]", [f"{f['spring_mass_kg'] * 1e3:.1f}" for f in each]),
+    ]
+    for rpm, sim in sims.items():
+        s = sim.summary
+        rows.append(
+            row(
+                f"retainer force at {rpm:.0f} cam rpm, least-most [N] (dynamic)",
+                [f"{v['min_retainer_force_N']:.1f}-{v['max_retainer_force_N']:.1f}" for v in s["springs"].values()],
+                f"{s['min_retainer_force_N']:.1f}-{s['max_retainer_force_N']:.1f}",
+            )
+        )
+    return [
+        (
+            "Each spring of the pack and the pack (static: each spring's own model; dynamic: the pack's run of the "
+            "spring alone driven by the valve lift). Solid length, coil bind, surge, clash, wire stress and Goodman "
+            "of each spring are its criteria rows.",
+            ("quantity", *names, "pack"),
+            rows,
+        )
+    ]
 
 
 def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, findings, criteria, commands, source):
@@ -678,7 +902,10 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
             f"velocity ranges {v_lo:.2f}-{v_hi:.2f} m/s (band over the speeds within 25 rpm and, where a speed does "
             f"not settle, over its last revolutions) with up to {landings} seat landings per cycle."
         )
-        findings.append(_run_up_finding(model, f, rs, out_dir, files, figures))
+        if isinstance(model.spring, valve.SpringPack):  # ValveModel.speed_ramp covers one spring
+            findings.append("The run-up through the float speed covers one spring, not a spring pack: not run.")
+        else:
+            findings.append(_run_up_finding(model, f, rs, out_dir, files, figures))
     if vt.hla is not None:  # the adjuster at the top speed: leak-down, pump-up, socket hop
         h = model.simulate(top).summary["hla"]
         findings.append(
@@ -720,7 +947,9 @@ def _train_section(train, d, rs, top, report_speeds, out_dir, files, figures, fi
         _clearance_part(model, rs, report_speeds, out_dir, files, figures, findings, criteria, commands, source)
     if train.gas_force is not None:
         findings.append(_gas_finding(train, top))
-    if model.follower is not None:
+    if model.follower is not None and isinstance(model.spring, valve.SpringPack):  # ValveModel.friction: one spring
+        findings.append("The train's friction ([follower]) covers one spring, not a spring pack: not computed.")
+    elif model.follower is not None:
         findings.append(_friction_finding(model, report_speeds, out_dir, files, figures))
         commands.append(
             f"springdyn valve friction {source} --cam {source} --valve-train {source} "
@@ -1038,8 +1267,10 @@ def _model_choice(crit, beside, alone, top) -> str:
             "([report] models), or the distributed model cannot run this spring. Type C's three surge modes and "
             "empirical coil contact make its clash and float figures indicative (docs/valve.md)."
         )
-    sm = alone.replace(spring=s).simulate(top).summary  # with the element check where coils clash
-    if "clash_force_element_sensitivity" in sm:
+    sm = {} if isinstance(s, valve.SpringPack) else alone.replace(spring=s).simulate(top).summary  # element check
+    if isinstance(s, valve.SpringPack):  # a pack's runs carry no element check (docs/valve-spring.md)
+        evidence = "the element-count check of the clash forces is not run for a spring pack"
+    elif "clash_force_element_sensitivity" in sm:
         evidence = (
             f"at {top:.0f} cam rpm its coils clash and the peak end forces with twice the elements ({2 * s.elements}) "
             f"change by {100 * sm['clash_force_element_sensitivity']:.2f} % of Fset"

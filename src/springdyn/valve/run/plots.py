@@ -91,6 +91,10 @@ def plot_simulation(sim, path=None, ax=None):
     ax.plot(deg[order], sim.retainer_force[order], color="C0", lw=1.5, label="retainer force (dynamic)")
     ax.plot(deg[order], sim.seat_force[order], color="C1", lw=1.0, label="seat force (dynamic)")
     ax.plot(deg[order], sim.static_force[order], color="k", ls="--", lw=1.2, label="static (massless) force")
+    if sim.pack is not None:  # a spring pack: each spring's force at the retainer
+        for k, name in enumerate(sim.spring.names):
+            force = sim.pack["retainer_force"][k][order]
+            ax.plot(deg[order], force, color=f"C{k + 5}", lw=0.9, label=f"{name} spring at the retainer")
     for ev in sim.summary["coil_contact"]:
         for lo, hi in axis.spans(ev["start_deg"], ev["end_deg"]):
             ax.axvspan(lo, hi, color="C3", alpha=0.15)
@@ -256,6 +260,8 @@ def plot_sweep(result, out_dir, prefix="sweep"):
     table = result.summary_table()
     nv, nr = result.vary_values.size, result.cam_rpm.size
     written = [save_figure(plot_sweep_forces(result), out_dir / f"{prefix}_forces.png")]
+    if getattr(result.spring, "names", None) is not None:  # a spring pack: each spring's forces and Goodman
+        written.append(save_figure(_pack_springs(result), out_dir / f"{prefix}_springs.png"))
     axis = result.crank_axis if result.crank_axis is not None else CrankAxis.cam()
     deg = axis.crank_deg(np.degrees(result.cam_angle))
     order = np.argsort(deg, kind="stable")
@@ -294,6 +300,29 @@ def plot_sweep(result, out_dir, prefix="sweep"):
         ax.legend(fontsize=8)
         written.append(save_figure(fig, out_dir / f"{prefix}_contact.png"))
     return written
+
+
+def _pack_springs(result):
+    """A spring pack's sweep, each spring: its retainer force's extremes against its static force's,
+    and its Goodman safety (dynamic and static) over the speeds (:meth:`SpeedSweep.spring_table`)."""
+    rpm, speed_label = _speed_axis(result)
+    fig, (ax, ax2) = new_figure(2, 1, figsize=(9, 8), sharex=True)
+    for k, name in enumerate(result.spring.names):
+        t, color = result.spring_table(name), f"C{k}"
+        ax.plot(rpm, t["max_retainer_force_N"], color=color, lw=1.5, label=f"{name}: max / min at the retainer")
+        ax.plot(rpm, t["min_retainer_force_N"], color=color, lw=1.5, ls="-.")
+        ax.plot(rpm, t["max_static_force_N"], color=color, lw=0.8, ls="--", label=f"{name}: static max / min")
+        ax.plot(rpm, t["min_static_force_N"], color=color, lw=0.8, ls="--")
+        ax2.plot(rpm, t["fatigue_safety_factor"], color=color, lw=1.5, label=f"{name}: dynamic")
+        ax2.plot(rpm, t["static_fatigue_safety_factor"], color=color, lw=0.8, ls="--", label=f"{name}: static")
+    ax.set_ylabel("force [N]")
+    ax.set_title(f"{result.spring.type}: each spring over the speed range")
+    ax2.set_ylabel("Goodman safety [-]")
+    ax2.set_xlabel(speed_label)
+    for a in (ax, ax2):
+        a.grid(True, alpha=0.3)
+        a.legend(fontsize=7, ncol=2)
+    return fig
 
 
 def _speed_axis(result):

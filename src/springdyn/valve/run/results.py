@@ -1082,7 +1082,7 @@ def _clash_impacts(sim, events: list) -> dict:
     share = np.nan_to_num(sim.contact_share)
     cc = verdicts.coil_clash(model, sim.element_compression, sim.static_force, 60.0 / sim.cam_rpm)
     closing = cc["closing"]
-    fset = model.chain.setup_force
+    fset = model.element_setup_forces()  # each element's own spring's Fset (verdicts.coil_clash)
     deg = sim.cam_angle_deg
     index = {f"{j + 1}:{n}": j for j, n in enumerate(model.chain.element_names)}
     count, duration, peak = 0, 0.0, 0.0
@@ -1092,12 +1092,13 @@ def _clash_impacts(sim, events: list) -> dict:
         ev["peak_force_through_contact_N"] = float(share[np.ix_(rows, mask)].max()) if mask.any() else 0.0
         block = np.ix_(rows, mask)
         ev["dynamic_closing"] = bool(closing[block].any()) if mask.any() else False
-        ev["clash_severity"] = float(np.where(closing[block], share[block], 0.0).max()) / fset if mask.any() else 0.0
+        through = np.where(closing[block], share[block], 0.0) if mask.any() else np.zeros((1, 1))
+        ev["clash_severity"] = float((through / fset[rows][:, None]).max()) if mask.any() else 0.0
         ev["clash"] = ev["clash_severity"] > verdicts.MAX_CLASH_SEVERITY
         if ev["dynamic_closing"]:
             count += 1
             duration += ev["duration_deg"]
-            peak = max(peak, ev["clash_severity"] * fset)
+            peak = max(peak, float(through.max()))
     return dict(
         clash_class=verdicts.CLASH_CLASSES[int(cc["class_index"])],
         clash_severity=float(cc["severity"]),
@@ -1187,7 +1188,8 @@ def pack_energy(sim) -> dict:
 
 
 def _pack_durability(sim, s: dict, notes: list) -> dict:
-    """Each spring's wire fatigue, stress and length to solid over the simulated cycle (the
+    """Each spring's wire fatigue, stress, length to solid and coil clash (over its own Fset,
+    :func:`springdyn.valve.run.verdicts.spring_clashes`) over the simulated cycle (the
     figures of :func:`_durability` per spring, under ``springs``); the pack's own keys are the
     Goodman-critical spring's, and its energy balance (:func:`pack_energy`)."""
     pack = sim.spring
@@ -1197,6 +1199,7 @@ def _pack_durability(sim, s: dict, notes: list) -> dict:
     z = sim.valve_lift if sim.valve_lift is not None else sim.lift
     static = pack.static_forces(np.array([max(float(z.min()), 0.0), float(z.max())]))
     per = {}
+    clash = verdicts.spring_clashes(model, sim.element_compression, sim.static_force, 60.0 / sim.cam_rpm)
     for k, (name, spring, r) in enumerate(zip(pack.names, pack.springs, model.element_ranges())):
         wire = wire_all[r]
         ends = sim.element_force[r]
@@ -1219,6 +1222,9 @@ def _pack_durability(sim, s: dict, notes: list) -> dict:
             peak_shear_stress_Pa=f["peak_shear_stress_Pa"],
             wire_stress_ok=f["wire_stress_ok"],
             min_length_to_solid_m=float(max(length.min() - spring.solid_length, 0.0)),
+            clash_class=verdicts.CLASH_CLASSES[int(clash[name]["class_index"])],
+            clash_severity=float(clash[name]["severity"]),
+            coil_clash=bool(clash[name]["clash"]),
             fatigue=f,
         )
         if not f["wire_stress_ok"]:

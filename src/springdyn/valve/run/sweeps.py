@@ -138,10 +138,32 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         out["static"] = static
     else:
         static = np.broadcast_to(static_force_along_grid(setup, points), out["retainer"].shape)
-    cc = verdicts.coil_clash(model, np.moveaxis(ex[:, last, lay["compression"]], -1, 0), static, 60.0 / cam_rpm)
+    x = np.moveaxis(ex[:, last, lay["compression"]], -1, 0)
+    cc = verdicts.coil_clash(model, x, static, 60.0 / cam_rpm)
     out["closing"] = cc["closing"].any(axis=(0, 2))
     for key in ("severity", "contact_share", "closing_velocity_m_per_s", "transition", "active", "clash"):
         out[f"clash_{key}" if key != "clash" else "clash"] = np.asarray(cc[key])
+    if setup.n_chains > 1:  # a spring pack: each spring's retainer force, static force and coil clash
+        lift = out["valve_lift"] if setup.valve_train is not None else ex[:, last, lay["lift"]]
+        out.update(_pack_columns(setup.spring, f[:, last], x, static, lift, cam_rpm))
+    return out
+
+
+def _pack_columns(pack, force, compression, static, lift, cam_rpm) -> dict:
+    """A spring pack's per-spring arrays of a chunk (speeds, springs): the retainer force's extremes
+    on the output grid (the spring's last element), the static force's at the smallest and the
+    largest lift (:meth:`~springdyn.valve.spring.pack.SpringPack.static_forces`, exact for each
+    spring) and the coil clash (:func:`springdyn.valve.run.verdicts.spring_clashes`)."""
+    ranges = pack.spring_model.element_ranges()
+    retainer = np.stack([force[:, :, r.stop - 1] for r in ranges], axis=1)  # (speeds, springs, points)
+    z = np.asarray(lift, dtype=float)
+    lo = pack.static_forces(np.maximum(np.nanmin(z, axis=1), 0.0))  # (springs, speeds)
+    hi = pack.static_forces(np.nanmax(z, axis=1))
+    each = verdicts.spring_clashes(pack.spring_model, compression, static, 60.0 / cam_rpm).values()
+    out = dict(spring_retainer_min=retainer.min(axis=2), spring_retainer_max=retainer.max(axis=2))
+    out.update(spring_static_min=lo.T, spring_static_max=hi.T)
+    for key in ("severity", "transition", "active", "clash"):
+        out[f"spring_clash_{key}"] = np.stack([np.asarray(c[key]) for c in each], axis=1)
     return out
 
 
@@ -599,7 +621,44 @@ class SpeedSweep(CrankAngles, Result):
         if self.valve_train is not None:
             cols.update(self._separation_columns(cols, ext, col, lo, hi, flat, nv, nr))
         cols.update(self._fatigue_columns(cols, nv, nr))
+        if "spring_retainer_min" in d:  # a spring pack: each spring's columns, <spring>_<column>
+            for k, name in enumerate(self.spring.names):
+                cols.update(
+                    {
+                        f"{name}_max_retainer_force_N": flat(d["spring_retainer_max"][:, :, k]),
+                        f"{name}_min_retainer_force_N": flat(d["spring_retainer_min"][:, :, k]),
+                        f"{name}_max_static_force_N": flat(d["spring_static_max"][:, :, k]),
+                        f"{name}_min_static_force_N": flat(d["spring_static_min"][:, :, k]),
+                        f"{name}_clash_severity": flat(d["spring_clash_severity"][:, :, k]),
+                        f"{name}_coil_clash": flat(d["spring_clash_clash"][:, :, k]),
+                        f"{name}_transition_seating": flat(d["spring_clash_transition"][:, :, k]),
+                        f"{name}_active_coil_closing": flat(d["spring_clash_active"][:, :, k]),
+                    }
+                )
         return cols
+
+    def spring_table(self, name: str) -> dict:
+        """One spring's columns of a spring pack's :meth:`summary_table`, under the names of a
+        single spring's (``min_retainer_force_N``, ``clash_severity``, ``fatigue_safety_factor``,
+        ...): its retainer force on the output grid, its static force, its coil clash over its
+        own Fset (:func:`springdyn.valve.run.verdicts.spring_clashes`) and its wire's fatigue and
+        stress from its own elements (elements counted from its seat end), beside the sweep's
+        ``cam_rpm``.
+
+        Parameters
+        ----------
+        name : {"outer", "inner", "third"}
+            The spring [-].
+        """
+        names = getattr(self.spring, "names", None)
+        if names is None or name not in names:
+            raise InputError(
+                f"spring {name!r}: the sweep's spring is "
+                + (f"a pack of {', '.join(names)}" if names else "one spring, not a pack (summary_table is its table)")
+            )
+        table = self.summary_table()
+        head = {k: table[k] for k in ("cam_rpm", "engine_rpm") if k in table}
+        return head | {k[len(name) + 1 :]: v for k, v in table.items() if k.startswith(f"{name}_")}
 
     def _separation_columns(self, cols, ext, col, lo, hi, flat, nv, nr) -> dict:
         """Lift-off by phase, float (nose separation), seat bounce and the seating velocity
@@ -664,6 +723,10 @@ class SpeedSweep(CrankAngles, Result):
         wmax = d["wire_max"].reshape(nv * nr, -1)
         dyn, sta, tau, crit = (np.empty(nv * nr) for _ in range(4))
         ok = np.empty(nv * nr, dtype=bool)
+        per = {}
+        static_lo, static_hi = cols["min_static_force_N"], cols["max_static_force_N"]
+        if "spring_static_min" in d:  # a spring pack: each spring's own static range
+            static_lo, static_hi = (d[k].reshape(nv * nr, -1) for k in ("spring_static_min", "spring_static_max"))
         for k in range(nv * nr):
             f = verdicts.wire_fatigue(
                 self.springs[k // nr],
@@ -671,19 +734,28 @@ class SpeedSweep(CrankAngles, Result):
                 wmax[k],
                 (cols["min_seat_force_N"][k], cols["min_retainer_force_N"][k]),
                 (cols["max_seat_force_N"][k], cols["max_retainer_force_N"][k]),
-                cols["min_static_force_N"][k],
-                cols["max_static_force_N"][k],
+                static_lo[k],
+                static_hi[k],
             )
             dyn[k] = f["fatigue_safety_factor"] if f["fatigue_safety_factor"] is not None else 0.0
             sta[k] = f["static_fatigue_safety_factor"] if f["static_fatigue_safety_factor"] is not None else 0.0
             tau[k], crit[k], ok[k] = f["peak_shear_stress_Pa"], f["peak_shear_stress_element"] + 1, f["wire_stress_ok"]
-        return dict(
+            for name, g in f.get("springs", {}).items():  # a spring pack: each spring's own
+                per.setdefault(name, []).append(g)
+        out = dict(
             fatigue_safety_factor=dyn,
             static_fatigue_safety_factor=sta,
             peak_shear_stress_Pa=tau,
             peak_shear_stress_element=crit.astype(int),
             wire_stress_ok=ok,
         )
+        for name, rows in per.items():
+            for key in ("fatigue_safety_factor", "static_fatigue_safety_factor"):
+                out[f"{name}_{key}"] = np.array([g[key] if g[key] is not None else 0.0 for g in rows])
+            out[f"{name}_peak_shear_stress_Pa"] = np.array([g["peak_shear_stress_Pa"] for g in rows])
+            out[f"{name}_peak_shear_stress_element"] = np.array([g["peak_shear_stress_element"] + 1 for g in rows])
+            out[f"{name}_wire_stress_ok"] = np.array([g["wire_stress_ok"] for g in rows])
+        return out
 
     def float_speeds(self) -> np.ndarray:
         """Float speed per design value [rpm]: the lowest swept speed from which the valve

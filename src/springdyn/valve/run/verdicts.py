@@ -37,6 +37,7 @@ __all__ = [
     "CLASH_CLASSES",
     "transition_elements",
     "coil_clash",
+    "spring_clashes",
     "clashes",
     "valve_held_open",
     "pumps_up",
@@ -201,7 +202,8 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     static spring does), ``"active"`` where an active coil does (the surge closing the active
     coils), ``"none"`` without one.  Its *severity* [fraction of Fset]: the largest force the
     dynamically closed coils pass through their contact (:meth:`SpringModel.contact_share`,
-    the force that is no torsion of the wire) over the set-up force.  That force is the
+    the force that is no torsion of the wire) over the set-up force (a spring pack's: each
+    spring's over its own, :meth:`SpringModel.element_setup_forces`).  That force is the
     impact: the momentum of the closing coils stopped by the contact stiffness of closed turns,
     it loads the coil surfaces (wear, noise) and adds to the end forces; an element merely
     reaching its gap passes none.  The same figure from each model's own chain and contact law
@@ -240,12 +242,14 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     elastic = np.stack([law_force(x[j], law) for j, law in enumerate(model.chain.laws)])
     share = np.nan_to_num(model.contact_share(elastic))
     through = np.where(closing, share, 0.0)
-    fset = model.chain.setup_force
-    worst = through.max(axis=(0, -1))
-    # the contact's share of the element's force where the force through contact is largest
-    lead = worst.shape
+    # over each element's own spring's Fset (a spring pack's springs each over its own)
+    graded = through / model.element_setup_forces().reshape((-1,) + (1,) * (x.ndim - 1))
+    severity = graded.max(axis=(0, -1))
+    # the contact's share of the element's force where the graded force through contact is largest
+    lead = severity.shape
     pick = lambda a: np.moveaxis(a, 0, -2).reshape(lead + (-1,))  # noqa: E731
-    k = np.argmax(pick(through), axis=-1)[..., None]
+    k = np.argmax(pick(graded), axis=-1)[..., None]
+    worst = np.take_along_axis(pick(through), k, axis=-1)[..., 0]
     at_worst = np.take_along_axis(pick(elastic), k, axis=-1)[..., 0]
     frac = np.where(worst > 0.0, worst / np.where(at_worst > 0.0, at_worst, 1.0), 0.0)
     # the closing velocity: the compression's rate over the sample before each dynamic closing starts
@@ -257,7 +261,6 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     trans = transition_elements(model).reshape((-1,) + (1,) * (rows.ndim - 1))
     transition = (rows & trans).any(axis=0)
     active = (rows & ~trans).any(axis=0)
-    severity = worst / fset
     out = dict(
         closing=closing,
         severity=severity,
@@ -271,15 +274,55 @@ def coil_clash(spring_model, compression, static_force, period, limit: float | N
     return {key: (v if v.ndim else v[()]) for key, v in ((key, np.asarray(v)) for key, v in out.items())}
 
 
-def _pack_wire_fatigue(pack, wire_lo, wire_hi, static_lo: float, static_hi: float) -> dict:
+def spring_clashes(spring_model, compression, static_force, period, limit: float | None = None) -> dict:
+    """Each spring's coil clash in a spring pack: :func:`coil_clash` of its own chain, on its own
+    elements, against its share of the pack's static force (its share at installed length, as
+    :meth:`springdyn.valve.spring.pack.PackModel.clash` splits it), its severity over its own
+    set-up force.  The pack's :func:`coil_clash` is its worst spring's (each element over its own
+    spring's Fset, :meth:`~springdyn.valve.spring.chains.SpringModel.element_setup_forces`).
+
+    Parameters
+    ----------
+    spring_model : PackModel
+        The pack's model (one spring's model: no springs) [-].
+    compression : array_like (N + C, ..., n)
+        Every chain's element compressions, one chain after the other [m].
+    static_force : array_like (..., n)
+        The pack's static force at the same instants [N].
+    period : float or array_like (...)
+        Duration of the revolution [s].
+    limit : float, optional
+        Largest severity that is no clash [fraction of the spring's Fset].
+
+    Returns
+    -------
+    dict
+        Spring name -> :func:`coil_clash`'s dict (empty for one spring).
+    """
+    models = getattr(spring_model, "models", None)
+    if models is None:
+        return {}
+    pack = spring_model.pack
+    share = np.array(pack.setup_forces) / sum(pack.setup_forces)
+    x, static = np.asarray(compression, dtype=float), np.asarray(static_force, dtype=float)
+    return {
+        name: coil_clash(m, x[r], share[k] * static, period, limit)
+        for k, (name, m, r) in enumerate(zip(pack.names, models, spring_model.element_ranges()))
+    }
+
+
+def _pack_wire_fatigue(pack, wire_lo, wire_hi, static_lo, static_hi) -> dict:
     """:func:`wire_fatigue` of a spring pack: each spring's from its own elements (its end
-    elements' ranges from the output grid) and its share of the static force (its share at
-    installed length); the pack's figures are the Goodman-critical spring's, the peak stress
-    the largest of any spring, ``critical_spring`` names it."""
+    elements' ranges from the output grid) and its own static force range (``static_lo``,
+    ``static_hi`` per spring; a pack's total alone: its share at installed length); the pack's figures are the Goodman-critical spring's, the peak stress
+    the largest of any spring, ``critical_spring`` names it; ``springs`` holds each spring's
+    figures by name (its elements counted from its own seat end)."""
     lo = np.asarray(wire_lo, dtype=float)
     hi = np.asarray(wire_hi, dtype=float)
     share = np.array(pack.setup_forces) / sum(pack.setup_forces)
-    each = []
+    if np.ndim(static_lo) == 0:  # the pack's total: split by the shares at installed length
+        static_lo, static_hi = share * float(static_lo), share * float(static_hi)
+    each, own = [], {}
     for k, (spring, r) in enumerate(zip(pack.springs, pack.spring_model.element_ranges())):
         f = wire_fatigue(
             spring,
@@ -287,15 +330,16 @@ def _pack_wire_fatigue(pack, wire_lo, wire_hi, static_lo: float, static_hi: floa
             hi[r],
             (lo[r][0], lo[r][-1]),
             (hi[r][0], hi[r][-1]),
-            share[k] * static_lo,
-            share[k] * static_hi,
+            float(static_lo[k]),
+            float(static_hi[k]),
         )
+        own[pack.names[k]] = dict(f)
         f["fatigue_critical_element"] += r.start
         f["peak_shear_stress_element"] += r.start
         each.append(f)
     k = min(range(len(each)), key=lambda i: each[i]["fatigue_safety_factor"] or np.inf)
     top = max(range(len(each)), key=lambda i: each[i]["peak_shear_stress_Pa"])
-    out = dict(each[k], critical_spring=pack.names[k])
+    out = dict(each[k], critical_spring=pack.names[k], springs=own)
     out.update(
         peak_shear_stress_Pa=each[top]["peak_shear_stress_Pa"],
         peak_shear_stress_element=each[top]["peak_shear_stress_element"],
@@ -352,8 +396,9 @@ def wire_fatigue(spring, wire_lo, wire_hi, end_lo, end_hi, static_lo: float, sta
         Each element's smallest and largest wire torsion as an axial force [N] (NaN: no wire).
     end_lo, end_hi : array_like (2,)
         The smallest and largest seat and retainer forces [N] (true extremes).
-    static_lo, static_hi : float
-        The static force's range over the cycle [N] (installed to open).
+    static_lo, static_hi : float or array_like (springs,)
+        The static force's range over the cycle [N] (installed to open); of a spring pack, each
+        spring's (a pack's total alone is split by the springs' shares at installed length).
 
     Returns
     -------

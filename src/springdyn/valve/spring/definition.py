@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.params import Parameters, describe_value, param
+from ...core.params import Parameters, describe_value, load_toml, param
 from ...core.units import format_mm, format_quantity, to_si
 from . import formulas
 from .chains import make_model
@@ -57,6 +57,10 @@ TRANSITION_TURNS_TEXT = "a transition of half a turn between sections"
 
 #: Names of the spring models (:data:`springdyn.valve.spring.chains.MODELS`).
 MODEL_NAMES = ("type-c", "distributed")
+
+#: The tables that make a file a spring pack (:class:`springdyn.valve.spring.pack.SpringPack`):
+#: :meth:`ValveSpring.from_toml` refuses such a file rather than read its outer spring alone.
+PACK_FILE_TABLES = ("inner_spring", "third_spring", "pack", "damper")
 
 
 @dataclass(frozen=True)
@@ -239,6 +243,29 @@ class ValveSpring(Parameters):
     extra_keys = DRAWING_KEYS
 
     # ------------------------------------------------------------------ construction
+    @classmethod
+    def from_toml(cls, path) -> ValveSpring:
+        """The ``[spring]`` table of a TOML file; a spring pack's file (with ``[inner_spring]``,
+        ``[third_spring]``, ``[pack]`` or ``[damper]``) is refused: its ``[spring]`` is only the
+        outer spring (:class:`springdyn.valve.spring.pack.SpringPack` reads the pack).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file.
+        """
+        doc = load_toml(path)
+        pack = [t for t in PACK_FILE_TABLES if t in doc]
+        if pack:
+            raise InputError(
+                f"{path}: [{pack[0]}] makes this file a spring pack, and a ValveSpring is one spring: read it with "
+                "SpringPack.from_toml or ValveModel.from_files, run it through springdyn valve simulate, sweep, "
+                "float, train-modes, clearance, cam-check or springdyn report, or give one spring's own file"
+            )
+        if cls.table not in doc:
+            return super().from_toml(path)  # the missing table's own message
+        return cls.from_dict(doc[cls.table], source=str(path), base_dir=Path(path).parent)
+
     @classmethod
     def _prepare(cls, mapping: dict, base_dir=None, **context) -> dict:
         """The drawing's keys become the model's (:meth:`_from_drawing`); load points and

@@ -40,7 +40,7 @@ from .elements import law_stiffness
 from .modes import chain_frequencies
 from .solid_length import check_coil_bind
 from .statics import series_force
-from .stress import corrected_shear_stress, fatigue_assessment
+from .stress import fatigue_assessment
 
 __all__ = ["SpringPack", "PackOptions", "FrictionDamper", "PackModel", "PackChain", "SPRING_TABLES", "POSITIONS"]
 __all__ += ["diameter_growth", "radial_clearance"]
@@ -615,7 +615,7 @@ class SpringPack:
             out[f"{name}_installed_force_N"] = float(f0[k])
             out[f"{name}_open_force_N"] = float(f1[k])
             out[f"{name}_force_share"] = float(f1[k] / f1.sum())
-            out[f"{name}_max_shear_stress_Pa"] = float(corrected_shear_stress(f1[k], s.mean_diameter, s.wire_diameter))
+            out[f"{name}_max_shear_stress_Pa"] = float(f1[k] * s.spring_model.stress_per_force)  # the wire's section
             out[f"{name}_goodman_safety"] = st[name]["fatigue_safety_factor"]
             out[f"{name}_first_mode_Hz"] = float(modes[name][0])
             out[f"{name}_solid_length_m"] = float(s.solid_length)
@@ -624,6 +624,40 @@ class SpringPack:
             out[f"{pair}_radial_clearance_m"] = float(fig["radial_clearance_installed_m"])
             out[f"{pair}_interference_m"] = float(fig["interference_m"])
         return out
+
+    def design_figures(self, lift: float, cam_rpm: float | None = None) -> dict:
+        """The pack's design figures at a lift: each spring's own (its model's
+        :meth:`~springdyn.valve.spring.chains.SpringModel.design_figures` at its installed length
+        and the same lift: forces, corrected stress by its wire's factor, surge frequency and
+        margin, solid length and coil bind, static Goodman) under ``springs``, and the pack's:
+        ``installed_force_N`` and ``open_force_N`` (its springs' sums), each spring's share of
+        the open force (``force_share``), the modes with the ends held (``modes_Hz``, ascending,
+        and the spring of each, ``mode_springs``), the solid height (``pack_solid_length_m``, the
+        longest spring's solid length, seat steps aside) and the fit of neighbours (``fit``,
+        :func:`radial_clearance`).
+
+        Parameters
+        ----------
+        lift : float
+            Lift from the installed lengths [m].
+        cam_rpm : float, optional
+            Cam speed of the surge margins [rev/min].
+        """
+        springs = {n: s.spring_model.design_figures(lift, cam_rpm) for n, s in zip(self.names, self.springs)}
+        installed = sum(f["installed"]["force_N"] for f in springs.values())
+        opened = sum(f["open"]["force_N"] for f in springs.values())
+        modes = self.modes(0.0, 3)
+        tagged = sorted((f, n) for n in self.names for f in modes[n])
+        return dict(
+            springs=springs,
+            installed_force_N=float(installed),
+            open_force_N=float(opened),
+            force_share={n: f["open"]["force_N"] / opened for n, f in springs.items()},
+            modes_Hz=[float(f) for f, _ in tagged],
+            mode_springs=[n for _, n in tagged],
+            pack_solid_length_m=max(s.solid_length for s in self.springs),
+            fit=self.fit,
+        )
 
     # ------------------------------------------------------------------ the friction rows
     def node(self, name: str, height: float) -> int:
@@ -781,6 +815,11 @@ class PackModel:
             getattr(m, method)(*(np.asarray(a)[r] for a in arrays)) for m, r in zip(self.models, self.element_ranges())
         ]
         return np.concatenate(parts, axis=0)
+
+    def element_setup_forces(self) -> np.ndarray:
+        """Each element's own spring's set-up force [N] (N + C,): a coil clash in a spring is graded
+        over that spring's Fset, not the pack's."""
+        return np.concatenate([m.element_setup_forces() for m in self.models])
 
     def contact_share(self, elastic_force) -> np.ndarray:
         """Each spring's :meth:`springdyn.valve.spring.chains.SpringModel.contact_share` [N].

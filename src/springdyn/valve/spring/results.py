@@ -285,10 +285,13 @@ class DesignFigures:
         """The figures in words and a table per state."""
         fig = self.figures
         round_wire = fig.get("wire_section", "round").startswith("round")
+        factor = f"stress factor {fig['stress_factor']:.4f} ({fig['stress_factor_name']})"
         lines = [
-            f"spring index C = {fig['spring_index']:.3f}, Bergstraesser k = {fig['bergstraesser_factor']:.4f}, "
-            f"Wahl k = {fig['wahl_factor']:.4f}"
-            + ("" if round_wire else f"; wire {fig['wire_section']}, stress factor {fig['stress_factor']:.4f}"),
+            (
+                f"spring index C = {fig['spring_index']:.3f}, {factor}, Wahl k = {fig['wahl_factor']:.4f} (beside it)"
+                if round_wire
+                else f"wire {fig['wire_section']}, spring index D/b = {fig['spring_index']:.3f}, {factor}"
+            ),
             f"coils: {fig['total_coils']:g} total, {fig['active_coils']:g} active ({fig['dead_coils_per_end']:g} dead "
             f"per end); solid length Lc = {fig['solid_length_m'] * 1e3:.3f} mm ({fig['solid_length_source']}); "
             f"spring mass M = {fig['spring_mass_kg'] * 1e3:.2f} g",

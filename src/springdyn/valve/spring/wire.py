@@ -298,6 +298,15 @@ class WireSection:
         return rectangular_curvature_factor(w) if self.shape == "rectangular" else stress.bergstraesser_factor(w)
 
     @property
+    def stress_factor_name(self) -> str:
+        """What :meth:`stress_factor` is for this section, in words (the reports name the factor by it)."""
+        if self.shape == "rectangular":
+            return "Goehner's curvature factor of rectangular wire (Roark), at D/b"
+        if self.shape == "ovate":
+            return "Bergstraesser's k (EN 13906-1 Eq. (22)) at D/b, on the ellipse's largest stress"
+        return "Bergstraesser's k (EN 13906-1 Eq. (22))"
+
+    @property
     def stress_modulus(self) -> float:
         """The straight bar's ``T / tau_max`` [m^3]: ``pi d^3/16`` (round) and the Saint-Venant
         forms of :func:`rectangle_torsion` and :func:`ellipse_torsion`."""

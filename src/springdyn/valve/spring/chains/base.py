@@ -174,6 +174,11 @@ class SpringModel:
         below = np.asarray(static_force)[None, ...] < self.contact_forces.reshape(shape) - margin
         return np.asarray(contact, bool) & below
 
+    def element_setup_forces(self) -> np.ndarray:
+        """The set-up force [N] each element's coil clash is graded over (N + 1,): the spring's Fset
+        (a spring pack's: each element's own spring's, :class:`springdyn.valve.spring.pack.PackModel`)."""
+        return np.full(len(self.chain.laws), float(self.chain.setup_force))
+
     def contact_share(self, elastic_force) -> np.ndarray:
         """The part of each element's elastic force [N] that closed coils pass through their
         contact, not the wire in torsion (the wire's torsion is the rest).
@@ -485,7 +490,9 @@ class SpringModel:
             ``surge_frequency_free_Hz`` (the chain's at free length) and, per state (``installed``,
             ``open`` if lift is given, ``coil_contact``): ``length_m``, ``force_N``,
             ``shear_stress_Pa`` (corrected by the section's factor, ``stress_factor``, of
-            ``wire_section``: Bergstraesser's for round wire), ``surge_frequency_Hz`` (first
+            ``wire_section``: Bergstraesser's for round and ovate wire, Goehner's for rectangular;
+            ``stress_factor_name`` says which; ``bergstraesser_factor`` is Bergstraesser's at
+            ``D/b`` whatever the wire), ``surge_frequency_Hz`` (first
             mode of the linearised chain) and, with ``cam_rpm``, ``surge_margin``.
         """
         if cam_rpm is not None and (
@@ -507,6 +514,7 @@ class SpringModel:
             wahl_factor=stress.wahl_factor(c),
             wire_section=wire.label,
             stress_factor=float(wire.stress_factor(self.spring.mean_diameter)),
+            stress_factor_name=wire.stress_factor_name,
             **{k: v for k, v in self.spring.coil_facts.items() if k != "free_length_m"},
             spring_mass_kg=p["M"],
             rate_free_N_per_m=p["K1"],
