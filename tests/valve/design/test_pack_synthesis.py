@@ -27,7 +27,7 @@ def _tau(force, d_mean, d_wire):
 
 
 def test_the_inner_spring_carries_its_share_at_the_outers_stress():
-    outer = ValveSpring.from_toml(EXAMPLE)
+    outer = ValveSpring.outer_from_toml(EXAMPLE)
     share, lift, clearance = 0.33, 9e-3, 1e-3
     r = inner_spring_for(outer, share, lift, clearance, installed_length=0.041)
     inner = r["spring"]
@@ -48,7 +48,7 @@ def test_the_inner_spring_carries_its_share_at_the_outers_stress():
 
 
 def test_an_impossible_split_is_refused():
-    outer = ValveSpring.from_toml(EXAMPLE)
+    outer = ValveSpring.outer_from_toml(EXAMPLE)
     with pytest.raises(InputError, match="share"):
         inner_spring_for(outer, 0.9, 9e-3)
 

@@ -259,7 +259,7 @@ def cmd_synthesize_inner(args) -> int:
     clearance = quantity(args.clearance, "m", "--clearance")
     installed = quantity(args.installed_length, "m", "--installed-length") if args.installed_length else None
     doc = load_toml(args.outer)
-    outer = valve.ValveSpring.from_toml(args.outer)
+    outer = valve.ValveSpring.outer_from_toml(args.outer)
     with as_options(share="--share", lift="--lift", clearance="--clearance"):
         result = design.inner_spring_for(outer, share, lift, clearance, installed_length=installed)
     figures = design.inner_spring_figures(result, lift)

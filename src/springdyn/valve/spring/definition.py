@@ -267,6 +267,21 @@ class ValveSpring(Parameters):
         return cls.from_dict(doc[cls.table], source=str(path), base_dir=Path(path).parent)
 
     @classmethod
+    def outer_from_toml(cls, path) -> ValveSpring:
+        """The ``[spring]`` of a file: one spring's, or a spring pack's outer spring (its other
+        tables not read), for what designs against one given spring (``valve synthesize-inner``).
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file.
+        """
+        doc = load_toml(path)
+        if cls.table not in doc:
+            return super().from_toml(path)  # the missing table's own message
+        return cls.from_dict(doc[cls.table], source=str(path), base_dir=Path(path).parent)
+
+    @classmethod
     def _prepare(cls, mapping: dict, base_dir=None, **context) -> dict:
         """The drawing's keys become the model's (:meth:`_from_drawing`); load points and
         profiles: a TOML array becomes an inline table (SI); a relative CSV path is taken from
