@@ -1597,11 +1597,22 @@ _TWINS["__globals__"]["lever_ratio_at"] = kernel(
 
 def _choose_chains(s, m, nfree, u_top, v_top, out, extra):
     """:func:`chain_forces` for compiled code: the twin of :func:`one_chain_forces` for a model
-    whose ``damper`` is None (one spring), else that of :func:`pack_chain_forces`; chosen when
-    numba types the call, so each variant compiles its own chain only."""
+    whose ``damper`` is None (one spring), inlined, else a call of :func:`pack_chain_forces`
+    compiled on its own (:data:`_PACK_CHAINS`); chosen when numba types the call, so each
+    variant compiles its own chain only."""
     if isinstance(m, types.BaseNamedTuple) and isinstance(m.types[_DAMPER_FIELD], types.NoneType):
         return _TWINS["one_chain_forces"].py_func
-    return _TWINS["pack_chain_forces"].py_func
+
+    def pack_chains(s, m, nfree, u_top, v_top, out, extra):
+        return _PACK_CHAINS(s, m, nfree, u_top, v_top, out, extra)
+
+    return pack_chains
+
+
+#: A spring pack's chains, called, not inlined: inlined into every stage of the step its loops
+#: made numba's inliner leave variables out of scope (a pedantic NumbaIRAssumptionWarning on
+#: every compilation of a pack) and cost compile time; its work per call is far more than a call.
+_PACK_CHAINS = kernel(rebind(pack_chain_forces, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False)
 
 
 _DAMPER_FIELD = EngineModel._fields.index("damper")
