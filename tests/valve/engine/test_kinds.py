@@ -169,10 +169,17 @@ def test_the_variants_are_one_table():
     from springdyn.numerics import erk
     from springdyn.valve.engine import stepping
 
-    assert set(loop.VARIANTS) == {(p, m) for p in erk.TABLEAUS for m in ("spring", "train")}
+    models = ("spring", "train", "spring-pack", "train-pack")
+    assert set(loop.VARIANTS) == {(p, m) for p in erk.TABLEAUS for m in models}
+    hot = {
+        "spring": eq.spring_rhs_hot,
+        "train": eq.train_rhs_hot,
+        "spring-pack": eq.spring_rhs_hot_pack,
+        "train-pack": eq.train_rhs_hot_pack,
+    }
     for (pair, model), v in loop.VARIANTS.items():
         assert v.step is getattr(stepping, f"{pair}_step") and v.dense is getattr(stepping, f"{pair}_dense")
-        assert v.rhs is (eq.train_rhs_hot if model == "train" else eq.spring_rhs_hot)
+        assert v.rhs is hot[model]
     with pytest.raises(RuntimeError, match="loop.VARIANTS"):
         loop.attempt_step(*[None] * 14)
     with pytest.raises(RuntimeError, match="loop.VARIANTS"):

@@ -41,6 +41,7 @@ _EXPORTS = {
     "train_response": "equations",
     "damper_friction": "equations",
     "rhs_call": "equations",
+    "rhs_kernel": "equations",
     "NO_EXTRA": "equations",
     "EngineModel": "equations",
     "series_force_compiled": "static_force",

@@ -219,7 +219,7 @@ def integrate(
     off = new_monitor(np.empty(0), np.empty((0, 4)), np.zeros(1, dtype=np.int64), gaps, 0.0, vt)
     ws = workspace(y0.size, size, tab.c.shape[0])
     status, t, steps, rejected = _run(
-        integrate_kernel(tab, vt),
+        integrate_kernel(tab, vt, m),
         vt,
         method,
         np.array(y0, dtype=float),

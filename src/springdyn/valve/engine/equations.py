@@ -39,8 +39,6 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from numba import types
-from numba.extending import overload
 
 from ...core.docstrings import ParameterDocs
 from ...numerics.jit import kernel, rebind, twins
@@ -166,6 +164,10 @@ __all__ = [
     "train_rhs_hot",
     "cam_at_hot",
     "rhs_call",
+    "rhs_call_pack",
+    "rhs_kernel",
+    "spring_rhs_hot_pack",
+    "train_rhs_hot_pack",
     "NO_EXTRA",
     "hla_forces",
     "gas_force_at",
@@ -486,9 +488,11 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
     chain (:func:`one_chain_forces`, ``m.damper`` None) or a spring pack's chains
     (:func:`pack_chain_forces`).
 
-    The compiled engine chooses by the *type* of ``m.damper`` (an overload, :func:`_choose_chains`),
-    so a single spring's kernels hold no code of the pack's, and a pack's variant compiles only
-    when a pack runs (issue 41: the cold first result of one spring is not slowed by packs).
+    The compiled engine has two sets of twins (:data:`_TWINS`, :data:`_PACK_TWINS`): one spring's
+    inlines :func:`one_chain_forces`, a pack's calls :func:`pack_chain_forces`, and a run takes
+    the set of its model (:func:`rhs_kernel`, :data:`.loop.VARIANTS`), so a single spring's
+    kernels hold no code of the pack's and a pack's compile only when a pack runs (issue 41: the
+    cold first result of one spring is not slowed by packs).
 
     Parameters
     ----------
@@ -1546,90 +1550,100 @@ def chain_rhs(t, s, m, omega, vt, out, extra):
 #: stores made a sixth of the engine's code for numba to type and compile.
 _RECORDS = ("_record_tail", "_record_hla", "_record_no_hla", "_record_chains")
 
-_TWINS = twins(
-    globals(),
-    [
-        "hermite5",
-        "cam_at",
-        "element_force",
-        "damper_friction",
-        "_damper_row",
-        "_record_chains",
-        "one_chain_forces",
-        "pack_chain_forces",
-        "_record_tail",
-        "_record_hla",
-        "_record_no_hla",
-        "gas_force_at",
-        "lever_mass",
-        "effective_bulk_modulus",
-        "orifice_flow",
-        "contact_force",
-        "hla_chamber",
-        "hla_forces",
-        "bucket_hla_forces",
-        "seat_force",
-        "tip_force",
-        "lever_links",
-        "direct_acting_rhs",
-        "lever_rhs",
-        "lever_hla_rhs",
-        "pushrod_rhs",
-        "bucket_hla_rhs",
-        "spring_rhs",
-        "train_rhs",
-    ],
-    fastmath=FASTMATH,
-)
-# the adjusters' equations are called, not inlined (the finger's with its kind, which holds a
-# second copy of the lever's): the integration step evaluates the right-hand side at every
-# stage, and inlining these rarely used branches there (and into rhs_call) costs seconds of
-# the train engine's compilation (measured 2.4 s for the finger's adjuster alone)
-for _name in ("lever_hla_rhs", "bucket_hla_forces", *_RECORDS):
-    _TWINS["__globals__"][_name] = kernel(
-        rebind(globals()[_name], _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
-    )
-# the same for the drawn lever's table (springdyn.valve.train.lever), used by lever trains only
-_TWINS["__globals__"]["lever_ratio_at"] = kernel(
-    rebind(lever_ratio_at, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False
+#: The functions with compiled twins, callees first (:func:`springdyn.numerics.jit.twins`).
+_TWINNED = (
+    "hermite5",
+    "cam_at",
+    "element_force",
+    "damper_friction",
+    "_damper_row",
+    "_record_chains",
+    "one_chain_forces",
+    "pack_chain_forces",
+    "_record_tail",
+    "_record_hla",
+    "_record_no_hla",
+    "gas_force_at",
+    "lever_mass",
+    "effective_bulk_modulus",
+    "orifice_flow",
+    "contact_force",
+    "hla_chamber",
+    "hla_forces",
+    "bucket_hla_forces",
+    "seat_force",
+    "tip_force",
+    "lever_links",
+    "direct_acting_rhs",
+    "lever_rhs",
+    "lever_hla_rhs",
+    "pushrod_rhs",
+    "bucket_hla_rhs",
+    "spring_rhs",
+    "train_rhs",
 )
 
 
-def _choose_chains(s, m, nfree, u_top, v_top, out, extra):
-    """:func:`chain_forces` for compiled code: the twin of :func:`one_chain_forces` for a model
-    whose ``damper`` is None (one spring), inlined, else a call of :func:`pack_chain_forces`
-    compiled on its own (:data:`_PACK_CHAINS`); chosen when numba types the call, so each
-    variant compiles its own chain only."""
-    if isinstance(m, types.BaseNamedTuple) and isinstance(m.types[_DAMPER_FIELD], types.NoneType):
-        return _TWINS["one_chain_forces"].py_func
-
-    def pack_chains(s, m, nfree, u_top, v_top, out, extra):
-        return _PACK_CHAINS(s, m, nfree, u_top, v_top, out, extra)
-
-    return pack_chains
-
-
-#: A spring pack's chains, called, not inlined: inlined into every stage of the step its loops
-#: made numba's inliner leave variables out of scope (a pedantic NumbaIRAssumptionWarning on
-#: every compilation of a pack) and cost compile time; its work per call is far more than a call.
-_PACK_CHAINS = kernel(rebind(pack_chain_forces, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False)
-
-
-_DAMPER_FIELD = EngineModel._fields.index("damper")
+def _engine_twins(chains, suffix: str) -> dict:
+    """The compiled twins of the equations with ``chains`` as :func:`chain_forces`: one
+    spring's chain inlined (``chains`` None: :func:`one_chain_forces`' twin), or a compiled
+    kernel (a spring pack's, :data:`_PACK_CHAINS`).  Its kernels' names end in ``suffix``
+    (each variant its own cache entries)."""
+    made = twins(globals(), _TWINNED, fastmath=FASTMATH)
+    g = made["__globals__"]
+    g["chain_forces"] = made["one_chain_forces"] if chains is None else chains
+    # the adjusters' equations are called, not inlined (the finger's with its kind, which holds a
+    # second copy of the lever's): the integration step evaluates the right-hand side at every
+    # stage, and inlining these rarely used branches there (and into rhs_call) costs seconds of
+    # the train engine's compilation (measured 2.4 s for the finger's adjuster alone); the same
+    # for the drawn lever's table (springdyn.valve.train.lever), used by lever trains only
+    for name in ("lever_hla_rhs", "bucket_hla_forces", "lever_ratio_at", *_RECORDS):
+        g[name] = kernel(_named(rebind(globals()[name], g), suffix), fastmath=FASTMATH, nogil=True, _nrt=False)
+    made["rhs_call"] = kernel(_named(rebind(chain_rhs, g), suffix), fastmath=FASTMATH, nogil=True, _nrt=False)
+    return made
 
 
-def _chain_forces_stub(s, m, nfree, u_top, v_top, out, extra):  # pragma: no cover - numba only
-    raise NotImplementedError("compiled code calls chain_forces through its overload (_choose_chains)")
+def _named(fn, suffix: str):
+    """``fn`` with ``suffix`` on its qualified name (the kernel's cache entry)."""
+    fn.__qualname__ += suffix
+    return fn
 
 
-overload(_chain_forces_stub, inline="always", jit_options={"fastmath": FASTMATH})(_choose_chains)
-_TWINS["__globals__"]["chain_forces"] = _chain_forces_stub
+#: One spring's engine: :func:`one_chain_forces` inlined wherever :func:`chain_forces` is called.
+_TWINS = _engine_twins(None, "")
+#: A spring pack's chains, compiled on their own and called (inlined into every stage of the
+#: step, their loops made numba's inliner warn of variables out of scope and cost compile time;
+#: their work per call is far more than a call).
+_PACK_CHAINS = kernel(
+    _named(rebind(pack_chain_forces, _TWINS["__globals__"]), "_pack"), fastmath=FASTMATH, nogil=True, _nrt=False
+)
+#: A spring pack's engine: the same equations calling :data:`_PACK_CHAINS`; compiled only when a
+#: pack runs (a model whose ``damper`` is an array: :func:`rhs_kernels`), so a single spring's
+#: kernels hold none of its code.
+_PACK_TWINS = _engine_twins(_PACK_CHAINS, "_pack")
 
 #: :func:`spring_rhs` and :func:`train_rhs` compiled to be inlined into the integration step
-#: (their one hot call site, :mod:`.stepping`, chooses by the type of ``vt``).
+#: (their one hot call site, :mod:`.stepping`, chooses by the type of ``vt``), one spring's and a
+#: spring pack's.
 spring_rhs_hot = _TWINS["spring_rhs"]
 train_rhs_hot = _TWINS["train_rhs"]
+spring_rhs_hot_pack = _PACK_TWINS["spring_rhs"]
+train_rhs_hot_pack = _PACK_TWINS["train_rhs"]
 #: The cam table's interpolant compiled to be inlined (:mod:`.static_force`, the monitor).
 cam_at_hot = _TWINS["cam_at"]
-#: :func:`chain_rhs` compiled as a function of its own: outputs, monitor, static checks.
-rhs_call = kernel(rebind(chain_rhs, _TWINS["__globals__"]), fastmath=FASTMATH, nogil=True, _nrt=False)
+#: :func:`chain_rhs` compiled as a function of its own (outputs, monitor, static checks): one
+#: spring's, and a spring pack's; :func:`rhs_kernel` chooses by the model.
+rhs_call = _TWINS["rhs_call"]
+rhs_call_pack = _PACK_TWINS["rhs_call"]
+
+
+def rhs_kernel(m):
+    """The compiled :func:`chain_rhs` for the model ``m``: :data:`rhs_call` for one spring
+    (``m.damper`` None), :data:`rhs_call_pack` for a spring pack.
+
+    Parameters
+    ----------
+    m : EngineModel
+        The chain and cam arrays [kg, m, N, N s/m, rad].
+    """
+    return rhs_call if m.damper is None else rhs_call_pack

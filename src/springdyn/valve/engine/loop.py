@@ -26,7 +26,15 @@ from ...core.docstrings import ParameterDocs
 from ...numerics import erk
 from ...numerics.jit import kernel, rebind
 from . import stepping
-from .equations import FASTMATH, rhs_call, spring_rhs_hot, train_rhs_hot
+from .equations import (
+    FASTMATH,
+    rhs_call,
+    rhs_call_pack,
+    spring_rhs_hot,
+    spring_rhs_hot_pack,
+    train_rhs_hot,
+    train_rhs_hot_pack,
+)
 from .layout import (
     CHK_CAM,
     CHK_HLA,
@@ -43,7 +51,7 @@ from .layout import (
     XT_RETAINER_TOTAL,
     XT_SEAT_TOTAL,
 )
-from .monitor import finish_monitor, monitor_step, new_monitor
+from .monitor import finish_monitor, monitor_step, monitor_step_pack, new_monitor
 
 __all__ = [
     "Tolerances",
@@ -348,17 +356,28 @@ class Variant(NamedTuple):
 #: Every compiled variant of the engine, by (pair, model): one per Runge-Kutta pair of
 #: :data:`springdyn.numerics.erk.TABLEAUS` and model, the spring alone (``"spring"``, the
 #: valve train's parameters None) or the valve train (``"train"``, all kinds of train: the
-#: kind is a runtime choice, :func:`.equations.train_rhs`).  :func:`integrate_kernel` makes a
-#: variant on first use (compiled loop ``integrate_loop_<pair>_<model>``, cached on disk), so
-#: a run compiles its own variant only.  A new pair or model is a row here.
+#: kind is a runtime choice, :func:`.equations.train_rhs`), each of one spring or of a spring
+#: pack (``"spring-pack"``, ``"train-pack"``: the pack's twins, :data:`.equations.rhs_call_pack`
+#: and :data:`.monitor.monitor_step_pack` bound in).  :func:`integrate_kernel` makes a variant on
+#: first use (compiled loop ``integrate_loop_<pair>_<model>``, cached on disk), so a run
+#: compiles its own variant only.  A new pair or model is a row here.
 VARIANTS = {
-    ("dopri5", "spring"): Variant(stepping.dopri5_step, stepping.dopri5_dense, spring_rhs_hot),
-    ("dopri5", "train"): Variant(stepping.dopri5_step, stepping.dopri5_dense, train_rhs_hot),
-    ("bs3", "spring"): Variant(stepping.bs3_step, stepping.bs3_dense, spring_rhs_hot),
-    ("bs3", "train"): Variant(stepping.bs3_step, stepping.bs3_dense, train_rhs_hot),
-    ("tsit5", "spring"): Variant(stepping.tsit5_step, stepping.tsit5_dense, spring_rhs_hot),
-    ("tsit5", "train"): Variant(stepping.tsit5_step, stepping.tsit5_dense, train_rhs_hot),
+    (pair, model + pack): Variant(
+        getattr(stepping, f"{pair}_step"),
+        getattr(stepping, f"{pair}_dense"),
+        {
+            ("spring", ""): spring_rhs_hot,
+            ("train", ""): train_rhs_hot,
+            ("spring", "-pack"): spring_rhs_hot_pack,
+            ("train", "-pack"): train_rhs_hot_pack,
+        }[model, pack],
+    )
+    for pair in ("dopri5", "bs3", "tsit5")
+    for model in ("spring", "train")
+    for pack in ("", "-pack")
 }
+#: What a spring pack's variants bind besides the step: its right-hand side and monitor.
+_PACK_BINDINGS = dict(rhs_call=rhs_call_pack, monitor_step=monitor_step_pack)
 
 _METHOD_OF = {type(tab): name for name, tab in erk.TABLEAUS.items()}
 #: The variants made in this process, by the keys of :data:`VARIANTS`.
@@ -366,13 +385,13 @@ _COMPILED: dict = {}
 _COMPILED_LOCK = threading.Lock()
 
 
-def integrate_kernel(tab, vt):
-    """The compiled :func:`integrate_loop` for the pair ``tab`` and the model of ``vt``.
+def integrate_kernel(tab, vt, m=None):
+    """The compiled :func:`integrate_loop` for the pair ``tab`` and the model of ``vt`` and ``m``.
 
-    One variant per pair and model (``vt`` None: the spring alone; else the valve train),
-    each with its own step and right-hand side inlined (:data:`VARIANTS`,
-    :func:`.stepping.step_kernels`) and its own cache entry; made on first use, so a run
-    compiles its own variant only.
+    One variant per pair and model (``vt`` None: the spring alone; else the valve train; ``m``
+    a spring pack's, whose ``damper`` is an array: the pack's twins), each with its own step and
+    right-hand side inlined (:data:`VARIANTS`, :func:`.stepping.step_kernels`) and its own cache
+    entry; made on first use, so a run compiles its own variant only.
 
     Parameters
     ----------
@@ -380,6 +399,8 @@ def integrate_kernel(tab, vt):
         The pair's tableau (:data:`springdyn.numerics.erk.TABLEAUS`).
     vt : None or ndarray
         The valve train's parameters [kg, N/m, N s/m, m, -] (None: the spring alone).
+    m : EngineModel, optional
+        The model [kg, m, N, N s/m, rad]: a spring pack's chooses the pack's variant.
 
     Returns
     -------
@@ -387,13 +408,15 @@ def integrate_kernel(tab, vt):
         ``integrate_loop`` compiled with ``nogil``, :data:`.equations.FASTMATH` and without
         numba's reference counting.
     """
-    key = (_METHOD_OF[type(tab)], "spring" if vt is None else "train")
+    pack = m is not None and m.damper is not None
+    key = (_METHOD_OF[type(tab)], ("spring" if vt is None else "train") + ("-pack" if pack else ""))
     with _COMPILED_LOCK:
         if key not in _COMPILED:
             variant = VARIANTS[key]
             step, dense = stepping.step_kernels(variant.step, variant.dense, variant.rhs)
-            fn = rebind(integrate_loop, dict(globals(), attempt_step=step, dense_coefficients=dense))
-            fn.__qualname__ = f"integrate_loop_{key[0]}_{key[1]}"
+            bound = dict(globals(), attempt_step=step, dense_coefficients=dense, **(_PACK_BINDINGS if pack else {}))
+            fn = rebind(integrate_loop, bound)
+            fn.__qualname__ = f"integrate_loop_{key[0]}_{key[1].replace('-', '_')}"
             _COMPILED[key] = kernel(fn, nogil=True, fastmath=FASTMATH, _nrt=False)
         return _COMPILED[key]
 
@@ -508,7 +531,7 @@ def run_speeds_loop(y0, omegas, points, m, vt, tab, tol, revs, stop_angles, gaps
     no_extra = np.empty((0, out.extra.shape[2]))
     off = new_monitor(np.empty(0), out.events[0], out.nev[0], gaps, 0.0, vt)
     ws = workspace(n, out.extra.shape[2], tab.c.shape[0])
-    integrate = integrate_kernel(tab, vt)
+    integrate = integrate_kernel(tab, vt, m)
     frac = np.arange(points) / points
     check = np.empty((2, points, N_CHECK))
     values = np.array(EXT_VALUES)

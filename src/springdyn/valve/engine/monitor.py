@@ -16,8 +16,8 @@ from typing import NamedTuple
 import numpy as np
 
 from ...numerics import erk
-from ...numerics.jit import kernel
-from .equations import FASTMATH, rhs_call
+from ...numerics.jit import kernel, rebind
+from .equations import FASTMATH, rhs_call, rhs_call_pack
 from .layout import (
     CH_RETAINER,
     CH_SEAT,
@@ -59,7 +59,7 @@ from .layout import (
     XT_SEAT_TOTAL,
 )
 
-__all__ = ["Monitor", "new_monitor", "monitor_step", "finish_monitor"]
+__all__ = ["Monitor", "new_monitor", "monitor_step", "monitor_step_pack", "finish_monitor"]
 
 # scalars of the monitor's state (Monitor.sc)
 SC_HAVE_PREV = 0  #: 1 once a step has been monitored
@@ -411,3 +411,25 @@ def finish_monitor(mon):
     ext[EXT_MIN_SEAT + 1] = best_t[SIG_SEAT_MIN]
     ext[EXT_MIN_CAM] = -best[SIG_CAM_MIN] if best[SIG_CAM_MIN] > -np.inf else np.nan
     ext[EXT_MIN_CAM + 1] = best_t[SIG_CAM_MIN]
+
+
+def _pack_monitor():
+    """:func:`monitor_step` for a spring pack's models: the same code with its searches
+    evaluating :data:`.equations.rhs_call_pack` (kernels named ``*_pack``, compiled only when a
+    pack runs)."""
+    ns = dict(globals(), rhs_call=rhs_call_pack)
+    made = {}
+    for fn, options in (
+        (_eval_at, dict(inline="always")),
+        (golden_max, dict(fastmath=FASTMATH, _nrt=False)),
+        (bisect_crossing, dict(fastmath=FASTMATH, _nrt=False)),
+        (monitor_step, dict(fastmath=FASTMATH, nogil=True, _nrt=False)),
+    ):
+        copy = rebind(fn.py_func, ns)
+        copy.__qualname__ += "_pack"
+        made[fn.py_func.__name__] = ns[fn.py_func.__name__] = kernel(copy, **options)
+    return made["monitor_step"]
+
+
+#: :func:`monitor_step` of a spring pack (:data:`.loop.VARIANTS`).
+monitor_step_pack = _pack_monitor()

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.docstrings import ParameterDocs
-from .equations import NO_EXTRA, chain_rhs, model_of, rhs_call, train_of
+from .equations import NO_EXTRA, chain_rhs, model_of, rhs_kernel, train_of
 
 __all__ = ["integrate_scipy", "atol_vector"]
 
@@ -74,8 +74,8 @@ def integrate_scipy(
         (default ``atol``).
     """
 
-    f = rhs_call if compiled_rhs else chain_rhs
     m = model_of(args)
+    f = rhs_kernel(m) if compiled_rhs else chain_rhs
     omega = float(args[8])
     vt = train_of(args[9])
     buf = np.empty(len(y0))

@@ -23,7 +23,7 @@ import numpy as np
 from ...core.errors import InputError, SolverError
 from ...core.results import Result, notes_lines, text_table
 from ...core.units import omega_to_rpm, rpm_to_omega
-from ..engine import integrate, rhs_call
+from ..engine import integrate, rhs_kernel
 from ..engine.equations import model_of, train_of
 from ..engine.layout import VT_ALPHA
 from ..spring.results import coil_line
@@ -165,8 +165,9 @@ def speed_ramp(
     tr = train_of(vt)
     extra = np.empty((t_out.size, lay["size"]))
     d = np.empty(states.shape[1])
+    rhs = rhs_kernel(m)
     for k in range(t_out.size):
-        rhs_call(t_out[k], states[k], m, w0, tr, d, extra[k])
+        rhs(t_out[k], states[k], m, w0, tr, d, extra[k])
     phases = cam_phases(cam, valve_train.lobe_lash)
     angle = np.mod(theta, 2.0 * math.pi)
     nose = phase_mask(angle[:n], phases, "nose")
