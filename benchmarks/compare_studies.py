@@ -66,7 +66,7 @@ PATH_WORDS = (
     "t_end",
 )
 #: Searched float speeds: compared within their resolution.
-FLOAT_WORDS = ("float_cam_rpm", "float_engine_rpm", "float_speed")
+FLOAT_WORDS = ("float_cam_rpm", "float_engine_rpm")
 DEFAULT_RESOLUTION = 5.0
 
 
@@ -262,7 +262,7 @@ def _kind(key: str) -> str:
     name = key.rsplit("/", 1)[-1]
     if any(w in key for w in PATH_WORDS):
         return "path"
-    if any(w in name for w in FLOAT_WORDS) or key.split("/")[-2:-1] == ["float_cam_rpm"]:
+    if any(w in name for w in FLOAT_WORDS):
         return "float"
     if name.endswith("_N") or "_N_" in name or "force_N" in name or name in ("Fset",) or "/Fset_" in key:
         return "force"
