@@ -264,7 +264,10 @@ def _kind(key: str) -> str:
         return "path"
     if any(w in name for w in FLOAT_WORDS):
         return "float"
-    if name.endswith("_N") or "_N_" in name or "force_N" in name or name in ("Fset",) or "/Fset_" in key:
+    forces = ("force", "Fset", "_N")
+    if any(w in name for w in forces) and not any(
+        w in name for w in ("share", "band", "ratio", "factor", "angle", "_per_")
+    ):
         return "force"
     return "other"
 
@@ -282,7 +285,7 @@ def compare(args) -> int:
     a = json.loads(Path(args.before).read_text(encoding="utf-8"))
     b = json.loads(Path(args.after).read_text(encoding="utf-8"))
     fa, fb = a["figures"], b["figures"]
-    diffs, counts = [], dict(compared=0, skipped=0)
+    diffs, counts, largest = [], dict(compared=0, skipped=0), {}
     for key in sorted(set(fa) | set(fb)):
         if key not in fa or key not in fb:
             diffs.append(f"{key}: only {'after' if key in fb else 'before'}")
@@ -318,6 +321,9 @@ def compare(args) -> int:
             lim = allowed if allowed is not None else max(args.rtol * max(abs(x), abs(y)), args.rtol * scale)
             if not (lim == lim):  # a force without its part's Fset: relative
                 lim = args.rtol * max(abs(x), abs(y))
+            share = abs(x - y) / lim if lim > 0 else (0.0 if x == y else math.inf)
+            if share > largest.get(kind, (0.0, ""))[0]:
+                largest[kind] = (share, f"{key}{'' if len(va) == 1 else f'[{i}]'}: {x:.6g} -> {y:.6g}")
             if abs(x - y) > lim and abs(x - y) - lim > worst:
                 worst, at = abs(x - y) - lim, i
         if at is not None:
@@ -325,6 +331,8 @@ def compare(args) -> int:
             diffs.append(f"{key}{where}: {va[at]:.6g} before, {vb[at]:.6g} after (allowed: {what})")
     for d in diffs:
         print(d)
+    for kind, (share, where) in sorted(largest.items()):
+        print(f"largest {kind} difference: {100 * share:.3g} % of its allowance ({where})")
     ta, tb = a.get("seconds", {}), b.get("seconds", {})
     for k in ta:
         if k in tb:

@@ -315,5 +315,6 @@ def test_warm_starts_give_the_cold_candidates():
         fset = sp.with_model("distributed").spring_model.internal_parameters()["Fset"]
         assert abs(a["max_retainer_force_N"] - b["max_retainer_force_N"]) <= 0.002 * fset
         assert b["dynamic_goodman_safety"] == pytest.approx(a["dynamic_goodman_safety"], rel=2e-3)
-        assert abs(a["float_cam_rpm"] - b["float_cam_rpm"]) <= 5.0
+        fa, fb = a["float_cam_rpm"], b["float_cam_rpm"]  # None: no float up to the scan's top
+        assert (fa is None and fb is None) or abs(fa - fb) <= 5.0, (fa, fb)
         assert a["meets_all"] == b["meets_all"] and a["rank"] == b["rank"]

@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import SolverError
 from ...core.units import omega_to_rpm
 from ..engine import STATUS, integrate_speeds
@@ -93,6 +94,22 @@ def velocity_tolerance(setup: SimulationSetup, atol: float) -> np.ndarray:
     return out
 
 
+#: The parameters of the engine calls, described once (springdyn.core.docstrings).
+_DOCS = ParameterDocs(
+    """
+    setup : SimulationSetup
+        The prepared spring, cam and train.
+    omegas : array_like
+        Cam speeds [rad/s].
+    settings : RunSettings
+        Revolutions, periodicity, tolerances and pair.
+    points : int
+        Output samples per revolution [-].
+"""
+)
+
+
+@_DOCS.fill
 def run_speeds(
     setup: SimulationSetup, omegas, settings: RunSettings, points: int, *, warm_start: bool = False, y0=None
 ) -> dict:
@@ -103,14 +120,7 @@ def run_speeds(
 
     Parameters
     ----------
-    setup : SimulationSetup
-        The prepared spring, cam and train.
-    omegas : array_like
-        Cam speeds [rad/s].
-    settings : RunSettings
-        Revolutions, periodicity, tolerances and pair.
-    points : int
-        Output samples per revolution [-].
+    {setup omegas settings points}
     warm_start : bool
         Start each speed from the state the one before ended in (speeds ascending).
     y0 : ndarray, optional
@@ -146,6 +156,7 @@ def run_speeds(
     return res
 
 
+@_DOCS.fill
 def run_speeds_from(setup: SimulationSetup, omegas, settings: RunSettings, points: int, starts: PeriodicStates) -> dict:
     """:func:`run_speeds` with warm starts: each speed from the known periodic state nearest
     in speed (:meth:`PeriodicStates.start`; from rest where none is near), its own state then
@@ -156,14 +167,7 @@ def run_speeds_from(setup: SimulationSetup, omegas, settings: RunSettings, point
 
     Parameters
     ----------
-    setup : SimulationSetup
-        The prepared spring, cam and train.
-    omegas : array_like
-        Cam speeds [rad/s].
-    settings : RunSettings
-        Revolutions, periodicity, tolerances and pair.
-    points : int
-        Output samples per revolution [-].
+    {setup omegas settings points}
     starts : PeriodicStates
         The known periodic states (the set-up's own and a neighbouring design's); receives
         the states of these speeds.
