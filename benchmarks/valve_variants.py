@@ -14,9 +14,15 @@ bucket train of examples/valve (polydyne cam with ramps, lash), speeds 1500-3300
 3. with ``--full``: the same for the full study (a sweep of 19 speeds per variant);
 4. with ``--dask``: the float-speed study on a Dask LocalCluster of 1, 2 and 4 worker
    processes (one thread each), the speed-up against one worker, and the time 100,000
-   variants take on the best of them by the measured rate.
+   variants take on the best of them by the measured rate;
+5. warm starts (issue 42, item 3): each study of 2 and 3 is also run with
+   ``warm_starts=False`` (every speed from rest or the slower speed, the method before) in the
+   same run: the revolutions per speed and the wall time of both, their ratios, and whether
+   every variant's figures agree (float speeds within the resolution, forces within the
+   periodicity tolerance of 0.2 % Fset, Goodman safety within 0.2 %).
 
-Exits 1 when the 10,000-variant float-speed study's projection misses the goal.  The
+Exits 1 when the 10,000-variant float-speed study's projection misses the goal, or the warm
+starts change a figure beyond its tolerance or save no revolution.  The
 compile (or cache load) of the engine is measured apart and printed: it happens once per
 machine (benchmarks/cold_start.py).
 """
@@ -26,6 +32,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import threading
 import time
 import warnings
 
@@ -40,6 +47,69 @@ def _load_engine(spring, cam, vt) -> None:
     from springdyn.valve import simulate
 
     simulate(spring, cam, 3000.0, valve_train=vt)
+
+
+class RevolutionCounter:
+    """Counts the speeds and revolutions of every engine call (``runner.integrate_speeds``)
+    while in its ``with`` block."""
+
+    def __enter__(self):
+        from springdyn.valve.run import runner
+
+        self.speeds = self.revolutions = 0
+        self._runner, self._engine = runner, runner.integrate_speeds
+        lock = threading.Lock()  # the study's threads call the engine at once
+
+        def counted(*args, **kwargs):
+            out = self._engine(*args, **kwargs)
+            with lock:
+                self.speeds += len(out["revolutions"])
+                self.revolutions += int(out["revolutions"].sum())
+            return out
+
+        runner.integrate_speeds = counted
+        return self
+
+    def __exit__(self, *exc):
+        self._runner.integrate_speeds = self._engine
+
+    def per_speed(self) -> float:
+        return self.revolutions / max(self.speeds, 1)
+
+
+def warm_against_cold(label, warm, cold, fset, resolution) -> bool:
+    """Print the warm study against the cold one (wall time, revolutions per speed) and whether
+    every variant's figures agree; returns whether they do and the warm one ran fewer revolutions.
+    ``warm`` and ``cold``: (wall time [s], RevolutionCounter, ToleranceStudy)."""
+    import numpy as np
+
+    (tw, cw, rw), (tc, cc, rc) = warm, cold
+    a, b = rc.dataset, rw.dataset
+    worst = {"float_cam_rpm": float(np.max(np.abs(a["float_cam_rpm"].values - b["float_cam_rpm"].values)))}
+    ok = worst["float_cam_rpm"] <= resolution
+    if "max_retainer_force" in a:
+        worst["max_retainer_force"] = float(
+            np.max(np.abs(a["max_retainer_force"].values - b["max_retainer_force"].values))
+        )
+        worst["goodman_safety"] = float(np.max(np.abs(b["goodman_safety"].values / a["goodman_safety"].values - 1.0)))
+        ok = ok and worst["max_retainer_force"] <= 0.002 * fset and worst["goodman_safety"] <= 0.002
+    fewer = cw.revolutions < cc.revolutions
+    print(
+        f"{label}, warm starts: {tw:.1f} s, {cw.per_speed():.2f} revolutions a speed ({cw.revolutions} in "
+        f"{cw.speeds} speeds); cold: {tc:.1f} s, {cc.per_speed():.2f} ({cc.revolutions} in {cc.speeds}); "
+        f"{tc / tw:.2f}x faster, {cc.revolutions / max(cw.revolutions, 1):.2f}x fewer revolutions"
+    )
+    print(
+        "  largest difference warm - cold: "
+        + ", ".join(
+            f"{k} {v:.3g} " + ("rpm" if k == "float_cam_rpm" else "N" if k.endswith("force") else "(relative)")
+            for k, v in worst.items()
+        )
+        + f" (allowed: {resolution:g} rpm, {0.002 * fset:.2f} N = 0.2 % Fset, 0.2 %): "
+        + ("SAME" if ok else "DIFFERENT")
+        + ("" if fewer else "; NO revolutions saved")
+    )
+    return ok and fewer
 
 
 def main(argv=None) -> int:
@@ -83,19 +153,24 @@ def main(argv=None) -> int:
 
     cores = os.cpu_count() or 1
 
+    fset = float(spring.spring_model.internal_parameters()["Fset"])
+
     def study(label, count, seed, **kw):
-        t = time.perf_counter()
-        res = tolerance_study(spring, cam, tols, count=count, seed=seed, speeds=speeds, valve_train=vt, **kw)
-        wall = time.perf_counter() - t
+        with RevolutionCounter() as counter:
+            t = time.perf_counter()
+            res = tolerance_study(spring, cam, tols, count=count, seed=seed, speeds=speeds, valve_train=vt, **kw)
+            wall = time.perf_counter() - t
         sims = float(res.dataset["simulations"].values.sum())
         print(
             f"{label}: {count} variants in {wall:.1f} s: {count / wall:.1f} variants/s, {sims / count:.2f} simulations "
             f"a variant, {sims / wall / cores:.1f} simulations/s per core ({sims / wall / cores / single:.2f}x the "
             "single-call figure)"
         )
-        return wall, res
+        return wall, counter, res
 
-    wall, res = study("float-speed study", args.variants, 0, float_only=True)
+    wall, counter, res = study("float-speed study", args.variants, 0, float_only=True)
+    cold = study("  the same, cold starts", args.variants, 0, float_only=True, warm_starts=False)
+    same = warm_against_cold("float-speed study", (wall, counter, res), cold, fset, 5.0)
     projected = STUDY * wall / args.variants
     ok = projected <= GOAL_SECONDS
     f = res.dataset["float_cam_rpm"].values
@@ -106,8 +181,10 @@ def main(argv=None) -> int:
     )
     if args.full:
         count = max(32, args.variants // 8)
-        wall_full, _ = study("full study (sweep)", count, 0)
-        print(f"  projected {STUDY} variants of the full study: {STUDY * wall_full / count / 60:.1f} min")
+        full = study("full study (sweep)", count, 0)
+        print(f"  projected {STUDY} variants of the full study: {STUDY * full[0] / count / 60:.1f} min")
+        cold = study("  the same, cold starts", count, 0, warm_starts=False)
+        same = warm_against_cold("full study", full, cold, fset, 5.0) and same
     if args.dask:
         import distributed
 
@@ -139,7 +216,7 @@ def main(argv=None) -> int:
                 f"LocalCluster {workers} worker(s): {count} variants in {w:.1f} s, speed-up {base / w:.2f}x against "
                 f"1 worker; {CLUSTER_STUDY} variants: {CLUSTER_STUDY * w / count / 60:.0f} min at this rate"
             )
-    return 0 if ok else 1
+    return 0 if ok and same else 1
 
 
 if __name__ == "__main__":

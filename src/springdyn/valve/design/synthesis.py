@@ -55,6 +55,7 @@ from ...core.results import Result, notes_lines, text_table
 from ...core.units import format_mm, omega_to_rpm
 from ..cam.definition import Cam
 from ..run.float_search import float_speed
+from ..run.periodicity import PeriodicStates
 from ..run.sweeps import sweep
 from ..spring import formulas, solid_length, stress
 from ..spring.definition import END_TYPES, ValveSpring
@@ -819,6 +820,7 @@ def synthesize(
     dynamics: bool = True,
     judge_all: bool = False,
     progress=None,
+    warm_starts: bool = True,
 ) -> Synthesis:
     """The best springs for the requirements (see the module docstring).
 
@@ -839,6 +841,12 @@ def synthesize(
         candidate and its figures are the same (``tests/valve/design/test_synthesis.py``).
     progress : callable, optional
         ``progress(iterable, desc=...)`` wrapper for the dynamic runs.
+    warm_starts : bool
+        Each candidate's speeds start from the periodic states of the first candidate run (the
+        lightest; of the round before, for a round's first) at the same speeds, its float search
+        from its own (:func:`_candidate_starts`),
+        not from rest: the figures within the periodicity tolerance of cold starts' (float
+        speeds within their resolution), the same whether the screen runs or ``judge_all``.
 
     Returns
     -------
@@ -851,6 +859,7 @@ def synthesize(
     """
 
     allowance, kept = 1.0, None
+    first = []  # warm starts: the sweep states of the first candidate run (_candidate_starts)
     for _ in range(SURGE_ITERATIONS):
         screen = (
             req if allowance == 1.0 else dataclasses.replace(req, min_goodman_safety=req.min_goodman_safety * allowance)
@@ -882,7 +891,7 @@ def synthesize(
         kept = (springs, rows, notes, table)
         if not (dynamics and req.cam):
             break
-        _dynamics(req, springs, rows, base_dir, progress, notes, judge_all)
+        _dynamics(req, springs, rows, base_dir, progress, notes, judge_all, first if warm_starts else None)
         if any(r["meets_all"] for r in rows) or min(r["margin_goodman_dynamic"] for r in rows) >= 0.0:
             break
         # no candidate meets everything: every one was run (a screen stops only at one that does)
@@ -1043,7 +1052,20 @@ def type_c_stiffening_note(sp, req: Requirements) -> str:
     )
 
 
-def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = False) -> None:
+def _candidate_starts(first: list | None):
+    """A candidate's warm starts (:class:`springdyn.valve.run.periodicity.PeriodicStates`): a
+    copy of the sweep states of the first candidate run (``first``: empty until one ran), or
+    None (``first`` None: cold starts).  Each round of the surge allowance's search starts its
+    first candidate from the round before's and its others from it.  Only a round's first
+    candidate's sweep is a neighbour: every candidate starts from the same states whichever
+    others ran (the screen and ``judge_all`` agree to the bit; a round before the last runs
+    every candidate in both)."""
+    if first is None:
+        return None
+    return first[0].copy() if first else PeriodicStates()
+
+
+def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = False, first=None) -> None:
     """The distributed model of each candidate over the speed range (module docstring, 5).
 
     The candidates are run lightest first, the ranking's order among those that meet every
@@ -1065,6 +1087,7 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
     order = sorted(range(len(rows)), key=lambda k: rows[k]["mass_kg"])
     it = progress(order, desc="dynamics") if progress is not None else order
     winner = None
+    ran = False  # this round's first candidate ran: its sweep states start the others (first)
     for k in it:
         sp, row = springs[k], rows[k]
         if winner is not None and not judge_all:
@@ -1078,7 +1101,11 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
         model = sp.with_model("distributed")
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            t = sweep(model, cam, speeds, valve_train=vt).summary_table()
+            starts = _candidate_starts(first)
+            t = sweep(model, cam, speeds, valve_train=vt, starts=starts).summary_table()
+            if starts is not None and not ran:
+                first[:] = [starts.copy()]
+            ran = True
             row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
             row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
             row["margin_goodman_dynamic"] = criteria.margin(
@@ -1095,7 +1122,7 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
             elif vt is not None:
                 need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
                 scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
-                res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION)
+                res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION, starts=starts)
                 row["float_cam_rpm"] = res["float_cam_rpm"]
                 if need is not None:
                     fl = res["float_cam_rpm"]

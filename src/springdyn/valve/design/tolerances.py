@@ -671,6 +671,7 @@ def run_variant(
     resolution: float = FLOAT_RESOLUTION,
     max_clash_severity: float | None = None,
     periodicity_tol: float | None = None,
+    starts=None,
 ) -> dict:
     """The outputs of :data:`OUTPUTS` of one variant over the speeds [rev/min]: its statics and
     its speed study (:func:`springdyn.valve.run.studies.speed_study`: the float speed to
@@ -696,9 +697,13 @@ def run_variant(
     periodicity_tol : float, optional
         The periodic steady state each speed runs to [fraction of Fset] (default the run's,
         :data:`springdyn.valve.run.periodicity.PERIODICITY_TOL`).
+    starts : PeriodicStates, optional
+        Warm starts: the nominal's periodic states (:func:`_warm_starts`), receiving the variant's.
     """
     top = float(np.max(speeds))
-    r = run.speed_study(spring, cam, valve_train, speeds, rated_rpm, resolution, max_clash_severity, periodicity_tol)
+    r = run.speed_study(
+        spring, cam, valve_train, speeds, rated_rpm, resolution, max_clash_severity, periodicity_tol, starts
+    )
     p = spring.spring_model.internal_parameters()
     out = dict(
         Fset=float(p["Fset"]),
@@ -725,6 +730,7 @@ def run_variant_float(
     guess_rpm: float,
     resolution: float = FLOAT_RESOLUTION,
     periodicity_tol: float | None = None,
+    starts=None,
 ) -> dict:
     """The outputs of :data:`FLOAT_OUTPUTS` of one variant: its statics and its float speed,
     found near ``guess_rpm`` (the nominal's) within the speed range by
@@ -743,10 +749,12 @@ def run_variant_float(
         Width of the float speed's final bracket [rev/min].
     periodicity_tol : float, optional
         The periodic steady state each trial speed runs to [fraction of Fset] (default the run's).
+    starts : PeriodicStates, optional
+        Warm starts: the nominal's periodic states (:func:`_warm_starts`), receiving the variant's.
     """
 
     near = run.variant_float_speed(
-        spring, cam, valve_train, guess_rpm, float(speeds[0]), float(speeds[-1]), resolution, periodicity_tol
+        spring, cam, valve_train, guess_rpm, float(speeds[0]), float(speeds[-1]), resolution, periodicity_tol, starts
     )
     out = dict(
         Fset=float(spring.spring_model.internal_parameters()["Fset"]),
@@ -817,9 +825,10 @@ def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
+                starts = _variant_starts(plan)
                 if plan.get("guess") is not None:
                     r = run_variant_float(
-                        sp, c, vt, speeds, plan["guess"], plan["resolution"], plan.get("periodicity_tol")
+                        sp, c, vt, speeds, plan["guess"], plan["resolution"], plan.get("periodicity_tol"), starts
                     )
                 else:
                     r = run_variant(
@@ -831,6 +840,7 @@ def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=
                         plan["resolution"],
                         plan["clash_limit"],
                         plan.get("periodicity_tol"),
+                        starts,
                     )
         except InputError:  # a variant the model refuses (e.g. past solid): counted as failed
             r = dict({k: 0.0 for k in names}, refused=1.0)
@@ -857,6 +867,7 @@ def tolerance_study(
     resolution: float = FLOAT_RESOLUTION,
     workers: int | None = None,
     periodicity_tol: float | None = None,
+    warm_starts: bool = True,
 ) -> ToleranceStudy:
     """The spring across its tolerances (module docstring).
 
@@ -898,6 +909,10 @@ def tolerance_study(
         :data:`springdyn.valve.run.periodicity.PERIODICITY_TOL`, 0.2 %): a variant whose
         largest residual is above it is flagged (``settled`` 0) and left out of the
         percentiles and the failing shares.
+    warm_starts : bool
+        Every variant's speeds start from the nominal's periodic states (and its own, search
+        trial to trial), not from rest (:func:`_warm_starts`): fewer revolutions, the figures
+        within the periodicity tolerance of cold starts' (float speeds within ``resolution``).
     """
     import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
@@ -945,18 +960,25 @@ def tolerance_study(
         # the nominal's float speed from a scan of the range (the definition), then by the
         # variants' search from there: its float speed starts every search
 
+        nominal_states = run.PeriodicStates() if warm_starts else None
         scan = run.float_speed(
             spring,
             cam,
             valve_train,
             speeds,
             resolution=float(resolution),
+            starts=nominal_states,
             **({} if run_tol is None else dict(periodicity_tol=run_tol)),
         )
         scanned = float(speeds[-1] if scan.float_cam_rpm is None else scan.float_cam_rpm)
-        nominal_out = run_variant_float(spring, cam, valve_train, speeds, scanned, float(resolution), run_tol)
+        nominal_out = run_variant_float(
+            spring, cam, valve_train, speeds, scanned, float(resolution), run_tol, nominal_states
+        )
         nominal_out["float_cam_rpm_scan"] = scanned
         plan["guess"] = nominal_out["float_cam_rpm"]
+        plan["starts"] = nominal_states
+    elif warm_starts:
+        nominal_out, plan["starts"] = _warm_starts(spring, cam, valve_train, speeds, plan)
     names = (FLOAT_OUTPUTS if float_only else tuple(OUTPUTS)) + tuple(extra)
     key = _key(
         tolerances,
@@ -1076,7 +1098,7 @@ def tolerance_study(
             periodicity_tol=tol,
         ),
     )
-    if not float_only:
+    if not float_only and not warm_starts:
         nominal_out = run_variant(
             spring, cam, valve_train, speeds, rated, float(resolution), criteria.max_clash_severity, run_tol
         )
@@ -1095,6 +1117,36 @@ def tolerance_study(
         with atomic_path(Path(out_dir) / "variants.nc") as tmp:
             ds.to_netcdf(tmp)
     return study
+
+
+def _warm_starts(spring, cam, valve_train, speeds, plan: dict):
+    """The nominal design's outputs (:func:`run_variant`) and its periodic states, recorded at
+    every speed it ran: the warm starts of the variants (:func:`_variant_starts`).
+
+    A variant starts each speed from the nominal's state at that speed about its own static
+    equilibrium (:class:`springdyn.valve.run.periodicity.PeriodicStates`): the nominal is the
+    centre of the bands, no farther from any variant than a band's half-width.
+    """
+    states = run.PeriodicStates()
+    out = run_variant(
+        spring,
+        cam,
+        valve_train,
+        speeds,
+        plan["rated"],
+        plan["resolution"],
+        plan["clash_limit"],
+        plan.get("periodicity_tol"),
+        states,
+    )
+    return out, states
+
+
+def _variant_starts(plan: dict):
+    """A variant's warm starts: a copy of the nominal's states (``plan["starts"]``), which the
+    variant's own runs extend (its search trial to trial), or None (cold starts)."""
+    nominal = plan.get("starts")
+    return None if nominal is None else nominal.copy()
 
 
 #: Chunks in flight per thread (local) or per worker thread (Dask): enough to keep every

@@ -41,6 +41,7 @@ _EXPORTS = {
     "speed_study": "studies",
     "variant_float_speed": "studies",
     "RunUp": "run_up",
+    "PeriodicStates": "periodicity",
     "natural_frequencies": "train_modes",
     "separated_frequencies": "train_modes",
     "simulation_friction": "friction",

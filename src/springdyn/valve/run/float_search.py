@@ -26,8 +26,9 @@ from ..cam.definition import Cam
 from ..engine import STATUS
 from ..spring.definition import ValveSpring
 from ..train.definition import ValveTrain
+from .periodicity import PeriodicStates
 from .results import FloatSpeedResult
-from .runner import run_speeds
+from .runner import run_speeds, run_speeds_from
 from .separation import cam_phases, phase_mask
 from .settings import POINTS_PER_REVOLUTION, SWEEP_POINTS_PER_REVOLUTION, RunSettings
 from .setup import output_angles
@@ -67,6 +68,7 @@ def float_speed(
     resolution: float = 1.0,
     progress_quiet: bool = True,
     workers: int | None = None,
+    starts: PeriodicStates | None = None,
     **run,
 ) -> FloatSpeedResult:
     """Float speed: the lowest cam speed from which the valve separates over the nose at
@@ -75,7 +77,8 @@ def float_speed(
     Scans the speeds ``cam_rpm`` (each to its periodic steady state, continued from the
     slower speed before it), then bisects between the scanned speed below the float speed
     and the float speed down to ``resolution`` [rev/min] (at most ``MAX_HALVINGS``
-    halvings); each bisection speed runs from rest.
+    halvings); each bisection speed runs from rest (with ``starts``: from the nearest known
+    periodic state).
 
     Parameters
     ----------
@@ -94,6 +97,10 @@ def float_speed(
         No progress bar.
     workers : int, optional
         Local threads of the scan [-].
+    starts : PeriodicStates, optional
+        Warm starts: every scanned and bisection speed from the nearest known periodic state
+        (a neighbouring design's, the scan's), its own recorded there (results within the
+        periodicity tolerance of cold starts').
     **run
         Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one.
 
@@ -126,7 +133,16 @@ def float_speed(
         )
     settings = RunSettings.of(settings, **run)
     settings = RunSettings.of(settings, points_per_revolution=settings.points(POINTS_PER_REVOLUTION))
-    scan = sweep(spring, cam, rpms, valve_train=valve_train, settings=settings, quiet=progress_quiet, workers=workers)
+    scan = sweep(
+        spring,
+        cam,
+        rpms,
+        valve_train=valve_train,
+        settings=settings,
+        quiet=progress_quiet,
+        workers=workers,
+        starts=starts,
+    )
     table = scan.summary_table()
     columns = {k: table[k].tolist() for k in SCAN_COLUMNS if k in table}
     first = scan.first_separation_speeds()[0]
@@ -164,9 +180,9 @@ def float_speed(
             break
         mid = 0.5 * (lo + hi)
         if bool(
-            sweep(spring, cam, [mid], valve_train=valve_train, settings=settings, workers=1).summary_table()[
-                "nose_separation"
-            ][0]
+            sweep(
+                spring, cam, [mid], valve_train=valve_train, settings=settings, workers=1, starts=starts
+            ).summary_table()["nose_separation"][0]
         ):
             hi = mid
         else:
@@ -209,12 +225,14 @@ def float_speed_near(
     *,
     resolution: float = FLOAT_RESOLUTION,
     settings: RunSettings | None = None,
+    starts: PeriodicStates | None = None,
     **run,
 ) -> dict:
     """The float speed of a prepared valve train near ``guess_rpm`` [rev/min], within
     ``[lo_rpm, hi_rpm]``, to ``resolution``.
 
-    Each trial speed runs from rest to its periodic steady state and gives the smallest
+    Each trial speed runs from rest (with ``starts``: from the nearest known periodic state,
+    a neighbouring design's or an earlier trial's) to its periodic steady state and gives the smallest
     cam-contact gap over the nose, ``g`` (:func:`nose_gap`): the valve separates over the
     nose where ``g <= 0``.  From just below the guess the search steps outwards (doubling its
     step) until ``g`` changes sign, then narrows the bracket by regula falsi with the
@@ -236,6 +254,10 @@ def float_speed_near(
     settings : RunSettings, optional
         How each trial speed is integrated (default: to the periodic steady state with the
         valve train's tolerances, on 720 output points a revolution).
+    starts : PeriodicStates, optional
+        Warm starts: known periodic states (e.g. the nominal design's); each trial records its
+        own there, so that the next starts from the nearest trial (results within the
+        periodicity tolerance of cold starts'; :class:`~springdyn.valve.run.periodicity.PeriodicStates`).
     **run
         Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one.
 
@@ -263,7 +285,11 @@ def float_speed_near(
     stats = dict(evaluations=0, revolutions=0, periodicity=0.0)
 
     def gap(rpm: float) -> float:
-        r = run_speeds(setup, np.array([rpm_to_omega(rpm)]), settings, points)
+        omega = np.array([rpm_to_omega(rpm)])
+        if starts is None:
+            r = run_speeds(setup, omega, settings, points)
+        else:
+            r = run_speeds_from(setup, omega, settings, points, starts)
         if r["status"][0] != 0:
             raise _search_failure(rpm, r)
         stats["evaluations"] += 1

@@ -15,13 +15,15 @@ import math
 
 import numpy as np
 
+from ...core.docstrings import ParameterDocs
 from ...core.errors import SolverError
+from ...core.units import omega_to_rpm
 from ..engine import STATUS, integrate_speeds
-from .periodicity import BAND_REVOLUTIONS
+from .periodicity import BAND_REVOLUTIONS, PeriodicStates
 from .settings import BS3_MIN_ELEMENTS, MAX_STEP_FRACTION, PAIR, VELOCITY_TOLERANCE_DIVISOR, RunSettings
 from .setup import SimulationSetup, static_force_at_lift
 
-__all__ = ["run_speeds", "engine_args", "velocity_tolerance", "runge_kutta_pair", "solver_error"]
+__all__ = ["run_speeds", "run_speeds_from", "engine_args", "velocity_tolerance", "runge_kutta_pair", "solver_error"]
 
 
 def engine_args(setup: SimulationSetup, omega: float) -> tuple:
@@ -92,6 +94,22 @@ def velocity_tolerance(setup: SimulationSetup, atol: float) -> np.ndarray:
     return out
 
 
+#: The parameters of the engine calls, described once (springdyn.core.docstrings).
+_DOCS = ParameterDocs(
+    """
+    setup : SimulationSetup
+        The prepared spring, cam and train.
+    omegas : array_like
+        Cam speeds [rad/s].
+    settings : RunSettings
+        Revolutions, periodicity, tolerances and pair.
+    points : int
+        Output samples per revolution [-].
+"""
+)
+
+
+@_DOCS.fill
 def run_speeds(
     setup: SimulationSetup, omegas, settings: RunSettings, points: int, *, warm_start: bool = False, y0=None
 ) -> dict:
@@ -102,14 +120,7 @@ def run_speeds(
 
     Parameters
     ----------
-    setup : SimulationSetup
-        The prepared spring, cam and train.
-    omegas : array_like
-        Cam speeds [rad/s].
-    settings : RunSettings
-        Revolutions, periodicity, tolerances and pair.
-    points : int
-        Output samples per revolution [-].
+    {setup omegas settings points}
     warm_start : bool
         Start each speed from the state the one before ended in (speeds ascending).
     y0 : ndarray, optional
@@ -143,6 +154,35 @@ def run_speeds(
     )
     res["periodicity"] = res["periodicity"] / fset
     return res
+
+
+@_DOCS.fill
+def run_speeds_from(setup: SimulationSetup, omegas, settings: RunSettings, points: int, starts: PeriodicStates) -> dict:
+    """:func:`run_speeds` with warm starts: each speed from the known periodic state nearest
+    in speed (:meth:`PeriodicStates.start`; from rest where none is near), its own state then
+    recorded into ``starts`` (a later speed, or the next design, starts from it).
+
+    One engine call per speed (the engine takes one initial state per call); the outputs are
+    those of :func:`run_speeds` with the speeds stacked.
+
+    Parameters
+    ----------
+    {setup omegas settings points}
+    starts : PeriodicStates
+        The known periodic states (the set-up's own and a neighbouring design's); receives
+        the states of these speeds.
+    """
+    omegas = np.atleast_1d(np.asarray(omegas, dtype=float))
+    if omegas.size == 0:
+        return run_speeds(setup, omegas, settings, points)
+    parts = []
+    for omega in omegas:
+        rpm = float(omega_to_rpm(omega))
+        res = run_speeds(setup, omega[None], settings, points, y0=starts.start(setup, rpm))
+        if res["status"][0] == 0:
+            starts.add(rpm, res["state"][0], setup.y0)
+        parts.append(res)
+    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
 #: Cam orders the spring's first surge mode keeps above the cam speed in valve trains (fewer:

@@ -18,6 +18,7 @@ import numpy as np
 
 from . import verdicts
 from .float_search import FLOAT_RESOLUTION, float_speed_near
+from .periodicity import PeriodicStates
 from .separation import float_speed_of_scan
 from .setup import prepare
 from .sweeps import sweep
@@ -39,6 +40,7 @@ def speed_study(
     resolution: float = FLOAT_RESOLUTION,
     max_clash_severity: float | None = None,
     periodicity_tol: float | None = None,
+    starts: PeriodicStates | None = None,
 ) -> dict:
     """A design over its speeds [rev/min]: the float speed to ``resolution``, the smallest
     Goodman safety and the largest retainer force up to ``rated_rpm`` (default: all), the lowest
@@ -74,6 +76,11 @@ def speed_study(
     periodicity_tol : float, optional
         The periodic steady state each speed runs to [fraction of Fset] (default the run's,
         :data:`springdyn.valve.run.periodicity.PERIODICITY_TOL`).
+    starts : PeriodicStates, optional
+        Warm starts: every speed (swept, searched, refined) from the nearest known periodic
+        state (e.g. the nominal design's at the same speed), its own recorded there; the
+        figures agree with cold starts' within the periodicity tolerance (float speed: within
+        ``resolution``).
 
     Returns
     -------
@@ -87,7 +94,7 @@ def speed_study(
     tol = {} if periodicity_tol is None else dict(periodicity_tol=float(periodicity_tol))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1, **tol)
+        sw = sweep(spring, cam, speeds, valve_train=valve_train, workers=1, starts=starts, **tol)
     t = sw.summary_table()
     rpm = np.asarray(t["cam_rpm"], dtype=float)
     severity = np.asarray(t["clash_severity"], dtype=float)
@@ -98,7 +105,13 @@ def speed_study(
     runs = rpm.size
     if k > 0 and f - rpm[k - 1] > resolution:
         near = float_speed_near(
-            prepare(spring, cam, valve_train), 0.5 * (rpm[k - 1] + f), rpm[k - 1], f, resolution=resolution, **tol
+            prepare(spring, cam, valve_train),
+            0.5 * (rpm[k - 1] + f),
+            rpm[k - 1],
+            f,
+            resolution=resolution,
+            starts=starts,
+            **tol,
         )
         f = near["float_cam_rpm"]
         periodicity = max(periodicity, near["periodicity"])
@@ -127,7 +140,9 @@ def speed_study(
             break
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            more = sweep(spring, cam, sorted(new), valve_train=valve_train, workers=1, **tol).summary_table()
+            more = sweep(
+                spring, cam, sorted(new), valve_train=valve_train, workers=1, starts=starts, **tol
+            ).summary_table()
         worst |= {
             float(r): (float(g), float(x))
             for r, g, x in zip(more["cam_rpm"], more["fatigue_safety_factor"], more["max_retainer_force_N"])
@@ -154,6 +169,7 @@ def variant_float_speed(
     hi_rpm: float,
     resolution: float,
     periodicity_tol: float | None = None,
+    starts: PeriodicStates | None = None,
 ):
     """The float speed of a design near ``guess_rpm`` within ``[lo_rpm, hi_rpm]``
     (:func:`springdyn.valve.run.float_search.float_speed_near` on its prepared set-up).
@@ -170,6 +186,10 @@ def variant_float_speed(
         Width of the final bracket [rev/min].
     periodicity_tol : float, optional
         The periodic steady state each trial speed runs to [fraction of Fset] (default the run's).
+    starts : PeriodicStates, optional
+        Warm starts (:func:`~springdyn.valve.run.float_search.float_speed_near`).
     """
     tol = {} if periodicity_tol is None else dict(periodicity_tol=float(periodicity_tol))
-    return float_speed_near(prepare(spring, cam, valve_train), guess_rpm, lo_rpm, hi_rpm, resolution=resolution, **tol)
+    return float_speed_near(
+        prepare(spring, cam, valve_train), guess_rpm, lo_rpm, hi_rpm, resolution=resolution, starts=starts, **tol
+    )

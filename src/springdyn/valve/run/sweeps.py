@@ -38,9 +38,9 @@ from ..spring.definition import ValveSpring
 from ..spring.results import coil_line
 from ..train.definition import ValveTrain
 from . import verdicts
-from .periodicity import PERIODICITY_TOL
+from .periodicity import PERIODICITY_TOL, PeriodicStates
 from .results import locate_intervals
-from .runner import run_speeds, solver_error
+from .runner import run_speeds, run_speeds_from, solver_error
 from .separation import PHASES, cam_phases, float_speed_of_scan, liftoffs, neighbour_band, phase_mask
 from .settings import SWEEP_POINTS_PER_REVOLUTION, RunSettings
 from .setup import SimulationSetup, check_speeds, output_angles, prepare, static_force_along_grid, static_force_at_lift
@@ -62,12 +62,21 @@ _DOCS = ParameterDocs(
 SCHEDULER_TIMEOUT = 5.0
 
 
-def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings, points: int) -> dict:
+def run_chunk(
+    setup: SimulationSetup,
+    cam_rpm: np.ndarray,
+    settings: RunSettings,
+    points: int,
+    starts: PeriodicStates | None = None,
+) -> dict:
     """Integrate a chunk of speeds and reduce each to its last revolution's forces.
 
     To the periodic steady state (``settings.revolutions`` None) each speed starts from the
     state the slower speed before it in the chunk ended in (a continuation: the chunk's speeds
-    ascending), the first from rest; ``revolutions`` runs every speed from rest.
+    ascending), the first from rest; ``revolutions`` runs every speed from rest.  With
+    ``starts`` (to the periodic state only) each speed starts from the nearest known periodic
+    state instead (known before the sweep, or of the chunk's speeds before it) and returns its
+    own (``state``; :func:`~springdyn.valve.run.runner.run_speeds_from`).
 
     Parameters
     ----------
@@ -79,6 +88,8 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         Revolutions or the periodic steady state, tolerances (:class:`RunSettings`).
     points : int
         Output points per revolution [-].
+    starts : PeriodicStates, optional
+        Known periodic states to start from (warm starts).
 
     Returns
     -------
@@ -101,7 +112,14 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         and, with a valve train, ``cam_contact``, ``valve_lift``, ``static``.
     """
     cam_rpm = np.asarray(cam_rpm, dtype=float)
-    mon = run_speeds(setup, rpm_to_omega(cam_rpm), settings, points, warm_start=settings.periodic)
+    warm = starts is not None and settings.periodic
+    if warm:
+        # the chunk starts from the states known before the sweep and its own (not from those
+        # another chunk records meanwhile: the same starts however the chunks run); the sweep
+        # records its states after its chunks (_run_speeds)
+        mon = run_speeds_from(setup, rpm_to_omega(cam_rpm), settings, points, starts.copy())
+    else:
+        mon = run_speeds(setup, rpm_to_omega(cam_rpm), settings, points, warm_start=settings.periodic)
     ex, status = mon["extra"], mon["status"]
     last = slice(0, points)
     lay = setup.layout
@@ -129,6 +147,8 @@ def run_chunk(setup: SimulationSetup, cam_rpm: np.ndarray, settings: RunSettings
         out["cam_contact"] = ex[:, last, lay["cam_contact_force"]]
         out["valve_lift"] = ex[:, last, lay["top_displacement"]]
         out["liftoff"] = _liftoff_rows(setup, cam_rpm, mon, ex[:, last, lay["cam_gap"]], points)
+    if warm:
+        out["state"] = mon["state"]
     # copies, so that the chunk's full engine output (every element, every point) is freed
     out = {k: np.array(v, copy=True) for k, v in out.items()}
     if setup.valve_train is not None:
@@ -353,7 +373,7 @@ def _chunks(cam_rpm: np.ndarray, max_size: int) -> list[np.ndarray]:
     return [cam_rpm[i : i + size] for i in range(0, cam_rpm.size, size)]
 
 
-def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc):
+def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc, starts=None):
     """Run all speeds for one setup; returns the chunk outputs concatenated in the order of
     ``cam_rpm`` (the chunks run them ascending)."""
     per_speed = 8 * points * (setup.layout["size"] + 1)  # the last revolution's outputs
@@ -362,7 +382,7 @@ def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc):
     chunks = _chunks(cam_rpm[order], max_size)
     if client is not None:
         remote_setup = client.scatter(setup, broadcast=True)
-        futures = [client.submit(run_chunk, remote_setup, c, settings, points, pure=False) for c in chunks]
+        futures = [client.submit(run_chunk, remote_setup, c, settings, points, starts, pure=False) for c in chunks]
         from dask.distributed import as_completed as dask_completed  # (here: dask is an optional extra)
 
         done = dask_completed(futures, loop=client.loop)  # this client's: connect() sets no default client
@@ -372,13 +392,24 @@ def _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc):
     else:
         workers = workers or min(os.cpu_count() or 1, 2)
         with ThreadPoolExecutor(max_workers=workers) as pool:
-            futures = [pool.submit(run_chunk, setup, c, settings, points) for c in chunks]
+            futures = [pool.submit(run_chunk, setup, c, settings, points, starts) for c in chunks]
             for _ in progress(as_completed(futures), total=len(futures), desc=desc, quiet=quiet):
                 pass
             parts = [f.result() for f in futures]
     back = np.empty_like(order)
     back[order] = np.arange(order.size)
-    return {k: np.concatenate([p[k] for p in parts])[back] for k in parts[0]}
+    out = {k: np.concatenate([p[k] for p in parts])[back] for k in parts[0]}
+    if "state" in out:  # warm starts: the sweep's periodic states, for the runs after it
+        _record_states(starts, setup, cam_rpm, out)
+    return out
+
+
+def _record_states(starts: PeriodicStates, setup: SimulationSetup, cam_rpm, out: dict) -> None:
+    """Record the periodic states of a sweep's speeds (``out["state"]``, ``out["status"]``)
+    into ``starts``, in speed order (the order of the chunks' finishing does not matter)."""
+    for rpm, state, status in zip(cam_rpm, out.pop("state"), out["status"]):
+        if status == 0:
+            starts.add(float(rpm), state, setup.y0)
 
 
 @dataclass(repr=False)
@@ -988,6 +1019,7 @@ def sweep(
     client=None,
     quiet: bool = True,
     gas_force=None,
+    starts: PeriodicStates | None = None,
     **run,
 ) -> SpeedSweep:
     """Simulate ``spring`` at every cam speed in ``cam_rpm`` (and every design value).
@@ -1024,6 +1056,11 @@ def sweep(
     gas_force : GasForce, optional
         The cylinder's gas force on the valve over the revolution [N], the same at every
         speed (:class:`springdyn.valve.train.gas_force.GasForce`; needs a valve train).
+    starts : PeriodicStates, optional
+        Warm starts (to the periodic state): each speed starts from the nearest known
+        periodic state (a neighbouring design's, or this one's), not from the slower speed
+        before it, and records its own (:class:`~springdyn.valve.run.periodicity.PeriodicStates`);
+        the results agree with cold starts' within the periodicity tolerance.
     **run
         Fields of :class:`~springdyn.valve.run.settings.RunSettings` given one by one
         (``revolutions=3``, ``rtol=1e-7``, ...): they change ``settings``.
@@ -1063,7 +1100,7 @@ def sweep(
         cam.check_resolution(float(cam_rpm.min()), f1)
     for k, setup in enumerate(setups):
         desc = "valve sweep" + (f" {_describe(vary[0], values[k])}" if vary else "")
-        res = _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc)
+        res = _run_speeds(setup, cam_rpm, settings, points, workers, client, quiet, desc, starts)
         failed = np.flatnonzero(res["status"] != 0)
         if failed.size:
             i = int(failed[0])
