@@ -210,18 +210,21 @@ def test_each_spring_over_a_sweep_on_the_bucket_train():
         sw.spring_table("third")
 
 
-def test_a_sweep_varies_one_spring_of_a_pack():
+def test_a_sweep_varies_one_spring_of_a_pack(tmp_path):
     """A sweep's design variable on a pack names one spring's field (``inner_spring.wire_diameter``):
     each value is the pack built with that spring replaced (``SpringPack.replace_spring``, run
     here on its own), the spring's own value the pack's sweep to the bit; a bare field names no
-    spring and is refused, as is a spring the pack does not hold."""
+    spring and is refused, as is a spring the pack does not hold.  Its figures draw each spring
+    at each value (the per-spring figure once drew the speeds against every value's rows)."""
     root = Path(__file__).parents[3] / "examples" / "valve"
     model = ValveModel.from_files(
         root / "dual_spring_damper.toml", root / "cam_polydyne_ramps.toml", root / "valve_train.toml"
     )
     pack = model.spring
     own = pack.springs[1].wire_diameter
-    sw = model.sweep([3000.0], vary=("inner_spring.wire_diameter", [own, 2.7e-3])).summary_table()
+    varied = model.sweep([3000.0, 3100.0], vary=("inner_spring.wire_diameter", [own, 2.7e-3]))
+    assert (tmp_path / "sweep_springs.png") in varied.plot_all(tmp_path)
+    sw = {k: v[::2] for k, v in varied.summary_table().items()}  # 3000 rpm: each value's first row
     thick = model.replace(spring=pack.replace_spring(1, pack.springs[1].replace(wire_diameter=2.7e-3)))
     for k, m in enumerate((model, thick)):
         alone = m.sweep([3000.0]).summary_table()

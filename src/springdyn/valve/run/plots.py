@@ -306,16 +306,29 @@ def _pack_springs(result):
     """A spring pack's sweep, each spring: its retainer force's extremes against its static force's,
     and its Goodman safety (dynamic and static) over the speeds (:meth:`SpeedSweep.spring_table`)."""
     rpm, speed_label = _speed_axis(result)
+    nr = len(rpm)
     fig, (ax, ax2) = new_figure(2, 1, figsize=(9, 8), sharex=True)
     for k, name in enumerate(result.spring.names):
         t, color = result.spring_table(name), f"C{k}"
-        ax.plot(rpm, t["max_retainer_force_N"], color=color, lw=1.5, label=f"{name}: max / min at the retainer")
-        ax.plot(rpm, t["min_retainer_force_N"], color=color, lw=1.5, ls="-.")
-        ax.plot(rpm, t["max_static_force_N"], color=color, lw=0.8, ls="--", label=f"{name}: static max / min")
-        ax.plot(rpm, t["min_static_force_N"], color=color, lw=0.8, ls="--")
-        ax2.plot(rpm, t["fatigue_safety_factor"], color=color, lw=1.5, label=f"{name}: dynamic")
-        ax2.plot(rpm, t["static_fatigue_safety_factor"], color=color, lw=0.8, ls="--", label=f"{name}: static")
-    ax.set_ylabel("force [N]")
+        for j in range(len(t["max_retainer_force_N"]) // nr):  # each value of a design variable
+            sl = slice(j * nr, (j + 1) * nr)
+            who = name + (f" ({_vary_label(result, j)})" if result.vary_name else "")
+            alpha = 1.0 / (1.0 + 0.6 * j)
+            ax.plot(rpm, t["max_retainer_force_N"][sl], color=color, alpha=alpha, lw=1.5, label=f"{who}: max / min")
+            ax.plot(rpm, t["min_retainer_force_N"][sl], color=color, alpha=alpha, lw=1.5, ls="-.")
+            ax.plot(rpm, t["max_static_force_N"][sl], color=color, alpha=alpha, lw=0.8, ls="--", label=f"{who}: static")
+            ax.plot(rpm, t["min_static_force_N"][sl], color=color, alpha=alpha, lw=0.8, ls="--")
+            ax2.plot(rpm, t["fatigue_safety_factor"][sl], color=color, alpha=alpha, lw=1.5, label=f"{who}: dynamic")
+            ax2.plot(
+                rpm,
+                t["static_fatigue_safety_factor"][sl],
+                color=color,
+                alpha=alpha,
+                lw=0.8,
+                ls="--",
+                label=f"{who}: static",
+            )
+    ax.set_ylabel("force [N] at the retainer")
     ax.set_title(f"{result.spring.type}: each spring over the speed range")
     ax2.set_ylabel("Goodman safety [-]")
     ax2.set_xlabel(speed_label)
