@@ -216,6 +216,18 @@ s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
 f_cam, f_valve, gap : float
     Cam contact force [N], force on the valve [N], smallest signed gap [m].
 """,
+    chain_args="""
+s : ndarray
+    State: displacements [m] then velocities [m/s].
+m : EngineModel
+    The chains' arrays [kg, m, N, N s/m] (one spring's: one chain).
+nfree : int
+    Degrees of freedom [-]: the velocities start at ``s[nfree]``.
+u_top, v_top : float
+    Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
+out : ndarray
+    Receives the derivatives of the masses' states [m/s, m/s^2].
+""",
     kind_args="""
 s, nm, nfree, vt, cam, out, extra : as for :func:`direct_acting_rhs`
     State [m, m/s], chain masses [-], degrees of freedom [-], the train's parameters,
@@ -496,15 +508,7 @@ def chain_forces(s, m, nfree, u_top, v_top, out, extra):
 
     Parameters
     ----------
-    s : ndarray
-        State: displacements [m] then velocities [m/s].
-    m : EngineModel
-        The chains' arrays [kg, m, N, N s/m].
-    {nfree}
-    u_top, v_top : float
-        Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
-    out : ndarray
-        Receives the derivatives of the masses' states [m/s, m/s^2].
+    {chain_args}
     extra : ndarray
         Empty, or receives the outputs [N, m, m/s, W] (:func:`.layout.extra_layout`).
 
@@ -528,15 +532,7 @@ def one_chain_forces(s, m, nfree, u_top, v_top, out, extra):
 
     Parameters
     ----------
-    s : ndarray
-        State: displacements [m] then velocities [m/s].
-    m : EngineModel
-        The chain's arrays [kg, m, N, N s/m].
-    {nfree}
-    u_top, v_top : float
-        Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
-    out : ndarray
-        Receives the derivatives of the masses' states [m/s, m/s^2].
+    {chain_args}
     extra : ndarray
         Empty, or receives element forces [N], compressions [m], mass displacements [m], the
         end forces as the seat and retainer totals [N] and the end elements' compressions [m]
@@ -601,15 +597,7 @@ def pack_chain_forces(s, m, nfree, u_top, v_top, out, extra):
 
     Parameters
     ----------
-    s : ndarray
-        State: displacements [m] then velocities [m/s].
-    m : EngineModel
-        The chains' arrays [kg, m, N, N s/m].
-    {nfree}
-    u_top, v_top : float
-        Displacement [m] and velocity [m/s] of the retainer end (node N + 1).
-    out : ndarray
-        Receives the derivatives of the masses' states [m/s, m/s^2].
+    {chain_args}
     extra : ndarray
         Empty, or receives element forces [N], compressions [m], mass displacements [m], the
         totals at the seat and the retainer [N], the end contacts' smallest compressions [m],
