@@ -100,6 +100,13 @@ def register_tolerance(vsub) -> None:
         "a variant, not a sweep; Goodman, peak force and clash are not computed)",
     )
     p.add_argument(
+        "--screen",
+        action="store_true",
+        help="a screened study: every variant's statics; a designed part of the sample simulated and fitted with a "
+        "quadratic response surface per dynamic figure, checked on a hold-out; only the variants outside the fitted "
+        "ones' box or whose verdict the surface's band leaves open simulated (their count and each band printed)",
+    )
+    p.add_argument(
         "--resolution", default="5", metavar="RPM", help="final bracket of each float speed in cam rpm (default 5)"
     )
     p.add_argument(
@@ -168,6 +175,7 @@ def cmd_tolerance(args) -> int:
                 resolution=resolution,
                 workers=workers,
                 periodicity_tol=tol,
+                screen=args.screen,
             )
     finally:
         if client is not None:

@@ -6,6 +6,8 @@
   split (equal stress, the radial clearance kept);
 - :mod:`.tolerances` -- a spring across its manufacturing tolerances (``[tolerances]``,
   ``[criteria]``): Sobol or Monte Carlo variants, percentiles, failing shares;
+- :mod:`.screening` -- the response surface of a screened tolerance study: which variants it
+  must simulate and which the surface judges;
 - :mod:`.life` -- relaxation at the service temperature and the life against a load
   spectrum (``[spectrum]``);
 - :mod:`.calibrate` -- the drawing's load points against the model, and a fit of the shear

@@ -70,7 +70,7 @@ from ..run.periodicity import PERIODICITY_TOL
 from ..spring.formulas import active_coils_free
 from ..spring.pack import SPRING_TABLES, SpringPack
 from ..train.piston import static_valve_lift
-from . import criteria
+from . import criteria, screening
 from .criteria import Criteria
 
 __all__ = [
@@ -153,6 +153,8 @@ OUTPUTS = {
 }
 #: The outputs of a float-speed study (``float_only``): the statics and the float speed.
 FLOAT_OUTPUTS = ("Fset", "f1", "float_cam_rpm", "float_in_range", "refused", "periodicity", "simulations")
+#: The outputs of a variant's statics (:func:`variant_statics`): a screened study has them of every variant.
+STATIC_OUTPUTS = ("Fset", "f1", "refused")
 #: The outputs that are figures (percentiles and histograms); the others are flags.
 FIGURES = (
     "Fset",
@@ -810,13 +812,41 @@ class _Stopped(Exception):
     """A chunk left unfinished because the study was interrupted (nothing of it is stored)."""
 
 
+def _chunk_outputs(plan: dict) -> tuple:
+    """The outputs a chunk of ``plan`` gives: :data:`STATIC_OUTPUTS` (``plan["statics"]``),
+    :data:`FLOAT_OUTPUTS` (``plan["guess"]``) or :data:`OUTPUTS`, and a pack's figures."""
+    if plan.get("statics"):
+        own = STATIC_OUTPUTS
+    else:
+        own = FLOAT_OUTPUTS if plan.get("guess") is not None else tuple(OUTPUTS)
+    return own + tuple(plan.get("pack", ()))
+
+
+def variant_statics(spring, cam, valve_train) -> dict:
+    """The outputs of :data:`STATIC_OUTPUTS` of one variant (and a pack's figures): what a
+    screened study knows of every variant without running it.
+
+    Parameters
+    ----------
+    spring : ValveSpring
+    cam : Cam
+    valve_train : ValveTrain or None
+    """
+    out = dict(
+        Fset=float(spring.spring_model.internal_parameters()["Fset"]),
+        f1=float(spring.spring_model.first_mode_installed),
+        refused=0.0,
+    )
+    return _with_pack_figures(out, spring, cam, valve_train)
+
+
 def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=None) -> dict:
     """The variants of ``values`` (a chunk's slice of the sample: only it travels to a Dask
     worker): :func:`run_variant_float` with ``plan["guess"]``, else :func:`run_variant`.
     ``stop`` (a :class:`threading.Event`, local threads only): set, the chunk ends before its
     next variant (an interrupted study stops within one variant, its finished chunks kept)."""
 
-    names = (FLOAT_OUTPUTS if plan.get("guess") is not None else tuple(OUTPUTS)) + tuple(plan.get("pack", ()))
+    names = _chunk_outputs(plan)
     rows = {k: [] for k in names}
     for i in range(len(next(iter(values.values())))):
         if stop is not None and stop.is_set():
@@ -826,7 +856,9 @@ def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=
                 warnings.simplefilter("ignore")
                 sp, c, vt = variant(spring, cam, valve_train, {k: v[i] for k, v in values.items()})
                 starts = _variant_starts(plan)
-                if plan.get("guess") is not None:
+                if plan.get("statics"):
+                    r = variant_statics(sp, c, vt)
+                elif plan.get("guess") is not None:
                     r = run_variant_float(
                         sp, c, vt, speeds, plan["guess"], plan["resolution"], plan.get("periodicity_tol"), starts
                     )
@@ -868,6 +900,7 @@ def tolerance_study(
     workers: int | None = None,
     periodicity_tol: float | None = None,
     warm_starts: bool = True,
+    screen: bool = False,
 ) -> ToleranceStudy:
     """The spring across its tolerances (module docstring).
 
@@ -913,6 +946,13 @@ def tolerance_study(
         Every variant's speeds start from the nominal's periodic states (and its own, search
         trial to trial), not from rest (:func:`_warm_starts`): fewer revolutions, the figures
         within the periodicity tolerance of cold starts' (float speeds within ``resolution``).
+    screen : bool
+        A screened study (:func:`_screened`, :mod:`.screening`): every variant's statics, a
+        designed part of the sample simulated and fitted with a quadratic response surface per
+        dynamic figure, checked on a hold-out, and only the variants the surface cannot judge
+        simulated; the others' dynamic figures are the surface's, within its band (each
+        figure's in ``variants.nc``'s attributes, ``simulated`` 0).  A sample smaller than
+        :func:`_screen_pays` runs every variant.
     """
     import xarray as xr  # (here: xarray costs 0.4 s of start-up)
 
@@ -996,82 +1036,28 @@ def tolerance_study(
     chunk_dir = None if out_dir is None else Path(out_dir) / "chunks"
     if chunk_dir is not None:
         chunk_dir.mkdir(parents=True, exist_ok=True)
-    done, resumed = {}, 0
-    # the chunks on disk, not every chunk of the sample (400,000 of them at 10,000,000 variants)
-    on_disk = [] if chunk_dir is None else sorted(chunk_dir.glob(f"{glob_escape(key)}_*.npz"))
-    for f in on_disk:
-        lo = f.name[len(key) + 1 : -len(".npz")]
-        if not (lo.isdigit() and len(lo) == 8 and int(lo) % CHUNK == 0 and int(lo) < count):
-            continue  # another sample's (its key goes on, e.g. r3000) or a foreign file
-        lo = int(lo)
-        hi = min(lo + CHUNK, count)
-        try:
-            with np.load(f) as z:
-                got = {k: np.asarray(z[k], dtype=float) for k in names}
-            if any(v.shape != (hi - lo,) or not np.all(np.isfinite(v)) for v in got.values()):
-                raise ValueError("wrong shape or not finite")
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
-            f.unlink(missing_ok=True)  # an unreadable chunk (a torn write, a foreign file): computed again
-            continue
-        done[lo] = np.stack([got[k] for k in names])
-        resumed += hi - lo
-    todo = math.ceil(count / CHUNK) - len(done)
-
-    def store(lo, res):
-        done[lo] = np.stack([np.asarray(res[k], dtype=float) for k in names])  # one array a chunk
-        if chunk_dir is not None:
-            # committed now, not with the command's other outputs: a killed or interrupted study
-            # resumes from every chunk that finished (issue 40)
-            with direct_outputs(), atomic_path(chunk_dir / f"{key}_{lo:08d}.npz") as tmp:
-                with open(tmp, "wb") as fh:
-                    np.savez(fh, **res)
-
-    # the chunks still to run, drawn from the sample as they are submitted (a chunk read back
-    # is drawn too, and dropped: the stream stays the sample's)
-    waiting = ((lo, values) for lo, _, values in chunks if lo not in done)
-    if client is not None and todo:
-        from dask.distributed import as_completed  # (here: dask is an optional extra)
-
-        # a bounded number of chunks in flight: the sample and the futures of 10,000,000
-        # variants are never held at once
-        limit = IN_FLIGHT * max(1, sum(client.nthreads().values()))
-        where = {}
-
-        def submit():
-            item = next(waiting, None)
-            if item is None:
-                return None
-            fut = client.submit(_run_chunk, spring, cam, valve_train, speeds, item[1], plan, pure=False)
-            where[fut.key] = item[0]
-            return fut
-
-        first = [fut for fut in (submit() for _ in range(min(limit, todo))) if fut is not None]
-        it = as_completed(first, loop=client.loop)  # the study's client, not a default one (it may have none)
-        for fut in progress(it, total=todo, desc="variants") if progress else it:
-            store(where.pop(fut.key), fut.result())
-            fut.release()
-            nxt = submit()
-            if nxt is not None:
-                it.add(nxt)
-    elif todo:
-        # the engine releases the GIL: the chunks run on threads, each its variants in turn
-
-        threads = workers or min(os.cpu_count() or 1, 2)
-        stop = threading.Event()
-        pool = ThreadPoolExecutor(max_workers=threads)
-        try:
-            it = _bounded(pool, waiting, IN_FLIGHT * threads, spring, cam, valve_train, speeds, plan, stop)
-            for lo, res in progress(it, total=todo, desc="variants") if progress else it:
-                store(lo, res)
-        except BaseException:  # Ctrl-C, SIGTERM (the CLI's), an error: stop within a variant, keep the chunks
-            stop.set()
-            pool.shutdown(wait=True, cancel_futures=True)
-            raise
-        pool.shutdown(wait=True)
-    values = sample(tolerances, nominal, count, seed, method)  # the chunks' values, drawn at once
-    stacked = np.concatenate([done[lo] for lo in range(0, count, CHUNK)], axis=1)
-    done.clear()
-    outputs = {k: stacked[j] for j, k in enumerate(names)}
+    base, execution = (spring, cam, valve_train, speeds), (client, workers, progress)
+    screen_info = {}
+    if screen and count < _screen_pays(len(tolerances)):
+        screen, screen_info = False, dict(skipped=_screen_pays(len(tolerances)))
+    if screen:
+        values = sample(tolerances, nominal, count, seed, method)  # (a screen holds the sample)
+        rules = dynamic_rules(criteria, speeds, valve_train is not None, float_only)
+        outputs, simulated, screen_info, resumed = _screened(
+            values, plan, names, key + "x", chunk_dir, base, execution, rules
+        )
+    else:
+        done, resumed = _read_back(chunk_dir, key, count, names)
+        todo = math.ceil(count / CHUNK) - len(done)
+        # the chunks still to run, drawn from the sample as they are submitted (a chunk read
+        # back is drawn too, and dropped: the stream stays the sample's)
+        waiting = ((lo, values) for lo, _, values in chunks if lo not in done)
+        _execute(waiting, todo, _storer(done, chunk_dir, key, names), (*base, plan), *execution)
+        values = sample(tolerances, nominal, count, seed, method)  # the chunks' values, drawn at once
+        stacked = np.concatenate([done[lo] for lo in range(0, count, CHUNK)], axis=1)
+        done.clear()
+        outputs = {k: stacked[j] for j, k in enumerate(names)}
+        simulated = np.ones(count, bool)
     settled = (outputs["refused"] < 0.5) & (outputs["periodicity"] <= tol)
     units = {k: unit_of(k) for k in values}
     data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
@@ -1085,6 +1071,27 @@ def tolerance_study(
             "(0: left out of the percentiles and shares; a refused variant ran nothing)",
         },
     )
+    data["simulated"] = (
+        "variant",
+        simulated.astype(np.int8),
+        {
+            "units": "1",
+            "long_name": "1: the variant was simulated; 0: its dynamic figures are a screened study's "
+            "response surface's (within the attributes' screen_band_* of a simulation)",
+        },
+    )
+    searched = screen_info.pop("float_searched", np.zeros(count, bool))
+    data["float_searched"] = (
+        "variant",
+        searched.astype(np.int8),
+        {
+            "units": "1",
+            "long_name": "1: a screened study searched the variant's float speed (float_only's search); its "
+            "other dynamic figures are the response surface's",
+        },
+    )
+    screen_attrs = {f"screen_band_{k}": v["band"] for k, v in screen_info.get("figures", {}).items()}
+    screen_attrs.update({f"screen_{k}": v["how"] for k, v in screen_info.get("figures", {}).items()})
     ds = xr.Dataset(
         data,
         coords={"variant": ("variant", np.arange(count))},
@@ -1096,6 +1103,13 @@ def tolerance_study(
             study="float speed" if float_only else "full",
             float_resolution_rpm=float(resolution),
             periodicity_tol=tol,
+            screened=int(bool(screen)),
+            **screen_attrs,
+            **{
+                f"screen_{k}": int(screen_info[k])
+                for k in ("fitted", "held_out", "terms", "skipped")
+                if k in screen_info
+            },
         ),
     )
     if not float_only and not warm_starts:
@@ -1175,6 +1189,359 @@ def _bounded(pool, waiting, limit, spring, cam, valve_train, speeds, plan, stop)
         top_up()
 
 
+def _read_back(chunk_dir, key: str, count: int, names) -> tuple:
+    """The chunks of ``key`` on disk (``{key}_{lo:08d}.npz``) that hold ``names`` for their
+    rows of ``count``: ``({lo: array (len(names), rows)}, rows read back)``.  An unreadable
+    chunk (a torn write, a foreign file) is deleted and computed again."""
+    done, resumed = {}, 0
+    # the chunks on disk, not every chunk of the sample (400,000 of them at 10,000,000 variants)
+    on_disk = [] if chunk_dir is None else sorted(chunk_dir.glob(f"{glob_escape(key)}_*.npz"))
+    for f in on_disk:
+        lo = f.name[len(key) + 1 : -len(".npz")]
+        if not (lo.isdigit() and len(lo) == 8 and int(lo) % CHUNK == 0 and int(lo) < count):
+            continue  # another sample's (its key goes on, e.g. r3000) or a foreign file
+        lo = int(lo)
+        hi = min(lo + CHUNK, count)
+        try:
+            with np.load(f) as z:
+                got = {k: np.asarray(z[k], dtype=float) for k in names}
+            if any(v.shape != (hi - lo,) or not np.all(np.isfinite(v)) for v in got.values()):
+                raise ValueError("wrong shape or not finite")
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            f.unlink(missing_ok=True)
+            continue
+        done[lo] = np.stack([got[k] for k in names])
+        resumed += hi - lo
+    return done, resumed
+
+
+def _storer(done: dict, chunk_dir, key: str, names):
+    """``store(lo, outputs)``: a finished chunk kept in ``done`` and committed to disk at once
+    (not with the command's other outputs: a killed or interrupted study resumes from every
+    chunk that finished, issue 40)."""
+
+    def store(lo, res):
+        done[lo] = np.stack([np.asarray(res[k], dtype=float) for k in names])  # one array a chunk
+        if chunk_dir is not None:
+            with direct_outputs(), atomic_path(chunk_dir / f"{key}_{lo:08d}.npz") as tmp:
+                with open(tmp, "wb") as fh:
+                    np.savez(fh, **res)
+
+    return store
+
+
+def _execute(waiting, todo: int, store, run_args: tuple, client, workers, progress, desc: str = "variants") -> None:
+    """Every chunk ``(lo, values)`` of ``waiting`` run (:func:`_run_chunk` with ``run_args``:
+    spring, cam, train, speeds, plan) on the Dask ``client`` or on local threads, each given to
+    ``store`` as it finishes; ``todo`` chunks, shown by ``progress``."""
+    if client is not None and todo:
+        from dask.distributed import as_completed  # (here: dask is an optional extra)
+
+        # a bounded number of chunks in flight: the sample and the futures of 10,000,000
+        # variants are never held at once
+        limit = IN_FLIGHT * max(1, sum(client.nthreads().values()))
+        where = {}
+
+        def submit():
+            item = next(waiting, None)
+            if item is None:
+                return None
+            fut = client.submit(_run_chunk, *run_args[:4], item[1], run_args[4], pure=False)
+            where[fut.key] = item[0]
+            return fut
+
+        first = [fut for fut in (submit() for _ in range(min(limit, todo))) if fut is not None]
+        it = as_completed(first, loop=client.loop)  # the study's client, not a default one (it may have none)
+        for fut in progress(it, total=todo, desc=desc) if progress else it:
+            store(where.pop(fut.key), fut.result())
+            fut.release()
+            nxt = submit()
+            if nxt is not None:
+                it.add(nxt)
+    elif todo:
+        # the engine releases the GIL: the chunks run on threads, each its variants in turn
+        threads = workers or min(os.cpu_count() or 1, 2)
+        stop = threading.Event()
+        pool = ThreadPoolExecutor(max_workers=threads)
+        try:
+            it = _bounded(pool, waiting, IN_FLIGHT * threads, *run_args, stop)
+            for lo, res in progress(it, total=todo, desc=desc) if progress else it:
+                store(lo, res)
+        except BaseException:  # Ctrl-C, SIGTERM (the CLI's), an error: stop within a variant, keep the chunks
+            stop.set()
+            pool.shutdown(wait=True, cancel_futures=True)
+            raise
+        pool.shutdown(wait=True)
+
+
+def dynamic_rules(criteria_: Criteria, speeds, floats: bool, float_only: bool) -> dict:
+    """The criteria a study judges on its variants' dynamic figures: criterion -> ``(figure,
+    passes, limit)``, ``passes(values)`` the criterion's rule
+    (:func:`springdyn.valve.design.criteria.passes`) on the figure's values (a float speed above
+    the range as ``inf``) against ``limit`` [the figure's unit].
+
+    Parameters
+    ----------
+    criteria_ : Criteria
+        The limits.
+    speeds : array_like
+        The study's cam speeds [rev/min]: without ``min_float_cam_rpm`` the float speed must lie
+        above the last.
+    floats : bool
+        The study has a float speed (a valve train).
+    float_only : bool
+        A float-speed study (no Goodman, clash or peak force).
+    """
+    c = criteria_
+    out = {}
+    if not float_only:
+        out["goodman"] = (
+            "goodman_safety",
+            lambda v: criteria.passes("goodman", v, c.min_goodman_safety),
+            c.min_goodman_safety,
+        )
+    if floats:
+        need = omega_to_rpm(c.min_float_cam_rpm) if c.min_float_cam_rpm is not None else float(np.max(speeds))
+        out["float_speed"] = ("float_cam_rpm", lambda v: criteria.passes("float_speed", v, need), need)
+    if c.no_coil_clash and not float_only:
+        out["coil_clash"] = (
+            "max_clash_severity",
+            lambda v: criteria.passes("coil_clash", v, c.max_clash_severity),
+            c.max_clash_severity,
+        )
+    if c.max_retainer_force is not None and not float_only:
+        out["retainer_force"] = (
+            "max_retainer_force",
+            lambda v: criteria.passes("max_retainer_force", v, c.max_retainer_force),
+            c.max_retainer_force,
+        )
+    return out
+
+
+#: How far a float speed searched from a guess (:func:`run_variant_float`) may lie from the
+#: sweep's, beyond the resolution [rev/min]: the two brackets overlap within 1.5 rpm
+#: (tests/valve/run/test_float_search.py).  A screened study simulates a variant whose searched
+#: float speed lies within this and the resolution of the limit.
+SEARCH_AGREEMENT = 1.5
+#: The figures a screened study predicts (the others are its statics' or flags), each with the
+#: bound it is censored at (``"top"``: the speed range's top, a float speed or clash onset
+#: beyond the range; a number: no clash) or None.
+SCREENED = {
+    "float_cam_rpm": "top",
+    "max_retainer_force": None,
+    "clash_onset_cam_rpm": "top",
+    "max_clash_severity": 0.0,
+    "goodman_safety": None,
+}
+
+
+def _run_rows(rows, tag: str, plan: dict, values: dict, key: str, chunk_dir, base: tuple, execution: tuple, desc: str):
+    """The outputs (:func:`_chunk_outputs`) of the variants ``rows`` (indices into the sample
+    ``values``), run in chunks of their own under ``{key}{tag}`` (resumable), and how many
+    were read back."""
+    names = _chunk_outputs(plan)
+    n = len(rows)
+    k = f"{key}{tag}"
+    done, resumed = _read_back(chunk_dir, k, n, names)
+    todo = math.ceil(n / CHUNK) - len(done)
+    waiting = (
+        (lo, {q: v[rows[lo : lo + CHUNK]] for q, v in values.items()}) for lo in range(0, n, CHUNK) if lo not in done
+    )
+    _execute(waiting, todo, _storer(done, chunk_dir, k, names), (*base, plan), *execution, desc)
+    stacked = np.concatenate([done[lo] for lo in range(0, n, CHUNK)], axis=1) if n else np.zeros((len(names), 0))
+    return {q: stacked[j] for j, q in enumerate(names)}, resumed
+
+
+def _screened(values: dict, plan: dict, names: tuple, key: str, chunk_dir, base: tuple, execution: tuple, rules: dict):
+    """A screened study's outputs of every variant (module :mod:`.screening`): every variant's
+    statics; the first ``2 T`` unrefused variants of the sample simulated and fitted with a
+    quadratic surface per figure of :data:`SCREENED` (``T`` its terms), the next ``T``
+    simulated as a hold-out; then simulated: every variant outside the fitted variants' box
+    and every variant whose verdict on a criterion of ``rules`` the surface's band leaves
+    open.  The others take the surface's figures.
+
+    A variant undecided on the float speed alone (a full study) has its float speed searched
+    (:func:`run_variant_float`, from the fitted variants' median) and its other figures
+    predicted.
+
+    Returns ``(outputs, simulated, info, resumed)``: the outputs over the sample, the boolean
+    array of the variants simulated, the screen's figures (per figure its band and how it was
+    predicted, ``float_searched``: the variants whose float speed alone was searched) and the
+    variants read back from chunks.
+    """
+    speeds = base[3]
+    top = float(np.max(speeds))
+    count = len(next(iter(values.values())))
+    x = np.column_stack([np.asarray(values[k], dtype=float) for k in values])
+    statics, resumed = _run_rows(
+        np.arange(count), "s", dict(plan, statics=True), values, key, chunk_dir, base, execution, "statics"
+    )
+    order = np.flatnonzero(statics["refused"] < 0.5)
+    terms = screening.term_count(x.shape[1])
+    fit_rows = order[: screening.FITTED_PER_TERM * terms]
+    hold_rows = order[screening.FITTED_PER_TERM * terms : (screening.FITTED_PER_TERM + 1) * terms]
+    fit, r1 = _run_rows(fit_rows, "f", plan, values, key, chunk_dir, base, execution, "fitted variants")
+    hold, r2 = _run_rows(hold_rows, "h", plan, values, key, chunk_dir, base, execution, "held-out variants")
+    resumed += r1 + r2
+    tol = plan.get("periodicity_tol") or PERIODICITY_TOL
+    use = (fit["refused"] < 0.5) & (fit["periodicity"] <= tol)
+    figures = [k for k in names if k in SCREENED]
+    prediction, info = {}, {}
+    # a variant the dynamics refuse while its statics pass: the surface cannot know it, every variant is run
+    dynamic_refusal = bool(np.any(fit["refused"] > 0.5) or np.any(hold["refused"] > 0.5))
+    for k in figures:
+        bound = top if SCREENED[k] == "top" else SCREENED[k]
+        if dynamic_refusal or use.sum() <= terms:
+            fs = screening.FigureScreen("not predicted", np.inf)
+        else:
+            quantum = {"float_cam_rpm": plan["resolution"], "clash_onset_cam_rpm": _speed_step(speeds)}.get(k, 0.0)
+            fs = screening.screen_figure(
+                x[fit_rows][use], fit[k][use], x[hold_rows], hold[k], bound, bound == top, quantum
+            )
+        prediction[k] = fs.predict(x)  # (judged as it is; reported held to its bound)
+        info[k] = dict(how=fs.how, band=float(fs.band), bound=bound)
+    run = np.zeros(count, bool)
+    run[fit_rows] = run[hold_rows] = True
+    simulate = (statics["refused"] < 0.5) & ~run
+    # a variant outside the fitted ones' box, or undecided on a criterion, is simulated; one
+    # undecided on the float speed alone has its float speed searched (4-5 speeds, not a sweep)
+    full = ~screening.inside_box(x, x[np.concatenate([fit_rows, hold_rows])])
+    search = np.zeros(count, bool)
+    for figure, rule, _ in rules.values():
+        if figure not in prediction:
+            continue
+        pred, band = prediction[figure], info[figure]["band"]
+        if figure == "float_cam_rpm":  # above the range: no float within it
+            judge = lambda v, rule=rule: rule(np.where(v >= top, np.inf, v))  # noqa: E731
+        else:
+            judge = rule
+        open_ = screening.undecided(judge, np.nan_to_num(pred), band)
+        if figure == "float_cam_rpm" and plan.get("guess") is None:
+            search |= open_
+        else:
+            full |= open_
+    rest_rows = np.flatnonzero(simulate & full)
+    tag = "u" + hashlib.sha256(rest_rows.tobytes()).hexdigest()[:8]
+    rest, r3 = _run_rows(rest_rows, tag, plan, values, key, chunk_dir, base, execution, "undecided variants")
+    search_rows = np.flatnonzero(simulate & ~full & search)
+    floats = fit["float_cam_rpm"][use & (fit["float_cam_rpm"] < top)] if "float_cam_rpm" in fit else np.zeros(0)
+    guess = float(np.median(floats)) if floats.size else top  # where the searches start
+    tag = "g" + hashlib.sha256(search_rows.tobytes() + repr(guess).encode()).hexdigest()[:8]
+    searched, r4 = _run_rows(
+        search_rows, tag, dict(plan, guess=guess), values, key, chunk_dir, base, execution, "float speeds searched"
+    )
+    resumed += r3 + r4
+    if search_rows.size:
+        # a searched float speed agrees with the sweep's within the resolution and SEARCH_AGREEMENT:
+        # one within that of the limit is simulated (its verdict is the sweep's)
+        need = rules["float_speed"][2]
+        close = (searched["float_in_range"] > 0.5) & (
+            np.abs(searched["float_cam_rpm"] - need) <= plan["resolution"] + SEARCH_AGREEMENT
+        )
+        more = search_rows[close]
+        tag = "c" + hashlib.sha256(more.tobytes()).hexdigest()[:8]
+        extra_rows, r5 = _run_rows(
+            more, tag, plan, values, key, chunk_dir, base, execution, "float speeds at the limit"
+        )
+        resumed += r5
+        searched = {k: v[~close] for k, v in searched.items()}
+        search_rows = search_rows[~close]
+        rest_rows = np.concatenate([rest_rows, more])
+        rest = {k: np.concatenate([rest[k], extra_rows[k]]) for k in rest}
+    outputs = {k: np.zeros(count) for k in names}
+    for k in statics:
+        outputs[k] = statics[k].copy()
+    for k in figures:
+        bound, pred = info[k].pop("bound"), np.nan_to_num(prediction[k])
+        if bound is not None:  # beyond its bound a figure is reported at it, as a simulation's
+            pred = np.minimum(pred, bound) if bound == top else np.maximum(pred, bound)
+        outputs[k] = pred
+    if "float_in_range" in outputs:
+        outputs["float_in_range"] = (outputs["float_cam_rpm"] < top).astype(float)
+    if "clash_in_range" in outputs:
+        outputs["clash_in_range"] = (outputs["clash_onset_cam_rpm"] < top).astype(float)
+    refused = statics["refused"] > 0.5
+    for k in names:  # a refused variant: zeros, as a simulated one's
+        if k != "refused":
+            outputs[k][refused] = 0.0
+    simulated = np.zeros(count, bool)
+    for rows, res in ((fit_rows, fit), (hold_rows, hold), (rest_rows, rest)):
+        for k in names:
+            outputs[k][rows] = res[k]
+        simulated[rows] = True
+    for k in searched:
+        outputs[k][search_rows] = searched[k]
+    gone = search_rows[searched["refused"] > 0.5] if search_rows.size else search_rows
+    for k in names:  # refused by the dynamics: zeros
+        if k != "refused":
+            outputs[k][gone] = 0.0
+    float_searched = np.zeros(count, bool)
+    float_searched[search_rows] = True
+    info = dict(
+        figures=info,
+        fitted=int(fit_rows.size),
+        held_out=int(hold_rows.size),
+        terms=int(terms),
+        float_searched=float_searched,
+    )
+    return outputs, simulated, info, resumed
+
+
+def figure_tolerance(name: str, values, fset, resolution: float, speeds, periodicity_tol: float = PERIODICITY_TOL):
+    """How far two converged runs of a variant may differ in a figure: the periodicity tolerance
+    in the figure's terms (what a warm start is held to, and a screened study's prediction
+    beside its band) [the figure's unit].
+
+    Forces differ by up to ``periodicity_tol`` of the variant's Fset, a clash severity (a
+    fraction of Fset) and a Goodman safety by that fraction of themselves, a float speed by the
+    resolution and :data:`SEARCH_AGREEMENT` (its search against the sweep's), a clash onset by
+    the swept speeds' step; the statics not at all.
+
+    Parameters
+    ----------
+    name : str
+        An output of :data:`OUTPUTS`.
+    values : array_like
+        The figure's values [its unit].
+    fset : array_like
+        The variants' Fset [N].
+    resolution : float
+        The float speeds' final bracket [rev/min].
+    speeds : array_like
+        The study's cam speeds [rev/min].
+    periodicity_tol : float
+        The periodic steady state's tolerance [fraction of Fset].
+    """
+    values, fset = np.asarray(values, dtype=float), np.asarray(fset, dtype=float)
+    if name == "max_retainer_force":
+        return periodicity_tol * fset
+    if name in ("goodman_safety", "max_clash_severity"):
+        return periodicity_tol * np.abs(values)
+    if name == "float_cam_rpm":
+        return np.full(values.shape, resolution + SEARCH_AGREEMENT)
+    if name == "clash_onset_cam_rpm":
+        return np.full(values.shape, _speed_step(speeds))
+    return np.zeros(values.shape)
+
+
+def _screen_pays(parameters: int) -> int:
+    """The smallest sample a screen runs on [-]: twice the variants it simulates to fit and
+    check its surfaces (:func:`_screened`), else it runs every variant.
+
+    Parameters
+    ----------
+    parameters : int
+        Toleranced parameters [-].
+    """
+    return 2 * (screening.FITTED_PER_TERM + 1) * screening.term_count(parameters)
+
+
+def _speed_step(speeds) -> float:
+    """The largest step of the swept speeds [rev/min] (0 for one speed)."""
+    speeds = np.asarray(speeds, dtype=float)
+    return float(np.max(np.diff(speeds))) if speeds.size > 1 else 0.0
+
+
 @dataclass(frozen=True, repr=False)
 class ToleranceStudy(Result):
     """The variants of a tolerance study (:func:`tolerance_study`): inputs, outputs, percentiles, failures."""
@@ -1203,26 +1570,15 @@ class ToleranceStudy(Result):
 
     def failures(self) -> dict:
         """Per criterion the boolean array of the variants that fail it (a refused variant fails
-        all), each judged by its rule (:func:`springdyn.valve.design.criteria.passes`)."""
+        all), each judged by its rule (:func:`dynamic_rules`, :func:`springdyn.valve.design.criteria.passes`)."""
         ds, c = self.dataset, self.criteria
         refused = ds["refused"].values > 0.5
         out = {}
-        if not self.float_only:
-            out["goodman"] = refused | ~criteria.passes("goodman", ds["goodman_safety"].values, c.min_goodman_safety)
-        if self.floats:
-            need = omega_to_rpm(c.min_float_cam_rpm) if c.min_float_cam_rpm is not None else float(self.speeds[-1])
-            f = ds["float_cam_rpm"].values
-            out["float_speed"] = refused | (
-                (ds["float_in_range"].values > 0.5) & ~criteria.passes("float_speed", f, need)
-            )
-        if c.no_coil_clash and not self.float_only:
-            out["coil_clash"] = refused | ~criteria.passes(
-                "coil_clash", ds["max_clash_severity"].values, c.max_clash_severity
-            )
-        if c.max_retainer_force is not None and not self.float_only:
-            out["retainer_force"] = refused | ~criteria.passes(
-                "max_retainer_force", ds["max_retainer_force"].values, c.max_retainer_force
-            )
+        for name, (figure, rule, _) in dynamic_rules(c, self.speeds, self.floats, self.float_only).items():
+            v = ds[figure].values
+            if figure == "float_cam_rpm":  # a float speed above the range is no float within it
+                v = np.where(ds["float_in_range"].values > 0.5, v, np.inf)
+            out[name] = refused | ~rule(v)
         if c.installed_force_band is not None:
             dev = np.abs(ds["Fset"].values / self.nominal["Fset"] - 1.0)
             out["installed_force"] = refused | ~criteria.passes("installed_force", dev, c.installed_force_band)
@@ -1366,10 +1722,61 @@ class ToleranceStudy(Result):
                     if f"{k}_p0.135_normal" in s
                 )
             )
+        notes += self._screen_notes(s)
         if ds.attrs["method"] == "sobol" and n & (n - 1):
             notes.append(f"Sobol points are balanced at powers of 2 (e.g. {2 ** int(math.log2(n) + 1)} variants)")
         s["notes"] = notes
         return s
+
+    def _screen_notes(self, s: dict) -> list:
+        """A screened study's figures into the summary ``s`` (the variants simulated, each
+        predicted figure's band) and its notes."""
+        ds = self.dataset
+        n = ds.sizes["variant"]
+        if "screen_skipped" in ds.attrs:
+            return [
+                f"not screened: a screen needs {int(ds.attrs['screen_skipped'])} variants or more to pay "
+                "(it simulates some 1/6 of that to fit and check its surfaces); every variant was simulated"
+            ]
+        if not ds.attrs.get("screened"):
+            return []
+        s["simulated_variants"] = int(ds["simulated"].values.sum())
+        s["float_searched_variants"] = int(ds["float_searched"].values.sum()) if "float_searched" in ds else 0
+        bands = []
+        for k in SCREENED:
+            how = ds.attrs.get(f"screen_{k}")
+            if how is None:
+                continue
+            band = float(ds.attrs[f"screen_band_{k}"])
+            s[f"screen_band_{k}"] = band if math.isfinite(band) else -1.0
+            if how.startswith("quadratic surface"):
+                spread = float(np.ptp(ds[k].values[ds["simulated"].values > 0])) if n else 0.0
+                wide = (
+                    " (wide: a quarter of its spread or more; its percentiles are the surface's, run without "
+                    "--screen for the simulation's)"
+                    if band >= 0.25 * spread
+                    else ""
+                )
+                bands.append(f"{k} within {band:.3g} {self._unit(k)}{wide}")
+            elif how == "at its bound":
+                bands.append(f"{k} at its bound (no fitted or held-out variant left it)")
+            else:
+                bands.append(f"{k} {how} (every undecided variant simulated)")
+        return [
+            f"screened: {s['simulated_variants']} of {n} variants simulated ({int(ds.attrs['screen_fitted'])} fitted "
+            f"with a quadratic surface of {int(ds.attrs['screen_terms'])} terms per figure, "
+            f"{int(ds.attrs['screen_held_out'])} held out to check it, and every variant outside the fitted ones' box "
+            "or whose verdict the band leaves open)"
+            + (
+                f", {s['float_searched_variants']} more had their float speed searched (undecided on it alone)"
+                if s["float_searched_variants"]
+                else ""
+            )
+            + "; the others' dynamic figures are the surface's: "
+            + "; ".join(bands)
+            + ". Fset and f1 are every variant's own; the band is twice the largest leave-one-out or held-out error "
+            "(plus the figure's resolution)"
+        ]
 
     def describe(self, source: str = "", chunks: str = "") -> str:
         """The study in words and tables (what ``springdyn valve tolerance`` prints): the sample,
