@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import sys
 import time
 import warnings
 
@@ -48,14 +49,14 @@ def main(argv=None) -> int:
 
     import numpy as np
 
-    from springdyn.valve import Cam, ValveSpring, ValveTrain, simulate
+    from springdyn.valve import Cam, ValveSpring, simulate
     from springdyn.valve.design.tolerances import SEARCH_AGREEMENT, figure_tolerance, read_tolerances, tolerance_study
 
-    root = os.path.join(os.path.dirname(__file__), "..", "examples", "valve")
-    spring = ValveSpring.from_toml(os.path.join(root, "one_step_spring.toml"))
-    cam = Cam.from_toml(os.path.join(root, "cam_polydyne_ramps.toml"))
-    vt = ValveTrain.from_toml(os.path.join(root, "valve_train.toml"))
-    tols, criteria = read_tolerances(os.path.join(root, "tolerances.toml"))
+    sys.path.insert(0, os.path.dirname(__file__))
+    from valve_variants import EXAMPLES, bucket_example
+
+    spring, cam, vt = bucket_example()
+    tols, criteria = read_tolerances(os.path.join(EXAMPLES, "tolerances.toml"))
     lo, hi, step = (float(v) for v in args.cam_rpm.split(":"))
     speeds = np.arange(lo, hi + 0.5 * step, step)
     simulate(spring, cam, 3000.0, valve_train=vt)  # the engine loaded (compiled once per machine: cold_start.py)

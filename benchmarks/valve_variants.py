@@ -49,6 +49,21 @@ def _load_engine(spring, cam, vt) -> None:
     simulate(spring, cam, 3000.0, valve_train=vt)
 
 
+#: The examples' folder of valve definitions.
+EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples", "valve")
+
+
+def bucket_example():
+    """The README's tolerance example: the one-step spring, the polydyne cam, the bucket train."""
+    from springdyn.valve import Cam, ValveSpring, ValveTrain
+
+    return (
+        ValveSpring.from_toml(os.path.join(EXAMPLES, "one_step_spring.toml")),
+        Cam.from_toml(os.path.join(EXAMPLES, "cam_polydyne_ramps.toml")),
+        ValveTrain.from_toml(os.path.join(EXAMPLES, "valve_train.toml")),
+    )
+
+
 class RevolutionCounter:
     """Counts the speeds and revolutions of every engine call (``runner.integrate_speeds``)
     while in its ``with`` block."""
@@ -122,13 +137,10 @@ def main(argv=None) -> int:
 
     import numpy as np
 
-    from springdyn.valve import Cam, ValveSpring, ValveTrain, simulate
+    from springdyn.valve import simulate
     from springdyn.valve.design.tolerances import parse_tolerance, tolerance_study
 
-    root = os.path.join(os.path.dirname(__file__), "..", "examples", "valve")
-    spring = ValveSpring.from_toml(os.path.join(root, "one_step_spring.toml"))
-    cam = Cam.from_toml(os.path.join(root, "cam_polydyne_ramps.toml"))
-    vt = ValveTrain.from_toml(os.path.join(root, "valve_train.toml"))
+    spring, cam, vt = bucket_example()
     speeds = np.arange(1500.0, 3301.0, 100.0)
     tols = {
         k: parse_tolerance(k, v)

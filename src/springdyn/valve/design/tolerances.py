@@ -1062,33 +1062,21 @@ def tolerance_study(
     units = {k: unit_of(k) for k in values}
     data = {k: ("variant", v, {"units": units[k], "long_name": f"sampled {k}"}) for k, v in values.items()}
     data.update({k: ("variant", v, {"units": OUTPUTS.get(k) or extra[k]}) for k, v in outputs.items()})
-    data["settled"] = (
-        "variant",
-        settled.astype(np.int8),
-        {
-            "units": "1",
-            "long_name": "every run of the variant settled: periodicity within periodicity_tol "
-            "(0: left out of the percentiles and shares; a refused variant ran nothing)",
-        },
-    )
-    data["simulated"] = (
-        "variant",
-        simulated.astype(np.int8),
-        {
-            "units": "1",
-            "long_name": "1: the variant was simulated; 0: its dynamic figures are a screened study's "
-            "response surface's (within the attributes' screen_band_* of a simulation)",
-        },
-    )
     searched = screen_info.pop("float_searched", np.zeros(count, bool))
-    data["float_searched"] = (
-        "variant",
-        searched.astype(np.int8),
-        {
-            "units": "1",
-            "long_name": "1: a screened study searched the variant's float speed (float_only's search); its "
-            "other dynamic figures are the response surface's",
-        },
+    data["settled"] = _flag(
+        settled,
+        "every run of the variant settled: periodicity within periodicity_tol "
+        "(0: left out of the percentiles and shares; a refused variant ran nothing)",
+    )
+    data["simulated"] = _flag(
+        simulated,
+        "1: the variant was simulated; 0: its dynamic figures are a screened study's "
+        "response surface's (within the attributes' screen_band_* of a simulation)",
+    )
+    data["float_searched"] = _flag(
+        searched,
+        "1: a screened study searched the variant's float speed (float_only's search); its "
+        "other dynamic figures are the response surface's",
     )
     screen_attrs = {f"screen_band_{k}": v["band"] for k, v in screen_info.get("figures", {}).items()}
     screen_attrs.update({f"screen_{k}": v["how"] for k, v in screen_info.get("figures", {}).items()})
@@ -1522,6 +1510,11 @@ def figure_tolerance(name: str, values, fset, resolution: float, speeds, periodi
     if name == "clash_onset_cam_rpm":
         return np.full(values.shape, _speed_step(speeds))
     return np.zeros(values.shape)
+
+
+def _flag(values, long_name: str) -> tuple:
+    """A boolean column of ``variants.nc`` over ``variant`` (int8, unit 1)."""
+    return ("variant", np.asarray(values).astype(np.int8), {"units": "1", "long_name": long_name})
 
 
 def _screen_pays(parameters: int) -> int:
