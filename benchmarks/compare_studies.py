@@ -28,8 +28,9 @@ two such files and judges each figure by its kind (its name's unit):
   installed force Fset (the smallest static force of its analysis, or its ``Fset``);
 - a float speed (a searched one: ``float_cam_rpm`` and its percentiles): within its resolution
   (the study's ``float_resolution_rpm``, the float result's ``resolution``, else 5 rpm);
-- a path figure (revolutions, simulations, steps, periodicity residuals, band ends, times):
-  not compared (a warm start changes the path, not the periodic state);
+- a path figure (revolutions, simulations, steps, periodicity residuals, band ends, times, a
+  screened study's ``simulated`` and ``float_searched`` flags): not compared (a warm start
+  changes the path, not the periodic state), on one side only too;
 - anything else: within ``--rtol`` (default 1 %) of its value, or of 1 % of the largest
   value of its array (a safety factor, a stress, a gap, a severity).
 
@@ -64,6 +65,8 @@ PATH_WORDS = (
     "seconds",
     "resumed",
     "t_end",
+    "simulated",  # a screened study's flags: how a variant's figures were obtained
+    "float_searched",
 )
 #: Searched float speeds: compared within their resolution.
 FLOAT_WORDS = ("float_cam_rpm", "float_engine_rpm")
@@ -287,12 +290,12 @@ def compare(args) -> int:
     fa, fb = a["figures"], b["figures"]
     diffs, counts, largest = [], dict(compared=0, skipped=0), {}
     for key in sorted(set(fa) | set(fb)):
+        kind = _kind(key)
+        if kind == "path":  # (one side's alone too: a path flag a version added)
+            counts["skipped"] += 1
+            continue
         if key not in fa or key not in fb:
             diffs.append(f"{key}: only {'after' if key in fb else 'before'}")
-            continue
-        kind = _kind(key)
-        if kind == "path":
-            counts["skipped"] += 1
             continue
         va, vb = _as_list(fa[key]), _as_list(fb[key])
         if len(va) != len(vb):
