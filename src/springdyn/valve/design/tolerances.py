@@ -1750,7 +1750,8 @@ class ToleranceStudy(Result):
                     if band >= 0.25 * spread
                     else ""
                 )
-                bands.append(f"{k} within {band:.3g} {self._unit(k)}{wide}")
+                unit = "" if self._unit(k) == "1" else f" {self._unit(k)}"
+                bands.append(f"{k} within {band:.3g}{unit}{wide}")
             elif how == "at its bound":
                 bands.append(f"{k} at its bound (no fitted or held-out variant left it)")
             else:
