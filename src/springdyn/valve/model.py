@@ -847,7 +847,8 @@ class ValveModel:
             The limits each variant is judged against.
         **options
             Further options of :func:`springdyn.valve.design.tolerances.tolerance_study` (count,
-            seed, speeds, method, out_dir, client, progress, float_only, resolution, workers).
+            seed, speeds, method, out_dir, client, progress, float_only, resolution, workers,
+            periodicity_tol, warm_starts, screen).
         """
         study = design_wing.tolerance_study(
             self.spring,

@@ -27,6 +27,9 @@ Goodman safety over the speeds (both extremes also at the rated speed and refine
 worst swept speeds).  A **float-speed study** (``float_only``, :func:`run_variant_float`)
 runs no sweep: each variant's float speed is searched from the nominal's
 (:func:`springdyn.valve.run.float_search.float_speed_near`, four to five speeds a variant).
+A **screened study** (``screen``, :func:`_screened`, :mod:`.screening`) runs every variant's
+statics, fits a quadratic response surface to each dynamic figure on a designed part of the
+sample, checks it on a hold-out, and simulates only the variants the surface cannot judge.
 
 **Outputs**: ``variants.nc`` (dimension ``variant``: the inputs under their names and the
 outputs, each variant's ``settled`` flag), percentiles, the share of variants that fail each
