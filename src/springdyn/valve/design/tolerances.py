@@ -662,11 +662,6 @@ def pack_figures(pack, cam, valve_train) -> dict:
     return out
 
 
-def _with_pack_figures(outputs: dict, spring, cam, valve_train) -> dict:
-    """A variant's outputs, with a pack's :func:`pack_figures` added (a single spring's as they are)."""
-    return dict(outputs, **pack_figures(spring, cam, valve_train)) if isinstance(spring, SpringPack) else outputs
-
-
 def run_variant(
     spring,
     cam,
@@ -709,10 +704,8 @@ def run_variant(
     r = run.speed_study(
         spring, cam, valve_train, speeds, rated_rpm, resolution, max_clash_severity, periodicity_tol, starts
     )
-    p = spring.spring_model.internal_parameters()
-    out = dict(
-        Fset=float(p["Fset"]),
-        f1=float(spring.spring_model.first_mode_installed),
+    return dict(
+        variant_statics(spring, cam, valve_train),
         float_cam_rpm=top if r["float_cam_rpm"] is None else r["float_cam_rpm"],
         max_retainer_force=r["max_retainer_force"],
         clash_onset_cam_rpm=top if r["clash_onset_cam_rpm"] is None else r["clash_onset_cam_rpm"],
@@ -720,11 +713,9 @@ def run_variant(
         goodman_safety=r["goodman_safety"],
         float_in_range=float(r["float_cam_rpm"] is not None),
         clash_in_range=float(r["clash_onset_cam_rpm"] is not None),
-        refused=0.0,
         periodicity=r["periodicity"],
         simulations=float(r["simulations"]),
     )
-    return _with_pack_figures(out, spring, cam, valve_train)
 
 
 def run_variant_float(
@@ -761,16 +752,13 @@ def run_variant_float(
     near = run.variant_float_speed(
         spring, cam, valve_train, guess_rpm, float(speeds[0]), float(speeds[-1]), resolution, periodicity_tol, starts
     )
-    out = dict(
-        Fset=float(spring.spring_model.internal_parameters()["Fset"]),
-        f1=float(spring.spring_model.first_mode_installed),
+    return dict(
+        variant_statics(spring, cam, valve_train),
         float_cam_rpm=near["float_cam_rpm"],
         float_in_range=float(near["in_range"]),
-        refused=0.0,
         periodicity=near["periodicity"],
         simulations=float(near["evaluations"]),
     )
-    return _with_pack_figures(out, spring, cam, valve_train)
 
 
 def definition_fingerprint(value):
@@ -840,7 +828,9 @@ def variant_statics(spring, cam, valve_train) -> dict:
         f1=float(spring.spring_model.first_mode_installed),
         refused=0.0,
     )
-    return _with_pack_figures(out, spring, cam, valve_train)
+    if isinstance(spring, SpringPack):
+        out.update(pack_figures(spring, cam, valve_train))
+    return out
 
 
 def _run_chunk(spring, cam, valve_train, speeds, values: dict, plan: dict, stop=None) -> dict:
@@ -1703,7 +1693,7 @@ class ToleranceStudy(Result):
                 "(the final bracket of each search)"
             )
         if self.speeds.size > 1 and not self.float_only:
-            step = float(np.max(np.diff(self.speeds)))
+            step = _speed_step(self.speeds)
             notes.append(f"clash onsets are swept speeds: resolved to {step:g} cam rpm (the step of the swept speeds)")
         if not self.float_only and s["clash_in_range_share"] < 1.0:
             notes.append(f"a clash onset beyond the range counts as its top speed {top:g} cam rpm (no clash within it)")
