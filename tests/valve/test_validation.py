@@ -257,6 +257,7 @@ def test_low_speed_work_is_bounded(one_step, backend, rpm, limit):
         ({"density": 1e300}, r"density = 1e\+300 kg/m\^3 is far larger than any solid"),
         ({"high_pitch_coils": 1e300}, r"high_pitch_coils = 1e\+300 is more coils than any spring has"),
         ({"damping_ratio": 5.0}, r"damping_ratio = 5 is above critical damping \(1\).*did you mean 5 % \(0\.05\)\?"),
+        ({"damping_ratio": 1.0}, r"damping_ratio = 1 is at critical damping \(1\).*did you mean 1 % \(0\.01\)\?"),
         (
             {"wire_diameter": 0.030},
             r"spring index C = mean_diameter / wire_diameter = 22 mm / 30 mm = 0\.7333 must "

@@ -514,9 +514,10 @@ class ValveSpring(Parameters):
         for key in ("dead_coils", "low_pitch_coils", "high_pitch_coils"):
             if getattr(self, key) > 1000:
                 raise InputError(f"{self._field(key)} is more coils than any spring has: it must be at most 1000")
-        if self.damping_ratio > 1.0:
+        if self.damping_ratio >= 1.0:  # (the distributed chain's damping is set from an underdamped first mode)
             raise InputError(
-                f"damping_ratio = {self.damping_ratio:g} is above critical damping (1), which no spring wire has"
+                f"damping_ratio = {self.damping_ratio:g} is "
+                f"{'at' if self.damping_ratio == 1.0 else 'above'} critical damping (1), which no spring wire has"
                 + (
                     f": did you mean {self.damping_ratio:g} % ({self.damping_ratio / 100:g})?"
                     if self.damping_ratio <= 100

@@ -1,8 +1,9 @@
 """The interface of a valve-spring model and the chain of masses every model builds.
 
 :class:`Chain` holds masses, element laws and damping; :class:`SpringModel` derives
-statics, modes and design figures from it.  The models themselves live in
-:mod:`.type_c` and :mod:`.distributed`.
+statics, modes and design figures from it (the statics and modes from its
+:attr:`~SpringModel.static_chain`, which a model may give without the damping).  The models
+themselves live in :mod:`.type_c` and :mod:`.distributed`.
 """
 
 from __future__ import annotations
@@ -79,7 +80,9 @@ class SpringModel:
     """Interface of a valve-spring model (see the module docstring).
 
     Subclasses define :attr:`name`, :meth:`internal_parameters`, :attr:`chain` and
-    :attr:`min_length`; statics, modes and design figures follow from the chain.
+    :attr:`min_length`; statics, modes and design figures follow from the chain.  The statics
+    and modes read :attr:`static_chain` and :attr:`coil_contact_force`, which a model whose
+    damping or parameters cost more than its laws may give without them.
     """
 
     #: The ``[spring] model`` name.
@@ -133,6 +136,19 @@ class SpringModel:
     def chain(self) -> Chain:  # pragma: no cover - abstract
         raise NotImplementedError
 
+    @property
+    def static_chain(self) -> Chain:
+        """The chain the statics and modes read: its masses, element laws, set-up compressions
+        and set-up force, the same as :attr:`chain`'s; its damping may be left out (here: the
+        chain itself)."""
+        return self.chain
+
+    @property
+    def coil_contact_force(self) -> float:
+        """The coil-contact force Fcon [N] (:meth:`internal_parameters`' ``Fcon``), which
+        :attr:`min_length` scales."""
+        return self._parameters["Fcon"]
+
     def contact_compressions(self) -> np.ndarray:  # pragma: no cover - abstract
         """Compression [m] of each element beyond which its coils touch (``inf``: never flagged)."""
         raise NotImplementedError
@@ -144,7 +160,7 @@ class SpringModel:
         return np.array(
             [
                 float(law_force(x, law)) if np.isfinite(x) else np.inf
-                for x, law in zip(self.contact_compressions(), self.chain.laws)
+                for x, law in zip(self.contact_compressions(), self.static_chain.laws)
             ]
         )
 
@@ -170,14 +186,15 @@ class SpringModel:
         ndarray of bool (N + 1, ...)
         """
         shape = (-1,) + (1,) * np.ndim(static_force)
-        margin = self.CLASH_MARGIN * self.chain.setup_force
+        margin = self.CLASH_MARGIN * self.static_chain.setup_force
         below = np.asarray(static_force)[None, ...] < self.contact_forces.reshape(shape) - margin
         return np.asarray(contact, bool) & below
 
     def element_setup_forces(self) -> np.ndarray:
         """The set-up force [N] each element's coil clash is graded over (N + 1,): the spring's Fset
         (a spring pack's: each element's own spring's, :class:`springdyn.valve.spring.pack.PackModel`)."""
-        return np.full(len(self.chain.laws), float(self.chain.setup_force))
+        ch = self.static_chain
+        return np.full(len(ch.laws), float(ch.setup_force))
 
     def contact_share(self, elastic_force) -> np.ndarray:
         """The part of each element's elastic force [N] that closed coils pass through their
@@ -199,7 +216,7 @@ class SpringModel:
         """
         f = np.asarray(elastic_force, dtype=float)
         out = np.zeros_like(f)
-        for j, (x, law) in enumerate(zip(self.contact_compressions(), self.chain.laws)):
+        for j, (x, law) in enumerate(zip(self.contact_compressions(), self.static_chain.laws)):
             if np.isfinite(x):
                 out[j] = np.maximum(f[j] - float(law_force(x, law)), 0.0)
         return out
@@ -221,7 +238,7 @@ class SpringModel:
             [N]; NaN for an element that is no wire (the distributed chain's end contacts).
         """
         x = np.asarray(compression, dtype=float)
-        elastic = np.stack([law_force(x[j], law) for j, law in enumerate(self.chain.laws)])
+        elastic = np.stack([law_force(x[j], law) for j, law in enumerate(self.static_chain.laws)])
         return np.asarray(force, dtype=float) - self.contact_share(elastic)
 
     @cached_property
@@ -232,19 +249,19 @@ class SpringModel:
     @cached_property
     def fastest_mode(self) -> float:
         """Highest natural frequency of the chain at installed length [Hz]."""
-        return float(self.modes(self.spring.installed_length, len(self.chain.masses))[-1])
+        return float(self.modes(self.spring.installed_length, len(self.static_chain.masses))[-1])
 
     @cached_property
     def lift_at_coil_contact(self) -> float:
         """Lift [m] from the installed length at which the static force reaches Fcon."""
-        return self.spring.installed_length - self.length_at_force(self._parameters["Fcon"])
+        return self.spring.installed_length - self.length_at_force(self.coil_contact_force)
 
     @cached_property
     def force_table(self) -> tuple:
         """Static force [N] at 129 total compressions [m] from zero to the model's limit (the
         starts of the engine's compiled Newton solver: two or three iterations instead of ten)."""
         x = np.linspace(0.0, self.spring.free_length - self.min_length, 129)
-        return x, np.asarray(series_force(x, self.chain.laws), dtype=float)
+        return x, np.asarray(series_force(x, self.static_chain.laws), dtype=float)
 
     # ------------------------------------------------------------------ statics
     @cached_property
@@ -255,7 +272,7 @@ class SpringModel:
         model's limit: the element laws reach Fcon at a shorter length (25.9 mm against
         Lc = 28 mm for the one-step example), so Lc is reported as a design figure only.
         """
-        return self.length_at_force(self.LIMIT_FORCE_FACTOR * self._parameters["Fcon"])
+        return self.length_at_force(self.LIMIT_FORCE_FACTOR * self.coil_contact_force)
 
     def _compression(self, length, name: str = "length"):
         length = np.asarray(length, dtype=float)
@@ -277,7 +294,7 @@ class SpringModel:
         length : float or array_like
             Spring length [m].
         """
-        return series_state(self._compression(length), self.chain.laws)
+        return series_state(self._compression(length), self.static_chain.laws)
 
     def static_force(self, length):
         """Static (massless) spring force [N] at spring length ``length`` [m].
@@ -310,7 +327,7 @@ class SpringModel:
         force : float
             Static force [N], from 0 to the model's limit.
         """
-        return float(self.spring.free_length - element_compressions(force, self.chain.laws).sum())
+        return float(self.spring.free_length - element_compressions(force, self.static_chain.laws).sum())
 
     def initial_condition(self, total_compression: float):
         """Static state at a total compression ``dL = (Lf - Ls) + lift`` [m] (correction MMS-10 of docs/references.md).
@@ -330,7 +347,7 @@ class SpringModel:
         """
         length = self.spring.free_length - total_compression
         force, x, kt = self.static_state(length)
-        dx = x - self.chain.setup_compressions
+        dx = x - self.static_chain.setup_compressions
         return dict(force=float(force), compressions=x, displacements=np.cumsum(dx)[:-1], stiffness=float(kt))
 
     def static_curve(self, start: float | None = None, stop: float | None = None, points: int = 400):
@@ -353,12 +370,12 @@ class SpringModel:
             )
         start = self.spring.free_length if start is None else float(start)
         if stop is None:
-            stop = self.length_at_force(3.0 * self.internal_parameters()["Fcon"])
+            stop = self.length_at_force(3.0 * self.coil_contact_force)
         self._compression(np.array([start]), "start")
         self._compression(np.array([stop]), "stop")
         length = np.linspace(start, stop, points)
         force, x, k = self.static_state(length)
-        ch = self.chain
+        ch = self.static_chain
         kt = ch.tangent_stiffness(x)
         freq = np.array([chain_frequencies(ch.masses, kt[:, i], 1)[0] for i in range(length.size)])
         return StaticCurve(self.spring, length, force, k, model=self.name, frequency=freq)
@@ -374,11 +391,12 @@ class SpringModel:
         count : int
             How many, from the lowest (at most the number of masses) [-].
         """
-        n = len(self.chain.masses)
+        ch = self.static_chain
+        n = len(ch.masses)
         if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n:
             raise InputError(f"count = {count!r} must be a whole number from 1 to {n} (the chain has {n} masses)")
         _, x, _ = self.static_state(float(length))
-        return chain_frequencies(self.chain.masses, self.chain.tangent_stiffness(x), count)
+        return chain_frequencies(ch.masses, ch.tangent_stiffness(x), count)
 
     @cached_property
     def stress_per_force(self) -> float:
@@ -466,7 +484,8 @@ class SpringModel:
             How many, from the lowest [-].
         """
         _, x, _ = self.static_state(float(length))
-        return mode_labels(self.chain.masses, self.chain.tangent_stiffness(x), count)
+        ch = self.static_chain
+        return mode_labels(ch.masses, ch.tangent_stiffness(x), count)
 
     # ------------------------------------------------------------------ design
     def design_figures(self, lift: float | None = None, cam_rpm: float | None = None) -> dict:

@@ -31,11 +31,15 @@ for fully contact" of one coil ([MMS]), the stiffness Type C gives its end conta
 ``beta w_j / 2``.  ``beta`` is set so that the first mode at the set-up length has exactly
 ``damping_ratio``; the higher surge modes get ``damping_ratio * f_j / f_1`` (about ``j``
 times it for the harmonic series), and the element-scale modes, which are artefacts of
-the discretisation, are strongly damped.
+the discretisation, are strongly damped.  Finding ``beta`` is an eigenvalue problem, so it
+is left until the damping is asked for (:attr:`DistributedModel.chain`): the statics read
+:attr:`DistributedModel.static_chain`, the chain without its damping, and the coil-contact
+force comes from :meth:`DistributedModel.closing_forces`.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from functools import cached_property
 
 import numpy as np
@@ -291,7 +295,9 @@ class DistributedModel(SpringModel):
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 4 <= n <= 2000:
             raise InputError(f"elements = {n!r} must be a whole number from 4 to 2000")
         _ = self.geometry  # builds and checks the geometry
-        _ = self._parameters  # and the chain
+        # and the element laws and the set-up state: what can refuse a spring (the damping and the
+        # frequencies, found only when asked for, raise no InputError)
+        _ = self.static_chain
 
     def __repr__(self) -> str:
         p = self._parameters
@@ -447,7 +453,10 @@ class DistributedModel(SpringModel):
         )
 
     # ------------------------------------------------------------------ the chain
-    def _chain(self, beta: float) -> Chain:
+    @cached_property
+    def static_chain(self) -> Chain:
+        """The chain without its damping (``c0 = 0``): the masses, element laws and set-up state
+        the statics and modes read, built without the eigenvalue problem of the damping."""
         sp, g, pc = self.spring, self.geometry, self._pieces
         n = pc["n"]
         k_seat = float(self.turn_contact_stiffness(g.diameter(0.0)))
@@ -470,7 +479,7 @@ class DistributedModel(SpringModel):
             mass_names=mnames,
             masses=masses,
             laws=laws,
-            c0=beta * laws[:, 0, 2],
+            c0=0.0,
             setup_compressions=element_compressions(fset, laws),
             setup_force=fset,
             free_length=sp.free_length,
@@ -483,7 +492,7 @@ class DistributedModel(SpringModel):
         zeta = self.spring.damping_ratio
         if zeta == 0:
             return 0.0
-        ch = self._chain(0.0)
+        ch = self.static_chain
         x = ch.setup_compressions
         k = ch.tangent_stiffness(x)
         w1 = 2 * np.pi * chain_frequencies(ch.masses, k, 1)[0]
@@ -498,8 +507,10 @@ class DistributedModel(SpringModel):
 
     @cached_property
     def chain(self) -> Chain:
-        """The chain of ``elements + 1`` masses and ``elements + 2`` elements."""
-        return self._chain(self._beta)
+        """The chain of ``elements + 1`` masses and ``elements + 2`` elements: :attr:`static_chain`
+        with its damping ``c0 = beta k0`` per element (``beta``, an eigenvalue problem, found here)."""
+        ch = self.static_chain
+        return dataclasses.replace(ch, c0=self._beta * ch.laws[:, 0, 2])
 
     def contact_compressions(self) -> np.ndarray:
         """Compression [m] at which each wire element is closed throughout (its mean coil
@@ -511,7 +522,7 @@ class DistributedModel(SpringModel):
 
     @cached_property
     def _parameters_setup_force(self) -> float:
-        return float(self.chain.setup_force)
+        return float(self.static_chain.setup_force)
 
     @cached_property
     def stress_per_force(self) -> float:
@@ -532,10 +543,10 @@ class DistributedModel(SpringModel):
     @cached_property
     def _parameters(self) -> dict:
         sp, g, pc = self.spring, self.geometry, self._pieces
-        ch = self.chain
+        ch = self.static_chain
         laws = ch.laws
         k1 = 1.0 / np.sum(1.0 / laws[:, 0, 2])
-        fcon = float(np.max(self.closing_forces()))  # the last coil closes: solid
+        fcon = self.coil_contact_force
         f_free = chain_frequencies(ch.masses, laws[:, 0, 2], 1)[0]
         k_set = ch.tangent_stiffness(ch.setup_compressions)
         f_set = chain_frequencies(ch.masses, k_set, 1)[0]
@@ -582,7 +593,7 @@ class DistributedModel(SpringModel):
         """Per wire element: elastic forces [N] (geometric, from the first turn-slice's
         closing to 100 Fset, :data:`SHARE_NODES`) and the force through the contact there."""
         sl = self._pieces["slices"]
-        top = 100.0 * self.chain.setup_force
+        top = 100.0 * self.static_chain.setup_force
         tables = []
         for i in range(self._pieces["n"]):
             k = 1.0 / sl["c"][i]
@@ -613,6 +624,12 @@ class DistributedModel(SpringModel):
         return out
 
     # ------------------------------------------------------------------ outputs
+    @cached_property
+    def coil_contact_force(self) -> float:
+        """The coil-contact force Fcon [N]: the largest of :meth:`closing_forces`, where the last
+        coil closes (solid)."""
+        return float(np.max(self.closing_forces()))
+
     def closing_forces(self) -> np.ndarray:
         """Static force [N] at which each wire element is closed throughout (its last
         turn-slice touches), from the seat end."""
