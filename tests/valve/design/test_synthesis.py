@@ -318,3 +318,77 @@ def test_warm_starts_give_the_cold_candidates():
         fa, fb = a["float_cam_rpm"], b["float_cam_rpm"]  # None: no float up to the scan's top
         assert (fa is None and fb is None) or abs(fa - fb) <= 5.0, (fa, fb)
         assert a["meets_all"] == b["meets_all"] and a["rank"] == b["rank"]
+
+
+def test_the_probe_stops_only_a_candidate_that_can_neither_meet_all_nor_be_the_best(monkeypatch):
+    """Issue 42, item 4: a candidate run at the probe speeds (where the round's candidates run at
+    every speed had their lowest Goodman safety) goes no further only when its Goodman safety
+    there, an upper bound of its lowest, misses the requirement *and* lies below the best of a
+    candidate run at every speed; never with cold starts (the probed speed would start from
+    another state than in the sweep).  The sweep is a stand-in: each "model" a Goodman safety
+    per speed."""
+    from types import SimpleNamespace
+
+    from springdyn.valve.design import synthesis
+    from springdyn.valve.run.periodicity import PeriodicStates
+
+    speeds = np.array([1000.0, 2000.0, 3000.0])
+    asked = []
+
+    def fake_sweep(model, cam, at, valve_train=None, starts=None):
+        asked.append(list(at))
+        g = np.interp(at, speeds, model)
+        return SimpleNamespace(summary_table=lambda: {"fatigue_safety_factor": g})
+
+    monkeypatch.setattr(synthesis, "sweep", fake_sweep)
+    req = SimpleNamespace(min_goodman_safety=1.05)
+    probe = synthesis._Probe(req, speeds)
+    warm = PeriodicStates()
+    assert not probe.prunes([1.2, 1.1, 0.95], None, None, warm, {})  # nothing run at every speed yet
+    assert asked == []
+    probe.record(fake_sweep([1.2, 1.1, 0.95], None, speeds).summary_table())  # best 0.95, lowest at 3000
+    assert probe.best == 0.95 and probe.at == [2]
+    row = {}
+    assert probe.prunes([1.3, 1.2, 0.90], None, None, warm, row)  # 0.90 < 0.95 and < 1.05: stops
+    assert asked[-1] == [3000.0]
+    assert row["probed_goodman_safety"] == 0.90
+    assert row["margin_goodman_dynamic"] == pytest.approx(0.90 / 1.05 - 1.0)
+    assert "run at 1 of 3 speeds" in row["dynamics"]
+    assert not probe.prunes([1.3, 0.8, 0.97], None, None, warm, {})  # above the best: it may be the best
+    assert not probe.prunes([1.3, 1.2, 1.10], None, None, warm, {})  # meets it there: it may meet all
+    assert not probe.prunes([1.3, 1.2, 0.90], None, None, None, {})  # cold starts: the full sweep
+    probe.record(fake_sweep([1.3, 0.8, 0.97], None, speeds).summary_table())
+    assert probe.best == 0.95 and probe.at == [2, 1]  # its lowest speed joins the probe speeds
+    assert probe.prunes([1.3, 0.85, 0.96], None, None, warm, {})  # 0.85 at 2000, 0.96 > 0.95 at 3000
+    assert asked[-1] == [2000.0, 3000.0]
+
+
+@pytest.mark.slow  # a round of four candidates over the speed range, screened and judged all (~60 s)
+def test_a_round_probed_gives_the_round_judged_all():
+    """Issue 42, item 4.  Reference: the same round of the example's requirements (no candidate
+    keeps its Goodman safety at speed: the surge allowance's first round) with ``judge_all``,
+    every candidate at every speed.  The screened round runs fewer candidates at every speed;
+    those it does are the same to the bit; each probed one misses in both, its bound is at
+    least its safety judged at every speed and below the round's best, which is the same
+    (it sets the surge allowance)."""
+    from springdyn.valve.design import synthesis
+
+    req, base = synthesis.read_requirements(EXAMPLES / "valve" / "requirements.toml")
+    table = candidate_table(req)
+    springs, rows, notes = synthesis._select(req, req, table, 2)
+    runs = {}
+    for judge_all in (False, True):
+        mine = [dict(r) for r in rows]
+        synthesis._dynamics(req, springs, mine, base, None, [], judge_all=judge_all, first=[])
+        runs[judge_all] = mine
+    probed = [k for k, r in enumerate(runs[False]) if "probed_goodman_safety" in r]
+    assert probed and len(probed) < len(rows)
+    best = max(r["dynamic_goodman_safety"] for r in runs[True])
+    assert max(r.get("dynamic_goodman_safety") or 0.0 for r in runs[False]) == best
+    for k, (s, a) in enumerate(zip(runs[False], runs[True])):
+        assert s["meets_all"] is False and a["meets_all"] is False
+        if k in probed:
+            assert a["dynamic_goodman_safety"] <= s["probed_goodman_safety"] < min(best, req.min_goodman_safety)
+        else:
+            for key in ("max_retainer_force_N", "dynamic_goodman_safety", "max_clash_severity"):
+                assert s[key] == a[key]

@@ -542,6 +542,12 @@ class Synthesis(Result):
                 f"not run in the distributed model: {', '.join(unrun)}, heavier than candidate 1, which meets every "
                 "requirement (they cannot rank above it; --judge-all runs them)"
             )
+        probed = [str(r["rank"]) for r in self.rows if "probed_goodman_safety" in r]
+        if probed:
+            out.append(
+                f"run at the probe speeds only: {', '.join(probed)}; their Goodman safety there already misses the "
+                "requirement (their goodman_dynamic margin is an upper bound; --judge-all runs every speed)"
+            )
         if out_dir:
             out.append(f"the candidates' spring files and candidates.csv are in {out_dir}")
         return "\n".join(out + notes_lines(self.summary))
@@ -655,36 +661,71 @@ def _spring(req: Requirements, table: dict, i: int):
 
 #: Secant steps on a two-step candidate's free length (its installed force in the distributed model).
 FREE_LENGTH_STEPS = 8
+#: Relative error of the installed force at which the free-length secant stops [-].
+FREE_LENGTH_RTOL = 1e-6
 
 
-def _two_step_free_length(sp, req: Requirements):
+def _two_step_free_length(sp, req: Requirements, start=None):
     """A two-step candidate with the free length at which the distributed model carries the
     installed force: its low-pitch coils close one by one before the installed length, which the
     standard's linear rate K1 up to it does not know (the working rate K2 between the load
-    points is the standard's)."""
+    points is the standard's).
 
-    def installed(lf):
+    A secant on the free length: its first slope the free rate K1 (or a neighbour's slope), then
+    the slope through the last two steps, to :data:`FREE_LENGTH_RTOL` of the installed force.
+
+    Parameters
+    ----------
+    sp : ValveSpring
+        The candidate (its free length the first guess) [-].
+    req : Requirements
+        The installed length and force.
+    start : tuple, optional
+        ``(free length [m], slope dF/dLf [N/m])`` where a neighbouring transition's search ended
+        (:func:`choose_transition`'s steps differ little): the secant starts there.
+
+    Returns
+    -------
+    spring : ValveSpring
+        The candidate with its free length (unchanged where the geometry refuses a length).
+    twin : ValveSpring or None
+        The same spring with the distributed model, whose forces the search evaluated (None when
+        it did not converge).
+    end : tuple or None
+        ``(free length [m], slope [N/m])`` to start a neighbour's search from.
+    """
+
+    def twin_at(lf):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            d = dataclasses.replace(sp, model="distributed", free_length=float(lf))
-            return float(d.spring_model.static_force(req.installed_length))
+            return dataclasses.replace(sp, model="distributed", free_length=float(lf))
 
-    lf = sp.free_length
-    k1 = formulas.free_length_stiffness(
-        sp.shear_modulus,
-        sp.wire_diameter,
-        sp.mean_diameter,
-        sp.low_pitch_coils + sp.high_pitch_coils - 2 * sp.dead_coils,
-    )
+    if start is None:
+        lf = sp.free_length
+        slope = formulas.free_length_stiffness(
+            sp.shear_modulus,
+            sp.wire_diameter,
+            sp.mean_diameter,
+            sp.low_pitch_coils + sp.high_pitch_coils - 2 * sp.dead_coils,
+        )
+    else:
+        lf, slope = start
+    last = None  # the step before: (free length, force)
     try:
         for _ in range(FREE_LENGTH_STEPS):
-            f = installed(lf)
-            if abs(f / req.installed_force - 1.0) < 1e-6:
-                break
-            lf = lf + (req.installed_force - f) / k1  # the free rate as the slope: it converges monotonically
-        return dataclasses.replace(sp, free_length=float(lf))
+            twin = twin_at(lf)
+            f = float(twin.spring_model.static_force(req.installed_length))
+            if abs(f / req.installed_force - 1.0) < FREE_LENGTH_RTOL:
+                return dataclasses.replace(sp, free_length=float(lf)), twin, (lf, slope)
+            if last is not None and lf != last[0] and (f - last[1]) / (lf - last[0]) > 0.0:
+                slope = (f - last[1]) / (lf - last[0])  # the force rises with the free length
+            last = (lf, f)
+            lf = lf + (req.installed_force - f) / slope
+        return dataclasses.replace(sp, free_length=float(lf)), None, None
     except InputError:
-        return sp  # the geometry refuses the length: the row's check refuses the candidate
+        if start is not None:  # the neighbour's length is refused: from the candidate's own
+            return _two_step_free_length(sp, req)
+        return sp, None, None  # the geometry refuses the length: the row's check refuses the candidate
 
 
 def load_point_forces(sp, req: Requirements) -> dict:
@@ -761,30 +802,40 @@ def choose_transition(sp, req: Requirements):
     from ..spring.geometry import TRANSITION_TURNS  # (here: the geometry's default, one home)
 
     limit = TRANSITION_SHARE * req.load_point_tolerance
+    built = {}  # turns -> (spring, its distributed twin or None): each transition built once
+    near = [None]  # where the last two-step free-length search ended: the next one starts there
 
     def build(turns):
-        d = dataclasses.replace(sp, transition_turns=float(turns))
-        return _two_step_free_length(d, req) if d.low_pitch_coils > 0 else d
+        if turns not in built:
+            d = dataclasses.replace(sp, transition_turns=float(turns))
+            if d.low_pitch_coils > 0:
+                d, twin, end = _two_step_free_length(d, req, near[0])
+                near[0] = end or near[0]
+            else:
+                twin = None
+            built[turns] = (d, twin)
+        return built[turns]
 
     def error(turns):
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                d = build(turns).with_model("distributed")
+                d, twin = build(turns)
+                d = twin if twin is not None else d.with_model("distributed")
                 f = d.spring_model.static_force(np.array([req.installed_length, req.open_length]))
         except InputError:
             return float("inf")
         return _load_point_error(f, req)
 
     if error(TRANSITION_TURNS) <= limit:
-        return build(TRANSITION_TURNS)
+        return build(TRANSITION_TURNS)[0]
     lo, hi = MIN_TRANSITION_TURNS, TRANSITION_TURNS
     if error(lo) > limit:
-        return build(lo)  # the row's check refuses it
+        return build(lo)[0]  # the row's check refuses it
     for _ in range(TRANSITION_STEPS):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if error(mid) <= limit else (lo, mid)
-    return build(float(np.floor(lo * 1e3) / 1e3))
+    return build(float(np.floor(lo * 1e3) / 1e3))[0]
 
 
 def _valve_spring(req: Requirements, table: dict, i: int, n2: float, lf: float, model: str = "type-c"):
@@ -895,7 +946,8 @@ def synthesize(
         if any(r["meets_all"] for r in rows) or min(r["margin_goodman_dynamic"] for r in rows) >= 0.0:
             break
         # no candidate meets everything: every one was run (a screen stops only at one that does)
-        dyn = [r["dynamic_goodman_safety"] for r in rows]
+        # the best candidate's Goodman safety at speed (a probed one is below it: _Probe)
+        dyn = [r["dynamic_goodman_safety"] for r in rows if r.get("dynamic_goodman_safety") is not None]
         allowance *= min(req.min_goodman_safety / max(g, 1e-6) for g in dyn) * 1.02
     springs, rows, notes, table = kept
     order = sorted(range(len(rows)), key=lambda k: (_standing(rows[k]), rows[k]["mass_kg"]))
@@ -1065,6 +1117,67 @@ def _candidate_starts(first: list | None):
     return first[0].copy() if first else PeriodicStates()
 
 
+def _judge(row: dict) -> None:
+    """A row's smallest margin and whether it meets every requirement, from its margins."""
+    row["smallest_margin"] = min(v for key, v in row.items() if key.startswith("margin_"))
+    row["meets_all"] = row["smallest_margin"] >= 0.0
+
+
+class _Probe:
+    """The screen of a round's candidates at their likely worst speeds (issue 42, item 4).
+
+    A candidate's Goodman safety at speed is the lowest over the speed range, so its value at a
+    few of the speeds is an upper bound of it.  After each candidate run at every speed, the speed
+    of its lowest Goodman safety joins the probe speeds; a later candidate is first run at those
+    speeds alone and goes no further when its bound there already
+
+    - misses the required safety (it cannot meet every requirement, whatever its other speeds), and
+    - lies below the best Goodman safety of a candidate run at every speed (it cannot be the best
+      candidate of the round, whose safety sets the next surge allowance, :func:`synthesize`).
+
+    Its other speeds and its float speed cannot change the ranking, the surge allowance or the
+    notes, so the screened synthesis gives the candidates and figures of ``judge_all``.  The bound
+    is exact only where each probed speed starts from the same state as in a full sweep: the warm
+    starts' (each speed from the first candidate's periodic state at that speed,
+    :func:`_candidate_starts`), so cold starts (``warm_starts=False``) run every speed.
+    """
+
+    def __init__(self, req: Requirements, speeds: np.ndarray):
+        self.req, self.speeds = req, speeds
+        self.at = []  # indices of the probe speeds in ``speeds``
+        self.best = None  # the highest Goodman safety of a candidate run at every speed [-]
+
+    def record(self, table: dict) -> None:
+        """Take a candidate run at every speed (its sweep's summary table)."""
+        g = np.asarray(table["fatigue_safety_factor"], dtype=float)
+        j = int(np.argmin(g))
+        if j not in self.at:
+            self.at.append(j)
+        self.best = float(g[j]) if self.best is None else max(self.best, float(g[j]))
+
+    def prunes(self, model, cam, vt, starts, row: dict) -> bool:
+        """Run ``model`` at the probe speeds; True (and its row filled) when it goes no further."""
+        if starts is None or self.best is None:
+            return False
+        at = sorted(self.at)
+        # a copy: the probed speeds' states must not start the same speeds of a full sweep
+        t = sweep(model, cam, self.speeds[at], valve_train=vt, starts=starts.copy()).summary_table()
+        g = np.asarray(t["fatigue_safety_factor"], dtype=float)
+        bound = float(np.min(g))
+        need = self.req.min_goodman_safety
+        if not bound < min(self.best, need):
+            return False
+        rpm = ", ".join(f"{self.speeds[j]:.0f}" for j in at)
+        row["probed_goodman_safety"] = bound
+        row["margin_goodman_dynamic"] = criteria.margin("goodman", bound, need)
+        row["dynamics"] = (
+            f"run at {len(at)} of {self.speeds.size} speeds ({rpm} cam rpm): its Goodman safety there, {bound:.4g}, "
+            f"already misses {need:g} and lies below {self.best:.4g}, the best of a candidate run at every speed; its "
+            "other speeds can only lower it (its margin on goodman_dynamic is an upper bound; --judge-all runs them)"
+        )
+        return True
+
+
 def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = False, first=None) -> None:
     """The distributed model of each candidate over the speed range (module docstring, 5).
 
@@ -1088,6 +1201,7 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
     it = progress(order, desc="dynamics") if progress is not None else order
     winner = None
     ran = False  # this round's first candidate ran: its sweep states start the others (first)
+    probe = _Probe(req, speeds)
     for k in it:
         sp, row = springs[k], rows[k]
         if winner is not None and not judge_all:
@@ -1102,7 +1216,11 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             starts = _candidate_starts(first)
+            if not judge_all and probe.prunes(model, cam, vt, starts, row):
+                _judge(row)
+                continue
             t = sweep(model, cam, speeds, valve_train=vt, starts=starts).summary_table()
+            probe.record(t)
             if starts is not None and not ran:
                 first[:] = [starts.copy()]
             ran = True
@@ -1128,12 +1246,11 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
                     fl = res["float_cam_rpm"]
                     # no float up to the scan's top: at least that (a lower bound of the margin)
                     row["margin_float"] = criteria.margin("float_speed", scan[-1] if fl is None else fl, need)
-        row["smallest_margin"] = min(v for key, v in row.items() if key.startswith("margin_"))
-        row["meets_all"] = row["smallest_margin"] >= 0.0
+        _judge(row)
         if row["meets_all"] and winner is None:
             winner = k
     if not any(r.get("margin_goodman_dynamic", 0.0) >= 0 for r in rows):
-        best = max(r["dynamic_goodman_safety"] for r in rows)
+        best = max(r["dynamic_goodman_safety"] for r in rows if r.get("dynamic_goodman_safety") is not None)
         notes.append(
             f"no candidate keeps the Goodman safety {req.min_goodman_safety:g} over the speed range with its surge "
             f"(the distributed model's wire stress): the best reaches {best:.3g}; the static margin between the load "
