@@ -49,6 +49,27 @@ def _load_engine(spring, cam, vt) -> None:
     simulate(spring, cam, 3000.0, valve_train=vt)
 
 
+#: The yardstick's time on the 2-core machine issue 42's goals were set on (2026-11-26) [s].
+YARDSTICK_THEN = 0.65
+
+
+def yardstick(rounds: int = 3) -> float:
+    """The yardstick [s], best of ``rounds``: one Type C simulation of the one-step example, 2
+    revolutions at 3000 cam rpm under a 3-4-5 cam, with SciPy's DOP853 and the plain-Python
+    right-hand side (as benchmarks/valve_speed.py): a time in yardsticks compares machines."""
+    import math
+
+    from springdyn.valve import Cam, ValveSpring, simulate
+
+    spring, cam = ValveSpring.example("one-step"), Cam(law="3-4-5", lift=9e-3, duration=math.radians(120))
+    best = math.inf
+    for _ in range(rounds):
+        t = time.perf_counter()
+        simulate(spring, cam, 3000.0, 2, backend="scipy", rtol=1e-8, atol=1e-12)
+        best = min(best, time.perf_counter() - t)
+    return best
+
+
 #: The examples' folder of valve definitions.
 EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples", "valve")
 

@@ -31,9 +31,10 @@ A spring engineer starts from two load points and the space, not from a spring. 
    with the distributed model over the speed range: float speed, peak retainer force, coil
    clash (:func:`springdyn.valve.float_speed`, :func:`springdyn.valve.simulate`).  They are
    run lightest first and the runs screen (issue 42): once a candidate meets every
-   requirement no heavier one is run (it cannot rank above it), and one that misses a
-   requirement already gets no float search; ``judge_all`` runs everything.  The first
-   candidate is the same either way.
+   requirement no heavier one is run (it cannot rank above it), one that misses a
+   requirement already gets no float search, and one whose Goodman safety at a round's worst
+   speeds already misses and lies below the round's best goes no further (:class:`_Probe`);
+   ``judge_all`` runs everything.  The first candidate is the same either way.
 
 Infeasible requirements get a message that names the binding requirements and how far the
 best candidate misses each (:func:`infeasibility`).
@@ -290,7 +291,7 @@ class Requirements(Parameters):
                 shear_modulus=m.shear_modulus,
                 youngs_modulus=m.youngs_modulus,
                 density=m.density,
-                tensile_strength=np.vectorize(m.tensile_strength)(d) if d.ndim else m.tensile_strength(float(d)),
+                tensile_strength=m.tensile_strength(d),
             )
         for k in keys:
             if getattr(self, k) is not None:
@@ -385,7 +386,7 @@ def evaluate(req: Requirements, d, dm, n1, n2, lf) -> dict:
     tau_lo = stress.corrected_shear_stress(req.installed_force, dm, d)
     tau_hi = stress.corrected_shear_stress(req.open_force, dm, d)
     tau_u = stress.ultimate_shear_strength(rm)
-    tau_e = np.vectorize(lambda u: stress.zimmerli_endurance_shear_strength(u, peened=True))(tau_u)
+    tau_e = stress.zimmerli_endurance_shear_strength(tau_u, peened=True)
     goodman = stress.goodman_safety_factor(tau_lo, tau_hi, tau_e, tau_u)
     f_solid = req.installed_force + req.rate * (req.installed_length - solid)  # the working rate to solid
     tau_solid = stress.nominal_shear_stress(f_solid, dm, d)  # uncorrected (EN 13906-1 at solid length)

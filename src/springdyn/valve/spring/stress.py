@@ -206,7 +206,7 @@ def ultimate_shear_strength(tensile_strength, fraction: float = ULTIMATE_SHEAR_F
     return fraction * tensile_strength
 
 
-def zimmerli_endurance_shear_strength(ultimate_shear: float, peened: bool = True) -> float:
+def zimmerli_endurance_shear_strength(ultimate_shear, peened: bool = True):
     """Fully reversed torsional endurance strength from Zimmerli's data via the Goodman line.
 
     ``tau_e = S_sa / (1 - S_sm / S_su)`` (Shigley Sec. 10-9, Eq. (10-30) solved for the
@@ -214,18 +214,26 @@ def zimmerli_endurance_shear_strength(ultimate_shear: float, peened: bool = True
 
     Parameters
     ----------
-    ultimate_shear : float
+    ultimate_shear : float or array_like
         Torsional ultimate strength of the wire [Pa]; larger than Zimmerli's mean stress.
     peened : bool
         Shot-peened wire (valve springs are) or not.
+
+    Returns
+    -------
+    float or ndarray
+        Endurance strength [Pa].
     """
     s_sa, s_sm = ZIMMERLI_PEENED if peened else ZIMMERLI_UNPEENED
-    if not ultimate_shear > s_sm:
+    u = np.asarray(ultimate_shear, dtype=float)
+    bad = ~(u > s_sm)
+    if np.any(bad):
         raise InputError(
-            f"ultimate shear strength {ultimate_shear / 1e6:.4g} MPa must exceed Zimmerli's mean "
+            f"ultimate shear strength {float(u[bad].flat[0] if u.ndim else u) / 1e6:.4g} MPa must exceed Zimmerli's mean "
             f"stress {s_sm / 1e6:.4g} MPa"
         )
-    return s_sa / (1.0 - s_sm / ultimate_shear)
+    tau_e = s_sa / (1.0 - s_sm / u)
+    return float(tau_e) if tau_e.ndim == 0 else tau_e
 
 
 def goodman_safety_factor(tau_min, tau_max, endurance_shear: float, ultimate_shear: float):
