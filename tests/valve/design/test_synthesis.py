@@ -320,13 +320,12 @@ def test_warm_starts_give_the_cold_candidates():
         assert a["meets_all"] == b["meets_all"] and a["rank"] == b["rank"]
 
 
-def test_the_probe_stops_only_a_candidate_that_can_neither_meet_all_nor_be_the_best(monkeypatch):
-    """Issue 42, item 4: a candidate run at the probe speeds (where the round's candidates run at
-    every speed had their lowest Goodman safety) goes no further only when its Goodman safety
-    there, an upper bound of its lowest, misses the requirement *and* lies below the best of a
-    candidate run at every speed; never with cold starts (the probed speed would start from
-    another state than in the sweep).  The sweep is a stand-in: each "model" a Goodman safety
-    per speed."""
+def test_the_probe_bounds_a_candidate_at_the_rounds_worst_speeds(monkeypatch):
+    """Issue 42, item 4: a candidate is first run at the probe speeds, where the round's
+    candidates run at every speed had their lowest Goodman safety; its lowest safety there is an
+    upper bound of its lowest over the range.  Never with cold starts (the probed speed would
+    start from another state than in the sweep) nor before a candidate ran at every speed.  The
+    sweep is a stand-in: each "model" a Goodman safety per speed."""
     from types import SimpleNamespace
 
     from springdyn.valve.design import synthesis
@@ -341,26 +340,81 @@ def test_the_probe_stops_only_a_candidate_that_can_neither_meet_all_nor_be_the_b
         return SimpleNamespace(summary_table=lambda: {"fatigue_safety_factor": g})
 
     monkeypatch.setattr(synthesis, "sweep", fake_sweep)
-    req = SimpleNamespace(min_goodman_safety=1.05)
-    probe = synthesis._Probe(req, speeds)
+    probe = synthesis._Probe(SimpleNamespace(min_goodman_safety=1.05), speeds)
     warm = PeriodicStates()
-    assert not probe.prunes([1.2, 1.1, 0.95], None, None, warm, {})  # nothing run at every speed yet
+    assert probe.bound([1.2, 1.1, 0.95], None, None, warm) is None  # nothing run at every speed yet
     assert asked == []
     probe.record(fake_sweep([1.2, 1.1, 0.95], None, speeds).summary_table())  # best 0.95, lowest at 3000
     assert probe.best == 0.95 and probe.at == [2]
-    row = {}
-    assert probe.prunes([1.3, 1.2, 0.90], None, None, warm, row)  # 0.90 < 0.95 and < 1.05: stops
-    assert asked[-1] == [3000.0]
-    assert row["probed_goodman_safety"] == 0.90
-    assert row["margin_goodman_dynamic"] == pytest.approx(0.90 / 1.05 - 1.0)
-    assert "run at 1 of 3 speeds" in row["dynamics"]
-    assert not probe.prunes([1.3, 0.8, 0.97], None, None, warm, {})  # above the best: it may be the best
-    assert not probe.prunes([1.3, 1.2, 1.10], None, None, warm, {})  # meets it there: it may meet all
-    assert not probe.prunes([1.3, 1.2, 0.90], None, None, None, {})  # cold starts: the full sweep
+    bound, rpm = probe.bound([1.3, 1.2, 0.90], None, None, warm)
+    assert (bound, list(rpm)) == (0.90, [3000.0])
+    row = {"margin_goodman": 0.1}
+    probe.fill(row, (bound, rpm))
+    assert row["probed_goodman_safety"] == 0.90 and row["meets_all"] is False
+    assert row["margin_goodman_dynamic"] == pytest.approx(0.90 / 1.05 - 1.0) == row["smallest_margin"]
+    assert "run at 1 of 3 speeds (3000 cam rpm)" in row["dynamics"]
+    assert probe.bound([1.3, 1.2, 0.90], None, None, None) is None  # cold starts: the full sweep
     probe.record(fake_sweep([1.3, 0.8, 0.97], None, speeds).summary_table())
     assert probe.best == 0.95 and probe.at == [2, 1]  # its lowest speed joins the probe speeds
-    assert probe.prunes([1.3, 0.85, 0.96], None, None, warm, {})  # 0.85 at 2000, 0.96 > 0.95 at 3000
+    assert probe.bound([1.3, 0.85, 0.96], None, None, warm)[0] == 0.85  # 0.85 at 2000, 0.96 at 3000
     assert asked[-1] == [2000.0, 3000.0]
+
+
+def test_the_round_runs_at_every_speed_only_who_may_meet_all_or_be_the_best(monkeypatch):
+    """Issue 42, item 4: of a round's candidates (lightest first) the first runs at every speed;
+    a later one whose probe bound misses the requirement and lies below the best goes no
+    further; one whose bound misses it but lies above the best runs after those that may meet
+    every requirement, the highest bound first, until the bounds fall below the best.  With
+    the stand-in sweep the screened round gives the best safety and the verdicts of the round
+    judged all, with fewer full runs."""
+    from types import SimpleNamespace
+
+    from springdyn.valve.design import synthesis
+
+    speeds = np.array([1000.0, 2000.0, 3000.0])
+    goodman = [  # per candidate, lightest first: a safety per speed
+        [1.2, 1.0, 0.94],  # the first: runs; best 0.94, probe speed 3000
+        [1.2, 0.95, 0.97],  # bound 0.97 > 0.94: deferred; below the next best once that ran
+        [1.2, 1.1, 0.92],  # bound 0.92 < 0.94: no further
+        [1.2, 0.99, 0.98],  # bound 0.98: deferred, the highest: runs, best 0.98
+        [1.3, 1.1, 0.96],  # bound 0.96: deferred, below 0.98 by then
+    ]
+    runs = []
+
+    def fake_sweep(model, cam, at, valve_train=None, starts=None):
+        runs.append((model, len(at)))
+        g = np.interp(at, speeds, goodman[model])
+        n = len(at)
+        return SimpleNamespace(
+            summary_table=lambda: dict(
+                fatigue_safety_factor=g,
+                max_retainer_force_N=np.full(n, 500.0),
+                coil_clash=np.zeros(n, bool),
+                clash_severity=np.zeros(n),
+            )
+        )
+
+    monkeypatch.setattr(synthesis, "sweep", fake_sweep)
+    monkeypatch.setattr(synthesis.Cam, "from_toml", staticmethod(lambda p: None))
+    monkeypatch.setattr(synthesis.PeriodicStates, "copy", lambda self: self)
+    req = SimpleNamespace(
+        min_goodman_safety=1.05, min_float_cam_rpm=None, cam="cam.toml", valve_train=None, speeds=lambda: speeds
+    )
+    springs = [SimpleNamespace(with_model=lambda name, k=k: k) for k in range(len(goodman))]
+    out = {}
+    for judge_all in (False, True):
+        rows = [dict(mass_kg=0.03 + 0.001 * k, margin_goodman=0.1) for k in range(len(goodman))]
+        runs.clear()
+        synthesis._dynamics(req, springs, rows, ".", None, [], judge_all=judge_all, first=[])
+        out[judge_all] = (rows, [m for m, n in runs if n == speeds.size])
+    (screened, full_runs), (every, _) = out[False], out[True]
+    assert full_runs == [0, 3]
+    assert max(r.get("dynamic_goodman_safety") or 0 for r in screened) == 0.98
+    assert max(r["dynamic_goodman_safety"] for r in every) == 0.98
+    assert [r["meets_all"] for r in screened] == [r["meets_all"] for r in every] == [False] * 5
+    for r, e in zip(screened, every):
+        if "probed_goodman_safety" in r:
+            assert e["dynamic_goodman_safety"] <= r["probed_goodman_safety"]
 
 
 @pytest.mark.slow  # a round of four candidates over the speed range, screened and judged all (~60 s)

@@ -1130,16 +1130,17 @@ class _Probe:
     A candidate's Goodman safety at speed is the lowest over the speed range, so its value at a
     few of the speeds is an upper bound of it.  After each candidate run at every speed, the speed
     of its lowest Goodman safety joins the probe speeds; a later candidate is first run at those
-    speeds alone and goes no further when its bound there already
+    speeds alone (:meth:`bound`).  When its bound there already misses the required safety it
+    cannot meet every requirement, whatever its other speeds; it then runs at every speed only
+    while it may still be the round's best (its bound above the best safety of a candidate run at
+    every speed), whose safety sets the next surge allowance (:func:`synthesize`): such candidates
+    run after those that may meet every requirement, the highest bound first, so that the best
+    is found early and the others' bounds fall below it.
 
-    - misses the required safety (it cannot meet every requirement, whatever its other speeds), and
-    - lies below the best Goodman safety of a candidate run at every speed (it cannot be the best
-      candidate of the round, whose safety sets the next surge allowance, :func:`synthesize`).
-
-    Its other speeds and its float speed cannot change the ranking, the surge allowance or the
-    notes, so the screened synthesis gives the candidates and figures of ``judge_all``.  The bound
-    is exact only where each probed speed starts from the same state as in a full sweep: the warm
-    starts' (each speed from the first candidate's periodic state at that speed,
+    The others' remaining speeds and float speeds cannot change the ranking, the surge allowance
+    or the notes, so the screened synthesis gives the candidates and figures of ``judge_all``.
+    The bound is exact only where each probed speed starts from the same state as in a full sweep:
+    the warm starts' (each speed from the first candidate's periodic state at that speed,
     :func:`_candidate_starts`), so cold starts (``warm_starts=False``) run every speed.
     """
 
@@ -1156,27 +1157,66 @@ class _Probe:
             self.at.append(j)
         self.best = float(g[j]) if self.best is None else max(self.best, float(g[j]))
 
-    def prunes(self, model, cam, vt, starts, row: dict) -> bool:
-        """Run ``model`` at the probe speeds; True (and its row filled) when it goes no further."""
+    def bound(self, model, cam, vt, starts):
+        """``model``'s lowest Goodman safety at the probe speeds and those speeds [rev/min], or
+        None where it is not probed (no candidate run at every speed yet, or cold starts)."""
         if starts is None or self.best is None:
-            return False
+            return None
         at = sorted(self.at)
-        # a copy: the probed speeds' states must not start the same speeds of a full sweep
-        t = sweep(model, cam, self.speeds[at], valve_train=vt, starts=starts.copy()).summary_table()
-        g = np.asarray(t["fatigue_safety_factor"], dtype=float)
-        bound = float(np.min(g))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            # a copy: the probed speeds' states must not start the same speeds of a full sweep
+            t = sweep(model, cam, self.speeds[at], valve_train=vt, starts=starts.copy()).summary_table()
+        return float(np.min(np.asarray(t["fatigue_safety_factor"], dtype=float))), self.speeds[at]
+
+    def fill(self, row: dict, probed) -> None:
+        """The row of a candidate that goes no further than its probe (``probed``, :meth:`bound`)."""
+        bound, rpm = probed
         need = self.req.min_goodman_safety
-        if not bound < min(self.best, need):
-            return False
-        rpm = ", ".join(f"{self.speeds[j]:.0f}" for j in at)
         row["probed_goodman_safety"] = bound
         row["margin_goodman_dynamic"] = criteria.margin("goodman", bound, need)
         row["dynamics"] = (
-            f"run at {len(at)} of {self.speeds.size} speeds ({rpm} cam rpm): its Goodman safety there, {bound:.4g}, "
-            f"already misses {need:g} and lies below {self.best:.4g}, the best of a candidate run at every speed; its "
-            "other speeds can only lower it (its margin on goodman_dynamic is an upper bound; --judge-all runs them)"
+            f"run at {rpm.size} of {self.speeds.size} speeds ({', '.join(f'{r:.0f}' for r in rpm)} cam rpm): its "
+            f"Goodman safety there, {bound:.4g}, already misses {need:g} and lies below {self.best:.4g}, the best of "
+            "a candidate run at every speed; its other speeds can only lower it (its margin on goodman_dynamic is an "
+            "upper bound; --judge-all runs them)"
         )
-        return True
+        _judge(row)
+
+
+def _full_run(req, model, cam, vt, speeds, row, starts, first, probe, judge_all) -> None:
+    """One candidate at every speed (module docstring, 5): its row's figures at speed and, unless
+    it misses a requirement already (or ``judge_all``), its float speed; its sweep states start
+    the round's other candidates when it is the round's first run (``first``, :func:`_candidate_starts`)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t = sweep(model, cam, speeds, valve_train=vt, starts=starts).summary_table()
+        if starts is not None and probe.best is None:  # the round's first run
+            first[:] = [starts.copy()]
+        probe.record(t)
+        row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
+        row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
+        row["margin_goodman_dynamic"] = criteria.margin(
+            "goodman", row["dynamic_goodman_safety"], req.min_goodman_safety
+        )
+        # coil clash: a severity above the default limit (verdicts.coil_clash, the sweep's column)
+        clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
+        row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
+        row["max_clash_severity"] = float(np.max(t["clash_severity"]))
+        missed = [key[len("margin_") :] for key, v in row.items() if key.startswith("margin_") and v < 0.0]
+        row["dynamics"] = "run"
+        if vt is not None and missed and not judge_all:
+            row["dynamics"] = f"run; float speed not searched: misses {', '.join(missed)} already"
+        elif vt is not None:
+            need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
+            scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
+            res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION, starts=starts)
+            row["float_cam_rpm"] = res["float_cam_rpm"]
+            if need is not None:
+                fl = res["float_cam_rpm"]
+                # no float up to the scan's top: at least that (a lower bound of the margin)
+                row["margin_float"] = criteria.margin("float_speed", scan[-1] if fl is None else fl, need)
+    _judge(row)
 
 
 def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = False, first=None) -> None:
@@ -1185,8 +1225,10 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
     The candidates are run lightest first, the ranking's order among those that meet every
     requirement.  Unless ``judge_all``, the runs stop at the first candidate that meets every
     requirement (no heavier one can rank above it; their rows say they were not run and their
-    ``meets_all`` is ``None``), and a candidate that misses a requirement at speed (Goodman,
-    clash) or statically gets no float search (it cannot meet all, whatever its float speed).
+    ``meets_all`` is ``None``), a candidate that misses a requirement at speed (Goodman,
+    clash) or statically gets no float search (it cannot meet all, whatever its float speed),
+    and one whose Goodman safety at the probe speeds misses the requirement runs at every speed
+    only while it may be the round's best (:class:`_Probe`).
     """
 
     base = Path(base_dir) if base_dir is not None else Path(".")
@@ -1201,8 +1243,8 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
     order = sorted(range(len(rows)), key=lambda k: rows[k]["mass_kg"])
     it = progress(order, desc="dynamics") if progress is not None else order
     winner = None
-    ran = False  # this round's first candidate ran: its sweep states start the others (first)
     probe = _Probe(req, speeds)
+    deferred = []  # (probed, k, model, starts): cannot meet all, may be the round's best (_Probe)
     for k in it:
         sp, row = springs[k], rows[k]
         if winner is not None and not judge_all:
@@ -1214,42 +1256,22 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
         # the candidate as designed (the standard's rates, its transition coils written) run
         # coil by coil: its static forces are the row's distributed ones
         model = sp.with_model("distributed")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            starts = _candidate_starts(first)
-            if not judge_all and probe.prunes(model, cam, vt, starts, row):
-                _judge(row)
-                continue
-            t = sweep(model, cam, speeds, valve_train=vt, starts=starts).summary_table()
-            probe.record(t)
-            if starts is not None and not ran:
-                first[:] = [starts.copy()]
-            ran = True
-            row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
-            row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
-            row["margin_goodman_dynamic"] = criteria.margin(
-                "goodman", row["dynamic_goodman_safety"], req.min_goodman_safety
-            )
-            # coil clash: a severity above the default limit (verdicts.coil_clash, the sweep's column)
-            clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
-            row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
-            row["max_clash_severity"] = float(np.max(t["clash_severity"]))
-            missed = [key[len("margin_") :] for key, v in row.items() if key.startswith("margin_") and v < 0.0]
-            row["dynamics"] = "run"
-            if vt is not None and missed and not judge_all:
-                row["dynamics"] = f"run; float speed not searched: misses {', '.join(missed)} already"
-            elif vt is not None:
-                need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
-                scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
-                res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION, starts=starts)
-                row["float_cam_rpm"] = res["float_cam_rpm"]
-                if need is not None:
-                    fl = res["float_cam_rpm"]
-                    # no float up to the scan's top: at least that (a lower bound of the margin)
-                    row["margin_float"] = criteria.margin("float_speed", scan[-1] if fl is None else fl, need)
-        _judge(row)
+        starts = _candidate_starts(first)
+        probed = None if judge_all else probe.bound(model, cam, vt, starts)
+        if probed is not None and probed[0] < req.min_goodman_safety:
+            if probed[0] < probe.best:
+                probe.fill(row, probed)
+            else:  # it may set the surge allowance: run once the candidates that may meet all have
+                deferred.append((probed, k, model, starts))
+            continue
+        _full_run(req, model, cam, vt, speeds, row, starts, first, probe, judge_all)
         if row["meets_all"] and winner is None:
             winner = k
+    for probed, k, model, starts in sorted(deferred, key=lambda d: -d[0][0]):  # the highest bound first
+        if winner is not None or probed[0] < probe.best:
+            probe.fill(rows[k], probed)
+        else:
+            _full_run(req, model, cam, vt, speeds, rows[k], starts, first, probe, judge_all)
     if not any(r.get("margin_goodman_dynamic", 0.0) >= 0 for r in rows):
         best = max(r["dynamic_goodman_safety"] for r in rows if r.get("dynamic_goodman_safety") is not None)
         notes.append(
