@@ -1,10 +1,11 @@
 """Valve-spring synthesis end to end (issue 42, row 2).  Run:  python benchmarks/valve_synthesis.py
 
 Runs ``springdyn valve synthesize examples/valve/requirements.toml`` as the library call it
-makes (the engine loaded from its cache first), twice in one process:
+makes (the engine loaded from its cache first), three times in one process:
 
 1. as shipped: the dynamic checks screen (the lightest candidate that meets every requirement
-   ends the distributed runs, no float search for a candidate that misses one already);
+   ends the distributed runs, no float search for a candidate that misses one already, a
+   round's candidates probed at its worst speeds first);
 2. the reference measured in the same run: ``judge_all=True``, every candidate run and its
    float speed searched, the method before issue 42's screen;
 3. the screened synthesis with ``warm_starts=False`` (issue 42, item 3): every candidate's
