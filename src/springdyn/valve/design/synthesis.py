@@ -912,6 +912,7 @@ def synthesize(
 
     allowance, kept = 1.0, None
     first = []  # warm starts: the sweep states of the first candidate run (_candidate_starts)
+    before = []  # the rounds before: what each found, for the note
     for _ in range(SURGE_ITERATIONS):
         screen = (
             req if allowance == 1.0 else dataclasses.replace(req, min_goodman_safety=req.min_goodman_safety * allowance)
@@ -938,7 +939,8 @@ def synthesize(
         if allowance != 1.0:
             notes.append(
                 f"the static Goodman safety between the load points was raised to {screen.min_goodman_safety:.3g} "
-                f"(a surge allowance of {allowance:.3g}: the distributed model's dynamic wire stress at speed)"
+                f"(a surge allowance of {allowance:.3g}: the distributed model's dynamic wire stress at speed); "
+                + "; ".join(before)
             )
         kept = (springs, rows, notes, table)
         if not (dynamics and req.cam):
@@ -950,6 +952,11 @@ def synthesize(
         # the best candidate's Goodman safety at speed (a probed one is below it: _Probe)
         dyn = [r["dynamic_goodman_safety"] for r in rows if r.get("dynamic_goodman_safety") is not None]
         allowance *= min(req.min_goodman_safety / max(g, 1e-6) for g in dyn) * 1.02
+        probed = sum("probed_goodman_safety" in r for r in rows)
+        before.append(
+            f"with {screen.min_goodman_safety:.3g} the best of {len(rows)} candidates kept {max(dyn):.4g} at speed "
+            f"({len(dyn)} run at every speed, {probed} at the probe speeds only)"
+        )
     springs, rows, notes, table = kept
     order = sorted(range(len(rows)), key=lambda k: (_standing(rows[k]), rows[k]["mass_kg"]))
     rows = [rows[k] for k in order]
