@@ -948,8 +948,8 @@ def synthesize(
         _dynamics(req, springs, rows, base_dir, progress, notes, judge_all, first if warm_starts else None)
         if any(r["meets_all"] for r in rows) or min(r["margin_goodman_dynamic"] for r in rows) >= 0.0:
             break
-        # no candidate meets everything: every one was run (a screen stops only at one that does)
-        # the best candidate's Goodman safety at speed (a probed one is below it: _Probe)
+        # no candidate meets everything: every one was run or probed (a screen stops only at one
+        # that does); the best candidate's Goodman safety at speed (a probed one is below it: _Probe)
         dyn = [r["dynamic_goodman_safety"] for r in rows if r.get("dynamic_goodman_safety") is not None]
         allowance *= min(req.min_goodman_safety / max(g, 1e-6) for g in dyn) * 1.02
         probed = sum("probed_goodman_safety" in r for r in rows)
@@ -1145,7 +1145,8 @@ class _Probe:
     is found early and the others' bounds fall below it.
 
     The others' remaining speeds and float speeds cannot change the ranking, the surge allowance
-    or the notes, so the screened synthesis gives the candidates and figures of ``judge_all``.
+    or the notes, so the screened synthesis gives the ranking of ``judge_all`` and its first
+    candidate with the same figures (a probed row keeps its bound, labelled, not its figures).
     The bound is exact only where each probed speed starts from the same state as in a full sweep:
     the warm starts' (each speed from the first candidate's periodic state at that speed,
     :func:`_candidate_starts`), so cold starts (``warm_starts=False``) run every speed.
