@@ -401,14 +401,20 @@ def test_the_round_runs_at_every_speed_only_who_may_meet_all_or_be_the_best(monk
         min_goodman_safety=1.05, min_float_cam_rpm=None, cam="cam.toml", valve_train=None, speeds=lambda: speeds
     )
     springs = [SimpleNamespace(with_model=lambda name, k=k: k) for k in range(len(goodman))]
-    out = {}
+    out, bars = {}, []
+
+    def bar(items, desc=""):
+        bars.append(desc)
+        return items
+
     for judge_all in (False, True):
         rows = [dict(mass_kg=0.03 + 0.001 * k, margin_goodman=0.1) for k in range(len(goodman))]
         runs.clear()
-        synthesis._dynamics(req, springs, rows, ".", None, [], judge_all=judge_all, first=[])
+        synthesis._dynamics(req, springs, rows, ".", bar, [], judge_all=judge_all, first=[])
         out[judge_all] = (rows, [m for m, n in runs if n == speeds.size])
     (screened, full_runs), (every, _) = out[False], out[True]
     assert full_runs == [0, 3]
+    assert bars == ["dynamics", "dynamics: the round's best", "dynamics"]  # the deferred runs show progress too
     assert max(r.get("dynamic_goodman_safety") or 0 for r in screened) == 0.98
     assert max(r["dynamic_goodman_safety"] for r in every) == 0.98
     assert [r["meets_all"] for r in screened] == [r["meets_all"] for r in every] == [False] * 5

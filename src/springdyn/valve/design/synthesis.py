@@ -1275,7 +1275,10 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
         _full_run(req, model, cam, vt, speeds, row, starts, first, probe, judge_all)
         if row["meets_all"] and winner is None:
             winner = k
-    for probed, k, model, starts in sorted(deferred, key=lambda d: -d[0][0]):  # the highest bound first
+    later = sorted(deferred, key=lambda d: -d[0][0])  # the highest bound first
+    if later and progress is not None:
+        later = progress(later, desc="dynamics: the round's best")
+    for probed, k, model, starts in later:
         if winner is not None or probed[0] < probe.best:
             probe.fill(rows[k], probed)
         else:
