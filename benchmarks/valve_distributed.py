@@ -14,7 +14,9 @@ Measures in one run, on this machine, with the one-step example spring and a 3-4
    chain; benchmarks/valve_stepping.py compares both pairs on both models);
 3. a sweep of 1000 speeds from 300 to 4000 cam rpm, distributed model, both cores, each to its
    periodic steady state (target <= 20 s, issue 26; beside it the 2-revolution sweep from rest
-   of the same process) and the peak resident memory of that process (target < 1 GB).
+   of the same process) and the peak resident memory of that process (target < 1 GB); and in
+   yardsticks (one SciPy DOP853 Type C run, ``valve_variants.yardstick``) against issue 42's
+   goal (4 s on the machine of 2026-11-26, where the yardstick took 0.65 s).
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ import sys
 import time
 
 from valve_speed import periodic_sweep  # the sweep child both engine benchmarks share
+from valve_variants import yardstick
 
 
 def _best(fn, repeat):
@@ -103,7 +106,7 @@ def main(argv=None) -> int:
         h = 2 * 0.02 / rows[name][1]
         print(f"  {name:12s} |lambda|max = {lam:.3g} 1/s, mean step {h * 1e6:.2f} us, |lambda| h = {lam * h:.2f}")
 
-    periodic_sweep("distributed", args.speeds, 20.0, met)
+    periodic_sweep("distributed", args.speeds, 20.0, met, yard=yardstick())
     return 0 if not missed else 1
 
 
