@@ -483,3 +483,16 @@ def test_a_uniform_element_is_coil_law_and_its_neighbours_follow_it():
     x = np.linspace(0.0, 3 * (gap.sum() + onset.sum()), 2001)
     f = law_force(x, law)
     assert np.all(np.abs(law_force(x, near) - f) <= 2e-5 * np.maximum(f, ks[0] / n * gap.sum()))
+
+
+def test_the_series_stiffness_alone_is_the_slice_responses():
+    """The closing law's grid takes the slices' series stiffness alone
+    (``slice_series_stiffness``, issue 42: a third less work than ``slice_response``, which also
+    sums the compressions): the same numbers to the bit, open, closing and closed slices."""
+    from springdyn.valve.spring.chains.distributed import slice_response, slice_series_stiffness
+
+    rng = np.random.default_rng(7)
+    ks, gap = rng.uniform(5e7, 1e8, 64), rng.uniform(2e-6, 9e-6, 64)
+    kc, onset = np.full(64, 8.6e9), np.full(64, 2.8e-6)
+    f = np.linspace(0.0, 1.2 * np.max(ks * (gap + onset) + 0.5 * kc * onset), 801)
+    assert np.array_equal(slice_series_stiffness(f, ks, gap, kc, onset), slice_response(f, ks, gap, kc, onset)[1])

@@ -146,16 +146,41 @@ def slice_states(force, k_slice, gap, k_contact, onset) -> tuple[np.ndarray, np.
         Compression [m] and tangent stiffness [N/m] of every slice.
     """
     f = np.asarray(force, dtype=float)[..., None]
-    d = f - k_slice * gap
-    u = 2.0 * d / (k_slice + np.sqrt(k_slice * k_slice + 2.0 * k_contact / onset * np.maximum(d, 0.0)))
+    d, u = _slice_closing(f, k_slice, gap, k_contact, onset)
     closed = u >= onset
     e = np.where(
         d < 0, f / k_slice, np.where(closed, (f + k_contact * (gap + 0.5 * onset)) / (k_slice + k_contact), gap + u)
     )
-    k = np.where(
+    return e, _slice_tangent(d, u, k_slice, k_contact, onset)
+
+
+def _slice_closing(f, k_slice, gap, k_contact, onset):
+    """``d``, each slice's force beyond the closing of its gap [N] (< 0: open), and ``u``, its
+    closure beyond the gap [m] (the root of ``k_slice u + k_contact u^2 / (2 onset) = d``)."""
+    d = f - k_slice * gap
+    u = 2.0 * d / (k_slice + np.sqrt(k_slice * k_slice + 2.0 * k_contact / onset * np.maximum(d, 0.0)))
+    return d, u
+
+
+def _slice_tangent(d, u, k_slice, k_contact, onset):
+    """Tangent stiffness [N/m] of each slice from :func:`_slice_closing`'s ``d`` and ``u``."""
+    closed = u >= onset
+    return np.where(
         d < 0, k_slice, np.where(closed, k_slice + k_contact, k_slice + k_contact * np.maximum(u, 0.0) / onset)
     )
-    return e, k
+
+
+@_DOCS.fill
+def slice_series_stiffness(force, k_slice, gap, k_contact, onset):
+    """Tangent stiffness [N/m] of turn-slices in series at ``force``: :func:`slice_response`'s
+    second output without their compressions (the closing law's grid needs only it).
+
+    Parameters
+    ----------
+    {force slices}
+    """
+    d, u = _slice_closing(np.asarray(force, dtype=float)[..., None], k_slice, gap, k_contact, onset)
+    return 1.0 / np.sum(1.0 / _slice_tangent(d, u, k_slice, k_contact, onset), axis=-1)
 
 
 @_DOCS.fill
@@ -231,7 +256,7 @@ def graded_coil_law(k_slice, gap, k_contact, onset, pieces: int = CLOSING_PIECES
     f_first = float(np.min(k_slice * gap))
     f_last = float(np.max(k_slice * (gap + onset) + 0.5 * k_contact * onset))
     f_grid = f_first + (f_last - f_first) * np.linspace(0.0, 1.0, 801) ** 3
-    k_grid = slice_response(f_grid, k_slice, gap, k_contact, onset)[1]
+    k_grid = slice_series_stiffness(f_grid, k_slice, gap, k_contact, onset)
     k_knots = k_open * (k_closed / k_open) ** (np.arange(pieces + 1) / pieces)
     f_knots = np.interp(np.log(k_knots), np.log(np.maximum.accumulate(k_grid)), f_grid)
     f_knots[0], f_knots[-1] = f_first, f_last
