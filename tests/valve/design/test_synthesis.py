@@ -342,22 +342,33 @@ def test_the_probe_bounds_a_candidate_at_the_rounds_worst_speeds(monkeypatch):
     monkeypatch.setattr(synthesis, "sweep", fake_sweep)
     probe = synthesis._Probe(SimpleNamespace(min_goodman_safety=1.05), speeds)
     warm = PeriodicStates()
-    assert probe.bound([1.2, 1.1, 0.95], None, None, warm) is None  # nothing run at every speed yet
+    assert probe.bound(0, [1.2, 1.1, 0.95], None, None, warm) is None  # nothing run at every speed yet
     assert asked == []
     probe.record(fake_sweep([1.2, 1.1, 0.95], None, speeds).summary_table())  # best 0.95, lowest at 3000
     assert probe.best == 0.95 and probe.at == [2]
-    bound, rpm = probe.bound([1.3, 1.2, 0.90], None, None, warm)
+    bound, rpm = probe.bound(1, [1.3, 1.2, 0.90], None, None, warm)
     assert (bound, list(rpm)) == (0.90, [3000.0])
     row = {"margin_goodman": 0.1}
     probe.fill(row, (bound, rpm))
     assert row["probed_goodman_safety"] == 0.90 and row["meets_all"] is False
     assert row["margin_goodman_dynamic"] == pytest.approx(0.90 / 1.05 - 1.0) == row["smallest_margin"]
     assert "run at 1 of 3 speeds (3000 cam rpm)" in row["dynamics"]
-    assert probe.bound([1.3, 1.2, 0.90], None, None, None) is None  # cold starts: the full sweep
+    assert probe.bound(1, [1.3, 1.2, 0.90], None, None, None) is None  # cold starts: the full sweep
     probe.record(fake_sweep([1.3, 0.8, 0.97], None, speeds).summary_table())
     assert probe.best == 0.95 and probe.at == [2, 1]  # its lowest speed joins the probe speeds
-    assert probe.bound([1.3, 0.85, 0.96], None, None, warm)[0] == 0.85  # 0.85 at 2000, 0.96 at 3000
+    assert probe.bound(2, [1.3, 0.85, 0.96], None, None, warm)[0] == 0.85  # 0.85 at 2000, 0.96 at 3000
     assert asked[-1] == [2000.0, 3000.0]
+
+    # probes started ahead in a pool's threads are taken only at the same probe speeds
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(2) as pool:
+        ahead = synthesis._Probe(SimpleNamespace(min_goodman_safety=1.05), speeds, pool)
+        ahead.record(fake_sweep([1.2, 1.1, 0.95], None, speeds).summary_table())
+        ahead.ahead([(3, [1.3, 0.9, 0.99], warm), (4, [1.3, 1.0, 0.93], warm)], None, None)  # at 3000
+        assert ahead.bound(4, [1.3, 1.0, 0.93], None, None, warm)[0] == 0.93
+        ahead.record(fake_sweep([1.3, 0.8, 0.97], None, speeds).summary_table())  # 2000 joins
+        assert ahead.bound(3, [1.3, 0.9, 0.99], None, None, warm)[0] == 0.9  # not the started 0.99
 
 
 def test_the_round_runs_at_every_speed_only_who_may_meet_all_or_be_the_best(monkeypatch):

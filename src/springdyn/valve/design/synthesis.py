@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -1152,10 +1153,11 @@ class _Probe:
     :func:`_candidate_starts`), so cold starts (``warm_starts=False``) run every speed.
     """
 
-    def __init__(self, req: Requirements, speeds: np.ndarray):
-        self.req, self.speeds = req, speeds
+    def __init__(self, req: Requirements, speeds: np.ndarray, pool=None):
+        self.req, self.speeds, self.pool = req, speeds, pool
         self.at = []  # indices of the probe speeds in ``speeds``
         self.best = None  # the highest Goodman safety of a candidate run at every speed [-]
+        self.started = {}  # k -> (probe speeds, future): probes started ahead (:meth:`ahead`)
 
     def record(self, table: dict) -> None:
         """Take a candidate run at every speed (its sweep's summary table)."""
@@ -1165,17 +1167,34 @@ class _Probe:
             self.at.append(j)
         self.best = float(g[j]) if self.best is None else max(self.best, float(g[j]))
 
-    def bound(self, model, cam, vt, starts):
-        """``model``'s lowest Goodman safety at the probe speeds and those speeds [rev/min], or
-        None where it is not probed (no candidate run at every speed yet, or cold starts)."""
+    def ahead(self, items, cam, vt) -> None:
+        """Start the probes of ``items`` (``(k, model, starts)``: the candidates still to come) at
+        the present probe speeds, in the pool's threads: a probe runs one speed, on one core,
+        so two run at a time.  :meth:`bound` takes a probe started at the same speeds; one
+        started at others is not used (a candidate run at every speed since added a speed)."""
+        if self.pool is None or self.best is None:
+            return
+        at = tuple(sorted(self.at))
+        for k, model, starts in items:
+            if starts is not None and (k not in self.started or self.started[k][0] != at):
+                self.started[k] = (at, self.pool.submit(self._probe, model, cam, vt, starts, at))
+
+    def bound(self, k, model, cam, vt, starts):
+        """Candidate ``k``'s (``model``'s) lowest Goodman safety at the probe speeds and those
+        speeds [rev/min], or None where it is not probed (no candidate run at every speed yet,
+        or cold starts)."""
         if starts is None or self.best is None:
             return None
-        at = sorted(self.at)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            # a copy: the probed speeds' states must not start the same speeds of a full sweep
-            t = sweep(model, cam, self.speeds[at], valve_train=vt, starts=starts.copy()).summary_table()
-        return float(np.min(np.asarray(t["fatigue_safety_factor"], dtype=float))), self.speeds[at]
+        at = tuple(sorted(self.at))
+        early = self.started.pop(k, None)
+        if early is not None and early[0] == at:
+            return early[1].result()
+        return self._probe(model, cam, vt, starts, at)
+
+    def _probe(self, model, cam, vt, starts, at):
+        # a copy: the probed speeds' states must not start the same speeds of a full sweep
+        t = sweep(model, cam, self.speeds[list(at)], valve_train=vt, starts=starts.copy()).summary_table()
+        return float(np.min(np.asarray(t["fatigue_safety_factor"], dtype=float))), self.speeds[list(at)]
 
     def fill(self, row: dict, probed) -> None:
         """The row of a candidate that goes no further than its probe (``probed``, :meth:`bound`)."""
@@ -1251,38 +1270,51 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
     order = sorted(range(len(rows)), key=lambda k: rows[k]["mass_kg"])
     it = progress(order, desc="dynamics") if progress is not None else order
     winner = None
-    probe = _Probe(req, speeds)
     deferred = []  # (probed, k, model, starts): cannot meet all, may be the round's best (_Probe)
-    for k in it:
-        sp, row = springs[k], rows[k]
-        if winner is not None and not judge_all:
-            row["meets_all"] = None
-            row["dynamics"] = (
-                f"not run: heavier than the {rows[winner]['mass_kg'] * 1e3:.1f} g candidate that meets all"
-            )
-            continue
-        # the candidate as designed (the standard's rates, its transition coils written) run
-        # coil by coil: its static forces are the row's distributed ones
-        model = sp.with_model("distributed")
-        starts = _candidate_starts(first)
-        probed = None if judge_all else probe.bound(model, cam, vt, starts)
-        if probed is not None and probed[0] < req.min_goodman_safety:
-            if probed[0] < probe.best:
-                probe.fill(row, probed)
-            else:  # it may set the surge allowance: run once the candidates that may meet all have
-                deferred.append((probed, k, model, starts))
-            continue
-        _full_run(req, model, cam, vt, speeds, row, starts, first, probe, judge_all)
-        if row["meets_all"] and winner is None:
-            winner = k
-    later = sorted(deferred, key=lambda d: -d[0][0])  # the highest bound first
-    if later and progress is not None:
-        later = progress(later, desc="dynamics: the round's best")
-    for probed, k, model, starts in later:
-        if winner is not None or probed[0] < probe.best:
-            probe.fill(rows[k], probed)
-        else:
-            _full_run(req, model, cam, vt, speeds, rows[k], starts, first, probe, judge_all)
+    models = {}  # k -> the candidate as designed (the standard's rates, its transition coils written),
+
+    def model_of(k):  # run coil by coil: its static forces are the row's distributed ones
+        if k not in models:
+            models[k] = springs[k].with_model("distributed")
+        return models[k]
+
+    pool = ThreadPoolExecutor(max_workers=2)  # the probes of one speed, two at a time
+    try:
+        with warnings.catch_warnings():  # (here, not in the probes' threads: the filters are global)
+            warnings.simplefilter("ignore")
+            probe = _Probe(req, speeds, pool)
+            for i, k in enumerate(it):
+                row = rows[k]
+                if winner is not None and not judge_all:
+                    row["meets_all"] = None
+                    row["dynamics"] = (
+                        f"not run: heavier than the {rows[winner]['mass_kg'] * 1e3:.1f} g candidate that meets all"
+                    )
+                    continue
+                model, starts = model_of(k), _candidate_starts(first)
+                probed = None
+                if not judge_all and probe.best is not None:
+                    probe.ahead([(j, model_of(j), _candidate_starts(first)) for j in order[i:]], cam, vt)
+                    probed = probe.bound(k, model, cam, vt, starts)
+                if probed is not None and probed[0] < req.min_goodman_safety:
+                    if probed[0] < probe.best:
+                        probe.fill(row, probed)
+                    else:  # it may set the surge allowance: run once the candidates that may meet all have
+                        deferred.append((probed, k, model, starts))
+                    continue
+                _full_run(req, model, cam, vt, speeds, row, starts, first, probe, judge_all)
+                if row["meets_all"] and winner is None:
+                    winner = k
+            later = sorted(deferred, key=lambda d: -d[0][0])  # the highest bound first
+            if later and progress is not None:
+                later = progress(later, desc="dynamics: the round's best")
+            for probed, k, model, starts in later:
+                if winner is not None or probed[0] < probe.best:
+                    probe.fill(rows[k], probed)
+                else:
+                    _full_run(req, model, cam, vt, speeds, rows[k], starts, first, probe, judge_all)
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
     if not any(r.get("margin_goodman_dynamic", 0.0) >= 0 for r in rows):
         best = max(r["dynamic_goodman_safety"] for r in rows if r.get("dynamic_goodman_safety") is not None)
         notes.append(
