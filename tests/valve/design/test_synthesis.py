@@ -365,7 +365,8 @@ def test_the_probe_bounds_a_candidate_at_the_rounds_worst_speeds(monkeypatch):
     with ThreadPoolExecutor(2) as pool:
         ahead = synthesis._Probe(SimpleNamespace(min_goodman_safety=1.05), speeds, pool)
         ahead.record(fake_sweep([1.2, 1.1, 0.95], None, speeds).summary_table())
-        ahead.ahead([(3, [1.3, 0.9, 0.99], warm), (4, [1.3, 1.0, 0.93], warm)], None, None)  # at 3000
+        goodman = {3: [1.3, 0.9, 0.99], 4: [1.3, 1.0, 0.93]}
+        ahead.ahead([3, 4], lambda k: (goodman[k], warm), None, None)  # at 3000
         assert ahead.bound(4, [1.3, 1.0, 0.93], None, None, warm)[0] == 0.93
         ahead.record(fake_sweep([1.3, 0.8, 0.97], None, speeds).summary_table())  # 2000 joins
         assert ahead.bound(3, [1.3, 0.9, 0.99], None, None, warm)[0] == 0.9  # not the started 0.99

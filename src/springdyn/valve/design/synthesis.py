@@ -805,14 +805,15 @@ def choose_transition(sp, req: Requirements):
 
     limit = TRANSITION_SHARE * req.load_point_tolerance
     built = {}  # turns -> (spring, its distributed twin or None): each transition built once
-    near = [None]  # where the last two-step free-length search ended: the next one starts there
+    near = None  # where the last two-step free-length search ended: the next one starts there
 
     def build(turns):
+        nonlocal near
         if turns not in built:
             d = dataclasses.replace(sp, transition_turns=float(turns))
             if d.low_pitch_coils > 0:
-                d, twin, end = _two_step_free_length(d, req, near[0])
-                near[0] = end or near[0]
+                d, twin, end = _two_step_free_length(d, req, near)
+                near = end or near
             else:
                 twin = None
             built[turns] = (d, twin)
@@ -1167,17 +1168,20 @@ class _Probe:
             self.at.append(j)
         self.best = float(g[j]) if self.best is None else max(self.best, float(g[j]))
 
-    def ahead(self, items, cam, vt) -> None:
-        """Start the probes of ``items`` (``(k, model, starts)``: the candidates still to come) at
-        the present probe speeds, in the pool's threads: a probe runs one speed, on one core,
-        so two run at a time.  :meth:`bound` takes a probe started at the same speeds; one
-        started at others is not used (a candidate run at every speed since added a speed)."""
+    def ahead(self, ks, candidate, cam, vt) -> None:
+        """Start the probes of the candidates ``ks`` (those still to come; ``candidate(k)`` gives
+        its model and starts, asked only for a probe it starts) at the present probe speeds, in
+        the pool's threads: a probe runs one speed, on one core, so two run at a time.
+        :meth:`bound` takes a probe started at the same speeds; one started at others is not
+        used (a candidate run at every speed since added a speed)."""
         if self.pool is None or self.best is None:
             return
         at = tuple(sorted(self.at))
-        for k, model, starts in items:
-            if starts is not None and (k not in self.started or self.started[k][0] != at):
-                self.started[k] = (at, self.pool.submit(self._probe, model, cam, vt, starts, at))
+        for k in ks:
+            if k not in self.started or self.started[k][0] != at:
+                model, starts = candidate(k)
+                if starts is not None:
+                    self.started[k] = (at, self.pool.submit(self._probe, model, cam, vt, starts, at))
 
     def bound(self, k, model, cam, vt, starts):
         """Candidate ``k``'s (``model``'s) lowest Goodman safety at the probe speeds and those
@@ -1214,35 +1218,32 @@ class _Probe:
 def _full_run(req, model, cam, vt, speeds, row, starts, first, probe, judge_all) -> None:
     """One candidate at every speed (module docstring, 5): its row's figures at speed and, unless
     it misses a requirement already (or ``judge_all``), its float speed; its sweep states start
-    the round's other candidates when it is the round's first run (``first``, :func:`_candidate_starts`)."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        t = sweep(model, cam, speeds, valve_train=vt, starts=starts).summary_table()
-        if starts is not None and probe.best is None:  # the round's first run
-            first[:] = [starts.copy()]
-        probe.record(t)
-        row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
-        row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
-        row["margin_goodman_dynamic"] = criteria.margin(
-            "goodman", row["dynamic_goodman_safety"], req.min_goodman_safety
-        )
-        # coil clash: a severity above the default limit (verdicts.coil_clash, the sweep's column)
-        clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
-        row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
-        row["max_clash_severity"] = float(np.max(t["clash_severity"]))
-        missed = [key[len("margin_") :] for key, v in row.items() if key.startswith("margin_") and v < 0.0]
-        row["dynamics"] = "run"
-        if vt is not None and missed and not judge_all:
-            row["dynamics"] = f"run; float speed not searched: misses {', '.join(missed)} already"
-        elif vt is not None:
-            need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
-            scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
-            res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION, starts=starts)
-            row["float_cam_rpm"] = res["float_cam_rpm"]
-            if need is not None:
-                fl = res["float_cam_rpm"]
-                # no float up to the scan's top: at least that (a lower bound of the margin)
-                row["margin_float"] = criteria.margin("float_speed", scan[-1] if fl is None else fl, need)
+    the round's other candidates when it is the round's first run (``first``, :func:`_candidate_starts`).
+    Its caller, :func:`_dynamics`, keeps the candidates' warnings quiet."""
+    t = sweep(model, cam, speeds, valve_train=vt, starts=starts).summary_table()
+    if starts is not None and probe.best is None:  # the round's first run
+        first[:] = [starts.copy()]
+    probe.record(t)
+    row["max_retainer_force_N"] = float(np.max(t["max_retainer_force_N"]))
+    row["dynamic_goodman_safety"] = float(np.min(t["fatigue_safety_factor"]))
+    row["margin_goodman_dynamic"] = criteria.margin("goodman", row["dynamic_goodman_safety"], req.min_goodman_safety)
+    # coil clash: a severity above the default limit (verdicts.coil_clash, the sweep's column)
+    clash = np.flatnonzero(np.asarray(t["coil_clash"], dtype=bool))
+    row["clash_onset_cam_rpm"] = float(speeds[clash[0]]) if clash.size else None
+    row["max_clash_severity"] = float(np.max(t["clash_severity"]))
+    missed = [key[len("margin_") :] for key, v in row.items() if key.startswith("margin_") and v < 0.0]
+    row["dynamics"] = "run"
+    if vt is not None and missed and not judge_all:
+        row["dynamics"] = f"run; float speed not searched: misses {', '.join(missed)} already"
+    elif vt is not None:
+        need = None if req.min_float_cam_rpm is None else omega_to_rpm(req.min_float_cam_rpm)
+        scan = speeds if need is None else np.linspace(speeds[0], max(speeds[-1], 1.15 * need), speeds.size)
+        res = float_speed(model, cam, vt, scan, resolution=FLOAT_RESOLUTION, starts=starts)
+        row["float_cam_rpm"] = res["float_cam_rpm"]
+        if need is not None:
+            fl = res["float_cam_rpm"]
+            # no float up to the scan's top: at least that (a lower bound of the margin)
+            row["margin_float"] = criteria.margin("float_speed", scan[-1] if fl is None else fl, need)
     _judge(row)
 
 
@@ -1294,7 +1295,7 @@ def _dynamics(req, springs, rows, base_dir, progress, notes, judge_all: bool = F
                 model, starts = model_of(k), _candidate_starts(first)
                 probed = None
                 if not judge_all and probe.best is not None:
-                    probe.ahead([(j, model_of(j), _candidate_starts(first)) for j in order[i:]], cam, vt)
+                    probe.ahead(order[i:], lambda j: (model_of(j), _candidate_starts(first)), cam, vt)
                     probed = probe.bound(k, model, cam, vt, starts)
                 if probed is not None and probed[0] < req.min_goodman_safety:
                     if probed[0] < probe.best:
