@@ -85,3 +85,19 @@ def test_report_warns_once(tmp_path, capsys):
     assert _run(["report", str(f), "--out", str(tmp_path / "rep")]) == 0
     err = capsys.readouterr().err
     assert len(_coil_bind_lines(err)) == 1, err
+
+
+@pytest.mark.slow  # two valve reports side by side (~40 s)
+def test_reports_side_by_side_warn_once_per_spring_in_order(tmp_path, capsys):
+    """Two definitions in two processes (``--workers 2``): each spring's coil bind once, in the
+    order of the definitions (the warnings come back from the processes to this one)."""
+    src = (ROOT / "examples" / "report" / "report_valve_one_step.toml").read_text()
+    f = tmp_path / "one.toml"
+    f.write_text(
+        src + '\n[report]\nmin_engine_rpm = "2000 rpm"\nmax_engine_rpm = "5000 rpm"\nengine_rpm_step = "500 rpm"\n'
+        'models = "type-c"\n'
+    )
+    two = str(ROOT / "examples" / "report" / "report_valve_two_step.toml")
+    assert _run(["report", two, str(f), "--out", str(tmp_path / "rep"), "--workers", "2", "--quiet"]) == 0
+    lines = _coil_bind_lines(capsys.readouterr().err)
+    assert len(lines) == 2 and "lift 7.5 mm" in lines[0] and "lift 9 mm" in lines[1], lines

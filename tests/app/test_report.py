@@ -55,10 +55,9 @@ def test_examples_are_the_built_in_definitions():
 def test_report_on_example_files_gives_the_same(demo_dir, tmp_path):
     """``springdyn report`` on examples/report/*.toml reproduces the demo's results."""
     names = ["report_valve_two_step.toml", "lsd_type_c.toml"]
-    assert (
-        main(["report", *(str(ROOT / "examples" / "report" / n) for n in names), "--out", str(tmp_path), "--quiet"])
-        == 0
-    )
+    # one by one (--workers 1) against the demo's two processes: the same results
+    files = [str(ROOT / "examples" / "report" / n) for n in names]
+    assert main(["report", *files, "--out", str(tmp_path), "--quiet", "--workers", "1"]) == 0
     for sub in ("valve-report_valve_two_step", "lsd-lsd_type_c"):
         mine = sorted(p.relative_to(tmp_path / sub) for p in (tmp_path / sub).rglob("*"))
         theirs = sorted(p.relative_to(demo_dir / sub) for p in (demo_dir / sub).rglob("*"))
@@ -66,6 +65,71 @@ def test_report_on_example_files_gives_the_same(demo_dir, tmp_path):
         for rel in mine:
             if rel.suffix == ".json":
                 assert json.loads((tmp_path / sub / rel).read_text()) == json.loads((demo_dir / sub / rel).read_text())
+
+
+def _files(folder):
+    return {p.relative_to(folder): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_definitions_side_by_side_give_the_same_report(tmp_path):
+    """Two processes (``workers=2``) write what one by one writes: every table and file the
+    same to the byte, the figures' names the same, the page the same but for its time stamp."""
+    paths = [ROOT / "examples" / "report" / n for n in ("lsd_type_a.toml", "lsd_type_c.toml")]
+    one = build_report(paths, tmp_path / "one", quiet=True)
+    two = build_report(paths, tmp_path / "two", quiet=True, workers=2)
+    a, b = _files(tmp_path / "one"), _files(tmp_path / "two")
+    assert sorted(a) == sorted(b) and len(a) > 10
+    stamp = re.compile(rb"&middot; \d{4}-\d\d-\d\d \d\d:\d\d &middot;")
+    for rel in a:
+        if rel.suffix != ".png":  # (a PNG holds its own time stamp)
+            assert stamp.sub(b"", a[rel]) == stamp.sub(b"", b[rel]), rel
+    assert one.name == two.name == "index.html"
+    for bad in (0, 1.5, True, "2"):
+        with pytest.raises(InputError, match="workers"):
+            build_report(paths, tmp_path / "bad", workers=bad)
+
+
+def test_a_section_in_a_report_process_keeps_each_warning_once(tmp_path, monkeypatch):
+    """What a section warns in a report process comes back once per text and category, in
+    the order said (the CLI then says each fact once: tests/app/test_cli_warnings.py)."""
+    import sys
+    import types
+    import warnings
+
+    from springdyn.app.report import build
+
+    def section(model, *, source, out_dir, quiet):
+        for text in ("first", "second", "first"):
+            warnings.warn(text, UserWarning, stacklevel=1)
+        warnings.warn("first", RuntimeWarning, stacklevel=1)
+        return f"section of {model}"
+
+    monkeypatch.setitem(sys.modules, "springdyn.app.report.stand_in", types.SimpleNamespace(section=section))
+    i, sec, kept = build._section_task((3, "stand_in", "m", "src", tmp_path))
+    assert (i, sec) == (3, "section of m")
+    assert [(str(m), c) for m, c, _, _ in kept] == [
+        ("first", UserWarning),
+        ("second", UserWarning),
+        ("first", RuntimeWarning),
+    ]
+
+
+def test_the_engines_a_valve_section_runs():
+    """``engines``: the demo's one-step definition runs both models, each with its train and
+    the spring alone: four engine variants, each once, each with the run that makes it."""
+    import tomllib
+
+    from springdyn.app.report.valve import engines, load
+
+    f = ROOT / "examples" / "report" / "report_valve_one_step.toml"
+    made = engines(load(tomllib.loads(f.read_text()), f))
+    assert sorted(key for key, _ in made) == [
+        ("bs3", "spring", False),
+        ("bs3", "train", False),
+        ("dopri5", "spring", False),
+        ("dopri5", "train", False),
+    ]
+    assert all(callable(run) for _, run in made)
 
 
 def test_bad_definitions(tmp_path):

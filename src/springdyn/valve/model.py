@@ -353,6 +353,15 @@ class ValveModel:
         parameters with the gas force (:func:`springdyn.valve.run.setup.prepare`)."""
         return run_wing.prepare(self.spring, self._need_cam("the set-up"), self.valve_train, self.gas_force)
 
+    @property
+    def engine_variant(self) -> tuple:
+        """The compiled engine this model's runs use: ``(pair, kind, pack)``, its Runge-Kutta
+        pair (:func:`~springdyn.valve.run.runner.runge_kutta_pair`, e.g. ``"dopri5"``), ``"spring"``
+        (alone) or ``"train"``, and True for a spring pack (one key of
+        :data:`springdyn.valve.engine.loop.VARIANTS`, with the pack as a flag)."""
+        kind = "spring" if self.valve_train is None else "train"
+        return run_wing.runge_kutta_pair(self.setup, self.settings), kind, isinstance(self.spring, SpringPack)
+
     @cached_property
     def crank_axis(self):
         """Crank angles and engine speeds beside the cam's (:class:`~springdyn.valve.cam.timing.CrankAxis`),

@@ -24,6 +24,7 @@ from springdyn.core.errors import InputError, SolverError, plain_numbers
 from springdyn.core.io import NonFiniteOutputError, check_output_file, check_output_folder, output_set
 
 from . import docs_cmd
+from .common import whole_number
 
 #: Model families, in the order the CLI lists them, with their help line (the family's
 #: ``register`` uses the same line; a test checks it).
@@ -101,6 +102,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     demo = sub.add_parser("demo", help="run every analysis on the built-in examples and write the HTML report")
     demo.add_argument("--out", default="springdyn-demo", help="output folder (default: springdyn-demo)")
     demo.add_argument("--quiet", action="store_true", help="no progress bar, only the final line")
+    demo.add_argument("--workers", metavar="N", help=WORKERS_HELP)
     demo.set_defaults(func=_run_demo)
 
     rep = sub.add_parser(
@@ -109,6 +111,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     rep.add_argument("definitions", nargs="+", metavar="FILE.toml")
     rep.add_argument("--out", default="springdyn-report", help="output folder (default: springdyn-report)")
     rep.add_argument("--quiet", action="store_true", help="no progress bar, only the final line")
+    rep.add_argument("--workers", metavar="N", help=WORKERS_HELP)
     rep.set_defaults(func=_run_report)
 
     for family, help_line in FAMILIES.items():
@@ -133,10 +136,21 @@ def _add_quiet(parser: argparse.ArgumentParser) -> None:
         parser.add_argument("--quiet", action="store_true", help="no notice on stderr while an engine compiles")
 
 
-def _report(definitions, out, quiet: bool, title: str, labels=None, subtitle: str = "") -> int:
-    from springdyn.app.report import build_report
+#: The help of the report's ``--workers``.
+WORKERS_HELP = (
+    "processes the definitions run in, side by side (default: 2, both cores of a 2-core machine; 1: one by one)"
+)
 
-    page = build_report(definitions, out, quiet=quiet, title=title, labels=labels, subtitle=subtitle)
+
+def _report(args, definitions, title: str, labels=None, subtitle: str = "") -> int:
+    from springdyn.app.report.build import REPORT_WORKERS, build_report
+
+    if args.workers is None:
+        workers = min(os.cpu_count() or 1, REPORT_WORKERS)
+    else:
+        workers = whole_number(args.workers, "--workers", 1, 64, "from 1 to 64")
+    out, quiet = args.out, args.quiet
+    page = build_report(definitions, out, quiet=quiet, title=title, labels=labels, subtitle=subtitle, workers=workers)
     files = sum(1 for p in Path(out).rglob("*") if p.is_file())
     print(f"springdyn: wrote the report {page.resolve()} ({files} files in {Path(out).resolve()})")
     return 0
@@ -155,9 +169,8 @@ def _run_demo(args) -> int:
 
     paths = demo_definitions()
     return _report(
+        args,
         paths,
-        args.out,
-        args.quiet,
         "springdyn demo: the built-in examples",
         subtitle=DEMO_NOTE,
         labels=[DEMO_LABEL.format(p.name) for p in paths],
@@ -165,7 +178,7 @@ def _run_demo(args) -> int:
 
 
 def _run_report(args) -> int:
-    return _report(args.definitions, args.out, args.quiet, "springdyn report")
+    return _report(args, args.definitions, "springdyn report")
 
 
 def _join_negative_values(argv) -> list[str]:

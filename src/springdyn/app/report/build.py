@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 import importlib
+import multiprocessing
 import os
 import shutil
+import signal
+import sys
 import tempfile
+import warnings
 from importlib import resources
 from pathlib import Path
 
@@ -48,6 +52,9 @@ DEMO_DEFINITIONS = (
 )
 
 
+#: Most processes the definitions run in, side by side (a 2-core machine's cores).
+REPORT_WORKERS = 2
+
 #: Where the built-in definitions are for a user of the repository.
 DEMO_LABEL = "examples/report/{}"
 
@@ -78,13 +85,32 @@ def _jobs(paths):
 
 
 def build_report(
-    paths, out_dir, *, quiet: bool = False, title: str = "springdyn report", subtitle: str = "", labels=None
+    paths,
+    out_dir,
+    *,
+    quiet: bool = False,
+    title: str = "springdyn report",
+    subtitle: str = "",
+    labels=None,
+    workers: int = 1,
 ) -> Path:
     """Run every definition's analyses into ``out_dir`` and write ``out_dir/index.html``.
 
     Every definition is read and validated first, so a bad file fails before any work.
     ``labels`` name the definitions in the page and its commands (default: their paths).
+
+    The definitions are independent: with ``workers`` above 1 (the CLI's default:
+    :data:`REPORT_WORKERS`, at most the machine's cores) they run side by side in that many
+    processes, started afresh (a script that calls this with ``workers`` above 1 needs the
+    ``if __name__ == "__main__":`` guard of :mod:`multiprocessing`); the default 1 runs them one
+    after the other in this process.  Before they start, the engine variants their valve sections run
+    are made once each, side by side (:func:`springdyn.app.report.valve.engines`): on a new
+    machine they compile there, once, instead of in two sections at the same time.  The page
+    and its files are the same either way; the warnings of the sections are given here, in the
+    order of the definitions.
     """
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise InputError(f"workers = {workers!r} must be a whole number of at least 1")
     paths = [Path(p) for p in paths]
     label_of = dict(zip(paths, labels)) if labels is not None else {}
     if not paths:
@@ -100,7 +126,7 @@ def build_report(
     work = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
     try:
         with direct_outputs():
-            page = _build(prepared, modules, work, label_of, quiet, title, subtitle)
+            page = _build(prepared, modules, work, label_of, quiet, title, subtitle, workers)
         _swap_in(work, out_dir)
     except BaseException:
         shutil.rmtree(work, ignore_errors=True)
@@ -131,10 +157,10 @@ def _umask() -> int:
     return mask
 
 
-def _build(prepared, modules, out_dir, label_of, quiet, title, subtitle) -> Path:
-    sections: list[Section] = []
+def _build(prepared, modules, out_dir, label_of, quiet, title, subtitle, workers) -> Path:
+    jobs = []
     used = set()
-    for family, path, model in progress(prepared, total=len(prepared), desc="report", quiet=quiet):
+    for family, path, model in prepared:
         name = f"{family}-{path.stem}"
         k = 2
         while name in used:
@@ -142,7 +168,15 @@ def _build(prepared, modules, out_dir, label_of, quiet, title, subtitle) -> Path
         used.add(name)
         sub = out_dir / name
         sub.mkdir(parents=True, exist_ok=True)
-        sections.append(modules[family].section(model, source=label_of.get(path, str(path)), out_dir=sub, quiet=quiet))
+        jobs.append((family, model, label_of.get(path, str(path)), sub))
+    workers = min(workers, len(jobs))
+    if workers > 1:
+        sections = _side_by_side(jobs, modules, workers, quiet)
+    else:
+        sections = [
+            modules[family].section(model, source=source, out_dir=sub, quiet=quiet)
+            for family, model, source, sub in progress(jobs, total=len(jobs), desc="report", quiet=quiet)
+        ]
     return render_html(
         sections,
         out_dir / "index.html",
@@ -151,3 +185,87 @@ def _build(prepared, modules, out_dir, label_of, quiet, title, subtitle) -> Path
         + f"{len(sections)} model definitions: "
         + ", ".join(s.title for s in sections),
     )
+
+
+def _side_by_side(jobs, modules, workers: int, quiet: bool) -> list[Section]:
+    """The sections of ``jobs`` run in ``workers`` processes; their warnings given here, in order.
+
+    First the engine variants the sections run, each once (``engines`` of a family's module),
+    so that no two processes compile the same one; then the sections, each in one process
+    (quiet inside: the bars of two processes would mix; the report's bar counts the sections).
+    """
+    jit = sys.modules.get("springdyn.numerics.jit")  # the compile notices: as this process has them
+    notices = jit.notices() if jit is not None else True
+    pool = multiprocessing.get_context("spawn").Pool(workers, initializer=_worker_start, initargs=(notices,))
+    try:
+        variants = {}
+        for family, model, _, _ in jobs:
+            for key, make in getattr(modules[family], "engines", lambda _: [])(model):
+                variants.setdefault(key, make)
+        # the valve train's engines first: the longest to compile
+        order = sorted(variants, key=lambda key: key[1] != "train")
+        for _ in _each(pool.imap_unordered(_make_engine, [variants[key] for key in order])):
+            pass
+        tasks = [(i, family, model, source, sub) for i, (family, model, source, sub) in enumerate(jobs)]
+        done = {}
+        for i, section, caught in progress(
+            _each(pool.imap_unordered(_section_task, tasks)), total=len(jobs), desc="report", quiet=quiet
+        ):
+            done[i] = (section, caught)
+        pool.close()
+    except BaseException:
+        pool.terminate()
+        raise
+    finally:
+        pool.join()
+    for i in range(len(jobs)):
+        for message, category, filename, lineno in done[i][1]:
+            warnings.warn_explicit(message, category, filename, lineno)
+    return [done[i][0] for i in range(len(jobs))]
+
+
+def _each(results):
+    """The results of a pool's ``imap_unordered`` as they come, waiting in short spells: a
+    wait without end would not see Ctrl-C (the pool is then ended, the temporary folder removed)."""
+    while True:
+        try:
+            yield results.next(timeout=0.25)
+        except multiprocessing.TimeoutError:
+            continue
+        except StopIteration:
+            return
+
+
+def _worker_start(notices: bool) -> None:
+    """A report process: Ctrl-C is its parent's to handle (which then ends it), the compile
+    notices as its parent has them."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if not notices:
+        from springdyn.numerics import jit  # (numba: imported only to switch them off)
+
+        jit.notices(False)
+
+
+def _make_engine(make) -> None:
+    """Run ``make`` (a short run that compiles an engine variant); its failure is its section's to say."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            make()
+        except Exception:  # noqa: BLE001 - the section runs the same model and says what failed
+            pass
+
+
+def _section_task(task):
+    """One section in a report process: ``(index, section, warnings)``, each warning once."""
+    i, family, model, source, sub = task
+    module = importlib.import_module(f"springdyn.app.report.{family}")
+    with warnings.catch_warnings(record=True) as caught, direct_outputs():
+        warnings.simplefilter("always")
+        section = module.section(model, source=source, out_dir=sub, quiet=True)
+    seen, kept = set(), []
+    for w in caught:
+        if (w.category, str(w.message)) not in seen:
+            seen.add((w.category, str(w.message)))
+            kept.append((w.message, w.category, w.filename, w.lineno))
+    return i, section, kept

@@ -9,6 +9,7 @@ figures, findings in sentences, and the criteria judged by the one criteria set
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -23,7 +24,7 @@ from springdyn.core.params import Parameters, param, param_like
 from springdyn.core.plotting import plt
 from springdyn.core.units import format_quantity, omega_to_rpm, rpm_to_omega
 
-__all__ = ["load", "section", "ValveDefinition", "ReportSettings", "DEFAULT_CAM"]
+__all__ = ["load", "section", "engines", "ValveDefinition", "ReportSettings", "DEFAULT_CAM"]
 
 #: The tables that make a definition a spring pack (:class:`springdyn.valve.SpringPack`).
 PACK_TABLES = ("inner_spring", "third_spring", "pack", "damper")
@@ -365,6 +366,39 @@ def _camshaft_finding(camshaft, report_speeds, out_dir, files, figures) -> str:
         + ("" if m["converged"] else "; NOT converged at every speed (the valves float?)")
         + "."
     )
+
+
+def engines(d: ValveDefinition) -> list:
+    """The engine variants the section of ``d`` runs, each with a short run that makes it.
+
+    Every model the section runs (``[report] models``), with its train and the spring alone
+    (:attr:`springdyn.valve.ValveModel.engine_variant`: its Runge-Kutta pair, spring alone or
+    valve train, one spring or a pack).  The report makes each variant once before its
+    sections run side by side (:func:`springdyn.app.report.build.build_report`), so that two
+    sections never compile the same engine at once.
+
+    Returns
+    -------
+    list of (key, callable)
+        The variant's key and a run of one revolution that compiles it (or loads it from the
+        cache); a model the definition cannot run is left out (its section says why).
+    """
+    names = ("type-c", "distributed") if d.settings.models == "both" else (d.settings.models,)
+    made = []
+    for name in names:
+        try:
+            train = d.model.with_model(name)
+            for m in (train, train.spring_alone()):
+                made.append(
+                    (m.engine_variant, functools.partial(_one_revolution, m, float(d.settings.report_speeds[0])))
+                )
+        except InputError:  # the section says it (e.g. the distributed model refuses the spring)
+            continue
+    return made
+
+
+def _one_revolution(model, cam_rpm: float) -> None:
+    model.simulate(cam_rpm, revolutions=1)
 
 
 def section(d: ValveDefinition, *, source: str, out_dir: Path, quiet: bool = True) -> Section:

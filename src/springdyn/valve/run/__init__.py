@@ -32,6 +32,7 @@ _EXPORTS = {
     "SimulationSetup": "setup",
     "prepare": "setup",
     "run_speeds": "runner",
+    "runge_kutta_pair": "runner",
     "simulate": "simulation",
     "sweep": "sweeps",
     "SpeedSweep": "sweeps",
