@@ -204,7 +204,8 @@ def _side_by_side(jobs, modules, workers: int, quiet: bool) -> list[Section]:
                 variants.setdefault(key, make)
         # the valve train's engines first: the longest to compile
         order = sorted(variants, key=lambda key: key[1] != "train")
-        for _ in _each(pool.imap_unordered(_make_engine, [variants[key] for key in order])):
+        made = _each(pool.imap_unordered(_make_engine, [variants[key] for key in order]))
+        for _ in progress(made, total=len(order), desc="engines", quiet=quiet):
             pass
         tasks = [(i, family, model, source, sub) for i, (family, model, source, sub) in enumerate(jobs)]
         done = {}
