@@ -199,9 +199,11 @@ def _side_by_side(jobs, modules, workers: int, quiet: bool) -> list[Section]:
     pool = multiprocessing.get_context("spawn").Pool(workers, initializer=_worker_start, initargs=(notices,))
     try:
         variants = {}
-        for family, model, _, _ in jobs:
-            for key, make in getattr(modules[family], "engines", lambda _: [])(model):
-                variants.setdefault(key, make)
+        with warnings.catch_warnings():  # (a set-up's warnings: the section gives them)
+            warnings.simplefilter("ignore")
+            for family, model, _, _ in jobs:
+                for key, make in getattr(modules[family], "engines", lambda _: [])(model):
+                    variants.setdefault(key, make)
         # the valve train's engines first: the longest to compile
         order = sorted(variants, key=lambda key: key[1] != "train")
         made = _each(pool.imap_unordered(_make_engine, [variants[key] for key in order]))
