@@ -47,3 +47,30 @@ def test_what_a_model_lacks_is_named():
     with pytest.raises(InputError, match="must be a ValveSpring"):
         ValveModel("spring.toml")
     assert "valve train" in repr(ValveModel(bare.spring, None, ValveTrain.example("pushrod")))
+
+
+def test_the_engine_variant_is_the_one_a_run_makes(model):
+    """``engine_variant``: the pair the runs choose (``runge_kutta_pair``: Dormand-Prince for
+    Type C and for a distributed chain of fewer than BS3_MIN_ELEMENTS elements, else
+    Bogacki-Shampine; the settings' method above both), the spring alone or the train; a run
+    makes that very variant of the engine (``engine.loop``)."""
+    import dataclasses
+
+    from springdyn.valve.engine import loop
+    from springdyn.valve.run.settings import BS3_MIN_ELEMENTS
+    from tests.paths import ROOT
+
+    train = model.replace(valve_train=ValveTrain.from_toml(ROOT / "examples" / "valve" / "valve_train.toml"))
+    distributed = model.with_model("distributed")
+    coarse = model.replace(spring=dataclasses.replace(distributed.spring, elements=BS3_MIN_ELEMENTS - 10)).with_model(
+        "distributed"
+    )
+    assert model.engine_variant == ("dopri5", "spring", False)
+    assert distributed.engine_variant == ("bs3", "spring", False)
+    assert coarse.engine_variant == ("dopri5", "spring", False)
+    assert model.with_settings(method="tsit5").engine_variant == ("tsit5", "spring", False)
+    assert train.engine_variant == ("dopri5", "train", False)
+    for m in (model, distributed):
+        m.simulate(2000.0, 1, points_per_revolution=360)
+        pair, kind, pack = m.engine_variant
+        assert (pair, kind + ("-pack" if pack else "")) in loop._COMPILED
