@@ -130,6 +130,12 @@ def test_the_engines_a_valve_section_runs():
         ("dopri5", "train", False),
     ]
     assert all(callable(run) for _, run in made)
+    # without a train the spring alone is the model itself: its two variants, each once
+    f = ROOT / "examples" / "report" / "report_valve_two_step.toml"
+    assert sorted(key for key, _ in engines(load(tomllib.loads(f.read_text()), f))) == [
+        ("bs3", "spring", False),
+        ("dopri5", "spring", False),
+    ]
 
 
 def test_bad_definitions(tmp_path):

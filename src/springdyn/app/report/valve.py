@@ -380,21 +380,21 @@ def engines(d: ValveDefinition) -> list:
     Returns
     -------
     list of (key, callable)
-        The variant's key and a run of one revolution that compiles it (or loads it from the
-        cache); a model the definition cannot run is left out (its section says why).
+        Each variant once: its key and a run of one revolution that compiles it (or loads it
+        from the cache); a model the definition cannot run is left out (its section says why).
     """
     names = ("type-c", "distributed") if d.settings.models == "both" else (d.settings.models,)
-    made = []
+    made = {}
     for name in names:
         try:
             train = d.model.with_model(name)
-            for m in (train, train.spring_alone()):
-                made.append(
-                    (m.engine_variant, functools.partial(_one_revolution, m, float(d.settings.report_speeds[0])))
+            for m in (train, train.spring_alone()):  # (the same model twice without a train: kept once)
+                made.setdefault(
+                    m.engine_variant, functools.partial(_one_revolution, m, float(d.settings.report_speeds[0]))
                 )
         except InputError:  # the section says it (e.g. the distributed model refuses the spring)
             continue
-    return made
+    return list(made.items())
 
 
 def _one_revolution(model, cam_rpm: float) -> None:
