@@ -6,8 +6,13 @@ Measures in one run, on this machine, with the one-step example spring and a 3-4
 1. one simulation of 2 cam revolutions at 3000 cam rpm with the distributed model (50
    elements) against Type C end to end, each with its largest end-force extreme error against
    a Dormand-Prince run of the same model at rtol 1e-10; and the distributed run with its
-   clash check (a second run at half the elements, as coils clash here; target: within 8x
-   Type C's time);
+   clash check (as coils clash here: a second run at twice the elements, issue 40, item 5),
+   against the run and the 100-element run timed alone (target: the check costs its own run,
+   within the timing's noise, ``CHECK_OVERHEAD``). Issue 25's target, 8x Type C's time with the
+   check on, was set when the check ran half the elements (7.4x then); issue 40 found that
+   check blind to the default's own error, and the finer chain's run costs what it costs (6-8x
+   the 50-element run: its steps grow as the square of the element count, its right-hand side
+   as the count), so the ratio to Type C is printed, no longer judged;
 2. the stiffness that limits the explicit step: the largest eigenvalue of the linearised
    chain at set-up times the mean step, against the stability limit of the pair each model
    steps with (Dormand-Prince ~3.3 for Type C, Bogacki-Shampine ~2.5 for the distributed
@@ -28,6 +33,10 @@ import time
 
 from valve_speed import periodic_sweep  # the sweep child both engine benchmarks share
 from valve_variants import yardstick
+
+#: The clash check's time may exceed the run's plus the finer chain's run alone by this factor
+#: [-]: the spread of best-of-3 times of the same run on this 2-core machine (5-10 %).
+CHECK_OVERHEAD = 1.15
 
 
 def _best(fn, repeat):
@@ -63,7 +72,7 @@ def main(argv=None) -> int:
     for s in (tc, ds):
         simulate(s, cam, 3000.0, 2)  # compile / load from cache
     print("one simulation, 2 revolutions at 3000 cam rpm (end to end), best of", args.repeat)
-    print("  (the model's run: without the clash check, which runs the distributed model again with half the")
+    print("  (the model's run: without the clash check, which runs the distributed model again with twice the")
     print("   elements when coils clash; its cost is printed below)")
     rows = {}
     for name, s in (("type-c", tc), ("distributed", ds)):
@@ -89,11 +98,19 @@ def main(argv=None) -> int:
         f"  of which steps {rows['distributed'][1] / rows['type-c'][1]:.2f}x and time per step "
         f"{ratio * rows['type-c'][1] / rows['distributed'][1]:.2f}x"
     )
-    t_chk, sim_chk = _best(lambda: simulate(ds, cam, 3000.0, 2), max(2, args.repeat // 3))
+    t_chk, sim_chk = _best(lambda: simulate(ds, cam, 3000.0, 2), max(3, args.repeat // 3))
+    fine = ds.replace(elements=sim_chk.element_check["elements"])
+    simulate(fine, cam, 3000.0, 2, check_elements=False)  # its set-up, as the check's (kept per spring)
+    t_fine, _ = _best(lambda: simulate(fine, cam, 3000.0, 2, check_elements=False), max(3, args.repeat // 3))
+    overhead = t_chk / (rows["distributed"][0] + t_fine)
     print(
         f"  distributed with the clash check (coils {sim_chk.summary.get('clashing_coils')} clash here): "
-        f"{t_chk * 1e3:.2f} ms, {t_chk / rows['type-c'][0]:.1f}x Type C (issue 25: target <= 8x with the check on): "
-        f"{met(t_chk / rows['type-c'][0] <= 8)}"
+        f"{t_chk * 1e3:.2f} ms, {t_chk / rows['type-c'][0]:.1f}x Type C; the check is a run at "
+        f"{fine.elements} elements, {t_fine * 1e3:.2f} ms alone"
+    )
+    print(
+        f"  with the check / (the run + the {fine.elements}-element run alone) = {overhead:.2f} "
+        f"(target <= {CHECK_OVERHEAD}: the check costs its run): {met(overhead <= CHECK_OVERHEAD)}"
     )
 
     print()

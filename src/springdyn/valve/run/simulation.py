@@ -225,20 +225,20 @@ def _check_element_count(sim, setup: SimulationSetup, cam_rpm: float, settings: 
     finer = min(2 * sp.elements, MAX_CHECK_ELEMENTS)
     if finer <= sp.elements:
         return
-    coarse_spring = _with_elements(sp, finer)  # its set-up is kept
-    coarse = simulate(
-        coarse_spring,
+    fine_spring = _with_elements(sp, finer)  # its set-up is kept
+    fine = simulate(
+        fine_spring,
         setup.cam,
         cam_rpm,
         valve_train=setup.valve_train,
         settings=dataclasses.replace(settings, check_elements=False),
         gas_force=setup.gas_force,
     )
-    ext = coarse.monitor["ext"]  # the true extremes of the dense output, as in the summary
+    ext = fine.monitor["ext"]  # the true extremes of the dense output, as in the summary
     sim.element_check = dict(
         elements=finer,
-        max_retainer_force_N=max(float(ext["max_retainer_force"]), float(coarse.retainer_force.max())),
-        max_seat_force_N=max(float(ext["max_seat_force"]), float(coarse.seat_force.max())),
+        max_retainer_force_N=max(float(ext["max_retainer_force"]), float(fine.retainer_force.max())),
+        max_seat_force_N=max(float(ext["max_seat_force"]), float(fine.seat_force.max())),
     )
     sim.__dict__.pop("_summary_cache", None)  # the summary now includes the check
 
@@ -249,8 +249,9 @@ MAX_CHECK_ELEMENTS = 400
 
 @functools.lru_cache(maxsize=8)
 def _with_elements(spring: ValveSpring, elements: int) -> ValveSpring:
-    """``spring`` with ``elements`` elements, kept for the last few springs (an explicit cache:
-    the coarse spring's model and set-up are reused by every run that checks it)."""
+    """``spring`` with ``elements`` elements: the finer spring of the clash check, kept for the
+    last few springs (an explicit cache: its model and set-up are reused by every run that
+    checks the same spring)."""
     return spring.replace(elements=elements)
 
 
