@@ -72,27 +72,22 @@ def survey(model: str, rpm: float) -> list[tuple]:
     rows = []
     pair = runge_kutta_pair(setup, RunSettings())
     stages = {"dopri5": 6, "tsit5": 6, "bs3": 3}[pair]
-    integrate(
-        y,
-        np.array([t0, t1]),
-        args,
-        rtol=DEFAULT_RTOL,
-        atol=DEFAULT_ATOL,
-        h_max=MAX_STEP_FRACTION * period,
-        atol_velocity=v_atol,
-        method=pair,
-    )  # compile or load first
+
+    def engine():
+        return integrate(
+            y,
+            np.array([t0, t1]),
+            args,
+            rtol=DEFAULT_RTOL,
+            atol=DEFAULT_ATOL,
+            h_max=MAX_STEP_FRACTION * period,
+            atol_velocity=v_atol,
+            method=pair,
+        )
+
+    engine()  # compile or load first
     start = time.perf_counter()
-    _, info = integrate(
-        y,
-        np.array([t0, t1]),
-        args,
-        rtol=DEFAULT_RTOL,
-        atol=DEFAULT_ATOL,
-        h_max=MAX_STEP_FRACTION * period,
-        atol_velocity=v_atol,
-        method=pair,
-    )
+    _, info = engine()
     wall = time.perf_counter() - start
     rows.append((f"engine {pair}", info["steps"], (info["steps"] + info["rejected"]) * stages, 0, 0, wall))
     for method in ("RK45", "DOP853", "Radau", "BDF", "LSODA"):
