@@ -36,6 +36,7 @@ def survey(model: str, rpm: float) -> list[tuple]:
     """Rows ``(method, steps, rhs evaluations, Jacobians, LUs, seconds)`` of one revolution."""
     from scipy.integrate import solve_ivp
 
+    from springdyn.numerics.erk import TABLEAUS
     from springdyn.valve import ValveSpring
     from springdyn.valve.cam.definition import Cam
     from springdyn.valve.engine import NO_EXTRA, atol_vector, integrate, model_of, rhs_kernel, train_of
@@ -71,7 +72,7 @@ def survey(model: str, rpm: float) -> list[tuple]:
     t0, t1 = 3.0 * period, 4.0 * period
     rows = []
     pair = runge_kutta_pair(setup, RunSettings())
-    stages = {"dopri5": 6, "tsit5": 6, "bs3": 3}[pair]
+    stages = TABLEAUS[pair].c.shape[0] - 1  # right-hand sides a step (first same as last)
 
     def engine():
         return integrate(
@@ -106,7 +107,11 @@ def main(argv=None) -> int:
     p.add_argument("--speeds", type=float, nargs="+", default=[600.0, 3000.0], help="cam speeds [rpm]")
     p.add_argument("--models", nargs="+", default=["type-c", "distributed"], choices=["type-c", "distributed"])
     a = p.parse_args(argv)
-    print("one revolution on the periodic orbit, rtol 1e-6, atol 1e-9 m (the engine's defaults)")
+    from springdyn.valve.run.settings import DEFAULT_ATOL, DEFAULT_RTOL
+
+    print(
+        f"one revolution on the periodic orbit, rtol {DEFAULT_RTOL:g}, atol {DEFAULT_ATOL:g} m (the engine's defaults)"
+    )
     print(
         f"{'model':12s} {'cam rpm':>7s} {'method':14s} {'steps':>7s} {'rhs':>8s} {'rhs/engine':>10s} "
         f"{'Jacobians':>9s} {'LUs':>6s} {'time [s]':>8s}"
